@@ -1,0 +1,43 @@
+#pragma once
+
+#include "acc_identification/acc_parameters.h"
+
+namespace acc_identification
+{
+/// What the linear analysis of Section II-B says about a platoon of identical ACC vehicles.
+struct StringStabilityReport
+{
+  /// Wilson & Ward's lambda2 = f_s / f_v^3 (f_v^2 / 2 - f_dv f_v - f_s); stable when < 0.
+  /// +infinity when k1 > 0 and tau_e = 0 (f_v = 0: every low frequency grows); 0 when k1 = 0.
+  double lambda2 = 0.0;
+  /// |Gamma(j w)| <= 1 for every w >= 0 (the paper's sufficient condition, eq. 10). It agrees
+  /// with lambda2 < 0 except on the boundary lambda2 = 0, where |Gamma| <= 1 still holds.
+  bool string_stable = true;
+  /// Disturbances with frequency in [0, w_c) grow along the platoon; 0 when none do [rad/s].
+  double amplified_band_upper_rad_s = 0.0;
+  /// max over w of 20 log10 |Gamma(j w)|; 0 dB (at w = 0) for a stable model [dB].
+  double peak_gain_db = 0.0;
+  double peak_frequency_rad_s = 0.0;
+};
+
+/// lambda2 of Wilson & Ward (paper eq. 11).
+double lambda2(const AccParameters& p);
+
+/// |Gamma(j w)| of the speed-to-speed transfer function (paper eq. 9), as a ratio.
+double transferGain(const AccParameters& p, double frequency_rad_s);
+
+/// 20 log10 |Gamma(j w)| [dB].
+double transferGainDb(const AccParameters& p, double frequency_rad_s);
+
+/// Upper end w_c of the amplified band: w_c^2 = 2 k1 - 2 k1 k2 tau_e - k1^2 tau_e^2 when that is
+/// positive, else 0 (closed form: |Gamma|^2 > 1 exactly below it).
+double amplifiedBandUpperRadS(const AccParameters& p);
+
+/// Frequency of the largest |Gamma| in closed form: setting d|Gamma|^2/d(w^2) = 0 gives
+///   k2^2 x^2 + 2 k1^2 x - k1^2 w_c^2 = 0,  x = w^2.
+/// 0 when the band is empty (the peak is |Gamma(0)| = 1).
+double peakFrequencyRadS(const AccParameters& p);
+
+StringStabilityReport analyzeStringStability(const AccParameters& p);
+
+}  // namespace acc_identification

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Builds and runs every gtest and rostest of the package, then fails if any test failed or errored.
+# Usage: run_tests.sh WORKSPACE   (with the workspace's devel/setup.bash sourced)
+set -eo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+ws=$1
+results=$ws/build/test_results
+log=$ws/../run_tests.log
+rm -rf "$results"
+cd "$ws"
+catkin_make -j2 run_tests > "$log" 2>&1 || { tail -n 80 "$log"; echo "run_tests failed to build or run"; exit 1; }
+# The per-binary lines, for a reader of the CI log.
+grep -E '^\[  (FAILED|PASSED)|^\[==========\] [0-9]+ tests? from .* ran|^\[ROSTEST\]|^SUMMARY|^ \* RESULT' "$log" || true
+# catkin_test_results also catches a test binary that crashed before writing its results.
+set +e
+catkin_test_results "$results" | grep -E '^Summary|^acc_identification/.*(error|failure)' | grep -vE ' 0 errors, 0 failures' 
+catkin_status=${PIPESTATUS[0]}
+/usr/bin/python3 "$here/summarize_test_results.py" "$results"
+summary_status=$?
+set -e
+[ "$catkin_status" -eq 0 ] && [ "$summary_status" -eq 0 ]

@@ -1,0 +1,61 @@
+#include "acc_identification/car_following_run.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace acc_identification
+{
+namespace
+{
+std::string firstNonFinite(const std::vector<double>& column, const char* column_name)
+{
+  for (std::size_t i = 0; i < column.size(); ++i)
+  {
+    if (!std::isfinite(column[i]))
+    {
+      std::ostringstream why;
+      why << column_name << " is not finite at sample " << i;
+      return why.str();
+    }
+  }
+  return "";
+}
+}  // namespace
+
+std::string describeRunProblem(const CarFollowingRun& run)
+{
+  const std::size_t n = run.time_s.size();
+  if (run.space_gap_m.size() != n || run.follower_speed_mps.size() != n ||
+      run.leader_speed_mps.size() != n)
+  {
+    return "columns have different lengths";
+  }
+  if (n < 2)
+  {
+    return "fewer than two samples";
+  }
+  for (const auto& [column, column_name] :
+       {std::pair{&run.time_s, "time_s"}, std::pair{&run.space_gap_m, "space_gap_m"},
+        std::pair{&run.follower_speed_mps, "follower_speed_mps"},
+        std::pair{&run.leader_speed_mps, "leader_speed_mps"}})
+  {
+    std::string problem = firstNonFinite(*column, column_name);
+    if (!problem.empty())
+    {
+      return problem;
+    }
+  }
+  for (std::size_t i = 1; i < n; ++i)
+  {
+    if (!(run.time_s[i] > run.time_s[i - 1]))
+    {
+      std::ostringstream why;
+      why << "time does not increase at sample " << i << " (" << run.time_s[i - 1] << " s then "
+          << run.time_s[i] << " s)";
+      return why.str();
+    }
+  }
+  return "";
+}
+
+}  // namespace acc_identification

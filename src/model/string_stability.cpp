@@ -1,0 +1,90 @@
+#include "acc_identification/string_stability.h"
+
+#include <cmath>
+#include <limits>
+
+#include "acc_identification/acc_model.h"
+
+namespace acc_identification
+{
+double lambda2(const AccParameters& p)
+{
+  const AccelerationPartials d = accelerationPartials(p);
+  if (d.f_s == 0.0)
+  {
+    return 0.0;  // no spacing feedback: Gamma = k2 / (j w + k2), never above 1
+  }
+  if (d.f_v == 0.0)
+  {
+    return std::numeric_limits<double>::infinity();  // tau_e = 0: the limit f_v -> 0- of lambda2
+  }
+  return d.f_s / (d.f_v * d.f_v * d.f_v) * (d.f_v * d.f_v / 2.0 - d.f_dv * d.f_v - d.f_s);
+}
+
+double transferGain(const AccParameters& p, double frequency_rad_s)
+{
+  const AccelerationPartials d = accelerationPartials(p);
+  const double w2 = frequency_rad_s * frequency_rad_s;
+  const double damping = d.f_dv - d.f_v;
+  const double numerator = w2 * d.f_dv * d.f_dv + d.f_s * d.f_s;
+  const double denominator = (d.f_s - w2) * (d.f_s - w2) + w2 * damping * damping;
+  if (denominator == 0.0)
+  {
+    return numerator == 0.0 ? 1.0 : std::numeric_limits<double>::infinity();
+  }
+  return std::sqrt(numerator / denominator);
+}
+
+double transferGainDb(const AccParameters& p, double frequency_rad_s)
+{
+  return 20.0 * std::log10(transferGain(p, frequency_rad_s));
+}
+
+namespace
+{
+/// w_c^2 = k1 (2 - 2 k2 tau_e - k1 tau_e^2); may be negative (no amplified band).
+double amplifiedBandUpperSquared(const AccParameters& p)
+{
+  const double k1 = p.k1_per_s2;
+  const double tau = p.tau_e_s;
+  return k1 * (2.0 - 2.0 * p.k2_per_s * tau - k1 * tau * tau);
+}
+}  // namespace
+
+double amplifiedBandUpperRadS(const AccParameters& p)
+{
+  const double upper_squared = amplifiedBandUpperSquared(p);
+  return upper_squared > 0.0 ? std::sqrt(upper_squared) : 0.0;
+}
+
+double peakFrequencyRadS(const AccParameters& p)
+{
+  const double upper_squared = amplifiedBandUpperSquared(p);
+  if (!(upper_squared > 0.0))
+  {
+    return 0.0;
+  }
+  const double k1 = p.k1_per_s2;
+  const double k2 = p.k2_per_s;
+  if (k2 == 0.0)
+  {
+    return std::sqrt(upper_squared / 2.0);  // the quadratic degenerates to 2 k1^2 x = k1^2 w_c^2
+  }
+  // Positive root of k2^2 x^2 + 2 k1^2 x - k1^2 w_c^2 = 0, written to avoid cancellation.
+  const double root_term = k1 * std::sqrt(k1 * k1 + k2 * k2 * upper_squared);
+  const double x = k1 * k1 * upper_squared / (k1 * k1 + root_term);
+  return std::sqrt(x);
+}
+
+StringStabilityReport analyzeStringStability(const AccParameters& p)
+{
+  StringStabilityReport report;
+  report.lambda2 = lambda2(p);
+  report.amplified_band_upper_rad_s = amplifiedBandUpperRadS(p);
+  report.string_stable = report.amplified_band_upper_rad_s == 0.0;
+  report.peak_frequency_rad_s = peakFrequencyRadS(p);
+  report.peak_gain_db = transferGainDb(p, report.peak_frequency_rad_s);
+  return report;
+}
+
+}  // namespace acc_identification
