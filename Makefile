@@ -9,13 +9,15 @@ export ROS_LOG_DIR := $(CURDIR)/build/ros_home/log
 
 WS ?= $(CURDIR)/build/ws
 JOBS ?= 2
+# Extra CMake arguments, e.g. CMAKE_ARGS=-DACC_COMPONENTS=gnss to build one component alone.
+CMAKE_ARGS ?=
 DEV := $(WS)/devel/setup.bash
 APT_PACKAGES := build-essential cmake clang libclang-rt-14-dev \
   catkin ros-core-dev librosbag-dev python3-rostest python3-roslaunch python3-rosbag \
   python3-rostopic rosout python3-rosmaster python3-rosnode python3-rosparam rosbash \
   python3-catkin-pkg libdiagnostic-updater-dev libsensor-msgs-dev libgeometry-msgs-dev \
   libstd-msgs-dev libdiagnostic-msgs-dev libnlopt-cxx-dev libeigen3-dev libgeographiclib-dev \
-  libgtest-dev libbenchmark-dev python3-matplotlib python3-numpy
+  libgtest-dev libbenchmark-dev nlohmann-json3-dev python3-matplotlib python3-numpy
 
 .PHONY: deps build demo test unit-tests bench clean
 
@@ -36,15 +38,15 @@ build: deps
 	  for entry in $(CURDIR)/* $(CURDIR)/.ci; do \
 	    [ "$$(basename $$entry)" = build ] || ln -sfn $$entry $$pkg/; \
 	  done
-	cd $(WS) && catkin_make -j$(JOBS) -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON > $(CURDIR)/build/catkin_make.log 2>&1 \
-	  || { tail -n 60 $(CURDIR)/build/catkin_make.log; exit 1; }
-	@echo "built in $(WS) (log: build/catkin_make.log)"
+	cd $(WS) && catkin_make -j$(JOBS) -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON $(CMAKE_ARGS) > $(WS)/catkin_make.log 2>&1 \
+	  || { tail -n 60 $(WS)/catkin_make.log; exit 1; }
+	@echo "built in $(WS) (log: $(WS)/catkin_make.log)"
 
 demo: build
 	@source $(DEV) && bash scripts/demo.sh
 
 test: build
-	@source $(DEV) && bash scripts/run_tests.sh $(WS)
+	@source $(DEV) && JOBS=$(JOBS) bash scripts/run_tests.sh $(WS)
 
 bench: build
 	@source $(DEV) && bash scripts/run_benchmarks.sh $(WS)

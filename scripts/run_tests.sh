@@ -5,10 +5,17 @@ set -eo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 ws=$1
 results=$ws/build/test_results
-log=$ws/../run_tests.log
+log=$ws/run_tests.log
 rm -rf "$results"
 cd "$ws"
-catkin_make -j2 run_tests > "$log" 2>&1 || { tail -n 80 "$log"; echo "run_tests failed to build or run"; exit 1; }
+catkin_make -j"${JOBS:-2}" run_tests > "$log" 2>&1 || { tail -n 80 "$log"; echo "run_tests failed to build or run"; exit 1; }
+# Extra suites outside catkin (fuzzers, ...): each hook gets the workspace and the results folder
+# and writes its own JUnit XML there, so that the summary below counts it.
+for hook in "$here"/test_hooks/*.sh; do
+  [ -e "$hook" ] || continue
+  echo "== $(basename "$hook")"
+  bash "$hook" "$ws" "$results" || echo "hook $(basename "$hook") failed (its JUnit file says why)"
+done
 # The per-binary lines, for a reader of the CI log.
 grep -E '^\[  (FAILED|PASSED)|^\[==========\] [0-9]+ tests? from .* ran|^\[ROSTEST\]|^SUMMARY|^ \* RESULT' "$log" || true
 # catkin_test_results also catches a test binary that crashed before writing its results.
