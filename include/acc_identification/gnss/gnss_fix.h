@@ -29,6 +29,8 @@ struct GnssFix
   double latitude_sigma_m = kNaN;   ///< 1-sigma from GST
   double longitude_sigma_m = kNaN;
   double altitude_sigma_m = kNaN;
+  /// Geoid separation from GGA [m] (NaN when not sent): ellipsoid height = altitude_m + this.
+  double geoid_separation_m = kNaN;
 
   /// Which fields hold data: the VALID_* bits of msg/GnssFix.msg, mirrored here.
   std::uint32_t valid_fields = 0;

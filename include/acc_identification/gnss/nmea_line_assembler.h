@@ -1,0 +1,95 @@
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+namespace acc_identification
+{
+/// Turns a byte stream (serial reads, datagrams, TCP segments, file chunks) into NMEA lines:
+/// a line starts at '$' and ends at '\r' or '\n' (so \r\n, \n and \r all work); a partial line
+/// is kept across calls; several lines in one call come out one by one. Bytes outside lines
+/// are counted as stray; a '$' inside a line ends the broken line (it is still handed out, so
+/// that the parser counts it) and starts a new one; lines longer than kMaxLineLength are
+/// discarded and counted. Allocation-free.
+class NmeaLineAssembler
+{
+public:
+  /// NMEA allows 82 characters; u-blox PUBX lines reach about 130. Longer is garbage.
+  static constexpr std::size_t kMaxLineLength = 255;
+
+  /// Calls on_line(std::string_view line) for every completed line (without terminator). The
+  /// view is valid only during the call.
+  template <typename OnLine>
+  void feed(const char* data, std::size_t size, OnLine&& on_line);
+
+  std::uint64_t strayBytes() const { return stray_bytes_; }
+  std::uint64_t overlongLines() const { return overlong_lines_; }
+  /// Hands out a pending unterminated line (end of a file without final newline).
+  template <typename OnLine>
+  void finish(OnLine&& on_line);
+
+private:
+  std::array<char, kMaxLineLength> buffer_{};
+  std::size_t length_ = 0;
+  bool in_line_ = false;
+  bool discarding_ = false;  ///< inside an overlong line, until its end
+  std::uint64_t stray_bytes_ = 0;
+  std::uint64_t overlong_lines_ = 0;
+};
+
+template <typename OnLine>
+void NmeaLineAssembler::feed(const char* data, std::size_t size, OnLine&& on_line)
+{
+  for (std::size_t i = 0; i < size; ++i)
+  {
+    const char c = data[i];
+    if (c == '$')
+    {
+      if (in_line_ && length_ > 0)
+        on_line(std::string_view(buffer_.data(), length_));
+      in_line_ = true;
+      discarding_ = false;
+      buffer_[0] = c;
+      length_ = 1;
+    }
+    else if (c == '\n' || c == '\r')
+    {
+      if (in_line_ && !discarding_)
+        on_line(std::string_view(buffer_.data(), length_));
+      in_line_ = false;
+      discarding_ = false;
+      length_ = 0;
+    }
+    else if (!in_line_)
+    {
+      ++stray_bytes_;
+    }
+    else if (!discarding_)
+    {
+      if (length_ == kMaxLineLength)
+      {
+        ++overlong_lines_;
+        discarding_ = true;
+        length_ = 0;
+      }
+      else
+      {
+        buffer_[length_++] = c;
+      }
+    }
+  }
+}
+
+template <typename OnLine>
+void NmeaLineAssembler::finish(OnLine&& on_line)
+{
+  if (in_line_ && !discarding_ && length_ > 0)
+    on_line(std::string_view(buffer_.data(), length_));
+  in_line_ = false;
+  discarding_ = false;
+  length_ = 0;
+}
+
+}  // namespace acc_identification

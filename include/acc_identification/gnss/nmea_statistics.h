@@ -1,0 +1,30 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "acc_identification/gnss/nmea_parser.h"
+
+namespace acc_identification
+{
+/// Counts of everything the decoder saw, so that no input is dropped without a trace.
+struct NmeaStatistics
+{
+  std::uint64_t lines = 0;          ///< complete lines handed to the parser
+  std::uint64_t sentences_ok = 0;
+  std::uint64_t bad_checksum = 0;
+  std::uint64_t malformed = 0;
+  std::uint64_t unsupported = 0;
+  std::uint64_t stray_bytes = 0;    ///< bytes outside any '$' line (noise, binary UBX, ...)
+  std::uint64_t overlong_lines = 0; ///< lines longer than the assembler's limit, discarded
+  std::uint64_t fixes = 0;          ///< epochs completed
+  std::uint64_t epochs_without_time = 0;  ///< epochs of untimed sentences only, discarded
+  std::uint64_t date_lag_corrections = 0; ///< see UtcDateTracker
+
+  void count(NmeaParseOutcome outcome);
+  std::uint64_t rejected() const { return bad_checksum + malformed + unsupported; }
+  /// One line, e.g. for a log at the end of a replay.
+  std::string summary() const;
+};
+
+}  // namespace acc_identification

@@ -1,0 +1,107 @@
+#include "acc_identification/gnss/nmea_fields.h"
+
+#include <charconv>
+#include <cmath>
+
+namespace acc_identification
+{
+std::uint8_t nmeaChecksumValue(std::string_view body)
+{
+  std::uint8_t sum = 0;
+  for (const char c : body)
+    sum ^= static_cast<std::uint8_t>(c);
+  return sum;
+}
+
+NmeaFields::NmeaFields(std::string_view body)
+{
+  std::size_t start = 0;
+  while (true)
+  {
+    const std::size_t comma = body.find(',', start);
+    const std::string_view field = body.substr(start, comma == std::string_view::npos ? body.npos : comma - start);
+    if (count_ == kMaxFields)
+    {
+      overflowed_ = true;
+      return;
+    }
+    fields_[count_++] = field;
+    if (comma == std::string_view::npos)
+      return;
+    start = comma + 1;
+  }
+}
+
+namespace
+{
+bool isDigit(char c) { return c >= '0' && c <= '9'; }
+
+int twoDigits(std::string_view s, std::size_t at) { return (s[at] - '0') * 10 + (s[at + 1] - '0'); }
+}  // namespace
+
+FieldStatus readDouble(std::string_view field, double& value)
+{
+  if (field.empty())
+    return FieldStatus::kAbsent;
+  const char* begin = field.data();
+  const char* end = begin + field.size();
+  if (*begin == '+')  // from_chars rejects a leading '+', some receivers send one
+    ++begin;
+  const auto result = std::from_chars(begin, end, value, std::chars_format::fixed);
+  if (result.ec != std::errc() || result.ptr != end || !std::isfinite(value))
+    return FieldStatus::kInvalid;
+  return FieldStatus::kOk;
+}
+
+FieldStatus readUnsigned(std::string_view field, std::uint32_t& value)
+{
+  if (field.empty())
+    return FieldStatus::kAbsent;
+  const char* end = field.data() + field.size();
+  const auto result = std::from_chars(field.data(), end, value);
+  return result.ec == std::errc() && result.ptr == end ? FieldStatus::kOk : FieldStatus::kInvalid;
+}
+
+FieldStatus readTimeOfDay(std::string_view field, double& seconds)
+{
+  if (field.empty())
+    return FieldStatus::kAbsent;
+  if (field.size() < 6)
+    return FieldStatus::kInvalid;
+  for (std::size_t i = 0; i < 6; ++i)
+    if (!isDigit(field[i]))
+      return FieldStatus::kInvalid;
+  const int hours = twoDigits(field, 0);
+  const int minutes = twoDigits(field, 2);
+  double second = 0.0;
+  if (readDouble(field.substr(4), second) != FieldStatus::kOk)
+    return FieldStatus::kInvalid;
+  if (hours > 23 || minutes > 59 || second < 0.0 || second >= 61.0)
+    return FieldStatus::kInvalid;
+  seconds = hours * 3600.0 + minutes * 60.0 + second;
+  return FieldStatus::kOk;
+}
+
+FieldStatus readAngle(std::string_view value_field, std::string_view hemisphere_field, double max_degrees,
+                      char positive, char negative, double& degrees)
+{
+  if (value_field.empty() && hemisphere_field.empty())
+    return FieldStatus::kAbsent;
+  if (value_field.empty() || hemisphere_field.size() != 1 || value_field.front() == '-')
+    return FieldStatus::kInvalid;
+  double packed = 0.0;  // degrees * 100 + minutes
+  if (readDouble(value_field, packed) != FieldStatus::kOk)
+    return FieldStatus::kInvalid;
+  const double whole_degrees = std::floor(packed / 100.0);
+  const double minutes = packed - whole_degrees * 100.0;
+  const double magnitude = whole_degrees + minutes / 60.0;
+  if (minutes >= 60.0 || magnitude > max_degrees)
+    return FieldStatus::kInvalid;
+  const char hemisphere = hemisphere_field.front();
+  if (hemisphere != positive && hemisphere != negative)
+    return FieldStatus::kInvalid;
+  degrees = hemisphere == positive ? magnitude : -magnitude;
+  return FieldStatus::kOk;
+}
+
+}  // namespace acc_identification

@@ -1,0 +1,365 @@
+#include "acc_identification/gnss/nmea_parser.h"
+
+#include <cmath>
+#include <cstdint>
+
+#include "acc_identification/gnss/nmea_fields.h"
+#include "acc_identification/gnss/utc_date.h"
+
+namespace acc_identification
+{
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kKnotToMps = 1852.0 / 3600.0;
+constexpr double kKmhToMps = 1.0 / 3.6;
+
+using Outcome = NmeaParseOutcome;
+
+int hexValue(char c)
+{
+  if (c >= '0' && c <= '9')
+    return c - '0';
+  if (c >= 'A' && c <= 'F')
+    return c - 'A' + 10;
+  if (c >= 'a' && c <= 'f')
+    return c - 'a' + 10;
+  return -1;
+}
+
+/// Reads an optional field into value (NaN stays when absent). False when present but invalid.
+bool optionalDouble(std::string_view field, double& value)
+{
+  double read = 0.0;
+  const FieldStatus status = readDouble(field, read);
+  if (status == FieldStatus::kOk)
+    value = read;
+  return status != FieldStatus::kInvalid;
+}
+
+bool optionalTime(std::string_view field, double& seconds)
+{
+  double read = 0.0;
+  const FieldStatus status = readTimeOfDay(field, read);
+  if (status == FieldStatus::kOk)
+    seconds = read;
+  return status != FieldStatus::kInvalid;
+}
+
+/// Latitude (fields i, i+1) and longitude (i+2, i+3); both or neither.
+bool optionalPosition(const NmeaFields& f, std::size_t i, NmeaSentence& s)
+{
+  double latitude = 0.0, longitude = 0.0;
+  const FieldStatus lat = readAngle(f[i], f[i + 1], 90.0, 'N', 'S', latitude);
+  const FieldStatus lon = readAngle(f[i + 2], f[i + 3], 180.0, 'E', 'W', longitude);
+  if (lat == FieldStatus::kInvalid || lon == FieldStatus::kInvalid || lat != lon)
+    return false;
+  if (lat == FieldStatus::kOk)
+  {
+    s.latitude_deg = latitude;
+    s.longitude_deg = longitude;
+  }
+  return true;
+}
+
+/// Course in degrees into radians in [0, 2 pi).
+bool optionalCourse(std::string_view field, double& course_rad)
+{
+  double degrees = NmeaSentence::kNaN;
+  if (!optionalDouble(field, degrees))
+    return false;
+  if (std::isnan(degrees))
+    return true;
+  if (degrees < 0.0 || degrees > 360.0)
+    return false;
+  course_rad = degrees >= 360.0 ? 0.0 : degrees * kPi / 180.0;
+  return true;
+}
+
+bool optionalSpeed(std::string_view field, double unit_mps, double& speed_mps)
+{
+  double value = NmeaSentence::kNaN;
+  if (!optionalDouble(field, value) || value < 0.0)
+    return false;
+  if (!std::isnan(value))
+    speed_mps = value * unit_mps;
+  return true;
+}
+
+bool optionalSigma(std::string_view field, double& sigma_m)
+{
+  return optionalDouble(field, sigma_m) && !(sigma_m < 0.0);
+}
+
+/// RMC / PUBX mode indicator to the GGA quality scale.
+int qualityFromMode(char mode)
+{
+  switch (mode)
+  {
+    case 'A': return 1;
+    case 'D': return 2;
+    case 'P': return 3;
+    case 'R': return 4;
+    case 'F': return 5;
+    case 'E': return 6;
+    default: return 0;
+  }
+}
+
+// $xxGGA,time,lat,NS,lon,EW,quality,numSV,HDOP,alt,M,sep,M,diffAge,diffStation
+Outcome parseGga(const NmeaFields& f, NmeaSentence& s)
+{
+  if (f.size() < 15)
+    return Outcome::kMalformed;
+  std::uint32_t quality = 0, satellites = 0;
+  const FieldStatus q = readUnsigned(f[6], quality);
+  const FieldStatus n = readUnsigned(f[7], satellites);
+  if (!optionalTime(f[1], s.time_of_day_s) || !optionalPosition(f, 2, s) || q == FieldStatus::kInvalid ||
+      quality > 8 || n == FieldStatus::kInvalid || satellites > 999 || !optionalDouble(f[8], s.hdop) ||
+      !optionalDouble(f[9], s.altitude_m) || !optionalDouble(f[11], s.geoid_separation_m))
+    return Outcome::kMalformed;
+  s.fix_quality = q == FieldStatus::kOk ? static_cast<int>(quality) : 0;
+  if (n == FieldStatus::kOk)
+    s.satellites = static_cast<int>(satellites);
+  if (s.fix_quality == 0)  // a receiver without fix may repeat its last position: not a fix
+    s.latitude_deg = s.longitude_deg = s.altitude_m = NmeaSentence::kNaN;
+  return Outcome::kOk;
+}
+
+bool readRmcDate(std::string_view field, std::optional<std::int64_t>& day)
+{
+  if (field.empty())
+    return true;
+  if (field.size() != 6)
+    return false;
+  for (const char c : field)
+    if (c < '0' || c > '9')
+      return false;
+  const unsigned dd = (field[0] - '0') * 10 + (field[1] - '0');
+  const unsigned mm = (field[2] - '0') * 10 + (field[3] - '0');
+  const int yy = (field[4] - '0') * 10 + (field[5] - '0');
+  const int year = yy < 80 ? 2000 + yy : 1900 + yy;  // NMEA two-digit years, GPS era
+  if (!isValidDate(year, mm, dd))
+    return false;
+  day = daysFromCivil(year, mm, dd);
+  return true;
+}
+
+// $xxRMC,time,status,lat,NS,lon,EW,spd(kn),cog,date,mv,mvEW[,posMode[,navStatus]]
+Outcome parseRmc(const NmeaFields& f, NmeaSentence& s)
+{
+  if (f.size() < 12)
+    return Outcome::kMalformed;
+  const std::string_view status = f[2];
+  if (status.size() > 1 || !optionalTime(f[1], s.time_of_day_s) || !optionalPosition(f, 3, s) ||
+      !optionalSpeed(f[7], kKnotToMps, s.speed_mps) || !optionalCourse(f[8], s.course_rad) ||
+      !readRmcDate(f[9], s.day))
+    return Outcome::kMalformed;
+  const bool valid = status == "A";
+  const std::string_view mode = f.size() > 12 ? f[12] : std::string_view();
+  s.fix_quality = !valid ? 0 : (mode.size() == 1 ? qualityFromMode(mode[0]) : 1);
+  if (s.fix_quality == 0)  // status V: the receiver says position and velocity are not valid
+    s.latitude_deg = s.longitude_deg = s.speed_mps = s.course_rad = NmeaSentence::kNaN;
+  return Outcome::kOk;
+}
+
+// $xxVTG,cogt,T,cogm,M,knots,N,kph,K[,posMode]
+Outcome parseVtg(const NmeaFields& f, NmeaSentence& s)
+{
+  if (f.size() < 9)
+    return Outcome::kMalformed;
+  if (!optionalCourse(f[1], s.course_rad))
+    return Outcome::kMalformed;
+  // km/h has the finer resolution on u-blox; knots when km/h is empty.
+  if (!f[7].empty() ? !optionalSpeed(f[7], kKmhToMps, s.speed_mps) : !optionalSpeed(f[5], kKnotToMps, s.speed_mps))
+    return Outcome::kMalformed;
+  const std::string_view mode = f.size() > 9 ? f[9] : std::string_view();
+  if (mode == "N")
+    s.speed_mps = s.course_rad = NmeaSentence::kNaN;
+  return Outcome::kOk;
+}
+
+// $xxGST,time,rangeRms,stdMajor,stdMinor,orient,stdLat,stdLong,stdAlt
+Outcome parseGst(const NmeaFields& f, NmeaSentence& s)
+{
+  if (f.size() < 9)
+    return Outcome::kMalformed;
+  double ignored = 0.0;
+  for (std::size_t i = 2; i <= 5; ++i)
+    if (!optionalDouble(f[i], ignored))
+      return Outcome::kMalformed;
+  if (!optionalTime(f[1], s.time_of_day_s) || !optionalSigma(f[6], s.latitude_sigma_m) ||
+      !optionalSigma(f[7], s.longitude_sigma_m) || !optionalSigma(f[8], s.altitude_sigma_m))
+    return Outcome::kMalformed;
+  return Outcome::kOk;
+}
+
+// $xxZDA,time,day,month,year,ltzh,ltzn
+Outcome parseZda(const NmeaFields& f, NmeaSentence& s)
+{
+  if (f.size() < 7)
+    return Outcome::kMalformed;
+  if (!optionalTime(f[1], s.time_of_day_s))
+    return Outcome::kMalformed;
+  std::uint32_t day = 0, month = 0, year = 0;
+  const FieldStatus d = readUnsigned(f[2], day), m = readUnsigned(f[3], month), y = readUnsigned(f[4], year);
+  if (d == FieldStatus::kAbsent && m == FieldStatus::kAbsent && y == FieldStatus::kAbsent)
+    return Outcome::kOk;  // time without date (receiver at start-up)
+  if (d != FieldStatus::kOk || m != FieldStatus::kOk || y != FieldStatus::kOk || year < 1980 || year > 2200 ||
+      !isValidDate(static_cast<int>(year), month, day))
+    return Outcome::kMalformed;
+  s.day = daysFromCivil(static_cast<int>(year), month, day);
+  return Outcome::kOk;
+}
+
+// $PUBX,00,time,lat,NS,lon,EW,altRef,navStat,hAcc,vAcc,SOG(km/h),COG,vVel,diffAge,HDOP,VDOP,TDOP,numSvs,res,DR
+Outcome parsePubx00(const NmeaFields& f, NmeaSentence& s)
+{
+  if (f.size() < 20)
+    return Outcome::kMalformed;
+  double horizontal_accuracy = NmeaSentence::kNaN, vertical_accuracy = NmeaSentence::kNaN;
+  std::uint32_t satellites = 0;
+  const FieldStatus n = readUnsigned(f[18], satellites);
+  if (!optionalTime(f[2], s.time_of_day_s) || !optionalPosition(f, 3, s) || f[8].size() > 2 ||
+      !optionalSigma(f[9], horizontal_accuracy) || !optionalSigma(f[10], vertical_accuracy) ||
+      !optionalSpeed(f[11], kKmhToMps, s.speed_mps) || !optionalCourse(f[12], s.course_rad) ||
+      !optionalDouble(f[15], s.hdop) || n == FieldStatus::kInvalid)
+    return Outcome::kMalformed;
+  if (n == FieldStatus::kOk)
+    s.satellites = static_cast<int>(satellites);
+  // navStat: NF no fix, DR dead reckoning, G2/G3 stand-alone 2D/3D, D2/D3 differential, RK, TT.
+  const std::string_view nav = f[8];
+  s.fix_quality = nav == "G2" || nav == "G3" ? 1 : nav == "D2" || nav == "D3" ? 2 : nav == "RK" ? 1 : nav == "DR" ? 6 : 0;
+  if (s.fix_quality == 0)
+    s.latitude_deg = s.longitude_deg = s.speed_mps = s.course_rad = NmeaSentence::kNaN;
+  // hAcc is a horizontal (2D) 1-sigma estimate; split evenly between north and east.
+  s.latitude_sigma_m = s.longitude_sigma_m = horizontal_accuracy / std::sqrt(2.0);
+  s.altitude_sigma_m = vertical_accuracy;
+  return Outcome::kOk;
+}
+
+/// Checks '$', '*hh' and the checksum; body receives the characters between '$' and '*'.
+Outcome checkFrame(std::string_view line, std::string_view& body)
+{
+  while (!line.empty() && (line.back() == '\r' || line.back() == '\n' || line.back() == ' '))
+    line.remove_suffix(1);
+  if (line.size() < 4 || line.front() != '$' || line[line.size() - 3] != '*')
+    return Outcome::kMalformed;
+  const int high = hexValue(line[line.size() - 2]);
+  const int low = hexValue(line[line.size() - 1]);
+  if (high < 0 || low < 0)
+    return Outcome::kMalformed;
+  body = line.substr(1, line.size() - 4);
+  if (body.find_first_of("$*") != std::string_view::npos)
+    return Outcome::kMalformed;
+  return nmeaChecksumValue(body) == (high << 4 | low) ? Outcome::kOk : Outcome::kBadChecksum;
+}
+
+/// Sentence type from the address field; kUnsupported for anything else.
+Outcome classify(const NmeaFields& f, NmeaSentence& s)
+{
+  const std::string_view address = f[0];
+  if (address == "PUBX")
+  {
+    if (f[1] != "00")
+      return Outcome::kUnsupported;
+    s.type = NmeaSentenceType::kPubx00;
+    s.talker[0] = 'P';
+    s.talker[1] = 'U';
+    return Outcome::kOk;
+  }
+  if (address.size() != 5)
+    return address.size() >= 2 && address[0] == 'P' ? Outcome::kUnsupported : Outcome::kMalformed;
+  for (const char c : address)
+    if (!((c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9')))
+      return Outcome::kMalformed;
+  const std::string_view type = address.substr(2);
+  s.talker[0] = address[0];
+  s.talker[1] = address[1];
+  if (type == "GGA")
+    s.type = NmeaSentenceType::kGga;
+  else if (type == "RMC")
+    s.type = NmeaSentenceType::kRmc;
+  else if (type == "VTG")
+    s.type = NmeaSentenceType::kVtg;
+  else if (type == "GST")
+    s.type = NmeaSentenceType::kGst;
+  else if (type == "ZDA")
+    s.type = NmeaSentenceType::kZda;
+  else
+    return Outcome::kUnsupported;
+  return Outcome::kOk;
+}
+}  // namespace
+
+const char* toString(NmeaSentenceType type)
+{
+  switch (type)
+  {
+    case NmeaSentenceType::kGga: return "GGA";
+    case NmeaSentenceType::kRmc: return "RMC";
+    case NmeaSentenceType::kVtg: return "VTG";
+    case NmeaSentenceType::kGst: return "GST";
+    case NmeaSentenceType::kZda: return "ZDA";
+    case NmeaSentenceType::kPubx00: return "PUBX,00";
+  }
+  return "?";
+}
+
+const char* toString(NmeaParseOutcome outcome)
+{
+  switch (outcome)
+  {
+    case Outcome::kOk: return "ok";
+    case Outcome::kBadChecksum: return "bad checksum";
+    case Outcome::kMalformed: return "malformed";
+    case Outcome::kUnsupported: return "unsupported";
+  }
+  return "?";
+}
+
+NmeaParseOutcome parseNmeaSentence(std::string_view line, NmeaSentence& sentence)
+{
+  std::string_view body;
+  const Outcome frame = checkFrame(line, body);
+  if (frame != Outcome::kOk)
+    return frame;
+  const NmeaFields fields(body);
+  sentence = NmeaSentence();
+  const Outcome kind = classify(fields, sentence);
+  if (kind != Outcome::kOk)
+    return kind;
+  switch (sentence.type)
+  {
+    case NmeaSentenceType::kGga: return parseGga(fields, sentence);
+    case NmeaSentenceType::kRmc: return parseRmc(fields, sentence);
+    case NmeaSentenceType::kVtg: return parseVtg(fields, sentence);
+    case NmeaSentenceType::kGst: return parseGst(fields, sentence);
+    case NmeaSentenceType::kZda: return parseZda(fields, sentence);
+    case NmeaSentenceType::kPubx00: return parsePubx00(fields, sentence);
+  }
+  return Outcome::kMalformed;
+}
+
+bool nmeaLineTimeOfDay(std::string_view line, double& time_of_day_s)
+{
+  if (line.size() < 7 || line.front() != '$')
+    return false;
+  const std::size_t star = line.find('*');
+  const NmeaFields fields(line.substr(1, star == std::string_view::npos ? line.npos : star - 1));
+  const std::string_view address = fields[0];
+  std::string_view time_field;
+  if (address == "PUBX")
+    time_field = fields[1] == "00" || fields[1] == "04" ? fields[2] : std::string_view();
+  else if (address.size() == 5)
+  {
+    const std::string_view type = address.substr(2);
+    if (type == "GGA" || type == "RMC" || type == "GST" || type == "ZDA" || type == "GNS" || type == "GBS")
+      time_field = fields[1];
+    else if (type == "GLL")
+      time_field = fields[5];
+  }
+  return readTimeOfDay(time_field, time_of_day_s) == FieldStatus::kOk;
+}
+
+}  // namespace acc_identification

@@ -1,0 +1,29 @@
+#include "acc_identification/gnss/nmea_statistics.h"
+
+#include <sstream>
+
+namespace acc_identification
+{
+void NmeaStatistics::count(NmeaParseOutcome outcome)
+{
+  ++lines;
+  switch (outcome)
+  {
+    case NmeaParseOutcome::kOk: ++sentences_ok; break;
+    case NmeaParseOutcome::kBadChecksum: ++bad_checksum; break;
+    case NmeaParseOutcome::kMalformed: ++malformed; break;
+    case NmeaParseOutcome::kUnsupported: ++unsupported; break;
+  }
+}
+
+std::string NmeaStatistics::summary() const
+{
+  std::ostringstream out;
+  out << lines << " lines: " << sentences_ok << " ok, " << bad_checksum << " bad checksum, " << malformed
+      << " malformed, " << unsupported << " unsupported; " << stray_bytes << " stray bytes, " << overlong_lines
+      << " overlong lines; " << fixes << " fixes, " << epochs_without_time << " epochs without time, "
+      << date_lag_corrections << " date lag corrections";
+  return out.str();
+}
+
+}  // namespace acc_identification

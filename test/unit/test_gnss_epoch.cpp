@@ -1,0 +1,222 @@
+// Epoch assembly and dates: sentences in, one fix per epoch out; the whole decoder on a log.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "acc_identification/gnss/gnss_velocity.h"
+#include "acc_identification/gnss/nmea_decoder.h"
+#include "acc_identification/gnss/nmea_log.h"
+#include "acc_identification/gnss/utc_date.h"
+
+namespace aci = acc_identification;
+using aci::GnssFix;
+
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+
+struct Decoded
+{
+  std::vector<GnssFix> fixes;
+  std::vector<aci::NmeaParseOutcome> outcomes;
+  aci::NmeaStatistics statistics;
+};
+
+/// Feeds every chunk, then ends the stream.
+Decoded decode(const std::vector<std::string>& chunks)
+{
+  Decoded out;
+  aci::NmeaDecoder decoder([&](std::string_view, aci::NmeaParseOutcome o) { out.outcomes.push_back(o); },
+                           [&](const GnssFix& fix) { out.fixes.push_back(fix); });
+  double t = 100.0;
+  for (const auto& chunk : chunks)
+    decoder.feed(chunk.data(), chunk.size(), t += 0.01);
+  decoder.finish(t);
+  out.statistics = decoder.statistics();
+  return out;
+}
+
+std::string joinLines(const std::vector<std::string>& lines)
+{
+  std::string text;
+  for (const auto& line : lines)
+    text += line + "\r\n";
+  return text;
+}
+
+double at(int year, unsigned month, unsigned day, double time_of_day_s)
+{
+  return aci::daysFromCivil(year, month, day) * aci::kSecondsPerDay + time_of_day_s;
+}
+}  // namespace
+
+TEST(GnssEpoch, OneFixPerEpochCombiningSentences)
+{
+  const auto d = decode({joinLines({
+      "$GPRMC,083559.00,A,4717.11437,N,00833.91522,E,0.004,77.52,091202,,,A*57",
+      "$GPVTG,77.52,T,,M,0.004,N,0.008,K,A*06",
+      "$GPGGA,083559.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*52",
+      "$GPGST,083559.00,1.8,,,,1.7,1.3,2.2*76",
+      "$GPZDA,083559.00,09,12,2002,00,00*6E",
+  })});
+  ASSERT_EQ(d.fixes.size(), 1u);
+  const GnssFix& fix = d.fixes[0];
+  EXPECT_TRUE(fix.has_date);
+  EXPECT_NEAR(fix.gnss_time_s, at(2002, 12, 9, 8 * 3600 + 35 * 60 + 59.0), 1e-6);
+  EXPECT_NEAR(fix.latitude_deg, 47 + 17.11399 / 60, 1e-12);  // GGA wins over RMC
+  EXPECT_DOUBLE_EQ(fix.altitude_m, 499.6);
+  EXPECT_NEAR(fix.speed_over_ground_mps, 0.004 * 1852 / 3600, 1e-12);  // RMC came first
+  EXPECT_NEAR(fix.course_rad, 77.52 * kPi / 180, 1e-12);
+  EXPECT_EQ(fix.fix_quality, 1);
+  EXPECT_EQ(fix.satellites_used, 8);
+  EXPECT_DOUBLE_EQ(fix.latitude_sigma_m, 1.7);
+  EXPECT_DOUBLE_EQ(fix.geoid_separation_m, 48.0);
+  EXPECT_EQ(fix.valid_fields, 255u);
+  EXPECT_DOUBLE_EQ(fix.receive_time_s, 100.01);
+}
+
+TEST(GnssEpoch, TwoSentencesInOneReadAndOneSplitAcrossReads)
+{
+  const std::string a = "$GPGGA,092725.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*5B\r\n";
+  const std::string b = "$GPGGA,092725.10,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*5A\r\n";
+  const std::string c = "$GPGGA,092725.20,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*59\r\n";
+  const auto d = decode({a + b.substr(0, 20), b.substr(20) + c});
+  ASSERT_EQ(d.fixes.size(), 3u);
+  EXPECT_NEAR(d.fixes[1].gnss_time_s - d.fixes[0].gnss_time_s, 0.1, 1e-9);
+  EXPECT_FALSE(d.fixes[0].has_date);
+  EXPECT_EQ(d.statistics.sentences_ok, 3u);
+}
+
+TEST(GnssEpoch, BadSentencesAreCountedByReasonNeverFatal)
+{
+  const auto d = decode({joinLines({
+      "$GPGGA,092725.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*5C",  // bad checksum
+      "$GPGGA,092725.00,4717.11399,N,00833.9",                                       // truncated
+      "$GPGSV,1,1,00*79",                                                            // unsupported
+      "$GPGGA,092725.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*5B",
+  }) + "\x01\x02garbage"});
+  EXPECT_EQ(d.statistics.lines, 4u);
+  EXPECT_EQ(d.statistics.bad_checksum, 1u);
+  EXPECT_EQ(d.statistics.malformed, 1u);
+  EXPECT_EQ(d.statistics.unsupported, 1u);
+  EXPECT_EQ(d.statistics.sentences_ok, 1u);
+  EXPECT_EQ(d.statistics.stray_bytes, 9u);
+  EXPECT_EQ(d.fixes.size(), 1u);
+  EXPECT_EQ(d.outcomes.size(), 4u);
+}
+
+TEST(GnssEpoch, TimeWithoutDateAtStartUpThenDate)
+{
+  const auto d = decode({joinLines({
+      "$GNGGA,235959.80,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*47",
+      "$GNRMC,235959.80,A,4717.11399,N,00833.91590,E,10.000,90.00,,,,A,V*01",
+      "$GNRMC,235959.90,A,4717.11399,N,00833.91590,E,10.000,90.00,311220,,,A,V*03",
+      "$GNGGA,000000.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*4E",  // GGA before RMC
+      "$GNRMC,000000.00,A,4717.11399,N,00833.91590,E,10.000,90.00,010121,,,A,V*0B",
+      "$GNGGA,000000.10,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*4F",  // no RMC at all
+  })});
+  ASSERT_EQ(d.fixes.size(), 4u);
+  EXPECT_FALSE(d.fixes[0].has_date);
+  EXPECT_FALSE(d.fixes[0].has(GnssFix::kValidDate));
+  EXPECT_NEAR(d.fixes[0].gnss_time_s, 86399.8, 1e-6);  // time of day only
+  EXPECT_TRUE(d.fixes[1].has_date);
+  EXPECT_NEAR(d.fixes[1].gnss_time_s, at(2020, 12, 31, 86399.9), 1e-6);
+  EXPECT_NEAR(d.fixes[2].gnss_time_s, at(2021, 1, 1, 0.0), 1e-6);
+  EXPECT_NEAR(d.fixes[3].gnss_time_s, at(2021, 1, 1, 0.1), 1e-6);
+}
+
+TEST(GnssEpoch, MidnightRolloverWithoutDateSentence)
+{
+  // Only GGA after a single dated RMC: the day must advance at the wrap of the time of day.
+  const auto d = decode({joinLines({
+      "$GNRMC,235959.90,A,4717.11399,N,00833.91590,E,10.000,90.00,311220,,,A,V*03",
+      "$GNGGA,000000.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*4E",
+      "$GNGGA,000000.10,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*4F",
+  })});
+  ASSERT_EQ(d.fixes.size(), 3u);
+  EXPECT_NEAR(d.fixes[1].gnss_time_s - d.fixes[0].gnss_time_s, 0.1, 1e-6);
+  EXPECT_NEAR(d.fixes[2].gnss_time_s, at(2021, 1, 1, 0.1), 1e-6);
+}
+
+TEST(GnssEpoch, DateLaggingTheRolloverIsCorrected)
+{
+  // The RMC of 00:00:00.00 still says 31 Dec (a receiver's date one sentence late).
+  const auto d = decode({joinLines({
+      "$GNRMC,235959.90,A,4717.11399,N,00833.91590,E,10.000,90.00,311220,,,A,V*03",
+      "$GNRMC,000000.00,A,4717.11399,N,00833.91590,E,10.000,90.00,311220,,,A,V*0B",
+      "$GNRMC,000000.10,A,4717.11399,N,00833.91590,E,10.000,90.00,010121,,,A,V*0A",
+  })});
+  ASSERT_EQ(d.fixes.size(), 3u);
+  EXPECT_NEAR(d.fixes[1].gnss_time_s, at(2021, 1, 1, 0.0), 1e-6);
+  EXPECT_NEAR(d.fixes[2].gnss_time_s, at(2021, 1, 1, 0.1), 1e-6);
+  EXPECT_EQ(d.statistics.date_lag_corrections, 1u);
+}
+
+TEST(GnssEpoch, UntimedSentencesAloneAreCountedNotSilentlyDropped)
+{
+  const auto d = decode({joinLines({"$GPVTG,77.52,T,,M,0.004,N,0.008,K,A*06"})});
+  EXPECT_TRUE(d.fixes.empty());
+  EXPECT_EQ(d.statistics.epochs_without_time, 1u);
+}
+
+TEST(GnssEpoch, IdleFlushCompletesTheEpochWithoutWaitingForTheNext)
+{
+  std::vector<GnssFix> fixes;
+  aci::NmeaDecoder decoder(nullptr, [&](const GnssFix& fix) { fixes.push_back(fix); });
+  const std::string gga = "$GPGGA,092725.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*5B\r\n";
+  decoder.feed(gga.data(), gga.size(), 10.0);
+  decoder.flushIfIdle(10.01, 0.05);
+  EXPECT_TRUE(fixes.empty());
+  decoder.flushIfIdle(10.06, 0.05);
+  EXPECT_EQ(fixes.size(), 1u);
+}
+
+TEST(GnssEpoch, EnuVelocityFromCourse)
+{
+  GnssFix fix;
+  fix.speed_over_ground_mps = 10.0;
+  fix.course_rad = kPi / 2;  // due east
+  fix.valid_fields = GnssFix::kValidSpeed | GnssFix::kValidCourse;
+  aci::EnuVelocity v;
+  ASSERT_TRUE(aci::enuVelocity(fix, v));
+  EXPECT_NEAR(v.east_mps, 10.0, 1e-12);
+  EXPECT_NEAR(v.north_mps, 0.0, 1e-12);
+  fix.course_rad = kPi;  // due south
+  ASSERT_TRUE(aci::enuVelocity(fix, v));
+  EXPECT_NEAR(v.north_mps, -10.0, 1e-12);
+  fix.valid_fields = GnssFix::kValidSpeed;  // moving without a course: unknown direction
+  EXPECT_FALSE(aci::enuVelocity(fix, v));
+}
+
+TEST(NmeaLog, DriveFixture)
+{
+  const auto log = aci::readNmeaLog(std::string(ACC_GNSS_TEST_DATA) + "/drive_10s.nmea");
+  ASSERT_TRUE(log.error.empty()) << log.error;
+  ASSERT_EQ(log.fixes.size(), 100u);
+  EXPECT_EQ(log.statistics.lines, 600u);
+  EXPECT_EQ(log.statistics.unsupported, 99u);  // GSA
+  EXPECT_EQ(log.statistics.bad_checksum, 1u);
+  EXPECT_EQ(log.statistics.stray_bytes, 2u);
+  int dated = 0;
+  for (const auto& fix : log.fixes)
+    dated += fix.has_date;
+  EXPECT_EQ(dated, 97);
+  const GnssFix& last = log.fixes.back();
+  EXPECT_NEAR(last.gnss_time_s, at(2020, 10, 27, 10 * 3600 + 15 * 60 + 39.9), 1e-6);
+  EXPECT_NEAR(last.speed_over_ground_mps, 10.0 + 0.5 * 9.9, 0.001 / 3.6);
+  EXPECT_NEAR(last.course_rad, kPi / 4, 1e-9);
+  EXPECT_DOUBLE_EQ(last.altitude_m, 159.9);
+  // 10 m/s * 9.9 s + 0.25 m/s^2 * 9.9^2 along 45 deg: north component in degrees of latitude.
+  const double north_m = (99.0 + 0.25 * 9.9 * 9.9) / std::sqrt(2.0);
+  EXPECT_NEAR((last.latitude_deg - 45.13) * kPi / 180 * 6378137.0, north_m, 0.02);
+  EXPECT_EQ(last.valid_fields, 255u);
+}
+
+TEST(NmeaLog, MissingFileIsAnError)
+{
+  const auto log = aci::readNmeaLog("/nonexistent/x.nmea");
+  EXPECT_FALSE(log.error.empty());
+  EXPECT_TRUE(log.fixes.empty());
+}
