@@ -1,0 +1,120 @@
+#pragma once
+
+#include <acc_identification/gnss/gnss_fix.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <string>
+#include <vector>
+
+namespace acc_identification
+{
+/// How the two vehicles' fixes are paired by GNSS epoch (never by arrival time: the leader's
+/// fixes may come over a wireless link, late and in bursts). All times are GNSS times [s].
+struct PairingSettings
+{
+  /// Leader and follower epochs closer than this are the same epoch (no interpolation).
+  double exact_match_tolerance_s = 0.005;
+  /// Interpolation only between two leader epochs each within this of the follower's epoch, so
+  /// that a leader gap is never bridged (at 10 Hz, 0.15 s allows one epoch of phase offset).
+  double max_interpolation_skew_s = 0.15;
+  /// A follower epoch waits for the leader's data at most this long, measured on the follower's
+  /// GNSS clock; then it is counted as unpaired. This is the latency budget of the radio link.
+  double timeout_s = 2.0;
+  /// Successive epochs of one stream further apart than this are a dropout (counted, logged).
+  double dropout_gap_s = 0.5;
+  /// A stream going back in time by more than this is a time reset (a looping bag, a receiver
+  /// reset): its state is cleared. A smaller step back is an out-of-order arrival.
+  double time_reset_s = 5.0;
+  /// Bound on the fixes held per stream, against a stream that never pairs.
+  std::size_t max_buffered_fixes = 2000;
+};
+
+/// Why fixes were not paired, and how the pairs were made. Every fix is counted once in
+/// *_fixes and at most once in one of the rejection counters: nothing is dropped silently.
+struct PairingCounters
+{
+  std::uint64_t leader_fixes = 0;
+  std::uint64_t follower_fixes = 0;
+  std::uint64_t exact_pairs = 0;
+  std::uint64_t interpolated_pairs = 0;
+  std::uint64_t leader_invalid_fixes = 0;    ///< no position (quality 0 or no GGA): not used
+  std::uint64_t follower_invalid_fixes = 0;
+  std::uint64_t leader_duplicates = 0;       ///< same epoch received twice: the second ignored
+  std::uint64_t follower_duplicates = 0;
+  std::uint64_t leader_out_of_order = 0;     ///< arrived after a later epoch (still used)
+  std::uint64_t follower_out_of_order = 0;   ///< arrived after a later epoch (used if in time)
+  std::uint64_t follower_too_late = 0;       ///< arrived after a later pair was already output
+  std::uint64_t leader_too_late = 0;         ///< older than every follower epoch still waiting
+  std::uint64_t follower_unpaired = 0;       ///< timed out without leader data within the skew
+  std::uint64_t leader_dropouts = 0;         ///< gaps longer than dropout_gap_s in the stream
+  std::uint64_t follower_dropouts = 0;
+  std::uint64_t leader_time_resets = 0;      ///< time went back more than time_reset_s
+  std::uint64_t follower_time_resets = 0;
+  std::uint64_t buffer_overflows = 0;        ///< oldest fixes discarded at max_buffered_fixes
+};
+
+/// One follower epoch with the leader at that same GNSS time.
+struct PairedEpoch
+{
+  double time_s = GnssFix::kNaN;  ///< the follower's epoch
+  GnssFix leader;                 ///< at time_s: a received epoch, or interpolated
+  GnssFix follower;
+  double epoch_skew_s = 0.0;      ///< to the nearest received leader epoch; 0 when exact
+  bool interpolated = false;
+  /// True when the previous output pair is not the previous follower epoch (first pair, after
+  /// a dropout, an unpaired epoch or a time reset): differences across it are not physical.
+  bool continuity_break = true;
+};
+
+/// Pairs follower epochs with the leader's position at the same GNSS time. Output is driven by
+/// the follower's epochs, in increasing GNSS time; a follower epoch waits (up to timeout_s) for
+/// leader data around it, so late and out-of-order leader fixes are still used.
+class EpochPairer
+{
+public:
+  explicit EpochPairer(PairingSettings settings = {});
+
+  void addLeader(const GnssFix& fix);
+  void addFollower(const GnssFix& fix);
+
+  /// Pairs completed since the last call, in increasing GNSS time.
+  std::vector<PairedEpoch> takePairs();
+  /// Human-readable reports of dropouts, resets, late fixes since the last call (for the log).
+  std::vector<std::string> takeEvents();
+
+  const PairingCounters& counters() const { return counters_; }
+  const PairingSettings& settings() const { return settings_; }
+
+private:
+  enum class Resolution { kPaired, kUnpairable, kWaiting };
+
+  bool acceptStream(const GnssFix& fix, bool leader);
+  void insertLeader(const GnssFix& fix);
+  void insertFollower(const GnssFix& fix);
+  void resolvePending();
+  Resolution tryPair(const GnssFix& follower, PairedEpoch& pair) const;
+  void trimLeader();
+  void event(const std::string& text);
+
+  PairingSettings settings_;
+  PairingCounters counters_;
+  std::deque<GnssFix> leader_;            // sorted by gnss_time_s
+  std::deque<GnssFix> pending_follower_;  // sorted by gnss_time_s
+  std::vector<PairedEpoch> ready_;
+  std::vector<std::string> events_;
+  double newest_leader_s_ = GnssFix::kNaN;
+  double newest_follower_s_ = GnssFix::kNaN;
+  double last_output_s_ = GnssFix::kNaN;  // newest follower epoch resolved (paired or not)
+  bool break_before_next_ = true;
+  bool arrived_out_of_order_ = false;  // of the fix being added, counted once it is kept
+};
+
+/// The fix between a and b at time_s, linear in every field (course by the shorter turn).
+GnssFix interpolateFix(const GnssFix& a, const GnssFix& b, double time_s);
+
+/// True when the fix carries a usable position (fix quality above 0 and a position).
+bool hasUsablePosition(const GnssFix& fix);
+
+}  // namespace acc_identification

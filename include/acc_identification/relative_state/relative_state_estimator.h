@@ -1,0 +1,93 @@
+#pragma once
+
+#include <acc_identification/gnss/gnss_fix.h>
+#include <acc_identification/relative_state/epoch_pairing.h>
+#include <acc_identification/relative_state/gap_doppler_consistency.h>
+#include <acc_identification/relative_state/relative_state.h>
+#include <acc_identification/relative_state/vehicle_geometry.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace acc_identification
+{
+enum class GapMode
+{
+  kStraightLine,  ///< chord between the antennas (the paper, OpenACC)
+  kAlongTrack,    ///< along the leader's recent path: longer than the chord on curves
+};
+
+struct RelativeStateSettings
+{
+  PairingSettings pairing;
+  VehicleGeometry geometry;
+  GapMode gap_mode = GapMode::kStraightLine;
+  /// Along-track path: point spacing, length kept, and how far off it the follower may be.
+  double track_min_spacing_m = 2.0;
+  double track_max_length_m = 500.0;
+  double track_max_lateral_offset_m = 5.0;
+  /// time_gap is NaN below this follower speed (it diverges at standstill).
+  double min_speed_for_time_gap_mps = 1.0;
+  /// Physically impossible jumps between successive pairs: the gap cannot change faster than
+  /// this (it changes at the relative speed), nor either car's speed faster than the
+  /// acceleration bound. Checked against the last accepted pair when it is at most
+  /// jump_reference_max_age_s old, so that a real step (e.g. RTK fixing) costs that long at most.
+  double max_gap_rate_mps = 30.0;
+  double max_acceleration_mps2 = 15.0;
+  double jump_reference_max_age_s = 1.0;
+  /// Gap-versus-Doppler consistency window (see GapDopplerConsistency).
+  double consistency_window_s = 10.0;
+};
+
+/// Counters of the estimator itself (the pairing has its own, PairingCounters).
+struct RelativeStateCounters
+{
+  std::uint64_t states = 0;
+  std::uint64_t invalid_states = 0;
+  std::uint64_t jumps_rejected = 0;
+  std::uint64_t missing_speed = 0;
+  std::uint64_t along_track_fallbacks = 0;  ///< straight line used instead (reason logged)
+};
+
+/// From the two receivers' fixes to RelativeState samples: pairing by GNSS epoch, geometry,
+/// the jump bound and the gap-versus-Doppler consistency. ROS-free.
+class RelativeStateEstimator
+{
+public:
+  explicit RelativeStateEstimator(RelativeStateSettings settings = {});
+
+  void addLeader(const GnssFix& fix);
+  void addFollower(const GnssFix& fix);
+
+  /// States completed since the last call, in increasing GNSS time (valid or not, with reason).
+  std::vector<RelativeState> takeStates();
+  /// Reports of dropouts, resets, rejected jumps since the last call, for the log.
+  std::vector<std::string> takeEvents();
+
+  const PairingCounters& pairingCounters() const { return pairer_.counters(); }
+  const RelativeStateCounters& counters() const { return counters_; }
+  const RelativeStateSettings& settings() const { return settings_; }
+
+private:
+  void process(const PairedEpoch& pair);
+  double gap(const PairedEpoch& pair);
+  std::string jumpReason(const RelativeState& state) const;
+
+  RelativeStateSettings settings_;
+  EpochPairer pairer_;
+  LeaderTrack track_;
+  GapDopplerConsistency consistency_;
+  RelativeStateCounters counters_;
+  std::vector<RelativeState> states_;
+  std::vector<std::string> events_;
+  std::uint64_t leader_resets_seen_ = 0;
+  bool has_reference_ = false;
+  RelativeState reference_;  // last accepted state, for the jump bound
+};
+
+const char* gapModeName(GapMode mode);
+/// "straight_line" or "along_track"; false when neither.
+bool parseGapMode(const std::string& name, GapMode& mode);
+
+}  // namespace acc_identification

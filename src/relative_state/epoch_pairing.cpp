@@ -1,0 +1,276 @@
+#include <acc_identification/relative_state/epoch_pairing.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace acc_identification
+{
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+
+double lerp(double a, double b, double w) { return a + (b - a) * w; }
+
+/// The angle between a and b [rad] on the shorter turn, in [0, 2 pi).
+double lerpAngle(double a, double b, double w)
+{
+  double turn = std::remainder(b - a, 2.0 * kPi);
+  double angle = std::fmod(a + turn * w, 2.0 * kPi);
+  return angle < 0.0 ? angle + 2.0 * kPi : angle;
+}
+
+double lerpLongitude(double a, double b, double w)
+{
+  double angle = a + std::remainder(b - a, 360.0) * w;
+  return std::remainder(angle, 360.0);  // back into [-180, 180]
+}
+
+std::string seconds(double value)
+{
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(2) << value;
+  return out.str();
+}
+
+bool earlier(const GnssFix& fix, double time_s) { return fix.gnss_time_s < time_s; }
+}  // namespace
+
+bool hasUsablePosition(const GnssFix& fix)
+{
+  return fix.fix_quality > 0 && fix.has(GnssFix::kValidPosition) && std::isfinite(fix.latitude_deg) &&
+         std::isfinite(fix.longitude_deg) && std::isfinite(fix.gnss_time_s);
+}
+
+GnssFix interpolateFix(const GnssFix& a, const GnssFix& b, double time_s)
+{
+  double span = b.gnss_time_s - a.gnss_time_s;
+  double w = span > 0.0 ? (time_s - a.gnss_time_s) / span : 0.0;
+  GnssFix fix = a;
+  fix.gnss_time_s = time_s;
+  fix.receive_time_s = std::max(a.receive_time_s, b.receive_time_s);
+  fix.latitude_deg = lerp(a.latitude_deg, b.latitude_deg, w);
+  fix.longitude_deg = lerpLongitude(a.longitude_deg, b.longitude_deg, w);
+  fix.altitude_m = lerp(a.altitude_m, b.altitude_m, w);
+  fix.speed_over_ground_mps = lerp(a.speed_over_ground_mps, b.speed_over_ground_mps, w);
+  fix.course_rad = lerpAngle(a.course_rad, b.course_rad, w);
+  // Conservative: the worse of the two epochs' quality figures.
+  fix.fix_quality = std::min(a.fix_quality, b.fix_quality);
+  fix.satellites_used = std::min(a.satellites_used, b.satellites_used);
+  fix.hdop = std::max(a.hdop, b.hdop);
+  fix.latitude_sigma_m = std::max(a.latitude_sigma_m, b.latitude_sigma_m);
+  fix.longitude_sigma_m = std::max(a.longitude_sigma_m, b.longitude_sigma_m);
+  fix.altitude_sigma_m = std::max(a.altitude_sigma_m, b.altitude_sigma_m);
+  fix.valid_fields = a.valid_fields & b.valid_fields;
+  return fix;
+}
+
+EpochPairer::EpochPairer(PairingSettings settings) : settings_(settings) {}
+
+void EpochPairer::addLeader(const GnssFix& fix)
+{
+  ++counters_.leader_fixes;
+  if (acceptStream(fix, true))
+    insertLeader(fix);
+  resolvePending();
+}
+
+void EpochPairer::addFollower(const GnssFix& fix)
+{
+  ++counters_.follower_fixes;
+  if (acceptStream(fix, false))
+    insertFollower(fix);
+  resolvePending();
+}
+
+std::vector<PairedEpoch> EpochPairer::takePairs()
+{
+  std::vector<PairedEpoch> pairs;
+  pairs.swap(ready_);
+  return pairs;
+}
+
+std::vector<std::string> EpochPairer::takeEvents()
+{
+  std::vector<std::string> events;
+  events.swap(events_);
+  return events;
+}
+
+void EpochPairer::event(const std::string& text) { events_.push_back(text); }
+
+// Stream-level checks on one fix, in GNSS time: usable, time reset, dropout, order.
+bool EpochPairer::acceptStream(const GnssFix& fix, bool leader)
+{
+  const char* name = leader ? "leader" : "follower";
+  if (!hasUsablePosition(fix))
+  {
+    ++(leader ? counters_.leader_invalid_fixes : counters_.follower_invalid_fixes);
+    event(std::string(name) + " fix without a usable position (quality " + std::to_string(fix.fix_quality) +
+          ") ignored");
+    return false;
+  }
+  double& newest = leader ? newest_leader_s_ : newest_follower_s_;
+  double t = fix.gnss_time_s;
+  if (std::isfinite(newest) && t < newest - settings_.time_reset_s)
+  {
+    ++(leader ? counters_.leader_time_resets : counters_.follower_time_resets);
+    event(std::string(name) + " time went back from " + seconds(newest) + " s to " + seconds(t) +
+          " s (looping bag or receiver reset): " + name + " state cleared");
+    if (leader)
+      leader_.clear();
+    else
+    {
+      counters_.follower_unpaired += pending_follower_.size();
+      pending_follower_.clear();
+      last_output_s_ = GnssFix::kNaN;
+      break_before_next_ = true;
+    }
+    newest = t;
+    arrived_out_of_order_ = false;
+    return true;
+  }
+  if (std::isfinite(newest) && t > newest + settings_.dropout_gap_s)
+  {
+    ++(leader ? counters_.leader_dropouts : counters_.follower_dropouts);
+    event(std::string(name) + " dropout: no epoch from " + seconds(newest) + " s to " + seconds(t) + " s");
+  }
+  arrived_out_of_order_ = std::isfinite(newest) && t < newest - settings_.exact_match_tolerance_s;
+  newest = std::isfinite(newest) ? std::max(newest, t) : t;
+  return true;
+}
+
+void EpochPairer::insertLeader(const GnssFix& fix)
+{
+  double t = fix.gnss_time_s;
+  double tolerance = settings_.exact_match_tolerance_s;
+  // (A fix from before a follower time reset, far older, belongs to another time base: kept.)
+  bool same_time_base = t >= last_output_s_ - settings_.time_reset_s;
+  if (std::isfinite(last_output_s_) && same_time_base && t < last_output_s_ - settings_.max_interpolation_skew_s)
+  {
+    ++counters_.leader_too_late;
+    event("leader epoch " + seconds(t) + " s arrived after the follower epochs it could serve");
+    return;
+  }
+  auto at = std::lower_bound(leader_.begin(), leader_.end(), t - tolerance, earlier);
+  if (at != leader_.end() && std::abs(at->gnss_time_s - t) <= tolerance)
+  {
+    ++counters_.leader_duplicates;
+    return;
+  }
+  if (arrived_out_of_order_)
+    ++counters_.leader_out_of_order;
+  leader_.insert(at, fix);
+  if (leader_.size() > settings_.max_buffered_fixes)
+  {
+    ++counters_.buffer_overflows;
+    leader_.pop_front();
+  }
+}
+
+void EpochPairer::insertFollower(const GnssFix& fix)
+{
+  double t = fix.gnss_time_s;
+  double tolerance = settings_.exact_match_tolerance_s;
+  if (std::isfinite(last_output_s_) && t <= last_output_s_ + tolerance)
+  {
+    if (std::abs(t - last_output_s_) <= tolerance)
+      ++counters_.follower_duplicates;
+    else
+    {
+      ++counters_.follower_too_late;
+      event("follower epoch " + seconds(t) + " s arrived after a later pair was output: not paired");
+    }
+    return;
+  }
+  auto at = std::lower_bound(pending_follower_.begin(), pending_follower_.end(), t - tolerance, earlier);
+  if (at != pending_follower_.end() && std::abs(at->gnss_time_s - t) <= tolerance)
+  {
+    ++counters_.follower_duplicates;
+    return;
+  }
+  if (arrived_out_of_order_)
+    ++counters_.follower_out_of_order;
+  pending_follower_.insert(at, fix);
+  if (pending_follower_.size() > settings_.max_buffered_fixes)
+  {
+    ++counters_.buffer_overflows;
+    ++counters_.follower_unpaired;
+    pending_follower_.pop_front();
+  }
+}
+
+// Follower epochs are resolved strictly in time order, so that the output never goes back.
+void EpochPairer::resolvePending()
+{
+  while (!pending_follower_.empty())
+  {
+    const GnssFix& follower = pending_follower_.front();
+    double t = follower.gnss_time_s;
+    PairedEpoch pair;
+    Resolution resolution = tryPair(follower, pair);
+    if (resolution == Resolution::kWaiting && newest_follower_s_ - t <= settings_.timeout_s)
+      break;
+    if (resolution == Resolution::kPaired)
+    {
+      bool follower_gap = std::isfinite(last_output_s_) && t - last_output_s_ > settings_.dropout_gap_s;
+      pair.continuity_break = break_before_next_ || follower_gap;
+      break_before_next_ = false;
+      ++(pair.interpolated ? counters_.interpolated_pairs : counters_.exact_pairs);
+      ready_.push_back(pair);
+    }
+    else
+    {
+      ++counters_.follower_unpaired;
+      break_before_next_ = true;
+      event("follower epoch " + seconds(t) + " s unpaired: no leader epoch within " +
+            seconds(settings_.max_interpolation_skew_s) + " s after waiting " + seconds(settings_.timeout_s) + " s");
+    }
+    last_output_s_ = t;
+    pending_follower_.pop_front();
+  }
+  trimLeader();
+}
+
+EpochPairer::Resolution EpochPairer::tryPair(const GnssFix& follower, PairedEpoch& pair) const
+{
+  double t = follower.gnss_time_s;
+  double tolerance = settings_.exact_match_tolerance_s;
+  auto after = std::lower_bound(leader_.begin(), leader_.end(), t - tolerance, earlier);
+  pair.time_s = t;
+  pair.follower = follower;
+  if (after != leader_.end() && std::abs(after->gnss_time_s - t) <= tolerance)
+  {
+    pair.leader = *after;
+    pair.leader.gnss_time_s = t;
+    pair.epoch_skew_s = 0.0;
+    pair.interpolated = false;
+    return Resolution::kPaired;
+  }
+  if (after == leader_.end() || after == leader_.begin())
+    return Resolution::kWaiting;
+  auto before = std::prev(after);
+  double skew_before = t - before->gnss_time_s;
+  double skew_after = after->gnss_time_s - t;
+  if (skew_before > settings_.max_interpolation_skew_s || skew_after > settings_.max_interpolation_skew_s)
+    return Resolution::kWaiting;  // a gap in the leader's stream: an out-of-order fix may fill it
+  pair.leader = interpolateFix(*before, *after, t);
+  pair.epoch_skew_s = std::min(skew_before, skew_after);
+  pair.interpolated = true;
+  return Resolution::kPaired;
+}
+
+// Leader fixes older than any follower epoch still to come (less the skew) can serve no pair.
+void EpochPairer::trimLeader()
+{
+  double reference = pending_follower_.empty() ? last_output_s_ : pending_follower_.front().gnss_time_s;
+  if (!std::isfinite(reference))
+    return;
+  double oldest_useful = reference - settings_.max_interpolation_skew_s - settings_.exact_match_tolerance_s;
+  double other_time_base = reference - settings_.time_reset_s;  // after the leader's time reset
+  while (leader_.size() > 1 && leader_[1].gnss_time_s <= oldest_useful && leader_[1].gnss_time_s >= other_time_base)
+    leader_.pop_front();
+}
+
+}  // namespace acc_identification

@@ -1,0 +1,245 @@
+// Pairing by GNSS epoch: exact, interpolated, late and bursty, out of order, dropouts, time
+// going back. The vehicles drive north on a straight line, so a fix's latitude tells its time.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "acc_identification/relative_state/epoch_pairing.h"
+
+namespace ai = acc_identification;
+
+namespace
+{
+constexpr double kDegPerSecond = 1e-4;  // the latitude of a fix encodes its GNSS time
+
+ai::GnssFix fixAt(double time_s, double offset_deg = 0.0)
+{
+  ai::GnssFix fix;
+  fix.gnss_time_s = time_s;
+  fix.has_date = true;
+  fix.latitude_deg = 45.0 + offset_deg + kDegPerSecond * time_s;
+  fix.longitude_deg = 8.0;
+  fix.speed_over_ground_mps = 10.0 + time_s;
+  fix.course_rad = 0.0;
+  fix.fix_quality = 1;
+  fix.valid_fields = ai::GnssFix::kValidPosition | ai::GnssFix::kValidSpeed | ai::GnssFix::kValidCourse;
+  return fix;
+}
+
+std::vector<double> epochs(double start_s, double end_s, double step_s = 0.1, double phase_s = 0.0)
+{
+  std::vector<double> times;
+  for (int i = 0; start_s + i * step_s <= end_s + 1e-9; ++i)
+    times.push_back(start_s + i * step_s + phase_s);
+  return times;
+}
+
+void expectIncreasingAndFresh(const std::vector<ai::PairedEpoch>& pairs, double max_skew_s)
+{
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+  {
+    if (i > 0)
+      EXPECT_GT(pairs[i].time_s, pairs[i - 1].time_s) << "output went back at " << i;
+    // The leader's latitude must be its position at the pair's own time: never stale data.
+    EXPECT_NEAR(pairs[i].leader.latitude_deg, 45.0 + kDegPerSecond * pairs[i].time_s, 1e-9);
+    EXPECT_LE(pairs[i].epoch_skew_s, max_skew_s);
+  }
+}
+}  // namespace
+
+TEST(Pairing, ExactEpochsPairOneToOne)
+{
+  ai::EpochPairer pairer;
+  for (double t : epochs(0.0, 5.0))
+  {
+    pairer.addLeader(fixAt(t));
+    pairer.addFollower(fixAt(t, -0.001));
+  }
+  auto pairs = pairer.takePairs();
+  ASSERT_EQ(pairs.size(), 51u);
+  EXPECT_EQ(pairer.counters().exact_pairs, 51u);
+  EXPECT_EQ(pairer.counters().interpolated_pairs, 0u);
+  EXPECT_TRUE(pairs.front().continuity_break);
+  EXPECT_FALSE(pairs[1].continuity_break);
+  for (const auto& pair : pairs)
+    EXPECT_EQ(pair.epoch_skew_s, 0.0);
+  expectIncreasingAndFresh(pairs, 0.0);
+}
+
+TEST(Pairing, InterpolatesALeaderWithAPhaseOffsetAndReportsTheSkew)
+{
+  ai::EpochPairer pairer;
+  for (double t : epochs(0.0, 5.0))
+  {
+    pairer.addLeader(fixAt(t + 0.03));
+    pairer.addFollower(fixAt(t, -0.001));
+  }
+  pairer.addLeader(fixAt(5.13));
+  auto pairs = pairer.takePairs();
+  // The first follower epoch (0.0) has no leader before it: it waits, then times out.
+  ASSERT_EQ(pairs.size(), 50u);
+  EXPECT_EQ(pairer.counters().interpolated_pairs, 50u);
+  for (const auto& pair : pairs)
+  {
+    EXPECT_NEAR(pair.epoch_skew_s, 0.03, 1e-9);
+    EXPECT_NEAR(pair.leader.speed_over_ground_mps, 10.0 + pair.time_s, 1e-9);
+  }
+  expectIncreasingAndFresh(pairs, 0.03 + 1e-9);
+}
+
+TEST(Pairing, LateBurstyOutOfOrderLeaderIsStillPairedInOrder)
+{
+  ai::EpochPairer pairer;
+  auto leader_times = epochs(0.0, 10.0);
+  auto follower_times = epochs(0.0, 10.0);
+  std::mt19937 random(7);
+  std::size_t sent = 0;
+  // The leader's fixes come 1.2 s late in bursts of 8, shuffled inside each burst.
+  for (std::size_t i = 0; i < follower_times.size(); ++i)
+  {
+    pairer.addFollower(fixAt(follower_times[i], -0.001));
+    if (i % 8 == 7 && i >= 12)
+    {
+      std::size_t end = std::min(leader_times.size(), i - 11);
+      std::vector<double> burst(leader_times.begin() + sent, leader_times.begin() + end);
+      std::shuffle(burst.begin(), burst.end(), random);
+      for (double t : burst)
+        pairer.addLeader(fixAt(t));
+      sent = end;
+    }
+  }
+  std::vector<double> rest(leader_times.begin() + sent, leader_times.end());
+  std::shuffle(rest.begin(), rest.end(), random);
+  for (double t : rest)
+    pairer.addLeader(fixAt(t));
+  auto pairs = pairer.takePairs();
+  EXPECT_EQ(pairs.size(), follower_times.size());
+  EXPECT_EQ(pairer.counters().follower_unpaired, 0u);
+  EXPECT_GT(pairer.counters().leader_out_of_order, 0u);
+  // An epoch whose own leader fix is still on its way is interpolated from its neighbours.
+  expectIncreasingAndFresh(pairs, 0.1 + 1e-9);
+}
+
+TEST(Pairing, LeaderDropoutGivesNoSamplesACountAndABreak)
+{
+  ai::EpochPairer pairer;
+  for (double t : epochs(0.0, 6.0))
+  {
+    bool in_dropout = t > 1.05 && t < 1.95;
+    if (!in_dropout)
+      pairer.addLeader(fixAt(t));
+    pairer.addFollower(fixAt(t, -0.001));
+  }
+  auto pairs = pairer.takePairs();
+  EXPECT_EQ(pairer.counters().leader_dropouts, 1u);
+  EXPECT_EQ(pairer.counters().follower_unpaired, 9u);  // 1.1 .. 1.9: never bridged
+  EXPECT_EQ(pairs.size(), 61u - 9u);
+  for (const auto& pair : pairs)
+    EXPECT_FALSE(pair.time_s > 1.05 && pair.time_s < 1.95) << pair.time_s;
+  auto resumed = std::find_if(pairs.begin(), pairs.end(), [](const auto& p) { return p.time_s > 1.95; });
+  ASSERT_NE(resumed, pairs.end());
+  EXPECT_TRUE(resumed->continuity_break);
+  expectIncreasingAndFresh(pairs, 0.0);
+  auto events = pairer.takeEvents();
+  EXPECT_TRUE(std::any_of(events.begin(), events.end(),
+                          [](const std::string& e) { return e.find("leader dropout") != std::string::npos; }));
+}
+
+TEST(Pairing, FollowerWaitsForTheLeaderOnlyUntilTheTimeout)
+{
+  ai::PairingSettings settings;
+  settings.timeout_s = 1.05;
+  ai::EpochPairer pairer(settings);
+  for (double t : epochs(0.0, 3.0))
+    pairer.addFollower(fixAt(t, -0.001));
+  EXPECT_TRUE(pairer.takePairs().empty());
+  // Epochs 0.0 .. 1.9 are older than 1.05 s on the follower's clock: given up.
+  EXPECT_EQ(pairer.counters().follower_unpaired, 20u);
+  // A leader fix for a given-up epoch is late; one for a waiting epoch pairs it.
+  pairer.addLeader(fixAt(0.5));
+  pairer.addLeader(fixAt(2.5));
+  EXPECT_EQ(pairer.counters().leader_too_late, 1u);
+  auto pairs = pairer.takePairs();
+  ASSERT_EQ(pairs.size(), 0u);  // 2.0 .. 2.4 still wait in front of 2.5, in order
+  pairer.addFollower(fixAt(3.6, -0.001));
+  pairs = pairer.takePairs();
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_NEAR(pairs[0].time_s, 2.5, 1e-9);
+  EXPECT_TRUE(pairs[0].continuity_break);
+}
+
+TEST(Pairing, OutOfOrderFollowerEpochsAreSortedAndLateOnesCounted)
+{
+  ai::EpochPairer pairer;
+  pairer.addFollower(fixAt(0.2, -0.001));
+  pairer.addFollower(fixAt(0.1, -0.001));
+  pairer.addFollower(fixAt(0.1, -0.001));  // duplicate
+  for (double t : epochs(0.0, 0.3))
+    pairer.addLeader(fixAt(t));
+  auto pairs = pairer.takePairs();
+  ASSERT_EQ(pairs.size(), 2u);
+  EXPECT_NEAR(pairs[0].time_s, 0.1, 1e-9);
+  EXPECT_NEAR(pairs[1].time_s, 0.2, 1e-9);
+  EXPECT_EQ(pairer.counters().follower_out_of_order, 1u);
+  EXPECT_EQ(pairer.counters().follower_duplicates, 1u);
+  pairer.addFollower(fixAt(0.15, -0.001));  // older than a pair already output
+  EXPECT_EQ(pairer.counters().follower_too_late, 1u);
+  EXPECT_TRUE(pairer.takePairs().empty());
+}
+
+TEST(Pairing, TimeGoingBackRestartsThePairingAndIsReported)
+{
+  ai::EpochPairer pairer;
+  for (int loop = 0; loop < 2; ++loop)  // a looping bag: the same 20 s twice
+    for (double t : epochs(0.0, 20.0))
+    {
+      pairer.addLeader(fixAt(t));
+      pairer.addFollower(fixAt(t, -0.001));
+    }
+  auto pairs = pairer.takePairs();
+  EXPECT_EQ(pairer.counters().leader_time_resets, 1u);
+  EXPECT_EQ(pairer.counters().follower_time_resets, 1u);
+  ASSERT_EQ(pairs.size(), 2u * 201u);
+  std::size_t breaks = 0;
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+  {
+    if (pairs[i].continuity_break)
+      ++breaks;
+    if (i > 0 && !pairs[i].continuity_break)
+      EXPECT_GT(pairs[i].time_s, pairs[i - 1].time_s);
+  }
+  EXPECT_EQ(breaks, 2u);
+  EXPECT_TRUE(pairs[201].continuity_break);
+  EXPECT_NEAR(pairs[201].time_s, 0.0, 1e-9);
+}
+
+TEST(Pairing, FixesWithoutAPositionAreCountedAndNotUsed)
+{
+  ai::EpochPairer pairer;
+  auto bad = fixAt(0.1);
+  bad.fix_quality = 0;
+  pairer.addLeader(fixAt(0.0));
+  pairer.addLeader(bad);
+  pairer.addLeader(fixAt(0.2));
+  pairer.addFollower(fixAt(0.1, -0.001));
+  EXPECT_EQ(pairer.counters().leader_invalid_fixes, 1u);
+  auto pairs = pairer.takePairs();
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_TRUE(pairs[0].interpolated);  // from 0.0 and 0.2, not from the bad fix
+  EXPECT_NEAR(pairs[0].epoch_skew_s, 0.1, 1e-9);
+}
+
+TEST(Pairing, InterpolationFollowsTheShorterTurnAndTheDateLine)
+{
+  auto a = fixAt(0.0), b = fixAt(1.0);
+  a.course_rad = 6.2;
+  b.course_rad = 0.1;
+  a.longitude_deg = 179.9999;
+  b.longitude_deg = -179.9999;
+  auto mid = ai::interpolateFix(a, b, 0.5);
+  EXPECT_NEAR(std::abs(std::remainder(mid.course_rad - (6.2 + (0.1 + 2 * M_PI - 6.2) / 2), 2 * M_PI)), 0.0, 1e-9);
+  EXPECT_NEAR(std::abs(mid.longitude_deg), 180.0, 1e-9);
+}

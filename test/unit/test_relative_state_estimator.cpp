@@ -1,0 +1,207 @@
+// The estimator end to end on synthetic drives: gap and speeds, time gap, the jump bound, the
+// gap-versus-Doppler consistency, the along-track option on a curve, and continuity breaks.
+#include <gtest/gtest.h>
+
+#include <GeographicLib/LocalCartesian.hpp>
+
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "acc_identification/relative_state/relative_state_estimator.h"
+
+namespace ai = acc_identification;
+
+namespace
+{
+constexpr double kOffset_m = 5.6;
+
+/// A drive along a path: position(s) in the local plane at arc length s; both cars follow it.
+struct Drive
+{
+  std::function<void(double s_m, double& east_m, double& north_m)> path;
+  std::function<double(double t_s)> leader_s_m, follower_s_m, leader_v_mps, follower_v_mps;
+  /// Added to the leader's position along its path: a position error the Doppler does not see.
+  std::function<double(double t_s)> leader_position_error_m = [](double) { return 0.0; };
+};
+
+ai::GnssFix fixOf(const Drive& drive, double t, double s_m, double v_mps)
+{
+  static const GeographicLib::LocalCartesian plane(45.13, 8.45, 0.0);
+  double east = 0, north = 0, height = 0;
+  drive.path(s_m, east, north);
+  ai::GnssFix fix;
+  plane.Reverse(east, north, 0.0, fix.latitude_deg, fix.longitude_deg, height);
+  fix.gnss_time_s = t;
+  fix.has_date = true;
+  fix.speed_over_ground_mps = v_mps;
+  fix.course_rad = 0.0;
+  fix.fix_quality = 1;
+  fix.valid_fields = ai::GnssFix::kValidPosition | ai::GnssFix::kValidSpeed | ai::GnssFix::kValidCourse;
+  return fix;
+}
+
+Drive straightDrive()
+{
+  Drive drive;
+  drive.path = [](double s, double& e, double& n) { e = 0.0; n = s; };
+  // The leader brakes and accelerates (sinusoid); the follower keeps 25 m/s.
+  drive.leader_s_m = [](double t) { return 40.0 + 25.0 * t + 10.0 * std::sin(0.3 * t); };
+  drive.leader_v_mps = [](double t) { return 25.0 + 3.0 * std::cos(0.3 * t); };
+  drive.follower_s_m = [](double t) { return 25.0 * t; };
+  drive.follower_v_mps = [](double) { return 25.0; };
+  return drive;
+}
+
+std::vector<ai::RelativeState> run(ai::RelativeStateEstimator& estimator, const Drive& drive, double duration_s,
+                                   std::function<void(double, ai::GnssFix&, ai::GnssFix&)> tamper = nullptr)
+{
+  for (int i = 0; i * 0.1 <= duration_s + 1e-9; ++i)
+  {
+    double t = 1000.0 + i * 0.1;
+    double tr = i * 0.1;
+    auto leader = fixOf(drive, t, drive.leader_s_m(tr) + drive.leader_position_error_m(tr), drive.leader_v_mps(tr));
+    auto follower = fixOf(drive, t, drive.follower_s_m(tr), drive.follower_v_mps(tr));
+    if (tamper)
+      tamper(tr, leader, follower);
+    estimator.addLeader(leader);
+    estimator.addFollower(follower);
+  }
+  return estimator.takeStates();
+}
+
+ai::RelativeStateSettings settingsWithOffset()
+{
+  ai::RelativeStateSettings settings;
+  settings.geometry.leader_antenna_to_rear_bumper_m = kOffset_m;
+  return settings;
+}
+}  // namespace
+
+TEST(RelativeStateEstimator, GapSpeedsAndTimeGapOnAStraightRoad)
+{
+  ai::RelativeStateEstimator estimator(settingsWithOffset());
+  Drive drive = straightDrive();
+  auto states = run(estimator, drive, 30.0);
+  ASSERT_EQ(states.size(), 301u);
+  for (std::size_t i = 0; i < states.size(); ++i)
+  {
+    double t = i * 0.1;
+    const auto& s = states[i];
+    ASSERT_TRUE(s.valid) << s.invalid_reason;
+    EXPECT_NEAR(s.space_gap_m, drive.leader_s_m(t) - drive.follower_s_m(t) - kOffset_m, 0.01);
+    EXPECT_NEAR(s.relative_speed_mps, drive.leader_v_mps(t) - 25.0, 1e-9);
+    EXPECT_NEAR(s.time_gap_s, s.space_gap_m / 25.0, 1e-9);
+    EXPECT_EQ(s.epoch_skew_s, 0.0);
+  }
+  // Consistent positions and Doppler speeds: only trapezoid error remains (centimetres).
+  EXPECT_TRUE(std::isnan(states[50].gap_doppler_residual_m));
+  EXPECT_LT(states.back().gap_doppler_residual_m, 0.02);
+}
+
+TEST(RelativeStateEstimator, ConsistencyFigureSeesAPositionErrorTheDopplerDoesNot)
+{
+  ai::RelativeStateEstimator estimator(settingsWithOffset());
+  Drive drive = straightDrive();
+  drive.leader_position_error_m = [](double t) { return 1.0 * std::sin(0.2 * t); };  // wandering 1 m
+  auto states = run(estimator, drive, 60.0);
+  EXPECT_GT(states.back().gap_doppler_residual_m, 0.3);
+}
+
+TEST(RelativeStateEstimator, ImpossibleJumpIsRejectedAndSaidSo)
+{
+  ai::RelativeStateEstimator estimator(settingsWithOffset());
+  auto states = run(estimator, straightDrive(), 5.0, [](double t, ai::GnssFix& leader, ai::GnssFix&) {
+    if (std::abs(t - 2.0) < 1e-6)
+      leader.latitude_deg += 1e-4;  // 11 m north for one epoch: multipath, a bad fix
+  });
+  ASSERT_EQ(states.size(), 51u);
+  const auto& bad = states[20];
+  EXPECT_FALSE(bad.valid);
+  EXPECT_NE(bad.invalid_reason.find("max_gap_rate"), std::string::npos) << bad.invalid_reason;
+  EXPECT_TRUE(states[19].valid);
+  EXPECT_TRUE(states[21].valid);  // judged against the last accepted sample, not the bad one
+  EXPECT_EQ(estimator.counters().jumps_rejected, 1u);
+  EXPECT_EQ(estimator.counters().invalid_states, 1u);
+}
+
+TEST(RelativeStateEstimator, SpeedJumpIsRejectedToo)
+{
+  ai::RelativeStateEstimator estimator(settingsWithOffset());
+  auto states = run(estimator, straightDrive(), 3.0, [](double t, ai::GnssFix&, ai::GnssFix& follower) {
+    if (std::abs(t - 1.0) < 1e-6)
+      follower.speed_over_ground_mps += 5.0;  // 5 m/s in 0.1 s is 5 g
+  });
+  EXPECT_FALSE(states[10].valid);
+  EXPECT_NE(states[10].invalid_reason.find("follower speed jump"), std::string::npos);
+}
+
+TEST(RelativeStateEstimator, MissingSpeedAndStandstillAreInvalidOrNaNNotInvented)
+{
+  ai::RelativeStateEstimator estimator(settingsWithOffset());
+  Drive drive = straightDrive();
+  drive.follower_v_mps = [](double) { return 0.5; };
+  auto states = run(estimator, drive, 1.0, [](double t, ai::GnssFix& leader, ai::GnssFix&) {
+    if (std::abs(t - 0.5) < 1e-6)
+      leader.valid_fields &= ~ai::GnssFix::kValidSpeed;
+  });
+  EXPECT_TRUE(std::isnan(states[0].time_gap_s));  // below min_speed_for_time_gap
+  EXPECT_FALSE(states[5].valid);
+  EXPECT_NE(states[5].invalid_reason.find("leader speed missing"), std::string::npos);
+  EXPECT_EQ(estimator.counters().missing_speed, 1u);
+}
+
+TEST(RelativeStateEstimator, DropoutRestartsTheConsistencyWindowAndLeavesNoSamples)
+{
+  ai::RelativeStateEstimator estimator(settingsWithOffset());
+  std::vector<double> leader_times;
+  auto states = run(estimator, straightDrive(), 40.0, [](double t, ai::GnssFix& leader, ai::GnssFix&) {
+    if (t > 15.0 && t < 17.0)
+      leader.fix_quality = 0;  // leader lost its fix for 2 s
+  });
+  EXPECT_EQ(estimator.pairingCounters().leader_invalid_fixes, 19u);
+  EXPECT_EQ(estimator.pairingCounters().leader_dropouts, 1u);
+  for (const auto& s : states)
+    EXPECT_FALSE(s.time_s > 1015.05 && s.time_s < 1016.95) << "stale sample at " << s.time_s;
+  // After the dropout the consistency needs a full new window.
+  for (const auto& s : states)
+    if (s.time_s > 1017.0 && s.time_s < 1026.9)
+      EXPECT_TRUE(std::isnan(s.gap_doppler_residual_m)) << s.time_s;
+  EXPECT_TRUE(std::isfinite(states.back().gap_doppler_residual_m));
+}
+
+TEST(RelativeStateEstimator, AlongTrackOptionMeasuresTheGapAlongACurve)
+{
+  const double radius_m = 80.0;
+  Drive drive;
+  drive.path = [radius_m](double s, double& e, double& n) {
+    e = radius_m * std::cos(s / radius_m);
+    n = radius_m * std::sin(s / radius_m);
+  };
+  drive.leader_s_m = [](double t) { return 45.0 + 15.0 * t; };
+  drive.follower_s_m = [](double t) { return 15.0 * t; };
+  drive.leader_v_mps = drive.follower_v_mps = [](double) { return 15.0; };
+  auto settings = settingsWithOffset();
+  ai::RelativeStateEstimator straight(settings);
+  settings.gap_mode = ai::GapMode::kAlongTrack;
+  ai::RelativeStateEstimator along(settings);
+  auto chord_states = run(straight, drive, 12.0);
+  auto along_states = run(along, drive, 12.0);
+  ASSERT_EQ(chord_states.size(), along_states.size());
+  const auto& last_chord = chord_states.back();
+  const auto& last_along = along_states.back();
+  EXPECT_NEAR(last_chord.space_gap_m, 2 * radius_m * std::sin(45.0 / (2 * radius_m)) - kOffset_m, 0.01);
+  EXPECT_NEAR(last_along.space_gap_m, 45.0 - kOffset_m, 0.05);
+  // At the start the leader's path does not reach back to the follower: straight line, counted.
+  EXPECT_GT(along.counters().along_track_fallbacks, 0u);
+  EXPECT_LT(along.counters().along_track_fallbacks, 35u);
+}
+
+TEST(RelativeStateEstimator, GapModeNamesRoundTrip)
+{
+  ai::GapMode mode = ai::GapMode::kStraightLine;
+  EXPECT_TRUE(ai::parseGapMode("along_track", mode));
+  EXPECT_EQ(mode, ai::GapMode::kAlongTrack);
+  EXPECT_STREQ(ai::gapModeName(mode), "along_track");
+  EXPECT_FALSE(ai::parseGapMode("chord", mode));
+}
