@@ -1,0 +1,22 @@
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include "acc_identification/paper_settings.h"
+
+namespace acc_identification
+{
+/// A parameter file that cannot be used (missing, not JSON, fields missing or not numbers).
+class ParameterFileError : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Reads the parameters of a calibrate JSON: {"parameters": {"k1_per_s2", "k2_per_s",
+/// "tau_e_s", "eta_m"}, ...}; other fields are ignored. Named after the file's stem.
+/// Throws ParameterFileError with the path and the reason.
+NamedSetting readParameterFile(const std::string& path);
+
+}  // namespace acc_identification

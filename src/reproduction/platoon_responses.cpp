@@ -1,0 +1,67 @@
+#include "acc_identification/reproduction/platoon_responses.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "acc_identification/reproduction/frequency_response.h"
+#include "acc_identification/string_stability.h"
+
+namespace acc_identification
+{
+namespace
+{
+void requireFollowers(const PlatoonTrajectory& platoon)
+{
+  if (platoon.vehicleCount() < 2 || platoon.sampleCount() < 2)
+  {
+    throw std::invalid_argument("platoon response needs a lead, at least one follower and two samples");
+  }
+}
+
+std::vector<double> magnitudes(const std::vector<VehicleDisturbance>& per_vehicle,
+                               double VehicleDisturbance::*field)
+{
+  std::vector<double> m;
+  m.reserve(per_vehicle.size());
+  for (const VehicleDisturbance& d : per_vehicle)
+  {
+    m.push_back(d.*field);
+  }
+  return m;
+}
+}  // namespace
+
+SinusoidResponse measureSinusoidResponse(const PlatoonTrajectory& platoon, const AccParameters& p,
+                                         double frequency_rad_s, std::size_t from_sample)
+{
+  requireFollowers(platoon);
+  SinusoidResponse response;
+  for (const std::vector<double>& speed : platoon.speed_mps)
+  {
+    response.amplitude_mps.push_back(
+        fittedSinusoidAmplitude(speed, platoon.time_step_s, frequency_rad_s, from_sample, speed.size()));
+  }
+  const std::vector<double>& a = response.amplitude_mps;
+  response.last_to_first_follower = a.back() / a[1];
+  response.last_follower_to_lead = a.back() / a[0];
+  response.model_gain = transferGain(p, frequency_rad_s);
+  response.euler_gain = eulerTransferGain(p, frequency_rad_s, platoon.time_step_s);
+  return response;
+}
+
+DisturbanceResponse measureDisturbanceResponse(const PlatoonTrajectory& platoon)
+{
+  requireFollowers(platoon);
+  DisturbanceResponse response;
+  response.reference_speed_mps = platoon.speed_mps[0].front();
+  response.per_vehicle = vehicleDisturbances(platoon, response.reference_speed_mps);
+  response.by_peak_to_peak = findGrowthOnset(magnitudes(response.per_vehicle, &VehicleDisturbance::peak_to_peak_mps));
+  response.by_drop = findGrowthOnset(magnitudes(response.per_vehicle, &VehicleDisturbance::drop_below_reference_mps));
+  response.first_negative_speed_vehicle = firstVehicleBelowSpeed(platoon, 0.0);
+  const double lead_final = platoon.speed_mps[0].back();
+  const double tolerance = 0.01 * response.per_vehicle[0].peak_to_peak_mps;
+  response.last_follower_settled = std::abs(platoon.speed_mps.back().back() - lead_final) <= tolerance;
+  return response;
+}
+
+}  // namespace acc_identification

@@ -1,0 +1,75 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "acc_identification/reproduction/lambda2_map.h"
+#include "acc_identification/string_stability.h"
+
+namespace aci = acc_identification;
+
+// Fig. 1: the shaded (stable) region of the map is exactly k1 tau^2 + 2 k2 tau >= 2, and there
+// lambda2 < 0; everywhere else lambda2 > 0.
+TEST(Lambda2Map, StableRegionIsTheClosedFormRegion)
+{
+  aci::Lambda2MapGrid grid;
+  grid.k1_points = grid.k2_points = 41;
+  const auto map = aci::lambda2Map(grid);
+  ASSERT_EQ(map.size(), grid.tau_e_s.size() * 41u * 41u);
+  std::size_t stable = 0;
+  for (const auto& s : map)
+  {
+    const double margin = s.k1_per_s2 * s.tau_e_s * s.tau_e_s + 2.0 * s.k2_per_s * s.tau_e_s - 2.0;
+    EXPECT_EQ(s.string_stable, aci::inClosedFormStableRegion(s.k1_per_s2, s.k2_per_s, s.tau_e_s));
+    if (std::abs(margin) > 1e-9)
+    {
+      EXPECT_EQ(s.lambda2 < 0.0, margin > 0.0) << s.k1_per_s2 << ' ' << s.k2_per_s << ' ' << s.tau_e_s;
+    }
+    stable += s.string_stable;
+  }
+  EXPECT_GT(stable, 0u);
+  EXPECT_LT(stable, map.size());
+}
+
+// The paper: small gains need a larger tau_e; the stable share of the grid grows with tau_e and
+// lambda2 tends to 0 for large tau_e.
+TEST(Lambda2Map, LargerTimeGapStabilisesMoreOfTheGridAndLambda2TendsToZero)
+{
+  aci::Lambda2MapGrid grid;
+  grid.tau_e_s = {0.5, 1.0, 2.0, 3.0};
+  grid.k1_points = grid.k2_points = 21;
+  const auto map = aci::lambda2Map(grid);
+  double previous = -1.0;
+  for (double tau : grid.tau_e_s)
+  {
+    const double fraction = aci::stableFraction(map, tau);
+    EXPECT_GT(fraction, previous) << tau;
+    previous = fraction;
+  }
+  EXPECT_NEAR(aci::stableFraction(map, 3.0), 1.0, 0.05);
+  const aci::AccParameters gains{0.5, 0.5, 0.0, 0.0};
+  double last = -std::numeric_limits<double>::infinity();
+  for (double tau : {5.0, 10.0, 50.0, 200.0})
+  {
+    aci::AccParameters p = gains;
+    p.tau_e_s = tau;
+    EXPECT_LT(aci::lambda2(p), 0.0);
+    EXPECT_GT(aci::lambda2(p), last - 1e-12);  // rising towards 0 from below
+    last = aci::lambda2(p);
+  }
+  EXPECT_GT(last, -0.01);
+}
+
+TEST(Lambda2Map, RejectsDegenerateGrids)
+{
+  aci::Lambda2MapGrid grid;
+  grid.k1_points = 1;
+  EXPECT_THROW(aci::lambda2Map(grid), std::invalid_argument);
+  grid = aci::Lambda2MapGrid{};
+  grid.k2_max_per_s = -1.0;
+  EXPECT_THROW(aci::lambda2Map(grid), std::invalid_argument);
+  grid = aci::Lambda2MapGrid{};
+  grid.tau_e_s.clear();
+  EXPECT_THROW(aci::lambda2Map(grid), std::invalid_argument);
+}
