@@ -9,7 +9,11 @@ add_library(acc_gnss
   src/gnss/gnss_epoch_assembler.cpp
   src/gnss/gnss_velocity.cpp
   src/gnss/nmea_decoder.cpp
-  src/gnss/nmea_log.cpp)
+  src/gnss/nmea_log.cpp
+  src/gnss/source_uri.cpp
+  src/gnss/file_source.cpp
+  src/gnss/reconnecting_source.cpp
+  src/gnss/live_sources.cpp)
 target_include_directories(acc_gnss PUBLIC include)
 
 install(TARGETS acc_gnss
@@ -22,7 +26,8 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_nmea_parser.cpp
     test/unit/test_nmea_line_assembler.cpp
     test/unit/test_nmea_writer.cpp
-    test/unit/test_gnss_epoch.cpp)
+    test/unit/test_gnss_epoch.cpp
+    test/unit/test_gnss_sources.cpp)
   target_link_libraries(test_gnss acc_gnss)
   target_compile_definitions(test_gnss PRIVATE ACC_GNSS_TEST_DATA="${PROJECT_SOURCE_DIR}/test/data/nmea")
 endif()

@@ -1,0 +1,48 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <fstream>
+#include <string>
+
+#include "acc_identification/gnss/byte_source.h"
+
+namespace acc_identification
+{
+/// Replays a log of NMEA lines paced by the sentences' own UTC times: a line is released
+/// (time - first time) / rate after the first timed line, on the host's steady clock (not the
+/// ROS clock, so it also works under /use_sim_time). Lines without time (VTG, GSV, ...) follow
+/// the line before them. rate = 0: as fast as possible. Midnight in the log is unwrapped.
+/// At end of file read() returns kEnd.
+class FileSource : public ByteSource
+{
+public:
+  FileSource(const std::string& path, double rate);
+
+  ReadResult read(char* buffer, std::size_t capacity, double timeout_s) override;
+  std::string description() const override;
+  std::string state() const override { return state_; }
+  bool isOpen() const override { return in_.is_open(); }
+  std::uint64_t reopenCount() const override { return 0; }
+
+private:
+  using Clock = std::chrono::steady_clock;
+  /// Reads the next line into line_ and computes when it is due; false at end of file.
+  bool loadLine();
+
+  std::string path_;
+  double rate_;
+  std::ifstream in_;
+  std::string state_;
+  std::string line_;         ///< next line with its "\n", waiting for its time
+  std::size_t line_offset_ = 0;
+  bool has_line_ = false;
+  bool started_ = false;     ///< first timed line seen
+  Clock::time_point wall_start_;
+  double log_start_s_ = 0.0;
+  double last_time_s_ = 0.0; ///< unwrapped log time of the last timed line
+  double day_offset_s_ = 0.0;
+  Clock::time_point due_;
+};
+
+}  // namespace acc_identification

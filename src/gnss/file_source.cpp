@@ -1,0 +1,89 @@
+#include "acc_identification/gnss/file_source.h"
+
+#include <algorithm>
+#include <cstring>
+#include <thread>
+
+#include "acc_identification/gnss/nmea_parser.h"
+#include "acc_identification/gnss/utc_date.h"
+
+namespace acc_identification
+{
+FileSource::FileSource(const std::string& path, double rate) : path_(path), rate_(rate), in_(path, std::ios::binary)
+{
+  state_ = in_.is_open() ? "open" : "cannot open " + path;
+}
+
+std::string FileSource::description() const { return "file://" + path_ + "?rate=" + std::to_string(rate_); }
+
+bool FileSource::loadLine()
+{
+  if (!in_.is_open() || !std::getline(in_, line_))
+    return false;
+  line_ += '\n';  // getline ate it; the line assembler needs a terminator
+  line_offset_ = 0;
+  has_line_ = true;
+  double time_of_day_s = 0.0;
+  if (rate_ <= 0.0 || !nmeaLineTimeOfDay(line_, time_of_day_s))
+    return true;  // untimed lines are due with the line before them
+  double log_time_s = time_of_day_s + day_offset_s_;
+  if (started_ && log_time_s < last_time_s_ - kSecondsPerDay / 2.0)  // midnight in the log
+  {
+    day_offset_s_ += kSecondsPerDay;
+    log_time_s += kSecondsPerDay;
+  }
+  if (!started_)
+  {
+    started_ = true;
+    wall_start_ = Clock::now();
+    log_start_s_ = log_time_s;
+  }
+  last_time_s_ = std::max(last_time_s_, log_time_s);
+  const double offset_s = std::max(0.0, (log_time_s - log_start_s_) / rate_);
+  due_ = wall_start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(offset_s));
+  return true;
+}
+
+ReadResult FileSource::read(char* buffer, std::size_t capacity, double timeout_s)
+{
+  ReadResult result;
+  if (!in_.is_open())
+  {
+    result.status = ReadStatus::kEnd;
+    return result;
+  }
+  const Clock::time_point deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_s));
+  while (result.size < capacity)
+  {
+    if (!has_line_ && !loadLine())
+    {
+      if (result.size == 0)
+      {
+        result.status = ReadStatus::kEnd;
+        state_ = "end of file";
+      }
+      break;
+    }
+    if (rate_ > 0.0 && started_ && Clock::now() < due_)
+    {
+      if (result.size > 0 || due_ > deadline)
+      {
+        if (result.size == 0)
+          std::this_thread::sleep_until(deadline);
+        break;
+      }
+      std::this_thread::sleep_until(due_);
+    }
+    const std::size_t count = std::min(capacity - result.size, line_.size() - line_offset_);
+    std::memcpy(buffer + result.size, line_.data() + line_offset_, count);
+    result.size += count;
+    line_offset_ += count;
+    has_line_ = line_offset_ < line_.size();
+  }
+  if (result.size > 0)
+    result.status = ReadStatus::kData;
+  return result;
+}
+
+}  // namespace acc_identification

@@ -1,0 +1,194 @@
+// Byte sources: URI parsing, file replay pacing, and the live sources against local peers
+// (a pseudo-terminal for serial, loopback sockets for UDP and TCP).
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <string>
+
+#include "acc_identification/gnss/byte_source.h"
+#include "acc_identification/gnss/nmea_decoder.h"
+
+namespace aci = acc_identification;
+
+namespace
+{
+const std::string kFixture = std::string(ACC_GNSS_TEST_DATA) + "/drive_10s.nmea";
+const std::string kVtg = "$GPVTG,77.52,T,,M,0.004,N,0.008,K,A*06\r\n";
+
+/// Reads from source until want bytes arrived or max_s passed; returns what came.
+std::string readFor(aci::ByteSource& source, std::size_t want, double max_s)
+{
+  std::string got;
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(max_s);
+  char buffer[4096];
+  while (got.size() < want && std::chrono::steady_clock::now() < end)
+  {
+    const aci::ReadResult r = source.read(buffer, sizeof buffer, 0.05);
+    if (r.status == aci::ReadStatus::kEnd)
+      break;
+    got.append(buffer, r.size);
+  }
+  return got;
+}
+
+/// A loopback port that is free now.
+int freePort(int type)
+{
+  const int fd = ::socket(AF_INET, type, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
+  socklen_t length = sizeof a;
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &length);
+  ::close(fd);
+  return ntohs(a.sin_port);
+}
+
+sockaddr_in loopback(int port)
+{
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<std::uint16_t>(port));
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  return a;
+}
+}  // namespace
+
+TEST(SourceUri, Forms)
+{
+  aci::SourceUri uri;
+  std::string error;
+  ASSERT_TRUE(aci::parseSourceUri("serial:///dev/ttyACM0?baud=115200", uri, error)) << error;
+  EXPECT_EQ(uri.scheme, "serial");
+  EXPECT_EQ(uri.path, "/dev/ttyACM0");
+  EXPECT_EQ(uri.query.at("baud"), "115200");
+  ASSERT_TRUE(aci::parseSourceUri("udp://:10110", uri, error));
+  EXPECT_EQ(uri.host, "");
+  EXPECT_EQ(uri.port, 10110);
+  ASSERT_TRUE(aci::parseSourceUri("tcp://192.168.1.5:2101", uri, error));
+  EXPECT_EQ(uri.host, "192.168.1.5");
+  EXPECT_EQ(uri.port, 2101);
+  ASSERT_TRUE(aci::parseSourceUri("file:///tmp/x.nmea?rate=0", uri, error));
+  EXPECT_EQ(uri.path, "/tmp/x.nmea");
+  EXPECT_EQ(uri.query.at("rate"), "0");
+
+  EXPECT_FALSE(aci::parseSourceUri("/dev/ttyACM0", uri, error));
+  EXPECT_FALSE(aci::parseSourceUri("udp://:99999", uri, error));
+  EXPECT_FALSE(aci::parseSourceUri("tcp://:2101", uri, error));
+  EXPECT_FALSE(aci::parseSourceUri("file://relative.nmea", uri, error));
+  EXPECT_FALSE(aci::parseSourceUri("ftp://host:21", uri, error));
+  EXPECT_NE(error.find("unknown scheme"), std::string::npos);
+  EXPECT_EQ(aci::makeByteSource("serial:///dev/ttyACM0?baud=12345", error), nullptr);
+  EXPECT_EQ(aci::makeByteSource("file:///nonexistent.nmea", error), nullptr);
+  EXPECT_EQ(aci::makeByteSource("file://" + kFixture + "?rate=fast", error), nullptr);
+}
+
+TEST(FileSource, AsFastAsPossibleThenEnd)
+{
+  std::string error;
+  auto source = aci::makeByteSource("file://" + kFixture + "?rate=0", error);
+  ASSERT_NE(source, nullptr) << error;
+  int fixes = 0;
+  aci::NmeaDecoder decoder(nullptr, [&](const aci::GnssFix&) { ++fixes; });
+  const auto start = std::chrono::steady_clock::now();
+  char buffer[512];
+  aci::ReadResult r;
+  while ((r = source->read(buffer, sizeof buffer, 0.1)).status != aci::ReadStatus::kEnd)
+    decoder.feed(buffer, r.size, 0.0);
+  decoder.finish(0.0);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+  EXPECT_EQ(fixes, 100);
+  EXPECT_EQ(source->read(buffer, sizeof buffer, 0.1).status, aci::ReadStatus::kEnd);
+}
+
+TEST(FileSource, PacedBySentenceTimes)
+{
+  std::string error;
+  auto source = aci::makeByteSource("file://" + kFixture + "?rate=20", error);  // 9.9 s of log in 0.495 s
+  ASSERT_NE(source, nullptr) << error;
+  const auto start = std::chrono::steady_clock::now();
+  std::size_t bytes = 0;
+  char buffer[512];
+  aci::ReadResult r;
+  double first_half_s = -1.0;
+  while ((r = source->read(buffer, sizeof buffer, 0.02)).status != aci::ReadStatus::kEnd)
+  {
+    bytes += r.size;
+    if (first_half_s < 0 && bytes > 20000)
+      first_half_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_NEAR(elapsed, 9.9 / 20, 0.08);
+  EXPECT_GT(first_half_s, 0.1);  // not all at once
+}
+
+TEST(SerialSource, ReadsAPseudoTerminalAndSurvivesItsDisappearance)
+{
+  int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  ASSERT_GE(master, 0);
+  ASSERT_EQ(::grantpt(master), 0);
+  ASSERT_EQ(::unlockpt(master), 0);
+  const std::string slave = ::ptsname(master);
+  std::string error;
+  auto source = aci::makeByteSource("serial://" + slave + "?baud=115200", error);
+  ASSERT_NE(source, nullptr) << error;
+  EXPECT_EQ(readFor(*source, 1, 0.1), "");  // opens, nothing yet
+  ASSERT_TRUE(source->isOpen()) << source->state();
+  ASSERT_EQ(::write(master, kVtg.data(), kVtg.size()), static_cast<ssize_t>(kVtg.size()));
+  EXPECT_EQ(readFor(*source, kVtg.size(), 2.0), kVtg);
+  ::close(master);  // the device goes away (as a USB receiver unplugged)
+  readFor(*source, 1, 0.3);
+  EXPECT_FALSE(source->isOpen());
+  EXPECT_NE(source->state().find("retrying"), std::string::npos) << source->state();
+}
+
+TEST(UdpSource, SeveralSentencesInOneDatagram)
+{
+  const int port = freePort(SOCK_DGRAM);
+  std::string error;
+  auto source = aci::makeByteSource("udp://127.0.0.1:" + std::to_string(port), error);
+  ASSERT_NE(source, nullptr) << error;
+  readFor(*source, 1, 0.1);  // binds
+  ASSERT_TRUE(source->isOpen()) << source->state();
+  const int sender = ::socket(AF_INET, SOCK_DGRAM, 0);
+  const sockaddr_in to = loopback(port);
+  const std::string datagram = kVtg + kVtg;
+  ::sendto(sender, datagram.data(), datagram.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
+  ::close(sender);
+  EXPECT_EQ(readFor(*source, datagram.size(), 2.0), datagram);
+}
+
+TEST(TcpSource, ReconnectsWhenTheServerDropsTheConnection)
+{
+  const int port = freePort(SOCK_STREAM);
+  const int server = ::socket(AF_INET, SOCK_STREAM, 0);
+  const int yes = 1;
+  ::setsockopt(server, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  sockaddr_in address = loopback(port);
+  ASSERT_EQ(::bind(server, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+  ASSERT_EQ(::listen(server, 2), 0);
+  std::string error;
+  auto source = aci::makeByteSource("tcp://127.0.0.1:" + std::to_string(port), error);
+  ASSERT_NE(source, nullptr) << error;
+  for (int round = 0; round < 2; ++round)
+  {
+    readFor(*source, 1, round == 0 ? 0.1 : 1.5);  // connects (after the back-off the second time)
+    const int peer = ::accept(server, nullptr, nullptr);
+    ASSERT_GE(peer, 0);
+    ASSERT_EQ(::write(peer, kVtg.data(), kVtg.size()), static_cast<ssize_t>(kVtg.size()));
+    EXPECT_EQ(readFor(*source, kVtg.size(), 2.0), kVtg);
+    ::close(peer);
+    readFor(*source, 1, 0.2);  // sees the end of the connection
+    EXPECT_FALSE(source->isOpen());
+  }
+  EXPECT_EQ(source->reopenCount(), 1u);
+  ::close(server);
+}
