@@ -12,3 +12,36 @@ if(CATKIN_ENABLE_TESTING)
   target_compile_definitions(test_run_csv PRIVATE ACC_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/test/data/runs")
   target_link_libraries(test_run_csv acc_run_io)
 endif()
+
+# The calibration core (ROS-free): objective with exact gradient, multistart NLopt, fit statistics,
+# identifiability, the identifier's sliding window, synthetic runs for tests and benchmarks.
+add_library(acc_calibration
+  src/calibration/calibration_objective.cpp
+  src/calibration/multistart_calibrator.cpp
+  src/calibration/fit_statistics.cpp
+  src/calibration/identification.cpp
+  src/calibration/synthetic_runs.cpp)
+target_include_directories(acc_calibration PUBLIC include ${EIGEN3_INCLUDE_DIR})
+# find_package(NLopt) in CMakeLists.txt finds Debian's C library (target NLopt::nlopt); nlopt.hpp
+# is a header-only wrapper over its C API, and L-BFGS is in the C library, so that is enough.
+if(TARGET NLopt::nlopt_cxx)
+  set(ACC_NLOPT_TARGET NLopt::nlopt_cxx)
+else()
+  set(ACC_NLOPT_TARGET NLopt::nlopt)
+endif()
+target_link_libraries(acc_calibration PUBLIC acc_model ${ACC_NLOPT_TARGET})
+
+if(CATKIN_ENABLE_TESTING)
+  catkin_add_gtest(test_calibration
+    test/unit/gtest_main.cpp
+    test/unit/test_calibration_objective.cpp)
+  target_compile_definitions(test_calibration PRIVATE ACC_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/test/data/runs")
+  target_link_libraries(test_calibration acc_calibration acc_run_io)
+endif()
+
+# Benchmarks: a plain executable (not a test), run by `make bench`.
+find_package(benchmark QUIET)
+if(benchmark_FOUND)
+  add_executable(bench_calibration bench/bench_calibration.cpp)
+  target_link_libraries(bench_calibration acc_calibration benchmark::benchmark)
+endif()

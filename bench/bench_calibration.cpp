@@ -1,0 +1,79 @@
+// Benchmarks of the calibration (Google Benchmark), on one core through `make bench`:
+//  - Batch: one following setting at the paper's scale (nine runs, about 4,300 s of 10 Hz data
+//    together), 100 starts, as the calibrate tool solves it. Target: under 0.5 s.
+//  - Live: one recalibration of a 120 s window, warm-started from the previous window's fit, as
+//    the identifier node does every second. Target: under 5 ms.
+//  - One objective pass with gradient over the batch data, the unit everything else is made of.
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+#include "acc_identification/calibration/identification.h"
+#include "acc_identification/calibration/synthetic_runs.h"
+#include "acc_identification/paper_settings.h"
+
+namespace aci = acc_identification;
+
+namespace
+{
+/// Nine runs of 480 s (4,320 s) from Table II's minimum setting with the paper's GPS noise.
+std::vector<aci::CarFollowingRun> paperScaleRuns()
+{
+  std::vector<aci::CarFollowingRun> runs;
+  for (std::uint32_t seed = 1; seed <= 9; ++seed)
+  {
+    runs.push_back(aci::synthesizeRun(aci::paperMinimumSetting(), 480.0, 0.1, 12.0 + 2.0 * seed, seed));
+  }
+  return runs;
+}
+
+void BM_BatchCalibration100Starts(benchmark::State& state)
+{
+  const auto runs = paperScaleRuns();
+  const aci::CalibrationObjective objective(runs);
+  aci::MultistartOptions options;
+  options.starts = 100;
+  aci::MultistartResult result;
+  for (auto _ : state)
+  {
+    result = aci::calibrateMultistart(objective, options);
+    benchmark::DoNotOptimize(result);
+  }
+  state.counters["samples"] = static_cast<double>(objective.sampleCount());
+  state.counters["evaluations"] = static_cast<double>(result.evaluations);
+  state.counters["rmse_mps"] = result.rmse_speed_mps;
+  state.counters["k1"] = result.parameters.k1_per_s2;
+}
+BENCHMARK(BM_BatchCalibration100Starts)->Unit(benchmark::kMillisecond);
+
+void BM_LiveWindowRecalibration(benchmark::State& state)
+{
+  // The node's configuration: a 120 s window, warm start from the previous fit, a few fresh starts.
+  const auto run = aci::synthesizeRun(aci::paperMinimumSetting(), 120.0, 0.1, 25.0, 42);
+  aci::IdentificationOptions options;
+  options.multistart.starts = static_cast<std::size_t>(state.range(0));
+  const std::vector<aci::AccParameters> warm{aci::AccParameters{0.075, 0.45, 0.5, 8.0}};
+  aci::Identification result;
+  for (auto _ : state)
+  {
+    result = aci::identifyAcc({run}, options, warm);
+    benchmark::DoNotOptimize(result);
+  }
+  state.counters["evaluations"] = static_cast<double>(result.calibration.evaluations);
+  state.counters["identifiable"] = result.identifiable ? 1.0 : 0.0;
+}
+BENCHMARK(BM_LiveWindowRecalibration)->Arg(4)->Arg(16)->Unit(benchmark::kMillisecond);
+
+void BM_ObjectivePassWithGradient(benchmark::State& state)
+{
+  const aci::CalibrationObjective objective(paperScaleRuns());
+  for (auto _ : state)
+  {
+    benchmark::DoNotOptimize(objective.evaluate(0.08, 0.44, 0.52, state.range(0) != 0));
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * objective.sampleCount()));
+}
+BENCHMARK(BM_ObjectivePassWithGradient)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+}  // namespace
+
+BENCHMARK_MAIN();
