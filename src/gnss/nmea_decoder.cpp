@@ -40,6 +40,8 @@ void NmeaDecoder::flushIfIdle(double now_s, double idle_s)
     emit(epochs_.flush());
 }
 
+void NmeaDecoder::flushEpoch() { emit(epochs_.flush()); }
+
 void NmeaDecoder::finish(double receive_time_s)
 {
   lines_.finish([&](std::string_view line) { handleLine(line, receive_time_s); });

@@ -28,6 +28,8 @@ public:
   void feed(const char* data, std::size_t size, double receive_time_s);
   /// Completes the pending epoch when no sentence arrived for idle_s (live sources).
   void flushIfIdle(double now_s, double idle_s);
+  /// Completes the pending epoch now (the caller saw a pause in the byte stream).
+  void flushEpoch();
   /// End of stream: hands out a last unterminated line and the pending epoch.
   void finish(double receive_time_s);
 

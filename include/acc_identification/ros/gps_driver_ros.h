@@ -1,0 +1,78 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/ros.h>
+
+#include "acc_identification/gnss/byte_source.h"
+#include "acc_identification/gnss/gnss_fix.h"
+#include "acc_identification/gnss/nmea_decoder.h"
+
+// The generated message type acc_identification::GnssFix has the name of the library struct
+// acc_identification::GnssFix (gnss_fix.h); include it under the name GnssFixMessage so that
+// both can live in one translation unit. Include this header before any other include of
+// acc_identification/GnssFix.h.
+#define GnssFix GnssFixMessage
+#include <acc_identification/GnssFix.h>
+#undef GnssFix
+
+namespace acc_identification
+{
+/// The library fix as a message (header.frame_id = frame_id). header.stamp is the GNSS time:
+/// the full UTC time when fix.has_date, else the time of day counted from 1970-01-01 00:00
+/// (VALID_DATE clear), so that a fix before the first date is still published.
+GnssFixMessage toMessage(const GnssFix& fix, const std::string& frame_id);
+/// The message as a library fix (for nodes that consume the driver's output).
+GnssFix fromMessage(const GnssFixMessage& message);
+
+/// gps_driver_node: one instance per receiver. Reads bytes from ~source, publishes every line on
+/// nmea_sentence, one fix per epoch on fix (acc_identification/GnssFix), navsat_fix
+/// (sensor_msgs/NavSatFix) and vel (geometry_msgs/TwistStamped, ENU), and health on
+/// /diagnostics. All parsing is in the ROS-free NmeaDecoder.
+class GpsDriverRos
+{
+public:
+  GpsDriverRos(ros::NodeHandle node, ros::NodeHandle private_node);
+  /// Runs until shutdown, or until the end of a replayed file. Returns the exit code.
+  int run();
+
+private:
+  using SteadyClock = std::chrono::steady_clock;
+
+  void publishLine(std::string_view line);
+  void publishFix(const GnssFix& fix);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void waitForSubscribers();
+  void finishReplay();
+
+  ros::NodeHandle node_;
+  std::string source_uri_;
+  std::string frame_id_;
+  std::string vel_frame_id_;
+  double epoch_idle_s_ = 0.05;
+  double hdop_uere_m_ = 3.0;
+  double expected_rate_hz_ = 10.0;
+  double fix_timeout_s_ = 1.0;
+  int wait_for_subscribers_ = 0;
+  double wait_for_subscribers_timeout_s_ = 30.0;
+  double diagnostic_period_s_ = 1.0;
+
+  std::unique_ptr<ByteSource> source_;
+  NmeaDecoder decoder_;
+  ros::Publisher sentence_publisher_, fix_publisher_, navsat_publisher_, vel_publisher_;
+  diagnostic_updater::Updater updater_;
+
+  ros::Time receive_time_;  ///< ROS time of the bytes being decoded
+  SteadyClock::time_point last_bytes_, last_fix_, last_diagnostic_;
+  bool have_fix_ = false;
+  std::uint8_t last_fix_quality_ = 0;
+  std::uint64_t fixes_at_last_diagnostic_ = 0;
+  std::uint64_t errors_at_last_diagnostic_ = 0;
+};
+
+}  // namespace acc_identification

@@ -1,0 +1,286 @@
+#include "acc_identification/ros/gps_driver_ros.h"
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+#include <acc_identification/Sentence.h>
+#include <geometry_msgs/TwistStamped.h>
+#include <sensor_msgs/NavSatFix.h>
+
+#include "acc_identification/gnss/gnss_velocity.h"
+
+namespace acc_identification
+{
+namespace
+{
+double seconds(std::chrono::steady_clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+ros::Time rosTime(double seconds_since_epoch)
+{
+  return std::isfinite(seconds_since_epoch) && seconds_since_epoch >= 0.0 ? ros::Time(seconds_since_epoch) : ros::Time();
+}
+
+/// GGA quality to NavSatStatus: DGPS counts as SBAS, RTK as ground-based augmentation.
+std::int8_t navSatStatus(std::uint8_t quality)
+{
+  switch (quality)
+  {
+    case 0: return sensor_msgs::NavSatStatus::STATUS_NO_FIX;
+    case 2: return sensor_msgs::NavSatStatus::STATUS_SBAS_FIX;
+    case 4:
+    case 5: return sensor_msgs::NavSatStatus::STATUS_GBAS_FIX;
+    default: return sensor_msgs::NavSatStatus::STATUS_FIX;
+  }
+}
+}  // namespace
+
+GnssFixMessage toMessage(const GnssFix& fix, const std::string& frame_id)
+{
+  GnssFixMessage m;
+  m.header.stamp = rosTime(fix.gnss_time_s);
+  m.header.frame_id = frame_id;
+  m.receive_time = rosTime(fix.receive_time_s);
+  m.latitude_deg = fix.latitude_deg;
+  m.longitude_deg = fix.longitude_deg;
+  m.altitude_m = fix.altitude_m;
+  m.speed_over_ground_mps = fix.speed_over_ground_mps;
+  m.course_rad = fix.course_rad;
+  m.fix_quality = fix.fix_quality;
+  m.satellites_used = fix.satellites_used;
+  m.hdop = fix.hdop;
+  m.latitude_sigma_m = fix.latitude_sigma_m;
+  m.longitude_sigma_m = fix.longitude_sigma_m;
+  m.altitude_sigma_m = fix.altitude_sigma_m;
+  m.valid_fields = fix.valid_fields;
+  return m;
+}
+
+GnssFix fromMessage(const GnssFixMessage& m)
+{
+  GnssFix fix;
+  fix.gnss_time_s = m.header.stamp.toSec();
+  fix.has_date = (m.valid_fields & GnssFixMessage::VALID_DATE) != 0;
+  fix.receive_time_s = m.receive_time.toSec();
+  fix.latitude_deg = m.latitude_deg;
+  fix.longitude_deg = m.longitude_deg;
+  fix.altitude_m = m.altitude_m;
+  fix.speed_over_ground_mps = m.speed_over_ground_mps;
+  fix.course_rad = m.course_rad;
+  fix.fix_quality = m.fix_quality;
+  fix.satellites_used = m.satellites_used;
+  fix.hdop = m.hdop;
+  fix.latitude_sigma_m = m.latitude_sigma_m;
+  fix.longitude_sigma_m = m.longitude_sigma_m;
+  fix.altitude_sigma_m = m.altitude_sigma_m;
+  fix.valid_fields = m.valid_fields;
+  return fix;
+}
+
+GpsDriverRos::GpsDriverRos(ros::NodeHandle node, ros::NodeHandle private_node)
+  : node_(node)
+  , decoder_([this](std::string_view line, NmeaParseOutcome) { publishLine(line); },
+             [this](const GnssFix& fix) { publishFix(fix); })
+  , updater_(node, private_node)
+{
+  private_node.param<std::string>("source", source_uri_, "serial:///dev/ttyACM0?baud=115200");
+  private_node.param<std::string>("frame_id", frame_id_, "gps");
+  private_node.param<std::string>("vel_frame_id", vel_frame_id_, "enu");
+  private_node.param("epoch_idle_s", epoch_idle_s_, epoch_idle_s_);
+  private_node.param("hdop_uere_m", hdop_uere_m_, hdop_uere_m_);
+  private_node.param("expected_rate_hz", expected_rate_hz_, expected_rate_hz_);
+  private_node.param("fix_timeout_s", fix_timeout_s_, fix_timeout_s_);
+  private_node.param("wait_for_subscribers", wait_for_subscribers_, wait_for_subscribers_);
+  private_node.param("wait_for_subscribers_timeout_s", wait_for_subscribers_timeout_s_, wait_for_subscribers_timeout_s_);
+  private_node.param("diagnostic_period_s", diagnostic_period_s_, diagnostic_period_s_);
+  int queue_size = 1000;  // a fast replay (rate 0) bursts; a short queue would drop messages
+  private_node.param("queue_size", queue_size, queue_size);
+
+  sentence_publisher_ = node_.advertise<Sentence>("nmea_sentence", queue_size);
+  fix_publisher_ = node_.advertise<GnssFixMessage>("fix", queue_size);
+  navsat_publisher_ = node_.advertise<sensor_msgs::NavSatFix>("navsat_fix", queue_size);
+  vel_publisher_ = node_.advertise<geometry_msgs::TwistStamped>("vel", queue_size);
+
+  std::string error;
+  source_ = makeByteSource(source_uri_, error);
+  if (!source_)
+    ROS_FATAL("gps_driver: %s", error.c_str());
+  updater_.setHardwareID(source_uri_);
+  updater_.add("NMEA receiver " + frame_id_, this, &GpsDriverRos::diagnose);
+  last_bytes_ = last_fix_ = last_diagnostic_ = SteadyClock::now();
+}
+
+int GpsDriverRos::run()
+{
+  if (!source_)
+    return 1;
+  waitForSubscribers();
+  ROS_INFO("gps_driver: reading %s as frame '%s'", source_->description().c_str(), frame_id_.c_str());
+  char buffer[4096];
+  while (ros::ok())
+  {
+    const ReadResult result = source_->read(buffer, sizeof buffer, 0.02);
+    const SteadyClock::time_point now = SteadyClock::now();
+    if (result.status == ReadStatus::kEnd)
+    {
+      finishReplay();
+      return 0;
+    }
+    if (result.status == ReadStatus::kData)
+    {
+      receive_time_ = ros::Time::now();
+      last_bytes_ = now;
+      decoder_.feed(buffer, result.size, receive_time_.toSec());
+    }
+    else if (seconds(now - last_bytes_) >= epoch_idle_s_)
+    {
+      // Idle on the host's steady clock (not ROS time, which may be paused under /use_sim_time).
+      receive_time_ = ros::Time::now();
+      decoder_.flushEpoch();
+    }
+    if (seconds(now - last_diagnostic_) >= diagnostic_period_s_)
+      updater_.force_update();
+    ros::spinOnce();
+  }
+  return 0;
+}
+
+void GpsDriverRos::waitForSubscribers()
+{
+  if (wait_for_subscribers_ <= 0)
+    return;
+  // Every output topic, so that a test or a recorder subscribed to all of them misses nothing.
+  const ros::Publisher* publishers[] = {&sentence_publisher_, &fix_publisher_, &navsat_publisher_, &vel_publisher_};
+  const auto ready = [&] {
+    for (const ros::Publisher* p : publishers)
+      if (static_cast<int>(p->getNumSubscribers()) < wait_for_subscribers_)
+        return false;
+    return true;
+  };
+  const SteadyClock::time_point start = SteadyClock::now();
+  while (ros::ok() && !ready())
+  {
+    if (seconds(SteadyClock::now() - start) > wait_for_subscribers_timeout_s_)
+    {
+      ROS_WARN("gps_driver: fewer than %d subscriber(s) on each topic after %.0f s; starting anyway",
+               wait_for_subscribers_, wait_for_subscribers_timeout_s_);
+      return;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+void GpsDriverRos::finishReplay()
+{
+  receive_time_ = ros::Time::now();
+  decoder_.finish(receive_time_.toSec());
+  updater_.force_update();
+  ROS_INFO("gps_driver: end of %s: %s", source_->description().c_str(), decoder_.statistics().summary().c_str());
+  // Give the transport a moment to deliver the last messages before the process exits.
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ros::spinOnce();
+}
+
+void GpsDriverRos::publishLine(std::string_view line)
+{
+  Sentence message;
+  message.header.stamp = receive_time_;
+  message.header.frame_id = frame_id_;
+  message.sentence.assign(line.data(), line.size());
+  sentence_publisher_.publish(message);
+}
+
+void GpsDriverRos::publishFix(const GnssFix& fix)
+{
+  have_fix_ = true;
+  last_fix_ = SteadyClock::now();
+  last_fix_quality_ = fix.fix_quality;
+  const GnssFixMessage message = toMessage(fix, frame_id_);
+  fix_publisher_.publish(message);
+
+  if (fix.has(GnssFix::kValidPosition))
+  {
+    sensor_msgs::NavSatFix navsat;
+    navsat.header = message.header;
+    navsat.status.status = navSatStatus(fix.fix_quality);
+    navsat.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;
+    navsat.latitude = fix.latitude_deg;
+    navsat.longitude = fix.longitude_deg;
+    // NavSatFix wants height above the ellipsoid: MSL altitude plus geoid separation when sent.
+    navsat.altitude = fix.has(GnssFix::kValidAltitude)
+                          ? fix.altitude_m + (std::isnan(fix.geoid_separation_m) ? 0.0 : fix.geoid_separation_m)
+                          : std::nan("");
+    if (fix.has(GnssFix::kValidPositionSigma))
+    {
+      navsat.position_covariance[0] = fix.longitude_sigma_m * fix.longitude_sigma_m;  // east
+      navsat.position_covariance[4] = fix.latitude_sigma_m * fix.latitude_sigma_m;    // north
+      navsat.position_covariance[8] = fix.altitude_sigma_m * fix.altitude_sigma_m;    // up
+      navsat.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN;
+    }
+    else if (fix.has(GnssFix::kValidHdop))
+    {
+      const double horizontal = fix.hdop * hdop_uere_m_;
+      navsat.position_covariance[0] = navsat.position_covariance[4] = horizontal * horizontal;
+      navsat.position_covariance[8] = 4.0 * horizontal * horizontal;  // vertical about twice as poor
+      navsat.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_APPROXIMATED;
+    }
+    navsat_publisher_.publish(navsat);
+  }
+
+  EnuVelocity velocity;
+  if (enuVelocity(fix, velocity))
+  {
+    geometry_msgs::TwistStamped twist;
+    twist.header.stamp = message.header.stamp;
+    twist.header.frame_id = vel_frame_id_;
+    twist.twist.linear.x = velocity.east_mps;
+    twist.twist.linear.y = velocity.north_mps;
+    vel_publisher_.publish(twist);
+  }
+}
+
+void GpsDriverRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  const SteadyClock::time_point now = SteadyClock::now();
+  const NmeaStatistics s = decoder_.statistics();
+  const double period_s = std::max(1e-3, seconds(now - last_diagnostic_));
+  const double rate_hz = static_cast<double>(s.fixes - fixes_at_last_diagnostic_) / period_s;
+  const std::uint64_t new_errors = s.bad_checksum + s.malformed - errors_at_last_diagnostic_;
+  const double since_fix_s = seconds(now - last_fix_);
+  last_diagnostic_ = now;
+  fixes_at_last_diagnostic_ = s.fixes;
+  errors_at_last_diagnostic_ = s.bad_checksum + s.malformed;
+
+  if (!source_->isOpen())
+    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "source closed: " + source_->state());
+  else if (!have_fix_ || since_fix_s > fix_timeout_s_)
+    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "no fix for " + std::to_string(since_fix_s) + " s");
+  else if (last_fix_quality_ == 0)
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "receiver reports no position fix");
+  else if (rate_hz < 0.8 * expected_rate_hz_)
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "fix rate below expected");
+  else if (new_errors > 0)
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "bad sentences received");
+  else
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "receiving fixes");
+
+  status.add("source", source_->description());
+  status.add("source state", source_->state());
+  status.add("source reopened", source_->reopenCount());
+  status.add("fix rate [Hz]", rate_hz);
+  status.add("expected rate [Hz]", expected_rate_hz_);
+  status.add("time since last fix [s]", have_fix_ ? since_fix_s : std::nan(""));
+  status.add("fix quality", static_cast<int>(last_fix_quality_));
+  status.add("lines", s.lines);
+  status.add("sentences ok", s.sentences_ok);
+  status.add("bad checksum", s.bad_checksum);
+  status.add("malformed", s.malformed);
+  status.add("unsupported", s.unsupported);
+  status.add("stray bytes", s.stray_bytes);
+  status.add("overlong lines", s.overlong_lines);
+  status.add("epochs without time", s.epochs_without_time);
+  status.add("date lag corrections", s.date_lag_corrections);
+  status.add("fixes", s.fixes);
+}
+
+}  // namespace acc_identification

@@ -1,0 +1,110 @@
+// rostest node: subscribes to everything gps_driver_node publishes while it replays
+// test/data/nmea/drive_10s.nmea (100 epochs, 600 lines, see make_drive_fixture.py) and checks
+// counts and values.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include <acc_identification/GnssFix.h>
+#include <acc_identification/Sentence.h>
+#include <geometry_msgs/TwistStamped.h>
+#include <ros/callback_queue.h>
+#include <ros/ros.h>
+#include <sensor_msgs/NavSatFix.h>
+
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kStartOfDay = 18562 * 86400.0;       // 2020-10-27 00:00 UTC
+constexpr double kStartTimeOfDay = 10 * 3600 + 15 * 60 + 30.0;  // 10:15:30
+
+struct Received
+{
+  std::vector<acc_identification::GnssFix> fixes;
+  std::vector<sensor_msgs::NavSatFix> navsat;
+  std::vector<geometry_msgs::TwistStamped> vel;
+  std::vector<acc_identification::Sentence> sentences;
+};
+
+Received receiveAll()
+{
+  ros::NodeHandle node;
+  Received r;
+  auto s1 = node.subscribe<acc_identification::Sentence>(
+      "nmea_sentence", 1000, [&](const acc_identification::Sentence::ConstPtr& m) { r.sentences.push_back(*m); });
+  auto s2 = node.subscribe<sensor_msgs::NavSatFix>(
+      "navsat_fix", 1000, [&](const sensor_msgs::NavSatFix::ConstPtr& m) { r.navsat.push_back(*m); });
+  auto s3 = node.subscribe<geometry_msgs::TwistStamped>(
+      "vel", 1000, [&](const geometry_msgs::TwistStamped::ConstPtr& m) { r.vel.push_back(*m); });
+  auto s4 = node.subscribe<acc_identification::GnssFix>(
+      "fix", 1000, [&](const acc_identification::GnssFix::ConstPtr& m) { r.fixes.push_back(*m); });
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(30.0);
+  // Until everything came, then a little longer to catch anything extra.
+  while (ros::ok() && ros::WallTime::now() < end && (r.fixes.size() < 100 || r.sentences.size() < 600))
+    ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.05));
+  const ros::WallTime grace = ros::WallTime::now() + ros::WallDuration(1.0);
+  while (ros::ok() && ros::WallTime::now() < grace)
+    ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.05));
+  return r;
+}
+}  // namespace
+
+TEST(GpsDriverFile, PublishesEveryLineAndOneFixPerEpoch)
+{
+  const Received r = receiveAll();
+  EXPECT_EQ(r.sentences.size(), 600u);
+  ASSERT_EQ(r.fixes.size(), 100u);
+  EXPECT_EQ(r.navsat.size(), 100u);
+  EXPECT_EQ(r.vel.size(), 100u);
+  ASSERT_FALSE(r.sentences.empty());
+  EXPECT_EQ(r.sentences[0].sentence.substr(0, 7), "$GNRMC,");
+  EXPECT_EQ(r.sentences[0].header.frame_id, "leader_gps");
+
+  // Start-up epochs: time of day only, VALID_DATE clear.
+  const auto& first = r.fixes[0];
+  EXPECT_EQ(first.valid_fields & acc_identification::GnssFix::VALID_DATE, 0u);
+  EXPECT_NEAR(first.header.stamp.toSec(), kStartTimeOfDay, 1e-3);
+  EXPECT_EQ(first.header.frame_id, "leader_gps");
+  // From the fourth epoch: full UTC time.
+  const auto& dated = r.fixes[3];
+  EXPECT_NE(dated.valid_fields & acc_identification::GnssFix::VALID_DATE, 0u);
+  EXPECT_NEAR(dated.header.stamp.toSec(), kStartOfDay + kStartTimeOfDay + 0.3, 1e-3);
+
+  const auto& last = r.fixes.back();
+  EXPECT_NEAR(last.header.stamp.toSec(), kStartOfDay + kStartTimeOfDay + 9.9, 1e-3);
+  EXPECT_NEAR(last.speed_over_ground_mps, 14.95, 1e-3);
+  EXPECT_NEAR(last.course_rad, kPi / 4, 1e-9);
+  EXPECT_EQ(last.fix_quality, acc_identification::GnssFix::FIX_GPS);
+  EXPECT_EQ(last.satellites_used, 12);
+  EXPECT_DOUBLE_EQ(last.hdop, 0.8);
+  EXPECT_DOUBLE_EQ(last.altitude_m, 159.9);
+  EXPECT_DOUBLE_EQ(last.latitude_sigma_m, 0.7);
+  EXPECT_EQ(last.valid_fields, 255u);
+  const double north_m = (99.0 + 0.25 * 9.9 * 9.9) / std::sqrt(2.0);
+  EXPECT_NEAR((last.latitude_deg - 45.13) * kPi / 180 * 6378137.0, north_m, 0.02);
+
+  const auto& navsat = r.navsat.back();
+  EXPECT_DOUBLE_EQ(navsat.latitude, last.latitude_deg);
+  EXPECT_NEAR(navsat.altitude, 159.9 + 47.3, 1e-9);  // ellipsoid height
+  EXPECT_EQ(navsat.position_covariance_type, sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN);
+  EXPECT_NEAR(navsat.position_covariance[4], 0.49, 1e-12);
+
+  // Course 45 deg: equal east and north components in ENU.
+  const auto& vel = r.vel.back();
+  EXPECT_NEAR(vel.twist.linear.x, 14.95 / std::sqrt(2.0), 1e-3);
+  EXPECT_NEAR(vel.twist.linear.y, 14.95 / std::sqrt(2.0), 1e-3);
+  EXPECT_EQ(vel.header.frame_id, "enu");
+
+  // Epochs 0.1 s apart, in order.
+  for (std::size_t i = 4; i < r.fixes.size(); ++i)
+    EXPECT_NEAR((r.fixes[i].header.stamp - r.fixes[i - 1].header.stamp).toSec(), 0.1, 1e-3) << i;
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "gps_driver_file_check");
+  ros::NodeHandle node;  // starts the node before the test subscribes
+  return RUN_ALL_TESTS();
+}
