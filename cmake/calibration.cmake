@@ -20,7 +20,9 @@ add_library(acc_calibration
   src/calibration/multistart_calibrator.cpp
   src/calibration/fit_statistics.cpp
   src/calibration/identification.cpp
-  src/calibration/synthetic_runs.cpp)
+  src/calibration/synthetic_runs.cpp
+  src/calibration/sliding_window.cpp
+  src/calibration/grid_search.cpp)
 target_include_directories(acc_calibration PUBLIC include ${EIGEN3_INCLUDE_DIR})
 # find_package(NLopt) in CMakeLists.txt finds Debian's C library (target NLopt::nlopt); nlopt.hpp
 # is a header-only wrapper over its C API, and L-BFGS is in the C library, so that is enough.
@@ -34,7 +36,9 @@ target_link_libraries(acc_calibration PUBLIC acc_model ${ACC_NLOPT_TARGET})
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_calibration
     test/unit/gtest_main.cpp
-    test/unit/test_calibration_objective.cpp)
+    test/unit/test_calibration_objective.cpp
+    test/unit/test_calibration_multistart.cpp
+    test/unit/test_identifier_window.cpp)
   target_compile_definitions(test_calibration PRIVATE ACC_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/test/data/runs")
   target_link_libraries(test_calibration acc_calibration acc_run_io)
 endif()

@@ -1,0 +1,105 @@
+#include "acc_identification/calibration/sliding_window.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace acc_identification
+{
+SlidingWindow::SlidingWindow(double length_s, double max_gap_s, std::size_t min_segment_samples)
+  : length_s_(length_s), max_gap_s_(max_gap_s), min_segment_samples_(std::max<std::size_t>(2, min_segment_samples))
+{
+}
+
+SlidingWindow::AddResult SlidingWindow::add(const WindowSample& sample)
+{
+  AddResult result = AddResult::kAdded;
+  if (!samples_.empty() && !(sample.time_s > samples_.back().time_s))
+  {
+    if (sample.time_s < samples_.back().time_s - max_gap_s_)
+    {
+      samples_.clear();
+      result = AddResult::kRestarted;
+    }
+    else
+    {
+      return AddResult::kOutOfOrder;
+    }
+  }
+  WindowSample stored = sample;
+  if (stored.valid && !(std::isfinite(stored.time_s) && std::isfinite(stored.space_gap_m) &&
+                        std::isfinite(stored.follower_speed_mps) && std::isfinite(stored.leader_speed_mps)))
+  {
+    stored.valid = false;
+    result = result == AddResult::kRestarted ? result : AddResult::kNonFinite;
+  }
+  else if (!stored.valid && result == AddResult::kAdded)
+  {
+    result = AddResult::kInvalid;
+  }
+  if (!std::isfinite(stored.time_s))
+  {
+    return AddResult::kNonFinite;  // cannot even order it in time
+  }
+  samples_.push_back(stored);
+  while (!samples_.empty() && samples_.front().time_s < stored.time_s - length_s_)
+  {
+    samples_.pop_front();
+  }
+  return result;
+}
+
+std::vector<CarFollowingRun> SlidingWindow::segments(std::size_t* short_pieces) const
+{
+  std::vector<CarFollowingRun> result;
+  std::size_t short_count = 0;
+  CarFollowingRun current;
+  auto close = [&]() {
+    if (current.size() >= min_segment_samples_)
+    {
+      current.name = "segment " + std::to_string(result.size() + 1);
+      result.push_back(std::move(current));
+    }
+    else if (current.size() > 0)
+    {
+      ++short_count;
+    }
+    current = CarFollowingRun{};
+  };
+  for (const WindowSample& sample : samples_)
+  {
+    if (!sample.valid)
+    {
+      close();
+      continue;
+    }
+    if (!current.time_s.empty() && sample.time_s - current.time_s.back() > max_gap_s_)
+    {
+      close();
+    }
+    current.time_s.push_back(sample.time_s);
+    current.space_gap_m.push_back(sample.space_gap_m);
+    current.follower_speed_mps.push_back(sample.follower_speed_mps);
+    current.leader_speed_mps.push_back(sample.leader_speed_mps);
+  }
+  close();
+  if (short_pieces != nullptr)
+  {
+    *short_pieces = short_count;
+  }
+  return result;
+}
+
+std::string SlidingWindow::describe(AddResult result)
+{
+  switch (result)
+  {
+    case AddResult::kAdded: return "added";
+    case AddResult::kInvalid: return "invalid sample: splits the window";
+    case AddResult::kNonFinite: return "non-finite value in a sample marked valid: treated as invalid";
+    case AddResult::kOutOfOrder: return "sample not newer than the last one: rejected";
+    case AddResult::kRestarted: return "time jumped back: window cleared";
+  }
+  return "unknown";
+}
+
+}  // namespace acc_identification

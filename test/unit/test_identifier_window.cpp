@@ -1,0 +1,65 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "acc_identification/calibration/sliding_window.h"
+
+namespace aci = acc_identification;
+
+namespace
+{
+aci::WindowSample sampleAt(double t, bool valid = true)
+{
+  return aci::WindowSample{t, 20.0 + t, 10.0, 10.5, valid};
+}
+
+TEST(SlidingWindow, KeepsOnlyTheLastWindowLength)
+{
+  aci::SlidingWindow window(10.0, 0.5, 5);
+  for (int k = 0; k <= 300; ++k)
+  {
+    EXPECT_EQ(window.add(sampleAt(0.1 * k)), aci::SlidingWindow::AddResult::kAdded);
+  }
+  EXPECT_NEAR(window.endTimeS(), 30.0, 1e-9);
+  EXPECT_GE(window.startTimeS(), 20.0 - 1e-9);
+  EXPECT_LE(window.startTimeS(), 20.1);
+  const auto segments = window.segments();
+  ASSERT_EQ(segments.size(), 1u);
+  EXPECT_EQ(segments[0].size(), window.size());
+  EXPECT_EQ(aci::describeRunProblem(segments[0]), "");
+}
+
+TEST(SlidingWindow, GapsAndInvalidSamplesSplitIntoSegments)
+{
+  aci::SlidingWindow window(100.0, 0.5, 5);
+  for (int k = 0; k < 20; ++k) window.add(sampleAt(0.1 * k));          // 0.0 - 1.9
+  for (int k = 30; k < 50; ++k) window.add(sampleAt(0.1 * k));         // gap of 1.1 s, 3.0 - 4.9
+  EXPECT_EQ(window.add(sampleAt(5.0, false)), aci::SlidingWindow::AddResult::kInvalid);
+  for (int k = 51; k < 60; ++k) window.add(sampleAt(0.1 * k));         // 5.1 - 5.9
+  aci::WindowSample nan_sample = sampleAt(6.0);
+  nan_sample.space_gap_m = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(window.add(nan_sample), aci::SlidingWindow::AddResult::kNonFinite);
+  for (int k = 61; k < 64; ++k) window.add(sampleAt(0.1 * k));         // 3 samples: too short
+  std::size_t short_pieces = 0;
+  const auto segments = window.segments(&short_pieces);
+  ASSERT_EQ(segments.size(), 3u);
+  EXPECT_EQ(segments[0].size(), 20u);
+  EXPECT_EQ(segments[1].size(), 20u);
+  EXPECT_NEAR(segments[1].time_s.front(), 3.0, 1e-9);
+  EXPECT_EQ(segments[2].size(), 9u);
+  EXPECT_EQ(short_pieces, 1u);
+}
+
+TEST(SlidingWindow, RejectsOutOfOrderAndRestartsWhenTimeJumpsBack)
+{
+  aci::SlidingWindow window(100.0, 0.5, 2);
+  for (int k = 0; k < 100; ++k) window.add(sampleAt(0.1 * k));
+  EXPECT_EQ(window.add(sampleAt(9.9)), aci::SlidingWindow::AddResult::kOutOfOrder);
+  EXPECT_EQ(window.add(sampleAt(9.8)), aci::SlidingWindow::AddResult::kOutOfOrder);
+  EXPECT_EQ(window.size(), 100u);
+  EXPECT_EQ(window.add(sampleAt(1.0)), aci::SlidingWindow::AddResult::kRestarted);
+  EXPECT_EQ(window.size(), 1u);
+  EXPECT_FALSE(aci::SlidingWindow::describe(aci::SlidingWindow::AddResult::kRestarted).empty());
+}
+}  // namespace
