@@ -10,17 +10,26 @@ add_library(acc_reproduction
   src/reproduction/platoon_metrics.cpp
   src/reproduction/platoon_responses.cpp
   src/reproduction/run_comparison.cpp
-  src/reproduction/parameter_file.cpp
-  src/reproduction/canonical_run_csv.cpp)
+  src/reproduction/parameter_file.cpp)
 target_include_directories(acc_reproduction PUBLIC include ${EIGEN3_INCLUDE_DIR})
 target_link_libraries(acc_reproduction PUBLIC acc_model PRIVATE nlohmann_json::nlohmann_json)
 
+# Runs for Figs. 3-5 are read with the package's run reader (io/run_csv.h), which the calibration
+# component builds; when that component is not selected, build the same library here.
+if(NOT TARGET acc_run_io)
+  add_library(acc_run_io src/io/run_csv.cpp)
+  target_include_directories(acc_run_io PUBLIC include)
+  target_link_libraries(acc_run_io PUBLIC acc_model)
+endif()
+
 add_executable(platoon src/tools/platoon_main.cpp)
-target_link_libraries(platoon acc_reproduction acc_cli nlohmann_json::nlohmann_json)
+target_link_libraries(platoon acc_reproduction acc_run_io acc_cli nlohmann_json::nlohmann_json)
 install(TARGETS acc_reproduction platoon
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+install(PROGRAMS scripts/plot_figures.py scripts/reproduce_figures.sh
+  DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_reproduction

@@ -59,19 +59,10 @@ std::vector<SpeedHold> dips()
   return holds;
 }
 
-std::string rampText(const LeadRamp& ramp)
-{
-  std::ostringstream text;
-  text << "speed changes ramp at +" << ramp.acceleration_mps2 << " / -" << ramp.deceleration_mps2
-       << " m/s^2 (assumed; the paper gives no accelerations)";
-  return text.str();
-}
-
 LeadProfileSpec makeSpec(char id, const std::string& name, const std::string& what,
                          const LeadRamp& ramp, std::vector<SpeedHold> holds)
 {
-  return {id, name, std::string(1, id) + ", " + name + ": " + what + "; " + rampText(ramp), ramp,
-          std::move(holds)};
+  return {id, name, std::string(1, id) + ", " + name + ": " + what, ramp, std::move(holds)};
 }
 }  // namespace
 
@@ -178,6 +169,18 @@ std::vector<double> leadProfile(char id, double time_step_s, const LeadRamp& ram
   return sampleLeadProfile(spec, time_step_s);
 }
 
-std::string leadProfileDescription(char id) { return leadProfileSpec(id).description; }
+std::string describeLeadRamp(const LeadRamp& ramp)
+{
+  std::ostringstream text;
+  text << "speed changes ramp at +" << ramp.acceleration_mps2 << " / -" << ramp.deceleration_mps2
+       << " m/s^2 (assumed; the paper gives no accelerations)";
+  return text.str();
+}
+
+std::string leadProfileDescription(char id)
+{
+  const LeadProfileSpec spec = leadProfileSpec(id);
+  return spec.description + "; " + describeLeadRamp(spec.ramp);
+}
 
 }  // namespace acc_identification

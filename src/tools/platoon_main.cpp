@@ -17,10 +17,10 @@
 
 #include "acc_identification/command_line.h"
 #include "acc_identification/follower_simulation.h"
+#include "acc_identification/io/run_csv.h"
 #include "acc_identification/paper_settings.h"
 #include "acc_identification/platoon_simulation.h"
 #include "acc_identification/profiles/lead_profiles.h"
-#include "acc_identification/reproduction/canonical_run_csv.h"
 #include "acc_identification/reproduction/frequency_response.h"
 #include "acc_identification/reproduction/lambda2_map.h"
 #include "acc_identification/reproduction/lead_inputs.h"
@@ -54,7 +54,7 @@ settings (repeatable, in order; default min and max of Table II):
   --setting min|max|fig2-unstable|fig2-stable   --params CALIBRATE.json
   --k1 K1 --k2 K2 --tau-e TAU [--eta ETA]       (one custom set, named "custom")
 common: --time-step 0.1 (Euler step of every simulation, s)
-RUN.csv is canonical: time_s,space_gap_m,follower_speed_mps,leader_speed_mps.
+RUN.csv: canonical (time_s,space_gap_m,follower_speed_mps,leader_speed_mps) or OpenACC two-vehicle CSV.
 )";
 
 /// Thrown for bad input; main prints it with the usage and exits 2.
@@ -445,11 +445,12 @@ json leadProfileFigure(const Options& options, const std::string& csv_path, doub
   const std::size_t short_platoon = std::min(vehicles, options.count("short-platoon", 15, 1));
   const auto profile = aci::sampleLeadProfile(spec, h);
   const auto lead = aci::withFinalHold(profile, options.number("tail", 600.0), h);
-  json summary = {{"figure", "lead-profile"}, {"profile", spec.description}, {"vehicles", vehicles},
+  const std::string description = spec.description + "; " + aci::describeLeadRamp(spec.ramp);
+  json summary = {{"figure", "lead-profile"}, {"profile", description}, {"vehicles", vehicles},
                   {"short_platoon", short_platoon}, {"profile_duration_s", static_cast<double>(profile.size() - 1) * h},
                   {"lead_accel_mps2", spec.ramp.acceleration_mps2}, {"lead_decel_mps2", spec.ramp.deceleration_mps2}};
   std::printf("lead profile %s\n  %zu followers (first %zu = the short platoon), record %.0f s (profile %.0f s + hold)\n",
-              spec.description.c_str(), vehicles, short_platoon, static_cast<double>(lead.size() - 1) * h,
+              description.c_str(), vehicles, short_platoon, static_cast<double>(lead.size() - 1) * h,
               static_cast<double>(profile.size() - 1) * h);
   std::vector<std::pair<std::string, aci::PlatoonTrajectory>> runs;
   for (const auto& setting : settings)
@@ -484,35 +485,74 @@ json leadProfileFigure(const Options& options, const std::string& csv_path, doub
   return summary;
 }
 
+/// Every run of every --run file (a file may give several pieces: rejected rows and ACC-off rows
+/// split a run). The reader lists each rejected row on stderr.
 std::vector<aci::CarFollowingRun> readRunsOrThrow(const Options& options)
 {
   std::vector<aci::CarFollowingRun> runs;
   for (const std::string& path : options.texts("run"))
   {
-    aci::CanonicalRunCsv read;
     try
     {
-      read = aci::readCanonicalRunCsv(path);
+      for (aci::CarFollowingRun& run : aci::readRuns(path))
+      {
+        runs.push_back(std::move(run));
+      }
     }
-    catch (const std::runtime_error& error)
+    catch (const aci::RunReadError& error)
     {
       throw UsageError(error.what());
     }
-    for (const std::string& problem : read.problems)
-    {
-      std::fprintf(stderr, "rejected: %s\n", problem.c_str());
-    }
-    if (read.rejected_rows > 0)
-    {
-      std::fprintf(stderr, "%s: %zu rows rejected, %zu used\n", path.c_str(), read.rejected_rows, read.run.size());
-    }
-    runs.push_back(std::move(read.run));
   }
   if (runs.empty())
   {
     throw UsageError("this figure needs --run RUN.csv");
   }
   return runs;
+}
+
+/// The steady samples of all runs together: one run's speed range is often too narrow to pin the
+/// line's slope, the pooled samples span the whole campaign.
+json pooledEquilibrium(const std::vector<aci::CarFollowingRun>& runs, const std::vector<aci::NamedSetting>& settings,
+                       double max_dv, double max_accel)
+{
+  aci::CarFollowingRun pooled;
+  pooled.name = "all runs";
+  for (const auto& run : runs)
+  {
+    for (std::size_t k : aci::steadyFollowingSamples(run, max_dv, max_accel))
+    {
+      pooled.time_s.push_back(static_cast<double>(pooled.time_s.size()));
+      pooled.follower_speed_mps.push_back(run.follower_speed_mps[k]);
+      pooled.space_gap_m.push_back(run.space_gap_m[k]);
+      pooled.leader_speed_mps.push_back(run.leader_speed_mps[k]);
+    }
+  }
+  std::vector<std::size_t> all(pooled.size());
+  for (std::size_t k = 0; k < all.size(); ++k)
+  {
+    all[k] = k;
+  }
+  json entry = {{"steady_samples", all.size()}};
+  std::printf("  all runs pooled: %zu steady samples\n", all.size());
+  try
+  {
+    const auto line = aci::fitGapSpeedLine(pooled, all);
+    entry["fit"] = {{"eta_m", line.intercept_m}, {"tau_e_s", line.slope_s}, {"rms_residual_m", line.rms_residual_m}};
+    std::printf("    least-squares line: gap = %.3f m + %.4f s * v (rms %.3f m)\n", line.intercept_m, line.slope_s,
+                line.rms_residual_m);
+  }
+  catch (const std::invalid_argument& error)
+  {
+    std::printf("    no line fitted: %s\n", error.what());
+  }
+  for (const auto& setting : settings)
+  {
+    const double rms = aci::rmsFromEquilibriumLine(setting.parameters, pooled, all);
+    entry["rms_from_line_m"][setting.name] = rms;
+    std::printf("    %-14s rms distance of steady samples from eta + tau_e v: %.3f m\n", setting.name.c_str(), rms);
+  }
+  return entry;
 }
 
 json equilibriumFigure(const Options& options, const std::string& csv_path)
@@ -537,8 +577,11 @@ json equilibriumFigure(const Options& options, const std::string& csv_path)
       csv.row() << run.name << ',' << run.time_s[k] << ',' << run.follower_speed_mps[k] << ',' << run.space_gap_m[k]
                 << ',' << (is_steady[k] ? 1 : 0) << '\n';
     }
-    json entry = {{"run", run.name}, {"samples", run.size()}, {"steady_samples", steady.size()}};
-    std::printf("  %s: %zu samples, %zu steady\n", run.name.c_str(), run.size(), steady.size());
+    const auto [slowest, fastest] = std::minmax_element(run.follower_speed_mps.begin(), run.follower_speed_mps.end());
+    json entry = {{"run", run.name}, {"samples", run.size()}, {"steady_samples", steady.size()},
+                  {"speed_range_mps", {*slowest, *fastest}}};
+    std::printf("  %s: %zu samples, %zu steady, speeds %.1f to %.1f m/s\n", run.name.c_str(), run.size(),
+                steady.size(), *slowest, *fastest);
     try
     {
       const auto line = aci::fitGapSpeedLine(run, steady);
@@ -559,6 +602,7 @@ json equilibriumFigure(const Options& options, const std::string& csv_path)
     }
     summary["runs"].push_back(entry);
   }
+  summary["pooled"] = pooledEquilibrium(runs, settings, max_dv, max_accel);
   for (const auto& setting : settings)
   {
     summary["settings"].push_back({{"parameters", parametersJson(setting)}});
@@ -570,11 +614,20 @@ json equilibriumFigure(const Options& options, const std::string& csv_path)
 json timeseriesFigure(const Options& options, const std::string& csv_path)
 {
   const auto runs = readRunsOrThrow(options);
-  if (runs.size() != 1)
+  if (options.texts("run").size() != 1)
   {
     throw UsageError("timeseries takes one --run");
   }
-  const aci::CarFollowingRun& run = runs.front();
+  // A file split into pieces (rejected or ACC-off rows): plot the longest piece, and say so.
+  const auto longest = std::max_element(runs.begin(), runs.end(), [](const auto& a, const auto& b) {
+    return a.durationS() < b.durationS();
+  });
+  if (runs.size() > 1)
+  {
+    std::fprintf(stderr, "note: the run file gave %zu pieces; using the longest, %s (%.1f s)\n", runs.size(),
+                 longest->name.c_str(), longest->durationS());
+  }
+  const aci::CarFollowingRun& run = *longest;
   const std::string problem = aci::describeRunProblem(run);
   if (!problem.empty())
   {

@@ -8,7 +8,6 @@
 #include "acc_identification/acc_model.h"
 #include "acc_identification/follower_simulation.h"
 #include "acc_identification/paper_settings.h"
-#include "acc_identification/reproduction/canonical_run_csv.h"
 #include "acc_identification/reproduction/parameter_file.h"
 #include "acc_identification/reproduction/run_comparison.h"
 
@@ -74,27 +73,6 @@ TEST(ReproductionRuns, EquilibriumLineOfSteadySamplesRecoversEtaAndTau)
   EXPECT_LT(aci::rmsFromEquilibriumLine(truth, run, steady), 0.3);
   EXPECT_GT(aci::rmsFromEquilibriumLine(aci::paperMinimumSetting(), run, steady), 10.0);
   EXPECT_THROW(aci::fitGapSpeedLine(run, {1}), std::invalid_argument);
-}
-
-TEST(ReproductionRuns, CanonicalCsvRejectsAndCountsBadRows)
-{
-  const std::string path = writeTemp("repro_run.csv",
-                                     "time_s,space_gap_m,follower_speed_mps,leader_speed_mps\n"
-                                     "0.0,20,10,10\n"
-                                     "0.1,20.1,10,11\n"
-                                     "0.2,abc,10,11\n"
-                                     "0.2,20.2,10\n"
-                                     "0.1,20.2,10,11\n"
-                                     "0.3,20.3,10,inf\n"
-                                     "0.4,20.4,10.1,11\n");
-  const auto read = aci::readCanonicalRunCsv(path);
-  EXPECT_EQ(read.run.size(), 3u);
-  EXPECT_EQ(read.rejected_rows, 4u);
-  ASSERT_EQ(read.problems.size(), 4u);
-  EXPECT_NE(read.problems[0].find(":4:"), std::string::npos);
-  EXPECT_DOUBLE_EQ(read.run.time_s.back(), 0.4);
-  EXPECT_THROW(aci::readCanonicalRunCsv(writeTemp("repro_bad.csv", "Time,IVS1\n0,1\n")), std::runtime_error);
-  EXPECT_THROW(aci::readCanonicalRunCsv(testing::TempDir() + "does_not_exist.csv"), std::runtime_error);
 }
 
 TEST(ReproductionRuns, ParameterFileReadsCalibrateJsonAndExplainsProblems)

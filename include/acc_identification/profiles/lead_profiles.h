@@ -32,7 +32,7 @@ struct LeadProfileSpec
 {
   char id = '?';
   std::string name;         ///< the paper's label, e.g. "medium-velocity dip"
-  std::string description;  ///< what was built, including every assumption
+  std::string description;  ///< the held speeds built, with their assumptions (ramp: see below)
   LeadRamp ramp;
   std::vector<SpeedHold> holds;  ///< starts at holds[0].speed_mps at t = 0
 };
@@ -55,7 +55,10 @@ std::vector<double> leadProfile(char id, double time_step_s, const LeadRamp& ram
 /// Samples any specification (piecewise linear in time: ramps at the spec's rates, then holds).
 std::vector<double> sampleLeadProfile(const LeadProfileSpec& spec, double time_step_s);
 
-/// The profile's description (see LeadProfileSpec::description).
+/// "speed changes ramp at +a / -d m/s^2 (assumed; ...)".
+std::string describeLeadRamp(const LeadRamp& ramp);
+
+/// The profile's description with its default ramp.
 std::string leadProfileDescription(char id);
 
 }  // namespace acc_identification
