@@ -22,7 +22,8 @@ add_library(acc_calibration
   src/calibration/identification.cpp
   src/calibration/synthetic_runs.cpp
   src/calibration/sliding_window.cpp
-  src/calibration/grid_search.cpp)
+  src/calibration/grid_search.cpp
+  src/calibration/calibration_report.cpp)
 target_include_directories(acc_calibration PUBLIC include ${EIGEN3_INCLUDE_DIR})
 # find_package(NLopt) in CMakeLists.txt finds Debian's C library (target NLopt::nlopt); nlopt.hpp
 # is a header-only wrapper over its C API, and L-BFGS is in the C library, so that is enough.
@@ -31,7 +32,24 @@ if(TARGET NLopt::nlopt_cxx)
 else()
   set(ACC_NLOPT_TARGET NLopt::nlopt)
 endif()
-target_link_libraries(acc_calibration PUBLIC acc_model ${ACC_NLOPT_TARGET})
+target_link_libraries(acc_calibration PUBLIC acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
+install(TARGETS acc_run_io acc_calibration
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
+
+# ROS side: runs from bags of RelativeState (rosbag API).
+add_library(acc_calibration_ros src/ros/run_bag_reader.cpp)
+target_include_directories(acc_calibration_ros PUBLIC include ${catkin_INCLUDE_DIRS})
+target_link_libraries(acc_calibration_ros acc_calibration ${catkin_LIBRARIES})
+add_dependencies(acc_calibration_ros ${PROJECT_NAME}_generate_messages_cpp)
+
+# rosrun acc_identification calibrate [options] RUN...
+add_executable(calibrate src/tools/calibrate_main.cpp)
+target_link_libraries(calibrate acc_calibration_ros acc_run_io acc_cli)
+install(TARGETS acc_calibration_ros calibrate
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_calibration

@@ -1,0 +1,54 @@
+#pragma once
+
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "acc_identification/calibration/fit_statistics.h"
+#include "acc_identification/calibration/grid_search.h"
+#include "acc_identification/calibration/multistart_calibrator.h"
+#include "acc_identification/car_following_run.h"
+#include "acc_identification/string_stability.h"
+
+namespace acc_identification
+{
+/// One run of a calibration, scored on its training part and, with a split, on its test part.
+struct RunScore
+{
+  std::string name;
+  std::string path;
+  FitQuality train;
+  std::optional<FitQuality> test;
+};
+
+/// The first half of a run (samples [0, n/2)) for training and the second ([n/2, n)), simulated
+/// from its own measured start, for testing: the paper's protocol (Section V-B).
+std::pair<CarFollowingRun, CarFollowingRun> splitRunInHalf(const CarFollowingRun& run);
+
+/// Everything the calibrate tool reports.
+struct CalibrationReport
+{
+  MultistartResult calibration;
+  std::size_t training_samples = 0;
+  ParameterUncertainty uncertainty;
+  StringStabilityReport stability;
+  std::string identifiability_note;  ///< empty when identifiable
+  std::vector<RunScore> runs;
+  FitQuality summary_train;
+  std::optional<FitQuality> summary_test;
+  std::optional<GridSearchResult> grid;
+  std::optional<MultistartResult> grid_polished;  ///< local solve from the grid's best node
+};
+
+/// The --json document. Keys "parameters" (k1_per_s2, k2_per_s, tau_e_s, eta_m),
+/// "standard_errors", "stability", "objective", "runs", "summary" are read by other tools.
+nlohmann::json reportToJson(const CalibrationReport& report);
+
+/// The tables of the paper's Tables I and II: per run and summary RMSEs, then the parameters
+/// with standard errors, lambda2 and the verdict.
+void printReport(const CalibrationReport& report, std::ostream& out);
+
+}  // namespace acc_identification

@@ -1,0 +1,201 @@
+// calibrate: fits one ACC model across runs (CSV or bags), as Gunter et al. do for each
+// following setting (Section IV), and reports the fit, the parameters and string stability.
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "acc_identification/calibration/calibration_report.h"
+#include "acc_identification/calibration/identification.h"
+#include "acc_identification/command_line.h"
+#include "acc_identification/io/run_csv.h"
+#include "acc_identification/ros/run_bag_reader.h"
+
+namespace aci = acc_identification;
+
+namespace
+{
+const char* kUsage =
+    "usage: calibrate [options] RUN...\n"
+    "  RUN: a canonical CSV (time_s,space_gap_m,follower_speed_mps,leader_speed_mps), an OpenACC\n"
+    "       two-vehicle CSV, or a bag with acc_identification/RelativeState messages.\n"
+    "  --split none|half  half: train on the first half of each run, test on the second (paper)\n"
+    "  --starts N         starting points of the multistart search (default 100)\n"
+    "  --json FILE        write parameters, standard errors, stability, objective, per-run RMSEs\n"
+    "  --grid N           also search a dense grid of N nodes per axis (k1 0-0.5, k2 0-1.5, tau_e 0-3)\n"
+    "                     and check that the multistart optimum is the global one\n"
+    "  --topic NAME       RelativeState topic in bags (default relative_state)\n"
+    "  --max-gap S        split runs from bags at holes longer than S seconds (default 0.5)\n"
+    "  --quiet            no progress display\n";
+
+struct LoadedRun
+{
+  aci::CarFollowingRun run;
+  std::string path;
+};
+
+bool endsWith(const std::string& text, const std::string& suffix)
+{
+  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::vector<LoadedRun> loadRuns(const std::vector<std::string>& paths, const std::string& topic, double max_gap_s)
+{
+  std::vector<LoadedRun> loaded;
+  for (const std::string& path : paths)
+  {
+    std::vector<aci::CarFollowingRun> runs;
+    if (endsWith(path, ".bag"))
+    {
+      const aci::BagRuns bag = aci::readRunsFromBag(path, topic, max_gap_s);
+      std::cerr << path << ": " << bag.messages << " messages, " << bag.invalid << " invalid, " << bag.out_of_order
+                << " out of order, " << bag.time_resets << " time resets, " << bag.short_pieces
+                << " pieces too short -> " << bag.runs.size() << " runs\n";
+      runs = bag.runs;
+    }
+    else
+    {
+      runs = aci::readRuns(path);
+    }
+    for (auto& run : runs)
+    {
+      loaded.push_back({std::move(run), path});
+    }
+  }
+  return loaded;
+}
+
+/// Progress on stderr: a live counter on a terminal, a line per tenth otherwise.
+void showProgress(std::size_t done, std::size_t total)
+{
+  static const bool terminal = isatty(STDERR_FILENO) != 0;
+  if (terminal)
+  {
+    std::fprintf(stderr, "\rcalibrating: start %zu/%zu", done, total);
+    if (done == total)
+      std::fprintf(stderr, "\n");
+  }
+  else if (total >= 10 && done % (total / 10) == 0)
+  {
+    std::fprintf(stderr, "calibrating: start %zu/%zu\n", done, total);
+  }
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  aci::CommandLine cli({"split", "starts", "json", "grid", "topic", "max-gap"}, {"quiet", "help"});
+  if (!cli.parse(argc, argv) || cli.has("help") || cli.positional().empty())
+  {
+    std::cerr << (cli.error().empty() ? "" : "error: " + cli.error() + "\n") << kUsage;
+    return cli.has("help") ? 0 : 2;
+  }
+  const std::string split = cli.value("split").value_or("none");
+  const auto starts = cli.number("starts");
+  const auto grid_nodes = cli.number("grid");
+  const auto max_gap = cli.number("max-gap");
+  if (!cli.error().empty() || (split != "none" && split != "half") || (starts && *starts < 0) ||
+      (grid_nodes && *grid_nodes < 2) || (max_gap && *max_gap <= 0))
+  {
+    std::cerr << "error: " << (cli.error().empty() ? "bad --split, --starts, --grid or --max-gap" : cli.error()) << "\n"
+              << kUsage;
+    return 2;
+  }
+  std::vector<LoadedRun> loaded;
+  try
+  {
+    loaded = loadRuns(cli.positional(), cli.value("topic").value_or("relative_state"), max_gap.value_or(0.5));
+  }
+  catch (const std::exception& error)
+  {
+    std::cerr << "error: " << error.what() << "\n";
+    return 1;
+  }
+
+  std::vector<aci::CarFollowingRun> training, testing;
+  for (const LoadedRun& item : loaded)
+  {
+    if (split == "half")
+    {
+      auto [train, test] = aci::splitRunInHalf(item.run);
+      if (train.size() < 2 || test.size() < 2)
+      {
+        std::cerr << "error: run '" << item.run.name << "' has " << item.run.size() << " samples, too few to split\n";
+        return 1;
+      }
+      training.push_back(std::move(train));
+      testing.push_back(std::move(test));
+    }
+    else
+    {
+      training.push_back(item.run);
+    }
+  }
+
+  aci::CalibrationReport report;
+  aci::IdentificationOptions options;
+  options.multistart.starts = starts ? static_cast<std::size_t>(*starts) : 100;
+  if (!cli.has("quiet"))
+  {
+    options.multistart.progress = showProgress;
+  }
+  try
+  {
+    const aci::CalibrationObjective objective(training, options.bounds);
+    report.training_samples = objective.sampleCount();
+    report.calibration = aci::calibrateMultistart(objective, options.multistart);
+    if (grid_nodes)
+    {
+      const auto n = static_cast<std::size_t>(*grid_nodes);
+      if (!cli.has("quiet"))
+        std::cerr << "grid check: " << n * n * n << " nodes...\n";
+      report.grid = aci::gridSearch(objective, options.multistart.start_box_lower, options.multistart.start_box_upper,
+                                    {n, n, n});
+      aci::MultistartOptions polish = options.multistart;
+      polish.starts = 0;
+      polish.progress = nullptr;
+      report.grid_polished = aci::calibrateMultistart(objective, polish, {report.grid->best});
+    }
+  }
+  catch (const std::invalid_argument& error)
+  {
+    std::cerr << "error: " << error.what() << "\n";
+    return 1;
+  }
+  const aci::AccParameters& p = report.calibration.parameters;
+  report.uncertainty = aci::estimateUncertainty(p, training);
+  report.stability = aci::analyzeStringStability(p);
+  report.identifiability_note = aci::describeUnidentifiable(p, report.uncertainty, options.criteria);
+  std::vector<aci::FitQuality> train_fits, test_fits;
+  for (std::size_t i = 0; i < loaded.size(); ++i)
+  {
+    aci::RunScore score{loaded[i].run.name, loaded[i].path, aci::evaluateFit(p, {training[i]}), std::nullopt};
+    train_fits.push_back(score.train);
+    if (!testing.empty())
+    {
+      score.test = aci::evaluateFit(p, {testing[i]});
+      test_fits.push_back(*score.test);
+    }
+    report.runs.push_back(score);
+  }
+  report.summary_train = aci::poolFits(train_fits);
+  if (!test_fits.empty())
+  {
+    report.summary_test = aci::poolFits(test_fits);
+  }
+  aci::printReport(report, std::cout);
+  if (const auto json_path = cli.value("json"))
+  {
+    std::ofstream file(*json_path);
+    file << aci::reportToJson(report).dump(2) << "\n";
+    if (!file)
+    {
+      std::cerr << "error: cannot write " << *json_path << "\n";
+      return 1;
+    }
+  }
+  return report.calibration.diverged ? 1 : 0;
+}
