@@ -341,14 +341,15 @@ json stepFigure(const Options& options, const std::string& csv_path, double h)
     runs.emplace_back(setting.name, aci::simulatePlatoon(setting.parameters, lead, h, vehicles));
     const auto response = aci::measureDisturbanceResponse(runs.back().second);
     const auto& last = response.per_vehicle.back();
-    const double undershoot = (speed - step) - last.minimum_speed_mps;
+    // Below the lead's low speed / above cruise; 0 when the follower stays within the lead's range.
+    const double undershoot = std::max(0.0, (speed - step) - last.minimum_speed_mps);
     const double overshoot = last.rise_above_reference_mps;
     summary["settings"].push_back({{"parameters", parametersJson(setting)},
                                    {"response", disturbanceJson(response)},
                                    {"last_undershoot_below_low_speed_mps", undershoot},
                                    {"last_overshoot_above_cruise_mps", overshoot}});
-    std::printf("  %-14s last follower: minimum %.3f m/s (%+.3f below the lead's low speed), maximum %.3f m/s "
-                "(%+.3f above cruise)\n",
+    std::printf("  %-14s last follower: minimum %.3f m/s (undershoot %.3f below the lead's low speed), maximum "
+                "%.3f m/s (overshoot %.3f above cruise)\n",
                 setting.name.c_str(), last.minimum_speed_mps, undershoot, last.maximum_speed_mps, overshoot);
   }
   writePlatoonCsv(csv_path, runs);
