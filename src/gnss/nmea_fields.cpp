@@ -39,6 +39,44 @@ bool isDigit(char c) { return c >= '0' && c <= '9'; }
 int twoDigits(std::string_view s, std::size_t at) { return (s[at] - '0') * 10 + (s[at + 1] - '0'); }
 }  // namespace
 
+namespace
+{
+/// Fast path for the fixed-point numbers NMEA sends ([+-]digits[.digits], at most 15 significant
+/// digits): the integer of all digits divided by a power of ten. Both are exact doubles, so the
+/// one division is correctly rounded, the same result as from_chars, several times faster.
+bool readFixedPoint(const char* begin, const char* end, double& value)
+{
+  static constexpr double kPowersOfTen[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7,
+                                            1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+  const bool negative = begin != end && *begin == '-';
+  if (negative)
+    ++begin;
+  std::uint64_t mantissa = 0;
+  int digits = 0, fraction_digits = 0;
+  bool point = false;
+  for (const char* p = begin; p != end; ++p)
+  {
+    if (*p == '.' && !point)
+      point = true;
+    else if (isDigit(*p))
+    {
+      mantissa = mantissa * 10 + static_cast<std::uint64_t>(*p - '0');
+      fraction_digits += point ? 1 : 0;
+      if (++digits > 15)
+        return false;
+    }
+    else
+      return false;
+  }
+  if (digits == 0)
+    return false;
+  value = static_cast<double>(mantissa) / kPowersOfTen[fraction_digits];
+  if (negative)
+    value = -value;
+  return true;
+}
+}  // namespace
+
 FieldStatus readDouble(std::string_view field, double& value)
 {
   if (field.empty())
@@ -47,6 +85,8 @@ FieldStatus readDouble(std::string_view field, double& value)
   const char* end = begin + field.size();
   if (*begin == '+')  // from_chars rejects a leading '+', some receivers send one
     ++begin;
+  if (readFixedPoint(begin, end, value))
+    return FieldStatus::kOk;
   const auto result = std::from_chars(begin, end, value, std::chars_format::fixed);
   if (result.ec != std::errc() || result.ptr != end || !std::isfinite(value))
     return FieldStatus::kInvalid;

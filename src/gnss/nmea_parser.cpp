@@ -13,6 +13,8 @@ namespace
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kKnotToMps = 1852.0 / 3600.0;
 constexpr double kKmhToMps = 1.0 / 3.6;
+// Satellite counts beyond GnssFix::satellites_used (uint16) are malformed, in GGA as in PUBX,00
+// (the fuzzer found a PUBX count that GGA would not read back).
 
 using Outcome = NmeaParseOutcome;
 
@@ -115,7 +117,7 @@ Outcome parseGga(const NmeaFields& f, NmeaSentence& s)
   const FieldStatus q = readUnsigned(f[6], quality);
   const FieldStatus n = readUnsigned(f[7], satellites);
   if (!optionalTime(f[1], s.time_of_day_s) || !optionalPosition(f, 2, s) || q == FieldStatus::kInvalid ||
-      quality > 8 || n == FieldStatus::kInvalid || satellites > 999 || !optionalDouble(f[8], s.hdop) ||
+      quality > 8 || n == FieldStatus::kInvalid || satellites > 65535 || !optionalDouble(f[8], s.hdop) ||
       !optionalDouble(f[9], s.altitude_m) || !optionalDouble(f[11], s.geoid_separation_m))
     return Outcome::kMalformed;
   s.fix_quality = q == FieldStatus::kOk ? static_cast<int>(quality) : 0;
@@ -223,7 +225,7 @@ Outcome parsePubx00(const NmeaFields& f, NmeaSentence& s)
   if (!optionalTime(f[2], s.time_of_day_s) || !optionalPosition(f, 3, s) || f[8].size() > 2 ||
       !optionalSigma(f[9], horizontal_accuracy) || !optionalSigma(f[10], vertical_accuracy) ||
       !optionalSpeed(f[11], kKmhToMps, s.speed_mps) || !optionalCourse(f[12], s.course_rad) ||
-      !optionalDouble(f[15], s.hdop) || n == FieldStatus::kInvalid)
+      !optionalDouble(f[15], s.hdop) || n == FieldStatus::kInvalid || satellites > 65535)
     return Outcome::kMalformed;
   if (n == FieldStatus::kOk)
     s.satellites = static_cast<int>(satellites);

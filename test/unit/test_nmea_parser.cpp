@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "acc_identification/gnss/nmea_fields.h"
@@ -243,4 +245,29 @@ TEST(UtcDate, DaysFromCivil)
   EXPECT_TRUE(aci::isValidDate(2020, 2, 29));
   EXPECT_FALSE(aci::isValidDate(2021, 2, 29));
   EXPECT_FALSE(aci::isValidDate(2100, 2, 29));
+}
+
+TEST(NmeaFields, NumbersReadExactlyAsStrtod)
+{
+  const char* numbers[] = {"0", "1.01", "4717.11399", "00833.91590", "-12.5", "+3.25", "499.6", "0.004",
+                           "123456789012345", "1234567890.123456789", "0.1", "99999.99999", ".5", "7."};
+  for (const char* text : numbers)
+  {
+    double value = 0.0;
+    ASSERT_EQ(aci::readDouble(text, value), aci::FieldStatus::kOk) << text;
+    EXPECT_EQ(value, std::strtod(text, nullptr)) << text;  // bit-exact, not near
+  }
+  // Every 5-decimal minute value of a degree: exact as the library reader of the C library.
+  for (int units = 0; units < 6000000; units += 997)
+  {
+    char text[32];
+    std::snprintf(text, sizeof text, "47%02d.%05d", units / 100000, units % 100000);
+    double value = 0.0;
+    ASSERT_EQ(aci::readDouble(text, value), aci::FieldStatus::kOk);
+    ASSERT_EQ(value, std::strtod(text, nullptr)) << text;
+  }
+  double value = 0.0;
+  EXPECT_EQ(aci::readDouble("", value), aci::FieldStatus::kAbsent);
+  for (const char* bad : {"-", ".", "1.2.3", "1e5", "12a", " 1", "nan", "inf", "--1"})
+    EXPECT_EQ(aci::readDouble(bad, value), aci::FieldStatus::kInvalid) << bad;
 }

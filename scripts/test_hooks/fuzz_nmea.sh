@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Fuzzes the NMEA parser and line/epoch assembly (test/fuzz/fuzz_nmea.cpp) with libFuzzer,
+# AddressSanitizer and UndefinedBehaviorSanitizer for FUZZ_NMEA_SECONDS (default 60) and writes
+# RESULTS_DIR/fuzz_nmea.xml (JUnit, one test case; a failure with the crash report on any crash,
+# sanitizer finding, invariant violation or build error).
+# Usage: fuzz_nmea.sh WORKSPACE RESULTS_DIR   (run by scripts/run_tests.sh)
+set -uo pipefail
+ws=$1
+results=$2
+repo=$(cd "$(dirname "$0")/../.." && pwd)
+seconds=${FUZZ_NMEA_SECONDS:-60}
+work=$ws/build/fuzz_nmea
+mkdir -p "$work/corpus" "$results"
+log=$work/fuzz.log
+xml=$results/fuzz_nmea.xml
+
+write_junit() {  # $1 = failure message or empty, $2 = elapsed seconds
+  local failures=0 body=""
+  if [ -n "$1" ]; then
+    failures=1
+    # The report inside CDATA; a literal "]]>" in it would end the section early.
+    local report
+    report=$(tail -n 80 "$log" | sed 's/]]>/]] >/g' | tr -d '\000-\010\013\014\016-\037')
+    body="<failure message=\"$(printf '%s' "$1" | sed 's/&/\&amp;/g; s/"/\&quot;/g; s/</\&lt;/g')\"><![CDATA[$report]]></failure>"
+  fi
+  cat > "$xml" <<XML
+<?xml version="1.0" encoding="utf-8"?>
+<testsuite name="fuzz_nmea" tests="1" failures="$failures" errors="0">
+  <testcase classname="fuzz" name="fuzz_nmea" time="$2">$body</testcase>
+</testsuite>
+XML
+}
+
+start=$(date +%s)
+if ! clang++ -std=c++17 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
+     -I"$repo/include" "$repo/test/fuzz/fuzz_nmea.cpp" \
+     "$repo"/src/gnss/{nmea_fields,nmea_parser,nmea_writer,nmea_statistics,utc_date,gnss_epoch_assembler,gnss_velocity,nmea_decoder}.cpp \
+     -o "$work/fuzz_nmea" > "$log" 2>&1; then
+  write_junit "fuzz_nmea did not build" 0
+  echo "fuzz_nmea: build failed (see $log)"
+  exit 1
+fi
+# New inputs go to the work corpus; the seed corpus in the repository is only read.
+"$work/fuzz_nmea" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+  -artifact_prefix="$work/" "$work/corpus" "$repo/test/fuzz/corpus_nmea" >> "$log" 2>&1
+status=$?
+elapsed=$(( $(date +%s) - start ))
+runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -n 1)
+if [ "$status" -ne 0 ]; then
+  summary=$(grep -m1 -E 'ERROR: |runtime error|invariant violated|deadly signal' "$log" || echo "exit status $status")
+  write_junit "fuzz_nmea found a crash: $summary (artifacts in $work)" "$elapsed"
+  echo "fuzz_nmea: CRASH ($summary); report in $log"
+  exit 1
+fi
+write_junit "" "$elapsed"
+echo "fuzz_nmea: ${runs:-?} inputs in ${elapsed} s, no crash"

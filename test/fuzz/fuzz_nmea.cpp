@@ -1,0 +1,64 @@
+// libFuzzer target for the NMEA receive path: the sentence parser on the raw input, and the
+// whole decoder (line assembly, parsing, epoch assembly, dates) on the input cut into reads.
+// Built and run by scripts/test_hooks/fuzz_nmea.sh with -fsanitize=fuzzer,address,undefined.
+// Besides crashes it checks invariants: every line is counted under exactly one reason, and
+// every fix the decoder emits can be written as GGA and RMC and parsed back.
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string_view>
+
+#include "acc_identification/gnss/gnss_velocity.h"
+#include "acc_identification/gnss/nmea_decoder.h"
+#include "acc_identification/gnss/nmea_parser.h"
+#include "acc_identification/gnss/nmea_writer.h"
+
+namespace aci = acc_identification;
+
+namespace
+{
+void check(bool condition, const char* what)
+{
+  if (!condition)
+  {
+    std::fprintf(stderr, "invariant violated: %s\n", what);
+    std::abort();
+  }
+}
+
+void checkFix(const aci::GnssFix& fix)
+{
+  aci::NmeaSentence back;
+  check(aci::parseNmeaSentence(aci::formatGga(fix), back) == aci::NmeaParseOutcome::kOk, "written GGA parses");
+  check(aci::parseNmeaSentence(aci::formatRmc(fix), back) == aci::NmeaParseOutcome::kOk, "written RMC parses");
+  aci::EnuVelocity velocity;
+  aci::enuVelocity(fix, velocity);
+}
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+  const std::string_view input(reinterpret_cast<const char*>(data), size);
+  aci::NmeaSentence sentence;
+  aci::parseNmeaSentence(input, sentence);
+  double time_of_day_s = 0.0;
+  aci::nmeaLineTimeOfDay(input, time_of_day_s);
+
+  std::uint64_t lines = 0;
+  aci::NmeaDecoder decoder([&](std::string_view, aci::NmeaParseOutcome) { ++lines; }, checkFix);
+  // The first byte chooses the read size, so that lines are split across reads in every way.
+  const std::size_t chunk = size > 0 ? 1 + data[0] % 64 : 1;
+  double receive_time_s = 0.0;
+  for (std::size_t at = 0; at < size; at += chunk, receive_time_s += 0.01)
+  {
+    decoder.feed(input.data() + at, std::min(chunk, size - at), receive_time_s);
+    if (data[at] == 0x7f)
+      decoder.flushEpoch();
+  }
+  decoder.finish(receive_time_s);
+  const aci::NmeaStatistics s = decoder.statistics();
+  check(s.lines == lines, "every line reported");
+  check(s.lines == s.sentences_ok + s.bad_checksum + s.malformed + s.unsupported, "one reason per line");
+  return 0;
+}
