@@ -1,0 +1,66 @@
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "acc_identification/acc_parameters.h"
+#include "acc_identification/car_following_run.h"
+#include "acc_identification/diagnosis/candidate_effects.h"
+
+namespace acc_identification
+{
+/// Search box of the base parameters and how hard the local solver works. The same for the base
+/// fit and every augmented fit, so that they differ only by the effect.
+struct AugmentedCalibrationOptions
+{
+  AccParameters lower{0.0, 0.0, 0.0, 0.0};
+  AccParameters upper{1.0, 2.0, 4.0, 40.0};
+  /// Base fit: Halton starts for (k1, k2, tau_e) in this box; eta starts at its equilibrium
+  /// estimate mean(s - tau_e v) for each.
+  AccParameters start_lower{0.01, 0.05, 0.3, 0.0};
+  AccParameters start_upper{0.30, 1.00, 2.5, 0.0};
+  std::size_t base_starts = 12;
+  /// Augmented fit: warm start from the base fit, with the effect's parameters at this many
+  /// low-discrepancy points of the catalogue's start range (plus the "almost off" point).
+  std::size_t effect_starts = 6;
+  int max_evaluations_per_start = 600;
+  double relative_x_tolerance = 1e-6;
+};
+
+/// A calibrated model: base parameters, the effect and its parameters.
+struct AugmentedFit
+{
+  EffectKind effect = EffectKind::none;
+  AccParameters base;
+  std::vector<double> effect_values;  ///< in the catalogue's order
+  EffectSettings settings;            ///< base settings with effect_values applied
+  double train_mse_speed = std::numeric_limits<double>::infinity();  ///< mean squared speed error [m^2/s^2]
+  bool diverged = false;              ///< no start found a simulation that does not blow up
+  std::size_t evaluations = 0;
+  /// Standard errors of (k1, k2, tau_e, eta, effect values...): Gauss-Newton with a finite-
+  /// difference Jacobian of the simulated speeds and the AR(1) variance inflation of the residuals
+  /// (as in the calibration's fit statistics). NaN when the data do not constrain a parameter
+  /// (e.g. an acceleration limit that the commands never reach).
+  std::vector<double> standard_errors;
+};
+
+/// Mean squared speed error of a model over segments, each simulated from its own start; the
+/// value is kDivergedObjective when a simulation diverges. Segments must be valid runs.
+double augmentedSpeedMse(const AccParameters& p, const EffectSettings& effects,
+                         const std::vector<CarFollowingRun>& segments);
+
+constexpr double kDivergedObjective = 1.0e6;
+
+/// Least-squares fit of the speed (the paper's objective) of the base model plus `effect` over
+/// the segments: NLopt LN_BOBYQA on the unit-scaled box from several starts. For effect none the
+/// starts are Halton points; otherwise `warm_start` (the base fit) with the effect parameters at
+/// low-discrepancy starting values. Throws std::invalid_argument for invalid segments.
+AugmentedFit calibrateAugmented(EffectKind effect, const std::vector<CarFollowingRun>& segments,
+                                const AugmentedCalibrationOptions& options, const AugmentedFit* warm_start = nullptr);
+
+/// The i-th point (i >= 1) of the Halton sequence in the first `dimensions` prime bases, in [0, 1).
+std::vector<double> haltonSequencePoint(std::size_t index, std::size_t dimensions);
+
+}  // namespace acc_identification

@@ -1,0 +1,80 @@
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace acc_identification
+{
+/// The physical effects the base OVRV model lacks that the diagnosis can test, one at a time.
+enum class EffectKind
+{
+  none,                      ///< the base model of the paper
+  actuation_lag,             ///< first-order lag between commanded and realised acceleration
+  reaction_delay,            ///< dead time between the state and the command acting on it
+  acceleration_limits,       ///< the largest acceleration and deceleration the ACC commands
+  sensor_time_offset,        ///< clock offset between the two receivers (also biases the gap)
+  speed_dependent_time_gap,  ///< spacing policy eta + tau v + c v^2 instead of linear in speed
+  set_speed_cruise,          ///< the ACC drives at its set speed when the gap is large
+};
+
+/// Every option of the augmented follower model. The defaults switch every effect off, and the
+/// augmented simulator then reduces exactly to simulateFollower().
+struct EffectSettings
+{
+  double actuation_lag_s = 0.0;  ///< T in T a' = f - a (0: realised = commanded)
+  double reaction_delay_s = 0.0; ///< d: the command acting at t was computed at t - d
+  double max_acceleration_mps2 = std::numeric_limits<double>::infinity();
+  double max_deceleration_mps2 = std::numeric_limits<double>::infinity();  ///< a positive number
+  /// delta: the recorded leader data lag the truth by delta, recorded(t) = true(t - delta), so the
+  /// ACC really saw u(t) = u_recorded(t + delta) and the recorded gap reads the true gap minus
+  /// delta u (the distance the leader covers during the offset).
+  double sensor_time_offset_s = 0.0;
+  /// c in the desired gap eta + tau_e v + c v^2 [s^2/m]: the time gap grows (c > 0) or shrinks
+  /// with speed as tau_e + c v.
+  double time_gap_speed_slope_s2_per_m = 0.0;
+  /// Cruise mode: command = min(following law, cruise_gain (v_set - v)); infinity: no set speed.
+  double set_speed_mps = std::numeric_limits<double>::infinity();
+  double cruise_gain_per_s = 0.0;
+};
+
+/// One calibrated parameter of an effect: its name with unit, the hard bounds of the search and
+/// the narrower range the multistart draws its starting values from.
+struct EffectParameterSpec
+{
+  std::string name;
+  double lower = 0.0;
+  double upper = 0.0;
+  double start_lower = 0.0;
+  double start_upper = 0.0;
+};
+
+/// An entry of the effect catalogue.
+struct CandidateEffect
+{
+  EffectKind kind = EffectKind::none;
+  std::string name;                           ///< e.g. "actuation_lag" (used in all output)
+  std::vector<EffectParameterSpec> parameters;  ///< the first one is the effect's magnitude
+  std::string how_it_enters;                  ///< one sentence for reports
+};
+
+/// The six candidate effects, in a fixed order (EffectKind::none is not among them).
+const std::vector<CandidateEffect>& candidateEffects();
+
+/// The catalogue entry of kind (kind none gives an entry with no parameters).
+const CandidateEffect& candidateEffect(EffectKind kind);
+
+/// "none" or the effect's name.
+std::string effectName(EffectKind kind);
+
+/// Parses a name as printed by effectName(); false when unknown.
+bool parseEffectName(const std::string& name, EffectKind* kind);
+
+/// The settings with kind's parameters set to values (in the catalogue's order); every other
+/// effect stays off. values.size() must equal the number of the effect's parameters.
+EffectSettings makeEffectSettings(EffectKind kind, const std::vector<double>& values);
+
+/// The values of kind's parameters read back from settings (inverse of makeEffectSettings).
+std::vector<double> effectValues(EffectKind kind, const EffectSettings& settings);
+
+}  // namespace acc_identification

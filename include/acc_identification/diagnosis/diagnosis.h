@@ -1,0 +1,68 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "acc_identification/car_following_run.h"
+#include "acc_identification/diagnosis/augmented_calibration.h"
+#include "acc_identification/diagnosis/augmented_stability.h"
+#include "acc_identification/diagnosis/candidate_effects.h"
+#include "acc_identification/diagnosis/effect_selection.h"
+#include "acc_identification/diagnosis/residual_breakdown.h"
+#include "acc_identification/follower_simulation.h"
+
+namespace acc_identification
+{
+struct DiagnosisOptions
+{
+  /// Each run is fitted on its first train_fraction of time and scored on the rest.
+  double train_fraction = 0.5;
+  /// Halves (train or test) shorter than this are not used (listed in notes).
+  std::size_t min_samples_per_half = 50;
+  std::vector<EffectKind> candidates = {EffectKind::actuation_lag,       EffectKind::reaction_delay,
+                                        EffectKind::acceleration_limits, EffectKind::sensor_time_offset,
+                                        EffectKind::speed_dependent_time_gap, EffectKind::set_speed_cruise};
+  AugmentedCalibrationOptions calibration;
+  SelectionOptions selection;
+  BreakdownOptions breakdown;
+};
+
+/// One model (base or augmented) fitted on the training halves and scored on the held-out halves.
+struct ModelDiagnosis
+{
+  AugmentedFit fit;
+  double train_rmse_speed_mps = 0.0;
+  double test_rmse_speed_mps = 0.0;
+  double test_rmse_gap_m = 0.0;
+  bool test_diverged = false;   ///< some held-out simulation blew up (its errors are then huge)
+  ImprovementEstimate improvement;  ///< versus the base model (zero for the base model)
+  bool significant = false;
+  AugmentedStability stability;
+  bool stability_verdict_changes = false;  ///< string_stable differs from the base model's
+  std::vector<SimulatedFollower> test_simulations;  ///< one per held-out half
+};
+
+struct DiagnosisResult
+{
+  std::vector<CarFollowingRun> train;  ///< the first halves used for fitting
+  std::vector<CarFollowingRun> test;   ///< the held-out halves
+  std::vector<std::string> notes;      ///< runs or halves that were not used, and why
+  double operating_speed_mps = 0.0;    ///< median follower speed of the training data (for linearisation)
+  double sample_period_s = 0.0;        ///< median step of the data
+  ModelDiagnosis baseline;
+  std::vector<ModelDiagnosis> effects;  ///< in the order of options.candidates
+  SelectionResult selection;
+  std::string selection_rule;
+  ResidualBreakdown where;             ///< base model's held-out residual; "after" is the dominant effect
+};
+
+/// Splits every run, fits the base model and each candidate effect on the first parts, scores
+/// them on the held-out parts, applies the selection rule and breaks the residual down.
+/// Throws std::invalid_argument when no run leaves enough samples on both sides of the split.
+DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const DiagnosisOptions& options);
+
+/// The model of the dominant effect, or the baseline when none.
+const ModelDiagnosis& dominantModel(const DiagnosisResult& result);
+
+}  // namespace acc_identification

@@ -1,0 +1,72 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "acc_identification/diagnosis/candidate_effects.h"
+
+namespace acc_identification
+{
+/// The statistical rule that decides which effect the held-out data support.
+///
+/// For each candidate k and each held-out sample t, d_k(t) = e_base(t)^2 - e_k(t)^2 (squared
+/// speed errors of the base and the augmented model). The improvement is the mean of d_k. Its
+/// sampling distribution is estimated by a moving-block bootstrap (blocks of block_length_s,
+/// drawn within each run so that every run keeps its length; the same blocks for every
+/// candidate, so the comparisons are paired), which keeps the seconds-long correlation of model
+/// errors that an i.i.d. bootstrap would destroy.
+///  - k is significant when the one-sided lower confidence bound of its improvement at level
+///    alpha / K (Bonferroni over the K candidates) is above 0, and the improvement is at least
+///    min_relative_improvement of the base model's held-out MSE (a gain too small to matter is not
+///    reported as a missing effect);
+///  - the best effect is the significant one with the largest improvement; none if none is;
+///  - another significant effect j cannot be told apart from the best b when the lower bound
+///    (level alpha) of the mean of e_j^2 - e_b^2 is not above 0. The plausible set is b and all such j.
+struct SelectionOptions
+{
+  double block_length_s = 10.0;
+  std::size_t resamples = 2000;
+  double alpha = 0.05;
+  double min_relative_improvement = 0.02;
+  std::uint32_t seed = 12345;
+};
+
+/// Held-out squared speed errors of one model, one vector per run (same lengths for every model).
+using SquaredErrorsByRun = std::vector<std::vector<double>>;
+
+/// Mean of a paired difference and its bootstrap lower bounds.
+struct ImprovementEstimate
+{
+  double mean = 0.0;             ///< mean over all held-out samples [m^2/s^2]
+  double relative = 0.0;         ///< mean / base MSE
+  double lower_bound = 0.0;      ///< one-sided lower bound at the level used by the rule
+  double upper_bound = 0.0;      ///< the matching upper bound (two-sided interval, for reports)
+};
+
+struct SelectionResult
+{
+  std::vector<EffectKind> candidates;          ///< as given
+  std::vector<ImprovementEstimate> versus_base;  ///< per candidate, at level alpha / K
+  std::vector<bool> significant;
+  std::vector<std::size_t> ranking;            ///< candidate indices, largest improvement first
+  EffectKind dominant = EffectKind::none;
+  std::vector<EffectKind> plausible;           ///< empty when dominant is none
+  /// Best minus runner-up (the next significant effect): mean and lower bound at level alpha.
+  ImprovementEstimate best_versus_runner_up;
+  bool has_runner_up = false;
+  bool distinguishable = false;                ///< the best is significantly better than every other
+  double block_length_samples = 0.0;
+};
+
+/// Applies the rule. base and each candidates' errors must have the same run structure.
+/// sample_period_s converts the block length to samples.
+SelectionResult selectEffect(const SquaredErrorsByRun& base, const std::vector<SquaredErrorsByRun>& candidates,
+                             const std::vector<EffectKind>& kinds, double sample_period_s,
+                             const SelectionOptions& options);
+
+/// The rule in one paragraph, for reports.
+std::string describeSelectionRule(const SelectionOptions& options, std::size_t candidates);
+
+}  // namespace acc_identification

@@ -1,0 +1,85 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "acc_identification/acc_parameters.h"
+#include "acc_identification/car_following_run.h"
+#include "acc_identification/diagnosis/candidate_effects.h"
+#include "acc_identification/diagnosis/diagnosis.h"
+
+namespace acc_identification
+{
+/// Built-in leader speed profiles for the withheld-effect suite, each exercising the effects
+/// differently: steps between held speeds (firm accelerations and brakings, speeds above a set
+/// speed), slow oscillation (phase lag), a deep dip (hard braking then hard acceleration).
+enum class SyntheticLeadProfile
+{
+  steps,
+  oscillation,
+  dip,
+};
+
+std::string leadProfileName(SyntheticLeadProfile profile);
+
+/// Leader speed sampled every step_s for duration_s [m/s]; deterministic (no randomness).
+std::vector<double> syntheticLeaderSpeed(SyntheticLeadProfile profile, double duration_s, double step_s);
+
+/// One synthetic experiment: the truth to hide and how the data are made.
+struct WithheldCase
+{
+  EffectKind truth = EffectKind::none;
+  std::vector<double> truth_values;   ///< the effect's parameters (catalogue order)
+  AccParameters base{0.08, 0.45, 1.2, 4.0};
+  SyntheticLeadProfile profile = SyntheticLeadProfile::steps;
+  double duration_s = 400.0;
+  double step_s = 0.1;
+  double speed_noise_std_mps = 0.06;  ///< white noise on both recorded speeds
+  double gap_noise_std_m = 0.4;
+  std::uint32_t seed = 1;
+};
+
+/// The recorded run of a case: the follower is simulated with the effect by
+/// simulateAugmentedFollower() from equilibrium with the true leader; a sensor time offset is
+/// then applied to the record (leader speed delayed by delta, gap reduced by the distance the
+/// leader covered in delta, by the trapezoid rule); then noise is added to all three columns.
+CarFollowingRun synthesizeWithheldRun(const WithheldCase& c);
+
+/// What the diagnosis said about one case.
+struct WithheldOutcome
+{
+  WithheldCase input;
+  EffectKind dominant = EffectKind::none;
+  std::vector<EffectKind> plausible;
+  double recovered_magnitude = 0.0;  ///< first parameter of the truth's effect as fitted (NaN for none)
+  double base_test_rmse_speed_mps = 0.0;
+  double effect_test_rmse_speed_mps = 0.0;  ///< of the truth's effect model (base for none)
+};
+
+WithheldOutcome runWithheldCase(const WithheldCase& c, const DiagnosisOptions& options);
+
+/// The grid of cases: every effect at several magnitudes and none, on the given profiles, noise
+/// scales and seeds. magnitudes_per_effect picks from a fixed list per effect (1 to 3).
+std::vector<WithheldCase> withheldCaseGrid(std::size_t magnitudes_per_effect,
+                                           const std::vector<SyntheticLeadProfile>& profiles,
+                                           const std::vector<double>& noise_scales, std::size_t seeds);
+
+/// Rows: truth (none, then the catalogue), columns: the dominant effect named; counts.
+struct ConfusionMatrix
+{
+  std::vector<EffectKind> labels;
+  std::vector<std::vector<std::size_t>> counts;
+  std::size_t truth_in_plausible = 0;  ///< cases whose truth is in the plausible set (none: empty set)
+  std::size_t cases = 0;
+};
+
+ConfusionMatrix confusionMatrix(const std::vector<WithheldOutcome>& outcomes);
+
+/// The matrix as a Markdown table, and a per-effect magnitude recovery table (median absolute
+/// and relative error of the first parameter over correctly named cases).
+std::string formatConfusionMatrix(const ConfusionMatrix& matrix);
+std::string formatMagnitudeRecovery(const std::vector<WithheldOutcome>& outcomes);
+
+}  // namespace acc_identification

@@ -1,0 +1,259 @@
+#!/usr/bin/python3
+"""Draws the figures of a `diagnose --report DIR` run and writes DIR/report.md.
+
+Reads what the diagnose tool wrote into DIR (diagnosis.json, residuals.csv, spectrum.csv,
+gain.csv, train_fit.csv) and writes PNG figures plus a Markdown report that reads on its own.
+Usage: /usr/bin/python3 plot_diagnosis.py DIR
+"""
+import csv
+import json
+import math
+import os
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+OPENACC_ATTRIBUTION = (
+    "Data: JRC OpenACC database, Casale campaign (Makridis, Mattas, Anesiadou, Ciuffo, "
+    "Transportation Research Part C 125 (2021) 103047), (c) European Union, licensed CC BY 4.0. "
+    "Changes: split into fitting and held-out halves; simulated with calibrated models; residuals, "
+    "spectra and statistics derived.")
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def by_run(rows):
+    runs = defaultdict(list)
+    for row in rows:
+        runs[row["run"]].append(row)
+    return runs
+
+
+def fmt(value, digits=3):
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "n/a"
+    return f"{value:.{digits}g}" if abs(value) < 1e-3 and value != 0 else f"{value:.{digits}f}"
+
+
+def plot_time_series(report_dir, residuals, diagnosis):
+    runs = by_run(residuals)
+    names = list(runs)
+    fig, axes = plt.subplots(len(names), 2, figsize=(13, 2.8 * len(names)), squeeze=False)
+    effect = diagnosis["dominant_effect"]
+    worst = diagnosis["where"]["segments"][:5]
+    for i, name in enumerate(names):
+        rows = runs[name]
+        t = [float(r["time_s"]) for r in rows]
+        t0 = t[0]
+        t = [x - t0 for x in t]
+        for col, (measured, base, eff, unit) in enumerate(
+                [("speed_mps", "base_speed_mps", "effect_speed_mps", "speed [m/s]"),
+                 ("gap_m", "base_gap_m", "effect_gap_m", "gap [m]")]):
+            ax = axes[i][col]
+            ax.plot(t, [float(r[measured]) for r in rows], "k", lw=1.0, label="measured")
+            ax.plot(t, [float(r[base]) for r in rows], "C0", lw=1.0, label="base model")
+            if effect != "none":
+                ax.plot(t, [float(r[eff]) for r in rows], "C3--", lw=1.0, label=f"with {effect}")
+            for seg in worst:
+                if seg["run"] == name:
+                    ax.axvspan(seg["start_s"] - t0, seg["end_s"] - t0, color="orange", alpha=0.25)
+            ax.set_ylabel(unit)
+            ax.set_title(f"{name} (held out; orange: worst segments)", fontsize=9)
+            ax.grid(alpha=0.3)
+        axes[i][0].legend(fontsize=8)
+    for ax in axes[-1]:
+        ax.set_xlabel("time from start of held-out part [s]")
+    fig.tight_layout()
+    fig.savefig(os.path.join(report_dir, "held_out_time_series.png"), dpi=110)
+    plt.close(fig)
+
+
+def plot_groups(report_dir, diagnosis):
+    where = diagnosis["where"]
+    fig, axes = plt.subplots(1, 2, figsize=(13, 4))
+    for ax, key, title in [(axes[0], "regimes", "driving regime"), (axes[1], "speed_bands", "follower speed band")]:
+        groups = where[key]
+        x = range(len(groups))
+        ax.bar([i - 0.2 for i in x], [g["share_of_time"] for g in groups], 0.4, label="share of time")
+        ax.bar([i + 0.2 for i in x], [g["share_of_squared_speed_error"] for g in groups], 0.4,
+               label="share of squared speed error")
+        ax.set_xticks(list(x))
+        ax.set_xticklabels([g["name"].replace("_", "\n") for g in groups], fontsize=7)
+        ax.set_title(f"Held-out base-model residual by {title}")
+        ax.grid(alpha=0.3, axis="y")
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(report_dir, "residual_by_regime.png"), dpi=110)
+    plt.close(fig)
+
+
+def plot_spectrum(report_dir, spectrum, diagnosis):
+    fig, ax = plt.subplots(figsize=(8, 4))
+    effect = diagnosis["dominant_effect"]
+    for i, (name, rows) in enumerate(by_run(spectrum).items()):
+        f = [float(r["frequency_hz"]) for r in rows]
+        ax.loglog(f, [max(float(r["power_before"]), 1e-12) for r in rows], color=f"C{i}", lw=0.7,
+                  label=f"{name} base")
+        if effect != "none":
+            ax.loglog(f, [max(float(r["power_after"]), 1e-12) for r in rows], color=f"C{i}", lw=0.7, ls="--",
+                      label=f"{name} with {effect}")
+    for band in diagnosis["where"]["frequency_bands"]:
+        if band["lower_hz"] > 0:
+            ax.axvline(band["lower_hz"], color="grey", lw=0.5)
+    ax.set_xlabel("frequency [Hz]")
+    ax.set_ylabel("periodogram of speed residual [(m/s)^2]")
+    ax.set_title("Spectrum of the held-out speed residual (grey: band edges)")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(report_dir, "residual_spectrum.png"), dpi=110)
+    plt.close(fig)
+
+
+def plot_effects(report_dir, diagnosis):
+    effects = diagnosis["effects"]
+    names = [e["name"] for e in effects]
+    fig, ax = plt.subplots(figsize=(9, 4))
+    means = [e["improvement"]["relative"] * 100 for e in effects]
+    base_mse = diagnosis["baseline"]["test_rmse_speed"] ** 2
+    lows = [(e["improvement"]["lower_bound"] or 0) / base_mse * 100 for e in effects]
+    highs = [(e["improvement"]["upper_bound"] or 0) / base_mse * 100 for e in effects]
+    colors = ["C2" if e["significant"] else "C7" for e in effects]
+    ax.bar(range(len(names)), means, color=colors)
+    ax.errorbar(range(len(names)), means, yerr=[[m - lo for m, lo in zip(means, lows)],
+                                                [hi - m for m, hi in zip(means, highs)]], fmt="none", ecolor="k")
+    ax.axhline(0, color="k", lw=0.8)
+    ax.set_xticks(range(len(names)))
+    ax.set_xticklabels([n.replace("_", "\n") for n in names], fontsize=8)
+    ax.set_ylabel("held-out speed MSE reduction [%]")
+    ax.set_title("What each effect buys on held-out data (green: significant; bars: bootstrap bounds)")
+    ax.grid(alpha=0.3, axis="y")
+    fig.tight_layout()
+    fig.savefig(os.path.join(report_dir, "effect_improvements.png"), dpi=110)
+    plt.close(fig)
+
+
+def plot_gain(report_dir, gain, diagnosis):
+    fig, ax = plt.subplots(figsize=(8, 4))
+    w = [float(r["frequency_rad_s"]) for r in gain]
+    ax.semilogx(w, [float(r["base_db"]) for r in gain], "k", lw=1.5, label="base")
+    for e in diagnosis["effects"]:
+        key = e["name"] + "_db"
+        style = "-" if e["name"] == diagnosis["dominant_effect"] else ":"
+        ax.semilogx(w, [float(r[key]) for r in gain], style, lw=1.0, label=e["name"])
+    ax.axhline(0, color="grey", lw=0.8)
+    ax.set_xlabel("frequency [rad/s]")
+    ax.set_ylabel("|Gamma(jw)| [dB]")
+    ax.set_title("Speed-to-speed gain of the fitted models (> 0 dB: string unstable)")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(report_dir, "string_stability_gain.png"), dpi=110)
+    plt.close(fig)
+
+
+def parameter_text(effect):
+    parts = []
+    for name, value in effect["parameters"].items():
+        se = effect["standard_errors"].get(name)
+        parts.append(f"{name} = {fmt(value, 4)}" + (f" ± {fmt(se, 2)}" if se is not None else " (± n/a)"))
+    return "; ".join(parts)
+
+
+def write_report(report_dir, d):
+    base = d["baseline"]
+    dominant = d["dominant_effect"]
+    chosen = next((e for e in d["effects"] if e["name"] == dominant), None)
+    lines = ["# Sim-to-real gap diagnosis", ""]
+    lines.append("Inputs: " + ", ".join(f"`{p}`" for p in d.get("inputs", [])) + ". Each run is fitted on its "
+                 "first part and scored on the rest (held-out).")
+    lines += ["", "## Verdict", ""]
+    if dominant == "none":
+        lines.append("**No candidate effect improves the held-out fit significantly.** The residual below is "
+                     "not explained by any single effect of the catalogue.")
+    else:
+        plausible = ", ".join(d["plausible_effects"])
+        lines.append(f"**Dominant effect: `{dominant}`.** Effects the data cannot tell apart from it: {plausible}.")
+        lines.append("")
+        lines.append(f"Held-out speed RMSE {fmt(base['test_rmse_speed'])} → {fmt(chosen['test_rmse_speed'])} m/s, "
+                     f"gap RMSE {fmt(base['test_rmse_gap'])} → {fmt(chosen['test_rmse_gap'])} m. "
+                     f"Parameters: {parameter_text(chosen)}.")
+        verdict = "changes" if chosen["stability_verdict_changes"] else "does not change"
+        lines.append("")
+        lines.append(f"String stability: base peak gain {fmt(base['stability']['peak_gain_db'])} dB "
+                     f"({'stable' if base['stability']['string_stable'] else 'unstable'}), with the effect "
+                     f"{fmt(chosen['stability']['peak_gain_db'])} dB "
+                     f"({'stable' if chosen['stability']['string_stable'] else 'unstable'}): the verdict {verdict}. "
+                     f"({chosen['stability']['note']}.)")
+    lines += ["", "Selection rule: " + d["selection"]["rule"], "", "## Models", ""]
+    lines.append("| model | train speed RMSE [m/s] | held-out speed RMSE [m/s] | held-out gap RMSE [m] | "
+                 "MSE reduction [%] (bounds) | significant | peak gain [dB] | parameters (± std. error) |")
+    lines.append("|---|---|---|---|---|---|---|---|")
+    base_mse = base["test_rmse_speed"] ** 2
+    lines.append(f"| base | {fmt(base['train_rmse_speed'])} | {fmt(base['test_rmse_speed'])} | "
+                 f"{fmt(base['test_rmse_gap'])} | - | - | {fmt(base['stability']['peak_gain_db'])} | "
+                 f"{parameter_text(base)} |")
+    for e in d["effects"]:
+        imp = e["improvement"]
+        lo = (imp["lower_bound"] or 0) / base_mse * 100 if base_mse > 0 else 0
+        hi = (imp["upper_bound"] or 0) / base_mse * 100 if base_mse > 0 else 0
+        lines.append(f"| {e['name']} | {fmt(e['train_rmse_speed'])} | {fmt(e['test_rmse_speed'])} | "
+                     f"{fmt(e['test_rmse_gap'])} | {imp['relative'] * 100:.1f} ({lo:.1f} to {hi:.1f}) | "
+                     f"{'yes' if e['significant'] else 'no'} | {fmt(e['stability']['peak_gain_db'])} | "
+                     f"{parameter_text(e)} |")
+    lines += ["", "![improvements](effect_improvements.png)", "", "## Where the residual lies (base model, held out)",
+              ""]
+    for key, title in [("regimes", "Driving regime"), ("speed_bands", "Speed band")]:
+        lines.append(f"| {title} | share of time | share of squared speed error | speed RMSE before → after [m/s] | "
+                     "gap RMSE before → after [m] |")
+        lines.append("|---|---|---|---|---|")
+        for g in d["where"][key]:
+            lines.append(f"| {g['name']} | {g['share_of_time'] * 100:.1f}% | "
+                         f"{g['share_of_squared_speed_error'] * 100:.1f}% | {fmt(g['rmse_speed_before'])} → "
+                         f"{fmt(g['rmse_speed_after'])} | {fmt(g['rmse_gap_before'])} → {fmt(g['rmse_gap_after'])} |")
+        lines.append("")
+    lines.append("![regimes](residual_by_regime.png)")
+    lines += ["", "| Frequency band | share of squared speed error, base | with the dominant effect |", "|---|---|---|"]
+    for b in d["where"]["frequency_bands"]:
+        lines.append(f"| {b['name']} | {b['share_of_squared_speed_error_before'] * 100:.1f}% | "
+                     f"{b['share_of_squared_speed_error_after'] * 100:.1f}% |")
+    lines += ["", "![spectrum](residual_spectrum.png)", "", "Worst 10 s segments:", "",
+              "| run | start [s] | end [s] | share of squared speed error | speed RMSE before → after [m/s] | "
+              "main regime |", "|---|---|---|---|---|---|"]
+    for s in d["where"]["segments"]:
+        lines.append(f"| {s['run']} | {s['start_s']:.1f} | {s['end_s']:.1f} | "
+                     f"{s['share_of_squared_speed_error'] * 100:.1f}% | {fmt(s['rmse_speed_before'])} → "
+                     f"{fmt(s['rmse_speed_after'])} | {s['main_regime']} |")
+    lines += ["", "![time series](held_out_time_series.png)", "", "## String stability", "",
+              "![gain](string_stability_gain.png)", ""]
+    if d["notes"]:
+        lines += ["## Data not used", ""] + [f"- {n}" for n in d["notes"]] + [""]
+    if any("openacc" in p.lower() or "casale" in p.lower() for p in d.get("inputs", [])):
+        lines += ["## Attribution", "", OPENACC_ATTRIBUTION, ""]
+    with open(os.path.join(report_dir, "report.md"), "w") as f:
+        f.write("\n".join(lines))
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit("usage: plot_diagnosis.py DIR")
+    report_dir = sys.argv[1]
+    with open(os.path.join(report_dir, "diagnosis.json")) as f:
+        diagnosis = json.load(f)
+    plot_time_series(report_dir, read_csv(os.path.join(report_dir, "residuals.csv")), diagnosis)
+    plot_groups(report_dir, diagnosis)
+    plot_spectrum(report_dir, read_csv(os.path.join(report_dir, "spectrum.csv")), diagnosis)
+    plot_effects(report_dir, diagnosis)
+    plot_gain(report_dir, read_csv(os.path.join(report_dir, "gain.csv")), diagnosis)
+    write_report(report_dir, diagnosis)
+
+
+if __name__ == "__main__":
+    main()

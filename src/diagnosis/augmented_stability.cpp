@@ -1,0 +1,83 @@
+#include "acc_identification/diagnosis/augmented_stability.h"
+
+#include <cmath>
+#include <complex>
+
+#include "acc_identification/string_stability.h"
+
+namespace acc_identification
+{
+namespace
+{
+double linearisedTimeGap(const AccParameters& p, const EffectSettings& e, double operating_speed_mps)
+{
+  return p.tau_e_s + 2.0 * e.time_gap_speed_slope_s2_per_m * operating_speed_mps;
+}
+
+std::string smallSignalNote(EffectKind effect)
+{
+  switch (effect)
+  {
+    case EffectKind::none: return "base model, paper eq. 9";
+    case EffectKind::actuation_lag: return "lag adds (T s + 1) to the s^2 term of the denominator";
+    case EffectKind::reaction_delay: return "dead time multiplies the feedback by exp(-s d)";
+    case EffectKind::acceleration_limits:
+      return "limits do not act on small disturbances: small-signal Gamma equals the base one";
+    case EffectKind::sensor_time_offset:
+      return "a clock offset changes the record, not the vehicle: Gamma equals the base one";
+    case EffectKind::speed_dependent_time_gap: return "time gap linearised at the operating speed: tau_e + 2 c v0";
+    case EffectKind::set_speed_cruise:
+      return "cruise mode is inactive while following below the set speed: small-signal Gamma equals the base one";
+  }
+  return "";
+}
+}  // namespace
+
+double augmentedTransferGain(const AccParameters& p, const EffectSettings& e, double operating_speed_mps,
+                             double frequency_rad_s)
+{
+  const std::complex<double> s(0.0, frequency_rad_s);
+  const double tau = linearisedTimeGap(p, e, operating_speed_mps);
+  const std::complex<double> delay = std::exp(-s * e.reaction_delay_s);
+  const std::complex<double> numerator = delay * (p.k2_per_s * s + p.k1_per_s2);
+  const std::complex<double> denominator =
+      (e.actuation_lag_s * s + 1.0) * s * s + delay * ((p.k2_per_s + p.k1_per_s2 * tau) * s + p.k1_per_s2);
+  if (std::abs(denominator) == 0.0)
+  {
+    return std::abs(numerator) == 0.0 ? 1.0 : INFINITY;
+  }
+  return std::abs(numerator / denominator);
+}
+
+AugmentedStability analyzeAugmentedStability(const AccParameters& p, EffectKind effect, const EffectSettings& e,
+                                             double operating_speed_mps)
+{
+  AugmentedStability out;
+  out.note = smallSignalNote(effect);
+  AccParameters linear = p;
+  linear.tau_e_s = linearisedTimeGap(p, e, operating_speed_mps);
+  out.lambda2 = lambda2(linear);
+  // The grid, plus the closed-form peak of the delay- and lag-free law.
+  double best_gain = augmentedTransferGain(p, e, operating_speed_mps, 0.0);
+  double best_w = 0.0;
+  const int points = 4000;
+  const double w_lo = 1e-4;
+  const double w_hi = 20.0;
+  for (int i = 0; i <= points + 1; ++i)
+  {
+    const double w = i <= points ? w_lo * std::pow(w_hi / w_lo, static_cast<double>(i) / points)
+                                 : peakFrequencyRadS(linear);
+    const double gain = augmentedTransferGain(p, e, operating_speed_mps, w);
+    if (gain > best_gain)
+    {
+      best_gain = gain;
+      best_w = w;
+    }
+  }
+  out.peak_gain_db = 20.0 * std::log10(best_gain);
+  out.peak_frequency_rad_s = best_w;
+  out.string_stable = best_gain <= 1.0 + 1e-12;
+  return out;
+}
+
+}  // namespace acc_identification

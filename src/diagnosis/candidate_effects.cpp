@@ -1,0 +1,110 @@
+#include "acc_identification/diagnosis/candidate_effects.h"
+
+#include <stdexcept>
+
+namespace acc_identification
+{
+const std::vector<CandidateEffect>& candidateEffects()
+{
+  // Bounds: wide enough for any ACC reported in the literature (lags and delays of 0.2-1.5 s,
+  // accelerations of 1-3 m/s^2), narrow enough to keep the 10 Hz Euler map stable.
+  static const std::vector<CandidateEffect> catalogue = {
+      {EffectKind::actuation_lag, "actuation_lag", {{"lag_time_constant_s", 0.0, 3.0, 0.1, 1.5}},
+       "realised acceleration follows the commanded one through T a' = f - a (exact discretisation)"},
+      {EffectKind::reaction_delay, "reaction_delay", {{"dead_time_s", 0.0, 3.0, 0.1, 1.5}},
+       "the command acting at t is the law evaluated at t - d (commands interpolated in time)"},
+      {EffectKind::acceleration_limits, "acceleration_limits",
+       {{"max_acceleration_mps2", 0.2, 10.0, 0.5, 3.0}, {"max_deceleration_mps2", 0.2, 10.0, 1.0, 5.0}},
+       "the command is clipped to [-max_deceleration, max_acceleration]"},
+      {EffectKind::sensor_time_offset, "sensor_time_offset", {{"time_offset_s", -3.0, 3.0, -1.5, 1.5}},
+       "the leader's recorded data lag the truth by delta: the ACC sees u(t + delta), the recorded gap "
+       "is the true gap minus delta u"},
+      {EffectKind::speed_dependent_time_gap, "speed_dependent_time_gap",
+       {{"time_gap_slope_s2_per_m", -0.05, 0.05, -0.02, 0.02}},
+       "desired gap eta + tau_e v + c v^2: the time gap is tau_e + c v"},
+      {EffectKind::set_speed_cruise, "set_speed_cruise",
+       {{"set_speed_mps", 3.0, 60.0, 10.0, 40.0}, {"cruise_gain_per_s", 0.02, 2.0, 0.1, 0.8}},
+       "command = min(following law, cruise_gain (v_set - v)): the ACC holds its set speed when the gap is large"},
+  };
+  return catalogue;
+}
+
+const CandidateEffect& candidateEffect(EffectKind kind)
+{
+  static const CandidateEffect base{EffectKind::none, "none", {}, "the base OVRV model"};
+  if (kind == EffectKind::none)
+  {
+    return base;
+  }
+  for (const CandidateEffect& effect : candidateEffects())
+  {
+    if (effect.kind == kind)
+    {
+      return effect;
+    }
+  }
+  throw std::invalid_argument("unknown effect kind");
+}
+
+std::string effectName(EffectKind kind) { return candidateEffect(kind).name; }
+
+bool parseEffectName(const std::string& name, EffectKind* kind)
+{
+  if (name == "none")
+  {
+    *kind = EffectKind::none;
+    return true;
+  }
+  for (const CandidateEffect& effect : candidateEffects())
+  {
+    if (effect.name == name)
+    {
+      *kind = effect.kind;
+      return true;
+    }
+  }
+  return false;
+}
+
+EffectSettings makeEffectSettings(EffectKind kind, const std::vector<double>& values)
+{
+  if (values.size() != candidateEffect(kind).parameters.size())
+  {
+    throw std::invalid_argument("wrong number of parameters for effect " + effectName(kind));
+  }
+  EffectSettings s;
+  switch (kind)
+  {
+    case EffectKind::none: break;
+    case EffectKind::actuation_lag: s.actuation_lag_s = values[0]; break;
+    case EffectKind::reaction_delay: s.reaction_delay_s = values[0]; break;
+    case EffectKind::acceleration_limits:
+      s.max_acceleration_mps2 = values[0];
+      s.max_deceleration_mps2 = values[1];
+      break;
+    case EffectKind::sensor_time_offset: s.sensor_time_offset_s = values[0]; break;
+    case EffectKind::speed_dependent_time_gap: s.time_gap_speed_slope_s2_per_m = values[0]; break;
+    case EffectKind::set_speed_cruise:
+      s.set_speed_mps = values[0];
+      s.cruise_gain_per_s = values[1];
+      break;
+  }
+  return s;
+}
+
+std::vector<double> effectValues(EffectKind kind, const EffectSettings& s)
+{
+  switch (kind)
+  {
+    case EffectKind::none: return {};
+    case EffectKind::actuation_lag: return {s.actuation_lag_s};
+    case EffectKind::reaction_delay: return {s.reaction_delay_s};
+    case EffectKind::acceleration_limits: return {s.max_acceleration_mps2, s.max_deceleration_mps2};
+    case EffectKind::sensor_time_offset: return {s.sensor_time_offset_s};
+    case EffectKind::speed_dependent_time_gap: return {s.time_gap_speed_slope_s2_per_m};
+    case EffectKind::set_speed_cruise: return {s.set_speed_mps, s.cruise_gain_per_s};
+  }
+  return {};
+}
+
+}  // namespace acc_identification

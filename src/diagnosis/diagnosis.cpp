@@ -1,0 +1,160 @@
+#include "acc_identification/diagnosis/diagnosis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "acc_identification/diagnosis/augmented_simulation.h"
+
+namespace acc_identification
+{
+namespace
+{
+CarFollowingRun slice(const CarFollowingRun& run, std::size_t begin, std::size_t end, const std::string& suffix)
+{
+  CarFollowingRun part;
+  part.name = run.name + suffix;
+  part.time_s.assign(run.time_s.begin() + static_cast<long>(begin), run.time_s.begin() + static_cast<long>(end));
+  part.space_gap_m.assign(run.space_gap_m.begin() + static_cast<long>(begin),
+                          run.space_gap_m.begin() + static_cast<long>(end));
+  part.follower_speed_mps.assign(run.follower_speed_mps.begin() + static_cast<long>(begin),
+                                 run.follower_speed_mps.begin() + static_cast<long>(end));
+  part.leader_speed_mps.assign(run.leader_speed_mps.begin() + static_cast<long>(begin),
+                               run.leader_speed_mps.begin() + static_cast<long>(end));
+  return part;
+}
+
+void splitRuns(const std::vector<CarFollowingRun>& runs, const DiagnosisOptions& options, DiagnosisResult* out)
+{
+  for (const CarFollowingRun& run : runs)
+  {
+    const std::string problem = describeRunProblem(run);
+    if (!problem.empty())
+    {
+      out->notes.push_back("run '" + run.name + "' not used: " + problem);
+      continue;
+    }
+    const double split_time = run.time_s.front() + options.train_fraction * run.durationS();
+    const std::size_t split = static_cast<std::size_t>(
+        std::lower_bound(run.time_s.begin(), run.time_s.end(), split_time) - run.time_s.begin());
+    if (split < options.min_samples_per_half || run.size() - split < options.min_samples_per_half)
+    {
+      out->notes.push_back("run '" + run.name + "' not used: " + std::to_string(run.size()) +
+                           " samples leave fewer than " + std::to_string(options.min_samples_per_half) +
+                           " on one side of the train/test split");
+      continue;
+    }
+    out->train.push_back(slice(run, 0, split, "[train]"));
+    out->test.push_back(slice(run, split, run.size(), "[test]"));
+  }
+}
+
+double median(std::vector<double> values)
+{
+  if (values.empty())
+  {
+    return 0.0;
+  }
+  std::nth_element(values.begin(), values.begin() + static_cast<long>(values.size() / 2), values.end());
+  return values[values.size() / 2];
+}
+
+/// Scores a fit on the held-out halves; keeps the simulations and per-sample squared errors.
+ModelDiagnosis scoreModel(const AugmentedFit& fit, const DiagnosisResult& data, SquaredErrorsByRun* squared_errors)
+{
+  ModelDiagnosis model;
+  model.fit = fit;
+  model.train_rmse_speed_mps = std::sqrt(fit.train_mse_speed);
+  double speed_sum = 0.0;
+  double gap_sum = 0.0;
+  std::size_t count = 0;
+  squared_errors->clear();
+  for (const CarFollowingRun& run : data.test)
+  {
+    SimulatedFollower sim = simulateAugmentedFollower(fit.base, fit.settings, run);
+    model.test_diverged = model.test_diverged || sim.diverged;
+    std::vector<double> errors(run.size());
+    for (std::size_t k = 0; k < run.size(); ++k)
+    {
+      // A diverged simulation is scored at the divergence bound: a huge, finite error.
+      const bool lost = sim.diverged && k >= sim.diverged_at_index;
+      const double e = lost ? kDivergenceBound : run.follower_speed_mps[k] - sim.speed_mps[k];
+      const double g = lost ? kDivergenceBound : run.space_gap_m[k] - sim.space_gap_m[k];
+      errors[k] = e * e;
+      speed_sum += e * e;
+      gap_sum += g * g;
+    }
+    count += run.size();
+    squared_errors->push_back(errors);
+    model.test_simulations.push_back(std::move(sim));
+  }
+  model.test_rmse_speed_mps = count > 0 ? std::sqrt(speed_sum / static_cast<double>(count)) : 0.0;
+  model.test_rmse_gap_m = count > 0 ? std::sqrt(gap_sum / static_cast<double>(count)) : 0.0;
+  return model;
+}
+}  // namespace
+
+DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const DiagnosisOptions& options)
+{
+  DiagnosisResult result;
+  splitRuns(runs, options, &result);
+  if (result.train.empty())
+  {
+    throw std::invalid_argument("no run is long enough to fit on one part and score on the other");
+  }
+  std::vector<double> speeds;
+  std::vector<double> steps;
+  for (const CarFollowingRun& run : result.train)
+  {
+    speeds.insert(speeds.end(), run.follower_speed_mps.begin(), run.follower_speed_mps.end());
+    for (std::size_t k = 0; k + 1 < run.size(); ++k)
+    {
+      steps.push_back(run.time_s[k + 1] - run.time_s[k]);
+    }
+  }
+  result.operating_speed_mps = median(speeds);
+  result.sample_period_s = median(steps);
+
+  SquaredErrorsByRun base_errors;
+  const AugmentedFit base_fit = calibrateAugmented(EffectKind::none, result.train, options.calibration);
+  result.baseline = scoreModel(base_fit, result, &base_errors);
+  result.baseline.stability =
+      analyzeAugmentedStability(base_fit.base, EffectKind::none, base_fit.settings, result.operating_speed_mps);
+
+  std::vector<SquaredErrorsByRun> candidate_errors;
+  for (EffectKind kind : options.candidates)
+  {
+    const AugmentedFit fit = calibrateAugmented(kind, result.train, options.calibration, &base_fit);
+    SquaredErrorsByRun errors;
+    ModelDiagnosis model = scoreModel(fit, result, &errors);
+    model.stability = analyzeAugmentedStability(fit.base, kind, fit.settings, result.operating_speed_mps);
+    model.stability_verdict_changes = model.stability.string_stable != result.baseline.stability.string_stable;
+    result.effects.push_back(std::move(model));
+    candidate_errors.push_back(std::move(errors));
+  }
+  result.selection = selectEffect(base_errors, candidate_errors, options.candidates, result.sample_period_s,
+                                  options.selection);
+  result.selection_rule = describeSelectionRule(options.selection, options.candidates.size());
+  for (std::size_t k = 0; k < result.effects.size(); ++k)
+  {
+    result.effects[k].improvement = result.selection.versus_base[k];
+    result.effects[k].significant = result.selection.significant[k];
+  }
+  result.where = breakDownResiduals(result.test, result.baseline.test_simulations,
+                                    dominantModel(result).test_simulations, options.breakdown);
+  return result;
+}
+
+const ModelDiagnosis& dominantModel(const DiagnosisResult& result)
+{
+  for (const ModelDiagnosis& model : result.effects)
+  {
+    if (result.selection.dominant != EffectKind::none && model.fit.effect == result.selection.dominant)
+    {
+      return model;
+    }
+  }
+  return result.baseline;
+}
+
+}  // namespace acc_identification

@@ -1,0 +1,252 @@
+#include "acc_identification/diagnosis/diagnosis_output.h"
+
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+
+#include "acc_identification/diagnosis/augmented_simulation.h"
+
+namespace acc_identification
+{
+namespace
+{
+nlohmann::json number(double value)
+{
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+nlohmann::json parametersJson(const AugmentedFit& fit)
+{
+  nlohmann::json p;
+  p["k1_per_s2"] = number(fit.base.k1_per_s2);
+  p["k2_per_s"] = number(fit.base.k2_per_s);
+  p["tau_e_s"] = number(fit.base.tau_e_s);
+  p["eta_m"] = number(fit.base.eta_m);
+  const auto& specs = candidateEffect(fit.effect).parameters;
+  for (std::size_t i = 0; i < specs.size() && i < fit.effect_values.size(); ++i)
+  {
+    p[specs[i].name] = number(fit.effect_values[i]);
+  }
+  return p;
+}
+
+nlohmann::json standardErrorsJson(const AugmentedFit& fit)
+{
+  std::vector<std::string> names = {"k1_per_s2", "k2_per_s", "tau_e_s", "eta_m"};
+  for (const EffectParameterSpec& spec : candidateEffect(fit.effect).parameters)
+  {
+    names.push_back(spec.name);
+  }
+  nlohmann::json e = nlohmann::json::object();
+  for (std::size_t i = 0; i < names.size() && i < fit.standard_errors.size(); ++i)
+  {
+    e[names[i]] = number(fit.standard_errors[i]);
+  }
+  return e;
+}
+
+nlohmann::json stabilityJson(const AugmentedStability& s)
+{
+  return {{"peak_gain_db", number(s.peak_gain_db)},
+          {"peak_frequency_rad_s", number(s.peak_frequency_rad_s)},
+          {"string_stable", s.string_stable},
+          {"lambda2", number(s.lambda2)},
+          {"note", s.note}};
+}
+
+nlohmann::json improvementJson(const ImprovementEstimate& e)
+{
+  return {{"mean_mse_reduction", number(e.mean)},
+          {"relative", number(e.relative)},
+          {"lower_bound", number(e.lower_bound)},
+          {"upper_bound", number(e.upper_bound)}};
+}
+
+nlohmann::json modelJson(const ModelDiagnosis& m)
+{
+  nlohmann::json j;
+  j["name"] = effectName(m.fit.effect);
+  j["parameters"] = parametersJson(m.fit);
+  j["standard_errors"] = standardErrorsJson(m.fit);
+  j["train_rmse_speed"] = number(m.train_rmse_speed_mps);
+  j["test_rmse_speed"] = number(m.test_rmse_speed_mps);
+  j["test_rmse_gap"] = number(m.test_rmse_gap_m);
+  j["test_diverged"] = m.test_diverged;
+  j["fit_diverged"] = m.fit.diverged;
+  j["evaluations"] = m.fit.evaluations;
+  j["stability"] = stabilityJson(m.stability);
+  return j;
+}
+
+nlohmann::json groupsJson(const std::vector<ResidualGroup>& groups)
+{
+  nlohmann::json list = nlohmann::json::array();
+  for (const ResidualGroup& g : groups)
+  {
+    list.push_back({{"name", g.name},
+                    {"samples", g.samples},
+                    {"share_of_time", number(g.share_of_time)},
+                    {"rmse_speed_before", number(g.rmse_speed_before_mps)},
+                    {"rmse_gap_before", number(g.rmse_gap_before_m)},
+                    {"share_of_squared_speed_error", number(g.share_of_squared_speed_error)},
+                    {"share_of_squared_gap_error", number(g.share_of_squared_gap_error)},
+                    {"rmse_speed_after", number(g.rmse_speed_after_mps)},
+                    {"rmse_gap_after", number(g.rmse_gap_after_m)}});
+  }
+  return list;
+}
+
+nlohmann::json whereJson(const ResidualBreakdown& where)
+{
+  nlohmann::json j;
+  j["regimes"] = groupsJson(where.regimes);
+  j["speed_bands"] = groupsJson(where.speed_bands);
+  j["frequency_bands"] = nlohmann::json::array();
+  for (const FrequencyBand& b : where.frequency_bands)
+  {
+    j["frequency_bands"].push_back({{"name", b.name},
+                                    {"lower_hz", number(b.lower_hz)},
+                                    {"upper_hz", b.upper_hz > 0.0 ? number(b.upper_hz) : nlohmann::json(nullptr)},
+                                    {"share_of_squared_speed_error_before", number(b.share_of_speed_residual_power_before)},
+                                    {"share_of_squared_speed_error_after", number(b.share_of_speed_residual_power_after)}});
+  }
+  j["segments"] = nlohmann::json::array();
+  for (const WorstSegment& s : where.segments)
+  {
+    j["segments"].push_back({{"run", s.run},
+                             {"start_s", number(s.start_s)},
+                             {"end_s", number(s.end_s)},
+                             {"share_of_squared_speed_error", number(s.share_of_squared_speed_error)},
+                             {"rmse_speed_before", number(s.rmse_speed_before_mps)},
+                             {"rmse_speed_after", number(s.rmse_speed_after_mps)},
+                             {"rmse_gap_before", number(s.rmse_gap_before_m)},
+                             {"main_regime", s.main_regime}});
+  }
+  return j;
+}
+
+std::ofstream openForWriting(const std::string& path)
+{
+  std::ofstream out(path);
+  if (!out)
+  {
+    throw std::runtime_error("cannot write " + path);
+  }
+  out.precision(10);
+  return out;
+}
+}  // namespace
+
+nlohmann::json diagnosisToJson(const DiagnosisResult& r)
+{
+  nlohmann::json j;
+  j["dominant_effect"] = effectName(r.selection.dominant);
+  j["plausible_effects"] = nlohmann::json::array();
+  for (EffectKind kind : r.selection.plausible)
+  {
+    j["plausible_effects"].push_back(effectName(kind));
+  }
+  j["distinguishable_from_runner_up"] = r.selection.distinguishable;
+  j["baseline"] = modelJson(r.baseline);
+  j["effects"] = nlohmann::json::array();
+  for (std::size_t k = 0; k < r.effects.size(); ++k)
+  {
+    nlohmann::json e = modelJson(r.effects[k]);
+    e["significant"] = r.effects[k].significant;
+    e["improvement"] = improvementJson(r.effects[k].improvement);
+    e["stability_verdict_changes"] = r.effects[k].stability_verdict_changes;
+    e["how_it_enters"] = candidateEffect(r.effects[k].fit.effect).how_it_enters;
+    j["effects"].push_back(e);
+  }
+  j["ranking"] = nlohmann::json::array();
+  for (std::size_t index : r.selection.ranking)
+  {
+    j["ranking"].push_back(effectName(r.selection.candidates[index]));
+  }
+  j["selection"] = {{"rule", r.selection_rule},
+                    {"block_length_samples", number(r.selection.block_length_samples)},
+                    {"has_runner_up", r.selection.has_runner_up},
+                    {"best_versus_runner_up", improvementJson(r.selection.best_versus_runner_up)}};
+  j["where"] = whereJson(r.where);
+  j["operating_speed_mps"] = number(r.operating_speed_mps);
+  j["sample_period_s"] = number(r.sample_period_s);
+  j["runs"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < r.train.size(); ++i)
+  {
+    j["runs"].push_back({{"train", r.train[i].name},
+                         {"train_start_s", r.train[i].time_s.front()},
+                         {"train_end_s", r.train[i].time_s.back()},
+                         {"test", r.test[i].name},
+                         {"test_start_s", r.test[i].time_s.front()},
+                         {"test_end_s", r.test[i].time_s.back()},
+                         {"test_samples", r.test[i].size()}});
+  }
+  j["notes"] = r.notes;
+  return j;
+}
+
+void writeDiagnosisTables(const DiagnosisResult& r, const std::string& dir)
+{
+  const ModelDiagnosis& after = dominantModel(r);
+  {
+    std::ofstream out = openForWriting(dir + "/residuals.csv");
+    out << "run,time_s,regime,speed_mps,gap_m,base_speed_mps,base_gap_m,effect_speed_mps,effect_gap_m\n";
+    for (std::size_t i = 0; i < r.test.size(); ++i)
+    {
+      const CarFollowingRun& run = r.test[i];
+      const auto regimes = classifyRegimes(run, BreakdownOptions{});
+      const SimulatedFollower& b = r.baseline.test_simulations[i];
+      const SimulatedFollower& a = after.test_simulations[i];
+      for (std::size_t k = 0; k < run.size(); ++k)
+      {
+        out << run.name << ',' << run.time_s[k] << ',' << regimeName(regimes[k]) << ',' << run.follower_speed_mps[k]
+            << ',' << run.space_gap_m[k] << ',' << b.speed_mps[k] << ',' << b.space_gap_m[k] << ',' << a.speed_mps[k]
+            << ',' << a.space_gap_m[k] << '\n';
+      }
+    }
+  }
+  {
+    std::ofstream out = openForWriting(dir + "/train_fit.csv");
+    out << "run,time_s,speed_mps,base_speed_mps,effect_speed_mps\n";
+    for (const CarFollowingRun& run : r.train)
+    {
+      const SimulatedFollower b = simulateAugmentedFollower(r.baseline.fit.base, r.baseline.fit.settings, run);
+      const SimulatedFollower a = simulateAugmentedFollower(after.fit.base, after.fit.settings, run);
+      for (std::size_t k = 0; k < run.size(); ++k)
+      {
+        out << run.name << ',' << run.time_s[k] << ',' << run.follower_speed_mps[k] << ',' << b.speed_mps[k] << ','
+            << a.speed_mps[k] << '\n';
+      }
+    }
+  }
+  {
+    std::ofstream out = openForWriting(dir + "/spectrum.csv");
+    out << "run,frequency_hz,power_before,power_after\n";
+    for (const SpectrumPoint& p : r.where.spectrum)
+    {
+      out << p.run << ',' << p.frequency_hz << ',' << p.power_before << ',' << p.power_after << '\n';
+    }
+  }
+  {
+    std::ofstream out = openForWriting(dir + "/gain.csv");
+    out << "frequency_rad_s,base_db";
+    for (const ModelDiagnosis& m : r.effects)
+    {
+      out << ',' << effectName(m.fit.effect) << "_db";
+    }
+    out << '\n';
+    for (int i = 0; i <= 400; ++i)
+    {
+      const double w = 1e-3 * std::pow(1e4, i / 400.0);
+      out << w << ','
+          << 20.0 * std::log10(augmentedTransferGain(r.baseline.fit.base, r.baseline.fit.settings, r.operating_speed_mps, w));
+      for (const ModelDiagnosis& m : r.effects)
+      {
+        out << ',' << 20.0 * std::log10(augmentedTransferGain(m.fit.base, m.fit.settings, r.operating_speed_mps, w));
+      }
+      out << '\n';
+    }
+  }
+}
+
+}  // namespace acc_identification

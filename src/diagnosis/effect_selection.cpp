@@ -1,0 +1,218 @@
+#include "acc_identification/diagnosis/effect_selection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <stdexcept>
+
+namespace acc_identification
+{
+namespace
+{
+/// Paired differences a - b, run by run.
+SquaredErrorsByRun difference(const SquaredErrorsByRun& a, const SquaredErrorsByRun& b)
+{
+  SquaredErrorsByRun d(a.size());
+  for (std::size_t r = 0; r < a.size(); ++r)
+  {
+    if (a[r].size() != b[r].size())
+    {
+      throw std::invalid_argument("held-out errors of two models differ in length");
+    }
+    d[r].resize(a[r].size());
+    for (std::size_t t = 0; t < a[r].size(); ++t)
+    {
+      d[r][t] = a[r][t] - b[r][t];
+    }
+  }
+  return d;
+}
+
+double meanOf(const SquaredErrorsByRun& series)
+{
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const auto& run : series)
+  {
+    for (double value : run)
+    {
+      sum += value;
+    }
+    count += run.size();
+  }
+  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
+
+/// Moving-block bootstrap of the means of several paired series at once (same resampled blocks
+/// for all). Returns [resample][series]. Blocks wrap around each run's end (circular), so every
+/// sample is equally likely to be drawn.
+std::vector<std::vector<double>> bootstrapMeans(const std::vector<SquaredErrorsByRun>& series, std::size_t block,
+                                                const SelectionOptions& options)
+{
+  std::mt19937_64 rng(options.seed);
+  std::vector<std::vector<double>> means(options.resamples, std::vector<double>(series.size(), 0.0));
+  std::size_t total = 0;
+  for (const auto& run : series.front())
+  {
+    total += run.size();
+  }
+  for (std::size_t b = 0; b < options.resamples; ++b)
+  {
+    std::vector<double> sums(series.size(), 0.0);
+    for (std::size_t r = 0; r < series.front().size(); ++r)
+    {
+      const std::size_t n = series.front()[r].size();
+      if (n == 0)
+      {
+        continue;
+      }
+      std::uniform_int_distribution<std::size_t> start(0, n - 1);
+      for (std::size_t drawn = 0; drawn < n;)
+      {
+        const std::size_t s = start(rng);
+        const std::size_t length = std::min(block, n - drawn);
+        for (std::size_t i = 0; i < length; ++i)
+        {
+          const std::size_t t = (s + i) % n;
+          for (std::size_t k = 0; k < series.size(); ++k)
+          {
+            sums[k] += series[k][r][t];
+          }
+        }
+        drawn += length;
+      }
+    }
+    for (std::size_t k = 0; k < series.size(); ++k)
+    {
+      means[b][k] = total > 0 ? sums[k] / static_cast<double>(total) : 0.0;
+    }
+  }
+  return means;
+}
+
+double quantile(std::vector<double> values, double q)
+{
+  if (values.empty())
+  {
+    return 0.0;
+  }
+  const double position = std::clamp(q, 0.0, 1.0) * static_cast<double>(values.size() - 1);
+  const std::size_t lo = static_cast<std::size_t>(std::floor(position));
+  const std::size_t hi = std::min(values.size() - 1, lo + 1);
+  std::nth_element(values.begin(), values.begin() + static_cast<long>(lo), values.end());
+  const double a = values[lo];
+  std::nth_element(values.begin(), values.begin() + static_cast<long>(hi), values.end());
+  const double b = values[hi];
+  return a + (position - static_cast<double>(lo)) * (b - a);
+}
+
+std::vector<double> column(const std::vector<std::vector<double>>& matrix, std::size_t k)
+{
+  std::vector<double> values;
+  for (const auto& row : matrix)
+  {
+    values.push_back(row[k]);
+  }
+  return values;
+}
+
+ImprovementEstimate estimate(const SquaredErrorsByRun& diff, const std::vector<double>& boot, double level,
+                             double base_mse)
+{
+  ImprovementEstimate e;
+  e.mean = meanOf(diff);
+  e.relative = base_mse > 0.0 ? e.mean / base_mse : 0.0;
+  e.lower_bound = quantile(boot, level);
+  e.upper_bound = quantile(boot, 1.0 - level);
+  return e;
+}
+}  // namespace
+
+SelectionResult selectEffect(const SquaredErrorsByRun& base, const std::vector<SquaredErrorsByRun>& candidates,
+                             const std::vector<EffectKind>& kinds, double sample_period_s,
+                             const SelectionOptions& options)
+{
+  SelectionResult result;
+  result.candidates = kinds;
+  const std::size_t K = candidates.size();
+  if (K == 0)
+  {
+    return result;
+  }
+  const std::size_t block = std::max<std::size_t>(
+      1, static_cast<std::size_t>(std::lround(options.block_length_s / std::max(sample_period_s, 1e-9))));
+  result.block_length_samples = static_cast<double>(block);
+  const double base_mse = meanOf(base);
+  std::vector<SquaredErrorsByRun> diffs;
+  for (const SquaredErrorsByRun& c : candidates)
+  {
+    diffs.push_back(difference(base, c));
+  }
+  const auto boot = bootstrapMeans(diffs, block, options);
+  const double level = options.alpha / static_cast<double>(K);
+  for (std::size_t k = 0; k < K; ++k)
+  {
+    result.versus_base.push_back(estimate(diffs[k], column(boot, k), level, base_mse));
+    const ImprovementEstimate& e = result.versus_base.back();
+    result.significant.push_back(e.lower_bound > 0.0 && e.relative >= options.min_relative_improvement);
+    result.ranking.push_back(k);
+  }
+  std::stable_sort(result.ranking.begin(), result.ranking.end(), [&](std::size_t a, std::size_t b) {
+    return result.versus_base[a].mean > result.versus_base[b].mean;
+  });
+  const std::size_t best = result.ranking.front();
+  if (!result.significant[best])
+  {
+    return result;  // the largest improvement is not significant, so none is reported
+  }
+  result.dominant = kinds[best];
+  result.plausible.push_back(kinds[best]);
+  result.distinguishable = true;
+  // Paired comparisons of the best against every other significant effect (the same bootstrap
+  // blocks: the difference of two columns is the bootstrap of the difference of the series).
+  for (std::size_t rank = 1; rank < K; ++rank)
+  {
+    const std::size_t j = result.ranking[rank];
+    if (!result.significant[j])
+    {
+      continue;
+    }
+    std::vector<double> boot_difference;
+    for (const auto& row : boot)
+    {
+      boot_difference.push_back(row[best] - row[j]);
+    }
+    const ImprovementEstimate versus =
+        estimate(difference(candidates[j], candidates[best]), boot_difference, options.alpha, base_mse);
+    if (!result.has_runner_up)
+    {
+      result.has_runner_up = true;
+      result.best_versus_runner_up = versus;
+    }
+    if (!(versus.lower_bound > 0.0))
+    {
+      result.plausible.push_back(kinds[j]);
+      result.distinguishable = false;
+    }
+  }
+  return result;
+}
+
+std::string describeSelectionRule(const SelectionOptions& options, std::size_t candidates)
+{
+  char text[1024];
+  std::snprintf(text, sizeof text,
+                "Held-out paired squared speed errors d_k(t) = e_base(t)^2 - e_k(t)^2; moving-block bootstrap "
+                "(%g s blocks, %zu resamples, within runs, the same blocks for every effect). An effect is "
+                "significant when the one-sided %.4g%% lower bound (alpha %g / %zu effects, Bonferroni) of its mean "
+                "improvement is above 0 and the improvement is at least %g%% of the base model's held-out MSE. "
+                "The dominant effect is the significant one with the largest improvement (none if none is); "
+                "another significant effect is indistinguishable from it when the one-sided %g%% lower bound of "
+                "their paired difference is not above 0.",
+                options.block_length_s, options.resamples, 100.0 * (1.0 - options.alpha / static_cast<double>(candidates)),
+                options.alpha, candidates, 100.0 * options.min_relative_improvement, 100.0 * (1.0 - options.alpha));
+  return text;
+}
+
+}  // namespace acc_identification

@@ -1,0 +1,322 @@
+#include "acc_identification/diagnosis/withheld_effect_suite.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <random>
+#include <sstream>
+
+#include "acc_identification/diagnosis/augmented_simulation.h"
+
+namespace acc_identification
+{
+namespace
+{
+/// Moves `speed` towards `target` at the given rates for one step.
+double ramp(double speed, double target, double up_mps2, double down_mps2, double step_s)
+{
+  if (target > speed)
+  {
+    return std::min(target, speed + up_mps2 * step_s);
+  }
+  return std::max(target, speed - down_mps2 * step_s);
+}
+
+/// Held speeds [m/s] and how long each is held [s], cycled until the duration is filled.
+std::vector<double> heldSpeeds(const std::vector<std::pair<double, double>>& holds, double up, double down,
+                               double duration_s, double step_s)
+{
+  const std::size_t n = static_cast<std::size_t>(std::floor(duration_s / step_s)) + 1;
+  std::vector<double> speed(n);
+  double v = holds.front().first;
+  std::size_t hold = 0;
+  double held_for = 0.0;
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    speed[k] = v;
+    const double target = holds[hold].first;
+    if (std::abs(v - target) < 1e-9)
+    {
+      held_for += step_s;
+      if (held_for >= holds[hold].second)
+      {
+        hold = (hold + 1) % holds.size();
+        held_for = 0.0;
+      }
+    }
+    v = ramp(v, holds[hold].first, up, down, step_s);
+  }
+  return speed;
+}
+
+/// Distance the leader covers over [t - delta, t] (trapezoid over the sampled true speed).
+double distanceOver(const std::vector<double>& time_s, const std::vector<double>& speed, std::size_t k, double delta)
+{
+  const double step = time_s[1] - time_s[0];
+  const double start = time_s[k] - delta;
+  double distance = 0.0;
+  const std::size_t substeps = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(std::abs(delta) / step * 4)));
+  const double h = delta / static_cast<double>(substeps);
+  auto speed_at = [&](double t) {
+    const double position = std::clamp((t - time_s[0]) / step, 0.0, static_cast<double>(speed.size() - 1));
+    const std::size_t i = std::min(static_cast<std::size_t>(position), speed.size() - 2);
+    const double w = position - static_cast<double>(i);
+    return speed[i] + w * (speed[i + 1] - speed[i]);
+  };
+  for (std::size_t i = 0; i < substeps; ++i)
+  {
+    const double a = start + h * static_cast<double>(i);
+    distance += 0.5 * h * (speed_at(a) + speed_at(a + h));
+  }
+  return distance;
+}
+
+double primaryValue(const WithheldCase& c)
+{
+  return c.truth_values.empty() ? std::numeric_limits<double>::quiet_NaN() : c.truth_values.front();
+}
+
+double median(std::vector<double> v)
+{
+  if (v.empty())
+  {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+}  // namespace
+
+std::string leadProfileName(SyntheticLeadProfile profile)
+{
+  switch (profile)
+  {
+    case SyntheticLeadProfile::steps: return "steps";
+    case SyntheticLeadProfile::oscillation: return "oscillation";
+    case SyntheticLeadProfile::dip: return "dip";
+  }
+  return "unknown";
+}
+
+std::vector<double> syntheticLeaderSpeed(SyntheticLeadProfile profile, double duration_s, double step_s)
+{
+  switch (profile)
+  {
+    case SyntheticLeadProfile::steps:
+      return heldSpeeds({{22.0, 30.0}, {30.0, 35.0}, {16.0, 30.0}, {27.0, 30.0}, {12.0, 25.0}}, 1.5, 2.5, duration_s,
+                        step_s);
+    case SyntheticLeadProfile::dip:
+      return heldSpeeds({{28.0, 50.0}, {8.0, 15.0}, {28.0, 40.0}, {33.0, 30.0}, {15.0, 20.0}}, 2.0, 3.5, duration_s,
+                        step_s);
+    case SyntheticLeadProfile::oscillation:
+    {
+      const std::size_t n = static_cast<std::size_t>(std::floor(duration_s / step_s)) + 1;
+      std::vector<double> speed(n);
+      const double pi = 3.14159265358979323846;
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        const double t = static_cast<double>(k) * step_s;
+        speed[k] = 22.0 + 5.0 * std::sin(2 * pi * t / 60.0) + 2.5 * std::sin(2 * pi * t / 23.0 + 1.0) +
+                   1.2 * std::sin(2 * pi * t / 9.0 + 2.0);
+      }
+      return speed;
+    }
+  }
+  return {};
+}
+
+CarFollowingRun synthesizeWithheldRun(const WithheldCase& c)
+{
+  CarFollowingRun truth;
+  truth.name = effectName(c.truth) + "_" + leadProfileName(c.profile) + "_seed" + std::to_string(c.seed);
+  truth.leader_speed_mps = syntheticLeaderSpeed(c.profile, c.duration_s, c.step_s);
+  const std::size_t n = truth.leader_speed_mps.size();
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    truth.time_s.push_back(static_cast<double>(k) * c.step_s);
+  }
+  EffectSettings effects = makeEffectSettings(c.truth, c.truth_values);
+  const double v0 = std::min(truth.leader_speed_mps[0], effects.set_speed_mps);
+  const double s0 = c.base.eta_m + c.base.tau_e_s * v0 + effects.time_gap_speed_slope_s2_per_m * v0 * v0;
+  truth.follower_speed_mps.assign(n, v0);
+  truth.space_gap_m.assign(n, s0);
+  // Simulate the truth with the true leader (no clock offset: that only changes the record).
+  const double offset = effects.sensor_time_offset_s;
+  effects.sensor_time_offset_s = 0.0;
+  const SimulatedFollower sim = simulateAugmentedFollower(c.base, effects, truth);
+  CarFollowingRun recorded = truth;
+  recorded.follower_speed_mps = sim.speed_mps;
+  recorded.space_gap_m = sim.space_gap_m;
+  if (offset != 0.0)
+  {
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const double t_true = truth.time_s[k] - offset;
+      const double position = std::clamp(t_true / c.step_s, 0.0, static_cast<double>(n - 1));
+      const std::size_t i = std::min(static_cast<std::size_t>(position), n - 2);
+      const double w = position - static_cast<double>(i);
+      recorded.leader_speed_mps[k] =
+          truth.leader_speed_mps[i] + w * (truth.leader_speed_mps[i + 1] - truth.leader_speed_mps[i]);
+      recorded.space_gap_m[k] = sim.space_gap_m[k] - distanceOver(truth.time_s, truth.leader_speed_mps, k, offset);
+    }
+  }
+  std::mt19937 rng(c.seed);
+  std::normal_distribution<double> speed_noise(0.0, c.speed_noise_std_mps);
+  std::normal_distribution<double> gap_noise(0.0, c.gap_noise_std_m);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    recorded.follower_speed_mps[k] += speed_noise(rng);
+    recorded.leader_speed_mps[k] += speed_noise(rng);
+    recorded.space_gap_m[k] += gap_noise(rng);
+  }
+  return recorded;
+}
+
+WithheldOutcome runWithheldCase(const WithheldCase& c, const DiagnosisOptions& options)
+{
+  WithheldOutcome outcome;
+  outcome.input = c;
+  const DiagnosisResult result = diagnoseRuns({synthesizeWithheldRun(c)}, options);
+  outcome.dominant = result.selection.dominant;
+  outcome.plausible = result.selection.plausible;
+  outcome.base_test_rmse_speed_mps = result.baseline.test_rmse_speed_mps;
+  outcome.recovered_magnitude = std::numeric_limits<double>::quiet_NaN();
+  outcome.effect_test_rmse_speed_mps = result.baseline.test_rmse_speed_mps;
+  for (const ModelDiagnosis& model : result.effects)
+  {
+    if (model.fit.effect == c.truth)
+    {
+      outcome.recovered_magnitude = model.fit.effect_values.empty() ? outcome.recovered_magnitude
+                                                                    : model.fit.effect_values.front();
+      outcome.effect_test_rmse_speed_mps = model.test_rmse_speed_mps;
+    }
+  }
+  return outcome;
+}
+
+std::vector<WithheldCase> withheldCaseGrid(std::size_t magnitudes_per_effect,
+                                           const std::vector<SyntheticLeadProfile>& profiles,
+                                           const std::vector<double>& noise_scales, std::size_t seeds)
+{
+  // Magnitudes in the range reported for production ACCs; set speeds are below the profiles'
+  // top speeds (30-33 m/s) so that the leader pulls away at times.
+  const std::map<EffectKind, std::vector<std::vector<double>>> magnitudes = {
+      {EffectKind::none, {{}}},
+      {EffectKind::actuation_lag, {{0.6}, {1.0}, {0.35}}},
+      {EffectKind::reaction_delay, {{0.6}, {1.0}, {0.35}}},
+      {EffectKind::acceleration_limits, {{1.0, 2.0}, {1.3, 1.5}, {0.8, 3.0}}},
+      {EffectKind::sensor_time_offset, {{0.8}, {-0.6}, {1.5}}},
+      {EffectKind::speed_dependent_time_gap, {{0.02}, {-0.015}, {0.01}}},
+      {EffectKind::set_speed_cruise, {{25.0, 0.4}, {27.0, 0.25}, {24.0, 0.6}}},
+  };
+  std::vector<WithheldCase> grid;
+  std::uint32_t seed_base = 1;
+  for (const auto& [kind, list] : magnitudes)
+  {
+    // The no-effect case gets as many repetitions as an effect gets magnitudes.
+    const std::size_t count = kind == EffectKind::none ? magnitudes_per_effect : std::min(magnitudes_per_effect, list.size());
+    for (std::size_t m = 0; m < count; ++m)
+    {
+      for (SyntheticLeadProfile profile : profiles)
+      {
+        for (double noise : noise_scales)
+        {
+          for (std::size_t s = 0; s < seeds; ++s)
+          {
+            WithheldCase c;
+            c.truth = kind;
+            c.truth_values = list[kind == EffectKind::none ? 0 : m];
+            c.profile = profile;
+            c.speed_noise_std_mps *= noise;
+            c.gap_noise_std_m *= noise;
+            c.seed = seed_base++;
+            grid.push_back(c);
+          }
+        }
+      }
+    }
+  }
+  return grid;
+}
+
+ConfusionMatrix confusionMatrix(const std::vector<WithheldOutcome>& outcomes)
+{
+  ConfusionMatrix matrix;
+  matrix.labels.push_back(EffectKind::none);
+  for (const CandidateEffect& effect : candidateEffects())
+  {
+    matrix.labels.push_back(effect.kind);
+  }
+  matrix.counts.assign(matrix.labels.size(), std::vector<std::size_t>(matrix.labels.size(), 0));
+  auto index = [&](EffectKind kind) {
+    return static_cast<std::size_t>(std::find(matrix.labels.begin(), matrix.labels.end(), kind) - matrix.labels.begin());
+  };
+  for (const WithheldOutcome& o : outcomes)
+  {
+    ++matrix.counts[index(o.input.truth)][index(o.dominant)];
+    const bool in_plausible = o.input.truth == EffectKind::none
+                                  ? o.plausible.empty()
+                                  : std::find(o.plausible.begin(), o.plausible.end(), o.input.truth) != o.plausible.end();
+    matrix.truth_in_plausible += in_plausible ? 1 : 0;
+    ++matrix.cases;
+  }
+  return matrix;
+}
+
+std::string formatConfusionMatrix(const ConfusionMatrix& matrix)
+{
+  std::ostringstream out;
+  out << "| truth \\ named |";
+  for (EffectKind label : matrix.labels)
+  {
+    out << " " << effectName(label) << " |";
+  }
+  out << "\n|---|";
+  for (std::size_t i = 0; i < matrix.labels.size(); ++i)
+  {
+    out << "---|";
+  }
+  out << "\n";
+  std::size_t correct = 0;
+  for (std::size_t r = 0; r < matrix.labels.size(); ++r)
+  {
+    out << "| " << effectName(matrix.labels[r]) << " |";
+    for (std::size_t c = 0; c < matrix.labels.size(); ++c)
+    {
+      out << " " << matrix.counts[r][c] << " |";
+    }
+    out << "\n";
+    correct += matrix.counts[r][r];
+  }
+  out << "\nnamed correctly: " << correct << " of " << matrix.cases << "; truth in the plausible set: "
+      << matrix.truth_in_plausible << " of " << matrix.cases << "\n";
+  return out.str();
+}
+
+std::string formatMagnitudeRecovery(const std::vector<WithheldOutcome>& outcomes)
+{
+  std::ostringstream out;
+  out << "| effect | parameter | cases named correctly | median abs. error | median rel. error |\n|---|---|---|---|---|\n";
+  for (const CandidateEffect& effect : candidateEffects())
+  {
+    std::vector<double> absolute, relative;
+    for (const WithheldOutcome& o : outcomes)
+    {
+      if (o.input.truth == effect.kind && o.dominant == effect.kind)
+      {
+        const double truth = primaryValue(o.input);
+        absolute.push_back(std::abs(o.recovered_magnitude - truth));
+        relative.push_back(std::abs(o.recovered_magnitude - truth) / std::abs(truth));
+      }
+    }
+    char row[256];
+    std::snprintf(row, sizeof row, "| %s | %s | %zu | %.4g | %.1f%% |\n", effect.name.c_str(),
+                  effect.parameters.front().name.c_str(), absolute.size(), median(absolute), 100.0 * median(relative));
+    out << row;
+  }
+  return out.str();
+}
+
+}  // namespace acc_identification

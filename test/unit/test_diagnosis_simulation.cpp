@@ -1,0 +1,227 @@
+// The augmented simulator, the catalogue, the transfer functions and the residual breakdown.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+
+#include "acc_identification/diagnosis/augmented_simulation.h"
+#include "acc_identification/diagnosis/augmented_stability.h"
+#include "acc_identification/diagnosis/candidate_effects.h"
+#include "acc_identification/diagnosis/residual_breakdown.h"
+#include "acc_identification/diagnosis/withheld_effect_suite.h"
+#include "acc_identification/string_stability.h"
+
+namespace aci = acc_identification;
+
+namespace
+{
+const aci::AccParameters kParameters{0.08, 0.45, 1.2, 4.0};
+
+aci::CarFollowingRun dipRun()
+{
+  aci::WithheldCase c;
+  c.profile = aci::SyntheticLeadProfile::dip;
+  c.duration_s = 200.0;
+  return aci::synthesizeWithheldRun(c);
+}
+
+/// Irregular sampling on purpose: the reduction must hold for any step.
+aci::CarFollowingRun irregularRun()
+{
+  aci::CarFollowingRun run = dipRun();
+  for (std::size_t k = 0; k < run.size(); ++k)
+  {
+    run.time_s[k] += 0.03 * std::sin(0.7 * static_cast<double>(k));
+  }
+  return run;
+}
+}  // namespace
+
+TEST(AugmentedSimulation, ReducesBitForBitToTheBaseModelWhenEveryEffectIsOff)
+{
+  for (const aci::CarFollowingRun& run : {dipRun(), irregularRun()})
+  {
+    ASSERT_EQ(aci::describeRunProblem(run), "");
+    const aci::SimulatedFollower base = aci::simulateFollower(kParameters, run);
+    const aci::SimulatedFollower augmented = aci::simulateAugmentedFollower(kParameters, aci::EffectSettings{}, run);
+    ASSERT_EQ(base.speed_mps.size(), augmented.speed_mps.size());
+    for (std::size_t k = 0; k < run.size(); ++k)
+    {
+      ASSERT_EQ(base.speed_mps[k], augmented.speed_mps[k]) << k;
+      ASSERT_EQ(base.space_gap_m[k], augmented.space_gap_m[k]) << k;
+    }
+    EXPECT_EQ(base.diverged, augmented.diverged);
+  }
+}
+
+TEST(AugmentedSimulation, TinyEffectsApproachTheBaseModelContinuously)
+{
+  const aci::CarFollowingRun run = dipRun();
+  const aci::SimulatedFollower base = aci::simulateFollower(kParameters, run);
+  for (const aci::CandidateEffect& effect : aci::candidateEffects())
+  {
+    std::vector<double> values;
+    for (const auto& spec : effect.parameters)
+    {
+      values.push_back(spec.lower);
+    }
+    if (effect.kind == aci::EffectKind::acceleration_limits || effect.kind == aci::EffectKind::set_speed_cruise)
+    {
+      values = {1e3, 1e3};  // limits and set speed far away
+    }
+    else
+    {
+      values = {1e-6};
+    }
+    const auto sim = aci::simulateAugmentedFollower(kParameters, aci::makeEffectSettings(effect.kind, values), run);
+    double worst = 0.0;
+    for (std::size_t k = 0; k < run.size(); ++k)
+    {
+      worst = std::max(worst, std::abs(sim.speed_mps[k] - base.speed_mps[k]));
+    }
+    EXPECT_LT(worst, 1e-3) << effect.name;
+  }
+}
+
+TEST(AugmentedSimulation, EachEffectChangesTheResponseTheWayItShould)
+{
+  const aci::CarFollowingRun run = dipRun();
+  const aci::SimulatedFollower base = aci::simulateFollower(kParameters, run);
+  auto simulate = [&](aci::EffectKind kind, std::vector<double> values) {
+    return aci::simulateAugmentedFollower(kParameters, aci::makeEffectSettings(kind, values), run);
+  };
+  // Limits: the realised acceleration never exceeds them.
+  const auto limited = simulate(aci::EffectKind::acceleration_limits, {1.0, 1.5});
+  double max_acc = 0.0, max_dec = 0.0, base_max_dec = 0.0;
+  for (std::size_t k = 0; k + 1 < run.size(); ++k)
+  {
+    const double h = run.time_s[k + 1] - run.time_s[k];
+    max_acc = std::max(max_acc, (limited.speed_mps[k + 1] - limited.speed_mps[k]) / h);
+    max_dec = std::max(max_dec, -(limited.speed_mps[k + 1] - limited.speed_mps[k]) / h);
+    base_max_dec = std::max(base_max_dec, -(base.speed_mps[k + 1] - base.speed_mps[k]) / h);
+  }
+  EXPECT_LE(max_acc, 1.0 + 1e-9);
+  EXPECT_LE(max_dec, 1.5 + 1e-9);
+  EXPECT_GT(base_max_dec, 1.5);  // the profile does ask for more
+  // Set speed: the run starts at 28 m/s; once the follower has slowed to its 20 m/s set speed it
+  // never exceeds it again, although the leader goes back to 28 and 33 m/s.
+  const auto cruise = simulate(aci::EffectKind::set_speed_cruise, {20.0, 0.5});
+  bool reached = false;
+  double above_after_reaching = 0.0;
+  for (double v : cruise.speed_mps)
+  {
+    reached = reached || v <= 20.0 + 1e-6;
+    above_after_reaching = reached ? std::max(above_after_reaching, v - 20.0) : above_after_reaching;
+  }
+  EXPECT_TRUE(reached);
+  EXPECT_LE(above_after_reaching, 1e-6);
+  // Lag and delay: the follower reacts later to the leader's first braking.
+  auto first_below = [&](const aci::SimulatedFollower& sim, double speed) {
+    for (std::size_t k = 0; k < run.size(); ++k)
+    {
+      if (sim.speed_mps[k] < speed)
+      {
+        return run.time_s[k];
+      }
+    }
+    return run.time_s.back();
+  };
+  // The onset of braking (0.5 m/s below the speed held before the dip) comes later.
+  const double held = base.speed_mps[400];
+  const double base_time = first_below(base, held - 0.5);
+  EXPECT_GT(first_below(simulate(aci::EffectKind::actuation_lag, {1.0}), held - 0.5), base_time + 0.3);
+  EXPECT_GT(first_below(simulate(aci::EffectKind::reaction_delay, {1.0}), held - 0.5), base_time + 0.5);
+  // Clock offset: the recorded gap differs from the true one by about delta u at steady speed.
+  const auto offset = simulate(aci::EffectKind::sensor_time_offset, {1.0});
+  EXPECT_NEAR(offset.space_gap_m[0], run.space_gap_m[0], 1e-12);
+}
+
+TEST(AugmentedStability, ReproducesThePaperTransferFunctionWhenEveryEffectIsOff)
+{
+  const aci::AugmentedStability s =
+      aci::analyzeAugmentedStability(kParameters, aci::EffectKind::none, aci::EffectSettings{}, 25.0);
+  const aci::StringStabilityReport reference = aci::analyzeStringStability(kParameters);
+  EXPECT_EQ(s.string_stable, reference.string_stable);
+  EXPECT_NEAR(s.peak_gain_db, reference.peak_gain_db, 1e-9);
+  for (double w : {0.01, 0.1, 0.5, 2.0})
+  {
+    EXPECT_NEAR(aci::augmentedTransferGain(kParameters, aci::EffectSettings{}, 25.0, w),
+                aci::transferGain(kParameters, w), 1e-12);
+  }
+}
+
+TEST(AugmentedStability, LagAndDelayRaiseThePeakAndCanFlipTheVerdict)
+{
+  // A law that is string stable without lag (lambda2 < 0, no amplified band).
+  const aci::AccParameters stable{0.05, 0.6, 1.6, 4.0};
+  ASSERT_TRUE(aci::analyzeStringStability(stable).string_stable);
+  aci::EffectSettings lag;
+  lag.actuation_lag_s = 1.5;
+  const auto lagged = aci::analyzeAugmentedStability(stable, aci::EffectKind::actuation_lag, lag, 25.0);
+  EXPECT_FALSE(lagged.string_stable);
+  EXPECT_GT(lagged.peak_gain_db, 0.0);
+  aci::EffectSettings delay;
+  delay.reaction_delay_s = 1.5;
+  const auto delayed = aci::analyzeAugmentedStability(stable, aci::EffectKind::reaction_delay, delay, 25.0);
+  EXPECT_FALSE(delayed.string_stable);
+  // The closed form of MATH.md for the lag at one frequency.
+  const double w = 0.3;
+  const std::complex<double> s(0.0, w);
+  const std::complex<double> expected = (0.6 * s + 0.05) / (1.5 * s * s * s + s * s + (0.6 + 0.05 * 1.6) * s + 0.05);
+  EXPECT_NEAR(aci::augmentedTransferGain(stable, lag, 25.0, w), std::abs(expected), 1e-12);
+  // Limits and a set speed leave the small-signal model unchanged.
+  aci::EffectSettings limits = aci::makeEffectSettings(aci::EffectKind::acceleration_limits, {1.0, 2.0});
+  EXPECT_NEAR(aci::augmentedTransferGain(stable, limits, 25.0, w), aci::transferGain(stable, w), 1e-12);
+}
+
+TEST(ResidualBreakdown, SharesSumToOneAndTheWorstSegmentHoldsTheInjectedError)
+{
+  aci::CarFollowingRun run = dipRun();
+  aci::SimulatedFollower model = aci::simulateFollower(kParameters, run);
+  // Inject a 2 m/s error between 100 s and 105 s only.
+  for (std::size_t k = 0; k < run.size(); ++k)
+  {
+    model.speed_mps[k] = run.follower_speed_mps[k] + ((run.time_s[k] >= 100.0 && run.time_s[k] < 105.0) ? 2.0 : 0.01);
+  }
+  const auto breakdown = aci::breakDownResiduals({run}, {model}, {model}, aci::BreakdownOptions{});
+  double regime_share = 0.0, speed_share = 0.0, band_share = 0.0;
+  for (const auto& g : breakdown.regimes)
+  {
+    regime_share += g.share_of_squared_speed_error;
+  }
+  for (const auto& g : breakdown.speed_bands)
+  {
+    speed_share += g.share_of_squared_speed_error;
+  }
+  for (const auto& b : breakdown.frequency_bands)
+  {
+    band_share += b.share_of_speed_residual_power_before;
+  }
+  EXPECT_NEAR(regime_share, 1.0, 1e-9);
+  EXPECT_NEAR(speed_share, 1.0, 1e-9);
+  EXPECT_NEAR(band_share, 1.0, 1e-9);  // Parseval: the spectrum holds the whole squared error
+  ASSERT_FALSE(breakdown.segments.empty());
+  EXPECT_LE(breakdown.segments[0].start_s, 100.0);
+  EXPECT_GE(breakdown.segments[0].end_s, 104.9);
+  EXPECT_GT(breakdown.segments[0].share_of_squared_speed_error, 0.9);
+}
+
+TEST(CandidateEffects, NamesRoundTripAndSettingsInvert)
+{
+  EXPECT_EQ(aci::candidateEffects().size(), 6u);
+  for (const aci::CandidateEffect& effect : aci::candidateEffects())
+  {
+    aci::EffectKind parsed = aci::EffectKind::none;
+    ASSERT_TRUE(aci::parseEffectName(effect.name, &parsed));
+    EXPECT_EQ(parsed, effect.kind);
+    std::vector<double> values;
+    for (const auto& spec : effect.parameters)
+    {
+      values.push_back(0.5 * (spec.start_lower + spec.start_upper));
+    }
+    EXPECT_EQ(aci::effectValues(effect.kind, aci::makeEffectSettings(effect.kind, values)), values);
+  }
+  aci::EffectKind unused;
+  EXPECT_FALSE(aci::parseEffectName("brake_fade", &unused));
+  EXPECT_THROW(aci::makeEffectSettings(aci::EffectKind::actuation_lag, {}), std::invalid_argument);
+}
