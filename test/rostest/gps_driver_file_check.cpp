@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <acc_identification/GnssFix.h>
@@ -52,6 +53,8 @@ Received receiveAll()
 
 TEST(GpsDriverFile, PublishesEveryLineAndOneFixPerEpoch)
 {
+  std::string frame_id;
+  ASSERT_TRUE(ros::NodeHandle("~").getParam("expected_frame_id", frame_id));
   const Received r = receiveAll();
   EXPECT_EQ(r.sentences.size(), 600u);
   ASSERT_EQ(r.fixes.size(), 100u);
@@ -59,13 +62,13 @@ TEST(GpsDriverFile, PublishesEveryLineAndOneFixPerEpoch)
   EXPECT_EQ(r.vel.size(), 100u);
   ASSERT_FALSE(r.sentences.empty());
   EXPECT_EQ(r.sentences[0].sentence.substr(0, 7), "$GNRMC,");
-  EXPECT_EQ(r.sentences[0].header.frame_id, "leader_gps");
+  EXPECT_EQ(r.sentences[0].header.frame_id, frame_id);
 
   // Start-up epochs: time of day only, VALID_DATE clear.
   const auto& first = r.fixes[0];
   EXPECT_EQ(first.valid_fields & acc_identification::GnssFix::VALID_DATE, 0u);
   EXPECT_NEAR(first.header.stamp.toSec(), kStartTimeOfDay, 1e-3);
-  EXPECT_EQ(first.header.frame_id, "leader_gps");
+  EXPECT_EQ(first.header.frame_id, frame_id);
   // From the fourth epoch: full UTC time.
   const auto& dated = r.fixes[3];
   EXPECT_NE(dated.valid_fields & acc_identification::GnssFix::VALID_DATE, 0u);
