@@ -67,3 +67,26 @@ if(benchmark_FOUND)
   add_executable(bench_calibration bench/bench_calibration.cpp)
   target_link_libraries(bench_calibration acc_calibration benchmark::benchmark)
 endif()
+
+# identifier_node: the sliding-window identifier (ROS wrapper and its ten-line main).
+add_library(acc_identifier_ros src/ros/identifier_ros.cpp)
+target_include_directories(acc_identifier_ros PUBLIC include ${catkin_INCLUDE_DIRS})
+target_link_libraries(acc_identifier_ros acc_calibration ${catkin_LIBRARIES})
+add_dependencies(acc_identifier_ros ${PROJECT_NAME}_generate_messages_cpp)
+add_executable(identifier_node src/nodes/identifier_node.cpp)
+target_link_libraries(identifier_node acc_identifier_ros)
+install(TARGETS acc_identifier_ros identifier_node
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+install(FILES launch/identifier.launch DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/launch)
+install(FILES config/identifier.yaml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/config)
+
+if(CATKIN_ENABLE_TESTING)
+  find_package(rostest REQUIRED)
+  # relative_state in, acc_parameters out, on simulated time.
+  add_rostest_gtest(test_identifier_rostest test/rostest/identifier.test test/rostest/identifier_check.cpp)
+  target_include_directories(test_identifier_rostest PRIVATE include ${catkin_INCLUDE_DIRS})
+  target_link_libraries(test_identifier_rostest acc_calibration ${catkin_LIBRARIES})
+  add_dependencies(test_identifier_rostest ${PROJECT_NAME}_generate_messages_cpp identifier_node)
+endif()

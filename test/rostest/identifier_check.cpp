@@ -1,0 +1,119 @@
+// Publishes /clock and relative_state from a synthetic run of known parameters, faster than real
+// time, and checks what identifier_node publishes on acc_parameters.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <mutex>
+#include <vector>
+
+#include <ros/ros.h>
+#include <rosgraph_msgs/Clock.h>
+
+#include "acc_identification/calibration/synthetic_runs.h"
+#include "acc_identification/paper_settings.h"
+
+#define AccParameters AccParametersMessage
+#include <acc_identification/AccParameters.h>
+#undef AccParameters
+#define RelativeState RelativeStateMessage
+#include <acc_identification/RelativeState.h>
+#undef RelativeState
+
+namespace aci = acc_identification;
+
+namespace
+{
+std::mutex received_mutex;
+std::vector<aci::AccParametersMessage> received;
+
+void onParameters(const aci::AccParametersMessage::ConstPtr& message)
+{
+  std::lock_guard<std::mutex> lock(received_mutex);
+  received.push_back(*message);
+}
+
+TEST(Identifier, SyntheticRelativeStateGivesTheTrueParameters)
+{
+  ros::NodeHandle node;
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  auto clock = node.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  auto states = node.advertise<aci::RelativeStateMessage>("relative_state", 1000);
+  auto parameters = node.subscribe("acc_parameters", 100, onParameters);
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(30.0);
+  while ((states.getNumSubscribers() == 0 || parameters.getNumPublishers() == 0 || clock.getNumSubscribers() == 0) &&
+         ros::WallTime::now() < deadline)
+  {
+    ros::WallDuration(0.05).sleep();
+  }
+  ASSERT_GT(states.getNumSubscribers(), 0u) << "identifier_node did not subscribe";
+
+  const aci::AccParameters truth = aci::paperMinimumSetting();
+  // 90 s from GNSS time 1000 s, with a 2 s hole (a dropout) at 50 s and one invalid sample.
+  const aci::CarFollowingRun run = aci::synthesizeRun(truth, 90.0, 0.1, 25.0, 7);
+  const double t0 = 1000.0;
+  std::size_t published = 0;
+  for (std::size_t k = 0; k < run.size(); ++k)
+  {
+    const double t = t0 + run.time_s[k];
+    rosgraph_msgs::Clock now;
+    now.clock = ros::Time(t);
+    clock.publish(now);
+    if (run.time_s[k] > 50.0 && run.time_s[k] < 52.0)
+    {
+      continue;
+    }
+    aci::RelativeStateMessage state;
+    state.header.stamp = ros::Time(t);
+    state.space_gap_m = run.space_gap_m[k];
+    state.follower_speed_mps = run.follower_speed_mps[k];
+    state.leader_speed_mps = run.leader_speed_mps[k];
+    state.relative_speed_mps = state.leader_speed_mps - state.follower_speed_mps;
+    state.valid = k != 300;
+    state.invalid_reason = state.valid ? "" : "test: invalid sample";
+    states.publish(state);
+    ++published;
+    ros::WallDuration(0.01).sleep();  // ten times real time
+  }
+  // Let the last periods run.
+  for (int i = 0; i < 30; ++i)
+  {
+    rosgraph_msgs::Clock now;
+    now.clock = ros::Time(t0 + run.time_s.back() + 0.1 * (i + 1));
+    clock.publish(now);
+    ros::WallDuration(0.05).sleep();
+  }
+  std::lock_guard<std::mutex> lock(received_mutex);
+  ASSERT_FALSE(received.empty()) << "no acc_parameters published";
+  // Early windows (under 30 s of data) are reported, not fitted.
+  EXPECT_FALSE(received.front().identifiable);
+  EXPECT_EQ(received.front().optimizer_status, "NOT_SOLVED");
+  EXPECT_TRUE(std::isnan(received.front().k1_per_s2));
+  const aci::AccParametersMessage& last = received.back();
+  ASSERT_TRUE(last.identifiable) << last.identifiability_note;
+  // The 60 s window ends at the last sample; it holds every sample of that span (none dropped),
+  // split by the dropout into two segments.
+  EXPECT_NEAR((last.window_end - last.window_start).toSec(), 60.0, 0.11);
+  EXPECT_NEAR(last.window_end.toSec(), t0 + run.time_s.back(), 1e-6);
+  EXPECT_EQ(last.segments, 2u);
+  EXPECT_GE(last.samples, 580u);
+  EXPECT_LE(last.samples, 582u);
+  // Within three standard errors of the truth, and the verdict of the truth.
+  EXPECT_NEAR(last.k1_per_s2, truth.k1_per_s2, 3.0 * last.k1_std_error);
+  EXPECT_NEAR(last.k2_per_s, truth.k2_per_s, 3.0 * last.k2_std_error);
+  EXPECT_NEAR(last.tau_e_s, truth.tau_e_s, 3.0 * last.tau_e_std_error);
+  EXPECT_NEAR(last.eta_m, truth.eta_m, 3.0 * last.eta_std_error);
+  EXPECT_LT(last.k1_std_error, 0.25 * truth.k1_per_s2);
+  EXPECT_LT(last.rmse_speed_mps, 0.08);
+  EXPECT_FALSE(last.string_stable);
+  EXPECT_GT(last.lambda2, 0.0);
+  EXPECT_LT(last.solve_time_s, 0.5);
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "identifier_check");
+  return RUN_ALL_TESTS();
+}
