@@ -22,7 +22,7 @@ import numpy as np  # noqa: E402
 from PIL import Image  # noqa: E402  (python3-pil, a dependency of python3-matplotlib)
 
 OPENACC_CREDIT = ("Data: JRC OpenACC, Casale campaign (Makridis et al. 2021), CC BY 4.0, (c) European Union; "
-                  "converted to canonical columns, model lines added.")
+                  "read as published (Time, IVS1, Speed2, Speed1); steady-sample selection, fits and simulations added.")
 PAPER = {"min": {"band": 0.358, "peak_db": 1.25, "peak_w": 0.204},
          "max": {"band": 0.118, "peak_db": 0.386, "peak_w": 0.062}}
 
@@ -278,20 +278,27 @@ def fig8(data_dir, out_dir):
     (_, c), summary = loaded
     groups = by_setting(c)
     short = summary["short_platoon"]
-    fig, axes = plt.subplots(2, 2, figsize=(11, 7))
-    for ax, entry, (name, rows) in zip(axes[0], summary["settings"], groups.items()):
+    count = len(groups)
+    fig = plt.figure(figsize=(5.5 * max(count, 2), 7))
+    grid = fig.add_gridspec(2, 2 * count)
+    top = [fig.add_subplot(grid[0, 2 * i:2 * i + 2]) for i in range(count)]
+    long_ax = fig.add_subplot(grid[1, :count])
+    ax = fig.add_subplot(grid[1, count:])
+    for panel, entry, (name, rows) in zip(top, summary["settings"], groups.items()):
         time, speeds = platoon_speeds(c, rows, stride=10)
         keep = time <= summary["profile_duration_s"] + 3.0 * short
         d = entry["short"]["per_vehicle"]
-        draw_platoon(ax, time[keep], [s[keep] for s in speeds], "%s, %d followers: drop below cruise %.1f -> %.1f m/s" % (
+        draw_platoon(panel, time[keep], [s[keep] for s in speeds], "%s, %d followers: drop below cruise %.1f -> %.1f m/s" % (
             name, short, d[0]["drop_below_reference_mps"], d[-1]["drop_below_reference_mps"]), followers=short)
-    long_name = list(groups)[-1]
+    # The long platoon of the setting that decays first is the interesting one (the paper's "max").
+    long_entry = next((e for e in summary["settings"] if e["long"]["growth_by_drop"]["decays_at_first"]),
+                      summary["settings"][-1])
+    long_name = long_entry["parameters"]["name"]
     time, speeds = platoon_speeds(c, groups[long_name], stride=20)
     every_other = [speeds[0]] + speeds[2::2]  # every 2nd follower keeps the file small
-    draw_platoon(axes[1][0], time, every_other, "%s, %d followers (every 2nd drawn)" % (long_name, summary["vehicles"]))
+    draw_platoon(long_ax, time, every_other, "%s, %d followers (every 2nd drawn)" % (long_name, summary["vehicles"]))
     lo = min(min(s) for s in speeds)
-    axes[1][0].set_ylim(max(lo, -5.0) - 1.0, None)
-    ax = axes[1][1]
+    long_ax.set_ylim(max(lo, -5.0) - 1.0, None)
     for entry in summary["settings"]:
         per_vehicle = entry["long"]["per_vehicle"]
         index = np.arange(len(per_vehicle))

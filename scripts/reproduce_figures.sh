@@ -8,7 +8,9 @@
 #   RUNS_DIR=dir      OpenACC/canonical runs for Figs. 3-5 (default /work/shared/data/openacc_casale)
 #   TIMESERIES_RUN=f  the run of Figs. 3/4 (default RUNS_DIR/part6.csv)
 #   CALIBRATION=f.json  a calibrate JSON of those runs, added to Figs. 3-5 (and 6-8 when
-#                     ALL_FIGURES_CALIBRATION=1); without it Figs. 3-5 use Table II's settings.
+#                     ALL_FIGURES_CALIBRATION=1). Unset: when the calibrate tool is built, the
+#                     script calibrates RUNS_DIR's part*.csv itself (--split half, as the paper)
+#                     into DATA_DIR/nexo_min_calibrated.json; else Figs. 3-5 show Table II only.
 set -eo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 repo=$(dirname "$here")
@@ -30,6 +32,15 @@ run() {
   platoon "$@" --csv "$data/$name.csv" --summary-json "$data/$name.json" 2>&1 | tee "$data/$name.txt"
 }
 
+calibrate() {
+  if [ -n "$PLATOON" ]; then "$(dirname "$PLATOON")/calibrate" "$@"; else rosrun acc_identification calibrate "$@"; fi
+}
+
+if [ -z "$CALIBRATION" ] && [ -d "$runs_dir" ] && calibrate --help > /dev/null 2>&1; then
+  CALIBRATION=$data/nexo_min_calibrated.json
+  echo "== calibrate --split half $runs_dir/part*.csv"
+  calibrate --split half --quiet --json "$CALIBRATION" "$runs_dir"/part*.csv 2>&1 | tee "$data/calibration.txt"
+fi
 calibration=()
 [ -n "$CALIBRATION" ] && calibration=(--params "$CALIBRATION")
 model_calibration=()
