@@ -61,6 +61,8 @@ if(CATKIN_ENABLE_TESTING)
     test/rostest/gps_driver_file_check.cpp)
   target_link_libraries(test_gps_driver_file ${catkin_LIBRARIES})
   add_dependencies(test_gps_driver_file ${PROJECT_NAME}_generate_messages_cpp gps_driver_node)
+  catkin_add_gtest(test_gnss_ros test/unit/gtest_main.cpp test/unit/test_gnss_ros_conversion.cpp)
+  target_link_libraries(test_gnss_ros acc_gnss_ros)
   # 10 Hz at rate 1 (hztest).
   add_rostest(test/rostest/gps_driver_rate.test DEPENDENCIES gps_driver_node)
 endif()

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <thread>
 
@@ -39,7 +40,9 @@ void ReconnectingSource::closeAndRetry(const std::string& why)
   fd_ = -1;
   backoff_s_ = backoff_s_ == 0.0 ? kFirstBackoffS : std::min(2.0 * backoff_s_, kMaxBackoffS);
   next_attempt_ = Clock::now() + seconds(backoff_s_);
-  state_ = why + "; retrying every " + std::to_string(backoff_s_).substr(0, 3) + " s";
+  char retry[48];
+  std::snprintf(retry, sizeof retry, "; retrying in %.1f s", backoff_s_);
+  state_ = why + retry;
 }
 
 ReadResult ReconnectingSource::read(char* buffer, std::size_t capacity, double timeout_s)

@@ -16,9 +16,15 @@ namespace
 {
 double seconds(std::chrono::steady_clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
+/// Seconds since the Unix epoch as ros::Time, rounded to the microsecond: a double near 1.6e9 s
+/// carries about 0.2 us of noise, and NMEA times are centiseconds, so 10:15:30.3 stays .300000000.
 ros::Time rosTime(double seconds_since_epoch)
 {
-  return std::isfinite(seconds_since_epoch) && seconds_since_epoch >= 0.0 ? ros::Time(seconds_since_epoch) : ros::Time();
+  if (!std::isfinite(seconds_since_epoch) || seconds_since_epoch < 0.0 || seconds_since_epoch > 4e9)
+    return ros::Time();
+  const auto microseconds = static_cast<std::int64_t>(std::llround(seconds_since_epoch * 1e6));
+  return ros::Time(static_cast<std::uint32_t>(microseconds / 1000000),
+                   static_cast<std::uint32_t>(microseconds % 1000000) * 1000u);
 }
 
 /// GGA quality to NavSatStatus: DGPS counts as SBAS, RTK as ground-based augmentation.

@@ -73,6 +73,7 @@ TEST(GpsDriverFile, PublishesEveryLineAndOneFixPerEpoch)
   const auto& dated = r.fixes[3];
   EXPECT_NE(dated.valid_fields & acc_identification::GnssFix::VALID_DATE, 0u);
   EXPECT_NEAR(dated.header.stamp.toSec(), kStartOfDay + kStartTimeOfDay + 0.3, 1e-3);
+  EXPECT_EQ(dated.header.stamp.nsec, 300000000u);  // exact centiseconds, no double noise
 
   const auto& last = r.fixes.back();
   EXPECT_NEAR(last.header.stamp.toSec(), kStartOfDay + kStartTimeOfDay + 9.9, 1e-3);

@@ -1,0 +1,47 @@
+// The library fix <-> acc_identification/GnssFix message conversion of the driver wrapper.
+#include <gtest/gtest.h>
+
+#include "acc_identification/ros/gps_driver_ros.h"
+#include "acc_identification/gnss/utc_date.h"
+
+namespace aci = acc_identification;
+
+TEST(GnssFixConversion, RoundTripAndExactStamp)
+{
+  aci::GnssFix fix;
+  fix.gnss_time_s = aci::daysFromCivil(2020, 10, 27) * aci::kSecondsPerDay + 36930.3;
+  fix.has_date = true;
+  fix.receive_time_s = 1603793730.35;
+  fix.latitude_deg = 45.13;
+  fix.longitude_deg = 8.45;
+  fix.speed_over_ground_mps = 12.5;
+  fix.course_rad = 1.0;
+  fix.fix_quality = 4;
+  fix.satellites_used = 17;
+  fix.valid_fields = aci::GnssFix::kValidPosition | aci::GnssFix::kValidSpeed | aci::GnssFix::kValidCourse |
+                     aci::GnssFix::kValidDate | aci::GnssFix::kValidSatellites;
+  const aci::GnssFixMessage m = aci::toMessage(fix, "leader_gps");
+  EXPECT_EQ(m.header.stamp.sec, 1603793730u);
+  EXPECT_EQ(m.header.stamp.nsec, 300000000u);
+  EXPECT_EQ(m.header.frame_id, "leader_gps");
+  EXPECT_EQ(m.valid_fields & aci::GnssFixMessage::VALID_DATE, aci::GnssFixMessage::VALID_DATE);
+  const aci::GnssFix back = aci::fromMessage(m);
+  EXPECT_TRUE(back.has_date);
+  EXPECT_NEAR(back.gnss_time_s, fix.gnss_time_s, 1e-6);
+  EXPECT_NEAR(back.receive_time_s, fix.receive_time_s, 1e-6);
+  EXPECT_EQ(back.latitude_deg, fix.latitude_deg);
+  EXPECT_EQ(back.fix_quality, 4);
+  EXPECT_EQ(back.satellites_used, 17);
+  EXPECT_EQ(back.valid_fields, fix.valid_fields);
+}
+
+TEST(GnssFixConversion, TimeOfDayOnlyBeforeTheFirstDate)
+{
+  aci::GnssFix fix;
+  fix.gnss_time_s = 36930.3;  // 10:15:30.3 of an unknown day
+  const aci::GnssFixMessage m = aci::toMessage(fix, "gps");
+  EXPECT_EQ(m.header.stamp.sec, 36930u);
+  EXPECT_EQ(m.header.stamp.nsec, 300000000u);
+  EXPECT_EQ(m.valid_fields & aci::GnssFixMessage::VALID_DATE, 0u);
+  EXPECT_FALSE(aci::fromMessage(m).has_date);
+}
