@@ -61,6 +61,18 @@ TEST(Lambda2Map, LargerTimeGapStabilisesMoreOfTheGridAndLambda2TendsToZero)
   EXPECT_GT(last, -0.01);
 }
 
+// The paper: "increasing tau_e may initially reduce lambda2, before eventually increasing" it.
+TEST(Lambda2Map, Lambda2FallsThenRisesWithTheTimeGap)
+{
+  auto at = [](double tau) { return aci::lambda2({0.5, 0.5, tau, 8.0}); };
+  EXPECT_NEAR(at(0.5), 11.0, 1e-9);
+  EXPECT_NEAR(at(2.0), -0.25, 1e-9);  // the minimum: d lambda2 / d tau = 0 at tau = 2 s
+  EXPECT_LT(at(2.0), at(1.9));
+  EXPECT_LT(at(2.0), at(2.1));
+  EXPECT_GT(at(0.5), at(1.0));
+  EXPECT_LT(at(3.0), at(10.0));
+}
+
 TEST(Lambda2Map, RejectsDegenerateGrids)
 {
   aci::Lambda2MapGrid grid;
