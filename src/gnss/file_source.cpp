@@ -18,9 +18,19 @@ std::string FileSource::description() const { return "file://" + path_ + "?rate=
 
 bool FileSource::loadLine()
 {
-  if (!in_.is_open() || !std::getline(in_, line_))
+  // Up to and including the next '\n' or '\r', so that logs with any line ending are paced
+  // line by line ("\r\n" gives the line and then an empty "\n", which the assembler skips).
+  line_.clear();
+  for (int c = in_.get(); c != std::char_traits<char>::eof(); c = in_.get())
+  {
+    line_ += static_cast<char>(c);
+    if (c == '\n' || c == '\r')
+      break;
+  }
+  if (line_.empty())
     return false;
-  line_ += '\n';  // getline ate it; the line assembler needs a terminator
+  if (line_.back() != '\n' && line_.back() != '\r')
+    line_ += '\n';  // last line without terminator
   line_offset_ = 0;
   has_line_ = true;
   double time_of_day_s = 0.0;

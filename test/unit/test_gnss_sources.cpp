@@ -9,7 +9,10 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "acc_identification/gnss/byte_source.h"
@@ -128,6 +131,36 @@ TEST(FileSource, PacedBySentenceTimes)
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_NEAR(elapsed, 9.9 / 20, 0.08);
   EXPECT_GT(first_half_s, 0.1);  // not all at once
+}
+
+TEST(FileSource, PacesLogsWithCarriageReturnLineEndings)
+{
+  // The fixture's first 2 s with '\r' alone as line ending, written next to the test's temp files.
+  std::ifstream in(kFixture, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text = text.substr(0, 120 * 70);
+  text = text.substr(0, text.rfind("\r\n$GNRMC") + 2);
+  std::string cr_only;
+  for (char c : text)
+    if (c != '\n')
+      cr_only += c;
+  const std::string path = ::testing::TempDir() + "gnss_cr_only.nmea";
+  std::ofstream(path, std::ios::binary) << cr_only;
+  std::string error;
+  auto source = aci::makeByteSource("file://" + path + "?rate=4", error);
+  ASSERT_NE(source, nullptr) << error;
+  int fixes = 0;
+  aci::NmeaDecoder decoder(nullptr, [&](const aci::GnssFix&) { ++fixes; });
+  const auto start = std::chrono::steady_clock::now();
+  char buffer[512];
+  aci::ReadResult r;
+  while ((r = source->read(buffer, sizeof buffer, 0.02)).status != aci::ReadStatus::kEnd)
+    decoder.feed(buffer, r.size, 0.0);
+  decoder.finish(0.0);
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_GT(fixes, 10);
+  EXPECT_NEAR(elapsed, 0.1 * (fixes - 1) / 4, 0.08);  // first to last epoch at 4x
+  std::remove(path.c_str());
 }
 
 TEST(SerialSource, ReadsAPseudoTerminalAndSurvivesItsDisappearance)
