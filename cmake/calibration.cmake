@@ -56,7 +56,8 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/gtest_main.cpp
     test/unit/test_calibration_objective.cpp
     test/unit/test_calibration_multistart.cpp
-    test/unit/test_identifier_window.cpp)
+    test/unit/test_identifier_window.cpp
+    test/unit/test_calibration_report.cpp)
   target_compile_definitions(test_calibration PRIVATE ACC_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/test/data/runs")
   target_link_libraries(test_calibration acc_calibration acc_run_io)
 endif()
@@ -89,4 +90,11 @@ if(CATKIN_ENABLE_TESTING)
   target_include_directories(test_identifier_rostest PRIVATE include ${catkin_INCLUDE_DIRS})
   target_link_libraries(test_identifier_rostest acc_calibration ${catkin_LIBRARIES})
   add_dependencies(test_identifier_rostest ${PROJECT_NAME}_generate_messages_cpp identifier_node)
+
+  # The ROS-side pieces that need no master: bags in, messages out.
+  catkin_add_gtest(test_calibration_ros
+    test/unit/gtest_main.cpp
+    test/unit/test_calibration_bag.cpp
+    test/unit/test_identifier_message.cpp)
+  target_link_libraries(test_calibration_ros acc_calibration_ros acc_identifier_ros)
 endif()
