@@ -1,5 +1,6 @@
 #include "acc_identification/diagnosis/candidate_effects.h"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace acc_identification
@@ -10,15 +11,15 @@ const std::vector<CandidateEffect>& candidateEffects()
   // accelerations of 1-3 m/s^2), narrow enough to keep the 10 Hz Euler map stable.
   static const std::vector<CandidateEffect> catalogue = {
       {EffectKind::actuation_lag, "actuation_lag", {{"lag_time_constant_s", 0.0, 3.0, 0.1, 1.5}},
-       "realised acceleration follows the commanded one through T a' = f - a (exact discretisation)"},
+       "realised acceleration follows the commanded one through T a' = f - a (exact discretisation)", true},
       {EffectKind::reaction_delay, "reaction_delay", {{"dead_time_s", 0.0, 3.0, 0.1, 1.5}},
-       "the command acting at t is the law evaluated at t - d (commands interpolated in time)"},
+       "the command acting at t is the law evaluated at t - d (commands interpolated in time)", true},
       {EffectKind::acceleration_limits, "acceleration_limits",
        {{"max_acceleration_mps2", 0.2, 10.0, 0.5, 3.0}, {"max_deceleration_mps2", 0.2, 10.0, 1.0, 5.0}},
        "the command is clipped to [-max_deceleration, max_acceleration]"},
       {EffectKind::sensor_time_offset, "sensor_time_offset", {{"time_offset_s", -3.0, 3.0, -1.5, 1.5}},
        "the leader's recorded data lag the truth by delta: the ACC sees u(t + delta), the recorded gap "
-       "is the true gap minus delta u"},
+       "is the true gap minus delta u", true},
       {EffectKind::speed_dependent_time_gap, "speed_dependent_time_gap",
        {{"time_gap_slope_s2_per_m", -0.05, 0.05, -0.02, 0.02}},
        "desired gap eta + tau_e v + c v^2: the time gap is tau_e + c v"},
@@ -27,6 +28,15 @@ const std::vector<CandidateEffect>& candidateEffects()
        "command = min(following law, cruise_gain (v_set - v)): the ACC holds its set speed when the gap is large"},
   };
   return catalogue;
+}
+
+bool isResolvable(EffectKind kind, const std::vector<double>& values, double sample_period_s)
+{
+  if (!candidateEffect(kind).magnitude_is_time || values.empty())
+  {
+    return true;
+  }
+  return std::abs(values.front()) >= sample_period_s;
 }
 
 const CandidateEffect& candidateEffect(EffectKind kind)

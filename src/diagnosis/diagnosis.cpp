@@ -122,6 +122,7 @@ DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const Dia
       analyzeAugmentedStability(base_fit.base, EffectKind::none, base_fit.settings, result.operating_speed_mps);
 
   std::vector<SquaredErrorsByRun> candidate_errors;
+  std::vector<bool> resolvable;
   for (EffectKind kind : options.candidates)
   {
     const AugmentedFit fit = calibrateAugmented(kind, result.train, options.calibration, &base_fit);
@@ -129,11 +130,13 @@ DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const Dia
     ModelDiagnosis model = scoreModel(fit, result, &errors);
     model.stability = analyzeAugmentedStability(fit.base, kind, fit.settings, result.operating_speed_mps);
     model.stability_verdict_changes = model.stability.string_stable != result.baseline.stability.string_stable;
+    model.resolvable = isResolvable(kind, fit.effect_values, result.sample_period_s);
+    resolvable.push_back(model.resolvable);
     result.effects.push_back(std::move(model));
     candidate_errors.push_back(std::move(errors));
   }
   result.selection = selectEffect(base_errors, candidate_errors, options.candidates, result.sample_period_s,
-                                  options.selection);
+                                  options.selection, resolvable);
   result.selection_rule = describeSelectionRule(options.selection, options.candidates.size());
   for (std::size_t k = 0; k < result.effects.size(); ++k)
   {

@@ -153,6 +153,7 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
   {
     nlohmann::json e = modelJson(r.effects[k]);
     e["significant"] = r.effects[k].significant;
+    e["resolvable"] = r.effects[k].resolvable;
     e["improvement"] = improvementJson(r.effects[k].improvement);
     e["stability_verdict_changes"] = r.effects[k].stability_verdict_changes;
     e["how_it_enters"] = candidateEffect(r.effects[k].fit.effect).how_it_enters;

@@ -131,7 +131,7 @@ ImprovementEstimate estimate(const SquaredErrorsByRun& diff, const std::vector<d
 
 SelectionResult selectEffect(const SquaredErrorsByRun& base, const std::vector<SquaredErrorsByRun>& candidates,
                              const std::vector<EffectKind>& kinds, double sample_period_s,
-                             const SelectionOptions& options)
+                             const SelectionOptions& options, const std::vector<bool>& resolvable)
 {
   SelectionResult result;
   result.candidates = kinds;
@@ -155,26 +155,30 @@ SelectionResult selectEffect(const SquaredErrorsByRun& base, const std::vector<S
   {
     result.versus_base.push_back(estimate(diffs[k], column(boot, k), level, base_mse));
     const ImprovementEstimate& e = result.versus_base.back();
-    result.significant.push_back(e.lower_bound > 0.0 && e.relative >= options.min_relative_improvement);
+    const bool resolved = resolvable.empty() || resolvable[k];
+    result.significant.push_back(resolved && e.lower_bound > 0.0 && e.relative >= options.min_relative_improvement);
     result.ranking.push_back(k);
   }
   std::stable_sort(result.ranking.begin(), result.ranking.end(), [&](std::size_t a, std::size_t b) {
     return result.versus_base[a].mean > result.versus_base[b].mean;
   });
-  const std::size_t best = result.ranking.front();
-  if (!result.significant[best])
+  // The best is the significant effect with the largest improvement.
+  const auto first_significant = std::find_if(result.ranking.begin(), result.ranking.end(),
+                                              [&](std::size_t k) { return result.significant[k]; });
+  if (first_significant == result.ranking.end())
   {
-    return result;  // the largest improvement is not significant, so none is reported
+    return result;  // nothing is significant: none is reported
   }
+  const std::size_t best = *first_significant;
   result.dominant = kinds[best];
   result.plausible.push_back(kinds[best]);
   result.distinguishable = true;
   // Paired comparisons of the best against every other significant effect (the same bootstrap
   // blocks: the difference of two columns is the bootstrap of the difference of the series).
-  for (std::size_t rank = 1; rank < K; ++rank)
+  for (std::size_t rank = 0; rank < K; ++rank)
   {
     const std::size_t j = result.ranking[rank];
-    if (!result.significant[j])
+    if (j == best || !result.significant[j])
     {
       continue;
     }
@@ -206,7 +210,8 @@ std::string describeSelectionRule(const SelectionOptions& options, std::size_t c
                 "Held-out paired squared speed errors d_k(t) = e_base(t)^2 - e_k(t)^2; moving-block bootstrap "
                 "(%g s blocks, %zu resamples, within runs, the same blocks for every effect). An effect is "
                 "significant when the one-sided %.4g%% lower bound (alpha %g / %zu effects, Bonferroni) of its mean "
-                "improvement is above 0 and the improvement is at least %g%% of the base model's held-out MSE. "
+                "improvement is above 0, the improvement is at least %g%% of the base model's held-out MSE, and "
+                "its magnitude is resolvable (a lag, delay or clock offset of at least one sample period). "
                 "The dominant effect is the significant one with the largest improvement (none if none is); "
                 "another significant effect is indistinguishable from it when the one-sided %g%% lower bound of "
                 "their paired difference is not above 0.",

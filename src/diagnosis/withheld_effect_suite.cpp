@@ -129,39 +129,46 @@ std::vector<double> syntheticLeaderSpeed(SyntheticLeadProfile profile, double du
 
 CarFollowingRun synthesizeWithheldRun(const WithheldCase& c)
 {
+  // The truth on a fine grid.
+  const int substeps = std::max(1, c.truth_substeps);
+  const double fine_step = c.step_s / substeps;
   CarFollowingRun truth;
-  truth.name = effectName(c.truth) + "_" + leadProfileName(c.profile) + "_seed" + std::to_string(c.seed);
-  truth.leader_speed_mps = syntheticLeaderSpeed(c.profile, c.duration_s, c.step_s);
-  const std::size_t n = truth.leader_speed_mps.size();
-  for (std::size_t k = 0; k < n; ++k)
+  truth.leader_speed_mps = syntheticLeaderSpeed(c.profile, c.duration_s, fine_step);
+  const std::size_t fine_n = truth.leader_speed_mps.size();
+  for (std::size_t k = 0; k < fine_n; ++k)
   {
-    truth.time_s.push_back(static_cast<double>(k) * c.step_s);
+    truth.time_s.push_back(static_cast<double>(k) * fine_step);
   }
   EffectSettings effects = makeEffectSettings(c.truth, c.truth_values);
   const double v0 = std::min(truth.leader_speed_mps[0], effects.set_speed_mps);
   const double s0 = c.base.eta_m + c.base.tau_e_s * v0 + effects.time_gap_speed_slope_s2_per_m * v0 * v0;
-  truth.follower_speed_mps.assign(n, v0);
-  truth.space_gap_m.assign(n, s0);
-  // Simulate the truth with the true leader (no clock offset: that only changes the record).
+  truth.follower_speed_mps.assign(fine_n, v0);
+  truth.space_gap_m.assign(fine_n, s0);
+  // Simulate with the true leader (a clock offset changes only the record).
   const double offset = effects.sensor_time_offset_s;
   effects.sensor_time_offset_s = 0.0;
   const SimulatedFollower sim = simulateAugmentedFollower(c.base, effects, truth);
-  CarFollowingRun recorded = truth;
-  recorded.follower_speed_mps = sim.speed_mps;
-  recorded.space_gap_m = sim.space_gap_m;
-  if (offset != 0.0)
+  // The record: every substeps-th sample, leader delayed by the offset, gap read with it.
+  CarFollowingRun recorded;
+  recorded.name = effectName(c.truth) + "_" + leadProfileName(c.profile) + "_seed" + std::to_string(c.seed);
+  for (std::size_t k = 0; k < fine_n; k += static_cast<std::size_t>(substeps))
   {
-    for (std::size_t k = 0; k < n; ++k)
+    double leader = truth.leader_speed_mps[k];
+    double gap = sim.space_gap_m[k];
+    if (offset != 0.0)
     {
-      const double t_true = truth.time_s[k] - offset;
-      const double position = std::clamp(t_true / c.step_s, 0.0, static_cast<double>(n - 1));
-      const std::size_t i = std::min(static_cast<std::size_t>(position), n - 2);
+      const double position = std::clamp((truth.time_s[k] - offset) / fine_step, 0.0, static_cast<double>(fine_n - 1));
+      const std::size_t i = std::min(static_cast<std::size_t>(position), fine_n - 2);
       const double w = position - static_cast<double>(i);
-      recorded.leader_speed_mps[k] =
-          truth.leader_speed_mps[i] + w * (truth.leader_speed_mps[i + 1] - truth.leader_speed_mps[i]);
-      recorded.space_gap_m[k] = sim.space_gap_m[k] - distanceOver(truth.time_s, truth.leader_speed_mps, k, offset);
+      leader = truth.leader_speed_mps[i] + w * (truth.leader_speed_mps[i + 1] - truth.leader_speed_mps[i]);
+      gap -= distanceOver(truth.time_s, truth.leader_speed_mps, k, offset);
     }
+    recorded.time_s.push_back(truth.time_s[k]);
+    recorded.leader_speed_mps.push_back(leader);
+    recorded.follower_speed_mps.push_back(sim.speed_mps[k]);
+    recorded.space_gap_m.push_back(gap);
   }
+  const std::size_t n = recorded.size();
   std::mt19937 rng(c.seed);
   std::normal_distribution<double> speed_noise(0.0, c.speed_noise_std_mps);
   std::normal_distribution<double> gap_noise(0.0, c.gap_noise_std_m);

@@ -94,6 +94,7 @@ TEST(AugmentedCalibration, RecoversTheBaseParametersFromCleanData)
   c.speed_noise_std_mps = 0.0;
   c.gap_noise_std_m = 0.0;
   c.duration_s = 200.0;
+  c.truth_substeps = 1;  // made by the very recursion that is fitted: the fit must be exact
   const aci::CarFollowingRun run = aci::synthesizeWithheldRun(c);
   const aci::AugmentedFit fit = aci::calibrateAugmented(aci::EffectKind::none, {run}, aci::AugmentedCalibrationOptions{});
   EXPECT_LT(std::sqrt(fit.train_mse_speed), 1e-3);
@@ -127,4 +128,18 @@ TEST(AugmentedCalibration, RejectsInvalidSegmentsWithAMessage)
   bad.follower_speed_mps = {1.0};
   bad.leader_speed_mps = {1.0};
   EXPECT_THROW(aci::calibrateAugmented(aci::EffectKind::none, {bad}, {}), std::invalid_argument);
+}
+
+TEST(EffectSelection, AnEffectBelowTheDataResolutionIsNeverNamed)
+{
+  const auto base = correlatedSquares(8, 1.0);
+  const auto good = scaled(base, 0.4, correlatedSquares(9, 0.05), 1.0);
+  const auto result = aci::selectEffect(base, {good}, {aci::EffectKind::sensor_time_offset}, 0.1,
+                                        aci::SelectionOptions{}, {false});
+  EXPECT_EQ(result.dominant, aci::EffectKind::none);
+  EXPECT_FALSE(result.significant[0]);
+  EXPECT_TRUE(aci::isResolvable(aci::EffectKind::sensor_time_offset, {-0.2}, 0.1));
+  EXPECT_FALSE(aci::isResolvable(aci::EffectKind::sensor_time_offset, {0.05}, 0.1));
+  EXPECT_FALSE(aci::isResolvable(aci::EffectKind::actuation_lag, {0.05}, 0.1));
+  EXPECT_TRUE(aci::isResolvable(aci::EffectKind::speed_dependent_time_gap, {0.0001}, 0.1));
 }

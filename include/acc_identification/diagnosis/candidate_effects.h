@@ -56,7 +56,15 @@ struct CandidateEffect
   std::string name;                           ///< e.g. "actuation_lag" (used in all output)
   std::vector<EffectParameterSpec> parameters;  ///< the first one is the effect's magnitude
   std::string how_it_enters;                  ///< one sentence for reports
+  /// The magnitude is a time: below one sample period the data cannot resolve it (the explicit
+  /// Euler model itself lags a continuous car by about half a step, which a 0.05 s offset or
+  /// delay would otherwise "explain" at 10 Hz).
+  bool magnitude_is_time = false;
 };
+
+/// Whether the fitted values of kind are large enough for data sampled every sample_period_s to
+/// resolve: |first value| >= sample_period_s for timing effects, always for the others.
+bool isResolvable(EffectKind kind, const std::vector<double>& values, double sample_period_s);
 
 /// The six candidate effects, in a fixed order (EffectKind::none is not among them).
 const std::vector<CandidateEffect>& candidateEffects();

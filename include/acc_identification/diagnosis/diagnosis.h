@@ -38,6 +38,7 @@ struct ModelDiagnosis
   bool test_diverged = false;   ///< some held-out simulation blew up (its errors are then huge)
   ImprovementEstimate improvement;  ///< versus the base model (zero for the base model)
   bool significant = false;
+  bool resolvable = true;       ///< the fitted magnitude is above the data's resolution (isResolvable)
   AugmentedStability stability;
   bool stability_verdict_changes = false;  ///< string_stable differs from the base model's
   std::vector<SimulatedFollower> test_simulations;  ///< one per held-out half

@@ -21,6 +21,8 @@ namespace acc_identification
 ///    alpha / K (Bonferroni over the K candidates) is above 0, and the improvement is at least
 ///    min_relative_improvement of the base model's held-out MSE (a gain too small to matter is not
 ///    reported as a missing effect);
+///  - an effect whose fitted magnitude the data cannot resolve (resolvable[k] false; e.g. a lag,
+///    delay or clock offset shorter than one sample period) is never significant;
 ///  - the best effect is the significant one with the largest improvement; none if none is;
 ///  - another significant effect j cannot be told apart from the best b when the lower bound
 ///    (level alpha) of the mean of e_j^2 - e_b^2 is not above 0. The plausible set is b and all such j.
@@ -61,10 +63,11 @@ struct SelectionResult
 };
 
 /// Applies the rule. base and each candidates' errors must have the same run structure.
-/// sample_period_s converts the block length to samples.
+/// sample_period_s converts the block length to samples. resolvable: one flag per candidate
+/// (empty: all resolvable).
 SelectionResult selectEffect(const SquaredErrorsByRun& base, const std::vector<SquaredErrorsByRun>& candidates,
                              const std::vector<EffectKind>& kinds, double sample_period_s,
-                             const SelectionOptions& options);
+                             const SelectionOptions& options, const std::vector<bool>& resolvable = {});
 
 /// The rule in one paragraph, for reports.
 std::string describeSelectionRule(const SelectionOptions& options, std::size_t candidates);

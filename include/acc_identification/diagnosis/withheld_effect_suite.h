@@ -35,14 +35,18 @@ struct WithheldCase
   AccParameters base{0.08, 0.45, 1.2, 4.0};
   SyntheticLeadProfile profile = SyntheticLeadProfile::steps;
   double duration_s = 400.0;
-  double step_s = 0.1;
+  double step_s = 0.1;                ///< sampling step of the recorded run
+  /// The truth is integrated this many times finer than it is recorded, so that the data are not
+  /// made by the very Euler recursion the diagnosis fits (no "inverse crime").
+  int truth_substeps = 10;
   double speed_noise_std_mps = 0.06;  ///< white noise on both recorded speeds
   double gap_noise_std_m = 0.4;
   std::uint32_t seed = 1;
 };
 
 /// The recorded run of a case: the follower is simulated with the effect by
-/// simulateAugmentedFollower() from equilibrium with the true leader; a sensor time offset is
+/// simulateAugmentedFollower() at step_s / truth_substeps from equilibrium with the true leader,
+/// then sampled every step_s; a sensor time offset is
 /// then applied to the record (leader speed delayed by delta, gap reduced by the distance the
 /// leader covered in delta, by the trapezoid rule); then noise is added to all three columns.
 CarFollowingRun synthesizeWithheldRun(const WithheldCase& c);
