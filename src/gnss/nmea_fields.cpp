@@ -15,20 +15,22 @@ std::uint8_t nmeaChecksumValue(std::string_view body)
 
 NmeaFields::NmeaFields(std::string_view body)
 {
+  // A plain byte loop: NMEA fields are a few characters long, where a memchr call per field
+  // costs more than it saves (it was half of the parse time).
+  const char* data = body.data();
+  const std::size_t size = body.size();
   std::size_t start = 0;
-  while (true)
+  for (std::size_t i = 0; i <= size; ++i)
   {
-    const std::size_t comma = body.find(',', start);
-    const std::string_view field = body.substr(start, comma == std::string_view::npos ? body.npos : comma - start);
+    if (i < size && data[i] != ',')
+      continue;
     if (count_ == kMaxFields)
     {
       overflowed_ = true;
       return;
     }
-    fields_[count_++] = field;
-    if (comma == std::string_view::npos)
-      return;
-    start = comma + 1;
+    fields_[count_++] = std::string_view(data + start, i - start);
+    start = i + 1;
   }
 }
 

@@ -252,9 +252,15 @@ Outcome checkFrame(std::string_view line, std::string_view& body)
   if (high < 0 || low < 0)
     return Outcome::kMalformed;
   body = line.substr(1, line.size() - 4);
-  if (body.find_first_of("$*") != std::string_view::npos)
-    return Outcome::kMalformed;
-  return nmeaChecksumValue(body) == (high << 4 | low) ? Outcome::kOk : Outcome::kBadChecksum;
+  // One pass: the checksum, and no '$' or '*' inside the body (two sentences run together).
+  std::uint8_t sum = 0;
+  for (const char c : body)
+  {
+    if (c == '$' || c == '*')
+      return Outcome::kMalformed;
+    sum ^= static_cast<std::uint8_t>(c);
+  }
+  return sum == (high << 4 | low) ? Outcome::kOk : Outcome::kBadChecksum;
 }
 
 /// Sentence type from the address field; kUnsupported for anything else.
