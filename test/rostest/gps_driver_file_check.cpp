@@ -9,6 +9,7 @@
 
 #include <acc_identification/GnssFix.h>
 #include <acc_identification/Sentence.h>
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/TwistStamped.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
@@ -103,6 +104,35 @@ TEST(GpsDriverFile, PublishesEveryLineAndOneFixPerEpoch)
   // Epochs 0.1 s apart, in order.
   for (std::size_t i = 4; i < r.fixes.size(); ++i)
     EXPECT_NEAR((r.fixes[i].header.stamp - r.fixes[i - 1].header.stamp).toSec(), 0.1, 1e-3) << i;
+}
+
+TEST(GpsDriverDiagnostics, RateAndBadSentencesDuringARealTimeReplay)
+{
+  std::string frame_id;
+  ASSERT_TRUE(ros::NodeHandle("~").getParam("expected_frame_id", frame_id));
+  ros::NodeHandle node;
+  bool ok_at_10_hz = false, bad_checksum_counted = false;
+  auto subscription = node.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 100, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& array) {
+        for (const auto& status : array->status)
+        {
+          if (status.name.find("NMEA receiver " + frame_id) == std::string::npos)
+            continue;
+          for (const auto& kv : status.values)
+          {
+            if (kv.key == "fix rate [Hz]" && status.level == diagnostic_msgs::DiagnosticStatus::OK)
+              ok_at_10_hz |= std::fabs(std::stod(kv.value) - 10.0) < 1.0;
+            if (kv.key == "bad checksum")
+              bad_checksum_counted |= kv.value == "1";
+          }
+        }
+      });
+  // The log is 10 s long at rate 1 and has one bad checksum at 5 s.
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20.0);
+  while (ros::ok() && ros::WallTime::now() < end && !(ok_at_10_hz && bad_checksum_counted))
+    ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.05));
+  EXPECT_TRUE(ok_at_10_hz);
+  EXPECT_TRUE(bad_checksum_counted);
 }
 
 int main(int argc, char** argv)
