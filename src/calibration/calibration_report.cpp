@@ -62,7 +62,9 @@ nlohmann::json reportToJson(const CalibrationReport& report)
   json["parameters"] = parametersJson(c.parameters);
   json["standard_errors"] = parametersJson(report.uncertainty.standard_error);
   json["standard_errors_method"] =
-      "Gauss-Newton at the optimum, residual variance inflated by (1+rho)/(1-rho) for lag-1 autocorrelation rho";
+      "Gauss-Newton sandwich at the optimum, score covariance by batch means over blocks of block_length_s";
+  json["block_length_s"] = number(report.uncertainty.block_length_s);
+  json["blocks"] = report.uncertainty.blocks;
   json["residual_lag1_autocorrelation"] = number(report.uncertainty.residual_lag1_autocorrelation);
   json["reciprocal_condition"] = number(report.uncertainty.reciprocal_condition);
   json["identifiable"] = report.identifiability_note.empty();
@@ -135,9 +137,10 @@ void printReport(const CalibrationReport& report, std::ostream& out)
                 "  k1 = %.4f +- %.4f 1/s^2   k2 = %.4f +- %.4f 1/s   tau_e = %.4f +- %.4f s   eta = %.3f +- %.3f m\n",
                 p.k1_per_s2, se.k1_per_s2, p.k2_per_s, se.k2_per_s, p.tau_e_s, se.tau_e_s, p.eta_m, se.eta_m);
   out << line;
-  std::snprintf(line, sizeof line, "  (residual lag-1 autocorrelation %.4f, variance inflation %.1f, reciprocal condition %.3g)\n",
-                report.uncertainty.residual_lag1_autocorrelation, report.uncertainty.variance_inflation,
-                report.uncertainty.reciprocal_condition);
+  std::snprintf(line, sizeof line,
+                "  (sandwich errors over %zu blocks of %.1f s; residual lag-1 autocorrelation %.4f; reciprocal condition %.3g)\n",
+                report.uncertainty.blocks, report.uncertainty.block_length_s,
+                report.uncertainty.residual_lag1_autocorrelation, report.uncertainty.reciprocal_condition);
   out << line;
   const StringStabilityReport& s = report.stability;
   std::snprintf(line, sizeof line, "  lambda2 = %.4g -> %s; amplified band [0, %.4f) rad/s, peak %.3f dB at %.4f rad/s\n",

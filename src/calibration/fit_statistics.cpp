@@ -14,24 +14,25 @@ namespace
 {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// Accumulates J^T J, the residual sum of squares and the lag-1 products of one run, by an Euler
-/// pass carrying (s, v) and their sensitivities to (k1, k2, tau_e, eta).
-struct JacobianSums
+/// The Euler pass carrying (s, v) and their sensitivities to (k1, k2, tau_e, eta): per sample the
+/// residual and the Jacobian row (as d v_simulated / d theta; the sign does not matter below).
+struct JacobianRows
 {
-  Eigen::Matrix4d jtj = Eigen::Matrix4d::Zero();
-  double ssr = 0.0;
-  double lag1 = 0.0;
-  std::size_t samples = 0;
+  std::vector<double> time_s;
+  std::vector<double> residual;
+  std::vector<Eigen::Vector4d> row;
   bool diverged = false;
 };
 
-void accumulateJacobian(const AccParameters& p, const CarFollowingRun& run, JacobianSums& sums)
+JacobianRows jacobianRows(const AccParameters& p, const CarFollowingRun& run)
 {
   const double k1 = p.k1_per_s2, k2 = p.k2_per_s, tau = p.tau_e_s, eta = p.eta_m;
+  JacobianRows rows;
   double s = run.space_gap_m[0], v = run.follower_speed_mps[0];
   Eigen::Vector4d ds = Eigen::Vector4d::Zero(), dv = Eigen::Vector4d::Zero();
-  double previous_residual = 0.0;  // the first sample's residual is 0 by construction
-  sums.samples += run.size();
+  rows.time_s.push_back(run.time_s[0]);
+  rows.residual.push_back(0.0);  // the first sample is the measured start
+  rows.row.push_back(dv);
   for (std::size_t k = 0; k + 1 < run.size(); ++k)
   {
     const double h = run.time_s[k + 1] - run.time_s[k];
@@ -45,15 +46,14 @@ void accumulateJacobian(const AccParameters& p, const CarFollowingRun& run, Jaco
     v += h * (k1 * spacing + k2 * relative);
     if (!(std::abs(v) < kDivergenceBound && std::abs(s) < kDivergenceBound))
     {
-      sums.diverged = true;
-      return;
+      rows.diverged = true;
+      return rows;
     }
-    const double residual = run.follower_speed_mps[k + 1] - v;
-    sums.jtj += dv * dv.transpose();
-    sums.ssr += residual * residual;
-    sums.lag1 += residual * previous_residual;
-    previous_residual = residual;
+    rows.time_s.push_back(run.time_s[k + 1]);
+    rows.residual.push_back(run.follower_speed_mps[k + 1] - v);
+    rows.row.push_back(dv);
   }
+  return rows;
 }
 }  // namespace
 
@@ -99,44 +99,81 @@ FitQuality poolFits(const std::vector<FitQuality>& fits)
   return pooled;
 }
 
-ParameterUncertainty estimateUncertainty(const AccParameters& p, const std::vector<CarFollowingRun>& runs)
+ParameterUncertainty estimateUncertainty(const AccParameters& p, const std::vector<CarFollowingRun>& runs,
+                                         double min_block_s)
 {
   ParameterUncertainty result;
   result.standard_error = AccParameters{kNaN, kNaN, kNaN, kNaN};
-  JacobianSums sums;
+  std::vector<JacobianRows> all;
+  Eigen::Matrix4d jtj = Eigen::Matrix4d::Zero();
+  double ssr = 0.0, lag1 = 0.0, duration_s = 0.0;
+  std::size_t samples = 0;
   for (const CarFollowingRun& run : runs)
   {
-    accumulateJacobian(p, run, sums);
-    if (sums.diverged)
+    all.push_back(jacobianRows(p, run));
+    const JacobianRows& rows = all.back();
+    if (rows.diverged)
     {
       return result;
     }
+    for (std::size_t k = 0; k < rows.residual.size(); ++k)
+    {
+      jtj += rows.row[k] * rows.row[k].transpose();
+      ssr += rows.residual[k] * rows.residual[k];
+      lag1 += k > 0 ? rows.residual[k] * rows.residual[k - 1] : 0.0;
+    }
+    samples += run.size();
+    duration_s += run.durationS();
   }
-  if (sums.samples <= 4 || sums.ssr <= 0.0)
+  if (samples <= 4 || ssr <= 0.0 || duration_s <= 0.0)
   {
     return result;
   }
-  const double rho = std::clamp(sums.lag1 / sums.ssr, 0.0, 0.995);
-  result.residual_lag1_autocorrelation = sums.lag1 / sums.ssr;
-  result.variance_inflation = (1.0 + rho) / (1.0 - rho);
-  const Eigen::Vector4d diagonal = sums.jtj.diagonal();
+  result.residual_lag1_autocorrelation = lag1 / ssr;
+  // Correlation time of AR(1) residuals, -h / ln(rho); blocks of five of them.
+  const double rho = std::clamp(result.residual_lag1_autocorrelation, 1e-6, 0.9999);
+  const double mean_step_s = duration_s / static_cast<double>(samples - runs.size());
+  const double correlation_time_s = -mean_step_s / std::log(rho);
+  result.block_length_s = std::min(std::max(min_block_s, 5.0 * correlation_time_s), duration_s / 8.0);
+  Eigen::Matrix4d meat = Eigen::Matrix4d::Zero();
+  for (const JacobianRows& rows : all)
+  {
+    Eigen::Vector4d score = Eigen::Vector4d::Zero();
+    double block_start_s = rows.time_s.front();
+    for (std::size_t k = 0; k < rows.residual.size(); ++k)
+    {
+      if (rows.time_s[k] - block_start_s >= result.block_length_s)
+      {
+        meat += score * score.transpose();
+        ++result.blocks;
+        score.setZero();
+        block_start_s = rows.time_s[k];
+      }
+      score += rows.row[k] * rows.residual[k];
+    }
+    meat += score * score.transpose();
+    ++result.blocks;
+  }
+  const Eigen::Vector4d diagonal = jtj.diagonal();
   if ((diagonal.array() <= 0.0).any())
   {
     return result;  // a parameter with no effect at all (e.g. eta when k1 = 0)
   }
   const Eigen::Vector4d unit = diagonal.cwiseSqrt().cwiseInverse();
-  const Eigen::Matrix4d scaled = unit.asDiagonal() * sums.jtj * unit.asDiagonal();
+  const Eigen::Matrix4d scaled = unit.asDiagonal() * jtj * unit.asDiagonal();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(scaled);
   const Eigen::Vector4d values = eigen.eigenvalues();  // ascending
   result.reciprocal_condition = values(3) > 0.0 ? std::max(0.0, values(0)) / values(3) : 0.0;
-  if (result.reciprocal_condition < 1e-14)
+  if (result.reciprocal_condition < 1e-14 || result.blocks < 4)
   {
     return result;
   }
-  const double sigma_sq = sums.ssr / static_cast<double>(sums.samples - 4) * result.variance_inflation;
-  const Eigen::Matrix4d scaled_inverse =
-      eigen.eigenvectors() * values.cwiseInverse().asDiagonal() * eigen.eigenvectors().transpose();
-  result.covariance = sigma_sq * unit.asDiagonal() * scaled_inverse * unit.asDiagonal();
+  const Eigen::Matrix4d bread =
+      unit.asDiagonal() * eigen.eigenvectors() * values.cwiseInverse().asDiagonal() * eigen.eigenvectors().transpose() *
+      unit.asDiagonal();
+  // n / (n - 4): the usual small-sample correction for four fitted parameters.
+  const double correction = static_cast<double>(samples) / static_cast<double>(samples - 4);
+  result.covariance = correction * bread * meat * bread;
   const Eigen::Vector4d se = result.covariance.diagonal().cwiseSqrt();
   result.standard_error = AccParameters{se(0), se(1), se(2), se(3)};
   return result;

@@ -49,8 +49,8 @@ TEST(Identifier, SyntheticRelativeStateGivesTheTrueParameters)
   ASSERT_GT(states.getNumSubscribers(), 0u) << "identifier_node did not subscribe";
 
   const aci::AccParameters truth = aci::paperMinimumSetting();
-  // 90 s from GNSS time 1000 s, with a 2 s hole (a dropout) at 50 s and one invalid sample.
-  const aci::CarFollowingRun run = aci::synthesizeRun(truth, 90.0, 0.1, 25.0, 7);
+  // 150 s from GNSS time 1000 s, with a 2 s hole (a dropout) after 50 s and one invalid sample at 70 s.
+  const aci::CarFollowingRun run = aci::synthesizeRun(truth, 150.0, 0.1, 25.0, 7);
   const double t0 = 1000.0;
   std::size_t published = 0;
   for (std::size_t k = 0; k < run.size(); ++k)
@@ -69,7 +69,7 @@ TEST(Identifier, SyntheticRelativeStateGivesTheTrueParameters)
     state.follower_speed_mps = run.follower_speed_mps[k];
     state.leader_speed_mps = run.leader_speed_mps[k];
     state.relative_speed_mps = state.leader_speed_mps - state.follower_speed_mps;
-    state.valid = k != 300;
+    state.valid = k != 700;
     state.invalid_reason = state.valid ? "" : "test: invalid sample";
     states.publish(state);
     ++published;
@@ -91,13 +91,14 @@ TEST(Identifier, SyntheticRelativeStateGivesTheTrueParameters)
   EXPECT_TRUE(std::isnan(received.front().k1_per_s2));
   const aci::AccParametersMessage& last = received.back();
   ASSERT_TRUE(last.identifiable) << last.identifiability_note;
-  // The 60 s window ends at the last sample; it holds every sample of that span (none dropped),
-  // split by the dropout into two segments.
-  EXPECT_NEAR((last.window_end - last.window_start).toSec(), 60.0, 0.11);
+  // The 120 s window ends at the last sample; it holds every valid sample of that span (none
+  // dropped: 1201 less 19 in the dropout and the invalid one), split by the dropout and the invalid
+  // sample into three segments.
+  EXPECT_NEAR((last.window_end - last.window_start).toSec(), 120.0, 0.11);
   EXPECT_NEAR(last.window_end.toSec(), t0 + run.time_s.back(), 1e-6);
-  EXPECT_EQ(last.segments, 2u);
-  EXPECT_GE(last.samples, 580u);
-  EXPECT_LE(last.samples, 582u);
+  EXPECT_EQ(last.segments, 3u);
+  EXPECT_GE(last.samples, 1180u);
+  EXPECT_LE(last.samples, 1182u);
   // Within three standard errors of the truth, and the verdict of the truth.
   EXPECT_NEAR(last.k1_per_s2, truth.k1_per_s2, 3.0 * last.k1_std_error);
   EXPECT_NEAR(last.k2_per_s, truth.k2_per_s, 3.0 * last.k2_std_error);

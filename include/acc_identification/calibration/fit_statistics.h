@@ -26,25 +26,29 @@ FitQuality evaluateFit(const AccParameters& p, const std::vector<CarFollowingRun
 /// Pools the squared errors of several fits (each weighted by its samples).
 FitQuality poolFits(const std::vector<FitQuality>& fits);
 
-/// Standard errors of (k1, k2, tau_e, eta) from the Gauss-Newton approximation at the optimum:
-/// cov = s^2 (J^T J)^-1 with J the exact Jacobian of the simulated speeds (forward sensitivities)
-/// and s^2 = SSR / (n - 4), multiplied by the long-run variance factor (1 + rho) / (1 - rho) of
-/// AR(1) residuals with lag-1 autocorrelation rho. Real residuals are far from white (10 Hz
-/// spline-interpolated GNSS, model error that lasts seconds); without the factor the errors
-/// would be too small by up to an order of magnitude. The factor is the sandwich estimate
-/// J^T Sigma J ~ s^2 (1 + rho) / (1 - rho) J^T J, valid because the sensitivities vary slowly
-/// compared with the residuals' correlation time.
+/// Standard errors of (k1, k2, tau_e, eta) at the optimum by the Gauss-Newton sandwich
+///   cov = (J^T J)^-1 M (J^T J)^-1,   M = sum over blocks b of g_b g_b^T,  g_b = sum_{k in b} J_k r_k
+/// with J the exact Jacobian of the simulated speeds (forward sensitivities) and r the residuals.
+/// M is the batch-means estimate of the scores' long-run covariance: it stays honest when the
+/// residuals are correlated in time, which they are even on ideal data (leader-speed noise is
+/// integrated by the simulation into slow speed errors) and much more on real data (model error
+/// that lasts tens of seconds). With white residuals it reduces to the textbook s^2 (J^T J)^-1.
+/// Blocks do not straddle segments; their length is five residual correlation times (from the
+/// lag-1 autocorrelation), at least min_block_s, at most an eighth of the data so that M has
+/// enough blocks to be estimated.
 struct ParameterUncertainty
 {
   AccParameters standard_error;       ///< NaN when J^T J is singular
   Eigen::Matrix4d covariance = Eigen::Matrix4d::Constant(std::numeric_limits<double>::quiet_NaN());
   double residual_lag1_autocorrelation = 0.0;
-  double variance_inflation = 1.0;    ///< (1 + rho) / (1 - rho), rho clipped to [0, 0.995]
+  double block_length_s = 0.0;        ///< of the batch means
+  std::size_t blocks = 0;
   /// Smallest over largest eigenvalue of J^T J with unit-scaled columns: near 0 when some
   /// combination of parameters leaves the simulated speed unchanged (no excitation).
   double reciprocal_condition = 0.0;
 };
 
-ParameterUncertainty estimateUncertainty(const AccParameters& p, const std::vector<CarFollowingRun>& runs);
+ParameterUncertainty estimateUncertainty(const AccParameters& p, const std::vector<CarFollowingRun>& runs,
+                                         double min_block_s = 10.0);
 
 }  // namespace acc_identification
