@@ -64,7 +64,7 @@ void BM_DecodeGgaRmcStream(benchmark::State& state)
   for (auto _ : state)
     decoder.feed(stream.data(), stream.size(), 0.0);
   benchmark::DoNotOptimize(fixes);
-  if (decoder.statistics().sentences_ok != 2u * kEpochs * state.iterations())
+  if (decoder.statistics().sentences_ok != static_cast<std::uint64_t>(2 * kEpochs * state.iterations()))
     state.SkipWithError("a benchmark sentence did not parse");
   state.SetItemsProcessed(2 * kEpochs * state.iterations());
   state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(stream.size()));
