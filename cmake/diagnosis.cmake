@@ -42,6 +42,7 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/gtest_main.cpp
     test/unit/test_diagnosis_simulation.cpp
     test/unit/test_diagnosis_selection.cpp
-    test/unit/test_diagnosis_withheld.cpp)
+    test/unit/test_diagnosis_withheld.cpp
+    test/unit/test_diagnosis_output.cpp)
   target_link_libraries(test_diagnosis acc_diagnosis)
 endif()

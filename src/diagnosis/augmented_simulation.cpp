@@ -60,9 +60,13 @@ std::vector<double> trueLeaderSpeed(const CarFollowingRun& run, double offset_s)
 
 /// The law with the spacing-policy and cruise options, then the actuator's limits.
 double commandedAcceleration(const AccParameters& p, const EffectSettings& e, double gap, double speed,
-                             double leader_speed)
+                             double leader_speed, double leader_acceleration)
 {
   double command = accelerationMps2(p, gap, speed, leader_speed - speed);
+  if (e.leader_acceleration_gain != 0.0)
+  {
+    command += e.leader_acceleration_gain * leader_acceleration;
+  }
   if (e.time_gap_speed_slope_s2_per_m != 0.0)
   {
     command -= p.k1_per_s2 * e.time_gap_speed_slope_s2_per_m * speed * speed;
@@ -99,7 +103,9 @@ SimulatedFollower simulateAugmentedFollower(const AccParameters& p, const Effect
   {
     const double step_s = run.time_s[k + 1] - run.time_s[k];
     const double relative_speed = leader[k] - speed;
-    commands[k] = commandedAcceleration(p, e, gap, speed, leader[k]);
+    const double leader_acceleration =
+        k > 0 ? (leader[k] - leader[k - 1]) / (run.time_s[k] - run.time_s[k - 1]) : 0.0;
+    commands[k] = commandedAcceleration(p, e, gap, speed, leader[k], leader_acceleration);
     const double applied = e.reaction_delay_s > 0.0
                                ? interpolateForward(run.time_s, commands, k + 1, run.time_s[k] - e.reaction_delay_s,
                                                     &delay_cursor)

@@ -26,6 +26,7 @@ std::string smallSignalNote(EffectKind effect)
     case EffectKind::sensor_time_offset:
       return "a clock offset changes the record, not the vehicle: Gamma equals the base one";
     case EffectKind::speed_dependent_time_gap: return "time gap linearised at the operating speed: tau_e + 2 c v0";
+    case EffectKind::leader_acceleration_feedforward: return "feedforward adds k_a s^2 to the numerator";
     case EffectKind::set_speed_cruise:
       return "cruise mode is inactive while following below the set speed: small-signal Gamma equals the base one";
   }
@@ -39,7 +40,8 @@ double augmentedTransferGain(const AccParameters& p, const EffectSettings& e, do
   const std::complex<double> s(0.0, frequency_rad_s);
   const double tau = linearisedTimeGap(p, e, operating_speed_mps);
   const std::complex<double> delay = std::exp(-s * e.reaction_delay_s);
-  const std::complex<double> numerator = delay * (p.k2_per_s * s + p.k1_per_s2);
+  const std::complex<double> numerator =
+      delay * (e.leader_acceleration_gain * s * s + p.k2_per_s * s + p.k1_per_s2);
   const std::complex<double> denominator =
       (e.actuation_lag_s * s + 1.0) * s * s + delay * ((p.k2_per_s + p.k1_per_s2 * tau) * s + p.k1_per_s2);
   if (std::abs(denominator) == 0.0)

@@ -39,6 +39,16 @@ bool isResolvable(EffectKind kind, const std::vector<double>& values, double sam
   return std::abs(values.front()) >= sample_period_s;
 }
 
+const std::vector<CandidateEffect>& exploratoryEffects()
+{
+  static const std::vector<CandidateEffect> extra = {
+      {EffectKind::leader_acceleration_feedforward, "leader_acceleration_feedforward",
+       {{"leader_acceleration_gain", 0.0, 1.5, 0.05, 0.8}},
+       "command += k_a times the leader's acceleration (backward difference of its speed)"},
+  };
+  return extra;
+}
+
 const CandidateEffect& candidateEffect(EffectKind kind)
 {
   static const CandidateEffect base{EffectKind::none, "none", {}, "the base OVRV model"};
@@ -46,11 +56,14 @@ const CandidateEffect& candidateEffect(EffectKind kind)
   {
     return base;
   }
-  for (const CandidateEffect& effect : candidateEffects())
+  for (const auto* list : {&candidateEffects(), &exploratoryEffects()})
   {
-    if (effect.kind == kind)
+    for (const CandidateEffect& effect : *list)
     {
-      return effect;
+      if (effect.kind == kind)
+      {
+        return effect;
+      }
     }
   }
   throw std::invalid_argument("unknown effect kind");
@@ -65,12 +78,15 @@ bool parseEffectName(const std::string& name, EffectKind* kind)
     *kind = EffectKind::none;
     return true;
   }
-  for (const CandidateEffect& effect : candidateEffects())
+  for (const auto* list : {&candidateEffects(), &exploratoryEffects()})
   {
-    if (effect.name == name)
+    for (const CandidateEffect& effect : *list)
     {
-      *kind = effect.kind;
-      return true;
+      if (effect.name == name)
+      {
+        *kind = effect.kind;
+        return true;
+      }
     }
   }
   return false;
@@ -98,6 +114,7 @@ EffectSettings makeEffectSettings(EffectKind kind, const std::vector<double>& va
       s.set_speed_mps = values[0];
       s.cruise_gain_per_s = values[1];
       break;
+    case EffectKind::leader_acceleration_feedforward: s.leader_acceleration_gain = values[0]; break;
   }
   return s;
 }
@@ -113,6 +130,7 @@ std::vector<double> effectValues(EffectKind kind, const EffectSettings& s)
     case EffectKind::sensor_time_offset: return {s.sensor_time_offset_s};
     case EffectKind::speed_dependent_time_gap: return {s.time_gap_speed_slope_s2_per_m};
     case EffectKind::set_speed_cruise: return {s.set_speed_mps, s.cruise_gain_per_s};
+    case EffectKind::leader_acceleration_feedforward: return {s.leader_acceleration_gain};
   }
   return {};
 }

@@ -71,3 +71,18 @@ INSTANTIATE_TEST_SUITE_P(
         Expectation{aci::EffectKind::speed_dependent_time_gap, {0.02}, aci::SyntheticLeadProfile::steps, 0.005},
         Expectation{aci::EffectKind::set_speed_cruise, {25.0, 0.4}, aci::SyntheticLeadProfile::steps, 1.0}),
     [](const ::testing::TestParamInfo<Expectation>& info) { return aci::effectName(info.param.truth); });
+
+TEST(WithheldEffects, AnExploratoryEffectIsNamedWhenAskedFor)
+{
+  aci::WithheldCase c;
+  c.truth = aci::EffectKind::leader_acceleration_feedforward;
+  c.truth_values = {0.4};
+  c.profile = aci::SyntheticLeadProfile::oscillation;
+  c.seed = 5;
+  aci::DiagnosisOptions options = quickOptions();
+  options.candidates.push_back(aci::EffectKind::leader_acceleration_feedforward);
+  const auto outcome = aci::runWithheldCase(c, options);
+  EXPECT_EQ(outcome.dominant, aci::EffectKind::leader_acceleration_feedforward)
+      << "named " << aci::effectName(outcome.dominant);
+  EXPECT_NEAR(outcome.recovered_magnitude, 0.4, 0.1);
+}

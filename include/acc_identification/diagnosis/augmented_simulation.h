@@ -11,7 +11,8 @@ namespace acc_identification
 /// the run's recorded leader speed and started from its recorded gap and speed, one step per
 /// sample as simulateFollower(). Per step k (h = t[k+1] - t[k]):
 ///   u_k   = recorded leader speed at t_k + delta (linear interpolation, held at the ends)
-///   f_k   = k1 (s - eta - tau_e v - c v^2) + k2 (u_k - v), then min(f_k, g (v_set - v)),
+///   f_k   = k1 (s - eta - tau_e v - c v^2) + k2 (u_k - v) + k_a (u_k - u_k-1) / h_k-1,
+///           then min(f_k, g (v_set - v)),
 ///           then clipped to [-b_max, a_max]
 ///   c_k   = f at t_k - d (linear interpolation in the commands computed so far; f_0 before t_0)
 ///   a_k+1 = a_k + (1 - exp(-h / T)) (c_k - a_k)       (a_k+1 = c_k when T = 0; a_0 = c_0)

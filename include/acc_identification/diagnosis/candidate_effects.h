@@ -16,6 +16,9 @@ enum class EffectKind
   sensor_time_offset,        ///< clock offset between the two receivers (also biases the gap)
   speed_dependent_time_gap,  ///< spacing policy eta + tau v + c v^2 instead of linear in speed
   set_speed_cruise,          ///< the ACC drives at its set speed when the gap is large
+  /// Exploratory, not in the issue's catalogue (only tested when asked for): the ACC also responds
+  /// to the leader's acceleration, as a radar-tracked acceleration estimate allows.
+  leader_acceleration_feedforward,
 };
 
 /// Every option of the augmented follower model. The defaults switch every effect off, and the
@@ -36,6 +39,9 @@ struct EffectSettings
   /// Cruise mode: command = min(following law, cruise_gain (v_set - v)); infinity: no set speed.
   double set_speed_mps = std::numeric_limits<double>::infinity();
   double cruise_gain_per_s = 0.0;
+  /// k_a: command += k_a a_leader, a_leader the backward difference of the leader speed the ACC
+  /// saw (0 at the first sample) [dimensionless].
+  double leader_acceleration_gain = 0.0;
 };
 
 /// One calibrated parameter of an effect: its name with unit, the hard bounds of the search and
@@ -66,8 +72,12 @@ struct CandidateEffect
 /// resolve: |first value| >= sample_period_s for timing effects, always for the others.
 bool isResolvable(EffectKind kind, const std::vector<double>& values, double sample_period_s);
 
-/// The six candidate effects, in a fixed order (EffectKind::none is not among them).
+/// The six candidate effects of the issue, in a fixed order (EffectKind::none is not among them).
 const std::vector<CandidateEffect>& candidateEffects();
+
+/// Effects outside that catalogue that the diagnosis can test when asked (--effect NAME):
+/// leader_acceleration_feedforward.
+const std::vector<CandidateEffect>& exploratoryEffects();
 
 /// The catalogue entry of kind (kind none gives an entry with no parameters).
 const CandidateEffect& candidateEffect(EffectKind kind);

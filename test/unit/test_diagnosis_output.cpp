@@ -1,0 +1,66 @@
+// The diagnose tool's JSON and tables: every field the issue asks for, written and readable.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "acc_identification/diagnosis/diagnosis_output.h"
+#include "acc_identification/diagnosis/withheld_effect_suite.h"
+
+namespace aci = acc_identification;
+
+TEST(DiagnosisOutput, JsonHasTheFieldsOfTheIssueAndTablesAreWritten)
+{
+  aci::WithheldCase c;
+  c.truth = aci::EffectKind::actuation_lag;
+  c.truth_values = {0.8};
+  c.duration_s = 240.0;
+  aci::DiagnosisOptions options;
+  options.selection.resamples = 300;
+  aci::CarFollowingRun broken;
+  broken.name = "too-short";
+  broken.time_s = {0.0, 0.1};
+  broken.space_gap_m = {10.0, 10.0};
+  broken.follower_speed_mps = {10.0, 10.0};
+  broken.leader_speed_mps = {10.0, 10.0};
+  const aci::DiagnosisResult result = aci::diagnoseRuns({aci::synthesizeWithheldRun(c), broken}, options);
+  const nlohmann::json j = aci::diagnosisToJson(result);
+  EXPECT_EQ(j["dominant_effect"], "actuation_lag");
+  EXPECT_TRUE(j["plausible_effects"].is_array());
+  for (const char* key : {"parameters", "train_rmse_speed", "test_rmse_speed", "test_rmse_gap"})
+  {
+    EXPECT_TRUE(j["baseline"].contains(key)) << key;
+  }
+  ASSERT_EQ(j["effects"].size(), 6u);
+  for (const auto& effect : j["effects"])
+  {
+    for (const char* key : {"name", "parameters", "train_rmse_speed", "test_rmse_speed", "test_rmse_gap", "significant"})
+    {
+      EXPECT_TRUE(effect.contains(key)) << key;
+    }
+  }
+  EXPECT_LT(j["effects"][0]["test_rmse_speed"].get<double>(), j["baseline"]["test_rmse_speed"].get<double>());
+  EXPECT_TRUE(j["effects"][0]["parameters"].contains("lag_time_constant_s"));
+  for (const char* key : {"regimes", "segments", "frequency_bands", "speed_bands"})
+  {
+    EXPECT_FALSE(j["where"][key].empty()) << key;
+  }
+  // The unusable run is reported, not dropped silently.
+  ASSERT_EQ(j["notes"].size(), 1u);
+  EXPECT_NE(j["notes"][0].get<std::string>().find("too-short"), std::string::npos);
+
+  char directory[] = "/tmp/test_diagnosis_output_XXXXXX";
+  ASSERT_NE(mkdtemp(directory), nullptr);
+  aci::writeDiagnosisTables(result, directory);
+  for (const char* name : {"residuals.csv", "spectrum.csv", "gain.csv", "train_fit.csv"})
+  {
+    const std::string path = std::string(directory) + "/" + name;
+    std::ifstream in(path);
+    std::string header, first;
+    EXPECT_TRUE(std::getline(in, header) && std::getline(in, first)) << name;
+    std::remove(path.c_str());
+  }
+  std::remove(directory);
+  EXPECT_THROW(aci::writeDiagnosisTables(result, "/nonexistent/dir"), std::runtime_error);
+}
