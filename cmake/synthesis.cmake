@@ -1,0 +1,51 @@
+# Synthetic drives (issue 5): a lead profile of the paper, a follower by the ACC model (with the
+# diagnosis's unmodelled effects on request), both cars on a curved road, each receiver with its
+# GNSS errors, written as NMEA logs, truth CSV, parameters JSON and bags. The ROS-free library
+# acc_synthesis, the synthesize and nmea_to_bag tools, and their tests. Builds on the gnss and
+# relative_state components (NMEA writer and reader, geodesy), reproduction (lead profiles A-I)
+# and diagnosis (the augmented follower simulation).
+if(NOT (TARGET acc_conversion AND TARGET acc_reproduction AND TARGET acc_diagnosis))
+  message(WARNING "synthesis needs the gnss, relative_state, reproduction and diagnosis components in "
+                  "ACC_COMPONENTS: not built")
+  return()
+endif()
+find_package(nlohmann_json 3 REQUIRED)
+
+add_library(acc_synthesis
+  src/synthesis/normal_source.cpp
+  src/synthesis/gnss_error_model.cpp
+  src/synthesis/road_centreline.cpp
+  src/synthesis/drive_truth.cpp
+  src/synthesis/synthesis.cpp
+  src/synthesis/synthesis_output.cpp
+  src/synthesis/nmea_log_timing.cpp)
+target_include_directories(acc_synthesis PUBLIC include ${GeographicLib_INCLUDE_DIRS})
+target_link_libraries(acc_synthesis
+  PUBLIC acc_conversion acc_relative_state acc_reproduction acc_diagnosis ${GeographicLib_LIBRARIES}
+  PRIVATE nlohmann_json::nlohmann_json)
+
+# Raw sentences into bags (rosbag API, no ROS master needed).
+add_library(acc_sentence_bag src/ros/sentence_bag_writer.cpp)
+target_include_directories(acc_sentence_bag PUBLIC include ${catkin_INCLUDE_DIRS})
+target_link_libraries(acc_sentence_bag acc_synthesis ${catkin_LIBRARIES})
+add_dependencies(acc_sentence_bag ${PROJECT_NAME}_generate_messages_cpp)
+
+add_executable(synthesize src/tools/synthesize_main.cpp)
+target_link_libraries(synthesize acc_synthesis acc_sentence_bag acc_cli)
+add_executable(nmea_to_bag src/tools/nmea_to_bag_main.cpp)
+target_link_libraries(nmea_to_bag acc_sentence_bag acc_cli)
+install(TARGETS acc_synthesis acc_sentence_bag synthesize nmea_to_bag
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+install(PROGRAMS scripts/make_bags.sh DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+
+if(CATKIN_ENABLE_TESTING)
+  catkin_add_gtest(test_synthesis
+    test/unit/gtest_main.cpp
+    test/unit/test_synthesis.cpp
+    test/unit/test_synthesis_noise.cpp
+    test/unit/test_synthesis_bag.cpp)
+  target_link_libraries(test_synthesis acc_synthesis acc_sentence_bag)
+  target_compile_definitions(test_synthesis PRIVATE ACC_SYNTHESIS_BAGS_DIR="${PROJECT_SOURCE_DIR}/bags")
+endif()

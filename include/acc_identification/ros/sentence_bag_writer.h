@@ -1,0 +1,35 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "acc_identification/synthesis/nmea_log_timing.h"
+
+namespace acc_identification
+{
+/// The lines of one receiver and where they go in the bag.
+struct SentenceStream
+{
+  std::string topic;     ///< e.g. "/leader/nmea_sentence"
+  std::string frame_id;  ///< e.g. "leader_gnss"
+  std::vector<TimedNmeaLine> lines;
+};
+
+/// What was written.
+struct SentenceBagSummary
+{
+  std::size_t messages = 0;
+  double start_time_s = 0.0;  ///< first and last receive stamps [Unix s]
+  double end_time_s = 0.0;
+};
+
+/// Writes every line of every stream as an acc_identification/Sentence message, header.stamp and
+/// bag time = the line's receive time, in time order across the streams (so `rosbag play
+/// --clock` replays the two receivers interleaved as they would arrive), header.seq counting
+/// per stream. compression: "lz4", "bz2" or "none". Throws std::runtime_error with the reason
+/// when the bag cannot be written, a compression is unknown, or a stamp is not a valid ROS time.
+SentenceBagSummary writeSentenceBag(const std::string& path, const std::vector<SentenceStream>& streams,
+                                    const std::string& compression);
+
+}  // namespace acc_identification

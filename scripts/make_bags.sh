@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Regenerates every bag of bags/ deterministically (same tools, same bytes):
+#   casale_partN_sentences.bag  raw NMEA of both receivers from the JRC OpenACC Casale runs
+#                               part3, part4, part5 (part6, 25 minutes, would be 2 MB alone)
+#   synthetic_min_F.bag         synthesize --profile F --setting min --seed 1 (+ truth CSV, JSON)
+#   synthetic_max_F.bag         synthesize --profile F --setting max --seed 1 (+ truth CSV, JSON)
+# Usage: scripts/make_bags.sh [WORKSPACE]   (default build/ws; the workspace must be built with
+#        the gnss, relative_state, reproduction, diagnosis and synthesis components)
+# OPENACC_DIR overrides where the OpenACC CSVs are (default ../shared/data/openacc_casale).
+set -euo pipefail
+repo=$(cd "$(dirname "$0")/.." && pwd)
+ws=${1:-$repo/build/ws}
+bin=$ws/devel/lib/acc_identification
+openacc=${OPENACC_DIR:-$repo/../shared/data/openacc_casale}
+out=$repo/bags
+for tool in openacc_to_nmea nmea_to_bag synthesize; do
+  [ -x "$bin/$tool" ] || { echo "make_bags: $bin/$tool not built (see the usage in $0)" >&2; exit 1; }
+done
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# Real data: OpenACC CSV -> two NMEA logs -> one bag of raw sentences per run.
+for run in part3 part4 part5; do
+  "$bin/openacc_to_nmea" "$openacc/$run.csv" "$work/${run}_leader.nmea" "$work/${run}_follower.nmea"
+  "$bin/nmea_to_bag" "$work/${run}_leader.nmea" "$work/${run}_follower.nmea" "$out/casale_${run}_sentences.bag"
+done
+
+# Synthetic drives of profile F (about 430 s) for both settings of Table II.
+for setting in min max; do
+  "$bin/synthesize" --profile F --setting "$setting" --seed 1 \
+    --leader-log "$work/${setting}_leader.nmea" --follower-log "$work/${setting}_follower.nmea" \
+    --truth-csv "$out/synthetic_${setting}_F_truth.csv" \
+    --parameters-json "$out/synthetic_${setting}_F_parameters.json" \
+    --bag "$out/synthetic_${setting}_F.bag"
+done
+ls -la "$out"

@@ -1,0 +1,84 @@
+#include "acc_identification/ros/sentence_bag_writer.h"
+
+#include <rosbag/bag.h>
+#include <ros/time.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "acc_identification/Sentence.h"
+
+namespace acc_identification
+{
+namespace
+{
+rosbag::compression::CompressionType compressionType(const std::string& name)
+{
+  if (name == "lz4")
+    return rosbag::compression::LZ4;
+  if (name == "bz2")
+    return rosbag::compression::BZ2;
+  if (name == "none")
+    return rosbag::compression::Uncompressed;
+  throw std::runtime_error("unknown bag compression '" + name + "' (lz4, bz2 or none)");
+}
+
+struct Entry
+{
+  double stamp_s;
+  std::size_t stream;
+  std::size_t line;
+};
+}  // namespace
+
+SentenceBagSummary writeSentenceBag(const std::string& path, const std::vector<SentenceStream>& streams,
+                                    const std::string& compression)
+{
+  const auto type = compressionType(compression);
+  std::vector<Entry> entries;
+  for (std::size_t s = 0; s < streams.size(); ++s)
+    for (std::size_t i = 0; i < streams[s].lines.size(); ++i)
+    {
+      const double stamp_s = streams[s].lines[i].receive_time_s;
+      // ros::Time holds unsigned 32-bit seconds.
+      if (!std::isfinite(stamp_s) || stamp_s <= 0.0 || stamp_s >= 4294967295.0)
+        throw std::runtime_error(streams[s].topic + ": line " + std::to_string(i + 1) + " has no valid time stamp");
+      entries.push_back({stamp_s, s, i});
+    }
+  // Stable: lines of one stream with equal stamps keep their file order.
+  std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.stamp_s < b.stamp_s; });
+
+  rosbag::Bag bag;
+  try
+  {
+    bag.open(path, rosbag::bagmode::Write);
+    bag.setCompression(type);
+    std::vector<std::uint32_t> seq(streams.size(), 0);
+    for (const Entry& entry : entries)
+    {
+      const SentenceStream& stream = streams[entry.stream];
+      Sentence message;
+      message.header.seq = seq[entry.stream]++;
+      message.header.stamp = ros::Time(entry.stamp_s);
+      message.header.frame_id = stream.frame_id;
+      message.sentence = stream.lines[entry.line].line;
+      bag.write(stream.topic, message.header.stamp, message);
+    }
+    bag.close();
+  }
+  catch (const rosbag::BagException& e)
+  {
+    throw std::runtime_error("cannot write bag " + path + ": " + e.what());
+  }
+  SentenceBagSummary summary;
+  summary.messages = entries.size();
+  if (!entries.empty())
+  {
+    summary.start_time_s = entries.front().stamp_s;
+    summary.end_time_s = entries.back().stamp_s;
+  }
+  return summary;
+}
+
+}  // namespace acc_identification

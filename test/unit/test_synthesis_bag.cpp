@@ -1,0 +1,120 @@
+// Raw sentences into bags: receive stamps from the GNSS times, every line kept, both receivers
+// interleaved in time; and the bundled bags in bags/ hold what bags/README.md says.
+#include <gtest/gtest.h>
+
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+
+#include <fstream>
+#include <map>
+#include <string>
+
+#include "acc_identification/Sentence.h"
+#include "acc_identification/gnss/nmea_parser.h"
+#include "acc_identification/ros/sentence_bag_writer.h"
+#include "acc_identification/synthesis/nmea_log_timing.h"
+
+namespace acc_identification
+{
+namespace
+{
+std::string writeLog(const std::string& name, const std::string& content)
+{
+  const std::string path = testing::TempDir() + "synthesis_bag_" + name;
+  std::ofstream(path, std::ios::binary) << content;
+  return path;
+}
+
+// Two epochs just before midnight of 2026-05-11 (day 20584) and one after; GGA first, without a
+// date; one broken line and one line without time.
+const char* kLog =
+    "$GNGGA,235959.80,4507.80000,N,00827.00000,E,1,12,0.8,120.0,M,,M,,*6E\r\n"
+    "$GNRMC,235959.80,A,4507.80000,N,00827.00000,E,40.000,57.30,110526,,,A*7E\r\n"
+    "$GNGGA,235959.90,4507.80010,N,00827.00010,E,1,12,0.8,120.0,M,,M,,*6F\r\n"
+    "garbage without time\r\n"
+    "$GNRMC,235959.90,A,4507.80010,N,00827.00010,E,40.000,57.30,110526,,,A*7F\r\n"
+    "$GNGGA,000000.00,4507.80020,N,00827.00020,E,1,12,0.8,120.0,M,,M,,*67\r\n";
+
+TEST(NmeaLogTiming, StampsFromGnssTimeAcrossMidnightKeepingEveryLine)
+{
+  const TimedNmeaLog log = readTimedNmeaLog(writeLog("timing.nmea", kLog));
+  ASSERT_EQ(log.error, "");
+  ASSERT_EQ(log.lines.size(), 6u);
+  EXPECT_EQ(log.untimed_lines, 1u);
+  const double midnight = 20585.0 * 86400.0;  // 2026-05-12 00:00:00
+  EXPECT_NEAR(log.lines[0].receive_time_s, midnight - 0.2 + 0.04, 1e-6);  // GGA before the first date
+  EXPECT_NEAR(log.lines[1].receive_time_s, midnight - 0.2 + 0.06, 1e-6);  // second sentence of the epoch
+  EXPECT_NEAR(log.lines[2].receive_time_s, midnight - 0.1 + 0.04, 1e-6);
+  EXPECT_NEAR(log.lines[3].receive_time_s, log.lines[2].receive_time_s + 0.02, 1e-6);  // untimed
+  EXPECT_EQ(log.lines[3].line, "garbage without time");
+  EXPECT_NEAR(log.lines[5].receive_time_s, midnight + 0.04, 1e-6);  // the day rolled over
+}
+
+TEST(NmeaLogTiming, ALogWithoutDateIsAnErrorNotAGuess)
+{
+  const TimedNmeaLog log = readTimedNmeaLog(writeLog("nodate.nmea", "$GNGGA,235959.80,4507.80000,N,00827.00000,E,1,12,0.8,120.0,M,,M,,*6E\r\n"));
+  EXPECT_NE(log.error.find("date"), std::string::npos);
+  EXPECT_NE(readTimedNmeaLog("/nonexistent/x.nmea").error, "");
+}
+
+TEST(SentenceBag, BothReceiversInterleavedInTimeOrder)
+{
+  const TimedNmeaLog log = readTimedNmeaLog(writeLog("bag.nmea", kLog));
+  std::vector<SentenceStream> streams{{"/leader/nmea_sentence", "leader_gnss", log.lines},
+                                      {"/follower/nmea_sentence", "follower_gnss", log.lines}};
+  for (TimedNmeaLine& line : streams[1].lines)
+    line.receive_time_s += 0.01;
+  const std::string path = testing::TempDir() + "synthesis_bag_out.bag";
+  const SentenceBagSummary summary = writeSentenceBag(path, streams, "lz4");
+  EXPECT_EQ(summary.messages, 12u);
+
+  rosbag::Bag bag(path, rosbag::bagmode::Read);
+  rosbag::View view(bag);
+  double previous = 0.0;
+  std::map<std::string, std::vector<std::string>> lines;
+  for (const rosbag::MessageInstance& instance : view)
+  {
+    const auto message = instance.instantiate<Sentence>();
+    ASSERT_TRUE(message);
+    EXPECT_GE(instance.getTime().toSec(), previous);
+    EXPECT_EQ(instance.getTime(), message->header.stamp);
+    previous = instance.getTime().toSec();
+    EXPECT_EQ(message->header.frame_id, instance.getTopic() == "/leader/nmea_sentence" ? "leader_gnss" : "follower_gnss");
+    EXPECT_EQ(message->header.seq, lines[instance.getTopic()].size());
+    lines[instance.getTopic()].push_back(message->sentence);
+  }
+  ASSERT_EQ(lines["/leader/nmea_sentence"].size(), 6u);
+  EXPECT_EQ(lines["/leader/nmea_sentence"][3], "garbage without time");
+  EXPECT_EQ(lines["/follower/nmea_sentence"], lines["/leader/nmea_sentence"]);
+  EXPECT_THROW(writeSentenceBag(path, streams, "zip"), std::runtime_error);
+}
+
+/// Every bundled bag: both topics, 10 Hz GGA + RMC that all parse, stamps in order.
+TEST(BundledBags, HoldBothReceiversAtTenHertzWithValidSentences)
+{
+  for (const char* name : {"casale_part4_sentences.bag", "synthetic_min_F.bag", "synthetic_max_F.bag"})
+  {
+    SCOPED_TRACE(name);
+    rosbag::Bag bag(std::string(ACC_SYNTHESIS_BAGS_DIR) + "/" + name, rosbag::bagmode::Read);
+    rosbag::View view(bag);
+    std::map<std::string, std::size_t> ok, bad;
+    for (const rosbag::MessageInstance& instance : view)
+    {
+      const auto message = instance.instantiate<Sentence>();
+      ASSERT_TRUE(message);
+      NmeaSentence sentence;
+      (parseNmeaSentence(message->sentence, sentence) == NmeaParseOutcome::kOk ? ok : bad)[instance.getTopic()]++;
+    }
+    const double duration_s = (view.getEndTime() - view.getBeginTime()).toSec();
+    EXPECT_GT(duration_s, 60.0);
+    for (const char* topic : {"/leader/nmea_sentence", "/follower/nmea_sentence"})
+    {
+      EXPECT_EQ(bad[topic], 0u) << topic;
+      // Two sentences per epoch at 10 Hz over the whole bag (OpenACC has a few missing rows).
+      EXPECT_NEAR(static_cast<double>(ok[topic]) / duration_s, 20.0, 1.0) << topic;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace acc_identification
