@@ -11,8 +11,10 @@ namespace acc_identification
 {
 /// Box constraints of the calibration: the paper's k1, k2, tau_e, eta >= 0, plus upper bounds far
 /// above any published ACC fit (Gunter et al. Table II: k1 < 0.1, k2 < 0.5, tau_e < 1.7,
-/// eta < 9) that keep the 10 Hz Euler map well inside its stability region for k1 tau_e + k2
-/// (it needs h (k1 tau_e + k2) < 2 - h^2 k1 / 2).
+/// eta < 9). The Euler map of the follower, [s; v] -> [[1, -h], [h k1, 1 - h c]] [s; v] with
+/// c = k1 tau_e + k2, is stable when h c < 2 + h^2 k1 / 2 and h k1 < c. The bounds keep the first
+/// (h c <= 1.3 at 10 Hz); the second fails for tau_e < h with little k2 (a nearly undamped
+/// spring), whose slow growth the objective catches as divergence.
 struct ParameterBounds
 {
   AccParameters lower{0.0, 0.0, 0.0, 0.0};
