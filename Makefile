@@ -9,7 +9,9 @@ export ROS_LOG_DIR := $(CURDIR)/build/ros_home/log
 
 WS ?= $(CURDIR)/build/ws
 JOBS ?= 2
-# Extra CMake arguments, e.g. CMAKE_ARGS=-DACC_COMPONENTS=gnss to build one component alone.
+# Build some components only, e.g. COMPONENTS='gnss;relative_state' (default: all of them).
+COMPONENTS ?=
+# Extra CMake arguments passed to catkin_make as they are.
 CMAKE_ARGS ?=
 DEV := $(WS)/devel/setup.bash
 APT_PACKAGES := build-essential cmake clang libclang-rt-14-dev \
@@ -38,7 +40,7 @@ build: deps
 	  for entry in $(CURDIR)/* $(CURDIR)/.ci; do \
 	    [ "$$(basename $$entry)" = build ] || ln -sfn $$entry $$pkg/; \
 	  done
-	cd $(WS) && catkin_make -j$(JOBS) -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON $(CMAKE_ARGS) > $(WS)/catkin_make.log 2>&1 \
+	cd $(WS) && catkin_make -j$(JOBS) -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON $(if $(COMPONENTS),'-DACC_COMPONENTS=$(COMPONENTS)') $(CMAKE_ARGS) > $(WS)/catkin_make.log 2>&1 \
 	  || { tail -n 60 $(WS)/catkin_make.log; exit 1; }
 	@echo "built in $(WS) (log: $(WS)/catkin_make.log)"
 
