@@ -53,3 +53,52 @@ if(TARGET acc_gnss)
       ACC_OPENACC_DATA_DIR="${ACC_OPENACC_DATA_DIR}")
   endif()
 endif()
+
+# The ROS wrapper and its ten-line main. It reuses the gnss component's message conversion
+# (fromMessage in acc_gnss_ros), so it needs that component's ROS library.
+if(TARGET acc_gnss_ros AND TARGET acc_conversion)
+  add_library(acc_relative_state_ros src/ros/relative_state_ros.cpp)
+  target_include_directories(acc_relative_state_ros PUBLIC include ${catkin_INCLUDE_DIRS})
+  target_link_libraries(acc_relative_state_ros acc_relative_state acc_gnss_ros ${catkin_LIBRARIES})
+  add_dependencies(acc_relative_state_ros ${PROJECT_NAME}_generate_messages_cpp)
+  add_executable(relative_state_node src/nodes/relative_state_node.cpp)
+  target_link_libraries(relative_state_node acc_relative_state_ros)
+  install(TARGETS acc_relative_state_ros relative_state_node
+    ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+    LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+    RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+  install(FILES launch/relative_state.launch DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/launch)
+  install(FILES config/relative_state.yaml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/config)
+
+  if(CATKIN_ENABLE_TESTING)
+    find_package(rostest REQUIRED)
+    # Recorded fixes with a late, bursty, broken leader stream and a looping restart.
+    add_rostest_gtest(test_relative_state_fixes test/rostest/relative_state_fixes.test
+      test/rostest/relative_state_fixes_check.cpp)
+    target_link_libraries(test_relative_state_fixes acc_relative_state_ros acc_conversion ${catkin_LIBRARIES})
+    add_dependencies(test_relative_state_fixes relative_state_node)
+
+    # Every Casale run through openacc_to_nmea, the two drivers and the node.
+    add_executable(test_relative_state_drivers EXCLUDE_FROM_ALL test/rostest/relative_state_drivers_check.cpp)
+    target_link_libraries(test_relative_state_drivers acc_relative_state_ros acc_conversion ${GTEST_LIBRARIES}
+      ${catkin_LIBRARIES})
+    target_include_directories(test_relative_state_drivers PRIVATE ${GTEST_INCLUDE_DIRS})
+    add_dependencies(tests test_relative_state_drivers)
+    set(_acc_nmea_dir ${CMAKE_CURRENT_BINARY_DIR}/openacc_nmea)
+    foreach(run part3 part4 part5 part6)
+      set(_acc_csv ${ACC_OPENACC_DATA_DIR}/${run}.csv)
+      add_custom_command(
+        OUTPUT ${_acc_nmea_dir}/${run}_leader.nmea ${_acc_nmea_dir}/${run}_follower.nmea
+        COMMAND ${CMAKE_COMMAND} -E make_directory ${_acc_nmea_dir}
+        COMMAND openacc_to_nmea ${_acc_csv} ${_acc_nmea_dir}/${run}_leader.nmea ${_acc_nmea_dir}/${run}_follower.nmea
+        DEPENDS openacc_to_nmea ${_acc_csv}
+        COMMENT "openacc_to_nmea ${run}")
+      add_custom_target(relative_state_nmea_${run}
+        DEPENDS ${_acc_nmea_dir}/${run}_leader.nmea ${_acc_nmea_dir}/${run}_follower.nmea)
+      add_dependencies(tests relative_state_nmea_${run})
+      add_rostest(test/rostest/relative_state_drivers.test
+        ARGS run:=${run} nmea_dir:=${_acc_nmea_dir} csv:=${_acc_csv}
+        DEPENDENCIES relative_state_node gps_driver_node test_relative_state_drivers relative_state_nmea_${run})
+    endforeach()
+  endif()
+endif()

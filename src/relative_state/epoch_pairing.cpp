@@ -91,14 +91,14 @@ std::vector<PairedEpoch> EpochPairer::takePairs()
   return pairs;
 }
 
-std::vector<std::string> EpochPairer::takeEvents()
+std::vector<PairingEvent> EpochPairer::takeEvents()
 {
-  std::vector<std::string> events;
+  std::vector<PairingEvent> events;
   events.swap(events_);
   return events;
 }
 
-void EpochPairer::event(const std::string& text) { events_.push_back(text); }
+void EpochPairer::event(const std::string& text, bool per_epoch) { events_.push_back({per_epoch, text}); }
 
 // Stream-level checks on one fix, in GNSS time: usable, time reset, dropout, order.
 bool EpochPairer::acceptStream(const GnssFix& fix, bool leader)
@@ -117,9 +117,12 @@ bool EpochPairer::acceptStream(const GnssFix& fix, bool leader)
   {
     ++(leader ? counters_.leader_time_resets : counters_.follower_time_resets);
     event(std::string(name) + " time went back from " + seconds(newest) + " s to " + seconds(t) +
-          " s (looping bag or receiver reset): " + name + " state cleared");
+          " s (looping bag or receiver reset): " + name + " state cleared", false);
     if (leader)
+    {
       leader_.clear();
+      leader_period_s_ = GnssFix::kNaN;
+    }
     else
     {
       counters_.follower_unpaired += pending_follower_.size();
@@ -134,7 +137,7 @@ bool EpochPairer::acceptStream(const GnssFix& fix, bool leader)
   if (std::isfinite(newest) && t > newest + settings_.dropout_gap_s)
   {
     ++(leader ? counters_.leader_dropouts : counters_.follower_dropouts);
-    event(std::string(name) + " dropout: no epoch from " + seconds(newest) + " s to " + seconds(t) + " s");
+    event(std::string(name) + " dropout: no epoch from " + seconds(newest) + " s to " + seconds(t) + " s", false);
   }
   arrived_out_of_order_ = std::isfinite(newest) && t < newest - settings_.exact_match_tolerance_s;
   newest = std::isfinite(newest) ? std::max(newest, t) : t;
@@ -161,7 +164,13 @@ void EpochPairer::insertLeader(const GnssFix& fix)
   }
   if (arrived_out_of_order_)
     ++counters_.leader_out_of_order;
-  leader_.insert(at, fix);
+  at = leader_.insert(at, fix);
+  for (auto neighbour : {at == leader_.begin() ? at : std::prev(at), std::next(at)})
+  {
+    double spacing = neighbour == leader_.end() ? 0.0 : std::abs(neighbour->gnss_time_s - t);
+    if (spacing > tolerance && !(spacing >= leader_period_s_))
+      leader_period_s_ = spacing;
+  }
   if (leader_.size() > settings_.max_buffered_fixes)
   {
     ++counters_.buffer_overflows;
@@ -210,9 +219,13 @@ void EpochPairer::resolvePending()
     double t = follower.gnss_time_s;
     PairedEpoch pair;
     Resolution resolution = tryPair(follower, pair);
-    if (resolution == Resolution::kWaiting && newest_follower_s_ - t <= settings_.timeout_s)
+    double waited_s = newest_follower_s_ - t;
+    if (resolution == Resolution::kWaiting && waited_s <= settings_.timeout_s)
       break;
-    if (resolution == Resolution::kPaired)
+    if (resolution == Resolution::kInterpolable && newest_leader_s_ - t <= settings_.exact_wait_s &&
+        waited_s <= settings_.timeout_s)
+      break;
+    if (resolution != Resolution::kWaiting)
     {
       bool follower_gap = std::isfinite(last_output_s_) && t - last_output_s_ > settings_.dropout_gap_s;
       pair.continuity_break = break_before_next_ || follower_gap;
@@ -258,6 +271,14 @@ EpochPairer::Resolution EpochPairer::tryPair(const GnssFix& follower, PairedEpoc
   pair.leader = interpolateFix(*before, *after, t);
   pair.epoch_skew_s = std::min(skew_before, skew_after);
   pair.interpolated = true;
+  // Is a leader epoch expected right at t (the two streams share the epoch grid, one is missing)?
+  double period = leader_period_s_;
+  if (std::isfinite(period) && after->gnss_time_s - before->gnss_time_s > 1.5 * period)
+  {
+    double on_grid = before->gnss_time_s + std::round(skew_before / period) * period;
+    if (std::abs(on_grid - t) <= tolerance)
+      return Resolution::kInterpolable;
+  }
   return Resolution::kPaired;
 }
 

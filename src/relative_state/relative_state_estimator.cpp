@@ -66,9 +66,9 @@ std::vector<RelativeState> RelativeStateEstimator::takeStates()
   return states;
 }
 
-std::vector<std::string> RelativeStateEstimator::takeEvents()
+std::vector<PairingEvent> RelativeStateEstimator::takeEvents()
 {
-  std::vector<std::string> events = pairer_.takeEvents();
+  std::vector<PairingEvent> events = pairer_.takeEvents();
   events.insert(events.end(), events_.begin(), events_.end());
   events_.clear();
   return events;
@@ -83,8 +83,8 @@ double RelativeStateEstimator::gap(const PairedEpoch& pair)
     if (along_m)
       return *along_m - settings_.geometry.combinedOffset();
     ++counters_.along_track_fallbacks;
-    events_.push_back("along-track gap unavailable at " + number(pair.time_s) + " s (" + why_not +
-                      "): straight line used");
+    events_.push_back({true, "along-track gap unavailable at " + number(pair.time_s) + " s (" + why_not +
+                                 "): straight line used"});
   }
   return straightLineGap(pair.leader, pair.follower, settings_.geometry);
 }
@@ -147,7 +147,7 @@ void RelativeStateEstimator::process(const PairedEpoch& pair)
     ++counters_.invalid_states;
     if (state.invalid_reason.find("jump") != std::string::npos)
       ++counters_.jumps_rejected;
-    events_.push_back("sample at " + number(state.time_s) + " s invalid: " + state.invalid_reason);
+    events_.push_back({true, "sample at " + number(state.time_s) + " s invalid: " + state.invalid_reason});
   }
   state.gap_doppler_residual_m = consistency_.recentRms();
   ++counters_.states;

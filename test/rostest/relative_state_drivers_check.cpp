@@ -53,6 +53,14 @@ TEST(RelativeStateDrivers, EveryEpochOfARealRunThroughTheDriversAndTheNode)
 
   Received received;
   auto state_sub = node.subscribe("relative_state", 100000, &Received::onState, &received);
+  // Connected to relative_state_node first, so that its first states are not missed.
+  ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(30.0);
+  while (ros::ok() && state_sub.getNumPublishers() == 0 && ros::WallTime::now() < deadline)
+  {
+    ros::spinOnce();
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_GT(state_sub.getNumPublishers(), 0u) << "relative_state_node did not come up";
   // The drivers start replaying once each of their topics has a subscriber (wait_for_subscribers):
   // relative_state_node takes fix; these take the rest.
   std::vector<ros::Subscriber> others;

@@ -64,8 +64,8 @@ std::vector<ai::RelativeState> throughLogsAndPairing(const ai::OpenAccTrajectori
     if (i < follower.fixes.size())
       estimator.addFollower(follower.fixes[i]);
   }
-  for (const std::string& event : estimator.takeEvents())
-    std::printf("  event: %s\n", event.c_str());
+  for (const ai::PairingEvent& event : estimator.takeEvents())
+    std::printf("  event: %s\n", event.text.c_str());
   return estimator.takeStates();
 }
 

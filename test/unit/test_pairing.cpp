@@ -42,7 +42,9 @@ void expectIncreasingAndFresh(const std::vector<ai::PairedEpoch>& pairs, double 
   for (std::size_t i = 0; i < pairs.size(); ++i)
   {
     if (i > 0)
+    {
       EXPECT_GT(pairs[i].time_s, pairs[i - 1].time_s) << "output went back at " << i;
+    }
     // The leader's latitude must be its position at the pair's own time: never stale data.
     EXPECT_NEAR(pairs[i].leader.latitude_deg, 45.0 + kDegPerSecond * pairs[i].time_s, 1e-9);
     EXPECT_LE(pairs[i].epoch_skew_s, max_skew_s);
@@ -97,30 +99,57 @@ TEST(Pairing, LateBurstyOutOfOrderLeaderIsStillPairedInOrder)
   auto follower_times = epochs(0.0, 10.0);
   std::mt19937 random(7);
   std::size_t sent = 0;
-  // The leader's fixes come 1.2 s late in bursts of 8, shuffled inside each burst.
+  // The leader's fixes come 1.2 s late in bursts of 5, shuffled inside each burst (the burst
+  // spans 0.4 s of leader time, less than exact_wait_s: every epoch is still paired exactly).
   for (std::size_t i = 0; i < follower_times.size(); ++i)
   {
     pairer.addFollower(fixAt(follower_times[i], -0.001));
-    if (i % 8 == 7 && i >= 12)
+    if (i % 5 == 4 && i >= 12)
     {
       std::size_t end = std::min(leader_times.size(), i - 11);
       std::vector<double> burst(leader_times.begin() + sent, leader_times.begin() + end);
-      std::shuffle(burst.begin(), burst.end(), random);
+      // (The first in order: the pairer learns the leader's epoch period from adjacent epochs.)
+      if (sent > 0)
+        std::shuffle(burst.begin(), burst.end(), random);
       for (double t : burst)
         pairer.addLeader(fixAt(t));
       sent = end;
     }
   }
-  std::vector<double> rest(leader_times.begin() + sent, leader_times.end());
-  std::shuffle(rest.begin(), rest.end(), random);
-  for (double t : rest)
-    pairer.addLeader(fixAt(t));
+  for (std::size_t i = sent; i < leader_times.size(); ++i)  // the last 1.2 s, in order
+    pairer.addLeader(fixAt(leader_times[i]));
   auto pairs = pairer.takePairs();
   EXPECT_EQ(pairs.size(), follower_times.size());
   EXPECT_EQ(pairer.counters().follower_unpaired, 0u);
   EXPECT_GT(pairer.counters().leader_out_of_order, 0u);
-  // An epoch whose own leader fix is still on its way is interpolated from its neighbours.
-  expectIncreasingAndFresh(pairs, 0.1 + 1e-9);
+  EXPECT_EQ(pairer.counters().interpolated_pairs, 0u);
+  expectIncreasingAndFresh(pairs, 0.0);
+}
+
+TEST(Pairing, ALostLeaderEpochIsInterpolatedOnceTheLeaderIsPastItByTheExactWait)
+{
+  ai::EpochPairer pairer;
+  for (double t : epochs(0.0, 3.0))
+  {
+    if (std::abs(t - 1.0) > 1e-6)
+      pairer.addLeader(fixAt(t));
+    pairer.addFollower(fixAt(t, -0.001));
+    // Not before the leader is exact_wait_s (0.5 s) past the lost epoch.
+    if (t < 1.45)
+    {
+      for (const auto& pair : pairer.takePairs())
+      {
+        EXPECT_LT(pair.time_s, 0.95);
+      }
+    }
+  }
+  auto pairs = pairer.takePairs();
+  auto lost = std::find_if(pairs.begin(), pairs.end(), [](const auto& p) { return std::abs(p.time_s - 1.0) < 1e-6; });
+  ASSERT_NE(lost, pairs.end());
+  EXPECT_TRUE(lost->interpolated);
+  EXPECT_NEAR(lost->epoch_skew_s, 0.1, 1e-9);
+  EXPECT_EQ(pairer.counters().interpolated_pairs, 1u);
+  EXPECT_EQ(pairer.counters().follower_unpaired, 0u);
 }
 
 TEST(Pairing, LeaderDropoutGivesNoSamplesACountAndABreak)
@@ -145,7 +174,9 @@ TEST(Pairing, LeaderDropoutGivesNoSamplesACountAndABreak)
   expectIncreasingAndFresh(pairs, 0.0);
   auto events = pairer.takeEvents();
   EXPECT_TRUE(std::any_of(events.begin(), events.end(),
-                          [](const std::string& e) { return e.find("leader dropout") != std::string::npos; }));
+                          [](const ai::PairingEvent& e) {
+                            return !e.per_epoch && e.text.find("leader dropout") != std::string::npos;
+                          }));
 }
 
 TEST(Pairing, FollowerWaitsForTheLeaderOnlyUntilTheTimeout)
@@ -209,7 +240,9 @@ TEST(Pairing, TimeGoingBackRestartsThePairingAndIsReported)
     if (pairs[i].continuity_break)
       ++breaks;
     if (i > 0 && !pairs[i].continuity_break)
+    {
       EXPECT_GT(pairs[i].time_s, pairs[i - 1].time_s);
+    }
   }
   EXPECT_EQ(breaks, 2u);
   EXPECT_TRUE(pairs[201].continuity_break);

@@ -165,8 +165,12 @@ TEST(RelativeStateEstimator, DropoutRestartsTheConsistencyWindowAndLeavesNoSampl
     EXPECT_FALSE(s.time_s > 1015.05 && s.time_s < 1016.95) << "stale sample at " << s.time_s;
   // After the dropout the consistency needs a full new window.
   for (const auto& s : states)
+  {
     if (s.time_s > 1017.0 && s.time_s < 1026.9)
+    {
       EXPECT_TRUE(std::isnan(s.gap_doppler_residual_m)) << s.time_s;
+    }
+  }
   EXPECT_TRUE(std::isfinite(states.back().gap_doppler_residual_m));
 }
 

@@ -19,6 +19,12 @@ struct PairingSettings
   /// Interpolation only between two leader epochs each within this of the follower's epoch, so
   /// that a leader gap is never bridged (at 10 Hz, 0.15 s allows one epoch of phase offset).
   double max_interpolation_skew_s = 0.15;
+  /// When the leader's epochs fall on the follower's and the one at the follower's epoch is
+  /// missing, it may still come out of order: wait until the leader's stream is this far past
+  /// it (leader GNSS time) before interpolating across it. An exact epoch beats an interpolated
+  /// one; out-of-order arrivals within this span are paired exactly. (The leader's epoch period
+  /// is learnt as the smallest spacing of its epochs seen so far.)
+  double exact_wait_s = 0.5;
   /// A follower epoch waits for the leader's data at most this long, measured on the follower's
   /// GNSS clock; then it is counted as unpaired. This is the latency budget of the radio link.
   double timeout_s = 2.0;
@@ -55,6 +61,14 @@ struct PairingCounters
   std::uint64_t buffer_overflows = 0;        ///< oldest fixes discarded at max_buffered_fixes
 };
 
+/// A report for the log. Stream events (dropouts, time resets) are rare and each one is worth a
+/// line; per-epoch events (an unpaired or late epoch, an invalid sample) can come ten a second.
+struct PairingEvent
+{
+  bool per_epoch = false;
+  std::string text;
+};
+
 /// One follower epoch with the leader at that same GNSS time.
 struct PairedEpoch
 {
@@ -82,13 +96,14 @@ public:
   /// Pairs completed since the last call, in increasing GNSS time.
   std::vector<PairedEpoch> takePairs();
   /// Human-readable reports of dropouts, resets, late fixes since the last call (for the log).
-  std::vector<std::string> takeEvents();
+  std::vector<PairingEvent> takeEvents();
 
   const PairingCounters& counters() const { return counters_; }
   const PairingSettings& settings() const { return settings_; }
 
 private:
-  enum class Resolution { kPaired, kUnpairable, kWaiting };
+  // kInterpolable: an interpolation is ready, but the leader's own epoch is expected.
+  enum class Resolution { kPaired, kInterpolable, kWaiting };
 
   bool acceptStream(const GnssFix& fix, bool leader);
   void insertLeader(const GnssFix& fix);
@@ -96,15 +111,16 @@ private:
   void resolvePending();
   Resolution tryPair(const GnssFix& follower, PairedEpoch& pair) const;
   void trimLeader();
-  void event(const std::string& text);
+  void event(const std::string& text, bool per_epoch = true);
 
   PairingSettings settings_;
   PairingCounters counters_;
   std::deque<GnssFix> leader_;            // sorted by gnss_time_s
   std::deque<GnssFix> pending_follower_;  // sorted by gnss_time_s
   std::vector<PairedEpoch> ready_;
-  std::vector<std::string> events_;
+  std::vector<PairingEvent> events_;
   double newest_leader_s_ = GnssFix::kNaN;
+  double leader_period_s_ = GnssFix::kNaN;  // smallest spacing of the leader's epochs seen
   double newest_follower_s_ = GnssFix::kNaN;
   double last_output_s_ = GnssFix::kNaN;  // newest follower epoch resolved (paired or not)
   bool break_before_next_ = true;

@@ -63,7 +63,7 @@ public:
   /// States completed since the last call, in increasing GNSS time (valid or not, with reason).
   std::vector<RelativeState> takeStates();
   /// Reports of dropouts, resets, rejected jumps since the last call, for the log.
-  std::vector<std::string> takeEvents();
+  std::vector<PairingEvent> takeEvents();
 
   const PairingCounters& pairingCounters() const { return pairer_.counters(); }
   const RelativeStateCounters& counters() const { return counters_; }
@@ -80,7 +80,7 @@ private:
   GapDopplerConsistency consistency_;
   RelativeStateCounters counters_;
   std::vector<RelativeState> states_;
-  std::vector<std::string> events_;
+  std::vector<PairingEvent> events_;
   std::uint64_t leader_resets_seen_ = 0;
   bool has_reference_ = false;
   RelativeState reference_;  // last accepted state, for the jump bound

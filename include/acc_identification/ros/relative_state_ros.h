@@ -1,0 +1,66 @@
+#pragma once
+
+// gps_driver_ros.h includes the GnssFix message under the name GnssFixMessage (the library has
+// a struct of that name); it must come before any other include of acc_identification/GnssFix.h.
+#include "acc_identification/ros/gps_driver_ros.h"
+
+#include <cstdint>
+#include <string>
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/ros.h>
+
+#include "acc_identification/relative_state/relative_state_estimator.h"
+
+// Same clash for RelativeState: the message is RelativeStateMessage here.
+#define RelativeState RelativeStateMessage
+#include <acc_identification/RelativeState.h>
+#undef RelativeState
+
+namespace acc_identification
+{
+/// The library state as a message. header.stamp: the pair's GNSS time (as the driver's fixes).
+RelativeStateMessage toMessage(const RelativeState& state, const std::string& frame_id);
+
+/// Reads the node's private parameters into settings; false and a message on a bad value.
+bool loadRelativeStateSettings(const ros::NodeHandle& private_node, RelativeStateSettings& settings,
+                               std::string& error);
+
+/// relative_state_node: subscribes to leader/fix and follower/fix (acc_identification/GnssFix),
+/// pairs them by GNSS epoch and publishes relative_state (acc_identification/RelativeState);
+/// health on /diagnostics. The science is in the ROS-free RelativeStateEstimator; nothing here
+/// uses the ROS clock for the data, so it runs the same under /use_sim_time.
+class RelativeStateRos
+{
+public:
+  RelativeStateRos(ros::NodeHandle node, ros::NodeHandle private_node);
+  bool ok() const { return ok_; }
+
+private:
+  void onLeader(const GnssFixMessage::ConstPtr& message);
+  void onFollower(const GnssFixMessage::ConstPtr& message);
+  void publishStates();
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+
+  bool ok_ = false;
+  RelativeStateSettings settings_;
+  RelativeStateEstimator estimator_;
+  bool publish_invalid_ = true;
+  double stale_after_s_ = 2.0;
+  double consistency_warn_m_ = 1.0;
+  std::string follower_frame_id_ = "follower_gps";
+
+  ros::Subscriber leader_subscriber_, follower_subscriber_;
+  ros::Publisher publisher_;
+  diagnostic_updater::Updater updater_;
+  ros::WallTimer diagnostic_timer_;
+
+  // Wall-clock health: the data's own time may be a replay's.
+  ros::WallTime last_leader_, last_follower_, last_valid_;
+  std::uint64_t published_ = 0;
+  RelativeState last_state_;
+  PairingCounters counters_at_last_diagnostic_;
+  RelativeStateCounters state_counters_at_last_diagnostic_;
+};
+
+}  // namespace acc_identification
