@@ -146,6 +146,27 @@ bool readOptions(aci::CommandLine& cli, aci::SynthesisOptions* options, std::str
   return true;
 }
 
+/// Parameters far from a real ACC can make the follower drive into the leader or backwards; the
+/// files are still written (they may be wanted for tests) but the user is told, with counts.
+void warnImplausible(const aci::CarFollowingRun& run)
+{
+  std::size_t collisions = 0, reversing = 0;
+  double first_collision_s = -1.0, first_reversing_s = -1.0;
+  for (std::size_t k = 0; k < run.size(); ++k)
+  {
+    if (run.space_gap_m[k] < 0.0 && collisions++ == 0)
+      first_collision_s = run.time_s[k];
+    if (run.follower_speed_mps[k] < 0.0 && reversing++ == 0)
+      first_reversing_s = run.time_s[k];
+  }
+  if (collisions > 0)
+    std::cerr << "warning: the gap is negative (a collision) in " << collisions << " epochs, first at t = "
+              << first_collision_s << " s\n";
+  if (reversing > 0)
+    std::cerr << "warning: the follower's speed is negative in " << reversing << " epochs, first at t = "
+              << first_reversing_s << " s (the receiver reports speed 0 there)\n";
+}
+
 bool writeText(const std::string& path, const std::string& text, std::string* error)
 {
   std::ofstream out(path);
@@ -175,6 +196,7 @@ int run(aci::CommandLine& cli)
     std::cerr << "error: the follower's simulation diverged with these parameters; nothing written\n";
     return 1;
   }
+  warnImplausible(drive.truth.run);
   bool ok = aci::writeNmeaLog(*leader_log, drive.leader_fixes, "GN", error) &&
             aci::writeNmeaLog(*follower_log, drive.follower_fixes, "GN", error);
   if (ok && cli.has("truth-csv"))

@@ -10,6 +10,11 @@
 #include <string>
 
 #include "acc_identification/Sentence.h"
+#include "acc_identification/conversion/openacc_to_nmea.h"
+#include "acc_identification/gnss/nmea_writer.h"
+#include "acc_identification/paper_settings.h"
+#include "acc_identification/synthesis/synthesis.h"
+#include "acc_identification/synthesis/synthesis_output.h"
 #include "acc_identification/gnss/nmea_parser.h"
 #include "acc_identification/ros/sentence_bag_writer.h"
 #include "acc_identification/synthesis/nmea_log_timing.h"
@@ -92,7 +97,8 @@ TEST(SentenceBag, BothReceiversInterleavedInTimeOrder)
 /// Every bundled bag: both topics, 10 Hz GGA + RMC that all parse, stamps in order.
 TEST(BundledBags, HoldBothReceiversAtTenHertzWithValidSentences)
 {
-  for (const char* name : {"casale_part4_sentences.bag", "synthetic_min_F.bag", "synthetic_max_F.bag"})
+  for (const char* name : {"casale_part3_sentences.bag", "casale_part4_sentences.bag", "casale_part5_sentences.bag",
+                           "synthetic_min_F.bag", "synthetic_max_F.bag"})
   {
     SCOPED_TRACE(name);
     rosbag::Bag bag(std::string(ACC_SYNTHESIS_BAGS_DIR) + "/" + name, rosbag::bagmode::Read);
@@ -113,6 +119,71 @@ TEST(BundledBags, HoldBothReceiversAtTenHertzWithValidSentences)
       // Two sentences per epoch at 10 Hz over the whole bag (OpenACC has a few missing rows).
       EXPECT_NEAR(static_cast<double>(ok[topic]) / duration_s, 20.0, 1.0) << topic;
     }
+  }
+}
+
+std::map<std::string, std::vector<std::string>> bagLines(const std::string& path)
+{
+  rosbag::Bag bag(path, rosbag::bagmode::Read);
+  rosbag::View view(bag);
+  std::map<std::string, std::vector<std::string>> lines;
+  for (const rosbag::MessageInstance& instance : view)
+    lines[instance.getTopic()].push_back(instance.instantiate<Sentence>()->sentence);
+  return lines;
+}
+
+std::vector<std::string> nmeaLines(const std::vector<GnssFix>& fixes)
+{
+  std::vector<std::string> lines;
+  for (const GnssFix& fix : fixes)
+  {
+    lines.push_back(formatGga(fix, "GN"));
+    lines.push_back(formatRmc(fix, "GN"));
+  }
+  return lines;
+}
+
+std::string readFile(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// The synthetic bags and truth files are what the code makes today from the options in
+/// bags/README.md (so a change of the synthesis without `scripts/make_bags.sh` fails here).
+TEST(BundledBags, SyntheticBagsAreWhatTheSynthesisMakes)
+{
+  for (const char* setting : {"min", "max"})
+  {
+    SCOPED_TRACE(setting);
+    SynthesisOptions options;
+    options.profile = 'F';
+    options.parameters = findNamedSetting(setting)->parameters;
+    options.seed = 1;
+    const SynthesizedDrive drive = synthesizeDrive(options);
+    const std::string stem = std::string(ACC_SYNTHESIS_BAGS_DIR) + "/synthetic_" + setting + "_F";
+    auto lines = bagLines(stem + ".bag");
+    EXPECT_TRUE(lines["/leader/nmea_sentence"] == nmeaLines(drive.leader_fixes));
+    EXPECT_TRUE(lines["/follower/nmea_sentence"] == nmeaLines(drive.follower_fixes));
+    const std::string truth_path = testing::TempDir() + "synthesis_bag_truth.csv";
+    std::string error;
+    ASSERT_TRUE(writeTruthCsv(truth_path, drive.truth.run, &error)) << error;
+    EXPECT_TRUE(readFile(truth_path) == readFile(stem + "_truth.csv"));
+    EXPECT_TRUE(synthesisJson(options, setting) == readFile(stem + "_parameters.json"));
+  }
+}
+
+/// The Casale bags hold exactly the conversion of the OpenACC files.
+TEST(BundledBags, CasaleBagsAreTheConversionOfOpenAcc)
+{
+  for (const char* run : {"part3", "part4", "part5"})
+  {
+    SCOPED_TRACE(run);
+    const OpenAccTrajectories file = readOpenAccTrajectories(std::string(ACC_OPENACC_DATA_DIR) + "/" + run + ".csv");
+    ASSERT_EQ(file.error, "");
+    auto lines = bagLines(std::string(ACC_SYNTHESIS_BAGS_DIR) + "/casale_" + run + "_sentences.bag");
+    EXPECT_TRUE(lines["/leader/nmea_sentence"] == nmeaLines(openAccFixes(file, 1)));
+    EXPECT_TRUE(lines["/follower/nmea_sentence"] == nmeaLines(openAccFixes(file, 2)));
   }
 }
 
