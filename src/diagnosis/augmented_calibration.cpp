@@ -184,21 +184,21 @@ std::vector<std::vector<double>> effectStarts(EffectKind effect, const Augmented
   return starts;
 }
 
-/// Long-run variance factor (1 + rho) / (1 - rho) of AR(1) residuals, rho clipped to [0, 0.995].
-double varianceInflation(const std::vector<double>& residuals)
+/// Length of the batch-means blocks: five residual correlation times (from the lag-1
+/// autocorrelation of the residuals, AR(1)), at least 10 s, at most an eighth of the data so that
+/// there are enough blocks -- the choice of the calibration component's fit statistics.
+double batchLength(const std::vector<double>& residuals, double step_s, double duration_s)
 {
   double lag0 = 0.0;
   double lag1 = 0.0;
   for (std::size_t i = 0; i < residuals.size(); ++i)
   {
     lag0 += residuals[i] * residuals[i];
-    if (i > 0)
-    {
-      lag1 += residuals[i] * residuals[i - 1];
-    }
+    lag1 += i > 0 ? residuals[i] * residuals[i - 1] : 0.0;
   }
-  const double rho = lag0 > 0.0 ? std::clamp(lag1 / lag0, 0.0, 0.995) : 0.0;
-  return (1.0 + rho) / (1.0 - rho);
+  const double rho = lag0 > 0.0 ? std::clamp(lag1 / lag0, 1e-6, 0.9999) : 1e-6;
+  const double correlation_time_s = -step_s / std::log(rho);
+  return std::min(std::max(10.0, 5.0 * correlation_time_s), duration_s / 8.0);
 }
 
 std::vector<double> simulatedSpeeds(const std::vector<double>& x, EffectKind effect,
@@ -247,13 +247,10 @@ std::vector<double> standardErrors(const std::vector<double>& x, const Parameter
     }
   }
   std::vector<double> residuals(n);
-  double ssr = 0.0;
   for (std::size_t i = 0; i < n; ++i)
   {
     residuals[i] = measured[i] - fitted[i];
-    ssr += residuals[i] * residuals[i];
   }
-  const double sigma2 = ssr / static_cast<double>(n - p) * varianceInflation(residuals);
   // A column that does not move the speed (e.g. a limit never reached) is not determined: its
   // error is NaN, and the others are computed without it.
   std::vector<Eigen::Index> active;
@@ -271,11 +268,43 @@ std::vector<double> standardErrors(const std::vector<double>& x, const Parameter
   }
   const Eigen::MatrixXd information = reduced.transpose() * reduced;
   Eigen::FullPivLU<Eigen::MatrixXd> lu(information);
-  if (!lu.isInvertible())
+  // Sandwich with the batch-means covariance of the scores J_k r_k: honest when the residuals are
+  // correlated over seconds, as model errors are. Blocks do not straddle segments.
+  double duration_s = 0.0;
+  for (const CarFollowingRun& run : segments)
+  {
+    duration_s += run.durationS();
+  }
+  const double step_s = duration_s / static_cast<double>(std::max<std::size_t>(1, n - segments.size()));
+  const double block_s = batchLength(residuals, step_s, duration_s);
+  const Eigen::Index q = static_cast<Eigen::Index>(active.size());
+  Eigen::MatrixXd scores_covariance = Eigen::MatrixXd::Zero(q, q);
+  std::size_t blocks = 0;
+  std::size_t row = 0;
+  for (const CarFollowingRun& run : segments)
+  {
+    Eigen::VectorXd score = Eigen::VectorXd::Zero(q);
+    double block_start_s = run.time_s.front();
+    for (std::size_t k = 0; k < run.size(); ++k, ++row)
+    {
+      if (run.time_s[k] - block_start_s >= block_s)
+      {
+        scores_covariance += score * score.transpose();
+        ++blocks;
+        score.setZero();
+        block_start_s = run.time_s[k];
+      }
+      score += reduced.row(static_cast<Eigen::Index>(row)).transpose() * residuals[row];
+    }
+    scores_covariance += score * score.transpose();
+    ++blocks;
+  }
+  if (!lu.isInvertible() || blocks < 4)
   {
     return nan;
   }
-  const Eigen::MatrixXd covariance = sigma2 * lu.inverse();
+  const Eigen::MatrixXd inverse = lu.inverse();
+  const Eigen::MatrixXd covariance = inverse * scores_covariance * inverse;
   for (std::size_t a = 0; a < active.size(); ++a)
   {
     const double variance = covariance(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(a));

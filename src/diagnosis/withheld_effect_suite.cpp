@@ -190,6 +190,7 @@ WithheldOutcome runWithheldCase(const WithheldCase& c, const DiagnosisOptions& o
   outcome.plausible = result.selection.plausible;
   outcome.base_test_rmse_speed_mps = result.baseline.test_rmse_speed_mps;
   outcome.recovered_magnitude = std::numeric_limits<double>::quiet_NaN();
+  outcome.recovered_standard_error = std::numeric_limits<double>::quiet_NaN();
   outcome.effect_test_rmse_speed_mps = result.baseline.test_rmse_speed_mps;
   for (const ModelDiagnosis& model : result.effects)
   {
@@ -198,6 +199,9 @@ WithheldOutcome runWithheldCase(const WithheldCase& c, const DiagnosisOptions& o
       outcome.recovered_magnitude = model.fit.effect_values.empty() ? outcome.recovered_magnitude
                                                                     : model.fit.effect_values.front();
       outcome.effect_test_rmse_speed_mps = model.test_rmse_speed_mps;
+      // Standard errors are ordered (k1, k2, tau_e, eta, effect values...).
+      outcome.recovered_standard_error =
+          model.fit.standard_errors.size() > 4 ? model.fit.standard_errors[4] : outcome.recovered_standard_error;
     }
   }
   return outcome;

@@ -169,6 +169,9 @@ int runSuite(const std::string& size, const aci::DiagnosisOptions& options, cons
                      {"plausible_effects", plausible},
                      {"recovered_magnitude", std::isfinite(o.recovered_magnitude) ? nlohmann::json(o.recovered_magnitude)
                                                                                   : nlohmann::json(nullptr)},
+                     {"recovered_standard_error", std::isfinite(o.recovered_standard_error)
+                                                      ? nlohmann::json(o.recovered_standard_error)
+                                                      : nlohmann::json(nullptr)},
                      {"base_test_rmse_speed", o.base_test_rmse_speed_mps},
                      {"effect_test_rmse_speed", o.effect_test_rmse_speed_mps}});
     outcomes.push_back(o);

@@ -39,10 +39,12 @@ struct AugmentedFit
   double train_mse_speed = std::numeric_limits<double>::infinity();  ///< mean squared speed error [m^2/s^2]
   bool diverged = false;              ///< no start found a simulation that does not blow up
   std::size_t evaluations = 0;
-  /// Standard errors of (k1, k2, tau_e, eta, effect values...): Gauss-Newton with a finite-
-  /// difference Jacobian of the simulated speeds and the AR(1) variance inflation of the residuals
-  /// (as in the calibration's fit statistics). NaN when the data do not constrain a parameter
-  /// (e.g. an acceleration limit that the commands never reach).
+  /// Standard errors of (k1, k2, tau_e, eta, effect values...): the Gauss-Newton sandwich
+  /// (J^T J)^-1 M (J^T J)^-1 with a finite-difference Jacobian J of the simulated speeds and M the
+  /// batch-means covariance of the scores J_k r_k (blocks of five residual correlation times, at
+  /// least 10 s, within segments), as the calibration component's fit statistics. NaN when the
+  /// data do not constrain a parameter (e.g. an acceleration limit that the commands never reach)
+  /// or there are fewer than four blocks.
   std::vector<double> standard_errors;
 };
 

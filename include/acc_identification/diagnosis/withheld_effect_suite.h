@@ -58,6 +58,7 @@ struct WithheldOutcome
   EffectKind dominant = EffectKind::none;
   std::vector<EffectKind> plausible;
   double recovered_magnitude = 0.0;  ///< first parameter of the truth's effect as fitted (NaN for none)
+  double recovered_standard_error = 0.0;  ///< its standard error (NaN for none)
   double base_test_rmse_speed_mps = 0.0;
   double effect_test_rmse_speed_mps = 0.0;  ///< of the truth's effect model (base for none)
 };
