@@ -77,6 +77,8 @@ if(TARGET acc_gnss_ros AND TARGET acc_conversion)
       test/rostest/relative_state_fixes_check.cpp)
     target_link_libraries(test_relative_state_fixes acc_relative_state_ros acc_conversion ${catkin_LIBRARIES})
     add_dependencies(test_relative_state_fixes relative_state_node)
+    add_rostest(test/rostest/relative_state_fixes.test ARGS use_sim_time:=true
+      DEPENDENCIES test_relative_state_fixes relative_state_node)
 
     # Every Casale run through openacc_to_nmea, the two drivers and the node.
     add_executable(test_relative_state_drivers EXCLUDE_FROM_ALL test/rostest/relative_state_drivers_check.cpp)
