@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <thread>
+#include <vector>
+
+#include <ros/callback_queue.h>
 
 #include <acc_identification/Sentence.h>
 #include <geometry_msgs/TwistStamped.h>
@@ -93,24 +96,38 @@ GpsDriverRos::GpsDriverRos(ros::NodeHandle node, ros::NodeHandle private_node)
   private_node.param<std::string>("frame_id", frame_id_, "gps");
   private_node.param<std::string>("vel_frame_id", vel_frame_id_, "enu");
   private_node.param("epoch_idle_s", epoch_idle_s_, epoch_idle_s_);
+  private_node.param("epoch_idle_wall_s", epoch_idle_wall_s_, epoch_idle_wall_s_);
   private_node.param("hdop_uere_m", hdop_uere_m_, hdop_uere_m_);
   private_node.param("expected_rate_hz", expected_rate_hz_, expected_rate_hz_);
   private_node.param("fix_timeout_s", fix_timeout_s_, fix_timeout_s_);
   private_node.param("wait_for_subscribers", wait_for_subscribers_, wait_for_subscribers_);
+  private_node.param("wait_for_topics", wait_for_topics_, wait_for_topics_);
   private_node.param("wait_for_subscribers_timeout_s", wait_for_subscribers_timeout_s_, wait_for_subscribers_timeout_s_);
   private_node.param("diagnostic_period_s", diagnostic_period_s_, diagnostic_period_s_);
   int queue_size = 1000;  // a fast replay (rate 0) bursts; a short queue would drop messages
   private_node.param("queue_size", queue_size, queue_size);
 
-  sentence_publisher_ = node_.advertise<Sentence>("nmea_sentence", queue_size);
+  topic_source_ = source_uri_ == "topic";
+  // A replayed bag already holds the sentences: republishing them would duplicate the topic.
+  if (!topic_source_)
+    sentence_publisher_ = node_.advertise<Sentence>("nmea_sentence", queue_size);
   fix_publisher_ = node_.advertise<GnssFixMessage>("fix", queue_size);
   navsat_publisher_ = node_.advertise<sensor_msgs::NavSatFix>("navsat_fix", queue_size);
   vel_publisher_ = node_.advertise<geometry_msgs::TwistStamped>("vel", queue_size);
 
-  std::string error;
-  source_ = makeByteSource(source_uri_, error);
-  if (!source_)
-    ROS_FATAL("gps_driver: %s", error.c_str());
+  if (topic_source_)
+  {
+    // Subscribed in runTopic(), after waitForSubscribers(): a player waiting for this
+    // subscriber then starts only once the fixes have somewhere to go.
+    queue_size_in_ = static_cast<std::uint32_t>(std::max(1, queue_size));
+  }
+  else
+  {
+    std::string error;
+    source_ = makeByteSource(source_uri_, error);
+    if (!source_)
+      ROS_FATAL("gps_driver: %s", error.c_str());
+  }
   updater_.setHardwareID(source_uri_);
   updater_.add("NMEA receiver " + frame_id_, this, &GpsDriverRos::diagnose);
   last_bytes_ = last_fix_ = last_diagnostic_ = SteadyClock::now();
@@ -118,6 +135,8 @@ GpsDriverRos::GpsDriverRos(ros::NodeHandle node, ros::NodeHandle private_node)
 
 int GpsDriverRos::run()
 {
+  if (topic_source_)
+    return runTopic();
   if (!source_)
     return 1;
   waitForSubscribers();
@@ -151,12 +170,73 @@ int GpsDriverRos::run()
   return 0;
 }
 
+int GpsDriverRos::runTopic()
+{
+  waitForSubscribers();
+  sentence_subscriber_ = node_.subscribe("nmea_sentence_in", queue_size_in_, &GpsDriverRos::onSentence, this);
+  ROS_INFO("gps_driver: decoding sentences from %s as frame '%s'", sentence_subscriber_.getTopic().c_str(),
+           frame_id_.c_str());
+  while (ros::ok())
+  {
+    ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.02));
+    flushIdleTopicEpoch();
+    if (seconds(SteadyClock::now() - last_diagnostic_) >= diagnostic_period_s_)
+      updater_.force_update();
+  }
+  return 0;
+}
+
+void GpsDriverRos::onSentence(const Sentence::ConstPtr& message)
+{
+  ++sentences_in_;
+  // The recorded receive time; a sentence without one gets the (possibly simulated) ROS time.
+  receive_time_ = message->header.stamp.isZero() ? ros::Time::now() : message->header.stamp;
+  last_bytes_ = SteadyClock::now();
+  const std::string& line = message->sentence;
+  decoder_.feed(line.data(), line.size(), receive_time_.toSec());
+  decoder_.feed("\r\n", 2, receive_time_.toSec());  // one message is one whole line
+}
+
+void GpsDriverRos::flushIdleTopicEpoch()
+{
+  // Both clocks must agree on the pause: at 100x a sentence still in transit is 0.05 s of bag
+  // time late after half a millisecond, but not after 50 ms of the host's time.
+  const double wall_idle_s = seconds(SteadyClock::now() - last_bytes_);
+  const ros::Time now = ros::Time::now();
+  if (wall_idle_s >= epoch_idle_wall_s_)
+    decoder_.flushEpoch();
+  else if (wall_idle_s >= epoch_idle_s_ && !now.isZero())
+    decoder_.flushIfIdle(now.toSec(), epoch_idle_s_);
+}
+
+std::string GpsDriverRos::sourceDescription() const
+{
+  if (source_)
+    return source_->description();
+  return topic_source_ ? "topic " + sentence_subscriber_.getTopic() : source_uri_;
+}
+
 void GpsDriverRos::waitForSubscribers()
 {
   if (wait_for_subscribers_ <= 0)
     return;
-  // Every output topic, so that a test or a recorder subscribed to all of them misses nothing.
-  const ros::Publisher* publishers[] = {&sentence_publisher_, &fix_publisher_, &navsat_publisher_, &vel_publisher_};
+  // ~wait_for_topics: by default every output topic, so that a test or a recorder subscribed to
+  // all of them misses nothing; a chain needs only fix (and from a topic source the sentences are
+  // not republished).
+  std::vector<const ros::Publisher*> publishers;
+  for (const std::string& topic : wait_for_topics_)
+  {
+    if (topic == "nmea_sentence" && !topic_source_)
+      publishers.push_back(&sentence_publisher_);
+    else if (topic == "fix")
+      publishers.push_back(&fix_publisher_);
+    else if (topic == "navsat_fix")
+      publishers.push_back(&navsat_publisher_);
+    else if (topic == "vel")
+      publishers.push_back(&vel_publisher_);
+    else if (topic != "nmea_sentence")
+      ROS_WARN("gps_driver: ~wait_for_topics: no output topic '%s' (ignored)", topic.c_str());
+  }
   const auto ready = [&] {
     for (const ros::Publisher* p : publishers)
       if (static_cast<int>(p->getNumSubscribers()) < wait_for_subscribers_)
@@ -189,6 +269,8 @@ void GpsDriverRos::finishReplay()
 
 void GpsDriverRos::publishLine(std::string_view line)
 {
+  if (topic_source_)
+    return;
   Sentence message;
   message.header.stamp = receive_time_;
   message.header.frame_id = frame_id_;
@@ -257,7 +339,7 @@ void GpsDriverRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   fixes_at_last_diagnostic_ = s.fixes;
   errors_at_last_diagnostic_ = s.bad_checksum + s.malformed;
 
-  if (!source_->isOpen())
+  if (source_ && !source_->isOpen())
     status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "source closed: " + source_->state());
   else if (!have_fix_ || since_fix_s > fix_timeout_s_)
     status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "no fix for " + std::to_string(since_fix_s) + " s");
@@ -270,9 +352,11 @@ void GpsDriverRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   else
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "receiving fixes");
 
-  status.add("source", source_->description());
-  status.add("source state", source_->state());
-  status.add("source reopened", source_->reopenCount());
+  status.add("source", sourceDescription());
+  status.add("source state", source_ ? source_->state() : std::string("subscribed"));
+  status.add("source reopened", source_ ? source_->reopenCount() : 0);
+  if (topic_source_)
+    status.add("sentences in", sentences_in_);
   status.add("fix rate [Hz]", rate_hz);
   status.add("expected rate [Hz]", expected_rate_hz_);
   status.add("time since last fix [s]", have_fix_ ? since_fix_s : std::nan(""));

@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
@@ -20,6 +21,7 @@
 #define GnssFix GnssFixMessage
 #include <acc_identification/GnssFix.h>
 #undef GnssFix
+#include <acc_identification/Sentence.h>
 
 namespace acc_identification
 {
@@ -34,6 +36,9 @@ GnssFix fromMessage(const GnssFixMessage& message);
 /// nmea_sentence, one fix per epoch on fix (acc_identification/GnssFix), navsat_fix
 /// (sensor_msgs/NavSatFix) and vel (geometry_msgs/TwistStamped, ENU), and health on
 /// /diagnostics. All parsing is in the ROS-free NmeaDecoder.
+/// With ~source "topic" the bytes come from nmea_sentence_in (acc_identification/Sentence, e.g. a
+/// bag of recorded sentences under rosbag play): each sentence goes through the same decoder with
+/// its header.stamp as receive time, and nothing is republished on nmea_sentence (the bag has it).
 class GpsDriverRos
 {
 public:
@@ -44,6 +49,15 @@ public:
 private:
   using SteadyClock = std::chrono::steady_clock;
 
+  /// ~source "topic": one recorded line through the decoder.
+  void onSentence(const Sentence::ConstPtr& message);
+  /// Completes a pending epoch after epoch_idle_s without sentences on both the ROS clock (sim
+  /// time under rosbag play: a paused bag does not split an epoch) and the host's clock (a fast
+  /// replay's next sentence may still be in transit), or after epoch_idle_wall_s of the host's
+  /// clock alone (the bag ended, so /clock stopped; a pause longer than this splits the epoch).
+  void flushIdleTopicEpoch();
+  int runTopic();
+  std::string sourceDescription() const;
   void publishLine(std::string_view line);
   void publishFix(const GnssFix& fix);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -55,10 +69,16 @@ private:
   std::string frame_id_;
   std::string vel_frame_id_;
   double epoch_idle_s_ = 0.05;
+  double epoch_idle_wall_s_ = 1.0;
+  bool topic_source_ = false;
+  ros::Subscriber sentence_subscriber_;
+  std::uint64_t sentences_in_ = 0;
+  std::uint32_t queue_size_in_ = 1000;
   double hdop_uere_m_ = 3.0;
   double expected_rate_hz_ = 10.0;
   double fix_timeout_s_ = 1.0;
   int wait_for_subscribers_ = 0;
+  std::vector<std::string> wait_for_topics_{"nmea_sentence", "fix", "navsat_fix", "vel"};
   double wait_for_subscribers_timeout_s_ = 30.0;
   double diagnostic_period_s_ = 1.0;
 
