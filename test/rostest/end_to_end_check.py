@@ -1,0 +1,214 @@
+#!/usr/bin/env python3
+"""End-to-end check of replay.launch: a bag of raw sentences through drivers, relative_state and
+identifier. Listens until the replay has ended (no relative_state for ~idle_s of wall time), then:
+
+  counts  (always): every epoch of the bag comes out of its driver as a fix; every follower fix
+          with a leader partner comes out as relative_state (no buffer overflow, nothing too
+          late); the identifier received every relative_state (its diagnostics) and its last
+          window holds every valid sample of that span.
+  ~mode truth:   the last acc_parameters is identifiable and within ~tolerance (relative) of the
+                 parameters in ~truth_json.
+  ~mode batch:   the last acc_parameters agrees within ~tolerance with calibrate run on the same
+                 relative_state samples (those of its window, written to a bag).
+  ~mode dropout: no acc_parameters window ends inside the gap of the leader's sentences; the
+                 relative_state stream stops during the gap and resumes after it; acc_parameters
+                 after the gap again come from new samples.
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+import rosbag
+import rosgraph
+import rospy
+import rostest
+from acc_identification.msg import AccParameters, GnssFix, RelativeState
+from diagnostic_msgs.msg import DiagnosticArray
+
+PKG = "acc_identification"
+
+
+def bag_epochs(bag_path, topic):
+    """Distinct epoch times (from GGA/RMC hhmmss.ss) of one receiver's sentences, and the
+    receive times of the sentences."""
+    epochs, stamps = set(), []
+    with rosbag.Bag(bag_path) as bag:
+        for _, m, _ in bag.read_messages(topics=[topic]):
+            fields = m.sentence.split(",")
+            if len(fields) > 1 and fields[0][3:6] in ("GGA", "RMC") and fields[1]:
+                epochs.add(fields[1])
+            stamps.append(m.header.stamp.to_sec())
+    return epochs, stamps
+
+
+class EndToEnd(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("end_to_end_check")
+        cls.mode = rospy.get_param("~mode", "counts")
+        cls.bag = rospy.get_param("~bag")
+        cls.idle_s = rospy.get_param("~idle_s", 6.0)
+        cls.timeout_s = rospy.get_param("~timeout_s", 150.0)
+        cls.fixes = {"leader": 0, "follower": 0}
+        cls.states, cls.params, cls.diagnostics = [], [], {}
+        # The fixes last: the drivers start (and with them the bag) once this node listens to them
+        # (replay.launch fix_subscribers:=2), so the downstream topics are connected by then.
+        rospy.Subscriber("/diagnostics", DiagnosticArray, cls._diagnostics, queue_size=100)
+        rospy.Subscriber("/acc_parameters", AccParameters, cls.params.append, queue_size=1000)
+        rospy.Subscriber("/relative_state", RelativeState, cls._state, queue_size=10000)
+        cls.wait_for_subscriber("/relative_state", "/identifier")
+        rospy.Subscriber("/leader/fix", GnssFix, lambda m: cls._count("leader"), queue_size=10000)
+        rospy.Subscriber("/follower/fix", GnssFix, lambda m: cls._count("follower"), queue_size=10000)
+        cls.last_message_wall = None
+        start = time.time()
+        while not rospy.is_shutdown() and time.time() - start < cls.timeout_s:
+            if cls.last_message_wall is not None and time.time() - cls.last_message_wall > cls.idle_s:
+                break
+            time.sleep(0.2)
+        cls.advance_clock(rospy.get_param("~advance_clock_s", 3.0))
+        time.sleep(2.5)  # one more diagnostics round after the end
+
+    @classmethod
+    def advance_clock(cls, seconds):
+        """The bag has ended, so /clock stopped, and with it every ROS-time timer (diagnostics,
+        the identifier's period). Let sim time run on a little, as the world would."""
+        from rosgraph_msgs.msg import Clock
+        publisher = rospy.Publisher("/clock", Clock, queue_size=10)
+        time.sleep(0.5)
+        now = rospy.Time.now()
+        for _ in range(int(seconds / 0.1)):
+            now += rospy.Duration(0.1)
+            publisher.publish(Clock(clock=now))
+            time.sleep(0.05)
+
+    @staticmethod
+    def wait_for_subscriber(topic, node, timeout_s=30.0):
+        """The first sample must not go out before the identifier listens."""
+        master = rosgraph.Master("/end_to_end_check")
+        start = time.time()
+        while time.time() - start < timeout_s:
+            _, subscribers, _ = master.getSystemState()
+            if any(t == topic and node in nodes for t, nodes in subscribers):
+                time.sleep(0.5)  # and the connection to the publisher is made
+                return
+            time.sleep(0.1)
+
+    @classmethod
+    def _count(cls, ns):
+        cls.fixes[ns] += 1
+        cls.last_message_wall = time.time()
+
+    @classmethod
+    def _state(cls, m):
+        cls.states.append(m)
+        cls.last_message_wall = time.time()
+
+    @classmethod
+    def _diagnostics(cls, array):
+        for status in array.status:
+            cls.diagnostics[status.name] = {kv.key: kv.value for kv in status.values}
+
+    def diagnostic(self, name_part, key):
+        for name, values in self.diagnostics.items():
+            if name_part in name and key in values:
+                return values[key]
+        self.fail("no diagnostics '%s' with key '%s' (have %s)" % (name_part, key, list(self.diagnostics)))
+
+    def last_params(self):
+        self.assertTrue(self.params, "no acc_parameters at all")
+        return self.params[-1]
+
+    def test_counts(self):
+        leader_epochs, _ = bag_epochs(self.bag, "/leader/nmea_sentence")
+        follower_epochs, _ = bag_epochs(self.bag, "/follower/nmea_sentence")
+        self.assertEqual(self.fixes["leader"], len(leader_epochs), "leader epochs in vs fixes out")
+        self.assertEqual(self.fixes["follower"], len(follower_epochs), "follower epochs in vs fixes out")
+        # relative_state publishes each follower epoch once (valid or flagged invalid), unless unpaired.
+        unpaired = int(self.diagnostic("Relative state", "follower_unpaired"))
+        for key in ("buffer_overflows", "leader_too_late", "follower_too_late", "leader_out_of_order",
+                    "follower_out_of_order"):
+            self.assertEqual(int(self.diagnostic("Relative state", key)), 0, key)
+        published = int(self.diagnostic("Relative state", "published"))
+        self.assertEqual(published, len(self.states), "relative_state published vs received here")
+        self.assertEqual(len(self.states) + unpaired, len(follower_epochs),
+                         "follower epochs in vs relative_state out (+ unpaired)")
+        print("fixes %s, epochs %d/%d, relative_state %d (+%d unpaired)" % (
+            self.fixes, len(leader_epochs), len(follower_epochs), len(self.states), unpaired), file=sys.stderr)
+        received = int(self.diagnostic("ACC identification", "samples received"))
+        self.assertEqual(received, len(self.states), "relative_state out vs identifier in")
+        last = self.last_params()
+        start, end = last.window_start.to_sec(), last.window_end.to_sec()
+        valid = [s for s in self.states if s.valid and start - 1e-6 <= s.header.stamp.to_sec() <= end + 1e-6]
+        self.assertGreater(len(valid), 0)
+        # Samples of segments too short to use are the only ones the identifier may leave out.
+        self.assertLessEqual(last.samples, len(valid))
+        self.assertGreaterEqual(last.samples, len(valid) - 20 * max(1, last.segments),
+                                "identifier window vs valid relative_state in its span")
+
+    def check_close(self, name, value, reference, tolerance):
+        print("%s: %.5f vs %.5f (%+.2f %%)" % (name, value, reference, 100.0 * (value - reference) / reference),
+              file=sys.stderr)
+        self.assertTrue(abs(value - reference) <= tolerance * abs(reference),
+                        "%s: %.4f vs %.4f (tolerance %.0f %%)" % (name, value, reference, 100 * tolerance))
+
+    def test_truth(self):
+        if self.mode != "truth":
+            self.skipTest("mode truth only")
+        last = self.last_params()
+        self.assertTrue(last.identifiable, last.identifiability_note)
+        truth = json.load(open(rospy.get_param("~truth_json")))["parameters"]
+        tolerance = rospy.get_param("~tolerance", 0.15)
+        for key in ("k1_per_s2", "k2_per_s", "tau_e_s", "eta_m"):
+            self.check_close(key, getattr(last, key), truth[key], tolerance)
+
+    def test_batch(self):
+        if self.mode != "batch":
+            self.skipTest("mode batch only")
+        last = self.last_params()
+        start, end = last.window_start.to_sec(), last.window_end.to_sec()
+        directory = tempfile.mkdtemp(prefix="e2e_")
+        window_bag = os.path.join(directory, "window.bag")
+        with rosbag.Bag(window_bag, "w") as bag:
+            for s in self.states:
+                if start - 1e-6 <= s.header.stamp.to_sec() <= end + 1e-6:
+                    bag.write("relative_state", s, s.header.stamp)
+        out = os.path.join(directory, "batch.json")
+        subprocess.run(["rosrun", PKG, "calibrate", "--quiet", "--starts", "30", "--json", out, window_bag],
+                       check=True, stdout=subprocess.DEVNULL)
+        batch = json.load(open(out))
+        self.assertEqual(bool(last.identifiable), bool(batch["identifiable"]),
+                         "online: %s / batch: %s" % (last.identifiability_note, batch["identifiability_note"]))
+        tolerance = rospy.get_param("~tolerance", 0.05)
+        # The least-squares fit itself is defined even where the parameters are not determined
+        # (real Casale runs often lack excitation): the same samples must give the same minimum.
+        train = batch["summary"]["train"]
+        self.assertEqual(last.samples, train["samples"], "samples online vs batch")
+        self.check_close("rmse_speed_mps", last.rmse_speed_mps, train["rmse_speed_mps"], tolerance)
+        if last.identifiable:
+            for key in ("k1_per_s2", "k2_per_s", "tau_e_s", "eta_m"):
+                self.check_close(key, getattr(last, key), batch["parameters"][key], tolerance)
+            self.assertAlmostEqual(last.lambda2, batch["stability"]["lambda2"], delta=0.05)
+
+    def test_dropout(self):
+        if self.mode != "dropout":
+            self.skipTest("mode dropout only")
+        gap_start = rospy.get_param("~gap_start_s")  # bag times of the leader's missing sentences
+        gap_end = rospy.get_param("~gap_end_s")
+        inside = [s for s in self.states if s.valid and gap_start + 0.5 < s.header.stamp.to_sec() < gap_end - 0.5]
+        self.assertEqual(inside, [], "valid relative_state from inside the leader's dropout")
+        after = [s for s in self.states if s.valid and s.header.stamp.to_sec() > gap_end + 1.0]
+        self.assertGreater(len(after), 50, "relative_state does not recover after the dropout")
+        ends = [p.window_end.to_sec() for p in self.params]
+        self.assertFalse([e for e in ends if gap_start + 0.5 < e < gap_end - 0.5],
+                         "acc_parameters with a window ending inside the gap")
+        self.assertTrue([e for e in ends if e > gap_end + 1.0], "no acc_parameters after the gap")
+        last = self.params[-1]
+        self.assertGreaterEqual(last.segments, 2, "the window should be split at the gap")
+
+
+if __name__ == "__main__":
+    rostest.rosrun(PKG, "end_to_end_check", EndToEnd, sys.argv)
