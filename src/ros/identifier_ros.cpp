@@ -104,7 +104,10 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node)
   period_timer_ = node.createTimer(ros::Duration(settings_.period_s), &IdentifierRos::onPeriod, this);
   updater_.setHardwareID("acc_identifier");
   updater_.add("ACC identification", this, &IdentifierRos::diagnose);
-  diagnostic_timer_ = node.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_.update(); });
+  // Health on the wall clock: update() would wait for the updater's own period on ROS time, which
+  // stops with /clock at the end of a replay and leaves the last counts stale.
+  diagnostic_timer_ = node.createWallTimer(ros::WallDuration(1.0),
+                                           [this](const ros::WallTimerEvent&) { updater_.force_update(); });
   ROS_INFO("identifier: window %.0f s, every %.2f s, %d fresh starts plus a warm start; excitation: speed std >= %.2f m/s",
            settings_.window_s, settings_.period_s, settings_.starts, settings_.criteria.min_speed_std_mps);
   ok_ = true;
