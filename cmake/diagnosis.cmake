@@ -22,16 +22,16 @@ else()
 endif()
 target_link_libraries(acc_diagnosis PUBLIC acc_model ${ACC_DIAGNOSIS_NLOPT} nlohmann_json::nlohmann_json)
 
-# The tool reads runs with the calibration component's run I/O (acc_run_io).
-if(TARGET acc_run_io)
+# The tool reads runs (CSV or bags) as the calibrate tool does (calibration component).
+if(TARGET acc_calibration_ros)
   add_executable(diagnose src/tools/diagnose_main.cpp)
-  target_link_libraries(diagnose acc_diagnosis acc_run_io acc_cli)
+  target_link_libraries(diagnose acc_diagnosis acc_calibration_ros acc_run_io acc_cli)
   target_compile_definitions(diagnose PRIVATE
     ACC_PLOT_DIAGNOSIS_SCRIPT="${PROJECT_SOURCE_DIR}/scripts/plot_diagnosis.py")
   install(TARGETS diagnose RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
   install(PROGRAMS scripts/plot_diagnosis.py DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/scripts)
 else()
-  message(STATUS "diagnosis: acc_run_io not built (add calibration to ACC_COMPONENTS): no diagnose tool")
+  message(STATUS "diagnosis: acc_calibration_ros not built (add calibration to ACC_COMPONENTS): no diagnose tool")
 endif()
 install(TARGETS acc_diagnosis
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}

@@ -8,6 +8,7 @@
 
 #include "acc_identification/RelativeState.h"
 #include "acc_identification/calibration/sliding_window.h"
+#include "acc_identification/io/run_csv.h"
 
 namespace acc_identification
 {
@@ -79,6 +80,23 @@ BagRuns readRunsFromBag(const std::string& path, const std::string& topic, doubl
     result.runs[i].name = name + "#" + std::to_string(i + 1);
   }
   return result;
+}
+
+std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std::string& topic,
+                                             double max_gap_s, std::ostream& log)
+{
+  const std::string bag_suffix = ".bag";
+  const bool is_bag = path.size() >= bag_suffix.size() &&
+                      path.compare(path.size() - bag_suffix.size(), bag_suffix.size(), bag_suffix) == 0;
+  if (!is_bag)
+  {
+    return readRuns(path);
+  }
+  BagRuns bag = readRunsFromBag(path, topic, max_gap_s);
+  log << path << ": " << bag.messages << " messages, " << bag.invalid << " invalid, " << bag.out_of_order
+      << " out of order, " << bag.time_resets << " time resets, " << bag.short_pieces
+      << " pieces too short -> " << bag.runs.size() << " runs\n";
+  return std::move(bag.runs);
 }
 
 }  // namespace acc_identification

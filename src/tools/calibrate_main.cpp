@@ -37,30 +37,12 @@ struct LoadedRun
   std::string path;
 };
 
-bool endsWith(const std::string& text, const std::string& suffix)
-{
-  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 std::vector<LoadedRun> loadRuns(const std::vector<std::string>& paths, const std::string& topic, double max_gap_s)
 {
   std::vector<LoadedRun> loaded;
   for (const std::string& path : paths)
   {
-    std::vector<aci::CarFollowingRun> runs;
-    if (endsWith(path, ".bag"))
-    {
-      const aci::BagRuns bag = aci::readRunsFromBag(path, topic, max_gap_s);
-      std::cerr << path << ": " << bag.messages << " messages, " << bag.invalid << " invalid, " << bag.out_of_order
-                << " out of order, " << bag.time_resets << " time resets, " << bag.short_pieces
-                << " pieces too short -> " << bag.runs.size() << " runs\n";
-      runs = bag.runs;
-    }
-    else
-    {
-      runs = aci::readRuns(path);
-    }
-    for (auto& run : runs)
+    for (auto& run : aci::readRunArgument(path, topic, max_gap_s, std::cerr))
     {
       loaded.push_back({std::move(run), path});
     }

@@ -16,7 +16,7 @@
 #include "acc_identification/diagnosis/diagnosis.h"
 #include "acc_identification/diagnosis/diagnosis_output.h"
 #include "acc_identification/diagnosis/withheld_effect_suite.h"
-#include "acc_identification/io/run_csv.h"
+#include "acc_identification/ros/run_bag_reader.h"
 
 namespace aci = acc_identification;
 
@@ -25,7 +25,10 @@ namespace
 const char* kUsage =
     "usage: diagnose [options] RUN... [--json FILE] [--report DIR]\n"
     "       diagnose --withheld-suite small|large [--json FILE]\n"
-    "  RUN: canonical run CSV or OpenACC CSV. Each run is fitted on its first part and scored on the rest.\n"
+    "  RUN: canonical run CSV, OpenACC CSV, or a bag of acc_identification/RelativeState (as calibrate).\n"
+    "       Each run is fitted on its first part and scored on the rest.\n"
+    "  --topic NAME                RelativeState topic in bags (default relative_state)\n"
+    "  --max-gap S                 split runs from bags at holes longer than S seconds (default 0.5)\n"
     "  --json FILE                 write the diagnosis as JSON\n"
     "  --report DIR                write tables, diagnosis.json, PNG figures and report.md into DIR\n"
     "  --train-fraction F          share of each run used for fitting (default 0.5)\n"
@@ -212,7 +215,7 @@ void printSummary(const aci::DiagnosisResult& r)
 int main(int argc, char** argv)
 {
   aci::CommandLine cli({"json", "report", "train-fraction", "effect", "block-length-s", "resamples", "alpha",
-                        "min-relative-improvement", "seed", "plot-script", "withheld-suite"},
+                        "min-relative-improvement", "seed", "plot-script", "withheld-suite", "topic", "max-gap"},
                        {"no-plots", "help"});
   if (!cli.parse(argc, argv) || cli.has("help"))
   {
@@ -234,12 +237,19 @@ int main(int argc, char** argv)
     std::cerr << "error: no run given\n" << kUsage;
     return 2;
   }
+  const std::string topic = cli.value("topic").value_or("relative_state");
+  const auto max_gap_s = cli.number("max-gap");
+  if (!cli.error().empty())
+  {
+    std::cerr << "error: " << cli.error() << "\n" << kUsage;
+    return 2;
+  }
   std::vector<aci::CarFollowingRun> runs;
   try
   {
     for (const std::string& path : cli.positional())
     {
-      for (aci::CarFollowingRun& run : aci::readRuns(path))
+      for (aci::CarFollowingRun& run : aci::readRunArgument(path, topic, max_gap_s.value_or(0.5), std::cerr))
       {
         runs.push_back(std::move(run));
       }

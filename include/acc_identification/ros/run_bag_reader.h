@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -25,5 +26,11 @@ struct BagRuns
 /// "<bag name>#<n>". Throws std::runtime_error when the bag cannot be read or has no such topic.
 BagRuns readRunsFromBag(const std::string& path, const std::string& topic = "relative_state",
                         double max_gap_s = 0.5);
+
+/// Reads one RUN argument of the command-line tools (calibrate, diagnose): a bag (path ending in
+/// .bag, read with readRunsFromBag, with an account of every message not used written to log) or
+/// a canonical / OpenACC CSV (readRuns). Throws std::runtime_error with the reason.
+std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std::string& topic,
+                                             double max_gap_s, std::ostream& log);
 
 }  // namespace acc_identification
