@@ -25,13 +25,6 @@ add_library(acc_calibration
   src/calibration/grid_search.cpp
   src/calibration/calibration_report.cpp)
 target_include_directories(acc_calibration PUBLIC include ${EIGEN3_INCLUDE_DIR})
-# find_package(NLopt) in CMakeLists.txt finds Debian's C library (target NLopt::nlopt); nlopt.hpp
-# is a header-only wrapper over its C API, and L-BFGS is in the C library, so that is enough.
-if(TARGET NLopt::nlopt_cxx)
-  set(ACC_NLOPT_TARGET NLopt::nlopt_cxx)
-else()
-  set(ACC_NLOPT_TARGET NLopt::nlopt)
-endif()
 target_link_libraries(acc_calibration PUBLIC acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 install(TARGETS acc_run_io acc_calibration
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}

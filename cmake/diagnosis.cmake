@@ -14,13 +14,7 @@ add_library(acc_diagnosis
   src/diagnosis/withheld_effect_suite.cpp
   src/diagnosis/diagnosis_output.cpp)
 target_include_directories(acc_diagnosis PUBLIC include ${EIGEN3_INCLUDE_DIR})
-# Debian ships NLopt's C library (NLopt::nlopt); nlopt.hpp is a header-only wrapper over it.
-if(TARGET NLopt::nlopt_cxx)
-  set(ACC_DIAGNOSIS_NLOPT NLopt::nlopt_cxx)
-else()
-  set(ACC_DIAGNOSIS_NLOPT NLopt::nlopt)
-endif()
-target_link_libraries(acc_diagnosis PUBLIC acc_model ${ACC_DIAGNOSIS_NLOPT} nlohmann_json::nlohmann_json)
+target_link_libraries(acc_diagnosis PUBLIC acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 
 # The tool reads runs (CSV or bags) as the calibrate tool does (calibration component).
 if(TARGET acc_calibration_ros)
