@@ -33,7 +33,7 @@ install(TARGETS acc_run_io acc_calibration
 # ROS side: runs from bags of RelativeState (rosbag API).
 add_library(acc_calibration_ros src/ros/run_bag_reader.cpp)
 target_include_directories(acc_calibration_ros PUBLIC include ${catkin_INCLUDE_DIRS})
-target_link_libraries(acc_calibration_ros acc_calibration ${catkin_LIBRARIES})
+target_link_libraries(acc_calibration_ros acc_calibration acc_run_io ${catkin_LIBRARIES})
 add_dependencies(acc_calibration_ros ${PROJECT_NAME}_generate_messages_cpp)
 
 # rosrun acc_identification calibrate [options] RUN...
