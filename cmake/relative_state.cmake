@@ -38,11 +38,7 @@ if(TARGET acc_gnss)
     RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 
   if(CATKIN_ENABLE_TESTING)
-    # The real data (JRC OpenACC, Casale) lives beside the repository, not in it.
-    get_filename_component(_acc_repository "${PROJECT_SOURCE_DIR}/CMakeLists.txt" REALPATH)
-    get_filename_component(_acc_repository "${_acc_repository}" DIRECTORY)
-    set(ACC_OPENACC_DATA_DIR "${_acc_repository}/../shared/data/openacc_casale"
-        CACHE PATH "Folder of the OpenACC Casale runs part3..part6.csv for the real-data test")
+    # The real data: the Casale runs shipped in data/openacc, unpacked by cmake/data.cmake.
     catkin_add_gtest(test_openacc
       test/unit/gtest_main.cpp
       test/unit/test_openacc_conversion.cpp
@@ -50,7 +46,7 @@ if(TARGET acc_gnss)
     target_link_libraries(test_openacc acc_conversion acc_relative_state)
     target_compile_definitions(test_openacc PRIVATE
       ACC_RELSTATE_TEST_DATA="${PROJECT_SOURCE_DIR}/test/data/relative_state"
-      ACC_OPENACC_DATA_DIR="${ACC_OPENACC_DATA_DIR}")
+      ACC_OPENACC_DATA_DIR="${ACC_DATA_CASALE_DIR}")
   endif()
 endif()
 
@@ -88,7 +84,7 @@ if(TARGET acc_gnss_ros AND TARGET acc_conversion)
     add_dependencies(tests test_relative_state_drivers)
     set(_acc_nmea_dir ${CMAKE_CURRENT_BINARY_DIR}/openacc_nmea)
     foreach(run part3 part4 part5 part6)
-      set(_acc_csv ${ACC_OPENACC_DATA_DIR}/${run}.csv)
+      set(_acc_csv ${ACC_DATA_CASALE_DIR}/${run}.csv)
       add_custom_command(
         OUTPUT ${_acc_nmea_dir}/${run}_leader.nmea ${_acc_nmea_dir}/${run}_follower.nmea
         COMMAND ${CMAKE_COMMAND} -E make_directory ${_acc_nmea_dir}
@@ -98,8 +94,22 @@ if(TARGET acc_gnss_ros AND TARGET acc_conversion)
       add_custom_target(relative_state_nmea_${run}
         DEPENDS ${_acc_nmea_dir}/${run}_leader.nmea ${_acc_nmea_dir}/${run}_follower.nmea)
       add_dependencies(tests relative_state_nmea_${run})
-      add_rostest(test/rostest/relative_state_drivers.test
-        ARGS run:=${run} nmea_dir:=${_acc_nmea_dir} csv:=${_acc_csv}
+      # rostest names the target after the launch file and its ARGS: absolute paths in ARGS would
+      # put the checkout's path into a file name (past 255 bytes in a deep checkout). So each run
+      # gets a small launch file in the build tree that passes the paths on; its name, relative
+      # to the build folder, is all the target name holds.
+      set(_acc_launch ${PROJECT_BINARY_DIR}/rostest/relative_state_drivers_${run}.test)
+      file(CONFIGURE OUTPUT ${_acc_launch} @ONLY CONTENT [=[
+<!-- Made by cmake/relative_state.cmake: run @run@ of the bundled Casale data. -->
+<launch>
+  <include file="$(find acc_identification)/test/rostest/relative_state_drivers.test">
+    <arg name="run" value="@run@"/>
+    <arg name="nmea_dir" value="@_acc_nmea_dir@"/>
+    <arg name="csv" value="@_acc_csv@"/>
+  </include>
+</launch>
+]=])
+      add_rostest(${_acc_launch}
         DEPENDENCIES relative_state_node gps_driver_node test_relative_state_drivers relative_state_nmea_${run})
     endforeach()
   endif()

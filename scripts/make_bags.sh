@@ -6,12 +6,14 @@
 #   synthetic_max_F.bag         synthesize --profile F --setting max --seed 1 (+ truth CSV, JSON)
 # Usage: scripts/make_bags.sh [WORKSPACE]   (default build/ws; the workspace must be built with
 #        the gnss, relative_state, reproduction, diagnosis and synthesis components)
-# OPENACC_DIR overrides where the OpenACC CSVs are (default ../shared/data/openacc_casale).
+# OPENACC_DIR overrides where the OpenACC CSVs are (default: the Casale runs shipped in
+# data/openacc/casale.tar.xz, unpacked by scripts/bundled_data.sh).
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 ws=${1:-$repo/build/ws}
 bin=$ws/devel/lib/acc_identification
-openacc=${OPENACC_DIR:-$repo/../shared/data/openacc_casale}
+source "$repo/scripts/bundled_data.sh"
+openacc=${OPENACC_DIR:-$(bundled_openacc_dir casale)}
 out=$repo/bags
 for tool in openacc_to_nmea nmea_to_bag synthesize; do
   [ -x "$bin/$tool" ] || { echo "make_bags: $bin/$tool not built (see the usage in $0)" >&2; exit 1; }

@@ -5,7 +5,8 @@
 # DATA_DIR (default build/figures_data) receives the CSV/JSON/log of each figure; FIGURE_DIR
 # (default docs/figures) the PNGs. Environment:
 #   PLATOON=path      the tool (default: rosrun acc_identification platoon)
-#   RUNS_DIR=dir      OpenACC/canonical runs for Figs. 3-5 (default /work/shared/data/openacc_casale)
+#   RUNS_DIR=dir      OpenACC/canonical runs for Figs. 3-5 (default: the Casale runs shipped in
+#                     data/openacc/casale.tar.xz, unpacked by scripts/bundled_data.sh)
 #   TIMESERIES_RUN=f  the run of Figs. 3/4 (default RUNS_DIR/part6.csv)
 #   CALIBRATION=f.json  a calibrate JSON of those runs, added to Figs. 3-5 (and 6-8 when
 #                     ALL_FIGURES_CALIBRATION=1). Unset: when the calibrate tool is built, the
@@ -16,7 +17,8 @@ here=$(cd "$(dirname "$0")" && pwd)
 repo=$(dirname "$here")
 data=${1:-$repo/build/figures_data}
 figures=${2:-$repo/docs/figures}
-runs_dir=${RUNS_DIR:-/work/shared/data/openacc_casale}
+source "$here/bundled_data.sh"
+runs_dir=${RUNS_DIR:-$(bundled_openacc_dir casale)}
 timeseries_run=${TIMESERIES_RUN:-$runs_dir/part6.csv}
 mkdir -p "$data" "$figures"
 
