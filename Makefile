@@ -6,6 +6,12 @@ SHELL := /bin/bash
 export PATH := /usr/bin:/bin:/usr/sbin:/sbin:$(PATH)
 export ROS_HOME := $(CURDIR)/build/ros_home
 export ROS_LOG_DIR := $(CURDIR)/build/ros_home/log
+# The tests and the demo run every node on this machine. A bare machine or a container may not
+# resolve its own hostname, which ROS nodes advertise by default: use localhost unless the user
+# chose a name or address for ROS already.
+ifeq ($(strip $(ROS_HOSTNAME)$(ROS_IP)),)
+export ROS_HOSTNAME := localhost
+endif
 
 WS ?= $(CURDIR)/build/ws
 JOBS ?= 2
@@ -14,14 +20,26 @@ COMPONENTS ?=
 # Extra CMake arguments passed to catkin_make as they are.
 CMAKE_ARGS ?=
 DEV := $(WS)/devel/setup.bash
+# Debian packages for every dependency that package.xml declares, as rosdep.yaml maps them, plus
+# the compilers and ROS's core. test/python/test_dependencies.py fails when a declared dependency
+# (or a Python module a script imports) has no package here: keep package.xml, rosdep.yaml and
+# this list in step.
 APT_PACKAGES := build-essential cmake clang libclang-rt-14-dev \
-  catkin ros-core-dev librosbag-dev python3-rostest python3-roslaunch python3-rosbag \
-  python3-rostopic rosout python3-rosmaster python3-rosnode python3-rosparam rosbash \
-  python3-catkin-pkg libdiagnostic-updater-dev libsensor-msgs-dev libgeometry-msgs-dev \
-  libstd-msgs-dev libdiagnostic-msgs-dev libnlopt-cxx-dev libeigen3-dev libgeographiclib-dev \
-  libgtest-dev libbenchmark-dev nlohmann-json3-dev python3-matplotlib python3-numpy
+  catkin python3-catkin-pkg ros-core-dev ros-message-generation ros-message-runtime \
+  libroscpp-dev librosbag-dev python3-rosbag libstd-msgs-dev python3-std-msgs \
+  libsensor-msgs-dev libgeometry-msgs-dev libdiagnostic-msgs-dev python3-diagnostic-msgs \
+  libdiagnostic-updater-dev libros-rosgraph-msgs-dev python3-rosgraph-msgs \
+  python3-rospy python3-rosgraph python3-rostest librostest-dev python3-rosunit \
+  python3-roslaunch python3-rostopic python3-rosnode python3-rosparam python3-rosmaster \
+  rosout rosbash \
+  libnlopt-cxx-dev libeigen3-dev libgeographiclib-dev libgtest-dev libbenchmark-dev \
+  nlohmann-json3-dev python3-matplotlib python3-numpy python3-pil python3-yaml
 
-.PHONY: deps build demo test unit-tests bench clean
+.PHONY: deps build demo test unit-tests bench clean print-apt-packages
+
+# The list above, one package a line (read by test/python/test_dependencies.py).
+print-apt-packages:
+	@printf '%s\n' $(APT_PACKAGES)
 
 deps:
 	@missing=$$(for p in $(APT_PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
