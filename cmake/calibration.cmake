@@ -3,7 +3,7 @@
 find_package(nlohmann_json 3 REQUIRED)
 
 # Run files (canonical and OpenACC CSV): used by every tool that takes runs.
-add_library(acc_run_io src/io/run_csv.cpp)
+add_library(acc_run_io src/io/run_csv.cpp src/io/run_plausibility.cpp)
 target_include_directories(acc_run_io PUBLIC include)
 target_link_libraries(acc_run_io PUBLIC acc_model)
 

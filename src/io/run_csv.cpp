@@ -10,6 +10,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 namespace acc_identification
 {
@@ -108,30 +109,55 @@ std::string baseName(const std::string& path)
   return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
 }
 
-/// Accumulates rows into runs, closing the current run at every split point.
+/// Accumulates rows into runs, closing the current run at every split point, and accounts for
+/// every row it rejects and every hole it splits at in contents.
 class RunAssembler
 {
 public:
-  RunAssembler(std::string path, RunFileContents& contents)
-    : path_(std::move(path)), name_(baseName(path_)), contents_(contents)
+  RunAssembler(std::string path, const RunPlausibilityBounds& bounds, RunFileContents& contents)
+    : path_(std::move(path)), name_(baseName(path_)), bounds_(bounds), contents_(contents)
   {
   }
 
-  /// Appends a row, or returns why it cannot follow the previous one.
-  std::string add(const std::array<double, 4>& values)
+  /// Appends a parsed row, or rejects it when its values are implausible or its time does not
+  /// increase; starts a new run first when a hole in time separates it from the previous row.
+  void add(std::size_t line_number, const std::array<double, 4>& values)
   {
-    if (!current_.time_s.empty() && !(values[0] > current_.time_s.back()))
+    const std::string implausible = describeImplausibleValue(values[1], values[2], values[3], bounds_);
+    if (!implausible.empty())
     {
-      std::ostringstream why;
-      why << "time " << values[0] << " s does not increase (previous row " << current_.time_s.back()
-          << " s)";
-      return why.str();
+      ++contents_.implausible_rows;
+      reject(line_number, implausible);
+      return;
+    }
+    if (!current_.time_s.empty())
+    {
+      const std::string not_increasing = describeTimeNotIncreasing(values[0]);
+      if (!not_increasing.empty())
+      {
+        reject(line_number, not_increasing);
+        return;
+      }
+      const std::string hole = describeTimeHole(current_.time_s.back(), values[0], bounds_);
+      if (!hole.empty())
+      {
+        ++contents_.time_holes;
+        report(line_number, hole + "; run split");
+        split(line_number);
+      }
     }
     current_.time_s.push_back(values[0]);
     current_.space_gap_m.push_back(values[1]);
     current_.follower_speed_mps.push_back(values[2]);
     current_.leader_speed_mps.push_back(values[3]);
-    return "";
+  }
+
+  /// Counts and lists a row that is not used, and splits the run there.
+  void reject(std::size_t line_number, const std::string& why)
+  {
+    ++contents_.rejected_rows;
+    report(line_number, why + "; row rejected, run split here");
+    split(line_number);
   }
 
   void split(std::size_t line_number)
@@ -145,16 +171,33 @@ public:
     else if (current_.size() == 1)
     {
       std::ostringstream why;
-      why << path_ << ":" << line_number << ": a piece of one sample (t = " << current_.time_s[0]
+      why << "a piece of one sample (t = " << current_.time_s[0]
           << " s) between split points is too short to simulate; not used";
-      contents_.problems.push_back(why.str());
+      report(line_number, why.str());
     }
     current_ = CarFollowingRun{};
   }
 
 private:
+  std::string describeTimeNotIncreasing(double time_s) const
+  {
+    if (time_s > current_.time_s.back())
+    {
+      return "";
+    }
+    std::ostringstream why;
+    why << "time " << time_s << " s does not increase (previous row " << current_.time_s.back() << " s)";
+    return why.str();
+  }
+
+  void report(std::size_t line_number, const std::string& why)
+  {
+    contents_.problems.push_back(path_ + ":" + std::to_string(line_number) + ": " + why);
+  }
+
   std::string path_;
   std::string name_;
+  RunPlausibilityBounds bounds_;
   RunFileContents& contents_;
   CarFollowingRun current_;
   std::size_t pieces_ = 0;
@@ -185,8 +228,13 @@ std::string parseRow(const std::vector<std::string>& fields, const ColumnMap& ma
 }
 }  // namespace
 
-RunFileContents readRunFile(const std::string& path)
+RunFileContents readRunFile(const std::string& path, const RunPlausibilityBounds& bounds)
 {
+  const std::string bounds_problem = describeBoundsProblem(bounds);
+  if (!bounds_problem.empty())
+  {
+    throw std::invalid_argument("readRunFile: unusable plausibility bounds: " + bounds_problem);
+  }
   std::ifstream file(path);
   if (!file)
   {
@@ -211,7 +259,7 @@ RunFileContents readRunFile(const std::string& path)
     throw RunReadError(path + ": no header with time_s,space_gap_m,follower_speed_mps,leader_speed_mps "
                               "(or OpenACC Time,IVS1,Speed2,Speed1) in the first 20 lines");
   }
-  RunAssembler assembler(path, contents);
+  RunAssembler assembler(path, bounds, contents);
   while (std::getline(file, line))
   {
     ++line_number;
@@ -222,45 +270,60 @@ RunFileContents readRunFile(const std::string& path)
     ++contents.data_rows;
     const auto fields = splitFields(line);
     std::array<double, 4> values{};
-    std::string problem = parseRow(fields, *map, values);
-    if (problem.empty() && map->driver_index && fields[*map->driver_index] != "ACC")
+    const std::string malformed = parseRow(fields, *map, values);
+    if (!malformed.empty())
+    {
+      assembler.reject(line_number, malformed);
+    }
+    else if (map->driver_index && fields[*map->driver_index] != "ACC")
     {
       ++contents.acc_off_rows;
       assembler.split(line_number);
-      continue;
     }
-    if (problem.empty())
+    else
     {
-      problem = assembler.add(values);
-    }
-    if (!problem.empty())
-    {
-      ++contents.rejected_rows;
-      contents.problems.push_back(path + ":" + std::to_string(line_number) + ": " + problem +
-                                  "; row rejected, run split here");
-      assembler.split(line_number);
+      assembler.add(line_number, values);
     }
   }
   assembler.split(line_number);
   return contents;
 }
 
-std::vector<CarFollowingRun> readRuns(const std::string& path)
+namespace
 {
-  RunFileContents contents = readRunFile(path);
+/// One line with the counts behind the problems, or "" when nothing was rejected or split.
+std::string describeCounts(const std::string& path, const RunFileContents& contents)
+{
+  if (contents.rejected_rows == 0 && contents.time_holes == 0)
+  {
+    return "";
+  }
+  std::ostringstream counts;
+  counts << path << ": " << contents.rejected_rows << " of " << contents.data_rows << " rows rejected ("
+         << contents.implausible_rows << " outside the plausibility bounds), " << contents.time_holes
+         << " holes in time split a run";
+  return counts.str();
+}
+}  // namespace
+
+std::vector<CarFollowingRun> readRuns(const std::string& path, const RunPlausibilityBounds& bounds)
+{
+  RunFileContents contents = readRunFile(path, bounds);
   for (const std::string& problem : contents.problems)
   {
     std::cerr << "warning: " << problem << "\n";
   }
-  if (contents.rejected_rows > 0)
+  const std::string counts = describeCounts(path, contents);
+  if (!counts.empty())
   {
-    std::cerr << "warning: " << path << ": " << contents.rejected_rows << " of " << contents.data_rows
-              << " rows rejected\n";
+    std::cerr << "warning: " << counts << "\n";
   }
   if (contents.runs.empty())
   {
     throw RunReadError(path + ": no usable run (" + std::to_string(contents.data_rows) + " data rows, " +
-                       std::to_string(contents.rejected_rows) + " rejected, " +
+                       std::to_string(contents.rejected_rows) + " rejected of which " +
+                       std::to_string(contents.implausible_rows) + " implausible, " +
+                       std::to_string(contents.time_holes) + " holes in time, " +
                        std::to_string(contents.acc_off_rows) + " with ACC off)");
   }
   return std::move(contents.runs);

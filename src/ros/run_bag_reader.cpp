@@ -1,7 +1,11 @@
 #include "acc_identification/ros/run_bag_reader.h"
 
+#include <cmath>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
@@ -12,8 +16,145 @@
 
 namespace acc_identification
 {
-BagRuns readRunsFromBag(const std::string& path, const std::string& topic, double max_gap_s)
+namespace
 {
+/// "path: message N (t = T s): why". Fixed notation: GNSS stamps are ~1e9 s and differ in tenths.
+std::string describeAtMessage(const std::string& path, std::size_t message_number, double time_s,
+                              const std::string& why)
+{
+  std::ostringstream line;
+  line << path << ": message " << message_number << " (t = " << std::fixed << std::setprecision(3) << time_s
+       << " s): " << why;
+  return line.str();
+}
+
+bool hasFiniteValues(const WindowSample& sample)
+{
+  return std::isfinite(sample.space_gap_m) && std::isfinite(sample.follower_speed_mps) &&
+         std::isfinite(sample.leader_speed_mps);
+}
+
+/// The same check as the CSV reader's. Non-finite values are left to the window (counted invalid).
+std::string describeImplausibleSample(const WindowSample& sample, const RunPlausibilityBounds& bounds)
+{
+  if (!sample.valid || !hasFiniteValues(sample))
+  {
+    return "";
+  }
+  return describeImplausibleValue(sample.space_gap_m, sample.follower_speed_mps, sample.leader_speed_mps, bounds);
+}
+
+/// Feeds a bag's samples, in order, to a window longer than any bag, which does the segmenting
+/// (at invalid samples and at holes), and accounts in result for every sample it does not use.
+class BagSegmenter
+{
+public:
+  BagSegmenter(std::string path, const RunPlausibilityBounds& bounds, BagRuns& result)
+    : path_(std::move(path))
+    , bounds_(bounds)
+    , window_(std::numeric_limits<double>::infinity(), bounds.max_time_step_s, 2)
+    , result_(result)
+  {
+  }
+
+  void add(WindowSample sample)
+  {
+    ++result_.messages;
+    if (!window_.empty() && sample.time_s < window_.endTimeS() - bounds_.max_time_step_s)
+    {
+      // A time reset inside the bag (a replay restarted): keep what came before as runs of its own.
+      moveSegments();
+      ++result_.time_resets;
+      window_.clear();
+      segment_open_ = false;
+    }
+    const std::string implausible = describeImplausibleSample(sample, bounds_);
+    if (!implausible.empty())
+    {
+      sample.valid = false;  // a split point for the window, never used: as a rejected CSV row
+    }
+    switch (window_.add(sample))
+    {
+      case SlidingWindow::AddResult::kInvalid: noteSplitPoint(sample.time_s, implausible); break;
+      case SlidingWindow::AddResult::kNonFinite: noteSplitPoint(sample.time_s, ""); break;
+      case SlidingWindow::AddResult::kOutOfOrder: ++result_.out_of_order; break;
+      case SlidingWindow::AddResult::kRestarted:  // handled above, before the window was cleared
+      case SlidingWindow::AddResult::kAdded: noteAdded(sample.time_s); break;
+    }
+  }
+
+  /// Moves the segments still in the window to result; call once, after the last sample.
+  void finish() { moveSegments(); }
+
+private:
+  void noteSplitPoint(double time_s, const std::string& implausible)
+  {
+    segment_open_ = false;
+    if (implausible.empty())
+    {
+      ++result_.invalid;
+      return;
+    }
+    ++result_.implausible;
+    report(time_s, implausible + "; message not used, run split here");
+  }
+
+  /// The window splits at a hole by itself (the same step against the same bound); this accounts
+  /// for it with the CSV reader's check and words.
+  void noteAdded(double time_s)
+  {
+    const std::string hole = segment_open_ ? describeTimeHole(segment_end_s_, time_s, bounds_) : "";
+    if (!hole.empty())
+    {
+      ++result_.time_holes;
+      report(time_s, hole + "; run split");
+    }
+    segment_open_ = true;
+    segment_end_s_ = time_s;
+  }
+
+  void report(double time_s, const std::string& why)
+  {
+    result_.problems.push_back(describeAtMessage(path_, result_.messages, time_s, why));
+  }
+
+  void moveSegments()
+  {
+    std::size_t short_pieces = 0;
+    for (CarFollowingRun& run : window_.segments(&short_pieces))
+    {
+      result_.runs.push_back(std::move(run));
+    }
+    result_.short_pieces += short_pieces;
+  }
+
+  std::string path_;
+  RunPlausibilityBounds bounds_;
+  SlidingWindow window_;
+  BagRuns& result_;
+  bool segment_open_ = false;   ///< whether the window's newest segment has a valid sample
+  double segment_end_s_ = 0.0;  ///< its newest sample: what a hole is measured from
+};
+
+std::string bagName(const std::string& path)
+{
+  const auto slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  if (name.size() > 4 && name.substr(name.size() - 4) == ".bag")
+  {
+    name = name.substr(0, name.size() - 4);
+  }
+  return name;
+}
+}  // namespace
+
+BagRuns readRunsFromBag(const std::string& path, const std::string& topic, const RunPlausibilityBounds& bounds)
+{
+  const std::string bounds_problem = describeBoundsProblem(bounds);
+  if (!bounds_problem.empty())
+  {
+    throw std::invalid_argument("readRunsFromBag: unusable plausibility bounds: " + bounds_problem);
+  }
   rosbag::Bag bag;
   try
   {
@@ -29,9 +170,8 @@ BagRuns readRunsFromBag(const std::string& path, const std::string& topic, doubl
   {
     throw std::runtime_error("bag '" + path + "' has no messages on topic '" + topic + "'");
   }
-  // A window longer than any bag does the segmenting: split at invalid samples and at holes.
-  SlidingWindow all(std::numeric_limits<double>::infinity(), max_gap_s, 2);
   BagRuns result;
+  BagSegmenter segmenter(path, bounds, result);
   for (const rosbag::MessageInstance& instance : view)
   {
     const auto message = instance.instantiate<RelativeState>();
@@ -39,47 +179,23 @@ BagRuns readRunsFromBag(const std::string& path, const std::string& topic, doubl
     {
       throw std::runtime_error("bag '" + path + "': topic '" + topic + "' is not acc_identification/RelativeState");
     }
-    ++result.messages;
-    const WindowSample sample{message->header.stamp.toSec(), message->space_gap_m, message->follower_speed_mps,
-                              message->leader_speed_mps, static_cast<bool>(message->valid)};
-    if (!all.empty() && sample.time_s < all.endTimeS() - max_gap_s)
-    {
-      // A time reset inside the bag (a replay restarted): keep what came before as runs of its own.
-      std::size_t short_pieces = 0;
-      for (CarFollowingRun& run : all.segments(&short_pieces))
-      {
-        result.runs.push_back(std::move(run));
-      }
-      result.short_pieces += short_pieces;
-      ++result.time_resets;
-      all.clear();
-    }
-    switch (all.add(sample))
-    {
-      case SlidingWindow::AddResult::kInvalid:
-      case SlidingWindow::AddResult::kNonFinite: ++result.invalid; break;
-      case SlidingWindow::AddResult::kOutOfOrder: ++result.out_of_order; break;
-      case SlidingWindow::AddResult::kRestarted:  // handled above, before the window was cleared
-      case SlidingWindow::AddResult::kAdded: break;
-    }
+    segmenter.add({message->header.stamp.toSec(), message->space_gap_m, message->follower_speed_mps,
+                   message->leader_speed_mps, static_cast<bool>(message->valid)});
   }
-  std::size_t short_pieces = 0;
-  for (CarFollowingRun& run : all.segments(&short_pieces))
-  {
-    result.runs.push_back(std::move(run));
-  }
-  result.short_pieces += short_pieces;
-  const auto slash = path.find_last_of('/');
-  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  if (name.size() > 4 && name.substr(name.size() - 4) == ".bag")
-  {
-    name = name.substr(0, name.size() - 4);
-  }
+  segmenter.finish();
+  const std::string name = bagName(path);
   for (std::size_t i = 0; i < result.runs.size(); ++i)
   {
     result.runs[i].name = name + "#" + std::to_string(i + 1);
   }
   return result;
+}
+
+BagRuns readRunsFromBag(const std::string& path, const std::string& topic, double max_gap_s)
+{
+  RunPlausibilityBounds bounds;
+  bounds.max_time_step_s = max_gap_s;
+  return readRunsFromBag(path, topic, bounds);
 }
 
 std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std::string& topic,
@@ -90,12 +206,19 @@ std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std:
                       path.compare(path.size() - bag_suffix.size(), bag_suffix.size(), bag_suffix) == 0;
   if (!is_bag)
   {
-    return readRuns(path);
+    RunPlausibilityBounds bounds;
+    bounds.max_time_step_s = max_gap_s;
+    return readRuns(path, bounds);
   }
   BagRuns bag = readRunsFromBag(path, topic, max_gap_s);
-  log << path << ": " << bag.messages << " messages, " << bag.invalid << " invalid, " << bag.out_of_order
-      << " out of order, " << bag.time_resets << " time resets, " << bag.short_pieces
-      << " pieces too short -> " << bag.runs.size() << " runs\n";
+  for (const std::string& problem : bag.problems)
+  {
+    log << "warning: " << problem << "\n";
+  }
+  log << path << ": " << bag.messages << " messages, " << bag.invalid << " invalid, " << bag.implausible
+      << " outside the plausibility bounds, " << bag.out_of_order << " out of order, " << bag.time_holes
+      << " holes in time, " << bag.time_resets << " time resets, " << bag.short_pieces << " pieces too short -> "
+      << bag.runs.size() << " runs\n";
   return std::move(bag.runs);
 }
 

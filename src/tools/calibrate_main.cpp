@@ -28,7 +28,7 @@ const char* kUsage =
     "  --grid N           also search a dense grid of N nodes per axis (k1 0-0.5, k2 0-1.5, tau_e 0-3)\n"
     "                     and check that the multistart optimum is the global one\n"
     "  --topic NAME       RelativeState topic in bags (default relative_state)\n"
-    "  --max-gap S        split runs from bags at holes longer than S seconds (default 0.5)\n"
+    "  --max-gap S        split runs at holes longer than S seconds (default 0.5)\n"
     "  --quiet            no progress display\n";
 
 struct LoadedRun

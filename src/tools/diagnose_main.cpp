@@ -28,7 +28,7 @@ const char* kUsage =
     "  RUN: canonical run CSV, OpenACC CSV, or a bag of acc_identification/RelativeState (as calibrate).\n"
     "       Each run is fitted on its first part and scored on the rest.\n"
     "  --topic NAME                RelativeState topic in bags (default relative_state)\n"
-    "  --max-gap S                 split runs from bags at holes longer than S seconds (default 0.5)\n"
+    "  --max-gap S                 split runs at holes longer than S seconds (default 0.5)\n"
     "  --json FILE                 write the diagnosis as JSON\n"
     "  --report DIR                write tables, diagnosis.json, PNG figures and report.md into DIR\n"
     "  --train-fraction F          share of each run used for fitting (default 0.5)\n"

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "acc_identification/io/run_csv.h"
@@ -99,6 +101,184 @@ TEST(RunCsv, UnreadableFilesThrowWithTheReason)
     EXPECT_NE(std::string(error.what()).find("no header"), std::string::npos) << error.what();
   }
   std::remove(path.c_str());
+}
+
+/// Whether text contains part; reads better in an EXPECT with the text as the message.
+bool contains(const std::string& text, const std::string& part)
+{
+  return text.find(part) != std::string::npos;
+}
+
+TEST(RunCsvPlausibility, ImpossibleFollowerSpeedIsRejectedWithItsLineAndColumnAndSplitsTheRun)
+{
+  const auto contents = aci::readRunFile(kDataDir + "/canonical_implausible_speed.csv");
+  EXPECT_EQ(contents.data_rows, 7u);
+  EXPECT_EQ(contents.rejected_rows, 1u);
+  EXPECT_EQ(contents.implausible_rows, 1u);
+  EXPECT_EQ(contents.time_holes, 0u);
+  ASSERT_EQ(contents.problems.size(), 1u);
+  EXPECT_TRUE(contains(contents.problems[0], "canonical_implausible_speed.csv:5: follower_speed_mps 1e+09 "
+                                             "outside [-1, 100] m/s; row rejected, run split here"))
+      << contents.problems[0];
+  // 0.0-0.2 s before the bad row (line 5, t = 0.3 s), 0.4-0.6 s after it.
+  ASSERT_EQ(contents.runs.size(), 2u);
+  EXPECT_EQ(contents.runs[0].size(), 3u);
+  EXPECT_DOUBLE_EQ(contents.runs[0].time_s.back(), 0.2);
+  EXPECT_EQ(contents.runs[1].size(), 3u);
+  EXPECT_DOUBLE_EQ(contents.runs[1].time_s.front(), 0.4);
+  for (const auto& run : contents.runs)
+  {
+    for (double speed_mps : run.follower_speed_mps)
+    {
+      EXPECT_LT(speed_mps, 100.0);
+    }
+  }
+}
+
+TEST(RunCsvPlausibility, NegativeGapAndNegativeLeaderSpeedAreRejectedLikewise)
+{
+  const auto contents = aci::readRunFile(kDataDir + "/canonical_implausible_gap_and_leader.csv");
+  EXPECT_EQ(contents.data_rows, 8u);
+  EXPECT_EQ(contents.rejected_rows, 2u);
+  EXPECT_EQ(contents.implausible_rows, 2u);
+  ASSERT_EQ(contents.problems.size(), 2u);
+  EXPECT_TRUE(contains(contents.problems[0], ":4: space_gap_m -50 outside [-2, 1000] m; row rejected"))
+      << contents.problems[0];
+  EXPECT_TRUE(contains(contents.problems[1], ":7: leader_speed_mps -30 outside [-1, 100] m/s; row rejected"))
+      << contents.problems[1];
+  // Pieces 0.0-0.1 s, 0.3-0.4 s, 0.6-0.7 s.
+  ASSERT_EQ(contents.runs.size(), 3u);
+  EXPECT_DOUBLE_EQ(contents.runs[1].time_s.front(), 0.3);
+  EXPECT_DOUBLE_EQ(contents.runs[2].time_s.front(), 0.6);
+  for (const auto& run : contents.runs)
+  {
+    EXPECT_EQ(run.size(), 2u);
+  }
+}
+
+TEST(RunCsvPlausibility, ValuesJustInsideTheBoundsAreAcceptedAndJustOutsideRejected)
+{
+  // Lines 2-5 are inside or on the bounds (speeds -0.5, -1, 99, 100 m/s, leader -0.9 and 100 m/s,
+  // gaps -1.5, -2, 999, 1000 m); lines 6, 9 and 12 are just outside, one quantity each.
+  const auto contents = aci::readRunFile(kDataDir + "/canonical_near_bounds.csv");
+  EXPECT_EQ(contents.data_rows, 13u);
+  EXPECT_EQ(contents.rejected_rows, 3u);
+  ASSERT_EQ(contents.problems.size(), 3u);
+  EXPECT_TRUE(contains(contents.problems[0], ":6: space_gap_m -2.5 outside [-2, 1000] m")) << contents.problems[0];
+  EXPECT_TRUE(contains(contents.problems[1], ":9: follower_speed_mps 100.5 outside [-1, 100] m/s"))
+      << contents.problems[1];
+  EXPECT_TRUE(contains(contents.problems[2], ":12: leader_speed_mps -1.5 outside [-1, 100] m/s"))
+      << contents.problems[2];
+  ASSERT_EQ(contents.runs.size(), 4u);
+  const auto& inside = contents.runs[0];
+  ASSERT_EQ(inside.size(), 4u);
+  EXPECT_DOUBLE_EQ(inside.follower_speed_mps[0], -0.5);
+  EXPECT_DOUBLE_EQ(inside.space_gap_m[0], -1.5);
+  EXPECT_DOUBLE_EQ(inside.follower_speed_mps[2], 99.0);
+  EXPECT_DOUBLE_EQ(inside.space_gap_m[3], 1000.0);
+  EXPECT_DOUBLE_EQ(inside.follower_speed_mps[3], 100.0);
+}
+
+TEST(RunCsvPlausibility, HoleInTimeSplitsTheRunWithoutRejectingARow)
+{
+  // Rows at 1.0, 1.1, 11.1 and 11.2 s: one Euler step of 10 s unless split.
+  const auto contents = aci::readRunFile(kDataDir + "/canonical_time_hole.csv");
+  EXPECT_EQ(contents.data_rows, 4u);
+  EXPECT_EQ(contents.rejected_rows, 0u);
+  EXPECT_EQ(contents.time_holes, 1u);
+  ASSERT_EQ(contents.problems.size(), 1u);
+  EXPECT_TRUE(contains(contents.problems[0],
+                       "canonical_time_hole.csv:4: hole of 10 s before this row (max 0.5 s); run split"))
+      << contents.problems[0];
+  ASSERT_EQ(contents.runs.size(), 2u);
+  EXPECT_EQ(contents.runs[0].size(), 2u);
+  EXPECT_DOUBLE_EQ(contents.runs[0].time_s.back(), 1.1);
+  EXPECT_EQ(contents.runs[1].size(), 2u);
+  EXPECT_DOUBLE_EQ(contents.runs[1].time_s.front(), 11.1);
+  EXPECT_EQ(contents.runs[1].name, "canonical_time_hole#2");
+}
+
+TEST(RunCsvPlausibility, BoundsPassedByTheCallerAreHonoured)
+{
+  aci::RunPlausibilityBounds wide;
+  wide.max_speed_mps = 2e9;
+  wide.max_time_step_s = 20.0;
+  const auto widened_speed = aci::readRunFile(kDataDir + "/canonical_implausible_speed.csv", wide);
+  EXPECT_EQ(widened_speed.rejected_rows, 0u);
+  ASSERT_EQ(widened_speed.runs.size(), 1u);
+  EXPECT_EQ(widened_speed.runs[0].size(), 7u);
+  const auto widened_step = aci::readRunFile(kDataDir + "/canonical_time_hole.csv", wide);
+  EXPECT_EQ(widened_step.time_holes, 0u);
+  ASSERT_EQ(widened_step.runs.size(), 1u);
+  EXPECT_EQ(widened_step.runs[0].size(), 4u);
+
+  aci::RunPlausibilityBounds wider_values;
+  wider_values.min_speed_mps = -2.0;
+  wider_values.max_speed_mps = 101.0;
+  wider_values.min_space_gap_m = -3.0;
+  const auto widened_values = aci::readRunFile(kDataDir + "/canonical_near_bounds.csv", wider_values);
+  EXPECT_EQ(widened_values.rejected_rows, 0u);
+  ASSERT_EQ(widened_values.runs.size(), 1u);
+  EXPECT_EQ(widened_values.runs[0].size(), 13u);
+
+  aci::RunPlausibilityBounds narrow;
+  narrow.min_speed_mps = 0.0;
+  const auto narrowed = aci::readRunFile(kDataDir + "/canonical_near_bounds.csv", narrow);
+  EXPECT_EQ(narrowed.rejected_rows, 5u);  // lines 2 and 3 (follower -0.5 and -1 m/s) as well
+  ASSERT_FALSE(narrowed.problems.empty());
+  EXPECT_TRUE(contains(narrowed.problems[0], ":2: follower_speed_mps -0.5 outside [0, 100] m/s"))
+      << narrowed.problems[0];
+}
+
+TEST(RunCsvPlausibility, UnusableBoundsAreRefusedBeforeAnyRow)
+{
+  aci::RunPlausibilityBounds crossed;
+  crossed.min_space_gap_m = 10.0;
+  crossed.max_space_gap_m = 5.0;
+  EXPECT_THROW(aci::readRunFile(kDataDir + "/canonical_near_bounds.csv", crossed), std::invalid_argument);
+  aci::RunPlausibilityBounds no_step;
+  no_step.max_time_step_s = 0.0;
+  EXPECT_THROW(aci::readRunFile(kDataDir + "/canonical_near_bounds.csv", no_step), std::invalid_argument);
+  // Infinite bounds switch a check off; NaN is never plausible.
+  aci::RunPlausibilityBounds unbounded;
+  unbounded.max_speed_mps = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(aci::describeBoundsProblem(unbounded), "");
+  EXPECT_EQ(aci::describeImplausibleValue(20.0, 1e12, 10.0, unbounded), "");
+  EXPECT_NE(aci::describeImplausibleValue(std::numeric_limits<double>::quiet_NaN(), 10.0, 10.0, unbounded), "");
+}
+
+TEST(RunCsvPlausibility, OpenAccImpossibleSpeed2IsRejectedLikewise)
+{
+  const auto contents = aci::readRunFile(kDataDir + "/openacc_implausible_speed2.csv");
+  EXPECT_EQ(contents.data_rows, 5u);
+  EXPECT_EQ(contents.rejected_rows, 1u);
+  EXPECT_EQ(contents.implausible_rows, 1u);
+  ASSERT_EQ(contents.problems.size(), 1u);
+  EXPECT_TRUE(contains(contents.problems[0], "openacc_implausible_speed2.csv:9: follower_speed_mps 1e+09 "
+                                             "outside [-1, 100] m/s; row rejected, run split here"))
+      << contents.problems[0];
+  ASSERT_EQ(contents.runs.size(), 2u);
+  EXPECT_DOUBLE_EQ(contents.runs[0].time_s.back(), 100.1);
+  EXPECT_DOUBLE_EQ(contents.runs[1].time_s.front(), 100.3);
+  EXPECT_DOUBLE_EQ(contents.runs[1].follower_speed_mps[0], 29.3);  // Speed2
+}
+
+TEST(RunCsvPlausibility, ReadRunsCountsImplausibleRowsAndHolesOnStderr)
+{
+  testing::internal::CaptureStderr();
+  const auto speed_runs = aci::readRuns(kDataDir + "/canonical_implausible_speed.csv");
+  const auto hole_runs = aci::readRuns(kDataDir + "/canonical_time_hole.csv");
+  const std::string log = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(speed_runs.size(), 2u);
+  EXPECT_EQ(hole_runs.size(), 2u);
+  EXPECT_TRUE(contains(log, ":5: follower_speed_mps 1e+09 outside [-1, 100] m/s")) << log;
+  EXPECT_TRUE(contains(log, "canonical_implausible_speed.csv: 1 of 7 rows rejected (1 outside the plausibility "
+                            "bounds), 0 holes in time split a run"))
+      << log;
+  EXPECT_TRUE(contains(log, ":4: hole of 10 s before this row (max 0.5 s); run split")) << log;
+  EXPECT_TRUE(contains(log, "canonical_time_hole.csv: 0 of 4 rows rejected (0 outside the plausibility bounds), "
+                            "1 holes in time split a run"))
+      << log;
 }
 
 TEST(RunCsv, RealOpenAccCopyReadsWhole)

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "acc_identification/car_following_run.h"
+#include "acc_identification/io/run_plausibility.h"
 
 namespace acc_identification
 {
@@ -15,21 +16,33 @@ struct BagRuns
   std::vector<CarFollowingRun> runs;
   std::size_t messages = 0;
   std::size_t invalid = 0;       ///< valid == false, or non-finite values: split points
+  std::size_t implausible = 0;   ///< finite values outside the plausibility bounds: split points, not used
   std::size_t out_of_order = 0;  ///< header stamp not after the previous one: not used
+  std::size_t time_holes = 0;    ///< steps longer than the largest time step: split points, no message lost
   std::size_t short_pieces = 0;  ///< pieces between split points too short to simulate
   std::size_t time_resets = 0;   ///< stamps jumping back (a restarted replay): split points
+  /// "path: message N (t = T s): why", one per implausible message and per hole, worded as the
+  /// CSV reader words the same values (the same checks make both).
+  std::vector<std::string> problems;
 };
 
 /// Reads acc_identification/RelativeState messages of topic (with or without a leading '/')
 /// from a bag recorded from the nodes, timed by their header stamps (GNSS time), and splits them
-/// into runs at invalid samples and at holes longer than max_gap_s. Runs are named
-/// "<bag name>#<n>". Throws std::runtime_error when the bag cannot be read or has no such topic.
+/// into runs at invalid samples, at samples outside the plausibility bounds (the CSV reader's
+/// check) and at holes longer than bounds.max_time_step_s. Segmenting is the identifier's sliding
+/// window, so a batch calibration of a bag sees the segments the identifier node sees. Runs are
+/// named "<bag name>#<n>". Throws std::runtime_error when the bag cannot be read or has no such
+/// topic, std::invalid_argument when the bounds are unusable.
+BagRuns readRunsFromBag(const std::string& path, const std::string& topic, const RunPlausibilityBounds& bounds);
+
+/// readRunsFromBag() with the default plausibility bounds and holes longer than max_gap_s.
 BagRuns readRunsFromBag(const std::string& path, const std::string& topic = "relative_state",
                         double max_gap_s = 0.5);
 
 /// Reads one RUN argument of the command-line tools (calibrate, diagnose): a bag (path ending in
 /// .bag, read with readRunsFromBag, with an account of every message not used written to log) or
-/// a canonical / OpenACC CSV (readRuns). Throws std::runtime_error with the reason.
+/// a canonical / OpenACC CSV (readRuns). Both are split at holes longer than max_gap_s. Throws
+/// std::runtime_error with the reason.
 std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std::string& topic,
                                              double max_gap_s, std::ostream& log);
 
