@@ -44,8 +44,13 @@ def rosdep_map():
 
 
 def apt_packages():
+    # Run from `make test`, the outer make's flags (MAKEFLAGS: -w, -j...) would make this one print
+    # "Entering directory" lines among the names: ask it with a clean make environment.
+    environment = {name: value for name, value in os.environ.items()
+                   if name not in ("MAKEFLAGS", "MFLAGS", "MAKELEVEL", "MAKEOVERRIDES")}
     output = subprocess.run(["make", "-s", "--no-print-directory", "-C", str(REPOSITORY),
-                             "print-apt-packages"], check=True, capture_output=True, text=True)
+                             "print-apt-packages"], check=True, capture_output=True, text=True,
+                            env=environment)
     return set(output.stdout.split())
 
 
