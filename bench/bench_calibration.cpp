@@ -10,19 +10,18 @@
 
 #include "acc_identification/calibration/identification.h"
 #include "acc_identification/calibration/synthetic_runs.h"
-#include "acc_identification/paper_settings.h"
+#include "acc_identification/model/paper_settings.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
 /// Nine runs of 480 s (4,320 s) from Table II's minimum setting with the paper's GPS noise.
-std::vector<aci::CarFollowingRun> paperScaleRuns()
+std::vector<acc::CarFollowingRun> paperScaleRuns()
 {
-  std::vector<aci::CarFollowingRun> runs;
+  std::vector<acc::CarFollowingRun> runs;
   for (std::uint32_t seed = 1; seed <= 9; ++seed)
   {
-    runs.push_back(aci::synthesizeRun(aci::paperMinimumSetting(), 480.0, 0.1, 12.0 + 2.0 * seed, seed));
+    runs.push_back(acc::synthesizeRun(acc::paperMinimumSetting(), 480.0, 0.1, 12.0 + 2.0 * seed, seed));
   }
   return runs;
 }
@@ -30,13 +29,13 @@ std::vector<aci::CarFollowingRun> paperScaleRuns()
 void BM_BatchCalibration100Starts(benchmark::State& state)
 {
   const auto runs = paperScaleRuns();
-  const aci::CalibrationObjective objective(runs);
-  aci::MultistartOptions options;
+  const acc::CalibrationObjective objective(runs);
+  acc::MultistartOptions options;
   options.starts = 100;
-  aci::MultistartResult result;
+  acc::MultistartResult result;
   for (auto _ : state)
   {
-    result = aci::calibrateMultistart(objective, options);
+    result = acc::calibrateMultistart(objective, options);
     benchmark::DoNotOptimize(result);
   }
   state.counters["samples"] = static_cast<double>(objective.sampleCount());
@@ -49,14 +48,14 @@ BENCHMARK(BM_BatchCalibration100Starts)->Unit(benchmark::kMillisecond);
 void BM_LiveWindowRecalibration(benchmark::State& state)
 {
   // The node's configuration: a 120 s window, warm start from the previous fit, a few fresh starts.
-  const auto run = aci::synthesizeRun(aci::paperMinimumSetting(), 120.0, 0.1, 25.0, 42);
-  aci::IdentificationOptions options;
+  const auto run = acc::synthesizeRun(acc::paperMinimumSetting(), 120.0, 0.1, 25.0, 42);
+  acc::IdentificationOptions options;
   options.multistart.starts = static_cast<std::size_t>(state.range(0));
-  const std::vector<aci::AccParameters> warm{aci::AccParameters{0.075, 0.45, 0.5, 8.0}};
-  aci::Identification result;
+  const std::vector<acc::AccParameters> warm{acc::AccParameters{0.075, 0.45, 0.5, 8.0}};
+  acc::Identification result;
   for (auto _ : state)
   {
-    result = aci::identifyAcc({run}, options, warm);
+    result = acc::identifyAcc({run}, options, warm);
     benchmark::DoNotOptimize(result);
   }
   state.counters["evaluations"] = static_cast<double>(result.calibration.evaluations);
@@ -67,7 +66,7 @@ BENCHMARK(BM_LiveWindowRecalibration)->Arg(0)->Arg(8)->Arg(32)->Unit(benchmark::
 
 void BM_ObjectivePassWithGradient(benchmark::State& state)
 {
-  const aci::CalibrationObjective objective(paperScaleRuns());
+  const acc::CalibrationObjective objective(paperScaleRuns());
   for (auto _ : state)
   {
     benchmark::DoNotOptimize(objective.evaluate(0.08, 0.44, 0.52, state.range(0) != 0));

@@ -8,7 +8,6 @@
 #include "acc_identification/gnss/nmea_parser.h"
 #include "acc_identification/gnss/nmea_writer.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
@@ -19,13 +18,13 @@ const std::string kRmc = "$GNRMC,101530.30,A,4507.80115,N,00827.00163,E,19.732,4
 /// parseNmeaSentence alone on alternating GGA and RMC lines (checksum, split, fields).
 void BM_ParseGgaRmc(benchmark::State& state)
 {
-  aci::NmeaSentence sentence;
+  acc::NmeaSentence sentence;
   std::size_t ok = 0;
   for (auto _ : state)
   {
-    ok += aci::parseNmeaSentence(kGga, sentence) == aci::NmeaParseOutcome::kOk;
+    ok += acc::parseNmeaSentence(kGga, sentence) == acc::NmeaParseOutcome::kOk;
     benchmark::DoNotOptimize(sentence);
-    ok += aci::parseNmeaSentence(kRmc, sentence) == aci::NmeaParseOutcome::kOk;
+    ok += acc::parseNmeaSentence(kRmc, sentence) == acc::NmeaParseOutcome::kOk;
     benchmark::DoNotOptimize(sentence);
   }
   if (ok != 2 * static_cast<std::size_t>(state.iterations()))
@@ -42,7 +41,7 @@ void BM_DecodeGgaRmcStream(benchmark::State& state)
   // 1000 epochs 0.1 s apart, written by the NMEA writer (u-blox precision and field layout).
   std::string stream;
   constexpr int kEpochs = 1000;
-  aci::GnssFix fix;
+  acc::GnssFix fix;
   fix.has_date = true;
   fix.fix_quality = 1;
   fix.satellites_used = 12;
@@ -57,10 +56,10 @@ void BM_DecodeGgaRmcStream(benchmark::State& state)
     fix.latitude_deg = 45.13 + 1e-6 * i;
     fix.longitude_deg = 8.45 + 1e-6 * i;
     fix.speed_over_ground_mps = 10.0 + 0.01 * i;
-    stream += aci::formatGga(fix) + "\r\n" + aci::formatRmc(fix) + "\r\n";
+    stream += acc::formatGga(fix) + "\r\n" + acc::formatRmc(fix) + "\r\n";
   }
   std::size_t fixes = 0;
-  aci::NmeaDecoder decoder(nullptr, [&](const aci::GnssFix&) { ++fixes; });
+  acc::NmeaDecoder decoder(nullptr, [&](const acc::GnssFix&) { ++fixes; });
   for (auto _ : state)
     decoder.feed(stream.data(), stream.size(), 0.0);
   benchmark::DoNotOptimize(fixes);

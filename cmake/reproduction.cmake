@@ -3,7 +3,7 @@
 find_package(nlohmann_json 3 REQUIRED)
 
 add_library(acc_reproduction
-  src/profiles/lead_profiles.cpp
+  src/reproduction/lead_profiles.cpp
   src/reproduction/lambda2_map.cpp
   src/reproduction/frequency_response.cpp
   src/reproduction/lead_inputs.cpp

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace acc_identification
+namespace acc
 {
 /// A small "--name value" / "--flag" parser shared by the command-line tools, so that every tool
 /// rejects unknown options and malformed numbers the same way, with a message, never a crash.
@@ -38,4 +38,4 @@ private:
   std::string error_;
 };
 
-}  // namespace acc_identification
+}  // namespace acc

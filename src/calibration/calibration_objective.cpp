@@ -4,9 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "acc_identification/follower_simulation.h"
+#include "acc_identification/model/follower_simulation.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -192,4 +192,4 @@ ReducedObjectiveValue CalibrationObjective::evaluate(double k1, double k2, doubl
   return value;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <string>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -179,4 +179,4 @@ void printReport(const CalibrationReport& report, std::ostream& out)
   }
 }
 
-}  // namespace acc_identification
+}  // namespace acc

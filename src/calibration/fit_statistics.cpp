@@ -6,9 +6,9 @@
 
 #include <Eigen/Dense>
 
-#include "acc_identification/follower_simulation.h"
+#include "acc_identification/model/follower_simulation.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -179,4 +179,4 @@ ParameterUncertainty estimateUncertainty(const AccParameters& p, const std::vect
   return result;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-namespace acc_identification
+namespace acc
 {
 GridSearchResult gridSearch(const CalibrationObjective& objective, const AccParameters& lower,
                             const AccParameters& upper, std::array<std::size_t, 3> nodes_per_axis)
@@ -48,4 +48,4 @@ GridSearchResult gridSearch(const CalibrationObjective& objective, const AccPara
   return result;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

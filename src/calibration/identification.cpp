@@ -4,7 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace acc_identification
+namespace acc
 {
 std::string describeInsufficientExcitation(const std::vector<CarFollowingRun>& segments,
                                            const IdentifiabilityCriteria& criteria)
@@ -108,4 +108,4 @@ Identification identifyAcc(const std::vector<CarFollowingRun>& segments, const I
   return result;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

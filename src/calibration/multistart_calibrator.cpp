@@ -7,7 +7,7 @@
 
 #include <nlopt.hpp>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -314,4 +314,4 @@ MultistartResult calibrateMultistart(const CalibrationObjective& objective, cons
   return result;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

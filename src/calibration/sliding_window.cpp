@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace acc_identification
+namespace acc
 {
 SlidingWindow::SlidingWindow(double length_s, double max_gap_s, std::size_t min_segment_samples)
   : length_s_(length_s), max_gap_s_(max_gap_s), min_segment_samples_(std::max<std::size_t>(2, min_segment_samples))
@@ -102,4 +102,4 @@ std::string SlidingWindow::describe(AddResult result)
   return "unknown";
 }
 
-}  // namespace acc_identification
+}  // namespace acc

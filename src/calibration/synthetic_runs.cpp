@@ -3,9 +3,9 @@
 #include <cmath>
 #include <random>
 
-#include "acc_identification/follower_simulation.h"
+#include "acc_identification/model/follower_simulation.h"
 
-namespace acc_identification
+namespace acc
 {
 CarFollowingRun synthesizeRun(const AccParameters& truth, double duration_s, double time_step_s,
                               double cruise_speed_mps, std::uint32_t seed, const MeasurementNoise& noise)
@@ -57,4 +57,4 @@ CarFollowingRun synthesizeRun(const AccParameters& truth, double duration_s, dou
   return run;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <fstream>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -94,4 +94,4 @@ bool writeNmeaLog(const std::string& path, const std::vector<GnssFix>& fixes, co
   return true;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -8,7 +8,7 @@
 #include <map>
 #include <sstream>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -145,4 +145,4 @@ OpenAccTrajectories readOpenAccTrajectories(const std::string& path)
   return file;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -9,7 +9,7 @@
 
 #include "acc_identification/diagnosis/augmented_simulation.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -415,4 +415,4 @@ std::vector<double> haltonSequencePoint(std::size_t index, std::size_t dimension
   return point;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <vector>
 
-#include "acc_identification/acc_model.h"
+#include "acc_identification/model/acc_model.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -139,4 +139,4 @@ SimulatedFollower simulateAugmentedFollower(const AccParameters& p, const Effect
   return sim;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <complex>
 
-#include "acc_identification/string_stability.h"
+#include "acc_identification/model/string_stability.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -82,4 +82,4 @@ AugmentedStability analyzeAugmentedStability(const AccParameters& p, EffectKind 
   return out;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace acc_identification
+namespace acc
 {
 const std::vector<CandidateEffect>& candidateEffects()
 {
@@ -135,4 +135,4 @@ std::vector<double> effectValues(EffectKind kind, const EffectSettings& s)
   return {};
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -6,7 +6,7 @@
 
 #include "acc_identification/diagnosis/augmented_simulation.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -160,4 +160,4 @@ const ModelDiagnosis& dominantModel(const DiagnosisResult& result)
   return result.baseline;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -6,7 +6,7 @@
 
 #include "acc_identification/diagnosis/augmented_simulation.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -250,4 +250,4 @@ void writeDiagnosisTables(const DiagnosisResult& r, const std::string& dir)
   }
 }
 
-}  // namespace acc_identification
+}  // namespace acc

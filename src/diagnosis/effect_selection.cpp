@@ -6,7 +6,7 @@
 #include <random>
 #include <stdexcept>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -220,4 +220,4 @@ std::string describeSelectionRule(const SelectionOptions& options, std::size_t c
   return text;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

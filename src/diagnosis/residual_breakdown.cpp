@@ -8,7 +8,7 @@
 
 #include <unsupported/Eigen/FFT>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -294,4 +294,4 @@ ResidualBreakdown breakDownResiduals(const std::vector<CarFollowingRun>& runs,
   return out;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -10,7 +10,7 @@
 
 #include "acc_identification/diagnosis/augmented_simulation.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -330,4 +330,4 @@ std::string formatMagnitudeRecovery(const std::vector<WithheldOutcome>& outcomes
   return out.str();
 }
 
-}  // namespace acc_identification
+}  // namespace acc

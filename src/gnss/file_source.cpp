@@ -7,7 +7,7 @@
 #include "acc_identification/gnss/nmea_parser.h"
 #include "acc_identification/gnss/utc_date.h"
 
-namespace acc_identification
+namespace acc
 {
 FileSource::FileSource(const std::string& path, double rate) : path_(path), rate_(rate), in_(path, std::ios::binary)
 {
@@ -96,4 +96,4 @@ ReadResult FileSource::read(char* buffer, std::size_t capacity, double timeout_s
   return result;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

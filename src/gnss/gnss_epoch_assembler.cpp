@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -137,4 +137,4 @@ std::optional<GnssFix> GnssEpochAssembler::flush()
   return fix;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace acc_identification
+namespace acc
 {
 bool enuVelocity(const GnssFix& fix, EnuVelocity& velocity)
 {
@@ -21,4 +21,4 @@ bool enuVelocity(const GnssFix& fix, EnuVelocity& velocity)
   return true;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

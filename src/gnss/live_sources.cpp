@@ -15,7 +15,7 @@
 #include "acc_identification/gnss/file_source.h"
 #include "reconnecting_source.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -240,4 +240,4 @@ std::unique_ptr<ByteSource> makeByteSource(const std::string& text, std::string&
   return std::make_unique<TcpSource>(text, uri.host, uri.port);
 }
 
-}  // namespace acc_identification
+}  // namespace acc

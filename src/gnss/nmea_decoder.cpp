@@ -2,7 +2,7 @@
 
 #include <utility>
 
-namespace acc_identification
+namespace acc
 {
 NmeaDecoder::NmeaDecoder(LineHandler on_line, FixHandler on_fix)
   : on_line_(std::move(on_line)), on_fix_(std::move(on_fix))
@@ -58,4 +58,4 @@ NmeaStatistics NmeaDecoder::statistics() const
   return statistics;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

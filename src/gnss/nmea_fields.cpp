@@ -3,7 +3,7 @@
 #include <charconv>
 #include <cmath>
 
-namespace acc_identification
+namespace acc
 {
 std::uint8_t nmeaChecksumValue(std::string_view body)
 {
@@ -146,4 +146,4 @@ FieldStatus readAngle(std::string_view value_field, std::string_view hemisphere_
   return FieldStatus::kOk;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

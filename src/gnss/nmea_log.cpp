@@ -5,7 +5,7 @@
 
 #include "acc_identification/gnss/nmea_decoder.h"
 
-namespace acc_identification
+namespace acc
 {
 NmeaLogResult readNmeaLog(const std::string& path)
 {
@@ -33,4 +33,4 @@ NmeaLogResult readNmeaLog(const std::string& path)
   return result;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

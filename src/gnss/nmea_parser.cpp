@@ -6,7 +6,7 @@
 #include "acc_identification/gnss/nmea_fields.h"
 #include "acc_identification/gnss/utc_date.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -370,4 +370,4 @@ bool nmeaLineTimeOfDay(std::string_view line, double& time_of_day_s)
   return readTimeOfDay(time_field, time_of_day_s) == FieldStatus::kOk;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-namespace acc_identification
+namespace acc
 {
 void NmeaStatistics::count(NmeaParseOutcome outcome)
 {
@@ -26,4 +26,4 @@ std::string NmeaStatistics::summary() const
   return out.str();
 }
 
-}  // namespace acc_identification
+}  // namespace acc

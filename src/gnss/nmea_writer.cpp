@@ -7,7 +7,7 @@
 #include "acc_identification/gnss/nmea_fields.h"
 #include "acc_identification/gnss/utc_date.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -120,4 +120,4 @@ std::string formatRmc(const GnssFix& fix, const std::string& talker)
   return withChecksum(body);
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -9,7 +9,7 @@
 #include <cstring>
 #include <thread>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -94,4 +94,4 @@ ReadResult ReconnectingSource::read(char* buffer, std::size_t capacity, double t
   return result;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -5,7 +5,7 @@
 
 #include "acc_identification/gnss/byte_source.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Common behaviour of the live sources (serial, UDP, TCP): a file descriptor that is opened on
 /// demand, read with poll(), and closed and reopened with exponential back-off (0.5 s doubling
@@ -41,4 +41,4 @@ private:
   Clock::time_point next_attempt_;
 };
 
-}  // namespace acc_identification
+}  // namespace acc

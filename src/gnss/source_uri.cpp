@@ -2,7 +2,7 @@
 
 #include "acc_identification/gnss/byte_source.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -80,4 +80,4 @@ bool parseSourceUri(const std::string& text, SourceUri& uri, std::string& error)
   return false;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -1,6 +1,6 @@
 #include "acc_identification/gnss/utc_date.h"
 
-namespace acc_identification
+namespace acc
 {
 std::int64_t daysFromCivil(int year, unsigned month, unsigned day)
 {
@@ -49,4 +49,4 @@ std::optional<std::int64_t> UtcDateTracker::dayOf(double time_of_day_s, std::opt
   return day;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

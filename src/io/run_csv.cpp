@@ -12,7 +12,7 @@
 #include <sstream>
 #include <utility>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -349,4 +349,4 @@ void writeRunCsv(const std::string& path, const CarFollowingRun& run)
   }
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -70,4 +70,4 @@ std::string describeTimeHole(double previous_time_s, double time_s, const RunPla
   return why.str();
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -1,8 +1,8 @@
-#include "acc_identification/acc_model.h"
+#include "acc_identification/model/acc_model.h"
 
 #include <cmath>
 
-namespace acc_identification
+namespace acc
 {
 double accelerationMps2(const AccParameters& p, double space_gap_m, double speed_mps,
                         double relative_speed_mps)
@@ -35,4 +35,4 @@ double equilibriumSpaceGapM(const AccParameters& p, double speed_mps)
   return p.eta_m + p.tau_e_s * speed_mps;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -1,9 +1,9 @@
-#include "acc_identification/car_following_run.h"
+#include "acc_identification/model/car_following_run.h"
 
 #include <cmath>
 #include <sstream>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -58,4 +58,4 @@ std::string describeRunProblem(const CarFollowingRun& run)
   return "";
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -1,10 +1,10 @@
-#include "acc_identification/follower_simulation.h"
+#include "acc_identification/model/follower_simulation.h"
 
 #include <cmath>
 
-#include "acc_identification/acc_model.h"
+#include "acc_identification/model/acc_model.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -54,4 +54,4 @@ SimulatedFollower simulateFollower(const AccParameters& p, const CarFollowingRun
   return sim;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -1,6 +1,6 @@
-#include "acc_identification/paper_settings.h"
+#include "acc_identification/model/paper_settings.h"
 
-namespace acc_identification
+namespace acc
 {
 AccParameters paperMinimumSetting() { return AccParameters{0.0782, 0.4445, 0.5162, 8.3365}; }
 
@@ -30,4 +30,4 @@ std::optional<NamedSetting> findNamedSetting(const std::string& name)
   return std::nullopt;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

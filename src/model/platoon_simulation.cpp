@@ -1,12 +1,12 @@
-#include "acc_identification/platoon_simulation.h"
+#include "acc_identification/model/platoon_simulation.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "acc_identification/acc_model.h"
+#include "acc_identification/model/acc_model.h"
 
-namespace acc_identification
+namespace acc
 {
 PlatoonTrajectory simulatePlatoon(const AccParameters& p, const std::vector<double>& lead_speed_mps,
                                   double time_step_s, std::size_t follower_count)
@@ -71,4 +71,4 @@ std::vector<double> minimumSpeedPerVehicle(const PlatoonTrajectory& platoon)
   return minimum;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -1,11 +1,11 @@
-#include "acc_identification/string_stability.h"
+#include "acc_identification/model/string_stability.h"
 
 #include <cmath>
 #include <limits>
 
-#include "acc_identification/acc_model.h"
+#include "acc_identification/model/acc_model.h"
 
-namespace acc_identification
+namespace acc
 {
 double lambda2(const AccParameters& p)
 {
@@ -87,4 +87,4 @@ StringStabilityReport analyzeStringStability(const AccParameters& p)
   return report;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -4,6 +4,6 @@
 int main(int argc, char** argv)
 {
   ros::init(argc, argv, "gps_driver");
-  acc_identification::GpsDriverRos driver(ros::NodeHandle(), ros::NodeHandle("~"));
+  acc::GpsDriverRos driver(ros::NodeHandle(), ros::NodeHandle("~"));
   return driver.run();
 }

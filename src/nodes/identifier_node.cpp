@@ -5,7 +5,7 @@
 int main(int argc, char** argv)
 {
   ros::init(argc, argv, "identifier");
-  acc_identification::IdentifierRos node(ros::NodeHandle(), ros::NodeHandle("~"));
+  acc::IdentifierRos node(ros::NodeHandle(), ros::NodeHandle("~"));
   if (!node.ok())
     return 1;
   ros::spin();

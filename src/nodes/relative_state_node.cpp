@@ -5,7 +5,7 @@
 int main(int argc, char** argv)
 {
   ros::init(argc, argv, "relative_state");
-  acc_identification::RelativeStateRos node(ros::NodeHandle(), ros::NodeHandle("~"));
+  acc::RelativeStateRos node(ros::NodeHandle(), ros::NodeHandle("~"));
   if (!node.ok())
     return 1;
   ros::spin();

@@ -5,7 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -294,4 +294,4 @@ void EpochPairer::trimLeader()
     leader_.pop_front();
 }
 
-}  // namespace acc_identification
+}  // namespace acc

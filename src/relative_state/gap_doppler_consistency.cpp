@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -86,4 +86,4 @@ ConsistencySummary gapDopplerConsistency(const std::vector<double>& time_s, cons
   return {windows > 0 ? std::sqrt(sum_squares / static_cast<double>(windows)) : kNaN, windows};
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -4,7 +4,7 @@
 #include <iomanip>
 #include <sstream>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -154,4 +154,4 @@ void RelativeStateEstimator::process(const PairedEpoch& pair)
   states_.push_back(state);
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -7,7 +7,7 @@
 #include <limits>
 #include <vector>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -147,4 +147,4 @@ std::optional<double> LeaderTrack::alongTrackDistance(const GnssFix& leader_now,
   return along_m;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

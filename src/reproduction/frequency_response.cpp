@@ -5,9 +5,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "acc_identification/string_stability.h"
+#include "acc_identification/model/string_stability.h"
 
-namespace acc_identification
+namespace acc
 {
 std::vector<double> logSpacedFrequencies(double min_rad_s, double max_rad_s, std::size_t count)
 {
@@ -53,4 +53,4 @@ std::vector<BodeSample> bodeMagnitude(const AccParameters& p, const std::vector<
   return samples;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

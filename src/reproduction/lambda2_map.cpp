@@ -3,9 +3,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "acc_identification/string_stability.h"
+#include "acc_identification/model/string_stability.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -81,4 +81,4 @@ double stableFraction(const std::vector<Lambda2MapSample>& map, double tau_e_s)
   return total == 0 ? 0.0 : static_cast<double>(stable) / static_cast<double>(total);
 }
 
-}  // namespace acc_identification
+}  // namespace acc

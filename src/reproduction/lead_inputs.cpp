@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <stdexcept>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -44,4 +44,4 @@ std::vector<double> withFinalHold(std::vector<double> lead_speed_mps, double hol
   return lead_speed_mps;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

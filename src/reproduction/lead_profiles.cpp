@@ -1,4 +1,4 @@
-#include "acc_identification/profiles/lead_profiles.h"
+#include "acc_identification/reproduction/lead_profiles.h"
 
 #include <algorithm>
 #include <cctype>
@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -183,4 +183,4 @@ std::string leadProfileDescription(char id)
   return spec.description + "; " + describeLeadRamp(spec.ramp);
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <fstream>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -59,4 +59,4 @@ NamedSetting readParameterFile(const std::string& path)
   return setting;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace acc_identification
+namespace acc
 {
 std::vector<VehicleDisturbance> vehicleDisturbances(const PlatoonTrajectory& platoon,
                                                     double reference_speed_mps, std::size_t from_sample)
@@ -92,4 +92,4 @@ std::optional<std::size_t> firstVehicleBelowSpeed(const PlatoonTrajectory& plato
   return std::nullopt;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -4,9 +4,9 @@
 #include <stdexcept>
 
 #include "acc_identification/reproduction/frequency_response.h"
-#include "acc_identification/string_stability.h"
+#include "acc_identification/model/string_stability.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -64,4 +64,4 @@ DisturbanceResponse measureDisturbanceResponse(const PlatoonTrajectory& platoon)
   return response;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

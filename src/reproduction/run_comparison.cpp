@@ -4,9 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "acc_identification/acc_model.h"
+#include "acc_identification/model/acc_model.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -118,4 +118,4 @@ double rmsFromEquilibriumLine(const AccParameters& p, const CarFollowingRun& run
   return std::sqrt(sum / static_cast<double>(samples.size()));
 }
 
-}  // namespace acc_identification
+}  // namespace acc

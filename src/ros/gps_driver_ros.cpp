@@ -13,7 +13,7 @@
 
 #include "acc_identification/gnss/gnss_velocity.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -44,9 +44,9 @@ std::int8_t navSatStatus(std::uint8_t quality)
 }
 }  // namespace
 
-GnssFixMessage toMessage(const GnssFix& fix, const std::string& frame_id)
+acc_identification::GnssFix toMessage(const GnssFix& fix, const std::string& frame_id)
 {
-  GnssFixMessage m;
+  acc_identification::GnssFix m;
   m.header.stamp = rosTime(fix.gnss_time_s);
   m.header.frame_id = frame_id;
   m.receive_time = rosTime(fix.receive_time_s);
@@ -65,11 +65,11 @@ GnssFixMessage toMessage(const GnssFix& fix, const std::string& frame_id)
   return m;
 }
 
-GnssFix fromMessage(const GnssFixMessage& m)
+GnssFix fromMessage(const acc_identification::GnssFix& m)
 {
   GnssFix fix;
   fix.gnss_time_s = m.header.stamp.toSec();
-  fix.has_date = (m.valid_fields & GnssFixMessage::VALID_DATE) != 0;
+  fix.has_date = (m.valid_fields & acc_identification::GnssFix::VALID_DATE) != 0;
   fix.receive_time_s = m.receive_time.toSec();
   fix.latitude_deg = m.latitude_deg;
   fix.longitude_deg = m.longitude_deg;
@@ -110,8 +110,8 @@ GpsDriverRos::GpsDriverRos(ros::NodeHandle node, ros::NodeHandle private_node)
   topic_source_ = source_uri_ == "topic";
   // A replayed bag already holds the sentences: republishing them would duplicate the topic.
   if (!topic_source_)
-    sentence_publisher_ = node_.advertise<Sentence>("nmea_sentence", queue_size);
-  fix_publisher_ = node_.advertise<GnssFixMessage>("fix", queue_size);
+    sentence_publisher_ = node_.advertise<acc_identification::Sentence>("nmea_sentence", queue_size);
+  fix_publisher_ = node_.advertise<acc_identification::GnssFix>("fix", queue_size);
   navsat_publisher_ = node_.advertise<sensor_msgs::NavSatFix>("navsat_fix", queue_size);
   vel_publisher_ = node_.advertise<geometry_msgs::TwistStamped>("vel", queue_size);
 
@@ -186,7 +186,7 @@ int GpsDriverRos::runTopic()
   return 0;
 }
 
-void GpsDriverRos::onSentence(const Sentence::ConstPtr& message)
+void GpsDriverRos::onSentence(const acc_identification::Sentence::ConstPtr& message)
 {
   ++sentences_in_;
   // The recorded receive time; a sentence without one gets the (possibly simulated) ROS time.
@@ -271,7 +271,7 @@ void GpsDriverRos::publishLine(std::string_view line)
 {
   if (topic_source_)
     return;
-  Sentence message;
+  acc_identification::Sentence message;
   message.header.stamp = receive_time_;
   message.header.frame_id = frame_id_;
   message.sentence.assign(line.data(), line.size());
@@ -283,7 +283,7 @@ void GpsDriverRos::publishFix(const GnssFix& fix)
   have_fix_ = true;
   last_fix_ = SteadyClock::now();
   last_fix_quality_ = fix.fix_quality;
-  const GnssFixMessage message = toMessage(fix, frame_id_);
+  const acc_identification::GnssFix message = toMessage(fix, frame_id_);
   fix_publisher_.publish(message);
 
   if (fix.has(GnssFix::kValidPosition))
@@ -373,4 +373,4 @@ void GpsDriverRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("fixes", s.fixes);
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -51,9 +51,9 @@ bool loadIdentifierSettings(const ros::NodeHandle& p, IdentifierSettings& s, std
   return true;
 }
 
-AccParametersMessage toMessage(const Identification& result, double window_start_s, double window_end_s)
+acc_identification::AccParameters toMessage(const Identification& result, double window_start_s, double window_end_s)
 {
-  AccParametersMessage m;
+  acc_identification::AccParameters m;
   m.header.stamp = toRosTime(window_end_s);
   m.window_start = toRosTime(window_start_s);
   m.window_end = toRosTime(window_end_s);
@@ -97,7 +97,7 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node)
   window_ = SlidingWindow(settings_.window_s, settings_.max_gap_s, static_cast<std::size_t>(settings_.min_segment_samples));
   options_.criteria = settings_.criteria;
   options_.multistart.starts = static_cast<std::size_t>(settings_.starts);
-  publisher_ = node.advertise<AccParametersMessage>("acc_parameters", 10);
+  publisher_ = node.advertise<acc_identification::AccParameters>("acc_parameters", 10);
   subscriber_ = node.subscribe("relative_state", static_cast<std::uint32_t>(settings_.queue_size),
                                &IdentifierRos::onRelativeState, this);
   worker_ = std::thread(&IdentifierRos::workerLoop, this);
@@ -126,7 +126,7 @@ IdentifierRos::~IdentifierRos()
   }
 }
 
-void IdentifierRos::onRelativeState(const RelativeStateMessage::ConstPtr& message)
+void IdentifierRos::onRelativeState(const acc_identification::RelativeState::ConstPtr& message)
 {
   ++received_;
   const WindowSample sample{message->header.stamp.toSec(), message->space_gap_m, message->follower_speed_mps,
@@ -249,4 +249,4 @@ void IdentifierRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status
   status.add("last solve time [s]", last_solve_time_s_.load());
 }
 
-}  // namespace acc_identification
+}  // namespace acc

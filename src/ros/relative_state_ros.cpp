@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -30,9 +30,9 @@ bool readParameter(const ros::NodeHandle& node, const std::string& name, double&
 std::uint64_t since(std::uint64_t now, std::uint64_t before) { return now - before; }
 }  // namespace
 
-RelativeStateMessage toMessage(const RelativeState& state, const std::string& frame_id)
+acc_identification::RelativeState toMessage(const RelativeState& state, const std::string& frame_id)
 {
-  RelativeStateMessage m;
+  acc_identification::RelativeState m;
   m.header.stamp = rosTime(state.time_s);
   m.header.frame_id = frame_id;
   m.space_gap_m = state.space_gap_m;
@@ -114,7 +114,7 @@ RelativeStateRos::RelativeStateRos(ros::NodeHandle node, ros::NodeHandle private
   queue_size = std::max(1, queue_size);
   leader_subscriber_ = node.subscribe("leader/fix", queue_size, &RelativeStateRos::onLeader, this);
   follower_subscriber_ = node.subscribe("follower/fix", queue_size, &RelativeStateRos::onFollower, this);
-  publisher_ = node.advertise<RelativeStateMessage>("relative_state", static_cast<std::uint32_t>(queue_size));
+  publisher_ = node.advertise<acc_identification::RelativeState>("relative_state", static_cast<std::uint32_t>(queue_size));
 
   updater_.setHardwareID("leader/fix + follower/fix");
   updater_.add("Relative state", this, &RelativeStateRos::diagnose);
@@ -128,14 +128,14 @@ RelativeStateRos::RelativeStateRos(ros::NodeHandle node, ros::NodeHandle private
            settings_.pairing.timeout_s);
 }
 
-void RelativeStateRos::onLeader(const GnssFixMessage::ConstPtr& message)
+void RelativeStateRos::onLeader(const acc_identification::GnssFix::ConstPtr& message)
 {
   last_leader_ = ros::WallTime::now();
   estimator_.addLeader(fromMessage(*message));
   publishStates();
 }
 
-void RelativeStateRos::onFollower(const GnssFixMessage::ConstPtr& message)
+void RelativeStateRos::onFollower(const acc_identification::GnssFix::ConstPtr& message)
 {
   last_follower_ = ros::WallTime::now();
   if (!message->header.frame_id.empty())
@@ -229,4 +229,4 @@ void RelativeStateRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& sta
   state_counters_at_last_diagnostic_ = r;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -14,7 +14,7 @@
 #include "acc_identification/calibration/sliding_window.h"
 #include "acc_identification/io/run_csv.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -174,7 +174,7 @@ BagRuns readRunsFromBag(const std::string& path, const std::string& topic, const
   BagSegmenter segmenter(path, bounds, result);
   for (const rosbag::MessageInstance& instance : view)
   {
-    const auto message = instance.instantiate<RelativeState>();
+    const auto message = instance.instantiate<acc_identification::RelativeState>();
     if (!message)
     {
       throw std::runtime_error("bag '" + path + "': topic '" + topic + "' is not acc_identification/RelativeState");
@@ -222,4 +222,4 @@ std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std:
   return std::move(bag.runs);
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -9,7 +9,7 @@
 
 #include "acc_identification/Sentence.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -58,7 +58,7 @@ SentenceBagSummary writeSentenceBag(const std::string& path, const std::vector<S
     for (const Entry& entry : entries)
     {
       const SentenceStream& stream = streams[entry.stream];
-      Sentence message;
+      acc_identification::Sentence message;
       message.header.seq = seq[entry.stream]++;
       message.header.stamp = ros::Time(entry.stamp_s);
       message.header.frame_id = stream.frame_id;
@@ -81,4 +81,4 @@ SentenceBagSummary writeSentenceBag(const std::string& path, const std::vector<S
   return summary;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

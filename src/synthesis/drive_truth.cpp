@@ -6,7 +6,7 @@
 
 #include "acc_identification/diagnosis/augmented_simulation.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -76,4 +76,4 @@ DriveTruth simulateDriveTruth(const std::vector<double>& lead_speed_mps, double 
   return truth;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

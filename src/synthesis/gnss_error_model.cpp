@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace acc_identification
+namespace acc
 {
 GnssErrorModel::GnssErrorModel(const GnssErrorSettings& settings, std::uint64_t seed)
   : settings_(settings), normal_(seed)
@@ -38,4 +38,4 @@ GnssEpochError GnssErrorModel::next(double step_s)
   return current_;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

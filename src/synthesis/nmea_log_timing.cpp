@@ -7,7 +7,7 @@
 #include "acc_identification/gnss/nmea_parser.h"
 #include "acc_identification/gnss/utc_date.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -117,4 +117,4 @@ TimedNmeaLog readTimedNmeaLog(const std::string& path, const NmeaLineTiming& tim
   return log;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

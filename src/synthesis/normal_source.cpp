@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -39,4 +39,4 @@ std::uint64_t streamSeed(std::uint64_t seed, std::uint64_t stream)
   return z ^ (z >> 31);
 }
 
-}  // namespace acc_identification
+}  // namespace acc

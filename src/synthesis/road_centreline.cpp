@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -79,4 +79,4 @@ std::vector<RoadSegment> plausibleRoadPattern()
           RoadSegment{600.0, 0.0}, arc(900.0, 15.0)};
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -8,10 +8,10 @@
 #include <stdexcept>
 
 #include "acc_identification/gnss/utc_date.h"
-#include "acc_identification/profiles/lead_profiles.h"
+#include "acc_identification/reproduction/lead_profiles.h"
 #include "acc_identification/synthesis/road_centreline.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -131,4 +131,4 @@ bool parseUtcTime(const std::string& text, double* unix_s)
   return true;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

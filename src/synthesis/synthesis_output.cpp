@@ -8,9 +8,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "acc_identification/profiles/lead_profiles.h"
+#include "acc_identification/reproduction/lead_profiles.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -177,4 +177,4 @@ std::string synthesisJson(const SynthesisOptions& options, const std::string& se
   return json.dump(2) + "\n";
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -14,7 +14,6 @@
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/ros/run_bag_reader.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
@@ -33,7 +32,7 @@ const char* kUsage =
 
 struct LoadedRun
 {
-  aci::CarFollowingRun run;
+  acc::CarFollowingRun run;
   std::string path;
 };
 
@@ -42,7 +41,7 @@ std::vector<LoadedRun> loadRuns(const std::vector<std::string>& paths, const std
   std::vector<LoadedRun> loaded;
   for (const std::string& path : paths)
   {
-    for (auto& run : aci::readRunArgument(path, topic, max_gap_s, std::cerr))
+    for (auto& run : acc::readRunArgument(path, topic, max_gap_s, std::cerr))
     {
       loaded.push_back({std::move(run), path});
     }
@@ -69,7 +68,7 @@ void showProgress(std::size_t done, std::size_t total)
 
 int main(int argc, char** argv)
 {
-  aci::CommandLine cli({"split", "starts", "json", "grid", "topic", "max-gap"}, {"quiet", "help"});
+  acc::CommandLine cli({"split", "starts", "json", "grid", "topic", "max-gap"}, {"quiet", "help"});
   if (!cli.parse(argc, argv) || cli.has("help") || cli.positional().empty())
   {
     std::cerr << (cli.error().empty() ? "" : "error: " + cli.error() + "\n") << kUsage;
@@ -97,12 +96,12 @@ int main(int argc, char** argv)
     return 1;
   }
 
-  std::vector<aci::CarFollowingRun> training, testing;
+  std::vector<acc::CarFollowingRun> training, testing;
   for (const LoadedRun& item : loaded)
   {
     if (split == "half")
     {
-      auto [train, test] = aci::splitRunInHalf(item.run);
+      auto [train, test] = acc::splitRunInHalf(item.run);
       if (train.size() < 2 || test.size() < 2)
       {
         std::cerr << "error: run '" << item.run.name << "' has " << item.run.size() << " samples, too few to split\n";
@@ -117,8 +116,8 @@ int main(int argc, char** argv)
     }
   }
 
-  aci::CalibrationReport report;
-  aci::IdentificationOptions options;
+  acc::CalibrationReport report;
+  acc::IdentificationOptions options;
   options.multistart.starts = starts ? static_cast<std::size_t>(*starts) : 100;
   if (!cli.has("quiet"))
   {
@@ -126,20 +125,20 @@ int main(int argc, char** argv)
   }
   try
   {
-    const aci::CalibrationObjective objective(training, options.bounds);
+    const acc::CalibrationObjective objective(training, options.bounds);
     report.training_samples = objective.sampleCount();
-    report.calibration = aci::calibrateMultistart(objective, options.multistart);
+    report.calibration = acc::calibrateMultistart(objective, options.multistart);
     if (grid_nodes)
     {
       const auto n = static_cast<std::size_t>(*grid_nodes);
       if (!cli.has("quiet"))
         std::cerr << "grid check: " << n * n * n << " nodes...\n";
-      report.grid = aci::gridSearch(objective, options.multistart.start_box_lower, options.multistart.start_box_upper,
+      report.grid = acc::gridSearch(objective, options.multistart.start_box_lower, options.multistart.start_box_upper,
                                     {n, n, n});
-      aci::MultistartOptions polish = options.multistart;
+      acc::MultistartOptions polish = options.multistart;
       polish.starts = 0;
       polish.progress = nullptr;
-      report.grid_polished = aci::calibrateMultistart(objective, polish, {report.grid->best});
+      report.grid_polished = acc::calibrateMultistart(objective, polish, {report.grid->best});
     }
   }
   catch (const std::invalid_argument& error)
@@ -147,32 +146,32 @@ int main(int argc, char** argv)
     std::cerr << "error: " << error.what() << "\n";
     return 1;
   }
-  const aci::AccParameters& p = report.calibration.parameters;
-  report.uncertainty = aci::estimateUncertainty(p, training);
-  report.stability = aci::analyzeStringStability(p);
-  report.identifiability_note = aci::describeUnidentifiable(p, report.uncertainty, options.criteria);
-  std::vector<aci::FitQuality> train_fits, test_fits;
+  const acc::AccParameters& p = report.calibration.parameters;
+  report.uncertainty = acc::estimateUncertainty(p, training);
+  report.stability = acc::analyzeStringStability(p);
+  report.identifiability_note = acc::describeUnidentifiable(p, report.uncertainty, options.criteria);
+  std::vector<acc::FitQuality> train_fits, test_fits;
   for (std::size_t i = 0; i < loaded.size(); ++i)
   {
-    aci::RunScore score{loaded[i].run.name, loaded[i].path, aci::evaluateFit(p, {training[i]}), std::nullopt};
+    acc::RunScore score{loaded[i].run.name, loaded[i].path, acc::evaluateFit(p, {training[i]}), std::nullopt};
     train_fits.push_back(score.train);
     if (!testing.empty())
     {
-      score.test = aci::evaluateFit(p, {testing[i]});
+      score.test = acc::evaluateFit(p, {testing[i]});
       test_fits.push_back(*score.test);
     }
     report.runs.push_back(score);
   }
-  report.summary_train = aci::poolFits(train_fits);
+  report.summary_train = acc::poolFits(train_fits);
   if (!test_fits.empty())
   {
-    report.summary_test = aci::poolFits(test_fits);
+    report.summary_test = acc::poolFits(test_fits);
   }
-  aci::printReport(report, std::cout);
+  acc::printReport(report, std::cout);
   if (const auto json_path = cli.value("json"))
   {
     std::ofstream file(*json_path);
-    file << aci::reportToJson(report).dump(2) << "\n";
+    file << acc::reportToJson(report).dump(2) << "\n";
     if (!file)
     {
       std::cerr << "error: cannot write " << *json_path << "\n";

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -94,4 +94,4 @@ std::optional<double> CommandLine::number(const std::string& name)
   return parsed;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

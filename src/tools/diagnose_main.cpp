@@ -18,7 +18,6 @@
 #include "acc_identification/diagnosis/withheld_effect_suite.h"
 #include "acc_identification/ros/run_bag_reader.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
@@ -74,7 +73,7 @@ bool writeJson(const nlohmann::json& j, const std::string& path)
   return true;
 }
 
-bool applyOptions(aci::CommandLine& cli, aci::DiagnosisOptions* options)
+bool applyOptions(acc::CommandLine& cli, acc::DiagnosisOptions* options)
 {
   if (auto v = cli.number("train-fraction"))
   {
@@ -117,8 +116,8 @@ bool applyOptions(aci::CommandLine& cli, aci::DiagnosisOptions* options)
     options->candidates.clear();
     for (const std::string& name : cli.values("effect"))
     {
-      aci::EffectKind kind;
-      if (!aci::parseEffectName(name, &kind) || kind == aci::EffectKind::none)
+      acc::EffectKind kind;
+      if (!acc::parseEffectName(name, &kind) || kind == acc::EffectKind::none)
       {
         std::cerr << "error: unknown effect '" << name << "'\n";
         return false;
@@ -129,18 +128,18 @@ bool applyOptions(aci::CommandLine& cli, aci::DiagnosisOptions* options)
   return true;
 }
 
-int runSuite(const std::string& size, const aci::DiagnosisOptions& options, const std::optional<std::string>& json_path)
+int runSuite(const std::string& size, const acc::DiagnosisOptions& options, const std::optional<std::string>& json_path)
 {
-  std::vector<aci::WithheldCase> grid;
+  std::vector<acc::WithheldCase> grid;
   if (size == "small")
   {
-    grid = aci::withheldCaseGrid(1, {aci::SyntheticLeadProfile::steps, aci::SyntheticLeadProfile::dip}, {1.0}, 1);
+    grid = acc::withheldCaseGrid(1, {acc::SyntheticLeadProfile::steps, acc::SyntheticLeadProfile::dip}, {1.0}, 1);
   }
   else if (size == "large")
   {
-    grid = aci::withheldCaseGrid(3,
-                                 {aci::SyntheticLeadProfile::steps, aci::SyntheticLeadProfile::oscillation,
-                                  aci::SyntheticLeadProfile::dip},
+    grid = acc::withheldCaseGrid(3,
+                                 {acc::SyntheticLeadProfile::steps, acc::SyntheticLeadProfile::oscillation,
+                                  acc::SyntheticLeadProfile::dip},
                                  {0.5, 1.5}, 1);
   }
   else
@@ -148,27 +147,27 @@ int runSuite(const std::string& size, const aci::DiagnosisOptions& options, cons
     std::cerr << "error: --withheld-suite takes small or large\n";
     return 2;
   }
-  std::vector<aci::WithheldOutcome> outcomes;
+  std::vector<acc::WithheldOutcome> outcomes;
   nlohmann::json cases = nlohmann::json::array();
   for (std::size_t i = 0; i < grid.size(); ++i)
   {
-    const aci::WithheldOutcome o = aci::runWithheldCase(grid[i], options);
+    const acc::WithheldOutcome o = acc::runWithheldCase(grid[i], options);
     std::vector<std::string> plausible;
-    for (aci::EffectKind kind : o.plausible)
+    for (acc::EffectKind kind : o.plausible)
     {
-      plausible.push_back(aci::effectName(kind));
+      plausible.push_back(acc::effectName(kind));
     }
     std::fprintf(stderr, "[%zu/%zu] truth %s %s (%s, noise x%.2g) -> %s, magnitude %.4g\n", i + 1, grid.size(),
-                 aci::effectName(o.input.truth).c_str(),
+                 acc::effectName(o.input.truth).c_str(),
                  o.input.truth_values.empty() ? "" : std::to_string(o.input.truth_values.front()).c_str(),
-                 aci::leadProfileName(o.input.profile).c_str(), o.input.speed_noise_std_mps / 0.06,
-                 aci::effectName(o.dominant).c_str(), o.recovered_magnitude);
-    cases.push_back({{"truth", aci::effectName(o.input.truth)},
+                 acc::leadProfileName(o.input.profile).c_str(), o.input.speed_noise_std_mps / 0.06,
+                 acc::effectName(o.dominant).c_str(), o.recovered_magnitude);
+    cases.push_back({{"truth", acc::effectName(o.input.truth)},
                      {"truth_values", o.input.truth_values},
-                     {"profile", aci::leadProfileName(o.input.profile)},
+                     {"profile", acc::leadProfileName(o.input.profile)},
                      {"speed_noise_std_mps", o.input.speed_noise_std_mps},
                      {"seed", o.input.seed},
-                     {"dominant_effect", aci::effectName(o.dominant)},
+                     {"dominant_effect", acc::effectName(o.dominant)},
                      {"plausible_effects", plausible},
                      {"recovered_magnitude", std::isfinite(o.recovered_magnitude) ? nlohmann::json(o.recovered_magnitude)
                                                                                   : nlohmann::json(nullptr)},
@@ -179,8 +178,8 @@ int runSuite(const std::string& size, const aci::DiagnosisOptions& options, cons
                      {"effect_test_rmse_speed", o.effect_test_rmse_speed_mps}});
     outcomes.push_back(o);
   }
-  const aci::ConfusionMatrix matrix = aci::confusionMatrix(outcomes);
-  std::cout << aci::formatConfusionMatrix(matrix) << "\n" << aci::formatMagnitudeRecovery(outcomes);
+  const acc::ConfusionMatrix matrix = acc::confusionMatrix(outcomes);
+  std::cout << acc::formatConfusionMatrix(matrix) << "\n" << acc::formatMagnitudeRecovery(outcomes);
   if (json_path && !writeJson({{"cases", cases}}, *json_path))
   {
     return 1;
@@ -188,25 +187,25 @@ int runSuite(const std::string& size, const aci::DiagnosisOptions& options, cons
   return 0;
 }
 
-void printSummary(const aci::DiagnosisResult& r)
+void printSummary(const acc::DiagnosisResult& r)
 {
   std::printf("%-26s %10s %10s %10s %9s %11s  %s\n", "model", "train_v", "test_v", "test_gap", "improve", "significant",
               "stability");
-  auto row = [](const aci::ModelDiagnosis& m, bool is_base) {
-    std::printf("%-26s %10.4f %10.4f %10.3f %8.1f%% %11s  %s (peak %.3f dB)\n", aci::effectName(m.fit.effect).c_str(),
+  auto row = [](const acc::ModelDiagnosis& m, bool is_base) {
+    std::printf("%-26s %10.4f %10.4f %10.3f %8.1f%% %11s  %s (peak %.3f dB)\n", acc::effectName(m.fit.effect).c_str(),
                 m.train_rmse_speed_mps, m.test_rmse_speed_mps, m.test_rmse_gap_m, 100.0 * m.improvement.relative,
                 is_base ? "-" : (m.significant ? "yes" : "no"), m.stability.string_stable ? "stable" : "UNSTABLE",
                 m.stability.peak_gain_db);
   };
   row(r.baseline, true);
-  for (const aci::ModelDiagnosis& m : r.effects)
+  for (const acc::ModelDiagnosis& m : r.effects)
   {
     row(m, false);
   }
-  std::printf("dominant effect: %s; plausible:", aci::effectName(r.selection.dominant).c_str());
-  for (aci::EffectKind kind : r.selection.plausible)
+  std::printf("dominant effect: %s; plausible:", acc::effectName(r.selection.dominant).c_str());
+  for (acc::EffectKind kind : r.selection.plausible)
   {
-    std::printf(" %s", aci::effectName(kind).c_str());
+    std::printf(" %s", acc::effectName(kind).c_str());
   }
   std::printf("%s\n", r.selection.plausible.empty() ? " (none)" : "");
 }
@@ -214,7 +213,7 @@ void printSummary(const aci::DiagnosisResult& r)
 
 int main(int argc, char** argv)
 {
-  aci::CommandLine cli({"json", "report", "train-fraction", "effect", "block-length-s", "resamples", "alpha",
+  acc::CommandLine cli({"json", "report", "train-fraction", "effect", "block-length-s", "resamples", "alpha",
                         "min-relative-improvement", "seed", "plot-script", "withheld-suite", "topic", "max-gap"},
                        {"no-plots", "help"});
   if (!cli.parse(argc, argv) || cli.has("help"))
@@ -222,7 +221,7 @@ int main(int argc, char** argv)
     std::cerr << (cli.error().empty() ? "" : "error: " + cli.error() + "\n") << kUsage;
     return cli.has("help") ? 0 : 2;
   }
-  aci::DiagnosisOptions options;
+  acc::DiagnosisOptions options;
   if (!applyOptions(cli, &options))
   {
     std::cerr << kUsage;
@@ -244,12 +243,12 @@ int main(int argc, char** argv)
     std::cerr << "error: " << cli.error() << "\n" << kUsage;
     return 2;
   }
-  std::vector<aci::CarFollowingRun> runs;
+  std::vector<acc::CarFollowingRun> runs;
   try
   {
     for (const std::string& path : cli.positional())
     {
-      for (aci::CarFollowingRun& run : aci::readRunArgument(path, topic, max_gap_s.value_or(0.5), std::cerr))
+      for (acc::CarFollowingRun& run : acc::readRunArgument(path, topic, max_gap_s.value_or(0.5), std::cerr))
       {
         runs.push_back(std::move(run));
       }
@@ -260,10 +259,10 @@ int main(int argc, char** argv)
     std::cerr << "error: " << e.what() << "\n";
     return 1;
   }
-  aci::DiagnosisResult result;
+  acc::DiagnosisResult result;
   try
   {
-    result = aci::diagnoseRuns(runs, options);
+    result = acc::diagnoseRuns(runs, options);
   }
   catch (const std::exception& e)
   {
@@ -276,7 +275,7 @@ int main(int argc, char** argv)
   }
   std::cerr << result.notes.size() << " run(s) or part(s) not used\n";
   printSummary(result);
-  nlohmann::json json = aci::diagnosisToJson(result);
+  nlohmann::json json = acc::diagnosisToJson(result);
   json["inputs"] = cli.positional();
   if (const auto path = cli.value("json"); path && !writeJson(json, *path))
   {
@@ -291,7 +290,7 @@ int main(int argc, char** argv)
     }
     try
     {
-      aci::writeDiagnosisTables(result, *dir);
+      acc::writeDiagnosisTables(result, *dir);
     }
     catch (const std::exception& e)
     {

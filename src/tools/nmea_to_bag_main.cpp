@@ -7,7 +7,6 @@
 #include "acc_identification/command_line.h"
 #include "acc_identification/ros/sentence_bag_writer.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
@@ -23,7 +22,7 @@ const char* kUsage =
 
 int main(int argc, char** argv)
 {
-  aci::CommandLine cli({"compression", "latency", "sentence-spacing", "leader-topic", "follower-topic", "leader-frame",
+  acc::CommandLine cli({"compression", "latency", "sentence-spacing", "leader-topic", "follower-topic", "leader-frame",
                         "follower-frame"},
                        {"help"});
   if (!cli.parse(argc, argv) || cli.has("help") || cli.positional().size() != 3)
@@ -31,7 +30,7 @@ int main(int argc, char** argv)
     std::cerr << (cli.error().empty() ? "" : "error: " + cli.error() + "\n") << kUsage;
     return cli.has("help") ? 0 : 2;
   }
-  aci::NmeaLineTiming timing;
+  acc::NmeaLineTiming timing;
   timing.first_sentence_latency_s = cli.number("latency").value_or(timing.first_sentence_latency_s);
   timing.sentence_spacing_s = cli.number("sentence-spacing").value_or(timing.sentence_spacing_s);
   if (!cli.error().empty() || timing.first_sentence_latency_s < 0.0 || timing.sentence_spacing_s < 0.0)
@@ -41,14 +40,14 @@ int main(int argc, char** argv)
     return 2;
   }
   const auto& files = cli.positional();
-  std::vector<aci::SentenceStream> streams{
+  std::vector<acc::SentenceStream> streams{
       {cli.value("leader-topic").value_or("/leader/nmea_sentence"), cli.value("leader-frame").value_or("leader_gnss"), {}},
       {cli.value("follower-topic").value_or("/follower/nmea_sentence"),
        cli.value("follower-frame").value_or("follower_gnss"),
        {}}};
   for (int i = 0; i < 2; ++i)
   {
-    aci::TimedNmeaLog log = aci::readTimedNmeaLog(files[i], timing);
+    acc::TimedNmeaLog log = acc::readTimedNmeaLog(files[i], timing);
     if (!log.error.empty())
     {
       std::cerr << "error: " << log.error << "\n";
@@ -62,7 +61,7 @@ int main(int argc, char** argv)
   }
   try
   {
-    const auto summary = aci::writeSentenceBag(files[2], streams, cli.value("compression").value_or("lz4"));
+    const auto summary = acc::writeSentenceBag(files[2], streams, cli.value("compression").value_or("lz4"));
     std::cout << "nmea_to_bag: " << summary.messages << " messages, " << (summary.end_time_s - summary.start_time_s)
               << " s -> " << files[2] << "\n";
   }

@@ -6,7 +6,6 @@
 #include "acc_identification/command_line.h"
 #include "acc_identification/conversion/openacc_to_nmea.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
@@ -20,14 +19,14 @@ const char* kUsage =
 
 int main(int argc, char** argv)
 {
-  aci::CommandLine cli({"talker"}, {"help"});
+  acc::CommandLine cli({"talker"}, {"help"});
   if (!cli.parse(argc, argv) || cli.has("help") || cli.positional().size() != 3)
   {
     std::cerr << (cli.error().empty() ? "" : "error: " + cli.error() + "\n") << kUsage;
     return cli.has("help") ? 0 : 2;
   }
   const auto& files = cli.positional();
-  const auto input = aci::readOpenAccTrajectories(files[0]);
+  const auto input = acc::readOpenAccTrajectories(files[0]);
   if (!input.error.empty())
   {
     std::cerr << "error: " << input.error << "\n";
@@ -39,7 +38,7 @@ int main(int argc, char** argv)
   for (int vehicle : {1, 2})
   {
     std::string error;
-    if (!aci::writeNmeaLog(files[vehicle], aci::openAccFixes(input, vehicle), talker, error))
+    if (!acc::writeNmeaLog(files[vehicle], acc::openAccFixes(input, vehicle), talker, error))
     {
       std::cerr << "error: " << error << "\n";
       return 1;

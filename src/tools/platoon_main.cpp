@@ -16,20 +16,19 @@
 #include <vector>
 
 #include "acc_identification/command_line.h"
-#include "acc_identification/follower_simulation.h"
+#include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/io/run_csv.h"
-#include "acc_identification/paper_settings.h"
-#include "acc_identification/platoon_simulation.h"
-#include "acc_identification/profiles/lead_profiles.h"
+#include "acc_identification/model/paper_settings.h"
+#include "acc_identification/model/platoon_simulation.h"
+#include "acc_identification/reproduction/lead_profiles.h"
 #include "acc_identification/reproduction/frequency_response.h"
 #include "acc_identification/reproduction/lambda2_map.h"
 #include "acc_identification/reproduction/lead_inputs.h"
 #include "acc_identification/reproduction/parameter_file.h"
 #include "acc_identification/reproduction/platoon_responses.h"
 #include "acc_identification/reproduction/run_comparison.h"
-#include "acc_identification/string_stability.h"
+#include "acc_identification/model/string_stability.h"
 
-namespace aci = acc_identification;
 using nlohmann::json;
 
 namespace
@@ -67,7 +66,7 @@ struct UsageError : std::runtime_error
 class Options
 {
 public:
-  explicit Options(aci::CommandLine& cli) : cli_(cli) {}
+  explicit Options(acc::CommandLine& cli) : cli_(cli) {}
 
   double number(const std::string& name, double fallback) const
   {
@@ -108,7 +107,7 @@ public:
   bool has(const std::string& name) const { return cli_.has(name); }
 
 private:
-  aci::CommandLine& cli_;
+  acc::CommandLine& cli_;
 };
 
 std::vector<double> parseNumberList(const std::string& text, const std::string& option)
@@ -130,12 +129,12 @@ std::vector<double> parseNumberList(const std::string& text, const std::string& 
 }
 
 /// The parameter sets to use, in command-line order, or the figure's defaults.
-std::vector<aci::NamedSetting> resolveSettings(const Options& options, const std::vector<std::string>& defaults)
+std::vector<acc::NamedSetting> resolveSettings(const Options& options, const std::vector<std::string>& defaults)
 {
-  std::vector<aci::NamedSetting> settings;
+  std::vector<acc::NamedSetting> settings;
   for (const std::string& name : options.texts("setting"))
   {
-    const auto found = aci::findNamedSetting(name);
+    const auto found = acc::findNamedSetting(name);
     if (!found)
     {
       throw UsageError("unknown setting '" + name + "'");
@@ -146,9 +145,9 @@ std::vector<aci::NamedSetting> resolveSettings(const Options& options, const std
   {
     try
     {
-      settings.push_back(aci::readParameterFile(path));
+      settings.push_back(acc::readParameterFile(path));
     }
-    catch (const aci::ParameterFileError& error)
+    catch (const acc::ParameterFileError& error)
     {
       throw UsageError(error.what());
     }
@@ -165,15 +164,15 @@ std::vector<aci::NamedSetting> resolveSettings(const Options& options, const std
   }
   for (const std::string& name : settings.empty() ? defaults : std::vector<std::string>{})
   {
-    settings.push_back(*aci::findNamedSetting(name));
+    settings.push_back(*acc::findNamedSetting(name));
   }
   return settings;
 }
 
-json parametersJson(const aci::NamedSetting& setting)
+json parametersJson(const acc::NamedSetting& setting)
 {
-  const aci::AccParameters& p = setting.parameters;
-  const aci::StringStabilityReport report = aci::analyzeStringStability(p);
+  const acc::AccParameters& p = setting.parameters;
+  const acc::StringStabilityReport report = acc::analyzeStringStability(p);
   return {{"name", setting.name},
           {"source", setting.source},
           {"k1_per_s2", p.k1_per_s2},
@@ -217,7 +216,7 @@ private:
 };
 
 /// Speeds of every vehicle of every platoon, one row per setting and sample.
-void writePlatoonCsv(const std::string& path, const std::vector<std::pair<std::string, aci::PlatoonTrajectory>>& runs)
+void writePlatoonCsv(const std::string& path, const std::vector<std::pair<std::string, acc::PlatoonTrajectory>>& runs)
 {
   const std::size_t vehicles = runs.front().second.vehicleCount();
   std::string header = "setting,time_s";
@@ -247,10 +246,10 @@ json optionalJson(const std::optional<T>& value)
   return value ? json(*value) : json(nullptr);
 }
 
-json disturbanceJson(const aci::DisturbanceResponse& response)
+json disturbanceJson(const acc::DisturbanceResponse& response)
 {
   json per_vehicle = json::array();
-  for (const aci::VehicleDisturbance& d : response.per_vehicle)
+  for (const acc::VehicleDisturbance& d : response.per_vehicle)
   {
     per_vehicle.push_back({{"minimum_speed_mps", d.minimum_speed_mps},
                            {"maximum_speed_mps", d.maximum_speed_mps},
@@ -258,7 +257,7 @@ json disturbanceJson(const aci::DisturbanceResponse& response)
                            {"drop_below_reference_mps", d.drop_below_reference_mps},
                            {"rise_above_reference_mps", d.rise_above_reference_mps}});
   }
-  auto onset = [](const aci::GrowthOnset& o) {
+  auto onset = [](const acc::GrowthOnset& o) {
     return json{{"decays_at_first", o.decays_at_first},
                 {"smallest_at", o.smallest_at},
                 {"growth_starts_at", optionalJson(o.growth_starts_at)},
@@ -273,7 +272,7 @@ json disturbanceJson(const aci::DisturbanceResponse& response)
           {"last_follower_settled", response.last_follower_settled}};
 }
 
-std::string onsetText(const aci::GrowthOnset& o)
+std::string onsetText(const acc::GrowthOnset& o)
 {
   std::ostringstream text;
   text << (o.decays_at_first ? "decays first" : "grows from follower 1") << ", smallest at follower "
@@ -294,7 +293,7 @@ std::string onsetText(const aci::GrowthOnset& o)
 
 json lambda2MapFigure(const Options& options, const std::string& csv_path)
 {
-  aci::Lambda2MapGrid grid;
+  acc::Lambda2MapGrid grid;
   if (options.has("map-tau-e"))
   {
     grid.tau_e_s = parseNumberList(options.text("map-tau-e", ""), "map-tau-e");
@@ -303,14 +302,14 @@ json lambda2MapFigure(const Options& options, const std::string& csv_path)
   grid.k2_max_per_s = options.positive("k2-max", grid.k2_max_per_s);
   grid.k1_min_per_s2 = std::min(grid.k1_min_per_s2, grid.k1_max_per_s2 / 100.0);
   grid.k1_points = grid.k2_points = options.count("grid", 100, 2);
-  const auto map = aci::lambda2Map(grid);
+  const auto map = acc::lambda2Map(grid);
   CsvWriter csv(csv_path, "tau_e_s,k1_per_s2,k2_per_s,lambda2,string_stable");
   std::size_t disagreements = 0;
-  for (const aci::Lambda2MapSample& s : map)
+  for (const acc::Lambda2MapSample& s : map)
   {
     csv.row() << s.tau_e_s << ',' << s.k1_per_s2 << ',' << s.k2_per_s << ',' << s.lambda2 << ','
               << (s.string_stable ? 1 : 0) << '\n';
-    disagreements += s.string_stable != aci::inClosedFormStableRegion(s.k1_per_s2, s.k2_per_s, s.tau_e_s);
+    disagreements += s.string_stable != acc::inClosedFormStableRegion(s.k1_per_s2, s.k2_per_s, s.tau_e_s);
   }
   csv.close();
   json summary = {{"figure", "lambda2-map"}, {"samples", map.size()}, {"closed_form_disagreements", disagreements}};
@@ -318,7 +317,7 @@ json lambda2MapFigure(const Options& options, const std::string& csv_path)
               grid.k1_min_per_s2, grid.k1_max_per_s2, grid.k2_min_per_s, grid.k2_max_per_s);
   for (double tau : grid.tau_e_s)
   {
-    const double fraction = aci::stableFraction(map, tau);
+    const double fraction = acc::stableFraction(map, tau);
     summary["stable_fraction"][std::to_string(tau)] = fraction;
     std::printf("  tau_e = %5.2f s: %5.1f %% of the grid string stable\n", tau, 100.0 * fraction);
   }
@@ -331,15 +330,15 @@ json stepFigure(const Options& options, const std::string& csv_path, double h)
   const auto settings = resolveSettings(options, {"fig2-unstable", "fig2-stable"});
   const std::size_t vehicles = options.count("vehicles", 9, 1);
   const double speed = options.positive("speed", 25.0), step = options.positive("step", 5.0);
-  const auto lead = aci::stepDownUpLeadProfile(speed, step, options.number("step-down-at", 20.0),
+  const auto lead = acc::stepDownUpLeadProfile(speed, step, options.number("step-down-at", 20.0),
                                                options.number("step-up-at", 60.0), options.positive("duration", 200.0), h);
-  std::vector<std::pair<std::string, aci::PlatoonTrajectory>> runs;
+  std::vector<std::pair<std::string, acc::PlatoonTrajectory>> runs;
   json summary = {{"figure", "step"}, {"vehicles", vehicles}, {"cruise_speed_mps", speed}, {"step_mps", step}};
   std::printf("lead step %g -> %g -> %g m/s, %zu followers (paper Fig. 2)\n", speed, speed - step, speed, vehicles);
   for (const auto& setting : settings)
   {
-    runs.emplace_back(setting.name, aci::simulatePlatoon(setting.parameters, lead, h, vehicles));
-    const auto response = aci::measureDisturbanceResponse(runs.back().second);
+    runs.emplace_back(setting.name, acc::simulatePlatoon(setting.parameters, lead, h, vehicles));
+    const auto response = acc::measureDisturbanceResponse(runs.back().second);
     const auto& last = response.per_vehicle.back();
     // Below the lead's low speed / above cruise; 0 when the follower stays within the lead's range.
     const double undershoot = std::max(0.0, (speed - step) - last.minimum_speed_mps);
@@ -359,7 +358,7 @@ json stepFigure(const Options& options, const std::string& csv_path, double h)
 json bodeFigure(const Options& options, const std::string& csv_path, double h)
 {
   const auto settings = resolveSettings(options, {"min", "max"});
-  const auto frequencies = aci::logSpacedFrequencies(options.positive("min-frequency", 1e-3),
+  const auto frequencies = acc::logSpacedFrequencies(options.positive("min-frequency", 1e-3),
                                                      options.positive("max-frequency", 10.0),
                                                      options.count("points", 400, 2));
   CsvWriter csv(csv_path, "setting,frequency_rad_s,gain_db,euler_gain_db");
@@ -367,7 +366,7 @@ json bodeFigure(const Options& options, const std::string& csv_path, double h)
   std::printf("Bode magnitude of the speed-to-speed transfer function (paper Fig. 6)\n");
   for (const auto& setting : settings)
   {
-    for (const aci::BodeSample& s : aci::bodeMagnitude(setting.parameters, frequencies, h))
+    for (const acc::BodeSample& s : acc::bodeMagnitude(setting.parameters, frequencies, h))
     {
       csv.row() << setting.name << ',' << s.frequency_rad_s << ',' << s.gain_db << ',' << s.euler_gain_db << '\n';
     }
@@ -392,18 +391,18 @@ json sinusoidFigure(const Options& options, const std::string& csv_path, double 
   {
     throw UsageError("--fit-periods covers more than the oscillating part of --duration");
   }
-  const auto lead = aci::sinusoidLeadProfile(options.positive("speed", 20.0), options.positive("amplitude", 1.0), w,
+  const auto lead = acc::sinusoidLeadProfile(options.positive("speed", 20.0), options.positive("amplitude", 1.0), w,
                                              options.number("lead-in", 20.0), duration, h);
   const std::size_t fit_from = lead.size() - static_cast<std::size_t>(std::round(fit_s / h));
-  std::vector<std::pair<std::string, aci::PlatoonTrajectory>> runs;
+  std::vector<std::pair<std::string, acc::PlatoonTrajectory>> runs;
   json summary = {{"figure", "sinusoid"}, {"vehicles", vehicles}, {"frequency_rad_s", w},
                   {"fit_from_s", static_cast<double>(fit_from) * h}};
   std::printf("sinusoidal lead at %.4f rad/s, %zu followers, amplitudes fitted over the last %.0f s (paper Fig. 7)\n",
               w, vehicles, fit_s);
   for (const auto& setting : settings)
   {
-    runs.emplace_back(setting.name, aci::simulatePlatoon(setting.parameters, lead, h, vehicles));
-    const auto r = aci::measureSinusoidResponse(runs.back().second, setting.parameters, w, fit_from);
+    runs.emplace_back(setting.name, acc::simulatePlatoon(setting.parameters, lead, h, vehicles));
+    const auto r = acc::measureSinusoidResponse(runs.back().second, setting.parameters, w, fit_from);
     const double n = static_cast<double>(vehicles);
     summary["settings"].push_back({{"parameters", parametersJson(setting)},
                                    {"amplitude_mps", r.amplitude_mps},
@@ -423,9 +422,9 @@ json sinusoidFigure(const Options& options, const std::string& csv_path, double 
   return summary;
 }
 
-aci::PlatoonTrajectory firstVehicles(const aci::PlatoonTrajectory& platoon, std::size_t followers)
+acc::PlatoonTrajectory firstVehicles(const acc::PlatoonTrajectory& platoon, std::size_t followers)
 {
-  aci::PlatoonTrajectory shorter = platoon;
+  acc::PlatoonTrajectory shorter = platoon;
   shorter.speed_mps.resize(followers + 1);
   shorter.space_gap_m.resize(followers + 1);
   return shorter;
@@ -435,30 +434,30 @@ json leadProfileFigure(const Options& options, const std::string& csv_path, doub
 {
   const auto settings = resolveSettings(options, {"min", "max"});
   const std::string id = options.text("profile", "I");
-  if (id.size() != 1 || !aci::isLeadProfileId(id[0]))
+  if (id.size() != 1 || !acc::isLeadProfileId(id[0]))
   {
-    throw UsageError("--profile must be one of " + aci::leadProfileIds());
+    throw UsageError("--profile must be one of " + acc::leadProfileIds());
   }
-  aci::LeadProfileSpec spec = aci::leadProfileSpec(id[0]);
+  acc::LeadProfileSpec spec = acc::leadProfileSpec(id[0]);
   spec.ramp.acceleration_mps2 = options.positive("lead-accel", spec.ramp.acceleration_mps2);
   spec.ramp.deceleration_mps2 = options.positive("lead-decel", spec.ramp.deceleration_mps2);
   const std::size_t vehicles = options.count("vehicles", 60, 1);
   const std::size_t short_platoon = std::min(vehicles, options.count("short-platoon", 15, 1));
-  const auto profile = aci::sampleLeadProfile(spec, h);
-  const auto lead = aci::withFinalHold(profile, options.number("tail", 600.0), h);
-  const std::string description = spec.description + "; " + aci::describeLeadRamp(spec.ramp);
+  const auto profile = acc::sampleLeadProfile(spec, h);
+  const auto lead = acc::withFinalHold(profile, options.number("tail", 600.0), h);
+  const std::string description = spec.description + "; " + acc::describeLeadRamp(spec.ramp);
   json summary = {{"figure", "lead-profile"}, {"profile", description}, {"vehicles", vehicles},
                   {"short_platoon", short_platoon}, {"profile_duration_s", static_cast<double>(profile.size() - 1) * h},
                   {"lead_accel_mps2", spec.ramp.acceleration_mps2}, {"lead_decel_mps2", spec.ramp.deceleration_mps2}};
   std::printf("lead profile %s\n  %zu followers (first %zu = the short platoon), record %.0f s (profile %.0f s + hold)\n",
               description.c_str(), vehicles, short_platoon, static_cast<double>(lead.size() - 1) * h,
               static_cast<double>(profile.size() - 1) * h);
-  std::vector<std::pair<std::string, aci::PlatoonTrajectory>> runs;
+  std::vector<std::pair<std::string, acc::PlatoonTrajectory>> runs;
   for (const auto& setting : settings)
   {
-    runs.emplace_back(setting.name, aci::simulatePlatoon(setting.parameters, lead, h, vehicles));
-    const auto full = aci::measureDisturbanceResponse(runs.back().second);
-    const auto shorter = aci::measureDisturbanceResponse(firstVehicles(runs.back().second, short_platoon));
+    runs.emplace_back(setting.name, acc::simulatePlatoon(setting.parameters, lead, h, vehicles));
+    const auto full = acc::measureDisturbanceResponse(runs.back().second);
+    const auto shorter = acc::measureDisturbanceResponse(firstVehicles(runs.back().second, short_platoon));
     summary["settings"].push_back(
         {{"parameters", parametersJson(setting)}, {"long", disturbanceJson(full)}, {"short", disturbanceJson(shorter)}});
     const auto& lead_d = full.per_vehicle.front();
@@ -488,19 +487,19 @@ json leadProfileFigure(const Options& options, const std::string& csv_path, doub
 
 /// Every run of every --run file (a file may give several pieces: rejected rows and ACC-off rows
 /// split a run). The reader lists each rejected row on stderr.
-std::vector<aci::CarFollowingRun> readRunsOrThrow(const Options& options)
+std::vector<acc::CarFollowingRun> readRunsOrThrow(const Options& options)
 {
-  std::vector<aci::CarFollowingRun> runs;
+  std::vector<acc::CarFollowingRun> runs;
   for (const std::string& path : options.texts("run"))
   {
     try
     {
-      for (aci::CarFollowingRun& run : aci::readRuns(path))
+      for (acc::CarFollowingRun& run : acc::readRuns(path))
       {
         runs.push_back(std::move(run));
       }
     }
-    catch (const aci::RunReadError& error)
+    catch (const acc::RunReadError& error)
     {
       throw UsageError(error.what());
     }
@@ -514,14 +513,14 @@ std::vector<aci::CarFollowingRun> readRunsOrThrow(const Options& options)
 
 /// The steady samples of all runs together: one run's speed range is often too narrow to pin the
 /// line's slope, the pooled samples span the whole campaign.
-json pooledEquilibrium(const std::vector<aci::CarFollowingRun>& runs, const std::vector<aci::NamedSetting>& settings,
+json pooledEquilibrium(const std::vector<acc::CarFollowingRun>& runs, const std::vector<acc::NamedSetting>& settings,
                        double max_dv, double max_accel)
 {
-  aci::CarFollowingRun pooled;
+  acc::CarFollowingRun pooled;
   pooled.name = "all runs";
   for (const auto& run : runs)
   {
-    for (std::size_t k : aci::steadyFollowingSamples(run, max_dv, max_accel))
+    for (std::size_t k : acc::steadyFollowingSamples(run, max_dv, max_accel))
     {
       pooled.time_s.push_back(static_cast<double>(pooled.time_s.size()));
       pooled.follower_speed_mps.push_back(run.follower_speed_mps[k]);
@@ -538,7 +537,7 @@ json pooledEquilibrium(const std::vector<aci::CarFollowingRun>& runs, const std:
   std::printf("  all runs pooled: %zu steady samples\n", all.size());
   try
   {
-    const auto line = aci::fitGapSpeedLine(pooled, all);
+    const auto line = acc::fitGapSpeedLine(pooled, all);
     entry["fit"] = {{"eta_m", line.intercept_m}, {"tau_e_s", line.slope_s}, {"rms_residual_m", line.rms_residual_m}};
     std::printf("    least-squares line: gap = %.3f m + %.4f s * v (rms %.3f m)\n", line.intercept_m, line.slope_s,
                 line.rms_residual_m);
@@ -549,7 +548,7 @@ json pooledEquilibrium(const std::vector<aci::CarFollowingRun>& runs, const std:
   }
   for (const auto& setting : settings)
   {
-    const double rms = aci::rmsFromEquilibriumLine(setting.parameters, pooled, all);
+    const double rms = acc::rmsFromEquilibriumLine(setting.parameters, pooled, all);
     entry["rms_from_line_m"][setting.name] = rms;
     std::printf("    %-14s rms distance of steady samples from eta + tau_e v: %.3f m\n", setting.name.c_str(), rms);
   }
@@ -567,7 +566,7 @@ json equilibriumFigure(const Options& options, const std::string& csv_path)
   std::printf("space gap against speed (paper Fig. 5); steady: |dv| <= %g m/s and |a| <= %g m/s^2\n", max_dv, max_accel);
   for (const auto& run : runs)
   {
-    const auto steady = aci::steadyFollowingSamples(run, max_dv, max_accel);
+    const auto steady = acc::steadyFollowingSamples(run, max_dv, max_accel);
     std::vector<bool> is_steady(run.size(), false);
     for (std::size_t k : steady)
     {
@@ -585,7 +584,7 @@ json equilibriumFigure(const Options& options, const std::string& csv_path)
                 steady.size(), *slowest, *fastest);
     try
     {
-      const auto line = aci::fitGapSpeedLine(run, steady);
+      const auto line = acc::fitGapSpeedLine(run, steady);
       entry["fit"] = {{"eta_m", line.intercept_m}, {"tau_e_s", line.slope_s}, {"rms_residual_m", line.rms_residual_m}};
       std::printf("    least-squares line through steady samples: gap = %.3f m + %.4f s * v (rms %.3f m)\n",
                   line.intercept_m, line.slope_s, line.rms_residual_m);
@@ -596,7 +595,7 @@ json equilibriumFigure(const Options& options, const std::string& csv_path)
     }
     for (const auto& setting : settings)
     {
-      const double rms = aci::rmsFromEquilibriumLine(setting.parameters, run, steady);
+      const double rms = acc::rmsFromEquilibriumLine(setting.parameters, run, steady);
       entry["rms_from_line_m"][setting.name] = rms;
       std::printf("    %-14s eta + tau_e v = %.3f + %.4f v: rms distance of steady samples %.3f m\n",
                   setting.name.c_str(), setting.parameters.eta_m, setting.parameters.tau_e_s, rms);
@@ -628,8 +627,8 @@ json timeseriesFigure(const Options& options, const std::string& csv_path)
     std::fprintf(stderr, "note: the run file gave %zu pieces; using the longest, %s (%.1f s)\n", runs.size(),
                  longest->name.c_str(), longest->durationS());
   }
-  const aci::CarFollowingRun& run = *longest;
-  const std::string problem = aci::describeRunProblem(run);
+  const acc::CarFollowingRun& run = *longest;
+  const std::string problem = acc::describeRunProblem(run);
   if (!problem.empty())
   {
     throw UsageError(run.name + ": " + problem);
@@ -642,11 +641,11 @@ json timeseriesFigure(const Options& options, const std::string& csv_path)
   std::printf("measured against simulated follower (paper Figs. 3 and 4), run %s\n", run.name.c_str());
   for (const auto& setting : settings)
   {
-    const auto sim = aci::simulateFollower(setting.parameters, run);
-    aci::TrainTestErrors e;
+    const auto sim = acc::simulateFollower(setting.parameters, run);
+    acc::TrainTestErrors e;
     try
     {
-      e = aci::trainTestErrors(run, sim, fraction);
+      e = acc::trainTestErrors(run, sim, fraction);
     }
     catch (const std::invalid_argument& error)
     {
@@ -700,7 +699,7 @@ json runFigure(const std::string& figure, const Options& options, const std::str
 
 int main(int argc, char** argv)
 {
-  aci::CommandLine cli(
+  acc::CommandLine cli(
       {"setting", "params", "k1", "k2", "tau-e", "eta", "csv", "summary-json", "time-step", "vehicles", "map-tau-e",
        "k1-max", "k2-max", "grid", "speed", "step", "step-down-at", "step-up-at", "duration", "min-frequency",
        "max-frequency", "points", "amplitude", "frequency", "lead-in", "fit-periods", "profile", "short-platoon",

@@ -4,12 +4,11 @@
 #include <string>
 #include <vector>
 
-#include "acc_identification/acc_model.h"
+#include "acc_identification/model/acc_model.h"
 #include "acc_identification/command_line.h"
-#include "acc_identification/paper_settings.h"
-#include "acc_identification/string_stability.h"
+#include "acc_identification/model/paper_settings.h"
+#include "acc_identification/model/string_stability.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
@@ -19,29 +18,29 @@ const char* kUsage =
     "  Without arguments: Table II's minimum and maximum settings (Gunter et al.).\n"
     "  Named settings: min, max, fig2-unstable, fig2-stable.\n";
 
-void printRow(const std::string& name, const aci::AccParameters& p)
+void printRow(const std::string& name, const acc::AccParameters& p)
 {
-  const auto report = aci::analyzeStringStability(p);
+  const auto report = acc::analyzeStringStability(p);
   std::printf("%-14s %7.4f %7.4f %7.4f %7.3f %10.4g  %-9s %13.4f %10.3f %12.4f%s\n", name.c_str(),
               p.k1_per_s2, p.k2_per_s, p.tau_e_s, p.eta_m, report.lambda2,
               report.string_stable ? "stable" : "UNSTABLE", report.amplified_band_upper_rad_s,
               report.peak_gain_db, report.peak_frequency_rad_s,
-              aci::satisfiesRationalDrivingConstraints(p) ? "" : "  (violates rational driving constraints)");
+              acc::satisfiesRationalDrivingConstraints(p) ? "" : "  (violates rational driving constraints)");
 }
 }  // namespace
 
 int main(int argc, char** argv)
 {
-  aci::CommandLine cli({"setting", "k1", "k2", "tau-e", "eta"}, {"help"});
+  acc::CommandLine cli({"setting", "k1", "k2", "tau-e", "eta"}, {"help"});
   if (!cli.parse(argc, argv) || cli.has("help"))
   {
     std::cerr << (cli.error().empty() ? "" : "error: " + cli.error() + "\n") << kUsage;
     return cli.has("help") ? 0 : 2;
   }
-  std::vector<aci::NamedSetting> settings;
+  std::vector<acc::NamedSetting> settings;
   for (const std::string& name : cli.values("setting"))
   {
-    const auto found = aci::findNamedSetting(name);
+    const auto found = acc::findNamedSetting(name);
     if (!found)
     {
       std::cerr << "error: unknown setting '" << name << "'\n" << kUsage;
@@ -61,7 +60,7 @@ int main(int argc, char** argv)
   }
   if (settings.empty())
   {
-    settings = {*aci::findNamedSetting("min"), *aci::findNamedSetting("max")};
+    settings = {*acc::findNamedSetting("min"), *acc::findNamedSetting("max")};
   }
   std::printf("String stability (Gunter et al., Sec. II-B): stable when lambda2 < 0, i.e. |Gamma(jw)| <= 1 for all w\n");
   std::printf("%-14s %7s %7s %7s %7s %10s  %-9s %13s %10s %12s\n", "setting", "k1", "k2", "tau_e", "eta",

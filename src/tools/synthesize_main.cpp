@@ -9,13 +9,12 @@
 
 #include "acc_identification/command_line.h"
 #include "acc_identification/conversion/openacc_to_nmea.h"
-#include "acc_identification/paper_settings.h"
-#include "acc_identification/profiles/lead_profiles.h"
+#include "acc_identification/model/paper_settings.h"
+#include "acc_identification/reproduction/lead_profiles.h"
 #include "acc_identification/ros/sentence_bag_writer.h"
 #include "acc_identification/synthesis/synthesis.h"
 #include "acc_identification/synthesis/synthesis_output.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
@@ -43,12 +42,12 @@ const char* kUsage =
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 /// The ACC parameters from --setting and the single overrides; "" and a message when incomplete.
-bool readParameters(aci::CommandLine& cli, aci::AccParameters* p, std::string* setting_name, std::string* error)
+bool readParameters(acc::CommandLine& cli, acc::AccParameters* p, std::string* setting_name, std::string* error)
 {
   bool have[4] = {false, false, false, false};
   if (auto setting = cli.value("setting"))
   {
-    const auto named = aci::findNamedSetting(*setting);
+    const auto named = acc::findNamedSetting(*setting);
     if (!named)
     {
       *error = "unknown --setting '" + *setting + "' (min, max, fig2-unstable, fig2-stable)";
@@ -83,10 +82,10 @@ bool readParameters(aci::CommandLine& cli, aci::AccParameters* p, std::string* s
   return true;
 }
 
-bool readOptions(aci::CommandLine& cli, aci::SynthesisOptions* options, std::string* setting_name, std::string* error)
+bool readOptions(acc::CommandLine& cli, acc::SynthesisOptions* options, std::string* setting_name, std::string* error)
 {
   const std::string profile = cli.value("profile").value_or("");
-  if (profile.size() != 1 || !aci::isLeadProfileId(profile[0]))
+  if (profile.size() != 1 || !acc::isLeadProfileId(profile[0]))
   {
     *error = "--profile must be one of A..I";
     return false;
@@ -95,7 +94,7 @@ bool readOptions(aci::CommandLine& cli, aci::SynthesisOptions* options, std::str
   if (!readParameters(cli, &options->parameters, setting_name, error))
     return false;
   for (const std::string& effect : cli.values("effect"))
-    if (!aci::addEffectOption(effect, &options->effects, error))
+    if (!acc::addEffectOption(effect, &options->effects, error))
       return false;
   if (auto seed = cli.value("seed"))
   {
@@ -112,7 +111,7 @@ bool readOptions(aci::CommandLine& cli, aci::SynthesisOptions* options, std::str
       return false;
     }
   }
-  if (auto start = cli.value("start-time"); start && !aci::parseUtcTime(*start, &options->start_time_unix_s))
+  if (auto start = cli.value("start-time"); start && !acc::parseUtcTime(*start, &options->start_time_unix_s))
   {
     *error = "--start-time '" + *start + "' is not YYYY-MM-DDThh:mm:ss[Z] (UTC)";
     return false;
@@ -148,7 +147,7 @@ bool readOptions(aci::CommandLine& cli, aci::SynthesisOptions* options, std::str
 
 /// Parameters far from a real ACC can make the follower drive into the leader or backwards; the
 /// files are still written (they may be wanted for tests) but the user is told, with counts.
-void warnImplausible(const aci::CarFollowingRun& run)
+void warnImplausible(const acc::CarFollowingRun& run)
 {
   std::size_t collisions = 0, reversing = 0;
   double first_collision_s = -1.0, first_reversing_s = -1.0;
@@ -177,9 +176,9 @@ bool writeText(const std::string& path, const std::string& text, std::string* er
   return static_cast<bool>(out);
 }
 
-int run(aci::CommandLine& cli)
+int run(acc::CommandLine& cli)
 {
-  aci::SynthesisOptions options;
+  acc::SynthesisOptions options;
   std::string setting_name, error;
   const auto leader_log = cli.value("leader-log");
   const auto follower_log = cli.value("follower-log");
@@ -190,19 +189,19 @@ int run(aci::CommandLine& cli)
     std::cerr << "error: " << error << "\n" << kUsage;
     return 2;
   }
-  const aci::SynthesizedDrive drive = aci::synthesizeDrive(options);
+  const acc::SynthesizedDrive drive = acc::synthesizeDrive(options);
   if (drive.truth.diverged)
   {
     std::cerr << "error: the follower's simulation diverged with these parameters; nothing written\n";
     return 1;
   }
   warnImplausible(drive.truth.run);
-  bool ok = aci::writeNmeaLog(*leader_log, drive.leader_fixes, "GN", error) &&
-            aci::writeNmeaLog(*follower_log, drive.follower_fixes, "GN", error);
+  bool ok = acc::writeNmeaLog(*leader_log, drive.leader_fixes, "GN", error) &&
+            acc::writeNmeaLog(*follower_log, drive.follower_fixes, "GN", error);
   if (ok && cli.has("truth-csv"))
-    ok = aci::writeTruthCsv(*cli.value("truth-csv"), drive.truth.run, &error);
+    ok = acc::writeTruthCsv(*cli.value("truth-csv"), drive.truth.run, &error);
   if (ok && cli.has("parameters-json"))
-    ok = writeText(*cli.value("parameters-json"), aci::synthesisJson(options, setting_name), &error);
+    ok = writeText(*cli.value("parameters-json"), acc::synthesisJson(options, setting_name), &error);
   if (!ok)
   {
     std::cerr << "error: " << error << "\n";
@@ -214,12 +213,12 @@ int run(aci::CommandLine& cli)
   if (auto bag = cli.value("bag"))
   {
     // The bag is made from the logs just written, so that it holds exactly their lines.
-    std::vector<aci::SentenceStream> streams{{"/leader/nmea_sentence", "leader_gnss", {}},
+    std::vector<acc::SentenceStream> streams{{"/leader/nmea_sentence", "leader_gnss", {}},
                                              {"/follower/nmea_sentence", "follower_gnss", {}}};
     const std::string* logs[2] = {&*leader_log, &*follower_log};
     for (int i = 0; i < 2; ++i)
     {
-      aci::TimedNmeaLog timed = aci::readTimedNmeaLog(*logs[i]);
+      acc::TimedNmeaLog timed = acc::readTimedNmeaLog(*logs[i]);
       if (!timed.error.empty())
       {
         std::cerr << "error: " << timed.error << "\n";
@@ -227,7 +226,7 @@ int run(aci::CommandLine& cli)
       }
       streams[i].lines = std::move(timed.lines);
     }
-    const auto summary = aci::writeSentenceBag(*bag, streams, cli.value("compression").value_or("lz4"));
+    const auto summary = acc::writeSentenceBag(*bag, streams, cli.value("compression").value_or("lz4"));
     std::cout << "synthesize: " << summary.messages << " sentences -> " << *bag << "\n";
   }
   return 0;
@@ -236,7 +235,7 @@ int run(aci::CommandLine& cli)
 
 int main(int argc, char** argv)
 {
-  aci::CommandLine cli({"profile", "setting", "k1", "k2", "tau-e", "eta", "effect", "seed", "duration", "leader-log",
+  acc::CommandLine cli({"profile", "setting", "k1", "k2", "tau-e", "eta", "effect", "seed", "duration", "leader-log",
                         "follower-log", "truth-csv", "parameters-json", "bag", "compression", "start-time", "start-lat",
                         "start-lon", "start-alt", "start-heading-deg", "position-sigma", "speed-sigma",
                         "correlation-time", "leader-antenna-to-rear-bumper", "follower-antenna-to-front-bumper"},

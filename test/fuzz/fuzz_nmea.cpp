@@ -14,7 +14,6 @@
 #include "acc_identification/gnss/nmea_parser.h"
 #include "acc_identification/gnss/nmea_writer.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
@@ -27,26 +26,26 @@ void check(bool condition, const char* what)
   }
 }
 
-void checkFix(const aci::GnssFix& fix)
+void checkFix(const acc::GnssFix& fix)
 {
-  aci::NmeaSentence back;
-  check(aci::parseNmeaSentence(aci::formatGga(fix), back) == aci::NmeaParseOutcome::kOk, "written GGA parses");
-  check(aci::parseNmeaSentence(aci::formatRmc(fix), back) == aci::NmeaParseOutcome::kOk, "written RMC parses");
-  aci::EnuVelocity velocity;
-  aci::enuVelocity(fix, velocity);
+  acc::NmeaSentence back;
+  check(acc::parseNmeaSentence(acc::formatGga(fix), back) == acc::NmeaParseOutcome::kOk, "written GGA parses");
+  check(acc::parseNmeaSentence(acc::formatRmc(fix), back) == acc::NmeaParseOutcome::kOk, "written RMC parses");
+  acc::EnuVelocity velocity;
+  acc::enuVelocity(fix, velocity);
 }
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
   const std::string_view input(reinterpret_cast<const char*>(data), size);
-  aci::NmeaSentence sentence;
-  aci::parseNmeaSentence(input, sentence);
+  acc::NmeaSentence sentence;
+  acc::parseNmeaSentence(input, sentence);
   double time_of_day_s = 0.0;
-  aci::nmeaLineTimeOfDay(input, time_of_day_s);
+  acc::nmeaLineTimeOfDay(input, time_of_day_s);
 
   std::uint64_t lines = 0;
-  aci::NmeaDecoder decoder([&](std::string_view, aci::NmeaParseOutcome) { ++lines; }, checkFix);
+  acc::NmeaDecoder decoder([&](std::string_view, acc::NmeaParseOutcome) { ++lines; }, checkFix);
   // The first byte chooses the read size, so that lines are split across reads in every way.
   const std::size_t chunk = size > 0 ? 1 + data[0] % 64 : 1;
   double receive_time_s = 0.0;
@@ -57,7 +56,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       decoder.flushEpoch();
   }
   decoder.finish(receive_time_s);
-  const aci::NmeaStatistics s = decoder.statistics();
+  const acc::NmeaStatistics s = decoder.statistics();
   check(s.lines == lines, "every line reported");
   check(s.lines == s.sentences_ok + s.bad_checksum + s.malformed + s.unsupported, "one reason per line");
   return 0;

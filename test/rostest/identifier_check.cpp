@@ -10,23 +10,18 @@
 #include <rosgraph_msgs/Clock.h>
 
 #include "acc_identification/calibration/synthetic_runs.h"
-#include "acc_identification/paper_settings.h"
+#include "acc_identification/model/paper_settings.h"
 
-#define AccParameters AccParametersMessage
 #include <acc_identification/AccParameters.h>
-#undef AccParameters
-#define RelativeState RelativeStateMessage
 #include <acc_identification/RelativeState.h>
-#undef RelativeState
 
-namespace aci = acc_identification;
 
 namespace
 {
 std::mutex received_mutex;
-std::vector<aci::AccParametersMessage> received;
+std::vector<acc_identification::AccParameters> received;
 
-void onParameters(const aci::AccParametersMessage::ConstPtr& message)
+void onParameters(const acc_identification::AccParameters::ConstPtr& message)
 {
   std::lock_guard<std::mutex> lock(received_mutex);
   received.push_back(*message);
@@ -38,7 +33,7 @@ TEST(Identifier, SyntheticRelativeStateGivesTheTrueParameters)
   ros::AsyncSpinner spinner(1);
   spinner.start();
   auto clock = node.advertise<rosgraph_msgs::Clock>("/clock", 10);
-  auto states = node.advertise<aci::RelativeStateMessage>("relative_state", 1000);
+  auto states = node.advertise<acc_identification::RelativeState>("relative_state", 1000);
   auto parameters = node.subscribe("acc_parameters", 100, onParameters);
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(30.0);
   while ((states.getNumSubscribers() == 0 || parameters.getNumPublishers() == 0 || clock.getNumSubscribers() == 0) &&
@@ -48,9 +43,9 @@ TEST(Identifier, SyntheticRelativeStateGivesTheTrueParameters)
   }
   ASSERT_GT(states.getNumSubscribers(), 0u) << "identifier_node did not subscribe";
 
-  const aci::AccParameters truth = aci::paperMinimumSetting();
+  const acc::AccParameters truth = acc::paperMinimumSetting();
   // 150 s from GNSS time 1000 s, with a 2 s hole (a dropout) after 50 s and one invalid sample at 70 s.
-  const aci::CarFollowingRun run = aci::synthesizeRun(truth, 150.0, 0.1, 25.0, 7);
+  const acc::CarFollowingRun run = acc::synthesizeRun(truth, 150.0, 0.1, 25.0, 7);
   const double t0 = 1000.0;
   std::size_t published = 0;
   for (std::size_t k = 0; k < run.size(); ++k)
@@ -63,7 +58,7 @@ TEST(Identifier, SyntheticRelativeStateGivesTheTrueParameters)
     {
       continue;
     }
-    aci::RelativeStateMessage state;
+    acc_identification::RelativeState state;
     state.header.stamp = ros::Time(t);
     state.space_gap_m = run.space_gap_m[k];
     state.follower_speed_mps = run.follower_speed_mps[k];
@@ -89,7 +84,7 @@ TEST(Identifier, SyntheticRelativeStateGivesTheTrueParameters)
   EXPECT_FALSE(received.front().identifiable);
   EXPECT_EQ(received.front().optimizer_status, "NOT_SOLVED");
   EXPECT_TRUE(std::isnan(received.front().k1_per_s2));
-  const aci::AccParametersMessage& last = received.back();
+  const acc_identification::AccParameters& last = received.back();
   ASSERT_TRUE(last.identifiable) << last.identifiability_note;
   // The 120 s window ends at the last sample; it holds every valid sample of that span (none
   // dropped: 1201 less 19 in the dropout and the invalid one), split by the dropout and the invalid

@@ -20,7 +20,6 @@
 #include "acc_identification/conversion/openacc_trajectories.h"
 #include "acc_identification/relative_state/gap_doppler_consistency.h"
 
-namespace ai = acc_identification;
 
 namespace
 {
@@ -33,9 +32,9 @@ void ignore(const boost::shared_ptr<const Message>&)
 
 struct Received
 {
-  std::vector<ai::RelativeStateMessage> states;
+  std::vector<acc_identification::RelativeState> states;
   ros::WallTime last = ros::WallTime::now();
-  void onState(const ai::RelativeStateMessage& m)
+  void onState(const acc_identification::RelativeState& m)
   {
     states.push_back(m);
     last = ros::WallTime::now();
@@ -48,7 +47,7 @@ TEST(RelativeStateDrivers, EveryEpochOfARealRunThroughTheDriversAndTheNode)
   ros::NodeHandle node, private_node("~");
   std::string csv;
   ASSERT_TRUE(private_node.getParam("csv", csv));
-  auto file = ai::readOpenAccTrajectories(csv);
+  auto file = acc::readOpenAccTrajectories(csv);
   ASSERT_TRUE(file.error.empty()) << file.error;
 
   Received received;
@@ -66,7 +65,7 @@ TEST(RelativeStateDrivers, EveryEpochOfARealRunThroughTheDriversAndTheNode)
   std::vector<ros::Subscriber> others;
   for (const std::string ns : {"leader", "follower"})
   {
-    others.push_back(node.subscribe(ns + "/nmea_sentence", 100000, &ignore<ai::Sentence>));
+    others.push_back(node.subscribe(ns + "/nmea_sentence", 100000, &ignore<acc_identification::Sentence>));
     others.push_back(node.subscribe(ns + "/navsat_fix", 100000, &ignore<sensor_msgs::NavSatFix>));
     others.push_back(node.subscribe(ns + "/vel", 100000, &ignore<geometry_msgs::TwistStamped>));
   }
@@ -80,7 +79,7 @@ TEST(RelativeStateDrivers, EveryEpochOfARealRunThroughTheDriversAndTheNode)
   }
 
   EXPECT_EQ(received.states.size(), file.rows.size());
-  std::map<long long, const ai::OpenAccRow*> by_centisecond;
+  std::map<long long, const acc::OpenAccRow*> by_centisecond;
   for (const auto& row : file.rows)
     by_centisecond[std::llround(row.time_of_day_s * 100.0)] = &row;
   std::vector<double> times, gaps, ivs1, relative_speeds;
@@ -90,7 +89,7 @@ TEST(RelativeStateDrivers, EveryEpochOfARealRunThroughTheDriversAndTheNode)
     ASSERT_TRUE(s.valid) << s.invalid_reason;
     auto at = by_centisecond.find(std::llround((s.header.stamp.toSec() - file.dayStartUnixS()) * 100.0));
     ASSERT_NE(at, by_centisecond.end()) << "no CSV row at " << s.header.stamp.toSec();
-    const ai::OpenAccRow& r = *at->second;
+    const acc::OpenAccRow& r = *at->second;
     double distance_m = 0.0;
     GeographicLib::Geodesic::WGS84().Inverse(r.latitude_rad[0] * 180 / M_PI, r.longitude_rad[0] * 180 / M_PI,
                                              r.latitude_rad[1] * 180 / M_PI, r.longitude_rad[1] * 180 / M_PI, distance_m);
@@ -104,8 +103,8 @@ TEST(RelativeStateDrivers, EveryEpochOfARealRunThroughTheDriversAndTheNode)
   }
   ASSERT_FALSE(received.states.empty());
   double rms_m = std::sqrt(sum_squares / received.states.size());
-  auto ours = ai::gapDopplerConsistency(times, gaps, relative_speeds, 10.0);
-  auto database = ai::gapDopplerConsistency(times, ivs1, relative_speeds, 10.0);
+  auto ours = acc::gapDopplerConsistency(times, gaps, relative_speeds, 10.0);
+  auto database = acc::gapDopplerConsistency(times, ivs1, relative_speeds, 10.0);
   std::printf("%s: %zu states of %zu rows; gap vs geodesic RMS %.4f m; speeds max error %.5f m/s; "
               "gap-Doppler 10 s RMS: node %.3f m, IVS1 %.3f m\n",
               csv.c_str(), received.states.size(), file.rows.size(), rms_m, speed_error_max, ours.rms_m,

@@ -23,7 +23,6 @@
 #include "acc_identification/conversion/openacc_to_nmea.h"
 #include "acc_identification/gnss/nmea_log.h"
 
-namespace ai = acc_identification;
 namespace fs = std::filesystem;
 
 namespace
@@ -31,22 +30,22 @@ namespace
 constexpr double kOffset_m = 5.60;
 constexpr std::size_t kDelayEpochs = 12, kBurst = 5, kDropoutFirst = 100, kDropoutLast = 120, kLoopEpochs = 50;
 
-std::vector<ai::GnssFix> recorded(const ai::OpenAccTrajectories& file, int vehicle)
+std::vector<acc::GnssFix> recorded(const acc::OpenAccTrajectories& file, int vehicle)
 {
   fs::path log = fs::temp_directory_path() / ("relstate_fixes_" + std::to_string(vehicle) + "_" + std::to_string(::getpid()));
   std::string error;
-  EXPECT_TRUE(ai::writeNmeaLog(log.string(), ai::openAccFixes(file, vehicle), "GN", error)) << error;
-  auto back = ai::readNmeaLog(log.string());
+  EXPECT_TRUE(acc::writeNmeaLog(log.string(), acc::openAccFixes(file, vehicle), "GN", error)) << error;
+  auto back = acc::readNmeaLog(log.string());
   fs::remove(log);
   return back.fixes;
 }
 
 struct Received
 {
-  std::vector<ai::RelativeStateMessage> states;
+  std::vector<acc_identification::RelativeState> states;
   std::map<std::string, std::string> diagnostics;  // the latest "Relative state" key/values
   std::string diagnostic_summary;
-  void onState(const ai::RelativeStateMessage& m) { states.push_back(m); }
+  void onState(const acc_identification::RelativeState& m) { states.push_back(m); }
   void onDiagnostics(const diagnostic_msgs::DiagnosticArray& array)
   {
     for (const auto& status : array.status)
@@ -75,7 +74,7 @@ TEST(RelativeStateNode, PairsLateBurstyLeaderFixesAndReportsDropoutsAndTimeReset
   ros::NodeHandle node, private_node("~");
   std::string csv;
   ASSERT_TRUE(private_node.getParam("csv", csv));
-  auto file = ai::readOpenAccTrajectories(csv);
+  auto file = acc::readOpenAccTrajectories(csv);
   ASSERT_TRUE(file.error.empty()) << file.error;
   auto leader = recorded(file, 1), follower = recorded(file, 2);
   ASSERT_EQ(leader.size(), 300u);
@@ -84,8 +83,8 @@ TEST(RelativeStateNode, PairsLateBurstyLeaderFixesAndReportsDropoutsAndTimeReset
   Received received;
   auto state_sub = node.subscribe("relative_state", 10000, &Received::onState, &received);
   auto diagnostics_sub = node.subscribe("/diagnostics", 100, &Received::onDiagnostics, &received);
-  auto leader_pub = node.advertise<ai::GnssFixMessage>("leader/fix", 1000);
-  auto follower_pub = node.advertise<ai::GnssFixMessage>("follower/fix", 1000);
+  auto leader_pub = node.advertise<acc_identification::GnssFix>("leader/fix", 1000);
+  auto follower_pub = node.advertise<acc_identification::GnssFix>("follower/fix", 1000);
   ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(20.0);
   while (ros::ok() && ros::WallTime::now() < deadline &&
          (leader_pub.getNumSubscribers() == 0 || follower_pub.getNumSubscribers() == 0 || state_sub.getNumPublishers() == 0))
@@ -102,13 +101,13 @@ TEST(RelativeStateNode, PairsLateBurstyLeaderFixesAndReportsDropoutsAndTimeReset
   std::size_t next_leader = 0;
   for (std::size_t i = 0; i < follower.size(); ++i)
   {
-    follower_pub.publish(ai::toMessage(follower[i], "follower_gps"));
+    follower_pub.publish(acc::toMessage(follower[i], "follower_gps"));
     if (i == 200)
     {
       auto no_position = follower[i];
       no_position.fix_quality = 0;
       no_position.valid_fields = 0;
-      follower_pub.publish(ai::toMessage(no_position, "follower_gps"));
+      follower_pub.publish(acc::toMessage(no_position, "follower_gps"));
     }
     if (i % kBurst == kBurst - 1 && i >= kDelayEpochs)
     {
@@ -117,18 +116,18 @@ TEST(RelativeStateNode, PairsLateBurstyLeaderFixesAndReportsDropoutsAndTimeReset
         burst.push_back(leader_order[next_leader++]);
       std::shuffle(burst.begin(), burst.end(), random);
       for (std::size_t j : burst)
-        leader_pub.publish(ai::toMessage(leader[j], "leader_gps"));
+        leader_pub.publish(acc::toMessage(leader[j], "leader_gps"));
     }
     spinFor(0.003);
   }
   for (; next_leader < leader_order.size(); ++next_leader)
-    leader_pub.publish(ai::toMessage(leader[leader_order[next_leader]], "leader_gps"));
+    leader_pub.publish(acc::toMessage(leader[leader_order[next_leader]], "leader_gps"));
   spinFor(0.5);
   // A looping bag: both streams start again from the beginning.
   for (std::size_t i = 0; i < kLoopEpochs; ++i)
   {
-    leader_pub.publish(ai::toMessage(leader[i], "leader_gps"));
-    follower_pub.publish(ai::toMessage(follower[i], "follower_gps"));
+    leader_pub.publish(acc::toMessage(leader[i], "leader_gps"));
+    follower_pub.publish(acc::toMessage(follower[i], "follower_gps"));
     spinFor(0.003);
   }
   spinFor(2.5);  // at least two diagnostic periods

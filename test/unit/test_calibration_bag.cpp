@@ -8,17 +8,14 @@
 
 #include "acc_identification/ros/run_bag_reader.h"
 
-#define RelativeState RelativeStateMessage
 #include <acc_identification/RelativeState.h>
-#undef RelativeState
 
-namespace aci = acc_identification;
 
 namespace
 {
-aci::RelativeStateMessage stateAt(double t, bool valid = true)
+acc_identification::RelativeState stateAt(double t, bool valid = true)
 {
-  aci::RelativeStateMessage state;
+  acc_identification::RelativeState state;
   state.header.stamp = ros::Time(t);
   state.space_gap_m = 20.0 + t;
   state.follower_speed_mps = 10.0;
@@ -38,13 +35,13 @@ TEST(RunBagReader, SplitsAtInvalidSamplesGapsAndTimeResets)
     for (int k = 31; k < 40; ++k) bag.write("/relative_state", recorded, stateAt(100.0 + 0.1 * k));  // 103.1-103.9
     for (int k = 50; k < 60; ++k) bag.write("/relative_state", recorded, stateAt(100.0 + 0.1 * k));  // hole, 105.0-105.9
     bag.write("/relative_state", recorded, stateAt(105.9));                                          // repeated stamp
-    aci::RelativeStateMessage nan_state = stateAt(106.0);
+    acc_identification::RelativeState nan_state = stateAt(106.0);
     nan_state.space_gap_m = std::numeric_limits<double>::quiet_NaN();
     bag.write("/relative_state", recorded, nan_state);
     for (int k = 0; k < 5; ++k) bag.write("/relative_state", recorded, stateAt(10.0 + 0.1 * k));    // replay restarted
     bag.write("/other_topic", recorded, stateAt(1.0));
   }
-  const aci::BagRuns runs = aci::readRunsFromBag(path, "relative_state", 0.5);
+  const acc::BagRuns runs = acc::readRunsFromBag(path, "relative_state", 0.5);
   EXPECT_EQ(runs.messages, 57u);  // the other topic is not read
   EXPECT_EQ(runs.invalid, 2u);
   EXPECT_EQ(runs.out_of_order, 1u);
@@ -58,8 +55,8 @@ TEST(RunBagReader, SplitsAtInvalidSamplesGapsAndTimeResets)
   EXPECT_EQ(runs.runs[3].size(), 5u);
   EXPECT_DOUBLE_EQ(runs.runs[3].time_s.front(), 10.0);
   EXPECT_DOUBLE_EQ(runs.runs[0].space_gap_m[1], 20.0 + 100.1);
-  EXPECT_THROW(aci::readRunsFromBag(path, "missing_topic"), std::runtime_error);
+  EXPECT_THROW(acc::readRunsFromBag(path, "missing_topic"), std::runtime_error);
   std::remove(path.c_str());
-  EXPECT_THROW(aci::readRunsFromBag(path), std::runtime_error);
+  EXPECT_THROW(acc::readRunsFromBag(path), std::runtime_error);
 }
 }  // namespace

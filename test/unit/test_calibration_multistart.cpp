@@ -7,24 +7,23 @@
 #include "acc_identification/calibration/identification.h"
 #include "acc_identification/calibration/synthetic_runs.h"
 #include "acc_identification/io/run_csv.h"
-#include "acc_identification/paper_settings.h"
+#include "acc_identification/model/paper_settings.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
-std::vector<aci::CarFollowingRun> synthetic(const aci::AccParameters& truth, std::uint32_t first_seed)
+std::vector<acc::CarFollowingRun> synthetic(const acc::AccParameters& truth, std::uint32_t first_seed)
 {
-  return {aci::synthesizeRun(truth, 300.0, 0.1, 25.0, first_seed),
-          aci::synthesizeRun(truth, 300.0, 0.1, 15.0, first_seed + 1),
-          aci::synthesizeRun(truth, 300.0, 0.1, 30.0, first_seed + 2)};
+  return {acc::synthesizeRun(truth, 300.0, 0.1, 25.0, first_seed),
+          acc::synthesizeRun(truth, 300.0, 0.1, 15.0, first_seed + 1),
+          acc::synthesizeRun(truth, 300.0, 0.1, 30.0, first_seed + 2)};
 }
 
-void expectRecovered(const aci::AccParameters& truth, std::uint32_t seed)
+void expectRecovered(const acc::AccParameters& truth, std::uint32_t seed)
 {
-  aci::IdentificationOptions options;
+  acc::IdentificationOptions options;
   options.multistart.starts = 30;
-  const auto result = aci::identifyAcc(synthetic(truth, seed), options);
+  const auto result = acc::identifyAcc(synthetic(truth, seed), options);
   ASSERT_TRUE(result.solved) << result.note;
   EXPECT_TRUE(result.identifiable) << result.note;
   const auto& p = result.calibration.parameters;
@@ -39,32 +38,32 @@ void expectRecovered(const aci::AccParameters& truth, std::uint32_t seed)
   EXPECT_LT(se.tau_e_s, 0.1 * truth.tau_e_s);
   // The fit is as good as the noise allows (0.06 m/s on the measured speed).
   EXPECT_LT(result.fit.rmse_speed_mps, 0.075);
-  EXPECT_EQ(result.stability.string_stable, aci::analyzeStringStability(truth).string_stable);
+  EXPECT_EQ(result.stability.string_stable, acc::analyzeStringStability(truth).string_stable);
 }
 
 TEST(CalibrationMultistart, RecoversThePaperMinimumSettingWithinItsStandardErrors)
 {
-  expectRecovered(aci::paperMinimumSetting(), 11);
+  expectRecovered(acc::paperMinimumSetting(), 11);
 }
 
 TEST(CalibrationMultistart, RecoversThePaperMaximumSettingWithinItsStandardErrors)
 {
-  expectRecovered(aci::paperMaximumSetting(), 21);
+  expectRecovered(acc::paperMaximumSetting(), 21);
 }
 
 TEST(CalibrationMultistart, NeverWorseThanAnyStartAndNeverNaN)
 {
-  const auto runs = synthetic(aci::paperMinimumSetting(), 31);
-  const aci::CalibrationObjective objective(runs);
-  aci::MultistartOptions options;
+  const auto runs = synthetic(acc::paperMinimumSetting(), 31);
+  const acc::CalibrationObjective objective(runs);
+  acc::MultistartOptions options;
   options.starts = 20;
-  const auto result = aci::calibrateMultistart(objective, options);
+  const auto result = acc::calibrateMultistart(objective, options);
   ASSERT_FALSE(result.diverged);
   ASSERT_TRUE(std::isfinite(result.rmse_speed_mps));
   const double best_mse = result.rmse_speed_mps * result.rmse_speed_mps;
   for (std::size_t i = 1; i <= options.starts; ++i)
   {
-    const auto unit = aci::haltonPoint(i);
+    const auto unit = acc::haltonPoint(i);
     const auto at_start = objective.evaluate(unit[0] * 0.5, unit[1] * 1.5, unit[2] * 3.0, false);
     EXPECT_LE(best_mse, at_start.mse_speed_mps2 * (1.0 + 1e-12)) << "start " << i;
   }
@@ -74,13 +73,13 @@ TEST(CalibrationMultistart, NeverWorseThanAnyStartAndNeverNaN)
 
 TEST(CalibrationMultistart, DivergentStartingPointsArePulledBackNotPropagated)
 {
-  const auto runs = synthetic(aci::paperMinimumSetting(), 41);
-  const aci::CalibrationObjective objective(runs);
+  const auto runs = synthetic(acc::paperMinimumSetting(), 41);
+  const acc::CalibrationObjective objective(runs);
   ASSERT_TRUE(objective.evaluate(2.0, 0.0, 0.0, false).diverged);
-  aci::MultistartOptions options;
+  acc::MultistartOptions options;
   options.starts = 0;
   // Warm starts on the undamped, divergent corner of the box only.
-  const auto result = aci::calibrateMultistart(objective, options, {{2.0, 0.0, 0.0, 0.0}, {1.9, 0.01, 0.01, 0.0}});
+  const auto result = acc::calibrateMultistart(objective, options, {{2.0, 0.0, 0.0, 0.0}, {1.9, 0.01, 0.01, 0.0}});
   EXPECT_EQ(result.divergent_starts, 2u);
   ASSERT_FALSE(result.diverged);
   EXPECT_NEAR(result.parameters.k1_per_s2, 0.0782, 0.01);
@@ -90,8 +89,8 @@ TEST(CalibrationMultistart, DivergentStartingPointsArePulledBackNotPropagated)
 TEST(CalibrationMultistart, SteadyFollowingIsNotIdentifiable)
 {
   // The leader holds 25 m/s; the follower sits at equilibrium: only GNSS noise moves.
-  aci::CarFollowingRun run;
-  const aci::AccParameters truth = aci::paperMinimumSetting();
+  acc::CarFollowingRun run;
+  const acc::AccParameters truth = acc::paperMinimumSetting();
   for (int k = 0; k < 1200; ++k)
   {
     const double noise = 0.06 * std::sin(12.9898 * k) * std::sqrt(2.0);  // deterministic, white-like
@@ -100,16 +99,16 @@ TEST(CalibrationMultistart, SteadyFollowingIsNotIdentifiable)
     run.follower_speed_mps.push_back(25.0 - noise);
     run.space_gap_m.push_back(truth.eta_m + truth.tau_e_s * 25.0 + 5.0 * noise);
   }
-  aci::IdentificationOptions options;
+  acc::IdentificationOptions options;
   options.multistart.starts = 10;
-  const auto result = aci::identifyAcc({run}, options);
+  const auto result = acc::identifyAcc({run}, options);
   EXPECT_FALSE(result.identifiable);
   EXPECT_FALSE(result.solved);
   EXPECT_NE(result.note.find("steady speed"), std::string::npos) << result.note;
 
   // Past the excitation check, the fit itself says that k1, k2, tau_e are not determined.
   options.criteria.min_speed_std_mps = 0.0;
-  const auto forced = aci::identifyAcc({run}, options);
+  const auto forced = acc::identifyAcc({run}, options);
   EXPECT_TRUE(forced.solved);
   EXPECT_FALSE(forced.identifiable);
   EXPECT_FALSE(forced.note.empty());
@@ -118,20 +117,20 @@ TEST(CalibrationMultistart, SteadyFollowingIsNotIdentifiable)
 TEST(CalibrationMultistart, MultistartFindsTheGridOptimumOnRealData)
 {
   // OpenACC Casale part4 (Hyundai Nexo, ACC minimum setting): 115 s of real car following.
-  const auto runs = aci::readRuns(std::string(ACC_TEST_DATA_DIR) + "/casale_part4.csv");
-  const aci::CalibrationObjective objective(runs);
-  aci::MultistartOptions options;
-  const auto multistart = aci::calibrateMultistart(objective, options);
+  const auto runs = acc::readRuns(std::string(ACC_TEST_DATA_DIR) + "/casale_part4.csv");
+  const acc::CalibrationObjective objective(runs);
+  acc::MultistartOptions options;
+  const auto multistart = acc::calibrateMultistart(objective, options);
   ASSERT_FALSE(multistart.diverged);
-  const auto grid = aci::gridSearch(objective, {0.0, 0.0, 0.0, 0.0}, {0.5, 1.5, 3.0, 0.0}, {26, 31, 31});
+  const auto grid = acc::gridSearch(objective, {0.0, 0.0, 0.0, 0.0}, {0.5, 1.5, 3.0, 0.0}, {26, 31, 31});
   // No grid node beats the multistart optimum ...
   EXPECT_GE(grid.best_rmse_speed_mps, multistart.rmse_speed_mps * (1.0 - 1e-12));
   // ... and a local solve from the best node (the grid's basin) ends at the same optimum. (The
   // nodes themselves can sit far from it along the flat eta + tau_e v valley of this steady
   // highway run, so the comparison is of basins, not of node coordinates.)
-  aci::MultistartOptions polish;
+  acc::MultistartOptions polish;
   polish.starts = 0;
-  const auto polished = aci::calibrateMultistart(objective, polish, {grid.best});
+  const auto polished = acc::calibrateMultistart(objective, polish, {grid.best});
   EXPECT_NEAR(polished.rmse_speed_mps, multistart.rmse_speed_mps, 1e-6 * multistart.rmse_speed_mps);
   EXPECT_NEAR(polished.parameters.k1_per_s2, multistart.parameters.k1_per_s2, 1e-3);
   EXPECT_NEAR(polished.parameters.k2_per_s, multistart.parameters.k2_per_s, 1e-2);

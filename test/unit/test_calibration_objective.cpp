@@ -5,28 +5,27 @@
 
 #include "acc_identification/calibration/calibration_objective.h"
 #include "acc_identification/calibration/synthetic_runs.h"
-#include "acc_identification/follower_simulation.h"
-#include "acc_identification/paper_settings.h"
+#include "acc_identification/model/follower_simulation.h"
+#include "acc_identification/model/paper_settings.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
-std::vector<aci::CarFollowingRun> twoSegments()
+std::vector<acc::CarFollowingRun> twoSegments()
 {
   // Two segments with different steps (10 Hz and 5 Hz) and speeds: pooled, each from its start.
-  return {aci::synthesizeRun(aci::paperMinimumSetting(), 200.0, 0.1, 25.0, 1),
-          aci::synthesizeRun(aci::paperMinimumSetting(), 150.0, 0.2, 15.0, 2)};
+  return {acc::synthesizeRun(acc::paperMinimumSetting(), 200.0, 0.1, 25.0, 1),
+          acc::synthesizeRun(acc::paperMinimumSetting(), 150.0, 0.2, 15.0, 2)};
 }
 
 /// The speed MSE of simulateFollower (the reference recursion), pooled over runs.
-double referenceMse(const aci::AccParameters& p, const std::vector<aci::CarFollowingRun>& runs)
+double referenceMse(const acc::AccParameters& p, const std::vector<acc::CarFollowingRun>& runs)
 {
   double sum = 0.0;
   std::size_t n = 0;
   for (const auto& run : runs)
   {
-    const auto sim = aci::simulateFollower(p, run);
+    const auto sim = acc::simulateFollower(p, run);
     for (std::size_t k = 0; k < run.size(); ++k)
     {
       sum += std::pow(run.follower_speed_mps[k] - sim.speed_mps[k], 2);
@@ -39,13 +38,13 @@ double referenceMse(const aci::AccParameters& p, const std::vector<aci::CarFollo
 TEST(CalibrationObjective, AgreesWithTheReferenceSimulationToRounding)
 {
   const auto runs = twoSegments();
-  const aci::CalibrationObjective objective(runs);
-  for (const aci::AccParameters& theta : {aci::AccParameters{0.08, 0.44, 0.52, 0}, aci::AccParameters{0.3, 0.1, 2.0, 0},
-                                          aci::AccParameters{0.01, 1.2, 0.1, 0}})
+  const acc::CalibrationObjective objective(runs);
+  for (const acc::AccParameters& theta : {acc::AccParameters{0.08, 0.44, 0.52, 0}, acc::AccParameters{0.3, 0.1, 2.0, 0},
+                                          acc::AccParameters{0.01, 1.2, 0.1, 0}})
   {
     const auto value = objective.evaluate(theta.k1_per_s2, theta.k2_per_s, theta.tau_e_s, true);
     ASSERT_FALSE(value.diverged);
-    aci::AccParameters with_eta = theta;
+    acc::AccParameters with_eta = theta;
     with_eta.eta_m = value.eta_m;
     const double reference = referenceMse(with_eta, runs);
     EXPECT_NEAR(value.mse_speed_mps2, reference, 1e-10 * reference + 1e-14)
@@ -56,10 +55,10 @@ TEST(CalibrationObjective, AgreesWithTheReferenceSimulationToRounding)
 TEST(CalibrationObjective, ClosedFormEtaIsTheBestEta)
 {
   const auto runs = twoSegments();
-  const aci::CalibrationObjective objective(runs);
+  const acc::CalibrationObjective objective(runs);
   const auto value = objective.evaluate(0.1, 0.5, 0.7, false);
   ASSERT_GT(value.eta_m, 0.5);
-  aci::AccParameters p{0.1, 0.5, 0.7, value.eta_m};
+  acc::AccParameters p{0.1, 0.5, 0.7, value.eta_m};
   const double at_best = referenceMse(p, runs);
   for (double delta : {-0.1, -0.01, -0.001, 0.001, 0.01, 0.1})
   {
@@ -73,7 +72,7 @@ TEST(CalibrationObjective, EtaIsClippedToItsBounds)
   // A follower that keeps a gap shorter than tau_e v alone wants a negative eta: it gets 0, and the
   // objective is the reference's at eta = 0.
   const auto runs = twoSegments();
-  const aci::CalibrationObjective objective(runs);
+  const acc::CalibrationObjective objective(runs);
   const auto value = objective.evaluate(0.08, 0.44, 3.0, true);
   EXPECT_EQ(value.eta_m, 0.0);
   EXPECT_NEAR(value.mse_speed_mps2, referenceMse({0.08, 0.44, 3.0, 0.0}, runs), 1e-10 * value.mse_speed_mps2);
@@ -82,9 +81,9 @@ TEST(CalibrationObjective, EtaIsClippedToItsBounds)
 TEST(CalibrationObjective, GradientMatchesCentralDifferences)
 {
   const auto runs = twoSegments();
-  const aci::CalibrationObjective objective(runs);
-  for (const aci::AccParameters& theta : {aci::AccParameters{0.08, 0.44, 0.52, 0}, aci::AccParameters{0.2, 0.2, 1.5, 0},
-                                          aci::AccParameters{0.05, 0.9, 3.0, 0}})
+  const acc::CalibrationObjective objective(runs);
+  for (const acc::AccParameters& theta : {acc::AccParameters{0.08, 0.44, 0.52, 0}, acc::AccParameters{0.2, 0.2, 1.5, 0},
+                                          acc::AccParameters{0.05, 0.9, 3.0, 0}})
   {
     const auto value = objective.evaluate(theta.k1_per_s2, theta.k2_per_s, theta.tau_e_s, true);
     const double base[3] = {theta.k1_per_s2, theta.k2_per_s, theta.tau_e_s};
@@ -106,29 +105,29 @@ TEST(CalibrationObjective, GradientMatchesCentralDifferences)
 TEST(CalibrationObjective, DivergentParametersGiveAFinitePenaltyNotNaN)
 {
   const auto runs = twoSegments();
-  const aci::CalibrationObjective objective(runs);
+  const acc::CalibrationObjective objective(runs);
   // Pure spring (no damping, k1 > 0): the Euler map's determinant 1 + h^2 k1 exceeds 1 and
   // the oscillation grows without bound over these runs.
   const auto value = objective.evaluate(2.0, 0.0, 0.0, true);
   EXPECT_TRUE(value.diverged);
   EXPECT_TRUE(std::isfinite(value.mse_speed_mps2));
-  EXPECT_EQ(value.mse_speed_mps2, aci::kDivergedMseMps2);
+  EXPECT_EQ(value.mse_speed_mps2, acc::kDivergedMseMps2);
   for (double g : value.gradient)
   {
     EXPECT_TRUE(std::isfinite(g));
   }
-  EXPECT_TRUE(aci::simulateFollower({2.0, 0.0, 0.0, value.eta_m}, runs[0]).diverged);
+  EXPECT_TRUE(acc::simulateFollower({2.0, 0.0, 0.0, value.eta_m}, runs[0]).diverged);
 }
 
 TEST(CalibrationObjective, RejectsSegmentsThatCannotBeSimulated)
 {
-  aci::CarFollowingRun bad;
+  acc::CarFollowingRun bad;
   bad.name = "one-sample";
   bad.time_s = {0.0};
   bad.space_gap_m = {10.0};
   bad.follower_speed_mps = {10.0};
   bad.leader_speed_mps = {10.0};
-  EXPECT_THROW(aci::CalibrationObjective({bad}), std::invalid_argument);
-  EXPECT_THROW(aci::CalibrationObjective({}), std::invalid_argument);
+  EXPECT_THROW(acc::CalibrationObjective({bad}), std::invalid_argument);
+  EXPECT_THROW(acc::CalibrationObjective({}), std::invalid_argument);
 }
 }  // namespace

@@ -5,36 +5,35 @@
 
 #include "acc_identification/calibration/calibration_report.h"
 #include "acc_identification/calibration/synthetic_runs.h"
-#include "acc_identification/paper_settings.h"
+#include "acc_identification/model/paper_settings.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
 TEST(CalibrationReport, SplitInHalfTrainsOnTheFirstHalfAndTestsOnTheSecond)
 {
-  const auto run = aci::synthesizeRun(aci::paperMinimumSetting(), 10.0, 0.1, 20.0, 3);
+  const auto run = acc::synthesizeRun(acc::paperMinimumSetting(), 10.0, 0.1, 20.0, 3);
   ASSERT_EQ(run.size(), 101u);
-  const auto [train, test] = aci::splitRunInHalf(run);
+  const auto [train, test] = acc::splitRunInHalf(run);
   EXPECT_EQ(train.size(), 50u);
   EXPECT_EQ(test.size(), 51u);
   EXPECT_DOUBLE_EQ(test.time_s.front(), run.time_s[50]);
   EXPECT_DOUBLE_EQ(test.space_gap_m.front(), run.space_gap_m[50]);  // simulated from its own start
-  EXPECT_EQ(aci::describeRunProblem(train), "");
-  EXPECT_EQ(aci::describeRunProblem(test), "");
+  EXPECT_EQ(acc::describeRunProblem(train), "");
+  EXPECT_EQ(acc::describeRunProblem(test), "");
 }
 
 TEST(CalibrationReport, JsonHasTheKeysOtherToolsRead)
 {
-  aci::CalibrationReport report;
-  report.calibration.parameters = aci::paperMinimumSetting();
+  acc::CalibrationReport report;
+  report.calibration.parameters = acc::paperMinimumSetting();
   report.calibration.status = "SUCCESS";
   report.uncertainty.standard_error = {0.001, 0.01, std::nan(""), 0.1};
-  report.stability = aci::analyzeStringStability(report.calibration.parameters);
-  report.runs.push_back({"part3", "/data/part3.csv", {100, 0.2, 1.5, false}, aci::FitQuality{100, 0.25, 1.4, false}});
+  report.stability = acc::analyzeStringStability(report.calibration.parameters);
+  report.runs.push_back({"part3", "/data/part3.csv", {100, 0.2, 1.5, false}, acc::FitQuality{100, 0.25, 1.4, false}});
   report.summary_train = {100, 0.2, 1.5, false};
-  report.summary_test = aci::FitQuality{100, 0.25, 1.4, false};
-  const auto json = aci::reportToJson(report);
+  report.summary_test = acc::FitQuality{100, 0.25, 1.4, false};
+  const auto json = acc::reportToJson(report);
   EXPECT_DOUBLE_EQ(json["parameters"]["k1_per_s2"].get<double>(), 0.0782);
   EXPECT_DOUBLE_EQ(json["parameters"]["k2_per_s"].get<double>(), 0.4445);
   EXPECT_DOUBLE_EQ(json["parameters"]["tau_e_s"].get<double>(), 0.5162);
@@ -58,7 +57,7 @@ TEST(CalibrationReport, JsonHasTheKeysOtherToolsRead)
   EXPECT_DOUBLE_EQ(json["runs"][0]["test"]["rmse_gap_m"].get<double>(), 1.4);
   EXPECT_DOUBLE_EQ(json["summary"]["test"]["rmse_speed_mps"].get<double>(), 0.25);
   std::ostringstream table;
-  aci::printReport(report, table);
+  acc::printReport(report, table);
   EXPECT_NE(table.str().find("string UNSTABLE"), std::string::npos) << table.str();
   EXPECT_NE(table.str().find("part3"), std::string::npos);
 }

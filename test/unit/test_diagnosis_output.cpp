@@ -8,24 +8,23 @@
 #include "acc_identification/diagnosis/diagnosis_output.h"
 #include "acc_identification/diagnosis/withheld_effect_suite.h"
 
-namespace aci = acc_identification;
 
 TEST(DiagnosisOutput, JsonHasTheFieldsOfTheIssueAndTablesAreWritten)
 {
-  aci::WithheldCase c;
-  c.truth = aci::EffectKind::actuation_lag;
+  acc::WithheldCase c;
+  c.truth = acc::EffectKind::actuation_lag;
   c.truth_values = {0.8};
   c.duration_s = 240.0;
-  aci::DiagnosisOptions options;
+  acc::DiagnosisOptions options;
   options.selection.resamples = 300;
-  aci::CarFollowingRun broken;
+  acc::CarFollowingRun broken;
   broken.name = "too-short";
   broken.time_s = {0.0, 0.1};
   broken.space_gap_m = {10.0, 10.0};
   broken.follower_speed_mps = {10.0, 10.0};
   broken.leader_speed_mps = {10.0, 10.0};
-  const aci::DiagnosisResult result = aci::diagnoseRuns({aci::synthesizeWithheldRun(c), broken}, options);
-  const nlohmann::json j = aci::diagnosisToJson(result);
+  const acc::DiagnosisResult result = acc::diagnoseRuns({acc::synthesizeWithheldRun(c), broken}, options);
+  const nlohmann::json j = acc::diagnosisToJson(result);
   EXPECT_EQ(j["dominant_effect"], "actuation_lag");
   EXPECT_TRUE(j["plausible_effects"].is_array());
   for (const char* key : {"parameters", "train_rmse_speed", "test_rmse_speed", "test_rmse_gap"})
@@ -52,7 +51,7 @@ TEST(DiagnosisOutput, JsonHasTheFieldsOfTheIssueAndTablesAreWritten)
 
   char directory[] = "/tmp/test_diagnosis_output_XXXXXX";
   ASSERT_NE(mkdtemp(directory), nullptr);
-  aci::writeDiagnosisTables(result, directory);
+  acc::writeDiagnosisTables(result, directory);
   for (const char* name : {"residuals.csv", "spectrum.csv", "gain.csv", "train_fit.csv"})
   {
     const std::string path = std::string(directory) + "/" + name;
@@ -62,5 +61,5 @@ TEST(DiagnosisOutput, JsonHasTheFieldsOfTheIssueAndTablesAreWritten)
     std::remove(path.c_str());
   }
   std::remove(directory);
-  EXPECT_THROW(aci::writeDiagnosisTables(result, "/nonexistent/dir"), std::runtime_error);
+  EXPECT_THROW(acc::writeDiagnosisTables(result, "/nonexistent/dir"), std::runtime_error);
 }

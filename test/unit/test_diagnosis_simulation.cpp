@@ -9,26 +9,25 @@
 #include "acc_identification/diagnosis/candidate_effects.h"
 #include "acc_identification/diagnosis/residual_breakdown.h"
 #include "acc_identification/diagnosis/withheld_effect_suite.h"
-#include "acc_identification/string_stability.h"
+#include "acc_identification/model/string_stability.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
-const aci::AccParameters kParameters{0.08, 0.45, 1.2, 4.0};
+const acc::AccParameters kParameters{0.08, 0.45, 1.2, 4.0};
 
-aci::CarFollowingRun dipRun()
+acc::CarFollowingRun dipRun()
 {
-  aci::WithheldCase c;
-  c.profile = aci::SyntheticLeadProfile::dip;
+  acc::WithheldCase c;
+  c.profile = acc::SyntheticLeadProfile::dip;
   c.duration_s = 200.0;
-  return aci::synthesizeWithheldRun(c);
+  return acc::synthesizeWithheldRun(c);
 }
 
 /// Irregular sampling on purpose: the reduction must hold for any step.
-aci::CarFollowingRun irregularRun()
+acc::CarFollowingRun irregularRun()
 {
-  aci::CarFollowingRun run = dipRun();
+  acc::CarFollowingRun run = dipRun();
   for (std::size_t k = 0; k < run.size(); ++k)
   {
     run.time_s[k] += 0.03 * std::sin(0.7 * static_cast<double>(k));
@@ -39,11 +38,11 @@ aci::CarFollowingRun irregularRun()
 
 TEST(AugmentedSimulation, ReducesBitForBitToTheBaseModelWhenEveryEffectIsOff)
 {
-  for (const aci::CarFollowingRun& run : {dipRun(), irregularRun()})
+  for (const acc::CarFollowingRun& run : {dipRun(), irregularRun()})
   {
-    ASSERT_EQ(aci::describeRunProblem(run), "");
-    const aci::SimulatedFollower base = aci::simulateFollower(kParameters, run);
-    const aci::SimulatedFollower augmented = aci::simulateAugmentedFollower(kParameters, aci::EffectSettings{}, run);
+    ASSERT_EQ(acc::describeRunProblem(run), "");
+    const acc::SimulatedFollower base = acc::simulateFollower(kParameters, run);
+    const acc::SimulatedFollower augmented = acc::simulateAugmentedFollower(kParameters, acc::EffectSettings{}, run);
     ASSERT_EQ(base.speed_mps.size(), augmented.speed_mps.size());
     for (std::size_t k = 0; k < run.size(); ++k)
     {
@@ -56,16 +55,16 @@ TEST(AugmentedSimulation, ReducesBitForBitToTheBaseModelWhenEveryEffectIsOff)
 
 TEST(AugmentedSimulation, TinyEffectsApproachTheBaseModelContinuously)
 {
-  const aci::CarFollowingRun run = dipRun();
-  const aci::SimulatedFollower base = aci::simulateFollower(kParameters, run);
-  for (const aci::CandidateEffect& effect : aci::candidateEffects())
+  const acc::CarFollowingRun run = dipRun();
+  const acc::SimulatedFollower base = acc::simulateFollower(kParameters, run);
+  for (const acc::CandidateEffect& effect : acc::candidateEffects())
   {
     std::vector<double> values;
     for (const auto& spec : effect.parameters)
     {
       values.push_back(spec.lower);
     }
-    if (effect.kind == aci::EffectKind::acceleration_limits || effect.kind == aci::EffectKind::set_speed_cruise)
+    if (effect.kind == acc::EffectKind::acceleration_limits || effect.kind == acc::EffectKind::set_speed_cruise)
     {
       values = {1e3, 1e3};  // limits and set speed far away
     }
@@ -73,7 +72,7 @@ TEST(AugmentedSimulation, TinyEffectsApproachTheBaseModelContinuously)
     {
       values = {1e-6};
     }
-    const auto sim = aci::simulateAugmentedFollower(kParameters, aci::makeEffectSettings(effect.kind, values), run);
+    const auto sim = acc::simulateAugmentedFollower(kParameters, acc::makeEffectSettings(effect.kind, values), run);
     double worst = 0.0;
     for (std::size_t k = 0; k < run.size(); ++k)
     {
@@ -85,13 +84,13 @@ TEST(AugmentedSimulation, TinyEffectsApproachTheBaseModelContinuously)
 
 TEST(AugmentedSimulation, EachEffectChangesTheResponseTheWayItShould)
 {
-  const aci::CarFollowingRun run = dipRun();
-  const aci::SimulatedFollower base = aci::simulateFollower(kParameters, run);
-  auto simulate = [&](aci::EffectKind kind, std::vector<double> values) {
-    return aci::simulateAugmentedFollower(kParameters, aci::makeEffectSettings(kind, values), run);
+  const acc::CarFollowingRun run = dipRun();
+  const acc::SimulatedFollower base = acc::simulateFollower(kParameters, run);
+  auto simulate = [&](acc::EffectKind kind, std::vector<double> values) {
+    return acc::simulateAugmentedFollower(kParameters, acc::makeEffectSettings(kind, values), run);
   };
   // Limits: the realised acceleration never exceeds them.
-  const auto limited = simulate(aci::EffectKind::acceleration_limits, {1.0, 1.5});
+  const auto limited = simulate(acc::EffectKind::acceleration_limits, {1.0, 1.5});
   double max_acc = 0.0, max_dec = 0.0, base_max_dec = 0.0;
   for (std::size_t k = 0; k + 1 < run.size(); ++k)
   {
@@ -105,7 +104,7 @@ TEST(AugmentedSimulation, EachEffectChangesTheResponseTheWayItShould)
   EXPECT_GT(base_max_dec, 1.5);  // the profile does ask for more
   // Set speed: the run starts at 28 m/s; once the follower has slowed to its 20 m/s set speed it
   // never exceeds it again, although the leader goes back to 28 and 33 m/s.
-  const auto cruise = simulate(aci::EffectKind::set_speed_cruise, {20.0, 0.5});
+  const auto cruise = simulate(acc::EffectKind::set_speed_cruise, {20.0, 0.5});
   bool reached = false;
   double above_after_reaching = 0.0;
   for (double v : cruise.speed_mps)
@@ -116,7 +115,7 @@ TEST(AugmentedSimulation, EachEffectChangesTheResponseTheWayItShould)
   EXPECT_TRUE(reached);
   EXPECT_LE(above_after_reaching, 1e-6);
   // Lag and delay: the follower reacts later to the leader's first braking.
-  auto first_below = [&](const aci::SimulatedFollower& sim, double speed) {
+  auto first_below = [&](const acc::SimulatedFollower& sim, double speed) {
     for (std::size_t k = 0; k < run.size(); ++k)
     {
       if (sim.speed_mps[k] < speed)
@@ -129,61 +128,61 @@ TEST(AugmentedSimulation, EachEffectChangesTheResponseTheWayItShould)
   // The onset of braking (0.5 m/s below the speed held before the dip) comes later.
   const double held = base.speed_mps[400];
   const double base_time = first_below(base, held - 0.5);
-  EXPECT_GT(first_below(simulate(aci::EffectKind::actuation_lag, {1.0}), held - 0.5), base_time + 0.3);
-  EXPECT_GT(first_below(simulate(aci::EffectKind::reaction_delay, {1.0}), held - 0.5), base_time + 0.5);
+  EXPECT_GT(first_below(simulate(acc::EffectKind::actuation_lag, {1.0}), held - 0.5), base_time + 0.3);
+  EXPECT_GT(first_below(simulate(acc::EffectKind::reaction_delay, {1.0}), held - 0.5), base_time + 0.5);
   // Clock offset: the recorded gap differs from the true one by about delta u at steady speed.
-  const auto offset = simulate(aci::EffectKind::sensor_time_offset, {1.0});
+  const auto offset = simulate(acc::EffectKind::sensor_time_offset, {1.0});
   EXPECT_NEAR(offset.space_gap_m[0], run.space_gap_m[0], 1e-12);
 }
 
 TEST(AugmentedStability, ReproducesThePaperTransferFunctionWhenEveryEffectIsOff)
 {
-  const aci::AugmentedStability s =
-      aci::analyzeAugmentedStability(kParameters, aci::EffectKind::none, aci::EffectSettings{}, 25.0);
-  const aci::StringStabilityReport reference = aci::analyzeStringStability(kParameters);
+  const acc::AugmentedStability s =
+      acc::analyzeAugmentedStability(kParameters, acc::EffectKind::none, acc::EffectSettings{}, 25.0);
+  const acc::StringStabilityReport reference = acc::analyzeStringStability(kParameters);
   EXPECT_EQ(s.string_stable, reference.string_stable);
   EXPECT_NEAR(s.peak_gain_db, reference.peak_gain_db, 1e-9);
   for (double w : {0.01, 0.1, 0.5, 2.0})
   {
-    EXPECT_NEAR(aci::augmentedTransferGain(kParameters, aci::EffectSettings{}, 25.0, w),
-                aci::transferGain(kParameters, w), 1e-12);
+    EXPECT_NEAR(acc::augmentedTransferGain(kParameters, acc::EffectSettings{}, 25.0, w),
+                acc::transferGain(kParameters, w), 1e-12);
   }
 }
 
 TEST(AugmentedStability, LagAndDelayRaiseThePeakAndCanFlipTheVerdict)
 {
   // A law that is string stable without lag (lambda2 < 0, no amplified band).
-  const aci::AccParameters stable{0.05, 0.6, 1.6, 4.0};
-  ASSERT_TRUE(aci::analyzeStringStability(stable).string_stable);
-  aci::EffectSettings lag;
+  const acc::AccParameters stable{0.05, 0.6, 1.6, 4.0};
+  ASSERT_TRUE(acc::analyzeStringStability(stable).string_stable);
+  acc::EffectSettings lag;
   lag.actuation_lag_s = 1.5;
-  const auto lagged = aci::analyzeAugmentedStability(stable, aci::EffectKind::actuation_lag, lag, 25.0);
+  const auto lagged = acc::analyzeAugmentedStability(stable, acc::EffectKind::actuation_lag, lag, 25.0);
   EXPECT_FALSE(lagged.string_stable);
   EXPECT_GT(lagged.peak_gain_db, 0.0);
-  aci::EffectSettings delay;
+  acc::EffectSettings delay;
   delay.reaction_delay_s = 1.5;
-  const auto delayed = aci::analyzeAugmentedStability(stable, aci::EffectKind::reaction_delay, delay, 25.0);
+  const auto delayed = acc::analyzeAugmentedStability(stable, acc::EffectKind::reaction_delay, delay, 25.0);
   EXPECT_FALSE(delayed.string_stable);
   // The closed form of MATH.md for the lag at one frequency.
   const double w = 0.3;
   const std::complex<double> s(0.0, w);
   const std::complex<double> expected = (0.6 * s + 0.05) / (1.5 * s * s * s + s * s + (0.6 + 0.05 * 1.6) * s + 0.05);
-  EXPECT_NEAR(aci::augmentedTransferGain(stable, lag, 25.0, w), std::abs(expected), 1e-12);
+  EXPECT_NEAR(acc::augmentedTransferGain(stable, lag, 25.0, w), std::abs(expected), 1e-12);
   // Limits and a set speed leave the small-signal model unchanged.
-  aci::EffectSettings limits = aci::makeEffectSettings(aci::EffectKind::acceleration_limits, {1.0, 2.0});
-  EXPECT_NEAR(aci::augmentedTransferGain(stable, limits, 25.0, w), aci::transferGain(stable, w), 1e-12);
+  acc::EffectSettings limits = acc::makeEffectSettings(acc::EffectKind::acceleration_limits, {1.0, 2.0});
+  EXPECT_NEAR(acc::augmentedTransferGain(stable, limits, 25.0, w), acc::transferGain(stable, w), 1e-12);
 }
 
 TEST(ResidualBreakdown, SharesSumToOneAndTheWorstSegmentHoldsTheInjectedError)
 {
-  aci::CarFollowingRun run = dipRun();
-  aci::SimulatedFollower model = aci::simulateFollower(kParameters, run);
+  acc::CarFollowingRun run = dipRun();
+  acc::SimulatedFollower model = acc::simulateFollower(kParameters, run);
   // Inject a 2 m/s error between 100 s and 105 s only.
   for (std::size_t k = 0; k < run.size(); ++k)
   {
     model.speed_mps[k] = run.follower_speed_mps[k] + ((run.time_s[k] >= 100.0 && run.time_s[k] < 105.0) ? 2.0 : 0.01);
   }
-  const auto breakdown = aci::breakDownResiduals({run}, {model}, {model}, aci::BreakdownOptions{});
+  const auto breakdown = acc::breakDownResiduals({run}, {model}, {model}, acc::BreakdownOptions{});
   double regime_share = 0.0, speed_share = 0.0, band_share = 0.0;
   for (const auto& g : breakdown.regimes)
   {
@@ -208,20 +207,20 @@ TEST(ResidualBreakdown, SharesSumToOneAndTheWorstSegmentHoldsTheInjectedError)
 
 TEST(CandidateEffects, NamesRoundTripAndSettingsInvert)
 {
-  EXPECT_EQ(aci::candidateEffects().size(), 6u);
-  for (const aci::CandidateEffect& effect : aci::candidateEffects())
+  EXPECT_EQ(acc::candidateEffects().size(), 6u);
+  for (const acc::CandidateEffect& effect : acc::candidateEffects())
   {
-    aci::EffectKind parsed = aci::EffectKind::none;
-    ASSERT_TRUE(aci::parseEffectName(effect.name, &parsed));
+    acc::EffectKind parsed = acc::EffectKind::none;
+    ASSERT_TRUE(acc::parseEffectName(effect.name, &parsed));
     EXPECT_EQ(parsed, effect.kind);
     std::vector<double> values;
     for (const auto& spec : effect.parameters)
     {
       values.push_back(0.5 * (spec.start_lower + spec.start_upper));
     }
-    EXPECT_EQ(aci::effectValues(effect.kind, aci::makeEffectSettings(effect.kind, values)), values);
+    EXPECT_EQ(acc::effectValues(effect.kind, acc::makeEffectSettings(effect.kind, values)), values);
   }
-  aci::EffectKind unused;
-  EXPECT_FALSE(aci::parseEffectName("brake_fade", &unused));
-  EXPECT_THROW(aci::makeEffectSettings(aci::EffectKind::actuation_lag, {}), std::invalid_argument);
+  acc::EffectKind unused;
+  EXPECT_FALSE(acc::parseEffectName("brake_fade", &unused));
+  EXPECT_THROW(acc::makeEffectSettings(acc::EffectKind::actuation_lag, {}), std::invalid_argument);
 }

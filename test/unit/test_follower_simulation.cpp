@@ -2,16 +2,15 @@
 
 #include <cmath>
 
-#include "acc_identification/acc_model.h"
-#include "acc_identification/follower_simulation.h"
+#include "acc_identification/model/acc_model.h"
+#include "acc_identification/model/follower_simulation.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
-aci::CarFollowingRun constantLeaderRun(double speed_mps, double gap_m, std::size_t samples, double step_s)
+acc::CarFollowingRun constantLeaderRun(double speed_mps, double gap_m, std::size_t samples, double step_s)
 {
-  aci::CarFollowingRun run;
+  acc::CarFollowingRun run;
   for (std::size_t k = 0; k < samples; ++k)
   {
     run.time_s.push_back(static_cast<double>(k) * step_s);
@@ -25,9 +24,9 @@ aci::CarFollowingRun constantLeaderRun(double speed_mps, double gap_m, std::size
 
 TEST(FollowerSimulation, StaysAtEquilibrium)
 {
-  const aci::AccParameters p{0.0782, 0.4445, 0.5162, 8.3365};
-  const auto run = constantLeaderRun(20.0, aci::equilibriumSpaceGapM(p, 20.0), 500, 0.1);
-  const auto sim = aci::simulateFollower(p, run);
+  const acc::AccParameters p{0.0782, 0.4445, 0.5162, 8.3365};
+  const auto run = constantLeaderRun(20.0, acc::equilibriumSpaceGapM(p, 20.0), 500, 0.1);
+  const auto sim = acc::simulateFollower(p, run);
   ASSERT_FALSE(sim.diverged);
   for (std::size_t k = 0; k < run.size(); ++k)
   {
@@ -38,13 +37,13 @@ TEST(FollowerSimulation, StaysAtEquilibrium)
 
 TEST(FollowerSimulation, FollowsTheExplicitEulerRecursionWithTheDataStep)
 {
-  const aci::AccParameters p{0.2, 0.3, 1.2, 4.0};
-  aci::CarFollowingRun run;
+  const acc::AccParameters p{0.2, 0.3, 1.2, 4.0};
+  acc::CarFollowingRun run;
   run.time_s = {0.0, 0.1, 0.25, 0.3};  // non-uniform on purpose
   run.leader_speed_mps = {10.0, 11.0, 12.0, 12.0};
   run.follower_speed_mps = {9.0, 0.0, 0.0, 0.0};  // only v(0) is used
   run.space_gap_m = {15.0, 0.0, 0.0, 0.0};        // only s(0) is used
-  const auto sim = aci::simulateFollower(p, run);
+  const auto sim = acc::simulateFollower(p, run);
   double v = 9.0, s = 15.0;
   for (std::size_t k = 0; k + 1 < run.size(); ++k)
   {
@@ -60,22 +59,22 @@ TEST(FollowerSimulation, FollowsTheExplicitEulerRecursionWithTheDataStep)
 
 TEST(FollowerSimulation, ConvergesToTheNewEquilibriumAfterALeaderStep)
 {
-  const aci::AccParameters p{0.0131, 0.2692, 1.6881, 7.5699};
-  auto run = constantLeaderRun(20.0, aci::equilibriumSpaceGapM(p, 20.0), 6000, 0.1);
+  const acc::AccParameters p{0.0131, 0.2692, 1.6881, 7.5699};
+  auto run = constantLeaderRun(20.0, acc::equilibriumSpaceGapM(p, 20.0), 6000, 0.1);
   for (std::size_t k = 100; k < run.size(); ++k) run.leader_speed_mps[k] = 25.0;
-  const auto sim = aci::simulateFollower(p, run);
+  const auto sim = acc::simulateFollower(p, run);
   ASSERT_FALSE(sim.diverged);
   EXPECT_NEAR(sim.speed_mps.back(), 25.0, 0.01);
-  EXPECT_NEAR(sim.space_gap_m.back(), aci::equilibriumSpaceGapM(p, 25.0), 0.1);
+  EXPECT_NEAR(sim.space_gap_m.back(), acc::equilibriumSpaceGapM(p, 25.0), 0.1);
 }
 
 TEST(FollowerSimulation, FlagsDivergenceInsteadOfReturningNaN)
 {
   // h (k2 + k1 tau) far above 2: explicit Euler explodes.
-  const aci::AccParameters p{5.0, 40.0, 3.0, 2.0};
+  const acc::AccParameters p{5.0, 40.0, 3.0, 2.0};
   auto run = constantLeaderRun(20.0, 30.0, 2000, 0.1);
   run.follower_speed_mps[0] = 15.0;
-  const auto sim = aci::simulateFollower(p, run);
+  const auto sim = acc::simulateFollower(p, run);
   ASSERT_TRUE(sim.diverged);
   EXPECT_GT(sim.diverged_at_index, 0u);
   EXPECT_LT(sim.diverged_at_index, run.size());

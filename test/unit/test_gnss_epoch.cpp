@@ -10,8 +10,7 @@
 #include "acc_identification/gnss/nmea_log.h"
 #include "acc_identification/gnss/utc_date.h"
 
-namespace aci = acc_identification;
-using aci::GnssFix;
+using acc::GnssFix;
 
 namespace
 {
@@ -20,15 +19,15 @@ constexpr double kPi = 3.14159265358979323846;
 struct Decoded
 {
   std::vector<GnssFix> fixes;
-  std::vector<aci::NmeaParseOutcome> outcomes;
-  aci::NmeaStatistics statistics;
+  std::vector<acc::NmeaParseOutcome> outcomes;
+  acc::NmeaStatistics statistics;
 };
 
 /// Feeds every chunk, then ends the stream.
 Decoded decode(const std::vector<std::string>& chunks)
 {
   Decoded out;
-  aci::NmeaDecoder decoder([&](std::string_view, aci::NmeaParseOutcome o) { out.outcomes.push_back(o); },
+  acc::NmeaDecoder decoder([&](std::string_view, acc::NmeaParseOutcome o) { out.outcomes.push_back(o); },
                            [&](const GnssFix& fix) { out.fixes.push_back(fix); });
   double t = 100.0;
   for (const auto& chunk : chunks)
@@ -48,7 +47,7 @@ std::string joinLines(const std::vector<std::string>& lines)
 
 double at(int year, unsigned month, unsigned day, double time_of_day_s)
 {
-  return aci::daysFromCivil(year, month, day) * aci::kSecondsPerDay + time_of_day_s;
+  return acc::daysFromCivil(year, month, day) * acc::kSecondsPerDay + time_of_day_s;
 }
 }  // namespace
 
@@ -164,7 +163,7 @@ TEST(GnssEpoch, UntimedSentencesAloneAreCountedNotSilentlyDropped)
 TEST(GnssEpoch, IdleFlushCompletesTheEpochWithoutWaitingForTheNext)
 {
   std::vector<GnssFix> fixes;
-  aci::NmeaDecoder decoder(nullptr, [&](const GnssFix& fix) { fixes.push_back(fix); });
+  acc::NmeaDecoder decoder(nullptr, [&](const GnssFix& fix) { fixes.push_back(fix); });
   const std::string gga = "$GPGGA,092725.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*5B\r\n";
   decoder.feed(gga.data(), gga.size(), 10.0);
   decoder.flushIfIdle(10.01, 0.05);
@@ -179,20 +178,20 @@ TEST(GnssEpoch, EnuVelocityFromCourse)
   fix.speed_over_ground_mps = 10.0;
   fix.course_rad = kPi / 2;  // due east
   fix.valid_fields = GnssFix::kValidSpeed | GnssFix::kValidCourse;
-  aci::EnuVelocity v;
-  ASSERT_TRUE(aci::enuVelocity(fix, v));
+  acc::EnuVelocity v;
+  ASSERT_TRUE(acc::enuVelocity(fix, v));
   EXPECT_NEAR(v.east_mps, 10.0, 1e-12);
   EXPECT_NEAR(v.north_mps, 0.0, 1e-12);
   fix.course_rad = kPi;  // due south
-  ASSERT_TRUE(aci::enuVelocity(fix, v));
+  ASSERT_TRUE(acc::enuVelocity(fix, v));
   EXPECT_NEAR(v.north_mps, -10.0, 1e-12);
   fix.valid_fields = GnssFix::kValidSpeed;  // moving without a course: unknown direction
-  EXPECT_FALSE(aci::enuVelocity(fix, v));
+  EXPECT_FALSE(acc::enuVelocity(fix, v));
 }
 
 TEST(NmeaLog, DriveFixture)
 {
-  const auto log = aci::readNmeaLog(std::string(ACC_GNSS_TEST_DATA) + "/drive_10s.nmea");
+  const auto log = acc::readNmeaLog(std::string(ACC_GNSS_TEST_DATA) + "/drive_10s.nmea");
   ASSERT_TRUE(log.error.empty()) << log.error;
   ASSERT_EQ(log.fixes.size(), 100u);
   EXPECT_EQ(log.statistics.lines, 600u);
@@ -216,7 +215,7 @@ TEST(NmeaLog, DriveFixture)
 
 TEST(NmeaLog, MissingFileIsAnError)
 {
-  const auto log = aci::readNmeaLog("/nonexistent/x.nmea");
+  const auto log = acc::readNmeaLog("/nonexistent/x.nmea");
   EXPECT_FALSE(log.error.empty());
   EXPECT_TRUE(log.fixes.empty());
 }

@@ -4,12 +4,11 @@
 #include "acc_identification/ros/gps_driver_ros.h"
 #include "acc_identification/gnss/utc_date.h"
 
-namespace aci = acc_identification;
 
 TEST(GnssFixConversion, RoundTripAndExactStamp)
 {
-  aci::GnssFix fix;
-  fix.gnss_time_s = aci::daysFromCivil(2020, 10, 27) * aci::kSecondsPerDay + 36930.3;
+  acc::GnssFix fix;
+  fix.gnss_time_s = acc::daysFromCivil(2020, 10, 27) * acc::kSecondsPerDay + 36930.3;
   fix.has_date = true;
   fix.receive_time_s = 1603793730.35;
   fix.latitude_deg = 45.13;
@@ -18,14 +17,14 @@ TEST(GnssFixConversion, RoundTripAndExactStamp)
   fix.course_rad = 1.0;
   fix.fix_quality = 4;
   fix.satellites_used = 17;
-  fix.valid_fields = aci::GnssFix::kValidPosition | aci::GnssFix::kValidSpeed | aci::GnssFix::kValidCourse |
-                     aci::GnssFix::kValidDate | aci::GnssFix::kValidSatellites;
-  const aci::GnssFixMessage m = aci::toMessage(fix, "leader_gps");
+  fix.valid_fields = acc::GnssFix::kValidPosition | acc::GnssFix::kValidSpeed | acc::GnssFix::kValidCourse |
+                     acc::GnssFix::kValidDate | acc::GnssFix::kValidSatellites;
+  const acc_identification::GnssFix m = acc::toMessage(fix, "leader_gps");
   EXPECT_EQ(m.header.stamp.sec, 1603793730u);
   EXPECT_EQ(m.header.stamp.nsec, 300000000u);
   EXPECT_EQ(m.header.frame_id, "leader_gps");
-  EXPECT_EQ(m.valid_fields & aci::GnssFixMessage::VALID_DATE, aci::GnssFixMessage::VALID_DATE);
-  const aci::GnssFix back = aci::fromMessage(m);
+  EXPECT_EQ(m.valid_fields & acc_identification::GnssFix::VALID_DATE, acc_identification::GnssFix::VALID_DATE);
+  const acc::GnssFix back = acc::fromMessage(m);
   EXPECT_TRUE(back.has_date);
   EXPECT_NEAR(back.gnss_time_s, fix.gnss_time_s, 1e-6);
   EXPECT_NEAR(back.receive_time_s, fix.receive_time_s, 1e-6);
@@ -37,11 +36,11 @@ TEST(GnssFixConversion, RoundTripAndExactStamp)
 
 TEST(GnssFixConversion, TimeOfDayOnlyBeforeTheFirstDate)
 {
-  aci::GnssFix fix;
+  acc::GnssFix fix;
   fix.gnss_time_s = 36930.3;  // 10:15:30.3 of an unknown day
-  const aci::GnssFixMessage m = aci::toMessage(fix, "gps");
+  const acc_identification::GnssFix m = acc::toMessage(fix, "gps");
   EXPECT_EQ(m.header.stamp.sec, 36930u);
   EXPECT_EQ(m.header.stamp.nsec, 300000000u);
-  EXPECT_EQ(m.valid_fields & aci::GnssFixMessage::VALID_DATE, 0u);
-  EXPECT_FALSE(aci::fromMessage(m).has_date);
+  EXPECT_EQ(m.valid_fields & acc_identification::GnssFix::VALID_DATE, 0u);
+  EXPECT_FALSE(acc::fromMessage(m).has_date);
 }

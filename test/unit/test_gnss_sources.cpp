@@ -18,7 +18,6 @@
 #include "acc_identification/gnss/byte_source.h"
 #include "acc_identification/gnss/nmea_decoder.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
@@ -26,15 +25,15 @@ const std::string kFixture = std::string(ACC_GNSS_TEST_DATA) + "/drive_10s.nmea"
 const std::string kVtg = "$GPVTG,77.52,T,,M,0.004,N,0.008,K,A*06\r\n";
 
 /// Reads from source until want bytes arrived or max_s passed; returns what came.
-std::string readFor(aci::ByteSource& source, std::size_t want, double max_s)
+std::string readFor(acc::ByteSource& source, std::size_t want, double max_s)
 {
   std::string got;
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(max_s);
   char buffer[4096];
   while (got.size() < want && std::chrono::steady_clock::now() < end)
   {
-    const aci::ReadResult r = source.read(buffer, sizeof buffer, 0.05);
-    if (r.status == aci::ReadStatus::kEnd)
+    const acc::ReadResult r = source.read(buffer, sizeof buffer, 0.05);
+    if (r.status == acc::ReadStatus::kEnd)
       break;
     got.append(buffer, r.size);
   }
@@ -67,62 +66,62 @@ sockaddr_in loopback(int port)
 
 TEST(SourceUri, Forms)
 {
-  aci::SourceUri uri;
+  acc::SourceUri uri;
   std::string error;
-  ASSERT_TRUE(aci::parseSourceUri("serial:///dev/ttyACM0?baud=115200", uri, error)) << error;
+  ASSERT_TRUE(acc::parseSourceUri("serial:///dev/ttyACM0?baud=115200", uri, error)) << error;
   EXPECT_EQ(uri.scheme, "serial");
   EXPECT_EQ(uri.path, "/dev/ttyACM0");
   EXPECT_EQ(uri.query.at("baud"), "115200");
-  ASSERT_TRUE(aci::parseSourceUri("udp://:10110", uri, error));
+  ASSERT_TRUE(acc::parseSourceUri("udp://:10110", uri, error));
   EXPECT_EQ(uri.host, "");
   EXPECT_EQ(uri.port, 10110);
-  ASSERT_TRUE(aci::parseSourceUri("tcp://192.168.1.5:2101", uri, error));
+  ASSERT_TRUE(acc::parseSourceUri("tcp://192.168.1.5:2101", uri, error));
   EXPECT_EQ(uri.host, "192.168.1.5");
   EXPECT_EQ(uri.port, 2101);
-  ASSERT_TRUE(aci::parseSourceUri("file:///tmp/x.nmea?rate=0", uri, error));
+  ASSERT_TRUE(acc::parseSourceUri("file:///tmp/x.nmea?rate=0", uri, error));
   EXPECT_EQ(uri.path, "/tmp/x.nmea");
   EXPECT_EQ(uri.query.at("rate"), "0");
 
-  EXPECT_FALSE(aci::parseSourceUri("/dev/ttyACM0", uri, error));
-  EXPECT_FALSE(aci::parseSourceUri("udp://:99999", uri, error));
-  EXPECT_FALSE(aci::parseSourceUri("tcp://:2101", uri, error));
-  EXPECT_FALSE(aci::parseSourceUri("file://relative.nmea", uri, error));
-  EXPECT_FALSE(aci::parseSourceUri("ftp://host:21", uri, error));
+  EXPECT_FALSE(acc::parseSourceUri("/dev/ttyACM0", uri, error));
+  EXPECT_FALSE(acc::parseSourceUri("udp://:99999", uri, error));
+  EXPECT_FALSE(acc::parseSourceUri("tcp://:2101", uri, error));
+  EXPECT_FALSE(acc::parseSourceUri("file://relative.nmea", uri, error));
+  EXPECT_FALSE(acc::parseSourceUri("ftp://host:21", uri, error));
   EXPECT_NE(error.find("unknown scheme"), std::string::npos);
-  EXPECT_EQ(aci::makeByteSource("serial:///dev/ttyACM0?baud=12345", error), nullptr);
-  EXPECT_EQ(aci::makeByteSource("file:///nonexistent.nmea", error), nullptr);
-  EXPECT_EQ(aci::makeByteSource("file://" + kFixture + "?rate=fast", error), nullptr);
+  EXPECT_EQ(acc::makeByteSource("serial:///dev/ttyACM0?baud=12345", error), nullptr);
+  EXPECT_EQ(acc::makeByteSource("file:///nonexistent.nmea", error), nullptr);
+  EXPECT_EQ(acc::makeByteSource("file://" + kFixture + "?rate=fast", error), nullptr);
 }
 
 TEST(FileSource, AsFastAsPossibleThenEnd)
 {
   std::string error;
-  auto source = aci::makeByteSource("file://" + kFixture + "?rate=0", error);
+  auto source = acc::makeByteSource("file://" + kFixture + "?rate=0", error);
   ASSERT_NE(source, nullptr) << error;
   int fixes = 0;
-  aci::NmeaDecoder decoder(nullptr, [&](const aci::GnssFix&) { ++fixes; });
+  acc::NmeaDecoder decoder(nullptr, [&](const acc::GnssFix&) { ++fixes; });
   const auto start = std::chrono::steady_clock::now();
   char buffer[512];
-  aci::ReadResult r;
-  while ((r = source->read(buffer, sizeof buffer, 0.1)).status != aci::ReadStatus::kEnd)
+  acc::ReadResult r;
+  while ((r = source->read(buffer, sizeof buffer, 0.1)).status != acc::ReadStatus::kEnd)
     decoder.feed(buffer, r.size, 0.0);
   decoder.finish(0.0);
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
   EXPECT_EQ(fixes, 100);
-  EXPECT_EQ(source->read(buffer, sizeof buffer, 0.1).status, aci::ReadStatus::kEnd);
+  EXPECT_EQ(source->read(buffer, sizeof buffer, 0.1).status, acc::ReadStatus::kEnd);
 }
 
 TEST(FileSource, PacedBySentenceTimes)
 {
   std::string error;
-  auto source = aci::makeByteSource("file://" + kFixture + "?rate=20", error);  // 9.9 s of log in 0.495 s
+  auto source = acc::makeByteSource("file://" + kFixture + "?rate=20", error);  // 9.9 s of log in 0.495 s
   ASSERT_NE(source, nullptr) << error;
   const auto start = std::chrono::steady_clock::now();
   std::size_t bytes = 0;
   char buffer[512];
-  aci::ReadResult r;
+  acc::ReadResult r;
   double first_half_s = -1.0;
-  while ((r = source->read(buffer, sizeof buffer, 0.02)).status != aci::ReadStatus::kEnd)
+  while ((r = source->read(buffer, sizeof buffer, 0.02)).status != acc::ReadStatus::kEnd)
   {
     bytes += r.size;
     if (first_half_s < 0 && bytes > 20000)
@@ -147,14 +146,14 @@ TEST(FileSource, PacesLogsWithCarriageReturnLineEndings)
   const std::string path = ::testing::TempDir() + "gnss_cr_only.nmea";
   std::ofstream(path, std::ios::binary) << cr_only;
   std::string error;
-  auto source = aci::makeByteSource("file://" + path + "?rate=4", error);
+  auto source = acc::makeByteSource("file://" + path + "?rate=4", error);
   ASSERT_NE(source, nullptr) << error;
   int fixes = 0;
-  aci::NmeaDecoder decoder(nullptr, [&](const aci::GnssFix&) { ++fixes; });
+  acc::NmeaDecoder decoder(nullptr, [&](const acc::GnssFix&) { ++fixes; });
   const auto start = std::chrono::steady_clock::now();
   char buffer[512];
-  aci::ReadResult r;
-  while ((r = source->read(buffer, sizeof buffer, 0.02)).status != aci::ReadStatus::kEnd)
+  acc::ReadResult r;
+  while ((r = source->read(buffer, sizeof buffer, 0.02)).status != acc::ReadStatus::kEnd)
     decoder.feed(buffer, r.size, 0.0);
   decoder.finish(0.0);
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -171,7 +170,7 @@ TEST(SerialSource, ReadsAPseudoTerminalAndSurvivesItsDisappearance)
   ASSERT_EQ(::unlockpt(master), 0);
   const std::string slave = ::ptsname(master);
   std::string error;
-  auto source = aci::makeByteSource("serial://" + slave + "?baud=115200", error);
+  auto source = acc::makeByteSource("serial://" + slave + "?baud=115200", error);
   ASSERT_NE(source, nullptr) << error;
   EXPECT_EQ(readFor(*source, 1, 0.1), "");  // opens, nothing yet
   ASSERT_TRUE(source->isOpen()) << source->state();
@@ -187,7 +186,7 @@ TEST(UdpSource, SeveralSentencesInOneDatagram)
 {
   const int port = freePort(SOCK_DGRAM);
   std::string error;
-  auto source = aci::makeByteSource("udp://127.0.0.1:" + std::to_string(port), error);
+  auto source = acc::makeByteSource("udp://127.0.0.1:" + std::to_string(port), error);
   ASSERT_NE(source, nullptr) << error;
   readFor(*source, 1, 0.1);  // binds
   ASSERT_TRUE(source->isOpen()) << source->state();
@@ -209,7 +208,7 @@ TEST(TcpSource, ReconnectsWhenTheServerDropsTheConnection)
   ASSERT_EQ(::bind(server, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
   ASSERT_EQ(::listen(server, 2), 0);
   std::string error;
-  auto source = aci::makeByteSource("tcp://127.0.0.1:" + std::to_string(port), error);
+  auto source = acc::makeByteSource("tcp://127.0.0.1:" + std::to_string(port), error);
   ASSERT_NE(source, nullptr) << error;
   for (int round = 0; round < 2; ++round)
   {

@@ -3,21 +3,20 @@
 #include <cmath>
 
 #include "acc_identification/calibration/synthetic_runs.h"
-#include "acc_identification/paper_settings.h"
+#include "acc_identification/model/paper_settings.h"
 #include "acc_identification/ros/identifier_ros.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
 TEST(IdentifierMessage, IdentifiableWindowCarriesEverything)
 {
-  aci::IdentificationOptions options;
+  acc::IdentificationOptions options;
   options.multistart.starts = 8;
-  const auto run = aci::synthesizeRun(aci::paperMinimumSetting(), 120.0, 0.1, 25.0, 5);
-  const auto result = aci::identifyAcc({run}, options);
+  const auto run = acc::synthesizeRun(acc::paperMinimumSetting(), 120.0, 0.1, 25.0, 5);
+  const auto result = acc::identifyAcc({run}, options);
   ASSERT_TRUE(result.identifiable) << result.note;
-  const auto m = aci::toMessage(result, 1000.0, 1120.0);
+  const auto m = acc::toMessage(result, 1000.0, 1120.0);
   EXPECT_DOUBLE_EQ(m.header.stamp.toSec(), 1120.0);
   EXPECT_DOUBLE_EQ(m.window_start.toSec(), 1000.0);
   EXPECT_EQ(m.samples, run.size());
@@ -33,11 +32,11 @@ TEST(IdentifierMessage, IdentifiableWindowCarriesEverything)
 
 TEST(IdentifierMessage, UnidentifiableWindowSaysSoInsteadOfPublishingNoise)
 {
-  aci::Identification result;
+  acc::Identification result;
   result.samples = 50;
   result.segments = 1;
   result.note = "too little data";
-  const auto m = aci::toMessage(result, 1000.0, 1005.0);
+  const auto m = acc::toMessage(result, 1000.0, 1005.0);
   EXPECT_FALSE(m.identifiable);
   EXPECT_EQ(m.identifiability_note, "too little data");
   EXPECT_EQ(m.optimizer_status, "NOT_SOLVED");

@@ -5,21 +5,20 @@
 
 #include "acc_identification/calibration/sliding_window.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
-aci::WindowSample sampleAt(double t, bool valid = true)
+acc::WindowSample sampleAt(double t, bool valid = true)
 {
-  return aci::WindowSample{t, 20.0 + t, 10.0, 10.5, valid};
+  return acc::WindowSample{t, 20.0 + t, 10.0, 10.5, valid};
 }
 
 TEST(SlidingWindow, KeepsOnlyTheLastWindowLength)
 {
-  aci::SlidingWindow window(10.0, 0.5, 5);
+  acc::SlidingWindow window(10.0, 0.5, 5);
   for (int k = 0; k <= 300; ++k)
   {
-    EXPECT_EQ(window.add(sampleAt(0.1 * k)), aci::SlidingWindow::AddResult::kAdded);
+    EXPECT_EQ(window.add(sampleAt(0.1 * k)), acc::SlidingWindow::AddResult::kAdded);
   }
   EXPECT_NEAR(window.endTimeS(), 30.0, 1e-9);
   EXPECT_GE(window.startTimeS(), 20.0 - 1e-9);
@@ -27,19 +26,19 @@ TEST(SlidingWindow, KeepsOnlyTheLastWindowLength)
   const auto segments = window.segments();
   ASSERT_EQ(segments.size(), 1u);
   EXPECT_EQ(segments[0].size(), window.size());
-  EXPECT_EQ(aci::describeRunProblem(segments[0]), "");
+  EXPECT_EQ(acc::describeRunProblem(segments[0]), "");
 }
 
 TEST(SlidingWindow, GapsAndInvalidSamplesSplitIntoSegments)
 {
-  aci::SlidingWindow window(100.0, 0.5, 5);
+  acc::SlidingWindow window(100.0, 0.5, 5);
   for (int k = 0; k < 20; ++k) window.add(sampleAt(0.1 * k));          // 0.0 - 1.9
   for (int k = 30; k < 50; ++k) window.add(sampleAt(0.1 * k));         // gap of 1.1 s, 3.0 - 4.9
-  EXPECT_EQ(window.add(sampleAt(5.0, false)), aci::SlidingWindow::AddResult::kInvalid);
+  EXPECT_EQ(window.add(sampleAt(5.0, false)), acc::SlidingWindow::AddResult::kInvalid);
   for (int k = 51; k < 60; ++k) window.add(sampleAt(0.1 * k));         // 5.1 - 5.9
-  aci::WindowSample nan_sample = sampleAt(6.0);
+  acc::WindowSample nan_sample = sampleAt(6.0);
   nan_sample.space_gap_m = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(window.add(nan_sample), aci::SlidingWindow::AddResult::kNonFinite);
+  EXPECT_EQ(window.add(nan_sample), acc::SlidingWindow::AddResult::kNonFinite);
   for (int k = 61; k < 64; ++k) window.add(sampleAt(0.1 * k));         // 3 samples: too short
   std::size_t short_pieces = 0;
   const auto segments = window.segments(&short_pieces);
@@ -53,13 +52,13 @@ TEST(SlidingWindow, GapsAndInvalidSamplesSplitIntoSegments)
 
 TEST(SlidingWindow, RejectsOutOfOrderAndRestartsWhenTimeJumpsBack)
 {
-  aci::SlidingWindow window(100.0, 0.5, 2);
+  acc::SlidingWindow window(100.0, 0.5, 2);
   for (int k = 0; k < 100; ++k) window.add(sampleAt(0.1 * k));
-  EXPECT_EQ(window.add(sampleAt(9.9)), aci::SlidingWindow::AddResult::kOutOfOrder);
-  EXPECT_EQ(window.add(sampleAt(9.8)), aci::SlidingWindow::AddResult::kOutOfOrder);
+  EXPECT_EQ(window.add(sampleAt(9.9)), acc::SlidingWindow::AddResult::kOutOfOrder);
+  EXPECT_EQ(window.add(sampleAt(9.8)), acc::SlidingWindow::AddResult::kOutOfOrder);
   EXPECT_EQ(window.size(), 100u);
-  EXPECT_EQ(window.add(sampleAt(1.0)), aci::SlidingWindow::AddResult::kRestarted);
+  EXPECT_EQ(window.add(sampleAt(1.0)), acc::SlidingWindow::AddResult::kRestarted);
   EXPECT_EQ(window.size(), 1u);
-  EXPECT_FALSE(aci::SlidingWindow::describe(aci::SlidingWindow::AddResult::kRestarted).empty());
+  EXPECT_FALSE(acc::SlidingWindow::describe(acc::SlidingWindow::AddResult::kRestarted).empty());
 }
 }  // namespace

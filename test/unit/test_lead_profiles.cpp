@@ -5,13 +5,12 @@
 #include <map>
 #include <stdexcept>
 
-#include "acc_identification/profiles/lead_profiles.h"
+#include "acc_identification/reproduction/lead_profiles.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
-constexpr double kMph = aci::kMetersPerSecondPerMph;
+constexpr double kMph = acc::kMetersPerSecondPerMph;
 
 /// Longest run of consecutive samples within 1e-9 of speed, in seconds.
 double longestHoldS(const std::vector<double>& speed, double value, double h)
@@ -42,21 +41,21 @@ TEST(LeadProfiles, EveryProfileAToIExistsAndStaysWithinItsDescribedSpeeds)
   const std::map<char, std::pair<double, double>> range_mph{
       {'A', {5, 30}}, {'B', {35, 55}}, {'C', {60, 70}}, {'D', {20, 30}}, {'E', {45, 50}},
       {'F', {40, 50}}, {'G', {65, 70}}, {'H', {60, 70}}, {'I', {30, 50}}};
-  for (char id : aci::leadProfileIds())
+  for (char id : acc::leadProfileIds())
   {
-    const auto speed = aci::leadProfile(id, 0.1);
+    const auto speed = acc::leadProfile(id, 0.1);
     ASSERT_GT(speed.size(), 1000u) << id;
     const auto [low, high] = std::minmax_element(speed.begin(), speed.end());
     EXPECT_NEAR(*low, range_mph.at(id).first * kMph, 1e-9) << id;
     EXPECT_NEAR(*high, range_mph.at(id).second * kMph, 1e-9) << id;
-    EXPECT_FALSE(aci::leadProfileDescription(id).empty());
+    EXPECT_FALSE(acc::leadProfileDescription(id).empty());
   }
 }
 
 TEST(LeadProfiles, ProfileIHasFourDipsOfFiveToTwentyMphHeldFiveSeconds)
 {
   const double h = 0.1;
-  const auto speed = aci::leadProfile('I', h);
+  const auto speed = acc::leadProfile('I', h);
   for (double dip_mph : {5.0, 10.0, 15.0, 20.0})
   {
     EXPECT_NEAR(longestHoldS(speed, (50.0 - dip_mph) * kMph, h), 5.0, 0.11) << dip_mph;
@@ -80,12 +79,12 @@ TEST(LeadProfiles, ProfileIHasFourDipsOfFiveToTwentyMphHeldFiveSeconds)
 TEST(LeadProfiles, RampsUseTheDocumentedPlausibleAccelerations)
 {
   const double h = 0.1;
-  const auto dips = aci::leadProfile('I', h);
-  EXPECT_NEAR(maxRate(dips, h, false), aci::kRapidRamp.deceleration_mps2, 1e-6);
-  EXPECT_NEAR(maxRate(dips, h, true), aci::kRapidRamp.acceleration_mps2, 1e-6);
-  const auto steps = aci::leadProfile('B', h);
-  EXPECT_NEAR(maxRate(steps, h, true), aci::kCruiseControlRamp.acceleration_mps2, 1e-6);
-  const auto gentle = aci::leadProfile('I', h, {0.5, 0.5});
+  const auto dips = acc::leadProfile('I', h);
+  EXPECT_NEAR(maxRate(dips, h, false), acc::kRapidRamp.deceleration_mps2, 1e-6);
+  EXPECT_NEAR(maxRate(dips, h, true), acc::kRapidRamp.acceleration_mps2, 1e-6);
+  const auto steps = acc::leadProfile('B', h);
+  EXPECT_NEAR(maxRate(steps, h, true), acc::kCruiseControlRamp.acceleration_mps2, 1e-6);
+  const auto gentle = acc::leadProfile('I', h, {0.5, 0.5});
   EXPECT_NEAR(maxRate(gentle, h, false), 0.5, 1e-6);
   EXPECT_GT(gentle.size(), dips.size());  // slower ramps take longer
 }
@@ -93,7 +92,7 @@ TEST(LeadProfiles, RampsUseTheDocumentedPlausibleAccelerations)
 TEST(LeadProfiles, StepTestAGoesUpAndBackDownInFiveMphStepsHeldSixtySeconds)
 {
   const double h = 0.5;
-  const auto speed = aci::leadProfile('A', h);
+  const auto speed = acc::leadProfile('A', h);
   for (double v = 5.0; v <= 30.0; v += 5.0)
   {
     EXPECT_NEAR(longestHoldS(speed, v * kMph, h), 60.0, h) << v;  // each visit is held 60 s
@@ -107,18 +106,18 @@ TEST(LeadProfiles, StepTestAGoesUpAndBackDownInFiveMphStepsHeldSixtySeconds)
 TEST(LeadProfiles, OscillatoryProfileAlternatesEveryThirtySeconds)
 {
   const double h = 0.1;
-  const auto speed = aci::leadProfile('f', h);  // lower case accepted
+  const auto speed = acc::leadProfile('f', h);  // lower case accepted
   EXPECT_NEAR(longestHoldS(speed, 40.0 * kMph, h), 30.0, 0.11);
   EXPECT_NEAR(longestHoldS(speed, 50.0 * kMph, h), 30.0, 0.11);
 }
 
 TEST(LeadProfiles, RejectsUnknownIdsAndBadSteps)
 {
-  EXPECT_FALSE(aci::isLeadProfileId('J'));
-  EXPECT_FALSE(aci::isLeadProfileId('\0'));
-  EXPECT_TRUE(aci::isLeadProfileId('i'));
-  EXPECT_THROW(aci::leadProfile('J', 0.1), std::invalid_argument);
-  EXPECT_THROW(aci::leadProfile('I', 0.0), std::invalid_argument);
-  EXPECT_THROW(aci::leadProfile('I', -1.0), std::invalid_argument);
-  EXPECT_THROW(aci::leadProfile('I', 0.1, {0.0, 1.0}), std::invalid_argument);
+  EXPECT_FALSE(acc::isLeadProfileId('J'));
+  EXPECT_FALSE(acc::isLeadProfileId('\0'));
+  EXPECT_TRUE(acc::isLeadProfileId('i'));
+  EXPECT_THROW(acc::leadProfile('J', 0.1), std::invalid_argument);
+  EXPECT_THROW(acc::leadProfile('I', 0.0), std::invalid_argument);
+  EXPECT_THROW(acc::leadProfile('I', -1.0), std::invalid_argument);
+  EXPECT_THROW(acc::leadProfile('I', 0.1, {0.0, 1.0}), std::invalid_argument);
 }

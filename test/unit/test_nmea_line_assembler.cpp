@@ -6,11 +6,10 @@
 
 #include "acc_identification/gnss/nmea_line_assembler.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
-std::vector<std::string> feedAll(aci::NmeaLineAssembler& assembler, const std::vector<std::string>& chunks)
+std::vector<std::string> feedAll(acc::NmeaLineAssembler& assembler, const std::vector<std::string>& chunks)
 {
   std::vector<std::string> lines;
   for (const auto& chunk : chunks)
@@ -24,7 +23,7 @@ const std::string kGst = "$GPGST,082356.00,1.8,,,,1.7,1.3,2.2*7E";
 
 TEST(NmeaLineAssembler, TwoSentencesInOneRead)
 {
-  aci::NmeaLineAssembler assembler;
+  acc::NmeaLineAssembler assembler;
   const auto lines = feedAll(assembler, {kVtg + "\r\n" + kGst + "\r\n"});
   ASSERT_EQ(lines.size(), 2u);
   EXPECT_EQ(lines[0], kVtg);
@@ -34,7 +33,7 @@ TEST(NmeaLineAssembler, TwoSentencesInOneRead)
 
 TEST(NmeaLineAssembler, SentenceSplitAcrossReads)
 {
-  aci::NmeaLineAssembler assembler;
+  acc::NmeaLineAssembler assembler;
   const std::string whole = kVtg + "\r\n";
   for (std::size_t cut = 0; cut <= whole.size(); ++cut)
   {
@@ -51,7 +50,7 @@ TEST(NmeaLineAssembler, SentenceSplitAcrossReads)
 
 TEST(NmeaLineAssembler, LineEndingsAndStrayBytes)
 {
-  aci::NmeaLineAssembler assembler;
+  acc::NmeaLineAssembler assembler;
   const auto lines = feedAll(assembler, {"\xb5\x62\x01\x07junk" + kVtg + "\n" + kGst + "\r" + "\n\n\r" + kVtg + "\r\n"});
   ASSERT_EQ(lines.size(), 3u);
   EXPECT_EQ(lines[0], kVtg);
@@ -62,7 +61,7 @@ TEST(NmeaLineAssembler, LineEndingsAndStrayBytes)
 
 TEST(NmeaLineAssembler, DollarInsideLineHandsOutTheBrokenLine)
 {
-  aci::NmeaLineAssembler assembler;
+  acc::NmeaLineAssembler assembler;
   const auto lines = feedAll(assembler, {"$GPGGA,0927" + kVtg + "\r\n"});
   ASSERT_EQ(lines.size(), 2u);
   EXPECT_EQ(lines[0], "$GPGGA,0927");
@@ -71,7 +70,7 @@ TEST(NmeaLineAssembler, DollarInsideLineHandsOutTheBrokenLine)
 
 TEST(NmeaLineAssembler, OverlongGarbageIsCountedAndDiscarded)
 {
-  aci::NmeaLineAssembler assembler;
+  acc::NmeaLineAssembler assembler;
   const std::string garbage = "$" + std::string(5000, 'x');
   const auto lines = feedAll(assembler, {garbage + "\r\n" + kVtg + "\r\n"});
   ASSERT_EQ(lines.size(), 1u);
@@ -81,7 +80,7 @@ TEST(NmeaLineAssembler, OverlongGarbageIsCountedAndDiscarded)
 
 TEST(NmeaLineAssembler, FinishHandsOutUnterminatedLine)
 {
-  aci::NmeaLineAssembler assembler;
+  acc::NmeaLineAssembler assembler;
   EXPECT_TRUE(feedAll(assembler, {kVtg}).empty());
   std::vector<std::string> lines;
   assembler.finish([&](std::string_view line) { lines.emplace_back(line); });

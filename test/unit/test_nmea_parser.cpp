@@ -11,27 +11,26 @@
 #include "acc_identification/gnss/nmea_parser.h"
 #include "acc_identification/gnss/utc_date.h"
 
-namespace aci = acc_identification;
-using aci::NmeaParseOutcome;
-using aci::NmeaSentenceType;
+using acc::NmeaParseOutcome;
+using acc::NmeaSentenceType;
 
 namespace
 {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kKnot = 1852.0 / 3600.0;
 
-NmeaParseOutcome parse(const std::string& line, aci::NmeaSentence& s) { return aci::parseNmeaSentence(line, s); }
+NmeaParseOutcome parse(const std::string& line, acc::NmeaSentence& s) { return acc::parseNmeaSentence(line, s); }
 }  // namespace
 
 TEST(NmeaChecksum, XorOfBody)
 {
-  EXPECT_EQ(aci::nmeaChecksumValue("GPVTG,77.52,T,,M,0.004,N,0.008,K,A"), 0x06);
-  EXPECT_EQ(aci::nmeaChecksumValue(""), 0);
+  EXPECT_EQ(acc::nmeaChecksumValue("GPVTG,77.52,T,,M,0.004,N,0.008,K,A"), 0x06);
+  EXPECT_EQ(acc::nmeaChecksumValue(""), 0);
 }
 
 TEST(NmeaParser, UbloxGga)
 {
-  aci::NmeaSentence s;
+  acc::NmeaSentence s;
   ASSERT_EQ(parse("$GPGGA,092725.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*5B", s),
             NmeaParseOutcome::kOk);
   EXPECT_EQ(s.type, NmeaSentenceType::kGga);
@@ -48,20 +47,20 @@ TEST(NmeaParser, UbloxGga)
 
 TEST(NmeaParser, UbloxRmcWithDate)
 {
-  aci::NmeaSentence s;
+  acc::NmeaSentence s;
   ASSERT_EQ(parse("$GPRMC,083559.00,A,4717.11437,N,00833.91522,E,0.004,77.52,091202,,,A*57", s),
             NmeaParseOutcome::kOk);
   EXPECT_EQ(s.type, NmeaSentenceType::kRmc);
   EXPECT_NEAR(s.speed_mps, 0.004 * kKnot, 1e-12);
   EXPECT_NEAR(s.course_rad, 77.52 * kPi / 180, 1e-12);
   ASSERT_TRUE(s.day.has_value());
-  EXPECT_EQ(*s.day, aci::daysFromCivil(2002, 12, 9));
+  EXPECT_EQ(*s.day, acc::daysFromCivil(2002, 12, 9));
   EXPECT_EQ(s.fix_quality, 1);
 }
 
 TEST(NmeaParser, UbloxVtgGstZdaPubx)
 {
-  aci::NmeaSentence s;
+  acc::NmeaSentence s;
   ASSERT_EQ(parse("$GPVTG,77.52,T,,M,0.004,N,0.008,K,A*06", s), NmeaParseOutcome::kOk);
   EXPECT_TRUE(std::isnan(s.time_of_day_s));
   EXPECT_NEAR(s.speed_mps, 0.008 / 3.6, 1e-12);  // km/h field, the finer one
@@ -73,7 +72,7 @@ TEST(NmeaParser, UbloxVtgGstZdaPubx)
   EXPECT_DOUBLE_EQ(s.altitude_sigma_m, 2.2);
 
   ASSERT_EQ(parse("$GPZDA,082710.00,16,09,2002,00,00*64", s), NmeaParseOutcome::kOk);
-  EXPECT_EQ(*s.day, aci::daysFromCivil(2002, 9, 16));
+  EXPECT_EQ(*s.day, acc::daysFromCivil(2002, 9, 16));
   EXPECT_NEAR(s.time_of_day_s, 8 * 3600 + 27 * 60 + 10.0, 1e-9);
 
   ASSERT_EQ(parse("$PUBX,00,081350.00,4717.113210,N,00833.915187,E,546.589,G3,2.1,2.0,0.007,77.52,0.007,,0.92,"
@@ -102,7 +101,7 @@ TEST(NmeaParser, EveryTalker)
   };
   for (const char* line : lines)
   {
-    aci::NmeaSentence s;
+    acc::NmeaSentence s;
     ASSERT_EQ(parse(line, s), NmeaParseOutcome::kOk) << line;
     EXPECT_EQ(std::string(s.talker, 2), std::string(line + 1, 2));
     EXPECT_NEAR(s.latitude_deg, 47 + 17.11399 / 60, 1e-12);
@@ -111,7 +110,7 @@ TEST(NmeaParser, EveryTalker)
 
 TEST(NmeaParser, BadChecksum)
 {
-  aci::NmeaSentence s;
+  acc::NmeaSentence s;
   EXPECT_EQ(parse("$GPGGA,092725.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*5C", s),
             NmeaParseOutcome::kBadChecksum);
   // One changed digit, checksum of the original.
@@ -127,7 +126,7 @@ TEST(NmeaParser, BadChecksum)
 
 TEST(NmeaParser, LowerCaseChecksumAndLineEndingsAccepted)
 {
-  aci::NmeaSentence s;
+  acc::NmeaSentence s;
   EXPECT_EQ(parse("$GPGST,082356.00,1.8,,,,1.7,1.3,2.2*7E" "\r\n", s), NmeaParseOutcome::kOk);
   EXPECT_EQ(parse("$PUBX,00,081350.00,4717.113210,N,00833.915187,E,546.589,G3,2.1,2.0,0.007,77.52,0.007,,0.92,"
                   "1.19,0.77,9,0,0*5f",
@@ -137,7 +136,7 @@ TEST(NmeaParser, LowerCaseChecksumAndLineEndingsAccepted)
 
 TEST(NmeaParser, TruncatedLine)
 {
-  aci::NmeaSentence s;
+  acc::NmeaSentence s;
   EXPECT_EQ(parse("$GPGGA,092725.00,4717.11399,N,00833.9", s), NmeaParseOutcome::kMalformed);
   EXPECT_EQ(parse("$GPGGA,092725.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*", s),
             NmeaParseOutcome::kMalformed);
@@ -151,7 +150,7 @@ TEST(NmeaParser, TruncatedLine)
 
 TEST(NmeaParser, MissingFieldsAreAbsentNotErrors)
 {
-  aci::NmeaSentence s;
+  acc::NmeaSentence s;
   // No fix yet: empty position, quality 0, empty HDOP and altitude.
   ASSERT_EQ(parse("$GNGGA,000012.00,,,,,0,00,99.99,,,,,,*7B", s), NmeaParseOutcome::kOk);
   EXPECT_EQ(s.fix_quality, 0);
@@ -178,7 +177,7 @@ TEST(NmeaParser, MissingFieldsAreAbsentNotErrors)
 
 TEST(NmeaParser, InvalidStatusClearsPositionAndVelocity)
 {
-  aci::NmeaSentence s;
+  acc::NmeaSentence s;
   ASSERT_EQ(parse("$GNRMC,083559.00,V,4717.11437,N,00833.91522,E,0.004,77.52,091202,,,N,V*2B", s),
             NmeaParseOutcome::kOk);
   EXPECT_EQ(s.fix_quality, 0);
@@ -189,7 +188,7 @@ TEST(NmeaParser, InvalidStatusClearsPositionAndVelocity)
 
 TEST(NmeaParser, SouthWestAndRtkMode)
 {
-  aci::NmeaSentence s;
+  acc::NmeaSentence s;
   ASSERT_EQ(parse("$GNRMC,120000.00,A,3352.12800,S,15112.56000,W,20.000,359.99,010121,,,R,V*22", s),
             NmeaParseOutcome::kOk);
   EXPECT_NEAR(s.latitude_deg, -(33 + 52.128 / 60), 1e-12);
@@ -200,7 +199,7 @@ TEST(NmeaParser, SouthWestAndRtkMode)
 
 TEST(NmeaParser, MalformedFields)
 {
-  aci::NmeaSentence s;
+  acc::NmeaSentence s;
   const char* lines[] = {
       "$GPGGA,092725.00,47x7.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*12",  // not a number
       "$GPGGA,092725.00,4717.11399,X,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*4D",  // hemisphere
@@ -220,7 +219,7 @@ TEST(NmeaParser, MalformedFields)
 
 TEST(NmeaParser, UnsupportedTypesAreCountedApart)
 {
-  aci::NmeaSentence s;
+  acc::NmeaSentence s;
   EXPECT_EQ(parse("$GPGSV,3,1,11,03,03,111,00,04,15,270,00,06,01,010,00,13,06,292,00*74", s),
             NmeaParseOutcome::kUnsupported);
   EXPECT_EQ(parse("$GNTXT,01,01,02,u-blox AG - www.u-blox.com*4E", s), NmeaParseOutcome::kUnsupported);
@@ -231,20 +230,20 @@ TEST(NmeaParser, UnsupportedTypesAreCountedApart)
 TEST(NmeaParser, TimeOfDayForPacing)
 {
   double t = 0.0;
-  ASSERT_TRUE(aci::nmeaLineTimeOfDay("$GPGST,082356.00,1.8,,,,1.7,1.3,2.2*7E", t));
+  ASSERT_TRUE(acc::nmeaLineTimeOfDay("$GPGST,082356.00,1.8,,,,1.7,1.3,2.2*7E", t));
   EXPECT_NEAR(t, 8 * 3600 + 23 * 60 + 56.0, 1e-9);
-  EXPECT_FALSE(aci::nmeaLineTimeOfDay("$GPVTG,77.52,T,,M,0.004,N,0.008,K,A*06", t));
-  EXPECT_FALSE(aci::nmeaLineTimeOfDay("garbage", t));
+  EXPECT_FALSE(acc::nmeaLineTimeOfDay("$GPVTG,77.52,T,,M,0.004,N,0.008,K,A*06", t));
+  EXPECT_FALSE(acc::nmeaLineTimeOfDay("garbage", t));
 }
 
 TEST(UtcDate, DaysFromCivil)
 {
-  EXPECT_EQ(aci::daysFromCivil(1970, 1, 1), 0);
-  EXPECT_EQ(aci::daysFromCivil(2000, 3, 1), 11017);
-  EXPECT_EQ(aci::daysFromCivil(2020, 10, 27), 18562);
-  EXPECT_TRUE(aci::isValidDate(2020, 2, 29));
-  EXPECT_FALSE(aci::isValidDate(2021, 2, 29));
-  EXPECT_FALSE(aci::isValidDate(2100, 2, 29));
+  EXPECT_EQ(acc::daysFromCivil(1970, 1, 1), 0);
+  EXPECT_EQ(acc::daysFromCivil(2000, 3, 1), 11017);
+  EXPECT_EQ(acc::daysFromCivil(2020, 10, 27), 18562);
+  EXPECT_TRUE(acc::isValidDate(2020, 2, 29));
+  EXPECT_FALSE(acc::isValidDate(2021, 2, 29));
+  EXPECT_FALSE(acc::isValidDate(2100, 2, 29));
 }
 
 TEST(NmeaFields, NumbersReadExactlyAsStrtod)
@@ -254,7 +253,7 @@ TEST(NmeaFields, NumbersReadExactlyAsStrtod)
   for (const char* text : numbers)
   {
     double value = 0.0;
-    ASSERT_EQ(aci::readDouble(text, value), aci::FieldStatus::kOk) << text;
+    ASSERT_EQ(acc::readDouble(text, value), acc::FieldStatus::kOk) << text;
     EXPECT_EQ(value, std::strtod(text, nullptr)) << text;  // bit-exact, not near
   }
   // Every 5-decimal minute value of a degree: exact as the library reader of the C library.
@@ -263,11 +262,11 @@ TEST(NmeaFields, NumbersReadExactlyAsStrtod)
     char text[32];
     std::snprintf(text, sizeof text, "47%02d.%05d", units / 100000, units % 100000);
     double value = 0.0;
-    ASSERT_EQ(aci::readDouble(text, value), aci::FieldStatus::kOk);
+    ASSERT_EQ(acc::readDouble(text, value), acc::FieldStatus::kOk);
     ASSERT_EQ(value, std::strtod(text, nullptr)) << text;
   }
   double value = 0.0;
-  EXPECT_EQ(aci::readDouble("", value), aci::FieldStatus::kAbsent);
+  EXPECT_EQ(acc::readDouble("", value), acc::FieldStatus::kAbsent);
   for (const char* bad : {"-", ".", "1.2.3", "1e5", "12a", " 1", "nan", "inf", "--1"})
-    EXPECT_EQ(aci::readDouble(bad, value), aci::FieldStatus::kInvalid) << bad;
+    EXPECT_EQ(acc::readDouble(bad, value), acc::FieldStatus::kInvalid) << bad;
 }

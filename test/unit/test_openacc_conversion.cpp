@@ -14,7 +14,6 @@
 #include "acc_identification/gnss/nmea_log.h"
 #include "acc_identification/gnss/nmea_writer.h"
 
-namespace ai = acc_identification;
 namespace fs = std::filesystem;
 
 namespace
@@ -41,7 +40,7 @@ fs::path freshDirectory(const std::string& name)
 
 TEST(OpenAccReader, ReadsDateColumnsRadiansAndReportsABadRowByLine)
 {
-  auto file = ai::readOpenAccTrajectories(kSmall);
+  auto file = acc::readOpenAccTrajectories(kSmall);
   ASSERT_TRUE(file.error.empty()) << file.error;
   EXPECT_EQ(file.year, 2020);
   EXPECT_EQ(file.month, 10);
@@ -64,22 +63,22 @@ TEST(OpenAccReader, RefusesAFileWithoutDateOrColumns)
   fs::path dir = freshDirectory("openacc_reader");
   std::ofstream(dir / "nodate.csv") << "Time,Speed1,Lat1,Lon1,Speed2,Lat2,Lon2\n1,2,0.1,0.1,2,0.1,0.1\n";
   std::ofstream(dir / "nocolumns.csv") << "Date,27,10,2020\nTime,Speed\n1,2\n";
-  EXPECT_NE(ai::readOpenAccTrajectories((dir / "nodate.csv").string()).error.find("no Date line"), std::string::npos);
-  EXPECT_NE(ai::readOpenAccTrajectories((dir / "nocolumns.csv").string()).error.find("no column Speed1"),
+  EXPECT_NE(acc::readOpenAccTrajectories((dir / "nodate.csv").string()).error.find("no Date line"), std::string::npos);
+  EXPECT_NE(acc::readOpenAccTrajectories((dir / "nocolumns.csv").string()).error.find("no column Speed1"),
             std::string::npos);
-  EXPECT_NE(ai::readOpenAccTrajectories((dir / "missing.csv").string()).error.find("cannot open"), std::string::npos);
+  EXPECT_NE(acc::readOpenAccTrajectories((dir / "missing.csv").string()).error.find("cannot open"), std::string::npos);
   fs::remove_all(dir);
 }
 
 TEST(OpenAccToNmea, WritesGgaAndRmcAsAUbloxWouldAndReadsBack)
 {
-  auto file = ai::readOpenAccTrajectories(kSmall);
+  auto file = acc::readOpenAccTrajectories(kSmall);
   fs::path dir = freshDirectory("openacc_nmea");
   std::string error;
-  auto leader = ai::openAccFixes(file, 1);
-  auto follower = ai::openAccFixes(file, 2);
-  ASSERT_TRUE(ai::writeNmeaLog((dir / "leader.nmea").string(), leader, "GN", error)) << error;
-  ASSERT_TRUE(ai::writeNmeaLog((dir / "follower.nmea").string(), follower, "GN", error)) << error;
+  auto leader = acc::openAccFixes(file, 1);
+  auto follower = acc::openAccFixes(file, 2);
+  ASSERT_TRUE(acc::writeNmeaLog((dir / "leader.nmea").string(), leader, "GN", error)) << error;
+  ASSERT_TRUE(acc::writeNmeaLog((dir / "follower.nmea").string(), follower, "GN", error)) << error;
 
   auto lines = linesOf((dir / "leader.nmea").string());
   ASSERT_EQ(lines.size(), 8u);
@@ -91,12 +90,12 @@ TEST(OpenAccToNmea, WritesGgaAndRmcAsAUbloxWouldAndReadsBack)
     ASSERT_GE(line.size(), 5u);
     EXPECT_EQ(line.back(), '\r');
     std::string body = line.substr(1, line.size() - 5);
-    EXPECT_EQ(ai::nmeaChecksum(body), line.substr(line.size() - 3, 2)) << line;
+    EXPECT_EQ(acc::nmeaChecksum(body), line.substr(line.size() - 3, 2)) << line;
   }
   // 0.1718 m/s = 0.334 knots; too slow for a course: the field is empty.
   EXPECT_NE(lines[1].find(",0.334,,271020,"), std::string::npos) << lines[1];
 
-  auto back = ai::readNmeaLog((dir / "follower.nmea").string());
+  auto back = acc::readNmeaLog((dir / "follower.nmea").string());
   ASSERT_TRUE(back.error.empty()) << back.error;
   EXPECT_EQ(back.statistics.rejected(), 0u);
   ASSERT_EQ(back.fixes.size(), follower.size());
@@ -110,7 +109,7 @@ TEST(OpenAccToNmea, WritesGgaAndRmcAsAUbloxWouldAndReadsBack)
     EXPECT_NEAR(back.fixes[i].altitude_m, follower[i].altitude_m, 0.05 + 1e-9);
   }
   // Driving at 16.7 m/s: a course, from the Lat/Lon of the neighbouring row.
-  EXPECT_TRUE(follower[3].has(ai::GnssFix::kValidCourse));
+  EXPECT_TRUE(follower[3].has(acc::GnssFix::kValidCourse));
   EXPECT_NEAR(back.fixes[3].course_rad, follower[3].course_rad, 0.01 * M_PI / 180.0);
   fs::remove_all(dir);
 }

@@ -21,7 +21,6 @@
 #include "acc_identification/relative_state/gap_doppler_consistency.h"
 #include "acc_identification/relative_state/relative_state_estimator.h"
 
-namespace ai = acc_identification;
 namespace fs = std::filesystem;
 
 namespace
@@ -34,31 +33,31 @@ struct RunCheck
 {
   std::size_t rows = 0, states = 0, valid = 0, compared = 0;
   double gap_rms_m = 0, gap_max_m = 0, follower_speed_max_mps = 0, leader_speed_max_mps = 0;
-  ai::ConsistencySummary ours{}, ivs1{};
+  acc::ConsistencySummary ours{}, ivs1{};
 };
 
 class OpenAccRealData : public testing::TestWithParam<std::string>
 {
 };
 
-std::vector<ai::RelativeState> throughLogsAndPairing(const ai::OpenAccTrajectories& file, const fs::path& dir,
-                                                     ai::GapMode mode = ai::GapMode::kStraightLine)
+std::vector<acc::RelativeState> throughLogsAndPairing(const acc::OpenAccTrajectories& file, const fs::path& dir,
+                                                     acc::GapMode mode = acc::GapMode::kStraightLine)
 {
   std::string error;
   const std::string leader_log = (dir / "leader.nmea").string(), follower_log = (dir / "follower.nmea").string();
-  EXPECT_TRUE(ai::writeNmeaLog(leader_log, ai::openAccFixes(file, 1), "GN", error)) << error;
-  EXPECT_TRUE(ai::writeNmeaLog(follower_log, ai::openAccFixes(file, 2), "GN", error)) << error;
-  auto leader = ai::readNmeaLog(leader_log);
-  auto follower = ai::readNmeaLog(follower_log);
+  EXPECT_TRUE(acc::writeNmeaLog(leader_log, acc::openAccFixes(file, 1), "GN", error)) << error;
+  EXPECT_TRUE(acc::writeNmeaLog(follower_log, acc::openAccFixes(file, 2), "GN", error)) << error;
+  auto leader = acc::readNmeaLog(leader_log);
+  auto follower = acc::readNmeaLog(follower_log);
   EXPECT_EQ(leader.statistics.rejected(), 0u);
   EXPECT_EQ(follower.statistics.rejected(), 0u);
   EXPECT_EQ(leader.fixes.size(), file.rows.size());
   EXPECT_EQ(follower.fixes.size(), file.rows.size());
 
-  ai::RelativeStateSettings settings;
+  acc::RelativeStateSettings settings;
   settings.geometry.leader_antenna_to_rear_bumper_m = kCasaleOffset_m;
   settings.gap_mode = mode;
-  ai::RelativeStateEstimator estimator(settings);
+  acc::RelativeStateEstimator estimator(settings);
   for (std::size_t i = 0; i < std::max(leader.fixes.size(), follower.fixes.size()); ++i)
   {
     if (i < leader.fixes.size())
@@ -66,18 +65,18 @@ std::vector<ai::RelativeState> throughLogsAndPairing(const ai::OpenAccTrajectori
     if (i < follower.fixes.size())
       estimator.addFollower(follower.fixes[i]);
   }
-  for (const ai::PairingEvent& event : estimator.takeEvents())
-    if (mode == ai::GapMode::kStraightLine)
+  for (const acc::PairingEvent& event : estimator.takeEvents())
+    if (mode == acc::GapMode::kStraightLine)
       std::printf("  event: %s\n", event.text.c_str());
   return estimator.takeStates();
 }
 
-RunCheck check(const ai::OpenAccTrajectories& file, const std::vector<ai::RelativeState>& states)
+RunCheck check(const acc::OpenAccTrajectories& file, const std::vector<acc::RelativeState>& states)
 {
   RunCheck result;
   result.rows = file.rows.size();
   result.states = states.size();
-  std::map<long long, const ai::OpenAccRow*> by_centisecond;
+  std::map<long long, const acc::OpenAccRow*> by_centisecond;
   for (const auto& row : file.rows)
     by_centisecond[std::llround(row.time_of_day_s * 100.0)] = &row;
   std::vector<double> times, ours, ivs1, relative_speeds;
@@ -90,7 +89,7 @@ RunCheck check(const ai::OpenAccTrajectories& file, const std::vector<ai::Relati
     auto at = by_centisecond.find(std::llround((state.time_s - file.dayStartUnixS()) * 100.0));
     if (at == by_centisecond.end())
       continue;
-    const ai::OpenAccRow& row = *at->second;
+    const acc::OpenAccRow& row = *at->second;
     double distance_m = 0.0;
     GeographicLib::Geodesic::WGS84().Inverse(row.latitude_rad[0] * kRadToDeg, row.longitude_rad[0] * kRadToDeg,
                                              row.latitude_rad[1] * kRadToDeg, row.longitude_rad[1] * kRadToDeg,
@@ -109,8 +108,8 @@ RunCheck check(const ai::OpenAccTrajectories& file, const std::vector<ai::Relati
   }
   result.gap_rms_m = result.compared ? std::sqrt(sum_squares / result.compared) : NAN;
   // Same samples, same windows, same Doppler speeds: only the gap differs.
-  result.ours = ai::gapDopplerConsistency(times, ours, relative_speeds, kConsistencyWindow_s);
-  result.ivs1 = ai::gapDopplerConsistency(times, ivs1, relative_speeds, kConsistencyWindow_s);
+  result.ours = acc::gapDopplerConsistency(times, ours, relative_speeds, kConsistencyWindow_s);
+  result.ivs1 = acc::gapDopplerConsistency(times, ivs1, relative_speeds, kConsistencyWindow_s);
   return result;
 }
 }  // namespace
@@ -119,13 +118,13 @@ TEST_P(OpenAccRealData, GapSpeedsAndDopplerConsistency)
 {
   const std::string path = std::string(ACC_OPENACC_DATA_DIR) + "/" + GetParam() + ".csv";
   ASSERT_TRUE(fs::exists(path)) << path << " missing: set -DACC_OPENACC_DATA_DIR to the OpenACC Casale folder";
-  auto file = ai::readOpenAccTrajectories(path);
+  auto file = acc::readOpenAccTrajectories(path);
   ASSERT_TRUE(file.error.empty()) << file.error;
   EXPECT_TRUE(file.rejected_rows.empty());
   fs::path dir = fs::temp_directory_path() / ("openacc_" + GetParam() + "_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   auto states = throughLogsAndPairing(file, dir);
-  auto along_track = throughLogsAndPairing(file, dir, ai::GapMode::kAlongTrack);
+  auto along_track = throughLogsAndPairing(file, dir, acc::GapMode::kAlongTrack);
   fs::remove_all(dir);
   RunCheck result = check(file, states);
 

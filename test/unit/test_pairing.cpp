@@ -9,15 +9,14 @@
 
 #include "acc_identification/relative_state/epoch_pairing.h"
 
-namespace ai = acc_identification;
 
 namespace
 {
 constexpr double kDegPerSecond = 1e-4;  // the latitude of a fix encodes its GNSS time
 
-ai::GnssFix fixAt(double time_s, double offset_deg = 0.0)
+acc::GnssFix fixAt(double time_s, double offset_deg = 0.0)
 {
-  ai::GnssFix fix;
+  acc::GnssFix fix;
   fix.gnss_time_s = time_s;
   fix.has_date = true;
   fix.latitude_deg = 45.0 + offset_deg + kDegPerSecond * time_s;
@@ -25,7 +24,7 @@ ai::GnssFix fixAt(double time_s, double offset_deg = 0.0)
   fix.speed_over_ground_mps = 10.0 + time_s;
   fix.course_rad = 0.0;
   fix.fix_quality = 1;
-  fix.valid_fields = ai::GnssFix::kValidPosition | ai::GnssFix::kValidSpeed | ai::GnssFix::kValidCourse;
+  fix.valid_fields = acc::GnssFix::kValidPosition | acc::GnssFix::kValidSpeed | acc::GnssFix::kValidCourse;
   return fix;
 }
 
@@ -37,7 +36,7 @@ std::vector<double> epochs(double start_s, double end_s, double step_s = 0.1, do
   return times;
 }
 
-void expectIncreasingAndFresh(const std::vector<ai::PairedEpoch>& pairs, double max_skew_s)
+void expectIncreasingAndFresh(const std::vector<acc::PairedEpoch>& pairs, double max_skew_s)
 {
   for (std::size_t i = 0; i < pairs.size(); ++i)
   {
@@ -54,7 +53,7 @@ void expectIncreasingAndFresh(const std::vector<ai::PairedEpoch>& pairs, double 
 
 TEST(Pairing, ExactEpochsPairOneToOne)
 {
-  ai::EpochPairer pairer;
+  acc::EpochPairer pairer;
   for (double t : epochs(0.0, 5.0))
   {
     pairer.addLeader(fixAt(t));
@@ -73,7 +72,7 @@ TEST(Pairing, ExactEpochsPairOneToOne)
 
 TEST(Pairing, InterpolatesALeaderWithAPhaseOffsetAndReportsTheSkew)
 {
-  ai::EpochPairer pairer;
+  acc::EpochPairer pairer;
   for (double t : epochs(0.0, 5.0))
   {
     pairer.addLeader(fixAt(t + 0.03));
@@ -94,7 +93,7 @@ TEST(Pairing, InterpolatesALeaderWithAPhaseOffsetAndReportsTheSkew)
 
 TEST(Pairing, LateBurstyOutOfOrderLeaderIsStillPairedInOrder)
 {
-  ai::EpochPairer pairer;
+  acc::EpochPairer pairer;
   auto leader_times = epochs(0.0, 10.0);
   auto follower_times = epochs(0.0, 10.0);
   std::mt19937 random(7);
@@ -128,7 +127,7 @@ TEST(Pairing, LateBurstyOutOfOrderLeaderIsStillPairedInOrder)
 
 TEST(Pairing, ALostLeaderEpochIsInterpolatedOnceTheLeaderIsPastItByTheExactWait)
 {
-  ai::EpochPairer pairer;
+  acc::EpochPairer pairer;
   for (double t : epochs(0.0, 3.0))
   {
     if (std::abs(t - 1.0) > 1e-6)
@@ -154,7 +153,7 @@ TEST(Pairing, ALostLeaderEpochIsInterpolatedOnceTheLeaderIsPastItByTheExactWait)
 
 TEST(Pairing, LeaderDropoutGivesNoSamplesACountAndABreak)
 {
-  ai::EpochPairer pairer;
+  acc::EpochPairer pairer;
   for (double t : epochs(0.0, 6.0))
   {
     bool in_dropout = t > 1.05 && t < 1.95;
@@ -174,16 +173,16 @@ TEST(Pairing, LeaderDropoutGivesNoSamplesACountAndABreak)
   expectIncreasingAndFresh(pairs, 0.0);
   auto events = pairer.takeEvents();
   EXPECT_TRUE(std::any_of(events.begin(), events.end(),
-                          [](const ai::PairingEvent& e) {
+                          [](const acc::PairingEvent& e) {
                             return !e.per_epoch && e.text.find("leader dropout") != std::string::npos;
                           }));
 }
 
 TEST(Pairing, FollowerWaitsForTheLeaderOnlyUntilTheTimeout)
 {
-  ai::PairingSettings settings;
+  acc::PairingSettings settings;
   settings.timeout_s = 1.05;
-  ai::EpochPairer pairer(settings);
+  acc::EpochPairer pairer(settings);
   for (double t : epochs(0.0, 3.0))
     pairer.addFollower(fixAt(t, -0.001));
   EXPECT_TRUE(pairer.takePairs().empty());
@@ -204,7 +203,7 @@ TEST(Pairing, FollowerWaitsForTheLeaderOnlyUntilTheTimeout)
 
 TEST(Pairing, OutOfOrderFollowerEpochsAreSortedAndLateOnesCounted)
 {
-  ai::EpochPairer pairer;
+  acc::EpochPairer pairer;
   pairer.addFollower(fixAt(0.2, -0.001));
   pairer.addFollower(fixAt(0.1, -0.001));
   pairer.addFollower(fixAt(0.1, -0.001));  // duplicate
@@ -223,7 +222,7 @@ TEST(Pairing, OutOfOrderFollowerEpochsAreSortedAndLateOnesCounted)
 
 TEST(Pairing, TimeGoingBackRestartsThePairingAndIsReported)
 {
-  ai::EpochPairer pairer;
+  acc::EpochPairer pairer;
   for (int loop = 0; loop < 2; ++loop)  // a looping bag: the same 20 s twice
     for (double t : epochs(0.0, 20.0))
     {
@@ -251,7 +250,7 @@ TEST(Pairing, TimeGoingBackRestartsThePairingAndIsReported)
 
 TEST(Pairing, FixesWithoutAPositionAreCountedAndNotUsed)
 {
-  ai::EpochPairer pairer;
+  acc::EpochPairer pairer;
   auto bad = fixAt(0.1);
   bad.fix_quality = 0;
   pairer.addLeader(fixAt(0.0));
@@ -272,7 +271,7 @@ TEST(Pairing, InterpolationFollowsTheShorterTurnAndTheDateLine)
   b.course_rad = 0.1;
   a.longitude_deg = 179.9999;
   b.longitude_deg = -179.9999;
-  auto mid = ai::interpolateFix(a, b, 0.5);
+  auto mid = acc::interpolateFix(a, b, 0.5);
   EXPECT_NEAR(std::abs(std::remainder(mid.course_rad - (6.2 + (0.1 + 2 * M_PI - 6.2) / 2), 2 * M_PI)), 0.0, 1e-9);
   EXPECT_NEAR(std::abs(mid.longitude_deg), 180.0, 1e-9);
 }

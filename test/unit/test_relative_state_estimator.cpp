@@ -10,7 +10,6 @@
 
 #include "acc_identification/relative_state/relative_state_estimator.h"
 
-namespace ai = acc_identification;
 
 namespace
 {
@@ -25,19 +24,19 @@ struct Drive
   std::function<double(double t_s)> leader_position_error_m = [](double) { return 0.0; };
 };
 
-ai::GnssFix fixOf(const Drive& drive, double t, double s_m, double v_mps)
+acc::GnssFix fixOf(const Drive& drive, double t, double s_m, double v_mps)
 {
   static const GeographicLib::LocalCartesian plane(45.13, 8.45, 0.0);
   double east = 0, north = 0, height = 0;
   drive.path(s_m, east, north);
-  ai::GnssFix fix;
+  acc::GnssFix fix;
   plane.Reverse(east, north, 0.0, fix.latitude_deg, fix.longitude_deg, height);
   fix.gnss_time_s = t;
   fix.has_date = true;
   fix.speed_over_ground_mps = v_mps;
   fix.course_rad = 0.0;
   fix.fix_quality = 1;
-  fix.valid_fields = ai::GnssFix::kValidPosition | ai::GnssFix::kValidSpeed | ai::GnssFix::kValidCourse;
+  fix.valid_fields = acc::GnssFix::kValidPosition | acc::GnssFix::kValidSpeed | acc::GnssFix::kValidCourse;
   return fix;
 }
 
@@ -53,8 +52,8 @@ Drive straightDrive()
   return drive;
 }
 
-std::vector<ai::RelativeState> run(ai::RelativeStateEstimator& estimator, const Drive& drive, double duration_s,
-                                   std::function<void(double, ai::GnssFix&, ai::GnssFix&)> tamper = nullptr)
+std::vector<acc::RelativeState> run(acc::RelativeStateEstimator& estimator, const Drive& drive, double duration_s,
+                                   std::function<void(double, acc::GnssFix&, acc::GnssFix&)> tamper = nullptr)
 {
   for (int i = 0; i * 0.1 <= duration_s + 1e-9; ++i)
   {
@@ -70,9 +69,9 @@ std::vector<ai::RelativeState> run(ai::RelativeStateEstimator& estimator, const 
   return estimator.takeStates();
 }
 
-ai::RelativeStateSettings settingsWithOffset()
+acc::RelativeStateSettings settingsWithOffset()
 {
-  ai::RelativeStateSettings settings;
+  acc::RelativeStateSettings settings;
   settings.geometry.leader_antenna_to_rear_bumper_m = kOffset_m;
   return settings;
 }
@@ -80,7 +79,7 @@ ai::RelativeStateSettings settingsWithOffset()
 
 TEST(RelativeStateEstimator, GapSpeedsAndTimeGapOnAStraightRoad)
 {
-  ai::RelativeStateEstimator estimator(settingsWithOffset());
+  acc::RelativeStateEstimator estimator(settingsWithOffset());
   Drive drive = straightDrive();
   auto states = run(estimator, drive, 30.0);
   ASSERT_EQ(states.size(), 301u);
@@ -101,7 +100,7 @@ TEST(RelativeStateEstimator, GapSpeedsAndTimeGapOnAStraightRoad)
 
 TEST(RelativeStateEstimator, ConsistencyFigureSeesAPositionErrorTheDopplerDoesNot)
 {
-  ai::RelativeStateEstimator estimator(settingsWithOffset());
+  acc::RelativeStateEstimator estimator(settingsWithOffset());
   Drive drive = straightDrive();
   drive.leader_position_error_m = [](double t) { return 1.0 * std::sin(0.2 * t); };  // wandering 1 m
   auto states = run(estimator, drive, 60.0);
@@ -110,8 +109,8 @@ TEST(RelativeStateEstimator, ConsistencyFigureSeesAPositionErrorTheDopplerDoesNo
 
 TEST(RelativeStateEstimator, ImpossibleJumpIsRejectedAndSaidSo)
 {
-  ai::RelativeStateEstimator estimator(settingsWithOffset());
-  auto states = run(estimator, straightDrive(), 5.0, [](double t, ai::GnssFix& leader, ai::GnssFix&) {
+  acc::RelativeStateEstimator estimator(settingsWithOffset());
+  auto states = run(estimator, straightDrive(), 5.0, [](double t, acc::GnssFix& leader, acc::GnssFix&) {
     if (std::abs(t - 2.0) < 1e-6)
       leader.latitude_deg += 1e-4;  // 11 m north for one epoch: multipath, a bad fix
   });
@@ -127,8 +126,8 @@ TEST(RelativeStateEstimator, ImpossibleJumpIsRejectedAndSaidSo)
 
 TEST(RelativeStateEstimator, SpeedJumpIsRejectedToo)
 {
-  ai::RelativeStateEstimator estimator(settingsWithOffset());
-  auto states = run(estimator, straightDrive(), 3.0, [](double t, ai::GnssFix&, ai::GnssFix& follower) {
+  acc::RelativeStateEstimator estimator(settingsWithOffset());
+  auto states = run(estimator, straightDrive(), 3.0, [](double t, acc::GnssFix&, acc::GnssFix& follower) {
     if (std::abs(t - 1.0) < 1e-6)
       follower.speed_over_ground_mps += 5.0;  // 5 m/s in 0.1 s is 5 g
   });
@@ -138,12 +137,12 @@ TEST(RelativeStateEstimator, SpeedJumpIsRejectedToo)
 
 TEST(RelativeStateEstimator, MissingSpeedAndStandstillAreInvalidOrNaNNotInvented)
 {
-  ai::RelativeStateEstimator estimator(settingsWithOffset());
+  acc::RelativeStateEstimator estimator(settingsWithOffset());
   Drive drive = straightDrive();
   drive.follower_v_mps = [](double) { return 0.5; };
-  auto states = run(estimator, drive, 1.0, [](double t, ai::GnssFix& leader, ai::GnssFix&) {
+  auto states = run(estimator, drive, 1.0, [](double t, acc::GnssFix& leader, acc::GnssFix&) {
     if (std::abs(t - 0.5) < 1e-6)
-      leader.valid_fields &= ~ai::GnssFix::kValidSpeed;
+      leader.valid_fields &= ~acc::GnssFix::kValidSpeed;
   });
   EXPECT_TRUE(std::isnan(states[0].time_gap_s));  // below min_speed_for_time_gap
   EXPECT_FALSE(states[5].valid);
@@ -153,9 +152,9 @@ TEST(RelativeStateEstimator, MissingSpeedAndStandstillAreInvalidOrNaNNotInvented
 
 TEST(RelativeStateEstimator, DropoutRestartsTheConsistencyWindowAndLeavesNoSamples)
 {
-  ai::RelativeStateEstimator estimator(settingsWithOffset());
+  acc::RelativeStateEstimator estimator(settingsWithOffset());
   std::vector<double> leader_times;
-  auto states = run(estimator, straightDrive(), 40.0, [](double t, ai::GnssFix& leader, ai::GnssFix&) {
+  auto states = run(estimator, straightDrive(), 40.0, [](double t, acc::GnssFix& leader, acc::GnssFix&) {
     if (t > 15.0 && t < 17.0)
       leader.fix_quality = 0;  // leader lost its fix for 2 s
   });
@@ -186,9 +185,9 @@ TEST(RelativeStateEstimator, AlongTrackOptionMeasuresTheGapAlongACurve)
   drive.follower_s_m = [](double t) { return 15.0 * t; };
   drive.leader_v_mps = drive.follower_v_mps = [](double) { return 15.0; };
   auto settings = settingsWithOffset();
-  ai::RelativeStateEstimator straight(settings);
-  settings.gap_mode = ai::GapMode::kAlongTrack;
-  ai::RelativeStateEstimator along(settings);
+  acc::RelativeStateEstimator straight(settings);
+  settings.gap_mode = acc::GapMode::kAlongTrack;
+  acc::RelativeStateEstimator along(settings);
   auto chord_states = run(straight, drive, 12.0);
   auto along_states = run(along, drive, 12.0);
   ASSERT_EQ(chord_states.size(), along_states.size());
@@ -203,9 +202,9 @@ TEST(RelativeStateEstimator, AlongTrackOptionMeasuresTheGapAlongACurve)
 
 TEST(RelativeStateEstimator, GapModeNamesRoundTrip)
 {
-  ai::GapMode mode = ai::GapMode::kStraightLine;
-  EXPECT_TRUE(ai::parseGapMode("along_track", mode));
-  EXPECT_EQ(mode, ai::GapMode::kAlongTrack);
-  EXPECT_STREQ(ai::gapModeName(mode), "along_track");
-  EXPECT_FALSE(ai::parseGapMode("chord", mode));
+  acc::GapMode mode = acc::GapMode::kStraightLine;
+  EXPECT_TRUE(acc::parseGapMode("along_track", mode));
+  EXPECT_EQ(mode, acc::GapMode::kAlongTrack);
+  EXPECT_STREQ(acc::gapModeName(mode), "along_track");
+  EXPECT_FALSE(acc::parseGapMode("chord", mode));
 }

@@ -10,26 +10,25 @@
 
 #include "acc_identification/relative_state/vehicle_geometry.h"
 
-namespace ai = acc_identification;
 
 namespace
 {
 constexpr double kLatitude0 = 45.13, kLongitude0 = 8.45;  // near Casale Monferrato
 
-ai::GnssFix fixAtPlane(double time_s, double east_m, double north_m)
+acc::GnssFix fixAtPlane(double time_s, double east_m, double north_m)
 {
   static const GeographicLib::LocalCartesian plane(kLatitude0, kLongitude0, 0.0);
-  ai::GnssFix fix;
+  acc::GnssFix fix;
   double height = 0.0;
   plane.Reverse(east_m, north_m, 0.0, fix.latitude_deg, fix.longitude_deg, height);
   fix.gnss_time_s = time_s;
   fix.fix_quality = 1;
-  fix.valid_fields = ai::GnssFix::kValidPosition;
+  fix.valid_fields = acc::GnssFix::kValidPosition;
   return fix;
 }
 
 /// A point on a circle of radius_m about the plane's origin, at arc length s_m from east.
-ai::GnssFix onCircle(double time_s, double radius_m, double s_m)
+acc::GnssFix onCircle(double time_s, double radius_m, double s_m)
 {
   return fixAtPlane(time_s, radius_m * std::cos(s_m / radius_m), radius_m * std::sin(s_m / radius_m));
 }
@@ -39,18 +38,18 @@ TEST(Geometry, GeodesicDistanceMatchesADirectProblem)
 {
   double latitude = 0, longitude = 0;
   GeographicLib::Geodesic::WGS84().Direct(kLatitude0, kLongitude0, 37.0, 42.5, latitude, longitude);
-  EXPECT_NEAR(ai::geodesicDistance(kLatitude0, kLongitude0, latitude, longitude), 42.5, 1e-6);
+  EXPECT_NEAR(acc::geodesicDistance(kLatitude0, kLongitude0, latitude, longitude), 42.5, 1e-6);
   // One minute of latitude at 45 deg is about 1852 m (the nautical mile's definition).
-  EXPECT_NEAR(ai::geodesicDistance(44.99166667, 8.0, 45.00833333, 8.0), 1852.0, 2.0);
+  EXPECT_NEAR(acc::geodesicDistance(44.99166667, 8.0, 45.00833333, 8.0), 1852.0, 2.0);
 }
 
 TEST(Geometry, StraightLineGapSubtractsBothOffsetsOrTheCombinedOne)
 {
   auto follower = fixAtPlane(0, 0, 0), leader = fixAtPlane(0, 0, 30.0);
-  ai::VehicleGeometry split{1.2, 4.4};
-  ai::VehicleGeometry combined{5.6, 0.0};
-  EXPECT_NEAR(ai::straightLineGap(leader, follower, split), 30.0 - 5.6, 1e-3);
-  EXPECT_NEAR(ai::straightLineGap(leader, follower, combined), 30.0 - 5.6, 1e-3);
+  acc::VehicleGeometry split{1.2, 4.4};
+  acc::VehicleGeometry combined{5.6, 0.0};
+  EXPECT_NEAR(acc::straightLineGap(leader, follower, split), 30.0 - 5.6, 1e-3);
+  EXPECT_NEAR(acc::straightLineGap(leader, follower, combined), 30.0 - 5.6, 1e-3);
 }
 
 TEST(Geometry, GapSigmaProjectsThePositionSigmasOnTheLineOfSight)
@@ -61,16 +60,16 @@ TEST(Geometry, GapSigmaProjectsThePositionSigmasOnTheLineOfSight)
     fix->latitude_sigma_m = 0.3;
     fix->longitude_sigma_m = 0.4;
   }
-  EXPECT_NEAR(ai::gapSigma(north, follower), std::sqrt(2 * 0.09), 1e-3);
-  EXPECT_NEAR(ai::gapSigma(east, follower), std::sqrt(2 * 0.16), 1e-3);
-  north.latitude_sigma_m = ai::GnssFix::kNaN;
-  EXPECT_TRUE(std::isnan(ai::gapSigma(north, follower)));
+  EXPECT_NEAR(acc::gapSigma(north, follower), std::sqrt(2 * 0.09), 1e-3);
+  EXPECT_NEAR(acc::gapSigma(east, follower), std::sqrt(2 * 0.16), 1e-3);
+  north.latitude_sigma_m = acc::GnssFix::kNaN;
+  EXPECT_TRUE(std::isnan(acc::gapSigma(north, follower)));
 }
 
 TEST(Geometry, AlongTrackGapFollowsACurveWhereTheChordIsShort)
 {
   const double radius_m = 60.0, speed_mps = 15.0, arc_gap_m = 35.0;
-  ai::LeaderTrack track;
+  acc::LeaderTrack track;
   double t = 0.0;
   for (; t <= 10.0 + 1e-9; t += 0.1)
     track.add(onCircle(t, radius_m, speed_mps * t));
@@ -80,7 +79,7 @@ TEST(Geometry, AlongTrackGapFollowsACurveWhereTheChordIsShort)
   ASSERT_TRUE(along.has_value());
   double chord_m = 2 * radius_m * std::sin(arc_gap_m / (2 * radius_m));
   EXPECT_NEAR(*along, arc_gap_m, 0.05);
-  EXPECT_NEAR(ai::geodesicDistance(leader.latitude_deg, leader.longitude_deg, follower.latitude_deg,
+  EXPECT_NEAR(acc::geodesicDistance(leader.latitude_deg, leader.longitude_deg, follower.latitude_deg,
                                    follower.longitude_deg),
               chord_m, 1e-3);
   EXPECT_GT(arc_gap_m - chord_m, 0.45);  // the effect the option exists for: 0.49 m here
@@ -88,7 +87,7 @@ TEST(Geometry, AlongTrackGapFollowsACurveWhereTheChordIsShort)
 
 TEST(Geometry, AlongTrackEqualsStraightLineOnAStraightRoadDespiteNoiseAtStandstill)
 {
-  ai::LeaderTrack track;
+  acc::LeaderTrack track;
   std::normal_distribution<double> noise(0.0, 0.03);
   std::mt19937 random(3);
   double t = 0.0;
@@ -103,7 +102,7 @@ TEST(Geometry, AlongTrackEqualsStraightLineOnAStraightRoadDespiteNoiseAtStandsti
 
 TEST(Geometry, AlongTrackRefusesWhenThePathDoesNotReachTheFollowerOrIsFarOff)
 {
-  ai::LeaderTrack track;
+  acc::LeaderTrack track;
   for (double north = 10.0; north <= 50.0; north += 2.0)
     track.add(fixAtPlane(north, 0.0, north));
   std::string why;

@@ -5,23 +5,22 @@
 #include <stdexcept>
 
 #include "acc_identification/reproduction/lambda2_map.h"
-#include "acc_identification/string_stability.h"
+#include "acc_identification/model/string_stability.h"
 
-namespace aci = acc_identification;
 
 // Fig. 1: the shaded (stable) region of the map is exactly k1 tau^2 + 2 k2 tau >= 2, and there
 // lambda2 < 0; everywhere else lambda2 > 0.
 TEST(Lambda2Map, StableRegionIsTheClosedFormRegion)
 {
-  aci::Lambda2MapGrid grid;
+  acc::Lambda2MapGrid grid;
   grid.k1_points = grid.k2_points = 41;
-  const auto map = aci::lambda2Map(grid);
+  const auto map = acc::lambda2Map(grid);
   ASSERT_EQ(map.size(), grid.tau_e_s.size() * 41u * 41u);
   std::size_t stable = 0;
   for (const auto& s : map)
   {
     const double margin = s.k1_per_s2 * s.tau_e_s * s.tau_e_s + 2.0 * s.k2_per_s * s.tau_e_s - 2.0;
-    EXPECT_EQ(s.string_stable, aci::inClosedFormStableRegion(s.k1_per_s2, s.k2_per_s, s.tau_e_s));
+    EXPECT_EQ(s.string_stable, acc::inClosedFormStableRegion(s.k1_per_s2, s.k2_per_s, s.tau_e_s));
     if (std::abs(margin) > 1e-9)
     {
       EXPECT_EQ(s.lambda2 < 0.0, margin > 0.0) << s.k1_per_s2 << ' ' << s.k2_per_s << ' ' << s.tau_e_s;
@@ -36,27 +35,27 @@ TEST(Lambda2Map, StableRegionIsTheClosedFormRegion)
 // lambda2 tends to 0 for large tau_e.
 TEST(Lambda2Map, LargerTimeGapStabilisesMoreOfTheGridAndLambda2TendsToZero)
 {
-  aci::Lambda2MapGrid grid;
+  acc::Lambda2MapGrid grid;
   grid.tau_e_s = {0.5, 1.0, 2.0, 3.0};
   grid.k1_points = grid.k2_points = 21;
-  const auto map = aci::lambda2Map(grid);
+  const auto map = acc::lambda2Map(grid);
   double previous = -1.0;
   for (double tau : grid.tau_e_s)
   {
-    const double fraction = aci::stableFraction(map, tau);
+    const double fraction = acc::stableFraction(map, tau);
     EXPECT_GT(fraction, previous) << tau;
     previous = fraction;
   }
-  EXPECT_NEAR(aci::stableFraction(map, 3.0), 1.0, 0.05);
-  const aci::AccParameters gains{0.5, 0.5, 0.0, 0.0};
+  EXPECT_NEAR(acc::stableFraction(map, 3.0), 1.0, 0.05);
+  const acc::AccParameters gains{0.5, 0.5, 0.0, 0.0};
   double last = -std::numeric_limits<double>::infinity();
   for (double tau : {5.0, 10.0, 50.0, 200.0})
   {
-    aci::AccParameters p = gains;
+    acc::AccParameters p = gains;
     p.tau_e_s = tau;
-    EXPECT_LT(aci::lambda2(p), 0.0);
-    EXPECT_GT(aci::lambda2(p), last - 1e-12);  // rising towards 0 from below
-    last = aci::lambda2(p);
+    EXPECT_LT(acc::lambda2(p), 0.0);
+    EXPECT_GT(acc::lambda2(p), last - 1e-12);  // rising towards 0 from below
+    last = acc::lambda2(p);
   }
   EXPECT_GT(last, -0.01);
 }
@@ -64,7 +63,7 @@ TEST(Lambda2Map, LargerTimeGapStabilisesMoreOfTheGridAndLambda2TendsToZero)
 // The paper: "increasing tau_e may initially reduce lambda2, before eventually increasing" it.
 TEST(Lambda2Map, Lambda2FallsThenRisesWithTheTimeGap)
 {
-  auto at = [](double tau) { return aci::lambda2({0.5, 0.5, tau, 8.0}); };
+  auto at = [](double tau) { return acc::lambda2({0.5, 0.5, tau, 8.0}); };
   EXPECT_NEAR(at(0.5), 11.0, 1e-9);
   EXPECT_NEAR(at(2.0), -0.25, 1e-9);  // the minimum: d lambda2 / d tau = 0 at tau = 2 s
   EXPECT_LT(at(2.0), at(1.9));
@@ -75,13 +74,13 @@ TEST(Lambda2Map, Lambda2FallsThenRisesWithTheTimeGap)
 
 TEST(Lambda2Map, RejectsDegenerateGrids)
 {
-  aci::Lambda2MapGrid grid;
+  acc::Lambda2MapGrid grid;
   grid.k1_points = 1;
-  EXPECT_THROW(aci::lambda2Map(grid), std::invalid_argument);
-  grid = aci::Lambda2MapGrid{};
+  EXPECT_THROW(acc::lambda2Map(grid), std::invalid_argument);
+  grid = acc::Lambda2MapGrid{};
   grid.k2_max_per_s = -1.0;
-  EXPECT_THROW(aci::lambda2Map(grid), std::invalid_argument);
-  grid = aci::Lambda2MapGrid{};
+  EXPECT_THROW(acc::lambda2Map(grid), std::invalid_argument);
+  grid = acc::Lambda2MapGrid{};
   grid.tau_e_s.clear();
-  EXPECT_THROW(aci::lambda2Map(grid), std::invalid_argument);
+  EXPECT_THROW(acc::lambda2Map(grid), std::invalid_argument);
 }

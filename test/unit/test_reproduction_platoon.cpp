@@ -3,34 +3,33 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "acc_identification/paper_settings.h"
-#include "acc_identification/platoon_simulation.h"
-#include "acc_identification/profiles/lead_profiles.h"
+#include "acc_identification/model/paper_settings.h"
+#include "acc_identification/model/platoon_simulation.h"
+#include "acc_identification/reproduction/lead_profiles.h"
 #include "acc_identification/reproduction/lead_inputs.h"
 #include "acc_identification/reproduction/platoon_metrics.h"
 #include "acc_identification/reproduction/platoon_responses.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
 constexpr double kStep = 0.1;
 
 // Fig. 7 of the paper: 20 m/s for 20 s, then a 1 m/s sinusoid at 0.204 rad/s, 10 followers.
-aci::SinusoidResponse figureSeven(const aci::AccParameters& p)
+acc::SinusoidResponse figureSeven(const acc::AccParameters& p)
 {
   const double w = 0.204;
-  const auto lead = aci::sinusoidLeadProfile(20.0, 1.0, w, 20.0, 620.0, kStep);
-  const auto platoon = aci::simulatePlatoon(p, lead, kStep, 10);
+  const auto lead = acc::sinusoidLeadProfile(20.0, 1.0, w, 20.0, 620.0, kStep);
+  const auto platoon = acc::simulatePlatoon(p, lead, kStep, 10);
   const std::size_t last_five_periods = static_cast<std::size_t>(std::round(5.0 * 2.0 * M_PI / w / kStep));
-  return aci::measureSinusoidResponse(platoon, p, w, lead.size() - last_five_periods);
+  return acc::measureSinusoidResponse(platoon, p, w, lead.size() - last_five_periods);
 }
 
 // Fig. 8: lead profile I, a long platoon (its first 15 followers are the paper's 15-vehicle one).
-aci::DisturbanceResponse figureEight(const aci::AccParameters& p, std::size_t followers)
+acc::DisturbanceResponse figureEight(const acc::AccParameters& p, std::size_t followers)
 {
-  const auto lead = aci::withFinalHold(aci::leadProfile('I', kStep), 600.0, kStep);
-  return aci::measureDisturbanceResponse(aci::simulatePlatoon(p, lead, kStep, followers));
+  const auto lead = acc::withFinalHold(acc::leadProfile('I', kStep), 600.0, kStep);
+  return acc::measureDisturbanceResponse(acc::simulatePlatoon(p, lead, kStep, followers));
 }
 }  // namespace
 
@@ -41,15 +40,15 @@ TEST(PlatoonMetrics, SinusoidFitIsExactForAPureSinusoidWhateverTheWindow)
   {
     signal.push_back(3.0 + 1.7 * std::sin(0.3 * k * 0.05 + 0.4));
   }
-  EXPECT_NEAR(aci::fittedSinusoidAmplitude(signal, 0.05, 0.3, 0, 2000), 1.7, 1e-9);
-  EXPECT_NEAR(aci::fittedSinusoidAmplitude(signal, 0.05, 0.3, 123, 1500), 1.7, 1e-9);
-  EXPECT_THROW(aci::fittedSinusoidAmplitude(signal, 0.05, 0.3, 10, 12), std::invalid_argument);
-  EXPECT_THROW(aci::fittedSinusoidAmplitude(signal, 0.05, 0.3, 10, 2001), std::invalid_argument);
+  EXPECT_NEAR(acc::fittedSinusoidAmplitude(signal, 0.05, 0.3, 0, 2000), 1.7, 1e-9);
+  EXPECT_NEAR(acc::fittedSinusoidAmplitude(signal, 0.05, 0.3, 123, 1500), 1.7, 1e-9);
+  EXPECT_THROW(acc::fittedSinusoidAmplitude(signal, 0.05, 0.3, 10, 12), std::invalid_argument);
+  EXPECT_THROW(acc::fittedSinusoidAmplitude(signal, 0.05, 0.3, 10, 2001), std::invalid_argument);
 }
 
 TEST(PlatoonMetrics, GrowthOnsetFindsWhereADecayingDisturbanceTurns)
 {
-  const auto turns = aci::findGrowthOnset({10.0, 8.0, 6.0, 5.0, 5.5, 7.0, 11.0, 12.0});
+  const auto turns = acc::findGrowthOnset({10.0, 8.0, 6.0, 5.0, 5.5, 7.0, 11.0, 12.0});
   EXPECT_TRUE(turns.decays_at_first);
   EXPECT_EQ(turns.smallest_at, 3u);
   ASSERT_TRUE(turns.growth_starts_at);
@@ -57,27 +56,27 @@ TEST(PlatoonMetrics, GrowthOnsetFindsWhereADecayingDisturbanceTurns)
   ASSERT_TRUE(turns.exceeds_lead_at);
   EXPECT_EQ(*turns.exceeds_lead_at, 6u);
 
-  const auto decays = aci::findGrowthOnset({10.0, 8.0, 6.0, 5.0});
+  const auto decays = acc::findGrowthOnset({10.0, 8.0, 6.0, 5.0});
   EXPECT_TRUE(decays.decays_at_first);
   EXPECT_FALSE(decays.growth_starts_at);
   EXPECT_FALSE(decays.exceeds_lead_at);
 
-  const auto grows = aci::findGrowthOnset({1.0, 1.5, 2.0});
+  const auto grows = acc::findGrowthOnset({1.0, 1.5, 2.0});
   EXPECT_FALSE(grows.decays_at_first);
   EXPECT_EQ(grows.smallest_at, 1u);
   EXPECT_EQ(grows.exceeds_lead_at.value_or(0), 1u);
-  EXPECT_THROW(aci::findGrowthOnset({1.0}), std::invalid_argument);
+  EXPECT_THROW(acc::findGrowthOnset({1.0}), std::invalid_argument);
 }
 
 // Fig. 2: k1 = k2 = 0.5, eta = 8. tau_e = 0.75 s overshoots more at every follower; 3.2 s never
 // leaves the lead's speed range.
 TEST(ReproductionPlatoon, FigureTwoStepOvershootsOnlyForTheUnstableTimeGap)
 {
-  const auto lead = aci::stepDownUpLeadProfile(25.0, 5.0, 20.0, 60.0, 200.0, kStep);
-  const auto unstable = aci::measureDisturbanceResponse(
-      aci::simulatePlatoon(aci::paperFigure2Setting(0.75), lead, kStep, 9));
-  const auto stable = aci::measureDisturbanceResponse(
-      aci::simulatePlatoon(aci::paperFigure2Setting(3.2), lead, kStep, 9));
+  const auto lead = acc::stepDownUpLeadProfile(25.0, 5.0, 20.0, 60.0, 200.0, kStep);
+  const auto unstable = acc::measureDisturbanceResponse(
+      acc::simulatePlatoon(acc::paperFigure2Setting(0.75), lead, kStep, 9));
+  const auto stable = acc::measureDisturbanceResponse(
+      acc::simulatePlatoon(acc::paperFigure2Setting(3.2), lead, kStep, 9));
   EXPECT_EQ(unstable.by_peak_to_peak.exceeds_lead_at.value_or(0), 1u);
   EXPECT_FALSE(unstable.by_peak_to_peak.growth_starts_at == std::nullopt);
   EXPECT_GT(unstable.per_vehicle.back().rise_above_reference_mps, 1.0);
@@ -92,8 +91,8 @@ TEST(ReproductionPlatoon, FigureTwoStepOvershootsOnlyForTheUnstableTimeGap)
 // the ratio over n vehicles is |Gamma|^n (exactly that of the Euler recursion the simulation runs).
 TEST(ReproductionPlatoon, FigureSevenAmplitudeRatioIsGammaToTheN)
 {
-  const auto min = figureSeven(aci::paperMinimumSetting());
-  const auto max = figureSeven(aci::paperMaximumSetting());
+  const auto min = figureSeven(acc::paperMinimumSetting());
+  const auto max = figureSeven(acc::paperMaximumSetting());
   EXPECT_GT(min.last_to_first_follower, 1.0);
   EXPECT_LT(max.last_to_first_follower, 1.0);
   for (const auto* r : {&min, &max})
@@ -117,7 +116,7 @@ TEST(ReproductionPlatoon, FigureSevenAmplitudeRatioIsGammaToTheN)
 // go negative inside the 15-vehicle platoon (the paper does not mention it).
 TEST(ReproductionPlatoon, FigureEightMinimumSettingAmplifiesFromTheFirstFollower)
 {
-  const auto r = figureEight(aci::paperMinimumSetting(), 15);
+  const auto r = figureEight(acc::paperMinimumSetting(), 15);
   EXPECT_FALSE(r.by_drop.decays_at_first);
   EXPECT_EQ(r.by_drop.exceeds_lead_at.value_or(0), 1u);
   for (std::size_t i = 1; i < r.per_vehicle.size(); ++i)
@@ -134,7 +133,7 @@ TEST(ReproductionPlatoon, FigureEightMinimumSettingAmplifiesFromTheFirstFollower
 // lead's dip only past 50 followers (the paper: growth "beyond about 30 vehicles").
 TEST(ReproductionPlatoon, FigureEightMaximumSettingDecaysThenGrows)
 {
-  const auto r = figureEight(aci::paperMaximumSetting(), 70);
+  const auto r = figureEight(acc::paperMaximumSetting(), 70);
   EXPECT_TRUE(r.last_follower_settled);
   EXPECT_TRUE(r.by_drop.decays_at_first);
   ASSERT_TRUE(r.by_drop.growth_starts_at);
@@ -152,12 +151,12 @@ TEST(ReproductionPlatoon, FigureEightMaximumSettingDecaysThenGrows)
 
 TEST(ReproductionPlatoon, SinusoidLeadHoldsThenOscillates)
 {
-  const auto lead = aci::sinusoidLeadProfile(20.0, 1.0, 0.204, 20.0, 100.0, kStep);
+  const auto lead = acc::sinusoidLeadProfile(20.0, 1.0, 0.204, 20.0, 100.0, kStep);
   ASSERT_EQ(lead.size(), 1001u);
   EXPECT_DOUBLE_EQ(lead[200], 20.0);
   EXPECT_NEAR(lead[300], 20.0 + std::sin(0.204 * 10.0), 1e-9);
-  const auto held = aci::withFinalHold(lead, 10.0, kStep);
+  const auto held = acc::withFinalHold(lead, 10.0, kStep);
   EXPECT_EQ(held.size(), 1101u);
   EXPECT_DOUBLE_EQ(held.back(), lead.back());
-  EXPECT_THROW(aci::sinusoidLeadProfile(20.0, 1.0, 0.2, 0.0, 10.0, 0.0), std::invalid_argument);
+  EXPECT_THROW(acc::sinusoidLeadProfile(20.0, 1.0, 0.2, 0.0, 10.0, 0.0), std::invalid_argument);
 }

@@ -5,21 +5,20 @@
 #include <fstream>
 #include <string>
 
-#include "acc_identification/acc_model.h"
-#include "acc_identification/follower_simulation.h"
-#include "acc_identification/paper_settings.h"
+#include "acc_identification/model/acc_model.h"
+#include "acc_identification/model/follower_simulation.h"
+#include "acc_identification/model/paper_settings.h"
 #include "acc_identification/reproduction/parameter_file.h"
 #include "acc_identification/reproduction/run_comparison.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
 /// A run made by the model itself: the leader steps between several speeds, the follower is the
 /// Euler simulation of p. Long holds so that the follower reaches equilibrium at each speed.
-aci::CarFollowingRun syntheticRun(const aci::AccParameters& p)
+acc::CarFollowingRun syntheticRun(const acc::AccParameters& p)
 {
-  aci::CarFollowingRun run;
+  acc::CarFollowingRun run;
   run.name = "synthetic";
   const double h = 0.1;
   const double speeds[] = {15.0, 20.0, 25.0, 18.0};
@@ -29,8 +28,8 @@ aci::CarFollowingRun syntheticRun(const aci::AccParameters& p)
     run.leader_speed_mps.push_back(speeds[k / 3000]);
   }
   run.follower_speed_mps.assign(run.size(), 15.0);
-  run.space_gap_m.assign(run.size(), aci::equilibriumSpaceGapM(p, 15.0));
-  const auto sim = aci::simulateFollower(p, run);
+  run.space_gap_m.assign(run.size(), acc::equilibriumSpaceGapM(p, 15.0));
+  const auto sim = acc::simulateFollower(p, run);
   run.follower_speed_mps = sim.speed_mps;
   run.space_gap_m = sim.space_gap_m;
   return run;
@@ -46,33 +45,33 @@ std::string writeTemp(const std::string& name, const std::string& text)
 
 TEST(ReproductionRuns, TrainTestErrorsAreZeroForTheTrueModelAndNotForAnother)
 {
-  const aci::AccParameters truth = aci::paperMinimumSetting();
+  const acc::AccParameters truth = acc::paperMinimumSetting();
   const auto run = syntheticRun(truth);
-  const auto exact = aci::trainTestErrors(run, aci::simulateFollower(truth, run), 0.5);
+  const auto exact = acc::trainTestErrors(run, acc::simulateFollower(truth, run), 0.5);
   EXPECT_EQ(exact.split_index, run.size() / 2);
   EXPECT_NEAR(exact.split_time_s, run.time_s[run.size() / 2], 1e-12);
   EXPECT_LT(exact.train_speed_rmse_mps + exact.test_speed_rmse_mps, 1e-9);
   EXPECT_LT(exact.train_gap_rmse_m + exact.test_gap_rmse_m, 1e-9);
-  const auto other = aci::trainTestErrors(run, aci::simulateFollower(aci::paperMaximumSetting(), run), 0.5);
+  const auto other = acc::trainTestErrors(run, acc::simulateFollower(acc::paperMaximumSetting(), run), 0.5);
   EXPECT_GT(other.train_speed_rmse_mps, 0.05);
   EXPECT_GT(other.test_gap_rmse_m, 1.0);
-  EXPECT_THROW(aci::trainTestErrors(run, aci::simulateFollower(truth, run), 1.0), std::invalid_argument);
+  EXPECT_THROW(acc::trainTestErrors(run, acc::simulateFollower(truth, run), 1.0), std::invalid_argument);
 }
 
 // Fig. 5: steady samples of a run of the model sit on its line eta + tau_e v.
 TEST(ReproductionRuns, EquilibriumLineOfSteadySamplesRecoversEtaAndTau)
 {
-  const aci::AccParameters truth = aci::paperMaximumSetting();
+  const acc::AccParameters truth = acc::paperMaximumSetting();
   const auto run = syntheticRun(truth);
-  const auto steady = aci::steadyFollowingSamples(run, 0.05, 0.01);
+  const auto steady = acc::steadyFollowingSamples(run, 0.05, 0.01);
   ASSERT_GT(steady.size(), 3000u);
   ASSERT_LT(steady.size(), run.size());
-  const auto line = aci::fitGapSpeedLine(run, steady);
+  const auto line = acc::fitGapSpeedLine(run, steady);
   EXPECT_NEAR(line.slope_s, truth.tau_e_s, 0.02);
   EXPECT_NEAR(line.intercept_m, truth.eta_m, 0.4);
-  EXPECT_LT(aci::rmsFromEquilibriumLine(truth, run, steady), 0.3);
-  EXPECT_GT(aci::rmsFromEquilibriumLine(aci::paperMinimumSetting(), run, steady), 10.0);
-  EXPECT_THROW(aci::fitGapSpeedLine(run, {1}), std::invalid_argument);
+  EXPECT_LT(acc::rmsFromEquilibriumLine(truth, run, steady), 0.3);
+  EXPECT_GT(acc::rmsFromEquilibriumLine(acc::paperMinimumSetting(), run, steady), 10.0);
+  EXPECT_THROW(acc::fitGapSpeedLine(run, {1}), std::invalid_argument);
 }
 
 TEST(ReproductionRuns, ParameterFileReadsCalibrateJsonAndExplainsProblems)
@@ -80,16 +79,16 @@ TEST(ReproductionRuns, ParameterFileReadsCalibrateJsonAndExplainsProblems)
   const std::string good = writeTemp("nexo_min.json",
                                      R"({"parameters": {"k1_per_s2": 0.08, "k2_per_s": 0.4, "tau_e_s": 0.9,
                                          "eta_m": 5.5}, "rmse": {"speed_mps": 0.2}})");
-  const auto setting = aci::readParameterFile(good);
+  const auto setting = acc::readParameterFile(good);
   EXPECT_EQ(setting.name, "nexo_min");
   EXPECT_DOUBLE_EQ(setting.parameters.k1_per_s2, 0.08);
   EXPECT_DOUBLE_EQ(setting.parameters.k2_per_s, 0.4);
   EXPECT_DOUBLE_EQ(setting.parameters.tau_e_s, 0.9);
   EXPECT_DOUBLE_EQ(setting.parameters.eta_m, 5.5);
-  EXPECT_THROW(aci::readParameterFile(writeTemp("p1.json", "{not json")), aci::ParameterFileError);
-  EXPECT_THROW(aci::readParameterFile(writeTemp("p2.json", R"({"k1_per_s2": 1})")), aci::ParameterFileError);
-  EXPECT_THROW(aci::readParameterFile(writeTemp("p3.json", R"({"parameters": {"k1_per_s2": 1, "k2_per_s": "x",
+  EXPECT_THROW(acc::readParameterFile(writeTemp("p1.json", "{not json")), acc::ParameterFileError);
+  EXPECT_THROW(acc::readParameterFile(writeTemp("p2.json", R"({"k1_per_s2": 1})")), acc::ParameterFileError);
+  EXPECT_THROW(acc::readParameterFile(writeTemp("p3.json", R"({"parameters": {"k1_per_s2": 1, "k2_per_s": "x",
                                        "tau_e_s": 1, "eta_m": 1}})")),
-               aci::ParameterFileError);
-  EXPECT_THROW(aci::readParameterFile(testing::TempDir() + "missing.json"), aci::ParameterFileError);
+               acc::ParameterFileError);
+  EXPECT_THROW(acc::readParameterFile(testing::TempDir() + "missing.json"), acc::ParameterFileError);
 }

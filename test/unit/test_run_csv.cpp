@@ -7,7 +7,6 @@
 
 #include "acc_identification/io/run_csv.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
@@ -15,7 +14,7 @@ const std::string kDataDir = ACC_TEST_DATA_DIR;
 
 TEST(RunCsv, CanonicalBadRowsAreRejectedWithLineNumbersAndSplitTheRun)
 {
-  const auto contents = aci::readRunFile(kDataDir + "/canonical_with_bad_rows.csv");
+  const auto contents = acc::readRunFile(kDataDir + "/canonical_with_bad_rows.csv");
   EXPECT_EQ(contents.data_rows, 11u);
   // Line 5: not a number; line 8: time repeats; line 10: a field is missing.
   ASSERT_EQ(contents.rejected_rows, 3u);
@@ -40,13 +39,13 @@ TEST(RunCsv, CanonicalBadRowsAreRejectedWithLineNumbersAndSplitTheRun)
   EXPECT_DOUBLE_EQ(contents.runs[2].leader_speed_mps[1], 10.5);
   for (const auto& run : contents.runs)
   {
-    EXPECT_EQ(aci::describeRunProblem(run), "");
+    EXPECT_EQ(acc::describeRunProblem(run), "");
   }
 }
 
 TEST(RunCsv, OpenAccColumnsAreMappedByNameAndAccOffSplits)
 {
-  const auto contents = aci::readRunFile(kDataDir + "/openacc_excerpt.csv");
+  const auto contents = acc::readRunFile(kDataDir + "/openacc_excerpt.csv");
   EXPECT_EQ(contents.data_rows, 6u);
   EXPECT_EQ(contents.rejected_rows, 0u);
   EXPECT_EQ(contents.acc_off_rows, 1u);
@@ -63,7 +62,7 @@ TEST(RunCsv, OpenAccColumnsAreMappedByNameAndAccOffSplits)
 
 TEST(RunCsv, WriteThenReadGivesTheSameRun)
 {
-  aci::CarFollowingRun run;
+  acc::CarFollowingRun run;
   for (int i = 0; i < 5; ++i)
   {
     run.time_s.push_back(0.1 * i + 1.0 / 3.0);
@@ -72,8 +71,8 @@ TEST(RunCsv, WriteThenReadGivesTheSameRun)
     run.leader_speed_mps.push_back(11.0 + 1e-9 * i);
   }
   const std::string path = testing::TempDir() + "/run_csv_roundtrip.csv";
-  aci::writeRunCsv(path, run);
-  const auto runs = aci::readRuns(path);
+  acc::writeRunCsv(path, run);
+  const auto runs = acc::readRuns(path);
   std::remove(path.c_str());
   ASSERT_EQ(runs.size(), 1u);
   EXPECT_EQ(runs[0].time_s, run.time_s);
@@ -84,7 +83,7 @@ TEST(RunCsv, WriteThenReadGivesTheSameRun)
 
 TEST(RunCsv, UnreadableFilesThrowWithTheReason)
 {
-  EXPECT_THROW(aci::readRunFile(kDataDir + "/does_not_exist.csv"), aci::RunReadError);
+  EXPECT_THROW(acc::readRunFile(kDataDir + "/does_not_exist.csv"), acc::RunReadError);
   const std::string path = testing::TempDir() + "/run_csv_no_header.csv";
   {
     FILE* file = std::fopen(path.c_str(), "w");
@@ -93,10 +92,10 @@ TEST(RunCsv, UnreadableFilesThrowWithTheReason)
   }
   try
   {
-    aci::readRunFile(path);
+    acc::readRunFile(path);
     FAIL() << "expected RunReadError";
   }
-  catch (const aci::RunReadError& error)
+  catch (const acc::RunReadError& error)
   {
     EXPECT_NE(std::string(error.what()).find("no header"), std::string::npos) << error.what();
   }
@@ -111,7 +110,7 @@ bool contains(const std::string& text, const std::string& part)
 
 TEST(RunCsvPlausibility, ImpossibleFollowerSpeedIsRejectedWithItsLineAndColumnAndSplitsTheRun)
 {
-  const auto contents = aci::readRunFile(kDataDir + "/canonical_implausible_speed.csv");
+  const auto contents = acc::readRunFile(kDataDir + "/canonical_implausible_speed.csv");
   EXPECT_EQ(contents.data_rows, 7u);
   EXPECT_EQ(contents.rejected_rows, 1u);
   EXPECT_EQ(contents.implausible_rows, 1u);
@@ -137,7 +136,7 @@ TEST(RunCsvPlausibility, ImpossibleFollowerSpeedIsRejectedWithItsLineAndColumnAn
 
 TEST(RunCsvPlausibility, NegativeGapAndNegativeLeaderSpeedAreRejectedLikewise)
 {
-  const auto contents = aci::readRunFile(kDataDir + "/canonical_implausible_gap_and_leader.csv");
+  const auto contents = acc::readRunFile(kDataDir + "/canonical_implausible_gap_and_leader.csv");
   EXPECT_EQ(contents.data_rows, 8u);
   EXPECT_EQ(contents.rejected_rows, 2u);
   EXPECT_EQ(contents.implausible_rows, 2u);
@@ -160,7 +159,7 @@ TEST(RunCsvPlausibility, ValuesJustInsideTheBoundsAreAcceptedAndJustOutsideRejec
 {
   // Lines 2-5 are inside or on the bounds (speeds -0.5, -1, 99, 100 m/s, leader -0.9 and 100 m/s,
   // gaps -1.5, -2, 999, 1000 m); lines 6, 9 and 12 are just outside, one quantity each.
-  const auto contents = aci::readRunFile(kDataDir + "/canonical_near_bounds.csv");
+  const auto contents = acc::readRunFile(kDataDir + "/canonical_near_bounds.csv");
   EXPECT_EQ(contents.data_rows, 13u);
   EXPECT_EQ(contents.rejected_rows, 3u);
   ASSERT_EQ(contents.problems.size(), 3u);
@@ -182,7 +181,7 @@ TEST(RunCsvPlausibility, ValuesJustInsideTheBoundsAreAcceptedAndJustOutsideRejec
 TEST(RunCsvPlausibility, HoleInTimeSplitsTheRunWithoutRejectingARow)
 {
   // Rows at 1.0, 1.1, 11.1 and 11.2 s: one Euler step of 10 s unless split.
-  const auto contents = aci::readRunFile(kDataDir + "/canonical_time_hole.csv");
+  const auto contents = acc::readRunFile(kDataDir + "/canonical_time_hole.csv");
   EXPECT_EQ(contents.data_rows, 4u);
   EXPECT_EQ(contents.rejected_rows, 0u);
   EXPECT_EQ(contents.time_holes, 1u);
@@ -200,30 +199,30 @@ TEST(RunCsvPlausibility, HoleInTimeSplitsTheRunWithoutRejectingARow)
 
 TEST(RunCsvPlausibility, BoundsPassedByTheCallerAreHonoured)
 {
-  aci::RunPlausibilityBounds wide;
+  acc::RunPlausibilityBounds wide;
   wide.max_speed_mps = 2e9;
   wide.max_time_step_s = 20.0;
-  const auto widened_speed = aci::readRunFile(kDataDir + "/canonical_implausible_speed.csv", wide);
+  const auto widened_speed = acc::readRunFile(kDataDir + "/canonical_implausible_speed.csv", wide);
   EXPECT_EQ(widened_speed.rejected_rows, 0u);
   ASSERT_EQ(widened_speed.runs.size(), 1u);
   EXPECT_EQ(widened_speed.runs[0].size(), 7u);
-  const auto widened_step = aci::readRunFile(kDataDir + "/canonical_time_hole.csv", wide);
+  const auto widened_step = acc::readRunFile(kDataDir + "/canonical_time_hole.csv", wide);
   EXPECT_EQ(widened_step.time_holes, 0u);
   ASSERT_EQ(widened_step.runs.size(), 1u);
   EXPECT_EQ(widened_step.runs[0].size(), 4u);
 
-  aci::RunPlausibilityBounds wider_values;
+  acc::RunPlausibilityBounds wider_values;
   wider_values.min_speed_mps = -2.0;
   wider_values.max_speed_mps = 101.0;
   wider_values.min_space_gap_m = -3.0;
-  const auto widened_values = aci::readRunFile(kDataDir + "/canonical_near_bounds.csv", wider_values);
+  const auto widened_values = acc::readRunFile(kDataDir + "/canonical_near_bounds.csv", wider_values);
   EXPECT_EQ(widened_values.rejected_rows, 0u);
   ASSERT_EQ(widened_values.runs.size(), 1u);
   EXPECT_EQ(widened_values.runs[0].size(), 13u);
 
-  aci::RunPlausibilityBounds narrow;
+  acc::RunPlausibilityBounds narrow;
   narrow.min_speed_mps = 0.0;
-  const auto narrowed = aci::readRunFile(kDataDir + "/canonical_near_bounds.csv", narrow);
+  const auto narrowed = acc::readRunFile(kDataDir + "/canonical_near_bounds.csv", narrow);
   EXPECT_EQ(narrowed.rejected_rows, 5u);  // lines 2 and 3 (follower -0.5 and -1 m/s) as well
   ASSERT_FALSE(narrowed.problems.empty());
   EXPECT_TRUE(contains(narrowed.problems[0], ":2: follower_speed_mps -0.5 outside [0, 100] m/s"))
@@ -232,24 +231,24 @@ TEST(RunCsvPlausibility, BoundsPassedByTheCallerAreHonoured)
 
 TEST(RunCsvPlausibility, UnusableBoundsAreRefusedBeforeAnyRow)
 {
-  aci::RunPlausibilityBounds crossed;
+  acc::RunPlausibilityBounds crossed;
   crossed.min_space_gap_m = 10.0;
   crossed.max_space_gap_m = 5.0;
-  EXPECT_THROW(aci::readRunFile(kDataDir + "/canonical_near_bounds.csv", crossed), std::invalid_argument);
-  aci::RunPlausibilityBounds no_step;
+  EXPECT_THROW(acc::readRunFile(kDataDir + "/canonical_near_bounds.csv", crossed), std::invalid_argument);
+  acc::RunPlausibilityBounds no_step;
   no_step.max_time_step_s = 0.0;
-  EXPECT_THROW(aci::readRunFile(kDataDir + "/canonical_near_bounds.csv", no_step), std::invalid_argument);
+  EXPECT_THROW(acc::readRunFile(kDataDir + "/canonical_near_bounds.csv", no_step), std::invalid_argument);
   // Infinite bounds switch a check off; NaN is never plausible.
-  aci::RunPlausibilityBounds unbounded;
+  acc::RunPlausibilityBounds unbounded;
   unbounded.max_speed_mps = std::numeric_limits<double>::infinity();
-  EXPECT_EQ(aci::describeBoundsProblem(unbounded), "");
-  EXPECT_EQ(aci::describeImplausibleValue(20.0, 1e12, 10.0, unbounded), "");
-  EXPECT_NE(aci::describeImplausibleValue(std::numeric_limits<double>::quiet_NaN(), 10.0, 10.0, unbounded), "");
+  EXPECT_EQ(acc::describeBoundsProblem(unbounded), "");
+  EXPECT_EQ(acc::describeImplausibleValue(20.0, 1e12, 10.0, unbounded), "");
+  EXPECT_NE(acc::describeImplausibleValue(std::numeric_limits<double>::quiet_NaN(), 10.0, 10.0, unbounded), "");
 }
 
 TEST(RunCsvPlausibility, OpenAccImpossibleSpeed2IsRejectedLikewise)
 {
-  const auto contents = aci::readRunFile(kDataDir + "/openacc_implausible_speed2.csv");
+  const auto contents = acc::readRunFile(kDataDir + "/openacc_implausible_speed2.csv");
   EXPECT_EQ(contents.data_rows, 5u);
   EXPECT_EQ(contents.rejected_rows, 1u);
   EXPECT_EQ(contents.implausible_rows, 1u);
@@ -266,8 +265,8 @@ TEST(RunCsvPlausibility, OpenAccImpossibleSpeed2IsRejectedLikewise)
 TEST(RunCsvPlausibility, ReadRunsCountsImplausibleRowsAndHolesOnStderr)
 {
   testing::internal::CaptureStderr();
-  const auto speed_runs = aci::readRuns(kDataDir + "/canonical_implausible_speed.csv");
-  const auto hole_runs = aci::readRuns(kDataDir + "/canonical_time_hole.csv");
+  const auto speed_runs = acc::readRuns(kDataDir + "/canonical_implausible_speed.csv");
+  const auto hole_runs = acc::readRuns(kDataDir + "/canonical_time_hole.csv");
   const std::string log = testing::internal::GetCapturedStderr();
   EXPECT_EQ(speed_runs.size(), 2u);
   EXPECT_EQ(hole_runs.size(), 2u);
@@ -283,7 +282,7 @@ TEST(RunCsvPlausibility, ReadRunsCountsImplausibleRowsAndHolesOnStderr)
 
 TEST(RunCsv, RealOpenAccCopyReadsWhole)
 {
-  const auto runs = aci::readRuns(kDataDir + "/casale_part4.csv");
+  const auto runs = acc::readRuns(kDataDir + "/casale_part4.csv");
   ASSERT_EQ(runs.size(), 1u);
   EXPECT_EQ(runs[0].size(), 1151u);
   EXPECT_NEAR(runs[0].durationS(), 115.0, 1e-6);

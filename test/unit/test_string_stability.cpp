@@ -2,20 +2,19 @@
 
 #include <cmath>
 
-#include "acc_identification/paper_settings.h"
-#include "acc_identification/string_stability.h"
+#include "acc_identification/model/paper_settings.h"
+#include "acc_identification/model/string_stability.h"
 
-namespace aci = acc_identification;
 
 namespace
 {
 /// Brute-force maximum of |Gamma| on a fine grid: an independent check of the closed forms.
-std::pair<double, double> gridPeak(const aci::AccParameters& p, double max_w, double step)
+std::pair<double, double> gridPeak(const acc::AccParameters& p, double max_w, double step)
 {
-  double best_w = 0.0, best_db = aci::transferGainDb(p, 0.0);
+  double best_w = 0.0, best_db = acc::transferGainDb(p, 0.0);
   for (double w = step; w <= max_w; w += step)
   {
-    const double db = aci::transferGainDb(p, w);
+    const double db = acc::transferGainDb(p, w);
     if (db > best_db)
     {
       best_db = db;
@@ -26,12 +25,12 @@ std::pair<double, double> gridPeak(const aci::AccParameters& p, double max_w, do
 }
 
 /// Largest grid frequency with |Gamma| > 1: independent check of the closed-form band.
-double gridBandUpper(const aci::AccParameters& p, double max_w, double step)
+double gridBandUpper(const acc::AccParameters& p, double max_w, double step)
 {
   double upper = 0.0;
   for (double w = step; w <= max_w; w += step)
   {
-    if (aci::transferGain(p, w) > 1.0) upper = w;
+    if (acc::transferGain(p, w) > 1.0) upper = w;
   }
   return upper;
 }
@@ -40,10 +39,10 @@ double gridBandUpper(const aci::AccParameters& p, double max_w, double step)
 // Table II prints lambda2 = 70.7 (minimum setting) and 8.36 (maximum setting): both reproduced.
 TEST(StringStability, TableTwoLambda2)
 {
-  EXPECT_NEAR(aci::lambda2(aci::paperMinimumSetting()), 70.7, 0.05);
-  EXPECT_NEAR(aci::lambda2(aci::paperMaximumSetting()), 8.36, 0.005);
-  EXPECT_FALSE(aci::analyzeStringStability(aci::paperMinimumSetting()).string_stable);
-  EXPECT_FALSE(aci::analyzeStringStability(aci::paperMaximumSetting()).string_stable);
+  EXPECT_NEAR(acc::lambda2(acc::paperMinimumSetting()), 70.7, 0.05);
+  EXPECT_NEAR(acc::lambda2(acc::paperMaximumSetting()), 8.36, 0.005);
+  EXPECT_FALSE(acc::analyzeStringStability(acc::paperMinimumSetting()).string_stable);
+  EXPECT_FALSE(acc::analyzeStringStability(acc::paperMaximumSetting()).string_stable);
 }
 
 // Section V-C: maximum setting amplifies below 0.118 rad/s, peak 0.386 dB at 0.062 rad/s. The
@@ -51,7 +50,7 @@ TEST(StringStability, TableTwoLambda2)
 // a frequency grid would be); the peak is reproduced to the printed digits.
 TEST(StringStability, MaximumSettingBandAndPeakMatchThePaper)
 {
-  const auto report = aci::analyzeStringStability(aci::paperMaximumSetting());
+  const auto report = acc::analyzeStringStability(acc::paperMaximumSetting());
   EXPECT_NEAR(report.amplified_band_upper_rad_s, 0.11749, 0.00001);
   EXPECT_NEAR(report.amplified_band_upper_rad_s, 0.118, 0.001);
   EXPECT_NEAR(report.peak_frequency_rad_s, 0.062, 0.0005);
@@ -62,7 +61,7 @@ TEST(StringStability, MaximumSettingBandAndPeakMatchThePaper)
 // printed parameters give 0.3448 rad/s and 1.111 dB at 0.1927 rad/s; the mathematics wins.
 TEST(StringStability, MinimumSettingBandAndPeakFromTableTwo)
 {
-  const auto report = aci::analyzeStringStability(aci::paperMinimumSetting());
+  const auto report = acc::analyzeStringStability(acc::paperMinimumSetting());
   EXPECT_NEAR(report.amplified_band_upper_rad_s, 0.3448, 0.0001);
   EXPECT_NEAR(report.peak_frequency_rad_s, 0.19274, 0.0001);
   EXPECT_NEAR(report.peak_gain_db, 1.1107, 0.0001);
@@ -70,10 +69,10 @@ TEST(StringStability, MinimumSettingBandAndPeakFromTableTwo)
 
 TEST(StringStability, ClosedFormsAgreeWithAGridSearch)
 {
-  for (const auto& setting : aci::namedSettings())
+  for (const auto& setting : acc::namedSettings())
   {
     SCOPED_TRACE(setting.name);
-    const auto report = aci::analyzeStringStability(setting.parameters);
+    const auto report = acc::analyzeStringStability(setting.parameters);
     const auto [grid_w, grid_db] = gridPeak(setting.parameters, 3.0, 1e-5);
     EXPECT_NEAR(report.peak_frequency_rad_s, grid_w, 2e-5);
     EXPECT_NEAR(report.peak_gain_db, grid_db, 1e-7);
@@ -83,8 +82,8 @@ TEST(StringStability, ClosedFormsAgreeWithAGridSearch)
 
 TEST(StringStability, FigureTwoSettings)
 {
-  const auto unstable = aci::analyzeStringStability(aci::paperFigure2Setting(0.75));
-  const auto stable = aci::analyzeStringStability(aci::paperFigure2Setting(3.2));
+  const auto unstable = acc::analyzeStringStability(acc::paperFigure2Setting(0.75));
+  const auto stable = acc::analyzeStringStability(acc::paperFigure2Setting(3.2));
   EXPECT_FALSE(unstable.string_stable);
   EXPECT_GT(unstable.lambda2, 0.0);
   EXPECT_TRUE(stable.string_stable);
@@ -102,10 +101,10 @@ TEST(StringStability, Lambda2AndTransferFunctionVerdictsAgreeOnAGrid)
     for (double k2 = 0.0; k2 < 1.5; k2 += 0.11)
       for (double tau = 0.1; tau < 4.0; tau += 0.23)
       {
-        const aci::AccParameters p{k1, k2, tau, 5.0};
+        const acc::AccParameters p{k1, k2, tau, 5.0};
         const double margin = k1 * tau * tau + 2 * k2 * tau - 2;
         if (std::abs(margin) < 1e-9) continue;
-        const auto report = aci::analyzeStringStability(p);
+        const auto report = acc::analyzeStringStability(p);
         EXPECT_EQ(report.string_stable, report.lambda2 < 0.0) << k1 << " " << k2 << " " << tau;
         EXPECT_EQ(report.string_stable, margin > 0.0);
         ++checked;
@@ -115,10 +114,10 @@ TEST(StringStability, Lambda2AndTransferFunctionVerdictsAgreeOnAGrid)
 
 TEST(StringStability, EtaPlaysNoPart)
 {
-  auto p = aci::paperMinimumSetting();
-  const auto before = aci::analyzeStringStability(p);
+  auto p = acc::paperMinimumSetting();
+  const auto before = acc::analyzeStringStability(p);
   p.eta_m = 30.0;
-  const auto after = aci::analyzeStringStability(p);
+  const auto after = acc::analyzeStringStability(p);
   EXPECT_DOUBLE_EQ(before.lambda2, after.lambda2);
   EXPECT_DOUBLE_EQ(before.peak_gain_db, after.peak_gain_db);
 }
@@ -126,17 +125,17 @@ TEST(StringStability, EtaPlaysNoPart)
 TEST(StringStability, DegenerateGains)
 {
   // No spacing feedback: Gamma = k2 / (j w + k2) never exceeds 1.
-  const auto no_spacing = aci::analyzeStringStability({0.0, 0.5, 1.0, 5.0});
+  const auto no_spacing = acc::analyzeStringStability({0.0, 0.5, 1.0, 5.0});
   EXPECT_TRUE(no_spacing.string_stable);
   EXPECT_EQ(no_spacing.lambda2, 0.0);
   EXPECT_NEAR(no_spacing.peak_gain_db, 0.0, 1e-12);
   // Zero time gap with spacing feedback: every low frequency grows.
-  const auto no_time_gap = aci::analyzeStringStability({0.2, 0.5, 0.0, 5.0});
+  const auto no_time_gap = acc::analyzeStringStability({0.2, 0.5, 0.0, 5.0});
   EXPECT_FALSE(no_time_gap.string_stable);
   EXPECT_TRUE(std::isinf(no_time_gap.lambda2));
   EXPECT_NEAR(no_time_gap.amplified_band_upper_rad_s, std::sqrt(0.4), 1e-12);
   // k2 = 0: the peak equation degenerates to a linear one.
-  const aci::AccParameters no_relative{0.3, 0.0, 0.5, 5.0};
-  const auto report = aci::analyzeStringStability(no_relative);
+  const acc::AccParameters no_relative{0.3, 0.0, 0.5, 5.0};
+  const auto report = acc::analyzeStringStability(no_relative);
   EXPECT_NEAR(report.peak_frequency_rad_s, gridPeak(no_relative, 3.0, 1e-5).first, 2e-5);
 }

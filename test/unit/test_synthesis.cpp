@@ -10,15 +10,15 @@
 
 #include "acc_identification/conversion/openacc_to_nmea.h"
 #include "acc_identification/diagnosis/augmented_simulation.h"
-#include "acc_identification/follower_simulation.h"
+#include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/gnss/nmea_log.h"
-#include "acc_identification/paper_settings.h"
-#include "acc_identification/profiles/lead_profiles.h"
+#include "acc_identification/model/paper_settings.h"
+#include "acc_identification/reproduction/lead_profiles.h"
 #include "acc_identification/synthesis/road_centreline.h"
 #include "acc_identification/synthesis/synthesis.h"
 #include "acc_identification/synthesis/synthesis_output.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -300,4 +300,4 @@ TEST(Synthesis, UtcTimesParse)
 }
 
 }  // namespace
-}  // namespace acc_identification
+}  // namespace acc

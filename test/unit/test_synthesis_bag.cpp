@@ -12,14 +12,14 @@
 #include "acc_identification/Sentence.h"
 #include "acc_identification/conversion/openacc_to_nmea.h"
 #include "acc_identification/gnss/nmea_writer.h"
-#include "acc_identification/paper_settings.h"
+#include "acc_identification/model/paper_settings.h"
 #include "acc_identification/synthesis/synthesis.h"
 #include "acc_identification/synthesis/synthesis_output.h"
 #include "acc_identification/gnss/nmea_parser.h"
 #include "acc_identification/ros/sentence_bag_writer.h"
 #include "acc_identification/synthesis/nmea_log_timing.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -79,7 +79,7 @@ TEST(SentenceBag, BothReceiversInterleavedInTimeOrder)
   std::map<std::string, std::vector<std::string>> lines;
   for (const rosbag::MessageInstance& instance : view)
   {
-    const auto message = instance.instantiate<Sentence>();
+    const auto message = instance.instantiate<acc_identification::Sentence>();
     ASSERT_TRUE(message);
     EXPECT_GE(instance.getTime().toSec(), previous);
     EXPECT_EQ(instance.getTime(), message->header.stamp);
@@ -106,7 +106,7 @@ TEST(BundledBags, HoldBothReceiversAtTenHertzWithValidSentences)
     std::map<std::string, std::size_t> ok, bad;
     for (const rosbag::MessageInstance& instance : view)
     {
-      const auto message = instance.instantiate<Sentence>();
+      const auto message = instance.instantiate<acc_identification::Sentence>();
       ASSERT_TRUE(message);
       NmeaSentence sentence;
       (parseNmeaSentence(message->sentence, sentence) == NmeaParseOutcome::kOk ? ok : bad)[instance.getTopic()]++;
@@ -128,7 +128,7 @@ std::map<std::string, std::vector<std::string>> bagLines(const std::string& path
   rosbag::View view(bag);
   std::map<std::string, std::vector<std::string>> lines;
   for (const rosbag::MessageInstance& instance : view)
-    lines[instance.getTopic()].push_back(instance.instantiate<Sentence>()->sentence);
+    lines[instance.getTopic()].push_back(instance.instantiate<acc_identification::Sentence>()->sentence);
   return lines;
 }
 
@@ -188,4 +188,4 @@ TEST(BundledBags, CasaleBagsAreTheConversionOfOpenAcc)
 }
 
 }  // namespace
-}  // namespace acc_identification
+}  // namespace acc

@@ -9,12 +9,12 @@
 
 #include "acc_identification/conversion/openacc_to_nmea.h"
 #include "acc_identification/gnss/nmea_log.h"
-#include "acc_identification/paper_settings.h"
+#include "acc_identification/model/paper_settings.h"
 #include "acc_identification/relative_state/vehicle_geometry.h"
 #include "acc_identification/synthesis/gnss_error_model.h"
 #include "acc_identification/synthesis/synthesis.h"
 
-namespace acc_identification
+namespace acc
 {
 namespace
 {
@@ -121,4 +121,4 @@ TEST(SynthesisNoise, PositionErrorWandersSlowly)
 }
 
 }  // namespace
-}  // namespace acc_identification
+}  // namespace acc

@@ -4,10 +4,10 @@
 #include <cstddef>
 #include <vector>
 
-#include "acc_identification/acc_parameters.h"
-#include "acc_identification/car_following_run.h"
+#include "acc_identification/model/acc_parameters.h"
+#include "acc_identification/model/car_following_run.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Box constraints of the calibration: the paper's k1, k2, tau_e, eta >= 0, plus upper bounds far
 /// above any published ACC fit (Gunter et al. Table II: k1 < 0.1, k2 < 0.5, tau_e < 1.7,
@@ -70,4 +70,4 @@ private:
   ParameterBounds bounds_;
 };
 
-}  // namespace acc_identification
+}  // namespace acc

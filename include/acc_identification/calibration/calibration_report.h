@@ -10,10 +10,10 @@
 #include "acc_identification/calibration/fit_statistics.h"
 #include "acc_identification/calibration/grid_search.h"
 #include "acc_identification/calibration/multistart_calibrator.h"
-#include "acc_identification/car_following_run.h"
-#include "acc_identification/string_stability.h"
+#include "acc_identification/model/car_following_run.h"
+#include "acc_identification/model/string_stability.h"
 
-namespace acc_identification
+namespace acc
 {
 /// One run of a calibration, scored on its training part and, with a split, on its test part.
 struct RunScore
@@ -51,4 +51,4 @@ nlohmann::json reportToJson(const CalibrationReport& report);
 /// with standard errors, lambda2 and the verdict.
 void printReport(const CalibrationReport& report, std::ostream& out);
 
-}  // namespace acc_identification
+}  // namespace acc

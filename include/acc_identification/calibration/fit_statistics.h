@@ -6,10 +6,10 @@
 
 #include <Eigen/Core>
 
-#include "acc_identification/acc_parameters.h"
-#include "acc_identification/car_following_run.h"
+#include "acc_identification/model/acc_parameters.h"
+#include "acc_identification/model/car_following_run.h"
 
-namespace acc_identification
+namespace acc
 {
 /// How well a parameter set reproduces runs, by the reference simulateFollower() from each run's
 /// own measured start (the paper's Table I columns).
@@ -51,4 +51,4 @@ struct ParameterUncertainty
 ParameterUncertainty estimateUncertainty(const AccParameters& p, const std::vector<CarFollowingRun>& runs,
                                          double min_block_s = 10.0);
 
-}  // namespace acc_identification
+}  // namespace acc

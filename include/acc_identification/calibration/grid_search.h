@@ -3,10 +3,10 @@
 #include <array>
 #include <cstddef>
 
-#include "acc_identification/acc_parameters.h"
+#include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/calibration/calibration_objective.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Exhaustive check of a multistart result: the reduced objective (eta in closed form) at every
 /// node of a regular grid over (k1, k2, tau_e). Slow by design; it shows that no basin was missed.
@@ -23,4 +23,4 @@ struct GridSearchResult
 GridSearchResult gridSearch(const CalibrationObjective& objective, const AccParameters& lower,
                             const AccParameters& upper, std::array<std::size_t, 3> nodes_per_axis);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -7,10 +7,10 @@
 #include "acc_identification/calibration/calibration_objective.h"
 #include "acc_identification/calibration/fit_statistics.h"
 #include "acc_identification/calibration/multistart_calibrator.h"
-#include "acc_identification/car_following_run.h"
-#include "acc_identification/string_stability.h"
+#include "acc_identification/model/car_following_run.h"
+#include "acc_identification/model/string_stability.h"
 
-namespace acc_identification
+namespace acc
 {
 /// When data can separate k1, k2, tau_e and eta. At steady following the data pin only
 /// eta + tau_e v: a fit then returns noise, and the identifier says so instead.
@@ -61,4 +61,4 @@ struct Identification
 Identification identifyAcc(const std::vector<CarFollowingRun>& segments, const IdentificationOptions& options,
                            const std::vector<AccParameters>& warm_starts = {});
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "acc_identification/acc_parameters.h"
+#include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/calibration/calibration_objective.h"
 
-namespace acc_identification
+namespace acc
 {
 /// How the multistart search runs.
 struct MultistartOptions
@@ -67,4 +67,4 @@ MultistartResult calibrateMultistart(const CalibrationObjective& objective, cons
 /// The i-th point (i >= 1) of the Halton sequence in bases 2, 3, 5, in [0, 1)^3.
 std::array<double, 3> haltonPoint(std::size_t index);
 
-}  // namespace acc_identification
+}  // namespace acc

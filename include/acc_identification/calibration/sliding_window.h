@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "acc_identification/car_following_run.h"
+#include "acc_identification/model/car_following_run.h"
 
-namespace acc_identification
+namespace acc
 {
 /// One relative-state sample as the identifier receives it.
 struct WindowSample
@@ -58,4 +58,4 @@ private:
   std::deque<WindowSample> samples_;
 };
 
-}  // namespace acc_identification
+}  // namespace acc

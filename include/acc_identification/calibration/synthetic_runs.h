@@ -2,10 +2,10 @@
 
 #include <cstdint>
 
-#include "acc_identification/acc_parameters.h"
-#include "acc_identification/car_following_run.h"
+#include "acc_identification/model/acc_parameters.h"
+#include "acc_identification/model/car_following_run.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Measurement errors to add to a synthetic run. Defaults: the paper's GPS errors (Section V-A:
 /// about 0.06 m/s on speed, 0.4 m on the space gap), white and Gaussian.
@@ -22,4 +22,4 @@ struct MeasurementNoise
 CarFollowingRun synthesizeRun(const AccParameters& truth, double duration_s, double time_step_s,
                               double cruise_speed_mps, std::uint32_t seed, const MeasurementNoise& noise = {});
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace acc_identification
+namespace acc
 {
 /// The fixes a receiver on one OpenACC vehicle (1 = leader, 2 = follower) would have sent:
 /// - time: the file's Date plus its Time column (the common clock of both vehicles);
@@ -27,4 +27,4 @@ std::vector<GnssFix> openAccFixes(const OpenAccTrajectories& file, int vehicle);
 bool writeNmeaLog(const std::string& path, const std::vector<GnssFix>& fixes, const std::string& talker,
                   std::string& error);
 
-}  // namespace acc_identification
+}  // namespace acc

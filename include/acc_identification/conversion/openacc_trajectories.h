@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace acc_identification
+namespace acc
 {
 /// One row of an OpenACC two-vehicle file (JRC OpenACC database, CC BY 4.0): vehicle 1 is the
 /// leader, vehicle 2 the follower. Index [0] is vehicle 1, [1] vehicle 2.
@@ -37,4 +37,4 @@ struct OpenAccTrajectories
 
 OpenAccTrajectories readOpenAccTrajectories(const std::string& path);
 
-}  // namespace acc_identification
+}  // namespace acc

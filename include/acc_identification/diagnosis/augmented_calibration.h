@@ -5,11 +5,11 @@
 #include <string>
 #include <vector>
 
-#include "acc_identification/acc_parameters.h"
-#include "acc_identification/car_following_run.h"
+#include "acc_identification/model/acc_parameters.h"
+#include "acc_identification/model/car_following_run.h"
 #include "acc_identification/diagnosis/candidate_effects.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Search box of the base parameters and how hard the local solver works. The same for the base
 /// fit and every augmented fit, so that they differ only by the effect.
@@ -65,4 +65,4 @@ AugmentedFit calibrateAugmented(EffectKind effect, const std::vector<CarFollowin
 /// The i-th point (i >= 1) of the Halton sequence in the first `dimensions` prime bases, in [0, 1).
 std::vector<double> haltonSequencePoint(std::size_t index, std::size_t dimensions);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -1,11 +1,11 @@
 #pragma once
 
-#include "acc_identification/acc_parameters.h"
-#include "acc_identification/car_following_run.h"
+#include "acc_identification/model/acc_parameters.h"
+#include "acc_identification/model/car_following_run.h"
 #include "acc_identification/diagnosis/candidate_effects.h"
-#include "acc_identification/follower_simulation.h"
+#include "acc_identification/model/follower_simulation.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Explicit-Euler simulation of one follower with the effects of `effects` switched on, driven by
 /// the run's recorded leader speed and started from its recorded gap and speed, one step per
@@ -24,4 +24,4 @@ namespace acc_identification
 SimulatedFollower simulateAugmentedFollower(const AccParameters& p, const EffectSettings& effects,
                                             const CarFollowingRun& run);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -2,10 +2,10 @@
 
 #include <string>
 
-#include "acc_identification/acc_parameters.h"
+#include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/diagnosis/candidate_effects.h"
 
-namespace acc_identification
+namespace acc
 {
 /// String stability of the augmented model, from its small-signal speed-to-speed transfer
 /// function evaluated numerically:
@@ -34,4 +34,4 @@ double augmentedTransferGain(const AccParameters& p, const EffectSettings& effec
 AugmentedStability analyzeAugmentedStability(const AccParameters& p, EffectKind effect, const EffectSettings& effects,
                                              double operating_speed_mps);
 
-}  // namespace acc_identification
+}  // namespace acc

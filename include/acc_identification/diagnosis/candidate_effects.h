@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace acc_identification
+namespace acc
 {
 /// The physical effects the base OVRV model lacks that the diagnosis can test, one at a time.
 enum class EffectKind
@@ -95,4 +95,4 @@ EffectSettings makeEffectSettings(EffectKind kind, const std::vector<double>& va
 /// The values of kind's parameters read back from settings (inverse of makeEffectSettings).
 std::vector<double> effectValues(EffectKind kind, const EffectSettings& settings);
 
-}  // namespace acc_identification
+}  // namespace acc

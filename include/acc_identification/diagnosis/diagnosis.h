@@ -4,15 +4,15 @@
 #include <string>
 #include <vector>
 
-#include "acc_identification/car_following_run.h"
+#include "acc_identification/model/car_following_run.h"
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/augmented_stability.h"
 #include "acc_identification/diagnosis/candidate_effects.h"
 #include "acc_identification/diagnosis/effect_selection.h"
 #include "acc_identification/diagnosis/residual_breakdown.h"
-#include "acc_identification/follower_simulation.h"
+#include "acc_identification/model/follower_simulation.h"
 
-namespace acc_identification
+namespace acc
 {
 struct DiagnosisOptions
 {
@@ -66,4 +66,4 @@ DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const Dia
 /// The model of the dominant effect, or the baseline when none.
 const ModelDiagnosis& dominantModel(const DiagnosisResult& result);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -7,7 +7,7 @@
 
 #include "acc_identification/diagnosis/diagnosis.h"
 
-namespace acc_identification
+namespace acc
 {
 /// The diagnosis as JSON: dominant_effect, plausible_effects, baseline {parameters,
 /// train_rmse_speed, test_rmse_speed, test_rmse_gap, stability}, effects [{name, parameters,
@@ -24,4 +24,4 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& result);
 /// Throws std::runtime_error when a file cannot be written.
 void writeDiagnosisTables(const DiagnosisResult& result, const std::string& dir);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -7,7 +7,7 @@
 
 #include "acc_identification/diagnosis/candidate_effects.h"
 
-namespace acc_identification
+namespace acc
 {
 /// The statistical rule that decides which effect the held-out data support.
 ///
@@ -72,4 +72,4 @@ SelectionResult selectEffect(const SquaredErrorsByRun& base, const std::vector<S
 /// The rule in one paragraph, for reports.
 std::string describeSelectionRule(const SelectionOptions& options, std::size_t candidates);
 
-}  // namespace acc_identification
+}  // namespace acc

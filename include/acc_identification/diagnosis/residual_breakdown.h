@@ -4,10 +4,10 @@
 #include <string>
 #include <vector>
 
-#include "acc_identification/car_following_run.h"
-#include "acc_identification/follower_simulation.h"
+#include "acc_identification/model/car_following_run.h"
+#include "acc_identification/model/follower_simulation.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Driving regimes, judged per sample from the recorded data (accelerations by central
 /// differences over about one second). The first that applies wins, so they partition the data.
@@ -97,4 +97,4 @@ ResidualBreakdown breakDownResiduals(const std::vector<CarFollowingRun>& runs,
                                      const std::vector<SimulatedFollower>& before,
                                      const std::vector<SimulatedFollower>& after, const BreakdownOptions& options);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -5,12 +5,12 @@
 #include <string>
 #include <vector>
 
-#include "acc_identification/acc_parameters.h"
-#include "acc_identification/car_following_run.h"
+#include "acc_identification/model/acc_parameters.h"
+#include "acc_identification/model/car_following_run.h"
 #include "acc_identification/diagnosis/candidate_effects.h"
 #include "acc_identification/diagnosis/diagnosis.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Built-in leader speed profiles for the withheld-effect suite, each exercising the effects
 /// differently: steps between held speeds (firm accelerations and brakings, speeds above a set
@@ -87,4 +87,4 @@ ConfusionMatrix confusionMatrix(const std::vector<WithheldOutcome>& outcomes);
 std::string formatConfusionMatrix(const ConfusionMatrix& matrix);
 std::string formatMagnitudeRecovery(const std::vector<WithheldOutcome>& outcomes);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-namespace acc_identification
+namespace acc
 {
 /// ~source of the driver, a URI:
 ///   serial:///dev/ttyACM0?baud=115200   termios 8N1, reopened with back-off when the device goes
@@ -58,4 +58,4 @@ public:
 /// The source for a URI; nullptr with a message in error when the URI is not usable.
 std::unique_ptr<ByteSource> makeByteSource(const std::string& uri, std::string& error);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -7,7 +7,7 @@
 
 #include "acc_identification/gnss/byte_source.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Replays a log of NMEA lines paced by the sentences' own UTC times: a line is released
 /// (time - first time) / rate after the first timed line, on the host's steady clock (not the
@@ -45,4 +45,4 @@ private:
   Clock::time_point due_;
 };
 
-}  // namespace acc_identification
+}  // namespace acc

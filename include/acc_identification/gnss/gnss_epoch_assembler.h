@@ -7,7 +7,7 @@
 #include "acc_identification/gnss/nmea_sentence.h"
 #include "acc_identification/gnss/utc_date.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Combines the sentences of one epoch into one GnssFix. An epoch is the run of sentences with
 /// the same UTC time of day; sentences without time (VTG) belong to the epoch being assembled.
@@ -45,4 +45,4 @@ private:
   UtcDateTracker dates_;
 };
 
-}  // namespace acc_identification
+}  // namespace acc

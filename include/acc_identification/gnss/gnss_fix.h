@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <limits>
 
-namespace acc_identification
+namespace acc
 {
 /// One GNSS epoch as the library sees it (ROS-free twin of msg/GnssFix.msg). The driver
 /// assembles it from one epoch's NMEA sentences; the relative-state pairing consumes it.
@@ -46,4 +46,4 @@ struct GnssFix
   bool has(std::uint32_t field) const { return (valid_fields & field) == field; }
 };
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -2,7 +2,7 @@
 
 #include "acc_identification/gnss/gnss_fix.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Horizontal velocity in the local ENU frame at the antenna (x east, y north, z up) [m/s].
 struct EnuVelocity
@@ -17,4 +17,4 @@ struct EnuVelocity
 /// the speed is zero, else nothing.
 bool enuVelocity(const GnssFix& fix, EnuVelocity& velocity);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -11,7 +11,7 @@
 #include "acc_identification/gnss/nmea_parser.h"
 #include "acc_identification/gnss/nmea_statistics.h"
 
-namespace acc_identification
+namespace acc
 {
 /// The whole receive path of one receiver: bytes -> lines -> sentences -> one fix per epoch,
 /// with statistics. Used by the driver node and by readNmeaLog, so a log and a live receiver
@@ -46,4 +46,4 @@ private:
   NmeaStatistics counts_;
 };
 
-}  // namespace acc_identification
+}  // namespace acc

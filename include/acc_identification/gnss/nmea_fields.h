@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string_view>
 
-namespace acc_identification
+namespace acc
 {
 /// Low-level NMEA 0183 helpers on string_view, allocation-free so that the parser can reach
 /// millions of sentences per second.
@@ -50,4 +50,4 @@ FieldStatus readTimeOfDay(std::string_view field, double& seconds);
 FieldStatus readAngle(std::string_view value_field, std::string_view hemisphere_field, double max_degrees,
                       char positive, char negative, double& degrees);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string_view>
 
-namespace acc_identification
+namespace acc
 {
 /// Turns a byte stream (serial reads, datagrams, TCP segments, file chunks) into NMEA lines:
 /// a line starts at '$' and ends at '\r' or '\n' (so \r\n, \n and \r all work); a partial line
@@ -92,4 +92,4 @@ void NmeaLineAssembler::finish(OnLine&& on_line)
   length_ = 0;
 }
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -6,7 +6,7 @@
 #include "acc_identification/gnss/gnss_fix.h"
 #include "acc_identification/gnss/nmea_statistics.h"
 
-namespace acc_identification
+namespace acc
 {
 /// A whole NMEA log decoded: one fix per epoch and the counts of what was rejected.
 struct NmeaLogResult
@@ -20,4 +20,4 @@ struct NmeaLogResult
 /// receive_time_s of each fix is the time of its epoch (there is no host clock in a log).
 NmeaLogResult readNmeaLog(const std::string& path);
 
-}  // namespace acc_identification
+}  // namespace acc

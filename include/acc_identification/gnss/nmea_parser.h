@@ -4,7 +4,7 @@
 
 #include "acc_identification/gnss/nmea_sentence.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Why a line did or did not become a sentence. Every rejected line has exactly one reason.
 enum class NmeaParseOutcome
@@ -26,4 +26,4 @@ NmeaParseOutcome parseNmeaSentence(std::string_view line, NmeaSentence& sentence
 /// readable (no checksum check): used to pace the replay of logs.
 bool nmeaLineTimeOfDay(std::string_view line, double& time_of_day_s);
 
-}  // namespace acc_identification
+}  // namespace acc

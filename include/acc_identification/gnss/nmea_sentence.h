@@ -4,7 +4,7 @@
 #include <limits>
 #include <optional>
 
-namespace acc_identification
+namespace acc
 {
 /// The sentence types the parser understands.
 enum class NmeaSentenceType : std::uint8_t
@@ -46,4 +46,4 @@ struct NmeaSentence
   double altitude_sigma_m = kNaN;
 };
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -5,7 +5,7 @@
 
 #include "acc_identification/gnss/nmea_parser.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Counts of everything the decoder saw, so that no input is dropped without a trace.
 struct NmeaStatistics
@@ -27,4 +27,4 @@ struct NmeaStatistics
   std::string summary() const;
 };
 
-}  // namespace acc_identification
+}  // namespace acc

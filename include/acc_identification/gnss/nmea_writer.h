@@ -5,7 +5,7 @@
 
 #include "acc_identification/gnss/gnss_fix.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Writes NMEA 0183 as a u-blox receiver (NMEA 4.x) does: time hhmmss.ss, angles ddmm.mmmmm
 /// (5 decimals of minutes, about 2 cm), speed in knots with 3 decimals, course with 2 decimals,
@@ -20,4 +20,4 @@ std::string formatGga(const GnssFix& fix, const std::string& talker = "GN");
 /// "$<talker>RMC,...*hh" without line ending; the date field is empty when !fix.has_date.
 std::string formatRmc(const GnssFix& fix, const std::string& talker = "GN");
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <optional>
 
-namespace acc_identification
+namespace acc
 {
 constexpr double kSecondsPerDay = 86400.0;
 
@@ -33,4 +33,4 @@ private:
   std::uint64_t lag_corrections_ = 0;
 };
 
-}  // namespace acc_identification
+}  // namespace acc

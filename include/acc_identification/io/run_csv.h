@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "acc_identification/car_following_run.h"
+#include "acc_identification/model/car_following_run.h"
 #include "acc_identification/io/run_plausibility.h"
 
-namespace acc_identification
+namespace acc
 {
 /// A file that cannot be read as runs at all (missing, no recognisable header, no data).
 class RunReadError : public std::runtime_error
@@ -50,4 +50,4 @@ std::vector<CarFollowingRun> readRuns(const std::string& path,
 /// Writes one run as a canonical CSV (full double precision). Throws RunReadError on I/O failure.
 void writeRunCsv(const std::string& path, const CarFollowingRun& run);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -2,7 +2,7 @@
 
 #include <string>
 
-namespace acc_identification
+namespace acc
 {
 /// What a car-following sample may physically be. A value outside these bounds is a unit, parse or
 /// sensor error, never a measurement: one follower speed of 1e9 m/s would otherwise dominate every
@@ -45,4 +45,4 @@ std::string describeImplausibleValue(double space_gap_m, double follower_speed_m
 /// not increase is the reader's to reject.
 std::string describeTimeHole(double previous_time_s, double time_s, const RunPlausibilityBounds& bounds);
 
-}  // namespace acc_identification
+}  // namespace acc

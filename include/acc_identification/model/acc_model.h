@@ -1,8 +1,8 @@
 #pragma once
 
-#include "acc_identification/acc_parameters.h"
+#include "acc_identification/model/acc_parameters.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Partial derivatives of the acceleration law f(s, v, dv), taken at fixed dv as in the paper
 /// and in Wilson & Ward (2011): f_s = k1, f_v = -k1 tau_e, f_dv = k2. They do not depend on the
@@ -31,4 +31,4 @@ bool satisfiesRationalDrivingConstraints(const AccParameters& p);
 /// Space gap at which a follower at constant speed v feels no acceleration: eta + tau_e v [m].
 double equilibriumSpaceGapM(const AccParameters& p, double speed_mps);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -1,6 +1,6 @@
 #pragma once
 
-namespace acc_identification
+namespace acc
 {
 /// Parameters of the constant-effective-time-gap OVRV model of an ACC (Gunter et al., eq. 4):
 ///   dv/dt = k1 (s - eta - tau_e v) + k2 (v_leader - v)
@@ -13,4 +13,4 @@ struct AccParameters
   double eta_m = 0.0;      ///< jam distance: the space gap at standstill [m]
 };
 
-}  // namespace acc_identification
+}  // namespace acc

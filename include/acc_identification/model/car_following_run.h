@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace acc_identification
+namespace acc
 {
 /// One measured car-following record: the four canonical columns of a run, sampled together.
 /// Time must be strictly increasing; the step need not be uniform.
@@ -24,4 +24,4 @@ struct CarFollowingRun
 /// time, finite values). Returns an empty string when the run is usable, else why it is not.
 std::string describeRunProblem(const CarFollowingRun& run);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -3,10 +3,10 @@
 #include <cstddef>
 #include <vector>
 
-#include "acc_identification/acc_parameters.h"
-#include "acc_identification/car_following_run.h"
+#include "acc_identification/model/acc_parameters.h"
+#include "acc_identification/model/car_following_run.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Speed and gap of a simulated follower at the run's sample times.
 struct SimulatedFollower
@@ -30,4 +30,4 @@ constexpr double kDivergenceBound = 1.0e4;
 /// started from the measured s(0) and v(0). The run must satisfy describeRunProblem() == "".
 SimulatedFollower simulateFollower(const AccParameters& p, const CarFollowingRun& run);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "acc_identification/acc_parameters.h"
+#include "acc_identification/model/acc_parameters.h"
 
-namespace acc_identification
+namespace acc
 {
 /// A named parameter set with where it comes from.
 struct NamedSetting
@@ -27,4 +27,4 @@ AccParameters paperFigure2Setting(double tau_e_s);
 std::vector<NamedSetting> namedSettings();
 std::optional<NamedSetting> findNamedSetting(const std::string& name);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -3,9 +3,9 @@
 #include <cstddef>
 #include <vector>
 
-#include "acc_identification/acc_parameters.h"
+#include "acc_identification/model/acc_parameters.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Every vehicle's speed and gap in a simulated platoon. Vehicle 0 is the lead vehicle (its gap
 /// is NaN: nobody is ahead); vehicle i >= 1 is the i-th ACC follower.
@@ -34,4 +34,4 @@ std::vector<double> stepDownUpLeadProfile(double cruise_speed_mps, double step_m
 /// Minimum over samples of each vehicle's speed (index 0 is the lead).
 std::vector<double> minimumSpeedPerVehicle(const PlatoonTrajectory& platoon);
 
-}  // namespace acc_identification
+}  // namespace acc

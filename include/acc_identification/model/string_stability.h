@@ -1,8 +1,8 @@
 #pragma once
 
-#include "acc_identification/acc_parameters.h"
+#include "acc_identification/model/acc_parameters.h"
 
-namespace acc_identification
+namespace acc
 {
 /// What the linear analysis of Section II-B says about a platoon of identical ACC vehicles.
 struct StringStabilityReport
@@ -40,4 +40,4 @@ double peakFrequencyRadS(const AccParameters& p);
 
 StringStabilityReport analyzeStringStability(const AccParameters& p);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace acc_identification
+namespace acc
 {
 /// How the two vehicles' fixes are paired by GNSS epoch (never by arrival time: the leader's
 /// fixes may come over a wireless link, late and in bursts). All times are GNSS times [s].
@@ -133,4 +133,4 @@ GnssFix interpolateFix(const GnssFix& a, const GnssFix& b, double time_s);
 /// True when the fix carries a usable position (fix quality above 0 and a position).
 bool hasUsablePosition(const GnssFix& fix);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -4,7 +4,7 @@
 #include <deque>
 #include <vector>
 
-namespace acc_identification
+namespace acc
 {
 /// The physical check of a gap signal: over a window, the change of the gap must equal the
 /// integral of the relative (Doppler) speed, leader minus follower. The residual
@@ -56,4 +56,4 @@ ConsistencySummary gapDopplerConsistency(const std::vector<double>& time_s, cons
                                          const std::vector<double>& relative_speed_mps, double window_s = 10.0,
                                          double max_spacing_s = 0.5);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -3,7 +3,7 @@
 #include <limits>
 #include <string>
 
-namespace acc_identification
+namespace acc
 {
 /// The leader/follower pair at one GNSS epoch: the ROS-free twin of msg/RelativeState.msg.
 /// Distances in metres, speeds in m/s, times in seconds.
@@ -28,4 +28,4 @@ struct RelativeState
   std::string invalid_reason;        ///< empty when valid
 };
 
-}  // namespace acc_identification
+}  // namespace acc

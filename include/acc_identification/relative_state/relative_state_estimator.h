@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace acc_identification
+namespace acc
 {
 enum class GapMode
 {
@@ -90,4 +90,4 @@ const char* gapModeName(GapMode mode);
 /// "straight_line" or "along_track"; false when neither.
 bool parseGapMode(const std::string& name, GapMode& mode);
 
-}  // namespace acc_identification
+}  // namespace acc

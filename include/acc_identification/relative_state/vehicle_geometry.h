@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-namespace acc_identification
+namespace acc
 {
 /// Where the GNSS antennas sit on the two cars, for the bumper-to-bumper gap [m].
 /// Either the two offsets, or one combined offset in leader_antenna_to_rear_bumper_m with the
@@ -66,4 +66,4 @@ private:
   double length_m_ = 0.0;
 };
 
-}  // namespace acc_identification
+}  // namespace acc

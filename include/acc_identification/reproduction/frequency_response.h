@@ -3,9 +3,9 @@
 #include <cstddef>
 #include <vector>
 
-#include "acc_identification/acc_parameters.h"
+#include "acc_identification/model/acc_parameters.h"
 
-namespace acc_identification
+namespace acc
 {
 /// One point of the paper's Fig. 6: the speed-to-speed gain at one frequency.
 struct BodeSample
@@ -29,4 +29,4 @@ double eulerTransferGain(const AccParameters& p, double frequency_rad_s, double 
 std::vector<BodeSample> bodeMagnitude(const AccParameters& p, const std::vector<double>& frequencies_rad_s,
                                       double time_step_s);
 
-}  // namespace acc_identification
+}  // namespace acc

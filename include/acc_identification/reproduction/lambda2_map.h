@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace acc_identification
+namespace acc
 {
 /// One cell of the paper's Fig. 1: lambda2 at (k1, k2) for one effective time gap.
 struct Lambda2MapSample
@@ -37,4 +37,4 @@ bool inClosedFormStableRegion(double k1_per_s2, double k2_per_s, double tau_e_s)
 /// Fraction of the samples with the given tau_e that are string stable (0 when there are none).
 double stableFraction(const std::vector<Lambda2MapSample>& map, double tau_e_s);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-namespace acc_identification
+namespace acc
 {
 /// Lead speed of the paper's Fig. 7: cruise_speed_mps for lead_in_s, then
 /// cruise + amplitude sin(w (t - lead_in_s)) until duration_s, sampled every time_step_s.
@@ -14,4 +14,4 @@ std::vector<double> sinusoidLeadProfile(double cruise_speed_mps, double amplitud
 /// disturbance to reach the back of a long platoon.
 std::vector<double> withFinalHold(std::vector<double> lead_speed_mps, double hold_s, double time_step_s);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-namespace acc_identification
+namespace acc
 {
 /// How fast the lead vehicle changes speed between the held speeds of a profile. The paper gives
 /// held speeds and hold times but no accelerations; these are the documented assumptions.
@@ -61,4 +61,4 @@ std::string describeLeadRamp(const LeadRamp& ramp);
 /// The profile's description with its default ramp.
 std::string leadProfileDescription(char id);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -3,9 +3,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "acc_identification/paper_settings.h"
+#include "acc_identification/model/paper_settings.h"
 
-namespace acc_identification
+namespace acc
 {
 /// A parameter file that cannot be used (missing, not JSON, fields missing or not numbers).
 class ParameterFileError : public std::runtime_error
@@ -19,4 +19,4 @@ public:
 /// Throws ParameterFileError with the path and the reason.
 NamedSetting readParameterFile(const std::string& path);
 
-}  // namespace acc_identification
+}  // namespace acc

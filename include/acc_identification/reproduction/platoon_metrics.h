@@ -4,9 +4,9 @@
 #include <optional>
 #include <vector>
 
-#include "acc_identification/platoon_simulation.h"
+#include "acc_identification/model/platoon_simulation.h"
 
-namespace acc_identification
+namespace acc
 {
 /// How large the disturbance is at one vehicle of a simulated platoon.
 struct VehicleDisturbance
@@ -50,4 +50,4 @@ double fittedSinusoidAmplitude(const std::vector<double>& signal, double time_st
 /// a real car (it would drive backwards); nullopt when none does.
 std::optional<std::size_t> firstVehicleBelowSpeed(const PlatoonTrajectory& platoon, double min_speed_mps);
 
-}  // namespace acc_identification
+}  // namespace acc

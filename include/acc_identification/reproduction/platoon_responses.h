@@ -4,11 +4,11 @@
 #include <optional>
 #include <vector>
 
-#include "acc_identification/acc_parameters.h"
-#include "acc_identification/platoon_simulation.h"
+#include "acc_identification/model/acc_parameters.h"
+#include "acc_identification/model/platoon_simulation.h"
 #include "acc_identification/reproduction/platoon_metrics.h"
 
-namespace acc_identification
+namespace acc
 {
 /// The numbers behind the paper's Fig. 7: a platoon in steady oscillation behind a sinusoidal lead.
 struct SinusoidResponse
@@ -43,4 +43,4 @@ struct DisturbanceResponse
 /// Needs at least one follower.
 DisturbanceResponse measureDisturbanceResponse(const PlatoonTrajectory& platoon);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -3,11 +3,11 @@
 #include <cstddef>
 #include <vector>
 
-#include "acc_identification/acc_parameters.h"
-#include "acc_identification/car_following_run.h"
-#include "acc_identification/follower_simulation.h"
+#include "acc_identification/model/acc_parameters.h"
+#include "acc_identification/model/car_following_run.h"
+#include "acc_identification/model/follower_simulation.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Errors of a simulated follower against a measured run, split into the paper's training part
 /// (the first train_fraction of the samples) and the held-out rest (Figs. 3 and 4).
@@ -48,4 +48,4 @@ GapSpeedLine fitGapSpeedLine(const CarFollowingRun& run, const std::vector<std::
 double rmsFromEquilibriumLine(const AccParameters& p, const CarFollowingRun& run,
                               const std::vector<std::size_t>& samples);
 
-}  // namespace acc_identification
+}  // namespace acc

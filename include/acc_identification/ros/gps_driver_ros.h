@@ -15,22 +15,20 @@
 #include "acc_identification/gnss/nmea_decoder.h"
 
 // The generated message type acc_identification::GnssFix has the name of the library struct
-// acc_identification::GnssFix (gnss_fix.h); include it under the name GnssFixMessage so that
+// acc_identification::GnssFix (gnss_fix.h); include it under the name acc_identification::GnssFix so that
 // both can live in one translation unit. Include this header before any other include of
 // acc_identification/GnssFix.h.
-#define GnssFix GnssFixMessage
 #include <acc_identification/GnssFix.h>
-#undef GnssFix
 #include <acc_identification/Sentence.h>
 
-namespace acc_identification
+namespace acc
 {
 /// The library fix as a message (header.frame_id = frame_id). header.stamp is the GNSS time:
 /// the full UTC time when fix.has_date, else the time of day counted from 1970-01-01 00:00
 /// (VALID_DATE clear), so that a fix before the first date is still published.
-GnssFixMessage toMessage(const GnssFix& fix, const std::string& frame_id);
+acc_identification::GnssFix toMessage(const GnssFix& fix, const std::string& frame_id);
 /// The message as a library fix (for nodes that consume the driver's output).
-GnssFix fromMessage(const GnssFixMessage& message);
+GnssFix fromMessage(const acc_identification::GnssFix& message);
 
 /// gps_driver_node: one instance per receiver. Reads bytes from ~source, publishes every line on
 /// nmea_sentence, one fix per epoch on fix (acc_identification/GnssFix), navsat_fix
@@ -50,7 +48,7 @@ private:
   using SteadyClock = std::chrono::steady_clock;
 
   /// ~source "topic": one recorded line through the decoder.
-  void onSentence(const Sentence::ConstPtr& message);
+  void onSentence(const acc_identification::Sentence::ConstPtr& message);
   /// Completes a pending epoch after epoch_idle_s without sentences on both the ROS clock (sim
   /// time under rosbag play: a paused bag does not split an epoch) and the host's clock (a fast
   /// replay's next sentence may still be in transit), or after epoch_idle_wall_s of the host's
@@ -95,4 +93,4 @@ private:
   std::uint64_t errors_at_last_diagnostic_ = 0;
 };
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -12,20 +12,14 @@
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
 
-#include "acc_identification/acc_parameters.h"
+#include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/calibration/identification.h"
 #include "acc_identification/calibration/sliding_window.h"
 
-// The messages share their names with library types (AccParameters here, RelativeState in the
-// relative-state library): include them under other names.
-#define AccParameters AccParametersMessage
 #include <acc_identification/AccParameters.h>
-#undef AccParameters
-#define RelativeState RelativeStateMessage
 #include <acc_identification/RelativeState.h>
-#undef RelativeState
 
-namespace acc_identification
+namespace acc
 {
 /// The node's settings (private parameters; defaults in config/identifier.yaml).
 struct IdentifierSettings
@@ -43,7 +37,7 @@ struct IdentifierSettings
 bool loadIdentifierSettings(const ros::NodeHandle& private_node, IdentifierSettings& settings, std::string& error);
 
 /// The message for one solve of a window (window times from its first and last sample, GNSS time).
-AccParametersMessage toMessage(const Identification& identification, double window_start_s, double window_end_s);
+acc_identification::AccParameters toMessage(const Identification& identification, double window_start_s, double window_end_s);
 
 /// identifier_node: subscribes to relative_state, keeps a sliding window, and every period
 /// recalibrates the ACC model on it (warm-started from the previous fit) and publishes
@@ -65,7 +59,7 @@ private:
     double window_end_s = 0.0;
   };
 
-  void onRelativeState(const RelativeStateMessage::ConstPtr& message);
+  void onRelativeState(const acc_identification::RelativeState::ConstPtr& message);
   void onPeriod(const ros::TimerEvent& event);
   void workerLoop();
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -97,4 +91,4 @@ private:
   std::atomic<double> last_solve_time_s_{0.0};
 };
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -1,6 +1,6 @@
 #pragma once
 
-// gps_driver_ros.h includes the GnssFix message under the name GnssFixMessage (the library has
+// gps_driver_ros.h includes the GnssFix message under the name acc_identification::GnssFix (the library has
 // a struct of that name); it must come before any other include of acc_identification/GnssFix.h.
 #include "acc_identification/ros/gps_driver_ros.h"
 
@@ -12,15 +12,13 @@
 
 #include "acc_identification/relative_state/relative_state_estimator.h"
 
-// Same clash for RelativeState: the message is RelativeStateMessage here.
-#define RelativeState RelativeStateMessage
+// Same clash for RelativeState: the message is acc_identification::RelativeState here.
 #include <acc_identification/RelativeState.h>
-#undef RelativeState
 
-namespace acc_identification
+namespace acc
 {
 /// The library state as a message. header.stamp: the pair's GNSS time (as the driver's fixes).
-RelativeStateMessage toMessage(const RelativeState& state, const std::string& frame_id);
+acc_identification::RelativeState toMessage(const RelativeState& state, const std::string& frame_id);
 
 /// Reads the node's private parameters into settings; false and a message on a bad value.
 bool loadRelativeStateSettings(const ros::NodeHandle& private_node, RelativeStateSettings& settings,
@@ -37,8 +35,8 @@ public:
   bool ok() const { return ok_; }
 
 private:
-  void onLeader(const GnssFixMessage::ConstPtr& message);
-  void onFollower(const GnssFixMessage::ConstPtr& message);
+  void onLeader(const acc_identification::GnssFix::ConstPtr& message);
+  void onFollower(const acc_identification::GnssFix::ConstPtr& message);
   void publishStates();
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
@@ -63,4 +61,4 @@ private:
   RelativeStateCounters state_counters_at_last_diagnostic_;
 };
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "acc_identification/car_following_run.h"
+#include "acc_identification/model/car_following_run.h"
 #include "acc_identification/io/run_plausibility.h"
 
-namespace acc_identification
+namespace acc
 {
 /// What was read from a bag, with an account of every message not used.
 struct BagRuns
@@ -46,4 +46,4 @@ BagRuns readRunsFromBag(const std::string& path, const std::string& topic = "rel
 std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std::string& topic,
                                              double max_gap_s, std::ostream& log);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -6,7 +6,7 @@
 
 #include "acc_identification/synthesis/nmea_log_timing.h"
 
-namespace acc_identification
+namespace acc
 {
 /// The lines of one receiver and where they go in the bag.
 struct SentenceStream
@@ -32,4 +32,4 @@ struct SentenceBagSummary
 SentenceBagSummary writeSentenceBag(const std::string& path, const std::vector<SentenceStream>& streams,
                                     const std::string& compression);
 
-}  // namespace acc_identification
+}  // namespace acc

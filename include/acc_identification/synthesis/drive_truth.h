@@ -2,11 +2,11 @@
 
 #include <vector>
 
-#include "acc_identification/acc_parameters.h"
-#include "acc_identification/car_following_run.h"
+#include "acc_identification/model/acc_parameters.h"
+#include "acc_identification/model/car_following_run.h"
 #include "acc_identification/diagnosis/candidate_effects.h"
 
-namespace acc_identification
+namespace acc
 {
 /// What the two cars really did, sampled at the receivers' epochs, before any GNSS error.
 struct DriveTruth
@@ -30,4 +30,4 @@ struct DriveTruth
 DriveTruth simulateDriveTruth(const std::vector<double>& lead_speed_mps, double step_s, const AccParameters& parameters,
                               const EffectSettings& effects, double start_distance_m);
 
-}  // namespace acc_identification
+}  // namespace acc

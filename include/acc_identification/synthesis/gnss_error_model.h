@@ -4,7 +4,7 @@
 
 #include "acc_identification/synthesis/normal_source.h"
 
-namespace acc_identification
+namespace acc
 {
 /// GNSS errors of one receiver, sized after Section V-A of Gunter et al.: two u-blox receivers
 /// 0.94 m apart on one car measured their distance 0.43 m too long on average and differed in
@@ -54,4 +54,4 @@ private:
   GnssEpochError current_;
 };
 
-}  // namespace acc_identification
+}  // namespace acc

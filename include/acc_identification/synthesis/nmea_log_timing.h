@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace acc_identification
+namespace acc
 {
 /// One line of an NMEA log with the time a receiver's host would have received it.
 struct TimedNmeaLine
@@ -37,4 +37,4 @@ struct TimedNmeaLog
 /// whatever their content, so a bag made from them loses nothing.
 TimedNmeaLog readTimedNmeaLog(const std::string& path, const NmeaLineTiming& timing = NmeaLineTiming{});
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <random>
 
-namespace acc_identification
+namespace acc
 {
 /// Standard normal numbers from std::mt19937_64 through our own Box-Muller transform, so that a
 /// seed gives the same numbers with every standard library (std::normal_distribution is not
@@ -28,4 +28,4 @@ private:
 /// that each receiver has its own noise and adding a stream does not shift the others.
 std::uint64_t streamSeed(std::uint64_t seed, std::uint64_t stream);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-namespace acc_identification
+namespace acc
 {
 /// One piece of a road: a straight (curvature 0) or a constant-radius arc.
 struct RoadSegment
@@ -50,4 +50,4 @@ private:
 /// fastest profile) the tightest arc needs about 2 m/s^2 of lateral acceleration.
 std::vector<RoadSegment> plausibleRoadPattern();
 
-}  // namespace acc_identification
+}  // namespace acc

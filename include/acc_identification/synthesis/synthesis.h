@@ -4,14 +4,14 @@
 #include <string>
 #include <vector>
 
-#include "acc_identification/acc_parameters.h"
+#include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/diagnosis/candidate_effects.h"
 #include "acc_identification/gnss/gnss_fix.h"
 #include "acc_identification/relative_state/vehicle_geometry.h"
 #include "acc_identification/synthesis/drive_truth.h"
 #include "acc_identification/synthesis/gnss_error_model.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Everything a synthetic drive depends on. The defaults describe a plausible test drive.
 struct SynthesisOptions
@@ -58,4 +58,4 @@ SynthesizedDrive synthesizeDrive(const SynthesisOptions& options);
 /// not a valid UTC date and time.
 bool parseUtcTime(const std::string& text, double* unix_s);
 
-}  // namespace acc_identification
+}  // namespace acc

@@ -2,11 +2,11 @@
 
 #include <string>
 
-#include "acc_identification/car_following_run.h"
+#include "acc_identification/model/car_following_run.h"
 #include "acc_identification/diagnosis/candidate_effects.h"
 #include "acc_identification/synthesis/synthesis.h"
 
-namespace acc_identification
+namespace acc
 {
 /// Reads "--effect NAME=V1[,V2]" (the diagnosis catalogue's names and parameter order, e.g.
 /// actuation_lag=0.5, acceleration_limits=1.5,3.0) into settings, keeping the effects set
@@ -26,4 +26,4 @@ bool writeTruthCsv(const std::string& path, const CarFollowingRun& run, std::str
 /// "effects": {name: {parameter: value}}, "profile", "seed", "gnss_errors", "geometry", ...}.
 std::string synthesisJson(const SynthesisOptions& options, const std::string& setting_name);
 
-}  // namespace acc_identification
+}  // namespace acc
