@@ -39,7 +39,7 @@ cleanup() {
     for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
     kill -KILL "$pid" 2>/dev/null || true
   done
-  rm -rf "$work"
+  [ -n "${DEMO_KEEP:-}" ] || rm -rf "$work"
 }
 trap cleanup EXIT
 trap 'exit 130' INT TERM
@@ -52,8 +52,11 @@ rosparam set /use_sim_time true
 
 python3 "$here/demo_listener.py" live &
 pids+=($!)
-rosbag record --quiet -O "$work/out.bag" /relative_state /acc_parameters > "$work/record.log" 2>&1 &
-pids+=($!)
+# The recorder itself (rosrun execs it), not the `rosbag record` wrapper: Debian's wrapper dies in
+# its SIGINT handler and returns before the recorder has closed the bag.
+rosrun rosbag record --quiet -O "$work/out.bag" /relative_state /acc_parameters > "$work/record.log" 2>&1 &
+recorder_pid=$!
+pids+=($recorder_pid)
 roslaunch acc_identification replay.launch bag:="$bag" rate:="$rate" window_s:="$window_s" \
   period_s:="$period_s" > "$work/launch.log" 2>&1 &
 launch_pid=$!
@@ -75,7 +78,9 @@ python3 "$here/demo_listener.py" advance "$(python3 -c "print(float('$period_s')
 sleep 3
 kill -INT "$launch_pid"; wait "$launch_pid" 2>/dev/null || true
 sleep 1
-kill -INT "${pids[2]}"; wait "${pids[2]}" 2>/dev/null || true  # the recorder closes its bag
+kill -INT "$recorder_pid"; wait "$recorder_pid" 2>/dev/null || true  # the recorder closes its bag
+for _ in $(seq 100); do [ -f "$work/out.bag" ] && break; sleep 0.1; done
+[ -f "$work/out.bag" ] || { echo "demo: the recorder left no bag" >&2; tail -n 20 "$work/record.log" >&2; exit 1; }
 
 echo
 echo "== Summary: the identifier's last window next to a batch calibrate of the same samples =="
