@@ -1,35 +1,28 @@
 # Sim-to-real gap diagnosis (issue 6): where the calibrated model's held-out residual lies, which
 # missing physical effect explains it, and what adding that effect buys. ROS-free library, the
 # diagnose tool, unit tests and the withheld-effect suite.
-find_package(nlohmann_json 3 REQUIRED)
-
-add_library(acc_diagnosis
-  src/diagnosis/candidate_effects.cpp
-  src/diagnosis/augmented_simulation.cpp
-  src/diagnosis/augmented_calibration.cpp
-  src/diagnosis/residual_breakdown.cpp
-  src/diagnosis/effect_selection.cpp
-  src/diagnosis/augmented_stability.cpp
-  src/diagnosis/diagnosis.cpp
-  src/diagnosis/withheld_effect_suite.cpp
-  src/diagnosis/diagnosis_output.cpp)
-target_include_directories(acc_diagnosis PUBLIC include ${EIGEN3_INCLUDE_DIR})
-target_link_libraries(acc_diagnosis PUBLIC acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
+acc_add_library(acc_diagnosis
+  SOURCES
+    src/diagnosis/candidate_effects.cpp
+    src/diagnosis/augmented_simulation.cpp
+    src/diagnosis/augmented_calibration.cpp
+    src/diagnosis/residual_breakdown.cpp
+    src/diagnosis/effect_selection.cpp
+    src/diagnosis/augmented_stability.cpp
+    src/diagnosis/diagnosis.cpp
+    src/diagnosis/withheld_effect_suite.cpp
+    src/diagnosis/diagnosis_output.cpp
+  LINK acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 
 # The tool reads runs (CSV or bags) as the calibrate tool does (calibration component).
 if(TARGET acc_calibration_ros)
-  add_executable(diagnose src/tools/diagnose_main.cpp)
-  target_link_libraries(diagnose acc_diagnosis acc_calibration_ros acc_run_io acc_cli)
+  acc_add_tool(diagnose LINK acc_diagnosis acc_calibration_ros acc_run_io acc_cli)
   target_compile_definitions(diagnose PRIVATE
     ACC_PLOT_DIAGNOSIS_SCRIPT="${PROJECT_SOURCE_DIR}/scripts/plot_diagnosis.py")
-  install(TARGETS diagnose RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
   install(PROGRAMS scripts/plot_diagnosis.py DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/scripts)
 else()
   message(STATUS "diagnosis: acc_calibration_ros not built (add calibration to ACC_COMPONENTS): no diagnose tool")
 endif()
-install(TARGETS acc_diagnosis
-  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
-  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
 
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_diagnosis

@@ -5,7 +5,6 @@ install(FILES launch/replay.launch launch/drive.launch launch/replay_nmea.launch
 install(PROGRAMS scripts/demo_listener.py DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 
 if(CATKIN_ENABLE_TESTING)
-  find_package(rostest REQUIRED)
   # The chain's nodes and the batch calibrate the tests compare with.
   set(ACC_END_TO_END_TARGETS)
   foreach(target gps_driver_node relative_state_node identifier_node calibrate)

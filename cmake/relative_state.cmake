@@ -1,16 +1,14 @@
 # Relative state (issue 8): the two vehicles' fixes paired by GNSS epoch, the bumper-to-bumper
 # gap (geodesic, WGS84), the jump bound and the gap-versus-Doppler consistency; the OpenACC to
 # NMEA converter; relative_state_node. Needs the gnss component (NMEA writer and log reader).
-add_library(acc_relative_state
-  src/relative_state/epoch_pairing.cpp
-  src/relative_state/vehicle_geometry.cpp
-  src/relative_state/gap_doppler_consistency.cpp
-  src/relative_state/relative_state_estimator.cpp)
-target_include_directories(acc_relative_state PUBLIC include ${GeographicLib_INCLUDE_DIRS})
-target_link_libraries(acc_relative_state PUBLIC ${GeographicLib_LIBRARIES})
-install(TARGETS acc_relative_state
-  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
-  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
+acc_add_library(acc_relative_state
+  SOURCES
+    src/relative_state/epoch_pairing.cpp
+    src/relative_state/vehicle_geometry.cpp
+    src/relative_state/gap_doppler_consistency.cpp
+    src/relative_state/relative_state_estimator.cpp
+  LINK ${GeographicLib_LIBRARIES})
+target_include_directories(acc_relative_state PUBLIC ${GeographicLib_INCLUDE_DIRS})
 
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_relative_state
@@ -24,18 +22,13 @@ endif()
 # The OpenACC converter writes NMEA with the gnss component's writer and its tests read the logs
 # back with the gnss component's reader: both need acc_gnss.
 if(TARGET acc_gnss)
-  add_library(acc_conversion
-    src/conversion/openacc_trajectories.cpp
-    src/conversion/openacc_to_nmea.cpp)
-  target_include_directories(acc_conversion PUBLIC include ${GeographicLib_INCLUDE_DIRS})
-  target_link_libraries(acc_conversion PUBLIC acc_gnss ${GeographicLib_LIBRARIES})
-
-  add_executable(openacc_to_nmea src/tools/openacc_to_nmea_main.cpp)
-  target_link_libraries(openacc_to_nmea acc_conversion acc_cli)
-  install(TARGETS acc_conversion openacc_to_nmea
-    ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
-    LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
-    RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+  acc_add_library(acc_conversion
+    SOURCES
+      src/conversion/openacc_trajectories.cpp
+      src/conversion/openacc_to_nmea.cpp
+    LINK acc_gnss ${GeographicLib_LIBRARIES})
+  target_include_directories(acc_conversion PUBLIC ${GeographicLib_INCLUDE_DIRS})
+  acc_add_tool(openacc_to_nmea LINK acc_conversion acc_cli)
 
   if(CATKIN_ENABLE_TESTING)
     # The real data: the Casale runs shipped in data/openacc, unpacked by cmake/data.cmake.
@@ -53,21 +46,11 @@ endif()
 # The ROS wrapper and its ten-line main. It reuses the gnss component's message conversion
 # (fromMessage in acc_gnss_ros), so it needs that component's ROS library.
 if(TARGET acc_gnss_ros AND TARGET acc_conversion)
-  add_library(acc_relative_state_ros src/ros/relative_state_ros.cpp)
-  target_include_directories(acc_relative_state_ros PUBLIC include ${catkin_INCLUDE_DIRS})
-  target_link_libraries(acc_relative_state_ros acc_relative_state acc_gnss_ros ${catkin_LIBRARIES})
-  add_dependencies(acc_relative_state_ros ${PROJECT_NAME}_generate_messages_cpp)
-  add_executable(relative_state_node src/nodes/relative_state_node.cpp)
-  target_link_libraries(relative_state_node acc_relative_state_ros)
-  install(TARGETS acc_relative_state_ros relative_state_node
-    ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
-    LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
-    RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
-  install(FILES launch/relative_state.launch DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/launch)
-  install(FILES config/relative_state.yaml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/config)
+  acc_add_ros_library(acc_relative_state_ros SOURCES src/ros/relative_state_ros.cpp
+    LINK acc_relative_state acc_gnss_ros)
+  acc_add_node(relative_state_node WRAPPER acc_relative_state_ros)
 
   if(CATKIN_ENABLE_TESTING)
-    find_package(rostest REQUIRED)
     # Recorded fixes with a late, bursty, broken leader stream and a looping restart.
     add_rostest_gtest(test_relative_state_fixes test/rostest/relative_state_fixes.test
       test/rostest/relative_state_fixes_check.cpp)

@@ -9,35 +9,23 @@ if(NOT (TARGET acc_conversion AND TARGET acc_reproduction AND TARGET acc_diagnos
                   "ACC_COMPONENTS: not built")
   return()
 endif()
-find_package(nlohmann_json 3 REQUIRED)
-
-add_library(acc_synthesis
-  src/synthesis/normal_source.cpp
-  src/synthesis/gnss_error_model.cpp
-  src/synthesis/road_centreline.cpp
-  src/synthesis/drive_truth.cpp
-  src/synthesis/synthesis.cpp
-  src/synthesis/synthesis_output.cpp
-  src/synthesis/nmea_log_timing.cpp)
-target_include_directories(acc_synthesis PUBLIC include ${GeographicLib_INCLUDE_DIRS})
-target_link_libraries(acc_synthesis
-  PUBLIC acc_conversion acc_relative_state acc_reproduction acc_diagnosis ${GeographicLib_LIBRARIES}
-  PRIVATE nlohmann_json::nlohmann_json)
+acc_add_library(acc_synthesis
+  SOURCES
+    src/synthesis/normal_source.cpp
+    src/synthesis/gnss_error_model.cpp
+    src/synthesis/road_centreline.cpp
+    src/synthesis/drive_truth.cpp
+    src/synthesis/synthesis.cpp
+    src/synthesis/synthesis_output.cpp
+    src/synthesis/nmea_log_timing.cpp
+  LINK acc_conversion acc_relative_state acc_reproduction acc_diagnosis ${GeographicLib_LIBRARIES})
+target_link_libraries(acc_synthesis PRIVATE nlohmann_json::nlohmann_json)
 
 # Raw sentences into bags (rosbag API, no ROS master needed).
-add_library(acc_sentence_bag src/ros/sentence_bag_writer.cpp)
-target_include_directories(acc_sentence_bag PUBLIC include ${catkin_INCLUDE_DIRS})
-target_link_libraries(acc_sentence_bag acc_synthesis ${catkin_LIBRARIES})
-add_dependencies(acc_sentence_bag ${PROJECT_NAME}_generate_messages_cpp)
+acc_add_ros_library(acc_sentence_bag SOURCES src/ros/sentence_bag_writer.cpp LINK acc_synthesis)
 
-add_executable(synthesize src/tools/synthesize_main.cpp)
-target_link_libraries(synthesize acc_synthesis acc_sentence_bag acc_cli)
-add_executable(nmea_to_bag src/tools/nmea_to_bag_main.cpp)
-target_link_libraries(nmea_to_bag acc_sentence_bag acc_cli)
-install(TARGETS acc_synthesis acc_sentence_bag synthesize nmea_to_bag
-  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
-  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
-  RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+acc_add_tool(synthesize LINK acc_synthesis acc_sentence_bag acc_cli)
+acc_add_tool(nmea_to_bag LINK acc_sentence_bag acc_cli)
 install(PROGRAMS scripts/make_bags.sh DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 
 if(CATKIN_ENABLE_TESTING)

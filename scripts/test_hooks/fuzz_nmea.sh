@@ -32,10 +32,9 @@ XML
 }
 
 start=$(date +%s)
-if ! clang++ -std=c++17 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-     -I"$repo/include" "$repo/test/fuzz/fuzz_nmea.cpp" \
-     "$repo"/src/gnss/{nmea_fields,nmea_parser,nmea_writer,nmea_statistics,utc_date,gnss_epoch_assembler,gnss_velocity,nmea_decoder}.cpp \
-     -o "$work/fuzz_nmea" > "$log" 2>&1; then
+# The parser's own source list (cmake/gnss_parser_sources.cmake), built by clang with libFuzzer.
+if ! { cmake -S "$repo/test/fuzz" -B "$work/build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=None \
+         && cmake --build "$work/build" -j "${JOBS:-2}" && cp "$work/build/fuzz_nmea" "$work/fuzz_nmea"; } > "$log" 2>&1; then
   write_junit "fuzz_nmea did not build" 0
   echo "fuzz_nmea: build failed (see $log)"
   exit 1
