@@ -14,28 +14,13 @@ mkdir -p "$work/corpus" "$results"
 log=$work/fuzz.log
 xml=$results/fuzz_nmea.xml
 
-write_junit() {  # $1 = failure message or empty, $2 = elapsed seconds
-  local failures=0 body=""
-  if [ -n "$1" ]; then
-    failures=1
-    # The report inside CDATA; a literal "]]>" in it would end the section early.
-    local report
-    report=$(tail -n 80 "$log" | sed 's/]]>/]] >/g' | tr -d '\000-\010\013\014\016-\037')
-    body="<failure message=\"$(printf '%s' "$1" | sed 's/&/\&amp;/g; s/"/\&quot;/g; s/</\&lt;/g')\"><![CDATA[$report]]></failure>"
-  fi
-  cat > "$xml" <<XML
-<?xml version="1.0" encoding="utf-8"?>
-<testsuite name="fuzz_nmea" tests="1" failures="$failures" errors="0">
-  <testcase classname="fuzz" name="fuzz_nmea" time="$2">$body</testcase>
-</testsuite>
-XML
-}
+source "$(dirname "$0")/lib/junit.sh"
 
 start=$(date +%s)
 # The parser's own source list (cmake/gnss_parser_sources.cmake), built by clang with libFuzzer.
 if ! { cmake -S "$repo/test/fuzz" -B "$work/build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=None \
          && cmake --build "$work/build" -j "${JOBS:-2}" && cp "$work/build/fuzz_nmea" "$work/fuzz_nmea"; } > "$log" 2>&1; then
-  write_junit "fuzz_nmea did not build" 0
+  write_junit "$xml" fuzz_nmea fuzz_nmea 0 "fuzz_nmea did not build" "$log"
   echo "fuzz_nmea: build failed (see $log)"
   exit 1
 fi
@@ -47,9 +32,9 @@ elapsed=$(( $(date +%s) - start ))
 runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -n 1)
 if [ "$status" -ne 0 ]; then
   summary=$(grep -m1 -E 'ERROR: |runtime error|invariant violated|deadly signal' "$log" || echo "exit status $status")
-  write_junit "fuzz_nmea found a crash: $summary (artifacts in $work)" "$elapsed"
+  write_junit "$xml" fuzz_nmea fuzz_nmea "$elapsed" "fuzz_nmea found a crash: $summary (artifacts in $work)" "$log"
   echo "fuzz_nmea: CRASH ($summary); report in $log"
   exit 1
 fi
-write_junit "" "$elapsed"
+write_junit "$xml" fuzz_nmea fuzz_nmea "$elapsed"
 echo "fuzz_nmea: ${runs:-?} inputs in ${elapsed} s, no crash"

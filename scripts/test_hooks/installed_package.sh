@@ -16,22 +16,11 @@ rm -rf "$work"
 mkdir -p "$work/consumer_ws/src" "$results"
 start=$(date +%s)
 
-write_junit() {  # $1 = failure message or empty
-  local failures=0 body=""
-  if [ -n "$1" ]; then
-    failures=1
-    local report
-    report=$(tail -n 60 "$log" | sed 's/]]>/]] >/g' | tr -d '\000-\010\013\014\016-\037')
-    body="<failure message=\"$(printf '%s' "$1" | sed 's/&/\&amp;/g; s/"/\&quot;/g; s/</\&lt;/g')\"><![CDATA[$report]]></failure>"
-  fi
-  cat > "$xml" <<XML
-<?xml version="1.0" encoding="utf-8"?>
-<testsuite name="installed_package" tests="1" failures="$failures" errors="0">
-  <testcase classname="installed_package" name="second_catkin_package_links_the_installed_libraries" time="$(( $(date +%s) - start ))">$body</testcase>
-</testsuite>
-XML
-}
-fail() { write_junit "$1"; echo "installed_package: FAILED: $1 (log: $log)"; exit 1; }
+source "$(dirname "$0")/lib/junit.sh"
+fail() {
+  write_junit "$xml" installed_package second_catkin_package_links_the_installed_libraries \
+    $(( $(date +%s) - start )) "$1" "$log"
+  echo "installed_package: FAILED: $1 (log: $log)"; exit 1; }
 
 (cd "$ws" && catkin_make -j"${JOBS:-2}" install) > "$log" 2>&1 || fail "catkin_make install failed"
 cp -r "$repo/test/catkin_consumer" "$work/consumer_ws/src/acc_identification_consumer"
@@ -44,5 +33,5 @@ env -i HOME="$HOME" PATH=/usr/bin:/bin:/usr/sbin:/sbin LANG=C.UTF-8 bash -c '
   ./devel/lib/acc_identification_consumer/acc_identification_consumer
 ' consumer "$ws" "$work/consumer_ws" >> "$log" 2>&1 || fail "the consumer package did not build or run"
 grep -q '^consumer: lambda2 70.67, gga parsed' "$log" || fail "the consumer printed unexpected values"
-write_junit ""
+write_junit "$xml" installed_package second_catkin_package_links_the_installed_libraries $(( $(date +%s) - start ))
 echo "installed_package: $(grep '^consumer:' "$log")"
