@@ -11,6 +11,11 @@ acc_add_library(acc_calibration
     src/calibration/sliding_window.cpp
     src/calibration/grid_search.cpp
     src/calibration/calibration_report.cpp
+    src/calibration/margin_constrained_fit.cpp
+    src/calibration/block_bootstrap.cpp
+    src/calibration/quantity_identifiability.cpp
+    src/calibration/stability_test.cpp
+    src/calibration/stability_test_json.cpp
   LINK acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 
 # ROS side: runs from bags of RelativeState (rosbag API), with the CSV reader's checks.
@@ -24,6 +29,7 @@ acc_add_ros_library(acc_identifier_ros SOURCES src/ros/identifier_ros.cpp LINK a
 acc_add_node(identifier_node WRAPPER acc_identifier_ros)
 
 acc_add_benchmark(bench_calibration LINK acc_calibration)
+acc_add_benchmark(bench_stability_test LINK acc_calibration)
 
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_calibration
@@ -34,6 +40,10 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_calibration_report.cpp)
   target_compile_definitions(test_calibration PRIVATE ACC_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/test/data/runs")
   target_link_libraries(test_calibration acc_calibration acc_run_io)
+
+  # The string-stability test (stability_test.h) on seeded synthetic drives: size, power, interval.
+  catkin_add_gtest(test_stability_test test/unit/gtest_main.cpp test/unit/test_stability_test.cpp)
+  target_link_libraries(test_stability_test acc_calibration)
 
   # The ROS-side pieces that need no master: bags in, messages out.
   catkin_add_gtest(test_calibration_ros

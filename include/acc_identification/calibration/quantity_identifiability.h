@@ -1,0 +1,67 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "acc_identification/calibration/fit_statistics.h"
+#include "acc_identification/model/acc_parameters.h"
+#include "acc_identification/model/car_following_run.h"
+
+namespace acc
+{
+/// When a quantity counts as determined by the data: its standard error is at most
+/// `max_relative_error` times its scale, the scale being max(|value|, floor). The floors keep a
+/// quantity whose value is near 0 from being called undetermined just for that (tau_e = 0.05 +- 0.1 s
+/// is determined; tau_e = 0 +- 0.67 s is not).
+struct QuantityCriteria
+{
+  /// k1, k2, tau_e, eta: as IdentifiabilityCriteria::max_relative_standard_error.
+  double max_relative_error_parameter = 0.5;
+  AccParameters parameter_scale_floor{0.01, 0.05, 0.2, 1.0};
+  /// The equilibrium gap eta + tau_e v: known to 10 % (and the floor: 2 m).
+  double max_relative_error_gap = 0.1;
+  double gap_scale_floor_m = 2.0;
+  /// The stability margin m = k1 tau_e^2 + 2 k2 tau_e - 2: its scale is 2 (m runs from -2 for
+  /// tau_e = 0 upwards); determined when its standard error is at most a quarter of that.
+  double max_error_margin = 0.5;
+};
+
+/// One derived quantity of a fit.
+struct QuantityEstimate
+{
+  std::string name;      ///< "k1", "k2", "tau_e", "eta", "equilibrium_gap_at_min_speed", ..., "stability_margin"
+  std::string unit;
+  double value = 0.0;    ///< the fit's value (always finite for a finite fit)
+  double standard_error = 0.0;  ///< delta method from the sandwich covariance; NaN when that is singular
+  double speed_mps = 0.0;       ///< for the equilibrium gaps: the follower speed it is taken at; else NaN
+  bool determined = false;
+  std::string reason;    ///< why determined or not, with the threshold
+};
+
+/// What the data determine, quantity by quantity.
+struct IdentifiableQuantities
+{
+  std::vector<QuantityEstimate> quantities;  ///< in the order of the names above
+  double reciprocal_condition = 0.0;         ///< of J^T J (fit_statistics), for the report
+  std::string basis;                         ///< which fit and data the standard errors come from
+
+  /// The quantity of this name, or nullptr.
+  const QuantityEstimate* find(const std::string& name) const;
+};
+
+/// Value, standard error (delta method with the covariance of estimateUncertainty()), determined
+/// and reason for k1, k2, tau_e, eta, the equilibrium gap eta + tau_e v at the lowest, the mean
+/// and the highest follower speed in `runs` (the data the fit saw), and the margin
+/// m = k1 tau_e^2 + 2 k2 tau_e - 2 (gradient (tau^2, 2 tau, 2 k1 tau + 2 k2, 0)).
+/// Typical use: assessQuantities(id.calibration.parameters, id.uncertainty, segments).
+IdentifiableQuantities assessQuantities(const AccParameters& fit, const ParameterUncertainty& uncertainty,
+                                        const std::vector<CarFollowingRun>& runs,
+                                        const QuantityCriteria& criteria = {});
+
+/// {"basis", "reciprocal_condition", "quantities": {name: {value, standard_error, unit, determined,
+/// reason (with the threshold applied)[, speed_mps]}}}; NaN as null.
+nlohmann::json toJson(const IdentifiableQuantities& quantities);
+
+}  // namespace acc

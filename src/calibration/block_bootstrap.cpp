@@ -1,0 +1,158 @@
+#include "acc_identification/calibration/block_bootstrap.h"
+
+#include <algorithm>
+#include <random>
+#include <stdexcept>
+
+namespace acc
+{
+namespace
+{
+/// Uniform integer in [0, range) from one raw 64-bit draw (multiply-high: the bias is below
+/// range / 2^64, negligible), the same with every standard library.
+std::uint32_t uniformBelow(std::mt19937_64& engine, std::uint64_t range)
+{
+  const unsigned __int128 product = static_cast<unsigned __int128>(engine()) * range;
+  return static_cast<std::uint32_t>(product >> 64);
+}
+
+/// prefix[i] = x[offset] + ... + x[offset + i - 1].
+std::vector<double> prefixSums(const std::vector<double>& x, std::size_t offset, std::size_t length)
+{
+  std::vector<double> prefix(length + 1, 0.0);
+  for (std::size_t i = 0; i < length; ++i)
+  {
+    prefix[i + 1] = prefix[i] + x[offset + i];
+  }
+  return prefix;
+}
+}  // namespace
+
+MovingBlockBootstrap::MovingBlockBootstrap(std::vector<std::size_t> segment_lengths, std::size_t block_length_samples,
+                                           std::size_t replicates, std::uint64_t seed)
+  : replicates_(replicates)
+{
+  if (block_length_samples == 0)
+  {
+    throw std::invalid_argument("moving-block bootstrap: the block length must be at least one sample");
+  }
+  for (std::size_t length : segment_lengths)
+  {
+    if (length == 0)
+    {
+      continue;
+    }
+    Segment segment;
+    segment.offset = samples_;
+    segment.length = length;
+    segment.block = std::min(block_length_samples, length);
+    segment.full_blocks = length / segment.block;
+    segment.last_block = length % segment.block;
+    blocks_per_replicate_ += segment.full_blocks + (segment.last_block > 0 ? 1 : 0);
+    samples_ += length;
+    segments_.push_back(segment);
+  }
+  std::mt19937_64 engine(seed);
+  starts_.reserve(replicates_ * blocks_per_replicate_);
+  for (std::size_t b = 0; b < replicates_; ++b)
+  {
+    for (const Segment& segment : segments_)
+    {
+      const std::size_t blocks = segment.full_blocks + (segment.last_block > 0 ? 1 : 0);
+      for (std::size_t j = 0; j < blocks; ++j)
+      {
+        starts_.push_back(uniformBelow(engine, segment.length - segment.block + 1));
+      }
+    }
+  }
+}
+
+std::vector<double> MovingBlockBootstrap::centredReplicates(const std::vector<double>& x) const
+{
+  if (x.size() != samples_)
+  {
+    throw std::invalid_argument("moving-block bootstrap: series length differs from the plan's");
+  }
+  std::vector<double> result(replicates_, 0.0);
+  if (samples_ == 0)
+  {
+    return result;
+  }
+  std::vector<std::vector<double>> prefixes;
+  double expected_total = 0.0;
+  for (const Segment& segment : segments_)
+  {
+    prefixes.push_back(prefixSums(x, segment.offset, segment.length));
+    const std::vector<double>& prefix = prefixes.back();
+    // E* of a block's sum: the mean over all admissible starts, for the full and the cut block.
+    const std::size_t positions = segment.length - segment.block + 1;
+    double full = 0.0, cut = 0.0;
+    for (std::size_t s = 0; s < positions; ++s)
+    {
+      full += prefix[s + segment.block] - prefix[s];
+      cut += prefix[s + segment.last_block] - prefix[s];
+    }
+    expected_total += (static_cast<double>(segment.full_blocks) * full + cut) / static_cast<double>(positions);
+  }
+  const double n = static_cast<double>(samples_);
+  const double expected_mean = expected_total / n;
+  std::size_t k = 0;
+  for (std::size_t b = 0; b < replicates_; ++b)
+  {
+    double total = 0.0;
+    for (std::size_t s = 0; s < segments_.size(); ++s)
+    {
+      const Segment& segment = segments_[s];
+      const std::vector<double>& prefix = prefixes[s];
+      for (std::size_t j = 0; j < segment.full_blocks; ++j)
+      {
+        const std::uint32_t start = starts_[k++];
+        total += prefix[start + segment.block] - prefix[start];
+      }
+      if (segment.last_block > 0)
+      {
+        const std::uint32_t start = starts_[k++];
+        total += prefix[start + segment.last_block] - prefix[start];
+      }
+    }
+    result[b] = total / n - expected_mean;
+  }
+  return result;
+}
+
+namespace
+{
+double mean(const std::vector<double>& x)
+{
+  double sum = 0.0;
+  for (double value : x)
+  {
+    sum += value;
+  }
+  return x.empty() ? 0.0 : sum / static_cast<double>(x.size());
+}
+}  // namespace
+
+double MovingBlockBootstrap::pValueMeanPositive(const std::vector<double>& x) const
+{
+  const double observed = mean(x);
+  std::size_t at_least = 0;
+  for (double t : centredReplicates(x))
+  {
+    at_least += t >= observed ? 1 : 0;
+  }
+  return static_cast<double>(1 + at_least) / static_cast<double>(1 + replicates_);
+}
+
+double MovingBlockBootstrap::pValueMeanNegative(const std::vector<double>& x) const
+{
+  const double observed = mean(x);
+  std::size_t at_most = 0;
+  for (double t : centredReplicates(x))
+  {
+    at_most += t <= observed ? 1 : 0;
+  }
+  return static_cast<double>(1 + at_most) / static_cast<double>(1 + replicates_);
+}
+
+}  // namespace acc

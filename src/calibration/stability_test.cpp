@@ -1,0 +1,661 @@
+#include "acc_identification/calibration/stability_test.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "acc_identification/calibration/block_bootstrap.h"
+#include "acc_identification/calibration/calibration_report.h"
+#include "acc_identification/calibration/fit_statistics.h"
+#include "acc_identification/model/follower_simulation.h"
+
+namespace acc
+{
+namespace
+{
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+/// Margins closer than this count as the same profile point (the boundary fits sit a few ulps
+/// above 0).
+constexpr double kSameMargin = 1e-9;
+
+/// The held-out speed errors of one model: each segment simulated from its own measured start,
+/// every sample but the first (the measured start itself).
+struct HeldOutErrors
+{
+  std::vector<double> error;
+  bool diverged = false;
+};
+
+HeldOutErrors heldOutErrors(const AccParameters& p, const std::vector<CarFollowingRun>& held_out)
+{
+  HeldOutErrors result;
+  for (const CarFollowingRun& run : held_out)
+  {
+    const SimulatedFollower sim = simulateFollower(p, run);
+    result.diverged = result.diverged || sim.diverged;
+    for (std::size_t k = 1; k < run.size(); ++k)
+    {
+      result.error.push_back(run.follower_speed_mps[k] - sim.speed_mps[k]);
+    }
+  }
+  return result;
+}
+
+double rms(const std::vector<double>& x)
+{
+  double sum = 0.0;
+  for (double value : x)
+  {
+    sum += value * value;
+  }
+  return x.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(x.size()));
+}
+
+/// a^2 - b^2 term by term.
+std::vector<double> squaredErrorDifference(const std::vector<double>& a, const std::vector<double>& b)
+{
+  std::vector<double> d(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i)
+  {
+    d[i] = a[i] * a[i] - b[i] * b[i];
+  }
+  return d;
+}
+
+double mean(const std::vector<double>& x)
+{
+  double sum = 0.0;
+  for (double value : x)
+  {
+    sum += value;
+  }
+  return x.empty() ? 0.0 : sum / static_cast<double>(x.size());
+}
+
+/// Lag-1 autocorrelation of the centred series within segments.
+double lag1Autocorrelation(const std::vector<double>& x, const std::vector<std::size_t>& segment_lengths)
+{
+  const double m = mean(x);
+  double variance = 0.0, lagged = 0.0;
+  std::size_t offset = 0;
+  for (std::size_t length : segment_lengths)
+  {
+    for (std::size_t k = 0; k < length; ++k)
+    {
+      const double a = x[offset + k] - m;
+      variance += a * a;
+      if (k > 0)
+      {
+        lagged += a * (x[offset + k - 1] - m);
+      }
+    }
+    offset += length;
+  }
+  return variance > 0.0 ? lagged / variance : 0.0;
+}
+
+double speedStandardDeviation(const std::vector<CarFollowingRun>& runs)
+{
+  double sum = 0.0, sum_sq = 0.0;
+  std::size_t n = 0;
+  for (const CarFollowingRun& run : runs)
+  {
+    for (double v : run.follower_speed_mps)
+    {
+      sum += v;
+      sum_sq += v * v;
+      ++n;
+    }
+  }
+  if (n == 0)
+  {
+    return 0.0;
+  }
+  const double m = sum / static_cast<double>(n);
+  return std::sqrt(std::max(0.0, sum_sq / static_cast<double>(n) - m * m));
+}
+
+std::string formatNumber(double value, int precision = 4)
+{
+  std::ostringstream out;
+  out.precision(precision);
+  out << value;
+  return out.str();
+}
+
+/// A profile point's fit, before its held-out scoring.
+struct ProfileFit
+{
+  double margin = 0.0;
+  AccParameters parameters;
+  double train_mse = kInfinity;
+  bool fitted = false;
+};
+
+/// [margin_low, margin_high] from the allowed profile points (sorted by margin), and its note;
+/// fits with k1 <= k1_near_zero are pointed out (without spacing feedback the margin is moot).
+void spanAllowedMargins(StabilityTestResult& result, double least, double largest, double k1_near_zero,
+                        double alpha)
+{
+  const std::vector<MarginProfilePoint>& points = result.margin_profile;
+  double low = kInfinity, high = -kInfinity;
+  bool allowed_without_spacing_gain = false;
+  for (const MarginProfilePoint& point : points)
+  {
+    if (point.allowed)
+    {
+      low = std::min(low, point.margin);
+      high = std::max(high, point.margin);
+      allowed_without_spacing_gain =
+          allowed_without_spacing_gain || point.parameters.k1_per_s2 <= k1_near_zero;
+    }
+  }
+  std::ostringstream note;
+  note << "margins m0 whose best training fit (m = m0) predicts the held-out data not significantly worse "
+          "(one-sided, alpha "
+       << alpha << ") than the better side fit; " << points.size() << " margins tried";
+  result.margin_low = low;
+  result.margin_high = high;
+  if (points.front().allowed)
+  {
+    if (points.front().margin <= least + kSameMargin)
+    {
+      result.margin_low = least;
+      note << "; the low end is the least margin within the bounds (" << least << ")";
+    }
+    else
+    {
+      result.margin_low = -kInfinity;
+      note << "; open below (-inf): the least margin tried (" << points.front().margin << ") is still allowed";
+    }
+  }
+  if (points.back().allowed)
+  {
+    if (points.back().margin >= largest - kSameMargin)
+    {
+      result.margin_high = largest;
+      note << "; the high end is the largest margin within the bounds (" << largest << ")";
+    }
+    else
+    {
+      result.margin_high = kInfinity;
+      note << "; open above (+inf): the largest margin tried (" << points.back().margin << ") is still allowed";
+    }
+  }
+  note << "; each true end lies between the end reported and the next margin tried beyond it";
+  if (allowed_without_spacing_gain)
+  {
+    note << "; some allowed fits have k1 near 0 (no spacing feedback), where tau_e and so the margin hardly change "
+            "the fit";
+  }
+  result.margin_interval_note = note.str();
+}
+
+/// The verdict from the two p-values and the interval, with its reason.
+std::string decideVerdict(StabilityTestResult& result, double alpha)
+{
+  const double D = result.mean_squared_error_difference;
+  std::ostringstream why;
+  why << "held-out speed RMSE best stable " << formatNumber(result.best_stable.test_rmse_speed_mps)
+      << " m/s (m = " << formatNumber(result.best_stable.margin) << "), best unstable "
+      << formatNumber(result.best_unstable.test_rmse_speed_mps) << " m/s (m = "
+      << formatNumber(result.best_unstable.margin) << "), mean paired squared-error difference " << formatNumber(D)
+      << " m^2/s^2 over " << result.held_out_samples << " samples; p(stable rejected) = "
+      << formatNumber(result.p_value_stable_rejected)
+      << ", p(unstable rejected) = " << formatNumber(result.p_value_unstable_rejected) << " (moving-block bootstrap, "
+      << result.bootstrap_replicates << " replicates, blocks of " << formatNumber(result.block_length_s) << " s)";
+  const bool reject_stable = result.p_value_stable_rejected <= alpha;
+  const bool reject_unstable = result.p_value_unstable_rejected <= alpha;
+  if (reject_stable && result.margin_high < -kSameMargin)
+  {
+    result.verdict = StabilityVerdict::Unstable;
+    result.p_value = result.p_value_stable_rejected;
+    why << ": the data reject string stability; allowed margins [" << formatNumber(result.margin_low) << ", "
+        << formatNumber(result.margin_high) << "]";
+  }
+  else if (reject_unstable && result.margin_low > kSameMargin)
+  {
+    result.verdict = StabilityVerdict::Stable;
+    result.p_value = result.p_value_unstable_rejected;
+    why << ": the data reject string instability; allowed margins [" << formatNumber(result.margin_low) << ", "
+        << formatNumber(result.margin_high) << "]";
+  }
+  else
+  {
+    result.verdict = StabilityVerdict::Undecided;
+    result.p_value = std::min(result.p_value_stable_rejected, result.p_value_unstable_rejected);
+    if (reject_stable || reject_unstable)
+    {
+      why << ": the paired test rejects " << (reject_stable ? "stability" : "instability")
+          << ", but the held-out data still allow margins on both sides of 0 or on the boundary (allowed ["
+          << formatNumber(result.margin_low) << ", " << formatNumber(result.margin_high)
+          << "]): a model at or across m = 0 predicts as well";
+    }
+    else
+    {
+      why << ": neither model predicts the held-out data significantly better (alpha " << alpha << ")";
+    }
+  }
+  return why.str();
+}
+
+}  // namespace
+
+std::vector<double> StabilityTestOptions::defaultMarginGrid()
+{
+  return {-2.0, -1.5, -1.0, -0.75, -0.5, -0.35, -0.2, -0.1, -0.05, 0.0, 0.05, 0.1, 0.2,
+          0.35, 0.5,  0.75, 1.0,   1.5,  2.0,   3.0,  4.0,  6.0,   8.0, 12.0, 16.0, 20.0};
+}
+
+ConstrainedFitOptions StabilityTestOptions::defaultProfileOptions()
+{
+  ConstrainedFitOptions options;
+  options.starts = 0;
+  options.max_local_solves = 0;
+  options.max_warm_solves = 1;
+  options.max_evaluations_per_solve = 100;
+  options.relative_f_tolerance = 1e-8;
+  return options;
+}
+
+std::string toString(StabilityVerdict verdict)
+{
+  switch (verdict)
+  {
+    case StabilityVerdict::Stable: return "stable";
+    case StabilityVerdict::Unstable: return "unstable";
+    case StabilityVerdict::Undecided: return "undecided";
+  }
+  return "undecided";
+}
+
+StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& runs, const StabilityTestOptions& options)
+{
+  std::vector<CarFollowingRun> training, held_out;
+  for (const CarFollowingRun& run : runs)
+  {
+    if (!describeRunProblem(run).empty() || run.size() < 4)
+    {
+      continue;  // the two-argument form reports what is left
+    }
+    auto [first, second] = splitRunInHalf(run);
+    training.push_back(std::move(first));
+    held_out.push_back(std::move(second));
+  }
+  StabilityTestResult result = testStringStability(training, held_out, options);
+  if (training.size() < runs.size())
+  {
+    result.reason += " (" + std::to_string(runs.size() - training.size()) +
+                     " run(s) left out: fewer than 4 samples or not simulable)";
+  }
+  return result;
+}
+
+StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& training_in,
+                                        const std::vector<CarFollowingRun>& held_out_in,
+                                        const StabilityTestOptions& options)
+{
+  const auto started = std::chrono::steady_clock::now();
+  StabilityTestResult result;
+  result.alpha = options.alpha;
+  result.seed = options.seed;
+  result.bootstrap_replicates = options.bootstrap_replicates;
+  auto finish = [&](std::string reason) {
+    result.reason = std::move(reason);
+    result.solve_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return result;
+  };
+
+  // --- Data ---------------------------------------------------------------------------------
+  std::vector<CarFollowingRun> training, held_out;
+  for (const CarFollowingRun& run : training_in)
+  {
+    if (describeRunProblem(run).empty())
+    {
+      training.push_back(run);
+      result.training_samples += run.size();
+    }
+  }
+  std::vector<std::size_t> segment_lengths;
+  double held_out_duration_s = 0.0;
+  for (const CarFollowingRun& run : held_out_in)
+  {
+    if (describeRunProblem(run).empty())
+    {
+      held_out.push_back(run);
+      segment_lengths.push_back(run.size() - 1);
+      result.held_out_samples += run.size() - 1;
+      held_out_duration_s += run.durationS();
+    }
+  }
+  result.held_out_segments = held_out.size();
+  if (result.training_samples < options.min_training_samples)
+  {
+    return finish("too few training samples (" + std::to_string(result.training_samples) + " < " +
+                  std::to_string(options.min_training_samples) + ")");
+  }
+  if (result.held_out_samples < options.min_held_out_samples || held_out_duration_s < options.min_held_out_duration_s)
+  {
+    return finish("too few held-out samples (" + std::to_string(result.held_out_samples) + " over " +
+                  formatNumber(held_out_duration_s) + " s; need " + std::to_string(options.min_held_out_samples) +
+                  " samples and " + formatNumber(options.min_held_out_duration_s) + " s)");
+  }
+  const double speed_std = speedStandardDeviation(training);
+  if (speed_std < options.min_training_speed_std_mps)
+  {
+    return finish("flat data: the training follower speed varies by " + formatNumber(speed_std) + " m/s (std) < " +
+                  formatNumber(options.min_training_speed_std_mps) +
+                  " m/s; without speed changes the data pin only eta + tau_e v, not the margin");
+  }
+
+  // --- The two side fits on the training data -------------------------------------------------
+  std::optional<CalibrationObjective> objective;
+  try
+  {
+    objective.emplace(training, options.bounds);
+  }
+  catch (const std::exception& error)
+  {
+    return finish(std::string("training data cannot be simulated: ") + error.what());
+  }
+  const MultistartResult unconstrained = calibrateMultistart(*objective, options.multistart, options.warm_starts);
+  result.unconstrained_evaluations = unconstrained.evaluations;
+  if (unconstrained.diverged)
+  {
+    return finish("every start of the unconstrained fit diverged");
+  }
+  const AccParameters& u = unconstrained.parameters;
+  const double u_margin = stabilityMargin(u);
+  const bool u_stable = u_margin >= 0.0;
+  SideFit u_side;
+  u_side.found = true;
+  u_side.parameters = u;
+  u_side.margin = u_margin;
+  u_side.unconstrained_optimum = true;
+  u_side.status = unconstrained.status;
+  const ConstrainedFitResult other = fitWithMarginConstraint(
+      *objective, u_stable ? MarginSide::AtMost : MarginSide::AtLeast, 0.0, options.constrained, {u});
+  result.constrained_evaluations = other.evaluations;
+  SideFit other_side;
+  other_side.found = other.found;
+  other_side.parameters = other.parameters;
+  other_side.margin = other.margin;
+  other_side.status = other.status;
+  SideFit stable = u_stable ? u_side : other_side;
+  SideFit unstable = u_stable ? other_side : u_side;
+  if (!stable.found || !unstable.found)
+  {
+    return finish(std::string("no ") + (stable.found ? "string-unstable" : "string-stable") +
+                  " model within the parameter bounds fits the training data");
+  }
+  if (options.with_quantities)
+  {
+    const ParameterUncertainty uncertainty = estimateUncertainty(u, training);
+    result.quantities = assessQuantities(u, uncertainty, training, options.quantity_criteria);
+    result.quantities->basis = "training data's unconstrained fit; " + result.quantities->basis;
+  }
+
+  auto trainMse = [&](const AccParameters& p) {
+    const ReducedObjectiveValue value = objective->evaluate(p.k1_per_s2, p.k2_per_s, p.tau_e_s, false);
+    return value.diverged ? kInfinity : value.mse_speed_mps2;
+  };
+  auto solveAt = [&](double m0, const std::vector<AccParameters>& warm) {
+    ProfileFit fit;
+    fit.margin = m0;
+    const ConstrainedFitResult r = fitWithMarginConstraint(*objective, MarginSide::EqualTo, m0, options.profile, warm);
+    result.profile_evaluations += r.evaluations;
+    if (r.found)
+    {
+      fit.parameters = r.parameters;
+      fit.margin = r.margin;
+      fit.train_mse = r.rmse_speed_mps * r.rmse_speed_mps;
+      fit.fitted = true;
+    }
+    return fit;
+  };
+
+  // The margins of the profile: the grid within the bounds' margins, with 0.
+  std::vector<double> grid;
+  const double least = leastMargin(options.bounds), largest = largestMargin(options.bounds);
+  for (double m0 : options.margin_grid)
+  {
+    if (std::isfinite(m0) && m0 >= least && m0 <= largest)
+    {
+      grid.push_back(m0);
+    }
+  }
+  if (!grid.empty() && 0.0 >= least && 0.0 <= largest)
+  {
+    grid.push_back(0.0);
+  }
+  std::sort(grid.begin(), grid.end());
+  grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
+
+  // --- Held-out test and margin profile (again, once, if the profile finds a better side fit) ---
+  std::vector<MarginProfilePoint>& points = result.margin_profile;
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    points.clear();
+    stable.train_rmse_speed_mps = evaluateFit(stable.parameters, training).rmse_speed_mps;
+    unstable.train_rmse_speed_mps = evaluateFit(unstable.parameters, training).rmse_speed_mps;
+    const HeldOutErrors stable_errors = heldOutErrors(stable.parameters, held_out);
+    const HeldOutErrors unstable_errors = heldOutErrors(unstable.parameters, held_out);
+    stable.test_rmse_speed_mps = rms(stable_errors.error);
+    unstable.test_rmse_speed_mps = rms(unstable_errors.error);
+    result.best_stable = stable;
+    result.best_unstable = unstable;
+    if (stable_errors.diverged || unstable_errors.diverged)
+    {
+      result.tested = false;
+      return finish(std::string("the best ") + (stable_errors.diverged ? "stable" : "unstable") +
+                    " model's simulation diverges on the held-out data");
+    }
+    const std::vector<double> d = squaredErrorDifference(stable_errors.error, unstable_errors.error);
+    result.mean_squared_error_difference = mean(d);
+
+    const double mean_step_s =
+        held_out_duration_s / static_cast<double>(std::max<std::size_t>(1, result.held_out_samples));
+    double block_s = options.block_length_s;
+    if (!(block_s > 0.0))
+    {
+      const double rho = std::clamp(lag1Autocorrelation(d, segment_lengths), 1e-6, 0.9999);
+      const double correlation_time_s = -mean_step_s / std::log(rho);
+      block_s = std::clamp(5.0 * correlation_time_s, options.min_block_length_s, options.max_block_length_s);
+      block_s =
+          std::min(block_s, held_out_duration_s / static_cast<double>(std::max<std::size_t>(1, options.min_blocks)));
+    }
+    const std::size_t block_samples =
+        std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(block_s / mean_step_s)));
+    result.block_length_s = static_cast<double>(block_samples) * mean_step_s;
+    const MovingBlockBootstrap bootstrap(segment_lengths, block_samples, options.bootstrap_replicates, options.seed);
+    result.p_value_stable_rejected = bootstrap.pValueMeanPositive(d);
+    result.p_value_unstable_rejected = bootstrap.pValueMeanNegative(d);
+    result.tested = true;
+
+    // Profile points, each scored against the better held-out side fit as it is made.
+    const bool stable_wins = result.mean_squared_error_difference <= 0.0;
+    const std::vector<double>& reference_errors = stable_wins ? stable_errors.error : unstable_errors.error;
+    auto score = [&](const ProfileFit& fit) {
+      MarginProfilePoint point;
+      point.margin = fit.margin;
+      point.fitted = fit.fitted;
+      if (!fit.fitted)
+      {
+        return point;
+      }
+      point.parameters = fit.parameters;
+      point.train_rmse_speed_mps = std::sqrt(fit.train_mse);
+      const HeldOutErrors errors = heldOutErrors(fit.parameters, held_out);
+      point.test_rmse_speed_mps = rms(errors.error);
+      point.p_value =
+          errors.diverged ? 0.0 : bootstrap.pValueMeanPositive(squaredErrorDifference(errors.error, reference_errors));
+      point.allowed = point.p_value > options.alpha;
+      return point;
+    };
+    // The side fits: the same numbers as the verdict's test (the same series and draws, up to sign).
+    for (const SideFit* side : {&stable, &unstable})
+    {
+      MarginProfilePoint point;
+      point.margin = side->margin;
+      point.fitted = true;
+      point.parameters = side->parameters;
+      point.train_rmse_speed_mps = side->train_rmse_speed_mps;
+      point.test_rmse_speed_mps = side->test_rmse_speed_mps;
+      const bool is_stable = side == &stable;
+      point.p_value = is_stable == stable_wins ? 1.0
+                      : is_stable               ? result.p_value_stable_rejected
+                                                : result.p_value_unstable_rejected;
+      point.allowed = point.p_value > options.alpha;
+      if (points.empty() || std::abs(points.front().margin - point.margin) > kSameMargin)
+      {
+        points.push_back(point);
+      }
+    }
+    std::vector<ProfileFit> grid_fits;
+    if (!grid.empty())
+    {
+      // m = 0: the side fit on the boundary when there is one, else its own fit.
+      const SideFit* boundary = nullptr;
+      for (const SideFit* side : {&stable, &unstable})
+      {
+        boundary = std::abs(side->margin) <= kSameMargin ? side : boundary;
+      }
+      AccParameters at_zero = u;
+      if (boundary != nullptr)
+      {
+        at_zero = boundary->parameters;
+      }
+      else
+      {
+        const ProfileFit zero = solveAt(0.0, {u, u_stable ? unstable.parameters : stable.parameters});
+        points.push_back(score(zero));
+        grid_fits.push_back(zero);
+        at_zero = zero.fitted ? zero.parameters : u;
+      }
+      // Outwards from 0, each m0 warm-started from its neighbour and from U; a direction stops
+      // after profile_stop_after_rejections rejected margins in a row beyond its side fit.
+      for (int direction : {+1, -1})
+      {
+        const double side_margin = direction > 0 ? stable.margin : unstable.margin;
+        AccParameters previous = at_zero;
+        std::size_t rejected_in_a_row = 0;
+        std::vector<double> ordered;
+        for (double m0 : grid)
+        {
+          if (direction * m0 > 0.0)
+          {
+            ordered.push_back(m0);
+          }
+        }
+        if (direction < 0)
+        {
+          std::reverse(ordered.begin(), ordered.end());
+        }
+        for (double m0 : ordered)
+        {
+          if (options.profile_stop_after_rejections > 0 && rejected_in_a_row >= options.profile_stop_after_rejections)
+          {
+            break;
+          }
+          const ProfileFit fit = solveAt(m0, {previous, u});
+          const MarginProfilePoint point = score(fit);
+          points.push_back(point);
+          grid_fits.push_back(fit);
+          if (fit.fitted)
+          {
+            previous = fit.parameters;
+          }
+          const bool beyond_side = direction * m0 > direction * side_margin;
+          rejected_in_a_row = beyond_side && !point.allowed ? rejected_in_a_row + 1 : 0;
+        }
+      }
+    }
+
+    // A profile fit better on the training data than the side fit of its side (a local search
+    // missed it) replaces that side fit, and the test is made again with it.
+    bool improved = false;
+    for (const ProfileFit& fit : grid_fits)
+    {
+      if (!fit.fitted)
+      {
+        continue;
+      }
+      // A fit on the boundary m = 0 belongs to both closed sides.
+      for (SideFit* side : {&stable, &unstable})
+      {
+        const bool on_side = side == &stable ? fit.margin >= -kSameMargin : fit.margin <= kSameMargin;
+        if (!on_side || !(fit.train_mse < trainMse(side->parameters) * (1.0 - 1e-9)))
+        {
+          continue;
+        }
+        AccParameters p = fit.parameters;
+        if (side == &unstable && fit.margin > 0.0)
+        {
+          // The boundary fit sits a few ulps above 0: move it to m <= 0 by ulps of tau_e.
+          const auto below = projectOntoMargin(p, 0.0, options.bounds, MarginSide::AtMost);
+          if (below.empty())
+          {
+            continue;
+          }
+          p = below.front();
+          p.eta_m = objective->evaluate(p.k1_per_s2, p.k2_per_s, p.tau_e_s, false).eta_m;
+        }
+        side->parameters = p;
+        side->margin = stabilityMargin(p);
+        side->unconstrained_optimum = false;
+        side->status = "FROM_MARGIN_PROFILE";
+        improved = true;
+      }
+    }
+    if (improved && pass == 0)
+    {
+      continue;
+    }
+
+    // Each end of the allowed margins, when a rejected margin lies beyond it, is refined by
+    // bisection between the two.
+    auto byMargin = [](const MarginProfilePoint& a, const MarginProfilePoint& b) { return a.margin < b.margin; };
+    std::sort(points.begin(), points.end(), byMargin);
+    for (int end : {-1, +1})
+    {
+      std::size_t inner = points.size();
+      for (std::size_t i = 0; i < points.size(); ++i)
+      {
+        const std::size_t j = end < 0 ? i : points.size() - 1 - i;
+        if (points[j].allowed)
+        {
+          inner = j;
+          break;
+        }
+      }
+      if (inner == points.size() || (end < 0 && inner == 0) || (end > 0 && inner + 1 == points.size()))
+      {
+        continue;
+      }
+      MarginProfilePoint allowed = points[inner];
+      double outer = points[end < 0 ? inner - 1 : inner + 1].margin;
+      for (std::size_t step = 0; step < options.interval_bisections; ++step)
+      {
+        const double m0 = 0.5 * (allowed.margin + outer);
+        const MarginProfilePoint point = score(solveAt(m0, {allowed.parameters, u}));
+        points.push_back(point);
+        if (point.allowed)
+        {
+          allowed = point;
+        }
+        else
+        {
+          outer = m0;
+        }
+      }
+    }
+    std::sort(points.begin(), points.end(), byMargin);
+    break;
+  }
+
+  spanAllowedMargins(result, least, largest, 1e-3 * options.multistart.start_box_upper.k1_per_s2, options.alpha);
+  return finish(decideVerdict(result, options.alpha));
+}
+
+}  // namespace acc
