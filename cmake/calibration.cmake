@@ -16,6 +16,7 @@ acc_add_library(acc_calibration
     src/calibration/quantity_identifiability.cpp
     src/calibration/stability_test.cpp
     src/calibration/stability_test_json.cpp
+    src/calibration/stability_test_text.cpp
   LINK acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 
 # ROS side: runs from bags of RelativeState (rosbag API), with the CSV reader's checks.

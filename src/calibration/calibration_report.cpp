@@ -109,6 +109,14 @@ nlohmann::json reportToJson(const CalibrationReport& report)
       json["grid_check"]["polished_rmse_speed_mps"] = number(report.grid_polished->rmse_speed_mps);
     }
   }
+  if (report.quantities)
+  {
+    json["identifiable_quantities"] = toJson(*report.quantities);
+  }
+  if (report.stability_test)
+  {
+    json["stability_test"] = toJson(*report.stability_test);
+  }
   return json;
 }
 
@@ -176,6 +184,16 @@ void printReport(const CalibrationReport& report, std::ostream& out)
                         : "DISAGREES: the grid found a better basin");
       out << line;
     }
+  }
+  if (report.quantities)
+  {
+    out << "\n";
+    printQuantities(*report.quantities, out);
+  }
+  if (report.stability_test)
+  {
+    out << "\n";
+    printStabilityTest(*report.stability_test, out);
   }
 }
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <ostream>
 #include <limits>
 #include <sstream>
 
@@ -174,6 +176,29 @@ nlohmann::json toJson(const IdentifiableQuantities& quantities)
   }
   json["quantities"] = items;
   return json;
+}
+
+void printQuantities(const IdentifiableQuantities& quantities, std::ostream& out)
+{
+  out << "What the data determine (" << quantities.basis << "):\n";
+  char line[400];
+  for (const QuantityEstimate& q : quantities.quantities)
+  {
+    std::string name = q.name;
+    if (!std::isnan(q.speed_mps))
+    {
+      char at[48];
+      std::snprintf(at, sizeof at, " (v = %.1f m/s)", q.speed_mps);
+      name += at;
+    }
+    if (q.determined)
+      std::snprintf(line, sizeof line, "  %-44s %10.4g +- %-9.3g %-6s determined\n", name.c_str(), q.value,
+                    q.standard_error, q.unit.c_str());
+    else
+      std::snprintf(line, sizeof line, "  %-44s %10s    %-9s %-6s NOT determined: %s\n", name.c_str(), "nan", "",
+                    q.unit.c_str(), q.reason.c_str());
+    out << line;
+  }
 }
 
 }  // namespace acc

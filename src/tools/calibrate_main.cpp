@@ -10,6 +10,7 @@
 
 #include "acc_identification/calibration/calibration_report.h"
 #include "acc_identification/calibration/identification.h"
+#include "acc_identification/calibration/stability_test.h"
 #include "acc_identification/command_line.h"
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/ros/run_bag_reader.h"
@@ -28,6 +29,9 @@ const char* kUsage =
     "                     and check that the multistart optimum is the global one\n"
     "  --topic NAME       RelativeState topic in bags (default relative_state)\n"
     "  --max-gap S        split runs at holes longer than S seconds (default 0.5)\n"
+    "  --alpha A          level of the string-stability test (default 0.05)\n"
+    "  --seed N           seed of the test's bootstrap (default: the library's fixed seed)\n"
+    "  --no-stability-test  skip the string-stability test on held-out halves\n"
     "  --quiet            no progress display\n";
 
 struct LoadedRun
@@ -68,7 +72,8 @@ void showProgress(std::size_t done, std::size_t total)
 
 int main(int argc, char** argv)
 {
-  acc::CommandLine cli({"split", "starts", "json", "grid", "topic", "max-gap"}, {"quiet", "help"});
+  acc::CommandLine cli({"split", "starts", "json", "grid", "topic", "max-gap", "alpha", "seed"},
+                       {"quiet", "help", "no-stability-test"});
   if (!cli.parse(argc, argv) || cli.has("help") || cli.positional().empty())
   {
     std::cerr << (cli.error().empty() ? "" : "error: " + cli.error() + "\n") << kUsage;
@@ -78,10 +83,15 @@ int main(int argc, char** argv)
   const auto starts = cli.number("starts");
   const auto grid_nodes = cli.number("grid");
   const auto max_gap = cli.number("max-gap");
+  const auto alpha = cli.number("alpha");
+  const auto seed = cli.number("seed");
   if (!cli.error().empty() || (split != "none" && split != "half") || (starts && *starts < 0) ||
-      (grid_nodes && *grid_nodes < 2) || (max_gap && *max_gap <= 0))
+      (grid_nodes && *grid_nodes < 2) || (max_gap && *max_gap <= 0) || (alpha && !(*alpha > 0 && *alpha < 1)) ||
+      (seed && *seed < 0))
   {
-    std::cerr << "error: " << (cli.error().empty() ? "bad --split, --starts, --grid or --max-gap" : cli.error()) << "\n"
+    std::cerr << "error: "
+              << (cli.error().empty() ? "bad --split, --starts, --grid, --max-gap, --alpha or --seed" : cli.error())
+              << "\n"
               << kUsage;
     return 2;
   }
@@ -123,11 +133,22 @@ int main(int argc, char** argv)
   {
     options.multistart.progress = showProgress;
   }
+  // The same identification as the identifier node's (excitation check, fit, standard errors,
+  // identifiability), so that batch and live agree on what a window says.
+  const acc::Identification identification = acc::identifyAcc(training, options);
+  if (!identification.solved || identification.calibration.diverged)
+  {
+    std::cerr << "error: no fit: " << identification.note << "\n";
+    return 1;
+  }
+  report.calibration = identification.calibration;
+  report.training_samples = identification.samples;
+  report.uncertainty = identification.uncertainty;
+  report.stability = identification.stability;
+  report.identifiability_note = identification.note;
   try
   {
     const acc::CalibrationObjective objective(training, options.bounds);
-    report.training_samples = objective.sampleCount();
-    report.calibration = acc::calibrateMultistart(objective, options.multistart);
     if (grid_nodes)
     {
       const auto n = static_cast<std::size_t>(*grid_nodes);
@@ -147,9 +168,22 @@ int main(int argc, char** argv)
     return 1;
   }
   const acc::AccParameters& p = report.calibration.parameters;
-  report.uncertainty = acc::estimateUncertainty(p, training);
-  report.stability = acc::analyzeStringStability(p);
-  report.identifiability_note = acc::describeUnidentifiable(p, report.uncertainty, options.criteria);
+  report.quantities = acc::assessQuantities(p, report.uncertainty, training);
+  if (!cli.has("no-stability-test"))
+  {
+    std::vector<acc::CarFollowingRun> runs;
+    for (const LoadedRun& item : loaded)
+      runs.push_back(item.run);
+    acc::StabilityTestOptions test_options;
+    test_options.alpha = alpha.value_or(test_options.alpha);
+    if (seed)
+      test_options.seed = static_cast<std::uint64_t>(*seed);
+    test_options.multistart.starts = options.multistart.starts;
+    test_options.warm_starts = {p};
+    if (!cli.has("quiet"))
+      std::cerr << "string-stability test on held-out halves...\n";
+    report.stability_test = acc::testStringStability(runs, test_options);
+  }
   std::vector<acc::FitQuality> train_fits, test_fits;
   for (std::size_t i = 0; i < loaded.size(); ++i)
   {

@@ -62,3 +62,46 @@ TEST(CalibrationReport, JsonHasTheKeysOtherToolsRead)
   EXPECT_NE(table.str().find("part3"), std::string::npos);
 }
 }  // namespace
+
+/// calibrate's JSON carries the string-stability test (issue: the verdict on real drives) and
+/// what the data determine, under the documented keys, and the table names the verdict.
+TEST(CalibrationReport, StabilityTestAndQuantitiesAreInTheJsonAndTheTable)
+{
+  const auto run = acc::synthesizeRun(acc::paperMinimumSetting(), 400.0, 0.1, 20.0, 7);
+  acc::CalibrationReport report;
+  report.calibration.parameters = acc::paperMinimumSetting();
+  report.uncertainty = acc::estimateUncertainty(report.calibration.parameters, {run});
+  report.stability = acc::analyzeStringStability(report.calibration.parameters);
+  report.quantities = acc::assessQuantities(report.calibration.parameters, report.uncertainty, {run});
+  acc::StabilityTestOptions options;
+  options.multistart.starts = 10;
+  report.stability_test = acc::testStringStability({run}, options);
+
+  const auto json = acc::reportToJson(report);
+  ASSERT_TRUE(json.contains("stability_test"));
+  const auto& test = json["stability_test"];
+  for (const char* key : {"verdict", "p_value", "best_stable", "best_unstable", "margin_interval"})
+  {
+    EXPECT_TRUE(test.contains(key)) << key;
+  }
+  for (const char* key : {"parameters", "train_rmse_speed", "test_rmse_speed"})
+  {
+    EXPECT_TRUE(test["best_stable"].contains(key)) << key;
+    EXPECT_TRUE(test["best_unstable"].contains(key)) << key;
+  }
+  EXPECT_EQ(test["verdict"], acc::toString(report.stability_test->verdict));
+  ASSERT_TRUE(json.contains("identifiable_quantities"));
+  EXPECT_TRUE(json["identifiable_quantities"]["quantities"].contains("stability_margin"));
+
+  std::ostringstream table;
+  acc::printReport(report, table);
+  EXPECT_NE(table.str().find("verdict: " + std::string(report.stability_test->verdict == acc::StabilityVerdict::Unstable
+                                                            ? "UNSTABLE"
+                                                            : report.stability_test->verdict ==
+                                                                      acc::StabilityVerdict::Stable
+                                                                  ? "STABLE"
+                                                                  : "UNDECIDED")),
+            std::string::npos)
+      << table.str();
+  EXPECT_NE(table.str().find("stability_margin"), std::string::npos);
+}

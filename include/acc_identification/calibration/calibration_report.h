@@ -10,6 +10,8 @@
 #include "acc_identification/calibration/fit_statistics.h"
 #include "acc_identification/calibration/grid_search.h"
 #include "acc_identification/calibration/multistart_calibrator.h"
+#include "acc_identification/calibration/quantity_identifiability.h"
+#include "acc_identification/calibration/stability_test.h"
 #include "acc_identification/model/car_following_run.h"
 #include "acc_identification/model/string_stability.h"
 
@@ -41,10 +43,15 @@ struct CalibrationReport
   std::optional<FitQuality> summary_test;
   std::optional<GridSearchResult> grid;
   std::optional<MultistartResult> grid_polished;  ///< local solve from the grid's best node
+  /// What the data determine quantity by quantity (of the fit above, on its training data).
+  std::optional<IdentifiableQuantities> quantities;
+  /// Is the ACC string stable, decided on held-out halves even where the parameters are not pinned.
+  std::optional<StabilityTestResult> stability_test;
 };
 
 /// The --json document. Keys "parameters" (k1_per_s2, k2_per_s, tau_e_s, eta_m),
-/// "standard_errors", "stability", "objective", "runs", "summary" are read by other tools.
+/// "standard_errors", "stability", "objective", "runs", "summary" are read by other tools;
+/// "identifiable_quantities" and "stability_test" (stability_test.h) when they were computed.
 nlohmann::json reportToJson(const CalibrationReport& report);
 
 /// The tables of the paper's Tables I and II: per run and summary RMSEs, then the parameters

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -63,5 +64,8 @@ IdentifiableQuantities assessQuantities(const AccParameters& fit, const Paramete
 /// {"basis", "reciprocal_condition", "quantities": {name: {value, standard_error, unit, determined,
 /// reason (with the threshold applied)[, speed_mps]}}}; NaN as null.
 nlohmann::json toJson(const IdentifiableQuantities& quantities);
+
+/// One line per quantity: value +- standard error where determined, NaN and the reason where not.
+void printQuantities(const IdentifiableQuantities& quantities, std::ostream& out);
 
 }  // namespace acc

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -211,5 +212,8 @@ StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& trai
 /// held_out_samples, held_out_segments, reason, solve_time_s[, identifiable_quantities (see
 /// toJson(const IdentifiableQuantities&))]}. RMSEs in m/s. NaN and infinities as null.
 nlohmann::json toJson(const StabilityTestResult& result);
+
+/// The verdict, its p-values, both side fits, the margins allowed and why, as lines of text.
+void printStabilityTest(const StabilityTestResult& result, std::ostream& out);
 
 }  // namespace acc
