@@ -17,6 +17,7 @@ acc_add_library(acc_calibration
     src/calibration/stability_test.cpp
     src/calibration/stability_test_json.cpp
     src/calibration/stability_test_text.cpp
+    src/calibration/online_identifier.cpp
   LINK acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 
 # ROS side: runs from bags of RelativeState (rosbag API), with the CSV reader's checks.
@@ -31,6 +32,7 @@ acc_add_node(identifier_node WRAPPER acc_identifier_ros)
 
 acc_add_benchmark(bench_calibration LINK acc_calibration)
 acc_add_benchmark(bench_stability_test LINK acc_calibration)
+acc_add_benchmark(bench_online_identifier LINK acc_calibration)
 
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_calibration
@@ -45,6 +47,10 @@ if(CATKIN_ENABLE_TESTING)
   # The string-stability test (stability_test.h) on seeded synthetic drives: size, power, interval.
   catkin_add_gtest(test_stability_test test/unit/gtest_main.cpp test/unit/test_stability_test.cpp)
   target_link_libraries(test_stability_test acc_calibration)
+
+  # The live identifier's computation: the drive so far converges to the batch estimate and verdict.
+  catkin_add_gtest(test_online_identifier test/unit/gtest_main.cpp test/unit/test_online_identifier.cpp)
+  target_link_libraries(test_online_identifier acc_calibration)
 
   # The ROS-side pieces that need no master: bags in, messages out.
   catkin_add_gtest(test_calibration_ros

@@ -14,17 +14,34 @@ import sys
 
 
 def fmt(x, spec="7.4f"):
-    return ("{:" + spec + "}").format(x) if x == x else "nan".rjust(int(spec.split(".")[0]))
+    width = spec.split(".")[0].lstrip("+")
+    return ("{:" + spec + "}").format(x) if x == x else "nan".rjust(int(width) if width else 0)
+
+
+def pm(value, error, spec="+.2f"):
+    """value +- error, or nan when the data do not determine it."""
+    if value != value:
+        return "nan"
+    return ("{:" + spec + "}+-{:.2f}").format(value, error)
 
 
 def line(m):
+    """One update: the window (each quantity nan where not determined), the drive so far, the verdict."""
     utc = datetime.datetime.utcfromtimestamp(m.header.stamp.to_sec()).strftime("%H:%M:%S")
     span = (m.window_end - m.window_start).to_sec()
-    verdict = "stable  " if m.string_stable else ("UNSTABLE" if m.lambda2 == m.lambda2 else "   -    ")
-    ident = "identifiable" if m.identifiable else "NOT identifiable: " + m.identifiability_note
-    return ("{} win {:6.1f}s n={:5d}  k1 {} k2 {} tau_e {} eta {}  lambda2 {}  {}  rmse v {} s {}  {}".format(
-        utc, span, m.samples, fmt(m.k1_per_s2), fmt(m.k2_per_s), fmt(m.tau_e_s), fmt(m.eta_m, "6.2f"),
-        fmt(m.lambda2, "+8.4f"), verdict, fmt(m.rmse_speed_mps, "5.3f"), fmt(m.rmse_gap_m, "5.3f"), ident))
+    drive_s = (m.window_end - m.drive_start).to_sec() if m.drive_start.to_sec() > 0 else 0.0
+    verdict = m.stability_verdict.upper()
+    if m.stability_p_value == m.stability_p_value:
+        verdict += " p={:.3f} m in [{}, {}] ({} samples)".format(
+            m.stability_p_value, fmt(m.stability_margin_low, ".2f").strip(),
+            fmt(m.stability_margin_high, ".2f").strip(), m.stability_samples)
+    note = "all determined" if m.identifiable else "not determined: " + (m.identifiability_note[:90] or "-")
+    return ("{} win {:5.0f}s n={:5d} k1 {} k2 {} tau_e {} eta {} gap@{}m/s {} margin {} | "
+            "drive {:6.0f}s margin {} | verdict {} | {}".format(
+                utc, span, m.samples, fmt(m.k1_per_s2, "6.4f"), fmt(m.k2_per_s, "6.4f"), fmt(m.tau_e_s, "5.3f"),
+                fmt(m.eta_m, "5.2f"), fmt(m.equilibrium_speed_mps, "4.1f").strip(), fmt(m.equilibrium_gap_m, "5.1f"),
+                pm(m.stability_margin, m.stability_margin_std_error), drive_s,
+                pm(m.drive_stability_margin, m.drive_stability_margin_std_error), verdict, note))
 
 
 def live():
@@ -53,21 +70,30 @@ def advance(seconds):
 def last(bag_path, out_path):
     import rosbag
     message = None
-    count = identifiable = 0
+    count = identifiable = decided = 0
+    first_decided = None
     with rosbag.Bag(bag_path) as bag:
         for _, m, _ in bag.read_messages(topics=["/acc_parameters"]):
             message, count = m, count + 1
             identifiable += 1 if m.identifiable else 0
+            if m.stability_verdict in ("stable", "unstable"):
+                decided += 1
+                if first_decided is None:
+                    first_decided = (m.window_end - m.drive_start).to_sec()
     if message is None:
         print("no acc_parameters in " + bag_path, file=sys.stderr)
         return 1
     keys = ["samples", "segments", "k1_per_s2", "k2_per_s", "tau_e_s", "eta_m", "lambda2", "string_stable",
-            "rmse_speed_mps", "rmse_gap_m", "identifiable", "identifiability_note"]
+            "rmse_speed_mps", "rmse_gap_m", "identifiable", "identifiability_note", "drive_samples",
+            "stability_verdict", "stability_p_value", "stability_margin_low", "stability_margin_high",
+            "stability_samples", "stability_reason", "stability_margin", "stability_margin_std_error"]
     out = {k: getattr(message, k) for k in keys}
     out["window_start_s"] = message.window_start.to_sec()
     out["window_end_s"] = message.window_end.to_sec()
     out["messages"] = count
     out["identifiable_messages"] = identifiable
+    out["decided_messages"] = decided
+    out["first_decided_after_s"] = first_decided
     with open(out_path, "w") as f:
         json.dump(out, f, indent=1, default=lambda v: None)
     print("{:.3f} {:.3f}".format(out["window_start_s"], out["window_end_s"]))
@@ -106,12 +132,21 @@ def compare(online_path, batch_path):
         datetime.datetime.utcfromtimestamp(online["window_start_s"]).strftime("%Y-%m-%d %H:%M:%S")))
     print("identifiable: online {}, batch {}; {} of {} online updates were identifiable".format(
         online["identifiable"], batch.get("identifiable"), online["identifiable_messages"], online["messages"]))
+    test = batch.get("stability_test") or {}
+    print("string stability, live (drive so far, test on {} samples): {} p={}; batch calibrate ({} held-out "
+          "samples): {} p={}".format(
+              online.get("stability_samples"), online.get("stability_verdict"), online.get("stability_p_value"),
+              test.get("held_out_samples"), test.get("verdict"), test.get("p_value")))
+    if online.get("first_decided_after_s") is not None:
+        print("the live verdict was decided {:.0f} s into the drive; {} of {} updates carried a decided verdict".format(
+            online["first_decided_after_s"], online["decided_messages"], online["messages"]))
+    else:
+        print("no update carried a decided verdict: the data do not decide string stability (undecided, not hidden)")
     if online["identifiable_messages"] == 0:
-        print("No window of this run was identifiable online (real Casale data lacks excitation for this "
-              "model; see docs): the parameters are NaN by design, not hidden.")
+        print("No window of this run determined all four parameters (real Casale data: tau_e and eta trade "
+              "off); each one is NaN where not determined, the others are published.")
     if not online["identifiable"]:
-        print("The online identifier says this window is NOT identifiable (parameters NaN): " +
-              online["identifiability_note"])
+        print("What the last window does not determine: " + online["identifiability_note"])
         print("batch calibrate: " + str(batch.get("identifiability_note")))
         print("The fits themselves (RMSE above) are compared instead; the batch parameters are printed "
               "as found, not as results.")

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "acc_identification/calibration/synthetic_runs.h"
 #include "acc_identification/model/paper_settings.h"
@@ -44,5 +45,73 @@ TEST(IdentifierMessage, UnidentifiableWindowSaysSoInsteadOfPublishingNoise)
   EXPECT_TRUE(std::isnan(m.tau_e_std_error));
   EXPECT_TRUE(std::isnan(m.lambda2));
   EXPECT_FALSE(m.string_stable);
+}
+}  // namespace
+
+namespace
+{
+/// Issue "the verdict on real drives": each quantity is NaN only where the data do not determine
+/// it, the drive so far is published beside the window, and the verdict with its p-value.
+TEST(IdentifierMessage, QuantitiesOneByOneTheDriveAndTheVerdict)
+{
+  acc::IdentificationOptions options;
+  options.multistart.starts = 8;
+  const auto run = acc::synthesizeRun(acc::paperMinimumSetting(), 300.0, 0.1, 25.0, 5);
+  acc::OnlineUpdate update;
+  update.window = acc::identifyAcc({run}, options);
+  ASSERT_TRUE(update.window.solved);
+  update.window_quantities =
+      acc::assessQuantities(update.window.calibration.parameters, update.window.uncertainty, {run});
+  // Pretend the data pin everything but tau_e (as real steady drives do).
+  for (auto& q : update.window_quantities->quantities)
+  {
+    if (q.name == "tau_e")
+    {
+      q.determined = false;
+      q.reason = "tau_e = 0 +- 0.67 s: standard error too large";
+    }
+  }
+  update.drive = update.window;
+  update.drive_quantities = update.window_quantities;
+  update.drive_samples = run.size();
+  acc::StabilityTestResult test;
+  test.verdict = acc::StabilityVerdict::Unstable;
+  test.p_value = 0.004;
+  test.tested = true;
+  test.margin_low = -1.8;
+  test.margin_high = -0.9;
+  test.reason = "the stable model predicts worse";
+  update.stability = test;
+  update.stability_drive_samples = run.size();
+
+  const auto m = acc::toMessage(update, 1000.0, 1300.0, 900.0);
+  EXPECT_TRUE(std::isnan(m.tau_e_s));
+  EXPECT_TRUE(std::isnan(m.tau_e_std_error));
+  EXPECT_DOUBLE_EQ(m.k1_per_s2, update.window.calibration.parameters.k1_per_s2);  // k1 still published
+  EXPECT_FALSE(std::isnan(m.equilibrium_gap_m));
+  EXPECT_GT(m.equilibrium_speed_mps, 15.0);
+  EXPECT_FALSE(m.identifiable);  // not all four
+  EXPECT_NE(m.identifiability_note.find("tau_e = 0 +- 0.67 s"), std::string::npos);
+  EXPECT_TRUE(std::isnan(m.lambda2));  // needs tau_e
+  EXPECT_EQ(m.drive_samples, run.size());
+  EXPECT_DOUBLE_EQ(m.drive_start.toSec(), 900.0);
+  EXPECT_TRUE(std::isnan(m.drive_tau_e_s));
+  EXPECT_EQ(m.stability_verdict, "unstable");
+  EXPECT_DOUBLE_EQ(m.stability_p_value, 0.004);
+  EXPECT_DOUBLE_EQ(m.stability_margin_high, -0.9);
+  EXPECT_EQ(m.stability_samples, run.size());
+}
+
+TEST(IdentifierMessage, NoVerdictYetIsUndecidedWithNaNAndTimesOutOfRangeNeverThrow)
+{
+  acc::OnlineUpdate update;
+  update.window.note = "too little data";
+  acc_identification::AccParameters m;
+  EXPECT_NO_THROW(m = acc::toMessage(update, std::numeric_limits<double>::infinity(), 1e12,
+                                     std::numeric_limits<double>::quiet_NaN()));
+  EXPECT_EQ(m.stability_verdict, "undecided");
+  EXPECT_TRUE(std::isnan(m.stability_p_value));
+  EXPECT_EQ(m.header.stamp.toSec(), 0.0);
+  EXPECT_EQ(m.window_start.toSec(), 0.0);
 }
 }  // namespace

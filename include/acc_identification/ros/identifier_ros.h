@@ -14,6 +14,7 @@
 
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/calibration/identification.h"
+#include "acc_identification/calibration/online_identifier.h"
 #include "acc_identification/calibration/sliding_window.h"
 
 #include <acc_identification/AccParameters.h>
@@ -30,19 +31,30 @@ struct IdentifierSettings
   int min_segment_samples = 20;       ///< shorter pieces between holes are not simulated
   int starts = 8;                     ///< fresh Halton starts per solve, besides the warm start
   int queue_size = 1000;              ///< subscriber queue: a replay may burst
+  int drive_max_evaluations = 40;     ///< per period, continuing the drive-so-far solve
+  double stability_period_s = 10.0;   ///< at most one string-stability test of the drive per this (ROS time)
+  double alpha = 0.05;                ///< level of the string-stability test
   IdentifiabilityCriteria criteria;
 };
 
 /// Reads the private parameters; false and a message on a bad value.
 bool loadIdentifierSettings(const ros::NodeHandle& private_node, IdentifierSettings& settings, std::string& error);
 
-/// The message for one solve of a window (window times from its first and last sample, GNSS time).
+/// The message for one update: the window's solve (times from its first and last sample, GNSS
+/// time), each quantity NaN only where the window does not determine it; the drive so far; the
+/// latest string-stability test of the drive (none yet: verdict "undecided", NaN p-value).
+acc_identification::AccParameters toMessage(const OnlineUpdate& update, double window_start_s, double window_end_s,
+                                            double drive_start_s);
+/// The same for a window alone (no drive, no test yet).
 acc_identification::AccParameters toMessage(const Identification& identification, double window_start_s, double window_end_s);
 
-/// identifier_node: subscribes to relative_state, keeps a sliding window, and every period
-/// recalibrates the ACC model on it (warm-started from the previous fit) and publishes
-/// acc_parameters. Solves run on a worker thread so that the subscriber never waits; a solve
-/// still running when the next period comes makes that period skip (counted, and said).
+/// identifier_node: subscribes to relative_state, keeps a sliding window and the drive so far, and
+/// every period recalibrates the ACC model on the window (warm-started from the previous fit),
+/// continues the drive's calibration, and publishes acc_parameters. Solves run on a worker thread
+/// so that the subscriber never waits; a solve still running when the next period comes makes
+/// that period skip (counted, and said). The string-stability test of the drive runs on a thread
+/// of its own (about 1.5 s on a 3-hour drive), at most once per ~stability_period_s; each message
+/// carries its latest result.
 class IdentifierRos
 {
 public:
@@ -55,21 +67,38 @@ private:
   struct Job
   {
     std::vector<CarFollowingRun> segments;
+    std::vector<CarFollowingRun> drive_segments;
     double window_start_s = 0.0;
     double window_end_s = 0.0;
+    double drive_start_s = 0.0;
+    bool drive_reset = false;  ///< time went back: the drive starts anew
+    bool test_stability = false;  ///< hand the drive to the stability thread after this solve
+  };
+  /// What the worker hands to the stability thread.
+  struct StabilityJob
+  {
+    std::vector<CarFollowingRun> drive_segments;
+    AccParameters drive_fit;
+    std::size_t drive_samples = 0;
   };
 
   void onRelativeState(const acc_identification::RelativeState::ConstPtr& message);
   void onPeriod(const ros::TimerEvent& event);
   void workerLoop();
+  void stabilityLoop();
+  /// Gives the stability thread the drive, unless it is still busy with an earlier one.
+  void offerStabilityJob(const Job& job, const OnlineUpdate& update);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   bool ok_ = false;
   IdentifierSettings settings_;
-  IdentificationOptions options_;
-
   std::mutex window_mutex_;
   SlidingWindow window_;
+  SlidingWindow drive_;
+  bool drive_reset_pending_ = false;     ///< under window_mutex_
+  double last_stability_request_s_ = -1.0e300;  ///< ROS time, timer thread only
+  std::size_t last_stability_request_samples_ = 0;  ///< drive samples then, timer thread only
+  std::size_t previous_period_drive_samples_ = 0;   ///< timer thread only
 
   std::mutex job_mutex_;
   std::condition_variable job_ready_;
@@ -77,7 +106,16 @@ private:
   bool busy_ = false;
   bool stopping_ = false;
   std::thread worker_;
-  std::optional<AccParameters> warm_start_;  ///< worker thread only
+  std::optional<OnlineIdentifier> identifier_;  ///< worker thread only (testDrive() is const)
+
+  std::mutex stability_mutex_;
+  std::condition_variable stability_ready_;
+  std::optional<StabilityJob> stability_job_;
+  bool stability_busy_ = false;
+  bool stopping_stability_ = false;
+  std::optional<StabilityTestResult> stability_result_;  ///< the latest, under stability_mutex_
+  std::size_t stability_samples_ = 0;                    ///< drive samples it ran on
+  std::thread stability_worker_;
 
   ros::Subscriber subscriber_;
   ros::Publisher publisher_;
@@ -88,7 +126,9 @@ private:
   // Counters (atomic: read by the diagnostics, written by the callbacks and the worker).
   std::atomic<std::uint64_t> received_{0}, invalid_{0}, non_finite_{0}, out_of_order_{0}, restarts_{0};
   std::atomic<std::uint64_t> solves_{0}, skipped_periods_{0}, not_identifiable_{0}, published_{0};
-  std::atomic<double> last_solve_time_s_{0.0};
+  std::atomic<std::uint64_t> stability_tests_{0}, drive_resets_{0}, worker_errors_{0};
+  std::atomic<bool> stability_request_dropped_{false};
+  std::atomic<double> last_solve_time_s_{0.0}, last_drive_time_s_{0.0}, last_stability_time_s_{0.0};
 };
 
 }  // namespace acc

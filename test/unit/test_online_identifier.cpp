@@ -1,0 +1,110 @@
+// The live identifier's computation (online_identifier.h): the drive-so-far estimate converges to
+// the batch calibration of the whole drive, and its verdict is the batch verdict.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "acc_identification/calibration/online_identifier.h"
+#include "acc_identification/calibration/sliding_window.h"
+#include "acc_identification/calibration/synthetic_runs.h"
+#include "acc_identification/model/paper_settings.h"
+
+namespace
+{
+struct Replay
+{
+  acc::OnlineUpdate last;
+  std::size_t updates = 0;
+  std::size_t decided_updates = 0;
+  double max_update_s = 0.0;
+};
+
+/// Feeds a run sample by sample into a window and a drive, as the node does, and updates every
+/// period_s of data time.
+Replay replay(const acc::CarFollowingRun& run, double window_s, double period_s, acc::OnlineIdentifier& identifier)
+{
+  acc::SlidingWindow window(window_s, 0.5, 20), drive(1.0e9, 0.5, 20);
+  Replay result;
+  double next_update_s = run.time_s.front() + period_s;
+  for (std::size_t k = 0; k < run.size(); ++k)
+  {
+    const acc::WindowSample sample{run.time_s[k], run.space_gap_m[k], run.follower_speed_mps[k],
+                                   run.leader_speed_mps[k], true};
+    window.add(sample);
+    drive.add(sample);
+    if (run.time_s[k] >= next_update_s || k + 1 == run.size())
+    {
+      result.last = identifier.update(window.segments(), drive.segments());
+      ++result.updates;
+      const double cost = result.last.window_cpu_s + result.last.drive_cpu_s;
+      result.max_update_s = std::max(result.max_update_s, cost);
+      if (result.last.stability && result.last.stability->verdict != acc::StabilityVerdict::Undecided)
+        ++result.decided_updates;
+      next_update_s += period_s;
+    }
+  }
+  return result;
+}
+}  // namespace
+
+TEST(OnlineIdentifier, DriveSoFarConvergesToTheBatchEstimateAndVerdict)
+{
+  const acc::AccParameters truth = acc::paperMinimumSetting();
+  const acc::CarFollowingRun run = acc::synthesizeRun(truth, 900.0, 0.1, 20.0, 11);
+  acc::OnlineIdentifierOptions options;
+  options.window.multistart.starts = 8;
+  options.stability_every_updates = 5;
+  acc::OnlineIdentifier identifier(options);
+  const Replay live = replay(run, 120.0, 30.0, identifier);
+
+  // The batch calibration of the whole drive, as calibrate does it.
+  acc::IdentificationOptions batch_options;
+  const acc::Identification batch = acc::identifyAcc({run}, batch_options);
+  ASSERT_TRUE(batch.solved);
+  ASSERT_TRUE(live.last.drive.solved);
+  const acc::AccParameters& online = live.last.drive.calibration.parameters;
+  const acc::AccParameters& reference = batch.calibration.parameters;
+  std::printf("  drive so far: k1 %.5f k2 %.5f tau_e %.5f eta %.4f, rmse %.6f m/s\n", online.k1_per_s2,
+              online.k2_per_s, online.tau_e_s, online.eta_m, live.last.drive.calibration.rmse_speed_mps);
+  std::printf("  batch:        k1 %.5f k2 %.5f tau_e %.5f eta %.4f, rmse %.6f m/s\n", reference.k1_per_s2,
+              reference.k2_per_s, reference.tau_e_s, reference.eta_m, batch.calibration.rmse_speed_mps);
+  // Same objective, same data: the continued solve reaches the batch optimum's value.
+  EXPECT_NEAR(live.last.drive.calibration.rmse_speed_mps, batch.calibration.rmse_speed_mps,
+              1e-4 * batch.calibration.rmse_speed_mps);
+  EXPECT_NEAR(online.tau_e_s, reference.tau_e_s, 2.0 * batch.uncertainty.standard_error.tau_e_s + 1e-3);
+  EXPECT_NEAR(online.k1_per_s2, reference.k1_per_s2, 2.0 * batch.uncertainty.standard_error.k1_per_s2 + 1e-4);
+  EXPECT_EQ(live.last.drive_samples, run.size());
+
+  // The verdict: decided before the end, and the batch test of the same samples agrees.
+  ASSERT_TRUE(live.last.stability.has_value());
+  EXPECT_GT(live.decided_updates, 0u);
+  acc::StabilityTestOptions batch_test;
+  batch_test.warm_starts = {reference};
+  const acc::StabilityTestResult batch_verdict = acc::testStringStability({run}, batch_test);
+  std::printf("  verdict live %s (p %.3g), batch %s (p %.3g); %zu of %zu updates decided; slowest update %.3f s\n",
+              acc::toString(live.last.stability->verdict).c_str(), live.last.stability->p_value,
+              acc::toString(batch_verdict.verdict).c_str(), batch_verdict.p_value, live.decided_updates, live.updates,
+              live.max_update_s);
+  EXPECT_EQ(live.last.stability->verdict, acc::StabilityVerdict::Unstable);
+  EXPECT_EQ(batch_verdict.verdict, acc::StabilityVerdict::Unstable);
+}
+
+TEST(OnlineIdentifier, QuantitiesAreAssessedOneByOneAndTheDriveCanBeReset)
+{
+  const acc::CarFollowingRun run = acc::synthesizeRun(acc::paperMaximumSetting(), 300.0, 0.1, 20.0, 5);
+  acc::OnlineIdentifierOptions options;
+  options.window.multistart.starts = 4;
+  options.stability_every_updates = 0;  // never
+  acc::OnlineIdentifier identifier(options);
+  const Replay live = replay(run, 120.0, 60.0, identifier);
+  ASSERT_TRUE(live.last.window_quantities.has_value());
+  ASSERT_TRUE(live.last.drive_quantities.has_value());
+  EXPECT_NE(live.last.drive_quantities->find("stability_margin"), nullptr);
+  EXPECT_FALSE(live.last.stability.has_value());  // the test never ran
+  identifier.resetDrive();
+  const acc::OnlineUpdate after = identifier.update({}, {});
+  EXPECT_FALSE(after.drive.solved);
+  EXPECT_FALSE(after.window.solved);
+  EXPECT_FALSE(after.drive.note.empty());
+}
