@@ -9,7 +9,10 @@ identifier. Listens until the replay has ended (no relative_state for ~idle_s of
   ~mode truth:   the last acc_parameters is identifiable and within ~tolerance (relative) of the
                  parameters in ~truth_json.
   ~mode batch:   the last acc_parameters agrees within ~tolerance with calibrate run on the same
-                 relative_state samples (those of its window, written to a bag).
+                 relative_state samples (those of its window, written to a bag); with
+                 ~expect_verdict, the last string-stability verdict equals calibrate's on the
+                 samples its test saw, and with ~expect_decided a decided verdict comes before the
+                 end of the drive.
   ~mode dropout: no acc_parameters window ends inside the gap of the leader's sentences; the
                  relative_state stream stops during the gap and resumes after it; acc_parameters
                  after the gap again come from new samples.
@@ -202,6 +205,34 @@ class EndToEnd(unittest.TestCase):
             for key in ("k1_per_s2", "k2_per_s", "tau_e_s", "eta_m"):
                 self.check_close(key, getattr(last, key), batch["parameters"][key], tolerance)
             self.assertAlmostEqual(last.lambda2, batch["stability"]["lambda2"], delta=0.05)
+        if rospy.get_param("~expect_verdict", False):
+            self.check_verdict(directory)
+
+    def check_verdict(self, directory):
+        """The issue's rostest: a decided verdict before the end of the drive, and the last verdict
+        is batch calibrate's on the very samples the node's last test saw."""
+        decided = [p for p in self.params if p.stability_verdict in ("stable", "unstable")]
+        drive_total = self.last_params().drive_samples
+        if rospy.get_param("~expect_decided", False):
+            self.assertTrue(decided, "no acc_parameters carried a decided verdict")
+            self.assertLess(decided[0].stability_samples, drive_total, "the verdict came only at the very end")
+        last = self.last_params()
+        self.assertGreater(last.stability_samples, 0, "the string-stability test never ran")
+        drive_start = last.drive_start.to_sec()
+        tested = sorted((s for s in self.states if s.valid and s.header.stamp.to_sec() >= drive_start - 1e-6),
+                        key=lambda s: s.header.stamp.to_sec())[:last.stability_samples]
+        tested_bag = os.path.join(directory, "tested.bag")
+        with rosbag.Bag(tested_bag, "w") as bag:
+            for s in tested:
+                bag.write("relative_state", s, s.header.stamp)
+        out = os.path.join(directory, "tested.json")
+        subprocess.run(["rosrun", PKG, "calibrate", "--quiet", "--json", out, tested_bag], check=True,
+                       stdout=subprocess.DEVNULL)
+        batch = json.load(open(out))["stability_test"]
+        print("verdict: live %s (p %.4f, %d samples; %d updates decided, of %d drive samples); batch %s (p %.4f)" % (
+            last.stability_verdict, last.stability_p_value, last.stability_samples, len(decided), drive_total,
+            batch["verdict"], batch["p_value"]), file=sys.stderr)
+        self.assertEqual(last.stability_verdict, batch["verdict"], "live verdict vs batch calibrate of its samples")
 
     def check_dropout(self):
         gap_start = rospy.get_param("~gap_start_s")  # bag times of the leader's missing sentences
