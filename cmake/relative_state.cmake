@@ -39,6 +39,7 @@ if(TARGET acc_gnss)
     target_link_libraries(test_openacc acc_conversion acc_relative_state)
     target_compile_definitions(test_openacc PRIVATE
       ACC_RELSTATE_TEST_DATA="${PROJECT_SOURCE_DIR}/test/data/relative_state"
+      ACC_OPENACC_TEST_DATA="${PROJECT_SOURCE_DIR}/test/data/openacc"
       ACC_OPENACC_DATA_DIR="${ACC_DATA_CASALE_DIR}")
   endif()
 endif()

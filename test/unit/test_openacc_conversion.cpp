@@ -113,3 +113,58 @@ TEST(OpenAccToNmea, WritesGgaAndRmcAsAUbloxWouldAndReadsBack)
   EXPECT_NEAR(back.fixes[3].course_rad, follower[3].course_rad, 0.01 * M_PI / 180.0);
   fs::remove_all(dir);
 }
+
+namespace
+{
+const std::string kZalaZone = std::string(ACC_OPENACC_TEST_DATA) + "/zalazone_dynamic_part26_excerpt.csv";
+
+/// A platoon file (ZalaZone): degrees detected and said, the first pair by default and named,
+/// rows with an empty gap of THAT pair rejected and counted.
+TEST(OpenAccPlatoon, DefaultPairDegreesAndItsOwnBadRows)
+{
+  const auto file = acc::readOpenAccTrajectories(kZalaZone);
+  ASSERT_TRUE(file.error.empty()) << file.error;
+  EXPECT_EQ(file.pairName(), "BMW_I3 (2) behind SMART_TARGET (1)");
+  EXPECT_EQ(file.available_followers, (std::vector<int>{2, 6, 7}));  // 3, 4 absent; 5's leader (4) absent
+  EXPECT_TRUE(file.positions_were_degrees);
+  EXPECT_NE(file.angle_unit_note.find("degrees"), std::string::npos) << file.angle_unit_note;
+  EXPECT_EQ(file.rows.size(), 32u);        // 40 rows, 8 with an empty IVS1
+  EXPECT_EQ(file.rejected_rows.size(), 8u);
+  // Line 39 on: the BMW's position and the gap IVS1 are empty in the original.
+  EXPECT_EQ(file.rejected_rows.front(), "line 39: column Lat2 is not a number");
+  // Stored in radians whatever the file held: 46.89 degrees north.
+  EXPECT_NEAR(file.rows.front().latitude_rad[0], 46.89365044467663 * M_PI / 180.0, 1e-12);
+  EXPECT_EQ(file.vehicle_order.size(), 9u);  // the trailing comma of Vehicle_order is no vehicle
+}
+
+TEST(OpenAccPlatoon, FollowerByNameOrPositionAndItsLeaderIsTheCarDirectlyAhead)
+{
+  const auto by_name = acc::readOpenAccTrajectories(kZalaZone, {"tesla_model3"});
+  ASSERT_TRUE(by_name.error.empty()) << by_name.error;
+  EXPECT_EQ(by_name.pairName(), "TESLA_MODEL3 (6) behind TESLA_MODELX (5)");
+  EXPECT_EQ(by_name.rows.size(), 40u);  // IVS5 is complete: another pair's empty cells do not matter
+  const auto by_position = acc::readOpenAccTrajectories(kZalaZone, {"7"});
+  ASSERT_TRUE(by_position.error.empty()) << by_position.error;
+  EXPECT_EQ(by_position.leader_position, 6);
+  // TESLA_MODELX (5): the car directly ahead (JAGUAR_I_PACE, 4) has no data; never a car further ahead.
+  const auto missing_leader = acc::readOpenAccTrajectories(kZalaZone, {"TESLA_MODELX"});
+  EXPECT_NE(missing_leader.error.find("no pair with follower 'TESLA_MODELX' (position 5"), std::string::npos)
+      << missing_leader.error;
+  EXPECT_NE(missing_leader.error.find("pairs in this file: BMW_I3 (2) behind SMART_TARGET (1), TESLA_MODEL3 (6)"),
+            std::string::npos)
+      << missing_leader.error;
+  EXPECT_NE(acc::readOpenAccTrajectories(kZalaZone, {"NO_SUCH_CAR"}).error.find("in Vehicle_order"),
+            std::string::npos);
+}
+
+/// A two-vehicle file (Casale) stays radians, checked against its E/N displacement.
+TEST(OpenAccPlatoon, CasaleStaysRadians)
+{
+  const auto file = acc::readOpenAccTrajectories(kSmall);
+  ASSERT_TRUE(file.error.empty()) << file.error;
+  EXPECT_FALSE(file.positions_were_degrees);
+  EXPECT_NE(file.angle_unit_note.find("radians"), std::string::npos) << file.angle_unit_note;
+  EXPECT_EQ(file.leader_position, 1);
+  EXPECT_EQ(file.follower_position, 2);
+}
+}  // namespace
