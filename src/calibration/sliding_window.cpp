@@ -5,40 +5,29 @@
 
 namespace acc
 {
-SlidingWindow::SlidingWindow(double length_s, double max_gap_s, std::size_t min_segment_samples)
-  : length_s_(length_s), max_gap_s_(max_gap_s), min_segment_samples_(std::max<std::size_t>(2, min_segment_samples))
+SlidingWindow::SlidingWindow(double length_s, double max_gap_s, std::size_t min_segment_samples,
+                             double max_forward_jump_s, std::size_t confirm_samples)
+  : length_s_(length_s),
+    max_gap_s_(max_gap_s),
+    min_segment_samples_(std::max<std::size_t>(2, min_segment_samples)),
+    max_forward_jump_s_(std::max(max_forward_jump_s, max_gap_s)),
+    confirm_samples_(std::max<std::size_t>(1, confirm_samples))
 {
 }
 
-SlidingWindow::AddResult SlidingWindow::add(const WindowSample& sample)
+SlidingWindow::AddResult SlidingWindow::append(const WindowSample& sample)
 {
   AddResult result = AddResult::kAdded;
-  if (!samples_.empty() && !(sample.time_s > samples_.back().time_s))
-  {
-    if (sample.time_s < samples_.back().time_s - max_gap_s_)
-    {
-      samples_.clear();
-      result = AddResult::kRestarted;
-    }
-    else
-    {
-      return AddResult::kOutOfOrder;
-    }
-  }
   WindowSample stored = sample;
-  if (stored.valid && !(std::isfinite(stored.time_s) && std::isfinite(stored.space_gap_m) &&
-                        std::isfinite(stored.follower_speed_mps) && std::isfinite(stored.leader_speed_mps)))
+  if (stored.valid && !(std::isfinite(stored.space_gap_m) && std::isfinite(stored.follower_speed_mps) &&
+                        std::isfinite(stored.leader_speed_mps)))
   {
     stored.valid = false;
-    result = result == AddResult::kRestarted ? result : AddResult::kNonFinite;
+    result = AddResult::kNonFinite;
   }
-  else if (!stored.valid && result == AddResult::kAdded)
+  else if (!stored.valid)
   {
     result = AddResult::kInvalid;
-  }
-  if (!std::isfinite(stored.time_s))
-  {
-    return AddResult::kNonFinite;  // cannot even order it in time
   }
   samples_.push_back(stored);
   while (!samples_.empty() && samples_.front().time_s < stored.time_s - length_s_)
@@ -46,6 +35,58 @@ SlidingWindow::AddResult SlidingWindow::add(const WindowSample& sample)
     samples_.pop_front();
   }
   return result;
+}
+
+SlidingWindow::AddResult SlidingWindow::hold(const WindowSample& sample)
+{
+  const bool continues_held = !held_.empty() && sample.time_s > held_.back().time_s &&
+                              sample.time_s - held_.back().time_s <= max_gap_s_;
+  if (!held_.empty() && !continues_held)
+  {
+    dropped_outliers_ += held_.size();  // neither base: the earlier jump was an outlier too
+    held_.clear();
+  }
+  held_.push_back(sample);
+  if (held_.size() < confirm_samples_)
+  {
+    return AddResult::kHeld;
+  }
+  const bool back = held_.front().time_s < samples_.back().time_s;
+  if (back)
+  {
+    samples_.clear();
+  }
+  for (const WindowSample& confirmed : held_)
+  {
+    append(confirmed);
+  }
+  held_.clear();
+  return back ? AddResult::kRestarted : AddResult::kJumpedAhead;
+}
+
+SlidingWindow::AddResult SlidingWindow::add(const WindowSample& sample)
+{
+  if (!std::isfinite(sample.time_s))
+  {
+    return AddResult::kNonFinite;  // cannot even order it in time
+  }
+  if (samples_.empty())
+  {
+    return append(sample);
+  }
+  const double last_s = samples_.back().time_s;
+  if (sample.time_s > last_s && sample.time_s - last_s <= max_forward_jump_s_)
+  {
+    // The time base goes on: anything held was an outlier.
+    dropped_outliers_ += held_.size();
+    held_.clear();
+    return append(sample);
+  }
+  if (sample.time_s <= last_s && sample.time_s >= last_s - max_gap_s_)
+  {
+    return AddResult::kOutOfOrder;  // late or duplicate, within the data's own jitter
+  }
+  return hold(sample);
 }
 
 std::vector<CarFollowingRun> SlidingWindow::segments(std::size_t* short_pieces) const
@@ -97,7 +138,9 @@ std::string SlidingWindow::describe(AddResult result)
     case AddResult::kInvalid: return "invalid sample: splits the window";
     case AddResult::kNonFinite: return "non-finite value in a sample marked valid: treated as invalid";
     case AddResult::kOutOfOrder: return "sample not newer than the last one: rejected";
-    case AddResult::kRestarted: return "time jumped back: window cleared";
+    case AddResult::kRestarted: return "time jumped back, confirmed by consistent samples: window cleared";
+    case AddResult::kHeld: return "time jumped: held until consistent samples confirm it";
+    case AddResult::kJumpedAhead: return "time jumped ahead, confirmed by consistent samples: older samples leave";
   }
   return "unknown";
 }

@@ -271,6 +271,7 @@ void IdentifierRos::onRelativeState(const acc_identification::RelativeState::Con
   {
     std::lock_guard<std::mutex> lock(window_mutex_);
     result = window_.add(sample);
+    dropped_outliers_ = window_.droppedOutliers();
     // The drive sees the same samples; a time reset that clears the window starts a new drive.
     if (drive_.add(sample) == SlidingWindow::AddResult::kRestarted)
     {
@@ -280,6 +281,8 @@ void IdentifierRos::onRelativeState(const acc_identification::RelativeState::Con
   switch (result)
   {
     case SlidingWindow::AddResult::kAdded: return;
+    case SlidingWindow::AddResult::kHeld: return;  // counted once confirmed or dropped
+    case SlidingWindow::AddResult::kJumpedAhead: ++jumps_ahead_; break;
     case SlidingWindow::AddResult::kInvalid: ++invalid_; return;  // the pairing already said why
     case SlidingWindow::AddResult::kNonFinite: ++non_finite_; break;
     case SlidingWindow::AddResult::kOutOfOrder: ++out_of_order_; break;
@@ -461,17 +464,26 @@ void IdentifierRos::stabilityLoop()
 
 void IdentifierRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
 {
-  if (worker_errors_ > 0)
+  // The level says what happened since the last report (one bad sample an hour ago is no reason
+  // to stay WARN); the totals stay in the key-values.
+  const std::uint64_t errors = worker_errors_, skipped = skipped_periods_;
+  const std::uint64_t bad = out_of_order_ + non_finite_ + dropped_outliers_;
+  const bool new_errors = errors > reported_errors_, new_skipped = skipped > reported_skipped_,
+             new_bad = bad > reported_bad_;
+  reported_errors_ = errors;
+  reported_skipped_ = skipped;
+  reported_bad_ = bad;
+  if (new_errors)
   {
-    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "solves failed (see the log)");
+    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "solves failed since the last report (see the log)");
   }
-  else if (skipped_periods_ > 0)
+  else if (new_skipped)
   {
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "solves overran the period");
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "solves overran the period since the last report");
   }
-  else if (out_of_order_ > 0 || non_finite_ > 0)
+  else if (new_bad)
   {
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "bad relative_state samples (see counters)");
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "bad relative_state samples since the last report");
   }
   else if (received_ == 0)
   {
@@ -486,6 +498,8 @@ void IdentifierRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status
   status.add("non-finite samples (split points)", non_finite_.load());
   status.add("out-of-order samples (rejected)", out_of_order_.load());
   status.add("time jumps back (window cleared)", restarts_.load());
+  status.add("time jumps ahead (confirmed)", jumps_ahead_.load());
+  status.add("time outliers (dropped)", dropped_outliers_.load());
   status.add("drive resets", drive_resets_.load());
   status.add("solves", solves_.load());
   status.add("skipped periods (solve overran)", skipped_periods_.load());

@@ -52,7 +52,10 @@ public:
   BagSegmenter(std::string path, const RunPlausibilityBounds& bounds, BagRuns& result)
     : path_(std::move(path))
     , bounds_(bounds)
-    , window_(std::numeric_limits<double>::infinity(), bounds.max_time_step_s, 2)
+    // A batch reader: time resets are handled below, before the window sees them, and a jump
+    // ahead is a hole like any other (no confirmation to wait for: nothing leaves this window).
+    , window_(std::numeric_limits<double>::infinity(), bounds.max_time_step_s, 2,
+              std::numeric_limits<double>::infinity())
     , result_(result)
   {
   }
@@ -79,6 +82,8 @@ public:
       case SlidingWindow::AddResult::kNonFinite: noteSplitPoint(sample.time_s, ""); break;
       case SlidingWindow::AddResult::kOutOfOrder: ++result_.out_of_order; break;
       case SlidingWindow::AddResult::kRestarted:  // handled above, before the window was cleared
+      case SlidingWindow::AddResult::kJumpedAhead:  // never: no forward jump is held here
+      case SlidingWindow::AddResult::kHeld:
       case SlidingWindow::AddResult::kAdded: noteAdded(sample.time_s); break;
     }
   }

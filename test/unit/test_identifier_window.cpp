@@ -50,15 +50,55 @@ TEST(SlidingWindow, GapsAndInvalidSamplesSplitIntoSegments)
   EXPECT_EQ(short_pieces, 1u);
 }
 
-TEST(SlidingWindow, RejectsOutOfOrderAndRestartsWhenTimeJumpsBack)
+TEST(SlidingWindow, RejectsOutOfOrderAndRestartsWhenConsistentSamplesConfirmATimeReset)
 {
-  acc::SlidingWindow window(100.0, 0.5, 2);
+  acc::SlidingWindow window(100.0, 0.5, 2);  // confirm a jump with 5 samples (default)
   for (int k = 0; k < 100; ++k) window.add(sampleAt(0.1 * k));
   EXPECT_EQ(window.add(sampleAt(9.9)), acc::SlidingWindow::AddResult::kOutOfOrder);
   EXPECT_EQ(window.add(sampleAt(9.8)), acc::SlidingWindow::AddResult::kOutOfOrder);
   EXPECT_EQ(window.size(), 100u);
-  EXPECT_EQ(window.add(sampleAt(1.0)), acc::SlidingWindow::AddResult::kRestarted);
-  EXPECT_EQ(window.size(), 1u);
+  // A replay restarted at 1.0 s: held until five consistent samples, then the window restarts.
+  for (int k = 0; k < 4; ++k)
+  {
+    EXPECT_EQ(window.add(sampleAt(1.0 + 0.1 * k)), acc::SlidingWindow::AddResult::kHeld);
+    EXPECT_EQ(window.size(), 100u);
+  }
+  EXPECT_EQ(window.add(sampleAt(1.4)), acc::SlidingWindow::AddResult::kRestarted);
+  EXPECT_EQ(window.size(), 5u);
+  EXPECT_NEAR(window.startTimeS(), 1.0, 1e-12);
+  EXPECT_EQ(window.droppedOutliers(), 0u);
   EXPECT_FALSE(acc::SlidingWindow::describe(acc::SlidingWindow::AddResult::kRestarted).empty());
+}
+
+/// Issue "one model core": one stamp 0.5 s in the past, or one in the future, emptied the window.
+TEST(SlidingWindow, OneStampInThePastOrFutureNeverEmptiesTheWindow)
+{
+  acc::SlidingWindow window(120.0, 0.5, 2);
+  for (int k = 0; k < 600; ++k) window.add(sampleAt(0.1 * k));  // 0-59.9 s
+  // 0.6 s in the past (beyond max_gap_s), then the stream goes on.
+  EXPECT_EQ(window.add(sampleAt(59.3)), acc::SlidingWindow::AddResult::kHeld);
+  EXPECT_EQ(window.add(sampleAt(60.0)), acc::SlidingWindow::AddResult::kAdded);
+  EXPECT_EQ(window.size(), 601u);
+  EXPECT_EQ(window.droppedOutliers(), 1u);
+  // A stamp a day in the future, then the stream goes on: nothing leaves the window.
+  EXPECT_EQ(window.add(sampleAt(60.0 + 86400.0)), acc::SlidingWindow::AddResult::kHeld);
+  EXPECT_EQ(window.add(sampleAt(60.1)), acc::SlidingWindow::AddResult::kAdded);
+  EXPECT_EQ(window.size(), 602u);
+  EXPECT_NEAR(window.startTimeS(), 0.0, 1e-12);
+  EXPECT_EQ(window.droppedOutliers(), 2u);
+}
+
+TEST(SlidingWindow, AConfirmedJumpAheadMovesTheWindowOn)
+{
+  acc::SlidingWindow window(120.0, 0.5, 2);
+  for (int k = 0; k < 600; ++k) window.add(sampleAt(0.1 * k));  // 0-59.9 s
+  // The data resume 200 s later (a long outage): held, then confirmed by consistent samples.
+  for (int k = 0; k < 4; ++k)
+    EXPECT_EQ(window.add(sampleAt(260.0 + 0.1 * k)), acc::SlidingWindow::AddResult::kHeld);
+  EXPECT_EQ(window.add(sampleAt(260.4)), acc::SlidingWindow::AddResult::kJumpedAhead);
+  EXPECT_EQ(window.size(), 5u);  // the old samples are more than 120 s older: they left
+  EXPECT_NEAR(window.startTimeS(), 260.0, 1e-12);
+  // A jump within max_forward_jump_s (30 s) is a hole, not held: the window splits there.
+  EXPECT_EQ(window.add(sampleAt(270.0)), acc::SlidingWindow::AddResult::kAdded);
 }
 }  // namespace

@@ -22,6 +22,12 @@ struct WindowSample
 /// The identifier's sliding window: the last length_s seconds of samples, split into segments
 /// wherever the data has a hole (an invalid sample, or more than max_gap_s between samples), so
 /// that each segment is simulated from its own measured start.
+///
+/// A jump in time (more than max_gap_s back, or more than max_forward_jump_s ahead) is held until
+/// confirm_samples consistent samples confirm the new time base: then the window restarts (back:
+/// a bag loop, a clock reset) or moves on (ahead: the data resume after a long outage). Should the
+/// old time base go on instead, the held samples were outliers: dropped and counted. So one bad
+/// stamp, in the past or in the future, never empties the window.
 class SlidingWindow
 {
 public:
@@ -31,10 +37,13 @@ public:
     kInvalid,      ///< stored as a split point
     kNonFinite,    ///< marked valid but with a non-finite value: stored as a split point
     kOutOfOrder,   ///< not after the newest sample (duplicate or late): rejected
-    kRestarted,    ///< time jumped back by more than max_gap_s (bag loop, clock reset): window cleared
+    kRestarted,    ///< a jump back (bag loop, clock reset), now confirmed: window cleared, held samples added
+    kHeld,         ///< a jump in time, held until consistent samples confirm it (or drop it)
+    kJumpedAhead,  ///< a jump ahead, now confirmed: held samples added, older ones leave the window
   };
 
-  SlidingWindow(double length_s, double max_gap_s, std::size_t min_segment_samples);
+  SlidingWindow(double length_s, double max_gap_s, std::size_t min_segment_samples,
+                double max_forward_jump_s = 30.0, std::size_t confirm_samples = 5);
 
   AddResult add(const WindowSample& sample);
   void clear() { samples_.clear(); }
@@ -44,6 +53,8 @@ public:
   std::vector<CarFollowingRun> segments(std::size_t* short_pieces = nullptr) const;
 
   std::size_t size() const { return samples_.size(); }
+  /// Samples that jumped in time and were dropped because the old time base went on.
+  std::size_t droppedOutliers() const { return dropped_outliers_; }
   bool empty() const { return samples_.empty(); }
   double startTimeS() const { return samples_.empty() ? 0.0 : samples_.front().time_s; }
   double endTimeS() const { return samples_.empty() ? 0.0 : samples_.back().time_s; }
@@ -55,7 +66,16 @@ private:
   double length_s_;
   double max_gap_s_;
   std::size_t min_segment_samples_;
+  double max_forward_jump_s_;
+  std::size_t confirm_samples_;
   std::deque<WindowSample> samples_;
+  std::vector<WindowSample> held_;  ///< a jump waiting for confirmation
+  std::size_t dropped_outliers_ = 0;
+
+  /// Appends a sample in time order (validity checked), dropping what left the window.
+  AddResult append(const WindowSample& sample);
+  /// Holds a sample that jumped; returns the outcome once held_ is confirmed.
+  AddResult hold(const WindowSample& sample);
 };
 
 }  // namespace acc

@@ -127,6 +127,9 @@ private:
   std::atomic<std::uint64_t> received_{0}, invalid_{0}, non_finite_{0}, out_of_order_{0}, restarts_{0};
   std::atomic<std::uint64_t> solves_{0}, skipped_periods_{0}, not_identifiable_{0}, published_{0};
   std::atomic<std::uint64_t> stability_tests_{0}, drive_resets_{0}, worker_errors_{0};
+  std::atomic<std::uint64_t> jumps_ahead_{0}, dropped_outliers_{0};
+  /// Totals at the last diagnostics report (diagnostics thread only): the level reports changes.
+  std::uint64_t reported_errors_ = 0, reported_skipped_ = 0, reported_bad_ = 0;
   std::atomic<bool> stability_request_dropped_{false};
   std::atomic<double> last_solve_time_s_{0.0}, last_drive_time_s_{0.0}, last_stability_time_s_{0.0};
 };
