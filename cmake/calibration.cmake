@@ -24,7 +24,7 @@ acc_add_library(acc_calibration
 acc_add_ros_library(acc_calibration_ros SOURCES src/ros/run_bag_reader.cpp LINK acc_calibration acc_run_io)
 
 # rosrun acc_identification calibrate [options] RUN...
-acc_add_tool(calibrate LINK acc_calibration_ros acc_run_io acc_cli)
+acc_add_tool(calibrate LINK acc_calibration_ros acc_run_io)
 
 # identifier_node: the sliding-window identifier (ROS wrapper and its ten-line main).
 acc_add_ros_library(acc_identifier_ros SOURCES src/ros/identifier_ros.cpp LINK acc_calibration)

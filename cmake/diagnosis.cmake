@@ -16,10 +16,12 @@ acc_add_library(acc_diagnosis
 
 # The tool reads runs (CSV or bags) as the calibrate tool does (calibration component).
 if(TARGET acc_calibration_ros)
-  acc_add_tool(diagnose LINK acc_diagnosis acc_calibration_ros acc_run_io acc_cli)
-  target_compile_definitions(diagnose PRIVATE
-    ACC_PLOT_DIAGNOSIS_SCRIPT="${PROJECT_SOURCE_DIR}/scripts/plot_diagnosis.py")
-  install(PROGRAMS scripts/plot_diagnosis.py DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/scripts)
+  acc_add_tool(diagnose LINK acc_diagnosis acc_calibration_ros acc_run_io)
+  # diagnose finds its figure script next to itself: copied into the devel space's bin folder at
+  # configure time (again whenever it changes), installed beside the executable.
+  configure_file(scripts/plot_diagnosis.py
+    ${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_BIN_DESTINATION}/plot_diagnosis.py COPYONLY)
+  install(PROGRAMS scripts/plot_diagnosis.py DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 else()
   message(STATUS "diagnosis: acc_calibration_ros not built (add calibration to ACC_COMPONENTS): no diagnose tool")
 endif()

@@ -42,11 +42,12 @@ function(acc_add_node name)
 endfunction()
 
 # acc_add_tool(NAME [LINK target...])
-# A command-line tool: src/tools/NAME_main.cpp, run as `rosrun acc_identification NAME`.
+# A command-line tool: src/tools/NAME_main.cpp, run as `rosrun acc_identification NAME`; options
+# parsed by CLI11, which writes --help from them.
 function(acc_add_tool name)
   cmake_parse_arguments(ARG "" "" "LINK" ${ARGN})
   add_executable(${name} src/tools/${name}_main.cpp)
-  target_link_libraries(${name} ${ARG_LINK})
+  target_link_libraries(${name} ${ARG_LINK} CLI11::CLI11)
   install(TARGETS ${name} RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 endfunction()
 

@@ -9,11 +9,7 @@ acc_add_library(acc_model
     src/model/paper_settings.cpp
   LINK Eigen3::Eigen m)
 
-# Shared by every command-line tool: option parsing with clear messages.
-add_library(acc_cli src/tools/command_line.cpp)
-target_include_directories(acc_cli PUBLIC include)
-
-acc_add_tool(stability_report LINK acc_model acc_cli)
+acc_add_tool(stability_report LINK acc_model)
 
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_model

@@ -28,7 +28,7 @@ if(TARGET acc_gnss)
       src/conversion/openacc_to_nmea.cpp
     LINK acc_gnss ${GeographicLib_LIBRARIES})
   target_include_directories(acc_conversion PUBLIC ${GeographicLib_INCLUDE_DIRS})
-  acc_add_tool(openacc_to_nmea LINK acc_conversion acc_cli)
+  acc_add_tool(openacc_to_nmea LINK acc_conversion)
 
   if(CATKIN_ENABLE_TESTING)
     # The real data: the Casale runs shipped in data/openacc, unpacked by cmake/data.cmake.

@@ -13,7 +13,7 @@ acc_add_library(acc_reproduction
   LINK acc_model)
 target_link_libraries(acc_reproduction PRIVATE nlohmann_json::nlohmann_json)
 
-acc_add_tool(platoon LINK acc_reproduction acc_run_io acc_cli nlohmann_json::nlohmann_json)
+acc_add_tool(platoon LINK acc_reproduction acc_run_io nlohmann_json::nlohmann_json)
 install(PROGRAMS scripts/plot_figures.py scripts/reproduce_figures.sh scripts/bundled_data.sh
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 

@@ -24,8 +24,8 @@ target_link_libraries(acc_synthesis PRIVATE nlohmann_json::nlohmann_json)
 # Raw sentences into bags (rosbag API, no ROS master needed).
 acc_add_ros_library(acc_sentence_bag SOURCES src/ros/sentence_bag_writer.cpp LINK acc_synthesis)
 
-acc_add_tool(synthesize LINK acc_synthesis acc_sentence_bag acc_cli)
-acc_add_tool(nmea_to_bag LINK acc_sentence_bag acc_cli)
+acc_add_tool(synthesize LINK acc_synthesis acc_sentence_bag)
+acc_add_tool(nmea_to_bag LINK acc_sentence_bag)
 install(PROGRAMS scripts/make_bags.sh DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 
 if(CATKIN_ENABLE_TESTING)

@@ -8,32 +8,17 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "acc_identification/calibration/calibration_report.h"
 #include "acc_identification/calibration/identification.h"
 #include "acc_identification/calibration/stability_test.h"
-#include "acc_identification/command_line.h"
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/ros/run_bag_reader.h"
 
 
 namespace
 {
-const char* kUsage =
-    "usage: calibrate [options] RUN...\n"
-    "  RUN: a canonical CSV (time_s,space_gap_m,follower_speed_mps,leader_speed_mps), an OpenACC\n"
-    "       two-vehicle CSV, or a bag with acc_identification/RelativeState messages.\n"
-    "  --split none|half  half: train on the first half of each run, test on the second (paper)\n"
-    "  --starts N         starting points of the multistart search (default 100)\n"
-    "  --json FILE        write parameters, standard errors, stability, objective, per-run RMSEs\n"
-    "  --grid N           also search a dense grid of N nodes per axis (k1 0-0.5, k2 0-1.5, tau_e 0-3)\n"
-    "                     and check that the multistart optimum is the global one\n"
-    "  --topic NAME       RelativeState topic in bags (default relative_state)\n"
-    "  --max-gap S        split runs at holes longer than S seconds (default 0.5)\n"
-    "  --alpha A          level of the string-stability test (default 0.05)\n"
-    "  --seed N           seed of the test's bootstrap (default: the library's fixed seed)\n"
-    "  --no-stability-test  skip the string-stability test on held-out halves\n"
-    "  --quiet            no progress display\n";
-
 struct LoadedRun
 {
   acc::CarFollowingRun run;
@@ -72,33 +57,49 @@ void showProgress(std::size_t done, std::size_t total)
 
 int main(int argc, char** argv)
 {
-  acc::CommandLine cli({"split", "starts", "json", "grid", "topic", "max-gap", "alpha", "seed"},
-                       {"quiet", "help", "no-stability-test"});
-  if (!cli.parse(argc, argv) || cli.has("help") || cli.positional().empty())
-  {
-    std::cerr << (cli.error().empty() ? "" : "error: " + cli.error() + "\n") << kUsage;
-    return cli.has("help") ? 0 : 2;
-  }
-  const std::string split = cli.value("split").value_or("none");
-  const auto starts = cli.number("starts");
-  const auto grid_nodes = cli.number("grid");
-  const auto max_gap = cli.number("max-gap");
-  const auto alpha = cli.number("alpha");
-  const auto seed = cli.number("seed");
-  if (!cli.error().empty() || (split != "none" && split != "half") || (starts && *starts < 0) ||
-      (grid_nodes && *grid_nodes < 2) || (max_gap && *max_gap <= 0) || (alpha && !(*alpha > 0 && *alpha < 1)) ||
-      (seed && *seed < 0))
-  {
-    std::cerr << "error: "
-              << (cli.error().empty() ? "bad --split, --starts, --grid, --max-gap, --alpha or --seed" : cli.error())
-              << "\n"
-              << kUsage;
-    return 2;
-  }
+  CLI::App app{"Fits one ACC model (Gunter et al.) across runs, as the paper does for each following setting, and "
+               "reports the fit, the parameters with standard errors, what the data determine, and whether the "
+               "ACC is string stable, decided on held-out halves."};
+  std::vector<std::string> paths;
+  std::string split = "none", topic = "relative_state";
+  std::string json_path;
+  int starts = 100;
+  std::size_t grid_nodes = 0;
+  double max_gap_s = 0.5, alpha = 0.05;
+  std::uint64_t seed = 0;
+  bool quiet = false, no_stability_test = false;
+  app.add_option("RUN", paths,
+                 "a canonical CSV (time_s,space_gap_m,follower_speed_mps,leader_speed_mps), an OpenACC CSV, or a "
+                 "bag of acc_identification/RelativeState")
+      ->required()
+      ->check(CLI::ExistingFile);
+  app.add_option("--split", split, "half: train on the first half of each run, test on the second (the paper)")
+      ->check(CLI::IsMember({"none", "half"}))
+      ->capture_default_str();
+  app.add_option("--starts", starts, "starting points of the multistart search")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
+  app.add_option("--json", json_path, "write parameters, standard errors, stability, the stability test, per-run RMSEs");
+  app.add_option("--grid", grid_nodes,
+                 "also search a dense grid of N nodes per axis (k1 0-0.5, k2 0-1.5, tau_e 0-3) and check that the "
+                 "multistart optimum is the global one")
+      ->check(CLI::Range(std::size_t{2}, std::size_t{1000}));
+  app.add_option("--topic", topic, "RelativeState topic in bags")->capture_default_str();
+  app.add_option("--max-gap", max_gap_s, "split runs at holes longer than this [s]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--alpha", alpha, "level of the string-stability test")
+      ->check(CLI::Range(1e-9, 1.0 - 1e-9))
+      ->capture_default_str();
+  auto* seed_option = app.add_option("--seed", seed, "seed of the test's bootstrap (default: the library's fixed seed)");
+  app.add_flag("--no-stability-test", no_stability_test, "skip the string-stability test on held-out halves");
+  app.add_flag("--quiet", quiet, "no progress display");
+  CLI11_PARSE(app, argc, argv);
+
   std::vector<LoadedRun> loaded;
   try
   {
-    loaded = loadRuns(cli.positional(), cli.value("topic").value_or("relative_state"), max_gap.value_or(0.5));
+    loaded = loadRuns(paths, topic, max_gap_s);
   }
   catch (const std::exception& error)
   {
@@ -128,8 +129,8 @@ int main(int argc, char** argv)
 
   acc::CalibrationReport report;
   acc::IdentificationOptions options;
-  options.multistart.starts = starts ? static_cast<std::size_t>(*starts) : 100;
-  if (!cli.has("quiet"))
+  options.multistart.starts = static_cast<std::size_t>(starts);
+  if (!quiet)
   {
     options.multistart.progress = showProgress;
   }
@@ -149,10 +150,10 @@ int main(int argc, char** argv)
   try
   {
     const acc::CalibrationObjective objective(training, options.bounds);
-    if (grid_nodes)
+    if (grid_nodes > 0)
     {
-      const auto n = static_cast<std::size_t>(*grid_nodes);
-      if (!cli.has("quiet"))
+      const std::size_t n = grid_nodes;
+      if (!quiet)
         std::cerr << "grid check: " << n * n * n << " nodes...\n";
       report.grid = acc::gridSearch(objective, options.multistart.start_box_lower, options.multistart.start_box_upper,
                                     {n, n, n});
@@ -169,18 +170,18 @@ int main(int argc, char** argv)
   }
   const acc::AccParameters& p = report.calibration.parameters;
   report.quantities = acc::assessQuantities(p, report.uncertainty, training);
-  if (!cli.has("no-stability-test"))
+  if (!no_stability_test)
   {
     std::vector<acc::CarFollowingRun> runs;
     for (const LoadedRun& item : loaded)
       runs.push_back(item.run);
     acc::StabilityTestOptions test_options;
-    test_options.alpha = alpha.value_or(test_options.alpha);
-    if (seed)
-      test_options.seed = static_cast<std::uint64_t>(*seed);
+    test_options.alpha = alpha;
+    if (seed_option->count() > 0)
+      test_options.seed = seed;
     test_options.multistart.starts = options.multistart.starts;
     test_options.warm_starts = {p};
-    if (!cli.has("quiet"))
+    if (!quiet)
       std::cerr << "string-stability test on held-out halves...\n";
     report.stability_test = acc::testStringStability(runs, test_options);
   }
@@ -202,13 +203,13 @@ int main(int argc, char** argv)
     report.summary_test = acc::poolFits(test_fits);
   }
   acc::printReport(report, std::cout);
-  if (const auto json_path = cli.value("json"))
+  if (!json_path.empty())
   {
-    std::ofstream file(*json_path);
+    std::ofstream file(json_path);
     file << acc::reportToJson(report).dump(2) << "\n";
     if (!file)
     {
-      std::cerr << "error: cannot write " << *json_path << "\n";
+      std::cerr << "error: cannot write " << json_path << "\n";
       return 1;
     }
   }

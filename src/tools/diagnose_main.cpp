@@ -1,6 +1,7 @@
 // diagnose: where a calibrated ACC model misses the real car, which physical effect it lacks and
 // what adding that effect buys (issue 6). Also runs the withheld-effect suite.
 #include <cerrno>
+#include <filesystem>
 #include <cmath>
 #include <optional>
 #include <cstdio>
@@ -12,7 +13,8 @@
 #include <sys/stat.h>
 #include <vector>
 
-#include "acc_identification/command_line.h"
+#include <CLI/CLI.hpp>
+
 #include "acc_identification/diagnosis/diagnosis.h"
 #include "acc_identification/diagnosis/diagnosis_output.h"
 #include "acc_identification/diagnosis/withheld_effect_suite.h"
@@ -21,26 +23,6 @@
 
 namespace
 {
-const char* kUsage =
-    "usage: diagnose [options] RUN... [--json FILE] [--report DIR]\n"
-    "       diagnose --withheld-suite small|large [--json FILE]\n"
-    "  RUN: canonical run CSV, OpenACC CSV, or a bag of acc_identification/RelativeState (as calibrate).\n"
-    "       Each run is fitted on its first part and scored on the rest.\n"
-    "  --topic NAME                RelativeState topic in bags (default relative_state)\n"
-    "  --max-gap S                 split runs at holes longer than S seconds (default 0.5)\n"
-    "  --json FILE                 write the diagnosis as JSON\n"
-    "  --report DIR                write tables, diagnosis.json, PNG figures and report.md into DIR\n"
-    "  --train-fraction F          share of each run used for fitting (default 0.5)\n"
-    "  --effect NAME               candidate effect (repeatable; default all six)\n"
-    "  --block-length-s S          bootstrap block length (default 10)\n"
-    "  --resamples N               bootstrap resamples (default 2000)\n"
-    "  --alpha A                   level of the selection rule (default 0.05)\n"
-    "  --min-relative-improvement R  smallest held-out MSE reduction worth naming (default 0.02)\n"
-    "  --seed N                    bootstrap seed (default 12345)\n"
-    "  --plot-script PATH          figure script (default: the package's scripts/plot_diagnosis.py)\n"
-    "  --no-plots                  write the tables and JSON of --report but draw nothing\n"
-    "  --withheld-suite SIZE       synthetic runs with a hidden effect; prints the confusion matrix\n";
-
 bool makeDirectory(const std::string& path)
 {
   std::string partial;
@@ -73,59 +55,33 @@ bool writeJson(const nlohmann::json& j, const std::string& path)
   return true;
 }
 
-bool applyOptions(acc::CommandLine& cli, acc::DiagnosisOptions* options)
+/// The candidate effects named on the command line (all six when none is).
+bool applyEffects(const std::vector<std::string>& names, acc::DiagnosisOptions* options)
 {
-  if (auto v = cli.number("train-fraction"))
+  if (names.empty())
   {
-    options->train_fraction = *v;
+    return true;
   }
-  if (auto v = cli.number("block-length-s"))
+  options->candidates.clear();
+  for (const std::string& name : names)
   {
-    options->selection.block_length_s = *v;
-  }
-  if (auto v = cli.number("resamples"))
-  {
-    options->selection.resamples = static_cast<std::size_t>(*v);
-  }
-  if (auto v = cli.number("alpha"))
-  {
-    options->selection.alpha = *v;
-  }
-  if (auto v = cli.number("min-relative-improvement"))
-  {
-    options->selection.min_relative_improvement = *v;
-  }
-  if (auto v = cli.number("seed"))
-  {
-    options->selection.seed = static_cast<std::uint32_t>(*v);
-  }
-  if (!cli.error().empty())
-  {
-    std::cerr << "error: " << cli.error() << "\n";
-    return false;
-  }
-  if (!(options->train_fraction > 0.05 && options->train_fraction < 0.95) || options->selection.resamples < 100 ||
-      !(options->selection.block_length_s > 0.0) || !(options->selection.alpha > 0.0 && options->selection.alpha < 0.5))
-  {
-    std::cerr << "error: --train-fraction must be in (0.05, 0.95), --resamples >= 100, --block-length-s > 0, "
-                 "--alpha in (0, 0.5)\n";
-    return false;
-  }
-  if (cli.has("effect"))
-  {
-    options->candidates.clear();
-    for (const std::string& name : cli.values("effect"))
+    acc::EffectKind kind;
+    if (!acc::parseEffectName(name, &kind) || kind == acc::EffectKind::none)
     {
-      acc::EffectKind kind;
-      if (!acc::parseEffectName(name, &kind) || kind == acc::EffectKind::none)
-      {
-        std::cerr << "error: unknown effect '" << name << "'\n";
-        return false;
-      }
-      options->candidates.push_back(kind);
+      std::cerr << "error: unknown effect '" << name << "'\n";
+      return false;
     }
+    options->candidates.push_back(kind);
   }
   return true;
+}
+
+/// The figure script installed next to this executable (devel and install space alike).
+std::string defaultPlotScript()
+{
+  std::error_code error;
+  const auto executable = std::filesystem::read_symlink("/proc/self/exe", error);
+  return error ? std::string("plot_diagnosis.py") : (executable.parent_path() / "plot_diagnosis.py").string();
 }
 
 int runSuite(const std::string& size, const acc::DiagnosisOptions& options, const std::optional<std::string>& json_path)
@@ -213,42 +169,66 @@ void printSummary(const acc::DiagnosisResult& r)
 
 int main(int argc, char** argv)
 {
-  acc::CommandLine cli({"json", "report", "train-fraction", "effect", "block-length-s", "resamples", "alpha",
-                        "min-relative-improvement", "seed", "plot-script", "withheld-suite", "topic", "max-gap"},
-                       {"no-plots", "help"});
-  if (!cli.parse(argc, argv) || cli.has("help"))
-  {
-    std::cerr << (cli.error().empty() ? "" : "error: " + cli.error() + "\n") << kUsage;
-    return cli.has("help") ? 0 : 2;
-  }
+  CLI::App app{"Where a calibrated ACC model misses the real car, which physical effect it lacks, and what adding "
+               "that effect buys. Each run is fitted on its first part and scored on the rest. With "
+               "--withheld-suite: synthetic runs with a hidden effect, and the confusion matrix."};
   acc::DiagnosisOptions options;
-  if (!applyOptions(cli, &options))
+  std::vector<std::string> paths, effects;
+  std::string topic = "relative_state", json_path, report_dir, plot_script = defaultPlotScript(), suite;
+  double max_gap_s = 0.5;
+  std::uint32_t seed = options.selection.seed;
+  bool no_plots = false;
+  app.add_option("RUN", paths, "canonical run CSV, OpenACC CSV, or a bag of acc_identification/RelativeState")
+      ->check(CLI::ExistingFile);
+  app.add_option("--topic", topic, "RelativeState topic in bags")->capture_default_str();
+  app.add_option("--max-gap", max_gap_s, "split runs at holes longer than this [s]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--json", json_path, "write the diagnosis as JSON");
+  app.add_option("--report", report_dir, "write tables, diagnosis.json, PNG figures and report.md into DIR");
+  app.add_option("--train-fraction", options.train_fraction, "share of each run used for fitting")
+      ->check(CLI::Range(0.05, 0.95))
+      ->capture_default_str();
+  app.add_option("--effect", effects, "candidate effect (repeatable; default all six)");
+  app.add_option("--block-length-s", options.selection.block_length_s, "bootstrap block length [s]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--resamples", options.selection.resamples, "bootstrap resamples")
+      ->check(CLI::Range(std::size_t{100}, std::size_t{1000000}))
+      ->capture_default_str();
+  app.add_option("--alpha", options.selection.alpha, "level of the selection rule")
+      ->check(CLI::Range(1e-9, 0.5))
+      ->capture_default_str();
+  app.add_option("--min-relative-improvement", options.selection.min_relative_improvement,
+                 "smallest held-out MSE reduction worth naming")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--seed", seed, "bootstrap seed")->capture_default_str();
+  app.add_option("--plot-script", plot_script, "figure script")->capture_default_str();
+  app.add_flag("--no-plots", no_plots, "write the tables and JSON of --report but draw nothing");
+  app.add_option("--withheld-suite", suite, "synthetic runs with a hidden effect; prints the confusion matrix")
+      ->check(CLI::IsMember({"small", "large"}));
+  CLI11_PARSE(app, argc, argv);
+  options.selection.seed = seed;
+  if (!applyEffects(effects, &options))
   {
-    std::cerr << kUsage;
     return 2;
   }
-  if (cli.has("withheld-suite"))
+  if (!suite.empty())
   {
-    return runSuite(*cli.value("withheld-suite"), options, cli.value("json"));
+    return runSuite(suite, options, json_path.empty() ? std::nullopt : std::optional<std::string>(json_path));
   }
-  if (cli.positional().empty())
+  if (paths.empty())
   {
-    std::cerr << "error: no run given\n" << kUsage;
-    return 2;
-  }
-  const std::string topic = cli.value("topic").value_or("relative_state");
-  const auto max_gap_s = cli.number("max-gap");
-  if (!cli.error().empty())
-  {
-    std::cerr << "error: " << cli.error() << "\n" << kUsage;
+    std::cerr << "error: no run given (see --help)\n";
     return 2;
   }
   std::vector<acc::CarFollowingRun> runs;
   try
   {
-    for (const std::string& path : cli.positional())
+    for (const std::string& path : paths)
     {
-      for (acc::CarFollowingRun& run : acc::readRunArgument(path, topic, max_gap_s.value_or(0.5), std::cerr))
+      for (acc::CarFollowingRun& run : acc::readRunArgument(path, topic, max_gap_s, std::cerr))
       {
         runs.push_back(std::move(run));
       }
@@ -276,13 +256,14 @@ int main(int argc, char** argv)
   std::cerr << result.notes.size() << " run(s) or part(s) not used\n";
   printSummary(result);
   nlohmann::json json = acc::diagnosisToJson(result);
-  json["inputs"] = cli.positional();
-  if (const auto path = cli.value("json"); path && !writeJson(json, *path))
+  json["inputs"] = paths;
+  if (!json_path.empty() && !writeJson(json, json_path))
   {
     return 1;
   }
-  if (const auto dir = cli.value("report"))
+  if (!report_dir.empty())
   {
+    const std::string* dir = &report_dir;
     if (!makeDirectory(*dir))
     {
       std::cerr << "error: cannot create " << *dir << ": " << std::strerror(errno) << "\n";
@@ -301,10 +282,15 @@ int main(int argc, char** argv)
     {
       return 1;
     }
-    if (!cli.has("no-plots"))
+    if (!no_plots)
     {
-      const std::string script = cli.value("plot-script").value_or(ACC_PLOT_DIAGNOSIS_SCRIPT);
-      const std::string command = "/usr/bin/python3 '" + script + "' '" + *dir + "'";
+      if (!std::filesystem::exists(plot_script))
+      {
+        std::cerr << "error: no figure script at " << plot_script << " (--plot-script, or --no-plots); tables and "
+                  << "JSON are in " << *dir << "\n";
+        return 1;
+      }
+      const std::string command = "/usr/bin/python3 '" + plot_script + "' '" + *dir + "'";
       if (std::system(command.c_str()) != 0)
       {
         std::cerr << "error: the report figures failed (" << command << "); tables and JSON are in " << *dir << "\n";

@@ -1,47 +1,42 @@
-// openacc_to_nmea: an OpenACC two-vehicle CSV (JRC, CC BY 4.0) to the NMEA logs the two cars'
-// u-blox receivers would have written, so that the data goes through the drivers like a drive.
+// openacc_to_nmea: a leader-follower pair of an OpenACC CSV (JRC, CC BY 4.0) to the NMEA logs the
+// two cars' u-blox receivers would have written, so that the data goes through the drivers like a drive.
 #include <iostream>
 #include <string>
 
-#include "acc_identification/command_line.h"
+#include <CLI/CLI.hpp>
+
 #include "acc_identification/conversion/openacc_to_nmea.h"
-
-
-namespace
-{
-const char* kUsage =
-    "usage: openacc_to_nmea [--talker GN] [--follower NAME|POSITION] INPUT.csv LEADER.nmea FOLLOWER.nmea\n"
-    "  Writes GGA + RMC per row for a leader-follower pair of a two-vehicle or platoon file, GNSS\n"
-    "  times from the file's Date line and Time column, at u-blox precision, with real checksums.\n"
-    "  --follower  the follower by its Vehicle_order name (e.g. BMW_I3) or position (e.g. 3); its\n"
-    "              leader is the car directly ahead. Default: the first pair the file holds.\n"
-    "  Lat/Lon in radians (the database's notes) or degrees (ZalaZone files) are detected.\n"
-    "  Data from the JRC OpenACC database are (c) European Union, CC BY 4.0: credit it and say\n"
-    "  that these logs are a conversion of it when you share them.\n";
-}  // namespace
 
 int main(int argc, char** argv)
 {
-  acc::CommandLine cli({"talker", "follower"}, {"help"});
-  if (!cli.parse(argc, argv) || cli.has("help") || cli.positional().size() != 3)
-  {
-    std::cerr << (cli.error().empty() ? "" : "error: " + cli.error() + "\n") << kUsage;
-    return cli.has("help") ? 0 : 2;
-  }
-  const auto& files = cli.positional();
-  const auto input = acc::readOpenAccTrajectories(files[0], {cli.value("follower").value_or("")});
+  CLI::App app{"Writes GGA + RMC per row for a leader-follower pair of a two-vehicle or platoon OpenACC CSV, "
+               "GNSS times from the file's Date line and Time column, at u-blox precision, with real checksums. "
+               "Lat/Lon in radians (the database's notes) or degrees (ZalaZone files) are detected. Data from the "
+               "JRC OpenACC database are (c) European Union, CC BY 4.0: credit it and say that these logs are a "
+               "conversion of it when you share them."};
+  std::string input_path, leader_path, follower_path, talker = "GN";
+  acc::OpenAccPairSelection selection;
+  app.add_option("--talker", talker, "NMEA talker of the sentences")->capture_default_str();
+  app.add_option("--follower", selection.follower,
+                 "the follower by its Vehicle_order name (e.g. BMW_I3) or position (e.g. 3); its leader is the "
+                 "car directly ahead (default: the first pair the file holds)");
+  app.add_option("INPUT", input_path, "OpenACC CSV")->required()->check(CLI::ExistingFile);
+  app.add_option("LEADER", leader_path, "leader's NMEA log to write")->required();
+  app.add_option("FOLLOWER", follower_path, "follower's NMEA log to write")->required();
+  CLI11_PARSE(app, argc, argv);
+
+  const auto input = acc::readOpenAccTrajectories(input_path, selection);
   if (!input.error.empty())
   {
     std::cerr << "error: " << input.error << "\n";
     return 1;
   }
   for (const std::string& rejected : input.rejected_rows)
-    std::cerr << "warning: " << files[0] << " " << rejected << " (row skipped)\n";
-  const std::string talker = cli.value("talker").value_or("GN");
-  for (int vehicle : {1, 2})
+    std::cerr << "warning: " << input_path << " " << rejected << " (row skipped)\n";
+  for (const auto& [vehicle, path] : {std::pair<int, std::string>{1, leader_path}, {2, follower_path}})
   {
     std::string error;
-    if (!acc::writeNmeaLog(files[vehicle], acc::openAccFixes(input, vehicle), talker, error))
+    if (!acc::writeNmeaLog(path, acc::openAccFixes(input, vehicle), talker, error))
     {
       std::cerr << "error: " << error << "\n";
       return 1;
@@ -49,7 +44,7 @@ int main(int argc, char** argv)
   }
   std::cout << "openacc_to_nmea: " << input.pairName() << ": " << input.rows.size()
             << " epochs per vehicle written, " << input.rejected_rows.size() << " rows skipped; leader -> "
-            << files[1] << ", follower -> " << files[2] << "\n"
+            << leader_path << ", follower -> " << follower_path << "\n"
             << "  " << input.angle_unit_note << "\n"
             << "source: JRC OpenACC database (c) European Union, CC BY 4.0; converted to NMEA\n";
   return 0;  // skipped rows were each reported above

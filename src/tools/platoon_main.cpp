@@ -15,7 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "acc_identification/command_line.h"
+#include <CLI/CLI.hpp>
+
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/model/paper_settings.h"
@@ -33,8 +34,7 @@ using nlohmann::json;
 
 namespace
 {
-const char* kUsage = R"(usage: platoon FIGURE [settings] --csv OUT.csv [--summary-json OUT.json] [options]
-FIGURE (paper figure):
+const char* kFigures = R"(FIGURE (paper figure), with each option's default:
   lambda2-map  (fig1)  lambda2 over (k1, k2) for several tau_e; --map-tau-e 0.5,1,1.5,2,3
                        --k1-max 1 --k2-max 1 --grid 100
   step         (fig2)  platoon behind a lead speed step down and back up; --vehicles 9 --speed 25
@@ -62,24 +62,38 @@ struct UsageError : std::runtime_error
   using std::runtime_error::runtime_error;
 };
 
-/// The parsed command line with typed access and defaults.
+/// Every value option the figures read: CLI11 parses them (unknown options and missing values
+/// are its errors); each figure reads its own with the default it documents (kFigures).
+const std::vector<std::string> kValueOptions{
+    "setting", "params", "k1", "k2", "tau-e", "eta", "time-step", "vehicles", "map-tau-e", "k1-max", "k2-max",
+    "grid", "speed", "step", "step-down-at", "step-up-at", "duration", "min-frequency", "max-frequency", "points",
+    "amplitude", "frequency", "lead-in", "fit-periods", "profile", "short-platoon", "tail", "lead-accel",
+    "lead-decel", "run", "max-relative-speed", "max-acceleration", "train-fraction"};
+
+/// The parsed command line with typed access and each figure's defaults.
 class Options
 {
 public:
-  explicit Options(acc::CommandLine& cli) : cli_(cli) {}
+  explicit Options(std::map<std::string, std::vector<std::string>> given) : given_(std::move(given)) {}
 
   double number(const std::string& name, double fallback) const
   {
-    const auto value = cli_.number(name);
-    if (!cli_.error().empty())
+    if (!has(name))
     {
-      throw UsageError(cli_.error());
+      return fallback;
     }
-    if (value && !std::isfinite(*value))
+    const std::string& text = given_.at(name).back();
+    char* end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0')
+    {
+      throw UsageError("--" + name + ": '" + text + "' is not a number");
+    }
+    if (!std::isfinite(value))
     {
       throw UsageError("--" + name + " must be finite");
     }
-    return value.value_or(fallback);
+    return value;
   }
   double positive(const std::string& name, double fallback) const
   {
@@ -101,13 +115,16 @@ public:
   }
   std::string text(const std::string& name, const std::string& fallback) const
   {
-    return cli_.value(name).value_or(fallback);
+    return has(name) ? given_.at(name).back() : fallback;
   }
-  std::vector<std::string> texts(const std::string& name) const { return cli_.values(name); }
-  bool has(const std::string& name) const { return cli_.has(name); }
+  std::vector<std::string> texts(const std::string& name) const
+  {
+    return has(name) ? given_.at(name) : std::vector<std::string>{};
+  }
+  bool has(const std::string& name) const { return given_.count(name) > 0 && !given_.at(name).empty(); }
 
 private:
-  acc::CommandLine& cli_;
+  std::map<std::string, std::vector<std::string>> given_;
 };
 
 std::vector<double> parseNumberList(const std::string& text, const std::string& option)
@@ -699,40 +716,41 @@ json runFigure(const std::string& figure, const Options& options, const std::str
 
 int main(int argc, char** argv)
 {
-  acc::CommandLine cli(
-      {"setting", "params", "k1", "k2", "tau-e", "eta", "csv", "summary-json", "time-step", "vehicles", "map-tau-e",
-       "k1-max", "k2-max", "grid", "speed", "step", "step-down-at", "step-up-at", "duration", "min-frequency",
-       "max-frequency", "points", "amplitude", "frequency", "lead-in", "fit-periods", "profile", "short-platoon",
-       "tail", "lead-accel", "lead-decel", "run", "max-relative-speed", "max-acceleration", "train-fraction"},
-      {"help"});
-  if (!cli.parse(argc, argv) || cli.has("help") || cli.positional().size() != 1 || !cli.has("csv"))
+  CLI::App app{"The numbers and data behind the figures of Gunter et al.: one FIGURE per call, its data as CSV and "
+               "a summary as JSON. Parameter sets (repeatable, in order; default min and max of Table II): "
+               "--setting NAME, --params CALIBRATE.json, --k1 --k2 --tau-e [--eta] (one custom set)."};
+  app.footer(kFigures);
+  std::string figure, csv_path, summary_path;
+  std::map<std::string, std::vector<std::string>> given;
+  app.add_option("FIGURE", figure, "the figure")
+      ->required()
+      ->check(CLI::IsMember({"lambda2-map", "step", "bode", "sinusoid", "lead-profile", "equilibrium", "timeseries"}));
+  app.add_option("--csv", csv_path, "the figure's data")->required();
+  app.add_option("--summary-json", summary_path, "the figure's key numbers");
+  for (const std::string& name : kValueOptions)
   {
-    std::string why = cli.error();
-    if (why.empty() && !cli.has("help"))
-    {
-      why = cli.positional().size() != 1 ? "give exactly one FIGURE" : "--csv OUT.csv is required";
-    }
-    std::cerr << (why.empty() ? "" : "error: " + why + "\n") << kUsage;
-    return cli.has("help") ? 0 : 2;
+    // One value per occurrence (a repeated option adds one): never the FIGURE after it.
+    app.add_option("--" + name, given[name], "see the figures below")->expected(1)->allow_extra_args(false)->take_all();
   }
+  CLI11_PARSE(app, argc, argv);
   try
   {
-    const Options options(cli);
-    json summary = runFigure(cli.positional().front(), options, *cli.value("csv"));
-    summary["csv"] = *cli.value("csv");
-    if (cli.has("summary-json"))
+    const Options options(given);
+    json summary = runFigure(figure, options, csv_path);
+    summary["csv"] = csv_path;
+    if (!summary_path.empty())
     {
-      std::ofstream out(*cli.value("summary-json"));
+      std::ofstream out(summary_path);
       out << summary.dump(2) << '\n';
       if (!out)
       {
-        throw std::runtime_error("cannot write " + *cli.value("summary-json"));
+        throw std::runtime_error("cannot write " + summary_path);
       }
     }
   }
   catch (const UsageError& error)
   {
-    std::cerr << "error: " << error.what() << "\n" << kUsage;
+    std::cerr << "error: " << error.what() << "\nRun with --help for more information.\n";
     return 2;
   }
   catch (const std::exception& error)

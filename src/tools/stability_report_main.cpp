@@ -4,20 +4,15 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "acc_identification/model/acc_model.h"
-#include "acc_identification/command_line.h"
 #include "acc_identification/model/paper_settings.h"
 #include "acc_identification/model/string_stability.h"
 
 
 namespace
 {
-const char* kUsage =
-    "usage: stability_report [--setting NAME]... [--k1 K1 --k2 K2 --tau-e TAU --eta ETA]\n"
-    "  Prints lambda2, the verdict, the amplified band and the peak gain of each parameter set.\n"
-    "  Without arguments: Table II's minimum and maximum settings (Gunter et al.).\n"
-    "  Named settings: min, max, fig2-unstable, fig2-stable.\n";
-
 void printRow(const std::string& name, const acc::AccParameters& p)
 {
   const auto report = acc::analyzeStringStability(p);
@@ -31,33 +26,28 @@ void printRow(const std::string& name, const acc::AccParameters& p)
 
 int main(int argc, char** argv)
 {
-  acc::CommandLine cli({"setting", "k1", "k2", "tau-e", "eta"}, {"help"});
-  if (!cli.parse(argc, argv) || cli.has("help"))
-  {
-    std::cerr << (cli.error().empty() ? "" : "error: " + cli.error() + "\n") << kUsage;
-    return cli.has("help") ? 0 : 2;
-  }
+  CLI::App app{"Prints lambda2, the verdict, the amplified band and the peak gain of each parameter set. "
+               "Without arguments: Table II's minimum and maximum settings (Gunter et al.)."};
+  std::vector<std::string> names;
+  double k1 = 0.0, k2 = 0.0, tau_e = 0.0, eta = 0.0;
+  std::vector<std::string> setting_names;
+  for (const auto& setting : acc::namedSettings())
+    setting_names.push_back(setting.name);
+  app.add_option("--setting", names, "a named setting, repeatable")->check(CLI::IsMember(setting_names));
+  auto* k1_option = app.add_option("--k1", k1, "custom parameter set: k1 [1/s^2]");
+  auto* k2_option = app.add_option("--k2", k2, "k2 [1/s]");
+  auto* tau_option = app.add_option("--tau-e", tau_e, "tau_e [s]");
+  app.add_option("--eta", eta, "eta [m] (plays no part in string stability)")->capture_default_str();
+  k1_option->needs(k2_option)->needs(tau_option);
+  k2_option->needs(k1_option);
+  tau_option->needs(k1_option);
+  CLI11_PARSE(app, argc, argv);
+
   std::vector<acc::NamedSetting> settings;
-  for (const std::string& name : cli.values("setting"))
-  {
-    const auto found = acc::findNamedSetting(name);
-    if (!found)
-    {
-      std::cerr << "error: unknown setting '" << name << "'\n" << kUsage;
-      return 2;
-    }
-    settings.push_back(*found);
-  }
-  if (cli.has("k1") || cli.has("k2") || cli.has("tau-e") || cli.has("eta"))
-  {
-    const auto k1 = cli.number("k1"), k2 = cli.number("k2"), tau = cli.number("tau-e"), eta = cli.number("eta");
-    if (!k1 || !k2 || !tau)
-    {
-      std::cerr << "error: " << (cli.error().empty() ? "--k1, --k2 and --tau-e go together" : cli.error()) << "\n";
-      return 2;
-    }
-    settings.push_back({"custom", "command line", {*k1, *k2, *tau, eta.value_or(0.0)}});
-  }
+  for (const std::string& name : names)
+    settings.push_back(*acc::findNamedSetting(name));
+  if (k1_option->count() > 0)
+    settings.push_back({"custom", "command line", {k1, k2, tau_e, eta}});
   if (settings.empty())
   {
     settings = {*acc::findNamedSetting("min"), *acc::findNamedSetting("max")};
