@@ -86,6 +86,63 @@ GnssFix fromMessage(const acc_identification::GnssFix& m)
   return fix;
 }
 
+namespace
+{
+ros::Time standardStamp(const GnssFix& fix, bool use_gnss_time)
+{
+  return rosTime(use_gnss_time ? fix.gnss_time_s : fix.receive_time_s);
+}
+}  // namespace
+
+bool toNavSatFix(const GnssFix& fix, const std::string& frame_id, double hdop_uere_m, bool use_gnss_time,
+                 sensor_msgs::NavSatFix& navsat)
+{
+  if (!fix.has(GnssFix::kValidPosition))
+  {
+    return false;
+  }
+  navsat.header.stamp = standardStamp(fix, use_gnss_time);
+  navsat.header.frame_id = frame_id;
+  navsat.status.status = navSatStatus(fix.fix_quality);
+  navsat.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;
+  navsat.latitude = fix.latitude_deg;
+  navsat.longitude = fix.longitude_deg;
+  // NavSatFix wants height above the ellipsoid: MSL altitude plus geoid separation when sent.
+  navsat.altitude = fix.has(GnssFix::kValidAltitude)
+                        ? fix.altitude_m + (std::isnan(fix.geoid_separation_m) ? 0.0 : fix.geoid_separation_m)
+                        : std::nan("");
+  if (fix.has(GnssFix::kValidPositionSigma))
+  {
+    navsat.position_covariance[0] = fix.longitude_sigma_m * fix.longitude_sigma_m;  // east
+    navsat.position_covariance[4] = fix.latitude_sigma_m * fix.latitude_sigma_m;    // north
+    navsat.position_covariance[8] = fix.altitude_sigma_m * fix.altitude_sigma_m;    // up
+    navsat.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN;
+  }
+  else if (fix.has(GnssFix::kValidHdop))
+  {
+    const double horizontal = fix.hdop * hdop_uere_m;
+    navsat.position_covariance[0] = navsat.position_covariance[4] = horizontal * horizontal;
+    navsat.position_covariance[8] = 4.0 * horizontal * horizontal;  // vertical about twice as poor
+    navsat.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_APPROXIMATED;
+  }
+  return true;
+}
+
+bool toEnuTwist(const GnssFix& fix, const std::string& frame_id, bool use_gnss_time,
+                geometry_msgs::TwistStamped& twist)
+{
+  EnuVelocity velocity;
+  if (!enuVelocity(fix, velocity))
+  {
+    return false;
+  }
+  twist.header.stamp = standardStamp(fix, use_gnss_time);
+  twist.header.frame_id = frame_id;
+  twist.twist.linear.x = velocity.east_mps;
+  twist.twist.linear.y = velocity.north_mps;
+  return true;
+}
+
 GpsDriverRos::GpsDriverRos(ros::NodeHandle node, ros::NodeHandle private_node)
   : node_(node)
   , decoder_([this](std::string_view line, NmeaParseOutcome) { publishLine(line); },
@@ -98,6 +155,7 @@ GpsDriverRos::GpsDriverRos(ros::NodeHandle node, ros::NodeHandle private_node)
   private_node.param("epoch_idle_s", epoch_idle_s_, epoch_idle_s_);
   private_node.param("epoch_idle_wall_s", epoch_idle_wall_s_, epoch_idle_wall_s_);
   private_node.param("hdop_uere_m", hdop_uere_m_, hdop_uere_m_);
+  private_node.param("use_gnss_time", use_gnss_time_, use_gnss_time_);
   private_node.param("expected_rate_hz", expected_rate_hz_, expected_rate_hz_);
   private_node.param("fix_timeout_s", fix_timeout_s_, fix_timeout_s_);
   private_node.param("wait_for_subscribers", wait_for_subscribers_, wait_for_subscribers_);
@@ -286,43 +344,14 @@ void GpsDriverRos::publishFix(const GnssFix& fix)
   const acc_identification::GnssFix message = toMessage(fix, frame_id_);
   fix_publisher_.publish(message);
 
-  if (fix.has(GnssFix::kValidPosition))
+  sensor_msgs::NavSatFix navsat;
+  if (toNavSatFix(fix, frame_id_, hdop_uere_m_, use_gnss_time_, navsat))
   {
-    sensor_msgs::NavSatFix navsat;
-    navsat.header = message.header;
-    navsat.status.status = navSatStatus(fix.fix_quality);
-    navsat.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;
-    navsat.latitude = fix.latitude_deg;
-    navsat.longitude = fix.longitude_deg;
-    // NavSatFix wants height above the ellipsoid: MSL altitude plus geoid separation when sent.
-    navsat.altitude = fix.has(GnssFix::kValidAltitude)
-                          ? fix.altitude_m + (std::isnan(fix.geoid_separation_m) ? 0.0 : fix.geoid_separation_m)
-                          : std::nan("");
-    if (fix.has(GnssFix::kValidPositionSigma))
-    {
-      navsat.position_covariance[0] = fix.longitude_sigma_m * fix.longitude_sigma_m;  // east
-      navsat.position_covariance[4] = fix.latitude_sigma_m * fix.latitude_sigma_m;    // north
-      navsat.position_covariance[8] = fix.altitude_sigma_m * fix.altitude_sigma_m;    // up
-      navsat.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN;
-    }
-    else if (fix.has(GnssFix::kValidHdop))
-    {
-      const double horizontal = fix.hdop * hdop_uere_m_;
-      navsat.position_covariance[0] = navsat.position_covariance[4] = horizontal * horizontal;
-      navsat.position_covariance[8] = 4.0 * horizontal * horizontal;  // vertical about twice as poor
-      navsat.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_APPROXIMATED;
-    }
     navsat_publisher_.publish(navsat);
   }
-
-  EnuVelocity velocity;
-  if (enuVelocity(fix, velocity))
+  geometry_msgs::TwistStamped twist;
+  if (toEnuTwist(fix, vel_frame_id_, use_gnss_time_, twist))
   {
-    geometry_msgs::TwistStamped twist;
-    twist.header.stamp = message.header.stamp;
-    twist.header.frame_id = vel_frame_id_;
-    twist.twist.linear.x = velocity.east_mps;
-    twist.twist.linear.y = velocity.north_mps;
     vel_publisher_.publish(twist);
   }
 }

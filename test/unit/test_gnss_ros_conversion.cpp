@@ -44,3 +44,37 @@ TEST(GnssFixConversion, TimeOfDayOnlyBeforeTheFirstDate)
   EXPECT_EQ(m.valid_fields & acc_identification::GnssFix::VALID_DATE, 0u);
   EXPECT_FALSE(acc::fromMessage(m).has_date);
 }
+
+/// Issue "one model core": navsat_fix and vel carried GNSS time (from 1970 before a date is
+/// known), which tf and message_filters users drop. Receive time by default, GNSS time on request.
+TEST(StandardMessages, NavSatFixAndVelocityCarryTheReceiveTimeUnlessAsked)
+{
+  acc::GnssFix fix;
+  fix.gnss_time_s = 36930.3;        // 10:15:30.3 of a day not known yet
+  fix.receive_time_s = 1700000000.25;
+  fix.latitude_deg = 45.13;
+  fix.longitude_deg = 8.45;
+  fix.speed_over_ground_mps = 10.0;
+  fix.course_rad = 0.0;             // north
+  fix.fix_quality = 1;
+  fix.valid_fields = acc::GnssFix::kValidPosition | acc::GnssFix::kValidSpeed | acc::GnssFix::kValidCourse;
+  sensor_msgs::NavSatFix navsat;
+  ASSERT_TRUE(acc::toNavSatFix(fix, "gps", 3.0, false, navsat));
+  EXPECT_DOUBLE_EQ(navsat.header.stamp.toSec(), 1700000000.25);
+  EXPECT_EQ(navsat.header.frame_id, "gps");
+  EXPECT_DOUBLE_EQ(navsat.latitude, 45.13);
+  geometry_msgs::TwistStamped twist;
+  ASSERT_TRUE(acc::toEnuTwist(fix, "gps_enu", false, twist));
+  EXPECT_DOUBLE_EQ(twist.header.stamp.toSec(), 1700000000.25);
+  EXPECT_NEAR(twist.twist.linear.y, 10.0, 1e-9);  // north
+  EXPECT_NEAR(twist.twist.linear.x, 0.0, 1e-9);
+
+  ASSERT_TRUE(acc::toNavSatFix(fix, "gps", 3.0, true, navsat));
+  EXPECT_DOUBLE_EQ(navsat.header.stamp.toSec(), 36930.3);
+  ASSERT_TRUE(acc::toEnuTwist(fix, "gps_enu", true, twist));
+  EXPECT_DOUBLE_EQ(twist.header.stamp.toSec(), 36930.3);
+
+  fix.valid_fields = acc::GnssFix::kValidSpeed;  // no position, no course
+  EXPECT_FALSE(acc::toNavSatFix(fix, "gps", 3.0, false, navsat));
+  EXPECT_FALSE(acc::toEnuTwist(fix, "gps_enu", false, twist));
+}

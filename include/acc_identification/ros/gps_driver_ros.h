@@ -14,10 +14,9 @@
 #include "acc_identification/gnss/gnss_fix.h"
 #include "acc_identification/gnss/nmea_decoder.h"
 
-// The generated message type acc_identification::GnssFix has the name of the library struct
-// acc_identification::GnssFix (gnss_fix.h); include it under the name acc_identification::GnssFix so that
-// both can live in one translation unit. Include this header before any other include of
-// acc_identification/GnssFix.h.
+#include <geometry_msgs/TwistStamped.h>
+#include <sensor_msgs/NavSatFix.h>
+
 #include <acc_identification/GnssFix.h>
 #include <acc_identification/Sentence.h>
 
@@ -29,6 +28,17 @@ namespace acc
 acc_identification::GnssFix toMessage(const GnssFix& fix, const std::string& frame_id);
 /// The message as a library fix (for nodes that consume the driver's output).
 GnssFix fromMessage(const acc_identification::GnssFix& message);
+
+/// The standard ROS messages of a fix. Stamped with the receive time on the ROS clock by default,
+/// as nmea_navsat_driver does, because tf and message_filters users (robot_localization's
+/// navsat_transform) drop messages stamped far from now, and a GNSS time before the first date is
+/// counted from 1970; with use_gnss_time, the GNSS time (acc_identification/GnssFix carries both).
+/// hdop_uere_m: the range error behind an HDOP-only covariance. false when the fix has no position
+/// (or no velocity, for the twist).
+bool toNavSatFix(const GnssFix& fix, const std::string& frame_id, double hdop_uere_m, bool use_gnss_time,
+                 sensor_msgs::NavSatFix& navsat);
+bool toEnuTwist(const GnssFix& fix, const std::string& frame_id, bool use_gnss_time,
+                geometry_msgs::TwistStamped& twist);
 
 /// gps_driver_node: one instance per receiver. Reads bytes from ~source, publishes every line on
 /// nmea_sentence, one fix per epoch on fix (acc_identification/GnssFix), navsat_fix
@@ -73,6 +83,7 @@ private:
   std::uint64_t sentences_in_ = 0;
   std::uint32_t queue_size_in_ = 1000;
   double hdop_uere_m_ = 3.0;
+  bool use_gnss_time_ = false;  ///< stamp navsat_fix and vel with GNSS time instead of the receive time
   double expected_rate_hz_ = 10.0;
   double fix_timeout_s_ = 1.0;
   int wait_for_subscribers_ = 0;
