@@ -1,4 +1,5 @@
 #include "acc_identification/ros/gps_driver_ros.h"
+#include "acc_identification/ros/ros_time.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,16 +20,6 @@ namespace
 {
 double seconds(std::chrono::steady_clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
-/// Seconds since the Unix epoch as ros::Time, rounded to the microsecond: a double near 1.6e9 s
-/// carries about 0.2 us of noise, and NMEA times are centiseconds, so 10:15:30.3 stays .300000000.
-ros::Time rosTime(double seconds_since_epoch)
-{
-  if (!std::isfinite(seconds_since_epoch) || seconds_since_epoch < 0.0 || seconds_since_epoch > 4e9)
-    return ros::Time();
-  const auto microseconds = static_cast<std::int64_t>(std::llround(seconds_since_epoch * 1e6));
-  return ros::Time(static_cast<std::uint32_t>(microseconds / 1000000),
-                   static_cast<std::uint32_t>(microseconds % 1000000) * 1000u);
-}
 
 /// GGA quality to NavSatStatus: DGPS counts as SBAS, RTK as ground-based augmentation.
 std::int8_t navSatStatus(std::uint8_t quality)
@@ -47,9 +38,9 @@ std::int8_t navSatStatus(std::uint8_t quality)
 acc_identification::GnssFix toMessage(const GnssFix& fix, const std::string& frame_id)
 {
   acc_identification::GnssFix m;
-  m.header.stamp = rosTime(fix.gnss_time_s);
+  m.header.stamp = toRosTime(fix.gnss_time_s);
   m.header.frame_id = frame_id;
-  m.receive_time = rosTime(fix.receive_time_s);
+  m.receive_time = toRosTime(fix.receive_time_s);
   m.latitude_deg = fix.latitude_deg;
   m.longitude_deg = fix.longitude_deg;
   m.altitude_m = fix.altitude_m;
@@ -90,7 +81,7 @@ namespace
 {
 ros::Time standardStamp(const GnssFix& fix, bool use_gnss_time)
 {
-  return rosTime(use_gnss_time ? fix.gnss_time_s : fix.receive_time_s);
+  return toRosTime(use_gnss_time ? fix.gnss_time_s : fix.receive_time_s);
 }
 }  // namespace
 

@@ -1,4 +1,5 @@
 #include "acc_identification/ros/identifier_ros.h"
+#include "acc_identification/ros/ros_time.h"
 
 #include <algorithm>
 #include <chrono>
@@ -23,11 +24,6 @@ bool readPositive(const ros::NodeHandle& node, const std::string& name, T& value
   return true;
 }
 
-/// ros::Time throws outside [0, 2^32) s: a time it cannot hold becomes 0 (unset), never an exception.
-ros::Time toRosTime(double time_s)
-{
-  return time_s > 0.0 && time_s < 4294967295.0 ? ros::Time(time_s) : ros::Time();
-}
 
 /// The quantity's value when the data determine it, else NaN; its standard error likewise.
 void setQuantity(const std::optional<IdentifiableQuantities>& quantities, const char* name, double& value,

@@ -1,4 +1,5 @@
 #include "acc_identification/ros/relative_state_ros.h"
+#include "acc_identification/ros/ros_time.h"
 
 #include <cmath>
 #include <sstream>
@@ -7,10 +8,6 @@ namespace acc
 {
 namespace
 {
-ros::Time rosTime(double seconds_since_epoch)
-{
-  return std::isfinite(seconds_since_epoch) && seconds_since_epoch >= 0.0 ? ros::Time(seconds_since_epoch) : ros::Time();
-}
 
 /// Reads ~name into value (keeping the default when absent); false when below minimum.
 bool readParameter(const ros::NodeHandle& node, const std::string& name, double& value, double minimum, bool strict,
@@ -33,7 +30,7 @@ std::uint64_t since(std::uint64_t now, std::uint64_t before) { return now - befo
 acc_identification::RelativeState toMessage(const RelativeState& state, const std::string& frame_id)
 {
   acc_identification::RelativeState m;
-  m.header.stamp = rosTime(state.time_s);
+  m.header.stamp = toRosTime(state.time_s);
   m.header.frame_id = frame_id;
   m.space_gap_m = state.space_gap_m;
   m.follower_speed_mps = state.follower_speed_mps;

@@ -3,6 +3,10 @@
 
 #include "acc_identification/ros/gps_driver_ros.h"
 #include "acc_identification/gnss/utc_date.h"
+#include "acc_identification/ros/ros_time.h"
+
+#include <cmath>
+#include <limits>
 
 
 TEST(GnssFixConversion, RoundTripAndExactStamp)
@@ -77,4 +81,17 @@ TEST(StandardMessages, NavSatFixAndVelocityCarryTheReceiveTimeUnlessAsked)
   fix.valid_fields = acc::GnssFix::kValidSpeed;  // no position, no course
   EXPECT_FALSE(acc::toNavSatFix(fix, "gps", 3.0, false, navsat));
   EXPECT_FALSE(acc::toEnuTwist(fix, "gps_enu", false, twist));
+}
+
+/// Issue "one model core": ros::Time(inf) threw in two nodes; one bounded conversion serves all.
+TEST(RosTime, OneBoundedConversionNeverThrows)
+{
+  EXPECT_EQ(acc::toRosTime(std::nan("")), ros::Time());
+  EXPECT_EQ(acc::toRosTime(std::numeric_limits<double>::infinity()), ros::Time());
+  EXPECT_EQ(acc::toRosTime(-1.0), ros::Time());
+  EXPECT_EQ(acc::toRosTime(4294967296.0), ros::Time());  // 2^32 s: beyond ros::Time
+  EXPECT_EQ(acc::toRosTime(1.0e12), ros::Time());
+  const ros::Time t = acc::toRosTime(1603793730.3);  // rounded to the microsecond: .300000000
+  EXPECT_EQ(t.sec, 1603793730u);
+  EXPECT_EQ(t.nsec, 300000000u);
 }
