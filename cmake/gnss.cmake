@@ -25,9 +25,11 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_nmea_line_assembler.cpp
     test/unit/test_nmea_writer.cpp
     test/unit/test_gnss_epoch.cpp
-    test/unit/test_gnss_sources.cpp)
+    test/unit/test_gnss_sources.cpp
+    test/unit/test_gnss_captures.cpp)
   target_link_libraries(test_gnss acc_gnss)
-  target_compile_definitions(test_gnss PRIVATE ACC_GNSS_TEST_DATA="${PROJECT_SOURCE_DIR}/test/data/nmea")
+  target_compile_definitions(test_gnss PRIVATE ACC_GNSS_TEST_DATA="${PROJECT_SOURCE_DIR}/test/data/nmea"
+    ACC_GNSS_CAPTURE_DATA="${PROJECT_SOURCE_DIR}/test/data/nmea_captures")
 
   catkin_add_gtest(test_gnss_ros test/unit/gtest_main.cpp test/unit/test_gnss_ros_conversion.cpp)
   target_link_libraries(test_gnss_ros acc_gnss_ros)

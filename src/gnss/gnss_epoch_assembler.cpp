@@ -21,13 +21,26 @@ Ranks ranksOf(NmeaSentenceType type)
   switch (type)
   {
     case NmeaSentenceType::kGga: return {3, 2, 0, 0, 3};
+    case NmeaSentenceType::kGns: return {3, 2, 0, 0, 3};
     case NmeaSentenceType::kPubx00: return {2, 1, 1, 1, 2};
     case NmeaSentenceType::kRmc: return {1, 0, 2, 0, 1};
+    case NmeaSentenceType::kGll: return {1, 0, 0, 0, 1};
     case NmeaSentenceType::kVtg: return {0, 0, 2, 0, 0};
     case NmeaSentenceType::kGst: return {0, 0, 0, 2, 0};
     case NmeaSentenceType::kZda: return {0, 0, 0, 0, 0};
   }
   return {0, 0, 0, 0, 0};
+}
+
+/// Between sentences of equal rank, the combined solution (talker GN) outranks a single
+/// constellation's (GP, GL, GA, GB/BD, GQ, ...): receivers that send one GGA per constellation
+/// count only that constellation's satellites in it (Telit PLS83: GPGGA 5, GAGGA 1, GNGNS 14).
+Ranks talkerRanks(const NmeaSentence& s)
+{
+  const int combined = s.talker[0] == 'G' && s.talker[1] == 'N' ? 1 : 0;
+  const auto scale = [combined](int rank) { return rank == 0 ? 0 : 2 * rank + combined; };
+  const Ranks r = ranksOf(s.type);
+  return {scale(r.position), scale(r.altitude), scale(r.velocity), scale(r.sigma), scale(r.quality)};
 }
 
 /// A field group is taken from a sentence that ranks strictly higher than the one it came from,
@@ -70,7 +83,7 @@ void GnssEpochAssembler::start(double receive_time_s)
 
 void GnssEpochAssembler::merge(const NmeaSentence& s)
 {
-  const Ranks rank = ranksOf(s.type);
+  const Ranks rank = talkerRanks(s);
   if (s.fix_quality >= 0 && takes(rank.quality, quality_rank_))
     fix_.fix_quality = static_cast<std::uint8_t>(s.fix_quality);
   if (!std::isnan(s.latitude_deg) && takes(rank.position, position_rank_))
@@ -128,6 +141,8 @@ std::optional<GnssFix> GnssEpochAssembler::flush()
     return std::nullopt;
   }
   GnssFix fix = fix_;
+  if (fix.fix_quality == 7 || fix.fix_quality == 8)  // manual input, simulator: not a measurement,
+    fix.valid_fields &= ~(GnssFix::kValidPosition | GnssFix::kValidAltitude);  // whatever RMC said
   fix.receive_time_s = last_receive_time_s_;
   const std::optional<std::int64_t> day = dates_.dayOf(time_of_day_s_, sentence_day_);
   fix.has_date = day.has_value();

@@ -52,6 +52,8 @@ NmeaStatistics NmeaDecoder::statistics() const
 {
   NmeaStatistics statistics = counts_;
   statistics.stray_bytes = lines_.strayBytes();
+  statistics.stray_lines = lines_.strayLines();
+  statistics.cut_lines = lines_.cutLines();
   statistics.overlong_lines = lines_.overlongLines();
   statistics.epochs_without_time = epochs_.epochsWithoutTime();
   statistics.date_lag_corrections = epochs_.dateLagCorrections();

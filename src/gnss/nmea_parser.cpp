@@ -1,5 +1,6 @@
 #include "acc_identification/gnss/nmea_parser.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -108,24 +109,89 @@ int qualityFromMode(char mode)
   }
 }
 
+/// GGA quality 1..6 is a fix; 0 is none, 7 (manual input) and 8 (simulator) are not measurements.
+bool isFix(int quality) { return quality >= 1 && quality <= 6; }
+
+/// Position fields (i .. i+3) of a sentence whose fix is known: an unreadable position makes a
+/// sentence with a fix malformed; a sentence without a fix reports none anyway, so a placeholder
+/// there (MediaTek's 8960.000000,N at cold start) does not cost its time and date.
+bool positionOfFix(const NmeaFields& f, std::size_t i, int quality, NmeaSentence& s)
+{
+  if (!optionalPosition(f, i, s) && isFix(quality))
+    return false;
+  if (!isFix(quality))
+    s.latitude_deg = s.longitude_deg = s.altitude_m = NmeaSentence::kNaN;
+  return true;
+}
+
 // $xxGGA,time,lat,NS,lon,EW,quality,numSV,HDOP,alt,M,sep,M,diffAge,diffStation
+// The fields after the geoid separation (its unit, differential age and station) may be absent.
 Outcome parseGga(const NmeaFields& f, NmeaSentence& s)
 {
-  if (f.size() < 15)
+  if (f.size() < 12)
     return Outcome::kMalformed;
   std::uint32_t quality = 0, satellites = 0;
   const FieldStatus q = readUnsigned(f[6], quality);
   const FieldStatus n = readUnsigned(f[7], satellites);
-  if (!optionalTime(f[1], s.time_of_day_s) || !optionalPosition(f, 2, s) || q == FieldStatus::kInvalid ||
-      quality > 8 || n == FieldStatus::kInvalid || satellites > 65535 || !optionalDouble(f[8], s.hdop) ||
+  if (!optionalTime(f[1], s.time_of_day_s) || q == FieldStatus::kInvalid || quality > 8 ||
+      n == FieldStatus::kInvalid || satellites > 65535 || !optionalDouble(f[8], s.hdop) ||
       !optionalDouble(f[9], s.altitude_m) || !optionalDouble(f[11], s.geoid_separation_m))
     return Outcome::kMalformed;
   s.fix_quality = q == FieldStatus::kOk ? static_cast<int>(quality) : 0;
   if (n == FieldStatus::kOk)
     s.satellites = static_cast<int>(satellites);
-  if (s.fix_quality == 0)  // a receiver without fix may repeat its last position: not a fix
-    s.latitude_deg = s.longitude_deg = s.altitude_m = NmeaSentence::kNaN;
-  return Outcome::kOk;
+  // Without a fix a receiver may repeat its last position or send a made-up one: not a fix.
+  return positionOfFix(f, 2, s.fix_quality, s) ? Outcome::kOk : Outcome::kMalformed;
+}
+
+/// GNS mode indicator, one character per constellation (GPS, GLONASS, Galileo, BeiDou, ...):
+/// the best of them on the GGA scale; 0 when none has a fix; -1 when a character is unknown.
+int qualityFromModes(std::string_view modes)
+{
+  // Best first: RTK fixed, RTK float, precise, differential, autonomous, estimated (dead
+  // reckoning); then no fix, manual input, simulator.
+  constexpr std::string_view kOrder = "RFPDAENMS";
+  std::size_t best = kOrder.size();
+  for (const char c : modes)
+  {
+    const std::size_t rank = kOrder.find(c);
+    if (rank == std::string_view::npos)
+      return -1;
+    best = std::min(best, rank);
+  }
+  return best < kOrder.size() ? qualityFromMode(kOrder[best]) : 0;
+}
+
+// $xxGNS,time,lat,NS,lon,EW,posMode,numSV,HDOP,alt,sep,diffAge,diffStation[,navStatus]
+// The fields after the geoid separation may be absent.
+Outcome parseGns(const NmeaFields& f, NmeaSentence& s)
+{
+  if (f.size() < 11)
+    return Outcome::kMalformed;
+  std::uint32_t satellites = 0;
+  const FieldStatus n = readUnsigned(f[7], satellites);
+  const int quality = qualityFromModes(f[6]);
+  if (!optionalTime(f[1], s.time_of_day_s) || quality < 0 || n == FieldStatus::kInvalid || satellites > 65535 ||
+      !optionalDouble(f[8], s.hdop) || !optionalDouble(f[9], s.altitude_m) ||
+      !optionalDouble(f[10], s.geoid_separation_m))
+    return Outcome::kMalformed;
+  s.fix_quality = quality;
+  if (n == FieldStatus::kOk)
+    s.satellites = static_cast<int>(satellites);
+  return positionOfFix(f, 2, s.fix_quality, s) ? Outcome::kOk : Outcome::kMalformed;
+}
+
+// $xxGLL,lat,NS,lon,EW,time,status[,posMode]
+Outcome parseGll(const NmeaFields& f, NmeaSentence& s)
+{
+  if (f.size() < 7)
+    return Outcome::kMalformed;
+  const std::string_view status = f[6];
+  const std::string_view mode = f.size() > 7 ? f[7] : std::string_view();
+  if (status.size() > 1 || mode.size() > 1 || !optionalTime(f[5], s.time_of_day_s))
+    return Outcome::kMalformed;
+  s.fix_quality = status != "A" ? 0 : (mode.size() == 1 ? qualityFromMode(mode[0]) : 1);
+  return positionOfFix(f, 1, s.fix_quality, s) ? Outcome::kOk : Outcome::kMalformed;
 }
 
 bool readRmcDate(std::string_view field, std::optional<std::int64_t>& day)
@@ -153,15 +219,16 @@ Outcome parseRmc(const NmeaFields& f, NmeaSentence& s)
   if (f.size() < 12)
     return Outcome::kMalformed;
   const std::string_view status = f[2];
-  if (status.size() > 1 || !optionalTime(f[1], s.time_of_day_s) || !optionalPosition(f, 3, s) ||
-      !optionalSpeed(f[7], kKnotToMps, s.speed_mps) || !optionalCourse(f[8], s.course_rad) ||
-      !readRmcDate(f[9], s.day))
+  if (status.size() > 1 || !optionalTime(f[1], s.time_of_day_s) || !optionalSpeed(f[7], kKnotToMps, s.speed_mps) ||
+      !optionalCourse(f[8], s.course_rad) || !readRmcDate(f[9], s.day))
     return Outcome::kMalformed;
   const bool valid = status == "A";
   const std::string_view mode = f.size() > 12 ? f[12] : std::string_view();
   s.fix_quality = !valid ? 0 : (mode.size() == 1 ? qualityFromMode(mode[0]) : 1);
+  if (!positionOfFix(f, 3, s.fix_quality, s))
+    return Outcome::kMalformed;
   if (s.fix_quality == 0)  // status V: the receiver says position and velocity are not valid
-    s.latitude_deg = s.longitude_deg = s.speed_mps = s.course_rad = NmeaSentence::kNaN;
+    s.speed_mps = s.course_rad = NmeaSentence::kNaN;
   return Outcome::kOk;
 }
 
@@ -245,7 +312,7 @@ Outcome checkFrame(std::string_view line, std::string_view& body)
 {
   while (!line.empty() && (line.back() == '\r' || line.back() == '\n' || line.back() == ' '))
     line.remove_suffix(1);
-  if (line.size() < 4 || line.front() != '$' || line[line.size() - 3] != '*')
+  if (line.size() < 4 || (line.front() != '$' && line.front() != '!') || line[line.size() - 3] != '*')
     return Outcome::kMalformed;
   const int high = hexValue(line[line.size() - 2]);
   const int low = hexValue(line[line.size() - 1]);
@@ -294,6 +361,10 @@ Outcome classify(const NmeaFields& f, NmeaSentence& s)
     s.type = NmeaSentenceType::kGst;
   else if (type == "ZDA")
     s.type = NmeaSentenceType::kZda;
+  else if (type == "GNS")
+    s.type = NmeaSentenceType::kGns;
+  else if (type == "GLL")
+    s.type = NmeaSentenceType::kGll;
   else
     return Outcome::kUnsupported;
   return Outcome::kOk;
@@ -310,6 +381,8 @@ const char* toString(NmeaSentenceType type)
     case NmeaSentenceType::kGst: return "GST";
     case NmeaSentenceType::kZda: return "ZDA";
     case NmeaSentenceType::kPubx00: return "PUBX,00";
+    case NmeaSentenceType::kGns: return "GNS";
+    case NmeaSentenceType::kGll: return "GLL";
   }
   return "?";
 }
@@ -332,6 +405,8 @@ NmeaParseOutcome parseNmeaSentence(std::string_view line, NmeaSentence& sentence
   const Outcome frame = checkFrame(line, body);
   if (frame != Outcome::kOk)
     return frame;
+  if (line.front() == '!')  // encapsulation (AIS !AIVDM, !AIVDO): valid, not for the driver
+    return Outcome::kUnsupported;
   const NmeaFields fields(body);
   sentence = NmeaSentence();
   const Outcome kind = classify(fields, sentence);
@@ -345,6 +420,8 @@ NmeaParseOutcome parseNmeaSentence(std::string_view line, NmeaSentence& sentence
     case NmeaSentenceType::kGst: return parseGst(fields, sentence);
     case NmeaSentenceType::kZda: return parseZda(fields, sentence);
     case NmeaSentenceType::kPubx00: return parsePubx00(fields, sentence);
+    case NmeaSentenceType::kGns: return parseGns(fields, sentence);
+    case NmeaSentenceType::kGll: return parseGll(fields, sentence);
   }
   return Outcome::kMalformed;
 }

@@ -388,6 +388,8 @@ void GpsDriverRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("unsupported", s.unsupported);
   status.add("stray bytes", s.stray_bytes);
   status.add("overlong lines", s.overlong_lines);
+  status.add("stray-only lines (dropped)", s.stray_lines);
+  status.add("lines cut by a new $", s.cut_lines);
   status.add("epochs without time", s.epochs_without_time);
   status.add("date lag corrections", s.date_lag_corrections);
   status.add("fixes", s.fixes);

@@ -219,3 +219,92 @@ TEST(NmeaLog, MissingFileIsAnError)
   EXPECT_FALSE(log.error.empty());
   EXPECT_TRUE(log.fixes.empty());
 }
+
+// ---- Receivers of other makes: epochs quoted from gpsd's regression logs (BSD-2-Clause, see
+// test/data/nmea_captures/ATTRIBUTION.md).
+
+TEST(GnssEpochReceivers, PositionFromGnsAndGllWhenThereIsNoGga)
+{
+  // Ericsson GRU 04: ZDA, GNS, VTG, GLL and proprietary sentences; GGA only once a minute.
+  const auto d = decode({joinLines({
+      "$GNZDA,213712.000,12,02,2026,,*4B",
+      "$GNGNS,213712.000,4111.59903,N,11156.54809,W,AANN,13,0.93,01482.5,-016.5,,*52",
+      "$GNVTG,000.0,T,348.3,M,000.0,N,000.1,K,A*30",
+      "$GNGLL,4111.59903,N,11156.54809,W,213712.000,A,A*50",
+      "$PTNLRBA,1,0*56",
+      "$GNZDA,213713.000,12,02,2026,,*4A",
+  })});
+  ASSERT_EQ(d.fixes.size(), 2u);
+  const GnssFix& fix = d.fixes[0];
+  EXPECT_TRUE(fix.has(GnssFix::kValidPosition | GnssFix::kValidAltitude | GnssFix::kValidDate |
+                      GnssFix::kValidSatellites | GnssFix::kValidHdop | GnssFix::kValidSpeed));
+  EXPECT_NEAR(fix.gnss_time_s, at(2026, 2, 12, 21 * 3600 + 37 * 60 + 12.0), 1e-6);
+  EXPECT_NEAR(fix.latitude_deg, 41 + 11.59903 / 60, 1e-12);
+  EXPECT_DOUBLE_EQ(fix.altitude_m, 1482.5);
+  EXPECT_EQ(fix.satellites_used, 13);
+  EXPECT_EQ(fix.fix_quality, 1);
+  EXPECT_NEAR(fix.speed_over_ground_mps, 0.1 / 3.6, 1e-12);  // VTG's km/h (gpsd reads its knots: 0)
+}
+
+TEST(GnssEpochReceivers, CombinedTalkerCountsAllSatellites)
+{
+  // Telit PLS83-W: one GGA, VTG and RMC per constellation (GP, GA) and a combined GNGNS. Each
+  // GGA counts only its constellation's satellites; the epoch used 14.
+  const auto d = decode({joinLines({
+      "$GPGGA,043539.00,4333.190206,N,00127.618380,E,1,05,1.3,250.8,M,50.0,M,,*62",
+      "$GAGGA,043539.00,4333.190206,N,00127.618380,E,1,01,1.3,250.8,M,50.0,M,,*77",
+      "$GNGNS,043539.00,4333.190206,N,00127.618380,E,AAAAN,14,1.3,250.8,50.0,,,V*62",
+      "$GPVTG,,T,1.7,M,0.0,N,0.0,K,A*0B",
+      "$GAVTG,,T,1.7,M,0.0,N,0.0,K,A*1A",
+      "$GPRMC,043539.00,A,4333.190206,N,00127.618380,E,0.0,,040925,1.7,W,A,V*7C",
+      "$GARMC,043539.00,A,4333.190206,N,00127.618380,E,0.0,,040925,1.7,W,A,V*6D",
+  })});
+  ASSERT_EQ(d.fixes.size(), 1u);
+  const GnssFix& fix = d.fixes[0];
+  EXPECT_EQ(fix.satellites_used, 14);
+  EXPECT_NEAR(fix.latitude_deg, 43 + 33.190206 / 60, 1e-12);
+  EXPECT_DOUBLE_EQ(fix.altitude_m, 250.8);
+  EXPECT_DOUBLE_EQ(fix.geoid_separation_m, 50.0);
+  EXPECT_NEAR(fix.gnss_time_s, at(2025, 9, 4, 4 * 3600 + 35 * 60 + 39.0), 1e-6);
+  EXPECT_DOUBLE_EQ(fix.speed_over_ground_mps, 0.0);
+  EXPECT_FALSE(fix.has(GnssFix::kValidCourse));  // empty at standstill
+}
+
+TEST(GnssEpochReceivers, SimulatorModeGivesNoPosition)
+{
+  // Garmin GPSmap 76S in simulator mode: RMC V (mode S), GGA quality 8.
+  const auto d = decode({joinLines({
+      "$GPRMC,125106,V,3854.5087,N,07726.4523,W,0.0,0.0,241011,10.5,W,S*28",
+      "$GPGGA,125106,3854.5087,N,07726.4523,W,8,10,2.0,268.8,M,-33.9,M,,*7F",
+      "$GPGLL,3854.5087,N,07726.4523,W,125106,V,S*55",
+  })});
+  ASSERT_EQ(d.fixes.size(), 1u);
+  EXPECT_FALSE(d.fixes[0].has(GnssFix::kValidPosition));
+  EXPECT_FALSE(d.fixes[0].has(GnssFix::kValidAltitude));
+  EXPECT_EQ(d.fixes[0].fix_quality, 8);
+  // Written: an RMC that says A (no mode field) does not bring the simulated position back.
+  const auto e = decode({joinLines({
+      "$GPRMC,125106,A,3854.5087,N,07726.4523,W,0.0,0.0,241011,10.5,W*40",
+      "$GPGGA,125106,3854.5087,N,07726.4523,W,8,10,2.0,268.8,M,-33.9,M,,*7F",
+  })});
+  ASSERT_EQ(e.fixes.size(), 1u);
+  EXPECT_FALSE(e.fixes[0].has(GnssFix::kValidPosition));
+  EXPECT_EQ(e.fixes[0].fix_quality, 8);
+}
+
+TEST(GnssEpochReceivers, EveryLineOfAMixedStreamIsAccountedFor)
+{
+  // "$$" starts (ST Teseo), AIS lines (Saab R4), a line's tail at the start, a short GGA.
+  const std::string input = "4.4343,N,01025.5386,E,200002,A,D*48\r\n"
+                            "$$GNRMC,135806.000,A,4723.00484,N,00045.88150,E,0.5,120.9,210325,,,A,C*11\r\n"
+                            "!AIVDM,1,1,,B,13aGhtw0R<OJf=6LgQ?Ad1FF05`L,0*24\n"
+                            "$GPGGA,130711,5012.790800,N,00806.879600,W,2,,,,,,,*6A\n";
+  const auto d = decode({input});
+  EXPECT_EQ(d.statistics.lines, 3u);
+  EXPECT_EQ(d.statistics.sentences_ok, 2u);
+  EXPECT_EQ(d.statistics.unsupported, 1u);
+  EXPECT_EQ(d.statistics.malformed, 0u);
+  EXPECT_EQ(d.statistics.stray_lines, 1u);
+  EXPECT_EQ(d.statistics.inputLines(), 4u);
+  EXPECT_EQ(d.fixes.size(), 2u);
+}

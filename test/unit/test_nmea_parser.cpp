@@ -270,3 +270,110 @@ TEST(NmeaFields, NumbersReadExactlyAsStrtod)
   for (const char* bad : {"-", ".", "1.2.3", "1e5", "12a", " 1", "nan", "inf", "--1"})
     EXPECT_EQ(acc::readDouble(bad, value), acc::FieldStatus::kInvalid) << bad;
 }
+
+// ---- Receivers of other makes (test/data/nmea_captures, docs/GNSS_RECEIVERS.md). Lines quoted
+// from gpsd's regression logs (BSD-2-Clause, see test/data/nmea_captures/ATTRIBUTION.md) unless
+// marked "written": those are made for the case, with their real checksum.
+
+TEST(NmeaReceivers, GnsIsDecodedLikeGga)
+{
+  // Ericsson GRU 04 (ST Teseo III, Trimble firmware) sends GNS, not GGA, for its position.
+  acc::NmeaSentence s;
+  ASSERT_EQ(parse("$GNGNS,213712.000,4111.59903,N,11156.54809,W,AANN,13,0.93,01482.5,-016.5,,*52", s),
+            NmeaParseOutcome::kOk);
+  EXPECT_STREQ(acc::toString(s.type), "GNS");
+  EXPECT_NEAR(s.time_of_day_s, 21 * 3600 + 37 * 60 + 12.0, 1e-9);
+  EXPECT_NEAR(s.latitude_deg, 41 + 11.59903 / 60, 1e-12);
+  EXPECT_NEAR(s.longitude_deg, -(111 + 56.54809 / 60), 1e-12);
+  EXPECT_DOUBLE_EQ(s.altitude_m, 1482.5);
+  EXPECT_DOUBLE_EQ(s.geoid_separation_m, -16.5);
+  EXPECT_EQ(s.satellites, 13);
+  EXPECT_DOUBLE_EQ(s.hdop, 0.93);
+  EXPECT_EQ(s.fix_quality, 1);  // GPS and GLONASS autonomous, Galileo and BeiDou none
+  // SiRF-TriG before its fix: every constellation N, no position, the time still good.
+  ASSERT_EQ(parse("$GNGNS,074150.799,,,,,NNNN,00,,,0.0,,0000*63", s), NmeaParseOutcome::kOk);
+  EXPECT_EQ(s.fix_quality, 0);
+  EXPECT_TRUE(std::isnan(s.latitude_deg));
+  EXPECT_NEAR(s.time_of_day_s, 7 * 3600 + 41 * 60 + 50.799, 1e-9);
+  // Written: the best constellation's mode gives the quality (RTK fixed); an unknown mode letter
+  // is malformed.
+  ASSERT_EQ(parse("$GNGNS,132827.20,4134.49941239,N,09345.03495785,W,RNDN,19,0.7,280.340,-31.442,1.0,0002*50", s),
+            NmeaParseOutcome::kOk);
+  EXPECT_EQ(s.fix_quality, 4);
+  EXPECT_EQ(parse("$GNGNS,132827.20,4134.49941239,N,09345.03495785,W,AX,19,0.7,280.340,-31.442,1.0,0002*5F", s),
+            NmeaParseOutcome::kMalformed);
+}
+
+TEST(NmeaReceivers, GllIsDecoded)
+{
+  acc::NmeaSentence s;
+  ASSERT_EQ(parse("$GNGLL,4111.59903,N,11156.54809,W,213712.000,A,A*50", s), NmeaParseOutcome::kOk);
+  EXPECT_STREQ(acc::toString(s.type), "GLL");
+  EXPECT_NEAR(s.time_of_day_s, 21 * 3600 + 37 * 60 + 12.0, 1e-9);
+  EXPECT_NEAR(s.latitude_deg, 41 + 11.59903 / 60, 1e-12);
+  EXPECT_EQ(s.fix_quality, 1);
+  // Garmin GPSmap 76S in simulator mode: status V (mode S), no position.
+  ASSERT_EQ(parse("$GPGLL,3854.5087,N,07726.4523,W,125106,V,S*55", s), NmeaParseOutcome::kOk);
+  EXPECT_EQ(s.fix_quality, 0);
+  EXPECT_TRUE(std::isnan(s.latitude_deg));
+  EXPECT_NEAR(s.time_of_day_s, 12 * 3600 + 51 * 60 + 6.0, 1e-9);
+}
+
+TEST(NmeaReceivers, GgaWithoutTrailingFields)
+{
+  // Saab R4 ends its GGA after the fix quality: the fields the driver reads are there (empty).
+  acc::NmeaSentence s;
+  ASSERT_EQ(parse("$GPGGA,130711,5012.790800,N,00806.879600,W,2,,,,,,,*6A", s), NmeaParseOutcome::kOk);
+  EXPECT_EQ(s.fix_quality, 2);
+  EXPECT_NEAR(s.latitude_deg, 50 + 12.7908 / 60, 1e-12);
+  EXPECT_NEAR(s.longitude_deg, -(8 + 6.8796 / 60), 1e-12);
+  EXPECT_TRUE(std::isnan(s.altitude_m));
+  EXPECT_EQ(s.satellites, -1);
+}
+
+TEST(NmeaReceivers, NoFixSentenceWithPlaceholderPositionKeepsItsTimeAndDate)
+{
+  // MediaTek MT3301 at cold start: 89 deg 60 minutes north, quality 0 / status V, 1980 dates.
+  acc::NmeaSentence s;
+  ASSERT_EQ(parse("$GPGGA,235946.005,8960.000000,N,00000.000000,E,0,0,,137.000,M,13.000,M,,*49", s),
+            NmeaParseOutcome::kOk);
+  EXPECT_EQ(s.fix_quality, 0);
+  EXPECT_TRUE(std::isnan(s.latitude_deg));
+  EXPECT_TRUE(std::isnan(s.altitude_m));
+  EXPECT_NEAR(s.time_of_day_s, 23 * 3600 + 59 * 60 + 46.005, 1e-9);
+  ASSERT_EQ(parse("$GPRMC,235946.005,V,8960.000000,N,00000.000000,E,0.000,0.00,050180,,,N*47", s),
+            NmeaParseOutcome::kOk);
+  EXPECT_TRUE(std::isnan(s.latitude_deg));
+  ASSERT_TRUE(s.day.has_value());
+  EXPECT_EQ(*s.day, acc::daysFromCivil(1980, 1, 5));
+  // Written: the same position in a sentence that claims a fix is still malformed.
+  EXPECT_EQ(parse("$GPRMC,235946.005,A,8960.000000,N,00000.000000,E,0.000,0.00,050180,,,A*5F", s),
+            NmeaParseOutcome::kMalformed);
+  EXPECT_EQ(parse("$GPGGA,235946.005,8960.000000,N,00000.000000,E,1,5,,137.000,M,13.000,M,,*4D", s),
+            NmeaParseOutcome::kMalformed);
+}
+
+TEST(NmeaReceivers, SimulatorAndManualQualityAreNoPosition)
+{
+  // Garmin GPSmap 76S in simulator mode: GGA quality 8 with a made-up position.
+  acc::NmeaSentence s;
+  ASSERT_EQ(parse("$GPGGA,125106,3854.5087,N,07726.4523,W,8,10,2.0,268.8,M,-33.9,M,,*7F", s),
+            NmeaParseOutcome::kOk);
+  EXPECT_EQ(s.fix_quality, 8);
+  EXPECT_TRUE(std::isnan(s.latitude_deg));
+  EXPECT_TRUE(std::isnan(s.altitude_m));
+  EXPECT_EQ(s.satellites, 10);
+  // Written: quality 7, manual input.
+  ASSERT_EQ(parse("$GPGGA,125106,3854.5087,N,07726.4523,W,7,10,2.0,268.8,M,-33.9,M,,*70", s),
+            NmeaParseOutcome::kOk);
+  EXPECT_TRUE(std::isnan(s.latitude_deg));
+}
+
+TEST(NmeaReceivers, EncapsulationSentencesAreValidButUnsupported)
+{
+  // Saab R4, an AIS transponder with a GPS: AIS messages start with '!'.
+  acc::NmeaSentence s;
+  EXPECT_EQ(parse("!AIVDM,1,1,,B,13aGhtw0R<OJf=6LgQ?Ad1FF05`L,0*24", s), NmeaParseOutcome::kUnsupported);
+  EXPECT_EQ(parse("!AIVDO,1,1,,B,13`kvwO005wJnb0Lfo:@7P8F05`L,0*5B", s), NmeaParseOutcome::kUnsupported);
+  EXPECT_EQ(parse("!AIVDO,1,1,,B,13`kvwO005wJnb0Lfo:@7P8F05`L,0*5C", s), NmeaParseOutcome::kBadChecksum);
+}

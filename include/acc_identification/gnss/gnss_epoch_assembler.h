@@ -14,8 +14,10 @@ namespace acc
 /// An epoch completes when a sentence of another time arrives, or when flush() is called (the
 /// driver flushes after a short silence so that a fix does not wait for the next epoch).
 /// Within an epoch, each field comes from the best sentence that carried it:
-///   position: GGA > PUBX,00 > RMC;  altitude, satellites, HDOP: GGA > PUBX,00;
+///   position: GGA = GNS > PUBX,00 > RMC = GLL;  altitude, satellites, HDOP: GGA = GNS > PUBX,00;
 ///   speed and course: RMC = VTG > PUBX,00;  sigmas: GST > PUBX,00;  date: RMC, ZDA.
+/// Between equals the combined talker GN beats a single constellation's (GPGGA < GNGNS), else
+/// the first one stays.
 class GnssEpochAssembler
 {
 public:

@@ -17,9 +17,16 @@ enum class NmeaParseOutcome
 
 const char* toString(NmeaParseOutcome outcome);
 
-/// Parses one line ('$' ... '*hh', line terminator optional). Any talker is accepted (GP, GN,
-/// GL, GA, GB, BD, GQ, ...); types: GGA, RMC, VTG, GST, ZDA and u-blox PUBX,00. Never throws,
-/// never allocates. On kOk, sentence is filled; otherwise its content is unspecified.
+/// Parses one line ('$' ... '*hh', or '!' ... '*hh' for encapsulation sentences such as AIS,
+/// which are valid but unsupported; line terminator optional; a line without checksum is
+/// malformed). Any talker is accepted (GP, GN, GL, GA, GB, BD, GQ, ...); types: GGA, GNS, RMC,
+/// GLL, VTG, GST, ZDA and u-blox PUBX,00. GGA, GNS and GLL may leave out the trailing fields
+/// after the last one the driver reads (Saab R4 ends GGA after the fix quality). A sentence
+/// that says it has no fix (GGA quality 0, RMC/GLL status V, GNS modes all N) keeps its time and
+/// date even when its position fields hold a placeholder out of range (MediaTek at cold start:
+/// 8960.000000,N); a position is never reported for it, nor for GGA quality 7 (manual input) or
+/// 8 (simulator). Never throws, never allocates. On kOk, sentence is filled; otherwise its
+/// content is unspecified.
 NmeaParseOutcome parseNmeaSentence(std::string_view line, NmeaSentence& sentence);
 
 /// The UTC time of day a line carries, if it is one of the timed types and its time field is

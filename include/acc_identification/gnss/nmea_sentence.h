@@ -15,6 +15,8 @@ enum class NmeaSentenceType : std::uint8_t
   kGst,     ///< position error statistics
   kZda,     ///< time and date
   kPubx00,  ///< u-blox proprietary position / velocity / accuracy
+  kGns,     ///< position, altitude, per-constellation mode, satellites, HDOP (multi-GNSS GGA)
+  kGll,     ///< position, time, status
 };
 
 const char* toString(NmeaSentenceType type);
@@ -38,7 +40,7 @@ struct NmeaSentence
   double speed_mps = kNaN;
   double course_rad = kNaN;          ///< clockwise from true north, [0, 2 pi)
 
-  int fix_quality = -1;              ///< GGA scale (0..6); -1 when the sentence does not say
+  int fix_quality = -1;              ///< GGA scale (0..8); -1 when the sentence does not say
   int satellites = -1;
   double hdop = kNaN;
   double latitude_sigma_m = kNaN;

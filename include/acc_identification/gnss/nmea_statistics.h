@@ -16,6 +16,8 @@ struct NmeaStatistics
   std::uint64_t malformed = 0;
   std::uint64_t unsupported = 0;
   std::uint64_t stray_bytes = 0;    ///< bytes outside any '$' line (noise, binary UBX, ...)
+  std::uint64_t stray_lines = 0;    ///< input lines of stray bytes only, dropped
+  std::uint64_t cut_lines = 0;      ///< lines begun by a '$' inside another line (see NmeaLineAssembler)
   std::uint64_t overlong_lines = 0; ///< lines longer than the assembler's limit, discarded
   std::uint64_t fixes = 0;          ///< epochs completed
   std::uint64_t epochs_without_time = 0;  ///< epochs of untimed sentences only, discarded
@@ -23,6 +25,9 @@ struct NmeaStatistics
 
   void count(NmeaParseOutcome outcome);
   std::uint64_t rejected() const { return bad_checksum + malformed + unsupported; }
+  /// Non-empty input lines these counts account for: every line handed to the parser, less the
+  /// extra pieces of cut lines, plus the input lines dropped before the parser.
+  std::uint64_t inputLines() const { return lines - cut_lines + stray_lines + overlong_lines; }
   /// One line, e.g. for a log at the end of a replay.
   std::string summary() const;
 };
