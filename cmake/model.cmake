@@ -7,6 +7,7 @@ acc_add_library(acc_model
     src/model/platoon_simulation.cpp
     src/model/string_stability.cpp
     src/model/paper_settings.cpp
+    src/model/halton_sequence.cpp
   LINK Eigen3::Eigen m)
 
 acc_add_tool(stability_report LINK acc_model)

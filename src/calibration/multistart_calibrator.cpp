@@ -1,4 +1,5 @@
 #include "acc_identification/calibration/multistart_calibrator.h"
+#include "acc_identification/model/halton_sequence.h"
 
 #include <algorithm>
 #include <chrono>
@@ -11,18 +12,6 @@ namespace acc
 {
 namespace
 {
-double radicalInverse(std::size_t index, std::size_t base)
-{
-  double result = 0.0;
-  double fraction = 1.0 / static_cast<double>(base);
-  while (index > 0)
-  {
-    result += static_cast<double>(index % base) * fraction;
-    index /= base;
-    fraction /= static_cast<double>(base);
-  }
-  return result;
-}
 
 /// The search runs on x_i = theta_i / scale_i with the scales of the start box, so that a unit
 /// step means the same in every direction to the quasi-Newton method.
@@ -212,7 +201,8 @@ std::string solveLocally(nlopt::opt& local, SearchState& state, std::array<doubl
 
 std::array<double, 3> haltonPoint(std::size_t index)
 {
-  return {radicalInverse(index, 2), radicalInverse(index, 3), radicalInverse(index, 5)};
+  const std::vector<double> point = haltonSequencePoint(index, 3);
+  return {point[0], point[1], point[2]};
 }
 
 MultistartResult calibrateMultistart(const CalibrationObjective& objective, const MultistartOptions& options,

@@ -397,22 +397,5 @@ AugmentedFit calibrateAugmented(EffectKind effect, const std::vector<CarFollowin
   return fit;
 }
 
-std::vector<double> haltonSequencePoint(std::size_t index, std::size_t dimensions)
-{
-  static const unsigned primes[] = {2, 3, 5, 7, 11, 13, 17, 19};
-  std::vector<double> point(dimensions, 0.0);
-  for (std::size_t d = 0; d < dimensions && d < 8; ++d)
-  {
-    double fraction = 1.0;
-    double value = 0.0;
-    for (std::size_t i = index; i > 0; i /= primes[d])
-    {
-      fraction /= primes[d];
-      value += fraction * static_cast<double>(i % primes[d]);
-    }
-    point[d] = value;
-  }
-  return point;
-}
 
 }  // namespace acc

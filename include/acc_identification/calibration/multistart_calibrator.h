@@ -64,7 +64,8 @@ struct MultistartResult
 MultistartResult calibrateMultistart(const CalibrationObjective& objective, const MultistartOptions& options,
                                      const std::vector<AccParameters>& warm_starts = {});
 
-/// The i-th point (i >= 1) of the Halton sequence in bases 2, 3, 5, in [0, 1)^3.
+/// The i-th point (i >= 1) of the Halton sequence in bases 2, 3, 5, in [0, 1)^3
+/// (haltonSequencePoint of model/halton_sequence.h, as an array).
 std::array<double, 3> haltonPoint(std::size_t index);
 
 }  // namespace acc

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "acc_identification/model/halton_sequence.h"
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/car_following_run.h"
 #include "acc_identification/diagnosis/candidate_effects.h"
@@ -62,7 +63,5 @@ constexpr double kDivergedObjective = 1.0e6;
 AugmentedFit calibrateAugmented(EffectKind effect, const std::vector<CarFollowingRun>& segments,
                                 const AugmentedCalibrationOptions& options, const AugmentedFit* warm_start = nullptr);
 
-/// The i-th point (i >= 1) of the Halton sequence in the first `dimensions` prime bases, in [0, 1).
-std::vector<double> haltonSequencePoint(std::size_t index, std::size_t dimensions);
 
 }  // namespace acc
