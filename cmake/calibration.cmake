@@ -27,7 +27,7 @@ acc_add_ros_library(acc_calibration_ros SOURCES src/ros/run_bag_reader.cpp LINK 
 acc_add_tool(calibrate LINK acc_calibration_ros acc_run_io)
 
 # identifier_node: the sliding-window identifier (ROS wrapper and its ten-line main).
-acc_add_ros_library(acc_identifier_ros SOURCES src/ros/identifier_ros.cpp LINK acc_calibration)
+acc_add_ros_library(acc_identifier_ros SOURCES src/ros/identifier_ros.cpp LINK acc_calibration acc_run_io)
 acc_add_node(identifier_node WRAPPER acc_identifier_ros)
 
 acc_add_benchmark(bench_calibration LINK acc_calibration)

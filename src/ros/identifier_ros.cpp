@@ -1,4 +1,5 @@
 #include "acc_identification/ros/identifier_ros.h"
+#include "acc_identification/io/run_plausibility.h"
 #include "acc_identification/ros/ros_time.h"
 
 #include <algorithm>
@@ -258,11 +259,31 @@ IdentifierRos::~IdentifierRos()
   }
 }
 
+WindowSample toWindowSample(const acc_identification::RelativeState& message, std::string& why)
+{
+  WindowSample sample{message.header.stamp.toSec(), message.space_gap_m, message.follower_speed_mps,
+                      message.leader_speed_mps, static_cast<bool>(message.valid)};
+  why.clear();
+  if (sample.valid)
+  {
+    why = describeImplausibleValue(sample.space_gap_m, sample.follower_speed_mps, sample.leader_speed_mps,
+                                   RunPlausibilityBounds{});
+    sample.valid = why.empty();
+  }
+  return sample;
+}
+
 void IdentifierRos::onRelativeState(const acc_identification::RelativeState::ConstPtr& message)
 {
   ++received_;
-  const WindowSample sample{message->header.stamp.toSec(), message->space_gap_m, message->follower_speed_mps,
-                            message->leader_speed_mps, static_cast<bool>(message->valid)};
+  std::string implausible;
+  const WindowSample sample = toWindowSample(*message, implausible);
+  if (!implausible.empty())
+  {
+    ++implausible_;
+    ROS_WARN_THROTTLE(1.0, "identifier: relative_state at %.3f s: %s; used as a split point (counted)",
+                      sample.time_s, implausible.c_str());
+  }
   SlidingWindow::AddResult result;
   {
     std::lock_guard<std::mutex> lock(window_mutex_);
@@ -463,7 +484,7 @@ void IdentifierRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status
   // The level says what happened since the last report (one bad sample an hour ago is no reason
   // to stay WARN); the totals stay in the key-values.
   const std::uint64_t errors = worker_errors_, skipped = skipped_periods_;
-  const std::uint64_t bad = out_of_order_ + non_finite_ + dropped_outliers_;
+  const std::uint64_t bad = out_of_order_ + non_finite_ + dropped_outliers_ + implausible_;
   const bool new_errors = errors > reported_errors_, new_skipped = skipped > reported_skipped_,
              new_bad = bad > reported_bad_;
   reported_errors_ = errors;
@@ -496,6 +517,7 @@ void IdentifierRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status
   status.add("time jumps back (window cleared)", restarts_.load());
   status.add("time jumps ahead (confirmed)", jumps_ahead_.load());
   status.add("time outliers (dropped)", dropped_outliers_.load());
+  status.add("implausible samples (split points)", implausible_.load());
   status.add("drive resets", drive_resets_.load());
   status.add("solves", solves_.load());
   status.add("skipped periods (solve overran)", skipped_periods_.load());

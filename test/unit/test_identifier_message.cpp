@@ -115,3 +115,28 @@ TEST(IdentifierMessage, NoVerdictYetIsUndecidedWithNaNAndTimesOutOfRangeNeverThr
   EXPECT_EQ(m.window_start.toSec(), 0.0);
 }
 }  // namespace
+
+namespace
+{
+/// The node applies the batch readers' plausibility bounds: a sample the pairing marked valid but
+/// with a 1e9 m/s follower speed is a split point, as a CSV row or a bag message would be.
+TEST(IdentifierSamples, ImplausibleValuesAreSplitPointsLikeInBatch)
+{
+  acc_identification::RelativeState message;
+  message.header.stamp = ros::Time(1000.0);
+  message.valid = true;
+  message.space_gap_m = 30.0;
+  message.follower_speed_mps = 20.0;
+  message.leader_speed_mps = 20.5;
+  std::string why;
+  EXPECT_TRUE(acc::toWindowSample(message, why).valid);
+  EXPECT_TRUE(why.empty());
+  message.follower_speed_mps = 1e9;
+  const acc::WindowSample sample = acc::toWindowSample(message, why);
+  EXPECT_FALSE(sample.valid);
+  EXPECT_NE(why.find("follower_speed_mps 1e+09 outside [-1, 100] m/s"), std::string::npos) << why;
+  message.valid = false;  // already invalid: the pairing said why, nothing more to add
+  EXPECT_FALSE(acc::toWindowSample(message, why).valid);
+  EXPECT_TRUE(why.empty());
+}
+}  // namespace

@@ -45,6 +45,11 @@ bool loadIdentifierSettings(const ros::NodeHandle& private_node, IdentifierSetti
 /// latest string-stability test of the drive (none yet: verdict "undecided", NaN p-value).
 acc_identification::AccParameters toMessage(const OnlineUpdate& update, double window_start_s, double window_end_s,
                                             double drive_start_s);
+/// A relative_state message as a window sample. A sample the pairing marked valid but whose values
+/// are physically impossible (acc::RunPlausibilityBounds, the batch readers' check) is marked
+/// invalid, a split point, and why says so; otherwise why is left empty.
+WindowSample toWindowSample(const acc_identification::RelativeState& message, std::string& why);
+
 /// The same for a window alone (no drive, no test yet).
 acc_identification::AccParameters toMessage(const Identification& identification, double window_start_s, double window_end_s);
 
@@ -127,7 +132,7 @@ private:
   std::atomic<std::uint64_t> received_{0}, invalid_{0}, non_finite_{0}, out_of_order_{0}, restarts_{0};
   std::atomic<std::uint64_t> solves_{0}, skipped_periods_{0}, not_identifiable_{0}, published_{0};
   std::atomic<std::uint64_t> stability_tests_{0}, drive_resets_{0}, worker_errors_{0};
-  std::atomic<std::uint64_t> jumps_ahead_{0}, dropped_outliers_{0};
+  std::atomic<std::uint64_t> jumps_ahead_{0}, dropped_outliers_{0}, implausible_{0};
   /// Totals at the last diagnostics report (diagnostics thread only): the level reports changes.
   std::uint64_t reported_errors_ = 0, reported_skipped_ = 0, reported_bad_ = 0;
   std::atomic<bool> stability_request_dropped_{false};
