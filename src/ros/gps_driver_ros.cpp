@@ -79,20 +79,25 @@ GnssFix fromMessage(const acc_identification::GnssFix& m)
 
 namespace
 {
-ros::Time standardStamp(const GnssFix& fix, bool use_gnss_time)
+bool standardStamp(const GnssFix& fix, bool use_gnss_time, ros::Time& stamp)
 {
-  return toRosTime(use_gnss_time ? fix.gnss_time_s : fix.receive_time_s);
+  return toRosTime(use_gnss_time ? fix.gnss_time_s : fix.receive_time_s, stamp);
 }
 }  // namespace
+
+bool hasRosGnssTime(const GnssFix& fix)
+{
+  ros::Time unused;
+  return toRosTime(fix.gnss_time_s, unused);
+}
 
 bool toNavSatFix(const GnssFix& fix, const std::string& frame_id, double hdop_uere_m, bool use_gnss_time,
                  sensor_msgs::NavSatFix& navsat)
 {
-  if (!fix.has(GnssFix::kValidPosition))
+  if (!fix.has(GnssFix::kValidPosition) || !standardStamp(fix, use_gnss_time, navsat.header.stamp))
   {
     return false;
   }
-  navsat.header.stamp = standardStamp(fix, use_gnss_time);
   navsat.header.frame_id = frame_id;
   navsat.status.status = navSatStatus(fix.fix_quality);
   navsat.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;
@@ -123,11 +128,10 @@ bool toEnuTwist(const GnssFix& fix, const std::string& frame_id, bool use_gnss_t
                 geometry_msgs::TwistStamped& twist)
 {
   EnuVelocity velocity;
-  if (!enuVelocity(fix, velocity))
+  if (!enuVelocity(fix, velocity) || !standardStamp(fix, use_gnss_time, twist.header.stamp))
   {
     return false;
   }
-  twist.header.stamp = standardStamp(fix, use_gnss_time);
   twist.header.frame_id = frame_id;
   twist.twist.linear.x = velocity.east_mps;
   twist.twist.linear.y = velocity.north_mps;
@@ -332,8 +336,17 @@ void GpsDriverRos::publishFix(const GnssFix& fix)
   have_fix_ = true;
   last_fix_ = SteadyClock::now();
   last_fix_quality_ = fix.fix_quality;
-  const acc_identification::GnssFix message = toMessage(fix, frame_id_);
-  fix_publisher_.publish(message);
+  if (hasRosGnssTime(fix))
+  {
+    fix_publisher_.publish(toMessage(fix, frame_id_));
+  }
+  else
+  {
+    // Stamped 0 it would pair as a time reset in relative_state_node: not published, counted.
+    ++fixes_outside_ros_time_;
+    ROS_WARN_THROTTLE(1.0, "gps_driver: GNSS time %.3f s is outside what ros::Time holds: fix not published "
+                      "(counted in diagnostics)", fix.gnss_time_s);
+  }
 
   sensor_msgs::NavSatFix navsat;
   if (toNavSatFix(fix, frame_id_, hdop_uere_m_, use_gnss_time_, navsat))
@@ -353,11 +366,12 @@ void GpsDriverRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   const NmeaStatistics s = decoder_.statistics();
   const double period_s = std::max(1e-3, seconds(now - last_diagnostic_));
   const double rate_hz = static_cast<double>(s.fixes - fixes_at_last_diagnostic_) / period_s;
-  const std::uint64_t new_errors = s.bad_checksum + s.malformed - errors_at_last_diagnostic_;
+  const std::uint64_t new_errors =
+      s.bad_checksum + s.malformed + fixes_outside_ros_time_ - errors_at_last_diagnostic_;
   const double since_fix_s = seconds(now - last_fix_);
   last_diagnostic_ = now;
   fixes_at_last_diagnostic_ = s.fixes;
-  errors_at_last_diagnostic_ = s.bad_checksum + s.malformed;
+  errors_at_last_diagnostic_ = s.bad_checksum + s.malformed + fixes_outside_ros_time_;
 
   if (source_ && !source_->isOpen())
     status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "source closed: " + source_->state());
@@ -368,7 +382,7 @@ void GpsDriverRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   else if (rate_hz < 0.8 * expected_rate_hz_)
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "fix rate below expected");
   else if (new_errors > 0)
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "bad sentences received");
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "bad sentences or times received");
   else
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "receiving fixes");
 
@@ -393,6 +407,7 @@ void GpsDriverRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("epochs without time", s.epochs_without_time);
   status.add("date lag corrections", s.date_lag_corrections);
   status.add("fixes", s.fixes);
+  status.add("fixes with a GNSS time outside ros::Time (not published on fix)", fixes_outside_ros_time_);
 }
 
 }  // namespace acc

@@ -94,7 +94,8 @@ RelativeStateRos::RelativeStateRos(ros::NodeHandle node, ros::NodeHandle private
   std::string error;
   ok_ = loadRelativeStateSettings(private_node, settings_, error) &&
         readParameter(private_node, "stale_after_s", stale_after_s_, 0.0, true, error) &&
-        readParameter(private_node, "consistency_warn_m", consistency_warn_m_, 0.0, true, error);
+        readParameter(private_node, "consistency_warn_m", consistency_warn_m_, 0.0, true, error) &&
+        readParameter(private_node, "diagnostic_period_s", diagnostic_period_s_, 0.0, true, error);
   if (!ok_)
   {
     ROS_FATAL("relative_state: %s", error.c_str());
@@ -102,8 +103,6 @@ RelativeStateRos::RelativeStateRos(ros::NodeHandle node, ros::NodeHandle private
   }
   estimator_ = RelativeStateEstimator(settings_);
   private_node.param("publish_invalid", publish_invalid_, publish_invalid_);
-  double diagnostic_period_s = 1.0;
-  private_node.param("diagnostic_period_s", diagnostic_period_s, diagnostic_period_s);
 
   // Bursts of late leader fixes come together: queues deep enough for several seconds at 10 Hz.
   int queue_size = 200;
@@ -116,7 +115,7 @@ RelativeStateRos::RelativeStateRos(ros::NodeHandle node, ros::NodeHandle private
   updater_.setHardwareID("leader/fix + follower/fix");
   updater_.add("Relative state", this, &RelativeStateRos::diagnose);
   // On the wall clock, so that health is reported also while a simulated clock is paused.
-  diagnostic_timer_ = node.createWallTimer(ros::WallDuration(std::max(0.05, diagnostic_period_s)),
+  diagnostic_timer_ = node.createWallTimer(ros::WallDuration(std::max(0.05, diagnostic_period_s_)),
                                            [this](const ros::WallTimerEvent&) { updater_.force_update(); });
   last_leader_ = last_follower_ = last_valid_ = ros::WallTime::now();
   ROS_INFO("relative_state: %s gap, antenna offsets %.2f m + %.2f m, skew <= %.3f s, timeout %.1f s",
@@ -158,6 +157,15 @@ void RelativeStateRos::publishStates()
       last_valid_ = ros::WallTime::now();
     if (!state.valid && !publish_invalid_)
       continue;  // counted in invalid_states, reported in the log
+    ros::Time stamp;
+    if (!toRosTime(state.time_s, stamp))
+    {
+      // Stamped 0 it would read as a time reset downstream: not published, counted instead.
+      ++unrepresentable_times_;
+      ROS_WARN_THROTTLE(1.0, "relative_state: pair at GNSS time %.3f s is outside what ros::Time holds: not "
+                        "published (counted in diagnostics)", state.time_s);
+      continue;
+    }
     publisher_.publish(toMessage(state, follower_frame_id_));
     ++published_;
   }
@@ -177,7 +185,8 @@ void RelativeStateRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& sta
   std::uint64_t new_dropouts = since(c.leader_dropouts, b.leader_dropouts) + since(c.follower_dropouts, b.follower_dropouts);
   std::uint64_t new_resets =
       since(c.leader_time_resets, b.leader_time_resets) + since(c.follower_time_resets, b.follower_time_resets);
-  std::uint64_t new_invalid = since(r.invalid_states, rb.invalid_states);
+  std::uint64_t new_invalid = since(r.invalid_states, rb.invalid_states) +
+                             since(unrepresentable_times_, unrepresentable_times_at_last_diagnostic_);
   if (leader_age_s > stale_after_s_ || follower_age_s > stale_after_s_)
     status.summaryf(diagnostic_msgs::DiagnosticStatus::ERROR, "no %s fix for %.1f s",
                     leader_age_s > follower_age_s ? "leader" : "follower", std::max(leader_age_s, follower_age_s));
@@ -222,7 +231,9 @@ void RelativeStateRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& sta
   status.add("jumps_rejected", r.jumps_rejected);
   status.add("missing_speed", r.missing_speed);
   status.add("along_track_fallbacks", r.along_track_fallbacks);
+  status.add("times_outside_ros_time (not published)", unrepresentable_times_);
   counters_at_last_diagnostic_ = c;
+  unrepresentable_times_at_last_diagnostic_ = unrepresentable_times_;
   state_counters_at_last_diagnostic_ = r;
 }
 

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "acc_identification/Sentence.h"
+#include "acc_identification/ros/ros_time.h"
 
 namespace acc
 {
@@ -27,6 +28,7 @@ rosbag::compression::CompressionType compressionType(const std::string& name)
 struct Entry
 {
   double stamp_s;
+  ros::Time stamp;
   std::size_t stream;
   std::size_t line;
 };
@@ -41,10 +43,11 @@ SentenceBagSummary writeSentenceBag(const std::string& path, const std::vector<S
     for (std::size_t i = 0; i < streams[s].lines.size(); ++i)
     {
       const double stamp_s = streams[s].lines[i].receive_time_s;
-      // ros::Time holds unsigned 32-bit seconds.
-      if (!std::isfinite(stamp_s) || stamp_s <= 0.0 || stamp_s >= 4294967295.0)
+      // The package's one conversion (ros/ros_time.h); 0 would be "unset", so it is no stamp either.
+      ros::Time stamp;
+      if (!toRosTime(stamp_s, stamp) || stamp.isZero())
         throw std::runtime_error(streams[s].topic + ": line " + std::to_string(i + 1) + " has no valid time stamp");
-      entries.push_back({stamp_s, s, i});
+      entries.push_back({stamp_s, stamp, s, i});
     }
   // Stable: lines of one stream with equal stamps keep their file order.
   std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.stamp_s < b.stamp_s; });
@@ -60,7 +63,7 @@ SentenceBagSummary writeSentenceBag(const std::string& path, const std::vector<S
       const SentenceStream& stream = streams[entry.stream];
       acc_identification::Sentence message;
       message.header.seq = seq[entry.stream]++;
-      message.header.stamp = ros::Time(entry.stamp_s);
+      message.header.stamp = entry.stamp;
       message.header.frame_id = stream.frame_id;
       message.sentence = stream.lines[entry.line].line;
       bag.write(stream.topic, message.header.stamp, message);

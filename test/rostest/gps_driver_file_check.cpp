@@ -89,6 +89,23 @@ TEST(GpsDriverFile, PublishesEveryLineAndOneFixPerEpoch)
   const double north_m = (99.0 + 0.25 * 9.9 * 9.9) / std::sqrt(2.0);
   EXPECT_NEAR((last.latitude_deg - 45.13) * kPi / 180 * 6378137.0, north_m, 0.02);
 
+  // navsat_fix and vel: the receive time by default (as nmea_navsat_driver: tf and message_filters
+  // drop stamps far from now), GNSS time with ~use_gnss_time; fix carries both either way.
+  bool expect_gnss_time = false;
+  ASSERT_TRUE(ros::NodeHandle("~").getParam("expect_gnss_time", expect_gnss_time));
+  ASSERT_EQ(r.navsat.size(), r.fixes.size());
+  ASSERT_EQ(r.vel.size(), r.fixes.size());
+  for (std::size_t i = 0; i < r.fixes.size(); ++i)
+  {
+    const ros::Time expected = expect_gnss_time ? r.fixes[i].header.stamp : r.fixes[i].receive_time;
+    EXPECT_EQ(r.navsat[i].header.stamp, expected) << i;
+    EXPECT_EQ(r.vel[i].header.stamp, expected) << i;
+  }
+  if (!expect_gnss_time)
+  {
+    EXPECT_NE(r.navsat.back().header.stamp, r.fixes.back().header.stamp) << "navsat_fix carries GNSS time";
+  }
+
   const auto& navsat = r.navsat.back();
   EXPECT_DOUBLE_EQ(navsat.latitude, last.latitude_deg);
   EXPECT_NEAR(navsat.altitude, 159.9 + 47.3, 1e-9);  // ellipsoid height

@@ -95,3 +95,50 @@ TEST(RosTime, OneBoundedConversionNeverThrows)
   EXPECT_EQ(t.sec, 1603793730u);
   EXPECT_EQ(t.nsec, 300000000u);
 }
+
+/// The flag form of the one conversion: false (and an unset time) for every time ros::Time cannot
+/// hold, true and the time otherwise, at both ends of the range.
+TEST(RosTime, FailureIsAFlagAndAnUnsetTime)
+{
+  const double inf = std::numeric_limits<double>::infinity();
+  for (double bad : {std::nan(""), inf, -inf, -1.0, -1e-9, 4294967296.0, 4294967296.5, 1e12, 1e300})
+  {
+    ros::Time t(12, 34);
+    EXPECT_FALSE(acc::toRosTime(bad, t)) << bad;
+    EXPECT_TRUE(t.isZero()) << bad;
+  }
+  ros::Time t;
+  ASSERT_TRUE(acc::toRosTime(0.0, t));
+  EXPECT_TRUE(t.isZero());
+  ASSERT_TRUE(acc::toRosTime(4294967295.25, t));  // the last second ros::Time holds
+  EXPECT_EQ(t.sec, 4294967295u);
+  EXPECT_EQ(t.nsec, 250000000u);
+  ASSERT_TRUE(acc::toRosTime(36930.3, t));
+  EXPECT_EQ(t.sec, 36930u);
+  EXPECT_EQ(t.nsec, 300000000u);
+}
+
+/// A fix whose GNSS time ros::Time cannot hold: not published on fix (it would pair as a time
+/// reset), and no navsat_fix or vel stamped with it; the receive-time stamp still works.
+TEST(StandardMessages, AGnssTimeOutsideRosTimeIsNotStampedZero)
+{
+  acc::GnssFix fix;
+  fix.gnss_time_s = 5.0e9;  // year 2128 (a ZDA with a 4-digit year can say anything)
+  fix.receive_time_s = 1700000000.25;
+  fix.latitude_deg = 45.13;
+  fix.longitude_deg = 8.45;
+  fix.speed_over_ground_mps = 10.0;
+  fix.course_rad = 0.0;
+  fix.fix_quality = 1;
+  fix.valid_fields = acc::GnssFix::kValidPosition | acc::GnssFix::kValidSpeed | acc::GnssFix::kValidCourse;
+  EXPECT_FALSE(acc::hasRosGnssTime(fix));
+  sensor_msgs::NavSatFix navsat;
+  geometry_msgs::TwistStamped twist;
+  EXPECT_FALSE(acc::toNavSatFix(fix, "gps", 3.0, true, navsat));
+  EXPECT_FALSE(acc::toEnuTwist(fix, "gps_enu", true, twist));
+  ASSERT_TRUE(acc::toNavSatFix(fix, "gps", 3.0, false, navsat));
+  EXPECT_DOUBLE_EQ(navsat.header.stamp.toSec(), 1700000000.25);
+  ASSERT_TRUE(acc::toEnuTwist(fix, "gps_enu", false, twist));
+  fix.gnss_time_s = 36930.3;
+  EXPECT_TRUE(acc::hasRosGnssTime(fix));
+}

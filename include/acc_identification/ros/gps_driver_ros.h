@@ -29,12 +29,16 @@ acc_identification::GnssFix toMessage(const GnssFix& fix, const std::string& fra
 /// The message as a library fix (for nodes that consume the driver's output).
 GnssFix fromMessage(const acc_identification::GnssFix& message);
 
+/// Whether ros::Time can hold the fix's GNSS time (acc::toRosTime). The driver publishes fix only
+/// then: a fix stamped 0 would pair as a time reset downstream.
+bool hasRosGnssTime(const GnssFix& fix);
+
 /// The standard ROS messages of a fix. Stamped with the receive time on the ROS clock by default,
 /// as nmea_navsat_driver does, because tf and message_filters users (robot_localization's
 /// navsat_transform) drop messages stamped far from now, and a GNSS time before the first date is
 /// counted from 1970; with use_gnss_time, the GNSS time (acc_identification/GnssFix carries both).
 /// hdop_uere_m: the range error behind an HDOP-only covariance. false when the fix has no position
-/// (or no velocity, for the twist).
+/// (or no velocity, for the twist), or when ros::Time cannot hold the chosen stamp.
 bool toNavSatFix(const GnssFix& fix, const std::string& frame_id, double hdop_uere_m, bool use_gnss_time,
                  sensor_msgs::NavSatFix& navsat);
 bool toEnuTwist(const GnssFix& fix, const std::string& frame_id, bool use_gnss_time,
@@ -101,7 +105,8 @@ private:
   bool have_fix_ = false;
   std::uint8_t last_fix_quality_ = 0;
   std::uint64_t fixes_at_last_diagnostic_ = 0;
-  std::uint64_t errors_at_last_diagnostic_ = 0;
+  std::uint64_t errors_at_last_diagnostic_ = 0;  ///< bad sentences and fixes outside ros::Time
+  std::uint64_t fixes_outside_ros_time_ = 0;     ///< GNSS time ros::Time cannot hold: fix not published
 };
 
 }  // namespace acc

@@ -46,6 +46,7 @@ private:
   bool publish_invalid_ = true;
   double stale_after_s_ = 2.0;
   double consistency_warn_m_ = 1.0;
+  double diagnostic_period_s_ = 1.0;
   std::string follower_frame_id_ = "follower_gps";
 
   ros::Subscriber leader_subscriber_, follower_subscriber_;
@@ -56,6 +57,8 @@ private:
   // Wall-clock health: the data's own time may be a replay's.
   ros::WallTime last_leader_, last_follower_, last_valid_;
   std::uint64_t published_ = 0;
+  /// States whose GNSS time ros::Time cannot hold (acc::toRosTime failed): counted, not published.
+  std::uint64_t unrepresentable_times_ = 0, unrepresentable_times_at_last_diagnostic_ = 0;
   RelativeState last_state_;
   PairingCounters counters_at_last_diagnostic_;
   RelativeStateCounters state_counters_at_last_diagnostic_;
