@@ -56,7 +56,8 @@ if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_calibration_ros
     test/unit/gtest_main.cpp
     test/unit/test_calibration_bag.cpp
-    test/unit/test_identifier_message.cpp)
+    test/unit/test_identifier_message.cpp
+    test/unit/test_identifier_health.cpp)
   target_link_libraries(test_calibration_ros acc_calibration_ros acc_identifier_ros)
 
   # relative_state in, acc_parameters out, on simulated time.
@@ -64,4 +65,9 @@ if(CATKIN_ENABLE_TESTING)
   target_include_directories(test_identifier_rostest PRIVATE include ${catkin_INCLUDE_DIRS})
   target_link_libraries(test_identifier_rostest acc_calibration ${catkin_LIBRARIES})
   add_dependencies(test_identifier_rostest ${PROJECT_NAME}_generate_messages_cpp identifier_node)
+
+  # The node's wrapper in the test process with an injected solve: input faults, throwing solves.
+  add_rostest_gtest(test_identifier_faults_rostest test/rostest/identifier_faults.test
+    test/rostest/identifier_faults_check.cpp)
+  target_link_libraries(test_identifier_faults_rostest acc_identifier_ros)
 endif()

@@ -43,7 +43,7 @@ SlidingWindow::AddResult SlidingWindow::hold(const WindowSample& sample)
                               sample.time_s - held_.back().time_s <= max_gap_s_;
   if (!held_.empty() && !continues_held)
   {
-    dropped_outliers_ += held_.size();  // neither base: the earlier jump was an outlier too
+    counts_.time_outliers += held_.size();  // neither base: the earlier jump was an outlier too
     held_.clear();
   }
   held_.push_back(sample);
@@ -61,6 +61,7 @@ SlidingWindow::AddResult SlidingWindow::hold(const WindowSample& sample)
     append(confirmed);
   }
   held_.clear();
+  ++(back ? counts_.restarts : counts_.jumps_ahead);
   return back ? AddResult::kRestarted : AddResult::kJumpedAhead;
 }
 
@@ -68,6 +69,7 @@ SlidingWindow::AddResult SlidingWindow::add(const WindowSample& sample)
 {
   if (!std::isfinite(sample.time_s))
   {
+    ++counts_.non_finite_times;
     return AddResult::kNonFinite;  // cannot even order it in time
   }
   if (samples_.empty())
@@ -78,12 +80,13 @@ SlidingWindow::AddResult SlidingWindow::add(const WindowSample& sample)
   if (sample.time_s > last_s && sample.time_s - last_s <= max_forward_jump_s_)
   {
     // The time base goes on: anything held was an outlier.
-    dropped_outliers_ += held_.size();
+    counts_.time_outliers += held_.size();
     held_.clear();
     return append(sample);
   }
   if (sample.time_s <= last_s && sample.time_s >= last_s - max_gap_s_)
   {
+    ++counts_.out_of_order;
     return AddResult::kOutOfOrder;  // late or duplicate, within the data's own jitter
   }
   return hold(sample);

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <sstream>
 
 namespace acc
 {
@@ -17,12 +19,27 @@ template <typename T>
 bool readPositive(const ros::NodeHandle& node, const std::string& name, T& value, std::string& error)
 {
   node.param(name, value, value);
-  if (!(value > 0))
+  // Finite too: ros::Duration(inf) throws, as ros::Time(inf) does.
+  if (!(value > 0) || !std::isfinite(static_cast<double>(value)))
   {
-    error = "parameter ~" + name + " must be positive";
+    error = "parameter ~" + name + " must be positive and finite";
     return false;
   }
   return true;
+}
+
+/// "3 out-of-order, 1 time outlier" from (count, what) pairs, leaving out the zeros.
+std::string listNonZero(std::initializer_list<std::pair<std::uint64_t, const char*>> items)
+{
+  std::ostringstream out;
+  for (const auto& [count, what] : items)
+  {
+    if (count > 0)
+    {
+      out << (out.tellp() > 0 ? ", " : "") << count << " " << what;
+    }
+  }
+  return out.str();
 }
 
 
@@ -149,6 +166,16 @@ bool loadIdentifierSettings(const ros::NodeHandle& p, IdentifierSettings& s, std
     return false;
   }
   c.min_samples = static_cast<std::size_t>(min_samples);
+  if (!readPositive(p, "max_forward_jump_s", s.max_forward_jump_s, error))
+  {
+    return false;
+  }
+  p.param("jump_confirm_samples", s.jump_confirm_samples, s.jump_confirm_samples);
+  if (s.jump_confirm_samples < 2)
+  {
+    error = "parameter ~jump_confirm_samples must be at least 2 (one stamp must not move the window)";
+    return false;
+  }
   p.param("starts", s.starts, s.starts);
   p.param("drive_max_evaluations", s.drive_max_evaluations, s.drive_max_evaluations);
   p.param("stability_period_s", s.stability_period_s, s.stability_period_s);
@@ -198,9 +225,16 @@ acc_identification::AccParameters toMessage(const Identification& identification
   return toMessage(update, window_start_s, window_end_s, 0.0);
 }
 
-IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node)
-  : window_(settings_.window_s, settings_.max_gap_s, 2), drive_(1.0e9, settings_.max_gap_s, 2)
+IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node, SolveFunction solve)
+  : solve_(std::move(solve)), window_(settings_.window_s, settings_.max_gap_s, 2), drive_(1.0e9, settings_.max_gap_s, 2)
 {
+  if (!solve_)
+  {
+    solve_ = [](OnlineIdentifier& identifier, const std::vector<CarFollowingRun>& window_segments,
+                const std::vector<CarFollowingRun>& drive_segments) {
+      return identifier.update(window_segments, drive_segments);
+    };
+  }
   std::string error;
   if (!loadIdentifierSettings(private_node, settings_, error))
   {
@@ -208,9 +242,11 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node)
     return;
   }
   const auto min_segment = static_cast<std::size_t>(settings_.min_segment_samples);
-  window_ = SlidingWindow(settings_.window_s, settings_.max_gap_s, min_segment);
-  // The drive so far: a window that never slides (1e9 s is 31 years).
-  drive_ = SlidingWindow(1.0e9, settings_.max_gap_s, min_segment);
+  const auto confirm = static_cast<std::size_t>(settings_.jump_confirm_samples);
+  window_ = SlidingWindow(settings_.window_s, settings_.max_gap_s, min_segment, settings_.max_forward_jump_s, confirm);
+  // The drive so far: a window that never slides (1e9 s is 31 years). It sees the same samples
+  // with the same settings, so it takes the same decisions on jumps in time.
+  drive_ = SlidingWindow(1.0e9, settings_.max_gap_s, min_segment, settings_.max_forward_jump_s, confirm);
   OnlineIdentifierOptions options;
   options.window.criteria = settings_.criteria;
   options.window.multistart.starts = static_cast<std::size_t>(settings_.starts);
@@ -231,9 +267,10 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node)
   diagnostic_timer_ = node.createWallTimer(ros::WallDuration(1.0),
                                            [this](const ros::WallTimerEvent&) { updater_.force_update(); });
   ROS_INFO("identifier: window %.0f s and the drive so far, every %.2f s, %d fresh starts plus a warm start; "
-           "string-stability test of the drive at most every %.0f s (alpha %.3g); excitation: speed std >= %.2f m/s",
+           "string-stability test of the drive at most every %.0f s (alpha %.3g); excitation: speed std >= %.2f m/s; "
+           "a jump in time needs %d consistent samples",
            settings_.window_s, settings_.period_s, settings_.starts, settings_.stability_period_s, settings_.alpha,
-           settings_.criteria.min_speed_std_mps);
+           settings_.criteria.min_speed_std_mps, settings_.jump_confirm_samples);
   ok_ = true;
 }
 
@@ -285,25 +322,38 @@ void IdentifierRos::onRelativeState(const acc_identification::RelativeState::Con
                       sample.time_s, implausible.c_str());
   }
   SlidingWindow::AddResult result;
+  std::size_t dropped_before = 0, dropped_after = 0;
   {
     std::lock_guard<std::mutex> lock(window_mutex_);
+    dropped_before = window_.counts().time_outliers;
+    // Out-of-order samples, time outliers, confirmed jumps: counted by the window itself.
     result = window_.add(sample);
-    dropped_outliers_ = window_.droppedOutliers();
+    dropped_after = window_.counts().time_outliers;
     // The drive sees the same samples; a time reset that clears the window starts a new drive.
     if (drive_.add(sample) == SlidingWindow::AddResult::kRestarted)
     {
       drive_reset_pending_ = true;
     }
   }
+  if (dropped_after > dropped_before)
+  {
+    ROS_WARN_THROTTLE(1.0, "identifier: %zu relative_state sample(s) that jumped in time dropped: the time base "
+                      "went on without them (counted in diagnostics)", dropped_after - dropped_before);
+  }
   switch (result)
   {
     case SlidingWindow::AddResult::kAdded: return;
-    case SlidingWindow::AddResult::kHeld: return;  // counted once confirmed or dropped
-    case SlidingWindow::AddResult::kJumpedAhead: ++jumps_ahead_; break;
     case SlidingWindow::AddResult::kInvalid: ++invalid_; return;  // the pairing already said why
-    case SlidingWindow::AddResult::kNonFinite: ++non_finite_; break;
-    case SlidingWindow::AddResult::kOutOfOrder: ++out_of_order_; break;
-    case SlidingWindow::AddResult::kRestarted: ++restarts_; break;
+    case SlidingWindow::AddResult::kHeld: break;  // counted once confirmed or dropped
+    case SlidingWindow::AddResult::kNonFinite:
+      if (std::isfinite(sample.time_s))
+      {
+        ++non_finite_values_;  // a non-finite time is counted by the window
+      }
+      break;
+    case SlidingWindow::AddResult::kJumpedAhead:
+    case SlidingWindow::AddResult::kOutOfOrder:
+    case SlidingWindow::AddResult::kRestarted: break;
   }
   ROS_WARN_THROTTLE(1.0, "identifier: relative_state at %.3f s: %s (counted in diagnostics)", sample.time_s,
                     SlidingWindow::describe(result).c_str());
@@ -375,53 +425,59 @@ void IdentifierRos::workerLoop()
       job = std::move(*job_);
       job_.reset();
     }
-    if (job.drive_reset)
+    // Whatever the solve throws (std::exception or not), this thread and the node go on: the
+    // period publishes nothing, the failure is counted and the diagnostics say what it was.
+    std::string failure;
+    if (!runCatchingEverything([&] { runJob(job); }, failure))
     {
-      identifier_->resetDrive();
-      ++drive_resets_;
-      std::lock_guard<std::mutex> lock(stability_mutex_);
-      stability_result_.reset();
+      noteFailure("solve", failure);
     }
-    OnlineUpdate update;
-    try
-    {
-      update = identifier_->update(job.segments, job.drive_segments);
-    }
-    catch (const std::exception& error)
-    {
-      // Data problems come back in the notes; anything else must not end the node.
-      ++worker_errors_;
-      ROS_ERROR_THROTTLE(10.0, "identifier: solve failed: %s", error.what());
-      std::lock_guard<std::mutex> lock(job_mutex_);
-      busy_ = false;
-      continue;
-    }
-    if (update.window.solved)
-    {
-      ++solves_;
-      last_solve_time_s_ = update.window_cpu_s;
-    }
-    last_drive_time_s_ = update.drive_cpu_s;
-    if (!update.window.identifiable)
-    {
-      ++not_identifiable_;
-      ROS_INFO_THROTTLE(10.0, "identifier: window %.1f-%.1f s not identifiable: %s", job.window_start_s,
-                        job.window_end_s, update.window.note.c_str());
-    }
-    {
-      std::lock_guard<std::mutex> lock(stability_mutex_);
-      update.stability = stability_result_;
-      update.stability_drive_samples = stability_samples_;
-    }
-    if (job.test_stability)
-    {
-      offerStabilityJob(job, update);
-    }
-    publisher_.publish(toMessage(update, job.window_start_s, job.window_end_s, job.drive_start_s));
-    ++published_;
     std::lock_guard<std::mutex> lock(job_mutex_);
     busy_ = false;
   }
+}
+
+void IdentifierRos::runJob(Job& job)
+{
+  if (job.drive_reset)
+  {
+    identifier_->resetDrive();
+    ++drive_resets_;
+    std::lock_guard<std::mutex> lock(stability_mutex_);
+    stability_result_.reset();
+  }
+  OnlineUpdate update = solve_(*identifier_, job.segments, job.drive_segments);
+  if (update.window.solved)
+  {
+    ++solves_;
+    last_solve_time_s_ = update.window_cpu_s;
+  }
+  last_drive_time_s_ = update.drive_cpu_s;
+  if (!update.window.identifiable)
+  {
+    ++not_identifiable_;
+    ROS_INFO_THROTTLE(10.0, "identifier: window %.1f-%.1f s not identifiable: %s", job.window_start_s,
+                      job.window_end_s, update.window.note.c_str());
+  }
+  {
+    std::lock_guard<std::mutex> lock(stability_mutex_);
+    update.stability = stability_result_;
+    update.stability_drive_samples = stability_samples_;
+  }
+  if (job.test_stability)
+  {
+    offerStabilityJob(job, update);
+  }
+  publisher_.publish(toMessage(update, job.window_start_s, job.window_end_s, job.drive_start_s));
+  ++published_;
+}
+
+void IdentifierRos::noteFailure(const char* what, const std::string& failure)
+{
+  ++failures_;
+  ROS_ERROR_THROTTLE(10.0, "identifier: %s failed: %s (counted; the node goes on)", what, failure.c_str());
+  std::lock_guard<std::mutex> lock(failure_mutex_);
+  last_failure_ = std::string(what) + ": " + failure;
 }
 
 void IdentifierRos::offerStabilityJob(const Job& job, const OnlineUpdate& update)
@@ -458,14 +514,11 @@ void IdentifierRos::stabilityLoop()
     }
     std::optional<StabilityTestResult> result;
     const auto start = std::chrono::steady_clock::now();
-    try
+    std::string failure;
+    if (!runCatchingEverything([&] { result = identifier_->testDrive(job.drive_segments, job.drive_fit); }, failure))
     {
-      result = identifier_->testDrive(job.drive_segments, job.drive_fit);
-    }
-    catch (const std::exception& error)
-    {
-      ++worker_errors_;
-      ROS_ERROR_THROTTLE(10.0, "identifier: string-stability test failed: %s", error.what());
+      result.reset();
+      noteFailure("string-stability test", failure);
     }
     last_stability_time_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::lock_guard<std::mutex> lock(stability_mutex_);
@@ -479,52 +532,122 @@ void IdentifierRos::stabilityLoop()
   }
 }
 
-void IdentifierRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
+IdentifierCounters IdentifierRos::counters()
 {
-  // The level says what happened since the last report (one bad sample an hour ago is no reason
-  // to stay WARN); the totals stay in the key-values.
-  const std::uint64_t errors = worker_errors_, skipped = skipped_periods_;
-  const std::uint64_t bad = out_of_order_ + non_finite_ + dropped_outliers_ + implausible_;
-  const bool new_errors = errors > reported_errors_, new_skipped = skipped > reported_skipped_,
-             new_bad = bad > reported_bad_;
-  reported_errors_ = errors;
-  reported_skipped_ = skipped;
-  reported_bad_ = bad;
-  if (new_errors)
+  IdentifierCounters c;
+  c.received = received_;
+  c.invalid = invalid_;
+  c.implausible = implausible_;
+  c.drive_resets = drive_resets_;
+  c.solves = solves_;
+  c.skipped_periods = skipped_periods_;
+  c.not_identifiable = not_identifiable_;
+  c.published = published_;
+  c.failures = failures_;
+  c.stability_tests = stability_tests_;
+  std::lock_guard<std::mutex> lock(window_mutex_);
+  const SlidingWindow::Counts& w = window_.counts();
+  c.non_finite = non_finite_values_ + w.non_finite_times;
+  c.out_of_order = w.out_of_order;
+  c.time_outliers = w.time_outliers;
+  c.restarts = w.restarts;
+  c.jumps_ahead = w.jumps_ahead;
+  c.held = window_.heldSamples();
+  return c;
+}
+
+IdentifierHealth identifierHealth(const IdentifierCounters& now, const IdentifierCounters& previous,
+                                  const std::string& last_failure)
+{
+  IdentifierHealth health;
+  const auto since = [](std::uint64_t total, std::uint64_t before) { return total > before ? total - before : 0; };
+  const std::uint64_t failures = since(now.failures, previous.failures);
+  const std::uint64_t skipped = since(now.skipped_periods, previous.skipped_periods);
+  const std::string samples = listNonZero({
+      {since(now.out_of_order, previous.out_of_order), "out-of-order (rejected)"},
+      {since(now.time_outliers, previous.time_outliers), "time outliers (dropped)"},
+      {since(now.non_finite, previous.non_finite), "non-finite"},
+      {since(now.implausible, previous.implausible), "implausible (split points)"},
+      {since(now.restarts, previous.restarts), "time jumps back (window cleared)"},
+      {since(now.jumps_ahead, previous.jumps_ahead), "time jumps ahead"},
+  });
+  if (failures > 0)
   {
-    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "solves failed since the last report (see the log)");
+    health.level = diagnostic_msgs::DiagnosticStatus::ERROR;
+    health.message = "since last report: " + std::to_string(failures) + " failed solve(s) or test(s); last: " +
+                     last_failure;
   }
-  else if (new_skipped)
+  else if (skipped > 0)
   {
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "solves overran the period since the last report");
+    health.level = diagnostic_msgs::DiagnosticStatus::WARN;
+    health.message = "since last report: " + std::to_string(skipped) + " period(s) skipped (the solve overran)";
   }
-  else if (new_bad)
+  else if (!samples.empty())
   {
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "bad relative_state samples since the last report");
+    health.level = diagnostic_msgs::DiagnosticStatus::WARN;
+    health.message = "since last report: relative_state samples " + samples;
   }
-  else if (received_ == 0)
+  else if (now.received == 0)
   {
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no relative_state yet");
+    health.level = diagnostic_msgs::DiagnosticStatus::WARN;
+    health.message = "no relative_state yet";
   }
   else
   {
-    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "identifying");
+    health.level = diagnostic_msgs::DiagnosticStatus::OK;
+    health.message = "identifying";
   }
-  status.add("samples received", received_.load());
-  status.add("invalid samples (split points)", invalid_.load());
-  status.add("non-finite samples (split points)", non_finite_.load());
-  status.add("out-of-order samples (rejected)", out_of_order_.load());
-  status.add("time jumps back (window cleared)", restarts_.load());
-  status.add("time jumps ahead (confirmed)", jumps_ahead_.load());
-  status.add("time outliers (dropped)", dropped_outliers_.load());
-  status.add("implausible samples (split points)", implausible_.load());
-  status.add("drive resets", drive_resets_.load());
-  status.add("solves", solves_.load());
-  status.add("skipped periods (solve overran)", skipped_periods_.load());
-  status.add("windows not identifiable", not_identifiable_.load());
-  status.add("messages published", published_.load());
-  status.add("failed solves", worker_errors_.load());
-  status.add("string-stability tests of the drive", stability_tests_.load());
+  return health;
+}
+
+bool runCatchingEverything(const std::function<void()>& work, std::string& failure)
+{
+  try
+  {
+    work();
+    return true;
+  }
+  catch (const std::exception& error)
+  {
+    failure = error.what();
+  }
+  catch (...)
+  {
+    failure = "an exception that is not a std::exception";
+  }
+  return false;
+}
+
+void IdentifierRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  // The level says what happened since the last report (one bad sample an hour ago is no reason
+  // to stay WARN, as relative_state_node does); the totals stay in the key-values.
+  const IdentifierCounters c = counters();
+  std::string last_failure;
+  {
+    std::lock_guard<std::mutex> lock(failure_mutex_);
+    last_failure = last_failure_;
+  }
+  const IdentifierHealth health = identifierHealth(c, reported_, last_failure);
+  reported_ = c;
+  status.summary(health.level, health.message);
+  status.add("samples received", c.received);
+  status.add("invalid samples (split points)", c.invalid);
+  status.add("non-finite samples", c.non_finite);
+  status.add("implausible samples (split points)", c.implausible);
+  status.add("out-of-order samples (rejected)", c.out_of_order);
+  status.add("time outliers (dropped)", c.time_outliers);
+  status.add("time jumps back (window cleared)", c.restarts);
+  status.add("time jumps ahead (confirmed)", c.jumps_ahead);
+  status.add("samples held (jump awaiting confirmation)", c.held);
+  status.add("drive resets", c.drive_resets);
+  status.add("solves", c.solves);
+  status.add("skipped periods (solve overran)", c.skipped_periods);
+  status.add("windows not identifiable", c.not_identifiable);
+  status.add("messages published", c.published);
+  status.add("failed solves or tests", c.failures);
+  status.add("last failure", last_failure.empty() ? std::string("none") : last_failure);
+  status.add("string-stability tests of the drive", c.stability_tests);
   status.add("last window solve [s]", last_solve_time_s_.load());
   status.add("last drive solve [s]", last_drive_time_s_.load());
   status.add("last string-stability test [s]", last_stability_time_s_.load());

@@ -101,4 +101,75 @@ TEST(SlidingWindow, AConfirmedJumpAheadMovesTheWindowOn)
   // A jump within max_forward_jump_s (30 s) is a hole, not held: the window splits there.
   EXPECT_EQ(window.add(sampleAt(270.0)), acc::SlidingWindow::AddResult::kAdded);
 }
+
+/// Every sample the window does not take, and every jump it confirms, is counted by kind.
+TEST(SlidingWindow, CountsEveryDroppedSampleAndEveryReset)
+{
+  acc::SlidingWindow window(120.0, 0.5, 2, 30.0, 3);
+  EXPECT_EQ(window.confirmSamples(), 3u);
+  for (int k = 0; k < 100; ++k) window.add(sampleAt(0.1 * k));  // 0-9.9 s
+  EXPECT_EQ(window.add(sampleAt(9.9)), acc::SlidingWindow::AddResult::kOutOfOrder);      // duplicate
+  EXPECT_EQ(window.add(sampleAt(9.6)), acc::SlidingWindow::AddResult::kOutOfOrder);      // late
+  EXPECT_EQ(window.add(sampleAt(std::nan(""))), acc::SlidingWindow::AddResult::kNonFinite);
+  EXPECT_EQ(window.add(sampleAt(5.0)), acc::SlidingWindow::AddResult::kHeld);           // 4.9 s back
+  EXPECT_EQ(window.add(sampleAt(1e6)), acc::SlidingWindow::AddResult::kHeld);           // far ahead
+  EXPECT_EQ(window.heldSamples(), 1u);  // the first was contradicted by the second: dropped
+  EXPECT_EQ(window.add(sampleAt(10.0)), acc::SlidingWindow::AddResult::kAdded);         // old base goes on
+  EXPECT_EQ(window.heldSamples(), 0u);
+  EXPECT_EQ(window.size(), 101u);
+  acc::SlidingWindow::Counts c = window.counts();
+  EXPECT_EQ(c.out_of_order, 2u);
+  EXPECT_EQ(c.non_finite_times, 1u);
+  EXPECT_EQ(c.time_outliers, 2u);
+  EXPECT_EQ(c.restarts, 0u);
+  EXPECT_EQ(c.jumps_ahead, 0u);
+  // A sustained jump ahead (data resume after 100 s), then a sustained jump back (bag loop).
+  for (int k = 0; k < 3; ++k) window.add(sampleAt(110.0 + 0.1 * k));
+  for (int k = 0; k < 3; ++k) window.add(sampleAt(1.0 + 0.1 * k));
+  c = window.counts();
+  EXPECT_EQ(c.jumps_ahead, 1u);
+  EXPECT_EQ(c.restarts, 1u);
+  EXPECT_EQ(c.time_outliers, 2u);  // unchanged: confirmed jumps drop nothing
+  EXPECT_EQ(window.size(), 3u);
+  EXPECT_NEAR(window.startTimeS(), 1.0, 1e-12);
+}
+
+/// How many consistent samples confirm a jump is a setting (identifier_node: ~jump_confirm_samples).
+TEST(SlidingWindow, TheConfirmationCountIsASetting)
+{
+  for (std::size_t confirm : {2u, 5u, 8u})
+  {
+    acc::SlidingWindow window(120.0, 0.5, 2, 30.0, confirm);
+    for (int k = 0; k < 100; ++k) window.add(sampleAt(100.0 + 0.1 * k));
+    for (std::size_t k = 0; k + 1 < confirm; ++k)
+    {
+      EXPECT_EQ(window.add(sampleAt(1.0 + 0.1 * static_cast<double>(k))), acc::SlidingWindow::AddResult::kHeld)
+          << confirm;
+      EXPECT_EQ(window.size(), 100u) << confirm;
+    }
+    EXPECT_EQ(window.add(sampleAt(1.0 + 0.1 * static_cast<double>(confirm - 1))),
+              acc::SlidingWindow::AddResult::kRestarted)
+        << confirm;
+    EXPECT_EQ(window.size(), confirm);
+  }
+}
+
+/// A stamp in the future just before a real time reset: the outlier is dropped, the reset happens.
+TEST(SlidingWindow, AnOutlierBeforeARealTimeResetIsDroppedAndTheResetStillHappens)
+{
+  acc::SlidingWindow window(120.0, 0.5, 2);  // 5 samples confirm
+  for (int k = 0; k < 100; ++k) window.add(sampleAt(500.0 + 0.1 * k));
+  EXPECT_EQ(window.add(sampleAt(5000.0)), acc::SlidingWindow::AddResult::kHeld);
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(window.add(sampleAt(0.1 * k)), acc::SlidingWindow::AddResult::kHeld);
+  EXPECT_EQ(window.add(sampleAt(0.4)), acc::SlidingWindow::AddResult::kRestarted);
+  EXPECT_EQ(window.counts().time_outliers, 1u);
+  EXPECT_EQ(window.counts().restarts, 1u);
+  EXPECT_EQ(window.size(), 5u);
+  EXPECT_NEAR(window.startTimeS(), 0.0, 1e-12);
+  // Held samples go with clear(): a later sample cannot confirm a jump from before it.
+  EXPECT_EQ(window.add(sampleAt(9000.0)), acc::SlidingWindow::AddResult::kHeld);
+  window.clear();
+  EXPECT_EQ(window.heldSamples(), 0u);
+  EXPECT_EQ(window.add(sampleAt(3.0)), acc::SlidingWindow::AddResult::kAdded);
+}
 }  // namespace

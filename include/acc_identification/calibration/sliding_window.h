@@ -27,10 +27,22 @@ struct WindowSample
 /// confirm_samples consistent samples confirm the new time base: then the window restarts (back:
 /// a bag loop, a clock reset) or moves on (ahead: the data resume after a long outage). Should the
 /// old time base go on instead, the held samples were outliers: dropped and counted. So one bad
-/// stamp, in the past or in the future, never empties the window.
+/// stamp, in the past or in the future, never empties the window. A sample at most max_gap_s
+/// back (late, or a duplicate) is rejected and counted. "Consistent": each held sample is newer
+/// than the one held before it, by at most max_gap_s.
 class SlidingWindow
 {
 public:
+  /// Every sample the window did not take, and every jump it confirmed, since construction.
+  struct Counts
+  {
+    std::size_t out_of_order = 0;      ///< at most max_gap_s back (late or duplicate): rejected
+    std::size_t time_outliers = 0;     ///< held after a jump, then dropped: the old time base went on
+    std::size_t non_finite_times = 0;  ///< a NaN or infinite time: cannot be ordered, rejected
+    std::size_t restarts = 0;          ///< confirmed jumps back: the window was cleared
+    std::size_t jumps_ahead = 0;       ///< confirmed jumps ahead: older samples left the window
+  };
+
   enum class AddResult
   {
     kAdded,
@@ -46,7 +58,12 @@ public:
                 double max_forward_jump_s = 30.0, std::size_t confirm_samples = 5);
 
   AddResult add(const WindowSample& sample);
-  void clear() { samples_.clear(); }
+  /// Empties the window, held samples included (the counts stay).
+  void clear()
+  {
+    samples_.clear();
+    held_.clear();
+  }
 
   /// Usable segments, oldest first; pieces shorter than min_segment_samples are left out (they
   /// carry no dynamics) and counted in short_pieces.
@@ -54,7 +71,11 @@ public:
 
   std::size_t size() const { return samples_.size(); }
   /// Samples that jumped in time and were dropped because the old time base went on.
-  std::size_t droppedOutliers() const { return dropped_outliers_; }
+  std::size_t droppedOutliers() const { return counts_.time_outliers; }
+  const Counts& counts() const { return counts_; }
+  /// Samples of a jump waiting for confirmation (neither in the window nor dropped yet).
+  std::size_t heldSamples() const { return held_.size(); }
+  std::size_t confirmSamples() const { return confirm_samples_; }
   bool empty() const { return samples_.empty(); }
   double startTimeS() const { return samples_.empty() ? 0.0 : samples_.front().time_s; }
   double endTimeS() const { return samples_.empty() ? 0.0 : samples_.back().time_s; }
@@ -70,7 +91,7 @@ private:
   std::size_t confirm_samples_;
   std::deque<WindowSample> samples_;
   std::vector<WindowSample> held_;  ///< a jump waiting for confirmation
-  std::size_t dropped_outliers_ = 0;
+  Counts counts_;
 
   /// Appends a sample in time order (validity checked), dropping what left the window.
   AddResult append(const WindowSample& sample);

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -28,6 +29,12 @@ struct IdentifierSettings
   double window_s = 120.0;            ///< sliding window length [s]
   double period_s = 1.0;              ///< recalibration period, on the ROS clock (sim time too) [s]
   double max_gap_s = 0.5;             ///< a longer hole in relative_state splits the window [s]
+  /// A jump in time (back beyond max_gap_s, ahead beyond max_forward_jump_s) changes the window
+  /// only once this many consecutive samples agree on the new time base (at least 2: one stamp
+  /// never empties the window); until then they are held, and dropped as outliers should the old
+  /// time base go on.
+  int jump_confirm_samples = 5;
+  double max_forward_jump_s = 30.0;   ///< a longer step ahead is a jump, held until confirmed [s]
   int min_segment_samples = 20;       ///< shorter pieces between holes are not simulated
   int starts = 8;                     ///< fresh Halton starts per solve, besides the warm start
   int queue_size = 1000;              ///< subscriber queue: a replay may burst
@@ -53,17 +60,69 @@ WindowSample toWindowSample(const acc_identification::RelativeState& message, st
 /// The same for a window alone (no drive, no test yet).
 acc_identification::AccParameters toMessage(const Identification& identification, double window_start_s, double window_end_s);
 
+/// The identifier node's counters at one instant: totals since the node started.
+struct IdentifierCounters
+{
+  std::uint64_t received = 0;
+  std::uint64_t invalid = 0;           ///< marked invalid by the pairing: split points
+  std::uint64_t non_finite = 0;        ///< a NaN or infinite value or time
+  std::uint64_t implausible = 0;       ///< outside acc::RunPlausibilityBounds: split points
+  std::uint64_t out_of_order = 0;      ///< late or duplicate: rejected
+  std::uint64_t time_outliers = 0;     ///< a jump in time the old time base contradicted: dropped
+  std::uint64_t restarts = 0;          ///< confirmed jumps back: window cleared, drive restarted
+  std::uint64_t jumps_ahead = 0;       ///< confirmed jumps ahead
+  std::uint64_t held = 0;              ///< samples of a jump awaiting confirmation (now, not a total)
+  std::uint64_t drive_resets = 0;
+  std::uint64_t solves = 0;
+  std::uint64_t skipped_periods = 0;   ///< a solve overran the period
+  std::uint64_t not_identifiable = 0;
+  std::uint64_t published = 0;
+  std::uint64_t failures = 0;          ///< solves and string-stability tests that threw
+  std::uint64_t stability_tests = 0;
+};
+
+/// The level (diagnostic_msgs::DiagnosticStatus) and summary of one diagnostics report.
+struct IdentifierHealth
+{
+  std::uint8_t level = 0;
+  std::string message;
+};
+
+/// What happened between two reports, as relative_state_node reports it: ERROR when a solve or a
+/// test threw since the previous report (with last_failure, what it threw), WARN when a period was
+/// skipped or samples were rejected, dropped, implausible or a jump in time was confirmed since
+/// then, WARN before the first sample, else OK. One bad sample an hour ago is no reason to stay
+/// WARN: the totals are the key-values.
+IdentifierHealth identifierHealth(const IdentifierCounters& now, const IdentifierCounters& previous,
+                                  const std::string& last_failure);
+
+/// Runs work and catches whatever it throws: true when it returned; false when it threw, with
+/// failure saying what (a std::exception's what(), or that it was not a std::exception).
+bool runCatchingEverything(const std::function<void()>& work, std::string& failure);
+
 /// identifier_node: subscribes to relative_state, keeps a sliding window and the drive so far, and
 /// every period recalibrates the ACC model on the window (warm-started from the previous fit),
 /// continues the drive's calibration, and publishes acc_parameters. Solves run on a worker thread
 /// so that the subscriber never waits; a solve still running when the next period comes makes
 /// that period skip (counted, and said). The string-stability test of the drive runs on a thread
 /// of its own (about 1.5 s on a 3-hour drive), at most once per ~stability_period_s; each message
-/// carries its latest result.
+/// carries its latest result. Whatever a solve or a test throws is caught on its thread, counted
+/// and reported (ERROR with what it threw): the node goes on with the next period.
+///
+/// Samples are checked as the batch readers check them (acc::RunPlausibilityBounds: implausible
+/// values are split points), and jumps in time need ~jump_confirm_samples consistent samples
+/// before they clear or move the window (acc::SlidingWindow). Diagnostics report what changed
+/// since the last report, with every total as a key-value.
 class IdentifierRos
 {
 public:
-  IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node);
+  /// One period's computation: OnlineIdentifier::update by default. A seam for tests, which inject
+  /// a solve that throws to check that the worker survives it and says so.
+  using SolveFunction = std::function<OnlineUpdate(OnlineIdentifier& identifier,
+                                                   const std::vector<CarFollowingRun>& window_segments,
+                                                   const std::vector<CarFollowingRun>& drive_segments)>;
+
+  IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node, SolveFunction solve = {});
   ~IdentifierRos();
   bool ok() const { return ok_; }
 
@@ -93,10 +152,16 @@ private:
   void stabilityLoop();
   /// Gives the stability thread the drive, unless it is still busy with an earlier one.
   void offerStabilityJob(const Job& job, const OnlineUpdate& update);
+  /// One job of the worker: the solve, the message, the stability request.
+  void runJob(Job& job);
+  /// Counts a solve or test that threw and keeps what it threw for the diagnostics.
+  void noteFailure(const char* what, const std::string& failure);
+  IdentifierCounters counters();
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   bool ok_ = false;
   IdentifierSettings settings_;
+  SolveFunction solve_;
   std::mutex window_mutex_;
   SlidingWindow window_;
   SlidingWindow drive_;
@@ -128,13 +193,15 @@ private:
   diagnostic_updater::Updater updater_;
   ros::WallTimer diagnostic_timer_;
 
-  // Counters (atomic: read by the diagnostics, written by the callbacks and the worker).
-  std::atomic<std::uint64_t> received_{0}, invalid_{0}, non_finite_{0}, out_of_order_{0}, restarts_{0};
+  // Counters (atomic: read by the diagnostics, written by the callbacks and the worker). What the
+  // window rejected, dropped or confirmed is in window_.counts(), under window_mutex_.
+  std::atomic<std::uint64_t> received_{0}, invalid_{0}, non_finite_values_{0}, implausible_{0};
   std::atomic<std::uint64_t> solves_{0}, skipped_periods_{0}, not_identifiable_{0}, published_{0};
-  std::atomic<std::uint64_t> stability_tests_{0}, drive_resets_{0}, worker_errors_{0};
-  std::atomic<std::uint64_t> jumps_ahead_{0}, dropped_outliers_{0}, implausible_{0};
-  /// Totals at the last diagnostics report (diagnostics thread only): the level reports changes.
-  std::uint64_t reported_errors_ = 0, reported_skipped_ = 0, reported_bad_ = 0;
+  std::atomic<std::uint64_t> stability_tests_{0}, drive_resets_{0}, failures_{0};
+  std::mutex failure_mutex_;
+  std::string last_failure_;  ///< what the last failed solve or test threw, under failure_mutex_
+  /// Counters at the last diagnostics report (diagnostics thread only): the level reports changes.
+  IdentifierCounters reported_;
   std::atomic<bool> stability_request_dropped_{false};
   std::atomic<double> last_solve_time_s_{0.0}, last_drive_time_s_{0.0}, last_stability_time_s_{0.0};
 };
