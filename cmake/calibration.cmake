@@ -12,7 +12,6 @@ acc_add_library(acc_calibration
     src/calibration/grid_search.cpp
     src/calibration/calibration_report.cpp
     src/calibration/margin_constrained_fit.cpp
-    src/calibration/block_bootstrap.cpp
     src/calibration/quantity_identifiability.cpp
     src/calibration/stability_test.cpp
     src/calibration/stability_test_json.cpp

@@ -8,6 +8,7 @@ acc_add_library(acc_model
     src/model/string_stability.cpp
     src/model/paper_settings.cpp
     src/model/halton_sequence.cpp
+    src/model/block_bootstrap.cpp
   LINK Eigen3::Eigen m)
 
 acc_add_tool(stability_report LINK acc_model)

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "acc_identification/calibration/block_bootstrap.h"
+#include "acc_identification/model/block_bootstrap.h"
 #include "acc_identification/calibration/calibration_report.h"
 #include "acc_identification/calibration/fit_statistics.h"
 #include "acc_identification/model/follower_simulation.h"
@@ -257,17 +257,6 @@ ConstrainedFitOptions StabilityTestOptions::defaultProfileOptions()
   options.max_evaluations_per_solve = 100;
   options.relative_f_tolerance = 1e-8;
   return options;
-}
-
-std::string toString(StabilityVerdict verdict)
-{
-  switch (verdict)
-  {
-    case StabilityVerdict::Stable: return "stable";
-    case StabilityVerdict::Unstable: return "unstable";
-    case StabilityVerdict::Undecided: return "undecided";
-  }
-  return "undecided";
 }
 
 StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& runs, const StabilityTestOptions& options)

@@ -87,4 +87,15 @@ StringStabilityReport analyzeStringStability(const AccParameters& p)
   return report;
 }
 
+std::string toString(StabilityVerdict verdict)
+{
+  switch (verdict)
+  {
+    case StabilityVerdict::Stable: return "stable";
+    case StabilityVerdict::Unstable: return "unstable";
+    case StabilityVerdict::Undecided: return "undecided";
+  }
+  return "undecided";
+}
+
 }  // namespace acc

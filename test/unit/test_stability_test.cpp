@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "acc_identification/calibration/block_bootstrap.h"
+#include "acc_identification/model/block_bootstrap.h"
 #include "acc_identification/calibration/calibration_objective.h"
 #include "acc_identification/calibration/fit_statistics.h"
 #include "acc_identification/calibration/margin_constrained_fit.h"

@@ -16,6 +16,7 @@
 #include "acc_identification/calibration/quantity_identifiability.h"
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/car_following_run.h"
+#include "acc_identification/model/string_stability.h"
 
 namespace acc
 {
@@ -112,16 +113,6 @@ struct StabilityTestOptions
   /// most 100 evaluations, relative f tolerance 1e-8.
   static ConstrainedFitOptions defaultProfileOptions();
 };
-
-enum class StabilityVerdict
-{
-  Stable,
-  Unstable,
-  Undecided
-};
-
-/// "stable", "unstable", "undecided".
-std::string toString(StabilityVerdict verdict);
 
 /// One of the two side fits.
 struct SideFit

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <string>
+
 #include "acc_identification/model/acc_parameters.h"
 
 namespace acc
@@ -39,5 +41,17 @@ double amplifiedBandUpperRadS(const AccParameters& p);
 double peakFrequencyRadS(const AccParameters& p);
 
 StringStabilityReport analyzeStringStability(const AccParameters& p);
+
+/// What held-out data say of string stability (calibration/stability_test.h for the paper's
+/// model, diagnosis/augmented_stability_test.h for an augmented one).
+enum class StabilityVerdict
+{
+  Stable,
+  Unstable,
+  Undecided
+};
+
+/// "stable", "unstable", "undecided".
+std::string toString(StabilityVerdict verdict);
 
 }  // namespace acc

@@ -1,4 +1,4 @@
-#include "acc_identification/calibration/block_bootstrap.h"
+#include "acc_identification/model/block_bootstrap.h"
 
 #include <algorithm>
 #include <random>
