@@ -9,6 +9,7 @@ acc_add_library(acc_diagnosis
     src/diagnosis/residual_breakdown.cpp
     src/diagnosis/effect_selection.cpp
     src/diagnosis/augmented_stability.cpp
+    src/diagnosis/augmented_stability_test.cpp
     src/diagnosis/diagnosis.cpp
     src/diagnosis/withheld_effect_suite.cpp
     src/diagnosis/diagnosis_output.cpp
@@ -32,6 +33,7 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_diagnosis_simulation.cpp
     test/unit/test_diagnosis_selection.cpp
     test/unit/test_diagnosis_withheld.cpp
-    test/unit/test_diagnosis_output.cpp)
+    test/unit/test_diagnosis_output.cpp
+    test/unit/test_diagnosis_stability.cpp)
   target_link_libraries(test_diagnosis acc_diagnosis)
 endif()

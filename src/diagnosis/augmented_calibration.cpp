@@ -11,62 +11,50 @@
 
 namespace acc
 {
+AugmentedParameterBox::AugmentedParameterBox(EffectKind kind, const AugmentedCalibrationOptions& options)
+  : effect(kind)
+{
+  lower = {options.lower.k1_per_s2, options.lower.k2_per_s, options.lower.tau_e_s, options.lower.eta_m};
+  upper = {options.upper.k1_per_s2, options.upper.k2_per_s, options.upper.tau_e_s, options.upper.eta_m};
+  for (const EffectParameterSpec& spec : candidateEffect(kind).parameters)
+  {
+    lower.push_back(spec.lower);
+    upper.push_back(spec.upper);
+  }
+}
+
+std::vector<double> AugmentedParameterBox::physical(const std::vector<double>& unit) const
+{
+  std::vector<double> x(unit.size());
+  for (std::size_t i = 0; i < unit.size(); ++i)
+  {
+    x[i] = lower[i] + std::clamp(unit[i], 0.0, 1.0) * (upper[i] - lower[i]);
+  }
+  return x;
+}
+
+std::vector<double> AugmentedParameterBox::unit(const std::vector<double>& x) const
+{
+  std::vector<double> u(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i)
+  {
+    u[i] = std::clamp((x[i] - lower[i]) / (upper[i] - lower[i]), 0.0, 1.0);
+  }
+  return u;
+}
+
 namespace
 {
-constexpr std::size_t kBaseDimension = 4;
+constexpr std::size_t kBaseDimension = AugmentedParameterBox::kBaseDimension;
+AccParameters baseOf(const std::vector<double>& x) { return AugmentedParameterBox::baseOf(x); }
+std::vector<double> effectPart(const std::vector<double>& x) { return AugmentedParameterBox::effectPart(x); }
 
-/// Maps between the physical parameters and the unit box the solver works in, so that one
-/// trust-region radius suits gains of 0.05 and jam distances of 5 m alike.
-struct ParameterBox
-{
-  EffectKind effect;
-  std::vector<double> lower;
-  std::vector<double> upper;
-
-  ParameterBox(EffectKind kind, const AugmentedCalibrationOptions& options) : effect(kind)
-  {
-    lower = {options.lower.k1_per_s2, options.lower.k2_per_s, options.lower.tau_e_s, options.lower.eta_m};
-    upper = {options.upper.k1_per_s2, options.upper.k2_per_s, options.upper.tau_e_s, options.upper.eta_m};
-    for (const EffectParameterSpec& spec : candidateEffect(kind).parameters)
-    {
-      lower.push_back(spec.lower);
-      upper.push_back(spec.upper);
-    }
-  }
-  std::size_t dimension() const { return lower.size(); }
-
-  std::vector<double> physical(const std::vector<double>& unit) const
-  {
-    std::vector<double> x(unit.size());
-    for (std::size_t i = 0; i < unit.size(); ++i)
-    {
-      x[i] = lower[i] + std::clamp(unit[i], 0.0, 1.0) * (upper[i] - lower[i]);
-    }
-    return x;
-  }
-  std::vector<double> unit(const std::vector<double>& x) const
-  {
-    std::vector<double> u(x.size());
-    for (std::size_t i = 0; i < x.size(); ++i)
-    {
-      u[i] = std::clamp((x[i] - lower[i]) / (upper[i] - lower[i]), 0.0, 1.0);
-    }
-    return u;
-  }
-};
-
-AccParameters baseOf(const std::vector<double>& x) { return AccParameters{x[0], x[1], x[2], x[3]}; }
-
-std::vector<double> effectPart(const std::vector<double>& x)
-{
-  return std::vector<double>(x.begin() + kBaseDimension, x.end());
-}
 
 /// Evaluates the objective at physical points and remembers the best one ever seen, so the
 /// result never depends on where NLopt happens to stop or whether it throws.
 struct ObjectiveTracker
 {
-  const ParameterBox* box;
+  const AugmentedParameterBox* box;
   const std::vector<CarFollowingRun>* segments;
   std::vector<double> best_x;
   double best_value = std::numeric_limits<double>::infinity();
@@ -95,7 +83,7 @@ double nloptObjective(const std::vector<double>& x, std::vector<double>& /*gradi
 void localSolve(ObjectiveTracker* tracker, const std::vector<double>& start_physical,
                 const AugmentedCalibrationOptions& options)
 {
-  const ParameterBox& box = *tracker->box;
+  const AugmentedParameterBox& box = *tracker->box;
   nlopt::opt solver(nlopt::LN_BOBYQA, static_cast<unsigned>(box.dimension()));
   solver.set_lower_bounds(std::vector<double>(box.dimension(), 0.0));
   solver.set_upper_bounds(std::vector<double>(box.dimension(), 1.0));
@@ -214,7 +202,7 @@ std::vector<double> simulatedSpeeds(const std::vector<double>& x, EffectKind eff
   return speeds;
 }
 
-std::vector<double> standardErrors(const std::vector<double>& x, const ParameterBox& box,
+std::vector<double> standardErrors(const std::vector<double>& x, const AugmentedParameterBox& box,
                                    const std::vector<CarFollowingRun>& segments)
 {
   const std::size_t p = x.size();
@@ -348,7 +336,7 @@ AugmentedFit calibrateAugmented(EffectKind effect, const std::vector<CarFollowin
       throw std::invalid_argument("cannot calibrate on segment '" + run.name + "': " + problem);
     }
   }
-  const ParameterBox box(effect, options);
+  const AugmentedParameterBox box(effect, options);
   ObjectiveTracker tracker{&box, &segments, {}, std::numeric_limits<double>::infinity(), 0};
   std::vector<std::vector<double>> starts;
   if (warm_start != nullptr && effect != EffectKind::none)

@@ -145,6 +145,12 @@ DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const Dia
   }
   result.where = breakDownResiduals(result.test, result.baseline.test_simulations,
                                     dominantModel(result).test_simulations, options.breakdown);
+  if (options.with_stability_test)
+  {
+    result.stability_test = testAugmentedStringStability(dominantModel(result).fit, result.train, result.test,
+                                                         result.operating_speed_mps, options.calibration,
+                                                         options.stability_test);
+  }
   return result;
 }
 

@@ -168,6 +168,7 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
                     {"block_length_samples", number(r.selection.block_length_samples)},
                     {"has_runner_up", r.selection.has_runner_up},
                     {"best_versus_runner_up", improvementJson(r.selection.best_versus_runner_up)}};
+  j["stability_test"] = r.stability_test ? toJson(*r.stability_test) : nlohmann::json(nullptr);
   j["where"] = whereJson(r.where);
   j["operating_speed_mps"] = number(r.operating_speed_mps);
   j["sample_period_s"] = number(r.sample_period_s);

@@ -30,6 +30,31 @@ struct AugmentedCalibrationOptions
   double relative_x_tolerance = 1e-6;
 };
 
+/// The parameters of an augmented model as one vector x = (k1, k2, tau_e, eta, effect values in
+/// the catalogue's order), and the unit box every local solver of the diagnosis works in, so that
+/// one trust-region radius suits gains of 0.05 and jam distances of 5 m alike.
+struct AugmentedParameterBox
+{
+  static constexpr std::size_t kBaseDimension = 4;
+  EffectKind effect;
+  std::vector<double> lower;  ///< the options' base bounds, then the catalogue's effect bounds
+  std::vector<double> upper;
+
+  AugmentedParameterBox(EffectKind kind, const AugmentedCalibrationOptions& options);
+  std::size_t dimension() const { return lower.size(); }
+  /// Unit coordinates (clamped into [0, 1]) to physical values.
+  std::vector<double> physical(const std::vector<double>& unit) const;
+  /// Physical values to unit coordinates, clamped into the box.
+  std::vector<double> unit(const std::vector<double>& x) const;
+  static AccParameters baseOf(const std::vector<double>& x) { return AccParameters{x[0], x[1], x[2], x[3]}; }
+  static std::vector<double> effectPart(const std::vector<double>& x)
+  {
+    return std::vector<double>(x.begin() + kBaseDimension, x.end());
+  }
+  /// The effect settings of a physical x.
+  EffectSettings settingsOf(const std::vector<double>& x) const { return makeEffectSettings(effect, effectPart(x)); }
+};
+
 /// A calibrated model: base parameters, the effect and its parameters.
 struct AugmentedFit
 {

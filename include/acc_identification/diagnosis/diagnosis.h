@@ -1,12 +1,14 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "acc_identification/model/car_following_run.h"
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/augmented_stability.h"
+#include "acc_identification/diagnosis/augmented_stability_test.h"
 #include "acc_identification/diagnosis/candidate_effects.h"
 #include "acc_identification/diagnosis/effect_selection.h"
 #include "acc_identification/diagnosis/residual_breakdown.h"
@@ -26,6 +28,9 @@ struct DiagnosisOptions
   AugmentedCalibrationOptions calibration;
   SelectionOptions selection;
   BreakdownOptions breakdown;
+  /// The string-stability test of the chosen model (dominant effect, or the base model).
+  bool with_stability_test = true;
+  AugmentedStabilityTestOptions stability_test;
 };
 
 /// One model (base or augmented) fitted on the training halves and scored on the held-out halves.
@@ -56,6 +61,9 @@ struct DiagnosisResult
   SelectionResult selection;
   std::string selection_rule;
   ResidualBreakdown where;             ///< base model's held-out residual; "after" is the dominant effect
+  /// Is the chosen model (dominantModel()) string stable, decided from the held-out data
+  /// (testAugmentedStringStability); unset when options.with_stability_test is false.
+  std::optional<AugmentedStabilityTestResult> stability_test;
 };
 
 /// Splits every run, fits the base model and each candidate effect on the first parts, scores

@@ -1,0 +1,111 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "acc_identification/diagnosis/augmented_calibration.h"
+#include "acc_identification/diagnosis/candidate_effects.h"
+#include "acc_identification/model/acc_parameters.h"
+#include "acc_identification/model/car_following_run.h"
+#include "acc_identification/model/string_stability.h"
+
+namespace acc
+{
+/// Signed string-stability index of an augmented model (any effect of the catalogue):
+///   index = k1 * min over w of (1 - |Gamma(j w)|^2) / w^2,
+/// w on a logarithmic grid of 2000 frequencies from 1e-3 to 20 rad/s (10 Hz data show nothing faster), Gamma the
+/// augmented transfer function (augmentedTransferGain). index >= 0 exactly when |Gamma| <= 1 on
+/// the grid, i.e. when the model is string stable. For the paper's model
+///   k1 (1 - |Gamma|^2) / w^2 = k1 (w^2 + k1 m) / D(w),  D = (k1 - w^2)^2 + (k2 + k1 tau_e)^2 w^2,
+/// with m = k1 tau_e^2 + 2 k2 tau_e - 2 the margin, so its sign is the sign of m and its value
+/// tends to m as w -> 0: the index is the augmented counterpart of the margin, used where only its
+/// sign matters (the side constraints of the test below). 0 when k1 = 0.
+double augmentedStabilityIndex(const AccParameters& p, const EffectSettings& effects, double operating_speed_mps);
+
+/// The string-stability test of the model the diagnosis chose (an augmented model, or the base
+/// model when no effect is significant), the counterpart of calibration/stability_test.h:
+///  1. the chosen fit U (trained on the first parts) is on one side of the boundary; the best fit
+///     on the other side is searched on the same training data: NLopt COBYLA on the unit-scaled
+///     box of the base and effect parameters, with side * augmentedStabilityIndex >= 0 as a
+///     nonlinear inequality constraint, from U, from U moved onto the base model's boundary (tau_e
+///     solving k1 tau^2 + 2 k2 tau = 2) and from Halton points of the base start box (the effect
+///     at U's values). The best feasible point wins.
+///  2. both models are simulated on the held-out parts (each from its own measured start); the
+///     paired squared speed errors d_t = e_stable(t)^2 - e_unstable(t)^2 (each part's first
+///     sample, the measured start, left out) are resampled by a moving-block bootstrap
+///     (MovingBlockBootstrap, blocks of block_length_s within parts): p_value_stable_rejected
+///     tests H0 "the stable model predicts at least as well", p_value_unstable_rejected the
+///     mirror.
+///  3. "unstable" when p_value_stable_rejected <= alpha and the better model is strictly unstable
+///     (index < 0); "stable" in the mirror case; otherwise "undecided" with the reason (also
+///     when the held-out data are too short, or no fit exists on one side).
+/// Unlike the base model's test there is no interval of allowed margins: the augmented index is a
+/// sign, not a calibrated scale.
+struct AugmentedStabilityTestOptions
+{
+  double alpha = 0.05;
+  std::size_t bootstrap_replicates = 999;
+  std::uint64_t seed = 20240601;
+  /// Blocks of this length [s], shortened so that the held-out data hold at least min_blocks.
+  double block_length_s = 30.0;
+  std::size_t min_blocks = 4;
+  std::size_t min_held_out_samples = 300;
+  double min_held_out_duration_s = 80.0;
+  /// The side fit: Halton starts besides U and its projection, evaluations per start.
+  std::size_t halton_starts = 4;
+  int max_evaluations_per_start = 400;
+  double relative_x_tolerance = 1e-6;
+};
+
+/// One side's best model.
+struct AugmentedSideFit
+{
+  bool found = false;  ///< false when no point of that side was found (the rest is then unset)
+  AccParameters base;
+  std::vector<double> effect_values;  ///< in the catalogue's order
+  EffectSettings settings;
+  double stability_index = std::numeric_limits<double>::quiet_NaN();
+  double peak_gain_db = std::numeric_limits<double>::quiet_NaN();
+  double train_rmse_speed_mps = std::numeric_limits<double>::quiet_NaN();
+  double test_rmse_speed_mps = std::numeric_limits<double>::quiet_NaN();
+};
+
+struct AugmentedStabilityTestResult
+{
+  EffectKind effect = EffectKind::none;
+  StabilityVerdict verdict = StabilityVerdict::Undecided;
+  /// The verdict's p-value: of the side rejected when decided, else the smaller of the two.
+  double p_value = std::numeric_limits<double>::quiet_NaN();
+  double p_value_stable_rejected = std::numeric_limits<double>::quiet_NaN();
+  double p_value_unstable_rejected = std::numeric_limits<double>::quiet_NaN();
+  double alpha = 0.05;
+  AugmentedSideFit best_stable, best_unstable;
+  std::size_t held_out_samples = 0;
+  double held_out_duration_s = 0.0;
+  double block_length_s = 0.0;
+  std::size_t side_fit_evaluations = 0;
+  std::string reason;  ///< why this verdict, in one sentence with the numbers
+};
+
+/// Runs the test for `chosen` (fitted on `train`) with the data of the diagnosis: `train` the
+/// first parts, `test` the held-out parts, operating_speed_mps the linearisation speed. bounds:
+/// the search box of the base parameters (the diagnosis's own).
+AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& chosen,
+                                                          const std::vector<CarFollowingRun>& train,
+                                                          const std::vector<CarFollowingRun>& test,
+                                                          double operating_speed_mps,
+                                                          const AugmentedCalibrationOptions& bounds,
+                                                          const AugmentedStabilityTestOptions& options = {});
+
+/// The result as JSON: {effect, verdict, p_value, p_value_stable_rejected,
+/// p_value_unstable_rejected, alpha, best_stable: {parameters, effect_parameters, stability_index,
+/// peak_gain_db, train_rmse_speed, test_rmse_speed}, best_unstable: {...}, held_out_samples,
+/// block_length_s, reason}; non-finite numbers as null.
+nlohmann::json toJson(const AugmentedStabilityTestResult& result);
+
+}  // namespace acc

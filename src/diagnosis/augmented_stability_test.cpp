@@ -1,0 +1,322 @@
+#include "acc_identification/diagnosis/augmented_stability_test.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <nlopt.hpp>
+
+#include "acc_identification/diagnosis/augmented_simulation.h"
+#include "acc_identification/diagnosis/augmented_stability.h"
+#include "acc_identification/model/block_bootstrap.h"
+#include "acc_identification/model/halton_sequence.h"
+
+namespace acc
+{
+namespace
+{
+constexpr int kIndexGridPoints = 2000;
+constexpr double kIndexLowestFrequencyRadS = 1e-3;
+constexpr double kIndexHighestFrequencyRadS = 20.0;
+
+/// Tracks the best feasible point of one side seen by any solve, whatever NLopt returns.
+struct SideSearch
+{
+  const AugmentedParameterBox* box;
+  const std::vector<CarFollowingRun>* train;
+  double operating_speed_mps;
+  double side;  ///< +1: stable (index >= 0), -1: unstable (index <= 0)
+  std::vector<double> best_x;
+  double best_mse = std::numeric_limits<double>::infinity();
+  std::size_t evaluations = 0;
+
+  double index(const std::vector<double>& x) const
+  {
+    return augmentedStabilityIndex(AugmentedParameterBox::baseOf(x), box->settingsOf(x), operating_speed_mps);
+  }
+  double objective(const std::vector<double>& unit_x)
+  {
+    const std::vector<double> x = box->physical(unit_x);
+    const double mse = augmentedSpeedMse(AugmentedParameterBox::baseOf(x), box->settingsOf(x), *train);
+    ++evaluations;
+    if (mse < best_mse && side * index(x) >= 0.0)
+    {
+      best_mse = mse;
+      best_x = x;
+    }
+    return mse;
+  }
+};
+
+double sideObjective(const std::vector<double>& unit_x, std::vector<double>& /*gradient*/, void* data)
+{
+  return static_cast<SideSearch*>(data)->objective(unit_x);
+}
+
+/// NLopt's form c(x) <= 0 of side * index(x) >= 0.
+double sideConstraint(const std::vector<double>& unit_x, std::vector<double>& /*gradient*/, void* data)
+{
+  const SideSearch& search = *static_cast<SideSearch*>(data);
+  return -search.side * search.index(search.box->physical(unit_x));
+}
+
+void solveFrom(SideSearch* search, const std::vector<double>& start, const AugmentedStabilityTestOptions& options)
+{
+  const std::size_t n = search->box->dimension();
+  nlopt::opt solver(nlopt::LN_COBYLA, static_cast<unsigned>(n));
+  solver.set_lower_bounds(std::vector<double>(n, 0.0));
+  solver.set_upper_bounds(std::vector<double>(n, 1.0));
+  solver.set_min_objective(sideObjective, search);
+  solver.add_inequality_constraint(sideConstraint, search, 1e-9);
+  solver.set_maxeval(options.max_evaluations_per_start);
+  solver.set_xtol_rel(options.relative_x_tolerance);
+  solver.set_initial_step(0.05);
+  std::vector<double> x = search->box->unit(start);
+  double value = 0.0;
+  try
+  {
+    solver.optimize(x, value);
+  }
+  catch (const std::exception&)
+  {
+    // Round-off or a forced stop: the search already holds the best feasible point evaluated.
+  }
+}
+
+/// tau_e on the base model's boundary k1 tau^2 + 2 k2 tau = 2 for the start's k1 and k2 (the
+/// positive root), so that a start sits where the two sides meet.
+std::vector<double> ontoBaseBoundary(std::vector<double> x, const AugmentedParameterBox& box)
+{
+  const double k1 = x[0], k2 = x[1];
+  double tau = k1 > 1e-12 ? (-k2 + std::sqrt(k2 * k2 + 2.0 * k1)) / k1 : (k2 > 1e-12 ? 1.0 / k2 : x[2]);
+  x[2] = std::clamp(tau, box.lower[2], box.upper[2]);
+  return x;
+}
+
+std::vector<std::vector<double>> sideStarts(const std::vector<double>& chosen, const AugmentedParameterBox& box,
+                                            const AugmentedCalibrationOptions& bounds,
+                                            const AugmentedStabilityTestOptions& options)
+{
+  std::vector<std::vector<double>> starts = {chosen, ontoBaseBoundary(chosen, box)};
+  const AccParameters& lo = bounds.start_lower;
+  const AccParameters& hi = bounds.start_upper;
+  for (std::size_t i = 1; i <= options.halton_starts; ++i)
+  {
+    const std::vector<double> h = haltonSequencePoint(i, 3);
+    std::vector<double> x = chosen;  // eta and the effect from the chosen fit
+    x[0] = lo.k1_per_s2 + h[0] * (hi.k1_per_s2 - lo.k1_per_s2);
+    x[1] = lo.k2_per_s + h[1] * (hi.k2_per_s - lo.k2_per_s);
+    x[2] = lo.tau_e_s + h[2] * (hi.tau_e_s - lo.tau_e_s);
+    starts.push_back(x);
+  }
+  return starts;
+}
+
+std::vector<double> physicalOf(const AugmentedFit& fit)
+{
+  std::vector<double> x = {fit.base.k1_per_s2, fit.base.k2_per_s, fit.base.tau_e_s, fit.base.eta_m};
+  x.insert(x.end(), fit.effect_values.begin(), fit.effect_values.end());
+  return x;
+}
+
+AugmentedSideFit sideFitOf(const std::vector<double>& x, double train_mse, const AugmentedParameterBox& box,
+                           double operating_speed_mps)
+{
+  AugmentedSideFit side;
+  side.found = true;
+  side.base = AugmentedParameterBox::baseOf(x);
+  side.effect_values = AugmentedParameterBox::effectPart(x);
+  side.settings = box.settingsOf(x);
+  side.stability_index = augmentedStabilityIndex(side.base, side.settings, operating_speed_mps);
+  side.peak_gain_db = analyzeAugmentedStability(side.base, box.effect, side.settings, operating_speed_mps).peak_gain_db;
+  side.train_rmse_speed_mps = std::sqrt(train_mse);
+  return side;
+}
+
+/// Held-out squared speed errors of a model, the parts concatenated, each part's first sample
+/// (the measured start) left out. A diverged simulation counts at the divergence bound.
+std::vector<double> heldOutSquaredErrors(const AugmentedSideFit& model, const std::vector<CarFollowingRun>& test)
+{
+  std::vector<double> errors;
+  for (const CarFollowingRun& run : test)
+  {
+    const SimulatedFollower sim = simulateAugmentedFollower(model.base, model.settings, run);
+    for (std::size_t k = 1; k < run.size(); ++k)
+    {
+      const bool lost = sim.diverged && k >= sim.diverged_at_index;
+      const double e = lost ? kDivergenceBound : run.follower_speed_mps[k] - sim.speed_mps[k];
+      errors.push_back(e * e);
+    }
+  }
+  return errors;
+}
+
+double meanOf(const std::vector<double>& x)
+{
+  double sum = 0.0;
+  for (double v : x)
+    sum += v;
+  return x.empty() ? 0.0 : sum / static_cast<double>(x.size());
+}
+
+std::string describe(const AugmentedStabilityTestResult& r, double mean_difference)
+{
+  std::ostringstream out;
+  out.precision(4);
+  out << effectName(r.effect) << " model: held-out speed RMSE best stable " << r.best_stable.test_rmse_speed_mps
+      << " m/s (index " << r.best_stable.stability_index << "), best unstable " << r.best_unstable.test_rmse_speed_mps
+      << " m/s (index " << r.best_unstable.stability_index << "), mean paired squared-error difference "
+      << mean_difference << " m^2/s^2 over " << r.held_out_samples << " samples; p(stable rejected) = "
+      << r.p_value_stable_rejected << ", p(unstable rejected) = " << r.p_value_unstable_rejected
+      << " (moving-block bootstrap, blocks of " << r.block_length_s << " s)";
+  return out.str();
+}
+
+void decide(AugmentedStabilityTestResult* r, double mean_difference)
+{
+  const std::string numbers = describe(*r, mean_difference);
+  const bool unstable_strict = r->best_unstable.stability_index < 0.0;
+  const bool stable_strict = r->best_stable.stability_index > 0.0;
+  if (r->p_value_stable_rejected <= r->alpha && unstable_strict)
+  {
+    r->verdict = StabilityVerdict::Unstable;
+    r->p_value = r->p_value_stable_rejected;
+    r->reason = numbers + ": the data reject string stability";
+  }
+  else if (r->p_value_unstable_rejected <= r->alpha && stable_strict)
+  {
+    r->verdict = StabilityVerdict::Stable;
+    r->p_value = r->p_value_unstable_rejected;
+    r->reason = numbers + ": the data reject string instability";
+  }
+  else
+  {
+    r->verdict = StabilityVerdict::Undecided;
+    r->p_value = std::min(r->p_value_stable_rejected, r->p_value_unstable_rejected);
+    r->reason = numbers + ": neither side predicts the held-out data significantly better with a model strictly "
+                          "inside its side (alpha " + std::to_string(r->alpha) + ")";
+  }
+}
+
+nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+nlohmann::json sideJson(const AugmentedSideFit& s, EffectKind effect)
+{
+  if (!s.found)
+    return nullptr;
+  nlohmann::json effect_parameters = nlohmann::json::object();
+  const auto& specs = candidateEffect(effect).parameters;
+  for (std::size_t i = 0; i < specs.size() && i < s.effect_values.size(); ++i)
+    effect_parameters[specs[i].name] = number(s.effect_values[i]);
+  return {{"parameters",
+           {{"k1", number(s.base.k1_per_s2)},
+            {"k2", number(s.base.k2_per_s)},
+            {"tau_e", number(s.base.tau_e_s)},
+            {"eta", number(s.base.eta_m)}}},
+          {"effect_parameters", effect_parameters},
+          {"stability_index", number(s.stability_index)},
+          {"peak_gain_db", number(s.peak_gain_db)},
+          {"train_rmse_speed", number(s.train_rmse_speed_mps)},
+          {"test_rmse_speed", number(s.test_rmse_speed_mps)}};
+}
+}  // namespace
+
+double augmentedStabilityIndex(const AccParameters& p, const EffectSettings& effects, double operating_speed_mps)
+{
+  if (!(p.k1_per_s2 > 0.0))
+    return 0.0;
+  double lowest = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= kIndexGridPoints; ++i)
+  {
+    const double w = kIndexLowestFrequencyRadS *
+                     std::pow(kIndexHighestFrequencyRadS / kIndexLowestFrequencyRadS, static_cast<double>(i) / kIndexGridPoints);
+    const double gain = augmentedTransferGain(p, effects, operating_speed_mps, w);
+    lowest = std::min(lowest, (1.0 - gain * gain) / (w * w));
+  }
+  return p.k1_per_s2 * lowest;
+}
+
+AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& chosen,
+                                                          const std::vector<CarFollowingRun>& train,
+                                                          const std::vector<CarFollowingRun>& test,
+                                                          double operating_speed_mps,
+                                                          const AugmentedCalibrationOptions& bounds,
+                                                          const AugmentedStabilityTestOptions& options)
+{
+  AugmentedStabilityTestResult r;
+  r.effect = chosen.effect;
+  r.alpha = options.alpha;
+  std::vector<std::size_t> lengths;
+  for (const CarFollowingRun& run : test)
+  {
+    if (run.size() < 2)
+      continue;
+    lengths.push_back(run.size() - 1);
+    r.held_out_samples += run.size() - 1;
+    r.held_out_duration_s += run.time_s.back() - run.time_s.front();
+  }
+  if (r.held_out_samples < options.min_held_out_samples || r.held_out_duration_s < options.min_held_out_duration_s)
+  {
+    r.reason = "too few held-out samples (" + std::to_string(r.held_out_samples) + " over " +
+               std::to_string(r.held_out_duration_s) + " s; need " + std::to_string(options.min_held_out_samples) +
+               " samples and " + std::to_string(options.min_held_out_duration_s) + " s)";
+    return r;
+  }
+
+  // The chosen fit is one side's best; the other side's is searched.
+  const AugmentedParameterBox box(chosen.effect, bounds);
+  const std::vector<double> chosen_x = physicalOf(chosen);
+  const bool chosen_stable = augmentedStabilityIndex(chosen.base, chosen.settings, operating_speed_mps) >= 0.0;
+  SideSearch search{&box, &train, operating_speed_mps, chosen_stable ? -1.0 : 1.0};
+  for (const std::vector<double>& start : sideStarts(chosen_x, box, bounds, options))
+    solveFrom(&search, start, options);
+  r.side_fit_evaluations = search.evaluations;
+  AugmentedSideFit chosen_side = sideFitOf(chosen_x, chosen.train_mse_speed, box, operating_speed_mps);
+  AugmentedSideFit other_side;
+  if (!search.best_x.empty())
+    other_side = sideFitOf(search.best_x, search.best_mse, box, operating_speed_mps);
+  r.best_stable = chosen_stable ? chosen_side : other_side;
+  r.best_unstable = chosen_stable ? other_side : chosen_side;
+  if (!other_side.found)
+  {
+    r.reason = std::string("no ") + (chosen_stable ? "unstable" : "stable") + " " + effectName(chosen.effect) +
+               " model was found in the search box: the test cannot compare the two sides";
+    return r;
+  }
+
+  const std::vector<double> stable_errors = heldOutSquaredErrors(r.best_stable, test);
+  const std::vector<double> unstable_errors = heldOutSquaredErrors(r.best_unstable, test);
+  r.best_stable.test_rmse_speed_mps = std::sqrt(meanOf(stable_errors));
+  r.best_unstable.test_rmse_speed_mps = std::sqrt(meanOf(unstable_errors));
+  std::vector<double> difference(stable_errors.size());
+  for (std::size_t k = 0; k < difference.size(); ++k)
+    difference[k] = stable_errors[k] - unstable_errors[k];
+
+  const double sample_period_s = r.held_out_duration_s / static_cast<double>(r.held_out_samples);
+  const double block_s = std::min(options.block_length_s, r.held_out_duration_s / static_cast<double>(options.min_blocks));
+  const auto block_samples = static_cast<std::size_t>(std::max(1.0, std::round(block_s / sample_period_s)));
+  r.block_length_s = static_cast<double>(block_samples) * sample_period_s;
+  const MovingBlockBootstrap bootstrap(lengths, block_samples, options.bootstrap_replicates, options.seed);
+  r.p_value_stable_rejected = bootstrap.pValueMeanPositive(difference);
+  r.p_value_unstable_rejected = bootstrap.pValueMeanNegative(difference);
+  decide(&r, meanOf(difference));
+  return r;
+}
+
+nlohmann::json toJson(const AugmentedStabilityTestResult& r)
+{
+  return {{"effect", effectName(r.effect)},
+          {"verdict", toString(r.verdict)},
+          {"p_value", number(r.p_value)},
+          {"p_value_stable_rejected", number(r.p_value_stable_rejected)},
+          {"p_value_unstable_rejected", number(r.p_value_unstable_rejected)},
+          {"alpha", r.alpha},
+          {"best_stable", sideJson(r.best_stable, r.effect)},
+          {"best_unstable", sideJson(r.best_unstable, r.effect)},
+          {"held_out_samples", r.held_out_samples},
+          {"block_length_s", number(r.block_length_s)},
+          {"side_fit_evaluations", r.side_fit_evaluations},
+          {"reason", r.reason}};
+}
+
+}  // namespace acc
