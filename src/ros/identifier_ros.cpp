@@ -74,9 +74,9 @@ std::size_t sampleCount(const std::vector<CarFollowingRun>& segments)
   return samples;
 }
 
-bool allParametersDetermined(const std::optional<IdentifiableQuantities>& quantities)
+bool allDetermined(const std::optional<IdentifiableQuantities>& quantities, std::initializer_list<const char*> names)
 {
-  for (const char* name : {"k1", "k2", "tau_e", "eta"})
+  for (const char* name : names)
   {
     const QuantityEstimate* q = quantities ? quantities->find(name) : nullptr;
     if (q == nullptr || !q->determined)
@@ -101,13 +101,15 @@ void fillWindow(const OnlineUpdate& update, acc_identification::AccParameters& m
   setQuantity(q, "stability_margin", m.stability_margin, m.stability_margin_std_error);
   m.rmse_speed_mps = result.solved ? result.fit.rmse_speed_mps : kNaN;
   m.rmse_gap_m = result.solved ? result.fit.rmse_gap_m : kNaN;
-  // lambda2 and the band need all of k1, k2 and tau_e; the margin above may be known without them.
-  const bool all = result.solved && allParametersDetermined(q);
-  m.lambda2 = all ? result.stability.lambda2 : kNaN;
-  m.string_stable = all && result.stability.string_stable;
-  m.amplified_band_upper_rad_s = all ? result.stability.amplified_band_upper_rad_s : kNaN;
-  m.peak_gain_db = all ? result.stability.peak_gain_db : kNaN;
-  m.peak_frequency_rad_s = all ? result.stability.peak_frequency_rad_s : kNaN;
+  // lambda2, the band and the peak need k1, k2 and tau_e (not eta: the linearised dynamics do not
+  // depend on it); the margin above may be known even without them.
+  const bool dynamics = result.solved && allDetermined(q, {"k1", "k2", "tau_e"});
+  const bool all = dynamics && allDetermined(q, {"eta"});
+  m.lambda2 = dynamics ? result.stability.lambda2 : kNaN;
+  m.string_stable = dynamics && result.stability.string_stable;
+  m.amplified_band_upper_rad_s = dynamics ? result.stability.amplified_band_upper_rad_s : kNaN;
+  m.peak_gain_db = dynamics ? result.stability.peak_gain_db : kNaN;
+  m.peak_frequency_rad_s = dynamics ? result.stability.peak_frequency_rad_s : kNaN;
   m.solve_time_s = result.calibration.solve_time_s;
   m.optimizer_status = result.solved ? result.calibration.status : "NOT_SOLVED";
   m.identifiable = all;

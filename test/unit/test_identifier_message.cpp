@@ -139,4 +139,32 @@ TEST(IdentifierSamples, ImplausibleValuesAreSplitPointsLikeInBatch)
   EXPECT_FALSE(acc::toWindowSample(message, why).valid);
   EXPECT_TRUE(why.empty());
 }
+/// eta does not enter the linearised dynamics: a window that pins k1, k2 and tau_e but not eta
+/// (the ZalaZone drive of the demo) still publishes lambda2 and the band, yet is not "identifiable".
+TEST(IdentifierMessage, Lambda2NeedsTheDynamicsNotEta)
+{
+  acc::IdentificationOptions options;
+  options.multistart.starts = 8;
+  const auto run = acc::synthesizeRun(acc::paperMinimumSetting(), 300.0, 0.1, 25.0, 5);
+  acc::OnlineUpdate update;
+  update.window = acc::identifyAcc({run}, options);
+  ASSERT_TRUE(update.window.solved);
+  update.window_quantities =
+      acc::assessQuantities(update.window.calibration.parameters, update.window.uncertainty, {run});
+  for (auto& q : update.window_quantities->quantities)
+  {
+    if (q.name == "eta")
+    {
+      q.determined = false;
+      q.reason = "eta = 0.3 +- 1.3 m: standard error too large";
+    }
+  }
+  const auto m = acc::toMessage(update, 1000.0, 1300.0, 900.0);
+  EXPECT_TRUE(std::isnan(m.eta_m));
+  EXPECT_FALSE(m.identifiable);
+  EXPECT_DOUBLE_EQ(m.lambda2, update.window.stability.lambda2);
+  EXPECT_FALSE(std::isnan(m.amplified_band_upper_rad_s));
+  EXPECT_FALSE(m.string_stable);  // Table II's minimum setting is unstable
+}
+
 }  // namespace
