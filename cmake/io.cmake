@@ -1,13 +1,15 @@
 # Run files: canonical and OpenACC CSV read into runs, with the plausibility checks every reader
-# of runs (CSV or bag) shares. Used by every tool that takes runs.
+# of runs (CSV or bag) shares. Used by every tool that takes runs. openacc_file.cpp is the one
+# reader of OpenACC files (every layout); the runs and the NMEA conversion are views on it.
 acc_add_library(acc_run_io
   SOURCES
+    src/io/openacc_file.cpp
     src/io/run_csv.cpp
     src/io/run_plausibility.cpp
   LINK acc_model)
 
 if(CATKIN_ENABLE_TESTING)
-  catkin_add_gtest(test_run_csv test/unit/gtest_main.cpp test/unit/test_run_csv.cpp)
+  catkin_add_gtest(test_run_csv test/unit/gtest_main.cpp test/unit/test_run_csv.cpp test/unit/test_openacc_file.cpp)
   target_compile_definitions(test_run_csv PRIVATE ACC_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/test/data/runs")
   target_link_libraries(test_run_csv acc_run_io)
 endif()

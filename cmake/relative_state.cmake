@@ -22,11 +22,11 @@ endif()
 # The OpenACC converter writes NMEA with the gnss component's writer and its tests read the logs
 # back with the gnss component's reader: both need acc_gnss.
 if(TARGET acc_gnss)
+  # The OpenACC files themselves are read by acc_run_io's one reader (io/openacc_file.h).
   acc_add_library(acc_conversion
     SOURCES
-      src/conversion/openacc_trajectories.cpp
       src/conversion/openacc_to_nmea.cpp
-    LINK acc_gnss ${GeographicLib_LIBRARIES})
+    LINK acc_gnss acc_run_io ${GeographicLib_LIBRARIES})
   target_include_directories(acc_conversion PUBLIC ${GeographicLib_INCLUDE_DIRS})
   acc_add_tool(openacc_to_nmea LINK acc_conversion)
 

@@ -1,6 +1,7 @@
 #include <acc_identification/conversion/openacc_to_nmea.h>
 
 #include <acc_identification/gnss/nmea_writer.h>
+#include <acc_identification/gnss/utc_date.h>
 
 #include <GeographicLib/Geodesic.hpp>
 
@@ -32,9 +33,9 @@ double courseAt(const std::vector<OpenAccRow>& rows, std::size_t i, int v)
   if (from == to || rows[i].speed_mps[v] < kMinCourseSpeed_mps)
     return std::nan("");
   double distance = 0, azimuth1 = 0, azimuth2 = 0;
-  GeographicLib::Geodesic::WGS84().Inverse(rows[from].latitude_rad[v] * kRadToDeg, rows[from].longitude_rad[v] * kRadToDeg,
-                                           rows[to].latitude_rad[v] * kRadToDeg, rows[to].longitude_rad[v] * kRadToDeg,
-                                           distance, azimuth1, azimuth2);
+  GeographicLib::Geodesic::WGS84().Inverse(rows[from].latitude_deg[v], rows[from].longitude_deg[v],
+                                           rows[to].latitude_deg[v], rows[to].longitude_deg[v], distance, azimuth1,
+                                           azimuth2);
   if (distance < kMinCourseMotion_m)
     return std::nan("");
   // A central difference over 0.2 s (at most 9 m) is straight: the azimuth at its start will do.
@@ -43,7 +44,111 @@ double courseAt(const std::vector<OpenAccRow>& rows, std::size_t i, int v)
 }
 }  // namespace
 
-std::vector<GnssFix> openAccFixes(const OpenAccTrajectories& file, int vehicle)
+namespace
+{
+/// Why row i cannot give a row of the pair ("" when it can): the row unread, or a bad cell among
+/// the ones the fixes need. Other cars' cells do not matter.
+std::string pairRowProblem(const OpenAccFile& file, const OpenAccPair& pair, std::size_t i)
+{
+  if (!file.row_problems[i].empty())
+    return file.row_problems[i];
+  std::vector<std::string> columns{"Time", "IVS" + std::to_string(pair.leader_position)};
+  for (int k : {pair.leader_position, pair.follower_position})
+    for (const char* quantity : {"Speed", "Lat", "Lon"})
+      columns.push_back(quantity + std::to_string(k));
+  std::string problems;
+  for (const std::string& column : columns)
+  {
+    const std::string problem = file.cellProblem(i, column);
+    if (!problem.empty())
+      problems += (problems.empty() ? "" : ", ") + problem;
+  }
+  return problems;
+}
+}  // namespace
+
+double OpenAccPairTrack::dayStartUnixS() const
+{
+  return static_cast<double>(daysFromCivil(year, static_cast<unsigned>(month), static_cast<unsigned>(day))) *
+         kSecondsPerDay;
+}
+
+std::string OpenAccPairTrack::pairName() const
+{
+  return pair.follower_name + " (" + std::to_string(pair.follower_position) + ") behind " + pair.leader_name + " (" +
+         std::to_string(pair.leader_position) + ")";
+}
+
+OpenAccPairTrack openAccPairTrack(const OpenAccFile& file, const OpenAccPair& pair)
+{
+  OpenAccPairTrack track;
+  track.pair = pair;
+  track.year = file.metadata.year;
+  track.month = file.metadata.month;
+  track.day = file.metadata.day;
+  track.angle_unit_note = file.angle_unit_reason;
+  track.notes = file.notes;
+  const OpenAccVehicle* cars[2] = {file.vehicle(pair.leader_position), file.vehicle(pair.follower_position)};
+  for (const OpenAccVehicle* car : cars)
+    if (car == nullptr || !car->has_lat_lon)
+    {
+      track.error = file.path + ": " + track.pairName() + ": " +
+                    (car ? car->label() : std::string("a car")) + " has no Lat/Lon columns: no positions to convert";
+      return track;
+    }
+  for (std::size_t i = 0; i < file.rows(); ++i)
+  {
+    const std::string problem = pairRowProblem(file, pair, i);
+    if (!problem.empty())
+    {
+      track.skipped_rows.push_back(file.path + ":" + std::to_string(file.line[i]) + ": " + problem);
+      continue;
+    }
+    OpenAccRow row;
+    row.line = file.line[i];
+    row.time_of_day_s = file.time_s[i];
+    for (int v = 0; v < 2; ++v)
+    {
+      row.speed_mps[v] = cars[v]->speed_mps[i];
+      row.latitude_deg[v] = cars[v]->latitude_deg[i];
+      row.longitude_deg[v] = cars[v]->longitude_deg[i];
+      row.altitude_m[v] = cars[v]->altitude_m[i];
+      row.east_m[v] = cars[v]->east_m[i];
+      row.north_m[v] = cars[v]->north_m[i];
+    }
+    row.ivs_m = cars[0]->gap_to_follower_m[i];
+    track.rows.push_back(row);
+  }
+  return track;
+}
+
+OpenAccPairTrack readOpenAccPairTrack(const std::string& path, const OpenAccPairSelector& selector)
+{
+  const OpenAccFile file = readOpenAccFile(path);
+  OpenAccPairTrack failed;
+  failed.notes = file.notes;
+  if (!file.error.empty())
+  {
+    failed.error = file.error;
+    return failed;
+  }
+  if (selector.kind == OpenAccPairSelector::Kind::kAll)
+  {
+    failed.error = path + ": one pair at a time: choose a follower (" + describeAvailablePairs(file) + ")";
+    return failed;
+  }
+  const OpenAccPairChoice choice = selectOpenAccPairs(file, selector);
+  if (!choice.error.empty())
+  {
+    failed.error = choice.error;
+    return failed;
+  }
+  OpenAccPairTrack track = openAccPairTrack(file, choice.pairs.front());
+  track.notes.push_back(choice.note);
+  return track;
+}
+
+std::vector<GnssFix> openAccFixes(const OpenAccPairTrack& file, int vehicle)
 {
   const int v = vehicle == 1 ? 0 : 1;
   std::vector<GnssFix> fixes;
@@ -56,8 +161,8 @@ std::vector<GnssFix> openAccFixes(const OpenAccTrajectories& file, int vehicle)
     fix.gnss_time_s = day_start_s + row.time_of_day_s;
     fix.has_date = true;
     fix.receive_time_s = fix.gnss_time_s;
-    fix.latitude_deg = row.latitude_rad[v] * kRadToDeg;
-    fix.longitude_deg = row.longitude_rad[v] * kRadToDeg;
+    fix.latitude_deg = row.latitude_deg[v];
+    fix.longitude_deg = row.longitude_deg[v];
     fix.speed_over_ground_mps = row.speed_mps[v];
     fix.course_rad = courseAt(file.rows, i, v);
     fix.fix_quality = 1;

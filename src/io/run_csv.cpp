@@ -16,12 +16,10 @@ namespace acc
 {
 namespace
 {
-/// Column indices of the four canonical quantities in the file's header, and how to tell the
-/// follower's driving mode (OpenACC only).
+/// Column indices of the four canonical quantities in the file's header.
 struct ColumnMap
 {
   std::array<std::size_t, 4> index{};  ///< time, gap, follower speed, leader speed
-  std::optional<std::size_t> driver_index;
   std::size_t field_count = 0;
 };
 
@@ -56,33 +54,23 @@ std::optional<std::size_t> findColumn(const std::vector<std::string>& header, co
   return std::nullopt;
 }
 
-/// The header names of the canonical format, then of OpenACC (time, gap, follower, leader).
+/// The header names of the canonical format (time, gap, follower, leader); OpenACC files are
+/// told by their Date line and read by readOpenAccFile.
 std::optional<ColumnMap> mapColumns(const std::vector<std::string>& header)
 {
-  static const std::array<std::array<const char*, 4>, 2> kNames{
-      {{"time_s", "space_gap_m", "follower_speed_mps", "leader_speed_mps"},
-       {"Time", "IVS1", "Speed2", "Speed1"}}};
-  for (std::size_t format = 0; format < kNames.size(); ++format)
+  static const std::array<const char*, 4> kNames{"time_s", "space_gap_m", "follower_speed_mps", "leader_speed_mps"};
+  ColumnMap map;
+  for (std::size_t q = 0; q < 4; ++q)
   {
-    ColumnMap map;
-    bool complete = true;
-    for (std::size_t q = 0; q < 4 && complete; ++q)
+    const auto found = findColumn(header, kNames[q]);
+    if (!found)
     {
-      const auto found = findColumn(header, kNames[format][q]);
-      complete = found.has_value();
-      map.index[q] = found.value_or(0);
+      return std::nullopt;
     }
-    if (complete)
-    {
-      map.field_count = header.size();
-      if (format == 1)
-      {
-        map.driver_index = findColumn(header, "Driver2");
-      }
-      return map;
-    }
+    map.index[q] = *found;
   }
-  return std::nullopt;
+  map.field_count = header.size();
+  return map;
 }
 
 std::optional<double> parseNumber(const std::string& text)
@@ -114,8 +102,10 @@ std::string baseName(const std::string& path)
 class RunAssembler
 {
 public:
-  RunAssembler(std::string path, const RunPlausibilityBounds& bounds, RunFileContents& contents)
-    : path_(std::move(path)), name_(baseName(path_)), bounds_(bounds), contents_(contents)
+  /// Runs are named name, name#2, ...; every problem is "path:line: " + about + why.
+  RunAssembler(std::string path, std::string name, std::string about, const RunPlausibilityBounds& bounds,
+               RunFileContents& contents)
+    : path_(std::move(path)), name_(std::move(name)), about_(std::move(about)), bounds_(bounds), contents_(contents)
   {
   }
 
@@ -192,11 +182,12 @@ private:
 
   void report(std::size_t line_number, const std::string& why)
   {
-    contents_.problems.push_back(path_ + ":" + std::to_string(line_number) + ": " + why);
+    contents_.problems.push_back(path_ + ":" + std::to_string(line_number) + ": " + about_ + why);
   }
 
   std::string path_;
   std::string name_;
+  std::string about_;
   RunPlausibilityBounds bounds_;
   RunFileContents& contents_;
   CarFollowingRun current_;
@@ -228,13 +219,19 @@ std::string parseRow(const std::vector<std::string>& fields, const ColumnMap& ma
 }
 }  // namespace
 
-RunFileContents readRunFile(const std::string& path, const RunPlausibilityBounds& bounds)
+namespace
+{
+void checkBounds(const RunPlausibilityBounds& bounds)
 {
   const std::string bounds_problem = describeBoundsProblem(bounds);
   if (!bounds_problem.empty())
   {
     throw std::invalid_argument("readRunFile: unusable plausibility bounds: " + bounds_problem);
   }
+}
+
+RunFileContents readCanonicalFile(const std::string& path, const RunPlausibilityBounds& bounds)
+{
   std::ifstream file(path);
   if (!file)
   {
@@ -244,7 +241,7 @@ RunFileContents readRunFile(const std::string& path, const RunPlausibilityBounds
   std::string line;
   std::size_t line_number = 0;
   std::optional<ColumnMap> map;
-  // The header is the first line that names the four columns; OpenACC puts metadata before it.
+  // The header is the first line that names the four columns.
   while (!map && std::getline(file, line))
   {
     ++line_number;
@@ -256,10 +253,10 @@ RunFileContents readRunFile(const std::string& path, const RunPlausibilityBounds
   }
   if (!map)
   {
-    throw RunReadError(path + ": no header with time_s,space_gap_m,follower_speed_mps,leader_speed_mps "
-                              "(or OpenACC Time,IVS1,Speed2,Speed1) in the first 20 lines");
+    throw RunReadError(path + ": no header with time_s,space_gap_m,follower_speed_mps,leader_speed_mps in the "
+                              "first 20 lines, and no OpenACC Date line first");
   }
-  RunAssembler assembler(path, bounds, contents);
+  RunAssembler assembler(path, baseName(path), "", bounds, contents);
   while (std::getline(file, line))
   {
     ++line_number;
@@ -268,17 +265,11 @@ RunFileContents readRunFile(const std::string& path, const RunPlausibilityBounds
       continue;  // a blank line (usually the last) carries no sample
     }
     ++contents.data_rows;
-    const auto fields = splitFields(line);
     std::array<double, 4> values{};
-    const std::string malformed = parseRow(fields, *map, values);
+    const std::string malformed = parseRow(splitFields(line), *map, values);
     if (!malformed.empty())
     {
       assembler.reject(line_number, malformed);
-    }
-    else if (map->driver_index && fields[*map->driver_index] != "ACC")
-    {
-      ++contents.acc_off_rows;
-      assembler.split(line_number);
     }
     else
     {
@@ -287,6 +278,198 @@ RunFileContents readRunFile(const std::string& path, const RunPlausibilityBounds
   }
   assembler.split(line_number);
   return contents;
+}
+
+/// How the follower's rows are known to be on ACC: its Driverk column, else the file's ACC line.
+enum class AccSource
+{
+  kDriverColumn,
+  kOnThroughout,  ///< ACC line 1 or absent
+  kNeverKnown     ///< ACC line 0 (manual) or 2 (mixed) without a Driverk column
+};
+
+AccSource accSource(const OpenAccFile& file, const OpenAccVehicle& follower)
+{
+  if (follower.has_driver)
+  {
+    return AccSource::kDriverColumn;
+  }
+  return file.metadata.acc == 0 || file.metadata.acc == 2 ? AccSource::kNeverKnown : AccSource::kOnThroughout;
+}
+
+std::string describeAccSource(const OpenAccFile& file, const OpenAccPair& pair, AccSource source)
+{
+  const std::string follower = pair.follower_name + " (" + std::to_string(pair.follower_position) + ")";
+  const std::string driver = "Driver" + std::to_string(pair.follower_position);
+  switch (source)
+  {
+    case AccSource::kDriverColumn:
+      return file.path + ": " + follower + ": ACC on where " + driver + " is ACC; other rows split the run";
+    case AccSource::kOnThroughout:
+      return file.path + ": " + follower + ": no " + driver + " column; ACC on throughout, as the ACC line says (" +
+             (file.metadata.acc == 1 ? std::string("1") : std::string("absent: assumed")) + ")";
+    case AccSource::kNeverKnown:
+      break;
+  }
+  return file.path + ": " + follower + ": no " + driver + " column and the ACC line is " +
+         std::to_string(file.metadata.acc) + (file.metadata.acc == 0 ? " (manual driving)" : " (ACC and manual mixed)") +
+         ": no row is known to be on ACC, none used";
+}
+
+/// Why row i of the file cannot give a sample of the pair: the row unread, or a bad cell of the
+/// pair's own columns (other cars' cells do not matter). "" when the four values are numbers.
+std::string pairRowProblem(const OpenAccFile& file, const OpenAccPair& pair, std::size_t i)
+{
+  if (!file.row_problems[i].empty())
+  {
+    return file.row_problems[i];
+  }
+  const std::vector<std::string> columns{"Time", "IVS" + std::to_string(pair.leader_position),
+                                         "Speed" + std::to_string(pair.follower_position),
+                                         "Speed" + std::to_string(pair.leader_position)};
+  std::string problems;
+  for (const std::string& column : columns)
+  {
+    const std::string problem = file.cellProblem(i, column);
+    if (!problem.empty())
+    {
+      problems += (problems.empty() ? "" : ", ") + problem;
+    }
+  }
+  return problems;
+}
+
+/// One pair's runs: the four values of each row, through the same checks as a canonical CSV.
+RunFileContents readPairRuns(const OpenAccFile& file, const OpenAccPair& pair, const RunPlausibilityBounds& bounds,
+                             bool name_pair_in_problems)
+{
+  RunFileContents contents;
+  contents.pairs.push_back(pair);
+  const OpenAccVehicle& leader = *file.vehicle(pair.leader_position);
+  const OpenAccVehicle& follower = *file.vehicle(pair.follower_position);
+  const AccSource source = accSource(file, follower);
+  contents.notes.push_back(describeAccSource(file, pair, source));
+  const std::string about = name_pair_in_problems ? pair.follower_name + " behind " + pair.leader_name + ": " : "";
+  RunAssembler assembler(file.path, file.name + " " + pair.follower_name, about, bounds, contents);
+  for (std::size_t i = 0; i < file.rows(); ++i)
+  {
+    ++contents.data_rows;
+    const std::string problem = pairRowProblem(file, pair, i);
+    const bool acc_on = source == AccSource::kDriverColumn ? follower.driver[i] == "ACC"
+                                                           : source == AccSource::kOnThroughout;
+    if (!problem.empty())
+    {
+      assembler.reject(file.line[i], problem);
+    }
+    else if (!acc_on)
+    {
+      ++contents.acc_off_rows;
+      assembler.split(file.line[i]);
+    }
+    else
+    {
+      assembler.add(file.line[i], {file.time_s[i], leader.gap_to_follower_m[i], follower.speed_mps[i],
+                                   leader.speed_mps[i]});
+    }
+  }
+  assembler.split(file.line.empty() ? 0 : file.line.back());
+  contents.run_pairs.assign(contents.runs.size(), 0);
+  return contents;
+}
+
+OpenAccFile readOpenAccOrThrow(const std::string& path)
+{
+  OpenAccFile file = readOpenAccFile(path);
+  if (!file.error.empty())
+  {
+    throw RunReadError(file.error);
+  }
+  return file;
+}
+
+std::vector<OpenAccPair> choosePairsOrThrow(const OpenAccFile& file, const OpenAccPairSelector& selector,
+                                            std::vector<std::string>& notes)
+{
+  const OpenAccPairChoice choice = selectOpenAccPairs(file, selector);
+  if (!choice.error.empty())
+  {
+    throw RunReadError(choice.error);
+  }
+  notes = file.notes;
+  notes.push_back(choice.note);
+  return choice.pairs;
+}
+
+/// Appends one pair's contents to the file's: runs, counts, problems and notes.
+void append(RunFileContents& all, RunFileContents&& one)
+{
+  const std::size_t pair_index = all.pairs.size();
+  all.pairs.push_back(one.pairs.front());
+  for (CarFollowingRun& run : one.runs)
+  {
+    all.runs.push_back(std::move(run));
+    all.run_pairs.push_back(pair_index);
+  }
+  all.data_rows += one.data_rows;
+  all.rejected_rows += one.rejected_rows;
+  all.implausible_rows += one.implausible_rows;
+  all.time_holes += one.time_holes;
+  all.acc_off_rows += one.acc_off_rows;
+  all.problems.insert(all.problems.end(), one.problems.begin(), one.problems.end());
+  all.notes.insert(all.notes.end(), one.notes.begin(), one.notes.end());
+}
+
+RunFileContents readOpenAccRuns(const std::string& path, const RunPlausibilityBounds& bounds,
+                                const OpenAccPairSelector& selector)
+{
+  const OpenAccFile file = readOpenAccOrThrow(path);
+  RunFileContents contents;
+  const std::vector<OpenAccPair> pairs = choosePairsOrThrow(file, selector, contents.notes);
+  for (const OpenAccPair& pair : pairs)
+  {
+    append(contents, readPairRuns(file, pair, bounds, pairs.size() > 1));
+  }
+  return contents;
+}
+}  // namespace
+
+RunFileContents readRunFile(const std::string& path, const RunPlausibilityBounds& bounds)
+{
+  return readRunFile(path, bounds, OpenAccPairSelector::first());
+}
+
+RunFileContents readRunFile(const std::string& path, const RunPlausibilityBounds& bounds,
+                            const OpenAccPairSelector& selector)
+{
+  checkBounds(bounds);
+  if (looksLikeOpenAccFile(path))
+  {
+    return readOpenAccRuns(path, bounds, selector);
+  }
+  if (selector.kind == OpenAccPairSelector::Kind::kFollower)
+  {
+    throw RunReadError(path + ": " + selector.describe() +
+                       " chosen, but this is a canonical run CSV (no OpenACC Date line first): it holds one pair");
+  }
+  return readCanonicalFile(path, bounds);
+}
+
+AllPairRuns readAllPairRuns(const std::string& path, const RunPlausibilityBounds& bounds)
+{
+  checkBounds(bounds);
+  AllPairRuns all;
+  if (!looksLikeOpenAccFile(path))
+  {
+    all.pairs.push_back({OpenAccPair{}, readCanonicalFile(path, bounds)});
+    return all;
+  }
+  const OpenAccFile file = readOpenAccOrThrow(path);
+  for (const OpenAccPair& pair : choosePairsOrThrow(file, OpenAccPairSelector::all(), all.notes))
+  {
+    RunFileContents contents = readPairRuns(file, pair, bounds, false);
+    all.pairs.push_back({pair, std::move(contents)});
+  }
+  return all;
 }
 
 namespace
@@ -308,15 +491,30 @@ std::string describeCounts(const std::string& path, const RunFileContents& conte
 
 std::vector<CarFollowingRun> readRuns(const std::string& path, const RunPlausibilityBounds& bounds)
 {
-  RunFileContents contents = readRunFile(path, bounds);
+  return readRuns(path, bounds, OpenAccPairSelector::first());
+}
+
+std::vector<CarFollowingRun> readRuns(const std::string& path, const RunPlausibilityBounds& bounds,
+                                      const OpenAccPairSelector& selector)
+{
+  RunFileContents contents = readRunFile(path, bounds, selector);
+  return reportAndTakeRuns(path, contents, std::cerr);
+}
+
+std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileContents& contents, std::ostream& log)
+{
+  for (const std::string& note : contents.notes)
+  {
+    log << "note: " << note << "\n";
+  }
   for (const std::string& problem : contents.problems)
   {
-    std::cerr << "warning: " << problem << "\n";
+    log << "warning: " << problem << "\n";
   }
   const std::string counts = describeCounts(path, contents);
   if (!counts.empty())
   {
-    std::cerr << "warning: " << counts << "\n";
+    log << "warning: " << counts << "\n";
   }
   if (contents.runs.empty())
   {

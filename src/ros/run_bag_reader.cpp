@@ -203,17 +203,28 @@ BagRuns readRunsFromBag(const std::string& path, const std::string& topic, doubl
   return readRunsFromBag(path, topic, bounds);
 }
 
-std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std::string& topic,
-                                             double max_gap_s, std::ostream& log)
+RunArgument readRunArgument(const std::string& path, const std::string& topic, double max_gap_s, std::ostream& log,
+                            const OpenAccPairSelector& selector)
 {
   const std::string bag_suffix = ".bag";
   const bool is_bag = path.size() >= bag_suffix.size() &&
                       path.compare(path.size() - bag_suffix.size(), bag_suffix.size(), bag_suffix) == 0;
+  RunArgument argument;
   if (!is_bag)
   {
     RunPlausibilityBounds bounds;
     bounds.max_time_step_s = max_gap_s;
-    return readRuns(path, bounds);
+    RunFileContents contents = readRunFile(path, bounds, selector);
+    for (const OpenAccPair& pair : contents.pairs)
+    {
+      argument.pairs.push_back(pair.label());
+    }
+    argument.runs = reportAndTakeRuns(path, contents, log);
+    return argument;
+  }
+  if (selector.kind == OpenAccPairSelector::Kind::kFollower)
+  {
+    throw std::runtime_error(path + ": " + selector.describe() + " chosen, but a bag of RelativeState holds one pair");
   }
   BagRuns bag = readRunsFromBag(path, topic, max_gap_s);
   for (const std::string& problem : bag.problems)
@@ -224,7 +235,23 @@ std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std:
       << " outside the plausibility bounds, " << bag.out_of_order << " out of order, " << bag.time_holes
       << " holes in time, " << bag.time_resets << " time resets, " << bag.short_pieces << " pieces too short -> "
       << bag.runs.size() << " runs\n";
-  return std::move(bag.runs);
+  argument.runs = std::move(bag.runs);
+  return argument;
+}
+
+std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std::string& topic, double max_gap_s,
+                                             std::ostream& log)
+{
+  return readRunArgument(path, topic, max_gap_s, log, OpenAccPairSelector::first()).runs;
+}
+
+OpenAccPairSelector pairSelectorFromOptions(const std::string& follower, bool all_pairs)
+{
+  if (all_pairs)
+  {
+    return OpenAccPairSelector::all();
+  }
+  return follower.empty() ? OpenAccPairSelector::first() : OpenAccPairSelector::byFollower(follower);
 }
 
 }  // namespace acc

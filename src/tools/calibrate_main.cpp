@@ -25,17 +25,44 @@ struct LoadedRun
   std::string path;
 };
 
-std::vector<LoadedRun> loadRuns(const std::vector<std::string>& paths, const std::string& topic, double max_gap_s)
+/// The OpenACC pair(s) read from one RUN argument, for the output.
+struct PairsRead
+{
+  std::string path;
+  std::vector<std::string> pairs;
+};
+
+std::vector<LoadedRun> loadRuns(const std::vector<std::string>& paths, const std::string& topic, double max_gap_s,
+                                const acc::OpenAccPairSelector& selector, std::vector<PairsRead>& pairs_read)
 {
   std::vector<LoadedRun> loaded;
   for (const std::string& path : paths)
   {
-    for (auto& run : acc::readRunArgument(path, topic, max_gap_s, std::cerr))
+    acc::RunArgument argument = acc::readRunArgument(path, topic, max_gap_s, std::cerr, selector);
+    if (!argument.pairs.empty())
+    {
+      pairs_read.push_back({path, argument.pairs});
+    }
+    for (auto& run : argument.runs)
     {
       loaded.push_back({std::move(run), path});
     }
   }
   return loaded;
+}
+
+/// "OpenACC pairs read: part3.csv: Hyundai behind Rexton, positions 2/1", one line per file.
+void printPairsRead(const std::vector<PairsRead>& pairs_read, std::ostream& out)
+{
+  for (const PairsRead& file : pairs_read)
+  {
+    out << "OpenACC pair" << (file.pairs.size() > 1 ? "s" : "") << " read: " << file.path << ": ";
+    for (std::size_t i = 0; i < file.pairs.size(); ++i)
+    {
+      out << (i > 0 ? "; " : "") << file.pairs[i];
+    }
+    out << "\n";
+  }
 }
 
 /// Progress on stderr: a live counter on a terminal, a line per tenth otherwise.
@@ -67,7 +94,8 @@ int main(int argc, char** argv)
   std::size_t grid_nodes = 0;
   double max_gap_s = 0.5, alpha = 0.05;
   std::uint64_t seed = 0;
-  bool quiet = false, no_stability_test = false;
+  bool quiet = false, no_stability_test = false, all_pairs = false;
+  std::string follower;
   app.add_option("RUN", paths,
                  "a canonical CSV (time_s,space_gap_m,follower_speed_mps,leader_speed_mps), an OpenACC CSV, or a "
                  "bag of acc_identification/RelativeState")
@@ -94,12 +122,23 @@ int main(int argc, char** argv)
   auto* seed_option = app.add_option("--seed", seed, "seed of the test's bootstrap (default: the library's fixed seed)");
   app.add_flag("--no-stability-test", no_stability_test, "skip the string-stability test on held-out halves");
   app.add_flag("--quiet", quiet, "no progress display");
+  auto* follower_option =
+      app.add_option("--follower", follower,
+                     "OpenACC files: the follower of the pair to read, by its Vehicle_order name (e.g. BMW_I3, any "
+                     "case) or position (e.g. 3); its leader is the car directly ahead (default: the first pair, "
+                     "said on stderr)");
+  auto* all_pairs_option =
+      app.add_flag("--all-pairs", all_pairs,
+                   "OpenACC files: read every leader-follower pair; ONE model is fitted across all their runs, as "
+                   "across several RUN files (one model per car: fit each --follower separately)");
+  follower_option->excludes(all_pairs_option);
   CLI11_PARSE(app, argc, argv);
 
   std::vector<LoadedRun> loaded;
+  std::vector<PairsRead> pairs_read;
   try
   {
-    loaded = loadRuns(paths, topic, max_gap_s);
+    loaded = loadRuns(paths, topic, max_gap_s, acc::pairSelectorFromOptions(follower, all_pairs), pairs_read);
   }
   catch (const std::exception& error)
   {
@@ -202,11 +241,17 @@ int main(int argc, char** argv)
   {
     report.summary_test = acc::poolFits(test_fits);
   }
+  printPairsRead(pairs_read, std::cout);
   acc::printReport(report, std::cout);
   if (!json_path.empty())
   {
+    auto json = acc::reportToJson(report);
+    for (const PairsRead& file : pairs_read)
+    {
+      json["openacc_pairs"].push_back({{"path", file.path}, {"pairs", file.pairs}});
+    }
     std::ofstream file(json_path);
-    file << acc::reportToJson(report).dump(2) << "\n";
+    file << json.dump(2) << "\n";
     if (!file)
     {
       std::cerr << "error: cannot write " << json_path << "\n";

@@ -177,7 +177,8 @@ int main(int argc, char** argv)
   std::string topic = "relative_state", json_path, report_dir, plot_script = defaultPlotScript(), suite;
   double max_gap_s = 0.5;
   std::uint32_t seed = options.selection.seed;
-  bool no_plots = false;
+  bool no_plots = false, all_pairs = false;
+  std::string follower;
   app.add_option("RUN", paths, "canonical run CSV, OpenACC CSV, or a bag of acc_identification/RelativeState")
       ->check(CLI::ExistingFile);
   app.add_option("--topic", topic, "RelativeState topic in bags")->capture_default_str();
@@ -208,6 +209,15 @@ int main(int argc, char** argv)
   app.add_flag("--no-plots", no_plots, "write the tables and JSON of --report but draw nothing");
   app.add_option("--withheld-suite", suite, "synthetic runs with a hidden effect; prints the confusion matrix")
       ->check(CLI::IsMember({"small", "large"}));
+  auto* follower_option =
+      app.add_option("--follower", follower,
+                     "OpenACC files: the follower of the pair to read, by its Vehicle_order name (e.g. BMW_I3, any "
+                     "case) or position (e.g. 3); its leader is the car directly ahead (default: the first pair, "
+                     "said on stderr)");
+  auto* all_pairs_option = app.add_flag("--all-pairs", all_pairs,
+                                        "OpenACC files: read every leader-follower pair; all their runs are "
+                                        "diagnosed together, as the runs of several RUN files");
+  follower_option->excludes(all_pairs_option);
   CLI11_PARSE(app, argc, argv);
   options.selection.seed = seed;
   if (!applyEffects(effects, &options))
@@ -224,11 +234,22 @@ int main(int argc, char** argv)
     return 2;
   }
   std::vector<acc::CarFollowingRun> runs;
+  nlohmann::json pairs_read = nlohmann::json::array();
   try
   {
+    const acc::OpenAccPairSelector selector = acc::pairSelectorFromOptions(follower, all_pairs);
     for (const std::string& path : paths)
     {
-      for (acc::CarFollowingRun& run : acc::readRunArgument(path, topic, max_gap_s, std::cerr))
+      acc::RunArgument argument = acc::readRunArgument(path, topic, max_gap_s, std::cerr, selector);
+      for (const std::string& pair : argument.pairs)
+      {
+        std::cout << "OpenACC pair read: " << path << ": " << pair << "\n";
+      }
+      if (!argument.pairs.empty())
+      {
+        pairs_read.push_back({{"path", path}, {"pairs", argument.pairs}});
+      }
+      for (acc::CarFollowingRun& run : argument.runs)
       {
         runs.push_back(std::move(run));
       }
@@ -257,6 +278,7 @@ int main(int argc, char** argv)
   printSummary(result);
   nlohmann::json json = acc::diagnosisToJson(result);
   json["inputs"] = paths;
+  json["openacc_pairs"] = pairs_read;
   if (!json_path.empty() && !writeJson(json, json_path))
   {
     return 1;

@@ -17,7 +17,7 @@
 #include <sensor_msgs/NavSatFix.h>
 
 #include "acc_identification/Sentence.h"
-#include "acc_identification/conversion/openacc_trajectories.h"
+#include "acc_identification/conversion/openacc_to_nmea.h"
 #include "acc_identification/relative_state/gap_doppler_consistency.h"
 
 
@@ -47,7 +47,7 @@ TEST(RelativeStateDrivers, EveryEpochOfARealRunThroughTheDriversAndTheNode)
   ros::NodeHandle node, private_node("~");
   std::string csv;
   ASSERT_TRUE(private_node.getParam("csv", csv));
-  auto file = acc::readOpenAccTrajectories(csv);
+  auto file = acc::readOpenAccPairTrack(csv);
   ASSERT_TRUE(file.error.empty()) << file.error;
 
   Received received;
@@ -91,8 +91,8 @@ TEST(RelativeStateDrivers, EveryEpochOfARealRunThroughTheDriversAndTheNode)
     ASSERT_NE(at, by_centisecond.end()) << "no CSV row at " << s.header.stamp.toSec();
     const acc::OpenAccRow& r = *at->second;
     double distance_m = 0.0;
-    GeographicLib::Geodesic::WGS84().Inverse(r.latitude_rad[0] * 180 / M_PI, r.longitude_rad[0] * 180 / M_PI,
-                                             r.latitude_rad[1] * 180 / M_PI, r.longitude_rad[1] * 180 / M_PI, distance_m);
+    GeographicLib::Geodesic::WGS84().Inverse(r.latitude_deg[0], r.longitude_deg[0], r.latitude_deg[1],
+                                             r.longitude_deg[1], distance_m);
     sum_squares += std::pow(s.space_gap_m - (distance_m - kOffset_m), 2);
     speed_error_max = std::max({speed_error_max, std::abs(s.leader_speed_mps - r.speed_mps[0]),
                                 std::abs(s.follower_speed_mps - r.speed_mps[1])});

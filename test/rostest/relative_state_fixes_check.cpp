@@ -30,7 +30,7 @@ namespace
 constexpr double kOffset_m = 5.60;
 constexpr std::size_t kDelayEpochs = 12, kBurst = 5, kDropoutFirst = 100, kDropoutLast = 120, kLoopEpochs = 50;
 
-std::vector<acc::GnssFix> recorded(const acc::OpenAccTrajectories& file, int vehicle)
+std::vector<acc::GnssFix> recorded(const acc::OpenAccPairTrack& file, int vehicle)
 {
   fs::path log = fs::temp_directory_path() / ("relstate_fixes_" + std::to_string(vehicle) + "_" + std::to_string(::getpid()));
   std::string error;
@@ -74,7 +74,7 @@ TEST(RelativeStateNode, PairsLateBurstyLeaderFixesAndReportsDropoutsAndTimeReset
   ros::NodeHandle node, private_node("~");
   std::string csv;
   ASSERT_TRUE(private_node.getParam("csv", csv));
-  auto file = acc::readOpenAccTrajectories(csv);
+  auto file = acc::readOpenAccPairTrack(csv);
   ASSERT_TRUE(file.error.empty()) << file.error;
   auto leader = recorded(file, 1), follower = recorded(file, 2);
   ASSERT_EQ(leader.size(), 300u);
@@ -152,8 +152,8 @@ TEST(RelativeStateNode, PairsLateBurstyLeaderFixesAndReportsDropoutsAndTimeReset
     ASSERT_LT(row, file.rows.size());
     const auto& r = file.rows[row];
     double distance_m = 0.0;
-    GeographicLib::Geodesic::WGS84().Inverse(r.latitude_rad[0] * 180 / M_PI, r.longitude_rad[0] * 180 / M_PI,
-                                             r.latitude_rad[1] * 180 / M_PI, r.longitude_rad[1] * 180 / M_PI, distance_m);
+    GeographicLib::Geodesic::WGS84().Inverse(r.latitude_deg[0], r.longitude_deg[0], r.latitude_deg[1],
+                                             r.longitude_deg[1], distance_m);
     sum_squares += std::pow(s.space_gap_m - (distance_m - kOffset_m), 2);
     EXPECT_NEAR(s.follower_speed_mps, r.speed_mps[1], 3e-4);
     EXPECT_NEAR(s.leader_speed_mps, r.speed_mps[0], 3e-4);

@@ -40,17 +40,18 @@ fs::path freshDirectory(const std::string& name)
 
 TEST(OpenAccReader, ReadsDateColumnsRadiansAndReportsABadRowByLine)
 {
-  auto file = acc::readOpenAccTrajectories(kSmall);
+  auto file = acc::readOpenAccPairTrack(kSmall);
   ASSERT_TRUE(file.error.empty()) << file.error;
   EXPECT_EQ(file.year, 2020);
   EXPECT_EQ(file.month, 10);
   EXPECT_EQ(file.day, 27);
-  ASSERT_EQ(file.vehicle_order.size(), 2u);
-  EXPECT_EQ(file.vehicle_order[0], "Rexton");
+  EXPECT_EQ(file.pair.leader_name, "Rexton");
+  EXPECT_EQ(file.pair.follower_name, "Hyundai");
   ASSERT_EQ(file.rows.size(), 4u);
-  ASSERT_EQ(file.rejected_rows.size(), 1u);
-  EXPECT_EQ(file.rejected_rows[0], "line 9: column Speed1 is not a number");
-  EXPECT_NEAR(file.rows[0].latitude_rad[0], 0.7988238643223201, 1e-16);
+  ASSERT_EQ(file.skipped_rows.size(), 1u);
+  EXPECT_EQ(file.skipped_rows[0], kSmall + ":9: Speed1 not a number: 'not-a-number'");
+  // Radians in the file, degrees here: the same product as the conversion has always made.
+  EXPECT_EQ(file.rows[0].latitude_deg[0], 0.7988238643223201 * (180.0 / 3.14159265358979323846));
   EXPECT_TRUE(std::isnan(file.rows[0].altitude_m[0]));  // the leader has no altitude column
   EXPECT_NEAR(file.rows[0].altitude_m[1], 312.172, 1e-9);
   EXPECT_NEAR(file.rows[3].ivs_m, 33.086162397550545, 1e-12);
@@ -61,18 +62,19 @@ TEST(OpenAccReader, ReadsDateColumnsRadiansAndReportsABadRowByLine)
 TEST(OpenAccReader, RefusesAFileWithoutDateOrColumns)
 {
   fs::path dir = freshDirectory("openacc_reader");
-  std::ofstream(dir / "nodate.csv") << "Time,Speed1,Lat1,Lon1,Speed2,Lat2,Lon2\n1,2,0.1,0.1,2,0.1,0.1\n";
-  std::ofstream(dir / "nocolumns.csv") << "Date,27,10,2020\nTime,Speed\n1,2\n";
-  EXPECT_NE(acc::readOpenAccTrajectories((dir / "nodate.csv").string()).error.find("no Date line"), std::string::npos);
-  EXPECT_NE(acc::readOpenAccTrajectories((dir / "nocolumns.csv").string()).error.find("no column Speed1"),
+  std::ofstream(dir / "nodate.csv") << "Vehicle_order,A,B\nTime,Speed1,Lat1,Lon1,Speed2,Lat2,Lon2\n1,2,0.1,0.1,2,0.1,0.1\n";
+  std::ofstream(dir / "nocolumns.csv") << "Date,27,10,2020\nVehicle_order,A,B\nTime,Speed\n1,2\n";
+  EXPECT_NE(acc::readOpenAccPairTrack((dir / "nodate.csv").string()).error.find("no Date,DD,MM,YYYY line"),
             std::string::npos);
-  EXPECT_NE(acc::readOpenAccTrajectories((dir / "missing.csv").string()).error.find("cannot open"), std::string::npos);
+  EXPECT_NE(acc::readOpenAccPairTrack((dir / "nocolumns.csv").string()).error.find("no leader-follower pair"),
+            std::string::npos);
+  EXPECT_NE(acc::readOpenAccPairTrack((dir / "missing.csv").string()).error.find("cannot open"), std::string::npos);
   fs::remove_all(dir);
 }
 
 TEST(OpenAccToNmea, WritesGgaAndRmcAsAUbloxWouldAndReadsBack)
 {
-  auto file = acc::readOpenAccTrajectories(kSmall);
+  auto file = acc::readOpenAccPairTrack(kSmall);
   fs::path dir = freshDirectory("openacc_nmea");
   std::string error;
   auto leader = acc::openAccFixes(file, 1);
@@ -119,52 +121,55 @@ namespace
 const std::string kZalaZone = std::string(ACC_OPENACC_TEST_DATA) + "/zalazone_dynamic_part26_excerpt.csv";
 
 /// A platoon file (ZalaZone): degrees detected and said, the first pair by default and named,
-/// rows with an empty gap of THAT pair rejected and counted.
+/// rows with an empty gap of THAT pair skipped and listed.
 TEST(OpenAccPlatoon, DefaultPairDegreesAndItsOwnBadRows)
 {
-  const auto file = acc::readOpenAccTrajectories(kZalaZone);
+  const auto file = acc::readOpenAccPairTrack(kZalaZone);
   ASSERT_TRUE(file.error.empty()) << file.error;
   EXPECT_EQ(file.pairName(), "BMW_I3 (2) behind SMART_TARGET (1)");
-  EXPECT_EQ(file.available_followers, (std::vector<int>{2, 6, 7}));  // 3, 4 absent; 5's leader (4) absent
-  EXPECT_TRUE(file.positions_were_degrees);
-  EXPECT_NE(file.angle_unit_note.find("degrees"), std::string::npos) << file.angle_unit_note;
-  EXPECT_EQ(file.rows.size(), 32u);        // 40 rows, 8 with an empty IVS1
-  EXPECT_EQ(file.rejected_rows.size(), 8u);
+  EXPECT_NE(file.angle_unit_note.find("Lat/Lon in degrees"), std::string::npos) << file.angle_unit_note;
+  EXPECT_EQ(file.rows.size(), 32u);  // 40 rows, 8 with an empty IVS1
+  EXPECT_EQ(file.skipped_rows.size(), 8u);
   // Line 39 on: the BMW's position and the gap IVS1 are empty in the original.
-  EXPECT_EQ(file.rejected_rows.front(), "line 39: column Lat2 is not a number");
-  // Stored in radians whatever the file held: 46.89 degrees north.
-  EXPECT_NEAR(file.rows.front().latitude_rad[0], 46.89365044467663 * M_PI / 180.0, 1e-12);
-  EXPECT_EQ(file.vehicle_order.size(), 9u);  // the trailing comma of Vehicle_order is no vehicle
+  EXPECT_EQ(file.skipped_rows.front(), kZalaZone + ":39: IVS1 empty, Lat2 empty, Lon2 empty");
+  // Degrees as the file holds them: 46.89 degrees north.
+  EXPECT_EQ(file.rows.front().latitude_deg[0], 46.89365044467663);
+  // The default is said, never silent.
+  bool said = false;
+  for (const std::string& note : file.notes)
+    said = said || note.find("no follower chosen") != std::string::npos;
+  EXPECT_TRUE(said);
 }
 
 TEST(OpenAccPlatoon, FollowerByNameOrPositionAndItsLeaderIsTheCarDirectlyAhead)
 {
-  const auto by_name = acc::readOpenAccTrajectories(kZalaZone, {"tesla_model3"});
+  const auto by_name = acc::readOpenAccPairTrack(kZalaZone, acc::OpenAccPairSelector::byFollower("tesla_model3"));
   ASSERT_TRUE(by_name.error.empty()) << by_name.error;
   EXPECT_EQ(by_name.pairName(), "TESLA_MODEL3 (6) behind TESLA_MODELX (5)");
   EXPECT_EQ(by_name.rows.size(), 40u);  // IVS5 is complete: another pair's empty cells do not matter
-  const auto by_position = acc::readOpenAccTrajectories(kZalaZone, {"7"});
+  const auto by_position = acc::readOpenAccPairTrack(kZalaZone, acc::OpenAccPairSelector::byFollower("7"));
   ASSERT_TRUE(by_position.error.empty()) << by_position.error;
-  EXPECT_EQ(by_position.leader_position, 6);
+  EXPECT_EQ(by_position.pair.leader_position, 6);
   // TESLA_MODELX (5): the car directly ahead (JAGUAR_I_PACE, 4) has no data; never a car further ahead.
-  const auto missing_leader = acc::readOpenAccTrajectories(kZalaZone, {"TESLA_MODELX"});
+  const auto missing_leader = acc::readOpenAccPairTrack(kZalaZone, acc::OpenAccPairSelector::byFollower("TESLA_MODELX"));
   EXPECT_NE(missing_leader.error.find("no pair with follower 'TESLA_MODELX' (position 5"), std::string::npos)
       << missing_leader.error;
-  EXPECT_NE(missing_leader.error.find("pairs in this file: BMW_I3 (2) behind SMART_TARGET (1), TESLA_MODEL3 (6)"),
+  EXPECT_NE(missing_leader.error.find("JAGUAR_I_PACE (4), has no data"), std::string::npos) << missing_leader.error;
+  EXPECT_NE(missing_leader.error.find("pairs in this file: BMW_I3 behind SMART_TARGET, positions 2/1; TESLA_MODEL3"),
             std::string::npos)
       << missing_leader.error;
-  EXPECT_NE(acc::readOpenAccTrajectories(kZalaZone, {"NO_SUCH_CAR"}).error.find("in Vehicle_order"),
+  EXPECT_NE(acc::readOpenAccPairTrack(kZalaZone, acc::OpenAccPairSelector::byFollower("NO_SUCH_CAR"))
+                .error.find("in Vehicle_order"),
             std::string::npos);
 }
 
 /// A two-vehicle file (Casale) stays radians, checked against its E/N displacement.
 TEST(OpenAccPlatoon, CasaleStaysRadians)
 {
-  const auto file = acc::readOpenAccTrajectories(kSmall);
+  const auto file = acc::readOpenAccPairTrack(kSmall);
   ASSERT_TRUE(file.error.empty()) << file.error;
-  EXPECT_FALSE(file.positions_were_degrees);
-  EXPECT_NE(file.angle_unit_note.find("radians"), std::string::npos) << file.angle_unit_note;
-  EXPECT_EQ(file.leader_position, 1);
-  EXPECT_EQ(file.follower_position, 2);
+  EXPECT_NE(file.angle_unit_note.find("Lat/Lon in radians"), std::string::npos) << file.angle_unit_note;
+  EXPECT_EQ(file.pair.leader_position, 1);
+  EXPECT_EQ(file.pair.follower_position, 2);
 }
 }  // namespace

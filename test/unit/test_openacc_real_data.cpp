@@ -26,7 +26,6 @@ namespace fs = std::filesystem;
 namespace
 {
 constexpr double kCasaleOffset_m = 5.60;  // hypot(E1-E2, N1-N2) - IVS1 on every row
-constexpr double kRadToDeg = 180.0 / M_PI;
 constexpr double kConsistencyWindow_s = 10.0;
 
 struct RunCheck
@@ -40,7 +39,7 @@ class OpenAccRealData : public testing::TestWithParam<std::string>
 {
 };
 
-std::vector<acc::RelativeState> throughLogsAndPairing(const acc::OpenAccTrajectories& file, const fs::path& dir,
+std::vector<acc::RelativeState> throughLogsAndPairing(const acc::OpenAccPairTrack& file, const fs::path& dir,
                                                      acc::GapMode mode = acc::GapMode::kStraightLine)
 {
   std::string error;
@@ -71,7 +70,7 @@ std::vector<acc::RelativeState> throughLogsAndPairing(const acc::OpenAccTrajecto
   return estimator.takeStates();
 }
 
-RunCheck check(const acc::OpenAccTrajectories& file, const std::vector<acc::RelativeState>& states)
+RunCheck check(const acc::OpenAccPairTrack& file, const std::vector<acc::RelativeState>& states)
 {
   RunCheck result;
   result.rows = file.rows.size();
@@ -91,9 +90,8 @@ RunCheck check(const acc::OpenAccTrajectories& file, const std::vector<acc::Rela
       continue;
     const acc::OpenAccRow& row = *at->second;
     double distance_m = 0.0;
-    GeographicLib::Geodesic::WGS84().Inverse(row.latitude_rad[0] * kRadToDeg, row.longitude_rad[0] * kRadToDeg,
-                                             row.latitude_rad[1] * kRadToDeg, row.longitude_rad[1] * kRadToDeg,
-                                             distance_m);
+    GeographicLib::Geodesic::WGS84().Inverse(row.latitude_deg[0], row.longitude_deg[0], row.latitude_deg[1],
+                                             row.longitude_deg[1], distance_m);
     double error_m = state.space_gap_m - (distance_m - kCasaleOffset_m);
     sum_squares += error_m * error_m;
     result.gap_max_m = std::max(result.gap_max_m, std::abs(error_m));
@@ -118,9 +116,9 @@ TEST_P(OpenAccRealData, GapSpeedsAndDopplerConsistency)
 {
   const std::string path = std::string(ACC_OPENACC_DATA_DIR) + "/" + GetParam() + ".csv";
   ASSERT_TRUE(fs::exists(path)) << path << " missing: set -DACC_OPENACC_DATA_DIR to the OpenACC Casale folder";
-  auto file = acc::readOpenAccTrajectories(path);
+  auto file = acc::readOpenAccPairTrack(path);
   ASSERT_TRUE(file.error.empty()) << file.error;
-  EXPECT_TRUE(file.rejected_rows.empty());
+  EXPECT_TRUE(file.skipped_rows.empty());
   fs::path dir = fs::temp_directory_path() / ("openacc_" + GetParam() + "_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   auto states = throughLogsAndPairing(file, dir);

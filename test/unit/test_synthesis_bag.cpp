@@ -179,7 +179,7 @@ TEST(BundledBags, CasaleBagsAreTheConversionOfOpenAcc)
   for (const char* run : {"part3", "part4", "part5"})
   {
     SCOPED_TRACE(run);
-    const OpenAccTrajectories file = readOpenAccTrajectories(std::string(ACC_OPENACC_DATA_DIR) + "/" + run + ".csv");
+    const OpenAccPairTrack file = readOpenAccPairTrack(std::string(ACC_OPENACC_DATA_DIR) + "/" + run + ".csv");
     ASSERT_EQ(file.error, "");
     auto lines = bagLines(std::string(ACC_SYNTHESIS_BAGS_DIR) + "/casale_" + run + "_sentences.bag");
     EXPECT_TRUE(lines["/leader/nmea_sentence"] == nmeaLines(openAccFixes(file, 1)));

@@ -1,11 +1,13 @@
 #pragma once
 
 #include <cstddef>
+#include <iosfwd>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "acc_identification/model/car_following_run.h"
+#include "acc_identification/io/openacc_file.h"
 #include "acc_identification/io/run_plausibility.h"
 
 namespace acc
@@ -27,25 +29,72 @@ struct RunFileContents
   std::size_t time_holes = 0;         ///< steps longer than max_time_step_s (split points, no row lost)
   std::size_t acc_off_rows = 0;       ///< OpenACC rows where the follower was not on ACC (split points)
   std::vector<std::string> problems;  ///< "path:line: why", one per rejected row, hole or short piece
+  /// "path: ...", for OpenACC files: the pair(s) read and how they were chosen (also by default:
+  /// never silently), the cars without data or without a pair and why, how ACC on was told, the
+  /// file's bad cells outside the pair. Empty for a canonical CSV.
+  std::vector<std::string> notes;
+  /// OpenACC: the pair(s) the runs are of, in order; empty for a canonical CSV.
+  std::vector<OpenAccPair> pairs;
+  /// OpenACC: for each run, the index in pairs of its pair.
+  std::vector<std::size_t> run_pairs;
 };
 
 /// Reads a canonical run CSV (header time_s,space_gap_m,follower_speed_mps,leader_speed_mps, in
-/// any column order) or an OpenACC two-vehicle CSV (metadata lines, then a header with Time,
-/// IVS1, Speed2, Speed1 and Driver2). A bad row (wrong field count, not a number, not finite,
-/// a value outside the plausibility bounds, time not increasing) is rejected, listed with its
-/// line number, and splits the run, so that no simulation ever integrates across it. A time step
-/// longer than bounds.max_time_step_s splits the run too, keeping both rows, and is listed.
-/// OpenACC rows with Driver2 != ACC split the run. Pieces with fewer than two samples are listed
-/// in problems. Runs are named after the file ("part3"), with "#2", "#3"... for later pieces.
-/// Throws RunReadError when the file cannot be opened or has no recognisable header, and
+/// any column order) or an OpenACC file of any layout (two vehicles or a platoon; read by
+/// readOpenAccFile, openacc_file.h) as the runs of one leader-follower pair: by default the first
+/// pair the file holds, said in notes. A bad row (wrong field count, not a number, not finite, a
+/// value outside the plausibility bounds, time not increasing) is rejected, listed with its line
+/// number, and splits the run, so that no simulation ever integrates across it. For OpenACC only
+/// the pair's own cells count (Time, IVS(k-1), Speed(k), Speed(k-1)): a NaN in another car's
+/// column does not touch it. A time step longer than bounds.max_time_step_s splits the run too,
+/// keeping both rows, and is listed. OpenACC rows where the follower's Driverk is not ACC split
+/// the run; without a Driverk column, the ACC metadata line tells (1 or absent: ACC on
+/// throughout; 0 or 2: no row is known to be on ACC). Pieces with fewer than two samples are
+/// listed in problems. Runs are named after the file ("part3"; OpenACC: the file and the
+/// follower, "dynamic_part12 BMW_I3"), with "#2", "#3"... for later pieces.
+/// Throws RunReadError when the file cannot be opened, has no recognisable header or metadata, or
+/// the OpenACC pair chosen is not in the file (the message lists the pairs that are), and
 /// std::invalid_argument when the bounds are unusable (describeBoundsProblem); never for a row.
 RunFileContents readRunFile(const std::string& path, const RunPlausibilityBounds& bounds = RunPlausibilityBounds{});
 
-/// readRunFile() for tools: returns the runs, and writes every problem (and the counts of rejected
-/// rows and holes) to stderr, so nothing is dropped silently. Throws as readRunFile, and
+/// readRunFile() with the OpenACC pair(s) to read: the first (the default above), one follower by
+/// name or position (OpenAccPairSelector::byFollower("BMW_I3"), ("3")), or all pairs (every pair's
+/// runs in one list, counts summed over the pairs, each problem naming its pair). A canonical CSV
+/// holds one pair: choosing a follower there throws RunReadError.
+RunFileContents readRunFile(const std::string& path, const RunPlausibilityBounds& bounds,
+                            const OpenAccPairSelector& selector);
+
+/// One OpenACC pair's runs, with their own counts and problems.
+struct PairRunContents
+{
+  OpenAccPair pair;  ///< empty names and positions 0 for a canonical CSV
+  RunFileContents contents;
+};
+
+/// Every pair of a file, each read as readRunFile reads one.
+struct AllPairRuns
+{
+  std::vector<std::string> notes;  ///< the file's notes and the pairs read
+  std::vector<PairRunContents> pairs;
+};
+
+/// The runs of every pair of an OpenACC file, pair by pair (a canonical CSV: its one pair). Throws
+/// as readRunFile, and RunReadError when the file holds no pair.
+AllPairRuns readAllPairRuns(const std::string& path, const RunPlausibilityBounds& bounds = RunPlausibilityBounds{});
+
+/// readRunFile() for tools: returns the runs, and writes every note and problem (and the counts of
+/// rejected rows and holes) to stderr, so nothing is dropped silently. Throws as readRunFile, and
 /// RunReadError when no run is usable.
 std::vector<CarFollowingRun> readRuns(const std::string& path,
                                       const RunPlausibilityBounds& bounds = RunPlausibilityBounds{});
+
+/// readRuns() with the OpenACC pair(s) to read (see readRunFile).
+std::vector<CarFollowingRun> readRuns(const std::string& path, const RunPlausibilityBounds& bounds,
+                                      const OpenAccPairSelector& selector);
+
+/// What readRuns() does with what readRunFile() read: writes every note ("note: ") and problem
+/// ("warning: ") and the counts to log, and takes the runs; throws RunReadError when none is usable.
+std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileContents& contents, std::ostream& log);
 
 /// Writes one run as a canonical CSV (full double precision). Throws RunReadError on I/O failure.
 void writeRunCsv(const std::string& path, const CarFollowingRun& run);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "acc_identification/model/car_following_run.h"
+#include "acc_identification/io/openacc_file.h"
 #include "acc_identification/io/run_plausibility.h"
 
 namespace acc
@@ -39,11 +40,30 @@ BagRuns readRunsFromBag(const std::string& path, const std::string& topic, const
 BagRuns readRunsFromBag(const std::string& path, const std::string& topic = "relative_state",
                         double max_gap_s = 0.5);
 
+/// What one RUN argument gave.
+struct RunArgument
+{
+  std::vector<CarFollowingRun> runs;
+  /// The OpenACC pair(s) the runs are of ("BMW_I3 behind SMART_TARGET, positions 3/2"); empty for
+  /// a canonical CSV and a bag.
+  std::vector<std::string> pairs;
+};
+
 /// Reads one RUN argument of the command-line tools (calibrate, diagnose): a bag (path ending in
 /// .bag, read with readRunsFromBag, with an account of every message not used written to log) or
-/// a canonical / OpenACC CSV (readRuns). Both are split at holes longer than max_gap_s. Throws
-/// std::runtime_error with the reason.
+/// a canonical / OpenACC CSV (readRunFile, its notes and problems written to log). Both are split
+/// at holes longer than max_gap_s. selector chooses the pair(s) of an OpenACC file (--follower,
+/// --all-pairs); a bag or a canonical CSV holds one pair, so choosing a follower there is an
+/// error. Throws std::runtime_error with the reason.
+RunArgument readRunArgument(const std::string& path, const std::string& topic, double max_gap_s, std::ostream& log,
+                            const OpenAccPairSelector& selector);
+
+/// readRunArgument() with the first pair of an OpenACC file; the runs only.
 std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std::string& topic,
                                              double max_gap_s, std::ostream& log);
+
+/// The selector of the tools' --follower NAME|POSITION and --all-pairs options (mutually
+/// exclusive): all pairs, one follower, or by default the first pair.
+OpenAccPairSelector pairSelectorFromOptions(const std::string& follower, bool all_pairs);
 
 }  // namespace acc

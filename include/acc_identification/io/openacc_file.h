@@ -1,0 +1,177 @@
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace acc
+{
+/// The one reader of OpenACC files (JRC OpenACC database, Makridis et al., Transportation Research
+/// Part C 125 (2021) 103047; (c) European Union, CC BY 4.0), whatever the campaign's layout:
+/// two-vehicle runs (Casale: Time, Speed1, Lat1, Lon1, E1, N1, Speed2, Lat2, Lon2, Alt2, E2, N2, U2,
+/// IVS1, Driver2) and platoons (ZalaZone: Time, per vehicle k Speedk, Ek, Nk, Lonk, Latk, Altk, then
+/// IVS1..IVS(n-1)). Every file starts with metadata lines (Date,DD,MM,YYYY; Vehicle_order,NAME1,...;
+/// Number_of_vehicles,N; ACC,0|1|2; Distance_setting,S|M|L|min|max|SL), then the header line.
+/// Columns are found by name in any order; the number k of a column is the car's position in
+/// Vehicle_order (1 = the platoon's leader). The run reader (run_csv.h) and the NMEA converter
+/// (conversion/openacc_to_nmea.h) are views on this one.
+
+/// The file's metadata lines.
+struct OpenAccMetadata
+{
+  int year = 0, month = 0, day = 0;         ///< the Date line (a real day, checked)
+  std::vector<std::string> vehicle_order;   ///< every car of the test, leader first (trailing comma dropped)
+  int number_of_vehicles = -1;              ///< the Number_of_vehicles line; -1 when absent or not a number
+  int acc = -1;                             ///< the ACC line: 0 manual, 1 ACC throughout, 2 mixed; -1 when absent
+  std::string distance_setting;             ///< the Distance_setting line (S, M, L, min, max, SL...); "" when absent
+};
+
+/// The unit the file's Lat/Lon cells were found to be in (see OpenAccFile::angle_unit_reason).
+enum class OpenAccAngleUnit
+{
+  kRadians,
+  kDegrees
+};
+
+/// "radians" or "degrees".
+const char* angleUnitName(OpenAccAngleUnit unit);
+
+/// One car whose columns are in the file, one value per data row. NaN wherever the cell is empty,
+/// NaN or not a number (each such cell is in OpenAccFile::bad_cells), and in every row when the
+/// column is absent (its has_ flag is false).
+struct OpenAccVehicle
+{
+  int position = 0;  ///< 1-based position in Vehicle_order, the k of its columns
+  std::string name;  ///< its Vehicle_order name, or "vehicle k" when Vehicle_order is shorter
+  std::vector<double> speed_mps;      ///< Speedk (Doppler)
+  std::vector<double> east_m;         ///< Ek, local ENU plane of the file
+  std::vector<double> north_m;        ///< Nk
+  std::vector<double> up_m;           ///< Uk (Casale's follower)
+  std::vector<double> altitude_m;     ///< Altk
+  std::vector<double> latitude_deg;   ///< Latk in DEGREES, whatever unit the file holds (see angle_unit)
+  std::vector<double> longitude_deg;  ///< Lonk in degrees
+  std::vector<std::string> driver;    ///< Driverk cells as written ("ACC", "Human"); empty without the column
+  std::vector<double> gap_to_follower_m;  ///< IVSk: bumper-to-bumper gap to the car at position k+1
+  bool has_speed = false, has_east_north = false, has_up = false, has_altitude = false, has_lat_lon = false,
+       has_driver = false, has_gap_to_follower = false;
+  std::size_t speed_values = 0;  ///< finite Speedk cells
+  std::size_t gap_values = 0;    ///< finite IVSk cells
+
+  /// "BMW_I3 (3)".
+  std::string label() const;
+};
+
+/// One cell that holds no number: empty, NaN (or inf), or text that is not a number. Its value is NaN.
+struct OpenAccBadCell
+{
+  std::size_t row = 0;   ///< index into the data rows
+  std::size_t line = 0;  ///< 1-based line in the file
+  std::string column;    ///< "IVS1"
+  std::string text;      ///< as written ("" when empty)
+  /// "IVS1 empty", "Speed5 NaN", "Alt2 not a number: 'n/a'".
+  std::string describe() const;
+};
+
+/// Everything read from one OpenACC file. Nothing is dropped silently: every data row is kept (a
+/// malformed row with all its values NaN), and every bad cell and row is counted and listed.
+struct OpenAccFile
+{
+  std::string path;
+  std::string name;  ///< the file's name without folder and extension: "dynamic_part12"
+  OpenAccMetadata metadata;
+  std::vector<std::string> header;
+  std::vector<std::size_t> line;  ///< 1-based file line of each data row
+  std::vector<double> time_s;     ///< the Time column (seconds; Casale: since UTC midnight); NaN where bad
+  std::vector<OpenAccVehicle> vehicles;  ///< the cars with data in the file, by position
+  /// The unit the Lat/Lon cells are in (the database's notes say radians; ZalaZone files hold
+  /// degrees), detected per file, and why: values beyond +-pi/2 (Lat) or +-pi (Lon) cannot be
+  /// radians; otherwise the unit in which consecutive fixes move as far as the E/N columns say.
+  OpenAccAngleUnit angle_unit = OpenAccAngleUnit::kRadians;
+  std::string angle_unit_reason;
+  std::vector<std::string> row_problems;  ///< per row: why the whole row is unread ("" when it is read)
+  std::vector<OpenAccBadCell> bad_cells;  ///< in row order
+  std::map<std::string, std::size_t> bad_cells_by_column;
+  std::size_t bad_rows = 0;  ///< rows with a bad cell or unread as a whole
+  /// "path:line: why", one per row with a bad cell (naming every one) or unread as a whole.
+  std::vector<std::string> problems;
+  /// "path: ...": what the file holds and what was made of it (the unit and why, the cars without
+  /// data, the followers without a pair and why, metadata that disagree, columns not used).
+  std::vector<std::string> notes;
+  /// Non-empty when the file cannot be read at all (missing, no Date or Vehicle_order line, no
+  /// header with a Time column, a column named twice); the fields above then hold what was read.
+  std::string error;
+
+  std::size_t rows() const { return time_s.size(); }
+  /// The car at this position, or nullptr when it has no data in the file.
+  const OpenAccVehicle* vehicle(int position) const;
+  /// The car's Vehicle_order name ("vehicle k" beyond it), whether or not it has data.
+  std::string vehicleName(int position) const;
+  /// Why the cell of this column in this row is bad ("IVS1 empty"), or "" when it holds a number
+  /// (or the row is unread as a whole: see row_problems).
+  std::string cellProblem(std::size_t row, const std::string& column) const;
+};
+
+/// Reads an OpenACC file; never throws for the file's content (see OpenAccFile::error).
+OpenAccFile readOpenAccFile(const std::string& path);
+
+/// Whether the file looks like an OpenACC file: its first line is a Date line. (A canonical run
+/// CSV starts with its header.)
+bool looksLikeOpenAccFile(const std::string& path);
+
+/// A leader-follower pair: the follower and the car DIRECTLY ahead of it in Vehicle_order.
+struct OpenAccPair
+{
+  int leader_position = 0, follower_position = 0;
+  std::string leader_name, follower_name;
+  /// "BMW_I3 behind SMART_TARGET, positions 3/2".
+  std::string label() const;
+};
+
+/// The pairs the file holds: the follower at position k and the car at k-1 both with Speed data,
+/// and their gap IVS(k-1) with data. The leader is always the car directly ahead: when it has no
+/// data, the follower has no pair (never the car further ahead; describePairlessFollower says so).
+std::vector<OpenAccPair> availablePairs(const OpenAccFile& file);
+
+/// Why the car at this position is not the follower of an available pair ("" when it is).
+std::string describePairlessFollower(const OpenAccFile& file, int follower_position);
+
+/// The available pairs as a list for messages: "MERCEDES_GLE450 behind SMART_TARGET, positions 2/1; ..."
+/// or "none".
+std::string describeAvailablePairs(const OpenAccFile& file);
+
+/// Which pair(s) of a file to read.
+struct OpenAccPairSelector
+{
+  enum class Kind
+  {
+    kFirst,     ///< the first available pair (said in a note, never silently)
+    kFollower,  ///< the pair of one follower, by name (case-insensitive) or position ("3")
+    kAll        ///< every available pair
+  };
+  Kind kind = Kind::kFirst;
+  std::string follower;  ///< for kFollower
+
+  static OpenAccPairSelector first() { return {}; }
+  static OpenAccPairSelector all() { return {Kind::kAll, ""}; }
+  static OpenAccPairSelector byFollower(const std::string& name_or_position) { return {Kind::kFollower, name_or_position}; }
+  /// "" -> first, "all" (any case) -> all, anything else -> that follower.
+  static OpenAccPairSelector parse(const std::string& text);
+  /// "the first available pair", "all pairs", "follower 'BMW_I3'".
+  std::string describe() const;
+};
+
+/// The pairs a selector picks in a file.
+struct OpenAccPairChoice
+{
+  std::vector<OpenAccPair> pairs;  ///< empty when error is set
+  /// Why the choice is not available, with the list of the pairs that are:
+  /// "path: no pair with follower 'TESLA_MODELX' (position 5): ...; pairs in this file: ...".
+  std::string error;
+  /// "path: pair read: ... (the first available pair; no follower chosen; others: ...)".
+  std::string note;
+};
+
+OpenAccPairChoice selectOpenAccPairs(const OpenAccFile& file, const OpenAccPairSelector& selector);
+
+}  // namespace acc

@@ -1,0 +1,1069 @@
+#include "acc_identification/io/openacc_file.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <utility>
+
+namespace acc
+{
+namespace
+{
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kPi = 3.14159265358979323846;
+// The same constant as the NMEA conversion has always used, so that radians give the same degrees
+// to the last bit (the bundled Casale bags are compared byte for byte).
+constexpr double kRadToDeg = 180.0 / kPi;
+constexpr double kEarthRadiusM = 6371000.0;
+// Metadata and the header are at the top; a file without a Time header this far down is not OpenACC.
+constexpr std::size_t kMaxLinesBeforeHeader = 50;
+// Fixes further apart than this are not consecutive (holes, cuts) for the unit check.
+constexpr double kMaxConsecutiveStepS = 1.0;
+// Below this much motion by E/N, the unit check cannot tell radians from degrees.
+constexpr double kMinMotionForUnitCheckM = 1.0;
+
+std::string trim(const std::string& text)
+{
+  const auto first = text.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos)
+  {
+    return "";
+  }
+  const auto last = text.find_last_not_of(" \t\r\n");
+  return text.substr(first, last - first + 1);
+}
+
+/// Every comma separates: "a,b," is three fields, the last empty.
+std::vector<std::string> splitFields(const std::string& line)
+{
+  std::vector<std::string> fields;
+  std::size_t start = 0;
+  while (true)
+  {
+    const auto comma = line.find(',', start);
+    fields.push_back(trim(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
+    if (comma == std::string::npos)
+    {
+      break;
+    }
+    start = comma + 1;
+  }
+  return fields;
+}
+
+bool isBlank(const std::string& line)
+{
+  return line.find_first_not_of(" \t\r\n,") == std::string::npos;
+}
+
+std::string upper(std::string text)
+{
+  for (char& c : text)
+  {
+    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  }
+  return text;
+}
+
+std::optional<long> parseInteger(const std::string& text)
+{
+  if (text.empty())
+  {
+    return std::nullopt;
+  }
+  char* end = nullptr;
+  errno = 0;
+  const long value = std::strtol(text.c_str(), &end, 10);
+  if (end != text.c_str() + text.size() || errno == ERANGE)
+  {
+    return std::nullopt;
+  }
+  return value;
+}
+
+/// How a cell reads: a finite number, or why not.
+enum class CellKind
+{
+  kNumber,
+  kEmpty,
+  kNotFinite,
+  kNotANumber
+};
+
+CellKind parseCell(const std::string& text, double& value)
+{
+  value = kNaN;
+  if (text.empty())
+  {
+    return CellKind::kEmpty;
+  }
+  char* end = nullptr;
+  errno = 0;
+  const double parsed = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size())
+  {
+    return CellKind::kNotANumber;
+  }
+  if (!std::isfinite(parsed))
+  {
+    return CellKind::kNotFinite;
+  }
+  if (errno == ERANGE && std::abs(parsed) > 1.0)
+  {
+    return CellKind::kNotFinite;  // overflow (strtod returned HUGE_VAL)
+  }
+  value = parsed;
+  return CellKind::kNumber;
+}
+
+bool isLeapYear(long year)
+{
+  return (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+}
+
+bool isRealDay(long year, long month, long day)
+{
+  static const int kDays[] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+  if (year < 1900 || year > 2200 || month < 1 || month > 12 || day < 1)
+  {
+    return false;
+  }
+  return day <= kDays[month - 1] + (month == 2 && isLeapYear(year) ? 1 : 0);
+}
+
+std::string baseName(const std::string& path)
+{
+  const auto slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const auto dot = name.find_last_of('.');
+  return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
+}
+
+std::string join(const std::vector<std::string>& parts, const std::string& separator)
+{
+  std::string text;
+  for (const std::string& part : parts)
+  {
+    text += (text.empty() ? "" : separator) + part;
+  }
+  return text;
+}
+
+std::string formatNumber(double value, int precision = 4)
+{
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*g", precision, value);
+  return text;
+}
+
+/// The quantity of a per-vehicle or per-pair column ("Speed3" -> Speed, 3).
+enum class Quantity
+{
+  kSpeed,
+  kEast,
+  kNorth,
+  kUp,
+  kAltitude,
+  kLatitude,
+  kLongitude,
+  kDriver,
+  kGap
+};
+
+std::optional<std::pair<Quantity, int>> classifyColumn(const std::string& name)
+{
+  static const std::vector<std::pair<std::string, Quantity>> kPrefixes{
+      {"Speed", Quantity::kSpeed}, {"E", Quantity::kEast},      {"N", Quantity::kNorth},
+      {"U", Quantity::kUp},        {"Alt", Quantity::kAltitude}, {"Lat", Quantity::kLatitude},
+      {"Lon", Quantity::kLongitude}, {"Driver", Quantity::kDriver}, {"IVS", Quantity::kGap}};
+  const auto digits = name.find_first_of("0123456789");
+  if (digits == std::string::npos || digits == 0 ||
+      name.find_first_not_of("0123456789", digits) != std::string::npos || name[digits] == '0')
+  {
+    return std::nullopt;
+  }
+  const std::string prefix = name.substr(0, digits);
+  const auto number = parseInteger(name.substr(digits));
+  if (!number || *number < 1 || *number > 1000)
+  {
+    return std::nullopt;
+  }
+  for (const auto& [known, quantity] : kPrefixes)
+  {
+    if (prefix == known)
+    {
+      return std::make_pair(quantity, static_cast<int>(*number));
+    }
+  }
+  return std::nullopt;
+}
+
+/// Where one column's values go while the rows are read.
+struct ColumnTarget
+{
+  std::size_t field = 0;
+  std::string name;
+  std::vector<double>* values = nullptr;     ///< numeric column
+  std::vector<std::string>* texts = nullptr; ///< Driver column
+};
+
+/// One vehicle while it is read: its columns, whether it is kept is decided after the rows.
+struct VehicleUnderConstruction
+{
+  OpenAccVehicle vehicle;
+  bool any_column = false;
+};
+
+/// The small-distance length of the step between two fixes, the angles read in the given unit.
+double stepLengthM(double lat0, double lon0, double lat1, double lon1, double to_radians)
+{
+  const double dlat = (lat1 - lat0) * to_radians;
+  const double dlon = (lon1 - lon0) * to_radians * std::cos(lat0 * to_radians);
+  return kEarthRadiusM * std::hypot(dlat, dlon);
+}
+
+/// Decides the unit of the Lat/Lon cells and says why; converts them to degrees.
+void detectAngleUnit(OpenAccFile& file)
+{
+  double max_latitude = 0.0, max_longitude = 0.0;
+  std::size_t values = 0, columns = 0;
+  for (const OpenAccVehicle& vehicle : file.vehicles)
+  {
+    if (!vehicle.has_lat_lon)
+    {
+      continue;
+    }
+    ++columns;
+    for (std::size_t i = 0; i < file.rows(); ++i)
+    {
+      if (std::isfinite(vehicle.latitude_deg[i]) && std::isfinite(vehicle.longitude_deg[i]))
+      {
+        ++values;
+        max_latitude = std::max(max_latitude, std::abs(vehicle.latitude_deg[i]));
+        max_longitude = std::max(max_longitude, std::abs(vehicle.longitude_deg[i]));
+      }
+    }
+  }
+  const std::string range = "|Lat| up to " + formatNumber(max_latitude, 6) + ", |Lon| up to " +
+                            formatNumber(max_longitude, 6);
+  if (columns == 0 || values == 0)
+  {
+    file.angle_unit = OpenAccAngleUnit::kRadians;
+    file.angle_unit_reason = std::string("Lat/Lon: ") + (columns == 0 ? "no Lat/Lon columns" : "no Lat/Lon values") +
+                             " (radians assumed, the database's unit; nothing to convert)";
+  }
+  else if (max_latitude > kPi / 2.0 || max_longitude > kPi)
+  {
+    file.angle_unit = OpenAccAngleUnit::kDegrees;
+    file.angle_unit_reason = "Lat/Lon in degrees: " + range +
+                             ", beyond radians (|Lat| <= pi/2, |Lon| <= pi), although the database's notes say radians";
+  }
+  else
+  {
+    // The values fit both units: compare how far consecutive fixes move by Lat/Lon, read either
+    // way, with how far they move by the file's own E/N columns.
+    double en_m = 0.0, as_radians_m = 0.0, as_degrees_m = 0.0;
+    std::size_t steps = 0;
+    for (const OpenAccVehicle& vehicle : file.vehicles)
+    {
+      if (!vehicle.has_lat_lon || !vehicle.has_east_north)
+      {
+        continue;
+      }
+      for (std::size_t i = 1; i < file.rows(); ++i)
+      {
+        const double dt = file.time_s[i] - file.time_s[i - 1];
+        const double values_of_step[] = {vehicle.latitude_deg[i - 1], vehicle.longitude_deg[i - 1],
+                                         vehicle.latitude_deg[i],     vehicle.longitude_deg[i],
+                                         vehicle.east_m[i - 1],       vehicle.north_m[i - 1],
+                                         vehicle.east_m[i],           vehicle.north_m[i]};
+        if (!(dt > 0.0 && dt <= kMaxConsecutiveStepS) ||
+            !std::all_of(std::begin(values_of_step), std::end(values_of_step), [](double v) { return std::isfinite(v); }))
+        {
+          continue;
+        }
+        ++steps;
+        en_m += std::hypot(vehicle.east_m[i] - vehicle.east_m[i - 1], vehicle.north_m[i] - vehicle.north_m[i - 1]);
+        as_radians_m += stepLengthM(vehicle.latitude_deg[i - 1], vehicle.longitude_deg[i - 1], vehicle.latitude_deg[i],
+                                    vehicle.longitude_deg[i], 1.0);
+        as_degrees_m += stepLengthM(vehicle.latitude_deg[i - 1], vehicle.longitude_deg[i - 1], vehicle.latitude_deg[i],
+                                    vehicle.longitude_deg[i], kPi / 180.0);
+      }
+    }
+    if (steps == 0)
+    {
+      file.angle_unit = OpenAccAngleUnit::kRadians;
+      file.angle_unit_reason = "Lat/Lon in radians, the database's unit: the values fit both units (" + range +
+                               ") and there are no consecutive fixes with E/N to check them against";
+    }
+    else if (en_m < kMinMotionForUnitCheckM)
+    {
+      file.angle_unit = OpenAccAngleUnit::kRadians;
+      file.angle_unit_reason = "Lat/Lon in radians, the database's unit: the values fit both units (" + range +
+                               ") and the cars move only " + formatNumber(en_m, 3) +
+                               " m by E/N, too little to check them";
+    }
+    else
+    {
+      const bool degrees = std::abs(std::log(as_degrees_m / en_m)) < std::abs(std::log(as_radians_m / en_m));
+      file.angle_unit = degrees ? OpenAccAngleUnit::kDegrees : OpenAccAngleUnit::kRadians;
+      const double chosen_m = degrees ? as_degrees_m : as_radians_m;
+      std::ostringstream reason;
+      reason << "Lat/Lon in " << (degrees ? "degrees" : "radians") << ": the values fit both units (" << range
+             << "); over " << steps << " consecutive fixes the cars move " << formatNumber(en_m, 6)
+             << " m by their E/N columns, " << formatNumber(as_radians_m, 6) << " m by Lat/Lon read as radians, "
+             << formatNumber(as_degrees_m, 6) << " m read as degrees";
+      if (chosen_m > 2.0 * en_m || chosen_m < 0.5 * en_m)
+      {
+        reason << " (neither unit matches E/N within a factor 2: check the file)";
+      }
+      file.angle_unit_reason = reason.str();
+    }
+  }
+  if (file.angle_unit == OpenAccAngleUnit::kRadians)
+  {
+    for (OpenAccVehicle& vehicle : file.vehicles)
+    {
+      for (double& value : vehicle.latitude_deg)
+      {
+        value *= kRadToDeg;
+      }
+      for (double& value : vehicle.longitude_deg)
+      {
+        value *= kRadToDeg;
+      }
+    }
+  }
+}
+
+bool hasColumn(const OpenAccFile& file, const std::string& name)
+{
+  return std::find(file.header.begin(), file.header.end(), name) != file.header.end();
+}
+
+/// Whether the header has any column of the car at this position (not counting IVS).
+bool hasAnyColumnOf(const OpenAccFile& file, int position)
+{
+  for (const std::string& name : file.header)
+  {
+    const auto column = classifyColumn(name);
+    if (column && column->first != Quantity::kGap && column->second == position)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+int highestPosition(const OpenAccFile& file)
+{
+  int highest = static_cast<int>(file.metadata.vehicle_order.size());
+  for (const std::string& name : file.header)
+  {
+    const auto column = classifyColumn(name);
+    if (column)
+    {
+      highest = std::max(highest, column->second + (column->first == Quantity::kGap ? 1 : 0));
+    }
+  }
+  return highest;
+}
+
+std::string noDataReason(const OpenAccFile& file, int position)
+{
+  return hasAnyColumnOf(file, position) ? "its columns are empty" : "its columns are absent";
+}
+
+/// Reads the metadata lines and the header; returns false with file.error set when it cannot.
+bool readMetadataAndHeader(std::istream& in, OpenAccFile& file, std::size_t& line_number)
+{
+  std::string line;
+  bool date_seen = false, order_seen = false, count_seen = false, acc_seen = false, setting_seen = false;
+  while (file.header.empty() && std::getline(in, line))
+  {
+    ++line_number;
+    if (isBlank(line))
+    {
+      continue;
+    }
+    const std::vector<std::string> fields = splitFields(line);
+    const std::string where = file.path + ":" + std::to_string(line_number) + ": ";
+    const std::string key = upper(fields[0]);
+    if (std::find(fields.begin(), fields.end(), "Time") != fields.end())
+    {
+      file.header = fields;
+      while (!file.header.empty() && file.header.back().empty())
+      {
+        file.header.pop_back();  // a trailing comma names no column
+      }
+    }
+    else if (key == "DATE")
+    {
+      const auto day = fields.size() > 1 ? parseInteger(fields[1]) : std::nullopt;
+      const auto month = fields.size() > 2 ? parseInteger(fields[2]) : std::nullopt;
+      const auto year = fields.size() > 3 ? parseInteger(fields[3]) : std::nullopt;
+      if (!day || !month || !year || !isRealDay(*year, *month, *day))
+      {
+        file.error = where + "the Date line is not Date,DD,MM,YYYY of a real day: '" + trim(line) + "'";
+        return false;
+      }
+      file.metadata.day = static_cast<int>(*day);
+      file.metadata.month = static_cast<int>(*month);
+      file.metadata.year = static_cast<int>(*year);
+      date_seen = true;
+    }
+    else if (key == "VEHICLE_ORDER")
+    {
+      file.metadata.vehicle_order.assign(fields.begin() + 1, fields.end());
+      while (!file.metadata.vehicle_order.empty() && file.metadata.vehicle_order.back().empty())
+      {
+        file.metadata.vehicle_order.pop_back();  // "Vehicle_order,A,B," ends with a comma
+      }
+      order_seen = !file.metadata.vehicle_order.empty();
+    }
+    else if (key == "NUMBER_OF_VEHICLES")
+    {
+      const auto count = fields.size() > 1 ? parseInteger(fields[1]) : std::nullopt;
+      file.metadata.number_of_vehicles = count ? static_cast<int>(*count) : -1;
+      count_seen = true;
+      if (!count)
+      {
+        file.notes.push_back(where + "Number_of_vehicles is not a number: '" + trim(line) + "'");
+      }
+    }
+    else if (key == "ACC")
+    {
+      const auto acc = fields.size() > 1 ? parseInteger(fields[1]) : std::nullopt;
+      file.metadata.acc = acc ? static_cast<int>(*acc) : -1;
+      acc_seen = true;
+      if (!acc)
+      {
+        file.notes.push_back(where + "the ACC line is not a number: '" + trim(line) + "'");
+      }
+    }
+    else if (key == "DISTANCE_SETTING")
+    {
+      file.metadata.distance_setting = fields.size() > 1 ? fields[1] : "";
+      setting_seen = true;
+    }
+    else
+    {
+      file.notes.push_back(where + "line before the header not understood, ignored: '" + trim(line).substr(0, 80) + "'");
+    }
+    if (file.header.empty() && line_number >= kMaxLinesBeforeHeader)
+    {
+      break;
+    }
+  }
+  if (file.header.empty())
+  {
+    file.error = file.path + ": no header line with a Time column" +
+                 (line_number >= kMaxLinesBeforeHeader ? " in the first " + std::to_string(kMaxLinesBeforeHeader) + " lines"
+                                                       : "") +
+                 " (not an OpenACC file?)";
+    return false;
+  }
+  if (!date_seen || !order_seen)
+  {
+    std::vector<std::string> missing;
+    if (!date_seen)
+    {
+      missing.push_back("Date,DD,MM,YYYY");
+    }
+    if (!order_seen)
+    {
+      missing.push_back("Vehicle_order,NAME1,NAME2,...");
+    }
+    file.error = file.path + ": metadata missing before the header (line " + std::to_string(line_number) +
+                 "): no " + join(missing, " and no ") + " line; an OpenACC file starts with Date, Vehicle_order, "
+                 "Number_of_vehicles, ACC and Distance_setting lines";
+    return false;
+  }
+  std::vector<std::string> absent;
+  if (!count_seen)
+  {
+    absent.push_back("Number_of_vehicles");
+  }
+  if (!acc_seen)
+  {
+    absent.push_back("ACC");
+  }
+  if (!setting_seen)
+  {
+    absent.push_back("Distance_setting");
+  }
+  if (!absent.empty())
+  {
+    file.notes.push_back(file.path + ": no " + join(absent, ", ") + " line (left unknown)");
+  }
+  const int order_size = static_cast<int>(file.metadata.vehicle_order.size());
+  if (file.metadata.number_of_vehicles >= 0 && file.metadata.number_of_vehicles != order_size)
+  {
+    file.notes.push_back(file.path + ": Number_of_vehicles says " + std::to_string(file.metadata.number_of_vehicles) +
+                         " but Vehicle_order names " + std::to_string(order_size) + " cars");
+  }
+  return true;
+}
+}  // namespace
+
+const char* angleUnitName(OpenAccAngleUnit unit)
+{
+  return unit == OpenAccAngleUnit::kDegrees ? "degrees" : "radians";
+}
+
+std::string OpenAccVehicle::label() const
+{
+  return name + " (" + std::to_string(position) + ")";
+}
+
+std::string OpenAccBadCell::describe() const
+{
+  if (text.empty())
+  {
+    return column + " empty";
+  }
+  double value = 0.0;
+  if (parseCell(text, value) == CellKind::kNotFinite)
+  {
+    return column + " " + text;
+  }
+  return column + " not a number: '" + text + "'";
+}
+
+const OpenAccVehicle* OpenAccFile::vehicle(int position) const
+{
+  for (const OpenAccVehicle& candidate : vehicles)
+  {
+    if (candidate.position == position)
+    {
+      return &candidate;
+    }
+  }
+  return nullptr;
+}
+
+std::string OpenAccFile::vehicleName(int position) const
+{
+  const std::size_t index = static_cast<std::size_t>(position - 1);
+  if (position >= 1 && index < metadata.vehicle_order.size() && !metadata.vehicle_order[index].empty())
+  {
+    return metadata.vehicle_order[index];
+  }
+  return "vehicle " + std::to_string(position);
+}
+
+std::string OpenAccFile::cellProblem(std::size_t row, const std::string& column) const
+{
+  auto at = std::lower_bound(bad_cells.begin(), bad_cells.end(), row,
+                             [](const OpenAccBadCell& cell, std::size_t r) { return cell.row < r; });
+  for (; at != bad_cells.end() && at->row == row; ++at)
+  {
+    if (at->column == column)
+    {
+      return at->describe();
+    }
+  }
+  return "";
+}
+
+bool looksLikeOpenAccFile(const std::string& path)
+{
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line))
+  {
+    if (!isBlank(line))
+    {
+      return upper(splitFields(line)[0]) == "DATE";
+    }
+  }
+  return false;
+}
+
+OpenAccFile readOpenAccFile(const std::string& path)
+{
+  OpenAccFile file;
+  file.path = path;
+  file.name = baseName(path);
+  std::ifstream in(path);
+  if (!in)
+  {
+    file.error = "cannot open OpenACC file '" + path + "'";
+    return file;
+  }
+  std::size_t line_number = 0;
+  if (!readMetadataAndHeader(in, file, line_number))
+  {
+    return file;
+  }
+
+  // Columns by name, any order; each named once.
+  std::map<std::string, std::size_t> index;
+  for (std::size_t i = 0; i < file.header.size(); ++i)
+  {
+    if (file.header[i].empty())
+    {
+      continue;
+    }
+    if (!index.emplace(file.header[i], i).second)
+    {
+      file.error = file.path + ":" + std::to_string(line_number) + ": column " + file.header[i] +
+                   " is named twice in the header";
+      return file;
+    }
+  }
+  std::map<int, VehicleUnderConstruction> cars;
+  std::map<int, std::pair<std::size_t, std::string>> gap_columns;  // k -> field, name of IVSk
+  std::optional<std::size_t> time_field;
+  std::vector<std::string> unused;
+  for (std::size_t i = 0; i < file.header.size(); ++i)
+  {
+    const std::string& name = file.header[i];
+    if (name == "Time")
+    {
+      time_field = i;
+      continue;
+    }
+    const auto column = name.empty() ? std::nullopt : classifyColumn(name);
+    if (!column)
+    {
+      if (!name.empty())
+      {
+        unused.push_back(name);
+      }
+      continue;
+    }
+    const auto [quantity, k] = *column;
+    if (quantity == Quantity::kGap)
+    {
+      gap_columns[k] = {i, name};
+      continue;
+    }
+    VehicleUnderConstruction& car = cars[k];
+    car.any_column = true;
+    car.vehicle.position = k;
+    car.vehicle.name = file.vehicleName(k);
+    switch (quantity)
+    {
+      case Quantity::kSpeed: car.vehicle.has_speed = true; break;
+      case Quantity::kEast:
+      case Quantity::kNorth: car.vehicle.has_east_north = hasColumn(file, "E" + std::to_string(k)) &&
+                                                          hasColumn(file, "N" + std::to_string(k)); break;
+      case Quantity::kUp: car.vehicle.has_up = true; break;
+      case Quantity::kAltitude: car.vehicle.has_altitude = true; break;
+      case Quantity::kLatitude:
+      case Quantity::kLongitude: car.vehicle.has_lat_lon = hasColumn(file, "Lat" + std::to_string(k)) &&
+                                                           hasColumn(file, "Lon" + std::to_string(k)); break;
+      case Quantity::kDriver: car.vehicle.has_driver = true; break;
+      case Quantity::kGap: break;
+    }
+  }
+  if (!time_field)
+  {
+    file.error = file.path + ": no Time column";
+    return file;
+  }
+  for (const auto& [k, gap] : gap_columns)
+  {
+    auto car = cars.find(k);
+    if (car == cars.end())
+    {
+      unused.push_back(gap.second + " (car " + std::to_string(k) + ", " + file.vehicleName(k) + ", has no columns)");
+      continue;
+    }
+    car->second.vehicle.has_gap_to_follower = true;
+  }
+  if (!unused.empty())
+  {
+    file.notes.push_back(file.path + ": columns not used: " + join(unused, ", "));
+  }
+
+  // Where each column's values go. The vectors are filled row by row (all to the same length).
+  std::vector<ColumnTarget> targets;
+  targets.push_back({*time_field, "Time", &file.time_s, nullptr});
+  for (auto& [k, car] : cars)
+  {
+    OpenAccVehicle& v = car.vehicle;
+    const std::string n = std::to_string(k);
+    const std::vector<std::pair<std::string, std::vector<double>*>> numeric{
+        {"Speed" + n, &v.speed_mps}, {"E" + n, &v.east_m},          {"N" + n, &v.north_m},
+        {"U" + n, &v.up_m},          {"Alt" + n, &v.altitude_m},     {"Lat" + n, &v.latitude_deg},
+        {"Lon" + n, &v.longitude_deg}, {"IVS" + n, &v.gap_to_follower_m}};
+    for (const auto& [name, values] : numeric)
+    {
+      const auto at = index.find(name);
+      if (at != index.end())
+      {
+        targets.push_back({at->second, name, values, nullptr});
+      }
+    }
+    const auto driver = index.find("Driver" + n);
+    if (driver != index.end())
+    {
+      targets.push_back({driver->second, "Driver" + n, nullptr, &v.driver});
+    }
+  }
+  // Absent columns: NaN in every row, filled at the end.
+
+  std::string line;
+  while (std::getline(in, line))
+  {
+    ++line_number;
+    if (isBlank(line))
+    {
+      continue;  // a blank line (usually the last) carries no sample
+    }
+    const std::size_t row = file.line.size();
+    file.line.push_back(line_number);
+    std::vector<std::string> fields = splitFields(line);
+    // Empty fields past the header's (a trailing comma) carry nothing.
+    while (fields.size() > file.header.size() && fields.back().empty())
+    {
+      fields.pop_back();
+    }
+    const std::string where = file.path + ":" + std::to_string(line_number) + ": ";
+    if (fields.size() != file.header.size())
+    {
+      const std::string why = "expected " + std::to_string(file.header.size()) + " fields, found " +
+                              std::to_string(fields.size());
+      file.row_problems.push_back(why);
+      file.problems.push_back(where + why + "; row not read (every value NaN)");
+      ++file.bad_rows;
+      for (const ColumnTarget& target : targets)
+      {
+        if (target.values)
+        {
+          target.values->push_back(kNaN);
+        }
+        else
+        {
+          target.texts->emplace_back();
+        }
+      }
+      continue;
+    }
+    file.row_problems.emplace_back();
+    std::vector<std::string> bad_here;
+    for (const ColumnTarget& target : targets)
+    {
+      const std::string& text = fields[target.field];
+      bool bad = false;
+      if (target.values)
+      {
+        double value = kNaN;
+        bad = parseCell(text, value) != CellKind::kNumber;
+        target.values->push_back(value);
+      }
+      else
+      {
+        target.texts->push_back(text);
+        bad = text.empty();
+      }
+      if (bad)
+      {
+        file.bad_cells.push_back({row, line_number, target.name, text});
+        ++file.bad_cells_by_column[target.name];
+        bad_here.push_back(file.bad_cells.back().describe());
+      }
+    }
+    if (!bad_here.empty())
+    {
+      ++file.bad_rows;
+      file.problems.push_back(where + std::to_string(bad_here.size()) + " cell" + (bad_here.size() > 1 ? "s" : "") +
+                              " without a number (NaN): " + join(bad_here, ", "));
+    }
+  }
+
+  // Absent columns: NaN in every row; the cars with no value at all are not kept.
+  const std::size_t rows = file.line.size();
+  std::vector<std::pair<int, std::string>> without_data;
+  for (auto& [k, car] : cars)
+  {
+    OpenAccVehicle& v = car.vehicle;
+    for (std::vector<double>* values : {&v.speed_mps, &v.east_m, &v.north_m, &v.up_m, &v.altitude_m, &v.latitude_deg,
+                                        &v.longitude_deg, &v.gap_to_follower_m})
+    {
+      values->resize(rows, kNaN);
+    }
+    v.speed_values = static_cast<std::size_t>(
+        std::count_if(v.speed_mps.begin(), v.speed_mps.end(), [](double x) { return std::isfinite(x); }));
+    v.gap_values = static_cast<std::size_t>(std::count_if(v.gap_to_follower_m.begin(), v.gap_to_follower_m.end(),
+                                                          [](double x) { return std::isfinite(x); }));
+    bool any_value = v.speed_values > 0 ||
+                     std::any_of(v.driver.begin(), v.driver.end(), [](const std::string& t) { return !t.empty(); });
+    for (const std::vector<double>* values : {&v.east_m, &v.north_m, &v.up_m, &v.altitude_m, &v.latitude_deg,
+                                              &v.longitude_deg})
+    {
+      any_value = any_value || std::any_of(values->begin(), values->end(), [](double x) { return std::isfinite(x); });
+    }
+    if (any_value)
+    {
+      file.vehicles.push_back(std::move(v));
+    }
+    else
+    {
+      without_data.emplace_back(k, file.vehicleName(k) + " (" + std::to_string(k) + ", every cell of its columns empty)");
+    }
+  }
+  for (int k = 1; k <= static_cast<int>(file.metadata.vehicle_order.size()); ++k)
+  {
+    if (cars.count(k) == 0)
+    {
+      without_data.emplace_back(k, file.vehicleName(k) + " (" + std::to_string(k) + ", no columns)");
+    }
+  }
+  std::sort(without_data.begin(), without_data.end());
+  for (const OpenAccVehicle& v : file.vehicles)
+  {
+    if (v.position > static_cast<int>(file.metadata.vehicle_order.size()))
+    {
+      file.notes.push_back(file.path + ": columns of car " + std::to_string(v.position) + " but Vehicle_order names " +
+                           std::to_string(file.metadata.vehicle_order.size()) + " cars: called '" + v.name + "'");
+    }
+  }
+  if (!without_data.empty())
+  {
+    std::vector<std::string> names;
+    for (const auto& entry : without_data)
+    {
+      names.push_back(entry.second);
+    }
+    file.notes.push_back(file.path + ": no data for " + join(names, ", "));
+  }
+  for (int k = 2; k <= highestPosition(file); ++k)
+  {
+    if (file.vehicle(k) != nullptr)
+    {
+      const std::string why = describePairlessFollower(file, k);
+      if (!why.empty())
+      {
+        file.notes.push_back(file.path + ": " + why);
+      }
+    }
+  }
+  if (!file.bad_cells.empty())
+  {
+    std::vector<std::string> by_column;
+    for (const auto& [column, count] : file.bad_cells_by_column)
+    {
+      by_column.push_back(column + " " + std::to_string(count));
+    }
+    file.notes.push_back(file.path + ": " + std::to_string(file.bad_cells.size()) + " cells without a number in " +
+                         std::to_string(file.bad_rows) + " of " + std::to_string(rows) + " rows (" +
+                         join(by_column, ", ") + "), each listed; their values are NaN");
+  }
+  else if (file.bad_rows > 0)
+  {
+    file.notes.push_back(file.path + ": " + std::to_string(file.bad_rows) + " of " + std::to_string(rows) +
+                         " rows not read, each listed");
+  }
+  if (rows == 0)
+  {
+    file.notes.push_back(file.path + ": no data rows after the header");
+  }
+  detectAngleUnit(file);
+  // The unit matters to every position read from the file: said with the other notes.
+  file.notes.push_back(file.path + ": " + file.angle_unit_reason);
+  return file;
+}
+
+std::string OpenAccPair::label() const
+{
+  return follower_name + " behind " + leader_name + ", positions " + std::to_string(follower_position) + "/" +
+         std::to_string(leader_position);
+}
+
+std::string describePairlessFollower(const OpenAccFile& file, int follower_position)
+{
+  const int k = follower_position;
+  const int highest = highestPosition(file);
+  if (k < 1 || k > highest)
+  {
+    return "no car at position " + std::to_string(k) + " (Vehicle_order names " +
+           std::to_string(file.metadata.vehicle_order.size()) + " cars)";
+  }
+  const std::string follower = file.vehicleName(k) + " (" + std::to_string(k) + ")";
+  if (k == 1)
+  {
+    return follower + " leads the platoon: no car ahead of it";
+  }
+  const OpenAccVehicle* behind = file.vehicle(k);
+  if (behind == nullptr)
+  {
+    return follower + " has no data in this file (" + noDataReason(file, k) + ")";
+  }
+  if (behind->speed_values == 0)
+  {
+    return follower + " has no pair: it has no Speed" + std::to_string(k) + " data";
+  }
+  const std::string ahead = file.vehicleName(k - 1) + " (" + std::to_string(k - 1) + ")";
+  const OpenAccVehicle* leader = file.vehicle(k - 1);
+  if (leader == nullptr)
+  {
+    return follower + " has no pair: the car directly ahead of it, " + ahead + ", has no data in this file (" +
+           noDataReason(file, k - 1) + "); a car further ahead is never taken as its leader";
+  }
+  if (leader->speed_values == 0)
+  {
+    return follower + " has no pair: the car directly ahead of it, " + ahead + ", has no Speed" +
+           std::to_string(k - 1) + " data";
+  }
+  const std::string gap = "IVS" + std::to_string(k - 1);
+  if (!leader->has_gap_to_follower)
+  {
+    return follower + " has no pair: their gap " + gap + " (behind " + ahead + ") has no column";
+  }
+  if (leader->gap_values == 0)
+  {
+    return follower + " has no pair: their gap " + gap + " (behind " + ahead + ") has no value";
+  }
+  return "";
+}
+
+std::vector<OpenAccPair> availablePairs(const OpenAccFile& file)
+{
+  std::vector<OpenAccPair> pairs;
+  for (const OpenAccVehicle& follower : file.vehicles)
+  {
+    if (follower.position >= 2 && describePairlessFollower(file, follower.position).empty())
+    {
+      pairs.push_back({follower.position - 1, follower.position, file.vehicleName(follower.position - 1), follower.name});
+    }
+  }
+  return pairs;
+}
+
+std::string describeAvailablePairs(const OpenAccFile& file)
+{
+  std::vector<std::string> labels;
+  for (const OpenAccPair& pair : availablePairs(file))
+  {
+    labels.push_back(pair.label());
+  }
+  return labels.empty() ? "none" : join(labels, "; ");
+}
+
+OpenAccPairSelector OpenAccPairSelector::parse(const std::string& text)
+{
+  const std::string trimmed = trim(text);
+  if (trimmed.empty())
+  {
+    return first();
+  }
+  if (upper(trimmed) == "ALL")
+  {
+    return all();
+  }
+  return byFollower(trimmed);
+}
+
+std::string OpenAccPairSelector::describe() const
+{
+  switch (kind)
+  {
+    case Kind::kFirst: return "the first available pair";
+    case Kind::kAll: return "all pairs";
+    case Kind::kFollower: break;
+  }
+  return "follower '" + follower + "'";
+}
+
+OpenAccPairChoice selectOpenAccPairs(const OpenAccFile& file, const OpenAccPairSelector& selector)
+{
+  OpenAccPairChoice choice;
+  const std::vector<OpenAccPair> pairs = availablePairs(file);
+  const std::string listed = "pairs in this file: " + describeAvailablePairs(file);
+  if (pairs.empty())
+  {
+    std::vector<std::string> why;
+    for (int k = 2; k <= highestPosition(file); ++k)
+    {
+      if (file.vehicle(k) != nullptr)
+      {
+        why.push_back(describePairlessFollower(file, k));
+      }
+    }
+    choice.error = file.path + ": no leader-follower pair (a follower and the car directly ahead, both with Speed "
+                               "data, and their IVS gap)" +
+                   (why.empty() ? std::string("") : ": " + join(why, "; "));
+    return choice;
+  }
+  if (selector.kind == OpenAccPairSelector::Kind::kFirst)
+  {
+    choice.pairs.push_back(pairs.front());
+    std::vector<std::string> others;
+    for (std::size_t i = 1; i < pairs.size(); ++i)
+    {
+      others.push_back(pairs[i].label());
+    }
+    choice.note = file.path + ": pair read: " + pairs.front().label() + " (no follower chosen: the first available " +
+                  (others.empty() ? std::string("and only pair)") : "pair; the others: " + join(others, "; ") + ")");
+    return choice;
+  }
+  if (selector.kind == OpenAccPairSelector::Kind::kAll)
+  {
+    choice.pairs = pairs;
+    choice.note = file.path + ": every pair read (" + std::to_string(pairs.size()) + "): " + describeAvailablePairs(file);
+    return choice;
+  }
+  // One follower, by position or by name.
+  const std::string wanted = trim(selector.follower);
+  int position = 0;
+  if (!wanted.empty() && wanted.find_first_not_of("0123456789") == std::string::npos)
+  {
+    const auto number = parseInteger(wanted);
+    position = number && *number <= 100000 ? static_cast<int>(*number) : -1;
+  }
+  else
+  {
+    std::vector<int> matches;
+    for (std::size_t i = 0; i < file.metadata.vehicle_order.size(); ++i)
+    {
+      if (upper(file.metadata.vehicle_order[i]) == upper(wanted))
+      {
+        matches.push_back(static_cast<int>(i) + 1);
+      }
+    }
+    if (matches.empty())
+    {
+      choice.error = file.path + ": no car '" + wanted + "' in Vehicle_order (" +
+                     join(file.metadata.vehicle_order, ", ") + "); " + listed;
+      return choice;
+    }
+    if (matches.size() > 1)
+    {
+      std::vector<std::string> at;
+      for (int k : matches)
+      {
+        at.push_back(std::to_string(k));
+      }
+      choice.error = file.path + ": '" + wanted + "' is at positions " + join(at, " and ") +
+                     " of Vehicle_order: choose the follower by position; " + listed;
+      return choice;
+    }
+    position = matches.front();
+  }
+  for (const OpenAccPair& pair : pairs)
+  {
+    if (pair.follower_position == position)
+    {
+      choice.pairs.push_back(pair);
+      choice.note = file.path + ": pair read: " + pair.label() + " (follower '" + wanted + "' chosen)";
+      return choice;
+    }
+  }
+  choice.error = file.path + ": no pair with follower '" + wanted + "'" +
+                 (position >= 1 ? " (position " + std::to_string(position) + ")" : "") + ": " +
+                 describePairlessFollower(file, std::max(position, 0)) + "; " + listed;
+  return choice;
+}
+
+}  // namespace acc

@@ -1,0 +1,345 @@
+// The one OpenACC reader (io/openacc_file.h) and the runs read from it (io/run_csv.h), on small
+// inline files of each layout: a ZalaZone platoon in degrees, a platoon in radians, cars with
+// absent or empty columns, NaN cells inside and outside the pair read.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "acc_identification/io/openacc_file.h"
+#include "acc_identification/io/run_csv.h"
+
+namespace fs = std::filesystem;
+
+namespace
+{
+/// Whether some line of lines contains every part.
+bool anyContains(const std::vector<std::string>& lines, const std::vector<std::string>& parts)
+{
+  for (const std::string& line : lines)
+  {
+    bool all = true;
+    for (const std::string& part : parts)
+    {
+      all = all && line.find(part) != std::string::npos;
+    }
+    if (all)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string joined(const std::vector<std::string>& lines)
+{
+  std::string text;
+  for (const std::string& line : lines)
+  {
+    text += line + "\n";
+  }
+  return text;
+}
+
+class OpenAccFileTest : public testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    dir_ = fs::temp_directory_path() / ("openacc_file_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& text) const
+  {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path) << text;
+    return path;
+  }
+
+  fs::path dir_;
+};
+
+const std::string kPlatoonMetadata =
+    "Date,8,10,2019\n"
+    "Vehicle_order,SMART_TARGET,TESLA_MODELX,TESLA_MODEL3,BMW_I3,AUDI_A4,\n"
+    "Number_of_vehicles,5\n"
+    "ACC,1\n"
+    "Distance_setting,S\n";
+
+/// One data row of the platoon file below: cars 1, 2, 4 and 5 with Speed, E, N, Lon, Lat, Alt (car
+/// 3, TESLA_MODEL3, has its columns absent), then IVS1, IVS2, IVS3, IVS4. Each car moves 1 m
+/// north per 0.1 s; lat/lon in degrees or radians.
+std::string platoonRow(int i, bool degrees, const std::string& speed4 = "", const std::string& ivs3 = "10.0",
+                       const std::string& speed2 = "")
+{
+  const double lat_deg = 46.89 + i * 1.0 / 111195.0;  // 1 m north per row
+  const double lon_deg = 16.84;
+  const double scale = degrees ? 1.0 : M_PI / 180.0;
+  char row[1024];
+  auto car = [&](double speed, const std::string& speed_text) {
+    char cells[256];
+    std::snprintf(cells, sizeof cells, "%s,0.0,%.3f,%.12f,%.12f,240.0",
+                  speed_text.empty() ? std::to_string(speed).c_str() : speed_text.c_str(), 1.0 * i, lon_deg * scale,
+                  lat_deg * scale);
+    return std::string(cells);
+  };
+  std::snprintf(row, sizeof row, "%.1f,%s,%s,%s,%s,20.0,NaN,%s,12.0\n", 100.0 + 0.1 * i, car(10.0, "").c_str(),
+                car(10.1, speed2).c_str(), car(10.2, speed4).c_str(), car(10.3, "").c_str(), ivs3.c_str());
+  return row;
+}
+
+const std::string kPlatoonHeader =
+    "Time,Speed1,E1,N1,Lon1,Lat1,Alt1,Speed2,E2,N2,Lon2,Lat2,Alt2,Speed4,E4,N4,Lon4,Lat4,Alt4,"
+    "Speed5,E5,N5,Lon5,Lat5,Alt5,IVS1,IVS2,IVS3,IVS4\n";
+
+/// A ZalaZone-like platoon: degrees (beyond radians), car 3 absent, IVS2 NaN throughout.
+std::string platoonFile(bool degrees)
+{
+  std::string text = kPlatoonMetadata + kPlatoonHeader;
+  for (int i = 0; i < 10; ++i)
+  {
+    text += platoonRow(i, degrees);
+  }
+  return text;
+}
+
+TEST_F(OpenAccFileTest, ZalaZoneLayoutInDegreesIsDetectedAndSaid)
+{
+  const acc::OpenAccFile file = acc::readOpenAccFile(write("dynamic_part1.csv", platoonFile(true)));
+  ASSERT_EQ(file.error, "");
+  EXPECT_EQ(file.name, "dynamic_part1");
+  EXPECT_EQ(file.rows(), 10u);
+  EXPECT_EQ(file.metadata.vehicle_order.size(), 5u);  // the trailing comma names no car
+  EXPECT_EQ(file.metadata.number_of_vehicles, 5);
+  EXPECT_EQ(file.metadata.acc, 1);
+  EXPECT_EQ(file.metadata.distance_setting, "S");
+  EXPECT_EQ(file.angle_unit, acc::OpenAccAngleUnit::kDegrees);
+  EXPECT_TRUE(anyContains(file.notes, {"Lat/Lon in degrees", "beyond radians"})) << joined(file.notes);
+  ASSERT_NE(file.vehicle(1), nullptr);
+  EXPECT_DOUBLE_EQ(file.vehicle(1)->latitude_deg[0], 46.89);  // kept in degrees
+}
+
+TEST_F(OpenAccFileTest, RadiansLayoutIsToldByTheEastNorthMotion)
+{
+  const acc::OpenAccFile file = acc::readOpenAccFile(write("radians.csv", platoonFile(false)));
+  ASSERT_EQ(file.error, "");
+  EXPECT_EQ(file.angle_unit, acc::OpenAccAngleUnit::kRadians);
+  EXPECT_TRUE(anyContains(file.notes, {"Lat/Lon in radians", "read as degrees"})) << joined(file.notes);
+  EXPECT_NEAR(file.vehicle(1)->latitude_deg[0], 46.89, 1e-9);  // converted to degrees
+}
+
+TEST_F(OpenAccFileTest, CarsWithAbsentOrEmptyColumnsHaveNoPairAndTheNotesSayWhy)
+{
+  // Car 3 (TESLA_MODEL3) absent; car 5 (AUDI_A4) with its columns present but every cell empty.
+  std::string text = kPlatoonMetadata + kPlatoonHeader;
+  for (int i = 0; i < 10; ++i)
+  {
+    std::string row = platoonRow(i, true);
+    // Empty car 5's six cells: fields 19..24 (Speed5..Alt5).
+    std::vector<std::string> fields;
+    std::size_t start = 0;
+    for (std::size_t comma; (comma = row.find(',', start)) != std::string::npos; start = comma + 1)
+    {
+      fields.push_back(row.substr(start, comma - start));
+    }
+    fields.push_back(row.substr(start));
+    for (std::size_t f = 19; f <= 24; ++f)
+    {
+      fields[f] = "";
+    }
+    row.clear();
+    for (std::size_t f = 0; f < fields.size(); ++f)
+    {
+      row += (f ? "," : "") + fields[f];
+    }
+    text += row;
+  }
+  const acc::OpenAccFile file = acc::readOpenAccFile(write("holes.csv", text));
+  ASSERT_EQ(file.error, "");
+  EXPECT_EQ(file.vehicle(3), nullptr);
+  EXPECT_EQ(file.vehicle(5), nullptr);
+  EXPECT_TRUE(anyContains(file.notes, {"no data for", "TESLA_MODEL3 (3, no columns)",
+                                       "AUDI_A4 (5, every cell of its columns empty)"}))
+      << joined(file.notes);
+  // BMW_I3 (4) is behind the absent TESLA_MODEL3: no pair, and never the car further ahead.
+  EXPECT_TRUE(anyContains(file.notes, {"BMW_I3 (4) has no pair", "TESLA_MODEL3 (3)", "its columns are absent",
+                                       "never taken as its leader"}))
+      << joined(file.notes);
+  const std::vector<acc::OpenAccPair> pairs = acc::availablePairs(file);
+  // TESLA_MODELX (2) behind SMART_TARGET (1) only: IVS2 is NaN, 3 and 5 have no data.
+  ASSERT_EQ(pairs.size(), 1u) << acc::describeAvailablePairs(file);
+  EXPECT_EQ(pairs[0].follower_position, 2);
+  EXPECT_NE(acc::describePairlessFollower(file, 5).find("its columns are empty"), std::string::npos)
+      << acc::describePairlessFollower(file, 5);
+  EXPECT_NE(acc::describePairlessFollower(file, 4).find("its columns are absent"), std::string::npos)
+      << acc::describePairlessFollower(file, 4);
+}
+
+TEST_F(OpenAccFileTest, NaNInAnotherCarsColumnDoesNotTouchThePairRead)
+{
+  // IVS2 is NaN in every row, Speed4 (BMW_I3) NaN in row 3: the default pair (2 behind 1) reads whole.
+  std::string text = kPlatoonMetadata + kPlatoonHeader;
+  for (int i = 0; i < 10; ++i)
+  {
+    text += platoonRow(i, true, i == 3 ? "NaN" : "");
+  }
+  const std::string path = write("other_nan.csv", text);
+  const acc::OpenAccFile file = acc::readOpenAccFile(path);
+  EXPECT_EQ(file.cellProblem(3, "Speed4"), "Speed4 NaN");
+  EXPECT_GT(file.bad_cells.size(), 10u);  // IVS2 in every row, Speed4 once
+  const acc::RunFileContents contents = acc::readRunFile(path);
+  EXPECT_EQ(contents.rejected_rows, 0u);
+  EXPECT_TRUE(contents.problems.empty()) << joined(contents.problems);
+  ASSERT_EQ(contents.runs.size(), 1u);
+  EXPECT_EQ(contents.runs[0].size(), 10u);
+  EXPECT_EQ(contents.runs[0].name, "other_nan TESLA_MODELX");
+  EXPECT_DOUBLE_EQ(contents.runs[0].space_gap_m[0], 20.0);          // IVS1
+  EXPECT_DOUBLE_EQ(contents.runs[0].follower_speed_mps[0], 10.1);  // Speed2
+  EXPECT_DOUBLE_EQ(contents.runs[0].leader_speed_mps[0], 10.0);    // Speed1
+  // The default pair is said, never silently.
+  EXPECT_TRUE(anyContains(contents.notes, {"pair read: TESLA_MODELX behind SMART_TARGET", "no follower chosen"}))
+      << joined(contents.notes);
+  ASSERT_EQ(contents.pairs.size(), 1u);
+  EXPECT_EQ(contents.run_pairs, (std::vector<std::size_t>{0}));
+}
+
+TEST_F(OpenAccFileTest, NaNInThePairsOwnCellIsRejectedCountedAndSplitsTheRun)
+{
+  // Speed2, the follower's speed of the default pair, is NaN in row 4 (line 11).
+  std::string text = kPlatoonMetadata + kPlatoonHeader;
+  for (int i = 0; i < 10; ++i)
+  {
+    text += platoonRow(i, true, "", "10.0", i == 4 ? "NaN" : "");
+  }
+  const acc::RunFileContents contents = acc::readRunFile(write("own_nan.csv", text));
+  EXPECT_EQ(contents.data_rows, 10u);
+  EXPECT_EQ(contents.rejected_rows, 1u);
+  ASSERT_EQ(contents.problems.size(), 1u);
+  EXPECT_NE(contents.problems[0].find("own_nan.csv:11: Speed2 NaN; row rejected, run split here"), std::string::npos)
+      << contents.problems[0];
+  ASSERT_EQ(contents.runs.size(), 2u);
+  EXPECT_EQ(contents.runs[0].size(), 4u);
+  EXPECT_EQ(contents.runs[1].size(), 5u);
+  EXPECT_EQ(contents.runs[1].name, "own_nan TESLA_MODELX#2");
+}
+
+TEST_F(OpenAccFileTest, FollowerByNameOrPositionAndUnknownFollowerListsThePairs)
+{
+  // Pairs: TESLA_MODELX (2) behind SMART_TARGET (1) and AUDI_A4 (5) behind BMW_I3 (4); BMW_I3's
+  // leader, TESLA_MODEL3 (3), is absent although their gap IVS3 has values.
+  const std::string path = write("choose.csv", platoonFile(true));
+  const acc::RunFileContents by_name =
+      acc::readRunFile(path, acc::RunPlausibilityBounds{}, acc::OpenAccPairSelector::byFollower("audi_a4"));
+  ASSERT_EQ(by_name.runs.size(), 1u);
+  EXPECT_EQ(by_name.runs[0].name, "choose AUDI_A4");
+  EXPECT_DOUBLE_EQ(by_name.runs[0].space_gap_m[0], 12.0);          // IVS4
+  EXPECT_DOUBLE_EQ(by_name.runs[0].follower_speed_mps[0], 10.3);  // Speed5
+  EXPECT_DOUBLE_EQ(by_name.runs[0].leader_speed_mps[0], 10.2);    // Speed4
+  EXPECT_TRUE(anyContains(by_name.notes, {"pair read: AUDI_A4 behind BMW_I3", "follower 'audi_a4' chosen"}))
+      << joined(by_name.notes);
+  const acc::RunFileContents by_position =
+      acc::readRunFile(path, acc::RunPlausibilityBounds{}, acc::OpenAccPairSelector::byFollower("2"));
+  ASSERT_EQ(by_position.pairs.size(), 1u);
+  EXPECT_EQ(by_position.pairs[0].follower_name, "TESLA_MODELX");
+  EXPECT_EQ(by_position.runs[0].name, "choose TESLA_MODELX");
+  try
+  {
+    acc::readRunFile(path, acc::RunPlausibilityBounds{}, acc::OpenAccPairSelector::byFollower("NO_SUCH_CAR"));
+    FAIL() << "expected RunReadError";
+  }
+  catch (const acc::RunReadError& error)
+  {
+    const std::string what = error.what();
+    EXPECT_NE(what.find("no car 'NO_SUCH_CAR' in Vehicle_order"), std::string::npos) << what;
+    EXPECT_NE(what.find("pairs in this file: TESLA_MODELX behind SMART_TARGET, positions 2/1; AUDI_A4 behind "
+                        "BMW_I3, positions 5/4"),
+              std::string::npos)
+        << what;
+  }
+  // BMW_I3 (4) is a car of the file, but its leader (3) is absent: an error, with the reason.
+  try
+  {
+    acc::readRunFile(path, acc::RunPlausibilityBounds{}, acc::OpenAccPairSelector::byFollower("4"));
+    FAIL() << "expected RunReadError";
+  }
+  catch (const acc::RunReadError& error)
+  {
+    EXPECT_NE(std::string(error.what()).find("the car directly ahead of it, TESLA_MODEL3 (3), has no data"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
+TEST_F(OpenAccFileTest, AllPairsReadsEveryPairAndNamesItsRuns)
+{
+  const std::string path = write("all.csv", platoonFile(true));
+  const acc::RunFileContents contents =
+      acc::readRunFile(path, acc::RunPlausibilityBounds{}, acc::OpenAccPairSelector::all());
+  ASSERT_EQ(contents.pairs.size(), 2u);
+  ASSERT_EQ(contents.runs.size(), 2u);
+  EXPECT_EQ(contents.runs[0].name, "all TESLA_MODELX");
+  EXPECT_EQ(contents.runs[1].name, "all AUDI_A4");
+  EXPECT_EQ(contents.run_pairs, (std::vector<std::size_t>{0, 1}));
+  EXPECT_EQ(contents.data_rows, 20u);  // summed over the pairs
+  EXPECT_TRUE(anyContains(contents.notes, {"every pair read (2)"})) << joined(contents.notes);
+
+  const acc::AllPairRuns all = acc::readAllPairRuns(path);
+  ASSERT_EQ(all.pairs.size(), 2u);
+  EXPECT_EQ(all.pairs[1].pair.follower_name, "AUDI_A4");
+  EXPECT_EQ(all.pairs[1].contents.data_rows, 10u);
+  ASSERT_EQ(all.pairs[1].contents.runs.size(), 1u);
+  EXPECT_EQ(all.pairs[1].contents.runs[0].name, "all AUDI_A4");
+}
+
+TEST_F(OpenAccFileTest, WithoutADriverColumnTheAccLineTells)
+{
+  std::string manual = platoonFile(true);
+  manual.replace(manual.find("ACC,1"), 5, "ACC,0");
+  const acc::RunFileContents contents = acc::readRunFile(write("manual.csv", manual));
+  EXPECT_EQ(contents.acc_off_rows, 10u);
+  EXPECT_TRUE(contents.runs.empty());
+  EXPECT_TRUE(anyContains(contents.notes, {"no Driver2 column and the ACC line is 0"})) << joined(contents.notes);
+  EXPECT_THROW(acc::readRuns(write("manual2.csv", manual)), acc::RunReadError);
+}
+
+TEST_F(OpenAccFileTest, MetadataDistanceSettingAndTwoVehicleLayout)
+{
+  const std::string path = write("part9.csv",
+                                 "Date,27,10,2020\n"
+                                 "Vehicle_order,Rexton,Hyundai\n"
+                                 "Number_of_vehicles,2\n"
+                                 "ACC,1\n"
+                                 "Distance_setting,min\n"
+                                 "Time,Speed1,Lat1,Lon1,E1,N1,Speed2,Lat2,Lon2,Alt2,E2,N2,U2,IVS1,Driver2\n"
+                                 "100.0,30.0,0,0,0,0,29.0,0,0,0,0,0,0,40.0,ACC\n"
+                                 "100.1,30.1,0,0,0,0,29.1,0,0,0,0,0,0,40.1,ACC\n");
+  const acc::OpenAccFile file = acc::readOpenAccFile(path);
+  ASSERT_EQ(file.error, "");
+  EXPECT_EQ(file.metadata.distance_setting, "min");
+  EXPECT_EQ(file.metadata.year, 2020);
+  ASSERT_NE(file.vehicle(2), nullptr);
+  EXPECT_TRUE(file.vehicle(2)->has_driver);
+  const acc::RunFileContents contents = acc::readRunFile(path);
+  ASSERT_EQ(contents.runs.size(), 1u);
+  EXPECT_EQ(contents.runs[0].name, "part9 Hyundai");
+  EXPECT_TRUE(anyContains(contents.notes, {"ACC on where Driver2 is ACC"})) << joined(contents.notes);
+}
+
+TEST_F(OpenAccFileTest, ChoosingAFollowerInACanonicalCsvIsAnError)
+{
+  const std::string path = write("canonical.csv", "time_s,space_gap_m,follower_speed_mps,leader_speed_mps\n"
+                                                  "0.0,20,10,10\n0.1,20,10,10\n");
+  EXPECT_EQ(acc::readRunFile(path, acc::RunPlausibilityBounds{}, acc::OpenAccPairSelector::all()).runs.size(), 1u);
+  EXPECT_THROW(acc::readRunFile(path, acc::RunPlausibilityBounds{}, acc::OpenAccPairSelector::byFollower("2")),
+               acc::RunReadError);
+  EXPECT_TRUE(acc::readRunFile(path).notes.empty());
+}
+}  // namespace
