@@ -288,9 +288,15 @@ void EpochPairer::trimLeader()
   double reference = pending_follower_.empty() ? last_output_s_ : pending_follower_.front().gnss_time_s;
   if (!std::isfinite(reference))
     return;
+  // After a leader time reset (leader_ was cleared) the leader runs on a new, earlier time base
+  // while the follower is still on the old one: every leader fix is then far older than the
+  // reference, yet each will serve once the follower resets too. Told apart from old fixes
+  // before a hole in the data (an outage, runs laid end to end) by the leader's newest epoch:
+  // behind the reference by more than time_reset_s only in the first case.
+  if (newest_leader_s_ < reference - settings_.time_reset_s)
+    return;
   double oldest_useful = reference - settings_.max_interpolation_skew_s - settings_.exact_match_tolerance_s;
-  double other_time_base = reference - settings_.time_reset_s;  // after the leader's time reset
-  while (leader_.size() > 1 && leader_[1].gnss_time_s <= oldest_useful && leader_[1].gnss_time_s >= other_time_base)
+  while (leader_.size() > 1 && leader_[1].gnss_time_s <= oldest_useful)
     leader_.pop_front();
 }
 

@@ -275,3 +275,26 @@ TEST(Pairing, InterpolationFollowsTheShorterTurnAndTheDateLine)
   EXPECT_NEAR(std::abs(std::remainder(mid.course_rad - (6.2 + (0.1 + 2 * M_PI - 6.2) / 2), 2 * M_PI)), 0.0, 1e-9);
   EXPECT_NEAR(std::abs(mid.longitude_deg), 180.0, 1e-9);
 }
+
+// Runs laid end to end (or a 20 s outage of both receivers): the leader fixes before the hole can
+// serve no later pair and must be let go, not held as if from another time base until the
+// buffer overflows (seen on the ZalaZone session: 1,500 overflows).
+TEST(Pairing, LeaderFixesBeforeAHoleInBothStreamsAreLetGo)
+{
+  acc::PairingSettings settings;
+  settings.max_buffered_fixes = 100;  // 10 s at 10 Hz: far less than the 250 s after the hole
+  acc::EpochPairer pairer(settings);
+  std::vector<double> times = epochs(0.0, 30.0);
+  for (double t : epochs(50.0, 300.0))
+    times.push_back(t);
+  for (double t : times)
+  {
+    pairer.addLeader(fixAt(t));
+    pairer.addFollower(fixAt(t, -0.001));
+  }
+  const auto pairs = pairer.takePairs();
+  EXPECT_EQ(pairer.counters().buffer_overflows, 0u);
+  EXPECT_EQ(pairer.counters().leader_time_resets, 0u);
+  EXPECT_EQ(pairs.size(), times.size());
+  expectIncreasingAndFresh(pairs, 0.0);
+}
