@@ -23,3 +23,4 @@ function(acc_unpack_bundled_data name)
 endfunction()
 
 acc_unpack_bundled_data(casale)
+acc_unpack_bundled_data(zalazone_toyota_rav4_s)

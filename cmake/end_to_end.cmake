@@ -18,6 +18,8 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/rostest/end_to_end_synthetic.test DEPENDENCIES ${ACC_END_TO_END_TARGETS})
   # Real (Casale) bag at 20x: parameters as a batch calibrate of the same samples, no sample dropped.
   add_rostest(test/rostest/end_to_end_real.test DEPENDENCIES ${ACC_END_TO_END_TARGETS})
+  # A real perturbation session (ZalaZone): the verdict decided live, before the end of the drive.
+  add_rostest(test/rostest/end_to_end_zalazone.test DEPENDENCIES ${ACC_END_TO_END_TARGETS})
   # Both drivers hold 10 Hz at rate 1 (hztest), decoding the bag's sentences from the topic.
   add_rostest(test/rostest/end_to_end_rate.test DEPENDENCIES ${ACC_END_TO_END_TARGETS})
   # A 5 s leader dropout: no parameters from the gap, recovery after it.

@@ -36,5 +36,5 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_synthesis_bag.cpp)
   target_link_libraries(test_synthesis acc_synthesis acc_sentence_bag)
   target_compile_definitions(test_synthesis PRIVATE ACC_SYNTHESIS_BAGS_DIR="${PROJECT_SOURCE_DIR}/bags"
-    ACC_OPENACC_DATA_DIR="${ACC_DATA_CASALE_DIR}")
+    ACC_OPENACC_DATA_DIR="${ACC_DATA_CASALE_DIR}" ACC_ZALAZONE_DATA_DIR="${ACC_DATA_ZALAZONE_TOYOTA_RAV4_S_DIR}")
 endif()

@@ -143,8 +143,8 @@ def compare(online_path, batch_path):
     else:
         print("no update carried a decided verdict: the data do not decide string stability (undecided, not hidden)")
     if online["identifiable_messages"] == 0:
-        print("No window of this run determined all four parameters (real Casale data: tau_e and eta trade "
-              "off); each one is NaN where not determined, the others are published.")
+        print("No window of this drive determined all four parameters (on real drives tau_e and eta often "
+              "trade off); each one is NaN where not determined, the others are published.")
     if not online["identifiable"]:
         print("What the last window does not determine: " + online["identifiability_note"])
         print("batch calibrate: " + str(batch.get("identifiability_note")))
