@@ -39,34 +39,18 @@ std::string describeInsufficientExcitation(const std::vector<CarFollowingRun>& s
   return "";
 }
 
-std::string describeUnidentifiable(const AccParameters& p, const ParameterUncertainty& uncertainty,
-                                   const IdentifiabilityCriteria& criteria)
+std::string describeUndeterminedParameters(const IdentifiableQuantities& quantities)
 {
-  std::ostringstream why;
-  const AccParameters& se = uncertainty.standard_error;
-  if (!std::isfinite(se.k1_per_s2) || !std::isfinite(se.k2_per_s) || !std::isfinite(se.tau_e_s) ||
-      !std::isfinite(se.eta_m))
+  std::string why;
+  for (const char* name : {"k1", "k2", "tau_e", "eta"})
   {
-    why << "the Gauss-Newton matrix is singular (reciprocal condition " << uncertainty.reciprocal_condition
-        << "): some parameter combination does not change the simulated speed";
-    return why.str();
+    const QuantityEstimate* q = quantities.find(name);
+    if (q == nullptr)
+      why += std::string(why.empty() ? "" : "; ") + name + " was not assessed";
+    else if (!q->determined)
+      why += (why.empty() ? "" : "; ") + q->reason;
   }
-  const struct
-  {
-    const char* name;
-    double value, error;
-  } checks[] = {{"k1", p.k1_per_s2, se.k1_per_s2}, {"k2", p.k2_per_s, se.k2_per_s}, {"tau_e", p.tau_e_s, se.tau_e_s}};
-  for (const auto& check : checks)
-  {
-    if (!(check.error <= criteria.max_relative_standard_error * std::abs(check.value)))
-    {
-      why << check.name << " = " << check.value << " +- " << check.error << " is not determined to "
-          << 100.0 * criteria.max_relative_standard_error << " % by this data (reciprocal condition "
-          << uncertainty.reciprocal_condition << ")";
-      return why.str();
-    }
-  }
-  return "";
+  return why;
 }
 
 Identification identifyAcc(const std::vector<CarFollowingRun>& segments, const IdentificationOptions& options,
@@ -103,7 +87,8 @@ Identification identifyAcc(const std::vector<CarFollowingRun>& segments, const I
   result.fit = evaluateFit(p, segments);
   result.uncertainty = estimateUncertainty(p, segments);
   result.stability = analyzeStringStability(p);
-  result.note = describeUnidentifiable(p, result.uncertainty, options.criteria);
+  result.quantities = assessQuantities(p, result.uncertainty, segments, options.criteria.quantities);
+  result.note = describeUndeterminedParameters(*result.quantities);
   result.identifiable = result.note.empty();
   return result;
 }

@@ -80,8 +80,7 @@ OnlineUpdate OnlineIdentifier::update(const std::vector<CarFollowingRun>& window
   if (result.window.solved && !result.window.calibration.diverged)
   {
     window_warm_start_ = result.window.calibration.parameters;
-    result.window_quantities = assessQuantities(result.window.calibration.parameters, result.window.uncertainty,
-                                                window_segments, options_.quantity_criteria);
+    result.window_quantities = result.window.quantities;
   }
   result.window_cpu_s = secondsSince(start);
 
@@ -91,8 +90,7 @@ OnlineUpdate OnlineIdentifier::update(const std::vector<CarFollowingRun>& window
   if (result.drive.solved && !result.drive.calibration.diverged)
   {
     drive_warm_start_ = result.drive.calibration.parameters;
-    result.drive_quantities = assessQuantities(result.drive.calibration.parameters, result.drive.uncertainty,
-                                               drive_segments, options_.quantity_criteria);
+    result.drive_quantities = result.drive.quantities;
   }
   result.drive_cpu_s = secondsSince(start);
 

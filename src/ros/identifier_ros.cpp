@@ -162,7 +162,7 @@ bool loadIdentifierSettings(const ros::NodeHandle& p, IdentifierSettings& s, std
                   readPositive(p, "queue_size", s.queue_size, error) &&
                   readPositive(p, "min_duration_s", c.min_duration_s, error) &&
                   readPositive(p, "min_samples", min_samples, error) &&
-                  readPositive(p, "max_relative_standard_error", c.max_relative_standard_error, error);
+                  readPositive(p, "max_relative_standard_error", c.quantities.max_relative_error_parameter, error);
   if (!ok)
   {
     return false;

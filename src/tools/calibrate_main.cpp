@@ -208,7 +208,7 @@ int main(int argc, char** argv)
     return 1;
   }
   const acc::AccParameters& p = report.calibration.parameters;
-  report.quantities = acc::assessQuantities(p, report.uncertainty, training);
+  report.quantities = identification.quantities;
   if (!no_stability_test)
   {
     std::vector<acc::CarFollowingRun> runs;

@@ -1,12 +1,14 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "acc_identification/calibration/calibration_objective.h"
 #include "acc_identification/calibration/fit_statistics.h"
 #include "acc_identification/calibration/multistart_calibrator.h"
+#include "acc_identification/calibration/quantity_identifiability.h"
 #include "acc_identification/model/car_following_run.h"
 #include "acc_identification/model/string_stability.h"
 
@@ -21,18 +23,19 @@ struct IdentifiabilityCriteria
   /// Standard deviation of the follower's speed over the window: below it, no speed changes to
   /// learn the dynamics from (GNSS noise alone is about 0.06 m/s).
   double min_speed_std_mps = 0.5;
-  /// After the fit: each of k1, k2, tau_e must be known to this fraction of its value (standard
-  /// error over estimate), else the fit is not trusted.
-  double max_relative_standard_error = 0.5;
+  /// After the fit: what the data determine, quantity by quantity (assessQuantities). The window
+  /// is identifiable when k1, k2, tau_e and eta all are: one definition for calibrate, the
+  /// identifier node and every report.
+  QuantityCriteria quantities;
 };
 
 /// Why the segments lack the excitation to start a fit, or "" when they have it.
 std::string describeInsufficientExcitation(const std::vector<CarFollowingRun>& segments,
                                            const IdentifiabilityCriteria& criteria);
 
-/// Why a fit's parameters are not determined by the data, or "" when they are.
-std::string describeUnidentifiable(const AccParameters& p, const ParameterUncertainty& uncertainty,
-                                   const IdentifiabilityCriteria& criteria);
+/// Why k1, k2, tau_e or eta is not determined (each reason, "; " between them), or "" when all
+/// four are.
+std::string describeUndeterminedParameters(const IdentifiableQuantities& quantities);
 
 struct IdentificationOptions
 {
@@ -45,7 +48,7 @@ struct IdentificationOptions
 struct Identification
 {
   bool solved = false;         ///< false when skipped for lack of excitation (then only note is set)
-  bool identifiable = false;
+  bool identifiable = false;   ///< k1, k2, tau_e and eta all determined (see quantities)
   std::string note;            ///< why not identifiable; empty when identifiable
   std::size_t samples = 0;
   std::size_t segments = 0;
@@ -53,6 +56,8 @@ struct Identification
   FitQuality fit;
   ParameterUncertainty uncertainty;
   StringStabilityReport stability;
+  /// What the data determine, quantity by quantity (set when solved and not diverged).
+  std::optional<IdentifiableQuantities> quantities;
 };
 
 /// Checks excitation, calibrates (multistart, warm starts first), then scores the fit, its

@@ -28,7 +28,6 @@ struct OnlineIdentifierOptions
   std::size_t stability_every_updates = 10;
   /// The test's options. Its unconstrained fit starts from the drive fit and these fresh starts.
   StabilityTestOptions stability = defaultStabilityOptions();
-  QuantityCriteria quantity_criteria;
 
   /// StabilityTestOptions with 8 fresh starts for the unconstrained fit and 8 Halton starts with
   /// at most 2 local solves for the other side: enough on a warm-started drive, a third of the

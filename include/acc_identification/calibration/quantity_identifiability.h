@@ -18,7 +18,8 @@ namespace acc
 /// is determined; tau_e = 0 +- 0.67 s is not).
 struct QuantityCriteria
 {
-  /// k1, k2, tau_e, eta: as IdentifiabilityCriteria::max_relative_standard_error.
+  /// k1, k2, tau_e, eta: determined when the standard error is at most this fraction of
+  /// max(|value|, floor) (the identifier node's ~max_relative_standard_error).
   double max_relative_error_parameter = 0.5;
   AccParameters parameter_scale_floor{0.01, 0.05, 0.2, 1.0};
   /// The equilibrium gap eta + tau_e v: known to 10 % (and the floor: 2 m).
