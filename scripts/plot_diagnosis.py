@@ -24,6 +24,26 @@ OPENACC_ATTRIBUTION = (
     "spectra and statistics derived.")
 
 
+def stability_test_lines(test):
+    """The verdict of the chosen model, decided on held-out data (diagnosis/augmented_stability_test.h)."""
+    if not test:
+        return ["The string-stability test was not run.", ""]
+
+    def side(name, fit):
+        if not fit:
+            return f"- best {name} model: none found in the search box"
+        params = ", ".join(f"{k} {fmt(v)}" for k, v in fit["parameters"].items())
+        effect = ", ".join(f"{k} {fmt(v)}" for k, v in fit["effect_parameters"].items())
+        return (f"- best {name} model: {params}{'; ' + effect if effect else ''}; stability index "
+                f"{fmt(fit['stability_index'])}, peak {fmt(fit['peak_gain_db'])} dB; speed RMSE train "
+                f"{fmt(fit['train_rmse_speed'])}, held out {fmt(fit['test_rmse_speed'])} m/s")
+
+    return [f"**Verdict for the `{test['effect']}` model: {test['verdict'].upper()}** "
+            f"(p = {fmt(test['p_value'])}, alpha {test['alpha']}).", "",
+            side("string-stable", test.get("best_stable")), side("string-unstable", test.get("best_unstable")), "",
+            f"Why: {test['reason']}.", ""]
+
+
 def read_csv(path):
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
@@ -231,8 +251,9 @@ def write_report(report_dir, d):
         lines.append(f"| {s['run']} | {s['start_s']:.1f} | {s['end_s']:.1f} | "
                      f"{s['share_of_squared_speed_error'] * 100:.1f}% | {fmt(s['rmse_speed_before'])} → "
                      f"{fmt(s['rmse_speed_after'])} | {s['main_regime']} |")
-    lines += ["", "![time series](held_out_time_series.png)", "", "## String stability", "",
-              "![gain](string_stability_gain.png)", ""]
+    lines += ["", "![time series](held_out_time_series.png)", "", "## String stability", ""]
+    lines += stability_test_lines(d.get("stability_test"))
+    lines += ["![gain](string_stability_gain.png)", ""]
     if d["notes"]:
         lines += ["## Data not used", ""] + [f"- {n}" for n in d["notes"]] + [""]
     if any("openacc" in p.lower() or "casale" in p.lower() for p in d.get("inputs", [])):

@@ -164,6 +164,12 @@ void printSummary(const acc::DiagnosisResult& r)
     std::printf(" %s", acc::effectName(kind).c_str());
   }
   std::printf("%s\n", r.selection.plausible.empty() ? " (none)" : "");
+  if (r.stability_test)
+  {
+    const acc::AugmentedStabilityTestResult& t = *r.stability_test;
+    std::printf("string stability of the %s model, decided on the held-out parts: %s, p = %.3g\n  why: %s\n",
+                acc::effectName(t.effect).c_str(), acc::toString(t.verdict).c_str(), t.p_value, t.reason.c_str());
+  }
 }
 }  // namespace
 
