@@ -24,3 +24,4 @@ endfunction()
 
 acc_unpack_bundled_data(casale)
 acc_unpack_bundled_data(zalazone_toyota_rav4_s)
+acc_unpack_bundled_data(zalazone_dynamic)

@@ -1,17 +1,20 @@
 #!/usr/bin/env python3
-"""Cuts one car's leader-follower columns out of OpenACC platoon files into a small archive.
+"""Cuts columns out of OpenACC platoon files into a small, deterministic archive.
 
 The JRC OpenACC database (Makridis et al., Transportation Research Part C 125 (2021) 103047;
 (c) European Union, CC BY 4.0) ships each platoon run as one wide CSV with every car's columns.
-The package needs only one pair per run, so the excerpt keeps, per file: the metadata lines as
-they are, and of the data only the Time column, the six columns of the follower and of the car
-directly ahead of it (Speed, E, N, Lon, Lat, Alt), and their gap IVS. Every kept cell is copied as
+Two kinds of excerpt, each keeping the metadata lines as they are:
+  --follower NAME: one pair per run, for the NMEA bags: the Time column, the six columns of the
+      follower and of the car directly ahead of it (Speed, E, N, Lon, Lat, Alt), and their gap IVS;
+  --speeds-and-gaps: every car, for the identification of whole campaigns: Time, every Speedk and
+      every IVSk (no positions: a fraction of the size). Every kept cell is copied as
 written, byte for byte; the columns keep their numbers, as the database's own files with missing
 cars do, so any OpenACC reader reads an excerpt as it reads the original. The archive is
 deterministic (sorted names, fixed times and owners, xz preset 9e): the same input gives the same
 bytes.
 
 Usage:
+  make_openacc_excerpt.py --source DIR --speeds-and-gaps --out data/openacc/NAME.tar.xz RUN... \
   make_openacc_excerpt.py --source DIR --follower TOYOTA_RAV4 --out data/openacc/NAME.tar.xz \
       [--extra Zala_notes.txt --extra copyright.txt ...] dynamic_part5 dynamic_part6 ...
 """
@@ -28,11 +31,36 @@ PER_CAR = ("Speed", "E", "N", "Lon", "Lat", "Alt")
 MTIME = 1570492800  # 2019-10-08 00:00 UTC, the day of the ZalaZone dynamic-platform runs
 
 
-def excerpt(path, follower):
-    """The excerpt of one file as text, and the pair it holds as (leader, follower) positions."""
+def read_lines(path):
     with open(path, newline="") as f:
         lines = f.read().splitlines()
-    metadata, header_line, rows = lines[:METADATA_LINES], lines[METADATA_LINES], lines[METADATA_LINES + 1:]
+    return lines[:METADATA_LINES], lines[METADATA_LINES], lines[METADATA_LINES + 1:]
+
+
+def keep_columns(path, metadata, header, rows, wanted):
+    """The file's text with only the wanted columns, every kept cell as written."""
+    index = [header.index(c) for c in wanted]
+    out = io.StringIO()
+    out.write("\n".join(metadata) + "\n" + ",".join(wanted) + "\n")
+    for number, line in enumerate(rows, start=METADATA_LINES + 2):
+        cells = line.split(",")
+        if len(cells) != len(header):
+            sys.exit(f"{path}:{number}: {len(cells)} fields, the header has {len(header)}")
+        out.write(",".join(cells[i] for i in index) + "\n")
+    return out.getvalue()
+
+
+def speeds_and_gaps(path):
+    """Time, every Speedk and every IVSk of one file, in the file's column order."""
+    metadata, header_line, rows = read_lines(path)
+    header = next(csv.reader([header_line]))
+    wanted = [c for c in header if c == "Time" or c.startswith("Speed") or c.startswith("IVS")]
+    return keep_columns(path, metadata, header, rows, wanted)
+
+
+def excerpt(path, follower):
+    """The excerpt of one file as text, and the pair it holds as (leader, follower) positions."""
+    metadata, header_line, rows = read_lines(path)
     order = [name for name in next(csv.reader([metadata[1]]))[1:] if name]
     if follower not in order:
         sys.exit(f"{path}: no {follower} in Vehicle_order {order}")
@@ -44,15 +72,7 @@ def excerpt(path, follower):
     missing = [c for c in wanted if c not in header]
     if missing:
         sys.exit(f"{path}: columns {missing} are not in the file")
-    index = [header.index(c) for c in wanted]
-    out = io.StringIO()
-    out.write("\n".join(metadata) + "\n" + ",".join(wanted) + "\n")
-    for number, line in enumerate(rows, start=METADATA_LINES + 2):
-        cells = line.split(",")
-        if len(cells) != len(header):
-            sys.exit(f"{path}:{number}: {len(cells)} fields, the header has {len(header)}")
-        out.write(",".join(cells[i] for i in index) + "\n")
-    return out.getvalue(), (k - 1, k), order[k - 2]
+    return keep_columns(path, metadata, header, rows, wanted), (k - 1, k), order[k - 2]
 
 
 def add(archive, name, data):
@@ -68,7 +88,9 @@ def add(archive, name, data):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--source", required=True, help="folder of the database's files")
-    parser.add_argument("--follower", required=True, help="the car, by its Vehicle_order name")
+    kind = parser.add_mutually_exclusive_group(required=True)
+    kind.add_argument("--follower", help="one pair per run: this car, by its Vehicle_order name, and the car ahead")
+    kind.add_argument("--speeds-and-gaps", action="store_true", help="every car's speed and gap, no positions")
     parser.add_argument("--out", required=True, help="archive to write (.tar.xz)")
     parser.add_argument("--extra", action="append", default=[], help="a file of the folder copied as it is (repeatable)")
     parser.add_argument("runs", nargs="+", help="run names (file names without .csv)")
@@ -76,10 +98,15 @@ def main():
 
     members = {}
     for run in args.runs:
-        text, pair, leader = excerpt(os.path.join(args.source, run + ".csv"), args.follower)
+        path = os.path.join(args.source, run + ".csv")
+        if args.speeds_and_gaps:
+            text = speeds_and_gaps(path)
+            print(f"{run}: speeds and gaps of every car, {text.count(chr(10)) - METADATA_LINES - 1} rows")
+        else:
+            text, pair, leader = excerpt(path, args.follower)
+            print(f"{run}: {args.follower} (position {pair[1]}) behind {leader} (position {pair[0]}), "
+                  f"{text.count(chr(10)) - METADATA_LINES - 1} rows")
         members[run + ".csv"] = text.encode()
-        print(f"{run}: {args.follower} (position {pair[1]}) behind {leader} (position {pair[0]}), "
-              f"{text.count(chr(10)) - METADATA_LINES - 1} rows")
     for name in args.extra:
         with open(os.path.join(args.source, name), "rb") as f:
             members[name] = f.read()
