@@ -9,6 +9,7 @@ acc_add_library(acc_gnss
     src/gnss/nmea_log.cpp
     src/gnss/source_uri.cpp
     src/gnss/file_source.cpp
+    src/gnss/log_pacer.cpp
     src/gnss/reconnecting_source.cpp
     src/gnss/live_sources.cpp)
 

@@ -4,12 +4,11 @@
 #include <cstring>
 #include <thread>
 
-#include "acc_identification/gnss/nmea_parser.h"
-#include "acc_identification/gnss/utc_date.h"
 
 namespace acc
 {
-FileSource::FileSource(const std::string& path, double rate) : path_(path), rate_(rate), in_(path, std::ios::binary)
+FileSource::FileSource(const std::string& path, double rate)
+  : path_(path), rate_(rate), in_(path, std::ios::binary), pacer_(rate)
 {
   state_ = in_.is_open() ? "open" : "cannot open " + path;
 }
@@ -33,24 +32,15 @@ bool FileSource::loadLine()
     line_ += '\n';  // last line without terminator
   line_offset_ = 0;
   has_line_ = true;
-  double time_of_day_s = 0.0;
-  if (rate_ <= 0.0 || !nmeaLineTimeOfDay(line_, time_of_day_s))
-    return true;  // untimed lines are due with the line before them
-  double log_time_s = time_of_day_s + day_offset_s_;
-  if (started_ && log_time_s < last_time_s_ - kSecondsPerDay / 2.0)  // midnight in the log
-  {
-    day_offset_s_ += kSecondsPerDay;
-    log_time_s += kSecondsPerDay;
-  }
+  const std::optional<double> offset_s = pacer_.dueOffsetS(line_);
+  if (!offset_s)
+    return true;  // untimed lines (or no pacing): due with the line before them
   if (!started_)
   {
     started_ = true;
     wall_start_ = Clock::now();
-    log_start_s_ = log_time_s;
   }
-  last_time_s_ = std::max(last_time_s_, log_time_s);
-  const double offset_s = std::max(0.0, (log_time_s - log_start_s_) / rate_);
-  due_ = wall_start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(offset_s));
+  due_ = wall_start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(*offset_s));
   return true;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "acc_identification/gnss/byte_source.h"
+#include "acc_identification/gnss/log_pacer.h"
 
 namespace acc
 {
@@ -38,10 +39,8 @@ private:
   std::size_t line_offset_ = 0;
   bool has_line_ = false;
   bool started_ = false;     ///< first timed line seen
-  Clock::time_point wall_start_;
-  double log_start_s_ = 0.0;
-  double last_time_s_ = 0.0; ///< unwrapped log time of the last timed line
-  double day_offset_s_ = 0.0;
+  LogPacer pacer_;
+  Clock::time_point wall_start_;  ///< when the first timed line was due
   Clock::time_point due_;
 };
 
