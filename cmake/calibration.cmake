@@ -39,7 +39,8 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_calibration_objective.cpp
     test/unit/test_calibration_multistart.cpp
     test/unit/test_identifier_window.cpp
-    test/unit/test_calibration_report.cpp)
+    test/unit/test_calibration_report.cpp
+    test/unit/test_synthetic_runs.cpp)
   target_compile_definitions(test_calibration PRIVATE ACC_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/test/data/runs")
   target_link_libraries(test_calibration acc_calibration acc_run_io)
 

@@ -3,8 +3,6 @@
 # diagnose tool, unit tests and the withheld-effect suite.
 acc_add_library(acc_diagnosis
   SOURCES
-    src/diagnosis/candidate_effects.cpp
-    src/diagnosis/augmented_simulation.cpp
     src/diagnosis/augmented_calibration.cpp
     src/diagnosis/residual_breakdown.cpp
     src/diagnosis/effect_selection.cpp

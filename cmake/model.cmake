@@ -9,6 +9,9 @@ acc_add_library(acc_model
     src/model/paper_settings.cpp
     src/model/halton_sequence.cpp
     src/model/block_bootstrap.cpp
+    src/model/normal_source.cpp
+    src/model/follower_effects.cpp
+    src/model/batch_means.cpp
   LINK Eigen3::Eigen m)
 
 acc_add_tool(stability_report LINK acc_model)
@@ -19,6 +22,7 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_acc_model.cpp
     test/unit/test_string_stability.cpp
     test/unit/test_follower_simulation.cpp
-    test/unit/test_platoon_simulation.cpp)
+    test/unit/test_platoon_simulation.cpp
+    test/unit/test_normal_source.cpp)
   target_link_libraries(test_model acc_model)
 endif()

@@ -16,7 +16,7 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_pairing.cpp
     test/unit/test_relative_state_geometry.cpp
     test/unit/test_relative_state_estimator.cpp)
-  target_link_libraries(test_relative_state acc_relative_state)
+  target_link_libraries(test_relative_state acc_relative_state acc_model)
 endif()
 
 # The OpenACC converter writes NMEA with the gnss component's writer and its tests read the logs

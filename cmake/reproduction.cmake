@@ -9,6 +9,7 @@ acc_add_library(acc_reproduction
     src/reproduction/platoon_metrics.cpp
     src/reproduction/platoon_responses.cpp
     src/reproduction/run_comparison.cpp
+    src/reproduction/equilibrium_regression.cpp
     src/reproduction/parameter_file.cpp
   LINK acc_model)
 target_link_libraries(acc_reproduction PRIVATE nlohmann_json::nlohmann_json)
@@ -24,6 +25,7 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_reproduction_lambda2_map.cpp
     test/unit/test_reproduction_frequency_response.cpp
     test/unit/test_reproduction_platoon.cpp
-    test/unit/test_reproduction_runs.cpp)
+    test/unit/test_reproduction_runs.cpp
+    test/unit/test_reproduction_equilibrium.cpp)
   target_link_libraries(test_reproduction acc_reproduction)
 endif()

@@ -11,7 +11,6 @@ if(NOT (TARGET acc_conversion AND TARGET acc_reproduction AND TARGET acc_diagnos
 endif()
 acc_add_library(acc_synthesis
   SOURCES
-    src/synthesis/normal_source.cpp
     src/synthesis/gnss_error_model.cpp
     src/synthesis/road_centreline.cpp
     src/synthesis/drive_truth.cpp

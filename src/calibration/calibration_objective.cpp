@@ -20,35 +20,25 @@ struct PassSums
   bool diverged = false;
 };
 
-bool isRunaway(double a, double b, double c, double d)
-{
-  // Written so that NaN counts as runaway too.
-  return !(std::abs(a) < kDivergenceBound && std::abs(b) < kDivergenceBound &&
-           std::abs(c) < kDivergenceBound && std::abs(d) < kDivergenceBound);
-}
-
 /// Two doubles in one SSE2 register (x86-64's baseline, so no special build flags): the eta = 0
 /// simulation and the unit-eta response advance with the same coefficients, side by side.
 typedef double Pair __attribute__((vector_size(16)));
 
 /// One Euler pass over a segment: the eta = 0 simulation (s_a, v_a) and the unit-eta response
 /// (s_g, v_g), as the pairs S = (s_a, s_g), V = (v_a, v_g), and, when WithGradient, their
-/// sensitivities dS[i], dV[i] to (k1, k2, tau_e). The sums are local so that the compiler keeps
-/// them in registers.
-template <bool WithGradient, typename Segment>
-PassSums simulatePass(const Segment& seg, double k1, double k2, double tau)
+/// sensitivities dS[i], dV[i] to (k1, k2, tau_e). After each step visit(k + 1, V, dV) sees the
+/// state at sample k + 1 (sample 0 is the measured start: zero error and zero sensitivity).
+/// Returns false when the recursion ran away (the visits then stop).
+template <bool WithGradient, typename Segment, typename Visitor>
+bool eulerPass(const Segment& seg, double k1, double k2, double tau, Visitor&& visit)
 {
-  PassSums sums;
   Pair S = {seg.initial_gap_m, 0.0}, V = {seg.initial_speed_mps, 0.0};
   Pair dS[3] = {{0, 0}, {0, 0}, {0, 0}}, dV[3] = {{0, 0}, {0, 0}, {0, 0}};
-  Pair e_dV[3] = {{0, 0}, {0, 0}, {0, 0}}, g_dV[3] = {{0, 0}, {0, 0}, {0, 0}};
   const Pair unit_eta = {0.0, 1.0};  // eta enters the g system only, as a unit constant
   const std::size_t steps = seg.step_s.size();
   const double* step = seg.step_s.data();
   const double* leader = seg.leader_speed_mps.data();
-  const double* measured = seg.follower_speed_mps.data();
   const double damping = k1 * tau + k2;
-  // Sample 0 is the measured start: zero error and zero sensitivity, nothing to add.
   for (std::size_t k = 0; k < steps; ++k)
   {
     // The recursion of simulateFollower(), v' = v + h (k1 (s - eta - tau v) + k2 (u - v)),
@@ -72,16 +62,30 @@ PassSums simulatePass(const Segment& seg, double k1, double k2, double tau)
     const Pair next_V = keep * V + h_k1 * (S - unit_eta) + (h * k2) * u;
     S += h * (u - V);
     V = next_V;
-    if (isRunaway(S[0], V[0], S[1], V[1]))
+    if (isRunaway(V[0], S[0]) || isRunaway(V[1], S[1]))
     {
-      sums.diverged = true;
-      return sums;
+      return false;
     }
-    const double e = measured[k + 1] - V[0];
+    visit(k + 1, V, static_cast<const Pair*>(dV));
+  }
+  return true;
+}
+
+/// The objective's sums over one segment. They are locals of this function, so that the compiler
+/// keeps them in registers through the inlined visits.
+template <bool WithGradient, typename Segment>
+PassSums simulatePass(const Segment& seg, double k1, double k2, double tau)
+{
+  PassSums sums;
+  Pair e_dV[3] = {{0, 0}, {0, 0}, {0, 0}}, g_dV[3] = {{0, 0}, {0, 0}, {0, 0}};
+  double ee = 0.0, eg = 0.0, gg = 0.0;
+  const double* measured = seg.follower_speed_mps.data();
+  const bool finite = eulerPass<WithGradient>(seg, k1, k2, tau, [&](std::size_t k, const Pair& V, const Pair* dV) {
+    const double e = measured[k] - V[0];
     const double g = V[1];
-    sums.ee += e * e;
-    sums.eg += e * g;
-    sums.gg += g * g;
+    ee += e * e;
+    eg += e * g;
+    gg += g * g;
     if constexpr (WithGradient)
     {
       for (int i = 0; i < 3; ++i)
@@ -90,7 +94,15 @@ PassSums simulatePass(const Segment& seg, double k1, double k2, double tau)
         g_dV[i] += g * dV[i];
       }
     }
+  });
+  if (!finite)
+  {
+    sums.diverged = true;
+    return sums;
   }
+  sums.ee = ee;
+  sums.eg = eg;
+  sums.gg = gg;
   for (int i = 0; i < 3; ++i)
   {
     sums.e_dva[i] = e_dV[i][0];
@@ -190,6 +202,35 @@ ReducedObjectiveValue CalibrationObjective::evaluate(double k1, double k2, doubl
     }
   }
   return value;
+}
+
+SensitivityRows sensitivityRows(const AccParameters& p, const CarFollowingRun& run)
+{
+  struct RunSegment
+  {
+    double initial_gap_m, initial_speed_mps;
+    std::vector<double> step_s;
+    const std::vector<double>& leader_speed_mps;
+  } seg{run.space_gap_m[0], run.follower_speed_mps[0], {}, run.leader_speed_mps};
+  for (std::size_t k = 0; k + 1 < run.size(); ++k)
+  {
+    seg.step_s.push_back(run.time_s[k + 1] - run.time_s[k]);
+  }
+  const double eta = p.eta_m;
+  SensitivityRows rows;
+  rows.time_s.push_back(run.time_s[0]);
+  rows.residual.push_back(0.0);  // the first sample is the measured start
+  rows.row.push_back(Eigen::Vector4d::Zero());
+  rows.diverged = !eulerPass<true>(seg, p.k1_per_s2, p.k2_per_s, p.tau_e_s,
+                                   [&](std::size_t k, const Pair& V, const Pair* dV) {
+                                     // v = v_a + eta v_g, so d v / d theta_i = dv_a[i] + eta dv_g[i].
+                                     rows.time_s.push_back(run.time_s[k]);
+                                     rows.residual.push_back(run.follower_speed_mps[k] - (V[0] + eta * V[1]));
+                                     rows.row.push_back(Eigen::Vector4d(dV[0][0] + eta * dV[0][1],
+                                                                        dV[1][0] + eta * dV[1][1],
+                                                                        dV[2][0] + eta * dV[2][1], V[1]));
+                                   });
+  return rows;
 }
 
 }  // namespace acc

@@ -7,7 +7,8 @@
 #include <Eigen/Dense>
 #include <nlopt.hpp>
 
-#include "acc_identification/diagnosis/augmented_simulation.h"
+#include "acc_identification/model/batch_means.h"
+#include "acc_identification/model/follower_simulation.h"
 
 namespace acc
 {
@@ -172,22 +173,6 @@ std::vector<std::vector<double>> effectStarts(EffectKind effect, const Augmented
   return starts;
 }
 
-/// Length of the batch-means blocks: five residual correlation times (from the lag-1
-/// autocorrelation of the residuals, AR(1)), at least 10 s, at most an eighth of the data so that
-/// there are enough blocks -- the choice of the calibration component's fit statistics.
-double batchLength(const std::vector<double>& residuals, double step_s, double duration_s)
-{
-  double lag0 = 0.0;
-  double lag1 = 0.0;
-  for (std::size_t i = 0; i < residuals.size(); ++i)
-  {
-    lag0 += residuals[i] * residuals[i];
-    lag1 += i > 0 ? residuals[i] * residuals[i - 1] : 0.0;
-  }
-  const double rho = lag0 > 0.0 ? std::clamp(lag1 / lag0, 1e-6, 0.9999) : 1e-6;
-  const double correlation_time_s = -step_s / std::log(rho);
-  return std::min(std::max(10.0, 5.0 * correlation_time_s), duration_s / 8.0);
-}
 
 std::vector<double> simulatedSpeeds(const std::vector<double>& x, EffectKind effect,
                                     const std::vector<CarFollowingRun>& segments)
@@ -196,7 +181,7 @@ std::vector<double> simulatedSpeeds(const std::vector<double>& x, EffectKind eff
   const EffectSettings settings = makeEffectSettings(effect, effectPart(x));
   for (const CarFollowingRun& run : segments)
   {
-    const SimulatedFollower sim = simulateAugmentedFollower(baseOf(x), settings, run);
+    const SimulatedFollower sim = simulateFollower(baseOf(x), settings, run);
     speeds.insert(speeds.end(), sim.speed_mps.begin(), sim.speed_mps.end());
   }
   return speeds;
@@ -258,35 +243,15 @@ std::vector<double> standardErrors(const std::vector<double>& x, const Augmented
   Eigen::FullPivLU<Eigen::MatrixXd> lu(information);
   // Sandwich with the batch-means covariance of the scores J_k r_k: honest when the residuals are
   // correlated over seconds, as model errors are. Blocks do not straddle segments.
-  double duration_s = 0.0;
+  std::vector<std::vector<double>> times;
   for (const CarFollowingRun& run : segments)
   {
-    duration_s += run.durationS();
+    times.push_back(run.time_s);
   }
-  const double step_s = duration_s / static_cast<double>(std::max<std::size_t>(1, n - segments.size()));
-  const double block_s = batchLength(residuals, step_s, duration_s);
-  const Eigen::Index q = static_cast<Eigen::Index>(active.size());
-  Eigen::MatrixXd scores_covariance = Eigen::MatrixXd::Zero(q, q);
+  const Eigen::VectorXd residual_vector = Eigen::Map<const Eigen::VectorXd>(residuals.data(), static_cast<Eigen::Index>(n));
+  const double block_s = batchMeansBlockLength(times, residual_vector, 10.0).block_length_s;
   std::size_t blocks = 0;
-  std::size_t row = 0;
-  for (const CarFollowingRun& run : segments)
-  {
-    Eigen::VectorXd score = Eigen::VectorXd::Zero(q);
-    double block_start_s = run.time_s.front();
-    for (std::size_t k = 0; k < run.size(); ++k, ++row)
-    {
-      if (run.time_s[k] - block_start_s >= block_s)
-      {
-        scores_covariance += score * score.transpose();
-        ++blocks;
-        score.setZero();
-        block_start_s = run.time_s[k];
-      }
-      score += reduced.row(static_cast<Eigen::Index>(row)).transpose() * residuals[row];
-    }
-    scores_covariance += score * score.transpose();
-    ++blocks;
-  }
+  const Eigen::MatrixXd scores_covariance = batchMeansScoreCovariance(times, reduced, residual_vector, block_s, &blocks);
   if (!lu.isInvertible() || blocks < 4)
   {
     return nan;
@@ -309,7 +274,7 @@ double augmentedSpeedMse(const AccParameters& p, const EffectSettings& effects,
   std::size_t count = 0;
   for (const CarFollowingRun& run : segments)
   {
-    const SimulatedFollower sim = simulateAugmentedFollower(p, effects, run);
+    const SimulatedFollower sim = simulateFollower(p, effects, run);
     if (sim.diverged)
     {
       return kDivergedObjective;

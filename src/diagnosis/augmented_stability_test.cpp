@@ -6,7 +6,7 @@
 
 #include <nlopt.hpp>
 
-#include "acc_identification/diagnosis/augmented_simulation.h"
+#include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/diagnosis/augmented_stability.h"
 #include "acc_identification/model/block_bootstrap.h"
 #include "acc_identification/model/halton_sequence.h"
@@ -140,7 +140,7 @@ std::vector<double> heldOutSquaredErrors(const AugmentedSideFit& model, const st
   std::vector<double> errors;
   for (const CarFollowingRun& run : test)
   {
-    const SimulatedFollower sim = simulateAugmentedFollower(model.base, model.settings, run);
+    const SimulatedFollower sim = simulateFollower(model.base, model.settings, run);
     for (std::size_t k = 1; k < run.size(); ++k)
     {
       const bool lost = sim.diverged && k >= sim.diverged_at_index;
@@ -193,8 +193,10 @@ void decide(AugmentedStabilityTestResult* r, double mean_difference)
   {
     r->verdict = StabilityVerdict::Undecided;
     r->p_value = std::min(r->p_value_stable_rejected, r->p_value_unstable_rejected);
+    std::ostringstream alpha;
+    alpha << r->alpha;
     r->reason = numbers + ": neither side predicts the held-out data significantly better with a model strictly "
-                          "inside its side (alpha " + std::to_string(r->alpha) + ")";
+                          "inside its side (alpha " + alpha.str() + ")";
   }
 }
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "acc_identification/diagnosis/augmented_simulation.h"
+#include "acc_identification/model/follower_simulation.h"
 
 namespace acc
 {
@@ -71,7 +71,7 @@ ModelDiagnosis scoreModel(const AugmentedFit& fit, const DiagnosisResult& data, 
   squared_errors->clear();
   for (const CarFollowingRun& run : data.test)
   {
-    SimulatedFollower sim = simulateAugmentedFollower(fit.base, fit.settings, run);
+    SimulatedFollower sim = simulateFollower(fit.base, fit.settings, run);
     model.test_diverged = model.test_diverged || sim.diverged;
     std::vector<double> errors(run.size());
     for (std::size_t k = 0; k < run.size(); ++k)

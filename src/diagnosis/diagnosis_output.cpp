@@ -4,7 +4,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "acc_identification/diagnosis/augmented_simulation.h"
+#include "acc_identification/model/follower_simulation.h"
 
 namespace acc
 {
@@ -212,8 +212,8 @@ void writeDiagnosisTables(const DiagnosisResult& r, const std::string& dir)
     out << "run,time_s,speed_mps,base_speed_mps,effect_speed_mps\n";
     for (const CarFollowingRun& run : r.train)
     {
-      const SimulatedFollower b = simulateAugmentedFollower(r.baseline.fit.base, r.baseline.fit.settings, run);
-      const SimulatedFollower a = simulateAugmentedFollower(after.fit.base, after.fit.settings, run);
+      const SimulatedFollower b = simulateFollower(r.baseline.fit.base, r.baseline.fit.settings, run);
+      const SimulatedFollower a = simulateFollower(after.fit.base, after.fit.settings, run);
       for (std::size_t k = 0; k < run.size(); ++k)
       {
         out << run.name << ',' << run.time_s[k] << ',' << run.follower_speed_mps[k] << ',' << b.speed_mps[k] << ','

@@ -5,10 +5,10 @@
 #include <cstdio>
 #include <limits>
 #include <map>
-#include <random>
 #include <sstream>
 
-#include "acc_identification/diagnosis/augmented_simulation.h"
+#include "acc_identification/model/follower_simulation.h"
+#include "acc_identification/model/normal_source.h"
 
 namespace acc
 {
@@ -147,7 +147,7 @@ CarFollowingRun synthesizeWithheldRun(const WithheldCase& c)
   // Simulate with the true leader (a clock offset changes only the record).
   const double offset = effects.sensor_time_offset_s;
   effects.sensor_time_offset_s = 0.0;
-  const SimulatedFollower sim = simulateAugmentedFollower(c.base, effects, truth);
+  const SimulatedFollower sim = simulateFollower(c.base, effects, truth);
   // The record: every substeps-th sample, leader delayed by the offset, gap read with it.
   CarFollowingRun recorded;
   recorded.name = effectName(c.truth) + "_" + leadProfileName(c.profile) + "_seed" + std::to_string(c.seed);
@@ -169,14 +169,12 @@ CarFollowingRun synthesizeWithheldRun(const WithheldCase& c)
     recorded.space_gap_m.push_back(gap);
   }
   const std::size_t n = recorded.size();
-  std::mt19937 rng(c.seed);
-  std::normal_distribution<double> speed_noise(0.0, c.speed_noise_std_mps);
-  std::normal_distribution<double> gap_noise(0.0, c.gap_noise_std_m);
+  NormalSource noise(c.seed);  // the same numbers with every standard library
   for (std::size_t k = 0; k < n; ++k)
   {
-    recorded.follower_speed_mps[k] += speed_noise(rng);
-    recorded.leader_speed_mps[k] += speed_noise(rng);
-    recorded.space_gap_m[k] += gap_noise(rng);
+    recorded.follower_speed_mps[k] += c.speed_noise_std_mps * noise.standardNormal();
+    recorded.leader_speed_mps[k] += c.speed_noise_std_mps * noise.standardNormal();
+    recorded.space_gap_m[k] += c.gap_noise_std_m * noise.standardNormal();
   }
   return recorded;
 }

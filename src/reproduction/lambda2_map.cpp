@@ -81,4 +81,14 @@ double stableFraction(const std::vector<Lambda2MapSample>& map, double tau_e_s)
   return total == 0 ? 0.0 : static_cast<double>(stable) / static_cast<double>(total);
 }
 
+std::size_t closedFormDisagreements(const std::vector<Lambda2MapSample>& map)
+{
+  std::size_t disagreements = 0;
+  for (const Lambda2MapSample& s : map)
+  {
+    disagreements += s.string_stable != inClosedFormStableRegion(s.k1_per_s2, s.k2_per_s, s.tau_e_s);
+  }
+  return disagreements;
+}
+
 }  // namespace acc

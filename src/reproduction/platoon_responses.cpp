@@ -1,5 +1,6 @@
 #include "acc_identification/reproduction/platoon_responses.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -46,6 +47,9 @@ SinusoidResponse measureSinusoidResponse(const PlatoonTrajectory& platoon, const
   response.last_follower_to_lead = a.back() / a[0];
   response.model_gain = transferGain(p, frequency_rad_s);
   response.euler_gain = eulerTransferGain(p, frequency_rad_s, platoon.time_step_s);
+  const double followers = static_cast<double>(platoon.speed_mps.size() - 1);
+  response.model_gain_over_platoon = std::pow(response.model_gain, followers);
+  response.euler_gain_over_platoon = std::pow(response.euler_gain, followers);
   return response;
 }
 
@@ -62,6 +66,24 @@ DisturbanceResponse measureDisturbanceResponse(const PlatoonTrajectory& platoon)
   const double tolerance = 0.01 * response.per_vehicle[0].peak_to_peak_mps;
   response.last_follower_settled = std::abs(platoon.speed_mps.back().back() - lead_final) <= tolerance;
   return response;
+}
+
+PlatoonTrajectory firstFollowers(const PlatoonTrajectory& platoon, std::size_t followers)
+{
+  PlatoonTrajectory shorter = platoon;
+  const std::size_t vehicles = std::min(followers + 1, platoon.speed_mps.size());
+  shorter.speed_mps.resize(vehicles);
+  shorter.space_gap_m.resize(vehicles);
+  return shorter;
+}
+
+StepExcursion lastFollowerStepExcursion(const DisturbanceResponse& response, double low_speed_mps)
+{
+  const VehicleDisturbance& last = response.per_vehicle.back();
+  StepExcursion excursion;
+  excursion.undershoot_below_low_speed_mps = std::max(0.0, low_speed_mps - last.minimum_speed_mps);
+  excursion.overshoot_above_cruise_mps = last.rise_above_reference_mps;
+  return excursion;
 }
 
 }  // namespace acc

@@ -21,6 +21,7 @@
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/model/paper_settings.h"
 #include "acc_identification/model/platoon_simulation.h"
+#include "acc_identification/reproduction/equilibrium_regression.h"
 #include "acc_identification/reproduction/lead_profiles.h"
 #include "acc_identification/reproduction/frequency_response.h"
 #include "acc_identification/reproduction/lambda2_map.h"
@@ -321,14 +322,13 @@ json lambda2MapFigure(const Options& options, const std::string& csv_path)
   grid.k1_points = grid.k2_points = options.count("grid", 100, 2);
   const auto map = acc::lambda2Map(grid);
   CsvWriter csv(csv_path, "tau_e_s,k1_per_s2,k2_per_s,lambda2,string_stable");
-  std::size_t disagreements = 0;
   for (const acc::Lambda2MapSample& s : map)
   {
     csv.row() << s.tau_e_s << ',' << s.k1_per_s2 << ',' << s.k2_per_s << ',' << s.lambda2 << ','
               << (s.string_stable ? 1 : 0) << '\n';
-    disagreements += s.string_stable != acc::inClosedFormStableRegion(s.k1_per_s2, s.k2_per_s, s.tau_e_s);
   }
   csv.close();
+  const std::size_t disagreements = acc::closedFormDisagreements(map);
   json summary = {{"figure", "lambda2-map"}, {"samples", map.size()}, {"closed_form_disagreements", disagreements}};
   std::printf("lambda2 map (paper Fig. 1): %zu samples, k1 in [%g, %g], k2 in [%g, %g]\n", map.size(),
               grid.k1_min_per_s2, grid.k1_max_per_s2, grid.k2_min_per_s, grid.k2_max_per_s);
@@ -357,9 +357,9 @@ json stepFigure(const Options& options, const std::string& csv_path, double h)
     runs.emplace_back(setting.name, acc::simulatePlatoon(setting.parameters, lead, h, vehicles));
     const auto response = acc::measureDisturbanceResponse(runs.back().second);
     const auto& last = response.per_vehicle.back();
-    // Below the lead's low speed / above cruise; 0 when the follower stays within the lead's range.
-    const double undershoot = std::max(0.0, (speed - step) - last.minimum_speed_mps);
-    const double overshoot = last.rise_above_reference_mps;
+    const auto excursion = acc::lastFollowerStepExcursion(response, speed - step);
+    const double undershoot = excursion.undershoot_below_low_speed_mps;
+    const double overshoot = excursion.overshoot_above_cruise_mps;
     summary["settings"].push_back({{"parameters", parametersJson(setting)},
                                    {"response", disturbanceJson(response)},
                                    {"last_undershoot_below_low_speed_mps", undershoot},
@@ -420,7 +420,6 @@ json sinusoidFigure(const Options& options, const std::string& csv_path, double 
   {
     runs.emplace_back(setting.name, acc::simulatePlatoon(setting.parameters, lead, h, vehicles));
     const auto r = acc::measureSinusoidResponse(runs.back().second, setting.parameters, w, fit_from);
-    const double n = static_cast<double>(vehicles);
     summary["settings"].push_back({{"parameters", parametersJson(setting)},
                                    {"amplitude_mps", r.amplitude_mps},
                                    {"last_to_first_follower", r.last_to_first_follower},
@@ -428,23 +427,15 @@ json sinusoidFigure(const Options& options, const std::string& csv_path, double 
                                    {"model_gain", r.model_gain},
                                    {"model_gain_db", 20.0 * std::log10(r.model_gain)},
                                    {"euler_gain", r.euler_gain},
-                                   {"model_gain_to_the_n", std::pow(r.model_gain, n)},
-                                   {"euler_gain_to_the_n", std::pow(r.euler_gain, n)}});
+                                   {"model_gain_to_the_n", r.model_gain_over_platoon},
+                                   {"euler_gain_to_the_n", r.euler_gain_over_platoon}});
     std::printf("  %-14s |Gamma| = %.4f (%+.3f dB); follower %zu / lead = %.4f (|Gamma|^%zu = %.4f, Euler %.4f); "
                 "follower %zu / follower 1 = %.4f\n",
                 setting.name.c_str(), r.model_gain, 20.0 * std::log10(r.model_gain), vehicles, r.last_follower_to_lead,
-                vehicles, std::pow(r.model_gain, n), std::pow(r.euler_gain, n), vehicles, r.last_to_first_follower);
+                vehicles, r.model_gain_over_platoon, r.euler_gain_over_platoon, vehicles, r.last_to_first_follower);
   }
   writePlatoonCsv(csv_path, runs);
   return summary;
-}
-
-acc::PlatoonTrajectory firstVehicles(const acc::PlatoonTrajectory& platoon, std::size_t followers)
-{
-  acc::PlatoonTrajectory shorter = platoon;
-  shorter.speed_mps.resize(followers + 1);
-  shorter.space_gap_m.resize(followers + 1);
-  return shorter;
 }
 
 json leadProfileFigure(const Options& options, const std::string& csv_path, double h)
@@ -474,7 +465,7 @@ json leadProfileFigure(const Options& options, const std::string& csv_path, doub
   {
     runs.emplace_back(setting.name, acc::simulatePlatoon(setting.parameters, lead, h, vehicles));
     const auto full = acc::measureDisturbanceResponse(runs.back().second);
-    const auto shorter = acc::measureDisturbanceResponse(firstVehicles(runs.back().second, short_platoon));
+    const auto shorter = acc::measureDisturbanceResponse(acc::firstFollowers(runs.back().second, short_platoon));
     summary["settings"].push_back(
         {{"parameters", parametersJson(setting)}, {"long", disturbanceJson(full)}, {"short", disturbanceJson(shorter)}});
     const auto& lead_d = full.per_vehicle.front();
@@ -528,46 +519,42 @@ std::vector<acc::CarFollowingRun> readRunsOrThrow(const Options& options)
   return runs;
 }
 
-/// The steady samples of all runs together: one run's speed range is often too narrow to pin the
-/// line's slope, the pooled samples span the whole campaign.
+std::vector<acc::AccParameters> parametersOf(const std::vector<acc::NamedSetting>& settings)
+{
+  std::vector<acc::AccParameters> parameters;
+  for (const auto& setting : settings)
+  {
+    parameters.push_back(setting.parameters);
+  }
+  return parameters;
+}
+
+/// The line's JSON and its printed line (indent and wording as given), or why there is none.
+void reportLine(const acc::EquilibriumRegression& regression, json& entry, const char* indent, const char* label)
+{
+  if (!regression.line)
+  {
+    std::printf("%sno line fitted: %s\n", indent, regression.no_line_reason.c_str());
+    return;
+  }
+  const acc::GapSpeedLine& line = *regression.line;
+  entry["fit"] = {{"eta_m", line.intercept_m}, {"tau_e_s", line.slope_s}, {"rms_residual_m", line.rms_residual_m}};
+  std::printf("%s%s: gap = %.3f m + %.4f s * v (rms %.3f m)\n", indent, label, line.intercept_m, line.slope_s,
+              line.rms_residual_m);
+}
+
 json pooledEquilibrium(const std::vector<acc::CarFollowingRun>& runs, const std::vector<acc::NamedSetting>& settings,
                        double max_dv, double max_accel)
 {
-  acc::CarFollowingRun pooled;
-  pooled.name = "all runs";
-  for (const auto& run : runs)
+  const auto pooled = acc::regressPooledEquilibrium(runs, parametersOf(settings), max_dv, max_accel);
+  json entry = {{"steady_samples", pooled.steady.size()}};
+  std::printf("  all runs pooled: %zu steady samples\n", pooled.steady.size());
+  reportLine(pooled, entry, "    ", "least-squares line");
+  for (std::size_t i = 0; i < settings.size(); ++i)
   {
-    for (std::size_t k : acc::steadyFollowingSamples(run, max_dv, max_accel))
-    {
-      pooled.time_s.push_back(static_cast<double>(pooled.time_s.size()));
-      pooled.follower_speed_mps.push_back(run.follower_speed_mps[k]);
-      pooled.space_gap_m.push_back(run.space_gap_m[k]);
-      pooled.leader_speed_mps.push_back(run.leader_speed_mps[k]);
-    }
-  }
-  std::vector<std::size_t> all(pooled.size());
-  for (std::size_t k = 0; k < all.size(); ++k)
-  {
-    all[k] = k;
-  }
-  json entry = {{"steady_samples", all.size()}};
-  std::printf("  all runs pooled: %zu steady samples\n", all.size());
-  try
-  {
-    const auto line = acc::fitGapSpeedLine(pooled, all);
-    entry["fit"] = {{"eta_m", line.intercept_m}, {"tau_e_s", line.slope_s}, {"rms_residual_m", line.rms_residual_m}};
-    std::printf("    least-squares line: gap = %.3f m + %.4f s * v (rms %.3f m)\n", line.intercept_m, line.slope_s,
-                line.rms_residual_m);
-  }
-  catch (const std::invalid_argument& error)
-  {
-    std::printf("    no line fitted: %s\n", error.what());
-  }
-  for (const auto& setting : settings)
-  {
-    const double rms = acc::rmsFromEquilibriumLine(setting.parameters, pooled, all);
-    entry["rms_from_line_m"][setting.name] = rms;
-    std::printf("    %-14s rms distance of steady samples from eta + tau_e v: %.3f m\n", setting.name.c_str(), rms);
+    entry["rms_from_line_m"][settings[i].name] = pooled.rms_from_line_m[i];
+    std::printf("    %-14s rms distance of steady samples from eta + tau_e v: %.3f m\n", settings[i].name.c_str(),
+                pooled.rms_from_line_m[i]);
   }
   return entry;
 }
@@ -583,9 +570,9 @@ json equilibriumFigure(const Options& options, const std::string& csv_path)
   std::printf("space gap against speed (paper Fig. 5); steady: |dv| <= %g m/s and |a| <= %g m/s^2\n", max_dv, max_accel);
   for (const auto& run : runs)
   {
-    const auto steady = acc::steadyFollowingSamples(run, max_dv, max_accel);
+    const auto regression = acc::regressEquilibrium(run, parametersOf(settings), max_dv, max_accel);
     std::vector<bool> is_steady(run.size(), false);
-    for (std::size_t k : steady)
+    for (std::size_t k : regression.steady)
     {
       is_steady[k] = true;
     }
@@ -595,27 +582,17 @@ json equilibriumFigure(const Options& options, const std::string& csv_path)
                 << ',' << (is_steady[k] ? 1 : 0) << '\n';
     }
     const auto [slowest, fastest] = std::minmax_element(run.follower_speed_mps.begin(), run.follower_speed_mps.end());
-    json entry = {{"run", run.name}, {"samples", run.size()}, {"steady_samples", steady.size()},
+    json entry = {{"run", run.name}, {"samples", run.size()}, {"steady_samples", regression.steady.size()},
                   {"speed_range_mps", {*slowest, *fastest}}};
     std::printf("  %s: %zu samples, %zu steady, speeds %.1f to %.1f m/s\n", run.name.c_str(), run.size(),
-                steady.size(), *slowest, *fastest);
-    try
+                regression.steady.size(), *slowest, *fastest);
+    reportLine(regression, entry, "    ", "least-squares line through steady samples");
+    for (std::size_t i = 0; i < settings.size(); ++i)
     {
-      const auto line = acc::fitGapSpeedLine(run, steady);
-      entry["fit"] = {{"eta_m", line.intercept_m}, {"tau_e_s", line.slope_s}, {"rms_residual_m", line.rms_residual_m}};
-      std::printf("    least-squares line through steady samples: gap = %.3f m + %.4f s * v (rms %.3f m)\n",
-                  line.intercept_m, line.slope_s, line.rms_residual_m);
-    }
-    catch (const std::invalid_argument& error)
-    {
-      std::printf("    no line fitted: %s\n", error.what());
-    }
-    for (const auto& setting : settings)
-    {
-      const double rms = acc::rmsFromEquilibriumLine(setting.parameters, run, steady);
-      entry["rms_from_line_m"][setting.name] = rms;
+      entry["rms_from_line_m"][settings[i].name] = regression.rms_from_line_m[i];
       std::printf("    %-14s eta + tau_e v = %.3f + %.4f v: rms distance of steady samples %.3f m\n",
-                  setting.name.c_str(), setting.parameters.eta_m, setting.parameters.tau_e_s, rms);
+                  settings[i].name.c_str(), settings[i].parameters.eta_m, settings[i].parameters.tau_e_s,
+                  regression.rms_from_line_m[i]);
     }
     summary["runs"].push_back(entry);
   }

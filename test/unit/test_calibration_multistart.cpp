@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "acc_identification/calibration/grid_search.h"
@@ -12,28 +13,56 @@
 
 namespace
 {
-std::vector<acc::CarFollowingRun> synthetic(const acc::AccParameters& truth, std::uint32_t first_seed)
+std::vector<acc::CarFollowingRun> synthetic(const acc::AccParameters& truth, std::uint32_t first_seed,
+                                           const acc::MeasurementNoise& noise = {})
 {
-  return {acc::synthesizeRun(truth, 300.0, 0.1, 25.0, first_seed),
-          acc::synthesizeRun(truth, 300.0, 0.1, 15.0, first_seed + 1),
-          acc::synthesizeRun(truth, 300.0, 0.1, 30.0, first_seed + 2)};
+  return {acc::synthesizeRun(truth, 300.0, 0.1, 25.0, first_seed, noise),
+          acc::synthesizeRun(truth, 300.0, 0.1, 15.0, first_seed + 1, noise),
+          acc::synthesizeRun(truth, 300.0, 0.1, 30.0, first_seed + 2, noise)};
 }
+
+/// |estimate - truth| <= allowed, or a failure naming the parameter.
+void expectWithin(const char* name, double estimate, double truth, double allowed)
+{
+  EXPECT_LE(std::abs(estimate - truth), allowed) << name << ": " << estimate << " vs " << truth;
+}
+
+// The truth of synthesizeRun is integrated ten times finer than the 0.1 s Euler recursion the
+// calibration fits, so even noise-free data give parameters a little off the truth: the Euler
+// model's discretisation bias, O(h), of the order of h (k2 + k1 tau_e) / 2 = 1.5-2.4 % for
+// Table II (measured: up to 2.4 %, on k1 of the maximum setting). The standard errors describe
+// the noise only, so the noisy estimate is tested against the noise-free one (3 sigma), and the
+// noise-free one against the truth with a relative bias allowance.
+constexpr double kDiscretisationBias = 0.04;
 
 void expectRecovered(const acc::AccParameters& truth, std::uint32_t seed)
 {
   acc::IdentificationOptions options;
   options.multistart.starts = 30;
   const auto result = acc::identifyAcc(synthetic(truth, seed), options);
+  const auto noise_free = acc::identifyAcc(synthetic(truth, seed, {0.0, 0.0}), options);
   ASSERT_TRUE(result.solved) << result.note;
+  ASSERT_TRUE(noise_free.solved) << noise_free.note;
   EXPECT_TRUE(result.identifiable) << result.note;
   const auto& p = result.calibration.parameters;
+  const auto& q = noise_free.calibration.parameters;
   const auto& se = result.uncertainty.standard_error;
-  // A 3-sigma test of each parameter against the truth: the standard errors are honest.
-  EXPECT_NEAR(p.k1_per_s2, truth.k1_per_s2, 3.0 * se.k1_per_s2);
-  EXPECT_NEAR(p.k2_per_s, truth.k2_per_s, 3.0 * se.k2_per_s);
-  EXPECT_NEAR(p.tau_e_s, truth.tau_e_s, 3.0 * se.tau_e_s);
-  EXPECT_NEAR(p.eta_m, truth.eta_m, 3.0 * se.eta_m);
-  // ... and they are small: the data determine the parameters well.
+  std::printf("  truth k1 %.5f k2 %.5f tau_e %.5f eta %.4f\n", truth.k1_per_s2, truth.k2_per_s, truth.tau_e_s,
+              truth.eta_m);
+  std::printf("  noise-free fit k1 %.5f k2 %.5f tau_e %.5f eta %.4f\n", q.k1_per_s2, q.k2_per_s, q.tau_e_s, q.eta_m);
+  std::printf("  noisy fit k1 %.5f k2 %.5f tau_e %.5f eta %.4f (se %.5f %.5f %.5f %.4f)\n", p.k1_per_s2, p.k2_per_s,
+              p.tau_e_s, p.eta_m, se.k1_per_s2, se.k2_per_s, se.tau_e_s, se.eta_m);
+  // A 3-sigma test of each parameter against the noise-free estimate: the standard errors are honest.
+  expectWithin("k1", p.k1_per_s2, q.k1_per_s2, 3.0 * se.k1_per_s2);
+  expectWithin("k2", p.k2_per_s, q.k2_per_s, 3.0 * se.k2_per_s);
+  expectWithin("tau_e", p.tau_e_s, q.tau_e_s, 3.0 * se.tau_e_s);
+  expectWithin("eta", p.eta_m, q.eta_m, 3.0 * se.eta_m);
+  // The discretisation bias is small: the 10 Hz Euler model is a good model of the car.
+  expectWithin("k1 bias", q.k1_per_s2, truth.k1_per_s2, kDiscretisationBias * truth.k1_per_s2);
+  expectWithin("k2 bias", q.k2_per_s, truth.k2_per_s, kDiscretisationBias * truth.k2_per_s);
+  expectWithin("tau_e bias", q.tau_e_s, truth.tau_e_s, kDiscretisationBias * truth.tau_e_s);
+  expectWithin("eta bias", q.eta_m, truth.eta_m, kDiscretisationBias * truth.eta_m);
+  // ... and the standard errors are small: the data determine the parameters well.
   EXPECT_LT(se.k1_per_s2, 0.1 * truth.k1_per_s2);
   EXPECT_LT(se.tau_e_s, 0.1 * truth.tau_e_s);
   // The fit is as good as the noise allows (0.06 m/s on the measured speed).

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <complex>
 
-#include "acc_identification/diagnosis/augmented_simulation.h"
+#include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/diagnosis/augmented_stability.h"
-#include "acc_identification/diagnosis/candidate_effects.h"
+#include "acc_identification/model/follower_effects.h"
 #include "acc_identification/diagnosis/residual_breakdown.h"
 #include "acc_identification/diagnosis/withheld_effect_suite.h"
 #include "acc_identification/model/string_stability.h"
@@ -42,7 +42,7 @@ TEST(AugmentedSimulation, ReducesBitForBitToTheBaseModelWhenEveryEffectIsOff)
   {
     ASSERT_EQ(acc::describeRunProblem(run), "");
     const acc::SimulatedFollower base = acc::simulateFollower(kParameters, run);
-    const acc::SimulatedFollower augmented = acc::simulateAugmentedFollower(kParameters, acc::EffectSettings{}, run);
+    const acc::SimulatedFollower augmented = acc::simulateFollower(kParameters, acc::EffectSettings{}, run);
     ASSERT_EQ(base.speed_mps.size(), augmented.speed_mps.size());
     for (std::size_t k = 0; k < run.size(); ++k)
     {
@@ -72,7 +72,7 @@ TEST(AugmentedSimulation, TinyEffectsApproachTheBaseModelContinuously)
     {
       values = {1e-6};
     }
-    const auto sim = acc::simulateAugmentedFollower(kParameters, acc::makeEffectSettings(effect.kind, values), run);
+    const auto sim = acc::simulateFollower(kParameters, acc::makeEffectSettings(effect.kind, values), run);
     double worst = 0.0;
     for (std::size_t k = 0; k < run.size(); ++k)
     {
@@ -87,7 +87,7 @@ TEST(AugmentedSimulation, EachEffectChangesTheResponseTheWayItShould)
   const acc::CarFollowingRun run = dipRun();
   const acc::SimulatedFollower base = acc::simulateFollower(kParameters, run);
   auto simulate = [&](acc::EffectKind kind, std::vector<double> values) {
-    return acc::simulateAugmentedFollower(kParameters, acc::makeEffectSettings(kind, values), run);
+    return acc::simulateFollower(kParameters, acc::makeEffectSettings(kind, values), run);
   };
   // Limits: the realised acceleration never exceeds them.
   const auto limited = simulate(acc::EffectKind::acceleration_limits, {1.0, 1.5});

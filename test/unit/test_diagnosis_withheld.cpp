@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "acc_identification/diagnosis/withheld_effect_suite.h"
+#include "acc_identification/model/normal_source.h"
 
 
 namespace
@@ -28,6 +29,27 @@ acc::WithheldOutcome run(acc::EffectKind truth, std::vector<double> values, acc:
   return acc::runWithheldCase(c, quickOptions());
 }
 }  // namespace
+
+// The noise of a case is the seed's acc::NormalSource stream (follower speed, leader speed, gap
+// per sample), so the suite's data, and hence its table, are the same with every standard library.
+TEST(WithheldEffects, NoiseIsTheSeedsPortableNormalNumbers)
+{
+  acc::WithheldCase c;
+  c.seed = 17;
+  c.duration_s = 20.0;
+  acc::WithheldCase clean = c;
+  clean.speed_noise_std_mps = clean.gap_noise_std_m = 0.0;
+  const auto noisy = acc::synthesizeWithheldRun(c);
+  const auto exact = acc::synthesizeWithheldRun(clean);
+  ASSERT_EQ(noisy.size(), exact.size());
+  acc::NormalSource normal(c.seed);
+  for (std::size_t k = 0; k < noisy.size(); ++k)
+  {
+    ASSERT_NEAR(noisy.follower_speed_mps[k] - exact.follower_speed_mps[k], c.speed_noise_std_mps * normal.standardNormal(), 1e-9) << k;
+    ASSERT_NEAR(noisy.leader_speed_mps[k] - exact.leader_speed_mps[k], c.speed_noise_std_mps * normal.standardNormal(), 1e-9) << k;
+    ASSERT_NEAR(noisy.space_gap_m[k] - exact.space_gap_m[k], c.gap_noise_std_m * normal.standardNormal(), 1e-9) << k;
+  }
+}
 
 TEST(WithheldEffects, SaysNoneWhenThereIsNone)
 {

@@ -5,9 +5,9 @@
 #include <GeographicLib/LocalCartesian.hpp>
 
 #include <cmath>
-#include <random>
 #include <string>
 
+#include "acc_identification/model/normal_source.h"
 #include "acc_identification/relative_state/vehicle_geometry.h"
 
 
@@ -88,13 +88,13 @@ TEST(Geometry, AlongTrackGapFollowsACurveWhereTheChordIsShort)
 TEST(Geometry, AlongTrackEqualsStraightLineOnAStraightRoadDespiteNoiseAtStandstill)
 {
   acc::LeaderTrack track;
-  std::normal_distribution<double> noise(0.0, 0.03);
-  std::mt19937 random(3);
+  acc::NormalSource normal(3);  // the same numbers with every standard library
+  auto noise = [&normal] { return 0.03 * normal.standardNormal(); };
   double t = 0.0;
   for (; t < 20.0; t += 0.1)  // standing still for 20 s, then driving north
-    track.add(fixAtPlane(t, noise(random), 40.0 + noise(random)));
+    track.add(fixAtPlane(t, noise(), 40.0 + noise()));
   for (double north = 40.0; north < 80.0; north += 1.0, t += 0.1)
-    track.add(fixAtPlane(t, noise(random), north));
+    track.add(fixAtPlane(t, noise(), north));
   auto along = track.alongTrackDistance(fixAtPlane(t, 0, 80.0), fixAtPlane(t, 0, 45.0));
   ASSERT_TRUE(along.has_value());
   EXPECT_NEAR(*along, 35.0, 0.1);

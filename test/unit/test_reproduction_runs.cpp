@@ -8,6 +8,7 @@
 #include "acc_identification/model/acc_model.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/paper_settings.h"
+#include "acc_identification/reproduction/equilibrium_regression.h"
 #include "acc_identification/reproduction/parameter_file.h"
 #include "acc_identification/reproduction/run_comparison.h"
 

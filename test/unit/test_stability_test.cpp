@@ -1,8 +1,8 @@
 // The string-stability test (calibration/stability_test.h) on seeded synthetic drives with known
 // truth, made honestly: the truth is integrated by RK4 at 0.01 s (finer than the fit's Euler at the
 // data's 0.1 s) from equilibrium, driven by a piecewise-linear leader; then sampled at 10 Hz with
-// white Gaussian noise of 0.05 m/s on both speeds and 0.4 m on the gap (our own Box-Muller from
-// std::mt19937_64 raw outputs, the same with every standard library).
+// white Gaussian noise of 0.05 m/s on both speeds and 0.4 m on the gap (acc::NormalSource, the
+// same numbers with every standard library).
 //
 // The leader (own profile, seeded): holds of 20-40 s at speeds drawn in [14, 28] m/s, changed by
 // ramps at +1.5 / -2.0 m/s^2 (the paper's "rapid" ramps of profiles D-I), 500 s in all.
@@ -17,11 +17,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "acc_identification/model/block_bootstrap.h"
+#include "acc_identification/model/normal_source.h"
 #include "acc_identification/calibration/calibration_objective.h"
 #include "acc_identification/calibration/fit_statistics.h"
 #include "acc_identification/calibration/margin_constrained_fit.h"
@@ -31,35 +31,6 @@
 
 namespace
 {
-/// Standard normal numbers by Box-Muller from raw std::mt19937_64 outputs.
-class Normal
-{
-public:
-  explicit Normal(std::uint64_t seed) : engine_(seed) {}
-  double uniform()  // (0, 1]
-  {
-    return (static_cast<double>(engine_() >> 11) + 1.0) * 0x1.0p-53;
-  }
-  double operator()()
-  {
-    if (has_spare_)
-    {
-      has_spare_ = false;
-      return spare_;
-    }
-    const double radius = std::sqrt(-2.0 * std::log(uniform()));
-    const double angle = 2.0 * M_PI * uniform();
-    spare_ = radius * std::sin(angle);
-    has_spare_ = true;
-    return radius * std::cos(angle);
-  }
-
-private:
-  std::mt19937_64 engine_;
-  bool has_spare_ = false;
-  double spare_ = 0.0;
-};
-
 /// Piecewise-linear leader speed: knots (time, speed).
 struct Leader
 {
@@ -84,17 +55,17 @@ struct Leader
 
 Leader seededLeader(std::uint64_t seed, double duration_s, double low = 14.0, double high = 28.0)
 {
-  Normal random(seed * 7919 + 17);
+  acc::NormalSource random(seed * 7919 + 17);
   Leader leader;
-  double t = 0.0, v = low + (high - low) * random.uniform();
+  double t = 0.0, v = low + (high - low) * random.uniformOpenClosed();
   leader.time_s.push_back(t);
   leader.speed_mps.push_back(v);
   while (t < duration_s)
   {
-    t += 20.0 + 20.0 * random.uniform();  // hold
+    t += 20.0 + 20.0 * random.uniformOpenClosed();  // hold
     leader.time_s.push_back(t);
     leader.speed_mps.push_back(v);
-    const double next = low + (high - low) * random.uniform();
+    const double next = low + (high - low) * random.uniformOpenClosed();
     t += std::abs(next - v) / (next > v ? 1.5 : 2.0);  // ramp
     v = next;
     leader.time_s.push_back(t);
@@ -121,7 +92,7 @@ struct DriveSpec
 acc::CarFollowingRun syntheticDrive(const acc::AccParameters& truth, std::uint64_t seed, const DriveSpec& spec = {})
 {
   const Leader leader = seededLeader(seed, spec.duration_s, spec.leader_low_mps, spec.leader_high_mps);
-  Normal noise(seed * 104729 + 3);
+  acc::NormalSource noise(seed * 104729 + 3);
   const double h = 0.01;
   const int sub_steps = 10;
   double v = leader.at(0.0);
@@ -138,9 +109,9 @@ acc::CarFollowingRun syntheticDrive(const acc::AccParameters& truth, std::uint64
   {
     const double t = 0.1 * static_cast<double>(k);
     run.time_s.push_back(t);
-    run.space_gap_m.push_back(s + spec.gap_noise_m * noise());
-    run.follower_speed_mps.push_back(v + spec.speed_noise_mps * noise());
-    run.leader_speed_mps.push_back(leader.at(t) + spec.speed_noise_mps * noise());
+    run.space_gap_m.push_back(s + spec.gap_noise_m * noise.standardNormal());
+    run.follower_speed_mps.push_back(v + spec.speed_noise_mps * noise.standardNormal());
+    run.leader_speed_mps.push_back(leader.at(t) + spec.speed_noise_mps * noise.standardNormal());
     if (spec.euler_truth)
     {
       const auto d = derivative(t, s, v);
@@ -390,12 +361,12 @@ TEST(StabilityTest, BlockBootstrapIsCentredSeededAndPaired)
   EXPECT_DOUBLE_EQ(bootstrap.pValueMeanPositive(zero), 1.0);
   EXPECT_DOUBLE_EQ(bootstrap.pValueMeanNegative(zero), 1.0);
   // A clear positive mean over AR(1) noise: positive significant, negative not.
-  Normal normal(5);
+  acc::NormalSource normal(5);
   std::vector<double> x(807);
   double state = 0.0;
   for (double& value : x)
   {
-    state = 0.9 * state + normal();
+    state = 0.9 * state + normal.standardNormal();
     value = 3.0 + state;
   }
   EXPECT_LT(bootstrap.pValueMeanPositive(x), 0.01);
@@ -494,13 +465,13 @@ TEST(StabilityTest, FlatDataIsUndecidedWithAReason)
   for (double noise : {0.0, 0.05})
   {
     acc::CarFollowingRun flat;
-    Normal normal(3);
+    acc::NormalSource normal(3);
     for (int k = 0; k <= 3000; ++k)
     {
       flat.time_s.push_back(0.1 * k);
-      flat.follower_speed_mps.push_back(20.0 + noise * normal());
-      flat.leader_speed_mps.push_back(20.0 + noise * normal());
-      flat.space_gap_m.push_back(30.0 + 8.0 * noise * normal());
+      flat.follower_speed_mps.push_back(20.0 + noise * normal.standardNormal());
+      flat.leader_speed_mps.push_back(20.0 + noise * normal.standardNormal());
+      flat.space_gap_m.push_back(30.0 + 8.0 * noise * normal.standardNormal());
     }
     const auto r = acc::testStringStability({flat}, fastOptions());
     EXPECT_EQ(r.verdict, acc::StabilityVerdict::Undecided);

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "acc_identification/conversion/openacc_to_nmea.h"
-#include "acc_identification/diagnosis/augmented_simulation.h"
+#include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/gnss/nmea_log.h"
 #include "acc_identification/model/paper_settings.h"
@@ -55,26 +55,6 @@ double maxAbsDifference(const std::vector<double>& a, const std::vector<double>&
   return worst;
 }
 
-TEST(NormalSource, SameSeedSameNumbersAndPlausibleMoments)
-{
-  NormalSource a(42), b(42), c(43);
-  double sum = 0.0, sum_squares = 0.0;
-  bool differs = false;
-  const int n = 200000;
-  for (int i = 0; i < n; ++i)
-  {
-    const double x = a.standardNormal();
-    ASSERT_EQ(x, b.standardNormal());
-    differs = differs || x != c.standardNormal();
-    sum += x;
-    sum_squares += x * x;
-  }
-  EXPECT_TRUE(differs);
-  EXPECT_NEAR(sum / n, 0.0, 0.01);
-  EXPECT_NEAR(sum_squares / n, 1.0, 0.015);
-  EXPECT_NE(streamSeed(1, 1), streamSeed(1, 2));
-}
-
 TEST(Synthesis, SameSeedGivesIdenticalBytesAndAnotherSeedDoesNot)
 {
   std::string logs[3];
@@ -92,7 +72,7 @@ TEST(Synthesis, SameSeedGivesIdenticalBytesAndAnotherSeedDoesNot)
   EXPECT_NE(logs[0], logs[2]);
 }
 
-TEST(Synthesis, TruthIsThePaperModelExactly)
+TEST(Synthesis, TruthIsThePaperModelFinerThanTheFit)
 {
   const SynthesizedDrive drive = synthesizeDrive(shortDrive(3));
   const CarFollowingRun& truth = drive.truth.run;
@@ -102,13 +82,20 @@ TEST(Synthesis, TruthIsThePaperModelExactly)
   const std::vector<double> lead = leadProfile('F', 0.1);
   for (std::size_t k = 0; k < truth.size(); ++k)
     ASSERT_EQ(truth.leader_speed_mps[k], lead[k]);
-  // Started in equilibrium, and the rest is the paper's explicit Euler from there.
+  // Started in equilibrium, and the rest is the paper's model integrated ten times finer than the
+  // 10 Hz Euler recursion a calibration fits: close to that recursion, but not it (no inverse
+  // crime, so a calibration of the truth is not exact by construction).
   const AccParameters p = paperMinimumSetting();
   EXPECT_NEAR(truth.space_gap_m[0], p.eta_m + p.tau_e_s * lead[0], 1e-12);
   EXPECT_EQ(truth.follower_speed_mps[0], lead[0]);
   const SimulatedFollower replay = simulateFollower(p, truth);
-  EXPECT_EQ(maxAbsDifference(replay.speed_mps, truth.follower_speed_mps), 0.0);
-  EXPECT_EQ(maxAbsDifference(replay.space_gap_m, truth.space_gap_m), 0.0);
+  EXPECT_GT(maxAbsDifference(replay.speed_mps, truth.follower_speed_mps), 1e-3);
+  EXPECT_LT(maxAbsDifference(replay.speed_mps, truth.follower_speed_mps), 0.1);
+  EXPECT_GT(maxAbsDifference(replay.space_gap_m, truth.space_gap_m), 1e-3);
+  EXPECT_LT(maxAbsDifference(replay.space_gap_m, truth.space_gap_m), 0.5);
+  // Positions advance with the same fine integration: the bumpers are the gap apart.
+  for (std::size_t k = 0; k < truth.size(); ++k)
+    ASSERT_NEAR(drive.truth.leader_rear_bumper_m[k] - drive.truth.follower_front_bumper_m[k], truth.space_gap_m[k], 1e-9);
   // The follower really follows: its speed changes with the lead's oscillation.
   const auto [low, high] = std::minmax_element(truth.follower_speed_mps.begin(), truth.follower_speed_mps.end());
   EXPECT_GT(*high - *low, 3.0);
@@ -208,11 +195,13 @@ TEST(SynthesisEffects, ActuationLagSlowsTheFollowerAndIsTheAugmentedModel)
   ASSERT_TRUE(addEffectOption("actuation_lag=1.0", &options.effects, &error)) << error;
   const SynthesizedDrive lagged = synthesizeDrive(options);
   const CarFollowingRun& run = lagged.truth.run;
-  // Same leader, different follower; the truth is exactly the diagnosis's augmented model.
+  // Same leader, different follower; the truth is the diagnosis's augmented model, integrated
+  // finer than its 10 Hz recursion: close to it, far closer than to the model without the lag.
   EXPECT_EQ(run.leader_speed_mps, base.truth.run.leader_speed_mps);
   EXPECT_GT(maxAbsDifference(run.follower_speed_mps, base.truth.run.follower_speed_mps), 0.2);
-  const SimulatedFollower replay = simulateAugmentedFollower(options.parameters, options.effects, run);
-  EXPECT_EQ(maxAbsDifference(replay.speed_mps, run.follower_speed_mps), 0.0);
+  const SimulatedFollower replay = simulateFollower(options.parameters, options.effects, run);
+  EXPECT_GT(maxAbsDifference(replay.speed_mps, run.follower_speed_mps), 0.0);
+  EXPECT_LT(maxAbsDifference(replay.speed_mps, run.follower_speed_mps), 0.1);
   // A lag makes the follower react later: its first speed drop after the lead's first one comes later.
   auto firstDrop = [](const std::vector<double>& v) {
     for (std::size_t k = 1; k < v.size(); ++k)

@@ -4,6 +4,8 @@
 #include <cstddef>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/car_following_run.h"
 
@@ -69,5 +71,19 @@ private:
   std::size_t sample_count_ = 0;
   ParameterBounds bounds_;
 };
+
+/// One run simulated at p by the objective's own pass: per sample the speed residual
+/// v_measured - v_simulated and the Jacobian row d v_simulated / d (k1, k2, tau_e, eta), from the
+/// forward sensitivities (the first sample, the measured start, has residual and row 0). For the
+/// sandwich standard errors (fit_statistics.h). diverged: the recursion ran away (rows stop there).
+struct SensitivityRows
+{
+  std::vector<double> time_s;
+  std::vector<double> residual;
+  std::vector<Eigen::Vector4d> row;
+  bool diverged = false;
+};
+
+SensitivityRows sensitivityRows(const AccParameters& p, const CarFollowingRun& run);
 
 }  // namespace acc

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include "acc_identification/model/acc_parameters.h"
@@ -15,10 +16,16 @@ struct MeasurementNoise
   double gap_std_m = 0.4;
 };
 
+/// Explicit-Euler steps of the truth per data step in synthesizeRun.
+constexpr std::size_t kTruthSubsteps = 10;
+
 /// A car-following run made from known parameters, for tests and benchmarks: a leader that
 /// oscillates (three sinusoids of 25-90 s period, random phases) around cruise_speed_mps and
-/// brakes hard now and then; a follower simulated exactly by the calibration's Euler model from
-/// equilibrium; then noise on all three measured columns. Deterministic for a given seed.
+/// brakes hard now and then; a follower simulated from equilibrium by the ACC model at a step
+/// kTruthSubsteps times finer than time_step_s and sampled every time_step_s (not by the
+/// calibration's own Euler recursion at the data step, which would make recovery exact by
+/// construction: an "inverse crime"); then noise on all three measured columns. Deterministic
+/// for a given seed on every platform (acc::NormalSource).
 CarFollowingRun synthesizeRun(const AccParameters& truth, double duration_s, double time_step_s,
                               double cruise_speed_mps, std::uint32_t seed, const MeasurementNoise& noise = {});
 

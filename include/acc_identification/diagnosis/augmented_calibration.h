@@ -8,7 +8,7 @@
 #include "acc_identification/model/halton_sequence.h"
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/car_following_run.h"
-#include "acc_identification/diagnosis/candidate_effects.h"
+#include "acc_identification/model/follower_effects.h"
 
 namespace acc
 {

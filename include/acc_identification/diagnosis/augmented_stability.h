@@ -3,7 +3,7 @@
 #include <string>
 
 #include "acc_identification/model/acc_parameters.h"
-#include "acc_identification/diagnosis/candidate_effects.h"
+#include "acc_identification/model/follower_effects.h"
 
 namespace acc
 {

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "acc_identification/diagnosis/augmented_calibration.h"
-#include "acc_identification/diagnosis/candidate_effects.h"
+#include "acc_identification/model/follower_effects.h"
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/car_following_run.h"
 #include "acc_identification/model/string_stability.h"

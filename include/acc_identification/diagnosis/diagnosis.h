@@ -9,7 +9,7 @@
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/augmented_stability.h"
 #include "acc_identification/diagnosis/augmented_stability_test.h"
-#include "acc_identification/diagnosis/candidate_effects.h"
+#include "acc_identification/model/follower_effects.h"
 #include "acc_identification/diagnosis/effect_selection.h"
 #include "acc_identification/diagnosis/residual_breakdown.h"
 #include "acc_identification/model/follower_simulation.h"

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "acc_identification/diagnosis/candidate_effects.h"
+#include "acc_identification/model/follower_effects.h"
 
 namespace acc
 {

@@ -7,7 +7,7 @@
 
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/car_following_run.h"
-#include "acc_identification/diagnosis/candidate_effects.h"
+#include "acc_identification/model/follower_effects.h"
 #include "acc_identification/diagnosis/diagnosis.h"
 
 namespace acc
@@ -45,7 +45,7 @@ struct WithheldCase
 };
 
 /// The recorded run of a case: the follower is simulated with the effect by
-/// simulateAugmentedFollower() at step_s / truth_substeps from equilibrium with the true leader,
+/// simulateFollower() at step_s / truth_substeps from equilibrium with the true leader,
 /// then sampled every step_s; a sensor time offset is
 /// then applied to the record (leader speed delayed by delta, gap reduced by the distance the
 /// leader covered in delta, by the trapezoid rule); then noise is added to all three columns.

@@ -1,10 +1,12 @@
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/car_following_run.h"
+#include "acc_identification/model/follower_effects.h"
 
 namespace acc
 {
@@ -23,11 +25,40 @@ struct SimulatedFollower
 /// road vehicle reaches, far below where doubles lose meaning.
 constexpr double kDivergenceBound = 1.0e4;
 
-/// Explicit-Euler simulation of one follower driven by the measured leader speed, exactly as
-/// Section IV of the paper calibrates the model:
+/// Whether a simulated state left the plausible range (|v| or |s| at or beyond kDivergenceBound,
+/// or not finite): the one runaway test of every simulation of the package.
+inline bool isRunaway(double speed_mps, double space_gap_m)
+{
+  // Written so that NaN counts as runaway too.
+  return !(std::abs(speed_mps) < kDivergenceBound && std::abs(space_gap_m) < kDivergenceBound);
+}
+
+/// The package's one follower simulator: explicit Euler driven by the measured leader speed, one
+/// step per sample, started from the measured s(0) and v(0), exactly as Section IV of the paper
+/// calibrates the model:
 ///   v[k+1] = v[k] + h_k f(s[k], v[k], u[k] - v[k])
 ///   s[k+1] = s[k] + h_k (u[k] - v[k]),   h_k = t[k+1] - t[k] (the data's own step)
-/// started from the measured s(0) and v(0). The run must satisfy describeRunProblem() == "".
-SimulatedFollower simulateFollower(const AccParameters& p, const CarFollowingRun& run);
+/// with the unmodelled effects of `effects` as options (all off by default: the paper's model).
+/// Per step k:
+///   u_k   = recorded leader speed at t_k + delta (linear interpolation, held at the ends)
+///   f_k   = k1 (s - eta - tau_e v - c v^2) + k2 (u_k - v) + k_a (u_k - u_k-1) / h_k-1,
+///           then min(f_k, g (v_set - v)),
+///           then clipped to [-b_max, a_max]
+///   c_k   = f at t_k - d (linear interpolation in the commands computed so far; f_0 before t_0)
+///   a_k+1 = a_k + (1 - exp(-h / T)) (c_k - a_k)       (a_k+1 = c_k when T = 0; a_0 = c_0)
+///   v_k+1 = v_k + h a_k+1,   s_k+1 = s_k + h (u_k - v_k)
+/// with the true initial gap s_0 = recorded gap + delta u_0; the returned gap is what the recorder
+/// would show (true gap - delta u_k), so that it compares with the run's gap column. With every
+/// effect off the arithmetic is the paper's recursion above. The calibration's objective
+/// (calibration/calibration_objective.h) runs the same recursion regrouped for speed, with forward
+/// sensitivities; a test holds it to this simulator. The run must satisfy
+/// describeRunProblem() == "".
+SimulatedFollower simulateFollower(const AccParameters& p, const EffectSettings& effects, const CarFollowingRun& run);
+
+/// The paper's model: every effect off.
+inline SimulatedFollower simulateFollower(const AccParameters& p, const CarFollowingRun& run)
+{
+  return simulateFollower(p, EffectSettings{}, run);
+}
 
 }  // namespace acc

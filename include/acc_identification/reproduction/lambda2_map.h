@@ -34,6 +34,10 @@ std::vector<Lambda2MapSample> lambda2Map(const Lambda2MapGrid& grid);
 /// The stable region in closed form (MATH.md): k1 tau_e^2 + 2 k2 tau_e >= 2 (eta plays no part).
 bool inClosedFormStableRegion(double k1_per_s2, double k2_per_s, double tau_e_s);
 
+/// Samples whose transfer-function verdict differs from the closed form: 0 when the map and
+/// MATH.md agree (a check printed with Fig. 1).
+std::size_t closedFormDisagreements(const std::vector<Lambda2MapSample>& map);
+
 /// Fraction of the samples with the given tau_e that are string stable (0 when there are none).
 double stableFraction(const std::vector<Lambda2MapSample>& map, double tau_e_s);
 

@@ -18,6 +18,10 @@ struct SinusoidResponse
   double last_follower_to_lead = 0.0;   ///< amplitude of follower N over the lead
   double model_gain = 0.0;              ///< |Gamma(j w)| of the model
   double euler_gain = 0.0;              ///< |Gamma_h| of the Euler recursion the simulation runs
+  /// |Gamma|^N and |Gamma_h|^N for the platoon's N followers: what the linear theory predicts
+  /// for follower N over the lead, to compare with last_follower_to_lead.
+  double model_gain_over_platoon = 0.0;
+  double euler_gain_over_platoon = 0.0;
 };
 
 /// Fits each vehicle's amplitude at frequency_rad_s over samples [from_sample, end): choose a
@@ -42,5 +46,19 @@ struct DisturbanceResponse
 
 /// Needs at least one follower.
 DisturbanceResponse measureDisturbanceResponse(const PlatoonTrajectory& platoon);
+
+/// The lead and its first `followers` followers (at most all of them): the short platoon of
+/// Fig. 8, measured on the same simulation as the long one.
+PlatoonTrajectory firstFollowers(const PlatoonTrajectory& platoon, std::size_t followers);
+
+/// How far the last follower of Fig. 2 leaves the lead's speed range after a step down to
+/// low_speed_mps and back up to the cruise speed: 0 when it stays within.
+struct StepExcursion
+{
+  double undershoot_below_low_speed_mps = 0.0;
+  double overshoot_above_cruise_mps = 0.0;
+};
+
+StepExcursion lastFollowerStepExcursion(const DisturbanceResponse& response, double low_speed_mps);
 
 }  // namespace acc

@@ -2,7 +2,7 @@
 
 #include <cstdint>
 
-#include "acc_identification/synthesis/normal_source.h"
+#include "acc_identification/model/normal_source.h"
 
 namespace acc
 {

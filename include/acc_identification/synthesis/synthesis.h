@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "acc_identification/model/acc_parameters.h"
-#include "acc_identification/diagnosis/candidate_effects.h"
+#include "acc_identification/model/follower_effects.h"
 #include "acc_identification/gnss/gnss_fix.h"
 #include "acc_identification/relative_state/vehicle_geometry.h"
 #include "acc_identification/synthesis/drive_truth.h"

@@ -3,7 +3,7 @@
 #include <string>
 
 #include "acc_identification/model/car_following_run.h"
-#include "acc_identification/diagnosis/candidate_effects.h"
+#include "acc_identification/model/follower_effects.h"
 #include "acc_identification/synthesis/synthesis.h"
 
 namespace acc

@@ -1,4 +1,4 @@
-#include "acc_identification/synthesis/normal_source.h"
+#include "acc_identification/model/normal_source.h"
 
 #include <cmath>
 

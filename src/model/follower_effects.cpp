@@ -1,4 +1,4 @@
-#include "acc_identification/diagnosis/candidate_effects.h"
+#include "acc_identification/model/follower_effects.h"
 
 #include <cmath>
 #include <stdexcept>
