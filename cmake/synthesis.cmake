@@ -2,10 +2,10 @@
 # diagnosis's unmodelled effects on request), both cars on a curved road, each receiver with its
 # GNSS errors, written as NMEA logs, truth CSV, parameters JSON and bags. The ROS-free library
 # acc_synthesis, the synthesize and nmea_to_bag tools, and their tests. Builds on the gnss and
-# relative_state components (NMEA writer and reader, geodesy), reproduction (lead profiles A-I)
-# and diagnosis (the augmented follower simulation).
-if(NOT (TARGET acc_conversion AND TARGET acc_reproduction AND TARGET acc_diagnosis))
-  message(WARNING "synthesis needs the gnss, relative_state, reproduction and diagnosis components in "
+# relative_state components (NMEA writer and reader, geodesy) and reproduction (lead profiles A-I);
+# the follower with its effects is the model core's simulator.
+if(NOT (TARGET acc_conversion AND TARGET acc_reproduction))
+  message(WARNING "synthesis needs the gnss, relative_state and reproduction components in "
                   "ACC_COMPONENTS: not built")
   return()
 endif()
@@ -17,7 +17,7 @@ acc_add_library(acc_synthesis
     src/synthesis/synthesis.cpp
     src/synthesis/synthesis_output.cpp
     src/synthesis/nmea_log_timing.cpp
-  LINK acc_conversion acc_relative_state acc_reproduction acc_diagnosis ${GeographicLib_LIBRARIES})
+  LINK acc_conversion acc_relative_state acc_reproduction ${GeographicLib_LIBRARIES})
 target_link_libraries(acc_synthesis PRIVATE nlohmann_json::nlohmann_json)
 
 # Raw sentences into bags (rosbag API, no ROS master needed).
