@@ -127,20 +127,6 @@ double nloptConstraint(unsigned, const double* x, double* gradient, void* data)
   return constraint.sign * (stabilityMargin(p) - state.margin);
 }
 
-std::string describeResult(nlopt::result result)
-{
-  switch (result)
-  {
-    case nlopt::SUCCESS: return "SUCCESS";
-    case nlopt::STOPVAL_REACHED: return "STOPVAL_REACHED";
-    case nlopt::FTOL_REACHED: return "FTOL_REACHED";
-    case nlopt::XTOL_REACHED: return "XTOL_REACHED";
-    case nlopt::MAXEVAL_REACHED: return "MAXEVAL_REACHED";
-    case nlopt::MAXTIME_REACHED: return "MAXTIME_REACHED";
-    default: return "FAILURE";
-  }
-}
-
 std::string solveLocally(nlopt::opt& local, SearchState& state, const std::array<double, 3>& theta)
 {
   std::vector<double> x{theta[0] / state.scale[0], theta[1] / state.scale[1], theta[2] / state.scale[2]};
@@ -148,7 +134,8 @@ std::string solveLocally(nlopt::opt& local, SearchState& state, const std::array
   try
   {
     double f = 0.0;
-    return describeResult(local.optimize(x, f));
+    // NLopt's own name of the result ("SUCCESS", "MAXEVAL_REACHED", "ROUNDOFF_LIMITED", ...).
+    return nlopt_result_to_string(static_cast<nlopt_result>(local.optimize(x, f)));
   }
   catch (const nlopt::roundoff_limited&)
   {

@@ -83,20 +83,6 @@ double nloptObjective(unsigned n, const double* x, double* gradient, void* data)
   return value.mse_speed_mps2;
 }
 
-std::string describeResult(nlopt::result result)
-{
-  switch (result)
-  {
-    case nlopt::SUCCESS: return "SUCCESS";
-    case nlopt::STOPVAL_REACHED: return "STOPVAL_REACHED";
-    case nlopt::FTOL_REACHED: return "FTOL_REACHED";
-    case nlopt::XTOL_REACHED: return "XTOL_REACHED";
-    case nlopt::MAXEVAL_REACHED: return "MAXEVAL_REACHED";
-    case nlopt::MAXTIME_REACHED: return "MAXTIME_REACHED";
-    default: return "FAILURE";
-  }
-}
-
 /// Pulls a divergent start halfway towards a well-damped reference until it simulates.
 std::array<double, 3> tameStart(const CalibrationObjective& objective, std::array<double, 3> theta,
                                 bool& was_divergent, std::size_t& evaluations)
@@ -182,7 +168,8 @@ std::string solveLocally(nlopt::opt& local, SearchState& state, std::array<doubl
   try
   {
     double f = 0.0;
-    return describeResult(local.optimize(x, f));
+    // NLopt's own name of the result ("SUCCESS", "MAXEVAL_REACHED", "ROUNDOFF_LIMITED", ...).
+    return nlopt_result_to_string(static_cast<nlopt_result>(local.optimize(x, f)));
   }
   catch (const nlopt::forced_stop&)
   {
