@@ -94,11 +94,15 @@ TEST(Identifier, SyntheticRelativeStateGivesTheTrueParameters)
   EXPECT_EQ(last.segments, 3u);
   EXPECT_GE(last.samples, 1180u);
   EXPECT_LE(last.samples, 1182u);
-  // Within three standard errors of the truth, and the verdict of the truth.
-  EXPECT_NEAR(last.k1_per_s2, truth.k1_per_s2, 3.0 * last.k1_std_error);
-  EXPECT_NEAR(last.k2_per_s, truth.k2_per_s, 3.0 * last.k2_std_error);
-  EXPECT_NEAR(last.tau_e_s, truth.tau_e_s, 3.0 * last.tau_e_std_error);
-  EXPECT_NEAR(last.eta_m, truth.eta_m, 3.0 * last.eta_std_error);
+  // Within three standard errors of the truth plus 4 % of it, and the verdict of the truth: the
+  // data are made ten times finer than the 10 Hz Euler recursion the node fits (no inverse crime),
+  // so the fit carries that recursion's own bias, about h (k2 + k1 tau_e) / 2: 1-2 % here
+  // (test_calibration_multistart measures it on noise-free data).
+  const auto allowed = [](double se, double value) { return 3.0 * se + 0.04 * std::abs(value); };
+  EXPECT_NEAR(last.k1_per_s2, truth.k1_per_s2, allowed(last.k1_std_error, truth.k1_per_s2));
+  EXPECT_NEAR(last.k2_per_s, truth.k2_per_s, allowed(last.k2_std_error, truth.k2_per_s));
+  EXPECT_NEAR(last.tau_e_s, truth.tau_e_s, allowed(last.tau_e_std_error, truth.tau_e_s));
+  EXPECT_NEAR(last.eta_m, truth.eta_m, allowed(last.eta_std_error, truth.eta_m));
   EXPECT_LT(last.k1_std_error, 0.25 * truth.k1_per_s2);
   EXPECT_LT(last.rmse_speed_mps, 0.08);
   EXPECT_FALSE(last.string_stable);
