@@ -58,7 +58,7 @@ build: deps
 	  for entry in $(CURDIR)/* $(CURDIR)/.ci; do \
 	    [ "$$(basename $$entry)" = build ] || ln -sfn $$entry $$pkg/; \
 	  done
-	cd $(WS) && catkin_make -j$(JOBS) -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON $(if $(COMPONENTS),'-DACC_COMPONENTS=$(COMPONENTS)') $(CMAKE_ARGS) > $(WS)/catkin_make.log 2>&1 \
+	cd $(WS) && catkin_make -j$(JOBS) -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON '-DACC_COMPONENTS=$(or $(COMPONENTS),all)' $(CMAKE_ARGS) > $(WS)/catkin_make.log 2>&1 \
 	  || { tail -n 60 $(WS)/catkin_make.log; exit 1; }
 	@echo "built in $(WS) (log: $(WS)/catkin_make.log)"
 

@@ -80,6 +80,17 @@ const QuantityEstimate* IdentifiableQuantities::find(const std::string& name) co
   return nullptr;
 }
 
+bool allDetermined(const IdentifiableQuantities& quantities, std::initializer_list<const char*> names)
+{
+  for (const char* name : names)
+  {
+    const QuantityEstimate* q = quantities.find(name);
+    if (q == nullptr || !q->determined)
+      return false;
+  }
+  return true;
+}
+
 IdentifiableQuantities assessQuantities(const AccParameters& fit, const ParameterUncertainty& uncertainty,
                                         const std::vector<CarFollowingRun>& runs, const QuantityCriteria& criteria)
 {

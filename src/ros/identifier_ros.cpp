@@ -74,16 +74,6 @@ std::size_t sampleCount(const std::vector<CarFollowingRun>& segments)
   return samples;
 }
 
-bool allDetermined(const std::optional<IdentifiableQuantities>& quantities, std::initializer_list<const char*> names)
-{
-  for (const char* name : names)
-  {
-    const QuantityEstimate* q = quantities ? quantities->find(name) : nullptr;
-    if (q == nullptr || !q->determined)
-      return false;
-  }
-  return true;
-}
 
 void fillWindow(const OnlineUpdate& update, acc_identification::AccParameters& m)
 {
@@ -103,8 +93,8 @@ void fillWindow(const OnlineUpdate& update, acc_identification::AccParameters& m
   m.rmse_gap_m = result.solved ? result.fit.rmse_gap_m : kNaN;
   // lambda2, the band and the peak need k1, k2 and tau_e (not eta: the linearised dynamics do not
   // depend on it); the margin above may be known even without them.
-  const bool dynamics = result.solved && allDetermined(q, {"k1", "k2", "tau_e"});
-  const bool all = dynamics && allDetermined(q, {"eta"});
+  const bool dynamics = result.solved && q && allDetermined(*q, {"k1", "k2", "tau_e"});
+  const bool all = dynamics && allDetermined(*q, {"eta"});
   m.lambda2 = dynamics ? result.stability.lambda2 : kNaN;
   m.string_stable = dynamics && result.stability.string_stable;
   m.amplified_band_upper_rad_s = dynamics ? result.stability.amplified_band_upper_rad_s : kNaN;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <initializer_list>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -52,6 +53,11 @@ struct IdentifiableQuantities
   /// The quantity of this name, or nullptr.
   const QuantityEstimate* find(const std::string& name) const;
 };
+
+/// Whether every named quantity is assessed and determined. lambda2, the amplified band and the
+/// peak need {"k1", "k2", "tau_e"} (eta does not enter the linearised dynamics); "identifiable"
+/// needs those and "eta".
+bool allDetermined(const IdentifiableQuantities& quantities, std::initializer_list<const char*> names);
 
 /// Value, standard error (delta method with the covariance of estimateUncertainty()), determined
 /// and reason for k1, k2, tau_e, eta, the equilibrium gap eta + tau_e v at the lowest, the mean

@@ -1,0 +1,49 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "acc_identification/campaign/campaign_inputs.h"
+#include "acc_identification/campaign/group_identification.h"
+#include "acc_identification/campaign/platoon_check.h"
+
+namespace acc
+{
+struct CampaignOptions
+{
+  GroupIdentificationOptions group;
+  /// 0: std::thread::hardware_concurrency().
+  std::size_t threads = 0;
+  bool platoon_check = true;
+  PlatoonCheckOptions platoon;
+  /// Called with (stage, done, total) after each task: stage "groups" then "platoon fits"; may
+  /// be empty. Calls never overlap.
+  std::function<void(const std::string&, std::size_t, std::size_t)> progress;
+};
+
+struct CampaignResult
+{
+  std::vector<GroupResult> groups;     ///< one per CampaignInputs::groups, same order
+  std::vector<PlatoonCheck> platoons;  ///< one per file with at least two cars in a chain
+  std::size_t threads = 0;             ///< threads used
+  double wall_time_s = 0.0;
+};
+
+/// The model of car (file, position) for the platoon check: identifyAcc on the car's group's
+/// runs in every OTHER file (leave-one-run-out); when the group has no other run, on the first
+/// halves of this file's segments (said in source). A prediction needs a fit, not identifiability:
+/// the excitation floor is the stability test's (follower speed spread 0.1 m/s), not identifyAcc's
+/// 0.5 m/s. Not available when the fit fails.
+PlatoonCarModel fitPlatoonModel(const CampaignInputs& inputs, std::size_t file_index, int position,
+                                std::size_t starts);
+
+/// Every group identified (identifyGroup) and, unless switched off, every multi-vehicle file's
+/// platoon predicted with leave-one-run-out models (checkPlatoon). Groups and model fits run in
+/// parallel (runTasksInParallel); every result is stored by index and seeded by group, so the
+/// numbers are the same whatever the thread count.
+CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& options);
+
+}  // namespace acc

@@ -1,0 +1,77 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "acc_identification/io/openacc_file.h"
+#include "acc_identification/io/run_plausibility.h"
+#include "acc_identification/model/car_following_run.h"
+
+namespace acc
+{
+/// One OpenACC file of a campaign: the file as read (every car's speed and gap, for the platoon
+/// check) and its distance setting.
+struct CampaignFile
+{
+  std::string path;
+  std::string name;     ///< "dynamic_part12"
+  std::string setting;  ///< the Distance_setting line ("S", "M", "L"; "?" when absent)
+  OpenAccFile contents;
+};
+
+/// One leader-follower pair of one file: the follower's runs there (a pair's data split at NaN
+/// cells and holes, so possibly several segments).
+struct CampaignRun
+{
+  std::size_t file_index = 0;  ///< into CampaignInputs::files
+  OpenAccPair pair;
+  std::vector<CarFollowingRun> segments;
+
+  std::size_t samples() const;
+};
+
+/// One car at one distance setting: every file where it follows with that setting.
+struct CampaignGroup
+{
+  std::string vehicle;
+  std::string setting;
+  std::vector<CampaignRun> runs;  ///< in file order
+
+  std::size_t samples() const;
+  /// Every segment of every run: what the group's model is calibrated on.
+  std::vector<CarFollowingRun> segments() const;
+  /// The segments of every run but the one in this file (leave-one-run-out).
+  std::vector<CarFollowingRun> segmentsExcept(std::size_t file_index) const;
+  /// The run in this file, or nullptr.
+  const CampaignRun* runIn(std::size_t file_index) const;
+  /// "TOYOTA_RAV4/S".
+  std::string label() const;
+};
+
+/// The files of a campaign and its followers grouped by (vehicle, setting).
+struct CampaignInputs
+{
+  std::vector<CampaignFile> files;
+  std::vector<CampaignGroup> groups;  ///< by vehicle name, then setting (S, M, L, then others)
+  std::vector<std::string> notes;     ///< files and pairs skipped, and why
+
+  /// The group of this vehicle and setting, or nullptr.
+  const CampaignGroup* findGroup(const std::string& vehicle, const std::string& setting) const;
+};
+
+/// The files to read: each FILE as given, each folder's *.csv files that look like OpenACC files
+/// (looksLikeOpenAccFile), in natural name order (part5 before part12). Throws
+/// std::invalid_argument for a path that is neither a file nor a folder, or a folder without any.
+std::vector<std::string> listCampaignFiles(const std::vector<std::string>& files_or_folders);
+
+/// Reads every file (readOpenAccFile and readAllPairRuns: every available pair) and groups the
+/// followers by (vehicle name, Distance_setting). A file that cannot be read as OpenACC, or a pair
+/// without usable runs, is skipped with a note. Throws RunReadError when no group results.
+CampaignInputs loadCampaign(const std::vector<std::string>& paths,
+                            const RunPlausibilityBounds& bounds = RunPlausibilityBounds{});
+
+/// Rank of a distance setting for ordering: S, M, L first, then anything else.
+int settingRank(const std::string& setting);
+
+}  // namespace acc

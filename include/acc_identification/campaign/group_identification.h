@@ -1,0 +1,49 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "acc_identification/calibration/identification.h"
+#include "acc_identification/calibration/stability_test.h"
+#include "acc_identification/campaign/campaign_inputs.h"
+
+namespace acc
+{
+/// The paper's protocol for one (vehicle, setting) group.
+struct GroupIdentificationOptions
+{
+  std::size_t starts = 100;   ///< Halton starts of every multistart (fit and test)
+  double alpha = 0.05;        ///< level of the string-stability test
+  std::uint64_t seed = 20240601;  ///< the campaign's seed; each group draws from its own stream
+};
+
+/// Everything the campaign reports of one group.
+struct GroupResult
+{
+  std::string vehicle;
+  std::string setting;
+  std::size_t runs = 0;
+  std::size_t samples = 0;
+  Identification identification;       ///< identifyAcc on all the group's runs
+  StabilityTestResult stability_test;  ///< testStringStability on held-out halves
+  std::uint64_t seed = 0;              ///< the test's bootstrap seed (groupSeed)
+  /// Why the parameters are NaN (no excitation, no fit, an exception), "" when a fit was made.
+  std::string reason;
+
+  /// A fit exists (solved, not diverged): the parameters that are determined are meaningful.
+  bool fitted() const;
+  /// k1, k2 and tau_e are determined: lambda2, the amplified band and the peak are meaningful.
+  bool dynamicsDetermined() const;
+};
+
+/// The group's own seed: the campaign seed mixed with its vehicle and setting (streamSeed), so
+/// that a group's numbers depend neither on the thread that computes it nor on the other groups.
+std::uint64_t groupSeed(std::uint64_t seed, const std::string& vehicle, const std::string& setting);
+
+/// identifyAcc on all the group's runs (options.starts Halton starts), then testStringStability
+/// on the runs' halves warm-started from that fit, as the calibrate tool does. Never throws: a
+/// group whose data lack excitation, or whose fit fails, gets a reason and no fit.
+GroupResult identifyGroup(const CampaignGroup& group, const GroupIdentificationOptions& options);
+
+}  // namespace acc

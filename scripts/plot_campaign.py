@@ -1,0 +1,139 @@
+#!/usr/bin/python3
+"""Draws the figures of a `campaign --report DIR` run.
+
+Reads DIR/campaign.json (written by the campaign tool) and writes into DIR:
+  parameters.png    k1, k2, tau_e, eta +- standard error by car and distance setting
+                    (only where the data determine them),
+  margins.png       the stability margin m = k1 tau_e^2 + 2 k2 tau_e - 2 +- SE, coloured by the
+                    verdict of the string-stability test on held-out halves,
+  platoon_dips.png  measured against predicted speed-dip depth by platoon position, one panel per
+                    run with a perturbation.
+report.md (written by the tool) links them and carries the data's attribution.
+Usage: /usr/bin/python3 plot_campaign.py DIR
+"""
+import json
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+PARAMETERS = [("k1_per_s2", "k1 [1/s^2]"), ("k2_per_s", "k2 [1/s]"), ("tau_e_s", "tau_e [s]"), ("eta_m", "eta [m]")]
+SETTING_COLOURS = {"S": "tab:blue", "M": "tab:orange", "L": "tab:green"}
+VERDICT_COLOURS = {"stable": "tab:green", "unstable": "tab:red", "undecided": "tab:gray"}
+
+
+def number(value):
+    """None (JSON null: NaN) as NaN."""
+    return float("nan") if value is None else float(value)
+
+
+def footer(fig, attribution):
+    fig.text(0.01, 0.005, attribution, fontsize=5, wrap=True, va="bottom")
+
+
+def plot_parameters(vehicles, path, attribution):
+    labels = [f"{v['name']}/{v['setting']}" for v in vehicles]
+    fig, axes = plt.subplots(len(PARAMETERS), 1, figsize=(max(8, 0.45 * len(labels) + 2), 11), sharex=True)
+    for ax, (key, title) in zip(axes, PARAMETERS):
+        for i, v in enumerate(vehicles):
+            value = number(v["parameters"][key])
+            error = number(v["standard_errors"][key])
+            colour = SETTING_COLOURS.get(v["setting"], "tab:purple")
+            if math.isnan(value):
+                ax.plot(i, 0, "x", color="lightgray")
+                continue
+            ax.errorbar(i, value, yerr=0 if math.isnan(error) else error, fmt="o", color=colour, capsize=3)
+        ax.set_ylabel(title)
+        ax.grid(alpha=0.3)
+    axes[0].set_title("Parameters +- SE by car and setting (grey x: not determined by the data)")
+    handles = [plt.Line2D([], [], marker="o", ls="", color=c, label=f"setting {s}") for s, c in SETTING_COLOURS.items()]
+    axes[0].legend(handles=handles, fontsize=7, loc="upper right")
+    axes[-1].set_xticks(range(len(labels)))
+    axes[-1].set_xticklabels(labels, rotation=70, fontsize=7)
+    fig.tight_layout(rect=(0, 0.04, 1, 1))
+    footer(fig, attribution)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def plot_margins(vehicles, path, attribution):
+    labels = [f"{v['name']}/{v['setting']}" for v in vehicles]
+    fig, ax = plt.subplots(figsize=(max(8, 0.45 * len(labels) + 2), 5))
+    for i, v in enumerate(vehicles):
+        verdict = v["stability_test"]["verdict"]
+        colour = VERDICT_COLOURS.get(verdict, "black")
+        value = number(v["margin"]["value"])
+        error = number(v["margin"]["standard_error"])
+        low, high = (number(x) for x in v["stability_test"]["margin_interval"])
+        if not math.isnan(low) and not math.isnan(high):
+            ax.plot([i, i], [low, high], color=colour, alpha=0.3, lw=6)
+        if not math.isnan(value):
+            ax.errorbar(i, value, yerr=0 if math.isnan(error) else error, fmt="o", color=colour, capsize=3)
+        p = number(v["stability_test"]["p_value"])
+        ax.annotate(f"{verdict}\np={p:.3f}", (i, 0), fontsize=5, ha="center", va="bottom", rotation=90,
+                    color=colour, xytext=(0, 4), textcoords="offset points")
+    ax.axhline(0.0, color="black", lw=0.8)
+    ax.set_ylabel("margin m = k1 tau_e^2 + 2 k2 tau_e - 2")
+    ax.set_title("String-stability margin +- SE (dot), interval the held-out data allow (band), verdict (colour)")
+    handles = [plt.Line2D([], [], marker="o", ls="", color=c, label=k) for k, c in VERDICT_COLOURS.items()]
+    ax.legend(handles=handles, fontsize=7)
+    ax.set_xticks(range(len(labels)))
+    ax.set_xticklabels(labels, rotation=70, fontsize=7)
+    ax.grid(alpha=0.3)
+    fig.tight_layout(rect=(0, 0.05, 1, 1))
+    footer(fig, attribution)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def plot_dips(platoons, path, attribution):
+    panels = [(p["run"], p["setting"], i, q) for p in platoons for i, q in enumerate(p["perturbations"])]
+    if not panels:
+        fig, ax = plt.subplots(figsize=(6, 2))
+        ax.text(0.5, 0.5, "no perturbation in any run", ha="center")
+        ax.axis("off")
+        fig.savefig(path, dpi=120)
+        plt.close(fig)
+        return
+    columns = min(3, len(panels))
+    rows = math.ceil(len(panels) / columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(5 * columns, 3.6 * rows), squeeze=False)
+    for ax, (run, setting, index, perturbation) in zip(axes.flat, panels):
+        positions = [r["position"] for r in perturbation["positions"]]
+        measured = [number(r["measured_dip_mps"]) for r in perturbation["positions"]]
+        predicted = [number(r["predicted_dip_mps"]) for r in perturbation["positions"]]
+        ax.plot(positions, measured, "o-", color="black", label="measured")
+        ax.plot(positions, predicted, "s--", color="tab:red", label="predicted (leave-one-run-out)")
+        growth = "data: growth" if perturbation["data_show_growth"] else "data: no growth"
+        ax.set_title(f"{run} ({setting}), dip {index + 1} at {perturbation['onset_s']:.0f} s; {growth}", fontsize=8)
+        ax.set_xlabel("position in the platoon")
+        ax.set_ylabel("speed dip [m/s]")
+        ax.set_xticks(positions)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=6)
+    for ax in list(axes.flat)[len(panels):]:
+        ax.axis("off")
+    fig.tight_layout(rect=(0, 0.04, 1, 1))
+    footer(fig, attribution)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    folder = sys.argv[1]
+    with open(os.path.join(folder, "campaign.json"), encoding="utf-8") as f:
+        campaign = json.load(f)
+    attribution = campaign["attribution"]
+    plot_parameters(campaign["vehicles"], os.path.join(folder, "parameters.png"), attribution)
+    plot_margins(campaign["vehicles"], os.path.join(folder, "margins.png"), attribution)
+    plot_dips(campaign["platoons"], os.path.join(folder, "platoon_dips.png"), attribution)
+
+
+if __name__ == "__main__":
+    main()

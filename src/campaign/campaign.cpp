@@ -1,0 +1,166 @@
+#include "acc_identification/campaign/campaign.h"
+
+#include <chrono>
+#include <mutex>
+
+#include "acc_identification/calibration/calibration_report.h"
+#include "acc_identification/calibration/identification.h"
+#include "acc_identification/campaign/parallel_tasks.h"
+
+namespace acc
+{
+namespace
+{
+/// Follower speed spread below which not even a predicting model is fitted (GNSS noise alone is
+/// about 0.06 m/s); StabilityTestOptions::min_training_speed_std_mps.
+constexpr double kMinPredictionSpeedStdMps = 0.1;
+
+/// One model fit of the platoon check: car `position` of file `file_index`.
+struct ModelTask
+{
+  std::size_t file_index = 0;
+  int position = 0;
+};
+
+/// The first half of every segment (the paper's training half), those long enough to simulate.
+std::vector<CarFollowingRun> firstHalves(const std::vector<CarFollowingRun>& segments)
+{
+  std::vector<CarFollowingRun> halves;
+  for (const CarFollowingRun& segment : segments)
+  {
+    CarFollowingRun half = splitRunInHalf(segment).first;
+    if (half.size() >= 2)
+      halves.push_back(std::move(half));
+  }
+  return halves;
+}
+
+/// identifyAcc's fit, or why there is none.
+PlatoonCarModel fitModel(const std::vector<CarFollowingRun>& segments, std::size_t starts, const std::string& source)
+{
+  IdentificationOptions options;
+  options.multistart.starts = starts;
+  // A prediction needs a fit that predicts, not four parameters pinned one by one: a car that
+  // kept a nearly steady speed still gets a model (down to the stability test's own floor).
+  options.criteria.min_speed_std_mps = kMinPredictionSpeedStdMps;
+  const Identification id = identifyAcc(segments, options);
+  if (!id.solved || id.calibration.diverged)
+    return {false, {}, source + ": no fit (" + (id.note.empty() ? "diverged" : id.note) + ")"};
+  return {true, id.calibration.parameters, source + (id.identifiable ? "" : "; not every parameter determined")};
+}
+
+/// Files whose platoon can be checked: a first car and at least one pair.
+bool checkable(const CampaignInputs& inputs, std::size_t file_index)
+{
+  const OpenAccFile& data = inputs.files[file_index].contents;
+  if (data.vehicle(1) == nullptr)
+    return false;
+  for (const CampaignGroup& group : inputs.groups)
+  {
+    if (group.runIn(file_index) != nullptr)
+      return true;
+  }
+  return false;
+}
+
+std::vector<ModelTask> modelTasks(const CampaignInputs& inputs)
+{
+  std::vector<ModelTask> tasks;
+  for (std::size_t f = 0; f < inputs.files.size(); ++f)
+  {
+    if (!checkable(inputs, f))
+      continue;
+    const OpenAccFile& data = inputs.files[f].contents;
+    for (const OpenAccVehicle& vehicle : data.vehicles)
+    {
+      if (vehicle.position >= 2)
+        tasks.push_back({f, vehicle.position});
+    }
+  }
+  return tasks;
+}
+
+/// The models of one file's cars, indexed by position.
+std::vector<PlatoonCarModel> modelsOfFile(const CampaignInputs& inputs, std::size_t file_index,
+                                          const std::vector<ModelTask>& tasks,
+                                          const std::vector<PlatoonCarModel>& fitted)
+{
+  const OpenAccFile& data = inputs.files[file_index].contents;
+  std::size_t positions = data.metadata.vehicle_order.size() + 1;
+  for (const OpenAccVehicle& vehicle : data.vehicles)
+    positions = std::max<std::size_t>(positions, vehicle.position + 1);
+  std::vector<PlatoonCarModel> models(positions, PlatoonCarModel{false, {}, "no data in this run"});
+  for (std::size_t i = 0; i < tasks.size(); ++i)
+  {
+    if (tasks[i].file_index == file_index)
+      models[tasks[i].position] = fitted[i];
+  }
+  return models;
+}
+}  // namespace
+
+PlatoonCarModel fitPlatoonModel(const CampaignInputs& inputs, std::size_t file_index, int position,
+                                std::size_t starts)
+{
+  const CampaignFile& file = inputs.files[file_index];
+  const std::string name = file.contents.vehicleName(position);
+  const CampaignGroup* group = inputs.findGroup(name, file.setting);
+  const CampaignRun* own = group != nullptr ? group->runIn(file_index) : nullptr;
+  if (own == nullptr)
+    return {false, {}, "no usable pair of this car in this run"};
+  const std::vector<CarFollowingRun> others = group->segmentsExcept(file_index);
+  std::string fallback = "first half of this run (no other run of " + group->label() + ")";
+  if (!others.empty())
+  {
+    const std::size_t other_runs = group->runs.size() - 1;
+    PlatoonCarModel model =
+        fitModel(others, starts, "leave-one-run-out: " + std::to_string(other_runs) + " other run(s) of " + group->label());
+    if (model.available)
+      return model;
+    fallback = "first half of this run (" + model.source + ")";
+  }
+  return fitModel(firstHalves(own->segments), starts, fallback);
+}
+
+CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& options)
+{
+  const auto started = std::chrono::steady_clock::now();
+  CampaignResult result;
+  result.groups.resize(inputs.groups.size());
+  const std::vector<ModelTask> tasks = options.platoon_check ? modelTasks(inputs) : std::vector<ModelTask>{};
+  std::vector<PlatoonCarModel> fitted(tasks.size());
+  const std::size_t group_count = inputs.groups.size();
+  // One pool for both kinds of task, groups first (the longest), so that no core idles between them.
+  auto task = [&](std::size_t i) {
+    if (i < group_count)
+      result.groups[i] = identifyGroup(inputs.groups[i], options.group);
+    else
+      fitted[i - group_count] = fitPlatoonModel(inputs, tasks[i - group_count].file_index,
+                                                tasks[i - group_count].position, options.group.starts);
+  };
+  std::size_t groups_done = 0, fits_done = 0;
+  std::mutex mutex;
+  auto progress_of = [&](std::size_t i) {
+    if (!options.progress)
+      return;
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (i < group_count)
+      options.progress("groups", ++groups_done, group_count);
+    else
+      options.progress("platoon fits", ++fits_done, tasks.size());
+  };
+  result.threads = effectiveThreadCount(options.threads, group_count + tasks.size());
+  runTasksInParallel(group_count + tasks.size(), options.threads, [&](std::size_t i) {
+    task(i);
+    progress_of(i);
+  });
+  for (std::size_t f = 0; options.platoon_check && f < inputs.files.size(); ++f)
+  {
+    if (checkable(inputs, f))
+      result.platoons.push_back(checkPlatoon(inputs.files[f], modelsOfFile(inputs, f, tasks, fitted), options.platoon));
+  }
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return result;
+}
+
+}  // namespace acc

@@ -1,0 +1,406 @@
+#include "acc_identification/campaign/campaign_output.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <ostream>
+#include <sstream>
+
+#include "acc_identification/calibration/quantity_identifiability.h"
+#include "acc_identification/model/string_stability.h"
+
+namespace acc
+{
+const char* const kOpenAccAttribution =
+    "Data: JRC OpenACC database (Makridis, Mattas, Anesiadou, Ciuffo, \"OpenACC. An open database of "
+    "car-following experiments to study the properties of commercial ACC systems\", Transportation Research "
+    "Part C 125 (2021) 103047), (c) European Union, 1995-2025, licensed under CC BY 4.0 "
+    "(https://creativecommons.org/licenses/by/4.0). The JRC does not endorse this package. Changes: an excerpt "
+    "of the columns Time, Speedk and IVSk; each car's runs calibrated with the ACC model; platoons simulated "
+    "with the calibrated models; dips, ratios and statistics derived.";
+
+namespace
+{
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+const char* const kParameterNames[] = {"k1", "k2", "tau_e", "eta"};
+const char* const kParameterKeys[] = {"k1_per_s2", "k2_per_s", "tau_e_s", "eta_m"};
+
+std::string format(const char* pattern, double value)
+{
+  if (!std::isfinite(value))
+    return "NaN";
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), pattern, value);
+  return buffer;
+}
+
+/// The quantity's value and standard error where the data determine it, NaN otherwise.
+std::pair<double, double> determined(const GroupResult& group, const std::string& name)
+{
+  if (!group.fitted() || !group.identification.quantities)
+    return {kNaN, kNaN};
+  const QuantityEstimate* q = group.identification.quantities->find(name);
+  if (q == nullptr || !q->determined)
+    return {kNaN, kNaN};
+  return {q->value, q->standard_error};
+}
+
+std::string valuePlusMinus(const GroupResult& group, const std::string& name, const char* pattern)
+{
+  const auto [value, error] = determined(group, name);
+  if (!std::isfinite(value))
+    return "NaN";
+  return format(pattern, value) + "+-" + format(pattern, error);
+}
+
+double parameterOf(const AccParameters& p, int i)
+{
+  const double values[] = {p.k1_per_s2, p.k2_per_s, p.tau_e_s, p.eta_m};
+  return values[i];
+}
+
+nlohmann::json parametersJson(const GroupResult& group, bool only_determined, bool errors)
+{
+  nlohmann::json j;
+  for (int i = 0; i < 4; ++i)
+  {
+    double value = kNaN;
+    if (group.fitted())
+    {
+      value = parameterOf(errors ? group.identification.uncertainty.standard_error
+                                 : group.identification.calibration.parameters, i);
+    }
+    if (only_determined && !std::isfinite(determined(group, kParameterNames[i]).first))
+      value = kNaN;
+    j[kParameterKeys[i]] = value;
+  }
+  return j;
+}
+
+nlohmann::json stabilityTestJson(const StabilityTestResult& test)
+{
+  return {{"verdict", toString(test.verdict)},
+          {"p_value", test.p_value},
+          {"p_value_stable_rejected", test.p_value_stable_rejected},
+          {"p_value_unstable_rejected", test.p_value_unstable_rejected},
+          {"alpha", test.alpha},
+          {"tested", test.tested},
+          {"margin_interval", {test.margin_low, test.margin_high}},
+          {"training_samples", test.training_samples},
+          {"held_out_samples", test.held_out_samples},
+          {"reason", test.reason}};
+}
+
+nlohmann::json vehicleJson(const CampaignInputs& inputs, std::size_t index, const GroupResult& group)
+{
+  nlohmann::json run_files = nlohmann::json::array();
+  for (const CampaignRun& run : inputs.groups[index].runs)
+    run_files.push_back({{"run", inputs.files[run.file_index].name}, {"pair", run.pair.label()}});
+  const Identification& id = group.identification;
+  const auto margin = determined(group, "stability_margin");
+  const bool fitted = group.fitted();
+  const bool dynamics = group.dynamicsDetermined();
+  return {{"name", group.vehicle},
+          {"setting", group.setting},
+          {"runs", group.runs},
+          {"run_files", run_files},
+          {"samples", group.samples},
+          {"parameters", parametersJson(group, true, false)},
+          {"fitted_parameters", parametersJson(group, false, false)},
+          {"standard_errors", parametersJson(group, false, true)},
+          {"identifiable", fitted && id.identifiable},
+          {"note", fitted ? id.note : group.reason},
+          {"fit_rmse_speed_mps", fitted ? id.fit.rmse_speed_mps : kNaN},
+          {"margin", {{"value", margin.first}, {"standard_error", margin.second}}},
+          {"quantities", id.quantities ? toJson(*id.quantities) : nlohmann::json()},
+          {"stability",
+           {{"lambda2", dynamics ? id.stability.lambda2 : kNaN},
+            {"string_stable", dynamics ? nlohmann::json(id.stability.string_stable) : nlohmann::json()},
+            {"band_upper_rad_s", dynamics ? id.stability.amplified_band_upper_rad_s : kNaN},
+            {"peak_gain_db", dynamics ? id.stability.peak_gain_db : kNaN}}},
+          {"stability_test", stabilityTestJson(group.stability_test)},
+          {"seed", group.seed}};
+}
+
+nlohmann::json positionsJson(const std::vector<DipComparison>& positions)
+{
+  nlohmann::json j = nlohmann::json::array();
+  for (const DipComparison& row : positions)
+  {
+    j.push_back({{"position", row.position},
+                 {"name", row.name},
+                 {"measured_dip_mps", row.measured_dip_mps},
+                 {"predicted_dip_mps", row.predicted_dip_mps},
+                 {"measured_amplification", row.measured_amplification},
+                 {"predicted_amplification", row.predicted_amplification}});
+  }
+  return j;
+}
+
+nlohmann::json disagreementsJson(const std::vector<PlatoonDisagreement>& list)
+{
+  nlohmann::json j = nlohmann::json::array();
+  for (const PlatoonDisagreement& d : list)
+    j.push_back({{"perturbation", d.perturbation}, {"position", d.position}, {"name", d.name}, {"what", d.what}});
+  return j;
+}
+
+nlohmann::json platoonJson(const PlatoonCheck& check)
+{
+  nlohmann::json perturbations = nlohmann::json::array(), cars = nlohmann::json::array(),
+                 disagreements = nlohmann::json::array();
+  for (const PerturbationCheck& p : check.perturbations)
+  {
+    perturbations.push_back({{"onset_s", p.perturbation.onset_s},
+                             {"end_s", p.perturbation.end_s},
+                             {"window_end_s", p.perturbation.window_end_s},
+                             {"lead_median_mps", p.perturbation.lead_median_mps},
+                             {"positions", positionsJson(p.positions)},
+                             {"data_show_growth", p.data_show_growth},
+                             {"disagreements", disagreementsJson(p.disagreements)}});
+    for (const auto& d : disagreementsJson(p.disagreements))
+      disagreements.push_back(d);
+  }
+  for (const PlatoonCarPrediction& car : check.cars)
+  {
+    cars.push_back({{"position", car.position},
+                    {"name", car.name},
+                    {"model_available", car.model.available},
+                    {"model_source", car.model.source},
+                    {"parameters",
+                     {{"k1_per_s2", car.model.parameters.k1_per_s2},
+                      {"k2_per_s", car.model.parameters.k2_per_s},
+                      {"tau_e_s", car.model.parameters.tau_e_s},
+                      {"eta_m", car.model.parameters.eta_m}}},
+                    {"predicted", car.predicted},
+                    {"rmse_speed_mps", car.predicted ? car.rmse_speed_mps : kNaN},
+                    {"note", car.note}});
+  }
+  const bool any = !check.perturbations.empty();
+  return {{"run", check.run},
+          {"setting", check.setting},
+          {"positions", any ? positionsJson(check.perturbations.front().positions) : nlohmann::json::array()},
+          {"data_show_growth", any && check.perturbations.front().data_show_growth},
+          {"disagreements", disagreements},
+          {"perturbations", perturbations},
+          {"cars", cars},
+          {"notes", check.notes}};
+}
+
+/// One table row per group, in the columns of printCampaignTables.
+std::vector<std::string> groupCells(const GroupResult& g)
+{
+  const Identification& id = g.identification;
+  return {g.vehicle,
+          g.setting,
+          std::to_string(g.runs),
+          std::to_string(g.samples),
+          valuePlusMinus(g, "k1", "%.3f"),
+          valuePlusMinus(g, "k2", "%.3f"),
+          valuePlusMinus(g, "tau_e", "%.2f"),
+          valuePlusMinus(g, "eta", "%.1f"),
+          valuePlusMinus(g, "stability_margin", "%.2f"),
+          toString(g.stability_test.verdict),
+          format("%.3f", g.stability_test.p_value),
+          format("%.3f", g.dynamicsDetermined() ? id.stability.amplified_band_upper_rad_s : kNaN),
+          format("%.2f", g.dynamicsDetermined() ? id.stability.peak_gain_db : kNaN)};
+}
+
+const std::vector<std::string> kGroupHeader{"vehicle", "set", "runs", "samples", "k1 [1/s2]", "k2 [1/s]", "tau_e [s]",
+                                            "eta [m]", "margin", "verdict", "p", "band [rad/s]", "peak [dB]"};
+
+const std::vector<std::string> kPlatoonHeader{"run", "dip", "pos", "car", "meas dip", "pred dip", "meas amp",
+                                              "pred amp"};
+
+std::vector<std::vector<std::string>> platoonRows(const CampaignResult& result)
+{
+  std::vector<std::vector<std::string>> rows;
+  for (const PlatoonCheck& check : result.platoons)
+  {
+    for (std::size_t i = 0; i < check.perturbations.size(); ++i)
+    {
+      for (const DipComparison& row : check.perturbations[i].positions)
+      {
+        rows.push_back({check.run + "/" + check.setting, std::to_string(i + 1), std::to_string(row.position), row.name,
+                        format("%.2f", row.measured_dip_mps), format("%.2f", row.predicted_dip_mps),
+                        format("%.2f", row.measured_amplification), format("%.2f", row.predicted_amplification)});
+      }
+    }
+  }
+  return rows;
+}
+
+void printAligned(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows,
+                  std::ostream& out)
+{
+  std::vector<std::size_t> width(header.size());
+  for (std::size_t c = 0; c < header.size(); ++c)
+  {
+    width[c] = header[c].size();
+    for (const auto& row : rows)
+      width[c] = std::max(width[c], row[c].size());
+  }
+  auto line = [&](const std::vector<std::string>& cells) {
+    for (std::size_t c = 0; c < cells.size(); ++c)
+    {
+      out << cells[c] << std::string(width[c] - cells[c].size() + 2, ' ');
+    }
+    out << "\n";
+  };
+  line(header);
+  for (const auto& row : rows)
+    line(row);
+}
+
+void printMarkdownTable(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows,
+                        std::ostream& out)
+{
+  auto line = [&out](const std::vector<std::string>& cells) {
+    out << "|";
+    for (const std::string& cell : cells)
+      out << " " << cell << " |";
+    out << "\n";
+  };
+  line(header);
+  out << "|";
+  for (std::size_t c = 0; c < header.size(); ++c)
+    out << "---|";
+  out << "\n";
+  for (const auto& row : rows)
+    line(row);
+}
+
+std::vector<std::vector<std::string>> groupRows(const CampaignResult& result)
+{
+  std::vector<std::vector<std::string>> rows;
+  for (const GroupResult& g : result.groups)
+    rows.push_back(groupCells(g));
+  return rows;
+}
+
+std::vector<std::string> groupNotes(const CampaignResult& result)
+{
+  std::vector<std::string> notes;
+  for (const GroupResult& g : result.groups)
+  {
+    const std::string why = g.fitted() ? g.identification.note : g.reason;
+    if (!why.empty())
+      notes.push_back(g.vehicle + "/" + g.setting + ": " + why);
+  }
+  return notes;
+}
+
+std::vector<std::string> platoonNotes(const CampaignResult& result)
+{
+  std::vector<std::string> notes;
+  for (const PlatoonCheck& check : result.platoons)
+  {
+    std::size_t growth = 0;
+    for (const PerturbationCheck& p : check.perturbations)
+      growth += p.data_show_growth ? 1 : 0;
+    notes.push_back(check.run + "/" + check.setting + ": " + std::to_string(check.perturbations.size()) +
+                    " perturbation(s), " + std::to_string(growth) + " with measured growth along the platoon");
+    for (const std::string& note : check.notes)
+      notes.push_back(check.run + ": " + note);
+  }
+  return notes;
+}
+
+std::vector<std::vector<std::string>> disagreementRows(const CampaignResult& result)
+{
+  std::vector<std::vector<std::string>> rows;
+  for (const PlatoonCheck& check : result.platoons)
+  {
+    for (const PerturbationCheck& p : check.perturbations)
+    {
+      for (const PlatoonDisagreement& d : p.disagreements)
+        rows.push_back({check.run, std::to_string(d.perturbation + 1), std::to_string(d.position), d.name, d.what});
+    }
+  }
+  return rows;
+}
+}  // namespace
+
+nlohmann::json campaignToJson(const CampaignInputs& inputs, const CampaignResult& result,
+                              const std::vector<std::string>& input_paths, const CampaignOptions& options)
+{
+  nlohmann::json files = nlohmann::json::array();
+  for (const CampaignFile& file : inputs.files)
+    files.push_back({{"path", file.path}, {"run", file.name}, {"setting", file.setting}});
+  nlohmann::json vehicles = nlohmann::json::array(), platoons = nlohmann::json::array();
+  for (std::size_t i = 0; i < result.groups.size(); ++i)
+    vehicles.push_back(vehicleJson(inputs, i, result.groups[i]));
+  for (const PlatoonCheck& check : result.platoons)
+    platoons.push_back(platoonJson(check));
+  return {{"inputs", {{"arguments", input_paths}, {"files", files}, {"notes", inputs.notes}}},
+          {"attribution", kOpenAccAttribution},
+          {"options",
+           {{"starts", options.group.starts},
+            {"alpha", options.group.alpha},
+            {"seed", options.group.seed},
+            {"platoon_check", options.platoon_check}}},
+          {"vehicles", vehicles},
+          {"platoons", platoons}};
+}
+
+void printCampaignTables(const CampaignResult& result, std::ostream& out)
+{
+  out << "ACC models by vehicle and distance setting (value+-SE where the data determine it, NaN where not)\n";
+  printAligned(kGroupHeader, groupRows(result), out);
+  for (const std::string& note : groupNotes(result))
+    out << "  note: " << note << "\n";
+  if (result.platoons.empty())
+    return;
+  out << "\nPlatoons predicted from the real first car (leave-one-run-out models): speed dips [m/s] and "
+         "amplification dip(k)/dip(k-1)\n";
+  printAligned(kPlatoonHeader, platoonRows(result), out);
+  for (const std::string& note : platoonNotes(result))
+    out << "  " << note << "\n";
+  const auto disagreements = disagreementRows(result);
+  out << "\nWhere model and data disagree: " << disagreements.size() << "\n";
+  if (!disagreements.empty())
+    printAligned({"run", "dip", "pos", "car", "what"}, disagreements, out);
+}
+
+std::string campaignReportMarkdown(const CampaignResult& result, const std::vector<std::string>& input_paths,
+                                   bool with_figures)
+{
+  std::ostringstream md;
+  md << "# ACC campaign: models by car and setting, and the platoons they predict\n\n";
+  md << "Inputs:";
+  for (const std::string& path : input_paths)
+    md << " `" << path << "`";
+  md << "\n\n## Models by vehicle and distance setting\n\n"
+     << "identifyAcc on all of a group's runs (value +- standard error where the data determine it, NaN "
+        "where not); margin m = k1 tau_e^2 + 2 k2 tau_e - 2; verdict and p of the string-stability test on "
+        "held-out halves; amplified band and peak gain of the fit.\n\n";
+  printMarkdownTable(kGroupHeader, groupRows(result), md);
+  for (const std::string& note : groupNotes(result))
+    md << "\n- " << note;
+  md << "\n\n## Platoons predicted from the real first car\n\n"
+     << "Each following car simulated with its model fitted WITHOUT this run, from its measured gap and speed, "
+        "driven by the predicted speed of the car ahead. Dip = pre-perturbation speed minus the minimum within "
+        "the perturbation (+30 s); amplification = dip(k) / dip(k-1).\n\n";
+  printMarkdownTable(kPlatoonHeader, platoonRows(result), md);
+  md << "\n";
+  for (const std::string& note : platoonNotes(result))
+    md << "- " << note << "\n";
+  md << "\n### Where model and data disagree\n\n";
+  const auto disagreements = disagreementRows(result);
+  if (disagreements.empty())
+    md << "Nowhere.\n";
+  else
+    printMarkdownTable({"run", "dip", "pos", "car", "what"}, disagreements, md);
+  if (with_figures)
+  {
+    md << "\n## Figures\n\n"
+       << "![Parameters by car and setting](parameters.png)\n\n"
+       << "![Stability margin and verdicts](margins.png)\n\n"
+       << "![Measured and predicted dips by position](platoon_dips.png)\n";
+  }
+  md << "\n## Attribution\n\n" << kOpenAccAttribution << "\n";
+  return md.str();
+}
+
+}  // namespace acc

@@ -1,0 +1,80 @@
+#include "acc_identification/campaign/group_identification.h"
+
+#include <exception>
+
+#include "acc_identification/model/normal_source.h"
+
+namespace acc
+{
+namespace
+{
+/// FNV-1a: a stable hash of the group's name (std::hash may differ between libraries).
+std::uint64_t stableHash(const std::string& text)
+{
+  std::uint64_t hash = 14695981039346656037ULL;
+  for (const unsigned char c : text)
+  {
+    hash ^= c;
+    hash *= 1099511628211ULL;
+  }
+  return hash;
+}
+
+StabilityTestOptions testOptions(const GroupIdentificationOptions& options, std::uint64_t seed)
+{
+  StabilityTestOptions test;
+  test.alpha = options.alpha;
+  test.seed = seed;
+  test.multistart.starts = options.starts;
+  return test;
+}
+}  // namespace
+
+bool GroupResult::fitted() const
+{
+  return identification.solved && !identification.calibration.diverged;
+}
+
+bool GroupResult::dynamicsDetermined() const
+{
+  return fitted() && identification.quantities && allDetermined(*identification.quantities, {"k1", "k2", "tau_e"});
+}
+
+std::uint64_t groupSeed(std::uint64_t seed, const std::string& vehicle, const std::string& setting)
+{
+  return streamSeed(seed, stableHash(vehicle + "/" + setting));
+}
+
+GroupResult identifyGroup(const CampaignGroup& group, const GroupIdentificationOptions& options)
+{
+  GroupResult result;
+  result.vehicle = group.vehicle;
+  result.setting = group.setting;
+  result.runs = group.runs.size();
+  result.samples = group.samples();
+  result.seed = groupSeed(options.seed, group.vehicle, group.setting);
+  const std::vector<CarFollowingRun> segments = group.segments();
+  try
+  {
+    IdentificationOptions identification;
+    identification.multistart.starts = options.starts;
+    result.identification = identifyAcc(segments, identification);
+    if (!result.identification.solved)
+      result.reason = result.identification.note;
+    else if (result.identification.calibration.diverged)
+      result.reason = "every start of the fit diverged";
+    StabilityTestOptions test = testOptions(options, result.seed);
+    if (result.fitted())
+      test.warm_starts = {result.identification.calibration.parameters};
+    // The test decides from held-out halves even where the parameters are not pinned one by one.
+    result.stability_test = testStringStability(segments, test);
+  }
+  catch (const std::exception& error)
+  {
+    result.reason = std::string("failed: ") + error.what();
+    result.identification.solved = false;
+  }
+  return result;
+}
+
+}  // namespace acc

@@ -1,0 +1,139 @@
+#include "acc_identification/campaign/perturbation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace acc
+{
+namespace
+{
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+bool finiteAt(const std::vector<double>& time_s, const std::vector<double>& values, std::size_t i)
+{
+  return std::isfinite(time_s[i]) && std::isfinite(values[i]);
+}
+
+/// [first, end) index ranges where the first car's speed is below the threshold.
+std::vector<std::pair<std::size_t, std::size_t>> belowThreshold(const std::vector<double>& time_s,
+                                                                const std::vector<double>& speed_mps,
+                                                                double threshold_mps)
+{
+  std::vector<std::pair<std::size_t, std::size_t>> ranges;
+  bool inside = false;
+  for (std::size_t i = 0; i < speed_mps.size(); ++i)
+  {
+    if (!finiteAt(time_s, speed_mps, i))
+      continue;  // a missing sample neither starts nor ends a drop
+    const bool below = speed_mps[i] < threshold_mps;
+    if (below && !inside)
+      ranges.push_back({i, i + 1});
+    if (below)
+      ranges.back().second = i + 1;
+    inside = below;
+  }
+  return ranges;
+}
+
+/// Drops closer than merge_within_s joined; drops shorter than min_duration_s removed.
+std::vector<std::pair<std::size_t, std::size_t>> mergeRanges(const std::vector<std::pair<std::size_t, std::size_t>>& ranges,
+                                                             const std::vector<double>& time_s,
+                                                             const PerturbationCriteria& criteria)
+{
+  std::vector<std::pair<std::size_t, std::size_t>> merged;
+  for (const auto& range : ranges)
+  {
+    if (!merged.empty() && time_s[range.first] - time_s[merged.back().second - 1] < criteria.merge_within_s)
+      merged.back().second = range.second;
+    else
+      merged.push_back(range);
+  }
+  std::vector<std::pair<std::size_t, std::size_t>> kept;
+  for (const auto& range : merged)
+  {
+    if (time_s[range.second - 1] - time_s[range.first] >= criteria.min_duration_s)
+      kept.push_back(range);
+  }
+  return kept;
+}
+
+/// Index one past the last sample with time < limit_s, from `from` on.
+std::size_t indexBefore(const std::vector<double>& time_s, std::size_t from, double limit_s)
+{
+  std::size_t i = from;
+  while (i < time_s.size() && !(time_s[i] >= limit_s))
+    ++i;
+  return i;
+}
+}  // namespace
+
+double finiteMedian(std::vector<double> values)
+{
+  values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }), values.end());
+  if (values.empty())
+    return kNaN;
+  const std::size_t mid = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + mid, values.end());
+  double median = values[mid];
+  if (values.size() % 2 == 0)
+    median = 0.5 * (median + *std::max_element(values.begin(), values.begin() + mid));
+  return median;
+}
+
+std::vector<Perturbation> findPerturbations(const std::vector<double>& time_s, const std::vector<double>& lead_speed_mps,
+                                            const PerturbationCriteria& criteria)
+{
+  std::vector<Perturbation> found;
+  const double median = finiteMedian(lead_speed_mps);
+  if (!std::isfinite(median))
+    return found;
+  const auto drops =
+      mergeRanges(belowThreshold(time_s, lead_speed_mps, median - criteria.drop_below_median_mps), time_s, criteria);
+  for (const auto& drop : drops)
+  {
+    Perturbation p;
+    p.lead_median_mps = median;
+    // The onset: walk back to where the first car was still near its median (braking starts there).
+    p.onset = drop.first;
+    while (p.onset > 0 && !(finiteAt(time_s, lead_speed_mps, p.onset) &&
+                            lead_speed_mps[p.onset] >= median - criteria.onset_below_median_mps))
+      --p.onset;
+    p.end = std::min(drop.second, time_s.size() - 1);
+    p.onset_s = time_s[p.onset];
+    p.end_s = time_s[p.end];
+    p.window_end = indexBefore(time_s, p.end, p.end_s + criteria.extension_s);
+    p.window_end_s = time_s[p.window_end - 1];
+    found.push_back(p);
+  }
+  return found;
+}
+
+double dipDepthMps(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
+                   const Perturbation& perturbation, const PerturbationCriteria& criteria)
+{
+  double sum = 0.0;
+  std::size_t count = 0;
+  const double pre_start_s = perturbation.onset_s - criteria.pre_window_s;
+  for (std::size_t i = perturbation.onset + 1; i-- > 0;)
+  {
+    if (std::isfinite(time_s[i]) && time_s[i] < pre_start_s)
+      break;
+    if (finiteAt(time_s, speed_mps, i))
+    {
+      sum += speed_mps[i];
+      ++count;
+    }
+  }
+  double minimum = std::numeric_limits<double>::infinity();
+  for (std::size_t i = perturbation.onset; i < perturbation.window_end && i < speed_mps.size(); ++i)
+  {
+    if (finiteAt(time_s, speed_mps, i))
+      minimum = std::min(minimum, speed_mps[i]);
+  }
+  if (count == 0 || !std::isfinite(minimum))
+    return kNaN;
+  return sum / static_cast<double>(count) - minimum;
+}
+
+}  // namespace acc

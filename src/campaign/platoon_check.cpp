@@ -1,0 +1,288 @@
+#include "acc_identification/campaign/platoon_check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <tuple>
+
+#include "acc_identification/model/follower_simulation.h"
+
+namespace acc
+{
+namespace
+{
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+/// Dips below this are GNSS noise: no ratio is formed with them as the denominator.
+constexpr double kMinDipForRatioMps = 0.1;
+
+std::string format(const char* pattern, double value)
+{
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), pattern, value);
+  return buffer;
+}
+
+int lastPosition(const OpenAccFile& file)
+{
+  int last = static_cast<int>(file.metadata.vehicle_order.size());
+  for (const OpenAccVehicle& vehicle : file.vehicles)
+    last = std::max(last, vehicle.position);
+  return last;
+}
+
+bool hasSpeed(const OpenAccVehicle* vehicle)
+{
+  return vehicle != nullptr && vehicle->has_speed && vehicle->speed_values > 0;
+}
+
+/// Why car `position` cannot be simulated, "" when it can.
+std::string whyNotSimulated(const OpenAccFile& file, int position, const PlatoonCarModel& model)
+{
+  const std::string label = file.vehicleName(position) + " (" + std::to_string(position) + ")";
+  if (!hasSpeed(file.vehicle(position)))
+    return label + " has no speed data";
+  const OpenAccVehicle* ahead = file.vehicle(position - 1);
+  if (ahead == nullptr || !ahead->has_gap_to_follower || ahead->gap_values == 0)
+    return label + " has no gap data (IVS" + std::to_string(position - 1) + ")";
+  if (!model.available)
+    return label + " has no model: " + model.source;
+  return "";
+}
+
+/// The first row in [first, end) where the car's start state and its input are all known.
+std::size_t startRow(const OpenAccFile& file, int position, const std::vector<double>& input_mps, std::size_t first,
+                     std::size_t end)
+{
+  const std::vector<double>& speed = file.vehicle(position)->speed_mps;
+  const std::vector<double>& gap = file.vehicle(position - 1)->gap_to_follower_m;
+  for (std::size_t r = first; r < end; ++r)
+  {
+    if (std::isfinite(input_mps[r]) && std::isfinite(speed[r]) && std::isfinite(gap[r]))
+      return r;
+  }
+  return end;
+}
+
+/// Simulates one car from row `start` to `end`, driven by input_mps; fills car.predicted_speed_mps.
+void predictCar(const OpenAccFile& file, const std::vector<double>& input_mps, std::size_t start, std::size_t end,
+                PlatoonCarPrediction& car)
+{
+  CarFollowingRun run;
+  run.name = file.name + " " + car.name;
+  run.time_s.assign(file.time_s.begin() + start, file.time_s.begin() + end);
+  run.leader_speed_mps.assign(input_mps.begin() + start, input_mps.begin() + end);
+  // Only the first gap and speed are read by the simulation (its measured start).
+  run.follower_speed_mps.assign(run.size(), file.vehicle(car.position)->speed_mps[start]);
+  run.space_gap_m.assign(run.size(), file.vehicle(car.position - 1)->gap_to_follower_m[start]);
+  const SimulatedFollower sim = simulateFollower(car.model.parameters, run);
+  const std::size_t valid = sim.diverged ? sim.diverged_at_index : run.size();
+  car.predicted_speed_mps.assign(file.rows(), kNaN);
+  std::copy(sim.speed_mps.begin(), sim.speed_mps.begin() + valid, car.predicted_speed_mps.begin() + start);
+  car.start_row = start;
+  car.predicted = true;
+  if (sim.diverged)
+    car.note = "simulation diverged at t = " + format("%.1f s", run.time_s[valid]);
+}
+
+double rmseAgainstMeasured(const std::vector<double>& predicted, const std::vector<double>& measured)
+{
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t r = 0; r < predicted.size(); ++r)
+  {
+    if (std::isfinite(predicted[r]) && std::isfinite(measured[r]))
+    {
+      sum += (predicted[r] - measured[r]) * (predicted[r] - measured[r]);
+      ++n;
+    }
+  }
+  return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : kNaN;
+}
+
+/// The chain: each car driven by the prediction of the car ahead, until one cannot be simulated.
+void predictChain(const CampaignFile& file, const std::vector<PlatoonCarModel>& models, PlatoonCheck& check)
+{
+  const OpenAccFile& data = file.contents;
+  std::vector<double> input = data.vehicle(1)->speed_mps;  // the real first car drives the chain
+  for (std::size_t r = 0; r < input.size(); ++r)
+  {
+    if (r < check.first_row || r >= check.end_row)
+      input[r] = kNaN;
+  }
+  bool stopped = false;
+  for (int k = 2; k <= lastPosition(data); ++k)
+  {
+    PlatoonCarPrediction car;
+    car.position = k;
+    car.name = data.vehicleName(k);
+    car.model = k < static_cast<int>(models.size()) ? models[k] : PlatoonCarModel{false, {}, "none given"};
+    car.predicted_speed_mps.assign(data.rows(), kNaN);
+    const std::string why = stopped ? "the chain stopped ahead" : whyNotSimulated(data, k, car.model);
+    const std::size_t start = why.empty() ? startRow(data, k, input, check.first_row, check.end_row) : 0;
+    if (!why.empty() || start + 2 > check.end_row)
+    {
+      car.note = why.empty() ? "no row with its gap, speed and input all known" : why;
+      if (!stopped)
+        check.notes.push_back("chain stopped at position " + std::to_string(k) + ": " + car.note);
+      stopped = true;
+      check.cars.push_back(car);
+      continue;
+    }
+    predictCar(data, input, start, check.end_row, car);
+    car.rmse_speed_mps = rmseAgainstMeasured(car.predicted_speed_mps, data.vehicle(k)->speed_mps);
+    if (!car.note.empty())
+    {
+      check.notes.push_back("chain stopped after position " + std::to_string(k) + ": " + car.note);
+      stopped = true;
+    }
+    if (car.model.source.find("first half") != std::string::npos)
+      check.notes.push_back(car.name + " (" + std::to_string(k) + "): " + car.model.source);
+    input = car.predicted_speed_mps;
+    check.cars.push_back(std::move(car));
+  }
+}
+
+std::vector<double> slice(const std::vector<double>& values, std::size_t first, std::size_t end)
+{
+  return std::vector<double>(values.begin() + first, values.begin() + end);
+}
+
+double ratio(double dip, double dip_ahead)
+{
+  if (!std::isfinite(dip) || !std::isfinite(dip_ahead) || dip_ahead < kMinDipForRatioMps)
+    return kNaN;
+  return dip / dip_ahead;
+}
+
+/// Amplification measured against prediction, and the dip error, position by position.
+void findDisagreements(PerturbationCheck& check, std::size_t index, double max_relative_dip_error)
+{
+  for (const DipComparison& row : check.positions)
+  {
+    if (row.position < 2)
+      continue;
+    const double measured = row.measured_amplification, predicted = row.predicted_amplification;
+    if (std::isfinite(measured) && std::isfinite(predicted) && (predicted > 1.0) != (measured > 1.0))
+    {
+      check.disagreements.push_back({index, row.position, row.name,
+                                     std::string(predicted > 1.0 ? "predicted amplification " : "predicted attenuation ") +
+                                         format("%.2f", predicted) +
+                                         (measured > 1.0 ? ", measured amplification " : ", measured attenuation ") +
+                                         format("%.2f", measured)});
+    }
+    if (std::isfinite(row.measured_dip_mps) && std::isfinite(row.predicted_dip_mps) &&
+        row.measured_dip_mps >= kMinDipForRatioMps)
+    {
+      const double error = (row.predicted_dip_mps - row.measured_dip_mps) / row.measured_dip_mps;
+      if (std::abs(error) > max_relative_dip_error)
+        check.disagreements.push_back({index, row.position, row.name, "dip error " + format("%+.0f %%", 100.0 * error)});
+    }
+  }
+}
+
+bool dataShowGrowth(const std::vector<DipComparison>& positions)
+{
+  const double first = positions.empty() ? kNaN : positions.front().measured_dip_mps;
+  double last = kNaN;
+  for (std::size_t k = 1; k < positions.size(); ++k)
+  {
+    if (std::isfinite(positions[k].measured_dip_mps))
+      last = positions[k].measured_dip_mps;
+  }
+  return std::isfinite(first) && std::isfinite(last) && last > first;
+}
+
+PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFile& data,
+                                      const std::vector<double>& time_s, const Perturbation& perturbation,
+                                      std::size_t index, const PlatoonCheckOptions& options)
+{
+  PerturbationCheck result;
+  result.perturbation = perturbation;
+  auto dip = [&](const std::vector<double>& speed) {
+    return dipDepthMps(time_s, slice(speed, check.first_row, check.end_row), perturbation, options.perturbation);
+  };
+  const double lead_dip = dip(data.vehicle(1)->speed_mps);
+  result.positions.push_back({1, data.vehicleName(1), lead_dip, lead_dip, kNaN, kNaN});
+  for (const PlatoonCarPrediction& car : check.cars)
+  {
+    DipComparison row{car.position, car.name, kNaN, kNaN, kNaN, kNaN};
+    if (hasSpeed(data.vehicle(car.position)))
+      row.measured_dip_mps = dip(data.vehicle(car.position)->speed_mps);
+    if (car.predicted)
+      row.predicted_dip_mps = dip(car.predicted_speed_mps);
+    const DipComparison& ahead = result.positions.back();
+    row.measured_amplification = ratio(row.measured_dip_mps, ahead.measured_dip_mps);
+    row.predicted_amplification = ratio(row.predicted_dip_mps, ahead.predicted_dip_mps);
+    result.positions.push_back(row);
+  }
+  result.data_show_growth = dataShowGrowth(result.positions);
+  findDisagreements(result, index, options.max_relative_dip_error);
+  return result;
+}
+}  // namespace
+
+std::pair<std::size_t, std::size_t> longestLeadStretch(const OpenAccFile& file, double max_time_step_s)
+{
+  const OpenAccVehicle* lead = file.vehicle(1);
+  std::pair<std::size_t, std::size_t> best{0, 0};
+  if (lead == nullptr)
+    return best;
+  auto close = [&best](std::size_t first, std::size_t end) {
+    if (end - first > best.second - best.first)
+      best = {first, end};
+  };
+  bool open = false;
+  std::size_t first = 0;
+  for (std::size_t r = 0; r < file.rows(); ++r)
+  {
+    if (!(std::isfinite(file.time_s[r]) && std::isfinite(lead->speed_mps[r])))
+    {
+      if (open)
+        close(first, r);
+      open = false;
+      continue;
+    }
+    const double step_s = open ? file.time_s[r] - file.time_s[r - 1] : 0.0;
+    if (open && !(step_s > 0.0 && step_s <= max_time_step_s))
+    {
+      close(first, r);
+      open = false;
+    }
+    if (!open)
+    {
+      first = r;
+      open = true;
+    }
+  }
+  if (open)
+    close(first, file.rows());
+  return best;
+}
+
+PlatoonCheck checkPlatoon(const CampaignFile& file, const std::vector<PlatoonCarModel>& models,
+                          const PlatoonCheckOptions& options)
+{
+  PlatoonCheck check;
+  check.run = file.name;
+  check.setting = file.setting;
+  const OpenAccFile& data = file.contents;
+  std::tie(check.first_row, check.end_row) = longestLeadStretch(data, options.max_time_step_s);
+  if (check.end_row < check.first_row + 2)
+  {
+    check.notes.push_back("the first car (" + data.vehicleName(1) + ") has no stretch of speed data: nothing predicted");
+    return check;
+  }
+  predictChain(file, models, check);
+  const std::vector<double> time_s = slice(data.time_s, check.first_row, check.end_row);
+  const std::vector<Perturbation> found =
+      findPerturbations(time_s, slice(data.vehicle(1)->speed_mps, check.first_row, check.end_row), options.perturbation);
+  if (found.empty())
+    check.notes.push_back("no perturbation: the first car's speed never drops more than " +
+                          format("%.1f m/s", options.perturbation.drop_below_median_mps) + " below its median");
+  for (std::size_t i = 0; i < found.size(); ++i)
+    check.perturbations.push_back(comparePerturbation(check, data, time_s, found[i], i, options));
+  return check;
+}
+
+}  // namespace acc

@@ -1,0 +1,169 @@
+// The campaign's grouping and per-group identification on synthetic OpenACC files with known
+// truths, and the invariance of its numbers to the thread count.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "acc_identification/campaign/campaign.h"
+#include "acc_identification/campaign/campaign_output.h"
+#include "acc_identification/campaign/parallel_tasks.h"
+#include "acc_identification/campaign/perturbation.h"
+#include "campaign_test_data.h"
+
+namespace
+{
+namespace fs = std::filesystem;
+using acc_test::SyntheticCar;
+
+/// A fresh folder under the temporary directory, removed at the end of the test.
+class TempFolder
+{
+public:
+  explicit TempFolder(const std::string& name) : path_(fs::temp_directory_path() / (name + "_" + std::to_string(::getpid())))
+  {
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempFolder() { fs::remove_all(path_); }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+  std::string path() const { return path_.string(); }
+
+private:
+  fs::path path_;
+};
+
+// Three cars, each with its own truth per setting: file 1 at S (A, B, C), file 2 at L (C, A, B).
+const SyntheticCar kAS{"CAR_A", {0.08, 0.40, 1.2, 5.0}}, kBS{"CAR_B", {0.06, 0.25, 1.0, 3.0}},
+    kCS{"CAR_C", {0.12, 0.50, 0.9, 4.0}};
+const SyntheticCar kAL{"CAR_A", {0.05, 0.30, 2.0, 6.0}}, kBL{"CAR_B", {0.04, 0.35, 1.8, 4.0}},
+    kCL{"CAR_C", {0.06, 0.35, 1.6, 5.0}};
+
+// As in test_calibration_multistart: the truth is integrated ten times finer than the 0.1 s Euler
+// recursion the calibration fits, so even noise-free data give parameters a little off the truth
+// (the Euler model's discretisation bias, O(h), a few per cent). The standard errors describe the
+// noise only: the noisy fit is held to the noise-free fit of the same group within 3 SE, and the
+// noise-free fit to the truth within the discretisation bias allowance.
+constexpr double kDiscretisationBias = 0.04;
+
+void expectWithin3Se(const acc::GroupResult& group, const acc::GroupResult& noise_free, const acc::AccParameters& truth)
+{
+  ASSERT_TRUE(group.fitted()) << group.reason;
+  ASSERT_TRUE(noise_free.fitted()) << noise_free.reason;
+  const acc::AccParameters& p = group.identification.calibration.parameters;
+  const acc::AccParameters& q = noise_free.identification.calibration.parameters;
+  const acc::AccParameters& se = group.identification.uncertainty.standard_error;
+  const std::string label = group.vehicle + "/" + group.setting;
+  std::printf("  %s truth %.4f %.4f %.3f %.2f; noise-free %.4f %.4f %.3f %.2f; fit %.4f %.4f %.3f %.2f (se %.4f %.4f "
+              "%.3f %.2f)\n",
+              label.c_str(), truth.k1_per_s2, truth.k2_per_s, truth.tau_e_s, truth.eta_m, q.k1_per_s2, q.k2_per_s,
+              q.tau_e_s, q.eta_m, p.k1_per_s2, p.k2_per_s, p.tau_e_s, p.eta_m, se.k1_per_s2, se.k2_per_s, se.tau_e_s,
+              se.eta_m);
+  EXPECT_LE(std::abs(p.k1_per_s2 - q.k1_per_s2), 3.0 * se.k1_per_s2) << label << " k1";
+  EXPECT_LE(std::abs(p.k2_per_s - q.k2_per_s), 3.0 * se.k2_per_s) << label << " k2";
+  EXPECT_LE(std::abs(p.tau_e_s - q.tau_e_s), 3.0 * se.tau_e_s) << label << " tau_e";
+  EXPECT_LE(std::abs(p.eta_m - q.eta_m), 3.0 * se.eta_m) << label << " eta";
+  EXPECT_LE(std::abs(q.k1_per_s2 - truth.k1_per_s2), kDiscretisationBias * truth.k1_per_s2) << label << " k1";
+  EXPECT_LE(std::abs(q.k2_per_s - truth.k2_per_s), kDiscretisationBias * truth.k2_per_s) << label << " k2";
+  EXPECT_LE(std::abs(q.tau_e_s - truth.tau_e_s), kDiscretisationBias * truth.tau_e_s) << label << " tau_e";
+  EXPECT_LE(std::abs(q.eta_m - truth.eta_m), kDiscretisationBias * truth.eta_m) << label << " eta";
+}
+
+acc::CampaignOptions fastOptions(std::size_t threads)
+{
+  acc::CampaignOptions options;
+  options.group.starts = 8;
+  options.threads = threads;
+  return options;
+}
+}  // namespace
+
+TEST(CampaignGrouping, GroupsByVehicleAndSettingAndRecoversEachTruth)
+{
+  TempFolder folder("acc_campaign_grouping");
+  // The gaps of the ZalaZone platform are RTK GNSS differences: centimetres, not the paper's 0.4 m.
+  acc_test::writeSyntheticPlatoon(folder.file("run1.csv"), "S", {kAS, kBS, kCS}, 11, 400.0, 0.06, 0.05);
+  acc_test::writeSyntheticPlatoon(folder.file("run2.csv"), "L", {kCL, kAL, kBL}, 12, 400.0, 0.06, 0.05);
+  TempFolder clean("acc_campaign_grouping_clean");
+  acc_test::writeSyntheticPlatoon(clean.file("run1.csv"), "S", {kAS, kBS, kCS}, 11, 400.0, 0.0, 0.0);
+  acc_test::writeSyntheticPlatoon(clean.file("run2.csv"), "L", {kCL, kAL, kBL}, 12, 400.0, 0.0, 0.0);
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.path()});
+  ASSERT_EQ(inputs.files.size(), 2u);
+  ASSERT_EQ(inputs.groups.size(), 6u);
+  // By vehicle, then setting S before L.
+  EXPECT_EQ(inputs.groups[0].label(), "CAR_A/S");
+  EXPECT_EQ(inputs.groups[1].label(), "CAR_A/L");
+  EXPECT_EQ(inputs.groups[5].label(), "CAR_C/L");
+  // CAR_A follows LEAD in run1 and CAR_C in run2.
+  EXPECT_EQ(inputs.groups[1].runs.at(0).pair.leader_name, "CAR_C");
+  EXPECT_EQ(inputs.groups[0].runs.at(0).pair.leader_name, "LEAD");
+
+  acc::CampaignOptions options = fastOptions(2);
+  options.group.starts = 20;  // a noise-free objective has narrow basins
+  options.platoon_check = false;
+  const acc::CampaignResult result = acc::runCampaign(inputs, options);
+  const acc::CampaignResult noise_free = acc::runCampaign(acc::loadCampaign({clean.path()}), options);
+  const acc::AccParameters truths[] = {kAS.truth, kAL.truth, kBS.truth, kBL.truth, kCS.truth, kCL.truth};
+  for (std::size_t i = 0; i < 6; ++i)
+  {
+    EXPECT_EQ(result.groups[i].runs, 1u);
+    expectWithin3Se(result.groups[i], noise_free.groups[i], truths[i]);
+  }
+}
+
+TEST(CampaignGrouping, ARunOfTheSameCarAndSettingJoinsItsGroup)
+{
+  TempFolder folder("acc_campaign_join");
+  acc_test::writeSyntheticPlatoon(folder.file("a.csv"), "S", {kAS, kBS}, 21);
+  acc_test::writeSyntheticPlatoon(folder.file("b.csv"), "S", {kBS, kAS}, 22);
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.file("a.csv"), folder.file("b.csv")});
+  ASSERT_EQ(inputs.groups.size(), 2u);
+  EXPECT_EQ(inputs.groups[0].runs.size(), 2u);
+  EXPECT_EQ(inputs.groups[1].runs.size(), 2u);
+  EXPECT_EQ(inputs.groups[0].segmentsExcept(0).size(), inputs.groups[0].runs[1].segments.size());
+}
+
+TEST(CampaignParallel, TheNumbersDoNotDependOnTheThreadCount)
+{
+  TempFolder folder("acc_campaign_threads");
+  acc_test::writeSyntheticPlatoon(folder.file("a.csv"), "S", {kAS, kBS, kCS}, 31, 250.0);
+  acc_test::writeSyntheticPlatoon(folder.file("b.csv"), "S", {kCS, kAS, kBS}, 32, 250.0);
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.path()});
+  const acc::CampaignOptions one = fastOptions(1), two = fastOptions(2);
+  const acc::CampaignResult serial = acc::runCampaign(inputs, one);
+  const acc::CampaignResult parallel = acc::runCampaign(inputs, two);
+  EXPECT_EQ(serial.threads, 1u);
+  EXPECT_EQ(parallel.threads, 2u);
+  EXPECT_EQ(acc::campaignToJson(inputs, serial, {"x"}, one).dump(), acc::campaignToJson(inputs, parallel, {"x"}, two).dump());
+}
+
+TEST(CampaignParallel, EveryTaskRunsOnceAndErrorsReachTheCaller)
+{
+  std::vector<int> runs(50, 0);
+  std::size_t last_done = 0;
+  acc::runTasksInParallel(runs.size(), 2, [&runs](std::size_t i) { ++runs[i]; },
+                          [&last_done](std::size_t done, std::size_t) { last_done = done; });
+  for (int count : runs)
+    EXPECT_EQ(count, 1);
+  EXPECT_EQ(last_done, runs.size());
+  EXPECT_THROW(acc::runTasksInParallel(10, 2, [](std::size_t i) { if (i == 3) throw std::runtime_error("x"); }),
+               std::runtime_error);
+}
+
+TEST(CampaignPerturbation, FindsTheDipAndItsDepth)
+{
+  std::vector<double> time_s, speed_mps;
+  for (int i = 0; i < 4000; ++i)
+  {
+    time_s.push_back(0.1 * i);
+    speed_mps.push_back(acc_test::leadSpeedMps(0.1 * i));
+  }
+  const auto found = acc::findPerturbations(time_s, speed_mps);
+  ASSERT_EQ(found.size(), 2u);
+  EXPECT_NEAR(found[0].onset_s, 60.0, 3.0);
+  // The dip plus the slow wave's swing (0.4 m/s amplitude).
+  EXPECT_NEAR(acc::dipDepthMps(time_s, speed_mps, found[0]), 6.4, 0.4);
+  EXPECT_NEAR(acc::dipDepthMps(time_s, speed_mps, found[1]), 5.4, 0.4);
+}

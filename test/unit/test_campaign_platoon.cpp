@@ -1,0 +1,87 @@
+// The platoon check on a synthetic platoon whose cars are string unstable: the prediction from
+// the first car, with leave-one-run-out models, must show the growth the data show.
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "acc_identification/campaign/campaign.h"
+#include "acc_identification/model/string_stability.h"
+#include "campaign_test_data.h"
+
+namespace
+{
+namespace fs = std::filesystem;
+
+// m = 0.1 + 2 * 0.25 * 1.0 - 2 = -1.4: dips of 10-30 s grow along the platoon.
+const acc::AccParameters kUnstable{0.10, 0.25, 1.0, 4.0};
+}  // namespace
+
+TEST(CampaignPlatoon, UnstableCarsAmplifyAndThePredictionAgrees)
+{
+  ASSERT_FALSE(acc::analyzeStringStability(kUnstable).string_stable);
+  const fs::path folder = fs::temp_directory_path() / ("acc_campaign_platoon_" + std::to_string(::getpid()));
+  fs::create_directories(folder);
+  const std::vector<acc_test::SyntheticCar> cars{{"CAR_A", kUnstable}, {"CAR_B", kUnstable}, {"CAR_C", kUnstable}};
+  acc_test::writeSyntheticPlatoon((folder / "a.csv").string(), "S", cars, 41);
+  acc_test::writeSyntheticPlatoon((folder / "b.csv").string(), "S", {cars[2], cars[0], cars[1]}, 42);
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.string()});
+  fs::remove_all(folder);
+  acc::CampaignOptions options;
+  options.group.starts = 8;
+  options.threads = 2;
+  const acc::CampaignResult result = acc::runCampaign(inputs, options);
+  ASSERT_EQ(result.platoons.size(), 2u);
+  for (const acc::PlatoonCheck& check : result.platoons)
+  {
+    ASSERT_EQ(check.cars.size(), 3u) << check.run;
+    for (const acc::PlatoonCarPrediction& car : check.cars)
+    {
+      EXPECT_TRUE(car.predicted) << check.run << " " << car.name << ": " << car.note;
+      EXPECT_NE(car.model.source.find("leave-one-run-out"), std::string::npos) << car.model.source;
+    }
+    ASSERT_EQ(check.perturbations.size(), 2u) << check.run;
+    for (const acc::PerturbationCheck& perturbation : check.perturbations)
+    {
+      EXPECT_TRUE(perturbation.data_show_growth) << check.run;
+      for (std::size_t k = 1; k < perturbation.positions.size(); ++k)
+      {
+        const acc::DipComparison& row = perturbation.positions[k];
+        EXPECT_GT(row.measured_amplification, 1.0) << check.run << " position " << row.position;
+        EXPECT_GT(row.predicted_amplification, 1.0) << check.run << " position " << row.position;
+        EXPECT_NEAR(row.predicted_dip_mps, row.measured_dip_mps, 0.1 * row.measured_dip_mps) << check.run;
+      }
+      EXPECT_TRUE(perturbation.disagreements.empty()) << check.run << ": " << perturbation.disagreements.front().what;
+    }
+  }
+}
+
+TEST(CampaignPlatoon, TheChainStopsAtACarWithoutData)
+{
+  const fs::path path = fs::temp_directory_path() / ("acc_campaign_hole_" + std::to_string(::getpid()) + ".csv");
+  acc_test::writeSyntheticPlatoon(path.string(), "S", {{"CAR_A", kUnstable}, {"CAR_B", kUnstable}, {"CAR_C", kUnstable}},
+                                  51, 150.0);
+  acc::CampaignFile file;
+  file.contents = acc::readOpenAccFile(path.string());
+  fs::remove(path);
+  file.name = file.contents.name;
+  // Position 3 loses its speed column: position 4 cannot be driven by its prediction.
+  for (acc::OpenAccVehicle& vehicle : file.contents.vehicles)
+  {
+    if (vehicle.position == 3)
+    {
+      vehicle.speed_mps.assign(vehicle.speed_mps.size(), std::nan(""));
+      vehicle.speed_values = 0;
+    }
+  }
+  std::vector<acc::PlatoonCarModel> models(5, acc::PlatoonCarModel{true, kUnstable, "truth"});
+  const acc::PlatoonCheck check = acc::checkPlatoon(file, models);
+  ASSERT_EQ(check.cars.size(), 3u);
+  EXPECT_TRUE(check.cars[0].predicted);
+  EXPECT_FALSE(check.cars[1].predicted);
+  EXPECT_FALSE(check.cars[2].predicted);
+  ASSERT_FALSE(check.notes.empty());
+  EXPECT_NE(check.notes.front().find("chain stopped at position 3"), std::string::npos) << check.notes.front();
+}
