@@ -243,6 +243,78 @@ TEST(SerialSource, ReadsAPseudoTerminalAndSurvivesItsDisappearance)
   EXPECT_NE(source->state().find("retrying"), std::string::npos) << source->state();
 }
 
+namespace
+{
+/// A pseudo-terminal whose device can go away and come back under one path, as a USB receiver's
+/// /dev/serial/by-id link does when it is unplugged and plugged in again (socat's PTY,link= makes
+/// the same): the path is a symbolic link to the pty's slave.
+class ReplugablePty
+{
+public:
+  explicit ReplugablePty(std::string path) : path_(std::move(path)) {}
+  ~ReplugablePty() { unplug(); }
+  bool plug()
+  {
+    master_ = ::posix_openpt(O_RDWR | O_NOCTTY);
+    if (master_ < 0 || ::grantpt(master_) != 0 || ::unlockpt(master_) != 0)
+      return false;
+    return ::symlink(::ptsname(master_), path_.c_str()) == 0;
+  }
+  void unplug()
+  {
+    ::unlink(path_.c_str());
+    if (master_ >= 0)
+      ::close(master_);
+    master_ = -1;
+  }
+  bool write(const std::string& text) const
+  {
+    return ::write(master_, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+  }
+
+private:
+  std::string path_;
+  int master_ = -1;
+};
+}  // namespace
+
+// The receiver unplugged and plugged in again: the path disappears and comes back (a new device
+// behind it); the source counts the outage, reopens the path and reads again.
+TEST(SerialSource, ReopensThePathWhenTheDeviceComesBack)
+{
+  const std::string path = ::testing::TempDir() + "acc_gps_replug_" + std::to_string(::getpid());
+  ReplugablePty device(path);
+  ASSERT_TRUE(device.plug());
+  std::string error;
+  auto source = acc::makeByteSource("serial://" + path + "?baud=115200", error);
+  ASSERT_NE(source, nullptr) << error;
+  EXPECT_EQ(readFor(*source, 1, 0.1), "");
+  ASSERT_TRUE(source->isOpen()) << source->state();
+  ASSERT_TRUE(device.write(kVtg));
+  EXPECT_EQ(readFor(*source, kVtg.size(), 2.0), kVtg);
+
+  device.unplug();  // the path is gone
+  readFor(*source, 1, 0.5);
+  EXPECT_FALSE(source->isOpen());
+  const std::uint64_t reopens_before = source->reopenCount();
+
+  ASSERT_TRUE(device.plug());  // back, as a new pty
+  // The source retries with back-off: within a few seconds it has the device again.
+  std::string got;
+  for (int attempt = 0; attempt < 50 && got.empty(); ++attempt)
+  {
+    readFor(*source, 1, 0.1);
+    if (source->isOpen())
+    {
+      ASSERT_TRUE(device.write(kVtg));
+      got = readFor(*source, kVtg.size(), 2.0);
+    }
+  }
+  EXPECT_TRUE(source->isOpen()) << source->state();
+  EXPECT_EQ(got, kVtg);
+  EXPECT_GT(source->reopenCount(), reopens_before);
+}
+
 TEST(UdpSource, SeveralSentencesInOneDatagram)
 {
   const int port = freePort(SOCK_DGRAM);
