@@ -32,6 +32,7 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_diagnosis_selection.cpp
     test/unit/test_diagnosis_withheld.cpp
     test/unit/test_diagnosis_output.cpp
-    test/unit/test_diagnosis_stability.cpp)
+    test/unit/test_diagnosis_stability.cpp
+    test/unit/test_diagnosis_forward.cpp)
   target_link_libraries(test_diagnosis acc_diagnosis)
 endif()

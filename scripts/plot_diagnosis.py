@@ -187,6 +187,38 @@ def parameter_text(effect):
     return "; ".join(parts)
 
 
+def combination_lines(d):
+    """The forward selection's chain: one row per step, the model with every effect added so far."""
+    chain = d.get("selected_effects")
+    if chain is None:
+        return []  # a diagnosis.json from before effects were tried in combination
+    lines = ["## Effects in combination", ""]
+    forward = d.get("forward_selection", {})
+    if not chain:
+        lines += [f"No effect was added (forward selection: {forward.get('stop_reason', 'not run')}).", ""]
+        return lines
+    lines.append("Starting from the dominant effect, every remaining effect is fitted on top of the current model "
+                 "and compared with it by the same rule (Bonferroni over the remaining effects, the practical "
+                 "threshold relative to the base model's held-out MSE); the best significant one is added.")
+    lines += ["", "| step | effect added | held-out speed RMSE [m/s] | held-out gap RMSE [m] | "
+              "MSE reduction vs previous step [% of base] (lower bound [m²/s²]) | string stability (test, p) | "
+              "parameters (± std. error) |", "|---|---|---|---|---|---|---|"]
+    base = d["baseline"]
+    lines.append(f"| 0 | base | {fmt(base['test_rmse_speed'])} | {fmt(base['test_rmse_gap'])} | - | "
+                 f"{'stable' if base['stability']['string_stable'] else 'unstable'} | {parameter_text(base)} |")
+    for i, step in enumerate(chain, 1):
+        imp = step["improvement"]
+        test = step.get("stability_test")
+        verdict = f"{test['verdict']}, p = {fmt(test['p_value'])}" if test else "not tested"
+        values = dict(step["parameters"], **step["effect_parameters"])
+        params = parameter_text({"parameters": values, "standard_errors": step["standard_errors"]})
+        lines.append(f"| {i} | {step['effect']} | {fmt(step['test_rmse_speed'])} | {fmt(step['test_rmse_gap'])} | "
+                     f"{imp['relative'] * 100:.1f} ({fmt(imp['lower_bound'], 3)}) | "
+                     f"{'stable' if step['stability']['string_stable'] else 'unstable'} ({verdict}) | {params} |")
+    lines += ["", f"Stopped: {forward.get('stop_reason', '')}.", ""]
+    return lines
+
+
 def write_report(report_dir, d):
     base = d["baseline"]
     dominant = d["dominant_effect"]
@@ -228,8 +260,9 @@ def write_report(report_dir, d):
                      f"{fmt(e['test_rmse_gap'])} | {imp['relative'] * 100:.1f} ({lo:.1f} to {hi:.1f}) | "
                      f"{'yes' if e['significant'] else 'no'} | {fmt(e['stability']['peak_gain_db'])} | "
                      f"{parameter_text(e)} |")
-    lines += ["", "![improvements](effect_improvements.png)", "", "## Where the residual lies (base model, held out)",
-              ""]
+    lines += ["", "![improvements](effect_improvements.png)", ""]
+    lines += combination_lines(d)
+    lines += ["## Where the residual lies (base model, held out)", ""]
     for key, title in [("regimes", "Driving regime"), ("speed_bands", "Speed band")]:
         lines.append(f"| {title} | share of time | share of squared speed error | speed RMSE before → after [m/s] | "
                      "gap RMSE before → after [m] |")

@@ -13,14 +13,23 @@
 namespace acc
 {
 AugmentedParameterBox::AugmentedParameterBox(EffectKind kind, const AugmentedCalibrationOptions& options)
-  : effect(kind)
+  : AugmentedParameterBox(kind == EffectKind::none ? std::vector<EffectKind>{} : std::vector<EffectKind>{kind}, options)
+{
+}
+
+AugmentedParameterBox::AugmentedParameterBox(const std::vector<EffectKind>& kinds,
+                                             const AugmentedCalibrationOptions& options)
+  : effect(kinds.empty() ? EffectKind::none : kinds.back()), effects(kinds)
 {
   lower = {options.lower.k1_per_s2, options.lower.k2_per_s, options.lower.tau_e_s, options.lower.eta_m};
   upper = {options.upper.k1_per_s2, options.upper.k2_per_s, options.upper.tau_e_s, options.upper.eta_m};
-  for (const EffectParameterSpec& spec : candidateEffect(kind).parameters)
+  for (EffectKind kind : kinds)
   {
-    lower.push_back(spec.lower);
-    upper.push_back(spec.upper);
+    for (const EffectParameterSpec& spec : candidateEffect(kind).parameters)
+    {
+      lower.push_back(spec.lower);
+      upper.push_back(spec.upper);
+    }
   }
 }
 
@@ -46,7 +55,6 @@ std::vector<double> AugmentedParameterBox::unit(const std::vector<double>& x) co
 
 namespace
 {
-constexpr std::size_t kBaseDimension = AugmentedParameterBox::kBaseDimension;
 AccParameters baseOf(const std::vector<double>& x) { return AugmentedParameterBox::baseOf(x); }
 std::vector<double> effectPart(const std::vector<double>& x) { return AugmentedParameterBox::effectPart(x); }
 
@@ -64,8 +72,7 @@ struct ObjectiveTracker
   double operator()(const std::vector<double>& unit_x)
   {
     const std::vector<double> x = box->physical(unit_x);
-    const double value =
-        augmentedSpeedMse(baseOf(x), makeEffectSettings(box->effect, effectPart(x)), *segments);
+    const double value = augmentedSpeedMse(baseOf(x), box->settingsOf(x), *segments);
     ++evaluations;
     if (value < best_value)
     {
@@ -139,46 +146,93 @@ std::vector<std::vector<double>> baseStarts(const std::vector<CarFollowingRun>& 
   return starts;
 }
 
-std::vector<std::vector<double>> effectStarts(EffectKind effect, const AugmentedFit& warm,
-                                              const std::vector<CarFollowingRun>& segments,
-                                              const AugmentedCalibrationOptions& options)
+/// The "almost off" values of an effect: the edge of its start range closest to the base model.
+std::vector<double> nearOffValues(EffectKind effect)
 {
   const auto& specs = candidateEffect(effect).parameters;
-  const std::vector<double> base = {warm.base.k1_per_s2, warm.base.k2_per_s, warm.base.tau_e_s, warm.base.eta_m};
-  std::vector<std::vector<double>> starts;
-  for (std::size_t i = 1; i <= options.effect_starts; ++i)
-  {
-    const std::vector<double> h = haltonSequencePoint(i, specs.size());
-    std::vector<double> start = base;
-    for (std::size_t j = 0; j < specs.size(); ++j)
-    {
-      start.push_back(specs[j].start_lower + h[j] * (specs[j].start_upper - specs[j].start_lower));
-    }
-    starts.push_back(start);
-  }
-  // The effect "almost off" (at the edge of its start range that is closest to the base model),
-  // so that the augmented fit can never end worse than the base fit it starts from.
-  std::vector<double> near_off = base;
+  const bool off_at_upper = effect == EffectKind::acceleration_limits || effect == EffectKind::set_speed_cruise;
+  std::vector<double> values;
   for (const EffectParameterSpec& spec : specs)
   {
-    const bool off_at_upper = effect == EffectKind::acceleration_limits || effect == EffectKind::set_speed_cruise;
-    near_off.push_back(off_at_upper ? spec.upper : (spec.lower < 0.0 ? 0.0 : spec.lower));
+    values.push_back(off_at_upper ? spec.upper : (spec.lower < 0.0 ? 0.0 : spec.lower));
   }
   if (effect == EffectKind::set_speed_cruise)
   {
-    near_off[kBaseDimension + 1] = specs[1].start_upper;
+    values[1] = specs[1].start_upper;
+  }
+  return values;
+}
+
+/// The values of `kind` in a fit, if the fit has that effect.
+bool valuesIn(const AugmentedFit& fit, EffectKind kind, std::vector<double>* values)
+{
+  std::size_t offset = 0;
+  for (EffectKind own : effectsOf(fit))
+  {
+    const std::size_t count = candidateEffect(own).parameters.size();
+    if (own == kind && offset + count <= fit.effect_values.size())
+    {
+      values->assign(fit.effect_values.begin() + static_cast<long>(offset),
+                     fit.effect_values.begin() + static_cast<long>(offset + count));
+      return true;
+    }
+    offset += count;
+  }
+  return false;
+}
+
+/// Warm starts: the warm fit's base and known effect values; the effects it lacks at Halton points
+/// of their start ranges (one low-discrepancy sequence over all their parameters), then at their
+/// "almost off" values, so that the fit can never end worse than the warm fit it starts from.
+std::vector<std::vector<double>> effectStarts(const std::vector<EffectKind>& effects, const AugmentedFit& warm,
+                                              const AugmentedCalibrationOptions& options)
+{
+  std::vector<double> start = {warm.base.k1_per_s2, warm.base.k2_per_s, warm.base.tau_e_s, warm.base.eta_m};
+  std::vector<double> near_off = start;
+  std::vector<std::size_t> new_positions;
+  std::vector<const EffectParameterSpec*> new_specs;
+  for (EffectKind kind : effects)
+  {
+    std::vector<double> known;
+    if (valuesIn(warm, kind, &known))
+    {
+      start.insert(start.end(), known.begin(), known.end());
+      near_off.insert(near_off.end(), known.begin(), known.end());
+      continue;
+    }
+    for (const EffectParameterSpec& spec : candidateEffect(kind).parameters)
+    {
+      new_positions.push_back(start.size());
+      new_specs.push_back(&spec);
+      start.push_back(0.0);
+    }
+    const std::vector<double> off = nearOffValues(kind);
+    near_off.insert(near_off.end(), off.begin(), off.end());
+  }
+  if (new_specs.empty())
+  {
+    return {start};
+  }
+  std::vector<std::vector<double>> starts;
+  for (std::size_t i = 1; i <= options.effect_starts; ++i)
+  {
+    const std::vector<double> h = haltonSequencePoint(i, new_specs.size());
+    for (std::size_t j = 0; j < new_specs.size(); ++j)
+    {
+      start[new_positions[j]] = new_specs[j]->start_lower + h[j] * (new_specs[j]->start_upper - new_specs[j]->start_lower);
+    }
+    starts.push_back(start);
   }
   starts.push_back(near_off);
-  (void)segments;
   return starts;
 }
 
 
-std::vector<double> simulatedSpeeds(const std::vector<double>& x, EffectKind effect,
+std::vector<double> simulatedSpeeds(const std::vector<double>& x, const AugmentedParameterBox& box,
                                     const std::vector<CarFollowingRun>& segments)
 {
   std::vector<double> speeds;
-  const EffectSettings settings = makeEffectSettings(effect, effectPart(x));
+  const EffectSettings settings = box.settingsOf(x);
   for (const CarFollowingRun& run : segments)
   {
     const SimulatedFollower sim = simulateFollower(baseOf(x), settings, run);
@@ -196,7 +250,7 @@ std::vector<double> standardErrors(const std::vector<double>& x, const Augmented
   {
     measured.insert(measured.end(), run.follower_speed_mps.begin(), run.follower_speed_mps.end());
   }
-  const std::vector<double> fitted = simulatedSpeeds(x, box.effect, segments);
+  const std::vector<double> fitted = simulatedSpeeds(x, box, segments);
   const std::size_t n = measured.size();
   std::vector<double> nan(p, std::numeric_limits<double>::quiet_NaN());
   if (n <= p)
@@ -212,8 +266,8 @@ std::vector<double> standardErrors(const std::vector<double>& x, const Augmented
     std::vector<double> minus = x;
     plus[j] = std::min(x[j] + step, box.upper[j]);
     minus[j] = std::max(x[j] - step, box.lower[j]);
-    const std::vector<double> up = simulatedSpeeds(plus, box.effect, segments);
-    const std::vector<double> down = simulatedSpeeds(minus, box.effect, segments);
+    const std::vector<double> up = simulatedSpeeds(plus, box, segments);
+    const std::vector<double> down = simulatedSpeeds(minus, box, segments);
     for (std::size_t i = 0; i < n; ++i)
     {
       jacobian(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = (up[i] - down[i]) / (plus[j] - minus[j]);
@@ -293,6 +347,42 @@ double augmentedSpeedMse(const AccParameters& p, const EffectSettings& effects,
 AugmentedFit calibrateAugmented(EffectKind effect, const std::vector<CarFollowingRun>& segments,
                                 const AugmentedCalibrationOptions& options, const AugmentedFit* warm_start)
 {
+  const std::vector<EffectKind> effects =
+      effect == EffectKind::none ? std::vector<EffectKind>{} : std::vector<EffectKind>{effect};
+  return calibrateAugmentedSet(effects, segments, options, warm_start);
+}
+
+namespace
+{
+/// Cold starts: Halton points of the base box (after the warm base, if any), every effect at the
+/// middle of its start range.
+std::vector<std::vector<double>> coldStarts(const std::vector<EffectKind>& effects,
+                                            const std::vector<CarFollowingRun>& segments,
+                                            const AugmentedCalibrationOptions& options, const AugmentedFit* warm_start)
+{
+  std::vector<std::vector<double>> starts = baseStarts(segments, options);
+  if (warm_start != nullptr)
+  {
+    const AccParameters& w = warm_start->base;
+    starts.insert(starts.begin(), {w.k1_per_s2, w.k2_per_s, w.tau_e_s, w.eta_m});
+  }
+  for (std::vector<double>& start : starts)
+  {
+    for (EffectKind kind : effects)
+    {
+      for (const EffectParameterSpec& spec : candidateEffect(kind).parameters)
+      {
+        start.push_back(0.5 * (spec.start_lower + spec.start_upper));
+      }
+    }
+  }
+  return starts;
+}
+}  // namespace
+
+AugmentedFit calibrateAugmentedSet(const std::vector<EffectKind>& effects, const std::vector<CarFollowingRun>& segments,
+                                   const AugmentedCalibrationOptions& options, const AugmentedFit* warm_start)
+{
   for (const CarFollowingRun& run : segments)
   {
     const std::string problem = describeRunProblem(run);
@@ -301,39 +391,18 @@ AugmentedFit calibrateAugmented(EffectKind effect, const std::vector<CarFollowin
       throw std::invalid_argument("cannot calibrate on segment '" + run.name + "': " + problem);
     }
   }
-  const AugmentedParameterBox box(effect, options);
+  const AugmentedParameterBox box(effects, options);
   ObjectiveTracker tracker{&box, &segments, {}, std::numeric_limits<double>::infinity(), 0};
-  std::vector<std::vector<double>> starts;
-  if (warm_start != nullptr && effect != EffectKind::none)
-  {
-    starts = effectStarts(effect, *warm_start, segments, options);
-  }
-  else
-  {
-    starts = baseStarts(segments, options);
-    if (warm_start != nullptr)
-    {
-      const AccParameters& w = warm_start->base;
-      starts.insert(starts.begin(), {w.k1_per_s2, w.k2_per_s, w.tau_e_s, w.eta_m});
-    }
-    if (effect != EffectKind::none)
-    {
-      // No base fit given: append the effect's mid-range values to each base start.
-      for (std::vector<double>& start : starts)
-      {
-        for (const EffectParameterSpec& spec : candidateEffect(effect).parameters)
-        {
-          start.push_back(0.5 * (spec.start_lower + spec.start_upper));
-        }
-      }
-    }
-  }
+  const std::vector<std::vector<double>> starts = warm_start != nullptr && !effects.empty()
+                                                      ? effectStarts(effects, *warm_start, options)
+                                                      : coldStarts(effects, segments, options, warm_start);
   for (const std::vector<double>& start : starts)
   {
     localSolve(&tracker, start, options);
   }
   AugmentedFit fit;
-  fit.effect = effect;
+  fit.effect = box.effect;
+  fit.effects = effects;
   fit.evaluations = tracker.evaluations;
   fit.train_mse_speed = tracker.best_value;
   fit.diverged = !(tracker.best_value < kDivergedObjective);
@@ -344,11 +413,46 @@ AugmentedFit calibrateAugmented(EffectKind effect, const std::vector<CarFollowin
   }
   fit.base = baseOf(tracker.best_x);
   fit.effect_values = effectPart(tracker.best_x);
-  fit.settings = makeEffectSettings(effect, fit.effect_values);
+  fit.settings = box.settingsOf(tracker.best_x);
   fit.standard_errors = fit.diverged ? std::vector<double>(box.dimension(), std::numeric_limits<double>::quiet_NaN())
                                      : standardErrors(tracker.best_x, box, segments);
   return fit;
 }
 
+std::vector<EffectKind> effectsOf(const AugmentedFit& fit)
+{
+  if (!fit.effects.empty() || fit.effect == EffectKind::none)
+  {
+    return fit.effects;
+  }
+  return {fit.effect};
+}
+
+std::string combinedEffectName(const std::vector<EffectKind>& effects)
+{
+  if (effects.empty())
+  {
+    return effectName(EffectKind::none);
+  }
+  std::string name;
+  for (EffectKind kind : effects)
+  {
+    name += (name.empty() ? "" : " + ") + effectName(kind);
+  }
+  return name;
+}
+
+std::vector<std::string> effectParameterNames(const std::vector<EffectKind>& effects)
+{
+  std::vector<std::string> names;
+  for (EffectKind kind : effects)
+  {
+    for (const EffectParameterSpec& spec : candidateEffect(kind).parameters)
+    {
+      names.push_back(spec.name);
+    }
+  }
+  return names;
+}
 
 }  // namespace acc

@@ -163,7 +163,7 @@ std::string describe(const AugmentedStabilityTestResult& r, double mean_differen
 {
   std::ostringstream out;
   out.precision(4);
-  out << effectName(r.effect) << " model: held-out speed RMSE best stable " << r.best_stable.test_rmse_speed_mps
+  out << combinedEffectName(r.effects) << " model: held-out speed RMSE best stable " << r.best_stable.test_rmse_speed_mps
       << " m/s (index " << r.best_stable.stability_index << "), best unstable " << r.best_unstable.test_rmse_speed_mps
       << " m/s (index " << r.best_unstable.stability_index << "), mean paired squared-error difference "
       << mean_difference << " m^2/s^2 over " << r.held_out_samples << " samples; p(stable rejected) = "
@@ -202,14 +202,14 @@ void decide(AugmentedStabilityTestResult* r, double mean_difference)
 
 nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
 
-nlohmann::json sideJson(const AugmentedSideFit& s, EffectKind effect)
+nlohmann::json sideJson(const AugmentedSideFit& s, const std::vector<EffectKind>& effects)
 {
   if (!s.found)
     return nullptr;
   nlohmann::json effect_parameters = nlohmann::json::object();
-  const auto& specs = candidateEffect(effect).parameters;
-  for (std::size_t i = 0; i < specs.size() && i < s.effect_values.size(); ++i)
-    effect_parameters[specs[i].name] = number(s.effect_values[i]);
+  const std::vector<std::string> names = effectParameterNames(effects);
+  for (std::size_t i = 0; i < names.size() && i < s.effect_values.size(); ++i)
+    effect_parameters[names[i]] = number(s.effect_values[i]);
   return {{"parameters",
            {{"k1", number(s.base.k1_per_s2)},
             {"k2", number(s.base.k2_per_s)},
@@ -247,6 +247,7 @@ AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& ch
 {
   AugmentedStabilityTestResult r;
   r.effect = chosen.effect;
+  r.effects = effectsOf(chosen);
   r.alpha = options.alpha;
   std::vector<std::size_t> lengths;
   for (const CarFollowingRun& run : test)
@@ -265,8 +266,9 @@ AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& ch
     return r;
   }
 
-  // The chosen fit is one side's best; the other side's is searched.
-  const AugmentedParameterBox box(chosen.effect, bounds);
+  // The chosen fit is one side's best; the other side's is searched over every parameter of the
+  // model (all of its effects), as it was fitted.
+  const AugmentedParameterBox box(r.effects, bounds);
   const std::vector<double> chosen_x = physicalOf(chosen);
   const bool chosen_stable = augmentedStabilityIndex(chosen.base, chosen.settings, operating_speed_mps) >= 0.0;
   SideSearch search{&box, &train, operating_speed_mps, chosen_stable ? -1.0 : 1.0};
@@ -281,7 +283,7 @@ AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& ch
   r.best_unstable = chosen_stable ? other_side : chosen_side;
   if (!other_side.found)
   {
-    r.reason = std::string("no ") + (chosen_stable ? "unstable" : "stable") + " " + effectName(chosen.effect) +
+    r.reason = std::string("no ") + (chosen_stable ? "unstable" : "stable") + " " + combinedEffectName(r.effects) +
                " model was found in the search box: the test cannot compare the two sides";
     return r;
   }
@@ -307,14 +309,18 @@ AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& ch
 
 nlohmann::json toJson(const AugmentedStabilityTestResult& r)
 {
+  nlohmann::json effects = nlohmann::json::array();
+  for (EffectKind kind : r.effects)
+    effects.push_back(effectName(kind));
   return {{"effect", effectName(r.effect)},
+          {"effects", effects},
           {"verdict", toString(r.verdict)},
           {"p_value", number(r.p_value)},
           {"p_value_stable_rejected", number(r.p_value_stable_rejected)},
           {"p_value_unstable_rejected", number(r.p_value_unstable_rejected)},
           {"alpha", r.alpha},
-          {"best_stable", sideJson(r.best_stable, r.effect)},
-          {"best_unstable", sideJson(r.best_unstable, r.effect)},
+          {"best_stable", sideJson(r.best_stable, r.effects)},
+          {"best_unstable", sideJson(r.best_unstable, r.effects)},
           {"held_out_samples", r.held_out_samples},
           {"block_length_s", number(r.block_length_s)},
           {"side_fit_evaluations", r.side_fit_evaluations},

@@ -92,6 +92,133 @@ ModelDiagnosis scoreModel(const AugmentedFit& fit, const DiagnosisResult& data, 
   model.test_rmse_gap_m = count > 0 ? std::sqrt(gap_sum / static_cast<double>(count)) : 0.0;
   return model;
 }
+
+double meanSquared(const SquaredErrorsByRun& errors)
+{
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const auto& run : errors)
+  {
+    for (double e : run)
+    {
+      sum += e;
+    }
+    count += run.size();
+  }
+  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
+
+/// The values of the last effect of a combined fit (the one a step adds).
+std::vector<double> lastEffectValues(const AugmentedFit& fit)
+{
+  const std::size_t count = std::min(candidateEffect(fit.effect).parameters.size(), fit.effect_values.size());
+  return std::vector<double>(fit.effect_values.end() - static_cast<long>(count), fit.effect_values.end());
+}
+
+/// The candidate models of one forward round: each remaining effect fitted on top of `current`.
+struct ForwardRound
+{
+  std::vector<ModelDiagnosis> models;
+  std::vector<SquaredErrorsByRun> errors;
+  std::vector<bool> resolvable;
+};
+
+ForwardRound fitOnTop(const AugmentedFit& current, const std::vector<EffectKind>& remaining,
+                      const DiagnosisOptions& options, const DiagnosisResult& data)
+{
+  ForwardRound round;
+  for (EffectKind kind : remaining)
+  {
+    std::vector<EffectKind> kinds = effectsOf(current);
+    kinds.push_back(kind);
+    const AugmentedFit fit = calibrateAugmentedSet(kinds, data.train, options.calibration, &current);
+    SquaredErrorsByRun errors;
+    ModelDiagnosis model = scoreModel(fit, data, &errors);
+    model.resolvable = isResolvable(kind, lastEffectValues(fit), data.sample_period_s);
+    round.resolvable.push_back(model.resolvable);
+    round.models.push_back(std::move(model));
+    round.errors.push_back(std::move(errors));
+  }
+  return round;
+}
+
+/// The model of one chosen step: its small-signal stability and, if asked, the held-out test.
+ForwardSelectionStep makeStep(EffectKind added, ModelDiagnosis model, const ImprovementEstimate& improvement,
+                              const DiagnosisOptions& options, const DiagnosisResult& data)
+{
+  ForwardSelectionStep step;
+  step.added = added;
+  step.model = std::move(model);
+  step.model.improvement = improvement;
+  step.model.significant = true;
+  step.model.stability =
+      analyzeAugmentedStability(step.model.fit.base, added, step.model.fit.settings, data.operating_speed_mps);
+  // The note says how each effect of the combination enters the small-signal model, not only the last.
+  step.model.stability.note.clear();
+  for (EffectKind kind : effectsOf(step.model.fit))
+  {
+    const std::string note =
+        analyzeAugmentedStability(step.model.fit.base, kind, step.model.fit.settings, data.operating_speed_mps).note;
+    step.model.stability.note += (step.model.stability.note.empty() ? "" : "; ") + note;
+  }
+  step.model.stability_verdict_changes = step.model.stability.string_stable != data.baseline.stability.string_stable;
+  if (options.with_stability_test)
+  {
+    step.stability_test = testAugmentedStringStability(step.model.fit, data.train, data.test, data.operating_speed_mps,
+                                                       options.calibration, options.stability_test);
+  }
+  return step;
+}
+
+std::size_t indexOf(const std::vector<EffectKind>& kinds, EffectKind kind)
+{
+  return static_cast<std::size_t>(std::find(kinds.begin(), kinds.end(), kind) - kinds.begin());
+}
+
+/// Adds effects to the dominant one while the rule finds one that improves on the current model.
+void forwardSelect(const DiagnosisOptions& options, const std::vector<SquaredErrorsByRun>& candidate_errors,
+                   const SquaredErrorsByRun& base_errors, DiagnosisResult* result)
+{
+  if (!options.forward_selection || options.max_chain_length == 0)
+  {
+    result->forward_stop_reason = "forward selection off";
+    return;
+  }
+  if (result->selection.dominant == EffectKind::none)
+  {
+    result->forward_stop_reason = "no effect improves significantly on the base model";
+    return;
+  }
+  // Step 1 is the dominant model exactly as selected against the base model (and tested above).
+  const std::size_t first = indexOf(options.candidates, result->selection.dominant);
+  result->selected_effects.push_back({result->selection.dominant, result->effects[first], result->stability_test});
+  SquaredErrorsByRun current_errors = candidate_errors[first];
+  std::vector<EffectKind> remaining = options.candidates;
+  remaining.erase(remaining.begin() + static_cast<long>(first));
+  const double base_mse = meanSquared(base_errors);
+  while (result->selected_effects.size() < options.max_chain_length && !remaining.empty())
+  {
+    const AugmentedFit current = result->selected_effects.back().model.fit;
+    ForwardRound round = fitOnTop(current, remaining, options, *result);
+    result->forward_rounds.push_back(selectEffect(current_errors, round.errors, remaining, result->sample_period_s,
+                                                  options.selection, round.resolvable, base_mse));
+    const SelectionResult& selection = result->forward_rounds.back();
+    if (selection.dominant == EffectKind::none)
+    {
+      result->forward_stop_reason =
+          "no remaining effect improves significantly on the " + combinedEffectName(effectsOf(current)) + " model";
+      return;
+    }
+    const std::size_t k = indexOf(remaining, selection.dominant);
+    result->selected_effects.push_back(
+        makeStep(selection.dominant, std::move(round.models[k]), selection.versus_base[k], options, *result));
+    current_errors = std::move(round.errors[k]);
+    remaining.erase(remaining.begin() + static_cast<long>(k));
+  }
+  result->forward_stop_reason = remaining.empty() ? "every candidate is in the model"
+                                                  : "the chain reached its maximum length (" +
+                                                        std::to_string(options.max_chain_length) + ")";
+}
 }  // namespace
 
 DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const DiagnosisOptions& options)
@@ -151,6 +278,7 @@ DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const Dia
                                                          result.operating_speed_mps, options.calibration,
                                                          options.stability_test);
   }
+  forwardSelect(options, candidate_errors, base_errors, &result);
   return result;
 }
 

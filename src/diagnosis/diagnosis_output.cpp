@@ -22,10 +22,10 @@ nlohmann::json parametersJson(const AugmentedFit& fit)
   p["k2_per_s"] = number(fit.base.k2_per_s);
   p["tau_e_s"] = number(fit.base.tau_e_s);
   p["eta_m"] = number(fit.base.eta_m);
-  const auto& specs = candidateEffect(fit.effect).parameters;
-  for (std::size_t i = 0; i < specs.size() && i < fit.effect_values.size(); ++i)
+  const std::vector<std::string> names = effectParameterNames(effectsOf(fit));
+  for (std::size_t i = 0; i < names.size() && i < fit.effect_values.size(); ++i)
   {
-    p[specs[i].name] = number(fit.effect_values[i]);
+    p[names[i]] = number(fit.effect_values[i]);
   }
   return p;
 }
@@ -33,9 +33,9 @@ nlohmann::json parametersJson(const AugmentedFit& fit)
 nlohmann::json standardErrorsJson(const AugmentedFit& fit)
 {
   std::vector<std::string> names = {"k1_per_s2", "k2_per_s", "tau_e_s", "eta_m"};
-  for (const EffectParameterSpec& spec : candidateEffect(fit.effect).parameters)
+  for (const std::string& name : effectParameterNames(effectsOf(fit)))
   {
-    names.push_back(spec.name);
+    names.push_back(name);
   }
   nlohmann::json e = nlohmann::json::object();
   for (std::size_t i = 0; i < names.size() && i < fit.standard_errors.size(); ++i)
@@ -76,6 +76,70 @@ nlohmann::json modelJson(const ModelDiagnosis& m)
   j["evaluations"] = m.fit.evaluations;
   j["stability"] = stabilityJson(m.stability);
   return j;
+}
+
+/// One step of the forward selection: the model with every effect chosen up to it.
+nlohmann::json chainStepJson(const ForwardSelectionStep& step)
+{
+  const AugmentedFit& fit = step.model.fit;
+  nlohmann::json effects = nlohmann::json::array();
+  for (EffectKind kind : effectsOf(fit))
+  {
+    effects.push_back(effectName(kind));
+  }
+  nlohmann::json effect_parameters = nlohmann::json::object();
+  const std::vector<std::string> names = effectParameterNames(effectsOf(fit));
+  for (std::size_t i = 0; i < names.size() && i < fit.effect_values.size(); ++i)
+  {
+    effect_parameters[names[i]] = number(fit.effect_values[i]);
+  }
+  nlohmann::json test = nullptr;
+  if (step.stability_test)
+  {
+    test = {{"verdict", toString(step.stability_test->verdict)},
+            {"p_value", number(step.stability_test->p_value)},
+            {"reason", step.stability_test->reason}};
+  }
+  return {{"effect", effectName(step.added)},
+          {"model_effects", effects},
+          {"train_rmse_speed", number(step.model.train_rmse_speed_mps)},
+          {"test_rmse_speed", number(step.model.test_rmse_speed_mps)},
+          {"test_rmse_gap", number(step.model.test_rmse_gap_m)},
+          {"test_diverged", step.model.test_diverged},
+          {"improvement", improvementJson(step.model.improvement)},
+          {"parameters",
+           {{"k1_per_s2", number(fit.base.k1_per_s2)},
+            {"k2_per_s", number(fit.base.k2_per_s)},
+            {"tau_e_s", number(fit.base.tau_e_s)},
+            {"eta_m", number(fit.base.eta_m)}}},
+          {"effect_parameters", effect_parameters},
+          {"standard_errors", standardErrorsJson(fit)},
+          {"stability", stabilityJson(step.model.stability)},
+          {"stability_test", test}};
+}
+
+/// Every comparison of the forward selection, so that why the chain stopped can be read off.
+nlohmann::json forwardSelectionJson(const DiagnosisResult& r)
+{
+  nlohmann::json rounds = nlohmann::json::array();
+  for (std::size_t i = 0; i < r.forward_rounds.size(); ++i)
+  {
+    const SelectionResult& s = r.forward_rounds[i];
+    nlohmann::json candidates = nlohmann::json::array();
+    for (std::size_t k = 0; k < s.candidates.size(); ++k)
+    {
+      candidates.push_back({{"effect", effectName(s.candidates[k])},
+                            {"improvement", improvementJson(s.versus_base[k])},
+                            {"significant", static_cast<bool>(s.significant[k])}});
+    }
+    const std::vector<EffectKind> on_top_of =
+        i < r.selected_effects.size() ? effectsOf(r.selected_effects[i].model.fit) : std::vector<EffectKind>{};
+    candidates = {{"on_top_of", combinedEffectName(on_top_of)},
+                  {"added", effectName(s.dominant)},
+                  {"candidates", candidates}};
+    rounds.push_back(candidates);
+  }
+  return {{"stop_reason", r.forward_stop_reason}, {"rounds", rounds}};
 }
 
 nlohmann::json groupsJson(const std::vector<ResidualGroup>& groups)
@@ -147,6 +211,12 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
     j["plausible_effects"].push_back(effectName(kind));
   }
   j["distinguishable_from_runner_up"] = r.selection.distinguishable;
+  j["selected_effects"] = nlohmann::json::array();
+  for (const ForwardSelectionStep& step : r.selected_effects)
+  {
+    j["selected_effects"].push_back(chainStepJson(step));
+  }
+  j["forward_selection"] = forwardSelectionJson(r);
   j["baseline"] = modelJson(r.baseline);
   j["effects"] = nlohmann::json::array();
   for (std::size_t k = 0; k < r.effects.size(); ++k)

@@ -131,7 +131,8 @@ ImprovementEstimate estimate(const SquaredErrorsByRun& diff, const std::vector<d
 
 SelectionResult selectEffect(const SquaredErrorsByRun& base, const std::vector<SquaredErrorsByRun>& candidates,
                              const std::vector<EffectKind>& kinds, double sample_period_s,
-                             const SelectionOptions& options, const std::vector<bool>& resolvable)
+                             const SelectionOptions& options, const std::vector<bool>& resolvable,
+                             double reference_mse)
 {
   SelectionResult result;
   result.candidates = kinds;
@@ -143,7 +144,7 @@ SelectionResult selectEffect(const SquaredErrorsByRun& base, const std::vector<S
   const std::size_t block = std::max<std::size_t>(
       1, static_cast<std::size_t>(std::lround(options.block_length_s / std::max(sample_period_s, 1e-9))));
   result.block_length_samples = static_cast<double>(block);
-  const double base_mse = meanOf(base);
+  const double base_mse = reference_mse > 0.0 ? reference_mse : meanOf(base);
   std::vector<SquaredErrorsByRun> diffs;
   for (const SquaredErrorsByRun& c : candidates)
   {

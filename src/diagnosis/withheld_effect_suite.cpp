@@ -140,6 +140,10 @@ CarFollowingRun synthesizeWithheldRun(const WithheldCase& c)
     truth.time_s.push_back(static_cast<double>(k) * fine_step);
   }
   EffectSettings effects = makeEffectSettings(c.truth, c.truth_values);
+  for (const auto& [kind, values] : c.also_withheld)
+  {
+    applyEffectValues(kind, values, &effects);
+  }
   const double v0 = std::min(truth.leader_speed_mps[0], effects.set_speed_mps);
   const double s0 = c.base.eta_m + c.base.tau_e_s * v0 + effects.time_gap_speed_slope_s2_per_m * v0 * v0;
   truth.follower_speed_mps.assign(fine_n, v0);
@@ -187,6 +191,8 @@ WithheldOutcome runWithheldCase(const WithheldCase& c, const DiagnosisOptions& o
   // part of that question (test_diagnosis_stability covers it) and would double the suite's cost.
   DiagnosisOptions naming_only = options;
   naming_only.with_stability_test = false;
+  // Likewise the chain of effects in combination: the suite's question is the dominant one.
+  naming_only.forward_selection = false;
   const DiagnosisResult result = diagnoseRuns({synthesizeWithheldRun(c)}, naming_only);
   outcome.dominant = result.selection.dominant;
   outcome.plausible = result.selection.plausible;

@@ -135,4 +135,54 @@ std::vector<double> effectValues(EffectKind kind, const EffectSettings& s)
   return {};
 }
 
+void applyEffectValues(EffectKind kind, const std::vector<double>& values, EffectSettings* settings)
+{
+  // Only kind's fields are copied: the others keep what earlier effects of the model set.
+  const EffectSettings own = makeEffectSettings(kind, values);
+  switch (kind)
+  {
+    case EffectKind::none: break;
+    case EffectKind::actuation_lag: settings->actuation_lag_s = own.actuation_lag_s; break;
+    case EffectKind::reaction_delay: settings->reaction_delay_s = own.reaction_delay_s; break;
+    case EffectKind::acceleration_limits:
+      settings->max_acceleration_mps2 = own.max_acceleration_mps2;
+      settings->max_deceleration_mps2 = own.max_deceleration_mps2;
+      break;
+    case EffectKind::sensor_time_offset: settings->sensor_time_offset_s = own.sensor_time_offset_s; break;
+    case EffectKind::speed_dependent_time_gap:
+      settings->time_gap_speed_slope_s2_per_m = own.time_gap_speed_slope_s2_per_m;
+      break;
+    case EffectKind::set_speed_cruise:
+      settings->set_speed_mps = own.set_speed_mps;
+      settings->cruise_gain_per_s = own.cruise_gain_per_s;
+      break;
+    case EffectKind::leader_acceleration_feedforward:
+      settings->leader_acceleration_gain = own.leader_acceleration_gain;
+      break;
+  }
+}
+
+EffectSettings makeCombinedEffectSettings(const std::vector<EffectKind>& kinds, const std::vector<double>& values)
+{
+  EffectSettings settings;
+  std::size_t used = 0;
+  for (EffectKind kind : kinds)
+  {
+    const std::size_t count = candidateEffect(kind).parameters.size();
+    if (used + count > values.size())
+    {
+      throw std::invalid_argument("too few parameters for the effects of a combined model");
+    }
+    applyEffectValues(kind, std::vector<double>(values.begin() + static_cast<long>(used),
+                                                values.begin() + static_cast<long>(used + count)),
+                      &settings);
+    used += count;
+  }
+  if (used != values.size())
+  {
+    throw std::invalid_argument("too many parameters for the effects of a combined model");
+  }
+  return settings;
+}
+
 }  // namespace acc

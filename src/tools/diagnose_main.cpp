@@ -143,6 +143,40 @@ int runSuite(const std::string& size, const acc::DiagnosisOptions& options, cons
   return 0;
 }
 
+/// The forward selection's chain: one line per step with its held-out RMSE, gain and verdict,
+/// then the parameters of that step's model with their standard errors.
+void printChain(const acc::DiagnosisResult& r)
+{
+  std::printf("effects in combination (forward selection): %s\n",
+              r.selected_effects.empty() ? "none" : "");
+  for (std::size_t i = 0; i < r.selected_effects.size(); ++i)
+  {
+    const acc::ForwardSelectionStep& step = r.selected_effects[i];
+    const acc::ModelDiagnosis& m = step.model;
+    std::printf("  %zu. + %-26s test_v %.4f m/s, test_gap %.3f m, MSE -%.1f%% of base (lower bound %.4g m^2/s^2), %s",
+                i + 1, acc::effectName(step.added).c_str(), m.test_rmse_speed_mps, m.test_rmse_gap_m,
+                100.0 * m.improvement.relative, m.improvement.lower_bound,
+                m.stability.string_stable ? "stable" : "UNSTABLE");
+    if (step.stability_test)
+    {
+      std::printf(", test: %s (p = %.3g)", acc::toString(step.stability_test->verdict).c_str(),
+                  step.stability_test->p_value);
+    }
+    // A diverged fit has no standard errors: print nan rather than fail.
+    auto se = [&m](std::size_t i) { return i < m.fit.standard_errors.size() ? m.fit.standard_errors[i] : NAN; };
+    std::printf("\n     k1 %.4g +- %.2g, k2 %.4g +- %.2g, tau_e %.4g +- %.2g, eta %.4g +- %.2g", m.fit.base.k1_per_s2, se(0),
+                m.fit.base.k2_per_s, se(1), m.fit.base.tau_e_s, se(2), m.fit.base.eta_m, se(3));
+    const std::vector<std::string> names = acc::effectParameterNames(acc::effectsOf(m.fit));
+    for (std::size_t j = 0; j < names.size() && j < m.fit.effect_values.size(); ++j)
+    {
+      std::printf(", %s %.4g +- %.2g", names[j].c_str(), m.fit.effect_values[j],
+                  se(acc::AugmentedParameterBox::kBaseDimension + j));
+    }
+    std::printf("\n");
+  }
+  std::printf("  stopped: %s\n", r.forward_stop_reason.c_str());
+}
+
 void printSummary(const acc::DiagnosisResult& r)
 {
   std::printf("%-26s %10s %10s %10s %9s %11s  %s\n", "model", "train_v", "test_v", "test_gap", "improve", "significant",
@@ -169,7 +203,7 @@ void printSummary(const acc::DiagnosisResult& r)
     const acc::AugmentedStabilityTestResult& t = *r.stability_test;
     std::printf("string stability of the %s model, decided on the held-out parts: %s, p = %.3g\n  why: %s\n",
                 acc::effectName(t.effect).c_str(), acc::toString(t.verdict).c_str(), t.p_value, t.reason.c_str());
-  }
+  }  printChain(r);
 }
 }  // namespace
 
@@ -213,6 +247,12 @@ int main(int argc, char** argv)
   app.add_option("--seed", seed, "bootstrap seed")->capture_default_str();
   app.add_option("--plot-script", plot_script, "figure script")->capture_default_str();
   app.add_flag("--no-plots", no_plots, "write the tables and JSON of --report but draw nothing");
+  bool no_forward_selection = false;
+  app.add_flag("--no-forward-selection", no_forward_selection,
+               "name the dominant effect only; do not try effects in combination");
+  app.add_option("--max-chain-length", options.max_chain_length, "most effects the forward selection adds")
+      ->check(CLI::Range(1, 8))
+      ->capture_default_str();
   app.add_option("--withheld-suite", suite, "synthetic runs with a hidden effect; prints the confusion matrix")
       ->check(CLI::IsMember({"small", "large"}));
   auto* follower_option =
@@ -226,6 +266,7 @@ int main(int argc, char** argv)
   follower_option->excludes(all_pairs_option);
   CLI11_PARSE(app, argc, argv);
   options.selection.seed = seed;
+  options.forward_selection = !no_forward_selection;
   if (!applyEffects(effects, &options))
   {
     return 2;

@@ -31,16 +31,20 @@ struct AugmentedCalibrationOptions
 };
 
 /// The parameters of an augmented model as one vector x = (k1, k2, tau_e, eta, effect values in
-/// the catalogue's order), and the unit box every local solver of the diagnosis works in, so that
-/// one trust-region radius suits gains of 0.05 and jam distances of 5 m alike.
+/// the catalogue's order, effect after effect in the order of `effects`), and the unit box every
+/// local solver of the diagnosis works in, so that one trust-region radius suits gains of 0.05 and
+/// jam distances of 5 m alike.
 struct AugmentedParameterBox
 {
   static constexpr std::size_t kBaseDimension = 4;
-  EffectKind effect;
+  EffectKind effect;                 ///< the last of effects (none for the base model)
+  std::vector<EffectKind> effects;   ///< every effect of the model, in x's order (empty: base model)
   std::vector<double> lower;  ///< the options' base bounds, then the catalogue's effect bounds
   std::vector<double> upper;
 
   AugmentedParameterBox(EffectKind kind, const AugmentedCalibrationOptions& options);
+  /// A model with several effects at once.
+  AugmentedParameterBox(const std::vector<EffectKind>& kinds, const AugmentedCalibrationOptions& options);
   std::size_t dimension() const { return lower.size(); }
   /// Unit coordinates (clamped into [0, 1]) to physical values.
   std::vector<double> physical(const std::vector<double>& unit) const;
@@ -51,16 +55,22 @@ struct AugmentedParameterBox
   {
     return std::vector<double>(x.begin() + kBaseDimension, x.end());
   }
-  /// The effect settings of a physical x.
-  EffectSettings settingsOf(const std::vector<double>& x) const { return makeEffectSettings(effect, effectPart(x)); }
+  /// The effect settings of a physical x (every effect of the box switched on).
+  EffectSettings settingsOf(const std::vector<double>& x) const
+  {
+    return makeCombinedEffectSettings(effects, effectPart(x));
+  }
 };
 
-/// A calibrated model: base parameters, the effect and its parameters.
+/// A calibrated model: base parameters, the effect(s) and their parameters.
 struct AugmentedFit
 {
-  EffectKind effect = EffectKind::none;
+  EffectKind effect = EffectKind::none;  ///< the single effect, or the last one added to a combination
+  /// Every effect of the model in the order of effect_values; {effect} for a single-effect fit
+  /// made by calibrateAugmented, empty for the base model.
+  std::vector<EffectKind> effects;
   AccParameters base;
-  std::vector<double> effect_values;  ///< in the catalogue's order
+  std::vector<double> effect_values;  ///< in the catalogue's order, effect after effect
   EffectSettings settings;            ///< base settings with effect_values applied
   double train_mse_speed = std::numeric_limits<double>::infinity();  ///< mean squared speed error [m^2/s^2]
   bool diverged = false;              ///< no start found a simulation that does not blow up
@@ -88,5 +98,23 @@ constexpr double kDivergedObjective = 1.0e6;
 AugmentedFit calibrateAugmented(EffectKind effect, const std::vector<CarFollowingRun>& segments,
                                 const AugmentedCalibrationOptions& options, const AugmentedFit* warm_start = nullptr);
 
+/// The same fit for a model with several effects at once, x = (k1, k2, tau_e, eta, values of
+/// effects[0], values of effects[1], ...). With a warm start (typically the fit of the previous
+/// forward-selection step): the warm fit's base parameters and the values of every effect it
+/// already has, and the effects it lacks at the catalogue's low-discrepancy starts plus their
+/// "almost off" point, so the result is never worse on the training data than the warm fit.
+/// calibrateAugmented(kind, ...) is this with {kind} ({} for none), number for number.
+AugmentedFit calibrateAugmentedSet(const std::vector<EffectKind>& effects, const std::vector<CarFollowingRun>& segments,
+                                   const AugmentedCalibrationOptions& options,
+                                   const AugmentedFit* warm_start = nullptr);
+
+/// The effects of a fit: fit.effects, or {fit.effect} for a fit made before combinations existed.
+std::vector<EffectKind> effectsOf(const AugmentedFit& fit);
+
+/// "none", an effect's name, or the names joined by " + " (for reports).
+std::string combinedEffectName(const std::vector<EffectKind>& effects);
+
+/// Parameter names of the effects in effect_values' order (catalogue names, effect after effect).
+std::vector<std::string> effectParameterNames(const std::vector<EffectKind>& effects);
 
 }  // namespace acc

@@ -67,7 +67,7 @@ struct AugmentedSideFit
 {
   bool found = false;  ///< false when no point of that side was found (the rest is then unset)
   AccParameters base;
-  std::vector<double> effect_values;  ///< in the catalogue's order
+  std::vector<double> effect_values;  ///< in the catalogue's order, effect after effect (as the chosen fit)
   EffectSettings settings;
   double stability_index = std::numeric_limits<double>::quiet_NaN();
   double peak_gain_db = std::numeric_limits<double>::quiet_NaN();
@@ -77,7 +77,8 @@ struct AugmentedSideFit
 
 struct AugmentedStabilityTestResult
 {
-  EffectKind effect = EffectKind::none;
+  EffectKind effect = EffectKind::none;  ///< the chosen fit's effect (the last added, for a combination)
+  std::vector<EffectKind> effects;       ///< every effect of the chosen model (effectsOf)
   StabilityVerdict verdict = StabilityVerdict::Undecided;
   /// The verdict's p-value: of the side rejected when decided, else the smaller of the two.
   double p_value = std::numeric_limits<double>::quiet_NaN();
@@ -92,7 +93,7 @@ struct AugmentedStabilityTestResult
   std::string reason;  ///< why this verdict, in one sentence with the numbers
 };
 
-/// Runs the test for `chosen` (fitted on `train`) with the data of the diagnosis: `train` the
+/// Runs the test for `chosen` (fitted on `train`; one effect or several, effectsOf(chosen)) with the data of the diagnosis: `train` the
 /// first parts, `test` the held-out parts, operating_speed_mps the linearisation speed. bounds:
 /// the search box of the base parameters (the diagnosis's own).
 AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& chosen,
@@ -102,7 +103,7 @@ AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& ch
                                                           const AugmentedCalibrationOptions& bounds,
                                                           const AugmentedStabilityTestOptions& options = {});
 
-/// The result as JSON: {effect, verdict, p_value, p_value_stable_rejected,
+/// The result as JSON: {effect, effects, verdict, p_value, p_value_stable_rejected,
 /// p_value_unstable_rejected, alpha, best_stable: {parameters, effect_parameters, stability_index,
 /// peak_gain_db, train_rmse_speed, test_rmse_speed}, best_unstable: {...}, held_out_samples,
 /// block_length_s, reason}; non-finite numbers as null.

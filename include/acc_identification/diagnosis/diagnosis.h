@@ -31,6 +31,14 @@ struct DiagnosisOptions
   /// The string-stability test of the chosen model (dominant effect, or the base model).
   bool with_stability_test = true;
   AugmentedStabilityTestOptions stability_test;
+  /// Effects in combination: after the dominant effect, every remaining candidate is fitted on
+  /// top of the current model (warm-started from it) and compared with it by the same rule
+  /// (Bonferroni over the remaining candidates, the practical threshold relative to the base
+  /// model's held-out MSE, timing effects resolvable); the best significant one is added, until
+  /// none is or the chain holds max_chain_length effects. Each step's model also gets the
+  /// string-stability test when with_stability_test is set.
+  bool forward_selection = true;
+  std::size_t max_chain_length = 3;
 };
 
 /// One model (base or augmented) fitted on the training halves and scored on the held-out halves.
@@ -49,6 +57,16 @@ struct ModelDiagnosis
   std::vector<SimulatedFollower> test_simulations;  ///< one per held-out half
 };
 
+/// One step of the forward selection: the model with every effect chosen so far.
+struct ForwardSelectionStep
+{
+  EffectKind added = EffectKind::none;
+  /// fit.effects lists the chain up to this step; improvement is versus the previous step's model
+  /// (the base model for the first step), relative to the base model's held-out MSE.
+  ModelDiagnosis model;
+  std::optional<AugmentedStabilityTestResult> stability_test;
+};
+
 struct DiagnosisResult
 {
   std::vector<CarFollowingRun> train;  ///< the first halves used for fitting
@@ -64,6 +82,13 @@ struct DiagnosisResult
   /// Is the chosen model (dominantModel()) string stable, decided from the held-out data
   /// (testAugmentedStringStability); unset when options.with_stability_test is false.
   std::optional<AugmentedStabilityTestResult> stability_test;
+  /// Forward selection (options.forward_selection): the chain, starting with the dominant effect;
+  /// empty when none is significant or forward selection is off.
+  std::vector<ForwardSelectionStep> selected_effects;
+  /// The comparisons made on top of each step's model (the candidates are the effects not yet in
+  /// it; the last one is why the chain stopped, unless it reached its maximum length).
+  std::vector<SelectionResult> forward_rounds;
+  std::string forward_stop_reason;
 };
 
 /// Splits every run, fits the base model and each candidate effect on the first parts, scores

@@ -9,7 +9,13 @@
 
 namespace acc
 {
-/// The diagnosis as JSON: dominant_effect, plausible_effects, baseline {parameters,
+/// The diagnosis as JSON: dominant_effect, plausible_effects, selected_effects (the forward
+/// selection's chain, in order: [{effect, model_effects, train_rmse_speed, test_rmse_speed,
+/// test_rmse_gap, improvement over the previous step {mean_mse_reduction, relative (to the base
+/// model's held-out MSE), lower_bound, upper_bound}, parameters, effect_parameters,
+/// standard_errors, stability, stability_test {verdict, p_value, reason}}]), forward_selection
+/// {stop_reason, rounds [{on_top_of, added, candidates [{effect, improvement, significant}]}]},
+/// baseline {parameters,
 /// train_rmse_speed, test_rmse_speed, test_rmse_gap, stability}, effects [{name, parameters,
 /// standard_errors, train_rmse_speed, test_rmse_speed, test_rmse_gap, improvement, significant,
 /// stability}], selection {rule, ...}, where {regimes, speed_bands, segments, frequency_bands},

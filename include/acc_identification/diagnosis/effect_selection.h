@@ -64,10 +64,13 @@ struct SelectionResult
 
 /// Applies the rule. base and each candidates' errors must have the same run structure.
 /// sample_period_s converts the block length to samples. resolvable: one flag per candidate
-/// (empty: all resolvable).
+/// (empty: all resolvable). reference_mse: the MSE that `relative` and the practical threshold
+/// refer to; 0 (default) means base's own. Forward selection passes the current model as base
+/// and the base model's MSE here, so that every step must gain the same share of the original gap.
 SelectionResult selectEffect(const SquaredErrorsByRun& base, const std::vector<SquaredErrorsByRun>& candidates,
                              const std::vector<EffectKind>& kinds, double sample_period_s,
-                             const SelectionOptions& options, const std::vector<bool>& resolvable = {});
+                             const SelectionOptions& options, const std::vector<bool>& resolvable = {},
+                             double reference_mse = 0.0);
 
 /// The rule in one paragraph, for reports.
 std::string describeSelectionRule(const SelectionOptions& options, std::size_t candidates);

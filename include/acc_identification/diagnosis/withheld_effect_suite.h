@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "acc_identification/model/acc_parameters.h"
@@ -32,6 +33,9 @@ struct WithheldCase
 {
   EffectKind truth = EffectKind::none;
   std::vector<double> truth_values;   ///< the effect's parameters (catalogue order)
+  /// Further effects withheld at the same time (each with its parameters in catalogue order), for
+  /// checks of the forward selection; the suite's grid leaves this empty.
+  std::vector<std::pair<EffectKind, std::vector<double>>> also_withheld;
   AccParameters base{0.08, 0.45, 1.2, 4.0};
   SyntheticLeadProfile profile = SyntheticLeadProfile::steps;
   double duration_s = 400.0;

@@ -95,4 +95,13 @@ EffectSettings makeEffectSettings(EffectKind kind, const std::vector<double>& va
 /// The values of kind's parameters read back from settings (inverse of makeEffectSettings).
 std::vector<double> effectValues(EffectKind kind, const EffectSettings& settings);
 
+/// Sets kind's parameters in settings to values (catalogue order) and leaves every other effect as
+/// it is, so that several effects can be switched on in one model.
+void applyEffectValues(EffectKind kind, const std::vector<double>& values, EffectSettings* settings);
+
+/// The settings of a model with several effects at once: values holds each kind's parameters in
+/// the catalogue's order, concatenated in the order of kinds. An empty list is the base model, a
+/// single kind equals makeEffectSettings(kind, values).
+EffectSettings makeCombinedEffectSettings(const std::vector<EffectKind>& kinds, const std::vector<double>& values);
+
 }  // namespace acc
