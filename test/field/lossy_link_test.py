@@ -47,33 +47,53 @@ LEVELS = [
 
 
 class Namespaces:
-    """Two network namespaces joined by a veth pair, removed on exit."""
+    """Two network namespaces joined by a veth pair, removed on exit (also when setting up fails).
+
+    Commands enter a namespace with nsenter --net (util-linux), which switches the network
+    namespace only: `ip netns exec` and `ip -n` also remount / and /sys, which fails where / is not
+    a mount point (a chroot, as the bare-root CI runs in)."""
 
     def __init__(self, tag):
         self.lead, self.follower = "accl" + tag, "accf" + tag
         self.lead_if, self.follower_if = "avl" + tag, "avf" + tag
         self.lead_ip, self.follower_ip = "10.213.77.1", "10.213.77.2"
+        self.made = []
 
     def __enter__(self):
-        run = lambda *a: subprocess.run(["ip"] + list(a), check=True)
-        run("netns", "add", self.lead)
-        run("netns", "add", self.follower)
-        run("link", "add", self.lead_if, "type", "veth", "peer", "name", self.follower_if)
-        run("link", "set", self.lead_if, "netns", self.lead)
-        run("link", "set", self.follower_if, "netns", self.follower)
-        for ns, interface, ip in ((self.lead, self.lead_if, self.lead_ip),
-                                  (self.follower, self.follower_if, self.follower_ip)):
-            run("-n", ns, "addr", "add", ip + "/30", "dev", interface)
-            run("-n", ns, "link", "set", interface, "up")
-            run("-n", ns, "link", "set", "lo", "up")
+        try:
+            self.setUp()
+        except BaseException:
+            self.__exit__()
+            raise
         return self
 
-    def __exit__(self, *exc):
+    def setUp(self):
+        run = lambda args: subprocess.run(args, check=True)
         for ns in (self.lead, self.follower):
+            run(["ip", "netns", "add", ns])
+            self.made.append(ns)
+        run(["ip", "link", "add", self.lead_if, "type", "veth", "peer", "name", self.follower_if])
+        run(["ip", "link", "set", self.lead_if, "netns", self.lead])
+        run(["ip", "link", "set", self.follower_if, "netns", self.follower])
+        for ns, interface, ip in ((self.lead, self.lead_if, self.lead_ip),
+                                  (self.follower, self.follower_if, self.follower_ip)):
+            run(self.command(ns, ["ip", "addr", "add", ip + "/30", "dev", interface]))
+            run(self.command(ns, ["ip", "link", "set", interface, "up"]))
+            run(self.command(ns, ["ip", "link", "set", "lo", "up"]))
+
+    def __exit__(self, *exc):
+        for ns in self.made:
             subprocess.run(["ip", "netns", "del", ns], stderr=subprocess.DEVNULL)
+        # The veth pair, if it was made but not moved, lives in this namespace: remove it too.
+        subprocess.run(["ip", "link", "del", self.lead_if], stderr=subprocess.DEVNULL)
+        # `ip netns add` made /run/netns a mount point; let it go when no namespace is left in it
+        # (it is made again when needed), so that nothing of this test stays mounted.
+        listing = subprocess.run(["ip", "netns", "list"], capture_output=True, text=True).stdout.strip()
+        if not listing:
+            subprocess.run(["umount", "/run/netns"], stderr=subprocess.DEVNULL)
 
     def command(self, ns, args):
-        return ["ip", "netns", "exec", ns] + args
+        return ["nsenter", "--net=/run/netns/" + ns] + args
 
 
 class Processes:
@@ -271,6 +291,26 @@ def junit(path, cases):
     open(path, "w").write("\n".join(out) + "\n")
 
 
+def run_levels(namespaces, logs, work, env, processes, cases, table):
+    for level in LEVELS:
+        start = time.time()
+        try:
+            counts, problems = run_level(level, namespaces, logs, work, env, processes)
+        except Exception as error:  # a level that cannot run is a failure, not a crash
+            counts, problems = {}, ["%s: %s" % (type(error).__name__, error)]
+        finally:
+            processes.stop_all()
+        link = counts.get("link", {})
+        row = "%s | %s / %s / %s / %s / %s | %s | %s | %.1f %% | %.4f | %s" % (
+            level["name"], link.get("received"), link.get("lost"), link.get("outage"), link.get("forwarded"),
+            link.get("reordered"), counts.get("follower_fixes"), counts.get("valid"),
+            100 * counts.get("paired_share", 0.0), counts.get("worst_leader_speed_error_ratio", float("nan")),
+            "; ".join(problems) or "none")
+        table.append(row)
+        print("lossy_link: " + row, flush=True)
+        cases.append((level["name"], time.time() - start, problems, json.dumps(counts, indent=1)))
+
+
 def main():
     workspace, results = sys.argv[1], sys.argv[2]
     os.makedirs(results, exist_ok=True)
@@ -282,24 +322,16 @@ def main():
                         "paired | share | worst leader speed error / allowed | problems"]
     try:
         logs = nmea_logs(workspace, work)
-        with Namespaces(str(os.getpid() % 100000)) as namespaces:
-            for level in LEVELS:
-                start = time.time()
-                try:
-                    counts, problems = run_level(level, namespaces, logs, work, env, processes)
-                except Exception as error:  # a level that cannot run is a failure, not a crash
-                    counts, problems = {}, ["%s: %s" % (type(error).__name__, error)]
-                finally:
-                    processes.stop_all()
-                link = counts.get("link", {})
-                row = "%s | %s / %s / %s / %s / %s | %s | %s | %.1f %% | %.4f | %s" % (
-                    level["name"], link.get("received"), link.get("lost"), link.get("outage"), link.get("forwarded"),
-                    link.get("reordered"), counts.get("follower_fixes"), counts.get("valid"),
-                    100 * counts.get("paired_share", 0.0), counts.get("worst_leader_speed_error_ratio", float("nan")),
-                    "; ".join(problems) or "none")
-                table.append(row)
-                print("lossy_link: " + row, flush=True)
-                cases.append((level["name"], time.time() - start, problems, json.dumps(counts, indent=1)))
+        namespaces = Namespaces(str(os.getpid() % 100000))
+        namespaces.__enter__()  # removes what it made if it fails half way
+        try:
+            run_levels(namespaces, logs, work, env, processes, cases, table)
+        finally:
+            processes.stop_all()
+            namespaces.__exit__()
+    except Exception as error:  # whatever went wrong is a failed test case, never a missing result
+        cases.append(("setup", 0.0, ["%s: %s" % (type(error).__name__, error)], ""))
+        print("lossy_link: setup failed: %s" % error, flush=True)
     finally:
         processes.stop_all()
         if not os.environ.get("ACC_KEEP_LOSSY_LINK"):
