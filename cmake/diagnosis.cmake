@@ -10,12 +10,16 @@ acc_add_library(acc_diagnosis
     src/diagnosis/augmented_stability_test.cpp
     src/diagnosis/diagnosis.cpp
     src/diagnosis/withheld_effect_suite.cpp
+    src/diagnosis/injected_effect.cpp
     src/diagnosis/diagnosis_output.cpp
   LINK acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 
 # The tool reads runs (CSV or bags) as the calibrate tool does (calibration component).
 if(TARGET acc_calibration_ros)
   acc_add_tool(diagnose LINK acc_diagnosis acc_calibration_ros acc_run_io)
+  # --withheld-suite semi-real injects effects into the bundled real runs (cmake/data.cmake).
+  target_compile_definitions(diagnose PRIVATE ACC_CASALE_DIR="${ACC_DATA_CASALE_DIR}"
+    ACC_ZALAZONE_TOYOTA_DIR="${ACC_DATA_ZALAZONE_TOYOTA_RAV4_S_DIR}")
   # diagnose finds its figure script next to itself: copied into the devel space's bin folder at
   # configure time (again whenever it changes), installed beside the executable.
   configure_file(scripts/plot_diagnosis.py
@@ -33,6 +37,10 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_diagnosis_withheld.cpp
     test/unit/test_diagnosis_output.cpp
     test/unit/test_diagnosis_stability.cpp
-    test/unit/test_diagnosis_forward.cpp)
-  target_link_libraries(test_diagnosis acc_diagnosis)
+    test/unit/test_diagnosis_forward.cpp
+    test/unit/test_diagnosis_injected.cpp)
+  # The semi-real test reads a bundled real run (acc_run_io, cmake/data.cmake).
+  target_link_libraries(test_diagnosis acc_diagnosis acc_run_io)
+  target_compile_definitions(test_diagnosis PRIVATE ACC_CASALE_DIR="${ACC_DATA_CASALE_DIR}"
+    ACC_ZALAZONE_TOYOTA_DIR="${ACC_DATA_ZALAZONE_TOYOTA_RAV4_S_DIR}")
 endif()

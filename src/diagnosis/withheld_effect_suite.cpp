@@ -1,12 +1,15 @@
 #include "acc_identification/diagnosis/withheld_effect_suite.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
+#include "acc_identification/diagnosis/injected_effect.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/normal_source.h"
 
@@ -335,6 +338,213 @@ std::string formatMagnitudeRecovery(const std::vector<WithheldOutcome>& outcomes
                   effect.parameters.front().name.c_str(), absolute.size(), median(absolute), 100.0 * median(relative));
     out << row;
   }
+  return out.str();
+}
+
+std::vector<SemiRealCase> semiRealCaseGrid()
+{
+  return {{EffectKind::sensor_time_offset, 0.5},
+          {EffectKind::sensor_time_offset, 1.0},
+          {EffectKind::actuation_lag, 0.5},
+          {EffectKind::actuation_lag, 1.0}};
+}
+
+std::vector<CarFollowingRun> injectCase(const std::vector<CarFollowingRun>& runs, const SemiRealCase& c)
+{
+  if (c.injected != EffectKind::none && c.injected != EffectKind::sensor_time_offset &&
+      c.injected != EffectKind::actuation_lag)
+  {
+    throw std::invalid_argument("no injection for effect " + effectName(c.injected));
+  }
+  std::vector<CarFollowingRun> out;
+  for (const CarFollowingRun& run : runs)
+  {
+    if (c.injected == EffectKind::sensor_time_offset)
+    {
+      out.push_back(injectSensorTimeOffset(run, c.magnitude));
+    }
+    else if (c.injected == EffectKind::actuation_lag)
+    {
+      out.push_back(injectActuationLag(run, c.magnitude));
+    }
+    else
+    {
+      out.push_back(run);
+    }
+  }
+  return out;
+}
+
+DiagnosisResult diagnoseSemiReal(const std::vector<CarFollowingRun>& runs, const DiagnosisOptions& options)
+{
+  DiagnosisOptions chosen = options;
+  chosen.with_stability_test = false;
+  chosen.forward_selection = true;
+  return diagnoseRuns(runs, chosen);
+}
+
+std::optional<double> selectedMagnitude(const DiagnosisResult& result, EffectKind kind)
+{
+  if (!result.selected_effects.empty())
+  {
+    const AugmentedFit& last = result.selected_effects.back().model.fit;
+    const std::vector<EffectKind> effects = effectsOf(last);
+    if (std::find(effects.begin(), effects.end(), kind) != effects.end())
+    {
+      return effectValues(kind, last.settings).front();
+    }
+  }
+  if (result.selection.dominant == kind)
+  {
+    for (const ModelDiagnosis& model : result.effects)
+    {
+      if (model.fit.effect == kind)
+      {
+        return effectValues(kind, model.fit.settings).front();
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+namespace
+{
+/// kind's first parameter in its single-effect fit (NaN when kind was not a candidate).
+double singleFitMagnitude(const DiagnosisResult& result, EffectKind kind)
+{
+  for (const ModelDiagnosis& model : result.effects)
+  {
+    if (model.fit.effect == kind && !model.fit.effect_values.empty())
+    {
+      return model.fit.effect_values.front();
+    }
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+}  // namespace
+
+bool SemiRealOutcome::passed(double tolerance) const
+{
+  if (input.injected == EffectKind::none)
+  {
+    return true;  // the baseline is a measurement, not a check
+  }
+  return selected && std::abs(recoveredMagnitude() - input.magnitude) <= tolerance * std::abs(input.magnitude);
+}
+
+SemiRealOutcome runSemiRealCase(const SemiRealSet& set, const SemiRealCase& c, const DiagnosisResult& baseline,
+                                const DiagnosisOptions& options)
+{
+  const auto start = std::chrono::steady_clock::now();
+  const DiagnosisResult result =
+      c.injected == EffectKind::none ? baseline : diagnoseSemiReal(injectCase(set.runs, c), options);
+  SemiRealOutcome outcome;
+  outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  outcome.set_name = set.name;
+  outcome.input = c;
+  outcome.dominant = result.selection.dominant;
+  for (const ForwardSelectionStep& step : result.selected_effects)
+  {
+    outcome.chain.push_back(step.added);
+  }
+  outcome.base_test_rmse_speed_mps = result.baseline.test_rmse_speed_mps;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::optional<double> fitted = selectedMagnitude(result, c.injected);
+  outcome.selected = c.injected != EffectKind::none && fitted.has_value();
+  outcome.fitted_magnitude = fitted.value_or(nan);
+  outcome.baseline_magnitude = selectedMagnitude(baseline, c.injected).value_or(0.0);
+  outcome.single_fit_magnitude = singleFitMagnitude(result, c.injected);
+  outcome.baseline_single_fit_magnitude = singleFitMagnitude(baseline, c.injected);
+  return outcome;
+}
+
+namespace
+{
+std::string formatDouble(const char* format, double x)
+{
+  char text[64];
+  std::snprintf(text, sizeof text, format, x);
+  return text;
+}
+
+std::string chainText(const std::vector<EffectKind>& chain)
+{
+  std::string text;
+  for (EffectKind kind : chain)
+  {
+    text += (text.empty() ? "" : " + ") + effectName(kind);
+  }
+  return text.empty() ? "-" : text;
+}
+
+std::string semiRealConfusion(const std::vector<SemiRealOutcome>& outcomes)
+{
+  std::vector<EffectKind> labels{EffectKind::none};
+  for (const CandidateEffect& effect : candidateEffects())
+  {
+    labels.push_back(effect.kind);
+  }
+  const std::vector<EffectKind> rows{EffectKind::none, EffectKind::sensor_time_offset, EffectKind::actuation_lag};
+  std::ostringstream out;
+  out << "| injected \\ dominant named |";
+  for (EffectKind label : labels)
+  {
+    out << " " << effectName(label) << " |";
+  }
+  out << "\n|---|";
+  for (std::size_t i = 0; i < labels.size(); ++i)
+  {
+    out << "---|";
+  }
+  out << "\n";
+  for (EffectKind row : rows)
+  {
+    out << "| " << (row == EffectKind::none ? std::string("none (baseline)") : effectName(row)) << " |";
+    for (EffectKind label : labels)
+    {
+      const auto count = std::count_if(outcomes.begin(), outcomes.end(), [&](const SemiRealOutcome& o) {
+        return o.input.injected == row && o.dominant == label;
+      });
+      out << " " << count << " |";
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+}  // namespace
+
+std::string formatSemiRealTables(const std::vector<SemiRealOutcome>& outcomes)
+{
+  std::ostringstream out;
+  out << semiRealConfusion(outcomes) << "\n";
+  out << "| set | injected | value [s] | dominant | chain | selected: fitted | baseline | recovered | error | "
+         "single fit: injected | baseline | shift | error | pass | time [s] |\n"
+         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::size_t checks = 0, passes = 0, shifts_within = 0;
+  for (const SemiRealOutcome& o : outcomes)
+  {
+    const bool check = o.input.injected != EffectKind::none;
+    auto number = [](double x) { return std::isfinite(x) ? formatDouble("%.3f", x) : std::string("-"); };
+    auto error = [&](double recovered) {
+      return check && std::isfinite(recovered)
+                 ? formatDouble("%+.0f%%", 100.0 * (recovered - o.input.magnitude) / o.input.magnitude)
+                 : std::string("-");
+    };
+    out << "| " << o.set_name << " | " << effectName(o.input.injected) << " | " << formatDouble("%.2f", o.input.magnitude)
+        << " | " << effectName(o.dominant) << " | " << chainText(o.chain) << " | "
+        << number(o.fitted_magnitude) << " | " << (check ? number(o.baseline_magnitude) : "-") << " | "
+        << number(o.recoveredMagnitude()) << " | " << error(o.recoveredMagnitude()) << " | "
+        << number(o.single_fit_magnitude) << " | " << number(o.baseline_single_fit_magnitude) << " | "
+        << (check ? number(o.singleFitShift()) : "-") << " | " << error(o.singleFitShift()) << " | "
+        << (check ? (o.passed() ? "yes" : "NO") : "-") << " | " << formatDouble("%.1f", o.seconds) << " |\n";
+    checks += check ? 1 : 0;
+    passes += check && o.passed() ? 1 : 0;
+    shifts_within += check && std::abs(o.singleFitShift() - o.input.magnitude) <= 0.25 * o.input.magnitude ? 1 : 0;
+  }
+  out << "\npassed: " << passes << " of " << checks
+      << " (injected effect dominant or in the chain, its fitted value minus the baseline's within 25% of the "
+         "injected value); single-fit shift within 25%: "
+      << shifts_within << " of " << checks << "\n";
   return out.str();
 }
 

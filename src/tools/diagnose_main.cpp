@@ -1,6 +1,7 @@
 // diagnose: where a calibrated ACC model misses the real car, which physical effect it lacks and
 // what adding that effect buys (issue 6). Also runs the withheld-effect suite.
 #include <cerrno>
+#include <chrono>
 #include <filesystem>
 #include <cmath>
 #include <optional>
@@ -18,6 +19,7 @@
 #include "acc_identification/diagnosis/diagnosis.h"
 #include "acc_identification/diagnosis/diagnosis_output.h"
 #include "acc_identification/diagnosis/withheld_effect_suite.h"
+#include "acc_identification/io/run_csv.h"
 #include "acc_identification/ros/run_bag_reader.h"
 
 
@@ -84,8 +86,99 @@ std::string defaultPlotScript()
   return error ? std::string("plot_diagnosis.py") : (executable.parent_path() / "plot_diagnosis.py").string();
 }
 
+/// The real data sets of the semi-real suite, read from the bundled data unpacked at build time:
+/// Casale parts 3-6 (one set) and the ZalaZone Toyota RAV4 excerpt runs (another).
+std::vector<acc::SemiRealSet> bundledSemiRealSets()
+{
+  auto read = [](const std::string& name, const std::string& dir, const std::vector<std::string>& files,
+                 const acc::OpenAccPairSelector& selector) {
+    acc::SemiRealSet set{name, {}};
+    for (const std::string& file : files)
+    {
+      for (acc::CarFollowingRun& run : acc::readRuns(dir + "/" + file, acc::RunPlausibilityBounds{}, selector))
+      {
+        set.runs.push_back(std::move(run));
+      }
+    }
+    return set;
+  };
+  return {read("casale_parts3-6", ACC_CASALE_DIR, {"part3.csv", "part4.csv", "part5.csv", "part6.csv"},
+               acc::OpenAccPairSelector::first()),
+          read("zalazone_toyota_rav4", ACC_ZALAZONE_TOYOTA_DIR,
+               {"dynamic_part5.csv", "dynamic_part6.csv", "dynamic_part12.csv", "dynamic_part14.csv"},
+               acc::OpenAccPairSelector::byFollower("TOYOTA_RAV4"))};
+}
+
+nlohmann::json semiRealJson(const acc::SemiRealOutcome& o)
+{
+  auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+  std::vector<std::string> chain;
+  for (acc::EffectKind kind : o.chain)
+  {
+    chain.push_back(acc::effectName(kind));
+  }
+  return {{"set", o.set_name},
+          {"injected", acc::effectName(o.input.injected)},
+          {"injected_value", o.input.magnitude},
+          {"dominant_effect", acc::effectName(o.dominant)},
+          {"selected_effects", chain},
+          {"selected", o.selected},
+          {"fitted_magnitude", number(o.fitted_magnitude)},
+          {"baseline_magnitude", o.baseline_magnitude},
+          {"recovered_magnitude", number(o.recoveredMagnitude())},
+          {"single_fit_magnitude", number(o.single_fit_magnitude)},
+          {"baseline_single_fit_magnitude", number(o.baseline_single_fit_magnitude)},
+          {"single_fit_shift", number(o.singleFitShift())},
+          {"base_test_rmse_speed", o.base_test_rmse_speed_mps},
+          {"passed", o.passed()},
+          {"seconds", o.seconds}};
+}
+
+/// Real runs with a known effect injected: each set's untouched diagnosis, then every injection.
+int runSemiRealSuite(const acc::DiagnosisOptions& options, const std::optional<std::string>& json_path)
+{
+  std::vector<acc::SemiRealSet> sets;
+  try
+  {
+    sets = bundledSemiRealSets();
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+  std::vector<acc::SemiRealOutcome> outcomes;
+  nlohmann::json cases = nlohmann::json::array();
+  for (const acc::SemiRealSet& set : sets)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    const acc::DiagnosisResult baseline = acc::diagnoseSemiReal(set.runs, options);
+    std::vector<acc::SemiRealCase> grid = acc::semiRealCaseGrid();
+    grid.insert(grid.begin(), acc::SemiRealCase{});
+    for (const acc::SemiRealCase& c : grid)
+    {
+      acc::SemiRealOutcome o = acc::runSemiRealCase(set, c, baseline, options);
+      if (c.injected == acc::EffectKind::none)
+      {
+        o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      }
+      std::fprintf(stderr, "%s: injected %s %.2f -> %s, recovered %.4g (%.1f s)\n", set.name.c_str(),
+                   acc::effectName(c.injected).c_str(), c.magnitude, acc::effectName(o.dominant).c_str(),
+                   o.recoveredMagnitude(), o.seconds);
+      cases.push_back(semiRealJson(o));
+      outcomes.push_back(o);
+    }
+  }
+  std::cout << acc::formatSemiRealTables(outcomes);
+  return json_path && !writeJson({{"cases", cases}}, *json_path) ? 1 : 0;
+}
+
 int runSuite(const std::string& size, const acc::DiagnosisOptions& options, const std::optional<std::string>& json_path)
 {
+  if (size == "semi-real")
+  {
+    return runSemiRealSuite(options, json_path);
+  }
   std::vector<acc::WithheldCase> grid;
   if (size == "small")
   {
@@ -100,7 +193,7 @@ int runSuite(const std::string& size, const acc::DiagnosisOptions& options, cons
   }
   else
   {
-    std::cerr << "error: --withheld-suite takes small or large\n";
+    std::cerr << "error: --withheld-suite takes small, large or semi-real\n";
     return 2;
   }
   std::vector<acc::WithheldOutcome> outcomes;
@@ -253,8 +346,10 @@ int main(int argc, char** argv)
   app.add_option("--max-chain-length", options.max_chain_length, "most effects the forward selection adds")
       ->check(CLI::Range(1, 8))
       ->capture_default_str();
-  app.add_option("--withheld-suite", suite, "synthetic runs with a hidden effect; prints the confusion matrix")
-      ->check(CLI::IsMember({"small", "large"}));
+  app.add_option("--withheld-suite", suite,
+                 "synthetic runs with a hidden effect (small, large), or the bundled real runs with an offset or "
+                 "lag injected (semi-real); prints the confusion matrix")
+      ->check(CLI::IsMember({"small", "large", "semi-real"}));
   auto* follower_option =
       app.add_option("--follower", follower,
                      "OpenACC files: the follower of the pair to read, by its Vehicle_order name (e.g. BMW_I3, any "
