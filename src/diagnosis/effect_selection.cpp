@@ -6,6 +6,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "acc_identification/model/portable_uniform.h"
+
 namespace acc
 {
 namespace
@@ -67,10 +69,10 @@ std::vector<std::vector<double>> bootstrapMeans(const std::vector<SquaredErrorsB
       {
         continue;
       }
-      std::uniform_int_distribution<std::size_t> start(0, n - 1);
       for (std::size_t drawn = 0; drawn < n;)
       {
-        const std::size_t s = start(rng);
+        // Portable: the same block starts with every standard library (portable_uniform.h).
+        const auto s = static_cast<std::size_t>(uniformBelow(rng, n));
         const std::size_t length = std::min(block, n - drawn);
         for (std::size_t i = 0; i < length; ++i)
         {

@@ -4,18 +4,12 @@
 #include <random>
 #include <stdexcept>
 
+#include "acc_identification/model/portable_uniform.h"
+
 namespace acc
 {
 namespace
 {
-/// Uniform integer in [0, range) from one raw 64-bit draw (multiply-high: the bias is below
-/// range / 2^64, negligible), the same with every standard library.
-std::uint32_t uniformBelow(std::mt19937_64& engine, std::uint64_t range)
-{
-  const unsigned __int128 product = static_cast<unsigned __int128>(engine()) * range;
-  return static_cast<std::uint32_t>(product >> 64);
-}
-
 /// prefix[i] = x[offset] + ... + x[offset + i - 1].
 std::vector<double> prefixSums(const std::vector<double>& x, std::size_t offset, std::size_t length)
 {
@@ -61,7 +55,7 @@ MovingBlockBootstrap::MovingBlockBootstrap(std::vector<std::size_t> segment_leng
       const std::size_t blocks = segment.full_blocks + (segment.last_block > 0 ? 1 : 0);
       for (std::size_t j = 0; j < blocks; ++j)
       {
-        starts_.push_back(uniformBelow(engine, segment.length - segment.block + 1));
+        starts_.push_back(static_cast<std::uint32_t>(uniformBelow(engine, segment.length - segment.block + 1)));
       }
     }
   }
