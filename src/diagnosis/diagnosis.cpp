@@ -93,21 +93,6 @@ ModelDiagnosis scoreModel(const AugmentedFit& fit, const DiagnosisResult& data, 
   return model;
 }
 
-double meanSquared(const SquaredErrorsByRun& errors)
-{
-  double sum = 0.0;
-  std::size_t count = 0;
-  for (const auto& run : errors)
-  {
-    for (double e : run)
-    {
-      sum += e;
-    }
-    count += run.size();
-  }
-  return count > 0 ? sum / static_cast<double>(count) : 0.0;
-}
-
 /// The values of the last effect of a combined fit (the one a step adds).
 std::vector<double> lastEffectValues(const AugmentedFit& fit)
 {
@@ -195,7 +180,7 @@ void forwardSelect(const DiagnosisOptions& options, const std::vector<SquaredErr
   SquaredErrorsByRun current_errors = candidate_errors[first];
   std::vector<EffectKind> remaining = options.candidates;
   remaining.erase(remaining.begin() + static_cast<long>(first));
-  const double base_mse = meanSquared(base_errors);
+  const double base_mse = meanOf(base_errors);
   while (result->selected_effects.size() < options.max_chain_length && !remaining.empty())
   {
     const AugmentedFit current = result->selected_effects.back().model.fit;

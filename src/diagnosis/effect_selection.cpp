@@ -31,20 +31,6 @@ SquaredErrorsByRun difference(const SquaredErrorsByRun& a, const SquaredErrorsBy
   return d;
 }
 
-double meanOf(const SquaredErrorsByRun& series)
-{
-  double sum = 0.0;
-  std::size_t count = 0;
-  for (const auto& run : series)
-  {
-    for (double value : run)
-    {
-      sum += value;
-    }
-    count += run.size();
-  }
-  return count > 0 ? sum / static_cast<double>(count) : 0.0;
-}
 
 /// Moving-block bootstrap of the means of several paired series at once (same resampled blocks
 /// for all). Returns [resample][series]. Blocks wrap around each run's end (circular), so every
@@ -130,6 +116,21 @@ ImprovementEstimate estimate(const SquaredErrorsByRun& diff, const std::vector<d
   return e;
 }
 }  // namespace
+
+double meanOf(const SquaredErrorsByRun& series)
+{
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const auto& run : series)
+  {
+    for (double value : run)
+    {
+      sum += value;
+    }
+    count += run.size();
+  }
+  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
 
 SelectionResult selectEffect(const SquaredErrorsByRun& base, const std::vector<SquaredErrorsByRun>& candidates,
                              const std::vector<EffectKind>& kinds, double sample_period_s,

@@ -38,6 +38,9 @@ struct SelectionOptions
 /// Held-out squared speed errors of one model, one vector per run (same lengths for every model).
 using SquaredErrorsByRun = std::vector<std::vector<double>>;
 
+/// The mean over every sample of every run (0 when there is none).
+double meanOf(const SquaredErrorsByRun& series);
+
 /// Mean of a paired difference and its bootstrap lower bounds.
 struct ImprovementEstimate
 {
