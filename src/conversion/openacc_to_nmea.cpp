@@ -50,20 +50,11 @@ namespace
 /// the ones the fixes need. Other cars' cells do not matter.
 std::string pairRowProblem(const OpenAccFile& file, const OpenAccPair& pair, std::size_t i)
 {
-  if (!file.row_problems[i].empty())
-    return file.row_problems[i];
   std::vector<std::string> columns{"Time", "IVS" + std::to_string(pair.leader_position)};
   for (int k : {pair.leader_position, pair.follower_position})
     for (const char* quantity : {"Speed", "Lat", "Lon"})
       columns.push_back(quantity + std::to_string(k));
-  std::string problems;
-  for (const std::string& column : columns)
-  {
-    const std::string problem = file.cellProblem(i, column);
-    if (!problem.empty())
-      problems += (problems.empty() ? "" : ", ") + problem;
-  }
-  return problems;
+  return file.rowProblem(i, columns);
 }
 }  // namespace
 

@@ -574,6 +574,24 @@ std::string OpenAccFile::cellProblem(std::size_t row, const std::string& column)
   return "";
 }
 
+std::string OpenAccFile::rowProblem(std::size_t row, const std::vector<std::string>& columns) const
+{
+  if (!row_problems[row].empty())
+  {
+    return row_problems[row];
+  }
+  std::string problems;
+  for (const std::string& column : columns)
+  {
+    const std::string problem = cellProblem(row, column);
+    if (!problem.empty())
+    {
+      problems += (problems.empty() ? "" : ", ") + problem;
+    }
+  }
+  return problems;
+}
+
 bool looksLikeOpenAccFile(const std::string& path)
 {
   std::ifstream in(path);

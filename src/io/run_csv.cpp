@@ -320,23 +320,9 @@ std::string describeAccSource(const OpenAccFile& file, const OpenAccPair& pair, 
 /// pair's own columns (other cars' cells do not matter). "" when the four values are numbers.
 std::string pairRowProblem(const OpenAccFile& file, const OpenAccPair& pair, std::size_t i)
 {
-  if (!file.row_problems[i].empty())
-  {
-    return file.row_problems[i];
-  }
-  const std::vector<std::string> columns{"Time", "IVS" + std::to_string(pair.leader_position),
-                                         "Speed" + std::to_string(pair.follower_position),
-                                         "Speed" + std::to_string(pair.leader_position)};
-  std::string problems;
-  for (const std::string& column : columns)
-  {
-    const std::string problem = file.cellProblem(i, column);
-    if (!problem.empty())
-    {
-      problems += (problems.empty() ? "" : ", ") + problem;
-    }
-  }
-  return problems;
+  return file.rowProblem(i, {"Time", "IVS" + std::to_string(pair.leader_position),
+                             "Speed" + std::to_string(pair.follower_position),
+                             "Speed" + std::to_string(pair.leader_position)});
 }
 
 /// One pair's runs: the four values of each row, through the same checks as a canonical CSV.

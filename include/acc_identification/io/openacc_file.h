@@ -110,6 +110,10 @@ struct OpenAccFile
   /// Why the cell of this column in this row is bad ("IVS1 empty"), or "" when it holds a number
   /// (or the row is unread as a whole: see row_problems).
   std::string cellProblem(std::size_t row, const std::string& column) const;
+  /// Why this row cannot give the values of these columns: the row's own problem when it is unread
+  /// as a whole, else every bad cell among them ("IVS1 empty, Speed2 NaN"); "" when all are
+  /// numbers. Cells of other columns do not matter (a reader asks for the pair it reads).
+  std::string rowProblem(std::size_t row, const std::vector<std::string>& columns) const;
 };
 
 /// Reads an OpenACC file; never throws for the file's content (see OpenAccFile::error).
