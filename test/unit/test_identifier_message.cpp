@@ -52,25 +52,34 @@ namespace
 {
 /// Issue "the verdict on real drives": each quantity is NaN only where the data do not determine
 /// it, the drive so far is published beside the window, and the verdict with its p-value.
-TEST(IdentifierMessage, QuantitiesOneByOneTheDriveAndTheVerdict)
+/// A window of Table II's minimum setting identified from a synthetic run, with one quantity
+/// pretended not determined (as real drives leave some), and the run it came from.
+acc::OnlineUpdate windowWithout(const std::string& quantity, const std::string& reason, acc::CarFollowingRun* run)
 {
   acc::IdentificationOptions options;
   options.multistart.starts = 8;
-  const auto run = acc::synthesizeRun(acc::paperMinimumSetting(), 300.0, 0.1, 25.0, 5);
+  *run = acc::synthesizeRun(acc::paperMinimumSetting(), 300.0, 0.1, 25.0, 5);
   acc::OnlineUpdate update;
-  update.window = acc::identifyAcc({run}, options);
-  ASSERT_TRUE(update.window.solved);
+  update.window = acc::identifyAcc({*run}, options);
   update.window_quantities =
-      acc::assessQuantities(update.window.calibration.parameters, update.window.uncertainty, {run});
-  // Pretend the data pin everything but tau_e (as real steady drives do).
+      acc::assessQuantities(update.window.calibration.parameters, update.window.uncertainty, {*run});
   for (auto& q : update.window_quantities->quantities)
   {
-    if (q.name == "tau_e")
+    if (q.name == quantity)
     {
       q.determined = false;
-      q.reason = "tau_e = 0 +- 0.67 s: standard error too large";
+      q.reason = reason;
     }
   }
+  return update;
+}
+
+TEST(IdentifierMessage, QuantitiesOneByOneTheDriveAndTheVerdict)
+{
+  acc::CarFollowingRun run;
+  // Pretend the data pin everything but tau_e (as real steady drives do).
+  acc::OnlineUpdate update = windowWithout("tau_e", "tau_e = 0 +- 0.67 s: standard error too large", &run);
+  ASSERT_TRUE(update.window.solved);
   update.drive = update.window;
   update.drive_quantities = update.window_quantities;
   update.drive_samples = run.size();
@@ -139,26 +148,14 @@ TEST(IdentifierSamples, ImplausibleValuesAreSplitPointsLikeInBatch)
   EXPECT_FALSE(acc::toWindowSample(message, why).valid);
   EXPECT_TRUE(why.empty());
 }
+
 /// eta does not enter the linearised dynamics: a window that pins k1, k2 and tau_e but not eta
 /// (the ZalaZone drive of the demo) still publishes lambda2 and the band, yet is not "identifiable".
 TEST(IdentifierMessage, Lambda2NeedsTheDynamicsNotEta)
 {
-  acc::IdentificationOptions options;
-  options.multistart.starts = 8;
-  const auto run = acc::synthesizeRun(acc::paperMinimumSetting(), 300.0, 0.1, 25.0, 5);
-  acc::OnlineUpdate update;
-  update.window = acc::identifyAcc({run}, options);
+  acc::CarFollowingRun run;
+  const acc::OnlineUpdate update = windowWithout("eta", "eta = 0.3 +- 1.3 m: standard error too large", &run);
   ASSERT_TRUE(update.window.solved);
-  update.window_quantities =
-      acc::assessQuantities(update.window.calibration.parameters, update.window.uncertainty, {run});
-  for (auto& q : update.window_quantities->quantities)
-  {
-    if (q.name == "eta")
-    {
-      q.determined = false;
-      q.reason = "eta = 0.3 +- 1.3 m: standard error too large";
-    }
-  }
   const auto m = acc::toMessage(update, 1000.0, 1300.0, 900.0);
   EXPECT_TRUE(std::isnan(m.eta_m));
   EXPECT_FALSE(m.identifiable);
