@@ -9,6 +9,7 @@ acc_add_library(acc_calibration
     src/calibration/identification.cpp
     src/calibration/synthetic_runs.cpp
     src/calibration/sliding_window.cpp
+    src/calibration/drive_record.cpp
     src/calibration/grid_search.cpp
     src/calibration/calibration_report.cpp
     src/calibration/margin_constrained_fit.cpp
@@ -39,6 +40,7 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_calibration_objective.cpp
     test/unit/test_calibration_multistart.cpp
     test/unit/test_identifier_window.cpp
+    test/unit/test_drive_record.cpp
     test/unit/test_calibration_report.cpp
     test/unit/test_synthetic_runs.cpp)
   target_compile_definitions(test_calibration PRIVATE ACC_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/test/data/runs")

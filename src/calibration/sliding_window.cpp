@@ -133,6 +133,28 @@ std::vector<CarFollowingRun> SlidingWindow::segments(std::size_t* short_pieces) 
   return result;
 }
 
+std::size_t SlidingWindow::letGo(std::size_t first, std::size_t count)
+{
+  if (samples_.size() < 2 || first >= samples_.size() - 1)
+  {
+    return 0;
+  }
+  count = std::min(count, samples_.size() - 1 - first);  // the newest sample stays
+  const auto begin = samples_.begin() + static_cast<std::ptrdiff_t>(first);
+  const bool joins_across = first > 0 && first + count < samples_.size() &&
+                            samples_[first + count].time_s - samples_[first - 1].time_s <= max_gap_s_;
+  samples_.erase(begin, begin + static_cast<std::ptrdiff_t>(count));
+  if (joins_across)
+  {
+    // Too short a stretch to open a hole: mark the cut so no Euler step crosses it.
+    WindowSample cut = samples_[first];
+    cut.valid = false;
+    samples_.insert(samples_.begin() + static_cast<std::ptrdiff_t>(first), cut);
+    --count;
+  }
+  return count;
+}
+
 std::string SlidingWindow::describe(AddResult result)
 {
   switch (result)

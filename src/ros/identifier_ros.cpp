@@ -66,15 +66,6 @@ std::string undeterminedNote(const std::optional<IdentifiableQuantities>& quanti
   return note;
 }
 
-std::size_t sampleCount(const std::vector<CarFollowingRun>& segments)
-{
-  std::size_t samples = 0;
-  for (const CarFollowingRun& segment : segments)
-    samples += segment.size();
-  return samples;
-}
-
-
 void fillWindow(const OnlineUpdate& update, acc_identification::AccParameters& m)
 {
   const Identification& result = update.window;
@@ -170,6 +161,16 @@ bool loadIdentifierSettings(const ros::NodeHandle& p, IdentifierSettings& s, std
   }
   p.param("starts", s.starts, s.starts);
   p.param("drive_max_evaluations", s.drive_max_evaluations, s.drive_max_evaluations);
+  int drive_max_samples = static_cast<int>(s.drive_bound.max_samples);
+  p.param("drive_max_samples", drive_max_samples, drive_max_samples);
+  p.param("drive_block_s", s.drive_bound.block_s, s.drive_bound.block_s);
+  p.param("drive_speed_band_mps", s.drive_bound.speed_band_mps, s.drive_bound.speed_band_mps);
+  if (drive_max_samples < 0 || !(s.drive_bound.block_s > 0.0) || !(s.drive_bound.speed_band_mps > 0.0))
+  {
+    error = "parameters ~drive_max_samples must be >= 0 (0: unbounded), ~drive_block_s and ~drive_speed_band_mps > 0";
+    return false;
+  }
+  s.drive_bound.max_samples = static_cast<std::size_t>(drive_max_samples);
   p.param("stability_period_s", s.stability_period_s, s.stability_period_s);
   p.param("alpha", s.alpha, s.alpha);
   if (s.drive_max_evaluations < 1 || !(s.stability_period_s > 0.0) || !(s.alpha > 0.0 && s.alpha < 1.0))
@@ -218,7 +219,7 @@ acc_identification::AccParameters toMessage(const Identification& identification
 }
 
 IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node, SolveFunction solve)
-  : solve_(std::move(solve)), window_(settings_.window_s, settings_.max_gap_s, 2), drive_(1.0e9, settings_.max_gap_s, 2)
+  : solve_(std::move(solve)), window_(settings_.window_s, settings_.max_gap_s, 2), drive_(settings_.max_gap_s, 2, 30.0, 5)
 {
   if (!solve_)
   {
@@ -236,9 +237,10 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node,
   const auto min_segment = static_cast<std::size_t>(settings_.min_segment_samples);
   const auto confirm = static_cast<std::size_t>(settings_.jump_confirm_samples);
   window_ = SlidingWindow(settings_.window_s, settings_.max_gap_s, min_segment, settings_.max_forward_jump_s, confirm);
-  // The drive so far: a window that never slides (1e9 s is 31 years). It sees the same samples
-  // with the same settings, so it takes the same decisions on jumps in time.
-  drive_ = SlidingWindow(1.0e9, settings_.max_gap_s, min_segment, settings_.max_forward_jump_s, confirm);
+  // The drive so far: a window that never slides, bounded by letting go of the least telling
+  // blocks. It sees the same samples with the same settings, so it takes the same decisions on
+  // jumps in time.
+  drive_ = DriveRecord(settings_.max_gap_s, min_segment, settings_.max_forward_jump_s, confirm, settings_.drive_bound);
   OnlineIdentifierOptions options;
   options.window.criteria = settings_.criteria;
   options.window.multistart.starts = static_cast<std::size_t>(settings_.starts);
@@ -258,11 +260,12 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node,
   // stops with /clock at the end of a replay and leaves the last counts stale.
   diagnostic_timer_ = node.createWallTimer(ros::WallDuration(1.0),
                                            [this](const ros::WallTimerEvent&) { updater_.force_update(); });
-  ROS_INFO("identifier: window %.0f s and the drive so far, every %.2f s, %d fresh starts plus a warm start; "
-           "string-stability test of the drive at most every %.0f s (alpha %.3g); excitation: speed std >= %.2f m/s; "
-           "a jump in time needs %d consistent samples",
-           settings_.window_s, settings_.period_s, settings_.starts, settings_.stability_period_s, settings_.alpha,
-           settings_.criteria.min_speed_std_mps, settings_.jump_confirm_samples);
+  ROS_INFO("identifier: window %.0f s and the drive so far (at most %zu samples, let go of in %.0f s blocks), "
+           "every %.2f s, %d fresh starts plus a warm start; string-stability test of the drive at most every %.0f s "
+           "(alpha %.3g); excitation: speed std >= %.2f m/s; a jump in time needs %d consistent samples",
+           settings_.window_s, settings_.drive_bound.max_samples, settings_.drive_bound.block_s, settings_.period_s,
+           settings_.starts, settings_.stability_period_s, settings_.alpha, settings_.criteria.min_speed_std_mps,
+           settings_.jump_confirm_samples);
   ok_ = true;
 }
 
@@ -365,6 +368,8 @@ void IdentifierRos::onPeriod(const ros::TimerEvent& event)
     job.window_start_s = window_.startTimeS();
     job.window_end_s = window_.endTimeS();
     job.drive_start_s = drive_.startTimeS();
+    job.drive_samples_taken = drive_.samplesTaken();
+    job.drive_samples_let_go = drive_.samplesLetGoThisDrive();
     job.drive_reset = drive_reset_pending_;
     drive_reset_pending_ = false;
   }
@@ -375,7 +380,7 @@ void IdentifierRos::onPeriod(const ros::TimerEvent& event)
   {
     last_stability_request_samples_ = 0;  // the thread was busy: ask again
   }
-  const std::size_t drive_samples = sampleCount(job.drive_segments);
+  const std::uint64_t drive_samples = job.drive_samples_taken;  // the kept count may stay level
   const double now_s = event.current_real.toSec();
   const bool grown = drive_samples != last_stability_request_samples_;
   const bool stalled = drive_samples == previous_period_drive_samples_;
@@ -460,7 +465,9 @@ void IdentifierRos::runJob(Job& job)
   {
     offerStabilityJob(job, update);
   }
-  publisher_.publish(toMessage(update, job.window_start_s, job.window_end_s, job.drive_start_s));
+  acc_identification::AccParameters message = toMessage(update, job.window_start_s, job.window_end_s, job.drive_start_s);
+  message.drive_samples_let_go = static_cast<std::uint32_t>(job.drive_samples_let_go);
+  publisher_.publish(message);
   ++published_;
 }
 
@@ -545,6 +552,8 @@ IdentifierCounters IdentifierRos::counters()
   c.restarts = w.restarts;
   c.jumps_ahead = w.jumps_ahead;
   c.held = window_.heldSamples();
+  c.drive_samples_let_go = drive_.samplesLetGo();
+  c.drive_blocks_let_go = drive_.blocksLetGo();
   return c;
 }
 
@@ -633,6 +642,8 @@ void IdentifierRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status
   status.add("time jumps ahead (confirmed)", c.jumps_ahead);
   status.add("samples held (jump awaiting confirmation)", c.held);
   status.add("drive resets", c.drive_resets);
+  status.add("drive samples let go (bound)", c.drive_samples_let_go);
+  status.add("drive blocks let go (bound)", c.drive_blocks_let_go);
   status.add("solves", c.solves);
   status.add("skipped periods (solve overran)", c.skipped_periods);
   status.add("windows not identifiable", c.not_identifiable);

@@ -12,9 +12,9 @@ a listener measures, for each relative_state and acc_parameters message, how far
 
 Writes OUT/long_drive_memory.csv, OUT/long_drive_latency.csv, OUT/long_drive.png and
 OUT/long_drive.json (per node: RSS at 10 % and at the end of the drive, the largest; latency
-median per tenth of the drive). Exits non-zero when a node's memory grows by more than 20 MB
+median per tenth of the drive). Exits non-zero when a node's memory grows by more than 10 MB
 from the first tenth of the drive to its end, or the median latency of the last tenth exceeds
-the first tenth's by more than 2 s of bag time.
+the first tenth's by more than 1 s of bag time.
 
 Usage: long_drive_check.py WORKSPACE OUT_DIR [--rate 50]   (workspace's devel/setup.bash sourced)
 """
@@ -184,7 +184,7 @@ def report(memory, latencies, out):
             late = statistics.median(s[node] for s in sampled[-tenth:])
             summary["nodes"][node] = {"rss_mb_early": early, "rss_mb_end": late,
                                       "rss_mb_max": max(s[node] for s in sampled)}
-            if late - early > 20.0:
+            if late - early > 10.0:
                 problems.append("%s grew from %.1f to %.1f MB" % (node, early, late))
     for topic in ("relative_state", "acc_parameters"):
         values = [(stamp, lag) for t, stamp, lag in latencies if t == topic]
@@ -195,7 +195,7 @@ def report(memory, latencies, out):
         tenth = len(values) // 10
         deciles = [statistics.median(v for _, v in values[i * tenth:(i + 1) * tenth]) for i in range(10)]
         summary["latency"][topic] = {"messages": len(values), "median_by_tenth_s": deciles}
-        if deciles[-1] - deciles[0] > 2.0:
+        if deciles[-1] - deciles[0] > 1.0:
             problems.append("%s latency grew from %.2f to %.2f s of bag time" % (topic, deciles[0], deciles[-1]))
     summary["problems"] = problems
     json.dump(summary, open(os.path.join(out, "long_drive.json"), "w"), indent=1)

@@ -218,6 +218,9 @@ class EndToEnd(unittest.TestCase):
             self.assertLess(decided[0].stability_samples, drive_total, "the verdict came only at the very end")
         last = self.last_params()
         self.assertGreater(last.stability_samples, 0, "the string-stability test never ran")
+        # The batch comparison below rebuilds the tested samples from every valid one: it holds for
+        # a drive within the node's bound (~drive_max_samples), which this one must be.
+        self.assertEqual(last.drive_samples_let_go, 0, "the drive outgrew ~drive_max_samples")
         drive_start = last.drive_start.to_sec()
         tested = sorted((s for s in self.states if s.valid and s.header.stamp.to_sec() >= drive_start - 1e-6),
                         key=lambda s: s.header.stamp.to_sec())[:last.stability_samples]

@@ -80,6 +80,14 @@ public:
   double startTimeS() const { return samples_.empty() ? 0.0 : samples_.front().time_s; }
   double endTimeS() const { return samples_.empty() ? 0.0 : samples_.back().time_s; }
   double lengthS() const { return length_s_; }
+  /// The samples the window holds, oldest first (split points included).
+  const std::deque<WindowSample>& samples() const { return samples_; }
+  /// Lets go of count samples from index first on (never the newest sample, which the time-fault
+  /// checks compare with). Used to bound a window that never slides (the drive so far): the
+  /// samples either side are then further apart than max_gap_s, so they stay in separate segments
+  /// without a split point (or, across a shorter stretch, with one). Returns by how many samples
+  /// the window shrank.
+  std::size_t letGo(std::size_t first, std::size_t count);
 
   static std::string describe(AddResult result);
 

@@ -16,6 +16,7 @@
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/calibration/identification.h"
 #include "acc_identification/calibration/online_identifier.h"
+#include "acc_identification/calibration/drive_record.h"
 #include "acc_identification/calibration/sliding_window.h"
 
 #include <acc_identification/AccParameters.h>
@@ -39,6 +40,8 @@ struct IdentifierSettings
   int starts = 8;                     ///< fresh Halton starts per solve, besides the warm start
   int queue_size = 1000;              ///< subscriber queue: a replay may burst
   int drive_max_evaluations = 40;     ///< per period, continuing the drive-so-far solve
+  /// The drive so far's bound (max_samples 0: unbounded); see acc::DriveBound.
+  DriveBound drive_bound;
   double stability_period_s = 10.0;   ///< at most one string-stability test of the drive per this (ROS time)
   double alpha = 0.05;                ///< level of the string-stability test
   IdentifiabilityCriteria criteria;
@@ -79,6 +82,8 @@ struct IdentifierCounters
   std::uint64_t published = 0;
   std::uint64_t failures = 0;          ///< solves and string-stability tests that threw
   std::uint64_t stability_tests = 0;
+  std::uint64_t drive_samples_let_go = 0;  ///< to keep the drive within its bound (expected, not a fault)
+  std::uint64_t drive_blocks_let_go = 0;
 };
 
 /// The level (diagnostic_msgs::DiagnosticStatus) and summary of one diagnostics report.
@@ -135,6 +140,8 @@ private:
     double window_start_s = 0.0;
     double window_end_s = 0.0;
     double drive_start_s = 0.0;
+    std::uint64_t drive_samples_taken = 0;   ///< since the drive began: says whether it grew
+    std::uint64_t drive_samples_let_go = 0;  ///< of this drive, to keep within the bound
     bool drive_reset = false;  ///< time went back: the drive starts anew
     bool test_stability = false;  ///< hand the drive to the stability thread after this solve
   };
@@ -164,11 +171,11 @@ private:
   SolveFunction solve_;
   std::mutex window_mutex_;
   SlidingWindow window_;
-  SlidingWindow drive_;
+  DriveRecord drive_;
   bool drive_reset_pending_ = false;     ///< under window_mutex_
   double last_stability_request_s_ = -1.0e300;  ///< ROS time, timer thread only
-  std::size_t last_stability_request_samples_ = 0;  ///< drive samples then, timer thread only
-  std::size_t previous_period_drive_samples_ = 0;   ///< timer thread only
+  std::uint64_t last_stability_request_samples_ = 0;  ///< drive samples taken then, timer thread only
+  std::uint64_t previous_period_drive_samples_ = 0;   ///< timer thread only
 
   std::mutex job_mutex_;
   std::condition_variable job_ready_;
