@@ -18,6 +18,7 @@
 
 #include "acc_identification/diagnosis/diagnosis.h"
 #include "acc_identification/diagnosis/diagnosis_output.h"
+#include "acc_identification/diagnosis/combined_effect_suite.h"
 #include "acc_identification/diagnosis/withheld_effect_suite.h"
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/ros/run_bag_reader.h"
@@ -173,11 +174,50 @@ int runSemiRealSuite(const acc::DiagnosisOptions& options, const std::optional<s
   return json_path && !writeJson({{"cases", cases}}, *json_path) ? 1 : 0;
 }
 
+/// Every pair of effects withheld at once: does the forward selection's chain name both?
+int runCombinedSuite(const acc::DiagnosisOptions& options, const std::optional<std::string>& json_path)
+{
+  const std::vector<acc::WithheldCase> grid = acc::combinedCaseGrid();
+  std::vector<acc::CombinedOutcome> outcomes;
+  nlohmann::json cases = nlohmann::json::array();
+  for (std::size_t i = 0; i < grid.size(); ++i)
+  {
+    const acc::CombinedOutcome o = acc::runCombinedCase(grid[i], options);
+    nlohmann::json withheld = nlohmann::json::array(), chain = nlohmann::json::array();
+    for (std::size_t k = 0; k < o.withheld.size(); ++k)
+    {
+      withheld.push_back({{"effect", acc::effectName(o.withheld[k].first)},
+                          {"value", o.withheld[k].second},
+                          {"fitted", std::isfinite(o.fitted[k]) ? nlohmann::json(o.fitted[k]) : nlohmann::json(nullptr)}});
+    }
+    for (acc::EffectKind kind : o.chain)
+    {
+      chain.push_back(acc::effectName(kind));
+    }
+    std::fprintf(stderr, "[%zu/%zu] withheld %s + %s -> chain of %zu, %zu named (%.1f s)\n", i + 1, grid.size(),
+                 acc::effectName(o.withheld[0].first).c_str(), acc::effectName(o.withheld[1].first).c_str(),
+                 o.chain.size(), o.named(), o.seconds);
+    cases.push_back({{"withheld", withheld},
+                     {"chain", chain},
+                     {"seed", o.input.seed},
+                     {"base_test_rmse_speed", o.base_test_rmse_speed_mps},
+                     {"chain_test_rmse_speed", o.final_test_rmse_speed_mps},
+                     {"seconds", o.seconds}});
+    outcomes.push_back(o);
+  }
+  std::cout << acc::formatCombinedTables(outcomes);
+  return json_path && !writeJson({{"cases", cases}}, *json_path) ? 1 : 0;
+}
+
 int runSuite(const std::string& size, const acc::DiagnosisOptions& options, const std::optional<std::string>& json_path)
 {
   if (size == "semi-real")
   {
     return runSemiRealSuite(options, json_path);
+  }
+  if (size == "combined")
+  {
+    return runCombinedSuite(options, json_path);
   }
   std::vector<acc::WithheldCase> grid;
   if (size == "small")
@@ -193,7 +233,7 @@ int runSuite(const std::string& size, const acc::DiagnosisOptions& options, cons
   }
   else
   {
-    std::cerr << "error: --withheld-suite takes small, large or semi-real\n";
+    std::cerr << "error: --withheld-suite takes small, large, semi-real or combined\n";
     return 2;
   }
   std::vector<acc::WithheldOutcome> outcomes;
@@ -246,7 +286,7 @@ void printChain(const acc::DiagnosisResult& r)
   {
     const acc::ForwardSelectionStep& step = r.selected_effects[i];
     const acc::ModelDiagnosis& m = step.model;
-    std::printf("  %zu. + %-26s test_v %.4f m/s, test_gap %.3f m, MSE -%.1f%% of base (lower bound %.4g m^2/s^2), %s",
+    std::printf("  %zu. + %-26s test_v %.4f m/s, test_gap %.3f m, MSE -%.1f%% of the previous model's (lower bound %.4g m^2/s^2), %s",
                 i + 1, acc::effectName(step.added).c_str(), m.test_rmse_speed_mps, m.test_rmse_gap_m,
                 100.0 * m.improvement.relative, m.improvement.lower_bound,
                 m.stability.string_stable ? "stable" : "UNSTABLE");
@@ -348,8 +388,9 @@ int main(int argc, char** argv)
       ->capture_default_str();
   app.add_option("--withheld-suite", suite,
                  "synthetic runs with a hidden effect (small, large), or the bundled real runs with an offset or "
-                 "lag injected (semi-real); prints the confusion matrix")
-      ->check(CLI::IsMember({"small", "large", "semi-real"}));
+                 "lag injected (semi-real), or every pair of effects withheld at once (combined); prints the "
+                 "confusion matrix")
+      ->check(CLI::IsMember({"small", "large", "semi-real", "combined"}));
   auto* follower_option =
       app.add_option("--follower", follower,
                      "OpenACC files: the follower of the pair to read, by its Vehicle_order name (e.g. BMW_I3, any "
