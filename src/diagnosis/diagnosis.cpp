@@ -162,7 +162,7 @@ std::size_t indexOf(const std::vector<EffectKind>& kinds, EffectKind kind)
 
 /// Adds effects to the dominant one while the rule finds one that improves on the current model.
 void forwardSelect(const DiagnosisOptions& options, const std::vector<SquaredErrorsByRun>& candidate_errors,
-                   const SquaredErrorsByRun& base_errors, DiagnosisResult* result)
+                   DiagnosisResult* result)
 {
   if (!options.forward_selection || options.max_chain_length == 0)
   {
@@ -180,13 +180,12 @@ void forwardSelect(const DiagnosisOptions& options, const std::vector<SquaredErr
   SquaredErrorsByRun current_errors = candidate_errors[first];
   std::vector<EffectKind> remaining = options.candidates;
   remaining.erase(remaining.begin() + static_cast<long>(first));
-  const double base_mse = meanOf(base_errors);
   while (result->selected_effects.size() < options.max_chain_length && !remaining.empty())
   {
     const AugmentedFit current = result->selected_effects.back().model.fit;
     ForwardRound round = fitOnTop(current, remaining, options, *result);
     result->forward_rounds.push_back(selectEffect(current_errors, round.errors, remaining, result->sample_period_s,
-                                                  options.selection, round.resolvable, base_mse));
+                                                  options.selection, round.resolvable));
     const SelectionResult& selection = result->forward_rounds.back();
     if (selection.dominant == EffectKind::none)
     {
@@ -263,7 +262,7 @@ DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const Dia
                                                          result.operating_speed_mps, options.calibration,
                                                          options.stability_test);
   }
-  forwardSelect(options, candidate_errors, base_errors, &result);
+  forwardSelect(options, candidate_errors, &result);
   return result;
 }
 

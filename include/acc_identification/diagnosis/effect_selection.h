@@ -69,7 +69,9 @@ struct SelectionResult
 /// sample_period_s converts the block length to samples. resolvable: one flag per candidate
 /// (empty: all resolvable). reference_mse: the MSE that `relative` and the practical threshold
 /// refer to; 0 (default) means base's own. Forward selection passes the current model as base
-/// and the base model's MSE here, so that every step must gain the same share of the original gap.
+/// and leaves this 0: each step must remove a share of what the current model still gets wrong
+/// (measured against the base model's MSE, an effect that explains most of the gap, such as a
+/// set speed, left every second effect below the threshold, however large against the rest).
 SelectionResult selectEffect(const SquaredErrorsByRun& base, const std::vector<SquaredErrorsByRun>& candidates,
                              const std::vector<EffectKind>& kinds, double sample_period_s,
                              const SelectionOptions& options, const std::vector<bool>& resolvable = {},
