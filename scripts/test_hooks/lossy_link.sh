@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Two computers over a lossy radio link, in two network namespaces this test makes and removes
-# (test/field/lossy_link_test.py). Needs root (ip netns); writes RESULTS_DIR/lossy_link.xml.
+# (test/field/lossy_link_test.py): the leader's NMEA over UDP and ROS multi-machine, each over the
+# same impaired link (scripts/tun_link_emulator.py). Needs root (ip netns, TUN devices); writes
+# RESULTS_DIR/lossy_link.xml and the measured table RESULTS_DIR/lossy_link.txt.
 # Usage: lossy_link.sh WORKSPACE RESULTS_DIR   (run by scripts/run_tests.sh)
 set -uo pipefail
 ws=$1
