@@ -22,6 +22,7 @@
 
 #include "acc_identification/conversion/openacc_to_nmea.h"
 #include "acc_identification/gnss/nmea_log.h"
+#include "acc_identification/model/portable_uniform.h"
 
 namespace fs = std::filesystem;
 
@@ -97,7 +98,7 @@ TEST(RelativeStateNode, PairsLateBurstyLeaderFixesAndReportsDropoutsAndTimeReset
   for (std::size_t i = 0; i < leader.size(); ++i)
     if (i < kDropoutFirst || i > kDropoutLast)
       leader_order.push_back(i);
-  std::mt19937 random(11);
+  std::mt19937_64 random(11);
   std::size_t next_leader = 0;
   for (std::size_t i = 0; i < follower.size(); ++i)
   {
@@ -114,7 +115,7 @@ TEST(RelativeStateNode, PairsLateBurstyLeaderFixesAndReportsDropoutsAndTimeReset
       std::vector<std::size_t> burst;
       while (next_leader < leader_order.size() && leader_order[next_leader] + kDelayEpochs <= i)
         burst.push_back(leader_order[next_leader++]);
-      std::shuffle(burst.begin(), burst.end(), random);
+      acc::portableShuffle(burst, random);  // the same order with every standard library
       for (std::size_t j : burst)
         leader_pub.publish(acc::toMessage(leader[j], "leader_gps"));
     }

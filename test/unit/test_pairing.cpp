@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "acc_identification/model/portable_uniform.h"
 #include "acc_identification/relative_state/epoch_pairing.h"
 
 
@@ -96,7 +97,7 @@ TEST(Pairing, LateBurstyOutOfOrderLeaderIsStillPairedInOrder)
   acc::EpochPairer pairer;
   auto leader_times = epochs(0.0, 10.0);
   auto follower_times = epochs(0.0, 10.0);
-  std::mt19937 random(7);
+  std::mt19937_64 random(7);
   std::size_t sent = 0;
   // The leader's fixes come 1.2 s late in bursts of 5, shuffled inside each burst (the burst
   // spans 0.4 s of leader time, less than exact_wait_s: every epoch is still paired exactly).
@@ -109,7 +110,7 @@ TEST(Pairing, LateBurstyOutOfOrderLeaderIsStillPairedInOrder)
       std::vector<double> burst(leader_times.begin() + sent, leader_times.begin() + end);
       // (The first in order: the pairer learns the leader's epoch period from adjacent epochs.)
       if (sent > 0)
-        std::shuffle(burst.begin(), burst.end(), random);
+        acc::portableShuffle(burst, random);  // the same order with every standard library
       for (double t : burst)
         pairer.addLeader(fixAt(t));
       sent = end;

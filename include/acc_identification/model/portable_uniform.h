@@ -1,6 +1,8 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <random>
 
 namespace acc
@@ -14,6 +16,18 @@ inline std::uint64_t uniformBelow(std::mt19937_64& engine, std::uint64_t range)
 {
   const unsigned __int128 product = static_cast<unsigned __int128>(engine()) * range;
   return static_cast<std::uint64_t>(product >> 64);
+}
+
+/// Fisher-Yates with uniformBelow: the same order from the same seed with every standard library
+/// (std::shuffle's order is the library's own).
+template <class Sequence>
+void portableShuffle(Sequence& items, std::mt19937_64& engine)
+{
+  using std::swap;
+  for (std::size_t i = items.size(); i > 1; --i)
+  {
+    swap(items[i - 1], items[static_cast<std::size_t>(uniformBelow(engine, i))]);
+  }
 }
 
 }  // namespace acc
