@@ -1,5 +1,6 @@
 #include "acc_identification/calibration/calibration_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -124,16 +125,22 @@ void printReport(const CalibrationReport& report, std::ostream& out)
 {
   char line[512];
   out << "Fit (Gunter et al. Table I): speed and space-gap RMSE, each run simulated from its measured start\n";
-  std::snprintf(line, sizeof line, "%-28s %8s %10s %9s   %8s %10s %9s\n", "run", "train n", "speed m/s", "gap m",
-                "test n", "speed m/s", "gap m");
+  // As wide as the longest run name (a platoon pair's name is long): a cut name can be ambiguous.
+  int name_width = 28;
+  for (const RunScore& run : report.runs)
+  {
+    name_width = std::max(name_width, static_cast<int>(std::min<std::size_t>(run.name.size(), 200)));
+  }
+  std::snprintf(line, sizeof line, "%-*s %8s %10s %9s   %8s %10s %9s\n", name_width, "run", "train n", "speed m/s",
+                "gap m", "test n", "speed m/s", "gap m");
   out << line;
   for (const RunScore& run : report.runs)
   {
-    std::snprintf(line, sizeof line, "%-28s %s   %s\n", run.name.substr(0, 28).c_str(), fitCells(run.train).c_str(),
-                  fitCells(run.test).c_str());
+    std::snprintf(line, sizeof line, "%-*s %s   %s\n", name_width, run.name.substr(0, 200).c_str(),
+                  fitCells(run.train).c_str(), fitCells(run.test).c_str());
     out << line;
   }
-  std::snprintf(line, sizeof line, "%-28s %s   %s\n", "summary", fitCells(report.summary_train).c_str(),
+  std::snprintf(line, sizeof line, "%-*s %s   %s\n", name_width, "summary", fitCells(report.summary_train).c_str(),
                 fitCells(report.summary_test).c_str());
   out << line << "\n";
 

@@ -61,6 +61,26 @@ TEST(CalibrationReport, JsonHasTheKeysOtherToolsRead)
   EXPECT_NE(table.str().find("string UNSTABLE"), std::string::npos) << table.str();
   EXPECT_NE(table.str().find("part3"), std::string::npos);
 }
+
+TEST(CalibrationReport, TheTableNamesEveryRunWhole)
+{
+  acc::CalibrationReport report;
+  report.calibration.parameters = acc::paperMinimumSetting();
+  report.stability = acc::analyzeStringStability(report.calibration.parameters);
+  const std::string long_names[] = {"dynamic_part12 TESLA_MODEL3#2", "dynamic_part12 TESLA_MODEL3#3"};
+  for (const std::string& name : long_names)
+  {
+    acc::RunScore score;
+    score.name = name;
+    report.runs.push_back(score);
+  }
+  std::ostringstream table;
+  acc::printReport(report, table);
+  for (const std::string& name : long_names)
+  {
+    EXPECT_NE(table.str().find(name + " "), std::string::npos) << table.str();  // not cut at 28 characters
+  }
+}
 }  // namespace
 
 /// calibrate's JSON carries the string-stability test (issue: the verdict on real drives) and
