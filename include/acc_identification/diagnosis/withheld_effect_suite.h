@@ -108,7 +108,9 @@ struct SemiRealCase
   double magnitude = 0.0;  ///< the effect's first parameter [s]
 };
 
-/// Offset 0.5 s and 1.0 s, lag 0.5 s and 1.0 s.
+/// Clock offsets of -1, -0.5, 0.5, 1, 2 and 3 s (a real run may have one already: an injection
+/// of the other sign cancels it), actuation lags of 0.5, 1, 2 and 3 s: from the sizes production
+/// ACCs show to well beyond, so that the tables say from which size on an injection is named.
 std::vector<SemiRealCase> semiRealCaseGrid();
 
 /// Every run with the case's effect injected (the runs as they are for none). Throws
