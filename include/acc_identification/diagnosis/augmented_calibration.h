@@ -26,8 +26,13 @@ struct AugmentedCalibrationOptions
   /// Augmented fit: warm start from the base fit, with the effect's parameters at this many
   /// low-discrepancy points of the catalogue's start range (plus the "almost off" point).
   std::size_t effect_starts = 6;
+  /// The local solver (Levenberg-Marquardt with the simulator's exact Jacobian): passes per start,
+  /// and it stops when a step moves no unit coordinate by more than relative_x_tolerance or an
+  /// accepted step lowers the MSE by less than relative_mse_tolerance of it.
   int max_evaluations_per_start = 600;
   double relative_x_tolerance = 1e-6;
+  double relative_mse_tolerance = 1e-10;
+  double initial_damping = 1e-3;
 };
 
 /// The parameters of an augmented model as one vector x = (k1, k2, tau_e, eta, effect values in
