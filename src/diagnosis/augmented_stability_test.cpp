@@ -256,8 +256,8 @@ double augmentedStabilityIndex(const AccParameters& p, const EffectSettings& eff
   double lowest = std::numeric_limits<double>::infinity();
   for (const double w : indexFrequencyGridRadS())
   {
-    const double gain = augmentedTransferGain(p, effects, operating_speed_mps, w);
-    lowest = std::min(lowest, (1.0 - gain * gain) / (w * w));
+    const double gain_squared = augmentedTransferGainSquared(p, effects, operating_speed_mps, w);
+    lowest = std::min(lowest, (1.0 - gain_squared) / (w * w));
   }
   return p.k1_per_s2 * lowest;
 }
