@@ -292,13 +292,18 @@ FollowerSpeedSensitivities simulateFollowerSensitivities(const std::vector<Effec
   {
     throw std::invalid_argument("simulateFollowerSensitivities: x needs k1, k2, tau_e and eta");
   }
+  // The smallest capacity that holds x: every dual operation costs its capacity.
+  if (x.size() <= 4)
+  {
+    return sensitivitiesWithCapacity<4>(effects, x, run);
+  }
   if (x.size() <= 6)
   {
     return sensitivitiesWithCapacity<6>(effects, x, run);
   }
-  if (x.size() <= 10)
+  if (x.size() <= 8)
   {
-    return sensitivitiesWithCapacity<10>(effects, x, run);
+    return sensitivitiesWithCapacity<8>(effects, x, run);
   }
   if (x.size() <= 16)
   {
