@@ -97,7 +97,8 @@ double augmentedSpeedMse(const AccParameters& p, const EffectSettings& effects,
 constexpr double kDivergedObjective = 1.0e6;
 
 /// Least-squares fit of the speed (the paper's objective) of the base model plus `effect` over
-/// the segments: NLopt LN_BOBYQA on the unit-scaled box from several starts. For effect none the
+/// the segments: Levenberg-Marquardt with the simulator's exact Jacobian (simulateFollowerSensitivities)
+/// on the unit-scaled box from several starts. For effect none the
 /// starts are Halton points; otherwise `warm_start` (the base fit) with the effect parameters at
 /// low-discrepancy starting values. Throws std::invalid_argument for invalid segments.
 AugmentedFit calibrateAugmented(EffectKind effect, const std::vector<CarFollowingRun>& segments,
