@@ -5,9 +5,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "acc_identification/model/forward_dual.h"
-
 #include "acc_identification/model/acc_model.h"
+#include "acc_identification/model/forward_dual.h"
 
 namespace acc
 {
@@ -84,7 +83,8 @@ ModelScalars<double> plainScalars(const AccParameters& p, const EffectSettings& 
           e.leader_acceleration_gain};
 }
 
-/// The leader speed the ACC really saw at each sample: recorded at t + delta.
+/// The leader speed the ACC really saw at each sample: recorded at t + delta (only made when a
+/// clock offset enters the model: the paper's model reads the recorded speeds in place).
 template <typename Scalar>
 std::vector<Scalar> shiftedLeaderSpeed(const CarFollowingRun& run, const Scalar& offset_s)
 {
