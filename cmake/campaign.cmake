@@ -2,18 +2,16 @@
 # identified with the paper's protocol in parallel, and each run's platoon predicted from its
 # real first car with models fitted without that run. ROS-free library, the campaign tool, its
 # figure script, tests and a benchmark.
-# The groups and model fits run on std::threads.
-find_package(Threads REQUIRED)
+# The groups and model fits run on std::threads (model/parallel_tasks.h).
 acc_add_library(acc_campaign
   SOURCES
     src/campaign/campaign_inputs.cpp
-    src/campaign/parallel_tasks.cpp
     src/campaign/group_identification.cpp
     src/campaign/perturbation.cpp
     src/campaign/platoon_check.cpp
     src/campaign/campaign.cpp
     src/campaign/campaign_output.cpp
-  LINK acc_calibration acc_run_io acc_model nlohmann_json::nlohmann_json Threads::Threads)
+  LINK acc_calibration acc_run_io acc_model nlohmann_json::nlohmann_json)
 
 # rosrun acc_identification campaign [options] FILE_OR_DIR... --json FILE --report DIR
 acc_add_tool(campaign LINK acc_campaign)

@@ -46,3 +46,9 @@ if(CATKIN_ENABLE_TESTING)
   target_compile_definitions(test_diagnosis PRIVATE ACC_CASALE_DIR="${ACC_DATA_CASALE_DIR}"
     ACC_ZALAZONE_TOYOTA_DIR="${ACC_DATA_ZALAZONE_TOYOTA_RAV4_S_DIR}")
 endif()
+
+# One whole diagnose of the bundled 25-minute Casale part6 run (cmake/data.cmake).
+acc_add_benchmark(bench_diagnosis LINK acc_diagnosis acc_run_io)
+if(TARGET bench_diagnosis)
+  target_compile_definitions(bench_diagnosis PRIVATE ACC_CASALE_DIR="${ACC_DATA_CASALE_DIR}")
+endif()

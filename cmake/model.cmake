@@ -1,4 +1,6 @@
-# The model core: the ACC law, simulation of one follower and of a platoon, string stability.
+# The model core: the ACC law, simulation of one follower and of a platoon, string stability, and
+# the small thread pool the campaign and the diagnosis run their independent fits on.
+find_package(Threads REQUIRED)
 acc_add_library(acc_model
   SOURCES
     src/model/acc_model.cpp
@@ -12,7 +14,8 @@ acc_add_library(acc_model
     src/model/normal_source.cpp
     src/model/follower_effects.cpp
     src/model/batch_means.cpp
-  LINK Eigen3::Eigen m)
+    src/model/parallel_tasks.cpp
+  LINK Eigen3::Eigen m Threads::Threads)
 
 acc_add_tool(stability_report LINK acc_model)
 

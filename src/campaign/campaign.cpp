@@ -5,7 +5,7 @@
 
 #include "acc_identification/calibration/calibration_report.h"
 #include "acc_identification/calibration/identification.h"
-#include "acc_identification/campaign/parallel_tasks.h"
+#include "acc_identification/model/parallel_tasks.h"
 
 namespace acc
 {

@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include <Eigen/Dense>
-#include <nlopt.hpp>
 
 #include "acc_identification/model/batch_means.h"
 #include "acc_identification/model/follower_simulation.h"
@@ -59,8 +58,61 @@ AccParameters baseOf(const std::vector<double>& x) { return AugmentedParameterBo
 std::vector<double> effectPart(const std::vector<double>& x) { return AugmentedParameterBox::effectPart(x); }
 
 
+/// The objective and its Gauss-Newton normal equations at one point, in unit coordinates u of the
+/// box: J = d v / d u over every sample of every segment, normal = J^T J, descent = J^T r (r the
+/// speed residuals), so that the step delta of (normal + lambda D) delta = descent lowers the MSE.
+struct GaussNewtonPass
+{
+  double mse = kDivergedObjective;  ///< as augmentedSpeedMse, number for number
+  bool diverged = true;
+  Eigen::MatrixXd normal;
+  Eigen::VectorXd descent;
+};
+
+GaussNewtonPass gaussNewtonPass(const AugmentedParameterBox& box, const std::vector<double>& x,
+                                const std::vector<CarFollowingRun>& segments)
+{
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const auto p = static_cast<Eigen::Index>(x.size());
+  GaussNewtonPass pass;
+  pass.normal = Eigen::MatrixXd::Zero(p, p);
+  pass.descent = Eigen::VectorXd::Zero(p);
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const CarFollowingRun& run : segments)
+  {
+    const FollowerSpeedSensitivities sim = simulateFollowerSensitivities(box.effects, x, run);
+    if (sim.diverged)
+    {
+      return pass;
+    }
+    const auto n = static_cast<Eigen::Index>(run.size());
+    Eigen::VectorXd residual(n);
+    for (std::size_t k = 0; k < run.size(); ++k)
+    {
+      const double error = run.follower_speed_mps[k] - sim.speed_mps[k];
+      sum += error * error;  // in augmentedSpeedMse's order, so the values agree exactly
+      residual[static_cast<Eigen::Index>(k)] = error;
+    }
+    const Eigen::Map<const RowMajor> jacobian(sim.speed_derivatives.data(), n, p);
+    pass.normal.selfadjointView<Eigen::Upper>().rankUpdate(jacobian.transpose());
+    pass.descent += jacobian.transpose() * residual;
+    count += run.size();
+  }
+  pass.normal = pass.normal.selfadjointView<Eigen::Upper>();
+  // From physical to unit coordinates: x = lower + u (upper - lower).
+  const Eigen::VectorXd width =
+      Eigen::Map<const Eigen::VectorXd>(box.upper.data(), p) - Eigen::Map<const Eigen::VectorXd>(box.lower.data(), p);
+  pass.normal = width.asDiagonal() * pass.normal * width.asDiagonal();
+  pass.descent = width.asDiagonal() * pass.descent;
+  const double mse = count > 0 ? sum / static_cast<double>(count) : 0.0;
+  pass.mse = std::isfinite(mse) ? std::min(mse, kDivergedObjective) : kDivergedObjective;
+  pass.diverged = !(pass.mse < kDivergedObjective);
+  return pass;
+}
+
 /// Evaluates the objective at physical points and remembers the best one ever seen, so the
-/// result never depends on where NLopt happens to stop or whether it throws.
+/// result never depends on where the local solver happens to stop.
 struct ObjectiveTracker
 {
   const AugmentedParameterBox* box;
@@ -69,45 +121,103 @@ struct ObjectiveTracker
   double best_value = std::numeric_limits<double>::infinity();
   std::size_t evaluations = 0;
 
-  double operator()(const std::vector<double>& unit_x)
+  GaussNewtonPass operator()(const Eigen::VectorXd& unit_x)
   {
-    const std::vector<double> x = box->physical(unit_x);
-    const double value = augmentedSpeedMse(baseOf(x), box->settingsOf(x), *segments);
+    const std::vector<double> x = box->physical(std::vector<double>(unit_x.data(), unit_x.data() + unit_x.size()));
+    GaussNewtonPass pass = gaussNewtonPass(*box, x, *segments);
     ++evaluations;
-    if (value < best_value)
+    if (pass.mse < best_value)
     {
-      best_value = value;
+      best_value = pass.mse;
       best_x = x;
     }
-    return value;
+    return pass;
   }
 };
 
-double nloptObjective(const std::vector<double>& x, std::vector<double>& /*gradient*/, void* data)
+/// Coordinates held at a bound because the descent direction points out of the box there.
+std::vector<Eigen::Index> freeCoordinates(const Eigen::VectorXd& u, const Eigen::VectorXd& descent)
 {
-  return (*static_cast<ObjectiveTracker*>(data))(x);
+  std::vector<Eigen::Index> free;
+  for (Eigen::Index j = 0; j < u.size(); ++j)
+  {
+    const bool pushed_below = u[j] <= 0.0 && descent[j] < 0.0;
+    const bool pushed_above = u[j] >= 1.0 && descent[j] > 0.0;
+    if (!pushed_below && !pushed_above)
+    {
+      free.push_back(j);
+    }
+  }
+  return free;
 }
 
+/// The damped Gauss-Newton step on the free coordinates (Marquardt's scaling by the diagonal, so
+/// that a flat direction, such as a limit the commands never reach, takes no wild step), clamped
+/// into the unit box.
+Eigen::VectorXd dampedStep(const GaussNewtonPass& at, const Eigen::VectorXd& u, const std::vector<Eigen::Index>& free,
+                           double damping)
+{
+  const auto m = static_cast<Eigen::Index>(free.size());
+  Eigen::MatrixXd system(m, m);
+  Eigen::VectorXd rhs(m);
+  const double largest = at.normal.diagonal().maxCoeff();
+  for (Eigen::Index a = 0; a < m; ++a)
+  {
+    rhs[a] = at.descent[free[static_cast<std::size_t>(a)]];
+    for (Eigen::Index b = 0; b < m; ++b)
+    {
+      system(a, b) = at.normal(free[static_cast<std::size_t>(a)], free[static_cast<std::size_t>(b)]);
+    }
+    system(a, a) += damping * std::max(system(a, a), 1e-12 * largest + 1e-300);
+  }
+  const Eigen::VectorXd delta = system.ldlt().solve(rhs);
+  Eigen::VectorXd next = u;
+  for (Eigen::Index a = 0; a < m; ++a)
+  {
+    const Eigen::Index j = free[static_cast<std::size_t>(a)];
+    next[j] = std::clamp(u[j] + delta[a], 0.0, 1.0);
+  }
+  return next;
+}
+
+/// Levenberg-Marquardt from one start on the unit box, with the exact Jacobian of the augmented
+/// simulator: a few dozen passes where a derivative-free search needs hundreds. Stops when the
+/// step or the relative decrease of the MSE falls below the tolerances, or at the evaluation cap.
 void localSolve(ObjectiveTracker* tracker, const std::vector<double>& start_physical,
                 const AugmentedCalibrationOptions& options)
 {
-  const AugmentedParameterBox& box = *tracker->box;
-  nlopt::opt solver(nlopt::LN_BOBYQA, static_cast<unsigned>(box.dimension()));
-  solver.set_lower_bounds(std::vector<double>(box.dimension(), 0.0));
-  solver.set_upper_bounds(std::vector<double>(box.dimension(), 1.0));
-  solver.set_min_objective(nloptObjective, tracker);
-  solver.set_maxeval(options.max_evaluations_per_start);
-  solver.set_xtol_rel(options.relative_x_tolerance);
-  solver.set_initial_step(0.05);
-  std::vector<double> x = box.unit(start_physical);  // clamped into the box
-  double value = 0.0;
-  try
+  const std::vector<double> start_unit = tracker->box->unit(start_physical);  // clamped into the box
+  Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(start_unit.data(), static_cast<Eigen::Index>(start_unit.size()));
+  GaussNewtonPass at = (*tracker)(u);
+  double damping = options.initial_damping;
+  for (int evaluation = 1; evaluation < options.max_evaluations_per_start && !at.diverged; ++evaluation)
   {
-    solver.optimize(x, value);
-  }
-  catch (const std::exception&)
-  {
-    // Round-off or a forced stop: the tracker already holds the best point evaluated.
+    const std::vector<Eigen::Index> free = freeCoordinates(u, at.descent);
+    if (free.empty())
+    {
+      return;
+    }
+    const Eigen::VectorXd next = dampedStep(at, u, free, damping);
+    if ((next - u).lpNorm<Eigen::Infinity>() <= options.relative_x_tolerance * (1.0 + u.lpNorm<Eigen::Infinity>()))
+    {
+      return;
+    }
+    GaussNewtonPass trial = (*tracker)(next);
+    if (!trial.diverged && trial.mse < at.mse)
+    {
+      const bool negligible = at.mse - trial.mse <= options.relative_mse_tolerance * at.mse;
+      u = next;
+      at = std::move(trial);
+      damping = std::max(damping / 3.0, 1e-12);
+      if (negligible)
+      {
+        return;
+      }
+    }
+    else if ((damping *= 4.0) > 1e12)
+    {
+      return;
+    }
   }
 }
 

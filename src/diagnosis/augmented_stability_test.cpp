@@ -19,6 +19,22 @@ constexpr int kIndexGridPoints = 2000;
 constexpr double kIndexLowestFrequencyRadS = 1e-3;
 constexpr double kIndexHighestFrequencyRadS = 20.0;
 
+/// The index's logarithmic frequency grid, computed once (the side search evaluates the index
+/// thousands of times).
+const std::vector<double>& indexFrequencyGridRadS()
+{
+  static const std::vector<double> grid = [] {
+    std::vector<double> w;
+    for (int i = 0; i <= kIndexGridPoints; ++i)
+    {
+      w.push_back(kIndexLowestFrequencyRadS * std::pow(kIndexHighestFrequencyRadS / kIndexLowestFrequencyRadS,
+                                                       static_cast<double>(i) / kIndexGridPoints));
+    }
+    return w;
+  }();
+  return grid;
+}
+
 /// Tracks the best feasible point of one side seen by any solve, whatever NLopt returns.
 struct SideSearch
 {
@@ -30,9 +46,19 @@ struct SideSearch
   double best_mse = std::numeric_limits<double>::infinity();
   std::size_t evaluations = 0;
 
-  double index(const std::vector<double>& x) const
+  /// COBYLA asks for the objective and the constraint at the same point: the index (2,001
+  /// transfer-function evaluations) is computed once per point.
+  std::vector<double> indexed_x;
+  double indexed_value = 0.0;
+
+  double index(const std::vector<double>& x)
   {
-    return augmentedStabilityIndex(AugmentedParameterBox::baseOf(x), box->settingsOf(x), operating_speed_mps);
+    if (x != indexed_x)
+    {
+      indexed_value = augmentedStabilityIndex(AugmentedParameterBox::baseOf(x), box->settingsOf(x), operating_speed_mps);
+      indexed_x = x;
+    }
+    return indexed_value;
   }
   double objective(const std::vector<double>& unit_x)
   {
@@ -56,7 +82,7 @@ double sideObjective(const std::vector<double>& unit_x, std::vector<double>& /*g
 /// NLopt's form c(x) <= 0 of side * index(x) >= 0.
 double sideConstraint(const std::vector<double>& unit_x, std::vector<double>& /*gradient*/, void* data)
 {
-  const SideSearch& search = *static_cast<SideSearch*>(data);
+  SideSearch& search = *static_cast<SideSearch*>(data);
   return -search.side * search.index(search.box->physical(unit_x));
 }
 
@@ -228,12 +254,10 @@ double augmentedStabilityIndex(const AccParameters& p, const EffectSettings& eff
   if (!(p.k1_per_s2 > 0.0))
     return 0.0;
   double lowest = std::numeric_limits<double>::infinity();
-  for (int i = 0; i <= kIndexGridPoints; ++i)
+  for (const double w : indexFrequencyGridRadS())
   {
-    const double w = kIndexLowestFrequencyRadS *
-                     std::pow(kIndexHighestFrequencyRadS / kIndexLowestFrequencyRadS, static_cast<double>(i) / kIndexGridPoints);
-    const double gain = augmentedTransferGain(p, effects, operating_speed_mps, w);
-    lowest = std::min(lowest, (1.0 - gain * gain) / (w * w));
+    const double gain_squared = augmentedTransferGainSquared(p, effects, operating_speed_mps, w);
+    lowest = std::min(lowest, (1.0 - gain_squared) / (w * w));
   }
   return p.k1_per_s2 * lowest;
 }

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "acc_identification/model/follower_simulation.h"
+#include "acc_identification/model/parallel_tasks.h"
 
 namespace acc
 {
@@ -112,17 +113,20 @@ ForwardRound fitOnTop(const AugmentedFit& current, const std::vector<EffectKind>
                       const DiagnosisOptions& options, const DiagnosisResult& data)
 {
   ForwardRound round;
-  for (EffectKind kind : remaining)
-  {
+  round.models.resize(remaining.size());
+  round.errors.resize(remaining.size());
+  // The fits are independent: run on options.threads, each stored by its index, so the round is
+  // the same for any number of threads.
+  runTasksInParallel(remaining.size(), effectiveThreadCount(options.threads, remaining.size()), [&](std::size_t i) {
     std::vector<EffectKind> kinds = effectsOf(current);
-    kinds.push_back(kind);
+    kinds.push_back(remaining[i]);
     const AugmentedFit fit = calibrateAugmentedSet(kinds, data.train, options.calibration, &current);
-    SquaredErrorsByRun errors;
-    ModelDiagnosis model = scoreModel(fit, data, &errors);
-    model.resolvable = isResolvable(kind, lastEffectValues(fit), data.sample_period_s);
+    round.models[i] = scoreModel(fit, data, &round.errors[i]);
+    round.models[i].resolvable = isResolvable(remaining[i], lastEffectValues(fit), data.sample_period_s);
+  });
+  for (const ModelDiagnosis& model : round.models)
+  {
     round.resolvable.push_back(model.resolvable);
-    round.models.push_back(std::move(model));
-    round.errors.push_back(std::move(errors));
   }
   return round;
 }
@@ -232,19 +236,24 @@ DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const Dia
   result.baseline.stability =
       analyzeAugmentedStability(base_fit.base, EffectKind::none, base_fit.settings, result.operating_speed_mps);
 
-  std::vector<SquaredErrorsByRun> candidate_errors;
-  std::vector<bool> resolvable;
-  for (EffectKind kind : options.candidates)
-  {
+  const std::size_t count = options.candidates.size();
+  std::vector<SquaredErrorsByRun> candidate_errors(count);
+  result.effects.resize(count);
+  // The effect fits are independent (each warm-started from the base fit): run on
+  // options.threads, each stored by its index, so the result is the same for any number of threads.
+  runTasksInParallel(count, effectiveThreadCount(options.threads, count), [&](std::size_t i) {
+    const EffectKind kind = options.candidates[i];
     const AugmentedFit fit = calibrateAugmented(kind, result.train, options.calibration, &base_fit);
-    SquaredErrorsByRun errors;
-    ModelDiagnosis model = scoreModel(fit, result, &errors);
+    ModelDiagnosis& model = result.effects[i];
+    model = scoreModel(fit, result, &candidate_errors[i]);
     model.stability = analyzeAugmentedStability(fit.base, kind, fit.settings, result.operating_speed_mps);
     model.stability_verdict_changes = model.stability.string_stable != result.baseline.stability.string_stable;
     model.resolvable = isResolvable(kind, fit.effect_values, result.sample_period_s);
+  });
+  std::vector<bool> resolvable;
+  for (const ModelDiagnosis& model : result.effects)
+  {
     resolvable.push_back(model.resolvable);
-    result.effects.push_back(std::move(model));
-    candidate_errors.push_back(std::move(errors));
   }
   result.selection = selectEffect(base_errors, candidate_errors, options.candidates, result.sample_period_s,
                                   options.selection, resolvable);

@@ -32,6 +32,22 @@ SquaredErrorsByRun difference(const SquaredErrorsByRun& a, const SquaredErrorsBy
 }
 
 
+/// The sum of every circular block of `block` samples of one run, by its start: computed once,
+/// so that a resample adds one number per drawn block instead of `block` numbers.
+std::vector<double> circularBlockSums(const std::vector<double>& run, std::size_t block)
+{
+  const std::size_t n = run.size();
+  std::vector<double> sums(n, 0.0);
+  for (std::size_t s = 0; s < n; ++s)
+  {
+    for (std::size_t i = 0; i < block; ++i)
+    {
+      sums[s] += run[(s + i) % n];
+    }
+  }
+  return sums;
+}
+
 /// Moving-block bootstrap of the means of several paired series at once (same resampled blocks
 /// for all). Returns [resample][series]. Blocks wrap around each run's end (circular), so every
 /// sample is equally likely to be drawn.
@@ -44,6 +60,15 @@ std::vector<std::vector<double>> bootstrapMeans(const std::vector<SquaredErrorsB
   for (const auto& run : series.front())
   {
     total += run.size();
+  }
+  // [series][run][start]: only whole blocks use them; a run's last, shorter block is summed as drawn.
+  std::vector<std::vector<std::vector<double>>> block_sums(series.size());
+  for (std::size_t k = 0; k < series.size(); ++k)
+  {
+    for (const std::vector<double>& run : series[k])
+    {
+      block_sums[k].push_back(circularBlockSums(run, std::min(block, run.size())));
+    }
   }
   for (std::size_t b = 0; b < options.resamples; ++b)
   {
@@ -60,12 +85,16 @@ std::vector<std::vector<double>> bootstrapMeans(const std::vector<SquaredErrorsB
         // Portable: the same block starts with every standard library (portable_uniform.h).
         const auto s = static_cast<std::size_t>(uniformBelow(rng, n));
         const std::size_t length = std::min(block, n - drawn);
-        for (std::size_t i = 0; i < length; ++i)
+        for (std::size_t k = 0; k < series.size(); ++k)
         {
-          const std::size_t t = (s + i) % n;
-          for (std::size_t k = 0; k < series.size(); ++k)
+          if (length == std::min(block, n))
           {
-            sums[k] += series[k][r][t];
+            sums[k] += block_sums[k][r][s];
+            continue;
+          }
+          for (std::size_t i = 0; i < length; ++i)
+          {
+            sums[k] += series[k][r][(s + i) % n];
           }
         }
         drawn += length;

@@ -7,8 +7,7 @@ namespace acc
 double accelerationMps2(const AccParameters& p, double space_gap_m, double speed_mps,
                         double relative_speed_mps)
 {
-  return p.k1_per_s2 * (space_gap_m - p.eta_m - p.tau_e_s * speed_mps) +
-         p.k2_per_s * relative_speed_mps;
+  return accelerationLaw(p.k1_per_s2, p.k2_per_s, p.tau_e_s, p.eta_m, space_gap_m, speed_mps, relative_speed_mps);
 }
 
 AccelerationPartials accelerationPartials(const AccParameters& p)

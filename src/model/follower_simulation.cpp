@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "acc_identification/model/acc_model.h"
+#include "acc_identification/model/forward_dual.h"
 
 namespace acc
 {
@@ -12,62 +14,238 @@ namespace
 {
 /// Linear interpolation of values(t) at t_query, held constant outside [t_0, t_end]. `cursor` is
 /// a search hint for queries that move forward in time (every use here), keeping a pass O(n).
-double interpolateForward(const std::vector<double>& time_s, const std::vector<double>& values,
-                          std::size_t available, double t_query, std::size_t* cursor)
+/// Generic so that the values or the query time may carry derivatives (ForwardDual).
+template <typename Result, typename Value, typename Time>
+Result interpolateForward(const std::vector<double>& time_s, const std::vector<Value>& values, std::size_t available,
+                          const Time& t_query, std::size_t* cursor)
 {
-  if (t_query <= time_s[0])
+  const double t = valueOf(t_query);
+  if (t <= time_s[0])
   {
     return values[0];
   }
-  if (t_query >= time_s[available - 1])
+  if (t >= time_s[available - 1])
   {
     return values[available - 1];
   }
   std::size_t i = std::min(*cursor, available - 2);
-  while (i > 0 && time_s[i] > t_query)
+  while (i > 0 && time_s[i] > t)
   {
     --i;
   }
-  while (i + 2 < available && time_s[i + 1] <= t_query)
+  while (i + 2 < available && time_s[i + 1] <= t)
   {
     ++i;
   }
   *cursor = i;
-  const double w = (t_query - time_s[i]) / (time_s[i + 1] - time_s[i]);
+  const Time w = (t_query - time_s[i]) / (time_s[i + 1] - time_s[i]);
   return values[i] + w * (values[i + 1] - values[i]);
 }
 
-/// The leader speed the ACC really saw at each sample: recorded at t + delta (only made when
-/// delta != 0: the paper's model reads the recorded speeds in place).
-std::vector<double> shiftedLeaderSpeed(const CarFollowingRun& run, double offset_s)
+/// std::min and std::max, choosing by value (the derivative follows the branch taken).
+template <typename Scalar>
+const Scalar& smallerOf(const Scalar& a, const Scalar& b)
 {
-  std::vector<double> shifted(run.size());
+  return valueOf(b) < valueOf(a) ? b : a;
+}
+template <typename Scalar>
+const Scalar& largerOf(const Scalar& a, const Scalar& b)
+{
+  return valueOf(a) < valueOf(b) ? b : a;
+}
+
+/// Whether a term enters the law: nonzero, or (for a dual number) a parameter being differentiated,
+/// whose derivative must flow even where its value is 0.
+bool entersModel(double x) { return x != 0.0; }
+template <std::size_t N>
+bool entersModel(const ForwardDual<N>& x)
+{
+  return x.value != 0.0 || x.derivative != std::array<double, N>{};
+}
+
+/// Every quantity of the law in one scalar type: plain doubles, or dual numbers seeded with the
+/// parameters being differentiated.
+template <typename Scalar>
+struct ModelScalars
+{
+  Scalar k1, k2, tau_e, eta;
+  Scalar actuation_lag_s, reaction_delay_s, max_acceleration_mps2, max_deceleration_mps2;
+  Scalar sensor_time_offset_s, time_gap_speed_slope_s2_per_m, set_speed_mps, cruise_gain_per_s,
+      leader_acceleration_gain;
+};
+
+ModelScalars<double> plainScalars(const AccParameters& p, const EffectSettings& e)
+{
+  return {p.k1_per_s2,          p.k2_per_s,           p.tau_e_s,
+          p.eta_m,              e.actuation_lag_s,    e.reaction_delay_s,
+          e.max_acceleration_mps2, e.max_deceleration_mps2, e.sensor_time_offset_s,
+          e.time_gap_speed_slope_s2_per_m, e.set_speed_mps, e.cruise_gain_per_s,
+          e.leader_acceleration_gain};
+}
+
+/// The leader speed the ACC really saw at each sample: recorded at t + delta (only made when a
+/// clock offset enters the model: the paper's model reads the recorded speeds in place).
+template <typename Scalar>
+std::vector<Scalar> shiftedLeaderSpeed(const CarFollowingRun& run, const Scalar& offset_s)
+{
+  std::vector<Scalar> shifted(run.size());
   std::size_t cursor = 0;
   for (std::size_t k = 0; k < run.size(); ++k)
   {
-    shifted[k] = interpolateForward(run.time_s, run.leader_speed_mps, run.size(), run.time_s[k] + offset_s, &cursor);
+    shifted[k] = interpolateForward<Scalar>(run.time_s, run.leader_speed_mps, run.size(), run.time_s[k] + offset_s,
+                                            &cursor);
   }
   return shifted;
 }
 
 /// The law with the spacing-policy and cruise options, then the actuator's limits.
-double commandedAcceleration(const AccParameters& p, const EffectSettings& e, double gap, double speed,
-                             double leader_speed, double leader_acceleration)
+template <typename Scalar, typename Leader>
+Scalar commandedAcceleration(const ModelScalars<Scalar>& m, const Scalar& gap, const Scalar& speed,
+                             const Leader& leader_speed, const Leader& leader_acceleration)
 {
-  double command = accelerationMps2(p, gap, speed, leader_speed - speed);
-  if (e.leader_acceleration_gain != 0.0)
+  Scalar command = accelerationLaw<Scalar>(m.k1, m.k2, m.tau_e, m.eta, gap, speed, leader_speed - speed);
+  if (entersModel(m.leader_acceleration_gain))
   {
-    command += e.leader_acceleration_gain * leader_acceleration;
+    command += m.leader_acceleration_gain * leader_acceleration;
   }
-  if (e.time_gap_speed_slope_s2_per_m != 0.0)
+  if (entersModel(m.time_gap_speed_slope_s2_per_m))
   {
-    command -= p.k1_per_s2 * e.time_gap_speed_slope_s2_per_m * speed * speed;
+    command = command - m.k1 * m.time_gap_speed_slope_s2_per_m * speed * speed;
   }
-  if (std::isfinite(e.set_speed_mps))
+  if (std::isfinite(valueOf(m.set_speed_mps)))
   {
-    command = std::min(command, e.cruise_gain_per_s * (e.set_speed_mps - speed));
+    const Scalar cruise = m.cruise_gain_per_s * (m.set_speed_mps - speed);
+    command = smallerOf(command, cruise);
   }
-  return std::max(-e.max_deceleration_mps2, std::min(e.max_acceleration_mps2, command));
+  const Scalar limited = smallerOf(m.max_acceleration_mps2, command);
+  const Scalar floor = -m.max_deceleration_mps2;
+  return largerOf(floor, limited);
+}
+
+/// The recursion of simulateFollower() for any scalar type, `leader` the speeds the ACC saw.
+/// visit(k, speed, true_gap) sees every sample from 0 on; returns the index of the first runaway
+/// sample (never visited), or the run's size.
+template <typename Scalar, typename Leader, typename Visitor>
+std::size_t runRecursion(const ModelScalars<Scalar>& m, const CarFollowingRun& run, const std::vector<Leader>& leader,
+                         Visitor&& visit)
+{
+  using std::exp;
+  const std::size_t n = run.size();
+  // The commands so far, kept only when a reaction delay reads them back.
+  const bool delayed = valueOf(m.reaction_delay_s) > 0.0;
+  std::vector<Scalar> commands(delayed ? n : 0, Scalar(0.0));
+  std::size_t delay_cursor = 0;
+  Scalar speed = run.follower_speed_mps[0];
+  Scalar gap = run.space_gap_m[0] + m.sensor_time_offset_s * leader[0];
+  Scalar realised = 0.0;
+  visit(0, speed, gap);
+  for (std::size_t k = 0; k + 1 < n; ++k)
+  {
+    const double step_s = run.time_s[k + 1] - run.time_s[k];
+    const Scalar relative_speed = leader[k] - speed;
+    const Leader leader_acceleration = entersModel(m.leader_acceleration_gain) && k > 0
+                                           ? Leader((leader[k] - leader[k - 1]) / (run.time_s[k] - run.time_s[k - 1]))
+                                           : Leader(0.0);
+    const Scalar command = commandedAcceleration<Scalar>(m, gap, speed, leader[k], leader_acceleration);
+    Scalar applied = command;
+    if (delayed)
+    {
+      commands[k] = command;
+      applied = interpolateForward<Scalar>(run.time_s, commands, k + 1, run.time_s[k] - m.reaction_delay_s,
+                                           &delay_cursor);
+    }
+    if (valueOf(m.actuation_lag_s) > 0.0 && k > 0)
+    {
+      realised += (1.0 - exp(-step_s / m.actuation_lag_s)) * (applied - realised);
+    }
+    else
+    {
+      realised = applied;  // no lag, or the first step: realised equals commanded at the start
+    }
+    const Scalar next_speed = speed + step_s * realised;
+    const Scalar next_gap = gap + step_s * relative_speed;
+    if (isRunaway(valueOf(next_speed), valueOf(next_gap)))
+    {
+      return k + 1;
+    }
+    speed = next_speed;
+    gap = next_gap;
+    visit(k + 1, speed, gap);
+  }
+  return n;
+}
+
+/// runRecursion with the leader the ACC saw: the recorded speeds in place when no clock offset
+/// enters the model, the shifted ones otherwise.
+template <typename Scalar, typename Visitor>
+std::size_t runWithLeader(const ModelScalars<Scalar>& m, const CarFollowingRun& run, Visitor&& visit)
+{
+  if (entersModel(m.sensor_time_offset_s))
+  {
+    return runRecursion(m, run, shiftedLeaderSpeed(run, m.sensor_time_offset_s), visit);
+  }
+  return runRecursion(m, run, run.leader_speed_mps, visit);
+}
+
+/// ModelScalars whose entries are the parameters x (base, then the effects' values): each entry
+/// seeded as parameter number i of the dual numbers.
+template <std::size_t N>
+ModelScalars<ForwardDual<N>> seededScalars(const std::vector<EffectKind>& kinds, const std::vector<double>& x)
+{
+  using Dual = ForwardDual<N>;
+  const EffectSettings values = makeCombinedEffectSettings(kinds, std::vector<double>(x.begin() + 4, x.end()));
+  // Which entry of x sets each field: the catalogue's own mapping applied to the entries' indices
+  // (4, 5, ...), so that it is not written a second time. A field no effect sets keeps its
+  // default (0 or infinity), never an index >= 4.
+  std::vector<double> indices;
+  for (std::size_t i = 4; i < x.size(); ++i)
+  {
+    indices.push_back(static_cast<double>(i));
+  }
+  const EffectSettings index_of = makeCombinedEffectSettings(kinds, indices);
+  const ModelScalars<double> plain = plainScalars(AccParameters{x[0], x[1], x[2], x[3]}, values);
+  const ModelScalars<double> where = plainScalars(AccParameters{}, index_of);
+  // The base entries are parameters 0..3; an effect field is one when its index is >= 4.
+  auto seed = [](double value, double index) {
+    return std::isfinite(index) && index >= 4.0 ? Dual::parameter(value, static_cast<std::size_t>(index)) : Dual(value);
+  };
+  return {Dual::parameter(plain.k1, 0),
+          Dual::parameter(plain.k2, 1),
+          Dual::parameter(plain.tau_e, 2),
+          Dual::parameter(plain.eta, 3),
+          seed(plain.actuation_lag_s, where.actuation_lag_s),
+          seed(plain.reaction_delay_s, where.reaction_delay_s),
+          seed(plain.max_acceleration_mps2, where.max_acceleration_mps2),
+          seed(plain.max_deceleration_mps2, where.max_deceleration_mps2),
+          seed(plain.sensor_time_offset_s, where.sensor_time_offset_s),
+          seed(plain.time_gap_speed_slope_s2_per_m, where.time_gap_speed_slope_s2_per_m),
+          seed(plain.set_speed_mps, where.set_speed_mps),
+          seed(plain.cruise_gain_per_s, where.cruise_gain_per_s),
+          seed(plain.leader_acceleration_gain, where.leader_acceleration_gain)};
+}
+
+template <std::size_t N>
+FollowerSpeedSensitivities sensitivitiesWithCapacity(const std::vector<EffectKind>& kinds,
+                                                     const std::vector<double>& x, const CarFollowingRun& run)
+{
+  FollowerSpeedSensitivities out;
+  out.dimension = x.size();
+  const std::size_t n = run.size();
+  out.speed_mps.assign(n, 0.0);
+  out.speed_derivatives.assign(n * x.size(), 0.0);
+  if (n == 0)
+  {
+    return out;
+  }
+  const ModelScalars<ForwardDual<N>> m = seededScalars<N>(kinds, x);
+  const std::size_t reached = runWithLeader(m, run, [&](std::size_t k, const ForwardDual<N>& speed, const auto&) {
+    out.speed_mps[k] = speed.value;
+    std::copy(speed.derivative.begin(), speed.derivative.begin() + static_cast<long>(x.size()),
+              out.speed_derivatives.begin() + static_cast<long>(k * x.size()));
+  });
+  out.diverged = reached < n;
+  out.diverged_at_index = reached;
+  return out;
 }
 }  // namespace
 
@@ -81,59 +259,57 @@ SimulatedFollower simulateFollower(const AccParameters& p, const EffectSettings&
   {
     return sim;
   }
+  const ModelScalars<double> m = plainScalars(p, e);
   const double offset = e.sensor_time_offset_s;
+  // The gap is what the recorder would show: the true gap minus delta u (recorded leader at t_k + delta).
   const std::vector<double> shifted = offset != 0.0 ? shiftedLeaderSpeed(run, offset) : std::vector<double>{};
   const std::vector<double>& leader = offset != 0.0 ? shifted : run.leader_speed_mps;
-  // The commands so far, kept only when a reaction delay reads them back.
-  const bool delayed = e.reaction_delay_s > 0.0;
-  std::vector<double> commands(delayed ? n : 0, 0.0);
-  std::size_t delay_cursor = 0;
-  double speed = run.follower_speed_mps[0];
-  double gap = run.space_gap_m[0] + offset * leader[0];
-  double realised = 0.0;
-  sim.speed_mps[0] = speed;
-  sim.space_gap_m[0] = run.space_gap_m[0];
-  for (std::size_t k = 0; k + 1 < n; ++k)
+  double last_speed = 0.0;
+  double last_gap = 0.0;
+  const std::size_t reached = runRecursion(m, run, leader, [&](std::size_t k, double speed, double gap) {
+    sim.speed_mps[k] = speed;
+    sim.space_gap_m[k] = k == 0 ? run.space_gap_m[0] : gap - offset * leader[k];
+    last_speed = speed;
+    last_gap = gap;
+  });
+  if (reached < n)
   {
-    const double step_s = run.time_s[k + 1] - run.time_s[k];
-    const double relative_speed = leader[k] - speed;
-    const double leader_acceleration = e.leader_acceleration_gain != 0.0 && k > 0
-                                           ? (leader[k] - leader[k - 1]) / (run.time_s[k] - run.time_s[k - 1])
-                                           : 0.0;
-    const double command = commandedAcceleration(p, e, gap, speed, leader[k], leader_acceleration);
-    double applied = command;
-    if (delayed)
+    sim.diverged = true;
+    sim.diverged_at_index = reached;
+    for (std::size_t rest = reached; rest < n; ++rest)
     {
-      commands[k] = command;
-      applied = interpolateForward(run.time_s, commands, k + 1, run.time_s[k] - e.reaction_delay_s, &delay_cursor);
+      sim.speed_mps[rest] = last_speed;
+      sim.space_gap_m[rest] = last_gap - offset * leader[rest];
     }
-    if (e.actuation_lag_s > 0.0 && k > 0)
-    {
-      realised += (1.0 - std::exp(-step_s / e.actuation_lag_s)) * (applied - realised);
-    }
-    else
-    {
-      realised = applied;  // no lag, or the first step: realised equals commanded at the start
-    }
-    const double next_speed = speed + step_s * realised;
-    const double next_gap = gap + step_s * relative_speed;
-    if (isRunaway(next_speed, next_gap))
-    {
-      sim.diverged = true;
-      sim.diverged_at_index = k + 1;
-      for (std::size_t rest = k + 1; rest < n; ++rest)
-      {
-        sim.speed_mps[rest] = speed;
-        sim.space_gap_m[rest] = gap - offset * leader[rest];
-      }
-      return sim;
-    }
-    speed = next_speed;
-    gap = next_gap;
-    sim.speed_mps[k + 1] = speed;
-    sim.space_gap_m[k + 1] = gap - offset * leader[k + 1];
   }
   return sim;
+}
+
+FollowerSpeedSensitivities simulateFollowerSensitivities(const std::vector<EffectKind>& effects,
+                                                         const std::vector<double>& x, const CarFollowingRun& run)
+{
+  if (x.size() < 4)
+  {
+    throw std::invalid_argument("simulateFollowerSensitivities: x needs k1, k2, tau_e and eta");
+  }
+  // The smallest capacity that holds x: every dual operation costs its capacity.
+  if (x.size() <= 4)
+  {
+    return sensitivitiesWithCapacity<4>(effects, x, run);
+  }
+  if (x.size() <= 6)
+  {
+    return sensitivitiesWithCapacity<6>(effects, x, run);
+  }
+  if (x.size() <= 8)
+  {
+    return sensitivitiesWithCapacity<8>(effects, x, run);
+  }
+  if (x.size() <= 16)
+  {
+    return sensitivitiesWithCapacity<16>(effects, x, run);
+  }
+  throw std::invalid_argument("simulateFollowerSensitivities: more than 16 parameters");
 }
 
 }  // namespace acc

@@ -386,6 +386,9 @@ int main(int argc, char** argv)
   app.add_option("--max-chain-length", options.max_chain_length, "most effects the forward selection adds")
       ->check(CLI::Range(1, 8))
       ->capture_default_str();
+  app.add_option("--threads", options.threads,
+                 "threads for the independent effect fits (0: every core); the result does not depend on it")
+      ->capture_default_str();
   app.add_option("--withheld-suite", suite,
                  "synthetic runs with a hidden effect (small, large), or the bundled real runs with an offset or "
                  "lag injected (semi-real), or every pair of effects withheld at once (combined); prints the "

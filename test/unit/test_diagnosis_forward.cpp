@@ -199,3 +199,24 @@ TEST(ForwardSelection, OffLeavesTheChainEmptyAndTheDominantEffectAsItWas)
     EXPECT_EQ(off.effects[k].test_rmse_speed_mps, on.effects[k].test_rmse_speed_mps);
   }
 }
+
+TEST(ForwardSelection, TheResultIsTheSameOnOneThreadAndOnTwo)
+{
+  // The effect fits and each round's candidates run on a thread pool, each stored by its index:
+  // the JSON of the whole diagnosis (fits, bootstrap bounds, chain, stability test) must not
+  // depend on how many threads ran them.
+  acc::WithheldCase c;
+  c.truth = acc::EffectKind::actuation_lag;
+  c.truth_values = {0.8};
+  c.also_withheld = {{acc::EffectKind::acceleration_limits, {1.5, 3.0}}};
+  c.profile = acc::SyntheticLeadProfile::steps;
+  c.seed = 21;
+  const std::vector<acc::CarFollowingRun> runs = {acc::synthesizeWithheldRun(c)};
+  acc::DiagnosisOptions one_thread = quickOptions(true);
+  one_thread.threads = 1;
+  acc::DiagnosisOptions two_threads = one_thread;
+  two_threads.threads = 2;
+  const acc::DiagnosisResult serial = acc::diagnoseRuns(runs, one_thread);
+  ASSERT_FALSE(serial.selected_effects.empty());
+  EXPECT_EQ(acc::diagnosisToJson(serial).dump(), acc::diagnosisToJson(acc::diagnoseRuns(runs, two_threads)).dump());
+}

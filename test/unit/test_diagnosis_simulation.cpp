@@ -5,6 +5,7 @@
 #include <complex>
 
 #include "acc_identification/model/follower_simulation.h"
+#include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/augmented_stability.h"
 #include "acc_identification/model/follower_effects.h"
 #include "acc_identification/diagnosis/residual_breakdown.h"
@@ -223,4 +224,57 @@ TEST(CandidateEffects, NamesRoundTripAndSettingsInvert)
   acc::EffectKind unused;
   EXPECT_FALSE(acc::parseEffectName("brake_fade", &unused));
   EXPECT_THROW(acc::makeEffectSettings(acc::EffectKind::actuation_lag, {}), std::invalid_argument);
+}
+
+// The sensitivities the fits descend on: the speeds are simulateFollower's number for number, and
+// each derivative matches a central difference of simulateFollower, for every effect and for a
+// combination, away from the kinks (a limit that binds, the cruise switch).
+TEST(AugmentedSimulation, SensitivitiesAreExactDerivativesOfTheSameSimulation)
+{
+  const acc::CarFollowingRun run = irregularRun();
+  const std::vector<std::pair<std::vector<acc::EffectKind>, std::vector<double>>> models = {
+      {{}, {}},
+      {{acc::EffectKind::actuation_lag}, {0.6}},
+      {{acc::EffectKind::reaction_delay}, {0.45}},
+      {{acc::EffectKind::acceleration_limits}, {8.0, 9.0}},
+      {{acc::EffectKind::sensor_time_offset}, {-0.35}},
+      {{acc::EffectKind::speed_dependent_time_gap}, {0.01}},
+      {{acc::EffectKind::set_speed_cruise}, {45.0, 0.5}},
+      {{acc::EffectKind::actuation_lag, acc::EffectKind::reaction_delay, acc::EffectKind::sensor_time_offset},
+       {0.5, 0.3, 0.2}},
+  };
+  for (const auto& [kinds, values] : models)
+  {
+    std::vector<double> x = {kParameters.k1_per_s2, kParameters.k2_per_s, kParameters.tau_e_s, kParameters.eta_m};
+    x.insert(x.end(), values.begin(), values.end());
+    auto speeds = [&](const std::vector<double>& at) {
+      const acc::EffectSettings settings =
+          acc::makeCombinedEffectSettings(kinds, std::vector<double>(at.begin() + 4, at.end()));
+      return acc::simulateFollower(acc::AccParameters{at[0], at[1], at[2], at[3]}, settings, run).speed_mps;
+    };
+    const acc::FollowerSpeedSensitivities sens = acc::simulateFollowerSensitivities(kinds, x, run);
+    ASSERT_FALSE(sens.diverged);
+    ASSERT_EQ(sens.dimension, x.size());
+    const std::vector<double> plain = speeds(x);
+    for (std::size_t k = 0; k < run.size(); ++k)
+    {
+      ASSERT_EQ(sens.speed_mps[k], plain[k]) << acc::combinedEffectName(kinds) << " sample " << k;
+    }
+    for (std::size_t j = 0; j < x.size(); ++j)
+    {
+      const double step = 1e-6 * std::max(1.0, std::abs(x[j]));
+      std::vector<double> up = x, down = x;
+      up[j] += step;
+      down[j] -= step;
+      const std::vector<double> v_up = speeds(up), v_down = speeds(down);
+      double worst = 0.0, scale = 0.0;
+      for (std::size_t k = 0; k < run.size(); ++k)
+      {
+        const double central = (v_up[k] - v_down[k]) / (2.0 * step);
+        worst = std::max(worst, std::abs(sens.speed_derivatives[k * x.size() + j] - central));
+        scale = std::max(scale, std::abs(central));
+      }
+      EXPECT_LE(worst, 1e-4 * std::max(scale, 1.0)) << acc::combinedEffectName(kinds) << " parameter " << j;
+    }
+  }
 }

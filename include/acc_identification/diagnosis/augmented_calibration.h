@@ -26,8 +26,13 @@ struct AugmentedCalibrationOptions
   /// Augmented fit: warm start from the base fit, with the effect's parameters at this many
   /// low-discrepancy points of the catalogue's start range (plus the "almost off" point).
   std::size_t effect_starts = 6;
+  /// The local solver (Levenberg-Marquardt with the simulator's exact Jacobian): passes per start,
+  /// and it stops when a step moves no unit coordinate by more than relative_x_tolerance or an
+  /// accepted step lowers the MSE by less than relative_mse_tolerance of it.
   int max_evaluations_per_start = 600;
   double relative_x_tolerance = 1e-6;
+  double relative_mse_tolerance = 1e-10;
+  double initial_damping = 1e-3;
 };
 
 /// The parameters of an augmented model as one vector x = (k1, k2, tau_e, eta, effect values in
@@ -92,7 +97,8 @@ double augmentedSpeedMse(const AccParameters& p, const EffectSettings& effects,
 constexpr double kDivergedObjective = 1.0e6;
 
 /// Least-squares fit of the speed (the paper's objective) of the base model plus `effect` over
-/// the segments: NLopt LN_BOBYQA on the unit-scaled box from several starts. For effect none the
+/// the segments: Levenberg-Marquardt with the simulator's exact Jacobian (simulateFollowerSensitivities)
+/// on the unit-scaled box from several starts. For effect none the
 /// starts are Halton points; otherwise `warm_start` (the base fit) with the effect parameters at
 /// low-discrepancy starting values. Throws std::invalid_argument for invalid segments.
 AugmentedFit calibrateAugmented(EffectKind effect, const std::vector<CarFollowingRun>& segments,

@@ -28,6 +28,10 @@ struct AugmentedStability
 double augmentedTransferGain(const AccParameters& p, const EffectSettings& effects, double operating_speed_mps,
                              double frequency_rad_s);
 
+/// |Gamma(j w)|^2, what the stability index needs (augmentedTransferGain is its square root).
+double augmentedTransferGainSquared(const AccParameters& p, const EffectSettings& effects, double operating_speed_mps,
+                                    double frequency_rad_s);
+
 /// Peak of |Gamma| on a logarithmic grid of 4000 frequencies from 1e-4 to 20 rad/s (10 Hz data
 /// cannot show faster dynamics), plus the closed-form base peak frequency so that the base
 /// verdict is reproduced exactly.

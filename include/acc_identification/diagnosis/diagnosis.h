@@ -39,6 +39,9 @@ struct DiagnosisOptions
   /// string-stability test when with_stability_test is set.
   bool forward_selection = true;
   std::size_t max_chain_length = 3;
+  /// Threads for the independent fits (the six effects, then each forward round's candidates);
+  /// 0: every core. The result does not depend on it (each fit is stored by its index).
+  std::size_t threads = 0;
 };
 
 /// One model (base or augmented) fitted on the training halves and scored on the held-out halves.

@@ -20,6 +20,19 @@ struct AccelerationPartials
 /// @param relative_speed_mps leader minus follower speed dv
 double accelerationMps2(const AccParameters& p, double space_gap_m, double speed_mps,
                         double relative_speed_mps);
+/// The same law for any scalar type: the augmented simulator runs it on dual numbers to carry
+/// exact derivatives (model/forward_dual.h). accelerationMps2 is this with doubles.
+template <typename Scalar>
+#if defined(__GNUC__)
+// Inlined into the simulator's step even for dual numbers, where GCC's size heuristic would
+// otherwise make it a call per sample (a tenth of a diagnose).
+__attribute__((always_inline))
+#endif
+inline Scalar accelerationLaw(const Scalar& k1, const Scalar& k2, const Scalar& tau_e, const Scalar& eta,
+                       const Scalar& space_gap, const Scalar& speed, const Scalar& relative_speed)
+{
+  return k1 * (space_gap - eta - tau_e * speed) + k2 * relative_speed;
+}
 
 AccelerationPartials accelerationPartials(const AccParameters& p);
 

@@ -55,6 +55,25 @@ inline bool isRunaway(double speed_mps, double space_gap_m)
 /// describeRunProblem() == "".
 SimulatedFollower simulateFollower(const AccParameters& p, const EffectSettings& effects, const CarFollowingRun& run);
 
+/// Simulated speeds and their exact derivatives with respect to the model's parameters.
+struct FollowerSpeedSensitivities
+{
+  std::vector<double> speed_mps;
+  /// d speed[k] / d x[j] at [k * dimension + j] (row k is 0 at the measured start).
+  std::vector<double> speed_derivatives;
+  std::size_t dimension = 0;
+  bool diverged = false;  ///< as SimulatedFollower: from diverged_at_index on, rows are 0, not to be scored
+  std::size_t diverged_at_index = 0;
+};
+
+/// simulateFollower() of the model with `effects` switched on, x = (k1, k2, tau_e, eta, then the
+/// effects' values as makeCombinedEffectSettings(effects, ...) takes them), with forward
+/// sensitivities: the same recursion run on dual numbers (model/forward_dual.h), so the speeds
+/// equal simulateFollower's bit for bit and the derivatives are exact (one-sided at the kinks of
+/// the limits, the cruise switch and the interpolations). At most 16 parameters.
+FollowerSpeedSensitivities simulateFollowerSensitivities(const std::vector<EffectKind>& effects,
+                                                         const std::vector<double>& x, const CarFollowingRun& run);
+
 /// The paper's model: every effect off.
 inline SimulatedFollower simulateFollower(const AccParameters& p, const CarFollowingRun& run)
 {

@@ -1,4 +1,4 @@
-#include "acc_identification/campaign/parallel_tasks.h"
+#include "acc_identification/model/parallel_tasks.h"
 
 #include <algorithm>
 #include <atomic>
