@@ -11,6 +11,7 @@ acc_add_library(acc_diagnosis
     src/diagnosis/diagnosis.cpp
     src/diagnosis/withheld_effect_suite.cpp
     src/diagnosis/combined_effect_suite.cpp
+    src/diagnosis/determined_effects.cpp
     src/diagnosis/injected_effect.cpp
     src/diagnosis/diagnosis_output.cpp
   LINK acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
@@ -40,7 +41,8 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_diagnosis_stability.cpp
     test/unit/test_diagnosis_forward.cpp
     test/unit/test_diagnosis_injected.cpp
-    test/unit/test_diagnosis_combined.cpp)
+    test/unit/test_diagnosis_combined.cpp
+    test/unit/test_diagnosis_determined.cpp)
   # The semi-real test reads a bundled real run (acc_run_io, cmake/data.cmake).
   target_link_libraries(test_diagnosis acc_diagnosis acc_run_io)
   target_compile_definitions(test_diagnosis PRIVATE ACC_CASALE_DIR="${ACC_DATA_CASALE_DIR}"

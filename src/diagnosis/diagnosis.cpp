@@ -258,6 +258,12 @@ DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const Dia
   result.selection = selectEffect(base_errors, candidate_errors, options.candidates, result.sample_period_s,
                                   options.selection, resolvable);
   result.selection_rule = describeSelectionRule(options.selection, options.candidates.size());
+  std::vector<AugmentedFit> effect_fits;
+  for (const ModelDiagnosis& model : result.effects)
+  {
+    effect_fits.push_back(model.fit);
+  }
+  result.determined = determinedEffects(base_fit, effect_fits, result.sample_period_s, options.selection.alpha);
   for (std::size_t k = 0; k < result.effects.size(); ++k)
   {
     result.effects[k].improvement = result.selection.versus_base[k];

@@ -211,6 +211,20 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
     j["plausible_effects"].push_back(effectName(kind));
   }
   j["distinguishable_from_runner_up"] = r.selection.distinguishable;
+  j["determined_effects"] = nlohmann::json::array();
+  for (const DeterminedEffect& e : r.determined)
+  {
+    auto base = [](const AccParameters& p) {
+      return nlohmann::json{{"k1_per_s2", number(p.k1_per_s2)}, {"k2_per_s", number(p.k2_per_s)},
+                            {"tau_e_s", number(p.tau_e_s)}, {"eta_m", number(p.eta_m)}};
+    };
+    j["determined_effects"].push_back({{"effect", effectName(e.effect)},
+                                       {"value", number(e.value)},
+                                       {"standard_error", number(e.standard_error)},
+                                       {"z", number(e.z)},
+                                       {"base_with_effect", base(e.base_with)},
+                                       {"base_without_effect", base(e.base_without)}});
+  }
   j["selected_effects"] = nlohmann::json::array();
   for (const ForwardSelectionStep& step : r.selected_effects)
   {

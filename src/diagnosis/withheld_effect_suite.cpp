@@ -429,13 +429,18 @@ double singleFitMagnitude(const DiagnosisResult& result, EffectKind kind)
 }
 }  // namespace
 
+double SemiRealOutcome::foundMagnitude() const
+{
+  return selected ? recoveredMagnitude() : determined ? singleFitShift() : std::numeric_limits<double>::quiet_NaN();
+}
+
 bool SemiRealOutcome::passed(double tolerance) const
 {
   if (input.injected == EffectKind::none)
   {
     return true;  // the baseline is a measurement, not a check
   }
-  return selected && std::abs(recoveredMagnitude() - input.magnitude) <= tolerance * std::abs(input.magnitude);
+  return found() && std::abs(foundMagnitude() - input.magnitude) <= tolerance * std::abs(input.magnitude);
 }
 
 SemiRealOutcome runSemiRealCase(const SemiRealSet& set, const SemiRealCase& c, const DiagnosisResult& baseline,
@@ -457,6 +462,9 @@ SemiRealOutcome runSemiRealCase(const SemiRealSet& set, const SemiRealCase& c, c
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const std::optional<double> fitted = selectedMagnitude(result, c.injected);
   outcome.selected = c.injected != EffectKind::none && fitted.has_value();
+  outcome.determined = c.injected != EffectKind::none &&
+                       std::any_of(result.determined.begin(), result.determined.end(),
+                                   [&](const DeterminedEffect& e) { return e.effect == c.injected; });
   outcome.fitted_magnitude = fitted.value_or(nan);
   outcome.baseline_magnitude = selectedMagnitude(baseline, c.injected).value_or(0.0);
   outcome.single_fit_magnitude = singleFitMagnitude(result, c.injected);
@@ -570,8 +578,10 @@ std::string semiRealDetection(const std::vector<SemiRealOutcome>& outcomes)
         out << " |";
         continue;
       }
-      out << " " << (o->selected ? "**" + formatDouble("%+.2f", o->recoveredMagnitude()) + "**" : std::string("not named"))
-          << (o->selected || o->chain.empty() ? "" : " (" + chainText(o->chain) + ")") << " |";
+      const std::string found = o->selected     ? "**named " + formatDouble("%+.2f", o->foundMagnitude()) + "**"
+                                : o->determined ? "determined " + formatDouble("%+.2f", o->foundMagnitude())
+                                                : std::string("not found");
+      out << " " << found << (o->selected || o->chain.empty() ? "" : " (named: " + chainText(o->chain) + ")") << " |";
     }
     out << "\n";
   }
@@ -583,10 +593,10 @@ std::string formatSemiRealTables(const std::vector<SemiRealOutcome>& outcomes)
 {
   std::ostringstream out;
   out << semiRealConfusion(outcomes) << "\n" << semiRealDetection(outcomes) << "\n";
-  out << "| set | injected | value [s] | dominant | chain | selected: fitted | baseline | recovered | error | "
-         "single fit: injected | baseline | shift | error | pass | time [s] |\n"
-         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  std::size_t checks = 0, passes = 0, shifts_within = 0;
+  out << "| set | injected | value [s] | dominant | chain | determined | selected: fitted | baseline | recovered | "
+         "error | single fit: injected | baseline | shift | error | pass | time [s] |\n"
+         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::size_t checks = 0, passes = 0, named_and_within = 0, shifts_within = 0;
   for (const SemiRealOutcome& o : outcomes)
   {
     const bool check = o.input.injected != EffectKind::none;
@@ -598,6 +608,7 @@ std::string formatSemiRealTables(const std::vector<SemiRealOutcome>& outcomes)
     };
     out << "| " << o.set_name << " | " << effectName(o.input.injected) << " | " << formatDouble("%.2f", o.input.magnitude)
         << " | " << effectName(o.dominant) << " | " << chainText(o.chain) << " | "
+        << (check ? (o.determined ? "yes" : "no") : "-") << " | "
         << number(o.fitted_magnitude) << " | " << (check ? number(o.baseline_magnitude) : "-") << " | "
         << number(o.recoveredMagnitude()) << " | " << error(o.recoveredMagnitude()) << " | "
         << number(o.single_fit_magnitude) << " | " << number(o.baseline_single_fit_magnitude) << " | "
@@ -605,13 +616,14 @@ std::string formatSemiRealTables(const std::vector<SemiRealOutcome>& outcomes)
         << (check ? (o.passed() ? "yes" : "NO") : "-") << " | " << formatDouble("%.1f", o.seconds) << " |\n";
     checks += check ? 1 : 0;
     passes += check && o.passed() ? 1 : 0;
+    named_and_within += check && o.selected && o.passed() ? 1 : 0;
     shifts_within +=
         check && std::abs(o.singleFitShift() - o.input.magnitude) <= 0.25 * std::abs(o.input.magnitude) ? 1 : 0;
   }
   out << "\npassed: " << passes << " of " << checks
-      << " (injected effect dominant or in the chain, its fitted value minus the baseline's within 25% of the "
-         "injected value); single-fit shift within 25%: "
-      << shifts_within << " of " << checks << "\n";
+      << " (injected effect found, named by the held-out rule or else determined by the training data, and the "
+         "size attributed to the injection within 25% of it); named by the held-out rule alone: "
+      << named_and_within << "; single-fit shift within 25%: " << shifts_within << " of " << checks << "\n";
   return out.str();
 }
 

@@ -331,6 +331,12 @@ void printSummary(const acc::DiagnosisResult& r)
     std::printf(" %s", acc::effectName(kind).c_str());
   }
   std::printf("%s\n", r.selection.plausible.empty() ? " (none)" : "");
+  // What the training data pin down, named by the held-out rule or not (determined_effects.h).
+  std::printf("determined by the training data (size away from none, Bonferroni):%s\n", r.determined.empty() ? " none" : "");
+  for (const acc::DeterminedEffect& e : r.determined)
+  {
+    std::printf("  %s\n", acc::describeDeterminedEffect(e).c_str());
+  }
   if (r.stability_test)
   {
     const acc::AugmentedStabilityTestResult& t = *r.stability_test;

@@ -9,6 +9,7 @@
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/augmented_stability.h"
 #include "acc_identification/diagnosis/augmented_stability_test.h"
+#include "acc_identification/diagnosis/determined_effects.h"
 #include "acc_identification/model/follower_effects.h"
 #include "acc_identification/diagnosis/effect_selection.h"
 #include "acc_identification/diagnosis/residual_breakdown.h"
@@ -92,6 +93,9 @@ struct DiagnosisResult
   /// it; the last one is why the chain stopped, unless it reached its maximum length).
   std::vector<SelectionResult> forward_rounds;
   std::string forward_stop_reason;
+  /// Effects whose size the training data pin away from none (determined_effects.h), whether or
+  /// not the held-out rule names them: what a timing effect absorbed by tau_e leaves to see.
+  std::vector<DeterminedEffect> determined;
 };
 
 /// Splits every run, fits the base model and each candidate effect on the first parts, scores

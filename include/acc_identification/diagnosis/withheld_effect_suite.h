@@ -133,6 +133,9 @@ struct SemiRealOutcome
   EffectKind dominant = EffectKind::none;
   std::vector<EffectKind> chain;       ///< the forward selection's effects, dominant first
   bool selected = false;               ///< injected effect dominant or in the chain
+  /// Injected effect among the diagnosis's determined effects (determined_effects.h): its size
+  /// pinned by the training data, whether or not held-out prediction tells it from the base model.
+  bool determined = false;
   double fitted_magnitude = 0.0;       ///< selectedMagnitude (NaN when not selected)
   double baseline_magnitude = 0.0;     ///< the untouched runs' selectedMagnitude (0 when not selected)
   double single_fit_magnitude = 0.0;   ///< the injected effect's single-effect fit, selected or not
@@ -146,7 +149,12 @@ struct SemiRealOutcome
   /// effect's own fit, whether or not the selection rule names it (the magnitude check without
   /// the held-out significance question).
   double singleFitShift() const { return single_fit_magnitude - baseline_single_fit_magnitude; }
-  /// Selected, and the recovered magnitude within tolerance (relative) of the injected one.
+  /// Found: selected by the held-out rule, or else determined by the training data.
+  bool found() const { return selected || determined; }
+  /// What the diagnosis attributes to the injection: recoveredMagnitude() when selected, else
+  /// singleFitShift() when determined (NaN when not found).
+  double foundMagnitude() const;
+  /// Found, and foundMagnitude() within tolerance (relative) of the injected magnitude.
   bool passed(double tolerance = 0.25) const;
 };
 

@@ -1,0 +1,47 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "acc_identification/diagnosis/augmented_calibration.h"
+#include "acc_identification/model/follower_effects.h"
+
+namespace acc
+{
+/// An effect whose size the training data pin away from "no effect", whether or not it predicts
+/// the held-out parts better. Why both: on real runs a clock offset or a delay is often absorbed
+/// by the base model's time gap (tau_e moves by about the offset, k1 and k2 follow), so the two
+/// models predict the held-out parts alike, while the effect's own fit recovers its size to a
+/// tenth of a second and leaves the base parameters where the untouched data had them. The
+/// held-out rule (effect_selection.h) then names nothing; this says what the data do determine.
+struct DeterminedEffect
+{
+  EffectKind effect = EffectKind::none;
+  double value = 0.0;           ///< the effect's first parameter in its single-effect fit
+  double standard_error = 0.0;  ///< its sandwich standard error (AugmentedFit::standard_errors)
+  double z = 0.0;               ///< |value - neutral| / standard_error
+  AccParameters base_without;   ///< the base model's parameters without the effect
+  AccParameters base_with;      ///< and with it: what the effect moves
+};
+
+/// The value at which an effect vanishes (lag, delay, clock offset: 0 s; gap slope: 0), or NaN
+/// for effects without one inside their range (acceleration limits and a set speed vanish only at
+/// infinity: the held-out rule decides them).
+double neutralValue(EffectKind kind);
+
+/// The two-sided normal quantile for level alpha over count tests (Bonferroni): the z an effect's
+/// size must exceed to be determined.
+double determinedThreshold(double alpha, std::size_t count);
+
+/// Every single-effect fit whose first parameter is determined: finite standard error, resolvable
+/// (timing effects at least sample_period_s), not at a bound of its range (a value at a bound is
+/// the search's limit, not the data's answer), and |value - neutral| / standard_error above
+/// determinedThreshold(alpha, number of effects with a neutral value). Sorted by z, largest first.
+std::vector<DeterminedEffect> determinedEffects(const AugmentedFit& base_fit, const std::vector<AugmentedFit>& effect_fits,
+                                                double sample_period_s, double alpha);
+
+/// One line per determined effect, for the summary and the report.
+std::string describeDeterminedEffect(const DeterminedEffect& effect);
+
+}  // namespace acc

@@ -1,0 +1,88 @@
+#include "acc_identification/diagnosis/determined_effects.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace acc
+{
+double neutralValue(EffectKind kind)
+{
+  switch (kind)
+  {
+    case EffectKind::actuation_lag:
+    case EffectKind::reaction_delay:
+    case EffectKind::sensor_time_offset:
+    case EffectKind::speed_dependent_time_gap: return 0.0;
+    default: return std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+double determinedThreshold(double alpha, std::size_t count)
+{
+  // Inverse of the two-sided normal tail by bisection on erfc: no statistics library needed.
+  const double tail = alpha / static_cast<double>(std::max<std::size_t>(1, count));
+  double low = 0.0, high = 40.0;
+  for (int i = 0; i < 200; ++i)
+  {
+    const double mid = 0.5 * (low + high);
+    (std::erfc(mid / std::sqrt(2.0)) > tail ? low : high) = mid;
+  }
+  return 0.5 * (low + high);
+}
+
+namespace
+{
+bool atBound(const EffectParameterSpec& spec, double value)
+{
+  const double margin = 1e-3 * (spec.upper - spec.lower);
+  return value <= spec.lower + margin || value >= spec.upper - margin;
+}
+}  // namespace
+
+std::vector<DeterminedEffect> determinedEffects(const AugmentedFit& base_fit, const std::vector<AugmentedFit>& effect_fits,
+                                                double sample_period_s, double alpha)
+{
+  const std::size_t tests = static_cast<std::size_t>(std::count_if(
+      effect_fits.begin(), effect_fits.end(), [](const AugmentedFit& f) { return std::isfinite(neutralValue(f.effect)); }));
+  const double threshold = determinedThreshold(alpha, tests);
+  std::vector<DeterminedEffect> out;
+  for (const AugmentedFit& fit : effect_fits)
+  {
+    const double neutral = neutralValue(fit.effect);
+    const std::size_t index = AugmentedParameterBox::kBaseDimension;  // the effect's first parameter
+    if (!std::isfinite(neutral) || fit.diverged || fit.effect_values.empty() || fit.standard_errors.size() <= index)
+    {
+      continue;
+    }
+    const double value = fit.effect_values.front();
+    const double standard_error = fit.standard_errors[index];
+    if (!(standard_error > 0.0) || !std::isfinite(standard_error) ||
+        atBound(candidateEffect(fit.effect).parameters.front(), value) ||
+        !isResolvable(fit.effect, fit.effect_values, sample_period_s))
+    {
+      continue;
+    }
+    const double z = std::abs(value - neutral) / standard_error;
+    if (z > threshold)
+    {
+      out.push_back({fit.effect, value, standard_error, z, base_fit.base, fit.base});
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const DeterminedEffect& a, const DeterminedEffect& b) { return a.z > b.z; });
+  return out;
+}
+
+std::string describeDeterminedEffect(const DeterminedEffect& e)
+{
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "%s %.3g +- %.2g (%.1f standard errors from none); with it tau_e %.3g s, k1 %.3g, k2 %.3g "
+                "(without: %.3g s, %.3g, %.3g)",
+                effectName(e.effect).c_str(), e.value, e.standard_error, e.z, e.base_with.tau_e_s, e.base_with.k1_per_s2,
+                e.base_with.k2_per_s, e.base_without.tau_e_s, e.base_without.k1_per_s2, e.base_without.k2_per_s);
+  return text;
+}
+
+}  // namespace acc

@@ -1,0 +1,74 @@
+// Effects determined by the training data (determined_effects.h): pinned away from none where one
+// is hidden, nothing where none is, and what an effect at a bound or below the resolution is.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "acc_identification/diagnosis/determined_effects.h"
+#include "acc_identification/diagnosis/diagnosis.h"
+#include "acc_identification/diagnosis/withheld_effect_suite.h"
+
+namespace
+{
+acc::DiagnosisResult diagnoseHidden(acc::EffectKind truth, std::vector<double> values, std::uint32_t seed)
+{
+  acc::WithheldCase c;
+  c.truth = truth;
+  c.truth_values = std::move(values);
+  c.seed = seed;
+  acc::DiagnosisOptions options;
+  options.with_stability_test = false;
+  options.forward_selection = false;
+  return acc::diagnoseRuns({acc::synthesizeWithheldRun(c)}, options);
+}
+
+TEST(DeterminedEffects, TheThresholdIsTheBonferroniNormalQuantile)
+{
+  EXPECT_NEAR(acc::determinedThreshold(0.05, 1), 1.95996, 1e-4);
+  EXPECT_NEAR(acc::determinedThreshold(0.05, 4), 2.49771, 1e-4);
+  EXPECT_TRUE(std::isnan(acc::neutralValue(acc::EffectKind::acceleration_limits)));
+  EXPECT_TRUE(std::isnan(acc::neutralValue(acc::EffectKind::set_speed_cruise)));
+  EXPECT_EQ(acc::neutralValue(acc::EffectKind::sensor_time_offset), 0.0);
+}
+
+TEST(DeterminedEffects, AHiddenClockOffsetIsDeterminedWithItsSizeAndNothingIsWhereNoneIsHidden)
+{
+  const acc::DiagnosisResult offset = diagnoseHidden(acc::EffectKind::sensor_time_offset, {0.8}, 3);
+  const auto found = std::find_if(offset.determined.begin(), offset.determined.end(),
+                                  [](const acc::DeterminedEffect& e) { return e.effect == acc::EffectKind::sensor_time_offset; });
+  ASSERT_NE(found, offset.determined.end());
+  EXPECT_NEAR(found->value, 0.8, 3.0 * found->standard_error + 0.05);
+  EXPECT_GT(found->z, acc::determinedThreshold(0.05, 4));
+  EXPECT_FALSE(acc::describeDeterminedEffect(*found).empty());
+
+  for (std::uint32_t seed : {4u, 5u, 6u})
+  {
+    const acc::DiagnosisResult none = diagnoseHidden(acc::EffectKind::none, {}, seed);
+    EXPECT_TRUE(none.determined.empty()) << acc::describeDeterminedEffect(none.determined.front());
+  }
+}
+
+TEST(DeterminedEffects, AValueAtABoundOrBelowTheResolutionOrWithoutAnErrorIsNotDetermined)
+{
+  acc::AugmentedFit base;
+  auto fit = [](acc::EffectKind kind, double value, double standard_error) {
+    acc::AugmentedFit f;
+    f.effect = kind;
+    f.effects = {kind};
+    f.effect_values = {value};
+    f.standard_errors = {0.01, 0.01, 0.01, 0.1, standard_error};
+    return f;
+  };
+  const double upper = acc::candidateEffect(acc::EffectKind::sensor_time_offset).parameters.front().upper;
+  const std::vector<acc::AugmentedFit> fits = {
+      fit(acc::EffectKind::sensor_time_offset, upper, 0.01),     // at its bound
+      fit(acc::EffectKind::reaction_delay, 0.05, 0.001),         // below one 0.1 s sample
+      fit(acc::EffectKind::actuation_lag, 0.8, std::nan("")),    // no standard error
+      fit(acc::EffectKind::speed_dependent_time_gap, 0.02, 0.001),  // 20 errors from none: determined
+  };
+  const auto determined = acc::determinedEffects(base, fits, 0.1, 0.05);
+  ASSERT_EQ(determined.size(), 1u);
+  EXPECT_EQ(determined.front().effect, acc::EffectKind::speed_dependent_time_gap);
+  EXPECT_NEAR(determined.front().z, 20.0, 1e-9);
+}
+}  // namespace
