@@ -58,6 +58,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 SECONDS_OF_DATA = 45.0
 DRAIN_S = 5.0  # after the last sentence is sent: late leader data may still arrive and pair
+MARK_AHEAD_S = 0.5  # the link's data start mark before the first sentence
 CONNECT_TIMEOUT_S = 60.0  # ros: the follower's subscribers connected to the lead's publishers
 # Jitter is +- (netem's `delay D J`): it reorders a GGA and the RMC sent right after it, and the
 # driver then completes the epoch without the RMC (no speed: an invalid sample), which is most of
@@ -327,8 +328,8 @@ def analyse(bag_path, leader_log, timing, level):
     if valid_times:
         counts["valid_span_s"] = max(valid_times) - min(valid_times)
     if "outage_s" in level:
-        # Wall time: the emulator's outage counts from the data start mark, sent at start_wall.
-        back = timing["start_wall"] + level["outage_start_s"] + level["outage_s"]
+        # Wall time: the emulator's outage counts from the data start mark.
+        back = timing["mark_wall"] + level["outage_start_s"] + level["outage_s"]
         after = [(arrived, late) for arrived, late in leader_arrivals if arrived >= back]
         counts["first_leader_fix_after_outage_s"] = after[0][0] - back if after else None
         # For ros each subscriber has its own TCPROS connection, stalled and resumed on its own:
@@ -486,8 +487,11 @@ def run_one(setup, level, namespaces, logs, work, env, processes):
     own_sender = processes.start(in_follower(["python3", sender, follower_log, "127.0.0.1", str(FOLLOWER_PORT),
                                               "--start-at", "%.3f" % start_wall]),
                                  os.path.join(directory, "own_sender.log"), env)
-    time.sleep(max(0.0, start_wall - time.time()))
-    os.kill(link.pid, signal.SIGUSR1)  # the data start: the outage counts from here
+    # The data start mark, a little before the first sentence so that none crosses the link
+    # before it is impaired; the outage counts from the mark.
+    time.sleep(max(0.0, start_wall - MARK_AHEAD_S - time.time()))
+    os.kill(link.pid, signal.SIGUSR1)
+    mark_wall = time.time()
     lead_sender.wait(SECONDS_OF_DATA + 30)
     own_sender.wait(SECONDS_OF_DATA + 30)
     time.sleep(DRAIN_S)
@@ -506,7 +510,8 @@ def run_one(setup, level, namespaces, logs, work, env, processes):
     link_counts = json.load(open(link_stats))
     sent = json.load(open(sent_stats))["sent"]
     first_tod = next(t for t in map(time_of_day_s, open(leader_log, newline="").read().splitlines()) if t is not None)
-    counts.update(analyse(bags[0], leader_log, {"start_wall": start_wall, "first_tod_s": first_tod}, level))
+    counts.update(analyse(bags[0], leader_log, {"start_wall": start_wall, "first_tod_s": first_tod,
+                                                 "mark_wall": mark_wall}, level))
     counts["leader_sentences_sent"] = sent
     counts["link"] = link_counts
     problems = problems_of(counts, setup, level, link_counts, sent)
