@@ -44,26 +44,6 @@ std::string text(const char* format, double x)
 
 double relativeError(double fitted, double truth) { return (fitted - truth) / std::abs(truth); }
 
-double median(std::vector<double> values)
-{
-  if (values.empty())
-  {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-std::string chainText(const std::vector<EffectKind>& chain)
-{
-  std::string out;
-  for (EffectKind kind : chain)
-  {
-    out += (out.empty() ? "" : " + ") + effectName(kind);
-  }
-  return out.empty() ? "-" : out;
-}
 }  // namespace
 
 std::vector<WithheldCase> combinedCaseGrid()
@@ -198,7 +178,7 @@ std::string effectTable(const std::vector<CombinedOutcome>& outcomes)
       wrongly += !was_hidden && named ? 1 : 0;
     }
     out << "| " << effectName(effect.kind) << " | " << found << " of " << hidden << " | " << wrongly << " of "
-        << others << " | " << text("%.0f%%", 100.0 * median(errors)) << " |\n";
+        << others << " | " << text("%.0f%%", 100.0 * medianOf(errors)) << " |\n";
   }
   return out.str();
 }

@@ -81,7 +81,9 @@ double primaryValue(const WithheldCase& c)
   return c.truth_values.empty() ? std::numeric_limits<double>::quiet_NaN() : c.truth_values.front();
 }
 
-double median(std::vector<double> v)
+}  // namespace
+
+double medianOf(std::vector<double> v)
 {
   if (v.empty())
   {
@@ -90,7 +92,16 @@ double median(std::vector<double> v)
   std::sort(v.begin(), v.end());
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
-}  // namespace
+
+std::string chainText(const std::vector<EffectKind>& chain)
+{
+  std::string text;
+  for (EffectKind kind : chain)
+  {
+    text += (text.empty() ? "" : " + ") + effectName(kind);
+  }
+  return text.empty() ? "-" : text;
+}
 
 std::string leadProfileName(SyntheticLeadProfile profile)
 {
@@ -335,7 +346,7 @@ std::string formatMagnitudeRecovery(const std::vector<WithheldOutcome>& outcomes
     }
     char row[256];
     std::snprintf(row, sizeof row, "| %s | %s | %zu | %.4g | %.1f%% |\n", effect.name.c_str(),
-                  effect.parameters.front().name.c_str(), absolute.size(), median(absolute), 100.0 * median(relative));
+                  effect.parameters.front().name.c_str(), absolute.size(), medianOf(absolute), 100.0 * medianOf(relative));
     out << row;
   }
   return out.str();
@@ -479,16 +490,6 @@ std::string formatDouble(const char* format, double x)
   char text[64];
   std::snprintf(text, sizeof text, format, x);
   return text;
-}
-
-std::string chainText(const std::vector<EffectKind>& chain)
-{
-  std::string text;
-  for (EffectKind kind : chain)
-  {
-    text += (text.empty() ? "" : " + ") + effectName(kind);
-  }
-  return text.empty() ? "-" : text;
 }
 
 std::string semiRealConfusion(const std::vector<SemiRealOutcome>& outcomes)

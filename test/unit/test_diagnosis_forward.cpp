@@ -22,6 +22,18 @@ acc::DiagnosisOptions quickOptions(bool with_stability_test)
   return options;
 }
 
+/// An actuation lag of 0.8 s and acceleration limits of 1.5/3.0 m/s^2 hidden in one run.
+acc::WithheldCase lagAndLimits()
+{
+  acc::WithheldCase c;
+  c.truth = acc::EffectKind::actuation_lag;
+  c.truth_values = {0.8};
+  c.also_withheld = {{acc::EffectKind::acceleration_limits, {1.5, 3.0}}};
+  c.profile = acc::SyntheticLeadProfile::steps;
+  c.seed = 21;
+  return c;
+}
+
 std::vector<acc::EffectKind> chainOf(const acc::DiagnosisResult& r)
 {
   std::vector<acc::EffectKind> chain;
@@ -99,12 +111,7 @@ TEST(ForwardSelection, NamesBothWithheldEffectsAndStops)
 {
   // On the steps profile the lag explains about half of the base model's held-out error and the
   // limits most of the rest; the follower never comes closer than 9 m (no collision in the truth).
-  acc::WithheldCase c;
-  c.truth = acc::EffectKind::actuation_lag;
-  c.truth_values = {0.8};
-  c.also_withheld = {{acc::EffectKind::acceleration_limits, {1.5, 3.0}}};
-  c.profile = acc::SyntheticLeadProfile::steps;
-  c.seed = 21;
+  const acc::WithheldCase c = lagAndLimits();
   const acc::DiagnosisResult r = acc::diagnoseRuns({acc::synthesizeWithheldRun(c)}, quickOptions(true));
   const std::vector<acc::EffectKind> chain = chainOf(r);
   ASSERT_EQ(chain.size(), 2u) << describeChain(r);
@@ -205,12 +212,7 @@ TEST(ForwardSelection, TheResultIsTheSameOnOneThreadAndOnTwo)
   // The effect fits and each round's candidates run on a thread pool, each stored by its index:
   // the JSON of the whole diagnosis (fits, bootstrap bounds, chain, stability test) must not
   // depend on how many threads ran them.
-  acc::WithheldCase c;
-  c.truth = acc::EffectKind::actuation_lag;
-  c.truth_values = {0.8};
-  c.also_withheld = {{acc::EffectKind::acceleration_limits, {1.5, 3.0}}};
-  c.profile = acc::SyntheticLeadProfile::steps;
-  c.seed = 21;
+  const acc::WithheldCase c = lagAndLimits();
   const std::vector<acc::CarFollowingRun> runs = {acc::synthesizeWithheldRun(c)};
   acc::DiagnosisOptions one_thread = quickOptions(true);
   one_thread.threads = 1;

@@ -76,6 +76,11 @@ std::vector<WithheldCase> withheldCaseGrid(std::size_t magnitudes_per_effect,
                                            const std::vector<SyntheticLeadProfile>& profiles,
                                            const std::vector<double>& noise_scales, std::size_t seeds);
 
+/// For the suites' tables: effects joined by " + " ("-" for none), and the median of values (NaN
+/// for none; the mean of the middle two for an even count).
+std::string chainText(const std::vector<EffectKind>& chain);
+double medianOf(std::vector<double> values);
+
 /// Rows: truth (none, then the catalogue), columns: the dominant effect named; counts.
 struct ConfusionMatrix
 {
