@@ -1,5 +1,6 @@
 #include "acc_identification/gnss/gnss_epoch_assembler.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace acc
@@ -54,102 +55,184 @@ bool takes(int rank, int& current)
 }
 }  // namespace
 
-std::optional<GnssFix> GnssEpochAssembler::add(const NmeaSentence& sentence, double receive_time_s)
+namespace
 {
-  std::optional<GnssFix> completed;
+constexpr std::uint32_t kGroups = GnssFix::kValidPosition | GnssFix::kValidSpeed;
+constexpr std::size_t kRecentEpochs = 3;
+}  // namespace
+
+std::vector<GnssFix> GnssEpochAssembler::add(const NmeaSentence& sentence, double receive_time_s)
+{
+  std::vector<GnssFix> completed;
   const bool timed = !std::isnan(sentence.time_of_day_s);
-  if (pending_ && timed && !std::isnan(time_of_day_s_) && !sameTime(time_of_day_s_, sentence.time_of_day_s))
-    completed = flush();
-  if (!pending_)
-    start(receive_time_s);
-  if (timed && std::isnan(time_of_day_s_))
-    time_of_day_s_ = sentence.time_of_day_s;
-  if (sentence.day)
-    sentence_day_ = sentence.day;
-  merge(sentence);
-  last_receive_time_s_ = receive_time_s;
+  if (timed && waiting_.pending && sameTime(waiting_.time_of_day_s, sentence.time_of_day_s))
+  {
+    ++late_merged_;  // the late sentence this epoch waited for
+    addTo(waiting_, sentence, receive_time_s);
+    if (missingGroups(waiting_) == 0)
+      complete(waiting_, completed);
+    return completed;
+  }
+  const bool new_time = timed && current_.pending && !std::isnan(current_.time_of_day_s) &&
+                        !sameTime(current_.time_of_day_s, sentence.time_of_day_s);
+  if (reorder_wait_s_ > 0.0 && timed && (new_time || !current_.pending) && recentlyCompleted(sentence.time_of_day_s))
+  {
+    ++late_after_fix_;  // its epoch is out already: a second fix of that time would mislead
+    return completed;
+  }
+  if (new_time)
+  {
+    if (waiting_.pending)
+      complete(waiting_, completed);  // two epochs old: its late sentences had their chance
+    if (reorder_wait_s_ > 0.0 && missingGroups(current_) != 0)
+    {
+      waiting_ = current_;
+      current_.pending = false;
+    }
+    else
+    {
+      complete(current_, completed);
+    }
+  }
+  if (!current_.pending)
+    start(current_, receive_time_s);
+  addTo(current_, sentence, receive_time_s);
   return completed;
 }
 
-void GnssEpochAssembler::start(double receive_time_s)
+void GnssEpochAssembler::addTo(Epoch& epoch, const NmeaSentence& sentence, double receive_time_s)
 {
-  pending_ = true;
-  fix_ = GnssFix();
-  time_of_day_s_ = GnssFix::kNaN;
-  sentence_day_.reset();
-  position_rank_ = altitude_rank_ = velocity_rank_ = sigma_rank_ = quality_rank_ = 0;
-  last_receive_time_s_ = receive_time_s;
+  if (!std::isnan(sentence.time_of_day_s) && std::isnan(epoch.time_of_day_s))
+    epoch.time_of_day_s = sentence.time_of_day_s;
+  if (sentence.day)
+    epoch.sentence_day = sentence.day;
+  merge(epoch, sentence);
+  epoch.last_receive_time_s = receive_time_s;
 }
 
-void GnssEpochAssembler::merge(const NmeaSentence& s)
+void GnssEpochAssembler::start(Epoch& epoch, double receive_time_s)
+{
+  epoch = Epoch();
+  epoch.pending = true;
+  epoch.first_receive_time_s = receive_time_s;
+  epoch.last_receive_time_s = receive_time_s;
+}
+
+std::uint32_t GnssEpochAssembler::missingGroups(const Epoch& epoch) const
+{
+  if (recent_groups_.size() < kRecentEpochs)
+    return 0;  // nothing learned yet: complete as without a reorder wait
+  std::uint32_t usual = kGroups;
+  for (std::uint32_t groups : recent_groups_)
+    usual &= groups;
+  return usual & ~epoch.fix.valid_fields;
+}
+
+bool GnssEpochAssembler::recentlyCompleted(double time_of_day_s) const
+{
+  return std::any_of(recent_times_.begin(), recent_times_.end(),
+                     [time_of_day_s](double t) { return sameTime(t, time_of_day_s); });
+}
+
+void GnssEpochAssembler::merge(Epoch& epoch, const NmeaSentence& s)
 {
   const Ranks rank = talkerRanks(s);
-  if (s.fix_quality >= 0 && takes(rank.quality, quality_rank_))
-    fix_.fix_quality = static_cast<std::uint8_t>(s.fix_quality);
-  if (!std::isnan(s.latitude_deg) && takes(rank.position, position_rank_))
+  if (s.fix_quality >= 0 && takes(rank.quality, epoch.quality_rank))
+    epoch.fix.fix_quality = static_cast<std::uint8_t>(s.fix_quality);
+  if (!std::isnan(s.latitude_deg) && takes(rank.position, epoch.position_rank))
   {
-    fix_.latitude_deg = s.latitude_deg;
-    fix_.longitude_deg = s.longitude_deg;
-    fix_.valid_fields |= GnssFix::kValidPosition;
+    epoch.fix.latitude_deg = s.latitude_deg;
+    epoch.fix.longitude_deg = s.longitude_deg;
+    epoch.fix.valid_fields |= GnssFix::kValidPosition;
   }
-  if (takes(rank.altitude, altitude_rank_))
+  if (takes(rank.altitude, epoch.altitude_rank))
   {
     if (!std::isnan(s.altitude_m))
     {
-      fix_.altitude_m = s.altitude_m;
-      fix_.geoid_separation_m = s.geoid_separation_m;
-      fix_.valid_fields |= GnssFix::kValidAltitude;
+      epoch.fix.altitude_m = s.altitude_m;
+      epoch.fix.geoid_separation_m = s.geoid_separation_m;
+      epoch.fix.valid_fields |= GnssFix::kValidAltitude;
     }
     if (s.satellites >= 0)
     {
-      fix_.satellites_used = static_cast<std::uint16_t>(s.satellites);
-      fix_.valid_fields |= GnssFix::kValidSatellites;
+      epoch.fix.satellites_used = static_cast<std::uint16_t>(s.satellites);
+      epoch.fix.valid_fields |= GnssFix::kValidSatellites;
     }
     if (!std::isnan(s.hdop))
     {
-      fix_.hdop = s.hdop;
-      fix_.valid_fields |= GnssFix::kValidHdop;
+      epoch.fix.hdop = s.hdop;
+      epoch.fix.valid_fields |= GnssFix::kValidHdop;
     }
   }
-  if (!std::isnan(s.speed_mps) && takes(rank.velocity, velocity_rank_))
+  if (!std::isnan(s.speed_mps) && takes(rank.velocity, epoch.velocity_rank))
   {
-    fix_.speed_over_ground_mps = s.speed_mps;
-    fix_.valid_fields |= GnssFix::kValidSpeed;
-    fix_.course_rad = s.course_rad;  // empty at standstill on many receivers
+    epoch.fix.speed_over_ground_mps = s.speed_mps;
+    epoch.fix.valid_fields |= GnssFix::kValidSpeed;
+    epoch.fix.course_rad = s.course_rad;  // empty at standstill on many receivers
     if (!std::isnan(s.course_rad))
-      fix_.valid_fields |= GnssFix::kValidCourse;
+      epoch.fix.valid_fields |= GnssFix::kValidCourse;
     else
-      fix_.valid_fields &= ~GnssFix::kValidCourse;
+      epoch.fix.valid_fields &= ~GnssFix::kValidCourse;
   }
-  if (!std::isnan(s.latitude_sigma_m) && takes(rank.sigma, sigma_rank_))
+  if (!std::isnan(s.latitude_sigma_m) && takes(rank.sigma, epoch.sigma_rank))
   {
-    fix_.latitude_sigma_m = s.latitude_sigma_m;
-    fix_.longitude_sigma_m = s.longitude_sigma_m;
-    fix_.altitude_sigma_m = s.altitude_sigma_m;
-    fix_.valid_fields |= GnssFix::kValidPositionSigma;
+    epoch.fix.latitude_sigma_m = s.latitude_sigma_m;
+    epoch.fix.longitude_sigma_m = s.longitude_sigma_m;
+    epoch.fix.altitude_sigma_m = s.altitude_sigma_m;
+    epoch.fix.valid_fields |= GnssFix::kValidPositionSigma;
   }
 }
 
-std::optional<GnssFix> GnssEpochAssembler::flush()
+void GnssEpochAssembler::complete(Epoch& epoch, std::vector<GnssFix>& out)
 {
-  if (!pending_)
-    return std::nullopt;
-  pending_ = false;
-  if (std::isnan(time_of_day_s_))
+  if (!epoch.pending)
+    return;
+  epoch.pending = false;
+  if (std::isnan(epoch.time_of_day_s))
   {
     ++epochs_without_time_;
-    return std::nullopt;
+    return;
   }
-  GnssFix fix = fix_;
+  GnssFix fix = epoch.fix;
   if (fix.fix_quality == 7 || fix.fix_quality == 8)  // manual input, simulator: not a measurement,
     fix.valid_fields &= ~(GnssFix::kValidPosition | GnssFix::kValidAltitude);  // whatever RMC said
-  fix.receive_time_s = last_receive_time_s_;
-  const std::optional<std::int64_t> day = dates_.dayOf(time_of_day_s_, sentence_day_);
+  fix.receive_time_s = epoch.last_receive_time_s;
+  const std::optional<std::int64_t> day = dates_.dayOf(epoch.time_of_day_s, epoch.sentence_day);
   fix.has_date = day.has_value();
-  fix.gnss_time_s = day ? static_cast<double>(*day) * kSecondsPerDay + time_of_day_s_ : time_of_day_s_;
+  fix.gnss_time_s = day ? static_cast<double>(*day) * kSecondsPerDay + epoch.time_of_day_s : epoch.time_of_day_s;
   if (fix.has_date)
     fix.valid_fields |= GnssFix::kValidDate;
-  return fix;
+  recent_groups_.push_back(epoch.fix.valid_fields & kGroups);
+  recent_times_.push_back(epoch.time_of_day_s);
+  while (recent_groups_.size() > kRecentEpochs)
+    recent_groups_.pop_front();
+  while (recent_times_.size() > kRecentEpochs)
+    recent_times_.pop_front();
+  out.push_back(fix);
+}
+
+std::vector<GnssFix> GnssEpochAssembler::flush()
+{
+  std::vector<GnssFix> out;
+  complete(waiting_, out);
+  complete(current_, out);
+  return out;
+}
+
+std::vector<GnssFix> GnssEpochAssembler::flushIdle(double now_s)
+{
+  std::vector<GnssFix> out;
+  if (waiting_.pending && now_s - waiting_.first_receive_time_s >= reorder_wait_s_)
+    complete(waiting_, out);
+  const bool waits = reorder_wait_s_ > 0.0 && missingGroups(current_) != 0 &&
+                     now_s - current_.first_receive_time_s < reorder_wait_s_;
+  if (current_.pending && !waits)
+  {
+    if (waiting_.pending)
+      complete(waiting_, out);  // keep the order of the fixes
+    complete(current_, out);
+  }
+  return out;
 }
 
 }  // namespace acc

@@ -25,22 +25,25 @@ void NmeaDecoder::handleLine(std::string_view line, double receive_time_s)
     emit(epochs_.add(sentence, receive_time_s));
 }
 
-void NmeaDecoder::emit(const std::optional<GnssFix>& fix)
+void NmeaDecoder::emit(const std::vector<GnssFix>& fixes)
 {
-  if (!fix)
-    return;
-  ++counts_.fixes;
-  if (on_fix_)
-    on_fix_(*fix);
+  for (const GnssFix& fix : fixes)
+  {
+    ++counts_.fixes;
+    if (on_fix_)
+      on_fix_(fix);
+  }
 }
 
 void NmeaDecoder::flushIfIdle(double now_s, double idle_s)
 {
   if (epochs_.hasPending() && now_s - epochs_.lastReceiveTime() >= idle_s)
-    emit(epochs_.flush());
+    emit(epochs_.flushIdle(now_s));
 }
 
-void NmeaDecoder::flushEpoch() { emit(epochs_.flush()); }
+void NmeaDecoder::flushEpoch(double now_s) { emit(epochs_.flushIdle(now_s)); }
+
+void NmeaDecoder::flushAll() { emit(epochs_.flush()); }
 
 void NmeaDecoder::finish(double receive_time_s)
 {
@@ -57,6 +60,8 @@ NmeaStatistics NmeaDecoder::statistics() const
   statistics.overlong_lines = lines_.overlongLines();
   statistics.epochs_without_time = epochs_.epochsWithoutTime();
   statistics.date_lag_corrections = epochs_.dateLagCorrections();
+  statistics.late_sentences_merged = epochs_.lateSentencesMerged();
+  statistics.late_sentences_after_fix = epochs_.lateSentencesAfterFix();
   return statistics;
 }
 

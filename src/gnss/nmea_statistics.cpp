@@ -24,6 +24,11 @@ std::string NmeaStatistics::summary() const
       << " stray lines, " << cut_lines << " cut lines, " << overlong_lines << " overlong lines; " << fixes
       << " fixes, " << epochs_without_time << " epochs without time, " << date_lag_corrections
       << " date lag corrections";
+  if (late_sentences_merged > 0 || late_sentences_after_fix > 0)
+  {
+    out << "; " << late_sentences_merged << " late sentences merged, " << late_sentences_after_fix
+        << " after their epoch's fix";
+  }
   return out.str();
 }
 

@@ -149,6 +149,9 @@ GpsDriverRos::GpsDriverRos(ros::NodeHandle node, ros::NodeHandle private_node)
   private_node.param<std::string>("vel_frame_id", vel_frame_id_, "enu");
   private_node.param("epoch_idle_s", epoch_idle_s_, epoch_idle_s_);
   private_node.param("epoch_idle_wall_s", epoch_idle_wall_s_, epoch_idle_wall_s_);
+  double epoch_reorder_wait_s = 0.0;
+  private_node.param("epoch_reorder_wait_s", epoch_reorder_wait_s, epoch_reorder_wait_s);
+  decoder_.setReorderWait(std::max(0.0, epoch_reorder_wait_s));
   private_node.param("hdop_uere_m", hdop_uere_m_, hdop_uere_m_);
   private_node.param("use_gnss_time", use_gnss_time_, use_gnss_time_);
   private_node.param("expected_rate_hz", expected_rate_hz_, expected_rate_hz_);
@@ -214,7 +217,7 @@ int GpsDriverRos::run()
     {
       // Idle on the host's steady clock (not ROS time, which may be paused under /use_sim_time).
       receive_time_ = ros::Time::now();
-      decoder_.flushEpoch();
+      decoder_.flushEpoch(receive_time_.toSec());
     }
     if (seconds(now - last_diagnostic_) >= diagnostic_period_s_)
       updater_.force_update();
@@ -257,7 +260,7 @@ void GpsDriverRos::flushIdleTopicEpoch()
   const double wall_idle_s = seconds(SteadyClock::now() - last_bytes_);
   const ros::Time now = ros::Time::now();
   if (wall_idle_s >= epoch_idle_wall_s_)
-    decoder_.flushEpoch();
+    decoder_.flushAll();
   else if (wall_idle_s >= epoch_idle_s_ && !now.isZero())
     decoder_.flushIfIdle(now.toSec(), epoch_idle_s_);
 }
@@ -406,6 +409,8 @@ void GpsDriverRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("lines cut by a new $", s.cut_lines);
   status.add("epochs without time", s.epochs_without_time);
   status.add("date lag corrections", s.date_lag_corrections);
+  status.add("late sentences merged (reorder wait)", s.late_sentences_merged);
+  status.add("late sentences after their epoch's fix", s.late_sentences_after_fix);
   status.add("fixes", s.fixes);
   status.add("fixes with a GNSS time outside ros::Time (not published on fix)", fixes_outside_ros_time_);
 }

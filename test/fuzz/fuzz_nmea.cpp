@@ -48,12 +48,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   acc::NmeaDecoder decoder([&](std::string_view, acc::NmeaParseOutcome) { ++lines; }, checkFix);
   // The first byte chooses the read size, so that lines are split across reads in every way.
   const std::size_t chunk = size > 0 ? 1 + data[0] % 64 : 1;
+  // ...and whether epochs wait for late sentences (the reorder wait of a driver over a radio link).
+  decoder.setReorderWait(size > 0 && (data[0] & 0x40) ? 0.3 : 0.0);
   double receive_time_s = 0.0;
   for (std::size_t at = 0; at < size; at += chunk, receive_time_s += 0.01)
   {
     decoder.feed(input.data() + at, std::min(chunk, size - at), receive_time_s);
     if (data[at] == 0x7f)
-      decoder.flushEpoch();
+      decoder.flushEpoch(receive_time_s);
   }
   decoder.finish(receive_time_s);
   const acc::NmeaStatistics s = decoder.statistics();

@@ -8,6 +8,7 @@
 #include "acc_identification/gnss/gnss_velocity.h"
 #include "acc_identification/gnss/nmea_decoder.h"
 #include "acc_identification/gnss/nmea_log.h"
+#include "acc_identification/gnss/nmea_writer.h"
 #include "acc_identification/gnss/utc_date.h"
 
 using acc::GnssFix;
@@ -307,4 +308,136 @@ TEST(GnssEpochReceivers, EveryLineOfAMixedStreamIsAccountedFor)
   EXPECT_EQ(d.statistics.stray_lines, 1u);
   EXPECT_EQ(d.statistics.inputLines(), 4u);
   EXPECT_EQ(d.fixes.size(), 2u);
+}
+
+namespace
+{
+/// GGA and RMC of epoch k (10 Hz) of a receiver moving at 10 + k m/s: each fix's speed says its
+/// epoch, so a speed with the wrong position shows.
+struct EpochLines
+{
+  std::string gga, rmc;
+};
+
+EpochLines epochLines(int k)
+{
+  GnssFix fix;
+  fix.gnss_time_s = at(2024, 5, 12, 36000.0 + 0.1 * k);
+  fix.has_date = true;
+  fix.latitude_deg = 47.0 + 1e-5 * k;
+  fix.longitude_deg = 8.0;
+  fix.altitude_m = 400.0;
+  fix.fix_quality = 1;
+  fix.satellites_used = 12;
+  fix.hdop = 0.8;
+  fix.speed_over_ground_mps = 10.0 + k;
+  fix.course_rad = 1.0;
+  fix.valid_fields = GnssFix::kValidPosition | GnssFix::kValidAltitude | GnssFix::kValidSatellites |
+                     GnssFix::kValidHdop | GnssFix::kValidSpeed | GnssFix::kValidCourse | GnssFix::kValidDate;
+  return {acc::formatGga(fix) + "\r\n", acc::formatRmc(fix) + "\r\n"};
+}
+
+/// A decoder with the given reorder wait whose fixes go to fixes.
+struct ReorderingLink
+{
+  std::vector<GnssFix> fixes;
+  acc::NmeaDecoder decoder{nullptr, [this](const GnssFix& fix) { fixes.push_back(fix); }};
+  explicit ReorderingLink(double wait_s) { decoder.setReorderWait(wait_s); }
+  void send(const std::string& line, double t) { decoder.feed(line.data(), line.size(), t); }
+};
+
+void expectWhole(const std::vector<GnssFix>& fixes, int first_epoch)
+{
+  for (std::size_t i = 0; i < fixes.size(); ++i)
+  {
+    const int k = first_epoch + static_cast<int>(i);
+    EXPECT_NEAR(fixes[i].gnss_time_s, at(2024, 5, 12, 36000.0 + 0.1 * k), 1e-6) << "fix " << i;
+    EXPECT_TRUE(fixes[i].valid_fields & GnssFix::kValidPosition) << "fix " << i;
+    EXPECT_TRUE(fixes[i].valid_fields & GnssFix::kValidSpeed) << "epoch " << k << " lost its RMC";
+    EXPECT_NEAR(fixes[i].speed_over_ground_mps, 10.0 + k, 1e-3) << "epoch " << k;
+  }
+}
+}  // namespace
+
+// Over a radio link with jitter an epoch's RMC can come after the next epoch's GGA. Without a
+// reorder wait each epoch is then split in two fixes, one without speed (the pairing's leader
+// speed is missing); with one, every epoch is one whole fix, in order.
+TEST(GnssEpochReorder, AnRmcAfterTheNextEpochsGgaJoinsItsOwnEpoch)
+{
+  for (double wait_s : {0.0, 0.5})
+  {
+    ReorderingLink link(wait_s);
+    double t = 0.0;
+    for (int k = 0; k < 5; ++k)  // in order: the stream's epochs carry position and speed
+    {
+      link.send(epochLines(k).gga, t += 0.01);
+      link.send(epochLines(k).rmc, t += 0.01);
+    }
+    for (int k = 5; k < 15; ++k)  // from epoch 5 on each RMC comes after the next epoch's GGA
+    {
+      link.send(epochLines(k).gga, t += 0.05);
+      if (k > 5)
+        link.send(epochLines(k - 1).rmc, t += 0.05);
+    }
+    link.send(epochLines(14).rmc, t += 0.05);
+    link.decoder.finish(t);
+    const acc::NmeaStatistics s = link.decoder.statistics();
+    if (wait_s == 0.0)
+    {
+      EXPECT_GT(link.fixes.size(), 15u);  // the old behaviour, kept as the default: split epochs
+      continue;
+    }
+    ASSERT_EQ(link.fixes.size(), 15u);
+    expectWhole(link.fixes, 0);
+    EXPECT_EQ(s.late_sentences_merged, 9u);  // epochs 5 to 13; epoch 14's RMC finds it still current
+    EXPECT_EQ(s.late_sentences_after_fix, 0u);
+  }
+}
+
+// The idle flush (a pause in the bytes) must not complete an epoch whose RMC is still on the way,
+// until the reorder wait has passed; a sentence later than that is counted and makes no second
+// fix of its epoch.
+TEST(GnssEpochReorder, TheIdleFlushWaitsForALateSentenceThenGivesUp)
+{
+  ReorderingLink link(0.3);
+  double t = 0.0;
+  for (int k = 0; k < 4; ++k)
+  {
+    link.send(epochLines(k).gga, t += 0.01);
+    link.send(epochLines(k).rmc, t += 0.01);
+    link.decoder.flushEpoch(t += 0.06);
+  }
+  ASSERT_EQ(link.fixes.size(), 4u);
+  link.send(epochLines(4).gga, t += 0.03);
+  link.decoder.flushEpoch(t += 0.06);  // idle, but its RMC is missing: waits
+  EXPECT_EQ(link.fixes.size(), 4u);
+  link.send(epochLines(4).rmc, t += 0.1);  // 0.16 s after the GGA: in time
+  link.decoder.flushEpoch(t += 0.06);
+  ASSERT_EQ(link.fixes.size(), 5u);
+  expectWhole(link.fixes, 0);
+
+  link.send(epochLines(5).gga, t += 0.03);
+  link.decoder.flushEpoch(t += 0.1);
+  EXPECT_EQ(link.fixes.size(), 5u);
+  link.decoder.flushEpoch(t += 0.25);  // past the wait: published without speed
+  ASSERT_EQ(link.fixes.size(), 6u);
+  EXPECT_FALSE(link.fixes.back().valid_fields & GnssFix::kValidSpeed);
+  link.send(epochLines(5).rmc, t += 0.1);  // too late
+  link.decoder.finish(t);
+  EXPECT_EQ(link.fixes.size(), 6u);
+  EXPECT_EQ(link.decoder.statistics().late_sentences_after_fix, 1u);
+}
+
+// A receiver whose epochs never carry speed (GGA only) is not held back: nothing is missing from
+// what its epochs usually carry.
+TEST(GnssEpochReorder, AStreamWithoutSpeedIsNotHeldBack)
+{
+  ReorderingLink link(0.5);
+  double t = 0.0;
+  for (int k = 0; k < 6; ++k)
+  {
+    link.send(epochLines(k).gga, t += 0.1);
+    link.decoder.flushEpoch(t += 0.06);
+    EXPECT_EQ(link.fixes.size(), static_cast<std::size_t>(k + 1)) << "epoch " << k << " waited";
+  }
 }

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
+#include <vector>
 #include <string_view>
 
 #include "acc_identification/gnss/gnss_epoch_assembler.h"
@@ -26,10 +27,16 @@ public:
 
   /// Feeds received bytes; handlers are called for every completed line and epoch.
   void feed(const char* data, std::size_t size, double receive_time_s);
-  /// Completes the pending epoch when no sentence arrived for idle_s (live sources).
+  /// Completes the pending epoch when no sentence arrived for idle_s (live sources), unless it
+  /// waits for late sentences (setReorderWait).
   void flushIfIdle(double now_s, double idle_s);
-  /// Completes the pending epoch now (the caller saw a pause in the byte stream).
-  void flushEpoch();
+  /// The caller saw a pause in the byte stream at now_s: completes the pending epoch, unless it
+  /// waits for late sentences.
+  void flushEpoch(double now_s);
+  /// Completes every pending epoch, waiting or not (a long silence).
+  void flushAll();
+  /// See GnssEpochAssembler::setReorderWait (0: an epoch never waits for late sentences).
+  void setReorderWait(double wait_s) { epochs_.setReorderWait(wait_s); }
   /// End of stream: hands out a last unterminated line and the pending epoch.
   void finish(double receive_time_s);
 
@@ -37,7 +44,7 @@ public:
 
 private:
   void handleLine(std::string_view line, double receive_time_s);
-  void emit(const std::optional<GnssFix>& fix);
+  void emit(const std::vector<GnssFix>& fixes);
 
   LineHandler on_line_;
   FixHandler on_fix_;

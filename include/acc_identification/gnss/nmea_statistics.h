@@ -22,6 +22,8 @@ struct NmeaStatistics
   std::uint64_t fixes = 0;          ///< epochs completed
   std::uint64_t epochs_without_time = 0;  ///< epochs of untimed sentences only, discarded
   std::uint64_t date_lag_corrections = 0; ///< see UtcDateTracker
+  std::uint64_t late_sentences_merged = 0;     ///< reached their epoch while it waited (reorder wait)
+  std::uint64_t late_sentences_after_fix = 0;  ///< came after their epoch's fix: in no fix (raw line kept)
 
   void count(NmeaParseOutcome outcome);
   std::uint64_t rejected() const { return bad_checksum + malformed + unsupported; }
