@@ -53,10 +53,9 @@ bool takes(int rank, int& current)
   current = rank;
   return true;
 }
-}  // namespace
 
-namespace
-{
+/// The field groups whose absence makes an epoch wait for late sentences (with a reorder wait),
+/// learned from this many of the last epochs.
 constexpr std::uint32_t kGroups = GnssFix::kValidPosition | GnssFix::kValidSpeed;
 constexpr std::size_t kRecentEpochs = 3;
 }  // namespace

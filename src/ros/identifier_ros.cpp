@@ -219,7 +219,7 @@ acc_identification::AccParameters toMessage(const Identification& identification
 }
 
 IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node, SolveFunction solve)
-  : solve_(std::move(solve)), window_(settings_.window_s, settings_.max_gap_s, 2), drive_(settings_.max_gap_s, 2, 30.0, 5)
+  : solve_(std::move(solve)), window_(settings_.window_s, settings_.max_gap_s, 2), drive_(settings_.max_gap_s, 2)
 {
   if (!solve_)
   {

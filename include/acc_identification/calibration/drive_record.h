@@ -51,8 +51,9 @@ std::optional<DriveBlock> chooseBlockToLetGo(const std::vector<DriveBlock>& bloc
 class DriveRecord
 {
 public:
-  DriveRecord(double max_gap_s, std::size_t min_segment_samples, double max_forward_jump_s,
-              std::size_t confirm_samples, DriveBound bound = {});
+  /// The time-fault settings are SlidingWindow's, with its defaults.
+  DriveRecord(double max_gap_s, std::size_t min_segment_samples, double max_forward_jump_s = 30.0,
+              std::size_t confirm_samples = 5, DriveBound bound = {});
 
   /// Adds a sample as SlidingWindow::add does, then lets go of blocks while over the bound.
   SlidingWindow::AddResult add(const WindowSample& sample);
