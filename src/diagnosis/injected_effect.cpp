@@ -84,7 +84,12 @@ CarFollowingRun injectActuationLag(const CarFollowingRun& run, double lag_s)
   }
   const std::vector<double>& v = run.follower_speed_mps;
   double lagged = v.front();
-  double gap_gain_m = 0.0;  // integral of (v - v_lag): how much less the lagged car has driven
+  // How far behind the recorded car the lagged one drives: T v_lag + integral (v - v_lag) - T
+  // (v_lag - v_lag(t0)), i.e. T v_lag throughout. From T v0 at the start, not 0: the lagged car has
+  // followed with its lag before t0 as well, so its gap at speed v is the recorded car's plus T v
+  // and the jam distance is unchanged; from 0 the jam distance would drop by T v0 per run.
+  double gap_gain_m = lag_s * v.front();
+  out.space_gap_m[0] = run.space_gap_m[0] + gap_gain_m;
   for (std::size_t k = 1; k < run.size(); ++k)
   {
     const double h = run.time_s[k] - run.time_s[k - 1];
@@ -97,6 +102,20 @@ CarFollowingRun injectActuationLag(const CarFollowingRun& run, double lag_s)
     out.space_gap_m[k] = run.space_gap_m[k] + gap_gain_m;
   }
   return out;
+}
+
+double closedLoopLagReading(double lag_s, const AccParameters& p)
+{
+  return lag_s / (1.0 + lag_s * (p.k1_per_s2 * p.tau_e_s + p.k2_per_s));
+}
+
+// With a = F(s, v, u) the recorded car's acceleration and T a_lag' + a_lag = a, substituting the
+// recorded state by the lagged one (v = v_lag + T a_lag, s = s_lag - T v_lag) into the model gives
+// T a_lag' + c a_lag = k1 (s_lag - eta - (tau_e + T) v_lag) + k2 (u - v_lag): divide by c.
+AccParameters closedLoopLagParameters(double lag_s, const AccParameters& p)
+{
+  const double c = 1.0 + lag_s * (p.k1_per_s2 * p.tau_e_s + p.k2_per_s);
+  return AccParameters{p.k1_per_s2 / c, p.k2_per_s / c, p.tau_e_s + lag_s, p.eta_m};
 }
 
 }  // namespace acc

@@ -130,6 +130,13 @@ nlohmann::json semiRealJson(const acc::SemiRealOutcome& o)
           {"single_fit_magnitude", number(o.single_fit_magnitude)},
           {"baseline_single_fit_magnitude", number(o.baseline_single_fit_magnitude)},
           {"single_fit_shift", number(o.singleFitShift())},
+          {"expected_magnitude", number(o.expected_magnitude)},
+          {"baseline_estimate", o.baseline_estimate},
+          {"baseline_standard_error", number(o.baseline_standard_error)},
+          {"detection_z", o.detection_z},
+          {"detectable", o.detectable()},
+          {"found_magnitude", number(o.foundMagnitude())},
+          {"misattributed", o.misattributed()},
           {"base_test_rmse_speed", o.base_test_rmse_speed_mps},
           {"passed", o.passed()},
           {"seconds", o.seconds}};

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/car_following_run.h"
 
 namespace acc
@@ -16,12 +17,23 @@ namespace acc
 /// the result reads a time offset larger by delta. Any sign; the run's time may be non-uniform.
 CarFollowingRun injectSensorTimeOffset(const CarFollowingRun& run, double offset_s);
 
-/// Actuation lag T on the follower: its speed passes through v_lag' = (v - v_lag) / T from
-/// v_lag(t0) = v(t0), discretised exactly for a speed linear between samples, and the gap becomes
-/// s(t) + integral_t0^t (v - v_lag) dt (trapezoid), the gap a car driving v_lag would keep. A lag
-/// of the speed is a lag of its derivative too (T a_lag' + a_lag = a), i.e. the model's
-/// actuation lag on top of the car's own. lag_s >= 0 (0: unchanged).
+/// Actuation lag T on the follower, open loop: its speed passes through v_lag' = (v - v_lag) / T
+/// from v_lag(t0) = v(t0), discretised exactly for a speed linear between samples, and the gap
+/// becomes s(t) + T v_lag(t), the gap a car driving v_lag all along would keep (it is T v_lag
+/// behind the recorded car: T v0 at the start plus integral_t0^t (v - v_lag) dt, trapezoid). The
+/// lag acts on the recorded car's acceleration, not on a command computed from the lagged car's
+/// own state, so it reads in the model as less than T: closedLoopLagReading. lag_s >= 0 (0:
+/// unchanged).
 CarFollowingRun injectActuationLag(const CarFollowingRun& run, double lag_s);
+
+/// What injectActuationLag(T) makes of a car that follows the model p (with or without a clock
+/// offset on its leader data): exactly the model with an actuation lag T / c, gains k1 / c and k2
+/// / c, time gap tau_e + T and the same jam distance, c = 1 + T (k1 tau_e + k2) (MATH.md,
+/// "An open-loop lag in closed loop"). Returns T / c, the lag the diagnosis should read.
+double closedLoopLagReading(double lag_s, const AccParameters& p);
+
+/// The whole model closedLoopLagReading describes: p's counterpart in the lagged record.
+AccParameters closedLoopLagParameters(double lag_s, const AccParameters& p);
 
 /// Linear interpolation of values (sampled at time_s, strictly increasing) at t, held at the ends.
 double interpolateHeld(const std::vector<double>& time_s, const std::vector<double>& values, double t);

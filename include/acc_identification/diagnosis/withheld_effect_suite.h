@@ -114,8 +114,10 @@ struct SemiRealCase
 };
 
 /// Clock offsets of -1, -0.5, 0.5, 1, 2 and 3 s (a real run may have one already: an injection
-/// of the other sign cancels it), actuation lags of 0.5, 1, 2 and 3 s: from the sizes production
-/// ACCs show to well beyond, so that the tables say from which size on an injection is named.
+/// of the other sign cancels it), open-loop actuation lags of 0.5, 1, 1.5 and 2 s: from the sizes
+/// production ACCs show to well beyond, so that the tables say from which size on an injection is
+/// found. No larger lag: it moves tau_e by T (closedLoopLagParameters), and tau_e + T must stay in
+/// the fit's box (4 s; the Toyota runs' tau_e is 1.7 s).
 std::vector<SemiRealCase> semiRealCaseGrid();
 
 /// Every run with the case's effect injected (the runs as they are for none). Throws
@@ -137,6 +139,7 @@ struct SemiRealOutcome
   SemiRealCase input;
   EffectKind dominant = EffectKind::none;
   std::vector<EffectKind> chain;       ///< the forward selection's effects, dominant first
+  std::vector<EffectKind> baseline_chain;  ///< the same on the untouched runs
   bool selected = false;               ///< injected effect dominant or in the chain
   /// Injected effect among the diagnosis's determined effects (determined_effects.h): its size
   /// pinned by the training data, whether or not held-out prediction tells it from the base model.
@@ -147,6 +150,26 @@ struct SemiRealOutcome
   double baseline_single_fit_magnitude = 0.0;  ///< the same fit on the untouched runs
   double base_test_rmse_speed_mps = 0.0;
   double seconds = 0.0;                ///< wall time of the diagnosis
+  /// What the diagnosis should attribute to the injection in its model's terms: the offset itself;
+  /// for a lag T, closedLoopLagReading(T) of the untouched runs' final model (an open-loop lag
+  /// reads as T / (1 + T (k1 tau_e + k2)), e.g. 0.69 s for 1 s on the Toyota runs).
+  double expected_magnitude = 0.0;
+  /// The untouched runs' own estimate of the effect: its value in their final model (the chain's
+  /// last), else its single fit's where determined, else none (0).
+  double baseline_estimate = 0.0;
+  /// Standard error of the injected effect's single fit on the untouched runs: how precisely these
+  /// data measure it at all (NaN when they do not).
+  double baseline_standard_error = 0.0;
+  /// The z the determined rule asks for (determinedThreshold at the diagnosis's alpha).
+  double detection_z = 0.0;
+
+  /// baseline_estimate + expected_magnitude: what the injected runs hold in all.
+  double expectedNet() const { return baseline_estimate + expected_magnitude; }
+  /// Decided before the injected runs are diagnosed: the net effect stands detection_z standard
+  /// errors (of the untouched runs) away from none. Below that the data cannot be asked to find
+  /// it (an injection of -0.5 s on runs that have +0.5 s leaves nothing), and a check there asks
+  /// only that nothing wrong is named. True where the standard error is not finite.
+  bool detectable() const;
 
   /// fitted minus baseline: what the diagnosis attributes to the injection (NaN when not selected).
   double recoveredMagnitude() const { return fitted_magnitude - baseline_magnitude; }
@@ -159,7 +182,13 @@ struct SemiRealOutcome
   /// What the diagnosis attributes to the injection: recoveredMagnitude() when selected, else
   /// singleFitShift() when determined (NaN when not found).
   double foundMagnitude() const;
-  /// Found, and foundMagnitude() within tolerance (relative) of the injected magnitude.
+  /// Found, and foundMagnitude() within tolerance (relative) of expected_magnitude.
+  bool foundWithin(double tolerance = 0.25) const;
+  /// Another effect than the injected one named beyond the untouched runs' chain, or the injected
+  /// one named or determined with a size off by more than the tolerance.
+  bool misattributed(double tolerance = 0.25) const;
+  /// The check: a detectable injection is found within tolerance; one below the limit is not
+  /// misattributed.
   bool passed(double tolerance = 0.25) const;
 };
 
