@@ -194,6 +194,22 @@ TEST(InjectedEffectRealData, CasaleOffsetMovesTheOffsetFitByTheInjectedValue)
 }
 
 
+// A 2 s open-loop lag (reads 1.06 s) on the Toyota runs: started from the base fit, the lag's fit
+// falls back to "no lag" with k2 near 0 and tau_e 3.8 s; restarted from the clock offset's fit
+// (diagnosis.cpp, refitFromBestTimingFit) it finds the lower valley and the check passes.
+TEST(InjectedEffectRealData, ToyotaTwoSecondLagIsFoundFromTheOtherTimingValley)
+{
+  const acc::SemiRealSet set = toyotaSet();
+  acc::DiagnosisOptions options = quickOptions();
+  const acc::DiagnosisResult baseline = acc::diagnoseSemiReal(set.runs, options);
+  const acc::SemiRealOutcome o = acc::runSemiRealCase(set, {acc::EffectKind::actuation_lag, 2.0}, baseline, options);
+  std::printf("lag fit %.3f s, shift %.3f s, expected %.3f s\n", o.single_fit_magnitude, o.singleFitShift(),
+              o.expected_magnitude);
+  EXPECT_TRUE(o.determined);
+  EXPECT_NEAR(o.singleFitShift(), o.expected_magnitude, 0.25 * o.expected_magnitude);
+  EXPECT_TRUE(o.passed());
+}
+
 namespace
 {
 /// An offset check on runs whose own estimate is -0.5 +- 0.2 s (z 2.5 asked).
