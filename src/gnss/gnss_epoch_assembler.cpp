@@ -74,9 +74,12 @@ std::vector<GnssFix> GnssEpochAssembler::add(const NmeaSentence& sentence, doubl
   }
   const bool new_time = timed && current_.pending && !std::isnan(current_.time_of_day_s) &&
                         !sameTime(current_.time_of_day_s, sentence.time_of_day_s);
-  if (reorder_wait_s_ > 0.0 && timed && (new_time || !current_.pending) && recentlyCompleted(sentence.time_of_day_s))
+  if (timed && (new_time || !current_.pending) && recentlyCompleted(sentence.time_of_day_s))
   {
-    ++late_after_fix_;  // its epoch is out already: a second fix of that time would mislead
+    // Its epoch is out already (completed by the next epoch or by an idle flush, with or without
+    // a reorder wait): a second fix of that time would give the pairing two follower samples of
+    // one instant. Counted; its raw line is published like every other.
+    ++late_after_fix_;
     return completed;
   }
   if (new_time)

@@ -360,8 +360,9 @@ void expectWhole(const std::vector<GnssFix>& fixes, int first_epoch)
 }  // namespace
 
 // Over a radio link with jitter an epoch's RMC can come after the next epoch's GGA. Without a
-// reorder wait each epoch is then split in two fixes, one without speed (the pairing's leader
-// speed is missing); with one, every epoch is one whole fix, in order.
+// reorder wait each such epoch is one fix without speed (the pairing's leader speed is missing)
+// and its late RMC is counted, never a second fix of its time; with one, every epoch is one
+// whole fix, in order.
 TEST(GnssEpochReorder, AnRmcAfterTheNextEpochsGgaJoinsItsOwnEpoch)
 {
   for (double wait_s : {0.0, 0.5})
@@ -384,7 +385,12 @@ TEST(GnssEpochReorder, AnRmcAfterTheNextEpochsGgaJoinsItsOwnEpoch)
     const acc::NmeaStatistics s = link.decoder.statistics();
     if (wait_s == 0.0)
     {
-      EXPECT_GT(link.fixes.size(), 15u);  // the old behaviour, kept as the default: split epochs
+      ASSERT_EQ(link.fixes.size(), 15u);
+      for (std::size_t k = 0; k < link.fixes.size(); ++k)
+      {
+        EXPECT_EQ((link.fixes[k].valid_fields & GnssFix::kValidSpeed) != 0, k < 5 || k == 14) << "epoch " << k;
+      }
+      EXPECT_EQ(s.late_sentences_after_fix, 9u);  // epochs 5 to 13
       continue;
     }
     ASSERT_EQ(link.fixes.size(), 15u);

@@ -14,7 +14,10 @@ namespace acc
 /// Combines the sentences of one epoch into one GnssFix. An epoch is the run of sentences with
 /// the same UTC time of day; sentences without time (VTG) belong to the epoch being assembled.
 /// An epoch completes when a sentence of another time arrives, or when flushed (the driver
-/// flushes after a short silence so that a fix does not wait for the next epoch).
+/// flushes after a short silence so that a fix does not wait for the next epoch). A sentence of
+/// an epoch already completed (one of the last three) is counted and leaves no second fix of that
+/// time: a replay stalled on a loaded host, or a link that reorders, must not give one instant two
+/// fixes.
 /// Within an epoch, each field comes from the best sentence that carried it:
 ///   position: GGA = GNS > PUBX,00 > RMC = GLL;  altitude, satellites, HDOP: GGA = GNS > PUBX,00;
 ///   speed and course: RMC = VTG > PUBX,00;  sigmas: GST > PUBX,00;  date: RMC, ZDA.
@@ -26,8 +29,7 @@ namespace acc
 /// reorder wait (setReorderWait, 0 by default: the behaviour above exactly), an epoch that lacks
 /// a field group (position, speed) which each of the stream's last three epochs carried is not
 /// completed yet: it waits for its late sentences while the next epoch assembles, and completes
-/// when they come, when a sentence two epochs newer arrives, or after the reorder wait. A
-/// sentence of an epoch already completed is counted and leaves no second fix of that time.
+/// when they come, when a sentence two epochs newer arrives, or after the reorder wait.
 class GnssEpochAssembler
 {
 public:
