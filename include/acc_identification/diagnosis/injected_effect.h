@@ -28,8 +28,8 @@ CarFollowingRun injectActuationLag(const CarFollowingRun& run, double lag_s);
 
 /// What injectActuationLag(T) makes of a car that follows the model p (with or without a clock
 /// offset on its leader data): exactly the model with an actuation lag T / c, gains k1 / c and k2
-/// / c, time gap tau_e + T and the same jam distance, c = 1 + T (k1 tau_e + k2) (MATH.md,
-/// "An open-loop lag in closed loop"). Returns T / c, the lag the diagnosis should read.
+/// / c, time gap tau_e + T and the same jam distance, c = 1 + T (k1 tau_e + k2) (derived in
+/// docs/DIAGNOSIS.md, "Semi-real checks"). Returns T / c, the lag the diagnosis should read.
 double closedLoopLagReading(double lag_s, const AccParameters& p);
 
 /// The whole model closedLoopLagReading describes: p's counterpart in the lagged record.
