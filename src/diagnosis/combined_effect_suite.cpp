@@ -102,10 +102,7 @@ CombinedOutcome runCombinedCase(const WithheldCase& c, const DiagnosisOptions& o
   {
     outcome.withheld.emplace_back(kind, values.front());
   }
-  for (const ForwardSelectionStep& step : result.selected_effects)
-  {
-    outcome.chain.push_back(step.added);
-  }
+  outcome.chain = selectedChain(result);
   if (outcome.chain.empty() && result.selection.dominant != EffectKind::none)
   {
     outcome.chain.push_back(result.selection.dominant);  // forward selection found nothing on top
@@ -115,9 +112,7 @@ CombinedOutcome runCombinedCase(const WithheldCase& c, const DiagnosisOptions& o
     outcome.fitted.push_back(selectedMagnitude(result, hidden.first).value_or(std::numeric_limits<double>::quiet_NaN()));
   }
   outcome.base_test_rmse_speed_mps = result.baseline.test_rmse_speed_mps;
-  outcome.final_test_rmse_speed_mps = result.selected_effects.empty()
-                                          ? result.baseline.test_rmse_speed_mps
-                                          : result.selected_effects.back().model.test_rmse_speed_mps;
+  outcome.final_test_rmse_speed_mps = finalModel(result).test_rmse_speed_mps;
   return outcome;
 }
 

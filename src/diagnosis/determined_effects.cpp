@@ -32,6 +32,13 @@ double determinedThreshold(double alpha, std::size_t count)
   return 0.5 * (low + high);
 }
 
+double determinedThreshold(double alpha, const std::vector<EffectKind>& candidates)
+{
+  const auto tests = std::count_if(candidates.begin(), candidates.end(),
+                                   [](EffectKind kind) { return std::isfinite(neutralValue(kind)); });
+  return determinedThreshold(alpha, static_cast<std::size_t>(tests));
+}
+
 namespace
 {
 bool atBound(const EffectParameterSpec& spec, double value)
@@ -44,9 +51,12 @@ bool atBound(const EffectParameterSpec& spec, double value)
 std::vector<DeterminedEffect> determinedEffects(const AugmentedFit& base_fit, const std::vector<AugmentedFit>& effect_fits,
                                                 double sample_period_s, double alpha)
 {
-  const std::size_t tests = static_cast<std::size_t>(std::count_if(
-      effect_fits.begin(), effect_fits.end(), [](const AugmentedFit& f) { return std::isfinite(neutralValue(f.effect)); }));
-  const double threshold = determinedThreshold(alpha, tests);
+  std::vector<EffectKind> tested;
+  for (const AugmentedFit& fit : effect_fits)
+  {
+    tested.push_back(fit.effect);
+  }
+  const double threshold = determinedThreshold(alpha, tested);
   std::vector<DeterminedEffect> out;
   for (const AugmentedFit& fit : effect_fits)
   {

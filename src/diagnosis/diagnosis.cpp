@@ -60,7 +60,6 @@ double median(std::vector<double> values)
   return values[values.size() / 2];
 }
 
-/// Scores a fit on the held-out halves; keeps the simulations and per-sample squared errors.
 /// Timing effects (lag, delay, clock offset) each trade off with tau_e and k2, and on real runs
 /// their fits can land in different valleys of that trade-off: from the base fit the lag fit may
 /// return to "no lag" (k2 near 0, tau_e large) where started from the offset's base parameters it
@@ -98,6 +97,7 @@ AugmentedFit refitFromBestTimingFit(std::size_t index, const std::vector<Augment
   return best;
 }
 
+/// Scores a fit on the held-out halves; keeps the simulations and per-sample squared errors.
 ModelDiagnosis scoreModel(const AugmentedFit& fit, const DiagnosisResult& data, SquaredErrorsByRun* squared_errors)
 {
   ModelDiagnosis model;
@@ -332,6 +332,21 @@ const ModelDiagnosis& dominantModel(const DiagnosisResult& result)
     }
   }
   return result.baseline;
+}
+
+const ModelDiagnosis& finalModel(const DiagnosisResult& result)
+{
+  return result.selected_effects.empty() ? result.baseline : result.selected_effects.back().model;
+}
+
+std::vector<EffectKind> selectedChain(const DiagnosisResult& result)
+{
+  std::vector<EffectKind> chain;
+  for (const ForwardSelectionStep& step : result.selected_effects)
+  {
+    chain.push_back(step.added);
+  }
+  return chain;
 }
 
 }  // namespace acc

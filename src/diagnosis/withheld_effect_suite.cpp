@@ -412,15 +412,9 @@ std::optional<double> selectedMagnitude(const DiagnosisResult& result, EffectKin
       return effectValues(kind, last.settings).front();
     }
   }
-  if (result.selection.dominant == kind)
+  if (kind != EffectKind::none && result.selection.dominant == kind)
   {
-    for (const ModelDiagnosis& model : result.effects)
-    {
-      if (model.fit.effect == kind)
-      {
-        return effectValues(kind, model.fit.settings).front();
-      }
-    }
+    return effectValues(kind, dominantModel(result).fit.settings).front();
   }
   return std::nullopt;
 }
@@ -482,16 +476,18 @@ bool SemiRealOutcome::passed(double tolerance) const
 
 namespace
 {
-/// The final model of a diagnosis: the chain's last, or the base model when the chain is empty.
-const AugmentedFit& finalModel(const DiagnosisResult& result)
-{
-  return result.selected_effects.empty() ? result.baseline.fit : result.selected_effects.back().model.fit;
-}
-
 double expectedMagnitude(const SemiRealCase& c, const DiagnosisResult& baseline)
 {
-  return c.injected == EffectKind::actuation_lag ? closedLoopLagReading(c.magnitude, finalModel(baseline).base)
+  return c.injected == EffectKind::actuation_lag ? closedLoopLagReading(c.magnitude, finalModel(baseline).fit.base)
                                                  : c.magnitude;
+}
+
+/// kind among the diagnosis's determined effects (nullptr when it is not).
+const DeterminedEffect* determinedOf(const DiagnosisResult& result, EffectKind kind)
+{
+  const auto found = std::find_if(result.determined.begin(), result.determined.end(),
+                                  [kind](const DeterminedEffect& e) { return e.effect == kind; });
+  return found == result.determined.end() ? nullptr : &*found;
 }
 
 double baselineEstimate(const DiagnosisResult& baseline, EffectKind kind)
@@ -500,14 +496,8 @@ double baselineEstimate(const DiagnosisResult& baseline, EffectKind kind)
   {
     return *named;
   }
-  for (const DeterminedEffect& effect : baseline.determined)
-  {
-    if (effect.effect == kind)
-    {
-      return effect.value;
-    }
-  }
-  return 0.0;
+  const DeterminedEffect* determined = determinedOf(baseline, kind);
+  return determined ? determined->value : 0.0;
 }
 }  // namespace
 
@@ -522,25 +512,17 @@ SemiRealOutcome runSemiRealCase(const SemiRealSet& set, const SemiRealCase& c, c
   outcome.set_name = set.name;
   outcome.input = c;
   outcome.dominant = result.selection.dominant;
-  for (const ForwardSelectionStep& step : result.selected_effects)
-  {
-    outcome.chain.push_back(step.added);
-  }
+  outcome.chain = selectedChain(result);
   outcome.base_test_rmse_speed_mps = result.baseline.test_rmse_speed_mps;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const std::optional<double> fitted = selectedMagnitude(result, c.injected);
   outcome.selected = c.injected != EffectKind::none && fitted.has_value();
-  outcome.determined = c.injected != EffectKind::none &&
-                       std::any_of(result.determined.begin(), result.determined.end(),
-                                   [&](const DeterminedEffect& e) { return e.effect == c.injected; });
+  outcome.determined = c.injected != EffectKind::none && determinedOf(result, c.injected) != nullptr;
   outcome.fitted_magnitude = fitted.value_or(nan);
   outcome.baseline_magnitude = selectedMagnitude(baseline, c.injected).value_or(0.0);
   outcome.single_fit_magnitude = singleFitMagnitude(result, c.injected);
   outcome.baseline_single_fit_magnitude = singleFitMagnitude(baseline, c.injected);
-  for (const ForwardSelectionStep& step : baseline.selected_effects)
-  {
-    outcome.baseline_chain.push_back(step.added);
-  }
+  outcome.baseline_chain = selectedChain(baseline);
   if (c.injected != EffectKind::none)
   {
     outcome.expected_magnitude = expectedMagnitude(c, baseline);
@@ -549,9 +531,7 @@ SemiRealOutcome runSemiRealCase(const SemiRealSet& set, const SemiRealCase& c, c
     outcome.baseline_standard_error = untouched && untouched->standard_errors.size() > AugmentedParameterBox::kBaseDimension
                                           ? untouched->standard_errors[AugmentedParameterBox::kBaseDimension]
                                           : nan;
-    const auto tests = std::count_if(baseline.effects.begin(), baseline.effects.end(),
-                                     [](const ModelDiagnosis& m) { return std::isfinite(neutralValue(m.fit.effect)); });
-    outcome.detection_z = determinedThreshold(options.selection.alpha, static_cast<std::size_t>(tests));
+    outcome.detection_z = determinedThreshold(options.selection.alpha, options.candidates);
   }
   return outcome;
 }

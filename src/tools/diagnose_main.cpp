@@ -110,19 +110,25 @@ std::vector<acc::SemiRealSet> bundledSemiRealSets()
                acc::OpenAccPairSelector::byFollower("TOYOTA_RAV4"))};
 }
 
+/// The names of effects, in order (a forward-selection chain).
+nlohmann::json effectNamesJson(const std::vector<acc::EffectKind>& effects)
+{
+  nlohmann::json names = nlohmann::json::array();
+  for (acc::EffectKind kind : effects)
+  {
+    names.push_back(acc::effectName(kind));
+  }
+  return names;
+}
+
 nlohmann::json semiRealJson(const acc::SemiRealOutcome& o)
 {
   auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
-  std::vector<std::string> chain;
-  for (acc::EffectKind kind : o.chain)
-  {
-    chain.push_back(acc::effectName(kind));
-  }
   return {{"set", o.set_name},
           {"injected", acc::effectName(o.input.injected)},
           {"injected_value", o.input.magnitude},
           {"dominant_effect", acc::effectName(o.dominant)},
-          {"selected_effects", chain},
+          {"selected_effects", effectNamesJson(o.chain)},
           {"selected", o.selected},
           {"fitted_magnitude", number(o.fitted_magnitude)},
           {"baseline_magnitude", o.baseline_magnitude},
@@ -190,22 +196,18 @@ int runCombinedSuite(const acc::DiagnosisOptions& options, const std::optional<s
   for (std::size_t i = 0; i < grid.size(); ++i)
   {
     const acc::CombinedOutcome o = acc::runCombinedCase(grid[i], options);
-    nlohmann::json withheld = nlohmann::json::array(), chain = nlohmann::json::array();
+    nlohmann::json withheld = nlohmann::json::array();
     for (std::size_t k = 0; k < o.withheld.size(); ++k)
     {
       withheld.push_back({{"effect", acc::effectName(o.withheld[k].first)},
                           {"value", o.withheld[k].second},
                           {"fitted", std::isfinite(o.fitted[k]) ? nlohmann::json(o.fitted[k]) : nlohmann::json(nullptr)}});
     }
-    for (acc::EffectKind kind : o.chain)
-    {
-      chain.push_back(acc::effectName(kind));
-    }
     std::fprintf(stderr, "[%zu/%zu] withheld %s + %s -> chain of %zu, %zu named (%.1f s)\n", i + 1, grid.size(),
                  acc::effectName(o.withheld[0].first).c_str(), acc::effectName(o.withheld[1].first).c_str(),
                  o.chain.size(), o.named(), o.seconds);
     cases.push_back({{"withheld", withheld},
-                     {"chain", chain},
+                     {"chain", effectNamesJson(o.chain)},
                      {"seed", o.input.seed},
                      {"base_test_rmse_speed", o.base_test_rmse_speed_mps},
                      {"chain_test_rmse_speed", o.final_test_rmse_speed_mps},
@@ -248,11 +250,6 @@ int runSuite(const std::string& size, const acc::DiagnosisOptions& options, cons
   for (std::size_t i = 0; i < grid.size(); ++i)
   {
     const acc::WithheldOutcome o = acc::runWithheldCase(grid[i], options);
-    std::vector<std::string> plausible;
-    for (acc::EffectKind kind : o.plausible)
-    {
-      plausible.push_back(acc::effectName(kind));
-    }
     std::fprintf(stderr, "[%zu/%zu] truth %s %s (%s, noise x%.2g) -> %s, magnitude %.4g\n", i + 1, grid.size(),
                  acc::effectName(o.input.truth).c_str(),
                  o.input.truth_values.empty() ? "" : std::to_string(o.input.truth_values.front()).c_str(),
@@ -264,7 +261,7 @@ int runSuite(const std::string& size, const acc::DiagnosisOptions& options, cons
                      {"speed_noise_std_mps", o.input.speed_noise_std_mps},
                      {"seed", o.input.seed},
                      {"dominant_effect", acc::effectName(o.dominant)},
-                     {"plausible_effects", plausible},
+                     {"plausible_effects", effectNamesJson(o.plausible)},
                      {"recovered_magnitude", std::isfinite(o.recovered_magnitude) ? nlohmann::json(o.recovered_magnitude)
                                                                                   : nlohmann::json(nullptr)},
                      {"recovered_standard_error", std::isfinite(o.recovered_standard_error)

@@ -262,3 +262,12 @@ TEST(SemiRealRule, BelowTheLimitNothingMayBeMisattributed)
   o.baseline_standard_error = std::nan("");  // the untouched runs do not measure it: no limit known
   EXPECT_TRUE(o.detectable());
 }
+
+// The untouched runs' case asks for no effect: nothing is attributed, whatever the diagnosis
+// named (a "none" dominant effect is not a fitted effect with a value).
+TEST(SemiRealRule, NoEffectHasNoSelectedMagnitude)
+{
+  const acc::DiagnosisResult nothing_named;
+  EXPECT_FALSE(acc::selectedMagnitude(nothing_named, acc::EffectKind::none).has_value());
+  EXPECT_FALSE(acc::selectedMagnitude(nothing_named, acc::EffectKind::actuation_lag).has_value());
+}

@@ -34,10 +34,14 @@ double neutralValue(EffectKind kind);
 /// size must exceed to be determined.
 double determinedThreshold(double alpha, std::size_t count);
 
+/// determinedThreshold over the candidates that have a neutral value: the z the determined rule
+/// asks of each when these effects are tested together.
+double determinedThreshold(double alpha, const std::vector<EffectKind>& candidates);
+
 /// Every single-effect fit whose first parameter is determined: finite standard error, resolvable
 /// (timing effects at least sample_period_s), not at a bound of its range (a value at a bound is
 /// the search's limit, not the data's answer), and |value - neutral| / standard_error above
-/// determinedThreshold(alpha, number of effects with a neutral value). Sorted by z, largest first.
+/// determinedThreshold(alpha, the fits' effects). Sorted by z, largest first.
 std::vector<DeterminedEffect> determinedEffects(const AugmentedFit& base_fit, const std::vector<AugmentedFit>& effect_fits,
                                                 double sample_period_s, double alpha);
 

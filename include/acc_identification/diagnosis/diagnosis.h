@@ -106,4 +106,11 @@ DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const Dia
 /// The model of the dominant effect, or the baseline when none.
 const ModelDiagnosis& dominantModel(const DiagnosisResult& result);
 
+/// The model the diagnosis ends with: the last of the forward-selection chain, or the baseline
+/// when the chain is empty.
+const ModelDiagnosis& finalModel(const DiagnosisResult& result);
+
+/// The effects of the forward-selection chain in the order they were added (empty when none).
+std::vector<EffectKind> selectedChain(const DiagnosisResult& result);
+
 }  // namespace acc
