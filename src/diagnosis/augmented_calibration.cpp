@@ -69,8 +69,73 @@ struct GaussNewtonPass
   Eigen::VectorXd descent;
 };
 
+/// Weights of the speed and gap residuals in the objective (squared weights multiply the squares).
+struct ResidualWeights
+{
+  double speed = 1.0;
+  double gap = 0.0;
+};
+
+/// The variance of a column over every sample of the segments (1 when it has none or no spread,
+/// so that a weight never becomes infinite).
+template <typename Column>
+double pooledVariance(const std::vector<CarFollowingRun>& segments, Column column)
+{
+  double sum = 0.0, sum_squares = 0.0;
+  std::size_t n = 0;
+  for (const CarFollowingRun& run : segments)
+  {
+    for (double value : column(run))
+    {
+      sum += value;
+      sum_squares += value * value;
+      ++n;
+    }
+  }
+  const double variance = n > 1 ? (sum_squares - sum * sum / static_cast<double>(n)) / static_cast<double>(n - 1) : 0.0;
+  return variance > 1e-12 ? variance : 1.0;
+}
+
+ResidualWeights residualWeights(FitObjective objective, const std::vector<CarFollowingRun>& segments)
+{
+  switch (objective)
+  {
+    case FitObjective::speed: return {1.0, 0.0};
+    case FitObjective::gap: return {0.0, 1.0};
+    case FitObjective::speed_and_gap:
+      return {1.0 / std::sqrt(pooledVariance(segments, [](const CarFollowingRun& r) { return r.follower_speed_mps; })),
+              1.0 / std::sqrt(pooledVariance(segments, [](const CarFollowingRun& r) { return r.space_gap_m; }))};
+  }
+  return {};
+}
+
+/// The gap-objective part of a pass: the simulated gap s[k+1] = s[k] + h (u[k] - v[k]) from the
+/// measured start, and its derivatives ds[k+1] = ds[k] - h dv[k] (no clock offset in the model).
+void addGapResiduals(const CarFollowingRun& run, const FollowerSpeedSensitivities& sim, double weight,
+                     Eigen::MatrixXd* normal, Eigen::VectorXd* descent, double* sum)
+{
+  const std::size_t p = sim.dimension;
+  double gap = run.space_gap_m[0];
+  Eigen::VectorXd derivative = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(p));
+  for (std::size_t k = 0; k < run.size(); ++k)
+  {
+    if (k > 0)
+    {
+      const double step_s = run.time_s[k] - run.time_s[k - 1];
+      gap += step_s * (run.leader_speed_mps[k - 1] - sim.speed_mps[k - 1]);
+      derivative -= step_s * Eigen::Map<const Eigen::VectorXd>(&sim.speed_derivatives[(k - 1) * p],
+                                                               static_cast<Eigen::Index>(p));
+    }
+    const double error = weight * (run.space_gap_m[k] - gap);
+    *sum += error * error;
+    const Eigen::VectorXd row = weight * derivative;
+    normal->selfadjointView<Eigen::Upper>().rankUpdate(row);
+    *descent += row * error;
+  }
+}
+
 GaussNewtonPass gaussNewtonPass(const AugmentedParameterBox& box, const std::vector<double>& x,
-                                const std::vector<CarFollowingRun>& segments)
+                                const std::vector<CarFollowingRun>& segments, const ResidualWeights& weights)
 {
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   const auto p = static_cast<Eigen::Index>(x.size());
@@ -87,16 +152,33 @@ GaussNewtonPass gaussNewtonPass(const AugmentedParameterBox& box, const std::vec
       return pass;
     }
     const auto n = static_cast<Eigen::Index>(run.size());
-    Eigen::VectorXd residual(n);
-    for (std::size_t k = 0; k < run.size(); ++k)
+    if (weights.speed != 0.0)
     {
-      const double error = run.follower_speed_mps[k] - sim.speed_mps[k];
-      sum += error * error;  // in augmentedSpeedMse's order, so the values agree exactly
-      residual[static_cast<Eigen::Index>(k)] = error;
+      Eigen::VectorXd residual(n);
+      for (std::size_t k = 0; k < run.size(); ++k)
+      {
+        // Unweighted for the paper's objective, so the values agree exactly with augmentedSpeedMse.
+        const double error = weights.speed == 1.0 ? run.follower_speed_mps[k] - sim.speed_mps[k]
+                                                  : weights.speed * (run.follower_speed_mps[k] - sim.speed_mps[k]);
+        sum += error * error;
+        residual[static_cast<Eigen::Index>(k)] = error;
+      }
+      const Eigen::Map<const RowMajor> jacobian(sim.speed_derivatives.data(), n, p);
+      if (weights.speed == 1.0)
+      {
+        pass.normal.selfadjointView<Eigen::Upper>().rankUpdate(jacobian.transpose());
+        pass.descent += jacobian.transpose() * residual;
+      }
+      else
+      {
+        pass.normal.selfadjointView<Eigen::Upper>().rankUpdate(jacobian.transpose(), weights.speed * weights.speed);
+        pass.descent += weights.speed * (jacobian.transpose() * residual);
+      }
     }
-    const Eigen::Map<const RowMajor> jacobian(sim.speed_derivatives.data(), n, p);
-    pass.normal.selfadjointView<Eigen::Upper>().rankUpdate(jacobian.transpose());
-    pass.descent += jacobian.transpose() * residual;
+    if (weights.gap != 0.0)
+    {
+      addGapResiduals(run, sim, weights.gap, &pass.normal, &pass.descent, &sum);
+    }
     count += run.size();
   }
   pass.normal = pass.normal.selfadjointView<Eigen::Upper>();
@@ -117,6 +199,7 @@ struct ObjectiveTracker
 {
   const AugmentedParameterBox* box;
   const std::vector<CarFollowingRun>* segments;
+  ResidualWeights weights;
   std::vector<double> best_x;
   double best_value = std::numeric_limits<double>::infinity();
   std::size_t evaluations = 0;
@@ -124,7 +207,7 @@ struct ObjectiveTracker
   GaussNewtonPass operator()(const Eigen::VectorXd& unit_x)
   {
     const std::vector<double> x = box->physical(std::vector<double>(unit_x.data(), unit_x.data() + unit_x.size()));
-    GaussNewtonPass pass = gaussNewtonPass(*box, x, *segments);
+    GaussNewtonPass pass = gaussNewtonPass(*box, x, *segments, weights);
     ++evaluations;
     if (pass.mse < best_value)
     {
@@ -264,7 +347,10 @@ std::vector<double> nearOffValues(EffectKind effect)
   std::vector<double> values;
   for (const EffectParameterSpec& spec : specs)
   {
-    values.push_back(off_at_upper ? spec.upper : (spec.lower < 0.0 ? 0.0 : spec.lower));
+    if (std::isfinite(spec.neutral))
+      values.push_back(spec.neutral);  // an interior "off" (a gain ratio of 1)
+    else
+      values.push_back(off_at_upper ? spec.upper : (spec.lower < 0.0 ? 0.0 : spec.lower));
   }
   if (effect == EffectKind::set_speed_cruise)
   {
@@ -501,8 +587,14 @@ AugmentedFit calibrateAugmentedSet(const std::vector<EffectKind>& effects, const
       throw std::invalid_argument("cannot calibrate on segment '" + run.name + "': " + problem);
     }
   }
+  if (options.objective != FitObjective::speed &&
+      std::find(effects.begin(), effects.end(), EffectKind::sensor_time_offset) != effects.end())
+  {
+    throw std::invalid_argument("a clock offset can only be fitted with the speed objective");
+  }
   const AugmentedParameterBox box(effects, options);
-  ObjectiveTracker tracker{&box, &segments, {}, std::numeric_limits<double>::infinity(), 0};
+  ObjectiveTracker tracker{&box, &segments, residualWeights(options.objective, segments), {},
+                           std::numeric_limits<double>::infinity(), 0};
   const std::vector<std::vector<double>> starts = warm_start != nullptr && !effects.empty()
                                                       ? effectStarts(effects, *warm_start, options)
                                                       : coldStarts(effects, segments, options, warm_start);
@@ -514,6 +606,8 @@ AugmentedFit calibrateAugmentedSet(const std::vector<EffectKind>& effects, const
   fit.effect = box.effect;
   fit.effects = effects;
   fit.evaluations = tracker.evaluations;
+  fit.objective = options.objective;
+  fit.train_objective = tracker.best_value;
   fit.train_mse_speed = tracker.best_value;
   fit.diverged = !(tracker.best_value < kDivergedObjective);
   if (tracker.best_x.empty())
@@ -524,9 +618,24 @@ AugmentedFit calibrateAugmentedSet(const std::vector<EffectKind>& effects, const
   fit.base = baseOf(tracker.best_x);
   fit.effect_values = effectPart(tracker.best_x);
   fit.settings = box.settingsOf(tracker.best_x);
+  if (options.objective != FitObjective::speed)
+  {
+    fit.train_mse_speed = augmentedSpeedMse(fit.base, fit.settings, segments);
+  }
   fit.standard_errors = fit.diverged ? std::vector<double>(box.dimension(), std::numeric_limits<double>::quiet_NaN())
                                      : standardErrors(tracker.best_x, box, segments);
   return fit;
+}
+
+std::string objectiveName(FitObjective objective)
+{
+  switch (objective)
+  {
+    case FitObjective::speed: return "speed";
+    case FitObjective::gap: return "gap";
+    case FitObjective::speed_and_gap: return "speed_and_gap";
+  }
+  return "";
 }
 
 std::vector<EffectKind> effectsOf(const AugmentedFit& fit)

@@ -14,6 +14,22 @@ double linearisedTimeGap(const AccParameters& p, const EffectSettings& e, double
   return p.tau_e_s + 2.0 * e.time_gap_speed_slope_s2_per_m * operating_speed_mps;
 }
 
+/// The gains of the small-signal law: scheduled at the operating speed (the schedule's own
+/// derivative multiplies a spacing error and relative speed that are 0 at equilibrium), and on the
+/// braking branch of an asymmetric law (gap shorter than desired and closing in: what a follower
+/// does when its leader brakes, the disturbance string stability is about).
+AccParameters linearisedGains(const AccParameters& p, const EffectSettings& e, double operating_speed_mps)
+{
+  AccParameters out = p;
+  const double schedule = e.gain_speed_slope_s_per_m != 0.0
+                              ? std::exp(e.gain_speed_slope_s_per_m * (operating_speed_mps - kGainReferenceSpeedMps))
+                              : 1.0;
+  out.k1_per_s2 = p.k1_per_s2 * schedule * e.short_gap_gain_ratio;
+  out.k2_per_s = p.k2_per_s * schedule * e.closing_gain_ratio;
+  out.tau_e_s = linearisedTimeGap(p, e, operating_speed_mps);
+  return out;
+}
+
 std::string smallSignalNote(EffectKind effect)
 {
   switch (effect)
@@ -27,6 +43,9 @@ std::string smallSignalNote(EffectKind effect)
       return "a clock offset changes the record, not the vehicle: Gamma equals the base one";
     case EffectKind::speed_dependent_time_gap: return "time gap linearised at the operating speed: tau_e + 2 c v0";
     case EffectKind::leader_acceleration_feedforward: return "feedforward adds k_a s^2 to the numerator";
+    case EffectKind::asymmetric_response:
+      return "no single transfer function: the braking branch (k1 r_s, k2 r_c), active when the leader brakes";
+    case EffectKind::speed_dependent_gains: return "gains scheduled at the operating speed: k exp(g (v0 - 15 m/s))";
     case EffectKind::set_speed_cruise:
       return "cruise mode is inactive while following below the set speed: small-signal Gamma equals the base one";
   }
@@ -38,14 +57,15 @@ double augmentedTransferGainSquared(const AccParameters& p, const EffectSettings
                                     double frequency_rad_s)
 {
   const std::complex<double> s(0.0, frequency_rad_s);
-  const double tau = linearisedTimeGap(p, e, operating_speed_mps);
+  const AccParameters g = linearisedGains(p, e, operating_speed_mps);
+  const double tau = g.tau_e_s;
   // exp(0) is 1 exactly: skip the complex exponential when there is no delay (most models).
   const std::complex<double> delay =
       e.reaction_delay_s != 0.0 ? std::exp(-s * e.reaction_delay_s) : std::complex<double>(1.0, 0.0);
   const std::complex<double> numerator =
-      delay * (e.leader_acceleration_gain * s * s + p.k2_per_s * s + p.k1_per_s2);
+      delay * (e.leader_acceleration_gain * s * s + g.k2_per_s * s + g.k1_per_s2);
   const std::complex<double> denominator =
-      (e.actuation_lag_s * s + 1.0) * s * s + delay * ((p.k2_per_s + p.k1_per_s2 * tau) * s + p.k1_per_s2);
+      (e.actuation_lag_s * s + 1.0) * s * s + delay * ((g.k2_per_s + g.k1_per_s2 * tau) * s + g.k1_per_s2);
   // |N|^2 / |D|^2: no complex division and no hypot, which the side search's index (thousands of
   // evaluations of 2,001 frequencies) would otherwise spend most of its time in.
   const double denominator_squared = std::norm(denominator);
@@ -67,8 +87,7 @@ AugmentedStability analyzeAugmentedStability(const AccParameters& p, EffectKind 
 {
   AugmentedStability out;
   out.note = smallSignalNote(effect);
-  AccParameters linear = p;
-  linear.tau_e_s = linearisedTimeGap(p, e, operating_speed_mps);
+  const AccParameters linear = linearisedGains(p, e, operating_speed_mps);
   out.lambda2 = lambda2(linear);
   // The grid, plus the closed-form peak of the delay- and lag-free law.
   double best_gain = augmentedTransferGain(p, e, operating_speed_mps, 0.0);

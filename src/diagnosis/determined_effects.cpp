@@ -14,7 +14,10 @@ double neutralValue(EffectKind kind)
     case EffectKind::actuation_lag:
     case EffectKind::reaction_delay:
     case EffectKind::sensor_time_offset:
-    case EffectKind::speed_dependent_time_gap: return 0.0;
+    case EffectKind::speed_dependent_time_gap:
+    case EffectKind::speed_dependent_gains:
+    case EffectKind::leader_acceleration_feedforward: return 0.0;
+    case EffectKind::asymmetric_response: return 1.0;
     default: return std::numeric_limits<double>::quiet_NaN();
   }
 }

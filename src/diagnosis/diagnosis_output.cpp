@@ -232,6 +232,21 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
   }
   j["forward_selection"] = forwardSelectionJson(r);
   j["baseline"] = modelJson(r.baseline);
+  {
+    // The model the diagnosis ends with (the last of the forward-selection chain, or the base
+    // model): what a user takes away, beside the baseline it is judged against.
+    const ModelDiagnosis& final_model = finalModel(r);
+    nlohmann::json effects = nlohmann::json::array();
+    for (EffectKind kind : effectsOf(final_model.fit))
+    {
+      effects.push_back(effectName(kind));
+    }
+    j["final_model"] = {{"effects", effects},
+                        {"parameters", parametersJson(final_model.fit)},
+                        {"standard_errors", standardErrorsJson(final_model.fit)},
+                        {"test_rmse_speed", number(final_model.test_rmse_speed_mps)},
+                        {"test_rmse_gap", number(final_model.test_rmse_gap_m)}};
+  }
   j["effects"] = nlohmann::json::array();
   for (std::size_t k = 0; k < r.effects.size(); ++k)
   {

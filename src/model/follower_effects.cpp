@@ -39,9 +39,18 @@ bool isResolvable(EffectKind kind, const std::vector<double>& values, double sam
   return std::abs(values.front()) >= sample_period_s;
 }
 
-const std::vector<CandidateEffect>& exploratoryEffects()
+const std::vector<CandidateEffect>& responseEffects()
 {
+  // Ratios up to 10: SUMO's ACC brakes with a collision-avoidance gap gain of 0.8 against a
+  // gap-control gain of 0.45 and speed gain of 0.0125 ... 0.07 (ratios of 2 to 60 between modes);
+  // below 0.2 a mode would hardly respond at all.
   static const std::vector<CandidateEffect> extra = {
+      {EffectKind::asymmetric_response, "asymmetric_response",
+       {{"short_gap_gain_ratio", 0.2, 10.0, 0.8, 4.0, 1.0}, {"closing_gain_ratio", 0.2, 10.0, 0.8, 4.0, 1.0}},
+       "k1 times r_s while the gap is shorter than desired, k2 times r_c while closing in"},
+      {EffectKind::speed_dependent_gains, "speed_dependent_gains",
+       {{"gain_speed_slope_s_per_m", -0.15, 0.15, -0.05, 0.05, 0.0}},
+       "k1 and k2 times exp(g (v - 15 m/s)): gains scheduled on speed"},
       {EffectKind::leader_acceleration_feedforward, "leader_acceleration_feedforward",
        {{"leader_acceleration_gain", 0.0, 1.5, 0.05, 0.8}},
        "command += k_a times the leader's acceleration (backward difference of its speed)"},
@@ -56,7 +65,7 @@ const CandidateEffect& candidateEffect(EffectKind kind)
   {
     return base;
   }
-  for (const auto* list : {&candidateEffects(), &exploratoryEffects()})
+  for (const auto* list : {&candidateEffects(), &responseEffects()})
   {
     for (const CandidateEffect& effect : *list)
     {
@@ -78,7 +87,7 @@ bool parseEffectName(const std::string& name, EffectKind* kind)
     *kind = EffectKind::none;
     return true;
   }
-  for (const auto* list : {&candidateEffects(), &exploratoryEffects()})
+  for (const auto* list : {&candidateEffects(), &responseEffects()})
   {
     for (const CandidateEffect& effect : *list)
     {
@@ -115,6 +124,11 @@ EffectSettings makeEffectSettings(EffectKind kind, const std::vector<double>& va
       s.cruise_gain_per_s = values[1];
       break;
     case EffectKind::leader_acceleration_feedforward: s.leader_acceleration_gain = values[0]; break;
+    case EffectKind::asymmetric_response:
+      s.short_gap_gain_ratio = values[0];
+      s.closing_gain_ratio = values[1];
+      break;
+    case EffectKind::speed_dependent_gains: s.gain_speed_slope_s_per_m = values[0]; break;
   }
   return s;
 }
@@ -131,6 +145,8 @@ std::vector<double> effectValues(EffectKind kind, const EffectSettings& s)
     case EffectKind::speed_dependent_time_gap: return {s.time_gap_speed_slope_s2_per_m};
     case EffectKind::set_speed_cruise: return {s.set_speed_mps, s.cruise_gain_per_s};
     case EffectKind::leader_acceleration_feedforward: return {s.leader_acceleration_gain};
+    case EffectKind::asymmetric_response: return {s.short_gap_gain_ratio, s.closing_gain_ratio};
+    case EffectKind::speed_dependent_gains: return {s.gain_speed_slope_s_per_m};
   }
   return {};
 }
@@ -159,6 +175,11 @@ void applyEffectValues(EffectKind kind, const std::vector<double>& values, Effec
     case EffectKind::leader_acceleration_feedforward:
       settings->leader_acceleration_gain = own.leader_acceleration_gain;
       break;
+    case EffectKind::asymmetric_response:
+      settings->short_gap_gain_ratio = own.short_gap_gain_ratio;
+      settings->closing_gain_ratio = own.closing_gain_ratio;
+      break;
+    case EffectKind::speed_dependent_gains: settings->gain_speed_slope_s_per_m = own.gain_speed_slope_s_per_m; break;
   }
 }
 

@@ -72,6 +72,7 @@ struct ModelScalars
   Scalar actuation_lag_s, reaction_delay_s, max_acceleration_mps2, max_deceleration_mps2;
   Scalar sensor_time_offset_s, time_gap_speed_slope_s2_per_m, set_speed_mps, cruise_gain_per_s,
       leader_acceleration_gain;
+  Scalar short_gap_gain_ratio, closing_gain_ratio, gain_speed_slope_s_per_m;
 };
 
 ModelScalars<double> plainScalars(const AccParameters& p, const EffectSettings& e)
@@ -80,7 +81,8 @@ ModelScalars<double> plainScalars(const AccParameters& p, const EffectSettings& 
           p.eta_m,              e.actuation_lag_s,    e.reaction_delay_s,
           e.max_acceleration_mps2, e.max_deceleration_mps2, e.sensor_time_offset_s,
           e.time_gap_speed_slope_s2_per_m, e.set_speed_mps, e.cruise_gain_per_s,
-          e.leader_acceleration_gain};
+          e.leader_acceleration_gain, e.short_gap_gain_ratio, e.closing_gain_ratio,
+          e.gain_speed_slope_s_per_m};
 }
 
 /// The leader speed the ACC really saw at each sample: recorded at t + delta (only made when a
@@ -98,17 +100,60 @@ std::vector<Scalar> shiftedLeaderSpeed(const CarFollowingRun& run, const Scalar&
   return shifted;
 }
 
-/// The law with the spacing-policy and cruise options, then the actuator's limits.
+/// Whether a gain ratio departs from symmetry: not 1, or a parameter being differentiated.
+bool ratioEntersModel(double ratio) { return ratio != 1.0; }
+template <std::size_t N>
+bool ratioEntersModel(const ForwardDual<N>& ratio)
+{
+  return ratio.value != 1.0 || ratio.derivative != std::array<double, N>{};
+}
+
+/// The law with response options: gains scheduled on speed, and each gain multiplied by its ratio
+/// on its own side (k1 while the spacing error is negative, k2 while closing in). Only called when
+/// one of them enters the model, so that the paper's arithmetic stays as it is otherwise.
+template <typename Scalar, typename Leader>
+Scalar shapedLaw(const ModelScalars<Scalar>& m, const Scalar& gap, const Scalar& speed, const Leader& leader_speed)
+{
+  using std::exp;
+  Scalar spacing_error = gap - m.eta - m.tau_e * speed;
+  if (entersModel(m.time_gap_speed_slope_s2_per_m))
+  {
+    spacing_error = spacing_error - m.time_gap_speed_slope_s2_per_m * speed * speed;
+  }
+  const Scalar relative_speed = leader_speed - speed;
+  Scalar k1 = m.k1;
+  Scalar k2 = m.k2;
+  if (entersModel(m.gain_speed_slope_s_per_m))
+  {
+    const Scalar schedule = exp(m.gain_speed_slope_s_per_m * (speed - kGainReferenceSpeedMps));
+    k1 = k1 * schedule;
+    k2 = k2 * schedule;
+  }
+  if (valueOf(spacing_error) < 0.0)
+  {
+    k1 = k1 * m.short_gap_gain_ratio;
+  }
+  if (valueOf(relative_speed) < 0.0)
+  {
+    k2 = k2 * m.closing_gain_ratio;
+  }
+  return k1 * spacing_error + k2 * relative_speed;
+}
+
+/// The law with the spacing-policy, response and cruise options, then the actuator's limits.
 template <typename Scalar, typename Leader>
 Scalar commandedAcceleration(const ModelScalars<Scalar>& m, const Scalar& gap, const Scalar& speed,
                              const Leader& leader_speed, const Leader& leader_acceleration)
 {
-  Scalar command = accelerationLaw<Scalar>(m.k1, m.k2, m.tau_e, m.eta, gap, speed, leader_speed - speed);
+  const bool shaped = ratioEntersModel(m.short_gap_gain_ratio) || ratioEntersModel(m.closing_gain_ratio) ||
+                      entersModel(m.gain_speed_slope_s_per_m);
+  Scalar command = shaped ? shapedLaw(m, gap, speed, leader_speed)
+                          : accelerationLaw<Scalar>(m.k1, m.k2, m.tau_e, m.eta, gap, speed, leader_speed - speed);
   if (entersModel(m.leader_acceleration_gain))
   {
     command += m.leader_acceleration_gain * leader_acceleration;
   }
-  if (entersModel(m.time_gap_speed_slope_s2_per_m))
+  if (!shaped && entersModel(m.time_gap_speed_slope_s2_per_m))
   {
     command = command - m.k1 * m.time_gap_speed_slope_s2_per_m * speed * speed;
   }
@@ -221,7 +266,10 @@ ModelScalars<ForwardDual<N>> seededScalars(const std::vector<EffectKind>& kinds,
           seed(plain.time_gap_speed_slope_s2_per_m, where.time_gap_speed_slope_s2_per_m),
           seed(plain.set_speed_mps, where.set_speed_mps),
           seed(plain.cruise_gain_per_s, where.cruise_gain_per_s),
-          seed(plain.leader_acceleration_gain, where.leader_acceleration_gain)};
+          seed(plain.leader_acceleration_gain, where.leader_acceleration_gain),
+          seed(plain.short_gap_gain_ratio, where.short_gap_gain_ratio),
+          seed(plain.closing_gain_ratio, where.closing_gain_ratio),
+          seed(plain.gain_speed_slope_s_per_m, where.gain_speed_slope_s_per_m)};
 }
 
 template <std::size_t N>

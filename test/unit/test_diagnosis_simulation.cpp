@@ -206,10 +206,41 @@ TEST(ResidualBreakdown, SharesSumToOneAndTheWorstSegmentHoldsTheInjectedError)
   EXPECT_GT(breakdown.segments[0].share_of_squared_speed_error, 0.9);
 }
 
+// An ACC that brakes harder for a short, closing gap (ratios > 1) decelerates harder in the dip
+// than the linear law, and ratios of exactly 1 are the linear law bit for bit.
+TEST(AugmentedSimulation, AnAsymmetricResponseBrakesHarderAndReducesToTheBaseAtRatioOne)
+{
+  const acc::CarFollowingRun run = dipRun();
+  const acc::SimulatedFollower base = acc::simulateFollower(kParameters, run);
+  const acc::SimulatedFollower symmetric =
+      acc::simulateFollower(kParameters, acc::makeEffectSettings(acc::EffectKind::asymmetric_response, {1.0, 1.0}), run);
+  const acc::SimulatedFollower asymmetric =
+      acc::simulateFollower(kParameters, acc::makeEffectSettings(acc::EffectKind::asymmetric_response, {3.0, 3.0}), run);
+  auto maxDeceleration = [&](const acc::SimulatedFollower& sim) {
+    double worst = 0.0;
+    for (std::size_t k = 0; k + 1 < run.size(); ++k)
+      worst = std::max(worst, -(sim.speed_mps[k + 1] - sim.speed_mps[k]) / (run.time_s[k + 1] - run.time_s[k]));
+    return worst;
+  };
+  for (std::size_t k = 0; k < run.size(); ++k)
+    ASSERT_EQ(symmetric.speed_mps[k], base.speed_mps[k]) << k;
+  EXPECT_GT(maxDeceleration(asymmetric), 1.3 * maxDeceleration(base));
+  // The braking branch's small-signal gains are k1 r_s and k2 r_c.
+  const acc::AugmentedStability braking = acc::analyzeAugmentedStability(
+      kParameters, acc::EffectKind::asymmetric_response,
+      acc::makeEffectSettings(acc::EffectKind::asymmetric_response, {3.0, 2.0}), 20.0);
+  EXPECT_NEAR(braking.lambda2,
+              acc::lambda2(acc::AccParameters{3.0 * kParameters.k1_per_s2, 2.0 * kParameters.k2_per_s,
+                                              kParameters.tau_e_s, kParameters.eta_m}),
+              1e-12);
+}
+
 TEST(CandidateEffects, NamesRoundTripAndSettingsInvert)
 {
   EXPECT_EQ(acc::candidateEffects().size(), 6u);
-  for (const acc::CandidateEffect& effect : acc::candidateEffects())
+  std::vector<acc::CandidateEffect> every = acc::candidateEffects();
+  every.insert(every.end(), acc::responseEffects().begin(), acc::responseEffects().end());
+  for (const acc::CandidateEffect& effect : every)
   {
     acc::EffectKind parsed = acc::EffectKind::none;
     ASSERT_TRUE(acc::parseEffectName(effect.name, &parsed));
@@ -242,6 +273,10 @@ TEST(AugmentedSimulation, SensitivitiesAreExactDerivativesOfTheSameSimulation)
       {{acc::EffectKind::set_speed_cruise}, {45.0, 0.5}},
       {{acc::EffectKind::actuation_lag, acc::EffectKind::reaction_delay, acc::EffectKind::sensor_time_offset},
        {0.5, 0.3, 0.2}},
+      {{acc::EffectKind::asymmetric_response}, {2.5, 3.0}},
+      {{acc::EffectKind::speed_dependent_gains}, {0.04}},
+      {{acc::EffectKind::leader_acceleration_feedforward}, {0.3}},
+      {{acc::EffectKind::asymmetric_response, acc::EffectKind::reaction_delay}, {2.0, 1.5, 0.4}},
   };
   for (const auto& [kinds, values] : models)
   {

@@ -12,10 +12,26 @@
 
 namespace acc
 {
+/// What a fit minimises over the segments' samples.
+enum class FitObjective
+{
+  speed,          ///< mean squared speed error: the paper's objective
+  gap,            ///< mean squared space-gap error: weighs slow, large deviations (a gap integrates speed)
+  speed_and_gap,  ///< the two, each divided by the variance of its measured series (Punzo et al.'s
+                  ///< normalised mix, as El-Baklish et al. use it)
+};
+
+/// "speed", "gap", "speed_and_gap".
+std::string objectiveName(FitObjective objective);
+
 /// Search box of the base parameters and how hard the local solver works. The same for the base
 /// fit and every augmented fit, so that they differ only by the effect.
 struct AugmentedCalibrationOptions
 {
+  /// The gap objectives need the simulated gap's sensitivities, which a clock offset
+  /// (sensor_time_offset) would make depend on the shifted leader: a fit of that effect must use
+  /// the speed objective (calibrateAugmentedSet throws otherwise).
+  FitObjective objective = FitObjective::speed;
   AccParameters lower{0.0, 0.0, 0.0, 0.0};
   AccParameters upper{1.0, 2.0, 4.0, 40.0};
   /// Base fit: Halton starts for (k1, k2, tau_e) in this box; eta starts at its equilibrium
@@ -78,6 +94,8 @@ struct AugmentedFit
   std::vector<double> effect_values;  ///< in the catalogue's order, effect after effect
   EffectSettings settings;            ///< base settings with effect_values applied
   double train_mse_speed = std::numeric_limits<double>::infinity();  ///< mean squared speed error [m^2/s^2]
+  FitObjective objective = FitObjective::speed;       ///< what the fit minimised
+  double train_objective = std::numeric_limits<double>::infinity();  ///< its value (= train_mse_speed for speed)
   bool diverged = false;              ///< no start found a simulation that does not blow up
   std::size_t evaluations = 0;
   /// Standard errors of (k1, k2, tau_e, eta, effect values...): the Gauss-Newton sandwich
@@ -85,7 +103,9 @@ struct AugmentedFit
   /// batch-means covariance of the scores J_k r_k (blocks of five residual correlation times, at
   /// least 10 s, within segments), as the calibration component's fit statistics. NaN when the
   /// data do not constrain a parameter (e.g. an acceleration limit that the commands never reach)
-  /// or there are fewer than four blocks.
+  /// or there are fewer than four blocks. For a gap objective they are the speed objective's
+  /// sandwich at the fitted point: a measure of what the speeds determine there, not of the fit's
+  /// own spread.
   std::vector<double> standard_errors;
 };
 

@@ -10,8 +10,11 @@ namespace acc
 /// String stability of the augmented model, from its small-signal speed-to-speed transfer
 /// function evaluated numerically:
 ///   Gamma(s) = e^{-s d} (k_a s^2 + k2 s + k1) / ((T s + 1) s^2 + e^{-s d} ((k2 + k1 tau_lin) s + k1))
-/// T the actuation lag, d the reaction delay, k_a the (exploratory) leader-acceleration feedforward, and tau_lin = tau_e + 2 c v0 the time gap of the
+/// T the actuation lag, d the reaction delay, k_a the leader-acceleration feedforward, and tau_lin = tau_e + 2 c v0 the time gap of the
 /// speed-dependent spacing policy linearised at the operating speed v0 (d(c v^2)/dv = 2 c v0).
+/// Gains scheduled on speed enter at v0: k exp(g (v0 - 15 m/s)). An asymmetric law has no single
+/// transfer function (its gains switch at equilibrium): Gamma is that of its braking branch,
+/// k1 r_s and k2 r_c, the law a follower obeys while its leader brakes (gap short, closing in).
 /// With T = d = c = 0 this is the paper's eq. 9. Acceleration limits and the set-speed cruise
 /// do not act on small disturbances around an unsaturated following equilibrium, and a clock
 /// offset between receivers changes the record, not the vehicle: for those Gamma is the base one.

@@ -23,9 +23,12 @@ struct DiagnosisOptions
   double train_fraction = 0.5;
   /// Halves (train or test) shorter than this are not used (listed in notes).
   std::size_t min_samples_per_half = 50;
+  /// The six timing and spacing effects, then the response effects (responseEffects()).
   std::vector<EffectKind> candidates = {EffectKind::actuation_lag,       EffectKind::reaction_delay,
                                         EffectKind::acceleration_limits, EffectKind::sensor_time_offset,
-                                        EffectKind::speed_dependent_time_gap, EffectKind::set_speed_cruise};
+                                        EffectKind::speed_dependent_time_gap, EffectKind::set_speed_cruise,
+                                        EffectKind::asymmetric_response, EffectKind::speed_dependent_gains,
+                                        EffectKind::leader_acceleration_feedforward};
   AugmentedCalibrationOptions calibration;
   SelectionOptions selection;
   BreakdownOptions breakdown;

@@ -16,10 +16,20 @@ enum class EffectKind
   sensor_time_offset,        ///< clock offset between the two receivers (also biases the gap)
   speed_dependent_time_gap,  ///< spacing policy eta + tau v + c v^2 instead of linear in speed
   set_speed_cruise,          ///< the ACC drives at its set speed when the gap is large
-  /// Exploratory, not in the issue's catalogue (only tested when asked for): the ACC also responds
-  /// to the leader's acceleration, as a radar-tracked acceleration estimate allows.
+  /// Anticipation: the ACC also responds to the leader's acceleration, as a radar-tracked
+  /// acceleration estimate allows (a response effect, responseEffects()).
   leader_acceleration_feedforward,
+  /// Different gains for a gap shorter than desired (k1) and for closing in (k2): ACCs brake hard
+  /// for a short, closing gap and accelerate gently otherwise (FHWA's piecewise ACC model, SUMO's
+  /// ACC with its own collision-avoidance gains).
+  asymmetric_response,
+  /// Gains that scale with speed, exp(g (v - v_ref)): a controller scheduled on speed.
+  speed_dependent_gains,
 };
+
+/// The speed at which speed_dependent_gains leaves k1 and k2 as they are [m/s]: a reparametrisation
+/// only (k1 and k2 are then the gains at this speed), chosen inside every campaign's range.
+constexpr double kGainReferenceSpeedMps = 15.0;
 
 /// Every option of the augmented follower model. The defaults switch every effect off, and the
 /// augmented simulator then reduces exactly to simulateFollower().
@@ -42,6 +52,13 @@ struct EffectSettings
   /// k_a: command += k_a a_leader, a_leader the backward difference of the leader speed the ACC
   /// saw (0 at the first sample) [dimensionless].
   double leader_acceleration_gain = 0.0;
+  /// r_s: k1 is multiplied by r_s while the spacing error s - eta - tau_e v - c v^2 is negative
+  /// (the gap is shorter than desired) [dimensionless; 1: symmetric].
+  double short_gap_gain_ratio = 1.0;
+  /// r_c: k2 is multiplied by r_c while the follower closes in (leader speed - v < 0) [1: symmetric].
+  double closing_gain_ratio = 1.0;
+  /// g: k1 and k2 are multiplied by exp(g (v - kGainReferenceSpeedMps)) [s/m; 0: constant gains].
+  double gain_speed_slope_s_per_m = 0.0;
 };
 
 /// One calibrated parameter of an effect: its name with unit, the hard bounds of the search and
@@ -53,6 +70,9 @@ struct EffectParameterSpec
   double upper = 0.0;
   double start_lower = 0.0;
   double start_upper = 0.0;
+  /// The value at which the parameter switches its effect off, where that is an interior value
+  /// (a gain ratio of 1); NaN where "off" is a bound (see the diagnosis's near-off starts).
+  double neutral = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// An entry of the effect catalogue.
@@ -75,9 +95,10 @@ bool isResolvable(EffectKind kind, const std::vector<double>& values, double sam
 /// The six candidate effects of the issue, in a fixed order (EffectKind::none is not among them).
 const std::vector<CandidateEffect>& candidateEffects();
 
-/// Effects outside that catalogue that the diagnosis can test when asked (--effect NAME):
-/// leader_acceleration_feedforward.
-const std::vector<CandidateEffect>& exploratoryEffects();
+/// The response effects: how the ACC answers, beyond the linear law's two constant gains
+/// (asymmetric_response, speed_dependent_gains, leader_acceleration_feedforward). Candidates of
+/// the diagnosis beside the six above, and of the campaign's platoon diagnosis.
+const std::vector<CandidateEffect>& responseEffects();
 
 /// The catalogue entry of kind (kind none gives an entry with no parameters).
 const CandidateEffect& candidateEffect(EffectKind kind);
