@@ -9,9 +9,10 @@ acc_add_library(acc_campaign
     src/campaign/group_identification.cpp
     src/campaign/perturbation.cpp
     src/campaign/platoon_check.cpp
+    src/campaign/platoon_diagnosis.cpp
     src/campaign/campaign.cpp
     src/campaign/campaign_output.cpp
-  LINK acc_calibration acc_run_io acc_model nlohmann_json::nlohmann_json)
+  LINK acc_diagnosis acc_calibration acc_run_io acc_model nlohmann_json::nlohmann_json)
 
 # rosrun acc_identification campaign [options] FILE_OR_DIR... --json FILE --report DIR
 acc_add_tool(campaign LINK acc_campaign)

@@ -99,8 +99,32 @@ std::vector<PlatoonCarModel> modelsOfFile(const CampaignInputs& inputs, std::siz
 }
 }  // namespace
 
+namespace
+{
+/// The base model and the candidate models of one car, and its pair-level perturbation scores.
+struct CarModels
+{
+  PlatoonCarModel base;
+  std::vector<PlatoonCarModel> candidates;
+  std::vector<PairPerturbationScore> scores;
+};
+
+/// fitPlatoonModel, and the segments it was fitted on (empty when none).
+PlatoonCarModel fitPlatoonModelOn(const CampaignInputs& inputs, std::size_t file_index, int position,
+                                  std::size_t starts, std::vector<CarFollowingRun>* training);
+}  // namespace
+
 PlatoonCarModel fitPlatoonModel(const CampaignInputs& inputs, std::size_t file_index, int position,
                                 std::size_t starts)
+{
+  std::vector<CarFollowingRun> training;
+  return fitPlatoonModelOn(inputs, file_index, position, starts, &training);
+}
+
+namespace
+{
+PlatoonCarModel fitPlatoonModelOn(const CampaignInputs& inputs, std::size_t file_index, int position,
+                                  std::size_t starts, std::vector<CarFollowingRun>* training)
 {
   const CampaignFile& file = inputs.files[file_index];
   const std::string name = file.contents.vehicleName(position);
@@ -116,11 +140,53 @@ PlatoonCarModel fitPlatoonModel(const CampaignInputs& inputs, std::size_t file_i
     PlatoonCarModel model =
         fitModel(others, starts, "leave-one-run-out: " + std::to_string(other_runs) + " other run(s) of " + group->label());
     if (model.available)
+    {
+      *training = others;
       return model;
+    }
     fallback = "first half of this run (" + model.source + ")";
   }
-  return fitModel(firstHalves(own->segments), starts, fallback);
+  *training = firstHalves(own->segments);
+  return fitModel(*training, starts, fallback);
 }
+
+/// Car (file, position): its base model, and with the platoon diagnosis its candidate models on
+/// the same training data and its pair-level scores.
+CarModels fitCarModels(const CampaignInputs& inputs, const ModelTask& task, const CampaignOptions& options)
+{
+  CarModels out;
+  std::vector<CarFollowingRun> training;
+  out.base = fitPlatoonModelOn(inputs, task.file_index, task.position, options.group.starts, &training);
+  if (!options.platoon_diagnosis)
+    return out;
+  out.candidates = fitCandidateModels(training, out.base);
+  std::vector<PlatoonCarModel> all{out.base};
+  all.insert(all.end(), out.candidates.begin(), out.candidates.end());
+  out.scores = scorePairPerturbations(inputs.files[task.file_index], task.file_index, task.position, all,
+                                      options.platoon);
+  return out;
+}
+
+/// Each car's diagnosed model: its fit of the chosen effect set, or its base model (said in the
+/// source) when the set is the base model or its fit failed.
+std::vector<PlatoonCarModel> diagnosedModels(std::vector<PlatoonCarModel> models, const std::vector<ModelTask>& tasks,
+                                             const std::vector<CarModels>& fitted, std::size_t file_index,
+                                             const EffectSetSelection& selection)
+{
+  for (std::size_t i = 0; i < tasks.size(); ++i)
+  {
+    if (tasks[i].file_index != file_index || selection.chosen == 0)
+      continue;
+    const PlatoonCarModel& candidate = fitted[i].candidates[selection.chosen - 1];
+    if (candidate.available)
+      models[tasks[i].position] = candidate;
+    else
+      models[tasks[i].position].source += "; kept the base model (" + selection.model.name() + ": " + candidate.source + ")";
+  }
+  return models;
+}
+}  // namespace
+
 
 CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& options)
 {
@@ -128,15 +194,14 @@ CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& 
   CampaignResult result;
   result.groups.resize(inputs.groups.size());
   const std::vector<ModelTask> tasks = options.platoon_check ? modelTasks(inputs) : std::vector<ModelTask>{};
-  std::vector<PlatoonCarModel> fitted(tasks.size());
+  std::vector<CarModels> fitted(tasks.size());
   const std::size_t group_count = inputs.groups.size();
   // One pool for both kinds of task, groups first (the longest), so that no core idles between them.
   auto task = [&](std::size_t i) {
     if (i < group_count)
       result.groups[i] = identifyGroup(inputs.groups[i], options.group);
     else
-      fitted[i - group_count] = fitPlatoonModel(inputs, tasks[i - group_count].file_index,
-                                                tasks[i - group_count].position, options.group.starts);
+      fitted[i - group_count] = fitCarModels(inputs, tasks[i - group_count], options);
   };
   std::size_t groups_done = 0, fits_done = 0;
   std::mutex mutex;
@@ -154,10 +219,31 @@ CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& 
     task(i);
     progress_of(i);
   });
+  std::vector<PlatoonCarModel> base_models(tasks.size());
+  for (std::size_t i = 0; i < tasks.size(); ++i)
+  {
+    base_models[i] = fitted[i].base;
+    result.pair_scores.insert(result.pair_scores.end(), fitted[i].scores.begin(), fitted[i].scores.end());
+  }
+  const bool diagnose = options.platoon_check && options.platoon_diagnosis;
+  if (diagnose)
+    result.effect_selection = selectEffectSet(result.pair_scores, inputs.files.size(), "", options.effect_selection);
   for (std::size_t f = 0; options.platoon_check && f < inputs.files.size(); ++f)
   {
-    if (checkable(inputs, f))
-      result.platoons.push_back(checkPlatoon(inputs.files[f], modelsOfFile(inputs, f, tasks, fitted), options.platoon));
+    if (!checkable(inputs, f))
+      continue;
+    const std::vector<PlatoonCarModel> models = modelsOfFile(inputs, f, tasks, base_models);
+    if (!diagnose)
+    {
+      result.platoons.push_back(checkPlatoon(inputs.files[f], models, options.platoon));
+      continue;
+    }
+    // The run's own effect set is chosen without it: its dips judge a choice they did not make.
+    const EffectSetSelection selection =
+        selectEffectSet(result.pair_scores, f, inputs.files[f].name, options.effect_selection);
+    const std::vector<PlatoonCarModel> diagnosed = diagnosedModels(models, tasks, fitted, f, selection);
+    result.platoons.push_back(checkPlatoon(inputs.files[f], models, options.platoon, &diagnosed));
+    result.run_effect_selections.push_back(selection);
   }
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "acc_identification/calibration/quantity_identifiability.h"
+#include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/model/string_stability.h"
 
 namespace acc
@@ -133,7 +134,11 @@ nlohmann::json positionsJson(const std::vector<DipComparison>& positions)
                  {"measured_dip_mps", row.measured_dip_mps},
                  {"predicted_dip_mps", row.predicted_dip_mps},
                  {"measured_amplification", row.measured_amplification},
-                 {"predicted_amplification", row.predicted_amplification}});
+                 {"predicted_amplification", row.predicted_amplification},
+                 {"predicted_dip_mps_diagnosed", row.predicted_dip_mps_diagnosed},
+                 {"predicted_amplification_diagnosed", row.predicted_amplification_diagnosed},
+                 {"pair_predicted_dip_mps", row.pair_predicted_dip_mps},
+                 {"pair_predicted_dip_mps_diagnosed", row.pair_predicted_dip_mps_diagnosed}});
   }
   return j;
 }
@@ -146,7 +151,87 @@ nlohmann::json disagreementsJson(const std::vector<PlatoonDisagreement>& list)
   return j;
 }
 
-nlohmann::json platoonJson(const PlatoonCheck& check)
+/// The effects of a model with their values and standard errors (effect parameters only).
+nlohmann::json effectsJson(const PlatoonCarModel& model)
+{
+  nlohmann::json values = nlohmann::json::object(), errors = nlohmann::json::object();
+  const std::vector<std::string> names = effectParameterNames(model.effects);
+  for (std::size_t i = 0; i < names.size() && i < model.effect_values.size(); ++i)
+  {
+    values[names[i]] = model.effect_values[i];
+    const std::size_t se = AugmentedParameterBox::kBaseDimension + i;
+    errors[names[i]] = se < model.standard_errors.size() ? model.standard_errors[se] : kNaN;
+  }
+  nlohmann::json names_json = nlohmann::json::array();
+  for (EffectKind kind : model.effects)
+    names_json.push_back(effectName(kind));
+  return {{"effects", names_json}, {"values", values}, {"standard_errors", errors}};
+}
+
+nlohmann::json parametersJson(const AccParameters& p)
+{
+  return {{"k1_per_s2", p.k1_per_s2}, {"k2_per_s", p.k2_per_s}, {"tau_e_s", p.tau_e_s}, {"eta_m", p.eta_m}};
+}
+
+nlohmann::json effectNamesJson(const std::vector<EffectKind>& effects)
+{
+  nlohmann::json j = nlohmann::json::array();
+  for (EffectKind kind : effects)
+    j.push_back(effectName(kind));
+  return j;
+}
+
+nlohmann::json candidateJson(const PlatoonCandidate& candidate)
+{
+  return {{"name", candidate.name()},
+          {"effects", effectNamesJson(candidate.effects)},
+          {"objective", objectiveName(candidate.objective)}};
+}
+
+nlohmann::json selectionJson(const EffectSetSelection& selection)
+{
+  nlohmann::json comparisons = nlohmann::json::array();
+  for (const EffectSetComparison& c : selection.comparisons)
+  {
+    comparisons.push_back({{"model", candidateJson(c.candidate)},
+                           {"against", candidateJson(c.against)},
+                           {"car_perturbations", c.car_perturbations},
+                           {"perturbations", c.perturbations},
+                           {"mean_window_mse_m2ps2", c.mean_window_mse},
+                           {"against_window_mse_m2ps2", c.against_window_mse},
+                           {"relative_improvement", c.relative_improvement},
+                           {"p_value", c.p_value},
+                           {"significant", c.significant}});
+  }
+  return {{"model", candidateJson(selection.model)},
+          {"effects", effectNamesJson(selection.model.effects)},
+          {"objective", objectiveName(selection.model.objective)},
+          {"excluded_run", selection.excluded_run},
+          {"comparisons", comparisons}};
+}
+
+nlohmann::json summaryJson(const DipPredictionSummary& s)
+{
+  return {{"car_perturbations", s.car_perturbations},
+          {"median_dip_error", s.median_dip_error},
+          {"median_abs_dip_error", s.median_abs_dip_error},
+          {"share_within_30_percent", s.share_within_30_percent},
+          {"links", s.links},
+          {"share_links_growth_right", s.share_links_growth_right}};
+}
+
+/// The diagnosed car matching a base car of the chain (same position), or nullptr.
+const PlatoonCarPrediction* diagnosedCar(const PlatoonCheck& check, int position)
+{
+  for (const PlatoonCarPrediction& car : check.cars_diagnosed)
+  {
+    if (car.position == position)
+      return &car;
+  }
+  return nullptr;
+}
+
+nlohmann::json platoonJson(const PlatoonCheck& check, const EffectSetSelection* selection)
 {
   nlohmann::json perturbations = nlohmann::json::array(), cars = nlohmann::json::array(),
                  disagreements = nlohmann::json::array();
@@ -176,6 +261,15 @@ nlohmann::json platoonJson(const PlatoonCheck& check)
                     {"predicted", car.predicted},
                     {"rmse_speed_mps", car.predicted ? car.rmse_speed_mps : kNaN},
                     {"note", car.note}});
+    const PlatoonCarPrediction* diagnosed = diagnosedCar(check, car.position);
+    if (diagnosed != nullptr)
+    {
+      nlohmann::json& j = cars.back();
+      j["diagnosed_effects"] = effectsJson(diagnosed->model);
+      j["diagnosed_parameters"] = parametersJson(diagnosed->model.parameters);
+      j["diagnosed_model_source"] = diagnosed->model.source;
+      j["diagnosed_rmse_speed_mps"] = diagnosed->predicted ? diagnosed->rmse_speed_mps : kNaN;
+    }
   }
   const bool any = !check.perturbations.empty();
   return {{"run", check.run},
@@ -185,6 +279,7 @@ nlohmann::json platoonJson(const PlatoonCheck& check)
           {"disagreements", disagreements},
           {"perturbations", perturbations},
           {"cars", cars},
+          {"effect_selection", selection != nullptr ? selectionJson(*selection) : nlohmann::json(nullptr)},
           {"notes", check.notes}};
 }
 
@@ -210,8 +305,8 @@ std::vector<std::string> groupCells(const GroupResult& g)
 const std::vector<std::string> kGroupHeader{"vehicle", "set", "runs", "samples", "k1 [1/s2]", "k2 [1/s]", "tau_e [s]",
                                             "eta [m]", "margin", "verdict", "p", "band [rad/s]", "peak [dB]"};
 
-const std::vector<std::string> kPlatoonHeader{"run", "dip", "pos", "car", "meas dip", "pred dip", "meas amp",
-                                              "pred amp"};
+const std::vector<std::string> kPlatoonHeader{"run", "dip", "pos", "car", "meas dip", "pred dip", "diag dip",
+                                              "meas amp", "pred amp", "diag amp", "pair dip", "pair diag"};
 
 std::vector<std::vector<std::string>> platoonRows(const CampaignResult& result)
 {
@@ -224,7 +319,10 @@ std::vector<std::vector<std::string>> platoonRows(const CampaignResult& result)
       {
         rows.push_back({check.run + "/" + check.setting, std::to_string(i + 1), std::to_string(row.position), row.name,
                         format("%.2f", row.measured_dip_mps), format("%.2f", row.predicted_dip_mps),
-                        format("%.2f", row.measured_amplification), format("%.2f", row.predicted_amplification)});
+                        format("%.2f", row.predicted_dip_mps_diagnosed), format("%.2f", row.measured_amplification),
+                        format("%.2f", row.predicted_amplification),
+                        format("%.2f", row.predicted_amplification_diagnosed), format("%.2f", row.pair_predicted_dip_mps),
+                        format("%.2f", row.pair_predicted_dip_mps_diagnosed)});
       }
     }
   }
@@ -291,6 +389,43 @@ std::vector<std::string> groupNotes(const CampaignResult& result)
   return notes;
 }
 
+const std::vector<std::string> kGapHeader{"prediction", "car-perturbations", "median dip error", "median |error|",
+                                          "within 30 %", "links", "growth/decay right"};
+
+/// "How far the gap shrinks": each kind of prediction against what the cars did.
+std::vector<std::vector<std::string>> gapRows(const CampaignResult& result)
+{
+  const std::pair<const char*, DipPrediction> kinds[] = {
+      {"platoon, base model", DipPrediction::chain_base},
+      {"platoon, diagnosed", DipPrediction::chain_diagnosed},
+      {"pair (real leader), base", DipPrediction::pair_base},
+      {"pair (real leader), diagnosed", DipPrediction::pair_diagnosed}};
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& [label, which] : kinds)
+  {
+    const DipPredictionSummary s = summarizeDipPredictions(result.platoons, which);
+    rows.push_back({label, std::to_string(s.car_perturbations), format("%+.0f %%", 100.0 * s.median_dip_error),
+                    format("%.0f %%", 100.0 * s.median_abs_dip_error), format("%.0f %%", 100.0 * s.share_within_30_percent),
+                    std::to_string(s.links), format("%.0f %%", 100.0 * s.share_links_growth_right)});
+  }
+  return rows;
+}
+
+std::vector<std::string> selectionLines(const EffectSetSelection& selection)
+{
+  std::vector<std::string> lines;
+  for (const EffectSetComparison& c : selection.comparisons)
+  {
+    lines.push_back(c.candidate.name() + " against " + c.against.name() + ": window MSE " +
+                    format("%.3f", c.mean_window_mse) + " vs " + format("%.3f", c.against_window_mse) + " (" +
+                    format("%+.0f %%", -100.0 * c.relative_improvement) + "), p = " + format("%.4f", c.p_value) +
+                    " over " + std::to_string(c.perturbations) + " perturbations" +
+                    (c.significant ? ": named" : ": not named"));
+  }
+  lines.push_back("chosen: " + selection.model.name());
+  return lines;
+}
+
 std::vector<std::string> platoonNotes(const CampaignResult& result)
 {
   std::vector<std::string> notes;
@@ -331,17 +466,34 @@ nlohmann::json campaignToJson(const CampaignInputs& inputs, const CampaignResult
   nlohmann::json vehicles = nlohmann::json::array(), platoons = nlohmann::json::array();
   for (std::size_t i = 0; i < result.groups.size(); ++i)
     vehicles.push_back(vehicleJson(inputs, i, result.groups[i]));
-  for (const PlatoonCheck& check : result.platoons)
-    platoons.push_back(platoonJson(check));
+  for (std::size_t i = 0; i < result.platoons.size(); ++i)
+    platoons.push_back(platoonJson(result.platoons[i], i < result.run_effect_selections.size()
+                                                           ? &result.run_effect_selections[i]
+                                                           : nullptr));
+  const bool diagnosed = !result.run_effect_selections.empty();
   return {{"inputs", {{"arguments", input_paths}, {"files", files}, {"notes", inputs.notes}}},
           {"attribution", kOpenAccAttribution},
           {"options",
            {{"starts", options.group.starts},
             {"alpha", options.group.alpha},
             {"seed", options.group.seed},
-            {"platoon_check", options.platoon_check}}},
+            {"platoon_check", options.platoon_check},
+            {"platoon_diagnosis", options.platoon_check && options.platoon_diagnosis}}},
           {"vehicles", vehicles},
-          {"platoons", platoons}};
+          {"platoons", platoons},
+          {"platoon_diagnosis",
+           diagnosed ? nlohmann::json{{"rule", effectSetSelectionRule(options.effect_selection)},
+                                      {"selection", selectionJson(result.effect_selection)},
+                                      {"how_far_the_gap_shrinks",
+                                       {{"chain_base", summaryJson(summarizeDipPredictions(
+                                                           result.platoons, DipPrediction::chain_base))},
+                                        {"chain_diagnosed", summaryJson(summarizeDipPredictions(
+                                                                result.platoons, DipPrediction::chain_diagnosed))},
+                                        {"pair_base", summaryJson(summarizeDipPredictions(
+                                                          result.platoons, DipPrediction::pair_base))},
+                                        {"pair_diagnosed", summaryJson(summarizeDipPredictions(
+                                                               result.platoons, DipPrediction::pair_diagnosed))}}}}
+                     : nlohmann::json(nullptr)}};
 }
 
 void printCampaignTables(const CampaignResult& result, std::ostream& out)
@@ -357,6 +509,14 @@ void printCampaignTables(const CampaignResult& result, std::ostream& out)
   printAligned(kPlatoonHeader, platoonRows(result), out);
   for (const std::string& note : platoonNotes(result))
     out << "  " << note << "\n";
+  if (!result.run_effect_selections.empty())
+  {
+    out << "\nPlatoon diagnosis: which unmodelled effect closes the gap (pair level, perturbation windows)\n";
+    for (const std::string& line : selectionLines(result.effect_selection))
+      out << "  " << line << "\n";
+    out << "\nHow far the gap shrinks (each run's diagnosed models chosen without that run)\n";
+    printAligned(kGapHeader, gapRows(result), out);
+  }
   const auto disagreements = disagreementRows(result);
   out << "\nWhere model and data disagree: " << disagreements.size() << "\n";
   if (!disagreements.empty())
@@ -386,6 +546,15 @@ std::string campaignReportMarkdown(const CampaignResult& result, const std::vect
   md << "\n";
   for (const std::string& note : platoonNotes(result))
     md << "- " << note << "\n";
+  if (!result.run_effect_selections.empty())
+  {
+    md << "\n## Platoon diagnosis: which unmodelled effect closes the gap\n\n";
+    for (const std::string& line : selectionLines(result.effect_selection))
+      md << "- " << line << "\n";
+    md << "\n### How far the gap shrinks\n\nEach run's diagnosed models use the effect set chosen without that "
+          "run, fitted on the car's other runs.\n\n";
+    printMarkdownTable(kGapHeader, gapRows(result), md);
+  }
   md << "\n### Where model and data disagree\n\n";
   const auto disagreements = disagreementRows(result);
   if (disagreements.empty())

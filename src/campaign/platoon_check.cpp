@@ -75,7 +75,7 @@ void predictCar(const OpenAccFile& file, const std::vector<double>& input_mps, s
   // Only the first gap and speed are read by the simulation (its measured start).
   run.follower_speed_mps.assign(run.size(), file.vehicle(car.position)->speed_mps[start]);
   run.space_gap_m.assign(run.size(), file.vehicle(car.position - 1)->gap_to_follower_m[start]);
-  const SimulatedFollower sim = simulateFollower(car.model.parameters, run);
+  const SimulatedFollower sim = simulateFollower(car.model.parameters, car.model.settings, run);
   const std::size_t valid = sim.diverged ? sim.diverged_at_index : run.size();
   car.predicted_speed_mps.assign(file.rows(), kNaN);
   std::copy(sim.speed_mps.begin(), sim.speed_mps.begin() + valid, car.predicted_speed_mps.begin() + start);
@@ -101,8 +101,11 @@ double rmseAgainstMeasured(const std::vector<double>& predicted, const std::vect
 }
 
 /// The chain: each car driven by the prediction of the car ahead, until one cannot be simulated.
-void predictChain(const CampaignFile& file, const std::vector<PlatoonCarModel>& models, PlatoonCheck& check)
+/// Returns the cars; notes on where it stopped go to check.notes.
+std::vector<PlatoonCarPrediction> predictChain(const CampaignFile& file, const std::vector<PlatoonCarModel>& models,
+                                               PlatoonCheck& check)
 {
+  std::vector<PlatoonCarPrediction> cars;
   const OpenAccFile& data = file.contents;
   std::vector<double> input = data.vehicle(1)->speed_mps;  // the real first car drives the chain
   for (std::size_t r = 0; r < input.size(); ++r)
@@ -126,7 +129,7 @@ void predictChain(const CampaignFile& file, const std::vector<PlatoonCarModel>& 
       if (!stopped)
         check.notes.push_back("chain stopped at position " + std::to_string(k) + ": " + car.note);
       stopped = true;
-      check.cars.push_back(car);
+      cars.push_back(car);
       continue;
     }
     predictCar(data, input, start, check.end_row, car);
@@ -139,8 +142,9 @@ void predictChain(const CampaignFile& file, const std::vector<PlatoonCarModel>& 
     if (car.model.source.find("first half") != std::string::npos)
       check.notes.push_back(car.name + " (" + std::to_string(k) + "): " + car.model.source);
     input = car.predicted_speed_mps;
-    check.cars.push_back(std::move(car));
+    cars.push_back(std::move(car));
   }
+  return cars;
 }
 
 std::vector<double> slice(const std::vector<double>& values, std::size_t first, std::size_t end)
@@ -202,18 +206,27 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
   auto dip = [&](const std::vector<double>& speed) {
     return dipDepthMps(time_s, slice(speed, check.first_row, check.end_row), perturbation, options.perturbation);
   };
+  auto predictedDip = [&](const std::vector<PlatoonCarPrediction>& cars, std::size_t i) {
+    return i < cars.size() && cars[i].predicted ? dip(cars[i].predicted_speed_mps) : kNaN;
+  };
   const double lead_dip = dip(data.vehicle(1)->speed_mps);
-  result.positions.push_back({1, data.vehicleName(1), lead_dip, lead_dip, kNaN, kNaN});
-  for (const PlatoonCarPrediction& car : check.cars)
+  DipComparison lead{1, data.vehicleName(1), lead_dip, lead_dip, kNaN, kNaN};
+  lead.predicted_dip_mps_diagnosed = check.cars_diagnosed.empty() ? kNaN : lead_dip;
+  result.positions.push_back(lead);
+  for (std::size_t i = 0; i < check.cars.size(); ++i)
   {
+    const PlatoonCarPrediction& car = check.cars[i];
     DipComparison row{car.position, car.name, kNaN, kNaN, kNaN, kNaN};
     if (hasSpeed(data.vehicle(car.position)))
       row.measured_dip_mps = dip(data.vehicle(car.position)->speed_mps);
-    if (car.predicted)
-      row.predicted_dip_mps = dip(car.predicted_speed_mps);
+    row.predicted_dip_mps = predictedDip(check.cars, i);
+    row.predicted_dip_mps_diagnosed = predictedDip(check.cars_diagnosed, i);
+    row.pair_predicted_dip_mps = predictedDip(check.pairs, i);
+    row.pair_predicted_dip_mps_diagnosed = predictedDip(check.pairs_diagnosed, i);
     const DipComparison& ahead = result.positions.back();
     row.measured_amplification = ratio(row.measured_dip_mps, ahead.measured_dip_mps);
     row.predicted_amplification = ratio(row.predicted_dip_mps, ahead.predicted_dip_mps);
+    row.predicted_amplification_diagnosed = ratio(row.predicted_dip_mps_diagnosed, ahead.predicted_dip_mps_diagnosed);
     result.positions.push_back(row);
   }
   result.data_show_growth = dataShowGrowth(result.positions);
@@ -260,23 +273,79 @@ std::pair<std::size_t, std::size_t> longestLeadStretch(const OpenAccFile& file, 
   return best;
 }
 
+PlatoonCarPrediction predictPair(const OpenAccFile& file, int position, const PlatoonCarModel& model,
+                                 std::size_t first_row, std::size_t end_row)
+{
+  PlatoonCarPrediction car;
+  car.position = position;
+  car.name = file.vehicleName(position);
+  car.model = model;
+  car.predicted_speed_mps.assign(file.rows(), kNaN);
+  car.note = whyNotSimulated(file, position, model);
+  const OpenAccVehicle* ahead = file.vehicle(position - 1);
+  if (car.note.empty() && !hasSpeed(ahead))
+    car.note = car.name + ": the car ahead has no speed data";
+  if (!car.note.empty())
+    return car;
+  std::vector<double> input = ahead->speed_mps;
+  for (std::size_t r = 0; r < input.size(); ++r)
+  {
+    if (r < first_row || r >= end_row)
+      input[r] = kNaN;
+  }
+  const std::size_t start = startRow(file, position, input, first_row, end_row);
+  if (start + 2 > end_row)
+  {
+    car.note = "no row with its gap, speed and input all known";
+    return car;
+  }
+  // A hole in the leader's record makes the simulation non-finite there: it stops and says so.
+  predictCar(file, input, start, end_row, car);
+  car.rmse_speed_mps = rmseAgainstMeasured(car.predicted_speed_mps, file.vehicle(position)->speed_mps);
+  return car;
+}
+
+std::vector<Perturbation> leadPerturbations(const OpenAccFile& file, const PlatoonCheckOptions& options,
+                                            std::size_t* first_row, std::size_t* end_row)
+{
+  std::tie(*first_row, *end_row) = longestLeadStretch(file, options.max_time_step_s);
+  if (*end_row < *first_row + 2)
+    return {};
+  return findPerturbations(slice(file.time_s, *first_row, *end_row),
+                           slice(file.vehicle(1)->speed_mps, *first_row, *end_row), options.perturbation);
+}
+
 PlatoonCheck checkPlatoon(const CampaignFile& file, const std::vector<PlatoonCarModel>& models,
-                          const PlatoonCheckOptions& options)
+                          const PlatoonCheckOptions& options, const std::vector<PlatoonCarModel>* diagnosed)
 {
   PlatoonCheck check;
   check.run = file.name;
   check.setting = file.setting;
   const OpenAccFile& data = file.contents;
-  std::tie(check.first_row, check.end_row) = longestLeadStretch(data, options.max_time_step_s);
+  const std::vector<Perturbation> found = leadPerturbations(data, options, &check.first_row, &check.end_row);
   if (check.end_row < check.first_row + 2)
   {
     check.notes.push_back("the first car (" + data.vehicleName(1) + ") has no stretch of speed data: nothing predicted");
     return check;
   }
-  predictChain(file, models, check);
+  check.cars = predictChain(file, models, check);
+  for (const PlatoonCarPrediction& car : check.cars)
+    check.pairs.push_back(predictPair(data, car.position, car.model, check.first_row, check.end_row));
+  if (diagnosed != nullptr)
+  {
+    PlatoonCheck diagnosed_notes;  // the same rows; its notes are filtered below
+    diagnosed_notes.first_row = check.first_row;
+    diagnosed_notes.end_row = check.end_row;
+    check.cars_diagnosed = predictChain(file, *diagnosed, diagnosed_notes);
+    for (const std::string& note : diagnosed_notes.notes)
+    {
+      if (note.rfind("chain stopped", 0) == 0)
+        check.notes.push_back("diagnosed models: " + note);
+    }
+    for (const PlatoonCarPrediction& car : check.cars_diagnosed)
+      check.pairs_diagnosed.push_back(predictPair(data, car.position, car.model, check.first_row, check.end_row));
+  }
   const std::vector<double> time_s = slice(data.time_s, check.first_row, check.end_row);
-  const std::vector<Perturbation> found =
-      findPerturbations(time_s, slice(data.vehicle(1)->speed_mps, check.first_row, check.end_row), options.perturbation);
   if (found.empty())
     check.notes.push_back("no perturbation: the first car's speed never drops more than " +
                           format("%.1f m/s", options.perturbation.drop_below_median_mps) + " below its median");

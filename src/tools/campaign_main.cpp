@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <mutex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -120,10 +121,27 @@ int main(int argc, char** argv)
   app.add_flag("--no-platoon-check", no_platoon_check, "identify the cars only");
   app.add_flag("--no-plots", no_plots, "write the report's tables and JSON but draw nothing");
   app.add_flag("--quiet", quiet, "no progress bar");
+  bool no_platoon_diagnosis = false;
+  std::string platoon_effects;
+  app.add_flag("--no-platoon-diagnosis", no_platoon_diagnosis,
+               "predict the platoons with the base models only (no candidate effects fitted)");
+  app.add_option("--platoon-effects", platoon_effects,
+                 "use this candidate for the diagnosed platoon (e.g. asymmetric_response,reaction_delay or "
+                 "reaction_delay@speed_and_gap; none: the base model) instead of the rule's choice; the comparisons "
+                 "are still reported");
   CLI11_PARSE(app, argc, argv);
   options.platoon_check = !no_platoon_check;
-  if (!quiet)
-    options.progress = showProgress;
+  options.platoon_diagnosis = !no_platoon_diagnosis;
+  if (!platoon_effects.empty())
+  {
+    options.effect_selection.force = true;
+    if (!acc::parsePlatoonCandidate(platoon_effects, &options.effect_selection.forced))
+    {
+      std::cerr << "error: --platoon-effects: cannot read '" << platoon_effects
+                << "' (effect names joined by commas, optionally @speed, @gap or @speed_and_gap)\n";
+      return 2;
+    }
+  }
 
   acc::CampaignInputs inputs;
   try

@@ -20,6 +20,7 @@ struct SyntheticCar
 {
   std::string name;
   acc::AccParameters truth;
+  acc::EffectSettings effects{};  ///< unmodelled effects of the true car (default: none)
 };
 
 /// Speed that moves smoothly from `from` to `to` between t0 and t1 (cosine ramp).
@@ -66,7 +67,7 @@ inline void writeSyntheticPlatoon(const std::string& path, const std::string& se
     const double v0 = run.leader_speed_mps[0];
     run.follower_speed_mps.assign(fine, v0);
     run.space_gap_m.assign(fine, car.truth.eta_m + car.truth.tau_e_s * v0);  // at equilibrium
-    const acc::SimulatedFollower sim = acc::simulateFollower(car.truth, run);
+    const acc::SimulatedFollower sim = acc::simulateFollower(car.truth, car.effects, run);
     speed.push_back(sim.speed_mps);
     gap.push_back(sim.space_gap_m);
     run.leader_speed_mps = sim.speed_mps;

@@ -9,6 +9,7 @@
 #include "acc_identification/campaign/campaign_inputs.h"
 #include "acc_identification/campaign/group_identification.h"
 #include "acc_identification/campaign/platoon_check.h"
+#include "acc_identification/campaign/platoon_diagnosis.h"
 
 namespace acc
 {
@@ -19,6 +20,11 @@ struct CampaignOptions
   std::size_t threads = 0;
   bool platoon_check = true;
   PlatoonCheckOptions platoon;
+  /// The platoon diagnosis (platoon_diagnosis.h): every car's candidate effect models fitted like
+  /// its base model, scored at pair level in the perturbation windows, one effect set chosen by
+  /// the stated rule (for each run without that run), and the platoon predicted again with it.
+  bool platoon_diagnosis = true;
+  EffectSetSelectionOptions effect_selection;
   /// Called with (stage, done, total) after each task: stage "groups" then "platoon fits"; may
   /// be empty. Calls never overlap.
   std::function<void(const std::string&, std::size_t, std::size_t)> progress;
@@ -28,6 +34,12 @@ struct CampaignResult
 {
   std::vector<GroupResult> groups;     ///< one per CampaignInputs::groups, same order
   std::vector<PlatoonCheck> platoons;  ///< one per file with at least two cars in a chain
+  /// The platoon diagnosis: every car-perturbation's pair-level scores, the rule over all runs
+  /// (what the campaign names), and for each platoon the choice made without its run (same order
+  /// as platoons).
+  std::vector<PairPerturbationScore> pair_scores;
+  EffectSetSelection effect_selection;
+  std::vector<EffectSetSelection> run_effect_selections;
   std::size_t threads = 0;             ///< threads used
   double wall_time_s = 0.0;
 };

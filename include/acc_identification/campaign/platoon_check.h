@@ -1,23 +1,38 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "acc_identification/campaign/campaign_inputs.h"
 #include "acc_identification/campaign/perturbation.h"
 #include "acc_identification/model/acc_parameters.h"
+#include "acc_identification/model/follower_effects.h"
 
 namespace acc
 {
 /// The model a platoon check simulates one following car with.
 struct PlatoonCarModel
 {
+  PlatoonCarModel() = default;
+  PlatoonCarModel(bool available_, const AccParameters& parameters_, std::string source_)
+    : available(available_), parameters(parameters_), source(std::move(source_))
+  {
+  }
   bool available = false;
   AccParameters parameters;
   /// Where it comes from: "leave-one-run-out: 3 other runs", "first half of this run (no other
   /// run of this car and setting)"; or why there is none.
   std::string source;
+  /// The unmodelled effects the model adds to the paper's law (empty: the base model), their
+  /// values in the catalogue's order, the settings they make, and the standard errors of
+  /// (k1, k2, tau_e, eta, effect values) where the fit gives them.
+  std::vector<EffectKind> effects;
+  std::vector<double> effect_values;
+  EffectSettings settings;
+  std::vector<double> standard_errors;
 };
 
 /// One car's measured and predicted dip in one perturbation.
@@ -29,6 +44,13 @@ struct DipComparison
   double predicted_dip_mps = 0.0;       ///< NaN where the chain stopped
   double measured_amplification = 0.0;  ///< dip(k) / dip(k-1); NaN for the first car or without data
   double predicted_amplification = 0.0;
+  /// The same with each car's diagnosed model (platoon_diagnosis.h); NaN without one.
+  double predicted_dip_mps_diagnosed = std::numeric_limits<double>::quiet_NaN();
+  double predicted_amplification_diagnosed = std::numeric_limits<double>::quiet_NaN();
+  /// Pair level: the car driven by its REAL leader's measured speed (nothing compounds), base and
+  /// diagnosed model.
+  double pair_predicted_dip_mps = std::numeric_limits<double>::quiet_NaN();
+  double pair_predicted_dip_mps_diagnosed = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Where the model and the data disagree.
@@ -69,6 +91,10 @@ struct PlatoonCheck
   std::string setting;
   std::size_t first_row = 0, end_row = 0;  ///< the rows simulated (the first car's longest stretch with data)
   std::vector<PlatoonCarPrediction> cars;  ///< position 2 onwards
+  /// The same chain with each car's diagnosed model (empty when none were given).
+  std::vector<PlatoonCarPrediction> cars_diagnosed;
+  /// Pair level: each car driven by its real leader, base and diagnosed model (position 2 onwards).
+  std::vector<PlatoonCarPrediction> pairs, pairs_diagnosed;
   std::vector<PerturbationCheck> perturbations;
   std::vector<std::string> notes;          ///< chain stops and other caveats
 };
@@ -88,8 +114,22 @@ struct PlatoonCheckOptions
 /// first car's). The chain stops at the first car with no data, no model, or a diverged
 /// simulation, and says so in notes. Then each perturbation of the first car is measured
 /// (findPerturbations, dipDepthMps) on the measured and the predicted speeds of every position.
+/// With diagnosed models (same indexing; may be nullptr), the chain and the pair-level predictions
+/// are made with them too and every DipComparison gets its *_diagnosed values.
 PlatoonCheck checkPlatoon(const CampaignFile& file, const std::vector<PlatoonCarModel>& models,
-                          const PlatoonCheckOptions& options = {});
+                          const PlatoonCheckOptions& options = {},
+                          const std::vector<PlatoonCarModel>* diagnosed = nullptr);
+
+/// Car `position` driven by the measured speed of the car directly ahead (pair level), from its
+/// measured gap and speed at the first row of [first_row, end_row) where all three are known.
+/// Not predicted (with the reason in note) when the data or the model are missing.
+PlatoonCarPrediction predictPair(const OpenAccFile& file, int position, const PlatoonCarModel& model,
+                                 std::size_t first_row, std::size_t end_row);
+
+/// The first car's perturbations within its longest stretch [first_row, end_row) (times relative to
+/// that stretch's rows: index 0 is first_row), as checkPlatoon finds them.
+std::vector<Perturbation> leadPerturbations(const OpenAccFile& file, const PlatoonCheckOptions& options,
+                                            std::size_t* first_row, std::size_t* end_row);
 
 /// The rows [first, end) of the longest stretch where time and the first car's speed are finite
 /// and time increases by at most max_time_step_s.

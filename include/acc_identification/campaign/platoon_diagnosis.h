@@ -1,0 +1,148 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "acc_identification/campaign/campaign_inputs.h"
+#include "acc_identification/campaign/platoon_check.h"
+#include "acc_identification/model/car_following_run.h"
+#include "acc_identification/diagnosis/augmented_calibration.h"
+#include "acc_identification/model/follower_effects.h"
+
+namespace acc
+{
+/// One model the platoon diagnosis tries: effects added to the paper's law, and the objective the
+/// model is calibrated with.
+struct PlatoonCandidate
+{
+  std::vector<EffectKind> effects;
+  FitObjective objective = FitObjective::speed;
+  /// What the candidate adds to the base model (its effects, and a non-speed objective): a
+  /// candidate extends another when it adds exactly one thing to it.
+  std::vector<std::string> features() const;
+  /// "asymmetric_response + reaction_delay", "none (speed_and_gap objective)".
+  std::string name() const;
+  bool operator==(const PlatoonCandidate& other) const
+  {
+    return effects == other.effects && objective == other.objective;
+  }
+};
+
+/// The candidates the platoon diagnosis tries beside the base model (speed objective, no effect):
+/// each response and timing effect alone, the gap and normalised speed+gap objectives, then
+/// combinations of two. Index i + 1 in every score vector below (index 0 is the base model).
+const std::vector<PlatoonCandidate>& platoonCandidates();
+
+/// Parses "reaction_delay", "asymmetric_response,reaction_delay", "none@gap",
+/// "reaction_delay@speed_and_gap" (effects joined by commas, then @objective); false when unknown.
+bool parsePlatoonCandidate(const std::string& text, PlatoonCandidate* candidate);
+
+/// Each candidate's model of one car, fitted (calibrateAugmentedSet with the candidate's
+/// objective) on the same training segments as its base model, warm-started from it; a candidate
+/// that extends another is warm-started from that one's fit. One entry per platoonCandidates();
+/// available false where the fit failed or diverged.
+std::vector<PlatoonCarModel> fitCandidateModels(const std::vector<CarFollowingRun>& training,
+                                                const PlatoonCarModel& base);
+
+/// What one car did in one perturbation against what each model predicted for it at pair level
+/// (driven by its real leader's measured speed: nothing compounds).
+struct PairPerturbationScore
+{
+  std::size_t file_index = 0;
+  int position = 0;
+  std::size_t perturbation = 0;  ///< index among the file's lead perturbations
+  double measured_dip_mps = 0.0;
+  /// Per model (0: base, i + 1: candidate set i): mean squared speed error over the window
+  /// [onset - pre_window_s, window_end) [m^2/s^2], and the predicted dip. NaN where not predicted.
+  std::vector<double> window_mse;
+  std::vector<double> predicted_dip_mps;
+};
+
+/// The scores of car `position` of a file in each of the file's lead perturbations, for the base
+/// model and every candidate (models[0] base, models[i + 1] candidate i).
+std::vector<PairPerturbationScore> scorePairPerturbations(const CampaignFile& file, std::size_t file_index,
+                                                          int position, const std::vector<PlatoonCarModel>& models,
+                                                          const PlatoonCheckOptions& options);
+
+struct EffectSetSelectionOptions
+{
+  /// Family-wise error rate of the comparisons of one stage (Bonferroni over its candidates).
+  double alpha = 0.05;
+  /// A candidate must also lower the window MSE by at least this fraction (practical relevance).
+  double min_relative_improvement = 0.10;
+  std::size_t replicates = 1999;
+  std::uint64_t seed = 20191008;
+  /// When set, this candidate (one of platoonCandidates(), or the base model) is taken instead of
+  /// the rule's choice; the comparisons are still made and reported.
+  bool force = false;
+  PlatoonCandidate forced;
+};
+
+/// One candidate set's comparison with the model it must beat.
+struct EffectSetComparison
+{
+  PlatoonCandidate candidate;
+  PlatoonCandidate against;  ///< the base model or the first stage's choice
+  std::size_t car_perturbations = 0;
+  std::size_t perturbations = 0;  ///< clusters of the bootstrap
+  double mean_window_mse = 0.0;
+  double against_window_mse = 0.0;
+  double relative_improvement = 0.0;  ///< 1 - mean_window_mse / against_window_mse
+  double p_value = 1.0;               ///< H0: no lower window MSE (cluster bootstrap over perturbations)
+  bool significant = false;           ///< p <= alpha / (stage size) and the improvement is relevant
+};
+
+/// The rule's outcome: the candidate chosen (index into platoonCandidates() + 1, 0 for the base
+/// model) and every comparison made.
+struct EffectSetSelection
+{
+  std::size_t chosen = 0;
+  PlatoonCandidate model;
+  std::vector<EffectSetComparison> comparisons;
+  std::string excluded_run;  ///< the run left out of the choice ("" when none)
+};
+
+/// The stated rule over the pair-level scores of every file but `exclude_file` (pass a value
+/// >= the number of files to use all): stage 1 compares each candidate that adds one thing to the
+/// base model with it, paired over car-perturbations, and keeps the lowest mean window MSE among
+/// those with a significant, relevant improvement; stage 2 compares each candidate that adds one
+/// thing to that choice with it, by the same test. The bootstrap resamples whole perturbations (every car of one
+/// perturbation together, as they share its input), seeded.
+EffectSetSelection selectEffectSet(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
+                                   const std::string& excluded_run, const EffectSetSelectionOptions& options);
+
+/// The rule in words, for reports and JSON.
+std::string effectSetSelectionRule(const EffectSetSelectionOptions& options);
+
+}  // namespace acc
+
+namespace acc
+{
+/// How well one kind of prediction matches what the cars did, over every car-perturbation of the
+/// platoons: positions 2 on with a measured dip above min_dip_mps; links (a car and the one ahead)
+/// whose measured dips differ by more than min_link_change_mps.
+struct DipPredictionSummary
+{
+  std::size_t car_perturbations = 0;
+  double median_dip_error = 0.0;          ///< median of (predicted - measured) / measured
+  double median_abs_dip_error = 0.0;
+  double share_within_30_percent = 0.0;
+  std::size_t links = 0;
+  double share_links_growth_right = 0.0;  ///< predicted growth (or decay) where the data show it
+};
+
+/// Which prediction to summarise.
+enum class DipPrediction
+{
+  chain_base,
+  chain_diagnosed,
+  pair_base,
+  pair_diagnosed
+};
+
+DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& platoons, DipPrediction which,
+                                             double min_dip_mps = 0.3, double min_link_change_mps = 0.2);
+
+}  // namespace acc

@@ -1,0 +1,455 @@
+#include "acc_identification/campaign/platoon_diagnosis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <random>
+#include <stdexcept>
+#include <utility>
+
+#include "acc_identification/diagnosis/augmented_calibration.h"
+#include "acc_identification/model/portable_uniform.h"
+
+namespace acc
+{
+namespace
+{
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::vector<double> sliceRows(const std::vector<double>& values, std::size_t first, std::size_t end)
+{
+  return std::vector<double>(values.begin() + static_cast<long>(first), values.begin() + static_cast<long>(end));
+}
+
+/// Mean squared difference over the rows [first, end) where both are finite; NaN when none.
+double windowMse(const std::vector<double>& predicted, const std::vector<double>& measured, std::size_t first,
+                 std::size_t end)
+{
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t r = first; r < end && r < predicted.size(); ++r)
+  {
+    if (std::isfinite(predicted[r]) && std::isfinite(measured[r]))
+    {
+      sum += (predicted[r] - measured[r]) * (predicted[r] - measured[r]);
+      ++n;
+    }
+  }
+  return n > 0 ? sum / static_cast<double>(n) : kNaN;
+}
+
+/// The row (file index) where a perturbation's scoring window starts: pre_window_s before its onset.
+std::size_t windowStartRow(const std::vector<double>& time_s, std::size_t onset_row, double pre_window_s)
+{
+  std::size_t r = onset_row;
+  while (r > 0 && std::isfinite(time_s[r - 1]) && time_s[r - 1] >= time_s[onset_row] - pre_window_s)
+    --r;
+  return r;
+}
+
+/// The model a fit makes, with its source.
+PlatoonCarModel modelOf(const AugmentedFit& fit, const std::string& source)
+{
+  PlatoonCarModel model;
+  model.available = !fit.diverged;
+  model.parameters = fit.base;
+  model.effects = fit.effects;
+  model.effect_values = fit.effect_values;
+  model.settings = fit.settings;
+  model.standard_errors = fit.standard_errors;
+  model.source = source + (fit.diverged ? ": no fit (diverged)" : "");
+  return model;
+}
+
+/// Entries usable for comparing model a with model b: both scored.
+struct Cluster
+{
+  double sum_a = 0.0, sum_b = 0.0;
+  std::size_t n = 0;
+};
+
+std::vector<Cluster> clustersOf(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
+                                std::size_t a, std::size_t b, std::size_t* entries)
+{
+  std::map<std::pair<std::size_t, std::size_t>, Cluster> by_perturbation;
+  *entries = 0;
+  for (const PairPerturbationScore& s : scores)
+  {
+    if (s.file_index == exclude_file || a >= s.window_mse.size() || b >= s.window_mse.size())
+      continue;
+    if (!std::isfinite(s.window_mse[a]) || !std::isfinite(s.window_mse[b]))
+      continue;
+    Cluster& c = by_perturbation[{s.file_index, s.perturbation}];
+    c.sum_a += s.window_mse[a];
+    c.sum_b += s.window_mse[b];
+    ++c.n;
+    ++*entries;
+  }
+  std::vector<Cluster> out;
+  for (const auto& entry : by_perturbation)
+    out.push_back(entry.second);
+  return out;
+}
+
+/// Model `candidate` against model `against`: mean window MSEs, the relative improvement, and the
+/// cluster-bootstrap p-value of "no improvement" (share of replicates whose mean difference is not
+/// positive, the percentile test).
+EffectSetComparison compare(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
+                            std::size_t candidate, std::size_t against, const EffectSetSelectionOptions& options)
+{
+  EffectSetComparison out;
+  const std::vector<Cluster> clusters = clustersOf(scores, exclude_file, against, candidate, &out.car_perturbations);
+  out.perturbations = clusters.size();
+  double sum_against = 0.0, sum_candidate = 0.0;
+  for (const Cluster& c : clusters)
+  {
+    sum_against += c.sum_a;
+    sum_candidate += c.sum_b;
+  }
+  if (out.car_perturbations == 0 || clusters.size() < 2)
+  {
+    out.mean_window_mse = out.car_perturbations > 0 ? sum_candidate / out.car_perturbations : kNaN;
+    out.against_window_mse = out.car_perturbations > 0 ? sum_against / out.car_perturbations : kNaN;
+    out.relative_improvement = kNaN;
+    return out;
+  }
+  out.mean_window_mse = sum_candidate / static_cast<double>(out.car_perturbations);
+  out.against_window_mse = sum_against / static_cast<double>(out.car_perturbations);
+  out.relative_improvement = 1.0 - out.mean_window_mse / out.against_window_mse;
+  std::mt19937_64 engine(options.seed);
+  std::size_t not_better = 0;
+  for (std::size_t b = 0; b < options.replicates; ++b)
+  {
+    double diff = 0.0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < clusters.size(); ++i)
+    {
+      const Cluster& c = clusters[static_cast<std::size_t>(uniformBelow(engine, clusters.size()))];
+      diff += c.sum_a - c.sum_b;
+      n += c.n;
+    }
+    if (!(diff / static_cast<double>(n) > 0.0))
+      ++not_better;
+  }
+  out.p_value = static_cast<double>(1 + not_better) / static_cast<double>(options.replicates + 1);
+  return out;
+}
+
+/// Whether `candidate` adds exactly one feature (an effect or an objective) to `base`.
+bool extendsByOne(const PlatoonCandidate& candidate, const PlatoonCandidate& base)
+{
+  const std::vector<std::string> own = candidate.features(), theirs = base.features();
+  if (own.size() != theirs.size() + 1)
+    return false;
+  for (const std::string& feature : theirs)
+  {
+    if (std::find(own.begin(), own.end(), feature) == own.end())
+      return false;
+  }
+  return true;
+}
+
+const PlatoonCandidate& candidateAt(std::size_t index)
+{
+  static const PlatoonCandidate base{};
+  return index == 0 ? base : platoonCandidates()[index - 1];
+}
+
+/// One stage: each candidate index against `against`; returns the significant one with the lowest
+/// mean window MSE (or `against` when none is).
+std::size_t runStage(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
+                     const std::vector<std::size_t>& candidates, std::size_t against,
+                     const EffectSetSelectionOptions& options, EffectSetSelection* selection)
+{
+  std::size_t best = against;
+  double best_mse = std::numeric_limits<double>::infinity();
+  for (std::size_t candidate : candidates)
+  {
+    EffectSetComparison c = compare(scores, exclude_file, candidate, against, options);
+    c.candidate = candidateAt(candidate);
+    c.against = candidateAt(against);
+    c.significant = c.p_value <= options.alpha / static_cast<double>(candidates.size()) &&
+                    c.relative_improvement >= options.min_relative_improvement;
+    if (c.significant && c.mean_window_mse < best_mse)
+    {
+      best = candidate;
+      best_mse = c.mean_window_mse;
+    }
+    selection->comparisons.push_back(std::move(c));
+  }
+  return best;
+}
+
+/// The indices of the candidates that add one thing to candidate `of`.
+std::vector<std::size_t> extensionsOf(std::size_t of)
+{
+  std::vector<std::size_t> out;
+  for (std::size_t i = 1; i <= platoonCandidates().size(); ++i)
+  {
+    if (extendsByOne(candidateAt(i), candidateAt(of)))
+      out.push_back(i);
+  }
+  return out;
+}
+
+bool parseObjective(const std::string& text, FitObjective* objective)
+{
+  for (FitObjective option :
+       {FitObjective::speed, FitObjective::gap, FitObjective::speed_and_gap})
+  {
+    if (objectiveName(option) == text)
+    {
+      *objective = option;
+      return true;
+    }
+  }
+  return false;
+}
+}  // namespace
+
+std::vector<std::string> PlatoonCandidate::features() const
+{
+  std::vector<std::string> out;
+  for (EffectKind kind : effects)
+    out.push_back(effectName(kind));
+  if (objective != FitObjective::speed)
+    out.push_back(objectiveName(objective) + " objective");
+  return out;
+}
+
+std::string PlatoonCandidate::name() const
+{
+  const std::string effects_name = combinedEffectName(effects);
+  return objective == FitObjective::speed ? effects_name
+                                                  : effects_name + " (" + objectiveName(objective) + " objective)";
+}
+
+const std::vector<PlatoonCandidate>& platoonCandidates()
+{
+  using E = EffectKind;
+  using O = FitObjective;
+  static const std::vector<PlatoonCandidate> candidates = {
+      {{E::asymmetric_response}, O::speed},
+      {{E::leader_acceleration_feedforward}, O::speed},
+      {{E::reaction_delay}, O::speed},
+      {{E::actuation_lag}, O::speed},
+      {{}, O::gap},
+      {{}, O::speed_and_gap},
+      {{E::asymmetric_response, E::reaction_delay}, O::speed},
+      {{E::asymmetric_response, E::actuation_lag}, O::speed},
+      {{E::asymmetric_response}, O::speed_and_gap},
+      {{E::reaction_delay}, O::speed_and_gap},
+      {{E::actuation_lag}, O::speed_and_gap},
+  };
+  return candidates;
+}
+
+bool parsePlatoonCandidate(const std::string& text, PlatoonCandidate* candidate)
+{
+  PlatoonCandidate parsed;
+  const std::size_t at = text.find('@');
+  if (at != std::string::npos && !parseObjective(text.substr(at + 1), &parsed.objective))
+    return false;
+  const std::string effects = text.substr(0, at);
+  std::size_t start = 0;
+  while (true)
+  {
+    const std::size_t comma = effects.find(',', start);
+    EffectKind kind = EffectKind::none;
+    if (!parseEffectName(effects.substr(start, comma == std::string::npos ? std::string::npos : comma - start), &kind))
+      return false;
+    if (kind != EffectKind::none)
+      parsed.effects.push_back(kind);
+    if (comma == std::string::npos)
+      break;
+    start = comma + 1;
+  }
+  *candidate = parsed;
+  return true;
+}
+
+std::vector<PlatoonCarModel> fitCandidateModels(const std::vector<CarFollowingRun>& training,
+                                                const PlatoonCarModel& base)
+{
+  const auto& candidates = platoonCandidates();
+  std::vector<PlatoonCarModel> models(candidates.size(), PlatoonCarModel{false, {}, base.source + ": no base model"});
+  if (!base.available || training.empty())
+    return models;
+  AugmentedFit warm;  // the base model: the warm start of every candidate that extends it
+  warm.base = base.parameters;
+  std::vector<AugmentedFit> fits(candidates.size());
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+  {
+    // A candidate that adds one thing to an earlier one starts from that one's fit, so that it
+    // refines a model that already holds the rest.
+    const AugmentedFit* start = &warm;
+    for (std::size_t j = 0; j < i; ++j)
+    {
+      if (extendsByOne(candidates[i], candidates[j]) && !fits[j].diverged)
+        start = &fits[j];
+    }
+    AugmentedCalibrationOptions options;
+    options.objective = candidates[i].objective;
+    fits[i] = calibrateAugmentedSet(candidates[i].effects, training, options, start);
+    models[i] = modelOf(fits[i], base.source);
+  }
+  return models;
+}
+
+std::vector<PairPerturbationScore> scorePairPerturbations(const CampaignFile& file, std::size_t file_index,
+                                                          int position, const std::vector<PlatoonCarModel>& models,
+                                                          const PlatoonCheckOptions& options)
+{
+  const OpenAccFile& data = file.contents;
+  std::size_t first_row = 0, end_row = 0;
+  const std::vector<Perturbation> perturbations = leadPerturbations(data, options, &first_row, &end_row);
+  const OpenAccVehicle* car = data.vehicle(position);
+  if (perturbations.empty() || car == nullptr || !car->has_speed)
+    return {};
+  std::vector<PlatoonCarPrediction> predictions;
+  for (const PlatoonCarModel& model : models)
+    predictions.push_back(predictPair(data, position, model, first_row, end_row));
+  const std::vector<double> time_s = sliceRows(data.time_s, first_row, end_row);
+  const std::vector<double> measured = sliceRows(car->speed_mps, first_row, end_row);
+  std::vector<PairPerturbationScore> scores;
+  for (std::size_t p = 0; p < perturbations.size(); ++p)
+  {
+    const Perturbation& perturbation = perturbations[p];
+    PairPerturbationScore score;
+    score.file_index = file_index;
+    score.position = position;
+    score.perturbation = p;
+    score.measured_dip_mps = dipDepthMps(time_s, measured, perturbation, options.perturbation);
+    const std::size_t window_first = windowStartRow(time_s, perturbation.onset, options.perturbation.pre_window_s);
+    for (const PlatoonCarPrediction& prediction : predictions)
+    {
+      const std::vector<double> predicted = prediction.predicted
+                                                ? sliceRows(prediction.predicted_speed_mps, first_row, end_row)
+                                                : std::vector<double>(time_s.size(), kNaN);
+      score.window_mse.push_back(windowMse(predicted, measured, window_first, perturbation.window_end));
+      score.predicted_dip_mps.push_back(dipDepthMps(time_s, predicted, perturbation, options.perturbation));
+    }
+    if (std::isfinite(score.measured_dip_mps))
+      scores.push_back(std::move(score));
+  }
+  return scores;
+}
+
+EffectSetSelection selectEffectSet(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
+                                   const std::string& excluded_run, const EffectSetSelectionOptions& options)
+{
+  const auto& candidates = platoonCandidates();
+  EffectSetSelection selection;
+  selection.excluded_run = excluded_run;
+  std::size_t chosen = runStage(scores, exclude_file, extensionsOf(0), 0, options, &selection);
+  if (chosen != 0)
+  {
+    const std::vector<std::size_t> extensions = extensionsOf(chosen);
+    if (!extensions.empty())
+      chosen = runStage(scores, exclude_file, extensions, chosen, options, &selection);
+  }
+  if (options.force)
+  {
+    const bool base = options.forced == PlatoonCandidate{};
+    const auto forced = std::find(candidates.begin(), candidates.end(), options.forced);
+    if (!base && forced == candidates.end())
+      throw std::invalid_argument(options.forced.name() + " is not among the platoon diagnosis's candidates");
+    chosen = base ? 0 : static_cast<std::size_t>(forced - candidates.begin()) + 1;
+  }
+  selection.chosen = chosen;
+  selection.model = candidateAt(chosen);
+  return selection;
+}
+
+std::string effectSetSelectionRule(const EffectSetSelectionOptions& options)
+{
+  char text[640];
+  std::snprintf(text, sizeof text,
+                "each car predicted from its real leader with models fitted on its other runs; per car and "
+                "perturbation the mean squared speed error from %s before the onset to the end of the dip window; "
+                "stage 1: each single effect against the base model, stage 2: each pair holding the stage-1 "
+                "effect against it; a set is named when its mean window MSE is at least %.0f %% lower and a "
+                "bootstrap over perturbations (%zu replicates, whole perturbations resampled) gives p <= %.3g "
+                "divided by the stage's candidates; the lowest window MSE among those named wins. For a run's "
+                "own diagnosed models the choice is made without that run.",
+                "the pre-window", 100.0 * options.min_relative_improvement, options.replicates, options.alpha);
+  return text;
+}
+
+}  // namespace acc
+
+namespace acc
+{
+namespace
+{
+double predictedOf(const DipComparison& row, DipPrediction which)
+{
+  switch (which)
+  {
+    case DipPrediction::chain_base: return row.predicted_dip_mps;
+    case DipPrediction::chain_diagnosed: return row.predicted_dip_mps_diagnosed;
+    case DipPrediction::pair_base: return row.pair_predicted_dip_mps;
+    case DipPrediction::pair_diagnosed: return row.pair_predicted_dip_mps_diagnosed;
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+double medianOf(std::vector<double> values)
+{
+  if (values.empty())
+    return std::numeric_limits<double>::quiet_NaN();
+  std::sort(values.begin(), values.end());
+  const std::size_t mid = values.size() / 2;
+  return values.size() % 2 == 1 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
+}
+}  // namespace
+
+DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& platoons, DipPrediction which,
+                                             double min_dip_mps, double min_link_change_mps)
+{
+  std::vector<double> errors;
+  std::size_t right = 0;
+  DipPredictionSummary out;
+  for (const PlatoonCheck& check : platoons)
+  {
+    for (const PerturbationCheck& perturbation : check.perturbations)
+    {
+      const auto& rows = perturbation.positions;
+      for (std::size_t i = 1; i < rows.size(); ++i)
+      {
+        // The first car is the input: its "prediction" is the measurement, whatever the model.
+        const double ahead_predicted = i == 1 ? rows[0].measured_dip_mps : predictedOf(rows[i - 1], which);
+        const double measured = rows[i].measured_dip_mps, predicted = predictedOf(rows[i], which);
+        if (!(measured > min_dip_mps) || !std::isfinite(predicted))
+          continue;
+        errors.push_back((predicted - measured) / measured);
+        const double ahead_measured = rows[i - 1].measured_dip_mps;
+        if (std::isfinite(ahead_measured) && std::isfinite(ahead_predicted) &&
+            std::abs(measured - ahead_measured) > min_link_change_mps)
+        {
+          ++out.links;
+          right += (measured > ahead_measured) == (predicted > ahead_predicted) ? 1 : 0;
+        }
+      }
+    }
+  }
+  out.car_perturbations = errors.size();
+  out.median_dip_error = medianOf(errors);
+  std::vector<double> absolute;
+  std::size_t within = 0;
+  for (double e : errors)
+  {
+    absolute.push_back(std::abs(e));
+    within += std::abs(e) <= 0.3 ? 1 : 0;
+  }
+  out.median_abs_dip_error = medianOf(absolute);
+  out.share_within_30_percent = errors.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                               : static_cast<double>(within) / static_cast<double>(errors.size());
+  out.share_links_growth_right = out.links == 0 ? std::numeric_limits<double>::quiet_NaN()
+                                                : static_cast<double>(right) / static_cast<double>(out.links);
+  return out;
+}
+
+}  // namespace acc
