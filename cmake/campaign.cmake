@@ -8,6 +8,7 @@ acc_add_library(acc_campaign
     src/campaign/campaign_inputs.cpp
     src/campaign/group_identification.cpp
     src/campaign/perturbation.cpp
+    src/campaign/empirical_response.cpp
     src/campaign/platoon_check.cpp
     src/campaign/platoon_diagnosis.cpp
     src/campaign/campaign.cpp
@@ -32,7 +33,8 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/gtest_main.cpp
     test/unit/test_campaign_grouping.cpp
     test/unit/test_campaign_platoon.cpp
-    test/unit/test_campaign_zalazone.cpp)
+    test/unit/test_campaign_zalazone.cpp
+    test/unit/test_empirical_response.cpp)
   target_compile_definitions(test_campaign PRIVATE ACC_ZALAZONE_DYNAMIC_DIR="${ACC_DATA_ZALAZONE_DYNAMIC_DIR}")
   target_link_libraries(test_campaign acc_campaign)
 endif()
