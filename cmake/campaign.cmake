@@ -11,6 +11,7 @@ acc_add_library(acc_campaign
     src/campaign/empirical_response.cpp
     src/campaign/platoon_check.cpp
     src/campaign/platoon_diagnosis.cpp
+    src/campaign/link_evidence.cpp
     src/campaign/campaign.cpp
     src/campaign/campaign_output.cpp
   LINK acc_diagnosis acc_calibration acc_run_io acc_model nlohmann_json::nlohmann_json)

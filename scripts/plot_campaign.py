@@ -7,7 +7,10 @@ Reads DIR/campaign.json (written by the campaign tool) and writes into DIR:
   margins.png       the stability margin m = k1 tau_e^2 + 2 k2 tau_e - 2 +- SE, coloured by the
                     verdict of the string-stability test on held-out halves,
   platoon_dips.png  measured against predicted speed-dip depth by platoon position, one panel per
-                    run with a perturbation.
+                    run with a perturbation: the base models and, with the platoon diagnosis, the
+                    diagnosed ones,
+  link_gain.png     with the platoon diagnosis: each car's empirical |Gamma(jw)| (Welch, band where
+                    the coherence makes it informative) against its base and diagnosed model's.
 report.md (written by the tool) links them and carries the data's attribution.
 Usage: /usr/bin/python3 plot_campaign.py DIR
 """
@@ -107,7 +110,10 @@ def plot_dips(platoons, path, attribution):
         measured = [number(r["measured_dip_mps"]) for r in perturbation["positions"]]
         predicted = [number(r["predicted_dip_mps"]) for r in perturbation["positions"]]
         ax.plot(positions, measured, "o-", color="black", label="measured")
-        ax.plot(positions, predicted, "s--", color="tab:red", label="predicted (leave-one-run-out)")
+        ax.plot(positions, predicted, "s--", color="tab:red", label="base model (leave-one-run-out)")
+        diagnosed = [number(r.get("predicted_dip_mps_diagnosed")) for r in perturbation["positions"]]
+        if any(not math.isnan(d) for d in diagnosed):
+            ax.plot(positions, diagnosed, "^-", color="tab:blue", label="diagnosed model (leave-one-run-out)")
         growth = "data: growth" if perturbation["data_show_growth"] else "data: no growth"
         ax.set_title(f"{run} ({setting}), dip {index + 1} at {perturbation['onset_s']:.0f} s; {growth}", fontsize=8)
         ax.set_xlabel("position in the platoon")
@@ -115,6 +121,50 @@ def plot_dips(platoons, path, attribution):
         ax.set_xticks(positions)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=6)
+    for ax in list(axes.flat)[len(panels):]:
+        ax.axis("off")
+    fig.tight_layout(rect=(0, 0.04, 1, 1))
+    footer(fig, attribution)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def plot_link_gains(links, path, attribution):
+    """Empirical |Gamma| (dots where informative, band) against the base and diagnosed model, per car."""
+    panels = [e for e in links if e["frequency_response"]["segments_used"] > 0]
+    if not panels:
+        fig, ax = plt.subplots(figsize=(6, 2))
+        ax.text(0.5, 0.5, "no car has a stretch long enough for a spectrum", ha="center")
+        ax.axis("off")
+        fig.savefig(path, dpi=120)
+        plt.close(fig)
+        return
+    columns = min(4, len(panels))
+    rows = math.ceil(len(panels) / columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(4.2 * columns, 3.2 * rows), squeeze=False)
+    for ax, e in zip(axes.flat, panels):
+        r = e["frequency_response"]
+        keep = [i for i, w in enumerate(r["frequency_rad_s"]) if w <= 2.0]
+        w = [r["frequency_rad_s"][i] for i in keep]
+        gain = [number(r["gain"][i]) for i in keep]
+        low = [number(r["gain_lower"][i]) for i in keep]
+        high = [number(r["gain_upper"][i]) for i in keep]
+        informative = [bool(r["informative"][i]) for i in keep]
+        ax.fill_between(w, low, high, color="gray", alpha=0.25, lw=0, label="empirical band")
+        ax.plot(w, gain, color="gray", lw=0.8)
+        ax.plot([x for x, f in zip(w, informative) if f], [g for g, f in zip(gain, informative) if f], "o",
+                color="black", ms=2.5, label="empirical (coherence >= 0.5)")
+        ax.plot(w, [number(r["model_gain_base"][i]) for i in keep], "--", color="tab:red", label="base model")
+        ax.plot(w, [number(r["model_gain_diagnosed"][i]) for i in keep], "-", color="tab:blue",
+                label="diagnosed: " + e["diagnosed_model"]["name"])
+        ax.axhline(1.0, color="black", lw=0.6)
+        ax.set_xscale("log")
+        ax.set_ylim(0, 2.0)
+        ax.set_title(f"{e['vehicle']}/{e['setting']} ({r['segments_used']} segments)", fontsize=8)
+        ax.set_xlabel("w [rad/s]", fontsize=7)
+        ax.set_ylabel("|Gamma(jw)|", fontsize=7)
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=5)
     for ax in list(axes.flat)[len(panels):]:
         ax.axis("off")
     fig.tight_layout(rect=(0, 0.04, 1, 1))
@@ -133,6 +183,8 @@ def main():
     plot_parameters(campaign["vehicles"], os.path.join(folder, "parameters.png"), attribution)
     plot_margins(campaign["vehicles"], os.path.join(folder, "margins.png"), attribution)
     plot_dips(campaign["platoons"], os.path.join(folder, "platoon_dips.png"), attribution)
+    if campaign.get("links"):
+        plot_link_gains(campaign["links"], os.path.join(folder, "link_gain.png"), attribution)
 
 
 if __name__ == "__main__":

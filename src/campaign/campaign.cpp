@@ -167,6 +167,37 @@ CarModels fitCarModels(const CampaignInputs& inputs, const ModelTask& task, cons
   return out;
 }
 
+/// Every file's platoon predicted with each candidate's models (each car's fit of it, or its base
+/// model where that fit failed), and the dips recorded in the scores: what the platoon criterion
+/// compares.
+void addPlatoonDips(const CampaignInputs& inputs, const std::vector<ModelTask>& tasks,
+                    const std::vector<CarModels>& fitted, const std::vector<PlatoonCarModel>& base_models,
+                    const CampaignOptions& options, std::vector<PairPerturbationScore>* scores)
+{
+  const std::size_t models = platoonCandidates().size() + 1;
+  std::vector<std::size_t> files;
+  for (std::size_t f = 0; f < inputs.files.size(); ++f)
+  {
+    if (checkable(inputs, f))
+      files.push_back(f);
+  }
+  // Per (file, candidate): independent, so spread over the threads; each writes its own slot.
+  std::vector<PlatoonCheck> checks(files.size() * models);
+  runTasksInParallel(checks.size(), options.threads, [&](std::size_t i) {
+    const std::size_t f = files[i / models], m = i % models;
+    const std::vector<PlatoonCarModel> base = modelsOfFile(inputs, f, tasks, base_models);
+    std::vector<PlatoonCarModel> candidate = base;
+    for (std::size_t t = 0; m > 0 && t < tasks.size(); ++t)
+    {
+      if (tasks[t].file_index == f && fitted[t].candidates[m - 1].available)
+        candidate[tasks[t].position] = fitted[t].candidates[m - 1];
+    }
+    checks[i] = checkPlatoon(inputs.files[f], base, options.platoon, &candidate);
+  });
+  for (std::size_t i = 0; i < checks.size(); ++i)
+    addChainDips(checks[i], files[i / models], i % models, models, scores);
+}
+
 /// Each car's diagnosed model: its fit of the chosen effect set, or its base model (said in the
 /// source) when the set is the base model or its fit failed.
 std::vector<PlatoonCarModel> diagnosedModels(std::vector<PlatoonCarModel> models, const std::vector<ModelTask>& tasks,
@@ -227,7 +258,11 @@ CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& 
   }
   const bool diagnose = options.platoon_check && options.platoon_diagnosis;
   if (diagnose)
+  {
+    addPlatoonDips(inputs, tasks, fitted, base_models, options, &result.pair_scores);
+    result.effect_selection_criterion = options.effect_selection.criterion;
     result.effect_selection = selectEffectSet(result.pair_scores, inputs.files.size(), "", options.effect_selection);
+  }
   for (std::size_t f = 0; options.platoon_check && f < inputs.files.size(); ++f)
   {
     if (!checkable(inputs, f))
@@ -245,6 +280,9 @@ CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& 
     result.platoons.push_back(checkPlatoon(inputs.files[f], models, options.platoon, &diagnosed));
     result.run_effect_selections.push_back(selection);
   }
+  if (diagnose)
+    result.links = gatherLinkEvidence(inputs, result.groups, result.platoons, result.effect_selection.model,
+                                      options.threads, options.platoon);
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;
 }

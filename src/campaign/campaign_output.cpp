@@ -197,6 +197,8 @@ nlohmann::json selectionJson(const EffectSetSelection& selection)
                            {"against", candidateJson(c.against)},
                            {"car_perturbations", c.car_perturbations},
                            {"perturbations", c.perturbations},
+                           {"mean_loss", c.mean_loss},
+                           {"against_loss", c.against_loss},
                            {"mean_window_mse_m2ps2", c.mean_window_mse},
                            {"against_window_mse_m2ps2", c.against_window_mse},
                            {"relative_improvement", c.relative_improvement},
@@ -218,6 +220,99 @@ nlohmann::json summaryJson(const DipPredictionSummary& s)
           {"share_within_30_percent", s.share_within_30_percent},
           {"links", s.links},
           {"share_links_growth_right", s.share_links_growth_right}};
+}
+
+nlohmann::json rangesJson(const std::vector<std::pair<double, double>>& ranges)
+{
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& [low, high] : ranges)
+    j.push_back({low, high});
+  return j;
+}
+
+nlohmann::json linkJson(const LinkEvidence& e)
+{
+  const EmpiricalResponse& r = e.response;
+  nlohmann::json informative = nlohmann::json::array();
+  for (bool flag : r.informative)
+    informative.push_back(flag);
+  const DipRatioEstimate& d = e.dip_ratio;
+  nlohmann::json values = nlohmann::json::object();
+  const std::vector<std::string> names = effectParameterNames(e.diagnosed.effects);
+  for (std::size_t i = 0; i < names.size() && i < e.diagnosed_effect_values.size(); ++i)
+    values[names[i]] = e.diagnosed_effect_values[i];
+  return {{"vehicle", e.vehicle},
+          {"setting", e.setting},
+          {"dip_ratio",
+           {{"perturbations", d.count},
+            {"skipped", d.skipped},
+            {"ratio_of_means", d.ratio_of_means},
+            {"median_ratio", d.median_ratio},
+            {"lower", d.lower},
+            {"upper", d.upper},
+            {"confidence", d.confidence},
+            {"verdict", toString(d.amplifies)},
+            {"reason", d.reason}}},
+          {"frequency_response",
+           {{"segments_used", r.segments_used},
+            {"segments_skipped", r.segments_skipped},
+            {"frequency_rad_s", r.frequency_rad_s},
+            {"gain", r.gain},
+            {"gain_lower", r.gain_lower},
+            {"gain_upper", r.gain_upper},
+            {"coherence", r.coherence},
+            {"informative", informative},
+            {"model_gain_base", e.model_gain_base},
+            {"model_gain_diagnosed", e.model_gain_diagnosed},
+            {"base_departs_rad_s", rangesJson(e.base_departs_rad_s)},
+            {"diagnosed_departs_rad_s", rangesJson(e.diagnosed_departs_rad_s)}}},
+          {"operating_speed_mps", e.operating_speed_mps},
+          {"diagnosed_model",
+           {{"name", e.diagnosed.name()},
+            {"available", e.diagnosed_available},
+            {"parameters", parametersJson(e.diagnosed_parameters)},
+            {"effect_values", values},
+            {"small_signal",
+             {{"peak_gain_db", e.diagnosed_small_signal.peak_gain_db},
+              {"peak_frequency_rad_s", e.diagnosed_small_signal.peak_frequency_rad_s},
+              {"string_stable", e.diagnosed_small_signal.string_stable},
+              {"how", e.diagnosed_small_signal.note}}},
+            {"long_platoon",
+             {{"cars", kLongPlatoonCars},
+              {"perturbations", e.long_platoon_perturbations},
+              {"median_last_to_first_dip_ratio", e.long_platoon_dip_ratio},
+              {"amplifies", std::isfinite(e.long_platoon_dip_ratio) ? nlohmann::json(e.long_platoon_dip_ratio > 1.0)
+                                                                     : nlohmann::json(nullptr)}}}}},
+          {"note", e.note}};
+}
+
+const std::vector<std::string> kLinkHeader{"vehicle", "set", "dips", "dip ratio [CI]", "data say", "model departs [rad/s]",
+                                           "diagnosed departs", "diag peak [dB]", "10-car ratio"};
+
+std::string rangesText(const std::vector<std::pair<double, double>>& ranges)
+{
+  if (ranges.empty())
+    return "nowhere";
+  std::string text;
+  for (const auto& [low, high] : ranges)
+    text += (text.empty() ? "" : " ") + format("%.2f", low) + "-" + format("%.2f", high);
+  return text;
+}
+
+std::vector<std::vector<std::string>> linkRows(const CampaignResult& result)
+{
+  std::vector<std::vector<std::string>> rows;
+  for (const LinkEvidence& e : result.links)
+  {
+    const DipRatioEstimate& d = e.dip_ratio;
+    rows.push_back({e.vehicle, e.setting, std::to_string(d.count),
+                    format("%.2f", d.ratio_of_means) + " [" + format("%.2f", d.lower) + ", " + format("%.2f", d.upper) + "]",
+                    toString(d.amplifies),
+                    e.response.effective_segments < 4.0 ? "too short" : rangesText(e.base_departs_rad_s),
+                    e.response.effective_segments < 4.0 ? "too short" : rangesText(e.diagnosed_departs_rad_s),
+                    format("%.2f", e.diagnosed_small_signal.peak_gain_db), format("%.2f", e.long_platoon_dip_ratio)});
+  }
+  return rows;
 }
 
 /// The diagnosed car matching a base car of the chain (same position), or nullptr.
@@ -416,9 +511,10 @@ std::vector<std::string> selectionLines(const EffectSetSelection& selection)
   std::vector<std::string> lines;
   for (const EffectSetComparison& c : selection.comparisons)
   {
-    lines.push_back(c.candidate.name() + " against " + c.against.name() + ": window MSE " +
-                    format("%.3f", c.mean_window_mse) + " vs " + format("%.3f", c.against_window_mse) + " (" +
-                    format("%+.0f %%", -100.0 * c.relative_improvement) + "), p = " + format("%.4f", c.p_value) +
+    lines.push_back(c.candidate.name() + " against " + c.against.name() + ": loss " + format("%.3f", c.mean_loss) +
+                    " vs " + format("%.3f", c.against_loss) + " (" + format("%+.0f %%", -100.0 * c.relative_improvement) +
+                    "; pair window MSE " + format("%.3f", c.mean_window_mse) + " vs " +
+                    format("%.3f", c.against_window_mse) + "), p = " + format("%.4f", c.p_value) +
                     " over " + std::to_string(c.perturbations) + " perturbations" +
                     (c.significant ? ": named" : ": not named"));
   }
@@ -457,6 +553,17 @@ std::vector<std::vector<std::string>> disagreementRows(const CampaignResult& res
 }
 }  // namespace
 
+namespace
+{
+nlohmann::json linksJson(const std::vector<LinkEvidence>& links)
+{
+  nlohmann::json j = nlohmann::json::array();
+  for (const LinkEvidence& e : links)
+    j.push_back(linkJson(e));
+  return j;
+}
+}  // namespace
+
 nlohmann::json campaignToJson(const CampaignInputs& inputs, const CampaignResult& result,
                               const std::vector<std::string>& input_paths, const CampaignOptions& options)
 {
@@ -481,8 +588,10 @@ nlohmann::json campaignToJson(const CampaignInputs& inputs, const CampaignResult
             {"platoon_diagnosis", options.platoon_check && options.platoon_diagnosis}}},
           {"vehicles", vehicles},
           {"platoons", platoons},
+          {"links", linksJson(result.links)},
           {"platoon_diagnosis",
            diagnosed ? nlohmann::json{{"rule", effectSetSelectionRule(options.effect_selection)},
+                                      {"criterion", criterionName(result.effect_selection_criterion)},
                                       {"selection", selectionJson(result.effect_selection)},
                                       {"how_far_the_gap_shrinks",
                                        {{"chain_base", summaryJson(summarizeDipPredictions(
@@ -511,11 +620,17 @@ void printCampaignTables(const CampaignResult& result, std::ostream& out)
     out << "  " << note << "\n";
   if (!result.run_effect_selections.empty())
   {
-    out << "\nPlatoon diagnosis: which unmodelled effect closes the gap (pair level, perturbation windows)\n";
+    out << "\nPlatoon diagnosis: which unmodelled effect closes the gap (criterion: "
+        << criterionName(result.effect_selection_criterion) << ")\n";
     for (const std::string& line : selectionLines(result.effect_selection))
       out << "  " << line << "\n";
     out << "\nHow far the gap shrinks (each run's diagnosed models chosen without that run)\n";
     printAligned(kGapHeader, gapRows(result), out);
+    out << "\nEach car as a link, without a model and beside its models: dip over the dip of the car ahead (95 % "
+           "bootstrap CI over perturbations), where the base and diagnosed |Gamma| leave the band of the empirical "
+           "one (coherence >= 0.5), the diagnosed model's small-signal peak and its dip ratio over "
+        << kLongPlatoonCars << " identical cars behind the real first cars\n";
+    printAligned(kLinkHeader, linkRows(result), out);
   }
   const auto disagreements = disagreementRows(result);
   out << "\nWhere model and data disagree: " << disagreements.size() << "\n";
@@ -554,6 +669,12 @@ std::string campaignReportMarkdown(const CampaignResult& result, const std::vect
     md << "\n### How far the gap shrinks\n\nEach run's diagnosed models use the effect set chosen without that "
           "run, fitted on the car's other runs.\n\n";
     printMarkdownTable(kGapHeader, gapRows(result), md);
+    md << "\n### Each car as a link: what the data show without a model\n\nDip ratio: the car's dip over the dip "
+          "of the car directly ahead, with a 95 % bootstrap interval over perturbations. Where the base and the "
+          "diagnosed model's |Gamma(jw)| leave the band of the empirical one (Welch, coherence >= 0.5). The "
+          "diagnosed model's small-signal peak (an asymmetric law: its braking branch) and the tenth car's dip over "
+          "the first in a simulated platoon of ten identical cars behind the runs' real first cars.\n\n";
+    printMarkdownTable(kLinkHeader, linkRows(result), md);
   }
   md << "\n### Where model and data disagree\n\n";
   const auto disagreements = disagreementRows(result);
@@ -567,6 +688,8 @@ std::string campaignReportMarkdown(const CampaignResult& result, const std::vect
        << "![Parameters by car and setting](parameters.png)\n\n"
        << "![Stability margin and verdicts](margins.png)\n\n"
        << "![Measured and predicted dips by position](platoon_dips.png)\n";
+    if (!result.links.empty())
+      md << "\n![Empirical and model |Gamma(jw)| by car](link_gain.png)\n";
   }
   md << "\n## Attribution\n\n" << kOpenAccAttribution << "\n";
   return md.str();

@@ -7,6 +7,7 @@
 #include <map>
 #include <random>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include "acc_identification/diagnosis/augmented_calibration.h"
@@ -17,6 +18,9 @@ namespace acc
 namespace
 {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+/// Dips below this are within GNSS noise and driving jitter: no relative error is formed with them
+/// (the same floor as the package's platoon scores).
+constexpr double kMinScoredDipMps = 0.3;
 
 std::vector<double> sliceRows(const std::vector<double>& values, std::size_t first, std::size_t end)
 {
@@ -63,7 +67,18 @@ PlatoonCarModel modelOf(const AugmentedFit& fit, const std::string& source)
   return model;
 }
 
-/// Entries usable for comparing model a with model b: both scored.
+/// The criterion's loss of model m for one score; NaN where the model was not scored.
+double lossOf(const PairPerturbationScore& s, std::size_t m, SelectionCriterion criterion)
+{
+  if (criterion == SelectionCriterion::pair_windows)
+    return m < s.window_mse.size() ? s.window_mse[m] : kNaN;
+  if (m >= s.chain_dip_mps.size() || !(s.measured_dip_mps > kMinScoredDipMps) || !(s.chain_dip_mps[m] > 0.0))
+    return kNaN;
+  const double log_ratio = std::log(s.chain_dip_mps[m] / s.measured_dip_mps);
+  return log_ratio * log_ratio;
+}
+
+/// The sums over one perturbation's cars of two models' losses (a against, b candidate).
 struct Cluster
 {
   double sum_a = 0.0, sum_b = 0.0;
@@ -71,19 +86,18 @@ struct Cluster
 };
 
 std::vector<Cluster> clustersOf(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
-                                std::size_t a, std::size_t b, std::size_t* entries)
+                                std::size_t a, std::size_t b, SelectionCriterion criterion, std::size_t* entries)
 {
   std::map<std::pair<std::size_t, std::size_t>, Cluster> by_perturbation;
   *entries = 0;
   for (const PairPerturbationScore& s : scores)
   {
-    if (s.file_index == exclude_file || a >= s.window_mse.size() || b >= s.window_mse.size())
-      continue;
-    if (!std::isfinite(s.window_mse[a]) || !std::isfinite(s.window_mse[b]))
+    const double loss_a = lossOf(s, a, criterion), loss_b = lossOf(s, b, criterion);
+    if (s.file_index == exclude_file || !std::isfinite(loss_a) || !std::isfinite(loss_b))
       continue;
     Cluster& c = by_perturbation[{s.file_index, s.perturbation}];
-    c.sum_a += s.window_mse[a];
-    c.sum_b += s.window_mse[b];
+    c.sum_a += loss_a;
+    c.sum_b += loss_b;
     ++c.n;
     ++*entries;
   }
@@ -93,31 +107,38 @@ std::vector<Cluster> clustersOf(const std::vector<PairPerturbationScore>& scores
   return out;
 }
 
-/// Model `candidate` against model `against`: mean window MSEs, the relative improvement, and the
+/// Mean losses of the two models over the clusters.
+std::pair<double, double> meanLosses(const std::vector<Cluster>& clusters)
+{
+  double sum_a = 0.0, sum_b = 0.0;
+  std::size_t n = 0;
+  for (const Cluster& c : clusters)
+  {
+    sum_a += c.sum_a;
+    sum_b += c.sum_b;
+    n += c.n;
+  }
+  return n == 0 ? std::pair<double, double>{kNaN, kNaN}
+                : std::pair<double, double>{sum_a / static_cast<double>(n), sum_b / static_cast<double>(n)};
+}
+
+/// Model `candidate` against model `against`: mean losses, the relative improvement, and the
 /// cluster-bootstrap p-value of "no improvement" (share of replicates whose mean difference is not
-/// positive, the percentile test).
+/// positive, the percentile test); the other criterion's means beside.
 EffectSetComparison compare(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
                             std::size_t candidate, std::size_t against, const EffectSetSelectionOptions& options)
 {
   EffectSetComparison out;
-  const std::vector<Cluster> clusters = clustersOf(scores, exclude_file, against, candidate, &out.car_perturbations);
+  const std::vector<Cluster> clusters =
+      clustersOf(scores, exclude_file, against, candidate, options.criterion, &out.car_perturbations);
   out.perturbations = clusters.size();
-  double sum_against = 0.0, sum_candidate = 0.0;
-  for (const Cluster& c : clusters)
-  {
-    sum_against += c.sum_a;
-    sum_candidate += c.sum_b;
-  }
-  if (out.car_perturbations == 0 || clusters.size() < 2)
-  {
-    out.mean_window_mse = out.car_perturbations > 0 ? sum_candidate / out.car_perturbations : kNaN;
-    out.against_window_mse = out.car_perturbations > 0 ? sum_against / out.car_perturbations : kNaN;
-    out.relative_improvement = kNaN;
-    return out;
-  }
-  out.mean_window_mse = sum_candidate / static_cast<double>(out.car_perturbations);
-  out.against_window_mse = sum_against / static_cast<double>(out.car_perturbations);
-  out.relative_improvement = 1.0 - out.mean_window_mse / out.against_window_mse;
+  std::tie(out.against_loss, out.mean_loss) = meanLosses(clusters);
+  std::size_t ignored = 0;
+  std::tie(out.against_window_mse, out.mean_window_mse) =
+      meanLosses(clustersOf(scores, exclude_file, against, candidate, SelectionCriterion::pair_windows, &ignored));
+  out.relative_improvement = out.against_loss > 0.0 ? 1.0 - out.mean_loss / out.against_loss : kNaN;
+  if (clusters.size() < 2)
+    return out;  // no spread to resample: p stays 1
   std::mt19937_64 engine(options.seed);
   std::size_t not_better = 0;
   for (std::size_t b = 0; b < options.replicates; ++b)
@@ -172,10 +193,10 @@ std::size_t runStage(const std::vector<PairPerturbationScore>& scores, std::size
     c.against = candidateAt(against);
     c.significant = c.p_value <= options.alpha / static_cast<double>(candidates.size()) &&
                     c.relative_improvement >= options.min_relative_improvement;
-    if (c.significant && c.mean_window_mse < best_mse)
+    if (c.significant && c.mean_loss < best_mse)
     {
       best = candidate;
-      best_mse = c.mean_window_mse;
+      best_mse = c.mean_loss;
     }
     selection->comparisons.push_back(std::move(c));
   }
@@ -239,6 +260,7 @@ const std::vector<PlatoonCandidate>& platoonCandidates()
       {{}, O::speed_and_gap},
       {{E::asymmetric_response, E::reaction_delay}, O::speed},
       {{E::asymmetric_response, E::actuation_lag}, O::speed},
+      {{E::reaction_delay, E::actuation_lag}, O::speed},
       {{E::asymmetric_response}, O::speed_and_gap},
       {{E::reaction_delay}, O::speed_and_gap},
       {{E::actuation_lag}, O::speed_and_gap},
@@ -337,6 +359,28 @@ std::vector<PairPerturbationScore> scorePairPerturbations(const CampaignFile& fi
   return scores;
 }
 
+void addChainDips(const PlatoonCheck& check, std::size_t file_index, std::size_t model_index, std::size_t models,
+                  std::vector<PairPerturbationScore>* scores)
+{
+  for (PairPerturbationScore& score : *scores)
+  {
+    if (score.file_index != file_index || score.perturbation >= check.perturbations.size())
+      continue;
+    for (const DipComparison& row : check.perturbations[score.perturbation].positions)
+    {
+      if (row.position != score.position)
+        continue;
+      score.chain_dip_mps.resize(models, kNaN);
+      score.chain_dip_mps[model_index] = model_index == 0 ? row.predicted_dip_mps : row.predicted_dip_mps_diagnosed;
+    }
+  }
+}
+
+std::string criterionName(SelectionCriterion criterion)
+{
+  return criterion == SelectionCriterion::platoon_dips ? "platoon_dips" : "pair_windows";
+}
+
 EffectSetSelection selectEffectSet(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
                                    const std::string& excluded_run, const EffectSetSelectionOptions& options)
 {
@@ -365,16 +409,21 @@ EffectSetSelection selectEffectSet(const std::vector<PairPerturbationScore>& sco
 
 std::string effectSetSelectionRule(const EffectSetSelectionOptions& options)
 {
-  char text[640];
+  const std::string loss =
+      options.criterion == SelectionCriterion::platoon_dips
+          ? "per car and perturbation of the platoon predicted from its real first car, the squared log ratio of "
+            "predicted to measured dip (measured dips above 0.3 m/s)"
+          : "per car and perturbation, the car predicted from its real leader, the mean squared speed error from the "
+            "pre-window before the onset to the end of the dip window";
+  char text[900];
   std::snprintf(text, sizeof text,
-                "each car predicted from its real leader with models fitted on its other runs; per car and "
-                "perturbation the mean squared speed error from %s before the onset to the end of the dip window; "
-                "stage 1: each single effect against the base model, stage 2: each pair holding the stage-1 "
-                "effect against it; a set is named when its mean window MSE is at least %.0f %% lower and a "
-                "bootstrap over perturbations (%zu replicates, whole perturbations resampled) gives p <= %.3g "
-                "divided by the stage's candidates; the lowest window MSE among those named wins. For a run's "
-                "own diagnosed models the choice is made without that run.",
-                "the pre-window", 100.0 * options.min_relative_improvement, options.replicates, options.alpha);
+                "every car's models fitted on its other runs (leave-one-run-out); the loss: %s. Stage 1: each "
+                "candidate adding one effect or objective to the base model against it; stage 2: each candidate "
+                "adding one more to the stage-1 choice against that. A candidate is named when its mean loss is at "
+                "least %.0f %% lower and a bootstrap over perturbations (%zu replicates, every car of a perturbation "
+                "resampled together) gives p <= %.3g divided by the stage's candidates; the lowest loss among those "
+                "named wins. A run's own diagnosed models use the choice made without that run.",
+                loss.c_str(), 100.0 * options.min_relative_improvement, options.replicates, options.alpha);
   return text;
 }
 

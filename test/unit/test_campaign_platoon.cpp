@@ -122,14 +122,18 @@ TEST(CampaignPlatoon, TheDiagnosisNamesAnAsymmetricResponseAndClosesTheDipGap)
   const auto base = acc::summarizeDipPredictions(result.platoons, acc::DipPrediction::chain_base);
   const auto diagnosed = acc::summarizeDipPredictions(result.platoons, acc::DipPrediction::chain_diagnosed);
   ASSERT_GT(diagnosed.car_perturbations, 10u);
-  EXPECT_LT(diagnosed.median_abs_dip_error, 0.10);
-  EXPECT_LT(diagnosed.median_abs_dip_error, 0.5 * base.median_abs_dip_error);
+  EXPECT_LT(diagnosed.median_abs_dip_error, 0.05);
+  EXPECT_LT(diagnosed.median_abs_dip_error, base.median_abs_dip_error);
+  // The closing gain ratio is what the dips pin (the spacing error stays small while k1 is small);
+  // the short-gap ratio is left to the data and not asserted.
   for (const acc::PlatoonCheck& check : result.platoons)
   {
     for (const acc::PlatoonCarPrediction& car : check.cars_diagnosed)
     {
       ASSERT_EQ(car.model.effects, result.effect_selection.model.effects) << car.name;
-      EXPECT_NEAR(car.model.effect_values[0], 4.0, 1.5) << check.run << " " << car.name;
+      EXPECT_NEAR(car.model.effect_values[1], 5.0, 0.5) << check.run << " " << car.name;
+      EXPECT_NEAR(car.model.parameters.k2_per_s, 0.15, 0.02) << check.run << " " << car.name;
     }
   }
+  EXPECT_GT(result.effect_selection.comparisons.front().relative_improvement, 0.5);
 }

@@ -9,6 +9,7 @@
 #include "acc_identification/campaign/campaign_inputs.h"
 #include "acc_identification/campaign/group_identification.h"
 #include "acc_identification/campaign/platoon_check.h"
+#include "acc_identification/campaign/link_evidence.h"
 #include "acc_identification/campaign/platoon_diagnosis.h"
 
 namespace acc
@@ -39,7 +40,11 @@ struct CampaignResult
   /// as platoons).
   std::vector<PairPerturbationScore> pair_scores;
   EffectSetSelection effect_selection;
+  SelectionCriterion effect_selection_criterion = SelectionCriterion::platoon_dips;
   std::vector<EffectSetSelection> run_effect_selections;
+  /// Per group (same order as groups), with the platoon diagnosis: model-free dip ratios and
+  /// frequency response beside the base and diagnosed models, and the diagnosed model's stability.
+  std::vector<LinkEvidence> links;
   std::size_t threads = 0;             ///< threads used
   double wall_time_s = 0.0;
 };

@@ -46,28 +46,50 @@ bool parsePlatoonCandidate(const std::string& text, PlatoonCandidate* candidate)
 std::vector<PlatoonCarModel> fitCandidateModels(const std::vector<CarFollowingRun>& training,
                                                 const PlatoonCarModel& base);
 
-/// What one car did in one perturbation against what each model predicted for it at pair level
-/// (driven by its real leader's measured speed: nothing compounds).
+/// What one car did in one perturbation against what each model predicted for it: at pair level
+/// (driven by its real leader's measured speed: nothing compounds) and in the platoon (driven by
+/// the predicted car ahead, the chain from the real first car).
 struct PairPerturbationScore
 {
   std::size_t file_index = 0;
   int position = 0;
   std::size_t perturbation = 0;  ///< index among the file's lead perturbations
   double measured_dip_mps = 0.0;
-  /// Per model (0: base, i + 1: candidate set i): mean squared speed error over the window
-  /// [onset - pre_window_s, window_end) [m^2/s^2], and the predicted dip. NaN where not predicted.
+  /// Per model (0: base, i + 1: candidate i), NaN where not predicted: the pair level's mean
+  /// squared speed error over the window [onset - pre_window_s, window_end) [m^2/s^2] and its dip,
+  /// and the platoon's dip (addChainDips; empty until then).
   std::vector<double> window_mse;
   std::vector<double> predicted_dip_mps;
+  std::vector<double> chain_dip_mps;
 };
 
 /// The scores of car `position` of a file in each of the file's lead perturbations, for the base
-/// model and every candidate (models[0] base, models[i + 1] candidate i).
+/// model and every candidate (models[0] base, models[i + 1] candidate i): the pair-level part.
 std::vector<PairPerturbationScore> scorePairPerturbations(const CampaignFile& file, std::size_t file_index,
                                                           int position, const std::vector<PlatoonCarModel>& models,
                                                           const PlatoonCheckOptions& options);
 
+/// Records the platoon dips of a check made with model `model_index` as the diagnosed models
+/// (checkPlatoon with them; model 0 reads the check's base prediction) into the scores of the
+/// same file, position and perturbation. models is the number of models (base + candidates).
+void addChainDips(const PlatoonCheck& check, std::size_t file_index, std::size_t model_index, std::size_t models,
+                  std::vector<PairPerturbationScore>* scores);
+
+/// What the rule compares models on.
+enum class SelectionCriterion
+{
+  /// The platoon's dips, predicted from the real first car: the squared log ratio of predicted to
+  /// measured dip per car-perturbation (measured dips above 0.3 m/s). What the platoon question is.
+  platoon_dips,
+  /// The pair level's mean squared speed error in the perturbation windows.
+  pair_windows,
+};
+
+std::string criterionName(SelectionCriterion criterion);
+
 struct EffectSetSelectionOptions
 {
+  SelectionCriterion criterion = SelectionCriterion::platoon_dips;
   /// Family-wise error rate of the comparisons of one stage (Bonferroni over its candidates).
   double alpha = 0.05;
   /// A candidate must also lower the window MSE by at least this fraction (practical relevance).
@@ -87,10 +109,13 @@ struct EffectSetComparison
   PlatoonCandidate against;  ///< the base model or the first stage's choice
   std::size_t car_perturbations = 0;
   std::size_t perturbations = 0;  ///< clusters of the bootstrap
+  double mean_loss = 0.0;             ///< the criterion's mean over the car-perturbations compared
+  double against_loss = 0.0;
+  double relative_improvement = 0.0;  ///< 1 - mean_loss / against_loss
+  /// The other criterion on the same car-perturbations, for the report (NaN where not scored).
   double mean_window_mse = 0.0;
   double against_window_mse = 0.0;
-  double relative_improvement = 0.0;  ///< 1 - mean_window_mse / against_window_mse
-  double p_value = 1.0;               ///< H0: no lower window MSE (cluster bootstrap over perturbations)
+  double p_value = 1.0;               ///< H0: no lower loss (cluster bootstrap over perturbations)
   bool significant = false;           ///< p <= alpha / (stage size) and the improvement is relevant
 };
 

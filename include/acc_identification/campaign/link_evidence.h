@@ -1,0 +1,67 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "acc_identification/campaign/campaign_inputs.h"
+#include "acc_identification/campaign/empirical_response.h"
+#include "acc_identification/campaign/group_identification.h"
+#include "acc_identification/campaign/platoon_check.h"
+#include "acc_identification/campaign/platoon_diagnosis.h"
+#include "acc_identification/diagnosis/augmented_stability.h"
+
+namespace acc
+{
+/// What the data show of one car (vehicle, setting) as a link of a platoon, without a model and
+/// beside its models: its dips against those of the car directly ahead, its empirical frequency
+/// response against the base and the diagnosed model's |Gamma(jw)|, and the string stability of
+/// the diagnosed model where it is defined.
+struct LinkEvidence
+{
+  std::string vehicle;
+  std::string setting;
+  /// Follower dip / dip of the car directly ahead, over every perturbation of every platoon run
+  /// where the car follows (model-free).
+  DipRatioEstimate dip_ratio;
+  /// Welch's |Gamma(jw)| from the car's and its leader's measured speeds (every run's pair
+  /// segments, none straddled), with coherence and band (model-free).
+  EmpiricalResponse response;
+  double operating_speed_mps = 0.0;  ///< median follower speed: where the models are linearised
+  /// |Gamma| at response.frequency_rad_s of the group's base model (identifyAcc on all its runs)
+  /// and of its diagnosed model (the campaign's chosen candidate fitted on all its runs).
+  std::vector<double> model_gain_base;
+  std::vector<double> model_gain_diagnosed;
+  /// Frequency ranges [rad/s] up to 2 rad/s where the empirical gain is informative (coherence at
+  /// least 0.5 over at least 4 effective segments) and the model's lies outside its band: where the
+  /// model departs from the data.
+  std::vector<std::pair<double, double>> base_departs_rad_s;
+  std::vector<std::pair<double, double>> diagnosed_departs_rad_s;
+  /// The diagnosed model: its candidate, fit, and small-signal stability (for an asymmetric law,
+  /// of its braking branch: augmented_stability.h).
+  PlatoonCandidate diagnosed;
+  bool diagnosed_available = false;
+  AccParameters diagnosed_parameters;
+  std::vector<double> diagnosed_effect_values;
+  EffectSettings diagnosed_settings;
+  AugmentedStability diagnosed_small_signal;
+  /// Simulated propagation: ten identical cars with the diagnosed model behind each platoon run's
+  /// real first car, from equilibrium; the tenth car's dip over the first car's, median over the
+  /// perturbations (NaN without one). Above 1: the model amplifies these real perturbations.
+  double long_platoon_dip_ratio = 0.0;
+  std::size_t long_platoon_perturbations = 0;
+  std::string note;  ///< what could not be computed, and why
+};
+
+/// Number of identical cars in the simulated long platoon.
+constexpr int kLongPlatoonCars = 10;
+
+/// The evidence of every group (same order as result.groups), after the platoon check and its
+/// diagnosis (result.platoons, result.effect_selection). Groups run on options.threads.
+std::vector<LinkEvidence> gatherLinkEvidence(const CampaignInputs& inputs, const std::vector<GroupResult>& groups,
+                                             const std::vector<PlatoonCheck>& platoons,
+                                             const PlatoonCandidate& diagnosed, std::size_t threads,
+                                             const PlatoonCheckOptions& platoon_options);
+
+}  // namespace acc

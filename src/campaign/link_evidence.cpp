@@ -1,0 +1,224 @@
+#include "acc_identification/campaign/link_evidence.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "acc_identification/campaign/perturbation.h"
+#include "acc_identification/diagnosis/augmented_calibration.h"
+#include "acc_identification/model/follower_simulation.h"
+#include "acc_identification/model/parallel_tasks.h"
+
+namespace acc
+{
+namespace
+{
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr std::size_t kDipRatioReplicates = 1999;
+
+/// The car's dips and those of the car directly ahead, perturbation by perturbation, over every
+/// platoon run of its setting where it follows.
+void collectDips(const std::vector<PlatoonCheck>& platoons, const std::string& vehicle, const std::string& setting,
+                 std::vector<double>* follower, std::vector<double>* leader)
+{
+  for (const PlatoonCheck& check : platoons)
+  {
+    if (check.setting != setting)
+      continue;
+    for (const PerturbationCheck& perturbation : check.perturbations)
+    {
+      const auto& rows = perturbation.positions;
+      for (std::size_t i = 1; i < rows.size(); ++i)
+      {
+        if (rows[i].name == vehicle && rows[i - 1].position + 1 == rows[i].position)
+        {
+          follower->push_back(rows[i].measured_dip_mps);
+          leader->push_back(rows[i - 1].measured_dip_mps);
+        }
+      }
+    }
+  }
+}
+
+/// Every segment of the group's runs in one series, a NaN sample between segments so that no
+/// Welch segment straddles two; and the median step.
+void concatenateSegments(const CampaignGroup& group, std::vector<double>* leader, std::vector<double>* follower,
+                         double* step_s, double* median_speed_mps)
+{
+  std::vector<double> steps, speeds;
+  for (const CarFollowingRun& segment : group.segments())
+  {
+    if (!leader->empty())
+    {
+      leader->push_back(kNaN);
+      follower->push_back(kNaN);
+    }
+    leader->insert(leader->end(), segment.leader_speed_mps.begin(), segment.leader_speed_mps.end());
+    follower->insert(follower->end(), segment.follower_speed_mps.begin(), segment.follower_speed_mps.end());
+    speeds.insert(speeds.end(), segment.follower_speed_mps.begin(), segment.follower_speed_mps.end());
+    for (std::size_t k = 1; k < segment.size(); ++k)
+      steps.push_back(segment.time_s[k] - segment.time_s[k - 1]);
+  }
+  *step_s = finiteMedian(steps);
+  *median_speed_mps = finiteMedian(speeds);
+}
+
+/// Above this the 10 Hz records are spline-interpolated GNSS and the ACC's own dynamics are long
+/// over: car-following perturbations and ACC responses live below 1 rad/s.
+constexpr double kMaxLinkFrequencyRadS = 2.0;
+/// A coherence averaged over fewer effective segments is biased towards 1 (exactly 1 from one
+/// segment): below this many the empirical response is not read.
+constexpr double kMinEffectiveSegments = 4.0;
+constexpr std::size_t kLinkWelchSegmentSamples = 512;
+
+/// Ranges of consecutive bins (up to kMaxLinkFrequencyRadS) where the empirical gain is
+/// informative and the model's gain lies outside its band.
+std::vector<std::pair<double, double>> departures(const EmpiricalResponse& response, const std::vector<double>& model)
+{
+  std::vector<std::pair<double, double>> ranges;
+  if (response.effective_segments < kMinEffectiveSegments)
+    return ranges;
+  bool open = false;
+  for (std::size_t k = 0; k < response.frequency_rad_s.size() && k < model.size(); ++k)
+  {
+    const bool departs = response.frequency_rad_s[k] <= kMaxLinkFrequencyRadS && response.informative[k] &&
+                         std::isfinite(model[k]) &&
+                         (model[k] < response.gain_lower[k] || model[k] > response.gain_upper[k]);
+    if (departs && !open)
+      ranges.push_back({response.frequency_rad_s[k], response.frequency_rad_s[k]});
+    if (departs)
+      ranges.back().second = response.frequency_rad_s[k];
+    open = departs;
+  }
+  return ranges;
+}
+
+/// The chosen candidate fitted on all the group's runs, warm-started from the group's base fit.
+void fitDiagnosed(const CampaignGroup& group, const GroupResult& result, const PlatoonCandidate& candidate,
+                  LinkEvidence* evidence)
+{
+  evidence->diagnosed = candidate;
+  if (!result.fitted())
+  {
+    evidence->note = "no base fit: " + result.reason;
+    return;
+  }
+  AugmentedFit warm;
+  warm.base = result.identification.calibration.parameters;
+  AugmentedCalibrationOptions options;
+  options.objective = candidate.objective;
+  const AugmentedFit fit = candidate == PlatoonCandidate{} ? warm
+                                                          : calibrateAugmentedSet(candidate.effects, group.segments(),
+                                                                                  options, &warm);
+  evidence->diagnosed_available = !fit.diverged;
+  evidence->diagnosed_parameters = fit.base;
+  evidence->diagnosed_effect_values = fit.effect_values;
+  evidence->diagnosed_settings = fit.settings;
+  const EffectKind last = candidate.effects.empty() ? EffectKind::none : candidate.effects.back();
+  evidence->diagnosed_small_signal =
+      analyzeAugmentedStability(fit.base, last, fit.settings, evidence->operating_speed_mps);
+}
+
+/// Ten identical cars with the diagnosed model behind the real first car of each platoon run of the
+/// setting, from equilibrium at its first speed: the last car's dip over the first car's, median
+/// over the perturbations.
+void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& setting,
+                         const PlatoonCheckOptions& platoon_options, LinkEvidence* evidence)
+{
+  std::vector<double> ratios;
+  for (const CampaignFile& file : inputs.files)
+  {
+    if (file.setting != setting || file.contents.vehicle(1) == nullptr)
+      continue;
+    std::size_t first = 0, end = 0;
+    const std::vector<Perturbation> perturbations = leadPerturbations(file.contents, platoon_options, &first, &end);
+    if (perturbations.empty())
+      continue;
+    CarFollowingRun run;
+    run.time_s.assign(file.contents.time_s.begin() + static_cast<long>(first),
+                      file.contents.time_s.begin() + static_cast<long>(end));
+    const std::vector<double>& lead = file.contents.vehicle(1)->speed_mps;
+    run.leader_speed_mps.assign(lead.begin() + static_cast<long>(first), lead.begin() + static_cast<long>(end));
+    const std::vector<double> lead_speed = run.leader_speed_mps;
+    const double v0 = run.leader_speed_mps.front();
+    const AccParameters& p = evidence->diagnosed_parameters;
+    bool diverged = false;
+    for (int car = 0; car < kLongPlatoonCars && !diverged; ++car)
+    {
+      run.follower_speed_mps.assign(run.size(), v0);
+      run.space_gap_m.assign(run.size(), p.eta_m + p.tau_e_s * v0);
+      const SimulatedFollower sim = simulateFollower(p, evidence->diagnosed_settings, run);
+      diverged = sim.diverged;
+      run.leader_speed_mps = sim.speed_mps;
+    }
+    for (const Perturbation& perturbation : perturbations)
+    {
+      const double lead_dip = dipDepthMps(run.time_s, lead_speed, perturbation, platoon_options.perturbation);
+      const double last_dip =
+          diverged ? kNaN : dipDepthMps(run.time_s, run.leader_speed_mps, perturbation, platoon_options.perturbation);
+      if (lead_dip > 0.3 && std::isfinite(last_dip))
+        ratios.push_back(last_dip / lead_dip);
+    }
+  }
+  evidence->long_platoon_perturbations = ratios.size();
+  evidence->long_platoon_dip_ratio = finiteMedian(ratios);
+}
+
+LinkEvidence evidenceOf(const CampaignInputs& inputs, const CampaignGroup& group, const GroupResult& result,
+                        const std::vector<PlatoonCheck>& platoons, const PlatoonCandidate& diagnosed,
+                        const PlatoonCheckOptions& platoon_options)
+{
+  LinkEvidence evidence;
+  evidence.vehicle = group.vehicle;
+  evidence.setting = group.setting;
+  std::vector<double> follower_dips, leader_dips;
+  collectDips(platoons, group.vehicle, group.setting, &follower_dips, &leader_dips);
+  evidence.dip_ratio = linkDipRatio(follower_dips, leader_dips, kDipRatioReplicates, result.seed);
+  std::vector<double> leader, follower;
+  double step_s = kNaN;
+  concatenateSegments(group, &leader, &follower, &step_s, &evidence.operating_speed_mps);
+  if (step_s > 0.0)
+  {
+    // 51 s segments: platoon runs last 1-7 minutes, and a peak read a few per cent low (the
+    // window's smoothing, empirical_response.h) beats no estimate from too few segments.
+    WelchOptions welch;
+    welch.segment_samples = kLinkWelchSegmentSamples;
+    evidence.response = empiricalResponse(leader, follower, step_s, welch);
+  }
+  fitDiagnosed(group, result, diagnosed, &evidence);
+  for (double w : evidence.response.frequency_rad_s)
+  {
+    evidence.model_gain_base.push_back(result.fitted() ? transferGain(result.identification.calibration.parameters, w)
+                                                       : kNaN);
+    evidence.model_gain_diagnosed.push_back(
+        evidence.diagnosed_available ? augmentedTransferGain(evidence.diagnosed_parameters, evidence.diagnosed_settings,
+                                                             evidence.operating_speed_mps, w)
+                                     : kNaN);
+  }
+  evidence.base_departs_rad_s = departures(evidence.response, evidence.model_gain_base);
+  evidence.diagnosed_departs_rad_s = departures(evidence.response, evidence.model_gain_diagnosed);
+  if (evidence.diagnosed_available)
+    simulateLongPlatoon(inputs, group.setting, platoon_options, &evidence);
+  else
+    evidence.long_platoon_dip_ratio = kNaN;
+  if (evidence.response.effective_segments < kMinEffectiveSegments)
+    evidence.note += (evidence.note.empty() ? "" : "; ") +
+                     std::string("fewer than 4 effective Welch segments of 512 samples: the empirical frequency "
+                                 "response is not read");
+  return evidence;
+}
+}  // namespace
+
+std::vector<LinkEvidence> gatherLinkEvidence(const CampaignInputs& inputs, const std::vector<GroupResult>& groups,
+                                             const std::vector<PlatoonCheck>& platoons,
+                                             const PlatoonCandidate& diagnosed, std::size_t threads,
+                                             const PlatoonCheckOptions& platoon_options)
+{
+  std::vector<LinkEvidence> out(inputs.groups.size());
+  runTasksInParallel(out.size(), threads, [&](std::size_t i) {
+    out[i] = evidenceOf(inputs, inputs.groups[i], groups[i], platoons, diagnosed, platoon_options);
+  });
+  return out;
+}
+
+}  // namespace acc
