@@ -1,4 +1,5 @@
 #include "acc_identification/diagnosis/combined_effect_suite.h"
+#include "acc_identification/diagnosis/withheld_effect_suite.h"
 
 #include <algorithm>
 #include <chrono>
@@ -147,8 +148,13 @@ std::string effectTable(const std::vector<CombinedOutcome>& outcomes)
   std::ostringstream out;
   out << "| effect | named where withheld | named where not withheld | median abs. magnitude error when named |\n"
          "|---|---|---|---|\n";
-  for (const CandidateEffect& effect : candidateEffects())
+  // Every effect the diagnosis can name, so that a response effect named where none was hidden
+  // counts as named wrongly.
+  for (EffectKind kind : diagnosableEffects())
   {
+    if (kind == EffectKind::none)
+      continue;
+    const CandidateEffect& effect = candidateEffect(kind);
     std::size_t hidden = 0, found = 0, others = 0, wrongly = 0;
     std::vector<double> errors;
     for (const CombinedOutcome& o : outcomes)

@@ -230,6 +230,18 @@ WithheldOutcome runWithheldCase(const WithheldCase& c, const DiagnosisOptions& o
   return outcome;
 }
 
+std::vector<EffectKind> diagnosableEffects()
+{
+  // Every effect of both catalogues: one a run's options add (--effect) is counted too.
+  std::vector<EffectKind> kinds{EffectKind::none};
+  for (const auto* list : {&candidateEffects(), &responseEffects()})
+  {
+    for (const CandidateEffect& effect : *list)
+      kinds.push_back(effect.kind);
+  }
+  return kinds;
+}
+
 std::vector<WithheldCase> withheldCaseGrid(std::size_t magnitudes_per_effect,
                                            const std::vector<SyntheticLeadProfile>& profiles,
                                            const std::vector<double>& noise_scales, std::size_t seeds)
@@ -244,6 +256,11 @@ std::vector<WithheldCase> withheldCaseGrid(std::size_t magnitudes_per_effect,
       {EffectKind::sensor_time_offset, {{0.8}, {-0.6}, {1.5}}},
       {EffectKind::speed_dependent_time_gap, {{0.02}, {-0.015}, {0.01}}},
       {EffectKind::set_speed_cruise, {{25.0, 0.4}, {27.0, 0.25}, {24.0, 0.6}}},
+      // Response effects among the default candidates: a closing gain 2-4 times the following
+      // one (SUMO's ACC switches to gains of that order in its collision-avoidance mode), gains
+      // that change by 4-6 % per m/s.
+      {EffectKind::asymmetric_response, {{3.0, 3.0}, {2.0, 4.0}, {4.0, 1.5}}},
+      {EffectKind::speed_dependent_gains, {{0.05}, {-0.04}, {0.06}}},
   };
   std::vector<WithheldCase> grid;
   std::uint32_t seed_base = 1;
@@ -278,11 +295,7 @@ std::vector<WithheldCase> withheldCaseGrid(std::size_t magnitudes_per_effect,
 ConfusionMatrix confusionMatrix(const std::vector<WithheldOutcome>& outcomes)
 {
   ConfusionMatrix matrix;
-  matrix.labels.push_back(EffectKind::none);
-  for (const CandidateEffect& effect : candidateEffects())
-  {
-    matrix.labels.push_back(effect.kind);
-  }
+  matrix.labels = diagnosableEffects();
   matrix.counts.assign(matrix.labels.size(), std::vector<std::size_t>(matrix.labels.size(), 0));
   auto index = [&](EffectKind kind) {
     return static_cast<std::size_t>(std::find(matrix.labels.begin(), matrix.labels.end(), kind) - matrix.labels.begin());
@@ -333,8 +346,11 @@ std::string formatMagnitudeRecovery(const std::vector<WithheldOutcome>& outcomes
 {
   std::ostringstream out;
   out << "| effect | parameter | cases named correctly | median abs. error | median rel. error |\n|---|---|---|---|---|\n";
-  for (const CandidateEffect& effect : candidateEffects())
+  for (EffectKind kind : diagnosableEffects())
   {
+    if (kind == EffectKind::none)
+      continue;
+    const CandidateEffect& effect = candidateEffect(kind);
     std::vector<double> absolute, relative;
     for (const WithheldOutcome& o : outcomes)
     {
@@ -547,11 +563,7 @@ std::string formatDouble(const char* format, double x)
 
 std::string semiRealConfusion(const std::vector<SemiRealOutcome>& outcomes)
 {
-  std::vector<EffectKind> labels{EffectKind::none};
-  for (const CandidateEffect& effect : candidateEffects())
-  {
-    labels.push_back(effect.kind);
-  }
+  const std::vector<EffectKind> labels = diagnosableEffects();
   const std::vector<EffectKind> rows{EffectKind::none, EffectKind::sensor_time_offset, EffectKind::actuation_lag};
   std::ostringstream out;
   out << "| injected \\ dominant named |";

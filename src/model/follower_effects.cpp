@@ -46,8 +46,8 @@ const std::vector<CandidateEffect>& responseEffects()
   // below 0.2 a mode would hardly respond at all.
   static const std::vector<CandidateEffect> extra = {
       {EffectKind::asymmetric_response, "asymmetric_response",
-       {{"short_gap_gain_ratio", 0.2, 10.0, 0.8, 4.0, 1.0}, {"closing_gain_ratio", 0.2, 10.0, 0.8, 4.0, 1.0}},
-       "k1 times r_s while the gap is shorter than desired, k2 times r_c while closing in"},
+       {{"closing_gain_ratio", 0.2, 10.0, 0.8, 4.0, 1.0}, {"short_gap_gain_ratio", 0.2, 10.0, 0.8, 4.0, 1.0}},
+       "k2 times r_c while closing in, k1 times r_s while the gap is shorter than desired"},
       {EffectKind::speed_dependent_gains, "speed_dependent_gains",
        {{"gain_speed_slope_s_per_m", -0.15, 0.15, -0.05, 0.05, 0.0}},
        "k1 and k2 times exp(g (v - 15 m/s)): gains scheduled on speed"},
@@ -125,8 +125,8 @@ EffectSettings makeEffectSettings(EffectKind kind, const std::vector<double>& va
       break;
     case EffectKind::leader_acceleration_feedforward: s.leader_acceleration_gain = values[0]; break;
     case EffectKind::asymmetric_response:
-      s.short_gap_gain_ratio = values[0];
-      s.closing_gain_ratio = values[1];
+      s.closing_gain_ratio = values[0];
+      s.short_gap_gain_ratio = values[1];
       break;
     case EffectKind::speed_dependent_gains: s.gain_speed_slope_s_per_m = values[0]; break;
   }
@@ -145,7 +145,7 @@ std::vector<double> effectValues(EffectKind kind, const EffectSettings& s)
     case EffectKind::speed_dependent_time_gap: return {s.time_gap_speed_slope_s2_per_m};
     case EffectKind::set_speed_cruise: return {s.set_speed_mps, s.cruise_gain_per_s};
     case EffectKind::leader_acceleration_feedforward: return {s.leader_acceleration_gain};
-    case EffectKind::asymmetric_response: return {s.short_gap_gain_ratio, s.closing_gain_ratio};
+    case EffectKind::asymmetric_response: return {s.closing_gain_ratio, s.short_gap_gain_ratio};
     case EffectKind::speed_dependent_gains: return {s.gain_speed_slope_s_per_m};
   }
   return {};

@@ -31,7 +31,11 @@ TEST(DiagnosisOutput, JsonHasTheFieldsOfTheIssueAndTablesAreWritten)
   {
     EXPECT_TRUE(j["baseline"].contains(key)) << key;
   }
-  ASSERT_EQ(j["effects"].size(), 6u);
+  ASSERT_EQ(j["effects"].size(), acc::DiagnosisOptions{}.candidates.size());
+  for (const char* key : {"effects", "parameters", "standard_errors", "test_rmse_speed", "test_rmse_gap"})
+  {
+    EXPECT_TRUE(j["final_model"].contains(key)) << key;
+  }
   for (const auto& effect : j["effects"])
   {
     for (const char* key : {"name", "parameters", "train_rmse_speed", "test_rmse_speed", "test_rmse_gap", "significant"})

@@ -97,10 +97,11 @@ INSTANTIATE_TEST_SUITE_P(
         Expectation{acc::EffectKind::acceleration_limits, {1.0, 2.0}, acc::SyntheticLeadProfile::dip, 0.15},
         Expectation{acc::EffectKind::sensor_time_offset, {1.0}, acc::SyntheticLeadProfile::oscillation, 0.25},
         Expectation{acc::EffectKind::speed_dependent_time_gap, {0.02}, acc::SyntheticLeadProfile::steps, 0.005},
-        Expectation{acc::EffectKind::set_speed_cruise, {25.0, 0.4}, acc::SyntheticLeadProfile::steps, 1.0}),
+        Expectation{acc::EffectKind::set_speed_cruise, {25.0, 0.4}, acc::SyntheticLeadProfile::steps, 1.0},
+        Expectation{acc::EffectKind::asymmetric_response, {3.0, 3.0}, acc::SyntheticLeadProfile::dip, 0.6}),
     [](const ::testing::TestParamInfo<Expectation>& info) { return acc::effectName(info.param.truth); });
 
-TEST(WithheldEffects, AnExploratoryEffectIsNamedWhenAskedFor)
+TEST(WithheldEffects, AnAnticipationIsNamedWhenAskedFor)
 {
   acc::WithheldCase c;
   c.truth = acc::EffectKind::leader_acceleration_feedforward;

@@ -70,6 +70,10 @@ struct WithheldOutcome
 
 WithheldOutcome runWithheldCase(const WithheldCase& c, const DiagnosisOptions& options);
 
+/// none, the six timing and spacing effects and the response effects: the labels of the suites'
+/// confusion matrices (every effect the diagnosis can name by default).
+std::vector<EffectKind> diagnosableEffects();
+
 /// The grid of cases: every effect at several magnitudes and none, on the given profiles, noise
 /// scales and seeds. magnitudes_per_effect picks from a fixed list per effect (1 to 3).
 std::vector<WithheldCase> withheldCaseGrid(std::size_t magnitudes_per_effect,

@@ -19,7 +19,8 @@ enum class EffectKind
   /// Anticipation: the ACC also responds to the leader's acceleration, as a radar-tracked
   /// acceleration estimate allows (a response effect, responseEffects()).
   leader_acceleration_feedforward,
-  /// Different gains for a gap shorter than desired (k1) and for closing in (k2): ACCs brake hard
+  /// Different gains for closing in (k2, the effect's magnitude: what braking dips pin) and for a
+  /// gap shorter than desired (k1): ACCs brake hard
   /// for a short, closing gap and accelerate gently otherwise (FHWA's piecewise ACC model, SUMO's
   /// ACC with its own collision-avoidance gains).
   asymmetric_response,
