@@ -105,6 +105,8 @@ public:
 
   const PairingCounters& counters() const { return counters_; }
   const PairingSettings& settings() const { return settings_; }
+  /// The most pairs one addLeader or addFollower can complete: every follower epoch buffered.
+  std::size_t mostPairsAtOnce() const { return settings_.max_buffered_fixes; }
 
 private:
   // kInterpolable: an interpolation is ready, but the leader's own epoch is expected.
