@@ -447,3 +447,46 @@ TEST(Pairing, AFollowerThatLoopsFirstWaitsForTheLeadersLoop)
   EXPECT_EQ(pairer.counters().follower_unpaired, 0u);
   EXPECT_EQ(pairer.takePairs().size(), 2u * 201u);
 }
+
+// A follower receiver whose time jumps back once and returns: the leader, far ahead of that one
+// epoch, is not awaited to reset as well once the follower is back on its time.
+TEST(Pairing, AFollowerTimeGlitchDoesNotLeaveTheEpochsBehindItWaiting)
+{
+  acc::PairingSettings settings;
+  settings.timeout_s = 1e6;
+  acc::EpochPairer pairer(settings);
+  for (double t : epochs(0.0, 40.0))
+  {
+    pairer.addLeader(fixAt(t));
+    pairer.addFollower(fixAt(std::abs(t - 20.0) < 1e-6 ? 10.0 : t, -0.001));
+  }
+  EXPECT_EQ(pairer.counters().follower_time_resets, 1u);
+  EXPECT_EQ(pairer.counters().follower_unpaired, 1u);  // the epoch stamped 10.0
+  EXPECT_EQ(pairer.counters().buffer_overflows, 0u);
+  EXPECT_EQ(pairer.takePairs().size(), 401u - 1u);
+}
+
+// The ROS node sizes its publisher's queue by mostPairsAtOnce(): no call may complete more, even
+// when a reorder window as long as the timeout lets an early epoch hold back the buffer behind it.
+TEST(Pairing, NoCallCompletesMorePairsThanMostPairsAtOnce)
+{
+  acc::PairingSettings settings;
+  settings.timeout_s = 1e6;
+  settings.exact_wait_s = 1e6;
+  settings.max_buffered_fixes = 50;
+  acc::EpochPairer pairer(settings);
+  std::size_t largest = 0, total = 0;
+  for (double t : epochs(0.0, 30.0))
+  {
+    pairer.addFollower(fixAt(t, -0.001));
+    if (t > 0.05)  // the leader's first epoch never comes: 0.0 waits for it until the buffer overflows
+      pairer.addLeader(fixAt(t));
+    std::size_t completed = pairer.takePairs().size();
+    largest = std::max(largest, completed);
+    total += completed;
+  }
+  EXPECT_GT(pairer.counters().buffer_overflows, 0u);
+  EXPECT_GT(largest, 1u);
+  EXPECT_LE(largest, pairer.mostPairsAtOnce());
+  EXPECT_EQ(total + pairer.counters().follower_unpaired, 301u);
+}
