@@ -96,5 +96,37 @@ if(TARGET acc_gnss_ros AND TARGET acc_conversion)
       add_rostest(${_acc_launch}
         DEPENDENCIES relative_state_node gps_driver_node test_relative_state_drivers relative_state_nmea_${run})
     endforeach()
+
+    # Issue 26: part3 replayed at 20x as a user replays a drive, the leader's stream a second late
+    # (its log without its first 10 epochs of GGA + RMC), recorded by rosbag record.
+    add_executable(test_relative_state_record EXCLUDE_FROM_ALL test/rostest/relative_state_record_check.cpp)
+    target_link_libraries(test_relative_state_record acc_relative_state_ros ${GTEST_LIBRARIES} ${catkin_LIBRARIES})
+    target_include_directories(test_relative_state_record PRIVATE ${GTEST_INCLUDE_DIRS})
+    add_dependencies(tests test_relative_state_record)
+    set(_acc_late_leader ${_acc_nmea_dir}/part3_leader_from_1s.nmea)
+    # (tail, not CMake's file(READ), which would turn the sentences' CR LF into LF.)
+    add_custom_command(
+      OUTPUT ${_acc_late_leader}
+      COMMAND sh -c "tail -n +21 '${_acc_nmea_dir}/part3_leader.nmea' > '${_acc_late_leader}'"
+      DEPENDS ${_acc_nmea_dir}/part3_leader.nmea
+      COMMENT "part3's leader log from its second second"
+      VERBATIM)
+    add_custom_target(relative_state_late_leader_part3 DEPENDS ${_acc_late_leader})
+    add_dependencies(relative_state_late_leader_part3 relative_state_nmea_part3)
+    add_dependencies(tests relative_state_late_leader_part3)
+    set(_acc_launch ${PROJECT_BINARY_DIR}/rostest/relative_state_record_part3.test)
+    file(CONFIGURE OUTPUT ${_acc_launch} @ONLY CONTENT [=[
+<!-- Made by cmake/relative_state.cmake: run part3, the leader's log a second late. -->
+<launch>
+  <include file="$(find acc_identification)/test/rostest/relative_state_record.test">
+    <arg name="run" value="part3"/>
+    <arg name="leader_log" value="@_acc_late_leader@"/>
+    <arg name="follower_log" value="@_acc_nmea_dir@/part3_follower.nmea"/>
+    <arg name="bag" value="@PROJECT_BINARY_DIR@/rostest/relative_state_record_part3.bag"/>
+  </include>
+</launch>
+]=])
+    add_rostest(${_acc_launch}
+      DEPENDENCIES relative_state_node gps_driver_node test_relative_state_record relative_state_late_leader_part3)
   endif()
 endif()

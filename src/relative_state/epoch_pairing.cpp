@@ -132,6 +132,7 @@ bool EpochPairer::acceptStream(const GnssFix& fix, bool leader)
     }
     newest = t;
     arrived_out_of_order_ = false;
+    noteTimeBases(!leader);
     return true;
   }
   if (std::isfinite(newest) && t > newest + settings_.dropout_gap_s)
@@ -141,7 +142,19 @@ bool EpochPairer::acceptStream(const GnssFix& fix, bool leader)
   }
   arrived_out_of_order_ = std::isfinite(newest) && t < newest - settings_.exact_match_tolerance_s;
   newest = std::isfinite(newest) ? std::max(newest, t) : t;
+  noteTimeBases(false);
   return true;
+}
+
+// After a time reset of the follower (a looping bag, a receiver reset) the leader, still on the
+// old time base far ahead, is about to follow it: until it does, how far its stream is past the
+// follower's new epochs says nothing of what can still come for them. Over once the two streams'
+// newest epochs are within time_reset_s again (the leader has reset too, or the follower's time
+// came back). A follower merely arriving late, without a reset, is not this.
+void EpochPairer::noteTimeBases(bool follower_reset)
+{
+  bool leader_far_ahead = newest_leader_s_ > newest_follower_s_ + settings_.time_reset_s;
+  leader_reset_awaited_ = leader_far_ahead && (leader_reset_awaited_ || follower_reset);
 }
 
 void EpochPairer::insertLeader(const GnssFix& fix)
@@ -219,13 +232,12 @@ void EpochPairer::resolvePending()
     double t = follower.gnss_time_s;
     PairedEpoch pair;
     Resolution resolution = tryPair(follower, pair);
-    double waited_s = newest_follower_s_ - t;
-    if (resolution == Resolution::kWaiting && waited_s <= settings_.timeout_s)
+    bool timed_out = newest_follower_s_ - t > settings_.timeout_s;
+    if (resolution == Resolution::kWaiting && !timed_out)
       break;
-    if (resolution == Resolution::kInterpolable && newest_leader_s_ - t <= settings_.exact_wait_s &&
-        waited_s <= settings_.timeout_s)
+    if (resolution == Resolution::kInterpolable && !leaderIsPast(t) && !timed_out)
       break;
-    if (resolution != Resolution::kWaiting)
+    if (resolution == Resolution::kPaired || resolution == Resolution::kInterpolable)
     {
       bool follower_gap = std::isfinite(last_output_s_) && t - last_output_s_ > settings_.dropout_gap_s;
       pair.continuity_break = break_before_next_ || follower_gap;
@@ -234,16 +246,29 @@ void EpochPairer::resolvePending()
       ready_.push_back(pair);
     }
     else
-    {
-      ++counters_.follower_unpaired;
-      break_before_next_ = true;
-      event("follower epoch " + seconds(t) + " s unpaired: no leader epoch within " +
-            seconds(settings_.max_interpolation_skew_s) + " s after waiting " + seconds(settings_.timeout_s) + " s");
-    }
+      giveUp(t, resolution);
     last_output_s_ = t;
     pending_follower_.pop_front();
   }
   trimLeader();
+}
+
+void EpochPairer::giveUp(double time_s, Resolution resolution)
+{
+  ++counters_.follower_unpaired;
+  break_before_next_ = true;
+  std::string why = resolution == Resolution::kUnpairable
+                        ? "the leader's stream is past it (at " + seconds(newest_leader_s_) + " s)"
+                        : "after waiting " + seconds(settings_.timeout_s) + " s";
+  event("follower epoch " + seconds(time_s) + " s unpaired: no leader epoch within " +
+        seconds(settings_.max_interpolation_skew_s) + " s, " + why);
+}
+
+// The leader's fixes arrive in GNSS-time order but for reordering within exact_wait_s: once its
+// newest is further past time_s than that, no fix at or before time_s can come any more.
+bool EpochPairer::leaderIsPast(double time_s) const
+{
+  return !leader_reset_awaited_ && newest_leader_s_ - time_s > settings_.exact_wait_s;
 }
 
 EpochPairer::Resolution EpochPairer::tryPair(const GnssFix& follower, PairedEpoch& pair) const
@@ -261,13 +286,17 @@ EpochPairer::Resolution EpochPairer::tryPair(const GnssFix& follower, PairedEpoc
     pair.interpolated = false;
     return Resolution::kPaired;
   }
-  if (after == leader_.end() || after == leader_.begin())
-    return Resolution::kWaiting;
+  // Interpolation needs a leader fix on each side within the skew. A missing one may still come
+  // (the leader's stream has not reached it, or out of order) until the leader is past it: an
+  // exact fix or one before t (so at t + tolerance at the latest), or one after (t + skew).
+  double skew = settings_.max_interpolation_skew_s;
+  bool has_before = after != leader_.begin() && t - std::prev(after)->gnss_time_s <= skew;
+  bool has_after = after != leader_.end() && after->gnss_time_s - t <= skew;
+  if (!has_before || !has_after)
+    return leaderIsPast(has_before ? t + skew : t + tolerance) ? Resolution::kUnpairable : Resolution::kWaiting;
   auto before = std::prev(after);
   double skew_before = t - before->gnss_time_s;
   double skew_after = after->gnss_time_s - t;
-  if (skew_before > settings_.max_interpolation_skew_s || skew_after > settings_.max_interpolation_skew_s)
-    return Resolution::kWaiting;  // a gap in the leader's stream: an out-of-order fix may fill it
   pair.leader = interpolateFix(*before, *after, t);
   pair.epoch_skew_s = std::min(skew_before, skew_after);
   pair.interpolated = true;

@@ -76,6 +76,7 @@ bool loadRelativeStateSettings(const ros::NodeHandle& p, RelativeStateSettings& 
   q.max_buffered_fixes = static_cast<std::size_t>(std::max(1, max_buffered));
   return fine && readParameter(p, "exact_match_tolerance_s", q.exact_match_tolerance_s, 0.0, false, error) &&
          readParameter(p, "max_interpolation_skew_s", q.max_interpolation_skew_s, 0.0, false, error) &&
+         readParameter(p, "exact_wait_s", q.exact_wait_s, 0.0, false, error) &&
          readParameter(p, "timeout_s", q.timeout_s, 0.0, true, error) &&
          readParameter(p, "dropout_gap_s", q.dropout_gap_s, 0.0, true, error) &&
          readParameter(p, "time_reset_s", q.time_reset_s, 0.0, true, error) &&
@@ -110,7 +111,14 @@ RelativeStateRos::RelativeStateRos(ros::NodeHandle node, ros::NodeHandle private
   queue_size = std::max(1, queue_size);
   leader_subscriber_ = node.subscribe("leader/fix", queue_size, &RelativeStateRos::onLeader, this);
   follower_subscriber_ = node.subscribe("follower/fix", queue_size, &RelativeStateRos::onFollower, this);
-  publisher_ = node.advertise<acc_identification::RelativeState>("relative_state", static_cast<std::uint32_t>(queue_size));
+  // ROS drops the oldest messages of a full publisher queue, silently. Each sample is a follower
+  // epoch, so the largest burst this node makes is every buffered follower epoch completed by one
+  // fix, plus the follower fixes queued behind it on the subscriber. The queue holds that burst,
+  // so that none of it is lost.
+  // (Both terms come from int parameters: the sum fits the uint32 ROS takes.)
+  publisher_queue_size_ = estimator_.mostStatesAtOnce() + static_cast<std::size_t>(queue_size);
+  publisher_ = node.advertise<acc_identification::RelativeState>("relative_state",
+                                                                 static_cast<std::uint32_t>(publisher_queue_size_));
 
   updater_.setHardwareID("leader/fix + follower/fix");
   updater_.add("Relative state", this, &RelativeStateRos::diagnose);
@@ -204,6 +212,7 @@ void RelativeStateRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& sta
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "pairing");
 
   status.add("published", published_);
+  status.add("publisher_queue_size", publisher_queue_size_);
   status.add("last space_gap_m", last_state_.space_gap_m);
   status.add("last epoch_skew_s", last_state_.epoch_skew_s);
   status.add("last gap_doppler_residual_m", last_state_.gap_doppler_residual_m);

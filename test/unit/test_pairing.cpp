@@ -299,3 +299,194 @@ TEST(Pairing, LeaderFixesBeforeAHoleInBothStreamsAreLetGo)
   EXPECT_EQ(pairs.size(), times.size());
   expectIncreasingAndFresh(pairs, 0.0);
 }
+
+// Issue 26: the leader's stream starts after the follower's (its first fixes were published
+// before relative_state_node subscribed, or its receiver got its first fix later). A follower
+// epoch with no leader epoch before it can never be paired once the leader's stream, which
+// arrives in order but for reordering within exact_wait_s, is past it: it is given up at once
+// and holds back no epoch behind it, however long timeout_s is (as for a radio link that may be
+// silent for a long time). Each pair is out at most exact_wait_s after both its fixes are in.
+class PairingWithALongTimeout : public testing::TestWithParam<double>
+{
+protected:
+  acc::PairingSettings settings() const
+  {
+    acc::PairingSettings settings;
+    settings.timeout_s = GetParam();
+    return settings;
+  }
+};
+
+namespace
+{
+/// Feeds the two streams epoch by epoch (the follower's fix, then the leader's at the follower's
+/// epoch plus leader_phase_s) and returns the pairs; held_back_s: the longest a pair was held
+/// after its epoch's leader fix was in.
+std::vector<acc::PairedEpoch> feedTogether(acc::EpochPairer& pairer, const std::vector<double>& follower_times,
+                                           double leader_start_s, double leader_phase_s, double& held_back_s)
+{
+  std::vector<acc::PairedEpoch> pairs;
+  held_back_s = 0.0;
+  for (double t : follower_times)
+  {
+    pairer.addFollower(fixAt(t, -0.001));
+    if (t + leader_phase_s >= leader_start_s - 1e-9)
+      pairer.addLeader(fixAt(t + leader_phase_s));
+    for (const auto& pair : pairer.takePairs())
+    {
+      held_back_s = std::max(held_back_s, t - pair.time_s);
+      pairs.push_back(pair);
+    }
+  }
+  return pairs;
+}
+}  // namespace
+
+TEST_P(PairingWithALongTimeout, EpochsBeforeALateLeaderAreGivenUpAtOnceAndBlockNothing)
+{
+  acc::EpochPairer pairer(settings());
+  const auto times = epochs(0.0, 300.0);  // 3001 epochs: more than max_buffered_fixes
+  double held_back_s = 0.0;
+  const auto pairs = feedTogether(pairer, times, 1.0, 0.0, held_back_s);
+  // 0.0 .. 0.9 have no leader epoch before them; every epoch from 1.0 on is paired exactly.
+  EXPECT_EQ(pairer.counters().follower_unpaired, 10u);
+  EXPECT_EQ(pairer.counters().buffer_overflows, 0u);
+  ASSERT_EQ(pairs.size(), times.size() - 10u);
+  EXPECT_NEAR(pairs.front().time_s, 1.0, 1e-9);
+  EXPECT_EQ(pairer.counters().exact_pairs, pairs.size());
+  EXPECT_LE(held_back_s, pairer.settings().exact_wait_s + 1e-6);
+  expectIncreasingAndFresh(pairs, 0.0);
+}
+
+TEST_P(PairingWithALongTimeout, TheLeadersFirstFiftyFixesLostWithAPhaseOffset)
+{
+  acc::EpochPairer pairer(settings());
+  const auto times = epochs(0.0, 300.0);
+  double held_back_s = 0.0;
+  // The leader's epochs are 0.03 s after the follower's; the first 50 (0.03 .. 4.93 s) are lost.
+  const auto pairs = feedTogether(pairer, times, 5.0, 0.03, held_back_s);
+  // 0.0 .. 5.0 have no leader epoch before them (5.03 is the first); 5.1 on are interpolated.
+  EXPECT_EQ(pairer.counters().follower_unpaired, 51u);
+  EXPECT_EQ(pairer.counters().buffer_overflows, 0u);
+  ASSERT_EQ(pairs.size(), times.size() - 51u);
+  EXPECT_NEAR(pairs.front().time_s, 5.1, 1e-9);
+  EXPECT_EQ(pairer.counters().interpolated_pairs, pairs.size());
+  EXPECT_LE(held_back_s, pairer.settings().exact_wait_s + 1e-6);
+  expectIncreasingAndFresh(pairs, 0.03 + 1e-9);
+}
+
+// A dropout of the leader: the follower epochs inside it are given up once the leader's stream is
+// past them, not after timeout_s.
+TEST_P(PairingWithALongTimeout, ALeaderDropoutBlocksNothing)
+{
+  acc::EpochPairer pairer(settings());
+  std::vector<acc::PairedEpoch> pairs;
+  double held_back_s = 0.0;
+  for (double t : epochs(0.0, 60.0))
+  {
+    pairer.addFollower(fixAt(t, -0.001));
+    if (!(t > 10.05 && t < 12.95))
+      pairer.addLeader(fixAt(t));
+    for (const auto& pair : pairer.takePairs())
+    {
+      held_back_s = std::max(held_back_s, t - pair.time_s);
+      pairs.push_back(pair);
+    }
+  }
+  EXPECT_EQ(pairer.counters().follower_unpaired, 29u);  // 10.1 .. 12.9: never bridged
+  EXPECT_EQ(pairs.size(), 601u - 29u);
+  EXPECT_LE(held_back_s, pairer.settings().exact_wait_s + 1e-6);
+  expectIncreasingAndFresh(pairs, 0.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Pairing, PairingWithALongTimeout, testing::Values(1e6, 1e3));
+
+// Giving up on an epoch the leader is past respects the reorder the pairer allows: a leader fix
+// that comes out of order by less than exact_wait_s still pairs its epoch exactly.
+TEST(Pairing, ALeaderFixOutOfOrderWithinTheExactWaitStillPairsAfterALateStart)
+{
+  acc::EpochPairer pairer;
+  for (double t : epochs(0.0, 3.0))
+  {
+    pairer.addFollower(fixAt(t, -0.001));
+    if (t > 0.95)
+      pairer.addLeader(fixAt(t));
+    if (std::abs(t - 1.3) < 1e-6)
+      pairer.addLeader(fixAt(0.9));  // 0.4 s behind the leader's newest
+  }
+  auto pairs = pairer.takePairs();
+  ASSERT_FALSE(pairs.empty());
+  EXPECT_NEAR(pairs.front().time_s, 0.9, 1e-9);
+  EXPECT_FALSE(pairs.front().interpolated);
+  EXPECT_EQ(pairer.counters().follower_unpaired, 9u);  // 0.0 .. 0.8
+  EXPECT_EQ(pairer.counters().leader_too_late, 0u);
+  EXPECT_EQ(pairs.size(), 31u - 9u);
+}
+
+// A looping replay whose follower comes round first: the leader is still on the old time base,
+// far ahead. That is no leader past the follower's new epochs: they wait for the leader's loop.
+TEST(Pairing, AFollowerThatLoopsFirstWaitsForTheLeadersLoop)
+{
+  acc::EpochPairer pairer;
+  for (double t : epochs(0.0, 20.0))
+  {
+    pairer.addLeader(fixAt(t));
+    pairer.addFollower(fixAt(t, -0.001));
+  }
+  const auto loop = epochs(0.0, 20.0);
+  for (std::size_t i = 0; i < loop.size(); ++i)
+  {
+    pairer.addFollower(fixAt(loop[i], -0.001));
+    if (i >= 5)  // the leader's loop 0.5 s behind
+      pairer.addLeader(fixAt(loop[i - 5]));
+  }
+  for (std::size_t i = loop.size() - 5; i < loop.size(); ++i)
+    pairer.addLeader(fixAt(loop[i]));
+  EXPECT_EQ(pairer.counters().follower_time_resets, 1u);
+  EXPECT_EQ(pairer.counters().leader_time_resets, 1u);
+  EXPECT_EQ(pairer.counters().follower_unpaired, 0u);
+  EXPECT_EQ(pairer.takePairs().size(), 2u * 201u);
+}
+
+// A follower receiver whose time jumps back once and returns: the leader, far ahead of that one
+// epoch, is not awaited to reset as well once the follower is back on its time.
+TEST(Pairing, AFollowerTimeGlitchDoesNotLeaveTheEpochsBehindItWaiting)
+{
+  acc::PairingSettings settings;
+  settings.timeout_s = 1e6;
+  acc::EpochPairer pairer(settings);
+  for (double t : epochs(0.0, 40.0))
+  {
+    pairer.addLeader(fixAt(t));
+    pairer.addFollower(fixAt(std::abs(t - 20.0) < 1e-6 ? 10.0 : t, -0.001));
+  }
+  EXPECT_EQ(pairer.counters().follower_time_resets, 1u);
+  EXPECT_EQ(pairer.counters().follower_unpaired, 1u);  // the epoch stamped 10.0
+  EXPECT_EQ(pairer.counters().buffer_overflows, 0u);
+  EXPECT_EQ(pairer.takePairs().size(), 401u - 1u);
+}
+
+// The ROS node sizes its publisher's queue by mostPairsAtOnce(): no call may complete more, even
+// when a reorder window as long as the timeout lets an early epoch hold back the buffer behind it.
+TEST(Pairing, NoCallCompletesMorePairsThanMostPairsAtOnce)
+{
+  acc::PairingSettings settings;
+  settings.timeout_s = 1e6;
+  settings.exact_wait_s = 1e6;
+  settings.max_buffered_fixes = 50;
+  acc::EpochPairer pairer(settings);
+  std::size_t largest = 0, total = 0;
+  for (double t : epochs(0.0, 30.0))
+  {
+    pairer.addFollower(fixAt(t, -0.001));
+    if (t > 0.05)  // the leader's first epoch never comes: 0.0 waits for it until the buffer overflows
+      pairer.addLeader(fixAt(t));
+    std::size_t completed = pairer.takePairs().size();
+    largest = std::max(largest, completed);
+    total += completed;
+  }
+  EXPECT_GT(pairer.counters().buffer_overflows, 0u);
+  EXPECT_GT(largest, 1u);
+  EXPECT_LE(largest, pairer.mostPairsAtOnce());
+  EXPECT_EQ(total + pairer.counters().follower_unpaired, 301u);
+}

@@ -19,14 +19,17 @@ struct PairingSettings
   /// Interpolation only between two leader epochs each within this of the follower's epoch, so
   /// that a leader gap is never bridged (at 10 Hz, 0.15 s allows one epoch of phase offset).
   double max_interpolation_skew_s = 0.15;
+  /// How far out of order the leader's fixes may arrive (leader GNSS time behind its newest).
   /// When the leader's epochs fall on the follower's and the one at the follower's epoch is
-  /// missing, it may still come out of order: wait until the leader's stream is this far past
-  /// it (leader GNSS time) before interpolating across it. An exact epoch beats an interpolated
-  /// one; out-of-order arrivals within this span are paired exactly. (The leader's epoch period
-  /// is learnt as the smallest spacing of its epochs seen so far.)
+  /// missing, it may still come: wait until the leader's stream is this far past it before
+  /// interpolating across it. An exact epoch beats an interpolated one; out-of-order arrivals
+  /// within this span are paired exactly. And a follower epoch whose missing leader fixes the
+  /// leader's stream is further past than this can never be paired: it is given up at once, not
+  /// after timeout_s. (The leader's epoch period is learnt as the smallest spacing seen so far.)
   double exact_wait_s = 0.5;
-  /// A follower epoch waits for the leader's data at most this long, measured on the follower's
-  /// GNSS clock; then it is counted as unpaired. This is the latency budget of the radio link.
+  /// A follower epoch waits at most this long, measured on the follower's GNSS clock, for leader
+  /// data that can still arrive (the leader's stream has not yet reached it, or is past it by
+  /// less than exact_wait_s); then it is counted as unpaired. The latency budget of the radio link.
   double timeout_s = 2.0;
   /// Successive epochs of one stream further apart than this are a dropout (counted, logged).
   double dropout_gap_s = 0.5;
@@ -53,7 +56,8 @@ struct PairingCounters
   std::uint64_t follower_out_of_order = 0;   ///< arrived after a later epoch (used if in time)
   std::uint64_t follower_too_late = 0;       ///< arrived after a later pair was already output
   std::uint64_t leader_too_late = 0;         ///< older than every follower epoch still waiting
-  std::uint64_t follower_unpaired = 0;       ///< timed out without leader data within the skew
+  std::uint64_t follower_unpaired = 0;       ///< no leader data within the skew: the leader's
+                                             ///< stream passed it, or it timed out
   std::uint64_t leader_dropouts = 0;         ///< gaps longer than dropout_gap_s in the stream
   std::uint64_t follower_dropouts = 0;
   std::uint64_t leader_time_resets = 0;      ///< time went back more than time_reset_s
@@ -84,7 +88,8 @@ struct PairedEpoch
 
 /// Pairs follower epochs with the leader's position at the same GNSS time. Output is driven by
 /// the follower's epochs, in increasing GNSS time; a follower epoch waits (up to timeout_s) for
-/// leader data around it, so late and out-of-order leader fixes are still used.
+/// leader data around it that can still arrive, so late and out-of-order leader fixes are still
+/// used, and an epoch that can no longer be paired holds back none behind it.
 class EpochPairer
 {
 public:
@@ -100,16 +105,22 @@ public:
 
   const PairingCounters& counters() const { return counters_; }
   const PairingSettings& settings() const { return settings_; }
+  /// The most pairs one addLeader or addFollower can complete: every follower epoch buffered.
+  std::size_t mostPairsAtOnce() const { return settings_.max_buffered_fixes; }
 
 private:
   // kInterpolable: an interpolation is ready, but the leader's own epoch is expected.
-  enum class Resolution { kPaired, kInterpolable, kWaiting };
+  // kWaiting: a leader fix it needs can still arrive. kUnpairable: none can any more.
+  enum class Resolution { kPaired, kInterpolable, kWaiting, kUnpairable };
 
   bool acceptStream(const GnssFix& fix, bool leader);
+  void noteTimeBases(bool follower_reset);
   void insertLeader(const GnssFix& fix);
   void insertFollower(const GnssFix& fix);
   void resolvePending();
   Resolution tryPair(const GnssFix& follower, PairedEpoch& pair) const;
+  bool leaderIsPast(double time_s) const;
+  void giveUp(double time_s, Resolution resolution);
   void trimLeader();
   void event(const std::string& text, bool per_epoch = true);
 
@@ -125,6 +136,7 @@ private:
   double last_output_s_ = GnssFix::kNaN;  // newest follower epoch resolved (paired or not)
   bool break_before_next_ = true;
   bool arrived_out_of_order_ = false;  // of the fix being added, counted once it is kept
+  bool leader_reset_awaited_ = false;  // the follower's time went back, the leader's not yet
 };
 
 /// The fix between a and b at time_s, linear in every field (course by the shorter turn).

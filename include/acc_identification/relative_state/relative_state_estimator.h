@@ -6,6 +6,7 @@
 #include <acc_identification/relative_state/relative_state.h>
 #include <acc_identification/relative_state/vehicle_geometry.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -66,6 +67,8 @@ public:
   std::vector<PairingEvent> takeEvents();
 
   const PairingCounters& pairingCounters() const { return pairer_.counters(); }
+  /// The most states one addLeader or addFollower can complete (one per pair).
+  std::size_t mostStatesAtOnce() const { return pairer_.mostPairsAtOnce(); }
   const RelativeStateCounters& counters() const { return counters_; }
   const RelativeStateSettings& settings() const { return settings_; }
 

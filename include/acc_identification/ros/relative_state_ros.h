@@ -4,6 +4,7 @@
 // a struct of that name); it must come before any other include of acc_identification/GnssFix.h.
 #include "acc_identification/ros/gps_driver_ros.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -57,6 +58,7 @@ private:
   // Wall-clock health: the data's own time may be a replay's.
   ros::WallTime last_leader_, last_follower_, last_valid_;
   std::uint64_t published_ = 0;
+  std::size_t publisher_queue_size_ = 0;  // holds the largest burst of states (see the constructor)
   /// States whose GNSS time ros::Time cannot hold (acc::toRosTime failed): counted, not published.
   std::uint64_t unrepresentable_times_ = 0, unrepresentable_times_at_last_diagnostic_ = 0;
   RelativeState last_state_;
