@@ -273,10 +273,12 @@ nlohmann::json linkJson(const LinkEvidence& e)
             {"parameters", parametersJson(e.diagnosed_parameters)},
             {"effect_values", values},
             {"small_signal",
-             {{"peak_gain_db", e.diagnosed_small_signal.peak_gain_db},
-              {"peak_frequency_rad_s", e.diagnosed_small_signal.peak_frequency_rad_s},
-              {"string_stable", e.diagnosed_small_signal.string_stable},
-              {"how", e.diagnosed_small_signal.note}}},
+             e.diagnosed_available
+                 ? nlohmann::json{{"peak_gain_db", e.diagnosed_small_signal.peak_gain_db},
+                                  {"peak_frequency_rad_s", e.diagnosed_small_signal.peak_frequency_rad_s},
+                                  {"string_stable", e.diagnosed_small_signal.string_stable},
+                                  {"how", e.diagnosed_small_signal.note}}
+                 : nlohmann::json(nullptr)},
             {"long_platoon",
              {{"cars", kLongPlatoonCars},
               {"perturbations", e.long_platoon_perturbations},
@@ -310,7 +312,8 @@ std::vector<std::vector<std::string>> linkRows(const CampaignResult& result)
                     toString(d.amplifies),
                     e.response.effective_segments < 4.0 ? "too short" : rangesText(e.base_departs_rad_s),
                     e.response.effective_segments < 4.0 ? "too short" : rangesText(e.diagnosed_departs_rad_s),
-                    format("%.2f", e.diagnosed_small_signal.peak_gain_db), format("%.2f", e.long_platoon_dip_ratio)});
+                    format("%.2f", e.diagnosed_available ? e.diagnosed_small_signal.peak_gain_db : kNaN),
+                    format("%.2f", e.long_platoon_dip_ratio)});
   }
   return rows;
 }
