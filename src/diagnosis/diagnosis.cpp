@@ -64,7 +64,7 @@ double median(std::vector<double> values)
 /// their fits can land in different valleys of that trade-off: from the base fit the lag fit may
 /// return to "no lag" (k2 near 0, tau_e large) where started from the offset's base parameters it
 /// finds a lower training error (a 2 s lag injected into the Toyota runs: 0.3255 -> 0.3247 m/s,
-/// README semi-real checks). So a timing effect's fit is started again from the base parameters of
+/// docs/RESULTS.md, semi-real checks). So a timing effect's fit is started again from the base parameters of
 /// the best other timing effect's fit when that fits the training data better, and the better of
 /// the two is kept: never worse than the first fit, and the same for any thread count. One restart
 /// (from the best), not one per better fit: each is a whole multistart fit.

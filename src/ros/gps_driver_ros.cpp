@@ -149,6 +149,7 @@ GpsDriverRos::GpsDriverRos(ros::NodeHandle node, ros::NodeHandle private_node)
   private_node.param<std::string>("vel_frame_id", vel_frame_id_, "enu");
   private_node.param("epoch_idle_s", epoch_idle_s_, epoch_idle_s_);
   private_node.param("epoch_idle_wall_s", epoch_idle_wall_s_, epoch_idle_wall_s_);
+  private_node.param("end_of_file_wait_s", end_of_file_wait_s_, end_of_file_wait_s_);
   double epoch_reorder_wait_s = 0.0;
   private_node.param("epoch_reorder_wait_s", epoch_reorder_wait_s, epoch_reorder_wait_s);
   decoder_.setReorderWait(std::max(0.0, epoch_reorder_wait_s));
@@ -182,7 +183,7 @@ GpsDriverRos::GpsDriverRos(ros::NodeHandle node, ros::NodeHandle private_node)
     std::string error;
     source_ = makeByteSource(source_uri_, error);
     if (!source_)
-      ROS_FATAL("gps_driver: %s", error.c_str());
+      ROS_FATAL("gps_driver: %s: the driver exits", error.c_str());
   }
   updater_.setHardwareID(source_uri_);
   updater_.add("NMEA receiver " + frame_id_, this, &GpsDriverRos::diagnose);
@@ -318,8 +319,14 @@ void GpsDriverRos::finishReplay()
   decoder_.finish(receive_time_.toSec());
   updater_.force_update();
   ROS_INFO("gps_driver: end of %s: %s", source_->description().c_str(), decoder_.statistics().summary().c_str());
-  // Give the transport a moment to deliver the last messages before the process exits.
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  // Give the transport a moment to deliver the last messages before the process exits, and, in a
+  // launch that ends with this node (replay_nmea.launch), the chain time to finish its last samples.
+  const SteadyClock::time_point end = SteadyClock::now();
+  while (ros::ok() && seconds(SteadyClock::now() - end) < end_of_file_wait_s_)
+  {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    ros::spinOnce();
+  }
   ros::spinOnce();
 }
 

@@ -35,7 +35,7 @@ using nlohmann::json;
 
 namespace
 {
-const char* kFigures = R"(FIGURE (paper figure), with each option's default:
+const char* kFigures = R"(FIGURE: a name or the paper's figure number (fig1 to fig8), with each option's default:
   lambda2-map  (fig1)  lambda2 over (k1, k2) for several tau_e; --map-tau-e 0.5,1,1.5,2,3
                        --k1-max 1 --k2-max 1 --grid 100
   step         (fig2)  platoon behind a lead speed step down and back up; --vehicles 9 --speed 25
@@ -56,6 +56,20 @@ settings (repeatable, in order; default min and max of Table II):
 common: --time-step 0.1 (Euler step of every simulation, s)
 RUN.csv: canonical (time_s,space_gap_m,follower_speed_mps,leader_speed_mps) or OpenACC two-vehicle CSV.
 )";
+
+/// The paper's figure numbers, as a reader types them, for the names the figures have here.
+const std::map<std::string, std::string> kFigureNumbers{
+    {"fig1", "lambda2-map"}, {"fig2", "step"}, {"fig3", "timeseries"}, {"fig4", "timeseries"},
+    {"fig5", "equilibrium"}, {"fig6", "bode"}, {"fig7", "sinusoid"},   {"fig8", "lead-profile"}};
+
+/// Every FIGURE the command line accepts: the names and the figure numbers.
+std::vector<std::string> acceptedFigures()
+{
+  std::vector<std::string> accepted{"lambda2-map", "step", "bode", "sinusoid", "lead-profile", "equilibrium", "timeseries"};
+  for (const auto& number : kFigureNumbers)
+    accepted.push_back(number.first);
+  return accepted;
+}
 
 /// Thrown for bad input; main prints it with the usage and exits 2.
 struct UsageError : std::runtime_error
@@ -677,12 +691,8 @@ json runFigure(const std::string& figure, const Options& options, const std::str
       {"lead-profile", [&] { return leadProfileFigure(options, csv_path, h); }},
       {"equilibrium", [&] { return equilibriumFigure(options, csv_path); }},
       {"timeseries", [&] { return timeseriesFigure(options, csv_path); }}};
-  const std::map<std::string, std::string> aliases{{"fig1", "lambda2-map"}, {"fig2", "step"},
-                                                   {"fig3", "timeseries"},  {"fig4", "timeseries"},
-                                                   {"fig5", "equilibrium"}, {"fig6", "bode"},
-                                                   {"fig7", "sinusoid"},    {"fig8", "lead-profile"}};
-  const auto alias = aliases.find(figure);
-  const auto found = figures.find(alias == aliases.end() ? figure : alias->second);
+  const auto alias = kFigureNumbers.find(figure);
+  const auto found = figures.find(alias == kFigureNumbers.end() ? figure : alias->second);
   if (found == figures.end())
   {
     throw UsageError("unknown figure '" + figure + "'");
@@ -701,7 +711,7 @@ int main(int argc, char** argv)
   std::map<std::string, std::vector<std::string>> given;
   app.add_option("FIGURE", figure, "the figure")
       ->required()
-      ->check(CLI::IsMember({"lambda2-map", "step", "bode", "sinusoid", "lead-profile", "equilibrium", "timeseries"}));
+      ->check(CLI::IsMember(acceptedFigures()));
   app.add_option("--csv", csv_path, "the figure's data")->required();
   app.add_option("--summary-json", summary_path, "the figure's key numbers");
   for (const std::string& name : kValueOptions)

@@ -443,7 +443,7 @@ def run_one(setup, level, namespaces, logs, work, env, processes):
         # Everything ROS stays on the follower; only the NMEA datagrams cross the link.
         follower_env = ros_env(env, "http://localhost:%d" % port, ROS_HOSTNAME="localhost")
         lead_env = env
-        # As the README's field command: the leader's epochs wait for sentences the link reorders.
+        # As the field command of docs/FIELD_OPERATION.md: the leader's epochs wait for sentences the link reorders.
         leader_args = ["leader_source:=udp://:%d" % LEADER_PORT, "leader_epoch_reorder_wait_s:=0.5"]
         lead_target = namespaces.follower_ip
     else:

@@ -168,6 +168,8 @@ def main():
     arguments = sys.argv[1:]
     if len(arguments) == 2 and arguments[0] == "--junit":
         from rosunit import xmlrunner
+        # The results folder may not exist yet when this is the first test catkin runs.
+        os.makedirs(os.path.dirname(os.path.abspath(arguments[1])), exist_ok=True)
         with open(arguments[1], "w") as report:
             runner = xmlrunner.XMLTestRunner(stream=report)
             result = runner.run(unittest.defaultTestLoader.loadTestsFromTestCase(

@@ -157,7 +157,7 @@ acc::SemiRealSet toyotaSet()
 // A 1.0 s open-loop lag injected into the real Toyota runs: the lag's own fit moves by the
 // closed-loop reading of their final model (0.69 s) +- 25 %, the net effect is above the
 // detection limit, and the check passes. On Casale the lag's fit stays at 0 on the training
-// halves whatever the injection (README, semi-real checks): no test can ask it there.
+// halves whatever the injection (docs/RESULTS.md, semi-real checks): no test can ask it there.
 TEST(InjectedEffectRealData, ToyotaLagMovesTheLagFitByItsClosedLoopReading)
 {
   const acc::SemiRealSet set = toyotaSet();
@@ -176,8 +176,8 @@ TEST(InjectedEffectRealData, ToyotaLagMovesTheLagFitByItsClosedLoopReading)
 
 // A 1.0 s leader clock offset injected into the real runs moves the offset's own fit by +1.0 s
 // +- 25 %: the injection's sign is the diagnosis's. The selection rule does not name it on these
-// runs (the offset model loses on their held-out halves with or without the injection, README
-// "diagnose"), which `diagnose --withheld-suite semi-real` reports; this checks the magnitude only.
+// runs (the offset model loses on their held-out halves with or without the injection, docs/RESULTS.md,
+// "The diagnosis"), which `diagnose --withheld-suite semi-real` reports; this checks the magnitude only.
 TEST(InjectedEffectRealData, CasaleOffsetMovesTheOffsetFitByTheInjectedValue)
 {
   const acc::SemiRealSet set = casaleSet();

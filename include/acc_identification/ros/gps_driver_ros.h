@@ -82,6 +82,7 @@ private:
   std::string vel_frame_id_;
   double epoch_idle_s_ = 0.05;
   double epoch_idle_wall_s_ = 1.0;
+  double end_of_file_wait_s_ = 0.5;  // ~end_of_file_wait_s: file source, stay this long after the end
   bool topic_source_ = false;
   ros::Subscriber sentence_subscriber_;
   std::uint64_t sentences_in_ = 0;

@@ -1,0 +1,137 @@
+#!/usr/bin/env python3
+"""The launch files and tools as a newcomer types them (issue 24).
+
+- replay_nmea.launch and replay.launch take log and bag paths relative to the directory roslaunch
+  was started in (the nodes themselves run in ROS_HOME), and end on their own: replay_nmea.launch
+  after its logs, both at once when a source is missing, with the reason on the screen.
+- `platoon` takes the paper's figure numbers (fig1 ... fig8) as well as the figures' names, and
+  an unknown figure gets a message that lists them.
+
+Each roslaunch gets a master of its own on a free port, in its own process group, ended by its id.
+Usage: test_launch_sources.py [--junit FILE]   (with the workspace's devel/setup.bash sourced)
+"""
+import os
+import pathlib
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import unittest
+
+REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
+# An OpenACC excerpt shipped in the repository (JRC OpenACC, CC BY 4.0: see its ATTRIBUTION.md).
+OPENACC_EXCERPT = REPOSITORY / "test/data/openacc/zalazone_dynamic_part26_excerpt.csv"
+# A bag of raw sentences of both receivers (made by test/data/end_to_end/make_dropout_bag.sh).
+SENTENCE_BAG = REPOSITORY / "test/data/end_to_end/leader_dropout_5s.bag"
+LAUNCH_TIMEOUT_S = 90
+
+
+def free_port():
+    with socket.socket() as probe:
+        probe.bind(("localhost", 0))
+        return probe.getsockname()[1]
+
+
+class UserCommands(unittest.TestCase):
+    def setUp(self):
+        self.directory = pathlib.Path(tempfile.mkdtemp(prefix="acc_launch_sources_"))
+        self.environment = dict(os.environ)
+        self.environment.update({
+            "ROS_MASTER_URI": "http://localhost:%d" % free_port(),
+            "ROS_HOME": str(self.directory / "ros_home"),
+            "ROS_LOG_DIR": str(self.directory / "ros_home/log"),
+            # What a shell sets: the directory the user typed the command in.
+            "PWD": str(self.directory),
+        })
+        self.environment.setdefault("ROS_HOSTNAME", "localhost")
+
+    def tearDown(self):
+        shutil.rmtree(self.directory, ignore_errors=True)
+
+    def run_command(self, arguments, timeout_s=60):
+        return subprocess.run(arguments, cwd=self.directory, env=self.environment, capture_output=True,
+                              text=True, timeout=timeout_s)
+
+    def roslaunch(self, arguments):
+        """Runs roslaunch ARGUMENTS in the user's directory; (ended on its own, its output)."""
+        process = subprocess.Popen(["roslaunch", "acc_identification"] + arguments, cwd=self.directory,
+                                   env=self.environment, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                   text=True, start_new_session=True)
+        try:
+            output, _ = process.communicate(timeout=LAUNCH_TIMEOUT_S)
+            return True, output
+        except subprocess.TimeoutExpired:
+            # Ours only: the process group this test started, by its id.
+            os.killpg(process.pid, signal.SIGINT)
+            try:
+                output, _ = process.communicate(timeout=20)
+            except subprocess.TimeoutExpired:
+                os.killpg(process.pid, signal.SIGKILL)
+                output, _ = process.communicate()
+            return False, output
+
+    def make_logs(self):
+        converted = self.run_command(["rosrun", "acc_identification", "openacc_to_nmea", str(OPENACC_EXCERPT),
+                                      "L.nmea", "F.nmea"])
+        self.assertEqual(converted.returncode, 0, converted.stdout + converted.stderr)
+        self.assertTrue((self.directory / "L.nmea").stat().st_size > 0)
+
+    def test_replay_nmea_takes_relative_logs_and_ends_after_them(self):
+        self.make_logs()
+        ended, output = self.roslaunch(["replay_nmea.launch", "leader_log:=L.nmea", "follower_log:=F.nmea",
+                                        "rate:=10", "end_wait_s:=2"])
+        self.assertTrue(ended, "replay_nmea.launch did not end after its logs:\n" + output[-3000:])
+        self.assertNotIn("FATAL", output, output[-3000:])
+        for log in ("L.nmea", "F.nmea"):
+            self.assertIn("gps_driver: end of file://%s/%s" % (self.directory, log), output, output[-3000:])
+
+    def test_replay_nmea_ends_when_a_log_is_missing(self):
+        self.make_logs()
+        ended, output = self.roslaunch(["replay_nmea.launch", "leader_log:=L.nmea", "follower_log:=missing.nmea",
+                                        "rate:=10"])
+        self.assertTrue(ended, "replay_nmea.launch stayed up without its follower log:\n" + output[-3000:])
+        self.assertIn("cannot open %s/missing.nmea" % self.directory, output, output[-3000:])
+
+    def test_replay_takes_a_relative_bag(self):
+        shutil.copy(SENTENCE_BAG, self.directory / "drive.bag")
+        ended, output = self.roslaunch(["replay.launch", "bag:=drive.bag", "rate:=20", "required:=true"])
+        self.assertTrue(ended, "replay.launch did not end after its bag:\n" + output[-3000:])
+        self.assertNotIn("rosbag play failed", output, output[-3000:])
+        self.assertNotIn("[FATAL]", output, output[-3000:])
+        # The bag's sentences went through the drivers and relative_state to the identifier,
+        # which names each window it solved by its times.
+        self.assertRegex(output, r"identifier: window [0-9.]+-[0-9.]+ s", output[-3000:])
+
+    def test_replay_ends_when_the_bag_is_missing(self):
+        ended, output = self.roslaunch(["replay.launch", "bag:=missing.bag", "rate:=20"])
+        self.assertTrue(ended, "replay.launch stayed up without its bag:\n" + output[-3000:])
+        self.assertIn("rosbag play failed on %s/missing.bag" % self.directory, output, output[-3000:])
+
+    def test_platoon_takes_the_papers_figure_numbers(self):
+        for figure in ("fig6", "fig7"):
+            result = self.run_command(["rosrun", "acc_identification", "platoon", figure, "--csv", figure + ".csv"])
+            self.assertEqual(result.returncode, 0, figure + ": " + result.stdout + result.stderr)
+            self.assertTrue((self.directory / (figure + ".csv")).stat().st_size > 0)
+        unknown = self.run_command(["rosrun", "acc_identification", "platoon", "fig9", "--csv", "fig9.csv"])
+        self.assertNotEqual(unknown.returncode, 0)
+        for figure in ["fig%d" % number for number in range(1, 9)] + ["sinusoid", "lead-profile"]:
+            self.assertIn(figure, unknown.stderr, unknown.stderr)
+
+
+def main():
+    arguments = sys.argv[1:]
+    if len(arguments) == 2 and arguments[0] == "--junit":
+        from rosunit import xmlrunner
+        # The results folder may not exist yet when this is the first test catkin runs.
+        os.makedirs(os.path.dirname(os.path.abspath(arguments[1])), exist_ok=True)
+        with open(arguments[1], "w") as report:
+            runner = xmlrunner.XMLTestRunner(stream=report)
+            result = runner.run(unittest.defaultTestLoader.loadTestsFromTestCase(UserCommands))
+        sys.exit(0 if result.wasSuccessful() else 1)
+    unittest.main(argv=[sys.argv[0]] + arguments, verbosity=2)
+
+
+if __name__ == "__main__":
+    main()
