@@ -38,6 +38,22 @@ def footer(fig, attribution):
     fig.text(0.01, 0.005, attribution, fontsize=5, wrap=True, va="bottom")
 
 
+def save_placeholder(path, text):
+    """A figure that says why there is nothing to draw, so that the report's link never breaks."""
+    fig, ax = plt.subplots(figsize=(6, 2))
+    ax.text(0.5, 0.5, text, ha="center")
+    ax.axis("off")
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def panel_grid(count, max_columns, panel_size):
+    """A grid of at least `count` panels, at most max_columns wide, each panel_size inches."""
+    columns = min(max_columns, count)
+    rows = math.ceil(count / columns)
+    return plt.subplots(rows, columns, figsize=(panel_size[0] * columns, panel_size[1] * rows), squeeze=False)
+
+
 def plot_parameters(vehicles, path, attribution):
     labels = [f"{v['name']}/{v['setting']}" for v in vehicles]
     fig, axes = plt.subplots(len(PARAMETERS), 1, figsize=(max(8, 0.45 * len(labels) + 2), 11), sharex=True)
@@ -96,15 +112,9 @@ def plot_margins(vehicles, path, attribution):
 def plot_dips(platoons, path, attribution):
     panels = [(p["run"], p["setting"], i, q) for p in platoons for i, q in enumerate(p["perturbations"])]
     if not panels:
-        fig, ax = plt.subplots(figsize=(6, 2))
-        ax.text(0.5, 0.5, "no perturbation in any run", ha="center")
-        ax.axis("off")
-        fig.savefig(path, dpi=120)
-        plt.close(fig)
+        save_placeholder(path, "no perturbation in any run")
         return
-    columns = min(3, len(panels))
-    rows = math.ceil(len(panels) / columns)
-    fig, axes = plt.subplots(rows, columns, figsize=(5 * columns, 3.6 * rows), squeeze=False)
+    fig, axes = panel_grid(len(panels), 3, (5, 3.6))
     for ax, (run, setting, index, perturbation) in zip(axes.flat, panels):
         positions = [r["position"] for r in perturbation["positions"]]
         measured = [number(r["measured_dip_mps"]) for r in perturbation["positions"]]
@@ -133,15 +143,9 @@ def plot_link_gains(links, path, attribution):
     """Empirical |Gamma| (dots where informative, band) against the base and diagnosed model, per car."""
     panels = [e for e in links if e["frequency_response"]["segments_used"] > 0]
     if not panels:
-        fig, ax = plt.subplots(figsize=(6, 2))
-        ax.text(0.5, 0.5, "no car has a stretch long enough for a spectrum", ha="center")
-        ax.axis("off")
-        fig.savefig(path, dpi=120)
-        plt.close(fig)
+        save_placeholder(path, "no car has a stretch long enough for a spectrum")
         return
-    columns = min(4, len(panels))
-    rows = math.ceil(len(panels) / columns)
-    fig, axes = plt.subplots(rows, columns, figsize=(4.2 * columns, 3.2 * rows), squeeze=False)
+    fig, axes = panel_grid(len(panels), 4, (4.2, 3.2))
     for ax, e in zip(axes.flat, panels):
         r = e["frequency_response"]
         keep = [i for i, w in enumerate(r["frequency_rad_s"]) if w <= 2.0]

@@ -151,6 +151,14 @@ nlohmann::json disagreementsJson(const std::vector<PlatoonDisagreement>& list)
   return j;
 }
 
+nlohmann::json effectNamesJson(const std::vector<EffectKind>& effects)
+{
+  nlohmann::json j = nlohmann::json::array();
+  for (EffectKind kind : effects)
+    j.push_back(effectName(kind));
+  return j;
+}
+
 /// The effects of a model with their values and standard errors (effect parameters only).
 nlohmann::json effectsJson(const PlatoonCarModel& model)
 {
@@ -162,23 +170,12 @@ nlohmann::json effectsJson(const PlatoonCarModel& model)
     const std::size_t se = AugmentedParameterBox::kBaseDimension + i;
     errors[names[i]] = se < model.standard_errors.size() ? model.standard_errors[se] : kNaN;
   }
-  nlohmann::json names_json = nlohmann::json::array();
-  for (EffectKind kind : model.effects)
-    names_json.push_back(effectName(kind));
-  return {{"effects", names_json}, {"values", values}, {"standard_errors", errors}};
+  return {{"effects", effectNamesJson(model.effects)}, {"values", values}, {"standard_errors", errors}};
 }
 
 nlohmann::json parametersJson(const AccParameters& p)
 {
   return {{"k1_per_s2", p.k1_per_s2}, {"k2_per_s", p.k2_per_s}, {"tau_e_s", p.tau_e_s}, {"eta_m", p.eta_m}};
-}
-
-nlohmann::json effectNamesJson(const std::vector<EffectKind>& effects)
-{
-  nlohmann::json j = nlohmann::json::array();
-  for (EffectKind kind : effects)
-    j.push_back(effectName(kind));
-  return j;
 }
 
 nlohmann::json candidateJson(const PlatoonCandidate& candidate)
@@ -310,8 +307,8 @@ std::vector<std::vector<std::string>> linkRows(const CampaignResult& result)
     rows.push_back({e.vehicle, e.setting, std::to_string(d.count),
                     format("%.2f", d.ratio_of_means) + " [" + format("%.2f", d.lower) + ", " + format("%.2f", d.upper) + "]",
                     toString(d.amplifies),
-                    e.response.effective_segments < 4.0 ? "too short" : rangesText(e.base_departs_rad_s),
-                    e.response.effective_segments < 4.0 ? "too short" : rangesText(e.diagnosed_departs_rad_s),
+                    responseRead(e) ? rangesText(e.base_departs_rad_s) : "too short",
+                    responseRead(e) ? rangesText(e.diagnosed_departs_rad_s) : "too short",
                     format("%.2f", e.diagnosed_available ? e.diagnosed_small_signal.peak_gain_db : kNaN),
                     format("%.2f", e.long_platoon_dip_ratio)});
   }

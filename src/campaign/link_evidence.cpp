@@ -66,9 +66,6 @@ void concatenateSegments(const CampaignGroup& group, std::vector<double>* leader
 /// Above this the 10 Hz records are spline-interpolated GNSS and the ACC's own dynamics are long
 /// over: car-following perturbations and ACC responses live below 1 rad/s.
 constexpr double kMaxLinkFrequencyRadS = 2.0;
-/// A coherence averaged over fewer effective segments is biased towards 1 (exactly 1 from one
-/// segment): below this many the empirical response is not read.
-constexpr double kMinEffectiveSegments = 4.0;
 constexpr std::size_t kLinkWelchSegmentSamples = 512;
 
 /// Ranges of consecutive bins (up to kMaxLinkFrequencyRadS) where the empirical gain is
@@ -201,7 +198,7 @@ LinkEvidence evidenceOf(const CampaignInputs& inputs, const CampaignGroup& group
     simulateLongPlatoon(inputs, group.setting, platoon_options, &evidence);
   else
     evidence.long_platoon_dip_ratio = kNaN;
-  if (evidence.response.effective_segments < kMinEffectiveSegments)
+  if (!responseRead(evidence))
     evidence.note += (evidence.note.empty() ? "" : "; ") +
                      std::string("fewer than 4 effective Welch segments of 512 samples: the empirical frequency "
                                  "response is not read");

@@ -472,14 +472,6 @@ double predictedOf(const DipComparison& row, DipPrediction which)
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-double medianOf(std::vector<double> values)
-{
-  if (values.empty())
-    return std::numeric_limits<double>::quiet_NaN();
-  std::sort(values.begin(), values.end());
-  const std::size_t mid = values.size() / 2;
-  return values.size() % 2 == 1 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
-}
 }  // namespace
 
 DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& platoons, DipPrediction which,
@@ -512,7 +504,7 @@ DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& pl
     }
   }
   out.car_perturbations = errors.size();
-  out.median_dip_error = medianOf(errors);
+  out.median_dip_error = finiteMedian(errors);
   std::vector<double> absolute;
   std::size_t within = 0;
   for (double e : errors)
@@ -520,7 +512,7 @@ DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& pl
     absolute.push_back(std::abs(e));
     within += std::abs(e) <= 0.3 ? 1 : 0;
   }
-  out.median_abs_dip_error = medianOf(absolute);
+  out.median_abs_dip_error = finiteMedian(absolute);
   out.share_within_30_percent = errors.empty() ? std::numeric_limits<double>::quiet_NaN()
                                                : static_cast<double>(within) / static_cast<double>(errors.size());
   out.share_links_growth_right = out.links == 0 ? std::numeric_limits<double>::quiet_NaN()

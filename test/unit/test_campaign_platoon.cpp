@@ -1,6 +1,8 @@
 // The platoon check on a synthetic platoon whose cars are string unstable: the prediction from
 // the first car, with leave-one-run-out models, must show the growth the data show.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -17,18 +19,33 @@ namespace fs = std::filesystem;
 
 // m = 0.1 + 2 * 0.25 * 1.0 - 2 = -1.4: dips of 10-30 s grow along the platoon.
 const acc::AccParameters kUnstable{0.10, 0.25, 1.0, 4.0};
+
+/// `runs` synthetic platoon files of the cars at setting S, run r with the order rotated right by r
+/// (a.csv in the given order, b.csv with the last car first, ...) and seed first_seed + r, read as a
+/// campaign; the files are removed again.
+acc::CampaignInputs rotatedPlatoons(const std::string& label, const std::vector<acc_test::SyntheticCar>& cars,
+                                    std::size_t runs, std::uint64_t first_seed)
+{
+  const fs::path folder = fs::temp_directory_path() / ("acc_campaign_" + label + "_" + std::to_string(::getpid()));
+  fs::create_directories(folder);
+  for (std::size_t r = 0; r < runs; ++r)
+  {
+    std::vector<acc_test::SyntheticCar> order = cars;
+    std::rotate(order.rbegin(), order.rbegin() + static_cast<long>(r % cars.size()), order.rend());
+    const std::string name(1, static_cast<char>('a' + r));
+    acc_test::writeSyntheticPlatoon((folder / (name + ".csv")).string(), "S", order, first_seed + r);
+  }
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.string()});
+  fs::remove_all(folder);
+  return inputs;
+}
 }  // namespace
 
 TEST(CampaignPlatoon, UnstableCarsAmplifyAndThePredictionAgrees)
 {
   ASSERT_FALSE(acc::analyzeStringStability(kUnstable).string_stable);
-  const fs::path folder = fs::temp_directory_path() / ("acc_campaign_platoon_" + std::to_string(::getpid()));
-  fs::create_directories(folder);
   const std::vector<acc_test::SyntheticCar> cars{{"CAR_A", kUnstable}, {"CAR_B", kUnstable}, {"CAR_C", kUnstable}};
-  acc_test::writeSyntheticPlatoon((folder / "a.csv").string(), "S", cars, 41);
-  acc_test::writeSyntheticPlatoon((folder / "b.csv").string(), "S", {cars[2], cars[0], cars[1]}, 42);
-  const acc::CampaignInputs inputs = acc::loadCampaign({folder.string()});
-  fs::remove_all(folder);
+  const acc::CampaignInputs inputs = rotatedPlatoons("platoon", cars, 2, 41);
   acc::CampaignOptions options;
   options.group.starts = 8;
   options.threads = 2;
@@ -97,14 +114,8 @@ TEST(CampaignPlatoon, TheDiagnosisFindsWhatClosesTheDipGapOfLateReactingCars)
   const acc::AccParameters brisk{0.10, 0.60, 1.2, 4.0};
   acc::EffectSettings late;
   late.reaction_delay_s = 1.0;
-  const fs::path folder = fs::temp_directory_path() / ("acc_campaign_delay_" + std::to_string(::getpid()));
-  fs::create_directories(folder);
   const std::vector<acc_test::SyntheticCar> cars{{"CAR_A", brisk, late}, {"CAR_B", brisk, late}, {"CAR_C", brisk, late}};
-  acc_test::writeSyntheticPlatoon((folder / "a.csv").string(), "S", cars, 51);
-  acc_test::writeSyntheticPlatoon((folder / "b.csv").string(), "S", {cars[2], cars[0], cars[1]}, 52);
-  acc_test::writeSyntheticPlatoon((folder / "c.csv").string(), "S", {cars[1], cars[2], cars[0]}, 53);
-  const acc::CampaignInputs inputs = acc::loadCampaign({folder.string()});
-  fs::remove_all(folder);
+  const acc::CampaignInputs inputs = rotatedPlatoons("delay", cars, 3, 51);
   acc::CampaignOptions options;
   options.group.starts = 8;
   options.threads = 2;

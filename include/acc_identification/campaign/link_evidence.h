@@ -54,6 +54,16 @@ struct LinkEvidence
   std::string note;  ///< what could not be computed, and why
 };
 
+/// A coherence averaged over fewer effective Welch segments is biased towards 1 (exactly 1 from one
+/// segment): below this many the empirical response is not read.
+constexpr double kMinEffectiveSegments = 4.0;
+
+/// Whether the car's empirical frequency response rests on enough segments to be read.
+inline bool responseRead(const LinkEvidence& evidence)
+{
+  return evidence.response.effective_segments >= kMinEffectiveSegments;
+}
+
 /// Number of identical cars in the simulated long platoon.
 constexpr int kLongPlatoonCars = 10;
 
