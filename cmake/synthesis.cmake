@@ -1,8 +1,8 @@
 # Synthetic drives (issue 5): a lead profile of the paper, a follower by the ACC model (with the
 # diagnosis's unmodelled effects on request), both cars on a curved road, each receiver with its
 # GNSS errors, written as NMEA logs, truth CSV, parameters JSON and bags. The ROS-free library
-# acc_synthesis, the synthesize and nmea_to_bag tools, and their tests. Builds on the gnss and
-# relative_state components (NMEA writer and reader, geodesy) and reproduction (lead profiles A-I);
+# acc_synthesis, the synthesize tool, and their tests; bags are written by gnss.cmake's
+# acc_sentence_bag. Builds on the gnss and relative_state components (NMEA writer and reader, geodesy) and reproduction (lead profiles A-I);
 # the follower with its effects is the model core's simulator.
 if(NOT (TARGET acc_conversion AND TARGET acc_reproduction))
   message(WARNING "synthesis needs the gnss, relative_state and reproduction components in "
@@ -16,15 +16,10 @@ acc_add_library(acc_synthesis
     src/synthesis/drive_truth.cpp
     src/synthesis/synthesis.cpp
     src/synthesis/synthesis_output.cpp
-    src/synthesis/nmea_log_timing.cpp
   LINK acc_conversion acc_relative_state acc_reproduction ${GeographicLib_LIBRARIES})
 target_link_libraries(acc_synthesis PRIVATE nlohmann_json::nlohmann_json)
 
-# Raw sentences into bags (rosbag API, no ROS master needed).
-acc_add_ros_library(acc_sentence_bag SOURCES src/ros/sentence_bag_writer.cpp LINK acc_synthesis)
-
 acc_add_tool(synthesize LINK acc_synthesis acc_sentence_bag)
-acc_add_tool(nmea_to_bag LINK acc_sentence_bag)
 install(PROGRAMS scripts/make_bags.sh DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 
 if(CATKIN_ENABLE_TESTING)

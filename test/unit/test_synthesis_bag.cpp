@@ -19,7 +19,7 @@
 #include "acc_identification/synthesis/synthesis_output.h"
 #include "acc_identification/gnss/nmea_parser.h"
 #include "acc_identification/ros/sentence_bag_writer.h"
-#include "acc_identification/synthesis/nmea_log_timing.h"
+#include "acc_identification/gnss/nmea_log_timing.h"
 
 namespace acc
 {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "acc_identification/synthesis/nmea_log_timing.h"
+#include "acc_identification/gnss/nmea_log_timing.h"
 
 namespace acc
 {

@@ -1,4 +1,4 @@
-#include "acc_identification/synthesis/nmea_log_timing.h"
+#include "acc_identification/gnss/nmea_log_timing.h"
 
 #include <cmath>
 #include <fstream>
