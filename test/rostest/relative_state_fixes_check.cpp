@@ -20,6 +20,8 @@
 
 #include <diagnostic_msgs/DiagnosticArray.h>
 
+#include "ros_test_support.h"
+
 #include "acc_identification/conversion/openacc_to_nmea.h"
 #include "acc_identification/gnss/nmea_log.h"
 #include "acc_identification/model/portable_uniform.h"
@@ -44,30 +46,10 @@ std::vector<acc::GnssFix> recorded(const acc::OpenAccPairTrack& file, int vehicl
 struct Received
 {
   std::vector<acc_identification::RelativeState> states;
-  std::map<std::string, std::string> diagnostics;  // the latest "Relative state" key/values
-  std::string diagnostic_summary;
+  acc_test::DiagnosticStatusRecord diagnostics{"Relative state"};
   void onState(const acc_identification::RelativeState& m) { states.push_back(m); }
-  void onDiagnostics(const diagnostic_msgs::DiagnosticArray& array)
-  {
-    for (const auto& status : array.status)
-      if (status.name.find("Relative state") != std::string::npos)
-      {
-        diagnostic_summary = status.message;
-        for (const auto& kv : status.values)
-          diagnostics[kv.key] = kv.value;
-      }
-  }
 };
-
-void spinFor(double seconds)
-{
-  ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
-  while (ros::ok() && ros::WallTime::now() < end)
-  {
-    ros::spinOnce();
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
-}
+using acc_test::spinFor;
 }  // namespace
 
 TEST(RelativeStateNode, PairsLateBurstyLeaderFixesAndReportsDropoutsAndTimeResets)
@@ -83,7 +65,8 @@ TEST(RelativeStateNode, PairsLateBurstyLeaderFixesAndReportsDropoutsAndTimeReset
 
   Received received;
   auto state_sub = node.subscribe("relative_state", 10000, &Received::onState, &received);
-  auto diagnostics_sub = node.subscribe("/diagnostics", 100, &Received::onDiagnostics, &received);
+  auto diagnostics_sub = node.subscribe("/diagnostics", 100, &acc_test::DiagnosticStatusRecord::onDiagnostics,
+                                        &received.diagnostics);
   auto leader_pub = node.advertise<acc_identification::GnssFix>("leader/fix", 1000);
   auto follower_pub = node.advertise<acc_identification::GnssFix>("follower/fix", 1000);
   ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(20.0);
@@ -164,14 +147,14 @@ TEST(RelativeStateNode, PairsLateBurstyLeaderFixesAndReportsDropoutsAndTimeReset
   EXPECT_TRUE(std::isfinite(received.states[pass1 - 1].gap_doppler_residual_m));
   EXPECT_LT(received.states[pass1 - 1].gap_doppler_residual_m, 1.0);
 
-  ASSERT_FALSE(received.diagnostics.empty()) << "no diagnostics from relative_state_node";
-  EXPECT_EQ(received.diagnostics["leader_dropouts"], "1");
-  EXPECT_EQ(received.diagnostics["follower_unpaired"], std::to_string(kDropoutLast - kDropoutFirst + 1));
-  EXPECT_EQ(received.diagnostics["leader_time_resets"], "1");
-  EXPECT_EQ(received.diagnostics["follower_time_resets"], "1");
-  EXPECT_EQ(received.diagnostics["follower_invalid_fixes"], "1");
-  EXPECT_NE(received.diagnostics["leader_out_of_order"], "0");
-  EXPECT_EQ(received.diagnostics["published"], std::to_string(received.states.size()));
+  ASSERT_FALSE(received.diagnostics.values.empty()) << "no diagnostics from relative_state_node";
+  EXPECT_EQ(received.diagnostics.values["leader_dropouts"], "1");
+  EXPECT_EQ(received.diagnostics.values["follower_unpaired"], std::to_string(kDropoutLast - kDropoutFirst + 1));
+  EXPECT_EQ(received.diagnostics.values["leader_time_resets"], "1");
+  EXPECT_EQ(received.diagnostics.values["follower_time_resets"], "1");
+  EXPECT_EQ(received.diagnostics.values["follower_invalid_fixes"], "1");
+  EXPECT_NE(received.diagnostics.values["leader_out_of_order"], "0");
+  EXPECT_EQ(received.diagnostics.values["published"], std::to_string(received.states.size()));
 }
 
 int main(int argc, char** argv)

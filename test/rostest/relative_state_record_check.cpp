@@ -24,6 +24,7 @@
 #include <xmlrpcpp/XmlRpc.h>
 
 #include "acc_identification/gnss/nmea_log.h"
+#include "ros_test_support.h"
 
 namespace fs = std::filesystem;
 
@@ -43,7 +44,7 @@ std::set<long long> epochTimes(const std::string& log)
 struct Received
 {
   std::size_t leader_fixes = 0, follower_fixes = 0;
-  std::map<std::string, std::string> diagnostics;  // the latest "Relative state" key/values
+  acc_test::DiagnosticStatusRecord diagnostics{"Relative state"};
   ros::WallTime last_fix = ros::WallTime::now();
   void onLeader(const acc_identification::GnssFix&)
   {
@@ -55,23 +56,11 @@ struct Received
     ++follower_fixes;
     last_fix = ros::WallTime::now();
   }
-  void onDiagnostics(const diagnostic_msgs::DiagnosticArray& array)
-  {
-    for (const auto& status : array.status)
-      if (status.name.find("Relative state") != std::string::npos)
-        for (const auto& kv : status.values)
-          diagnostics[kv.key] = kv.value;
-  }
 };
 
 void spinFor(double seconds)
 {
-  ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
-  while (ros::ok() && ros::WallTime::now() < end)
-  {
-    ros::spinOnce();
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
+  acc_test::spinFor(seconds, std::chrono::milliseconds(5));
 }
 
 /// True when the master lists node among topic's subscribers.
@@ -134,7 +123,8 @@ TEST(RelativeStateRecord, TheRecordingHoldsEveryPairableEpochAndEverySamplePubli
   ASSERT_TRUE(subscribes(recorder, "/relative_state")) << recorder << " did not subscribe";
   spinFor(1.0);
   Received received;
-  auto diagnostics_sub = node.subscribe("/diagnostics", 100, &Received::onDiagnostics, &received);
+  auto diagnostics_sub = node.subscribe("/diagnostics", 100, &acc_test::DiagnosticStatusRecord::onDiagnostics,
+                                        &received.diagnostics);
   auto leader_sub = node.subscribe("leader/fix", 100000, &Received::onLeader, &received);
   auto follower_sub = node.subscribe("follower/fix", 100000, &Received::onFollower, &received);
   // Until both logs are through, or nothing has come for 15 s; then two diagnostic periods.
@@ -167,15 +157,15 @@ TEST(RelativeStateRecord, TheRecordingHoldsEveryPairableEpochAndEverySamplePubli
     missing += recorded.count(t) == 0;
   std::printf("%zu pairable epochs (follower %zu, leader %zu); node published %s; recorded %zu, %zu pairable "
               "missing; buffer_overflows %s, follower_unpaired %s\n",
-              pairable.size(), follower_times.size(), leader_times.size(), received.diagnostics["published"].c_str(),
-              recorded_samples, missing, received.diagnostics["buffer_overflows"].c_str(),
-              received.diagnostics["follower_unpaired"].c_str());
-  ASSERT_FALSE(received.diagnostics.empty()) << "no diagnostics from relative_state_node";
-  EXPECT_EQ(std::to_string(recorded_samples), received.diagnostics["published"]);
+              pairable.size(), follower_times.size(), leader_times.size(), received.diagnostics.values["published"].c_str(),
+              recorded_samples, missing, received.diagnostics.values["buffer_overflows"].c_str(),
+              received.diagnostics.values["follower_unpaired"].c_str());
+  ASSERT_FALSE(received.diagnostics.values.empty()) << "no diagnostics from relative_state_node";
+  EXPECT_EQ(std::to_string(recorded_samples), received.diagnostics.values["published"]);
   EXPECT_EQ(missing, 0u);
   EXPECT_EQ(recorded_samples, pairable.size());
-  EXPECT_EQ(received.diagnostics["follower_unpaired"], std::to_string(follower_times.size() - pairable.size()));
-  EXPECT_EQ(received.diagnostics["buffer_overflows"], "0");
+  EXPECT_EQ(received.diagnostics.values["follower_unpaired"], std::to_string(follower_times.size() - pairable.size()));
+  EXPECT_EQ(received.diagnostics.values["buffer_overflows"], "0");
 }
 
 int main(int argc, char** argv)
