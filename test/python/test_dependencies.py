@@ -15,6 +15,8 @@ import pathlib
 import subprocess
 import sys
 import unittest
+
+import junit_main
 import xml.etree.ElementTree as ElementTree
 
 import yaml
@@ -142,7 +144,10 @@ class DeclaredDependencies(unittest.TestCase):
         for path in python_files():
             relative = path.relative_to(REPOSITORY)
             for module in sorted(set(imported_modules(path))):
-                if module in sys.stdlib_module_names or module in OWN_MODULES:
+                # A module beside the script is the package's own (Python puts the script's
+                # folder first on its path).
+                beside = (path.parent / (module + ".py")).exists()
+                if module in sys.stdlib_module_names or module in OWN_MODULES or beside:
                     continue
                 packages = python_module_packages(module)
                 if not packages:
@@ -165,17 +170,7 @@ class DeclaredDependencies(unittest.TestCase):
 
 
 def main():
-    arguments = sys.argv[1:]
-    if len(arguments) == 2 and arguments[0] == "--junit":
-        from rosunit import xmlrunner
-        # The results folder may not exist yet when this is the first test catkin runs.
-        os.makedirs(os.path.dirname(os.path.abspath(arguments[1])), exist_ok=True)
-        with open(arguments[1], "w") as report:
-            runner = xmlrunner.XMLTestRunner(stream=report)
-            result = runner.run(unittest.defaultTestLoader.loadTestsFromTestCase(
-                DeclaredDependencies))
-        sys.exit(0 if result.wasSuccessful() else 1)
-    unittest.main(argv=[sys.argv[0]] + arguments, verbosity=2)
+    junit_main.run(DeclaredDependencies)
 
 
 if __name__ == "__main__":

@@ -29,6 +29,8 @@ import sys
 import tempfile
 import unittest
 
+import junit_main
+
 REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
 DOCUMENTS = ["README.md"] + sorted(str(path.relative_to(REPOSITORY)) for path in (REPOSITORY / "docs").glob("*.md"))
 FENCE = re.compile(r"^```(\S*)(.*)$")
@@ -157,15 +159,7 @@ def main():
     if len(arguments) >= 2 and arguments[0] == "--devel":
         DEVEL = arguments[1]
         arguments = arguments[2:]
-    if len(arguments) == 2 and arguments[0] == "--junit":
-        from rosunit import xmlrunner
-        # The results folder may not exist yet when this is the first test catkin runs.
-        os.makedirs(os.path.dirname(os.path.abspath(arguments[1])), exist_ok=True)
-        with open(arguments[1], "w") as report:
-            runner = xmlrunner.XMLTestRunner(stream=report)
-            result = runner.run(unittest.defaultTestLoader.loadTestsFromTestCase(DocumentCommands))
-        sys.exit(0 if result.wasSuccessful() else 1)
-    unittest.main(argv=[sys.argv[0]] + arguments, verbosity=2)
+    junit_main.run(DocumentCommands, arguments)
 
 
 if __name__ == "__main__":

@@ -20,6 +20,8 @@ import sys
 import tempfile
 import unittest
 
+import junit_main
+
 REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
 # An OpenACC excerpt shipped in the repository (JRC OpenACC, CC BY 4.0: see its ATTRIBUTION.md).
 OPENACC_EXCERPT = REPOSITORY / "test/data/openacc/zalazone_dynamic_part26_excerpt.csv"
@@ -121,16 +123,7 @@ class UserCommands(unittest.TestCase):
 
 
 def main():
-    arguments = sys.argv[1:]
-    if len(arguments) == 2 and arguments[0] == "--junit":
-        from rosunit import xmlrunner
-        # The results folder may not exist yet when this is the first test catkin runs.
-        os.makedirs(os.path.dirname(os.path.abspath(arguments[1])), exist_ok=True)
-        with open(arguments[1], "w") as report:
-            runner = xmlrunner.XMLTestRunner(stream=report)
-            result = runner.run(unittest.defaultTestLoader.loadTestsFromTestCase(UserCommands))
-        sys.exit(0 if result.wasSuccessful() else 1)
-    unittest.main(argv=[sys.argv[0]] + arguments, verbosity=2)
+    junit_main.run(UserCommands)
 
 
 if __name__ == "__main__":
