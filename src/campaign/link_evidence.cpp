@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "acc_identification/campaign/perturbation.h"
+#include "acc_identification/evidence/perturbation.h"
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/parallel_tasks.h"

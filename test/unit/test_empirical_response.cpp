@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "acc_identification/campaign/empirical_response.h"
+#include "acc_identification/evidence/empirical_response.h"
 #include "acc_identification/model/normal_source.h"
 
 namespace

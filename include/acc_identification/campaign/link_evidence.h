@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "acc_identification/campaign/campaign_inputs.h"
-#include "acc_identification/campaign/empirical_response.h"
+#include "acc_identification/evidence/empirical_response.h"
 #include "acc_identification/campaign/group_identification.h"
 #include "acc_identification/campaign/platoon_check.h"
 #include "acc_identification/campaign/platoon_diagnosis.h"

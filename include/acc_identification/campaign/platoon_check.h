@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "acc_identification/campaign/campaign_inputs.h"
-#include "acc_identification/campaign/perturbation.h"
+#include "acc_identification/evidence/perturbation.h"
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/follower_effects.h"
 

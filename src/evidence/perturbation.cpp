@@ -1,4 +1,4 @@
-#include "acc_identification/campaign/perturbation.h"
+#include "acc_identification/evidence/perturbation.h"
 
 #include <algorithm>
 #include <cmath>

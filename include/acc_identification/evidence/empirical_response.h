@@ -10,7 +10,7 @@ namespace acc
 {
 // Model-free evidence of string stability, per car and per link (a car and the car directly
 // ahead of it): what the measured speeds say without any fitted ACC model.
-//  - linkDipRatio: over a run's perturbations (campaign/perturbation.h), how the follower's dips
+//  - linkDipRatio: over a run's perturbations (evidence/perturbation.h), how the follower's dips
 //    compare with its leader's, with a bootstrap confidence interval over the perturbations.
 //  - empiricalResponse: Welch's estimate of the link's frequency response |Gamma(jw)| from the
 //    two speed series, with its coherence and a confidence band; the caller compares it with a

@@ -1,4 +1,4 @@
-#include "acc_identification/campaign/empirical_response.h"
+#include "acc_identification/evidence/empirical_response.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include <unsupported/Eigen/FFT>
 
-#include "acc_identification/campaign/perturbation.h"
+#include "acc_identification/evidence/perturbation.h"
 #include "acc_identification/model/portable_uniform.h"
 
 namespace acc

@@ -1,0 +1,18 @@
+# What the measured speeds say of string stability without any fitted model (always built, like
+# the model core): perturbations of a leader and the dips they cause, the follower/leader dip
+# ratio with its bootstrap interval, and Welch's empirical frequency response of a link. The
+# calibrate tool states it beside the model's verdict; the campaign per car and link.
+acc_add_library(acc_evidence
+  SOURCES
+    src/evidence/perturbation.cpp
+    src/evidence/empirical_response.cpp
+    src/evidence/pair_dip_evidence.cpp
+  LINK acc_model Eigen3::Eigen)
+
+if(CATKIN_ENABLE_TESTING)
+  catkin_add_gtest(test_evidence
+    test/unit/gtest_main.cpp
+    test/unit/test_empirical_response.cpp
+    test/unit/test_pair_dip_evidence.cpp)
+  target_link_libraries(test_evidence acc_evidence)
+endif()

@@ -1,0 +1,28 @@
+#include "acc_identification/evidence/pair_dip_evidence.h"
+
+namespace acc
+{
+PairDipEvidence pairDipEvidence(const std::vector<CarFollowingRun>& runs, const PerturbationCriteria& criteria,
+                                std::size_t replicates, std::uint64_t seed)
+{
+  PairDipEvidence evidence;
+  std::vector<double> leader_dips, follower_dips;
+  for (const CarFollowingRun& run : runs)
+  {
+    for (const Perturbation& perturbation : findPerturbations(run.time_s, run.leader_speed_mps, criteria))
+    {
+      PairDip dip;
+      dip.run = run.name;
+      dip.onset_s = perturbation.onset_s;
+      dip.leader_dip_mps = dipDepthMps(run.time_s, run.leader_speed_mps, perturbation, criteria);
+      dip.follower_dip_mps = dipDepthMps(run.time_s, run.follower_speed_mps, perturbation, criteria);
+      leader_dips.push_back(dip.leader_dip_mps);
+      follower_dips.push_back(dip.follower_dip_mps);
+      evidence.dips.push_back(dip);
+    }
+  }
+  evidence.ratio = linkDipRatio(follower_dips, leader_dips, replicates, seed);
+  return evidence;
+}
+
+}  // namespace acc
