@@ -1222,80 +1222,82 @@ std::string OpenAccPairSelector::describe() const
   return "follower '" + follower + "'";
 }
 
-OpenAccPairChoice selectOpenAccPairs(const OpenAccFile& file, const OpenAccPairSelector& selector)
+namespace
+{
+/// Why the file has no pair: each follower's reason.
+std::string noPairError(const OpenAccFile& file)
+{
+  std::vector<std::string> why;
+  for (int k = 2; k <= highestPosition(file); ++k)
+  {
+    if (file.vehicle(k) != nullptr)
+    {
+      why.push_back(describePairlessFollower(file, k));
+    }
+  }
+  return file.path + ": no leader-follower pair (a follower and the car directly ahead, both with Speed "
+                     "data, and their IVS gap)" +
+         (why.empty() ? std::string("") : ": " + join(why, "; "));
+}
+
+/// The first pair, and the others named: never chosen silently.
+OpenAccPairChoice firstPair(const OpenAccFile& file, const std::vector<OpenAccPair>& pairs)
 {
   OpenAccPairChoice choice;
-  const std::vector<OpenAccPair> pairs = availablePairs(file);
-  const std::string listed = "pairs in this file: " + describeAvailablePairs(file);
-  if (pairs.empty())
+  choice.pairs.push_back(pairs.front());
+  std::vector<std::string> others;
+  for (std::size_t i = 1; i < pairs.size(); ++i)
   {
-    std::vector<std::string> why;
-    for (int k = 2; k <= highestPosition(file); ++k)
-    {
-      if (file.vehicle(k) != nullptr)
-      {
-        why.push_back(describePairlessFollower(file, k));
-      }
-    }
-    choice.error = file.path + ": no leader-follower pair (a follower and the car directly ahead, both with Speed "
-                               "data, and their IVS gap)" +
-                   (why.empty() ? std::string("") : ": " + join(why, "; "));
-    return choice;
+    others.push_back(pairs[i].label());
   }
-  if (selector.kind == OpenAccPairSelector::Kind::kFirst)
-  {
-    choice.pairs.push_back(pairs.front());
-    std::vector<std::string> others;
-    for (std::size_t i = 1; i < pairs.size(); ++i)
-    {
-      others.push_back(pairs[i].label());
-    }
-    choice.note = file.path + ": pair read: " + pairs.front().label() + " (no follower chosen: the first available " +
-                  (others.empty() ? std::string("and only pair)") : "pair; the others: " + join(others, "; ") + ")");
-    return choice;
-  }
-  if (selector.kind == OpenAccPairSelector::Kind::kAll)
-  {
-    choice.pairs = pairs;
-    choice.note = file.path + ": every pair read (" + std::to_string(pairs.size()) + "): " + describeAvailablePairs(file);
-    return choice;
-  }
-  // One follower, by position or by name.
-  const std::string wanted = trim(selector.follower);
-  int position = 0;
+  choice.note = file.path + ": pair read: " + pairs.front().label() + " (no follower chosen: the first available " +
+                (others.empty() ? std::string("and only pair)") : "pair; the others: " + join(others, "; ") + ")");
+  return choice;
+}
+
+/// The position of the follower named by a number or a Vehicle_order name (any case); 0 with
+/// error set when the name is not there or not unique; -1 for a number too large to be one.
+int followerPosition(const OpenAccFile& file, const std::string& wanted, const std::string& listed, std::string& error)
+{
   if (!wanted.empty() && wanted.find_first_not_of("0123456789") == std::string::npos)
   {
     const auto number = parseInteger(wanted);
-    position = number && *number <= 100000 ? static_cast<int>(*number) : -1;
+    return number && *number <= 100000 ? static_cast<int>(*number) : -1;
   }
-  else
+  std::vector<std::string> at;  // the positions of the name, as written in messages
+  int position = 0;
+  for (std::size_t i = 0; i < file.metadata.vehicle_order.size(); ++i)
   {
-    std::vector<int> matches;
-    for (std::size_t i = 0; i < file.metadata.vehicle_order.size(); ++i)
+    if (upper(file.metadata.vehicle_order[i]) == upper(wanted))
     {
-      if (upper(file.metadata.vehicle_order[i]) == upper(wanted))
-      {
-        matches.push_back(static_cast<int>(i) + 1);
-      }
+      position = at.empty() ? static_cast<int>(i) + 1 : position;
+      at.push_back(std::to_string(i + 1));
     }
-    if (matches.empty())
-    {
-      choice.error = file.path + ": no car '" + wanted + "' in Vehicle_order (" +
-                     join(file.metadata.vehicle_order, ", ") + "); " + listed;
-      return choice;
-    }
-    if (matches.size() > 1)
-    {
-      std::vector<std::string> at;
-      for (int k : matches)
-      {
-        at.push_back(std::to_string(k));
-      }
-      choice.error = file.path + ": '" + wanted + "' is at positions " + join(at, " and ") +
-                     " of Vehicle_order: choose the follower by position; " + listed;
-      return choice;
-    }
-    position = matches.front();
+  }
+  if (at.empty())
+  {
+    error = file.path + ": no car '" + wanted + "' in Vehicle_order (" + join(file.metadata.vehicle_order, ", ") +
+            "); " + listed;
+  }
+  else if (at.size() > 1)
+  {
+    error = file.path + ": '" + wanted + "' is at positions " + join(at, " and ") +
+            " of Vehicle_order: choose the follower by position; " + listed;
+  }
+  return error.empty() ? position : 0;
+}
+
+/// The pair of one follower, by position or by name.
+OpenAccPairChoice followerPair(const OpenAccFile& file, const std::vector<OpenAccPair>& pairs,
+                               const std::string& follower)
+{
+  OpenAccPairChoice choice;
+  const std::string wanted = trim(follower);
+  const std::string listed = "pairs in this file: " + describeAvailablePairs(file);
+  const int position = followerPosition(file, wanted, listed, choice.error);
+  if (!choice.error.empty())
+  {
+    return choice;
   }
   for (const OpenAccPair& pair : pairs)
   {
@@ -1310,6 +1312,27 @@ OpenAccPairChoice selectOpenAccPairs(const OpenAccFile& file, const OpenAccPairS
                  (position >= 1 ? " (position " + std::to_string(position) + ")" : "") + ": " +
                  describePairlessFollower(file, std::max(position, 0)) + "; " + listed;
   return choice;
+}
+}  // namespace
+
+OpenAccPairChoice selectOpenAccPairs(const OpenAccFile& file, const OpenAccPairSelector& selector)
+{
+  const std::vector<OpenAccPair> pairs = availablePairs(file);
+  if (pairs.empty())
+  {
+    OpenAccPairChoice choice;
+    choice.error = noPairError(file);
+    return choice;
+  }
+  switch (selector.kind)
+  {
+    case OpenAccPairSelector::Kind::kFirst: return firstPair(file, pairs);
+    case OpenAccPairSelector::Kind::kAll:
+      return {pairs, "", file.path + ": every pair read (" + std::to_string(pairs.size()) + "): " +
+                             describeAvailablePairs(file)};
+    case OpenAccPairSelector::Kind::kFollower: break;
+  }
+  return followerPair(file, pairs, selector.follower);
 }
 
 }  // namespace acc

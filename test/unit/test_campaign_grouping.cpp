@@ -12,6 +12,7 @@
 #include "acc_identification/campaign/campaign_output.h"
 #include "acc_identification/model/parallel_tasks.h"
 #include "acc_identification/campaign/perturbation.h"
+#include "acc_identification/io/run_csv.h"
 #include "campaign_test_data.h"
 
 namespace
