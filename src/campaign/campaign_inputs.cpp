@@ -222,6 +222,11 @@ void addFile(const std::string& path, const RunPlausibilityBounds& bounds, Campa
     ++inputs.skipped_files;
     return;
   }
+  if (!file.contents.metadata.lines_present)
+  {
+    // The reader's first note, here too: the cars' names and the setting "?" come from it.
+    inputs.notes.push_back(file.contents.notes.front());
+  }
   file.name = file.contents.name;
   file.setting = file.contents.metadata.distance_setting.empty() ? "?" : file.contents.metadata.distance_setting;
   AllPairRuns all;

@@ -205,3 +205,29 @@ TEST(CampaignInputs, WithNothingUsableTheErrorNamesEverySkip)
     EXPECT_NE(what.find("lonely.csv: no leader-follower pair (a follower"), std::string::npos) << what;
   }
 }
+
+TEST(CampaignInputs, AFileWithoutMetadataIsReadWithItsCarsNamedByPositionAndSaid)
+{
+  TempFolder folder("acc_campaign_astazero");
+  const std::string with_metadata = folder.file("with_metadata.txt");
+  acc_test::writeSyntheticPlatoon(with_metadata, "S", {kAS, kBS}, 51, 60.0);
+  // The same file as the AstaZero layout ships it: the header first, no metadata lines.
+  std::ifstream in(with_metadata);
+  std::ofstream out(folder.file("asta.csv"));
+  std::string line;
+  bool header_seen = false;
+  while (std::getline(in, line))
+  {
+    header_seen = header_seen || line.rfind("Time,", 0) == 0;
+    if (header_seen)
+      out << line << "\n";
+  }
+  out.close();
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.path()});
+  ASSERT_EQ(inputs.files.size(), 1u);
+  ASSERT_EQ(inputs.notes.size(), 1u);
+  EXPECT_NE(inputs.notes[0].find("asta.csv: no metadata lines"), std::string::npos) << inputs.notes[0];
+  ASSERT_EQ(inputs.groups.size(), 2u);
+  EXPECT_EQ(inputs.groups[0].label(), "vehicle 2/?");
+  EXPECT_EQ(inputs.groups[1].label(), "vehicle 3/?");
+}

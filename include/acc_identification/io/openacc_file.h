@@ -28,7 +28,8 @@ struct OpenAccMetadata
   int number_of_vehicles = -1;              ///< the Number_of_vehicles line; -1 when absent or not a number
   int acc = -1;                             ///< the ACC line: 0 manual, 1 ACC throughout, 2 mixed; -1 when absent
   std::string distance_setting;             ///< the Distance_setting line (S, M, L, min, max, SL...); "" when absent
-  /// False when the file starts with its header (no metadata line at all: the AstaZero layout).
+  /// False when the file starts with its header (no metadata line at all: the AstaZero layout);
+  /// then the file's first note says so.
   bool lines_present = true;
 };
 
