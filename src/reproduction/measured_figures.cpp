@@ -92,12 +92,11 @@ json pooledEquilibrium(const std::vector<acc::CarFollowingRun>& runs, const std:
 json equilibriumFigure(const FigureRequest& request)
 {
   const FigureOptions& options = request.options;
-  const std::string& csv_path = request.csv_path;
   const auto runs = readRunsOrThrow(options);
   const auto settings = resolveSettings(options, {"min", "max"});
   const double max_dv = options.positive("max-relative-speed", 0.5);
   const double max_accel = options.positive("max-acceleration", 0.1);
-  CsvWriter csv(csv_path, "run,time_s,follower_speed_mps,space_gap_m,steady");
+  CsvWriter csv(request.csv_path, "run,time_s,follower_speed_mps,space_gap_m,steady");
   json summary = {{"figure", "equilibrium"}, {"max_relative_speed_mps", max_dv}, {"max_acceleration_mps2", max_accel}};
   std::fprintf(request.streams.numbers,
                "space gap against speed (paper Fig. 5); steady: |dv| <= %g m/s and |a| <= %g m/s^2\n", max_dv,
@@ -143,7 +142,6 @@ json equilibriumFigure(const FigureRequest& request)
 json timeseriesFigure(const FigureRequest& request)
 {
   const FigureOptions& options = request.options;
-  const std::string& csv_path = request.csv_path;
   const auto runs = readRunsOrThrow(options);
   if (options.texts("run").size() != 1)
   {
@@ -166,7 +164,7 @@ json timeseriesFigure(const FigureRequest& request)
   }
   const auto settings = resolveSettings(options, {"min"});
   const double fraction = options.number("train-fraction", 0.5);
-  CsvWriter csv(csv_path, "setting,time_s,leader_speed_mps,measured_speed_mps,simulated_speed_mps,"
+  CsvWriter csv(request.csv_path, "setting,time_s,leader_speed_mps,measured_speed_mps,simulated_speed_mps,"
                           "measured_gap_m,simulated_gap_m,part");
   json summary = {{"figure", "timeseries"}, {"run", run.name}, {"train_fraction", fraction}};
   std::fprintf(request.streams.numbers, "measured against simulated follower (paper Figs. 3 and 4), run %s\n",

@@ -23,7 +23,6 @@ using nlohmann::json;
 json lambda2MapFigure(const FigureRequest& request)
 {
   const FigureOptions& options = request.options;
-  const std::string& csv_path = request.csv_path;
   acc::Lambda2MapGrid grid;
   if (options.has("map-tau-e"))
   {
@@ -34,7 +33,7 @@ json lambda2MapFigure(const FigureRequest& request)
   grid.k1_min_per_s2 = std::min(grid.k1_min_per_s2, grid.k1_max_per_s2 / 100.0);
   grid.k1_points = grid.k2_points = options.count("grid", 100, 2);
   const auto map = acc::lambda2Map(grid);
-  CsvWriter csv(csv_path, "tau_e_s,k1_per_s2,k2_per_s,lambda2,string_stable");
+  CsvWriter csv(request.csv_path, "tau_e_s,k1_per_s2,k2_per_s,lambda2,string_stable");
   for (const acc::Lambda2MapSample& s : map)
   {
     csv.row() << s.tau_e_s << ',' << s.k1_per_s2 << ',' << s.k2_per_s << ',' << s.lambda2 << ','
@@ -60,7 +59,6 @@ json lambda2MapFigure(const FigureRequest& request)
 json stepFigure(const FigureRequest& request)
 {
   const FigureOptions& options = request.options;
-  const std::string& csv_path = request.csv_path;
   const double h = request.time_step_s;
   const auto settings = resolveSettings(options, {"fig2-unstable", "fig2-stable"});
   const std::size_t vehicles = options.count("vehicles", 9, 1);
@@ -89,20 +87,19 @@ json stepFigure(const FigureRequest& request)
                  "%.3f m/s (overshoot %.3f above cruise)\n",
                  setting.name.c_str(), last.minimum_speed_mps, undershoot, last.maximum_speed_mps, overshoot);
   }
-  writePlatoonCsv(csv_path, runs);
+  writePlatoonCsv(request.csv_path, runs);
   return summary;
 }
 
 json bodeFigure(const FigureRequest& request)
 {
   const FigureOptions& options = request.options;
-  const std::string& csv_path = request.csv_path;
   const double h = request.time_step_s;
   const auto settings = resolveSettings(options, {"min", "max"});
   const auto frequencies = acc::logSpacedFrequencies(options.positive("min-frequency", 1e-3),
                                                      options.positive("max-frequency", 10.0),
                                                      options.count("points", 400, 2));
-  CsvWriter csv(csv_path, "setting,frequency_rad_s,gain_db,euler_gain_db");
+  CsvWriter csv(request.csv_path, "setting,frequency_rad_s,gain_db,euler_gain_db");
   json summary = {{"figure", "bode"}, {"time_step_s", h}};
   std::fprintf(request.streams.numbers, "Bode magnitude of the speed-to-speed transfer function (paper Fig. 6)\n");
   for (const auto& setting : settings)
@@ -124,7 +121,6 @@ json bodeFigure(const FigureRequest& request)
 json sinusoidFigure(const FigureRequest& request)
 {
   const FigureOptions& options = request.options;
-  const std::string& csv_path = request.csv_path;
   const double h = request.time_step_s;
   const auto settings = resolveSettings(options, {"min", "max"});
   const std::size_t vehicles = options.count("vehicles", 10, 1);
@@ -163,14 +159,13 @@ json sinusoidFigure(const FigureRequest& request)
                  setting.name.c_str(), r.model_gain, 20.0 * std::log10(r.model_gain), vehicles, r.last_follower_to_lead,
                  vehicles, r.model_gain_over_platoon, r.euler_gain_over_platoon, vehicles, r.last_to_first_follower);
   }
-  writePlatoonCsv(csv_path, runs);
+  writePlatoonCsv(request.csv_path, runs);
   return summary;
 }
 
 json leadProfileFigure(const FigureRequest& request)
 {
   const FigureOptions& options = request.options;
-  const std::string& csv_path = request.csv_path;
   const double h = request.time_step_s;
   const auto settings = resolveSettings(options, {"min", "max"});
   const std::string id = options.text("profile", "I");
@@ -227,7 +222,7 @@ json leadProfileFigure(const FigureRequest& request)
                    setting.name.c_str());
     }
   }
-  writePlatoonCsv(csv_path, runs);
+  writePlatoonCsv(request.csv_path, runs);
   return summary;
 }
 
