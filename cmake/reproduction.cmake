@@ -11,10 +11,16 @@ acc_add_library(acc_reproduction
     src/reproduction/run_comparison.cpp
     src/reproduction/equilibrium_regression.cpp
     src/reproduction/parameter_file.cpp
-  LINK acc_model)
+    src/reproduction/figure_options.cpp
+    src/reproduction/figure_csv.cpp
+    src/reproduction/figure_summary.cpp
+    src/reproduction/simulated_figures.cpp
+    src/reproduction/measured_figures.cpp
+    src/reproduction/paper_figures.cpp
+  LINK acc_model acc_run_io)
 target_link_libraries(acc_reproduction PRIVATE nlohmann_json::nlohmann_json)
 
-acc_add_tool(platoon LINK acc_reproduction acc_run_io nlohmann_json::nlohmann_json)
+acc_add_tool(platoon LINK acc_reproduction nlohmann_json::nlohmann_json)
 install(PROGRAMS scripts/plot_figures.py scripts/reproduce_figures.sh scripts/bundled_data.sh
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 

@@ -45,30 +45,59 @@ bool naturalLess(const std::string& a, const std::string& b)
   return a.size() - i < b.size() - j;
 }
 
-std::vector<std::string> openAccFilesIn(const std::string& folder)
+/// The folder's *.csv files in natural order: the OpenACC ones to read, the others skipped.
+CampaignFileList openAccFilesIn(const std::string& folder)
 {
-  std::vector<std::string> found;
+  std::vector<std::string> csv;
   for (const auto& entry : fs::directory_iterator(folder))
   {
-    const std::string path = entry.path().string();
-    if (entry.is_regular_file() && entry.path().extension() == ".csv" && looksLikeOpenAccFile(path))
-      found.push_back(path);
+    if (entry.is_regular_file() && entry.path().extension() == ".csv")
+      csv.push_back(entry.path().string());
   }
-  std::sort(found.begin(), found.end(), naturalLess);
-  if (found.empty())
-    throw std::invalid_argument(folder + ": no OpenACC *.csv file in this folder");
-  return found;
+  std::sort(csv.begin(), csv.end(), naturalLess);
+  CampaignFileList list;
+  for (const std::string& path : csv)
+  {
+    if (looksLikeOpenAccFile(path))
+      list.files.push_back(path);
+    else
+      list.skipped.push_back(path + ": not an OpenACC file (its first line is neither a Date line nor a header with "
+                                    "Time and Speed1, ...), skipped");
+  }
+  if (list.files.empty())
+    throw std::invalid_argument(folder + ": no OpenACC *.csv file in this folder" +
+                                (csv.empty() ? std::string("") : " (" + std::to_string(csv.size()) +
+                                                                     " other *.csv: not OpenACC)"));
+  return list;
+}
+
+/// Why a pair read from the file gave no run: its rows' counts, and the first problem met.
+std::string whyNoUsableRun(const RunFileContents& contents)
+{
+  if (contents.data_rows == 0)
+    return "no data rows";
+  if (contents.acc_off_rows == contents.data_rows)
+    return "the follower is on ACC in none of its " + std::to_string(contents.data_rows) + " rows";
+  std::string why = std::to_string(contents.data_rows) + " rows, " + std::to_string(contents.rejected_rows) +
+                    " rejected, " + std::to_string(contents.acc_off_rows) +
+                    " not on ACC: no stretch of two samples or more";
+  if (!contents.problems.empty())
+    why += " (first problem: " + contents.problems.front() + ")";
+  return why;
 }
 
 /// Adds the pairs of one file to the groups being built (keyed by vehicle and setting).
 void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile& file,
-              std::map<std::pair<std::string, std::string>, CampaignGroup>& groups, std::vector<std::string>& notes)
+              std::map<std::pair<std::string, std::string>, CampaignGroup>& groups, std::vector<std::string>& notes,
+              std::size_t& skipped_pairs)
 {
   for (const PairRunContents& pair : all.pairs)
   {
     if (pair.contents.runs.empty())
     {
-      notes.push_back(file.path + ": " + pair.pair.label() + ": no usable run, skipped");
+      notes.push_back(file.path + ": " + pair.pair.label() + ": no usable run (" + whyNoUsableRun(pair.contents) +
+                      "), skipped");
+      ++skipped_pairs;
       continue;
     }
     CampaignGroup& group = groups[{pair.pair.follower_name, file.setting}];
@@ -155,63 +184,97 @@ int settingRank(const std::string& setting)
   return it == order.end() ? static_cast<int>(order.size()) : static_cast<int>(it - order.begin());
 }
 
-std::vector<std::string> listCampaignFiles(const std::vector<std::string>& files_or_folders)
+CampaignFileList listCampaignFiles(const std::vector<std::string>& files_or_folders)
 {
-  std::vector<std::string> files;
+  CampaignFileList list;
   for (const std::string& path : files_or_folders)
   {
     if (fs::is_directory(path))
     {
-      const std::vector<std::string> found = openAccFilesIn(path);
-      files.insert(files.end(), found.begin(), found.end());
+      const CampaignFileList found = openAccFilesIn(path);
+      list.files.insert(list.files.end(), found.files.begin(), found.files.end());
+      list.skipped.insert(list.skipped.end(), found.skipped.begin(), found.skipped.end());
     }
     else if (fs::is_regular_file(path))
     {
-      files.push_back(path);
+      list.files.push_back(path);
     }
     else
     {
       throw std::invalid_argument(path + ": neither a file nor a folder");
     }
   }
-  return files;
+  return list;
 }
+
+namespace
+{
+/// One file into the inputs: its pairs into the groups, or a note saying why it is skipped.
+void addFile(const std::string& path, const RunPlausibilityBounds& bounds, CampaignInputs& inputs,
+             std::map<std::pair<std::string, std::string>, CampaignGroup>& groups)
+{
+  CampaignFile file;
+  file.path = path;
+  file.contents = readOpenAccFile(path);
+  if (!file.contents.error.empty())
+  {
+    inputs.notes.push_back(path + ": not read as an OpenACC file (" + file.contents.error + "), skipped");
+    ++inputs.skipped_files;
+    return;
+  }
+  if (!file.contents.metadata.lines_present)
+  {
+    // The reader's first note, here too: the cars' names and the setting "?" come from it.
+    inputs.notes.push_back(file.contents.notes.front());
+  }
+  file.name = file.contents.name;
+  file.setting = file.contents.metadata.distance_setting.empty() ? "?" : file.contents.metadata.distance_setting;
+  AllPairRuns all;
+  try
+  {
+    all = readAllPairRuns(path, bounds);
+  }
+  catch (const RunReadError& error)
+  {
+    inputs.notes.push_back(std::string(error.what()) + ", skipped");
+    ++inputs.skipped_files;
+    return;
+  }
+  inputs.files.push_back(std::move(file));
+  addPairs(all, inputs.files.size() - 1, inputs.files.back(), groups, inputs.notes, inputs.skipped_pairs);
+}
+
+std::string joinNotes(const std::vector<std::string>& notes)
+{
+  std::string text;
+  for (const std::string& note : notes)
+    text += "\n  " + note;
+  return text;
+}
+}  // namespace
 
 CampaignInputs loadCampaign(const std::vector<std::string>& paths, const RunPlausibilityBounds& bounds)
 {
   CampaignInputs inputs;
+  const CampaignFileList list = listCampaignFiles(paths);
+  inputs.notes = list.skipped;
+  inputs.skipped_files = list.skipped.size();
   std::map<std::pair<std::string, std::string>, CampaignGroup> groups;
-  for (const std::string& path : listCampaignFiles(paths))
-  {
-    CampaignFile file;
-    file.path = path;
-    file.contents = readOpenAccFile(path);
-    if (!file.contents.error.empty())
-    {
-      inputs.notes.push_back(path + ": not read as an OpenACC file (" + file.contents.error + "), skipped");
-      continue;
-    }
-    file.name = file.contents.name;
-    file.setting = file.contents.metadata.distance_setting.empty() ? "?" : file.contents.metadata.distance_setting;
-    AllPairRuns all;
-    try
-    {
-      all = readAllPairRuns(path, bounds);
-    }
-    catch (const RunReadError& error)
-    {
-      inputs.notes.push_back(std::string(error.what()) + ", skipped");
-      continue;
-    }
-    inputs.files.push_back(std::move(file));
-    addPairs(all, inputs.files.size() - 1, inputs.files.back(), groups, inputs.notes);
-  }
+  for (const std::string& path : list.files)
+    addFile(path, bounds, inputs, groups);
   for (auto& entry : groups)
     inputs.groups.push_back(std::move(entry.second));
   std::sort(inputs.groups.begin(), inputs.groups.end(), groupLess);
   if (inputs.groups.empty())
-    throw RunReadError("no leader-follower pair with usable runs in the files given");
+    throw RunReadError("no leader-follower pair with usable runs in the files given; skipped:" +
+                       joinNotes(inputs.notes));
   return inputs;
+}
+
+std::string CampaignInputs::describeSkipped() const
+{
+  return "skipped " + std::to_string(skipped_files) + " file(s) and " + std::to_string(skipped_pairs) + " pair(s)" +
+         (skipped_files + skipped_pairs > 0 ? " (each in a note above)" : "");
 }
 
 }  // namespace acc

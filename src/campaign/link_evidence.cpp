@@ -132,10 +132,8 @@ void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& settin
     if (perturbations.empty())
       continue;
     CarFollowingRun run;
-    run.time_s.assign(file.contents.time_s.begin() + static_cast<long>(first),
-                      file.contents.time_s.begin() + static_cast<long>(end));
-    const std::vector<double>& lead = file.contents.vehicle(1)->speed_mps;
-    run.leader_speed_mps.assign(lead.begin() + static_cast<long>(first), lead.begin() + static_cast<long>(end));
+    run.time_s = sliceRows(file.contents.time_s, first, end);
+    run.leader_speed_mps = sliceRows(file.contents.vehicle(1)->speed_mps, first, end);
     const std::vector<double> lead_speed = run.leader_speed_mps;
     const double v0 = run.leader_speed_mps.front();
     const AccParameters& p = evidence->diagnosed_parameters;

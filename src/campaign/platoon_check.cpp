@@ -70,8 +70,8 @@ void predictCar(const OpenAccFile& file, const std::vector<double>& input_mps, s
 {
   CarFollowingRun run;
   run.name = file.name + " " + car.name;
-  run.time_s.assign(file.time_s.begin() + start, file.time_s.begin() + end);
-  run.leader_speed_mps.assign(input_mps.begin() + start, input_mps.begin() + end);
+  run.time_s = sliceRows(file.time_s, start, end);
+  run.leader_speed_mps = sliceRows(input_mps, start, end);
   // Only the first gap and speed are read by the simulation (its measured start).
   run.follower_speed_mps.assign(run.size(), file.vehicle(car.position)->speed_mps[start]);
   run.space_gap_m.assign(run.size(), file.vehicle(car.position - 1)->gap_to_follower_m[start]);
@@ -147,11 +147,6 @@ std::vector<PlatoonCarPrediction> predictChain(const CampaignFile& file, const s
   return cars;
 }
 
-std::vector<double> slice(const std::vector<double>& values, std::size_t first, std::size_t end)
-{
-  return std::vector<double>(values.begin() + first, values.begin() + end);
-}
-
 double ratio(double dip, double dip_ahead)
 {
   if (!std::isfinite(dip) || !std::isfinite(dip_ahead) || dip_ahead < kMinDipForRatioMps)
@@ -204,7 +199,7 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
   PerturbationCheck result;
   result.perturbation = perturbation;
   auto dip = [&](const std::vector<double>& speed) {
-    return dipDepthMps(time_s, slice(speed, check.first_row, check.end_row), perturbation, options.perturbation);
+    return dipDepthMps(time_s, sliceRows(speed, check.first_row, check.end_row), perturbation, options.perturbation);
   };
   auto predictedDip = [&](const std::vector<PlatoonCarPrediction>& cars, std::size_t i) {
     return i < cars.size() && cars[i].predicted ? dip(cars[i].predicted_speed_mps) : kNaN;
@@ -311,8 +306,8 @@ std::vector<Perturbation> leadPerturbations(const OpenAccFile& file, const Plato
   std::tie(*first_row, *end_row) = longestLeadStretch(file, options.max_time_step_s);
   if (*end_row < *first_row + 2)
     return {};
-  return findPerturbations(slice(file.time_s, *first_row, *end_row),
-                           slice(file.vehicle(1)->speed_mps, *first_row, *end_row), options.perturbation);
+  return findPerturbations(sliceRows(file.time_s, *first_row, *end_row),
+                           sliceRows(file.vehicle(1)->speed_mps, *first_row, *end_row), options.perturbation);
 }
 
 PlatoonCheck checkPlatoon(const CampaignFile& file, const std::vector<PlatoonCarModel>& models,
@@ -345,7 +340,7 @@ PlatoonCheck checkPlatoon(const CampaignFile& file, const std::vector<PlatoonCar
     for (const PlatoonCarPrediction& car : check.cars_diagnosed)
       check.pairs_diagnosed.push_back(predictPair(data, car.position, car.model, check.first_row, check.end_row));
   }
-  const std::vector<double> time_s = slice(data.time_s, check.first_row, check.end_row);
+  const std::vector<double> time_s = sliceRows(data.time_s, check.first_row, check.end_row);
   if (found.empty())
     check.notes.push_back("no perturbation: the first car's speed never drops more than " +
                           format("%.1f m/s", options.perturbation.drop_below_median_mps) + " below its median");

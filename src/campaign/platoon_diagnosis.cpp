@@ -28,11 +28,6 @@ constexpr std::size_t kColdStarts = 4;
 /// (the same floor as the package's platoon scores).
 constexpr double kMinScoredDipMps = 0.3;
 
-std::vector<double> sliceRows(const std::vector<double>& values, std::size_t first, std::size_t end)
-{
-  return std::vector<double>(values.begin() + static_cast<long>(first), values.begin() + static_cast<long>(end));
-}
-
 /// Mean squared difference over the rows [first, end) where both are finite; NaN when none.
 double windowMse(const std::vector<double>& predicted, const std::vector<double>& measured, std::size_t first,
                  std::size_t end)

@@ -79,6 +79,12 @@ OpenAccPairTrack openAccPairTrack(const OpenAccFile& file, const OpenAccPair& pa
   track.day = file.metadata.day;
   track.angle_unit_note = file.angle_unit_reason;
   track.notes = file.notes;
+  if (!file.metadata.lines_present)
+  {
+    // Without a Date line the sentences would carry day 0: refused rather than misdated.
+    track.error = file.path + ": no Date line (the file starts with its header): NMEA sentences need the day";
+    return track;
+  }
   const OpenAccVehicle* cars[2] = {file.vehicle(pair.leader_position), file.vehicle(pair.follower_position)};
   for (const OpenAccVehicle* car : cars)
     if (car == nullptr || !car->has_lat_lon)

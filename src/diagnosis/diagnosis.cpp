@@ -11,20 +11,6 @@ namespace acc
 {
 namespace
 {
-CarFollowingRun slice(const CarFollowingRun& run, std::size_t begin, std::size_t end, const std::string& suffix)
-{
-  CarFollowingRun part;
-  part.name = run.name + suffix;
-  part.time_s.assign(run.time_s.begin() + static_cast<long>(begin), run.time_s.begin() + static_cast<long>(end));
-  part.space_gap_m.assign(run.space_gap_m.begin() + static_cast<long>(begin),
-                          run.space_gap_m.begin() + static_cast<long>(end));
-  part.follower_speed_mps.assign(run.follower_speed_mps.begin() + static_cast<long>(begin),
-                                 run.follower_speed_mps.begin() + static_cast<long>(end));
-  part.leader_speed_mps.assign(run.leader_speed_mps.begin() + static_cast<long>(begin),
-                               run.leader_speed_mps.begin() + static_cast<long>(end));
-  return part;
-}
-
 void splitRuns(const std::vector<CarFollowingRun>& runs, const DiagnosisOptions& options, DiagnosisResult* out)
 {
   for (const CarFollowingRun& run : runs)
@@ -45,8 +31,8 @@ void splitRuns(const std::vector<CarFollowingRun>& runs, const DiagnosisOptions&
                            " on one side of the train/test split");
       continue;
     }
-    out->train.push_back(slice(run, 0, split, "[train]"));
-    out->test.push_back(slice(run, split, run.size(), "[test]"));
+    out->train.push_back(run.slice(0, split, "[train]"));
+    out->test.push_back(run.slice(split, run.size(), "[test]"));
   }
 }
 

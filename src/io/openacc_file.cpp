@@ -230,119 +230,161 @@ double stepLengthM(double lat0, double lon0, double lat1, double lon1, double to
   return kEarthRadiusM * std::hypot(dlat, dlon);
 }
 
-/// Decides the unit of the Lat/Lon cells and says why; converts them to degrees.
-void detectAngleUnit(OpenAccFile& file)
+/// The largest |Lat| and |Lon| over the finite fixes of the cars with Lat/Lon columns.
+struct LatLonRange
 {
   double max_latitude = 0.0, max_longitude = 0.0;
   std::size_t values = 0, columns = 0;
+
+  std::string describe() const
+  {
+    return "|Lat| up to " + formatNumber(max_latitude, 6) + ", |Lon| up to " + formatNumber(max_longitude, 6);
+  }
+};
+
+LatLonRange latLonRange(const OpenAccFile& file)
+{
+  LatLonRange range;
   for (const OpenAccVehicle& vehicle : file.vehicles)
   {
     if (!vehicle.has_lat_lon)
     {
       continue;
     }
-    ++columns;
+    ++range.columns;
     for (std::size_t i = 0; i < file.rows(); ++i)
     {
       if (std::isfinite(vehicle.latitude_deg[i]) && std::isfinite(vehicle.longitude_deg[i]))
       {
-        ++values;
-        max_latitude = std::max(max_latitude, std::abs(vehicle.latitude_deg[i]));
-        max_longitude = std::max(max_longitude, std::abs(vehicle.longitude_deg[i]));
+        ++range.values;
+        range.max_latitude = std::max(range.max_latitude, std::abs(vehicle.latitude_deg[i]));
+        range.max_longitude = std::max(range.max_longitude, std::abs(vehicle.longitude_deg[i]));
       }
     }
   }
-  const std::string range = "|Lat| up to " + formatNumber(max_latitude, 6) + ", |Lon| up to " +
-                            formatNumber(max_longitude, 6);
-  if (columns == 0 || values == 0)
+  return range;
+}
+
+/// How far the cars move over consecutive fixes: by E/N, and by Lat/Lon read either way.
+struct ConsecutiveMotion
+{
+  double en_m = 0.0, as_radians_m = 0.0, as_degrees_m = 0.0;
+  std::size_t steps = 0;
+};
+
+/// Whether fixes i-1 and i of the car are consecutive (close in time) with every value finite.
+bool isCheckableStep(const OpenAccFile& file, const OpenAccVehicle& vehicle, std::size_t i)
+{
+  const double dt = file.time_s[i] - file.time_s[i - 1];
+  const double values_of_step[] = {vehicle.latitude_deg[i - 1], vehicle.longitude_deg[i - 1],
+                                   vehicle.latitude_deg[i],     vehicle.longitude_deg[i],
+                                   vehicle.east_m[i - 1],       vehicle.north_m[i - 1],
+                                   vehicle.east_m[i],           vehicle.north_m[i]};
+  return dt > 0.0 && dt <= kMaxConsecutiveStepS &&
+         std::all_of(std::begin(values_of_step), std::end(values_of_step), [](double v) { return std::isfinite(v); });
+}
+
+ConsecutiveMotion consecutiveMotion(const OpenAccFile& file)
+{
+  ConsecutiveMotion motion;
+  for (const OpenAccVehicle& v : file.vehicles)
   {
-    file.angle_unit = OpenAccAngleUnit::kRadians;
-    file.angle_unit_reason = std::string("Lat/Lon: ") + (columns == 0 ? "no Lat/Lon columns" : "no Lat/Lon values") +
-                             " (radians assumed, the database's unit; nothing to convert)";
-  }
-  else if (max_latitude > kPi / 2.0 || max_longitude > kPi)
-  {
-    file.angle_unit = OpenAccAngleUnit::kDegrees;
-    file.angle_unit_reason = "Lat/Lon in degrees: " + range +
-                             ", beyond radians (|Lat| <= pi/2, |Lon| <= pi), although the database's notes say radians";
-  }
-  else
-  {
-    // The values fit both units: compare how far consecutive fixes move by Lat/Lon, read either
-    // way, with how far they move by the file's own E/N columns.
-    double en_m = 0.0, as_radians_m = 0.0, as_degrees_m = 0.0;
-    std::size_t steps = 0;
-    for (const OpenAccVehicle& vehicle : file.vehicles)
+    if (!v.has_lat_lon || !v.has_east_north)
     {
-      if (!vehicle.has_lat_lon || !vehicle.has_east_north)
+      continue;
+    }
+    for (std::size_t i = 1; i < file.rows(); ++i)
+    {
+      if (!isCheckableStep(file, v, i))
       {
         continue;
       }
-      for (std::size_t i = 1; i < file.rows(); ++i)
-      {
-        const double dt = file.time_s[i] - file.time_s[i - 1];
-        const double values_of_step[] = {vehicle.latitude_deg[i - 1], vehicle.longitude_deg[i - 1],
-                                         vehicle.latitude_deg[i],     vehicle.longitude_deg[i],
-                                         vehicle.east_m[i - 1],       vehicle.north_m[i - 1],
-                                         vehicle.east_m[i],           vehicle.north_m[i]};
-        if (!(dt > 0.0 && dt <= kMaxConsecutiveStepS) ||
-            !std::all_of(std::begin(values_of_step), std::end(values_of_step), [](double v) { return std::isfinite(v); }))
-        {
-          continue;
-        }
-        ++steps;
-        en_m += std::hypot(vehicle.east_m[i] - vehicle.east_m[i - 1], vehicle.north_m[i] - vehicle.north_m[i - 1]);
-        as_radians_m += stepLengthM(vehicle.latitude_deg[i - 1], vehicle.longitude_deg[i - 1], vehicle.latitude_deg[i],
-                                    vehicle.longitude_deg[i], 1.0);
-        as_degrees_m += stepLengthM(vehicle.latitude_deg[i - 1], vehicle.longitude_deg[i - 1], vehicle.latitude_deg[i],
-                                    vehicle.longitude_deg[i], kPi / 180.0);
-      }
-    }
-    if (steps == 0)
-    {
-      file.angle_unit = OpenAccAngleUnit::kRadians;
-      file.angle_unit_reason = "Lat/Lon in radians, the database's unit: the values fit both units (" + range +
-                               ") and there are no consecutive fixes with E/N to check them against";
-    }
-    else if (en_m < kMinMotionForUnitCheckM)
-    {
-      file.angle_unit = OpenAccAngleUnit::kRadians;
-      file.angle_unit_reason = "Lat/Lon in radians, the database's unit: the values fit both units (" + range +
-                               ") and the cars move only " + formatNumber(en_m, 3) +
-                               " m by E/N, too little to check them";
-    }
-    else
-    {
-      const bool degrees = std::abs(std::log(as_degrees_m / en_m)) < std::abs(std::log(as_radians_m / en_m));
-      file.angle_unit = degrees ? OpenAccAngleUnit::kDegrees : OpenAccAngleUnit::kRadians;
-      const double chosen_m = degrees ? as_degrees_m : as_radians_m;
-      std::ostringstream reason;
-      reason << "Lat/Lon in " << (degrees ? "degrees" : "radians") << ": the values fit both units (" << range
-             << "); over " << steps << " consecutive fixes the cars move " << formatNumber(en_m, 6)
-             << " m by their E/N columns, " << formatNumber(as_radians_m, 6) << " m by Lat/Lon read as radians, "
-             << formatNumber(as_degrees_m, 6) << " m read as degrees";
-      if (chosen_m > 2.0 * en_m || chosen_m < 0.5 * en_m)
-      {
-        reason << " (neither unit matches E/N within a factor 2: check the file)";
-      }
-      file.angle_unit_reason = reason.str();
+      ++motion.steps;
+      motion.en_m += std::hypot(v.east_m[i] - v.east_m[i - 1], v.north_m[i] - v.north_m[i - 1]);
+      motion.as_radians_m +=
+          stepLengthM(v.latitude_deg[i - 1], v.longitude_deg[i - 1], v.latitude_deg[i], v.longitude_deg[i], 1.0);
+      motion.as_degrees_m += stepLengthM(v.latitude_deg[i - 1], v.longitude_deg[i - 1], v.latitude_deg[i],
+                                         v.longitude_deg[i], kPi / 180.0);
     }
   }
-  if (file.angle_unit == OpenAccAngleUnit::kRadians)
+  return motion;
+}
+
+/// Values that fit both units: the unit in which the fixes move as far as E/N says, and why.
+void chooseUnitByMotion(OpenAccFile& file, const std::string& range)
+{
+  const ConsecutiveMotion motion = consecutiveMotion(file);
+  file.angle_unit = OpenAccAngleUnit::kRadians;
+  if (motion.steps == 0)
   {
-    for (OpenAccVehicle& vehicle : file.vehicles)
+    file.angle_unit_reason = "Lat/Lon in radians, the database's unit: the values fit both units (" + range +
+                             ") and there are no consecutive fixes with E/N to check them against";
+    return;
+  }
+  if (motion.en_m < kMinMotionForUnitCheckM)
+  {
+    file.angle_unit_reason = "Lat/Lon in radians, the database's unit: the values fit both units (" + range +
+                             ") and the cars move only " + formatNumber(motion.en_m, 3) +
+                             " m by E/N, too little to check them";
+    return;
+  }
+  const bool degrees = std::abs(std::log(motion.as_degrees_m / motion.en_m)) <
+                       std::abs(std::log(motion.as_radians_m / motion.en_m));
+  file.angle_unit = degrees ? OpenAccAngleUnit::kDegrees : OpenAccAngleUnit::kRadians;
+  const double chosen_m = degrees ? motion.as_degrees_m : motion.as_radians_m;
+  std::ostringstream reason;
+  reason << "Lat/Lon in " << (degrees ? "degrees" : "radians") << ": the values fit both units (" << range
+         << "); over " << motion.steps << " consecutive fixes the cars move " << formatNumber(motion.en_m, 6)
+         << " m by their E/N columns, " << formatNumber(motion.as_radians_m, 6) << " m by Lat/Lon read as radians, "
+         << formatNumber(motion.as_degrees_m, 6) << " m read as degrees";
+  if (chosen_m > 2.0 * motion.en_m || chosen_m < 0.5 * motion.en_m)
+  {
+    reason << " (neither unit matches E/N within a factor 2: check the file)";
+  }
+  file.angle_unit_reason = reason.str();
+}
+
+void convertRadiansToDegrees(OpenAccFile& file)
+{
+  for (OpenAccVehicle& vehicle : file.vehicles)
+  {
+    for (std::vector<double>* angles : {&vehicle.latitude_deg, &vehicle.longitude_deg})
     {
-      for (double& value : vehicle.latitude_deg)
-      {
-        value *= kRadToDeg;
-      }
-      for (double& value : vehicle.longitude_deg)
+      for (double& value : *angles)
       {
         value *= kRadToDeg;
       }
     }
   }
 }
+
+/// Decides the unit of the Lat/Lon cells and says why; converts them to degrees.
+void detectAngleUnit(OpenAccFile& file)
+{
+  const LatLonRange range = latLonRange(file);
+  if (range.columns == 0 || range.values == 0)
+  {
+    file.angle_unit = OpenAccAngleUnit::kRadians;
+    file.angle_unit_reason = std::string("Lat/Lon: ") +
+                             (range.columns == 0 ? "no Lat/Lon columns" : "no Lat/Lon values") +
+                             " (radians assumed, the database's unit; nothing to convert)";
+  }
+  else if (range.max_latitude > kPi / 2.0 || range.max_longitude > kPi)
+  {
+    file.angle_unit = OpenAccAngleUnit::kDegrees;
+    file.angle_unit_reason = "Lat/Lon in degrees: " + range.describe() +
+                             ", beyond radians (|Lat| <= pi/2, |Lon| <= pi), although the database's notes say radians";
+  }
+  else
+  {
+    chooseUnitByMotion(file, range.describe());
+  }
+  if (file.angle_unit == OpenAccAngleUnit::kRadians)
+  {
+    convertRadiansToDegrees(file);
+  }
+}
+
 
 bool hasColumn(const OpenAccFile& file, const std::string& name)
 {
@@ -382,121 +424,160 @@ std::string noDataReason(const OpenAccFile& file, int position)
   return hasAnyColumnOf(file, position) ? "its columns are empty" : "its columns are absent";
 }
 
-/// Reads the metadata lines and the header; returns false with file.error set when it cannot.
-bool readMetadataAndHeader(std::istream& in, OpenAccFile& file, std::size_t& line_number)
+/// Which metadata lines were seen before the header.
+struct MetadataSeen
 {
-  std::string line;
-  bool date_seen = false, order_seen = false, count_seen = false, acc_seen = false, setting_seen = false;
-  while (file.header.empty() && std::getline(in, line))
+  bool date = false, order = false, count = false, acc = false, setting = false;
+  std::size_t other_lines = 0;  ///< non-blank lines before the header that are not metadata
+  bool anyLine() const { return date || order || count || acc || setting || other_lines > 0; }
+};
+
+/// A number after a metadata key ("Number_of_vehicles,5" -> 5), or nullopt.
+std::optional<long> integerField(const std::vector<std::string>& fields, std::size_t at)
+{
+  return fields.size() > at ? parseInteger(fields[at]) : std::nullopt;
+}
+
+/// Date,DD,MM,YYYY of a real day; false with file.error set otherwise.
+bool readDateLine(const std::vector<std::string>& fields, const std::string& line, const std::string& where,
+                  OpenAccFile& file)
+{
+  const auto day = integerField(fields, 1), month = integerField(fields, 2), year = integerField(fields, 3);
+  if (!day || !month || !year || !isRealDay(*year, *month, *day))
   {
-    ++line_number;
-    if (isBlank(line))
-    {
-      continue;
-    }
-    const std::vector<std::string> fields = splitFields(line);
-    const std::string where = file.path + ":" + std::to_string(line_number) + ": ";
-    const std::string key = upper(fields[0]);
-    if (std::find(fields.begin(), fields.end(), "Time") != fields.end())
-    {
-      file.header = fields;
-      while (!file.header.empty() && file.header.back().empty())
-      {
-        file.header.pop_back();  // a trailing comma names no column
-      }
-    }
-    else if (key == "DATE")
-    {
-      const auto day = fields.size() > 1 ? parseInteger(fields[1]) : std::nullopt;
-      const auto month = fields.size() > 2 ? parseInteger(fields[2]) : std::nullopt;
-      const auto year = fields.size() > 3 ? parseInteger(fields[3]) : std::nullopt;
-      if (!day || !month || !year || !isRealDay(*year, *month, *day))
-      {
-        file.error = where + "the Date line is not Date,DD,MM,YYYY of a real day: '" + trim(line) + "'";
-        return false;
-      }
-      file.metadata.day = static_cast<int>(*day);
-      file.metadata.month = static_cast<int>(*month);
-      file.metadata.year = static_cast<int>(*year);
-      date_seen = true;
-    }
-    else if (key == "VEHICLE_ORDER")
-    {
-      file.metadata.vehicle_order.assign(fields.begin() + 1, fields.end());
-      while (!file.metadata.vehicle_order.empty() && file.metadata.vehicle_order.back().empty())
-      {
-        file.metadata.vehicle_order.pop_back();  // "Vehicle_order,A,B," ends with a comma
-      }
-      order_seen = !file.metadata.vehicle_order.empty();
-    }
-    else if (key == "NUMBER_OF_VEHICLES")
-    {
-      const auto count = fields.size() > 1 ? parseInteger(fields[1]) : std::nullopt;
-      file.metadata.number_of_vehicles = count ? static_cast<int>(*count) : -1;
-      count_seen = true;
-      if (!count)
-      {
-        file.notes.push_back(where + "Number_of_vehicles is not a number: '" + trim(line) + "'");
-      }
-    }
-    else if (key == "ACC")
-    {
-      const auto acc = fields.size() > 1 ? parseInteger(fields[1]) : std::nullopt;
-      file.metadata.acc = acc ? static_cast<int>(*acc) : -1;
-      acc_seen = true;
-      if (!acc)
-      {
-        file.notes.push_back(where + "the ACC line is not a number: '" + trim(line) + "'");
-      }
-    }
-    else if (key == "DISTANCE_SETTING")
-    {
-      file.metadata.distance_setting = fields.size() > 1 ? fields[1] : "";
-      setting_seen = true;
-    }
-    else
-    {
-      file.notes.push_back(where + "line before the header not understood, ignored: '" + trim(line).substr(0, 80) + "'");
-    }
-    if (file.header.empty() && line_number >= kMaxLinesBeforeHeader)
-    {
-      break;
-    }
-  }
-  if (file.header.empty())
-  {
-    file.error = file.path + ": no header line with a Time column" +
-                 (line_number >= kMaxLinesBeforeHeader ? " in the first " + std::to_string(kMaxLinesBeforeHeader) + " lines"
-                                                       : "") +
-                 " (not an OpenACC file?)";
+    file.error = where + "the Date line is not Date,DD,MM,YYYY of a real day: '" + trim(line) + "'";
     return false;
   }
-  if (!date_seen || !order_seen)
+  file.metadata.day = static_cast<int>(*day);
+  file.metadata.month = static_cast<int>(*month);
+  file.metadata.year = static_cast<int>(*year);
+  return true;
+}
+
+/// The names after the key, without the empty ones a trailing comma leaves ("Vehicle_order,A,B,").
+std::vector<std::string> namesAfterKey(const std::vector<std::string>& fields)
+{
+  std::vector<std::string> names(fields.begin() + 1, fields.end());
+  while (!names.empty() && names.back().empty())
+  {
+    names.pop_back();
+  }
+  return names;
+}
+
+/// A number line (Number_of_vehicles, ACC): its value, or -1 with a note when it is not a number.
+int readNumberLine(const std::vector<std::string>& fields, const std::string& line, const std::string& what,
+                   const std::string& where, OpenAccFile& file)
+{
+  const auto value = integerField(fields, 1);
+  if (!value)
+  {
+    file.notes.push_back(where + what + " is not a number: '" + trim(line) + "'");
+    return -1;
+  }
+  return static_cast<int>(*value);
+}
+
+/// One line before the header; false with file.error set when it makes the file unreadable.
+bool readMetadataLine(const std::string& line, const std::vector<std::string>& fields, const std::string& where,
+                      OpenAccFile& file, MetadataSeen& seen)
+{
+  const std::string key = upper(fields[0]);
+  if (key == "DATE")
+  {
+    seen.date = true;
+    return readDateLine(fields, line, where, file);
+  }
+  if (key == "VEHICLE_ORDER")
+  {
+    file.metadata.vehicle_order = namesAfterKey(fields);
+    seen.order = !file.metadata.vehicle_order.empty();
+  }
+  else if (key == "NUMBER_OF_VEHICLES")
+  {
+    file.metadata.number_of_vehicles = readNumberLine(fields, line, "Number_of_vehicles", where, file);
+    seen.count = true;
+  }
+  else if (key == "ACC")
+  {
+    file.metadata.acc = readNumberLine(fields, line, "the ACC line", where, file);
+    seen.acc = true;
+  }
+  else if (key == "DISTANCE_SETTING")
+  {
+    file.metadata.distance_setting = fields.size() > 1 ? fields[1] : "";
+    seen.setting = true;
+  }
+  else
+  {
+    ++seen.other_lines;
+    file.notes.push_back(where + "line before the header not understood, ignored: '" + trim(line).substr(0, 80) + "'");
+  }
+  return true;
+}
+
+bool isHeaderLine(const std::vector<std::string>& fields)
+{
+  return std::find(fields.begin(), fields.end(), "Time") != fields.end();
+}
+
+/// A first line that is already the header (the layout without metadata): a Time column and a
+/// car's Speedk column, so that a canonical run CSV (time_s, ...) or any other CSV is not taken.
+bool isHeaderWithoutMetadata(const std::vector<std::string>& fields)
+{
+  return isHeaderLine(fields) && std::any_of(fields.begin(), fields.end(), [](const std::string& name) {
+           const auto column = classifyColumn(name);
+           return column && column->first == Quantity::kSpeed;
+         });
+}
+
+/// The header's names, without the empty ones a trailing comma leaves.
+std::vector<std::string> headerNames(std::vector<std::string> fields)
+{
+  while (!fields.empty() && fields.back().empty())
+  {
+    fields.pop_back();
+  }
+  return fields;
+}
+
+std::string noHeaderError(const OpenAccFile& file, std::size_t line_number)
+{
+  return file.path + ": no header line with a Time column" +
+         (line_number >= kMaxLinesBeforeHeader ? " in the first " + std::to_string(kMaxLinesBeforeHeader) + " lines"
+                                               : "") +
+         " (not an OpenACC file?)";
+}
+
+/// Without Date and Vehicle_order the file is not read; the other lines missing are a note.
+bool checkMetadataLines(const MetadataSeen& seen, std::size_t header_line, OpenAccFile& file)
+{
+  if (!seen.date || !seen.order)
   {
     std::vector<std::string> missing;
-    if (!date_seen)
+    if (!seen.date)
     {
       missing.push_back("Date,DD,MM,YYYY");
     }
-    if (!order_seen)
+    if (!seen.order)
     {
       missing.push_back("Vehicle_order,NAME1,NAME2,...");
     }
-    file.error = file.path + ": metadata missing before the header (line " + std::to_string(line_number) +
+    file.error = file.path + ": metadata missing before the header (line " + std::to_string(header_line) +
                  "): no " + join(missing, " and no ") + " line; an OpenACC file starts with Date, Vehicle_order, "
                  "Number_of_vehicles, ACC and Distance_setting lines";
     return false;
   }
   std::vector<std::string> absent;
-  if (!count_seen)
+  if (!seen.count)
   {
     absent.push_back("Number_of_vehicles");
   }
-  if (!acc_seen)
+  if (!seen.acc)
   {
     absent.push_back("ACC");
   }
-  if (!setting_seen)
+  if (!seen.setting)
   {
     absent.push_back("Distance_setting");
   }
@@ -511,6 +592,405 @@ bool readMetadataAndHeader(std::istream& in, OpenAccFile& file, std::size_t& lin
                          " but Vehicle_order names " + std::to_string(order_size) + " cars");
   }
   return true;
+}
+
+
+/// A file that starts with its header (the AstaZero layout of the database) has no metadata: the
+/// cars are counted from the columns and named by position; the rest is unknown, and said so.
+void noteAbsentMetadata(OpenAccFile& file)
+{
+  file.metadata.lines_present = false;
+  const int cars = highestPosition(file);
+  file.notes.push_back(file.path + ": no metadata lines (Date, Vehicle_order, Number_of_vehicles, ACC, "
+                                   "Distance_setting): the file starts with its header, as the AstaZero layout does; " +
+                       std::to_string(cars) + " car" + (cars == 1 ? "" : "s") +
+                       " from the columns, named by position (vehicle 1, vehicle 2, ...); date, ACC and distance "
+                       "setting unknown");
+}
+
+/// Reads the metadata lines and the header; returns false with file.error set when it cannot.
+bool readMetadataAndHeader(std::istream& in, OpenAccFile& file, std::size_t& line_number)
+{
+  std::string line;
+  MetadataSeen seen;
+  while (std::getline(in, line))
+  {
+    ++line_number;
+    if (isBlank(line))
+    {
+      continue;
+    }
+    const std::vector<std::string> fields = splitFields(line);
+    if (isHeaderLine(fields))
+    {
+      file.header = headerNames(fields);
+      break;
+    }
+    const std::string where = file.path + ":" + std::to_string(line_number) + ": ";
+    if (!readMetadataLine(line, fields, where, file, seen))
+    {
+      return false;
+    }
+    if (line_number >= kMaxLinesBeforeHeader)
+    {
+      break;
+    }
+  }
+  if (file.header.empty())
+  {
+    file.error = noHeaderError(file, line_number);
+    return false;
+  }
+  if (!seen.anyLine())
+  {
+    noteAbsentMetadata(file);
+    return true;
+  }
+  return checkMetadataLines(seen, line_number, file);
+}
+
+/// A car with columns beyond Vehicle_order gets a made-up name: said, unless the file has no
+/// metadata at all (then every car is named by position, said once).
+void noteCarsBeyondVehicleOrder(OpenAccFile& file)
+{
+  if (!file.metadata.lines_present)
+  {
+    return;
+  }
+  for (const OpenAccVehicle& v : file.vehicles)
+  {
+    if (v.position > static_cast<int>(file.metadata.vehicle_order.size()))
+    {
+      file.notes.push_back(file.path + ": columns of car " + std::to_string(v.position) + " but Vehicle_order names " +
+                           std::to_string(file.metadata.vehicle_order.size()) + " cars: called '" + v.name + "'");
+    }
+  }
+}
+
+/// The header's columns by name; false with file.error set when a name is given twice.
+bool indexColumns(OpenAccFile& file, std::size_t header_line, std::map<std::string, std::size_t>& index)
+{
+  for (std::size_t i = 0; i < file.header.size(); ++i)
+  {
+    if (!file.header[i].empty() && !index.emplace(file.header[i], i).second)
+    {
+      file.error = file.path + ":" + std::to_string(header_line) + ": column " + file.header[i] +
+                   " is named twice in the header";
+      return false;
+    }
+  }
+  return true;
+}
+
+/// The header's columns sorted by what they hold.
+struct HeaderLayout
+{
+  std::optional<std::size_t> time_field;
+  std::map<int, VehicleUnderConstruction> cars;
+  std::map<int, std::pair<std::size_t, std::string>> gap_columns;  // k -> field, name of IVSk
+  std::vector<std::string> unused;
+};
+
+/// Marks what a car has from one of its columns (E and N count only together, as Lat and Lon).
+void addVehicleColumn(const OpenAccFile& file, Quantity quantity, int k, VehicleUnderConstruction& car)
+{
+  car.any_column = true;
+  car.vehicle.position = k;
+  car.vehicle.name = file.vehicleName(k);
+  const std::string n = std::to_string(k);
+  switch (quantity)
+  {
+    case Quantity::kSpeed: car.vehicle.has_speed = true; break;
+    case Quantity::kEast:
+    case Quantity::kNorth: car.vehicle.has_east_north = hasColumn(file, "E" + n) && hasColumn(file, "N" + n); break;
+    case Quantity::kUp: car.vehicle.has_up = true; break;
+    case Quantity::kAltitude: car.vehicle.has_altitude = true; break;
+    case Quantity::kLatitude:
+    case Quantity::kLongitude: car.vehicle.has_lat_lon = hasColumn(file, "Lat" + n) && hasColumn(file, "Lon" + n); break;
+    case Quantity::kDriver: car.vehicle.has_driver = true; break;
+    case Quantity::kGap: break;
+  }
+}
+
+HeaderLayout classifyHeader(const OpenAccFile& file)
+{
+  HeaderLayout layout;
+  for (std::size_t i = 0; i < file.header.size(); ++i)
+  {
+    const std::string& name = file.header[i];
+    if (name == "Time")
+    {
+      layout.time_field = i;
+      continue;
+    }
+    const auto column = name.empty() ? std::nullopt : classifyColumn(name);
+    if (!column)
+    {
+      if (!name.empty())
+      {
+        layout.unused.push_back(name);
+      }
+      continue;
+    }
+    const auto [quantity, k] = *column;
+    if (quantity == Quantity::kGap)
+    {
+      layout.gap_columns[k] = {i, name};
+      continue;
+    }
+    addVehicleColumn(file, quantity, k, layout.cars[k]);
+  }
+  return layout;
+}
+
+/// IVSk belongs to car k (the gap behind it); without car k it is not used, and said so.
+void attachGapColumns(OpenAccFile& file, HeaderLayout& layout)
+{
+  for (const auto& [k, gap] : layout.gap_columns)
+  {
+    auto car = layout.cars.find(k);
+    if (car == layout.cars.end())
+    {
+      layout.unused.push_back(gap.second + " (car " + std::to_string(k) + ", " + file.vehicleName(k) +
+                              ", has no columns)");
+      continue;
+    }
+    car->second.vehicle.has_gap_to_follower = true;
+  }
+  if (!layout.unused.empty())
+  {
+    file.notes.push_back(file.path + ": columns not used: " + join(layout.unused, ", "));
+  }
+}
+
+/// Where each column's values go. The vectors are filled row by row (all to the same length);
+/// absent columns are filled with NaN at the end.
+std::vector<ColumnTarget> columnTargets(OpenAccFile& file, HeaderLayout& layout,
+                                        const std::map<std::string, std::size_t>& index)
+{
+  std::vector<ColumnTarget> targets;
+  targets.push_back({*layout.time_field, "Time", &file.time_s, nullptr});
+  for (auto& [k, car] : layout.cars)
+  {
+    OpenAccVehicle& v = car.vehicle;
+    const std::string n = std::to_string(k);
+    const std::vector<std::pair<std::string, std::vector<double>*>> numeric{
+        {"Speed" + n, &v.speed_mps}, {"E" + n, &v.east_m},          {"N" + n, &v.north_m},
+        {"U" + n, &v.up_m},          {"Alt" + n, &v.altitude_m},     {"Lat" + n, &v.latitude_deg},
+        {"Lon" + n, &v.longitude_deg}, {"IVS" + n, &v.gap_to_follower_m}};
+    for (const auto& [name, values] : numeric)
+    {
+      const auto at = index.find(name);
+      if (at != index.end())
+      {
+        targets.push_back({at->second, name, values, nullptr});
+      }
+    }
+    const auto driver = index.find("Driver" + n);
+    if (driver != index.end())
+    {
+      targets.push_back({driver->second, "Driver" + n, nullptr, &v.driver});
+    }
+  }
+  return targets;
+}
+
+/// A row with the wrong number of fields: every value NaN, the row counted and listed.
+void addUnreadRow(OpenAccFile& file, const std::vector<ColumnTarget>& targets, std::size_t fields,
+                  const std::string& where)
+{
+  const std::string why =
+      "expected " + std::to_string(file.header.size()) + " fields, found " + std::to_string(fields);
+  file.row_problems.push_back(why);
+  file.problems.push_back(where + why + "; row not read (every value NaN)");
+  ++file.bad_rows;
+  for (const ColumnTarget& target : targets)
+  {
+    if (target.values)
+    {
+      target.values->push_back(kNaN);
+    }
+    else
+    {
+      target.texts->emplace_back();
+    }
+  }
+}
+
+/// A row's cells into their columns; every cell without a number is counted and listed.
+void addRowCells(OpenAccFile& file, const std::vector<ColumnTarget>& targets, const std::vector<std::string>& fields,
+                 std::size_t line_number, const std::string& where)
+{
+  const std::size_t row = file.line.size() - 1;
+  file.row_problems.emplace_back();
+  std::vector<std::string> bad_here;
+  for (const ColumnTarget& target : targets)
+  {
+    const std::string& text = fields[target.field];
+    bool bad = false;
+    if (target.values)
+    {
+      double value = kNaN;
+      bad = parseCell(text, value) != CellKind::kNumber;
+      target.values->push_back(value);
+    }
+    else
+    {
+      target.texts->push_back(text);
+      bad = text.empty();
+    }
+    if (bad)
+    {
+      file.bad_cells.push_back({row, line_number, target.name, text});
+      ++file.bad_cells_by_column[target.name];
+      bad_here.push_back(file.bad_cells.back().describe());
+    }
+  }
+  if (!bad_here.empty())
+  {
+    ++file.bad_rows;
+    file.problems.push_back(where + std::to_string(bad_here.size()) + " cell" + (bad_here.size() > 1 ? "s" : "") +
+                            " without a number (NaN): " + join(bad_here, ", "));
+  }
+}
+
+/// Every data row after the header; none is dropped (a blank line is no row).
+void readDataRows(std::istream& in, OpenAccFile& file, const std::vector<ColumnTarget>& targets,
+                  std::size_t& line_number)
+{
+  std::string line;
+  while (std::getline(in, line))
+  {
+    ++line_number;
+    if (isBlank(line))
+    {
+      continue;  // a blank line (usually the last) carries no sample
+    }
+    file.line.push_back(line_number);
+    std::vector<std::string> fields = splitFields(line);
+    // Empty fields past the header's (a trailing comma) carry nothing.
+    while (fields.size() > file.header.size() && fields.back().empty())
+    {
+      fields.pop_back();
+    }
+    const std::string where = file.path + ":" + std::to_string(line_number) + ": ";
+    if (fields.size() != file.header.size())
+    {
+      addUnreadRow(file, targets, fields.size(), where);
+    }
+    else
+    {
+      addRowCells(file, targets, fields, line_number, where);
+    }
+  }
+}
+
+std::size_t countFinite(const std::vector<double>& values)
+{
+  return static_cast<std::size_t>(std::count_if(values.begin(), values.end(), [](double x) { return std::isfinite(x); }));
+}
+
+/// Absent columns become NaN in every row; the counts of speed and gap values are taken.
+void completeColumns(OpenAccVehicle& v, std::size_t rows)
+{
+  for (std::vector<double>* values : {&v.speed_mps, &v.east_m, &v.north_m, &v.up_m, &v.altitude_m, &v.latitude_deg,
+                                      &v.longitude_deg, &v.gap_to_follower_m})
+  {
+    values->resize(rows, kNaN);
+  }
+  v.speed_values = countFinite(v.speed_mps);
+  v.gap_values = countFinite(v.gap_to_follower_m);
+}
+
+/// Whether the car has any value besides its gap (a gap alone does not make a car).
+bool hasAnyValue(const OpenAccVehicle& v)
+{
+  bool any_value = v.speed_values > 0 ||
+                   std::any_of(v.driver.begin(), v.driver.end(), [](const std::string& t) { return !t.empty(); });
+  for (const std::vector<double>* values : {&v.east_m, &v.north_m, &v.up_m, &v.altitude_m, &v.latitude_deg,
+                                            &v.longitude_deg})
+  {
+    any_value = any_value || countFinite(*values) > 0;
+  }
+  return any_value;
+}
+
+/// Keeps the cars with a value; the others, and the cars of Vehicle_order without columns, are noted.
+void keepCarsWithData(OpenAccFile& file, std::map<int, VehicleUnderConstruction>& cars)
+{
+  std::vector<std::pair<int, std::string>> without_data;
+  for (auto& [k, car] : cars)
+  {
+    completeColumns(car.vehicle, file.line.size());
+    if (hasAnyValue(car.vehicle))
+    {
+      file.vehicles.push_back(std::move(car.vehicle));
+    }
+    else
+    {
+      without_data.emplace_back(k, file.vehicleName(k) + " (" + std::to_string(k) + ", every cell of its columns empty)");
+    }
+  }
+  for (int k = 1; k <= static_cast<int>(file.metadata.vehicle_order.size()); ++k)
+  {
+    if (cars.count(k) == 0)
+    {
+      without_data.emplace_back(k, file.vehicleName(k) + " (" + std::to_string(k) + ", no columns)");
+    }
+  }
+  std::sort(without_data.begin(), without_data.end());
+  noteCarsBeyondVehicleOrder(file);
+  if (!without_data.empty())
+  {
+    std::vector<std::string> names;
+    for (const auto& entry : without_data)
+    {
+      names.push_back(entry.second);
+    }
+    file.notes.push_back(file.path + ": no data for " + join(names, ", "));
+  }
+}
+
+/// Why each car with data is not the follower of a pair.
+void notePairlessFollowers(OpenAccFile& file)
+{
+  for (int k = 2; k <= highestPosition(file); ++k)
+  {
+    if (file.vehicle(k) != nullptr)
+    {
+      const std::string why = describePairlessFollower(file, k);
+      if (!why.empty())
+      {
+        file.notes.push_back(file.path + ": " + why);
+      }
+    }
+  }
+}
+
+/// The counts behind the listed problems, in one note.
+void noteBadCellsAndRows(OpenAccFile& file)
+{
+  const std::size_t rows = file.line.size();
+  if (!file.bad_cells.empty())
+  {
+    std::vector<std::string> by_column;
+    for (const auto& [column, count] : file.bad_cells_by_column)
+    {
+      by_column.push_back(column + " " + std::to_string(count));
+    }
+    file.notes.push_back(file.path + ": " + std::to_string(file.bad_cells.size()) + " cells without a number in " +
+                         std::to_string(file.bad_rows) + " of " + std::to_string(rows) + " rows (" +
+                         join(by_column, ", ") + "), each listed; their values are NaN");
+  }
+  else if (file.bad_rows > 0)
+  {
+    file.notes.push_back(file.path + ": " + std::to_string(file.bad_rows) + " of " + std::to_string(rows) +
+                         " rows not read, each listed");
+  }
+  if (rows == 0)
+  {
+    file.notes.push_back(file.path + ": no data rows after the header");
+  }
 }
 }  // namespace
 
@@ -600,7 +1080,8 @@ bool looksLikeOpenAccFile(const std::string& path)
   {
     if (!isBlank(line))
     {
-      return upper(splitFields(line)[0]) == "DATE";
+      const std::vector<std::string> fields = splitFields(line);
+      return upper(fields[0]) == "DATE" || isHeaderWithoutMetadata(fields);
     }
   }
   return false;
@@ -618,275 +1099,22 @@ OpenAccFile readOpenAccFile(const std::string& path)
     return file;
   }
   std::size_t line_number = 0;
-  if (!readMetadataAndHeader(in, file, line_number))
+  std::map<std::string, std::size_t> index;  // columns by name, any order; each named once
+  if (!readMetadataAndHeader(in, file, line_number) || !indexColumns(file, line_number, index))
   {
     return file;
   }
-
-  // Columns by name, any order; each named once.
-  std::map<std::string, std::size_t> index;
-  for (std::size_t i = 0; i < file.header.size(); ++i)
-  {
-    if (file.header[i].empty())
-    {
-      continue;
-    }
-    if (!index.emplace(file.header[i], i).second)
-    {
-      file.error = file.path + ":" + std::to_string(line_number) + ": column " + file.header[i] +
-                   " is named twice in the header";
-      return file;
-    }
-  }
-  std::map<int, VehicleUnderConstruction> cars;
-  std::map<int, std::pair<std::size_t, std::string>> gap_columns;  // k -> field, name of IVSk
-  std::optional<std::size_t> time_field;
-  std::vector<std::string> unused;
-  for (std::size_t i = 0; i < file.header.size(); ++i)
-  {
-    const std::string& name = file.header[i];
-    if (name == "Time")
-    {
-      time_field = i;
-      continue;
-    }
-    const auto column = name.empty() ? std::nullopt : classifyColumn(name);
-    if (!column)
-    {
-      if (!name.empty())
-      {
-        unused.push_back(name);
-      }
-      continue;
-    }
-    const auto [quantity, k] = *column;
-    if (quantity == Quantity::kGap)
-    {
-      gap_columns[k] = {i, name};
-      continue;
-    }
-    VehicleUnderConstruction& car = cars[k];
-    car.any_column = true;
-    car.vehicle.position = k;
-    car.vehicle.name = file.vehicleName(k);
-    switch (quantity)
-    {
-      case Quantity::kSpeed: car.vehicle.has_speed = true; break;
-      case Quantity::kEast:
-      case Quantity::kNorth: car.vehicle.has_east_north = hasColumn(file, "E" + std::to_string(k)) &&
-                                                          hasColumn(file, "N" + std::to_string(k)); break;
-      case Quantity::kUp: car.vehicle.has_up = true; break;
-      case Quantity::kAltitude: car.vehicle.has_altitude = true; break;
-      case Quantity::kLatitude:
-      case Quantity::kLongitude: car.vehicle.has_lat_lon = hasColumn(file, "Lat" + std::to_string(k)) &&
-                                                           hasColumn(file, "Lon" + std::to_string(k)); break;
-      case Quantity::kDriver: car.vehicle.has_driver = true; break;
-      case Quantity::kGap: break;
-    }
-  }
-  if (!time_field)
+  HeaderLayout layout = classifyHeader(file);
+  if (!layout.time_field)
   {
     file.error = file.path + ": no Time column";
     return file;
   }
-  for (const auto& [k, gap] : gap_columns)
-  {
-    auto car = cars.find(k);
-    if (car == cars.end())
-    {
-      unused.push_back(gap.second + " (car " + std::to_string(k) + ", " + file.vehicleName(k) + ", has no columns)");
-      continue;
-    }
-    car->second.vehicle.has_gap_to_follower = true;
-  }
-  if (!unused.empty())
-  {
-    file.notes.push_back(file.path + ": columns not used: " + join(unused, ", "));
-  }
-
-  // Where each column's values go. The vectors are filled row by row (all to the same length).
-  std::vector<ColumnTarget> targets;
-  targets.push_back({*time_field, "Time", &file.time_s, nullptr});
-  for (auto& [k, car] : cars)
-  {
-    OpenAccVehicle& v = car.vehicle;
-    const std::string n = std::to_string(k);
-    const std::vector<std::pair<std::string, std::vector<double>*>> numeric{
-        {"Speed" + n, &v.speed_mps}, {"E" + n, &v.east_m},          {"N" + n, &v.north_m},
-        {"U" + n, &v.up_m},          {"Alt" + n, &v.altitude_m},     {"Lat" + n, &v.latitude_deg},
-        {"Lon" + n, &v.longitude_deg}, {"IVS" + n, &v.gap_to_follower_m}};
-    for (const auto& [name, values] : numeric)
-    {
-      const auto at = index.find(name);
-      if (at != index.end())
-      {
-        targets.push_back({at->second, name, values, nullptr});
-      }
-    }
-    const auto driver = index.find("Driver" + n);
-    if (driver != index.end())
-    {
-      targets.push_back({driver->second, "Driver" + n, nullptr, &v.driver});
-    }
-  }
-  // Absent columns: NaN in every row, filled at the end.
-
-  std::string line;
-  while (std::getline(in, line))
-  {
-    ++line_number;
-    if (isBlank(line))
-    {
-      continue;  // a blank line (usually the last) carries no sample
-    }
-    const std::size_t row = file.line.size();
-    file.line.push_back(line_number);
-    std::vector<std::string> fields = splitFields(line);
-    // Empty fields past the header's (a trailing comma) carry nothing.
-    while (fields.size() > file.header.size() && fields.back().empty())
-    {
-      fields.pop_back();
-    }
-    const std::string where = file.path + ":" + std::to_string(line_number) + ": ";
-    if (fields.size() != file.header.size())
-    {
-      const std::string why = "expected " + std::to_string(file.header.size()) + " fields, found " +
-                              std::to_string(fields.size());
-      file.row_problems.push_back(why);
-      file.problems.push_back(where + why + "; row not read (every value NaN)");
-      ++file.bad_rows;
-      for (const ColumnTarget& target : targets)
-      {
-        if (target.values)
-        {
-          target.values->push_back(kNaN);
-        }
-        else
-        {
-          target.texts->emplace_back();
-        }
-      }
-      continue;
-    }
-    file.row_problems.emplace_back();
-    std::vector<std::string> bad_here;
-    for (const ColumnTarget& target : targets)
-    {
-      const std::string& text = fields[target.field];
-      bool bad = false;
-      if (target.values)
-      {
-        double value = kNaN;
-        bad = parseCell(text, value) != CellKind::kNumber;
-        target.values->push_back(value);
-      }
-      else
-      {
-        target.texts->push_back(text);
-        bad = text.empty();
-      }
-      if (bad)
-      {
-        file.bad_cells.push_back({row, line_number, target.name, text});
-        ++file.bad_cells_by_column[target.name];
-        bad_here.push_back(file.bad_cells.back().describe());
-      }
-    }
-    if (!bad_here.empty())
-    {
-      ++file.bad_rows;
-      file.problems.push_back(where + std::to_string(bad_here.size()) + " cell" + (bad_here.size() > 1 ? "s" : "") +
-                              " without a number (NaN): " + join(bad_here, ", "));
-    }
-  }
-
-  // Absent columns: NaN in every row; the cars with no value at all are not kept.
-  const std::size_t rows = file.line.size();
-  std::vector<std::pair<int, std::string>> without_data;
-  for (auto& [k, car] : cars)
-  {
-    OpenAccVehicle& v = car.vehicle;
-    for (std::vector<double>* values : {&v.speed_mps, &v.east_m, &v.north_m, &v.up_m, &v.altitude_m, &v.latitude_deg,
-                                        &v.longitude_deg, &v.gap_to_follower_m})
-    {
-      values->resize(rows, kNaN);
-    }
-    v.speed_values = static_cast<std::size_t>(
-        std::count_if(v.speed_mps.begin(), v.speed_mps.end(), [](double x) { return std::isfinite(x); }));
-    v.gap_values = static_cast<std::size_t>(std::count_if(v.gap_to_follower_m.begin(), v.gap_to_follower_m.end(),
-                                                          [](double x) { return std::isfinite(x); }));
-    bool any_value = v.speed_values > 0 ||
-                     std::any_of(v.driver.begin(), v.driver.end(), [](const std::string& t) { return !t.empty(); });
-    for (const std::vector<double>* values : {&v.east_m, &v.north_m, &v.up_m, &v.altitude_m, &v.latitude_deg,
-                                              &v.longitude_deg})
-    {
-      any_value = any_value || std::any_of(values->begin(), values->end(), [](double x) { return std::isfinite(x); });
-    }
-    if (any_value)
-    {
-      file.vehicles.push_back(std::move(v));
-    }
-    else
-    {
-      without_data.emplace_back(k, file.vehicleName(k) + " (" + std::to_string(k) + ", every cell of its columns empty)");
-    }
-  }
-  for (int k = 1; k <= static_cast<int>(file.metadata.vehicle_order.size()); ++k)
-  {
-    if (cars.count(k) == 0)
-    {
-      without_data.emplace_back(k, file.vehicleName(k) + " (" + std::to_string(k) + ", no columns)");
-    }
-  }
-  std::sort(without_data.begin(), without_data.end());
-  for (const OpenAccVehicle& v : file.vehicles)
-  {
-    if (v.position > static_cast<int>(file.metadata.vehicle_order.size()))
-    {
-      file.notes.push_back(file.path + ": columns of car " + std::to_string(v.position) + " but Vehicle_order names " +
-                           std::to_string(file.metadata.vehicle_order.size()) + " cars: called '" + v.name + "'");
-    }
-  }
-  if (!without_data.empty())
-  {
-    std::vector<std::string> names;
-    for (const auto& entry : without_data)
-    {
-      names.push_back(entry.second);
-    }
-    file.notes.push_back(file.path + ": no data for " + join(names, ", "));
-  }
-  for (int k = 2; k <= highestPosition(file); ++k)
-  {
-    if (file.vehicle(k) != nullptr)
-    {
-      const std::string why = describePairlessFollower(file, k);
-      if (!why.empty())
-      {
-        file.notes.push_back(file.path + ": " + why);
-      }
-    }
-  }
-  if (!file.bad_cells.empty())
-  {
-    std::vector<std::string> by_column;
-    for (const auto& [column, count] : file.bad_cells_by_column)
-    {
-      by_column.push_back(column + " " + std::to_string(count));
-    }
-    file.notes.push_back(file.path + ": " + std::to_string(file.bad_cells.size()) + " cells without a number in " +
-                         std::to_string(file.bad_rows) + " of " + std::to_string(rows) + " rows (" +
-                         join(by_column, ", ") + "), each listed; their values are NaN");
-  }
-  else if (file.bad_rows > 0)
-  {
-    file.notes.push_back(file.path + ": " + std::to_string(file.bad_rows) + " of " + std::to_string(rows) +
-                         " rows not read, each listed");
-  }
-  if (rows == 0)
-  {
-    file.notes.push_back(file.path + ": no data rows after the header");
-  }
+  attachGapColumns(file, layout);
+  readDataRows(in, file, columnTargets(file, layout, index), line_number);
+  keepCarsWithData(file, layout.cars);
+  notePairlessFollowers(file);
+  noteBadCellsAndRows(file);
   detectAngleUnit(file);
   // The unit matters to every position read from the file: said with the other notes.
   file.notes.push_back(file.path + ": " + file.angle_unit_reason);
@@ -994,80 +1222,82 @@ std::string OpenAccPairSelector::describe() const
   return "follower '" + follower + "'";
 }
 
-OpenAccPairChoice selectOpenAccPairs(const OpenAccFile& file, const OpenAccPairSelector& selector)
+namespace
+{
+/// Why the file has no pair: each follower's reason.
+std::string noPairError(const OpenAccFile& file)
+{
+  std::vector<std::string> why;
+  for (int k = 2; k <= highestPosition(file); ++k)
+  {
+    if (file.vehicle(k) != nullptr)
+    {
+      why.push_back(describePairlessFollower(file, k));
+    }
+  }
+  return file.path + ": no leader-follower pair (a follower and the car directly ahead, both with Speed "
+                     "data, and their IVS gap)" +
+         (why.empty() ? std::string("") : ": " + join(why, "; "));
+}
+
+/// The first pair, and the others named: never chosen silently.
+OpenAccPairChoice firstPair(const OpenAccFile& file, const std::vector<OpenAccPair>& pairs)
 {
   OpenAccPairChoice choice;
-  const std::vector<OpenAccPair> pairs = availablePairs(file);
-  const std::string listed = "pairs in this file: " + describeAvailablePairs(file);
-  if (pairs.empty())
+  choice.pairs.push_back(pairs.front());
+  std::vector<std::string> others;
+  for (std::size_t i = 1; i < pairs.size(); ++i)
   {
-    std::vector<std::string> why;
-    for (int k = 2; k <= highestPosition(file); ++k)
-    {
-      if (file.vehicle(k) != nullptr)
-      {
-        why.push_back(describePairlessFollower(file, k));
-      }
-    }
-    choice.error = file.path + ": no leader-follower pair (a follower and the car directly ahead, both with Speed "
-                               "data, and their IVS gap)" +
-                   (why.empty() ? std::string("") : ": " + join(why, "; "));
-    return choice;
+    others.push_back(pairs[i].label());
   }
-  if (selector.kind == OpenAccPairSelector::Kind::kFirst)
-  {
-    choice.pairs.push_back(pairs.front());
-    std::vector<std::string> others;
-    for (std::size_t i = 1; i < pairs.size(); ++i)
-    {
-      others.push_back(pairs[i].label());
-    }
-    choice.note = file.path + ": pair read: " + pairs.front().label() + " (no follower chosen: the first available " +
-                  (others.empty() ? std::string("and only pair)") : "pair; the others: " + join(others, "; ") + ")");
-    return choice;
-  }
-  if (selector.kind == OpenAccPairSelector::Kind::kAll)
-  {
-    choice.pairs = pairs;
-    choice.note = file.path + ": every pair read (" + std::to_string(pairs.size()) + "): " + describeAvailablePairs(file);
-    return choice;
-  }
-  // One follower, by position or by name.
-  const std::string wanted = trim(selector.follower);
-  int position = 0;
+  choice.note = file.path + ": pair read: " + pairs.front().label() + " (no follower chosen: the first available " +
+                (others.empty() ? std::string("and only pair)") : "pair; the others: " + join(others, "; ") + ")");
+  return choice;
+}
+
+/// The position of the follower named by a number or a Vehicle_order name (any case); 0 with
+/// error set when the name is not there or not unique; -1 for a number too large to be one.
+int followerPosition(const OpenAccFile& file, const std::string& wanted, const std::string& listed, std::string& error)
+{
   if (!wanted.empty() && wanted.find_first_not_of("0123456789") == std::string::npos)
   {
     const auto number = parseInteger(wanted);
-    position = number && *number <= 100000 ? static_cast<int>(*number) : -1;
+    return number && *number <= 100000 ? static_cast<int>(*number) : -1;
   }
-  else
+  std::vector<std::string> at;  // the positions of the name, as written in messages
+  int position = 0;
+  for (std::size_t i = 0; i < file.metadata.vehicle_order.size(); ++i)
   {
-    std::vector<int> matches;
-    for (std::size_t i = 0; i < file.metadata.vehicle_order.size(); ++i)
+    if (upper(file.metadata.vehicle_order[i]) == upper(wanted))
     {
-      if (upper(file.metadata.vehicle_order[i]) == upper(wanted))
-      {
-        matches.push_back(static_cast<int>(i) + 1);
-      }
+      position = at.empty() ? static_cast<int>(i) + 1 : position;
+      at.push_back(std::to_string(i + 1));
     }
-    if (matches.empty())
-    {
-      choice.error = file.path + ": no car '" + wanted + "' in Vehicle_order (" +
-                     join(file.metadata.vehicle_order, ", ") + "); " + listed;
-      return choice;
-    }
-    if (matches.size() > 1)
-    {
-      std::vector<std::string> at;
-      for (int k : matches)
-      {
-        at.push_back(std::to_string(k));
-      }
-      choice.error = file.path + ": '" + wanted + "' is at positions " + join(at, " and ") +
-                     " of Vehicle_order: choose the follower by position; " + listed;
-      return choice;
-    }
-    position = matches.front();
+  }
+  if (at.empty())
+  {
+    error = file.path + ": no car '" + wanted + "' in Vehicle_order (" + join(file.metadata.vehicle_order, ", ") +
+            "); " + listed;
+  }
+  else if (at.size() > 1)
+  {
+    error = file.path + ": '" + wanted + "' is at positions " + join(at, " and ") +
+            " of Vehicle_order: choose the follower by position; " + listed;
+  }
+  return error.empty() ? position : 0;
+}
+
+/// The pair of one follower, by position or by name.
+OpenAccPairChoice followerPair(const OpenAccFile& file, const std::vector<OpenAccPair>& pairs,
+                               const std::string& follower)
+{
+  OpenAccPairChoice choice;
+  const std::string wanted = trim(follower);
+  const std::string listed = "pairs in this file: " + describeAvailablePairs(file);
+  const int position = followerPosition(file, wanted, listed, choice.error);
+  if (!choice.error.empty())
+  {
+    return choice;
   }
   for (const OpenAccPair& pair : pairs)
   {
@@ -1082,6 +1312,27 @@ OpenAccPairChoice selectOpenAccPairs(const OpenAccFile& file, const OpenAccPairS
                  (position >= 1 ? " (position " + std::to_string(position) + ")" : "") + ": " +
                  describePairlessFollower(file, std::max(position, 0)) + "; " + listed;
   return choice;
+}
+}  // namespace
+
+OpenAccPairChoice selectOpenAccPairs(const OpenAccFile& file, const OpenAccPairSelector& selector)
+{
+  const std::vector<OpenAccPair> pairs = availablePairs(file);
+  if (pairs.empty())
+  {
+    OpenAccPairChoice choice;
+    choice.error = noPairError(file);
+    return choice;
+  }
+  switch (selector.kind)
+  {
+    case OpenAccPairSelector::Kind::kFirst: return firstPair(file, pairs);
+    case OpenAccPairSelector::Kind::kAll:
+      return {pairs, "", file.path + ": every pair read (" + std::to_string(pairs.size()) + "): " +
+                             describeAvailablePairs(file)};
+    case OpenAccPairSelector::Kind::kFollower: break;
+  }
+  return followerPair(file, pairs, selector.follower);
 }
 
 }  // namespace acc

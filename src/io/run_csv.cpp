@@ -254,7 +254,7 @@ RunFileContents readCanonicalFile(const std::string& path, const RunPlausibility
   if (!map)
   {
     throw RunReadError(path + ": no header with time_s,space_gap_m,follower_speed_mps,leader_speed_mps in the "
-                              "first 20 lines, and no OpenACC Date line first");
+                              "first 20 lines, and no OpenACC Date line or Time,Speed1,... header first");
   }
   RunAssembler assembler(path, baseName(path), "", bounds, contents);
   while (std::getline(file, line))
@@ -435,7 +435,7 @@ RunFileContents readRunFile(const std::string& path, const RunPlausibilityBounds
   if (selector.kind == OpenAccPairSelector::Kind::kFollower)
   {
     throw RunReadError(path + ": " + selector.describe() +
-                       " chosen, but this is a canonical run CSV (no OpenACC Date line first): it holds one pair");
+                       " chosen, but this is a canonical run CSV (no OpenACC Date line or Time,Speed1,... header first): it holds one pair");
   }
   return readCanonicalFile(path, bounds);
 }

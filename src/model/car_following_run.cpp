@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace acc
 {
@@ -21,6 +22,28 @@ std::string firstNonFinite(const std::vector<double>& column, const char* column
   return "";
 }
 }  // namespace
+
+std::vector<double> sliceRows(const std::vector<double>& column, std::size_t first, std::size_t end)
+{
+  if (first > end || end > column.size())
+  {
+    throw std::out_of_range("rows [" + std::to_string(first) + ", " + std::to_string(end) + ") of a column of " +
+                            std::to_string(column.size()));
+  }
+  return std::vector<double>(column.begin() + static_cast<std::ptrdiff_t>(first),
+                             column.begin() + static_cast<std::ptrdiff_t>(end));
+}
+
+CarFollowingRun CarFollowingRun::slice(std::size_t first, std::size_t end, const std::string& name_suffix) const
+{
+  CarFollowingRun part;
+  part.name = name + name_suffix;
+  part.time_s = sliceRows(time_s, first, end);
+  part.space_gap_m = sliceRows(space_gap_m, first, end);
+  part.follower_speed_mps = sliceRows(follower_speed_mps, first, end);
+  part.leader_speed_mps = sliceRows(leader_speed_mps, first, end);
+  return part;
+}
 
 std::string describeRunProblem(const CarFollowingRun& run)
 {

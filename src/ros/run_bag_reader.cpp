@@ -3,6 +3,7 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -151,6 +152,26 @@ std::string bagName(const std::string& path)
   }
   return name;
 }
+
+/// Every topic of the bag with its type and message count, for a message that helps choose one:
+/// "/relative_state (acc_identification/RelativeState, 57 messages), ...", or "none (empty bag)".
+std::string describeBagTopics(const rosbag::Bag& bag)
+{
+  std::map<std::string, std::string> types;
+  rosbag::View everything(bag);
+  for (const rosbag::ConnectionInfo* connection : everything.getConnections())
+  {
+    types.emplace(connection->topic, connection->datatype);
+  }
+  std::string listed;
+  for (const auto& [topic, type] : types)
+  {
+    rosbag::View on_topic(bag, rosbag::TopicQuery(topic));  // size() is not const
+    listed += (listed.empty() ? "" : ", ") + topic + " (" + type + ", " + std::to_string(on_topic.size()) +
+              " message" + (on_topic.size() == 1 ? "" : "s") + ")";
+  }
+  return listed.empty() ? "none (empty bag)" : listed;
+}
 }  // namespace
 
 BagRuns readRunsFromBag(const std::string& path, const std::string& topic, const RunPlausibilityBounds& bounds)
@@ -173,7 +194,8 @@ BagRuns readRunsFromBag(const std::string& path, const std::string& topic, const
   rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{bare, "/" + bare}));
   if (view.size() == 0)
   {
-    throw std::runtime_error("bag '" + path + "' has no messages on topic '" + topic + "'");
+    throw std::runtime_error("bag '" + path + "' has no messages on topic '" + topic +
+                             "'; its topics: " + describeBagTopics(bag) + " (choose one with --topic)");
   }
   BagRuns result;
   BagSegmenter segmenter(path, bounds, result);

@@ -156,7 +156,8 @@ int main(int argc, char** argv)
   for (const std::string& note : inputs.notes)
     std::cerr << "note: " << note << "\n";
   if (!quiet)
-    std::cerr << inputs.files.size() << " file(s), " << inputs.groups.size() << " (vehicle, setting) group(s)\n";
+    std::cerr << inputs.files.size() << " file(s), " << inputs.groups.size() << " (vehicle, setting) group(s); "
+              << inputs.describeSkipped() << "\n";
   acc::CampaignResult result;
   try
   {

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <vector>
 
 #include "acc_identification/model/acc_model.h"
 #include "acc_identification/model/car_following_run.h"
@@ -58,4 +60,18 @@ TEST(CarFollowingRun, DescribesEveryProblem)
   bad = run;
   for (auto* c : {&bad.time_s, &bad.space_gap_m, &bad.follower_speed_mps, &bad.leader_speed_mps}) c->pop_back();
   EXPECT_EQ(acc::describeRunProblem(bad), "fewer than two samples");
+}
+
+TEST(CarFollowingRun, SliceKeepsTheRowsOfEveryColumnAndRefusesRowsOutsideTheRun)
+{
+  acc::CarFollowingRun run{"part3", {0.0, 0.1, 0.2, 0.3}, {20, 21, 22, 23}, {10, 11, 12, 13}, {9, 8, 7, 6}};
+  const acc::CarFollowingRun middle = run.slice(1, 3, " (middle)");
+  EXPECT_EQ(middle.name, "part3 (middle)");
+  EXPECT_EQ(middle.time_s, (std::vector<double>{0.1, 0.2}));
+  EXPECT_EQ(middle.space_gap_m, (std::vector<double>{21, 22}));
+  EXPECT_EQ(middle.follower_speed_mps, (std::vector<double>{11, 12}));
+  EXPECT_EQ(middle.leader_speed_mps, (std::vector<double>{8, 7}));
+  EXPECT_EQ(run.slice(4, 4).size(), 0u);
+  EXPECT_THROW(run.slice(2, 5), std::out_of_range);
+  EXPECT_THROW(acc::sliceRows(run.time_s, 3, 2), std::out_of_range);
 }

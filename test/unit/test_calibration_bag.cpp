@@ -55,7 +55,21 @@ TEST(RunBagReader, SplitsAtInvalidSamplesGapsAndTimeResets)
   EXPECT_EQ(runs.runs[3].size(), 5u);
   EXPECT_DOUBLE_EQ(runs.runs[3].time_s.front(), 10.0);
   EXPECT_DOUBLE_EQ(runs.runs[0].space_gap_m[1], 20.0 + 100.1);
-  EXPECT_THROW(acc::readRunsFromBag(path, "missing_topic"), std::runtime_error);
+  try
+  {
+    acc::readRunsFromBag(path, "missing_topic");
+    ADD_FAILURE() << "no error for a topic the bag does not have";
+  }
+  catch (const std::runtime_error& error)
+  {
+    // The bag's topics, with their types and counts, so that the user can pass --topic.
+    const std::string what = error.what();
+    EXPECT_NE(what.find("has no messages on topic 'missing_topic'; its topics: /other_topic "
+                        "(acc_identification/RelativeState, 1 message), /relative_state "
+                        "(acc_identification/RelativeState, 57 messages) (choose one with --topic)"),
+              std::string::npos)
+        << what;
+  }
   std::remove(path.c_str());
   EXPECT_THROW(acc::readRunsFromBag(path), std::runtime_error);
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include "acc_identification/campaign/campaign_output.h"
 #include "acc_identification/model/parallel_tasks.h"
 #include "acc_identification/evidence/perturbation.h"
+#include "acc_identification/io/run_csv.h"
 #include "campaign_test_data.h"
 
 namespace
@@ -166,4 +168,66 @@ TEST(CampaignPerturbation, FindsTheDipAndItsDepth)
   // The dip plus the slow wave's swing (0.4 m/s amplitude).
   EXPECT_NEAR(acc::dipDepthMps(time_s, speed_mps, found[0]), 6.4, 0.4);
   EXPECT_NEAR(acc::dipDepthMps(time_s, speed_mps, found[1]), 5.4, 0.4);
+}
+
+TEST(CampaignInputs, EverySkippedFileIsNamedWithItsReasonAndCounted)
+{
+  TempFolder folder("acc_campaign_skipped");
+  acc_test::writeSyntheticPlatoon(folder.file("run1.csv"), "S", {kAS, kBS}, 41, 60.0);
+  std::ofstream(folder.file("specifications.csv")) << "Make,Model,Length\nToyota,RAV4,4.6\n";
+  std::ofstream(folder.file("lonely.csv")) << "Date,8,10,2019\nVehicle_order,LEAD\nNumber_of_vehicles,1\n"
+                                              "ACC,1\nDistance_setting,S\nTime,Speed1\n0.0,10\n0.1,10\n";
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.path()});
+  EXPECT_EQ(inputs.files.size(), 1u);
+  EXPECT_EQ(inputs.skipped_files, 2u);
+  EXPECT_EQ(inputs.skipped_pairs, 0u);
+  ASSERT_EQ(inputs.notes.size(), 2u);
+  // The folder's CSV that is not OpenACC first (found while listing), then the file read without a pair.
+  EXPECT_NE(inputs.notes[0].find("specifications.csv: not an OpenACC file"), std::string::npos) << inputs.notes[0];
+  EXPECT_NE(inputs.notes[1].find("lonely.csv: no leader-follower pair"), std::string::npos) << inputs.notes[1];
+  EXPECT_NE(inputs.notes[1].find("skipped"), std::string::npos) << inputs.notes[1];
+  EXPECT_EQ(inputs.describeSkipped(), "skipped 2 file(s) and 0 pair(s) (each in a note above)");
+}
+
+TEST(CampaignInputs, WithNothingUsableTheErrorNamesEverySkip)
+{
+  TempFolder folder("acc_campaign_nothing");
+  std::ofstream(folder.file("lonely.csv")) << "Date,8,10,2019\nVehicle_order,LEAD\nTime,Speed1\n0.0,10\n";
+  try
+  {
+    acc::loadCampaign({folder.file("lonely.csv")});
+    FAIL() << "no usable pair, yet no error";
+  }
+  catch (const acc::RunReadError& error)
+  {
+    const std::string what = error.what();
+    EXPECT_NE(what.find("no leader-follower pair with usable runs"), std::string::npos) << what;
+    EXPECT_NE(what.find("lonely.csv: no leader-follower pair (a follower"), std::string::npos) << what;
+  }
+}
+
+TEST(CampaignInputs, AFileWithoutMetadataIsReadWithItsCarsNamedByPositionAndSaid)
+{
+  TempFolder folder("acc_campaign_astazero");
+  const std::string with_metadata = folder.file("with_metadata.txt");
+  acc_test::writeSyntheticPlatoon(with_metadata, "S", {kAS, kBS}, 51, 60.0);
+  // The same file as the AstaZero layout ships it: the header first, no metadata lines.
+  std::ifstream in(with_metadata);
+  std::ofstream out(folder.file("asta.csv"));
+  std::string line;
+  bool header_seen = false;
+  while (std::getline(in, line))
+  {
+    header_seen = header_seen || line.rfind("Time,", 0) == 0;
+    if (header_seen)
+      out << line << "\n";
+  }
+  out.close();
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.path()});
+  ASSERT_EQ(inputs.files.size(), 1u);
+  ASSERT_EQ(inputs.notes.size(), 1u);
+  EXPECT_NE(inputs.notes[0].find("asta.csv: no metadata lines"), std::string::npos) << inputs.notes[0];
+  ASSERT_EQ(inputs.groups.size(), 2u);
+  EXPECT_EQ(inputs.groups[0].label(), "vehicle 2/?");
+  EXPECT_EQ(inputs.groups[1].label(), "vehicle 3/?");
 }

@@ -342,4 +342,57 @@ TEST_F(OpenAccFileTest, ChoosingAFollowerInACanonicalCsvIsAnError)
                acc::RunReadError);
   EXPECT_TRUE(acc::readRunFile(path).notes.empty());
 }
+
+/// An AstaZero file as the database's derived sets ship it: no metadata, the header first; three
+/// cars (Speedk, Ek, Nk), the gaps IVS1 and IVS2, then each car's acceleration Ak.
+std::string astaZeroFile(int rows)
+{
+  std::string text = "Time,Speed1,E1,N1,Speed2,E2,N2,Speed3,E3,N3,IVS1,IVS2,A1,A2,A3\n";
+  for (int i = 0; i < rows; ++i)
+  {
+    const double t = 0.1 * i, north1 = 100.0 + i;
+    text += std::to_string(t) + ",10.0,0," + std::to_string(north1) + ",10.5,0," + std::to_string(north1 - 25.0) +
+            ",11.0,0," + std::to_string(north1 - 55.0) + ",21.0,26.0,0.0,0.1,0.2\n";
+  }
+  return text;
+}
+
+TEST_F(OpenAccFileTest, AstaZeroLayoutWithoutMetadataIsReadByItsColumnsAndSaid)
+{
+  const std::string path = write("ASta_platoon1.csv", astaZeroFile(12));
+  EXPECT_TRUE(acc::looksLikeOpenAccFile(path));
+  const acc::OpenAccFile file = acc::readOpenAccFile(path);
+  ASSERT_TRUE(file.error.empty()) << file.error;
+  EXPECT_FALSE(file.metadata.lines_present);
+  ASSERT_EQ(file.vehicles.size(), 3u);
+  EXPECT_EQ(file.vehicles[2].name, "vehicle 3");
+  EXPECT_EQ(file.rows(), 12u);
+  EXPECT_TRUE(anyContains(file.notes, {"no metadata lines", "3 cars from the columns", "named by position"}))
+      << joined(file.notes);
+  EXPECT_TRUE(anyContains(file.notes, {"columns not used: A1, A2, A3"})) << joined(file.notes);
+  EXPECT_FALSE(anyContains(file.notes, {"but Vehicle_order names"})) << joined(file.notes);
+  EXPECT_EQ(acc::describeAvailablePairs(file),
+            "vehicle 2 behind vehicle 1, positions 2/1; vehicle 3 behind vehicle 2, positions 3/2");
+
+  const acc::RunFileContents contents =
+      acc::readRunFile(path, acc::RunPlausibilityBounds{}, acc::OpenAccPairSelector::byFollower("3"));
+  EXPECT_TRUE(contents.problems.empty()) << joined(contents.problems);
+  ASSERT_EQ(contents.runs.size(), 1u);
+  EXPECT_EQ(contents.runs[0].size(), 12u);
+  EXPECT_EQ(contents.runs[0].name, "ASta_platoon1 vehicle 3");
+  EXPECT_DOUBLE_EQ(contents.runs[0].space_gap_m[0], 26.0);          // IVS2
+  EXPECT_DOUBLE_EQ(contents.runs[0].follower_speed_mps[0], 11.0);  // Speed3
+  EXPECT_DOUBLE_EQ(contents.runs[0].leader_speed_mps[0], 10.5);    // Speed2
+}
+
+TEST_F(OpenAccFileTest, AHeaderFirstNeedsTimeAndACarsSpeedToBeOpenAcc)
+{
+  // A canonical run CSV, and a CSV with a Time column but no car's speed, are not OpenACC files.
+  EXPECT_FALSE(acc::looksLikeOpenAccFile(
+      write("canonical_first.csv", "time_s,space_gap_m,follower_speed_mps,leader_speed_mps\n0.0,20,10,10\n")));
+  EXPECT_FALSE(acc::looksLikeOpenAccFile(write("other.csv", "Time,Temperature\n0.0,20\n")));
+  // Metadata lines before the header but no Date or Vehicle_order: still refused, as before.
+  const acc::OpenAccFile partial = acc::readOpenAccFile(write("partial.csv", "ACC,1\n" + astaZeroFile(3)));
+  EXPECT_NE(partial.error.find("metadata missing before the header"), std::string::npos) << partial.error;
+}
 }  // namespace

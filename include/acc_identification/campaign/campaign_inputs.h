@@ -54,20 +54,34 @@ struct CampaignInputs
 {
   std::vector<CampaignFile> files;
   std::vector<CampaignGroup> groups;  ///< by vehicle name, then setting (S, M, L, then others)
-  std::vector<std::string> notes;     ///< files and pairs skipped, and why
+  std::vector<std::string> notes;     ///< files and pairs skipped, and why, one note each
+  std::size_t skipped_files = 0;      ///< files not read (not OpenACC, unreadable, no pair)
+  std::size_t skipped_pairs = 0;      ///< pairs of read files without a usable run
+
+  /// "skipped 1 file(s) and 2 pair(s) (each in a note above)", for the summary line.
+  std::string describeSkipped() const;
 
   /// The group of this vehicle and setting, or nullptr.
   const CampaignGroup* findGroup(const std::string& vehicle, const std::string& setting) const;
 };
 
+/// The files a campaign reads, and the folder's files it does not, each with its reason.
+struct CampaignFileList
+{
+  std::vector<std::string> files;
+  std::vector<std::string> skipped;  ///< "path: not an OpenACC file (...), skipped"
+};
+
 /// The files to read: each FILE as given, each folder's *.csv files that look like OpenACC files
-/// (looksLikeOpenAccFile), in natural name order (part5 before part12). Throws
-/// std::invalid_argument for a path that is neither a file nor a folder, or a folder without any.
-std::vector<std::string> listCampaignFiles(const std::vector<std::string>& files_or_folders);
+/// (looksLikeOpenAccFile), in natural name order (part5 before part12); a folder's other *.csv
+/// files are listed as skipped. Throws std::invalid_argument for a path that is neither a file nor
+/// a folder, or a folder without any OpenACC file.
+CampaignFileList listCampaignFiles(const std::vector<std::string>& files_or_folders);
 
 /// Reads every file (readOpenAccFile and readAllPairRuns: every available pair) and groups the
 /// followers by (vehicle name, Distance_setting). A file that cannot be read as OpenACC, or a pair
-/// without usable runs, is skipped with a note. Throws RunReadError when no group results.
+/// without usable runs, is skipped with a note that says why, and counted. Throws RunReadError,
+/// naming every skip, when no group results.
 CampaignInputs loadCampaign(const std::vector<std::string>& paths,
                             const RunPlausibilityBounds& bounds = RunPlausibilityBounds{});
 

@@ -11,10 +11,13 @@ namespace acc
 /// Part C 125 (2021) 103047; (c) European Union, CC BY 4.0), whatever the campaign's layout:
 /// two-vehicle runs (Casale: Time, Speed1, Lat1, Lon1, E1, N1, Speed2, Lat2, Lon2, Alt2, E2, N2, U2,
 /// IVS1, Driver2) and platoons (ZalaZone: Time, per vehicle k Speedk, Ek, Nk, Lonk, Latk, Altk, then
-/// IVS1..IVS(n-1)). Every file starts with metadata lines (Date,DD,MM,YYYY; Vehicle_order,NAME1,...;
-/// Number_of_vehicles,N; ACC,0|1|2; Distance_setting,S|M|L|min|max|SL), then the header line.
-/// Columns are found by name in any order; the number k of a column is the car's position in
-/// Vehicle_order (1 = the platoon's leader). The run reader (run_csv.h) and the NMEA converter
+/// IVS1..IVS(n-1)). A file starts with metadata lines (Date,DD,MM,YYYY; Vehicle_order,NAME1,...;
+/// Number_of_vehicles,N; ACC,0|1|2; Distance_setting,S|M|L|min|max|SL), then the header line;
+/// or, as the AstaZero layout (Time, Speed1, E1, N1, Speed2, E2, N2, IVS1, A1, A2), with the header
+/// itself: then the cars are counted from the columns and named by position ("vehicle 2"), the
+/// date, ACC and setting are unknown, and a note says so. Columns are found by name in any order;
+/// the number k of a column is the car's position in Vehicle_order (1 = the platoon's leader);
+/// columns of no known kind (AstaZero's accelerations Ak) are listed in a note as not used. The run reader (run_csv.h) and the NMEA converter
 /// (conversion/openacc_to_nmea.h) are views on this one.
 
 /// The file's metadata lines.
@@ -25,6 +28,9 @@ struct OpenAccMetadata
   int number_of_vehicles = -1;              ///< the Number_of_vehicles line; -1 when absent or not a number
   int acc = -1;                             ///< the ACC line: 0 manual, 1 ACC throughout, 2 mixed; -1 when absent
   std::string distance_setting;             ///< the Distance_setting line (S, M, L, min, max, SL...); "" when absent
+  /// False when the file starts with its header (no metadata line at all: the AstaZero layout);
+  /// then the file's first note says so.
+  bool lines_present = true;
 };
 
 /// The unit the file's Lat/Lon cells were found to be in (see OpenAccFile::angle_unit_reason).
@@ -119,8 +125,9 @@ struct OpenAccFile
 /// Reads an OpenACC file; never throws for the file's content (see OpenAccFile::error).
 OpenAccFile readOpenAccFile(const std::string& path);
 
-/// Whether the file looks like an OpenACC file: its first line is a Date line. (A canonical run
-/// CSV starts with its header.)
+/// Whether the file looks like an OpenACC file: its first line is a Date line, or a header with a
+/// Time and a Speedk column (the layout without metadata). A canonical run CSV starts with its
+/// header of time_s, ... and is not one.
 bool looksLikeOpenAccFile(const std::string& path);
 
 /// A leader-follower pair: the follower and the car DIRECTLY ahead of it in Vehicle_order.

@@ -18,7 +18,14 @@ struct CarFollowingRun
 
   std::size_t size() const { return time_s.size(); }
   double durationS() const { return time_s.empty() ? 0.0 : time_s.back() - time_s.front(); }
+  /// The samples [first, end) of every column, named name + name_suffix ("part3 (train)").
+  /// Throws std::out_of_range when the rows are not within the run (first <= end <= size()).
+  CarFollowingRun slice(std::size_t first, std::size_t end, const std::string& name_suffix = "") const;
 };
+
+/// The rows [first, end) of one column: the one slicing of the package, for runs (above) and for
+/// the columns of a file read row by row. Throws std::out_of_range unless first <= end <= size.
+std::vector<double> sliceRows(const std::vector<double>& column, std::size_t first, std::size_t end);
 
 /// Checks the run's invariants (equal column lengths, at least two samples, strictly increasing
 /// time, finite values). Returns an empty string when the run is usable, else why it is not.

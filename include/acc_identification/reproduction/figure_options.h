@@ -1,0 +1,53 @@
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "acc_identification/model/paper_settings.h"
+
+namespace acc
+{
+/// Bad input to a figure (an option's value, a missing --run): the tool prints it with its usage
+/// and exits 2, where any other error exits 1.
+struct FigureUsageError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+/// Every value option the figures read, without the leading "--" (the tool declares each one to
+/// its parser; each figure reads its own with the default it documents in paperFiguresHelp()).
+const std::vector<std::string>& figureValueOptions();
+
+/// The figure options as given on the command line (every value of each, in order), with typed
+/// access: each accessor takes the figure's default and throws FigureUsageError for a bad value.
+class FigureOptions
+{
+public:
+  explicit FigureOptions(std::map<std::string, std::vector<std::string>> given) : given_(std::move(given)) {}
+
+  /// The last value of --name as a finite number, or fallback when it is not given.
+  double number(const std::string& name, double fallback) const;
+  double positive(const std::string& name, double fallback) const;
+  /// A whole number >= minimum (and <= 1e6).
+  std::size_t count(const std::string& name, std::size_t fallback, std::size_t minimum) const;
+  std::string text(const std::string& name, const std::string& fallback) const;
+  /// Every value of a repeatable option, in command-line order.
+  std::vector<std::string> texts(const std::string& name) const;
+  bool has(const std::string& name) const;
+
+private:
+  std::map<std::string, std::vector<std::string>> given_;
+};
+
+/// "0.5,1,1.5" -> {0.5, 1, 1.5}; throws FigureUsageError naming --option for an item that is not a
+/// finite number.
+std::vector<double> parseNumberList(const std::string& text, const std::string& option);
+
+/// The parameter sets the options name, in command-line order (--setting, --params, then one
+/// custom set from --k1 --k2 --tau-e [--eta]), or the figure's default named settings.
+std::vector<NamedSetting> resolveSettings(const FigureOptions& options, const std::vector<std::string>& defaults);
+
+}  // namespace acc

@@ -1,0 +1,75 @@
+#include "acc_identification/reproduction/paper_figures.h"
+
+#include <functional>
+#include <map>
+
+#include "acc_identification/reproduction/measured_figures.h"
+#include "acc_identification/reproduction/simulated_figures.h"
+
+namespace acc
+{
+namespace
+{
+const char* kFigures = R"(FIGURE: a name or the paper's figure number (fig1 to fig8), with each option's default:
+  lambda2-map  (fig1)  lambda2 over (k1, k2) for several tau_e; --map-tau-e 0.5,1,1.5,2,3
+                       --k1-max 1 --k2-max 1 --grid 100
+  step         (fig2)  platoon behind a lead speed step down and back up; --vehicles 9 --speed 25
+                       --step 5 --step-down-at 20 --step-up-at 60 --duration 200
+                       (default settings: fig2-unstable, fig2-stable)
+  bode         (fig6)  |Gamma(jw)| in dB; --min-frequency 0.001 --max-frequency 10 --points 400
+  sinusoid     (fig7)  platoon behind a sinusoidal lead; --vehicles 10 --speed 20 --amplitude 1
+                       --frequency 0.204 --lead-in 20 --duration 620 --fit-periods 5
+  lead-profile (fig8)  platoon behind lead profile A..I of Sec. III; --profile I --vehicles 60
+                       --short-platoon 15 --tail 600 [--lead-accel 1.5 --lead-decel 2.0]
+  equilibrium  (fig5)  space gap against speed of runs with the equilibrium lines eta + tau_e v;
+                       --run RUN.csv (repeatable) --max-relative-speed 0.5 --max-acceleration 0.1
+  timeseries   (fig3, fig4) measured against simulated speed and gap of one run, split into
+                       train and test parts; --run RUN.csv --train-fraction 0.5
+settings (repeatable, in order; default min and max of Table II):
+  --setting min|max|fig2-unstable|fig2-stable   --params CALIBRATE.json
+  --k1 K1 --k2 K2 --tau-e TAU [--eta ETA]       (one custom set, named "custom")
+common: --time-step 0.1 (Euler step of every simulation, s)
+RUN.csv: canonical (time_s,space_gap_m,follower_speed_mps,leader_speed_mps) or OpenACC two-vehicle CSV.
+)";
+
+/// The paper's figure numbers, as a reader types them, for the names the figures have here.
+const std::map<std::string, std::string> kFigureNumbers{
+    {"fig1", "lambda2-map"}, {"fig2", "step"}, {"fig3", "timeseries"}, {"fig4", "timeseries"},
+    {"fig5", "equilibrium"}, {"fig6", "bode"}, {"fig7", "sinusoid"},   {"fig8", "lead-profile"}};
+
+/// Each figure by its name.
+const std::map<std::string, std::function<nlohmann::json(const FigureRequest&)>> kFigureMakers{
+    {"lambda2-map", lambda2MapFigure}, {"step", stepFigure},
+    {"bode", bodeFigure},               {"sinusoid", sinusoidFigure},
+    {"lead-profile", leadProfileFigure}, {"equilibrium", equilibriumFigure},
+    {"timeseries", timeseriesFigure}};
+}  // namespace
+
+const char* paperFiguresHelp()
+{
+  return kFigures;
+}
+
+std::vector<std::string> acceptedFigures()
+{
+  std::vector<std::string> accepted{"lambda2-map",  "step",        "bode",      "sinusoid",
+                                    "lead-profile", "equilibrium", "timeseries"};
+  for (const auto& number : kFigureNumbers)
+    accepted.push_back(number.first);
+  return accepted;
+}
+
+nlohmann::json runPaperFigure(const std::string& figure, const FigureOptions& options, const std::string& csv_path,
+                              const FigureStreams& streams)
+{
+  const FigureRequest request{options, csv_path, options.positive("time-step", 0.1), streams};
+  const auto alias = kFigureNumbers.find(figure);
+  const auto found = kFigureMakers.find(alias == kFigureNumbers.end() ? figure : alias->second);
+  if (found == kFigureMakers.end())
+  {
+    throw FigureUsageError("unknown figure '" + figure + "'");
+  }
+  return found->second(request);
+}
+
+}  // namespace acc
