@@ -14,6 +14,7 @@ acc_add_library(acc_calibration
     src/calibration/calibration_report.cpp
     src/calibration/margin_constrained_fit.cpp
     src/calibration/quantity_identifiability.cpp
+    src/calibration/side_fits.cpp
     src/calibration/stability_test.cpp
     src/calibration/stability_test_json.cpp
     src/calibration/stability_test_text.cpp
