@@ -15,6 +15,9 @@ acc_add_library(acc_calibration
     src/calibration/margin_constrained_fit.cpp
     src/calibration/quantity_identifiability.cpp
     src/calibration/side_fits.cpp
+    src/calibration/betting_e_process.cpp
+    src/calibration/sequential_verdict.cpp
+    src/calibration/sequential_verdict_report.cpp
     src/calibration/stability_test.cpp
     src/calibration/stability_test_json.cpp
     src/calibration/stability_test_text.cpp
@@ -50,6 +53,10 @@ if(CATKIN_ENABLE_TESTING)
   # The string-stability test (stability_test.h) on seeded synthetic drives: size, power, interval.
   catkin_add_gtest(test_stability_test test/unit/gtest_main.cpp test/unit/test_stability_test.cpp)
   target_link_libraries(test_stability_test acc_calibration)
+
+  # The sequential verdict: betting under H0, synthetic truths decided and kept, node path = replay.
+  catkin_add_gtest(test_sequential_verdict test/unit/gtest_main.cpp test/unit/test_sequential_verdict.cpp)
+  target_link_libraries(test_sequential_verdict acc_calibration)
 
   # The live identifier's computation: the drive so far converges to the batch estimate and verdict.
   catkin_add_gtest(test_online_identifier test/unit/gtest_main.cpp test/unit/test_online_identifier.cpp)
