@@ -42,6 +42,16 @@ std::vector<CarFollowingRun> piecesBetween(const std::vector<CarFollowingRun>& r
   return pieces;
 }
 
+/// Data times are clock times (e.g. 56738.0 s of the day): fixed, to the tenth of a second.
+std::string formatTime(double time_s)
+{
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(1);
+  out << time_s;
+  return out.str();
+}
+
 std::size_t sampleCount(const std::vector<CarFollowingRun>& runs)
 {
   std::size_t n = 0;
@@ -153,8 +163,8 @@ SequentialLook SequentialVerdict::look(const std::vector<CarFollowingRun>& drive
   std::string note;
   if (!std::isfinite(now_s) || (last_look_s_ && now_s < *last_look_s_))
   {
-    note = "look at " + formatNumber(now_s) + " s before the previous look (" +
-           formatNumber(last_look_s_.value_or(0.0)) + " s) or not finite: nothing changed";
+    note = "look at " + formatTime(now_s) + " s before the previous look (" +
+           formatTime(last_look_s_.value_or(0.0)) + " s) or not finite: nothing changed";
   }
   else
   {
@@ -301,7 +311,7 @@ void SequentialVerdict::refit(const std::vector<CarFollowingRun>& segments, doub
   }
   if (!fits.failure.empty())
   {
-    note = "side fits at " + formatNumber(now_s) + " s failed (" + fits.failure + "); the previous ones stay";
+    note = "side fits at " + formatTime(now_s) + " s failed (" + fits.failure + "); the previous ones stay";
     return;
   }
   FitsAt made;
@@ -376,13 +386,13 @@ SequentialLook SequentialVerdict::summarize(double now_s, std::size_t samples, c
       << " (decides at 1/alpha = " << formatNumber(1.0 / options_.alpha) << ")";
   if (reversed_)
   {
-    why << ": first " << toString(first_verdict_) << " at " << formatNumber(decided_at_s_) << " s, then "
-        << toString(verdict_) << " at " << formatNumber(reversed_at_s_)
+    why << ": first " << toString(first_verdict_) << " at " << formatTime(decided_at_s_) << " s, then "
+        << toString(verdict_) << " at " << formatTime(reversed_at_s_)
         << " s: both e-processes crossed 1/alpha, the evidence meets the same standard both ways (REVERSED)";
   }
   else if (verdict_ != StabilityVerdict::Undecided)
   {
-    why << ": " << toString(verdict_) << " since " << formatNumber(decided_at_s_) << " s, kept";
+    why << ": " << toString(verdict_) << " since " << formatTime(decided_at_s_) << " s (data time), kept";
   }
   else
   {

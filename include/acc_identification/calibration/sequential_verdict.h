@@ -28,7 +28,9 @@ namespace acc
 ///     drive up to t, warm-started from the previous look's fits.
 ///  2. The drive after the first fits is cut into consecutive blocks of L seconds of data time;
 ///     L is chosen once, at the first fits, from the correlation of their training speed residual
-///     (five correlation times, clamped to [min, max]_block_length_s), then kept.
+///     (one correlation time, clamped to [min, max]_block_length_s), then kept. Validity does not
+///     depend on L (the null is conditional on the past); L trades the number of bets against what
+///     each carries, and a drive of minutes needs about ten bets to reach 1/alpha = 20.
 ///  3. A block [s, s + L) is scored once the data reach s + L, with the latest fits made at or
 ///     before s (never with data of the block or after it): each fit simulated (heldOutErrors)
 ///     from the measured state warm_up_s before the block (or the start of its segment, if later)
@@ -65,7 +67,7 @@ struct SequentialVerdictOptions
   /// Fixed block length [s]; 0: correlation_times correlation times of the first unconstrained
   /// fit's training speed residual, clamped to [min_block_length_s, max_block_length_s].
   double block_length_s = 0.0;
-  double correlation_times = 5.0;
+  double correlation_times = 1.0;
   double min_block_length_s = 10.0;
   double max_block_length_s = 60.0;
   /// Each block's simulation starts this long before it [s] (within its segment): started at the
