@@ -91,6 +91,9 @@ MultistartOptions SequentialVerdictOptions::defaultRefitMultistart()
   MultistartOptions options;
   options.starts = 0;
   options.max_evaluations_per_start = 60;
+  // The previous look's optimum moved only by ten seconds of data: stop once the mean squared
+  // error changes by less than 1e-8 of itself, far below what a block's score can tell apart.
+  options.relative_f_tolerance = 1e-8;
   return options;
 }
 
@@ -101,6 +104,7 @@ ConstrainedFitOptions SequentialVerdictOptions::defaultRefitConstrained()
   options.max_local_solves = 0;
   options.max_warm_solves = 2;
   options.max_evaluations_per_solve = 60;
+  options.relative_f_tolerance = 1e-8;
   return options;
 }
 
@@ -161,6 +165,7 @@ SequentialLook SequentialVerdict::look(const std::vector<CarFollowingRun>& drive
   }
   const std::vector<CarFollowingRun> segments = piecesBetween(valid, -std::numeric_limits<double>::infinity(), now_s, true);
   std::string note;
+  std::size_t evaluations = 0;
   if (!std::isfinite(now_s) || (last_look_s_ && now_s < *last_look_s_))
   {
     note = "look at " + formatTime(now_s) + " s before the previous look (" +
@@ -174,9 +179,10 @@ SequentialLook SequentialVerdict::look(const std::vector<CarFollowingRun>& drive
     }
     last_look_s_ = now_s;
     scoreCompleteBlocks(segments, now_s);
-    refit(segments, now_s, note);
+    evaluations = refit(segments, now_s, note);
   }
   SequentialLook result = summarize(now_s, sampleCount(segments), note);
+  result.evaluations = evaluations;
   result.solve_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   latest_ = result;
   return result;
@@ -270,21 +276,21 @@ void SequentialVerdict::scoreBlock(const std::vector<CarFollowingRun>& segments,
   }
 }
 
-void SequentialVerdict::refit(const std::vector<CarFollowingRun>& segments, double now_s, std::string& note)
+std::size_t SequentialVerdict::refit(const std::vector<CarFollowingRun>& segments, double now_s, std::string& note)
 {
   const std::size_t samples = sampleCount(segments);
   if (samples < options_.min_training_samples)
   {
     note = "too few samples for the side fits (" + std::to_string(samples) + " < " +
            std::to_string(options_.min_training_samples) + ")";
-    return;
+    return 0;
   }
   const double speed_std = followerSpeedStdMps(segments);
   if (fits_.empty() && speed_std < options_.min_training_speed_std_mps)
   {
     note = "flat data so far: the follower speed varies by " + formatNumber(speed_std) +
            " m/s (std); without speed changes the data pin only eta + tau_e v, not the margin";
-    return;
+    return 0;
   }
   std::optional<CalibrationObjective> objective;
   try
@@ -294,7 +300,7 @@ void SequentialVerdict::refit(const std::vector<CarFollowingRun>& segments, doub
   catch (const std::exception& error)
   {
     note = std::string("the drive cannot be simulated: ") + error.what();
-    return;
+    return 0;
   }
   SideFits fits;
   if (fits_.empty())
@@ -305,14 +311,16 @@ void SequentialVerdict::refit(const std::vector<CarFollowingRun>& segments, doub
   {
     const SideFits& previous = fits_.back().fits;
     const SideFit& previous_other = previous.unconstrained_stable ? previous.unstable : previous.stable;
+    // U is one of the two sides: both sides' fits are the warm starts, U's first.
+    const SideFit& previous_u = previous.unconstrained_stable ? previous.stable : previous.unstable;
     fits = fitBothSides(*objective, options_.refit_multistart, options_.refit_constrained,
-                        {previous.unconstrained, previous.stable.parameters, previous.unstable.parameters},
-                        {previous_other.parameters});
+                        {previous_u.parameters, previous_other.parameters}, {previous_other.parameters});
   }
+  const std::size_t evaluations = fits.unconstrained_evaluations + fits.constrained_evaluations;
   if (!fits.failure.empty())
   {
     note = "side fits at " + formatTime(now_s) + " s failed (" + fits.failure + "); the previous ones stay";
-    return;
+    return evaluations;
   }
   FitsAt made;
   made.trained_until_s = now_s;
@@ -342,6 +350,7 @@ void SequentialVerdict::refit(const std::vector<CarFollowingRun>& segments, doub
     next_block_start_s_ = now_s;
   }
   fits_.push_back(std::move(made));
+  return evaluations;
 }
 
 SequentialLook SequentialVerdict::summarize(double now_s, std::size_t samples, const std::string& note) const

@@ -48,6 +48,7 @@ nlohmann::json toJson(const SequentialLook& look)
   json["unstable_fit_margin"] = finiteOrNull(look.unstable_fit_margin);
   json["reason"] = look.reason;
   json["solve_time_s"] = look.solve_time_s;
+  json["evaluations"] = look.evaluations;
   return json;
 }
 

@@ -122,6 +122,7 @@ struct SequentialLook
   double unstable_fit_margin = std::numeric_limits<double>::quiet_NaN();
   std::string reason;                ///< why this verdict, in words
   double solve_time_s = 0.0;         ///< wall time of this look
+  std::size_t evaluations = 0;       ///< objective passes of this look's side fits
 };
 
 class SequentialVerdict
@@ -160,7 +161,8 @@ private:
 
   void scoreCompleteBlocks(const std::vector<CarFollowingRun>& segments, double now_s);
   void scoreBlock(const std::vector<CarFollowingRun>& segments, double start_s, const FitsAt& fits);
-  void refit(const std::vector<CarFollowingRun>& segments, double now_s, std::string& note);
+  /// Returns the objective passes it made.
+  std::size_t refit(const std::vector<CarFollowingRun>& segments, double now_s, std::string& note);
   SequentialLook summarize(double now_s, std::size_t samples, const std::string& note) const;
 
   SequentialVerdictOptions options_;
@@ -196,7 +198,7 @@ nlohmann::json toSequenceEntryJson(const SequentialLook& look);
 /// Everything of the look: the entry's fields and p_value_stable_rejected,
 /// p_value_unstable_rejected, alpha, blocks_scored, blocks_skipped, block_length_s, decided_at_s,
 /// reversed, first_verdict, reversed_at_s, stable_fit_margin, unstable_fit_margin, reason,
-/// solve_time_s (NaN as null).
+/// solve_time_s, evaluations (NaN as null).
 nlohmann::json toJson(const SequentialLook& look);
 
 /// One line per look: time, samples, blocks scored, both e-values, verdict, its anytime-valid
