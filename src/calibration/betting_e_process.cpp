@@ -50,4 +50,36 @@ double BettingEProcess::pValue() const
   return std::min(1.0, 1.0 / max_e_value_);
 }
 
+SignDecision::SignDecision(double alpha, double max_bet)
+    : threshold_(1.0 / alpha), on_positive_(max_bet), on_negative_(max_bet)
+{
+  if (!(alpha > 0.0 && alpha < 1.0))
+  {
+    throw std::invalid_argument("SignDecision: alpha must be in (0, 1)");
+  }
+}
+
+void SignDecision::add(double x, double time_s)
+{
+  on_positive_.add(x);
+  on_negative_.add(-x);
+  const bool positive_shown = on_positive_.maxEValue() >= threshold_;
+  const bool negative_shown = on_negative_.maxEValue() >= threshold_;
+  if (sign_ == Sign::Undecided)
+  {
+    if (positive_shown || negative_shown)
+    {
+      sign_ = positive_shown ? Sign::Positive : Sign::Negative;
+      first_sign_ = sign_;
+      decided_at_s_ = time_s;
+    }
+  }
+  else if (!reversed_ && (sign_ == Sign::Positive ? negative_shown : positive_shown))
+  {
+    sign_ = sign_ == Sign::Positive ? Sign::Negative : Sign::Positive;
+    reversed_ = true;
+    reversed_at_s_ = time_s;
+  }
+}
+
 }  // namespace acc

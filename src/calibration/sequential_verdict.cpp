@@ -11,6 +11,17 @@ namespace acc
 {
 namespace
 {
+StabilityVerdict verdictOf(SignDecision::Sign sign)
+{
+  switch (sign)
+  {
+    case SignDecision::Sign::Positive: return StabilityVerdict::Unstable;  // the stable model predicts worse
+    case SignDecision::Sign::Negative: return StabilityVerdict::Stable;
+    case SignDecision::Sign::Undecided: break;
+  }
+  return StabilityVerdict::Undecided;
+}
+
 /// The samples of each run with from_s <= t < to_s (to_s included when include_end), as runs of
 /// at least two samples (a piece's first sample is its measured start, never scored).
 std::vector<CarFollowingRun> piecesBetween(const std::vector<CarFollowingRun>& runs, double from_s, double to_s,
@@ -109,7 +120,7 @@ ConstrainedFitOptions SequentialVerdictOptions::defaultRefitConstrained()
 }
 
 SequentialVerdict::SequentialVerdict(SequentialVerdictOptions options)
-    : options_(std::move(options)), against_stable_(options_.max_bet), against_unstable_(options_.max_bet)
+    : options_(std::move(options)), decision_(options_.alpha, options_.max_bet)
 {
 }
 
@@ -252,28 +263,8 @@ void SequentialVerdict::scoreBlock(const std::vector<CarFollowingRun>& segments,
     x = std::clamp(d / scale, -1.0, 1.0);
     sum_squared_d_ += d * d;
   }
-  against_stable_.add(x);
-  against_unstable_.add(-x);
+  decision_.add(x, end_s);
   ++blocks_scored_;
-
-  const double threshold = 1.0 / options_.alpha;
-  const bool unstable_shown = against_stable_.maxEValue() >= threshold;
-  const bool stable_shown = against_unstable_.maxEValue() >= threshold;
-  if (verdict_ == StabilityVerdict::Undecided)
-  {
-    if (unstable_shown || stable_shown)
-    {
-      verdict_ = unstable_shown ? StabilityVerdict::Unstable : StabilityVerdict::Stable;
-      first_verdict_ = verdict_;
-      decided_at_s_ = end_s;
-    }
-  }
-  else if (!reversed_ && (verdict_ == StabilityVerdict::Unstable ? stable_shown : unstable_shown))
-  {
-    verdict_ = verdict_ == StabilityVerdict::Unstable ? StabilityVerdict::Stable : StabilityVerdict::Unstable;
-    reversed_ = true;
-    reversed_at_s_ = end_s;
-  }
 }
 
 std::size_t SequentialVerdict::refit(const std::vector<CarFollowingRun>& segments, double now_s, std::string& note)
@@ -362,19 +353,21 @@ SequentialLook SequentialVerdict::summarize(double now_s, std::size_t samples, c
   look.blocks_skipped = blocks_skipped_;
   look.block_length_s = block_length_s_;
   look.alpha = options_.alpha;
-  look.verdict = verdict_;
-  look.e_value_unstable = against_stable_.eValue();
-  look.e_value_stable = against_unstable_.eValue();
-  look.p_value_stable_rejected = against_stable_.pValue();
-  look.p_value_unstable_rejected = against_unstable_.pValue();
-  look.p_value = verdict_ == StabilityVerdict::Unstable ? look.p_value_stable_rejected
-                 : verdict_ == StabilityVerdict::Stable ? look.p_value_unstable_rejected
-                                                        : std::min(look.p_value_stable_rejected,
-                                                                   look.p_value_unstable_rejected);
-  look.decided_at_s = decided_at_s_;
-  look.reversed = reversed_;
-  look.first_verdict = first_verdict_;
-  look.reversed_at_s = reversed_at_s_;
+  const BettingEProcess& against_stable = decision_.againstNonPositive();
+  const BettingEProcess& against_unstable = decision_.againstNonNegative();
+  look.verdict = verdictOf(decision_.sign());
+  look.e_value_unstable = against_stable.eValue();
+  look.e_value_stable = against_unstable.eValue();
+  look.p_value_stable_rejected = against_stable.pValue();
+  look.p_value_unstable_rejected = against_unstable.pValue();
+  look.p_value = look.verdict == StabilityVerdict::Unstable ? look.p_value_stable_rejected
+                 : look.verdict == StabilityVerdict::Stable ? look.p_value_unstable_rejected
+                                                            : std::min(look.p_value_stable_rejected,
+                                                                       look.p_value_unstable_rejected);
+  look.decided_at_s = decision_.decidedAtS();
+  look.reversed = decision_.reversed();
+  look.first_verdict = verdictOf(decision_.firstSign());
+  look.reversed_at_s = decision_.reversedAtS();
   if (!fits_.empty())
   {
     look.stable_fit_margin = fits_.back().fits.stable.margin;
@@ -391,17 +384,17 @@ SequentialLook SequentialVerdict::summarize(double now_s, std::size_t samples, c
     why << " (" << blocks_skipped_ << " skipped: holes)";
   }
   why << ", each predicted by side fits made before it; max E against stable "
-      << formatNumber(against_stable_.maxEValue()) << ", against unstable " << formatNumber(against_unstable_.maxEValue())
+      << formatNumber(against_stable.maxEValue()) << ", against unstable " << formatNumber(against_unstable.maxEValue())
       << " (decides at 1/alpha = " << formatNumber(1.0 / options_.alpha) << ")";
-  if (reversed_)
+  if (look.reversed)
   {
-    why << ": first " << toString(first_verdict_) << " at " << formatTime(decided_at_s_) << " s, then "
-        << toString(verdict_) << " at " << formatTime(reversed_at_s_)
+    why << ": first " << toString(look.first_verdict) << " at " << formatTime(look.decided_at_s) << " s, then "
+        << toString(look.verdict) << " at " << formatTime(look.reversed_at_s)
         << " s: both e-processes crossed 1/alpha, the evidence meets the same standard both ways (REVERSED)";
   }
-  else if (verdict_ != StabilityVerdict::Undecided)
+  else if (look.verdict != StabilityVerdict::Undecided)
   {
-    why << ": " << toString(verdict_) << " since " << formatTime(decided_at_s_) << " s (data time), kept";
+    why << ": " << toString(look.verdict) << " since " << formatTime(look.decided_at_s) << " s (data time), kept";
   }
   else
   {

@@ -100,6 +100,45 @@ TEST(SequentialVerdict, BettingKeepsItsLevelUnderTheNullAndFindsAMean)
   EXPECT_THROW(acc::BettingEProcess(1.0), std::invalid_argument);
 }
 
+// The decision the two e-processes take: kept once taken, and changed only when the other side
+// reaches 1/alpha too, which is said (reversed, both times), never a silent withdrawal. Increments
+// of +0.8 decide "positive"; a long run of -0.8 afterwards first only erodes the positive side's
+// e-value (its max, and so the p-value, stays: still positive), then the negative side's e-process
+// reaches 1/alpha and the decision reverses.
+TEST(SequentialVerdict, ADecisionIsKeptAndOnlyReversedByEqualEvidence)
+{
+  acc::SignDecision decision(kAlpha, 0.5);
+  double t = 0.0;
+  while (decision.sign() == acc::SignDecision::Sign::Undecided && t < 1000.0)
+  {
+    decision.add(0.8, t += 10.0);
+  }
+  ASSERT_EQ(decision.sign(), acc::SignDecision::Sign::Positive);
+  const double decided_at_s = decision.decidedAtS();
+  EXPECT_DOUBLE_EQ(decided_at_s, t);
+  const double p_positive = decision.againstNonPositive().pValue();
+  EXPECT_LE(p_positive, kAlpha);
+  int against = 0;
+  while (!decision.reversed() && against < 1000)
+  {
+    decision.add(-0.8, t += 10.0);
+    ++against;
+    if (!decision.reversed())
+    {
+      EXPECT_EQ(decision.sign(), acc::SignDecision::Sign::Positive) << "withdrawn after " << against;
+      EXPECT_DOUBLE_EQ(decision.againstNonPositive().pValue(), p_positive);  // monotone: 1 / max E
+    }
+  }
+  ASSERT_TRUE(decision.reversed());
+  EXPECT_GT(against, 3);  // one bad block is not enough
+  EXPECT_EQ(decision.sign(), acc::SignDecision::Sign::Negative);
+  EXPECT_EQ(decision.firstSign(), acc::SignDecision::Sign::Positive);
+  EXPECT_DOUBLE_EQ(decision.decidedAtS(), decided_at_s);
+  EXPECT_DOUBLE_EQ(decision.reversedAtS(), t);
+  EXPECT_LE(decision.againstNonNegative().pValue(), kAlpha);
+  EXPECT_THROW(acc::SignDecision(0.0, 0.5), std::invalid_argument);
+}
+
 // (b) A clearly stable (m = 3) and a clearly unstable (m = -1) truth, 900 s drives, looks every
 // 10 s: decided right, and each decision kept to the end of the drive.
 TEST(SequentialVerdict, ClearTruthsAreDecidedRightAndKept)

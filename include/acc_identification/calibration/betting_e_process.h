@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 
 namespace acc
 {
@@ -40,6 +41,45 @@ private:
   double sum_ = 0.0;
   double sum_squared_deviation_ = 0.0;
   std::size_t count_ = 0;
+};
+
+/// The sign of E[x] decided by two BettingEProcess, one betting on x > 0, one on x < 0: "positive"
+/// once the first reaches 1/alpha (max over time), "negative" once the second does; the decision is
+/// kept, and should the other one reach 1/alpha later, the decision becomes its side and reversed()
+/// says so (with both times): evidence meeting the same standard both ways is reported, never
+/// silently withdrawn. Each side errs with probability at most alpha over all time (Ville).
+class SignDecision
+{
+public:
+  enum class Sign
+  {
+    Undecided,
+    Positive,
+    Negative
+  };
+
+  SignDecision(double alpha, double max_bet);
+
+  /// One increment (clipped to [-1, 1]) observed at time_s.
+  void add(double x, double time_s);
+
+  Sign sign() const { return sign_; }
+  Sign firstSign() const { return first_sign_; }
+  bool reversed() const { return reversed_; }
+  double decidedAtS() const { return decided_at_s_; }
+  double reversedAtS() const { return reversed_at_s_; }
+  const BettingEProcess& againstNonPositive() const { return on_positive_; }  ///< bets on x > 0
+  const BettingEProcess& againstNonNegative() const { return on_negative_; }  ///< bets on x < 0
+
+private:
+  double threshold_;
+  BettingEProcess on_positive_;
+  BettingEProcess on_negative_;
+  Sign sign_ = Sign::Undecided;
+  Sign first_sign_ = Sign::Undecided;
+  bool reversed_ = false;
+  double decided_at_s_ = std::numeric_limits<double>::quiet_NaN();
+  double reversed_at_s_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace acc

@@ -176,13 +176,8 @@ private:
   std::size_t blocks_scored_ = 0;
   std::size_t blocks_skipped_ = 0;
   double sum_squared_d_ = 0.0;
-  BettingEProcess against_stable_;
-  BettingEProcess against_unstable_;
-  StabilityVerdict verdict_ = StabilityVerdict::Undecided;
-  StabilityVerdict first_verdict_ = StabilityVerdict::Undecided;
-  double decided_at_s_ = std::numeric_limits<double>::quiet_NaN();
-  bool reversed_ = false;
-  double reversed_at_s_ = std::numeric_limits<double>::quiet_NaN();
+  /// On x_b = clipped, scaled e_stable^2 - e_unstable^2: positive = unstable.
+  SignDecision decision_;
   std::optional<SequentialLook> latest_;
 };
 
