@@ -14,6 +14,10 @@ acc_add_library(acc_calibration
     src/calibration/calibration_report.cpp
     src/calibration/margin_constrained_fit.cpp
     src/calibration/quantity_identifiability.cpp
+    src/calibration/side_fits.cpp
+    src/calibration/betting_e_process.cpp
+    src/calibration/sequential_verdict.cpp
+    src/calibration/sequential_verdict_report.cpp
     src/calibration/stability_test.cpp
     src/calibration/stability_test_json.cpp
     src/calibration/stability_test_text.cpp
@@ -25,6 +29,9 @@ acc_add_ros_library(acc_calibration_ros SOURCES src/ros/run_bag_reader.cpp LINK 
 
 # rosrun acc_identification calibrate [options] RUN...
 acc_add_tool(calibrate LINK acc_calibration_ros acc_run_io)
+
+# rosrun acc_identification verdict_study --drives N: size and power of the sequential verdict.
+acc_add_tool(verdict_study LINK acc_calibration)
 
 # identifier_node: the sliding-window identifier (ROS wrapper and its ten-line main).
 acc_add_ros_library(acc_identifier_ros SOURCES src/ros/identifier_ros.cpp LINK acc_calibration acc_run_io)
@@ -49,6 +56,10 @@ if(CATKIN_ENABLE_TESTING)
   # The string-stability test (stability_test.h) on seeded synthetic drives: size, power, interval.
   catkin_add_gtest(test_stability_test test/unit/gtest_main.cpp test/unit/test_stability_test.cpp)
   target_link_libraries(test_stability_test acc_calibration)
+
+  # The sequential verdict: betting under H0, synthetic truths decided and kept, node path = replay.
+  catkin_add_gtest(test_sequential_verdict test/unit/gtest_main.cpp test/unit/test_sequential_verdict.cpp)
+  target_link_libraries(test_sequential_verdict acc_calibration)
 
   # The live identifier's computation: the drive so far converges to the batch estimate and verdict.
   catkin_add_gtest(test_online_identifier test/unit/gtest_main.cpp test/unit/test_online_identifier.cpp)

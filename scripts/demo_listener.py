@@ -32,9 +32,9 @@ def line(m):
     drive_s = (m.window_end - m.drive_start).to_sec() if m.drive_start.to_sec() > 0 else 0.0
     verdict = m.stability_verdict.upper()
     if m.stability_p_value == m.stability_p_value:
-        verdict += " p={:.3f} m in [{}, {}] ({} samples)".format(
-            m.stability_p_value, fmt(m.stability_margin_low, ".2f").strip(),
-            fmt(m.stability_margin_high, ".2f").strip(), m.stability_samples)
+        # The sequential verdict: its anytime-valid p-value and the two e-values (decides at 1/alpha).
+        verdict += " p={:.3f} E_unstable {:.3g} E_stable {:.3g} ({} samples)".format(
+            m.stability_p_value, m.stability_e_value_unstable, m.stability_e_value_stable, m.stability_samples)
     note = "all determined" if m.identifiable else "not determined: " + (m.identifiability_note[:90] or "-")
     return ("{} win {:5.0f}s n={:5d} k1 {} k2 {} tau_e {} eta {} gap@{}m/s {} margin {} | "
             "drive {:6.0f}s margin {} | verdict {} | {}".format(
@@ -133,8 +133,8 @@ def compare(online_path, batch_path):
     print("identifiable: online {}, batch {}; {} of {} online updates were identifiable".format(
         online["identifiable"], batch.get("identifiable"), online["identifiable_messages"], online["messages"]))
     test = batch.get("stability_test") or {}
-    print("string stability, live (drive so far, test on {} samples): {} p={}; batch calibrate ({} held-out "
-          "samples): {} p={}".format(
+    print("string stability, live sequential verdict (anytime-valid, {} samples looked at): {} p={}; batch "
+          "calibrate's fixed-sample test (one look, {} held-out samples): {} p={}".format(
               online.get("stability_samples"), online.get("stability_verdict"), online.get("stability_p_value"),
               test.get("held_out_samples"), test.get("verdict"), test.get("p_value")))
     if online.get("first_decided_after_s") is not None:

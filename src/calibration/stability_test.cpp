@@ -19,29 +19,6 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 /// above 0).
 constexpr double kSameMargin = 1e-9;
 
-/// The held-out speed errors of one model: each segment simulated from its own measured start,
-/// every sample but the first (the measured start itself).
-struct HeldOutErrors
-{
-  std::vector<double> error;
-  bool diverged = false;
-};
-
-HeldOutErrors heldOutErrors(const AccParameters& p, const std::vector<CarFollowingRun>& held_out)
-{
-  HeldOutErrors result;
-  for (const CarFollowingRun& run : held_out)
-  {
-    const SimulatedFollower sim = simulateFollower(p, run);
-    result.diverged = result.diverged || sim.diverged;
-    for (std::size_t k = 1; k < run.size(); ++k)
-    {
-      result.error.push_back(run.follower_speed_mps[k] - sim.speed_mps[k]);
-    }
-  }
-  return result;
-}
-
 double rms(const std::vector<double>& x)
 {
   double sum = 0.0;
@@ -71,49 +48,6 @@ double mean(const std::vector<double>& x)
     sum += value;
   }
   return x.empty() ? 0.0 : sum / static_cast<double>(x.size());
-}
-
-/// Lag-1 autocorrelation of the centred series within segments.
-double lag1Autocorrelation(const std::vector<double>& x, const std::vector<std::size_t>& segment_lengths)
-{
-  const double m = mean(x);
-  double variance = 0.0, lagged = 0.0;
-  std::size_t offset = 0;
-  for (std::size_t length : segment_lengths)
-  {
-    for (std::size_t k = 0; k < length; ++k)
-    {
-      const double a = x[offset + k] - m;
-      variance += a * a;
-      if (k > 0)
-      {
-        lagged += a * (x[offset + k - 1] - m);
-      }
-    }
-    offset += length;
-  }
-  return variance > 0.0 ? lagged / variance : 0.0;
-}
-
-double speedStandardDeviation(const std::vector<CarFollowingRun>& runs)
-{
-  double sum = 0.0, sum_sq = 0.0;
-  std::size_t n = 0;
-  for (const CarFollowingRun& run : runs)
-  {
-    for (double v : run.follower_speed_mps)
-    {
-      sum += v;
-      sum_sq += v * v;
-      ++n;
-    }
-  }
-  if (n == 0)
-  {
-    return 0.0;
-  }
-  const double m = sum / static_cast<double>(n);
-  return std::sqrt(std::max(0.0, sum_sq / static_cast<double>(n) - m * m));
 }
 
 std::string formatNumber(double value, int precision = 4)
@@ -330,7 +264,7 @@ StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& trai
                   formatNumber(held_out_duration_s) + " s; need " + std::to_string(options.min_held_out_samples) +
                   " samples and " + formatNumber(options.min_held_out_duration_s) + " s)");
   }
-  const double speed_std = speedStandardDeviation(training);
+  const double speed_std = followerSpeedStdMps(training);
   if (speed_std < options.min_training_speed_std_mps)
   {
     return finish("flat data: the training follower speed varies by " + formatNumber(speed_std) + " m/s (std) < " +
@@ -348,36 +282,17 @@ StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& trai
   {
     return finish(std::string("training data cannot be simulated: ") + error.what());
   }
-  const MultistartResult unconstrained = calibrateMultistart(*objective, options.multistart, options.warm_starts);
-  result.unconstrained_evaluations = unconstrained.evaluations;
-  if (unconstrained.diverged)
+  const SideFits side_fits = fitBothSides(*objective, options.multistart, options.constrained, options.warm_starts);
+  result.unconstrained_evaluations = side_fits.unconstrained_evaluations;
+  result.constrained_evaluations = side_fits.constrained_evaluations;
+  if (!side_fits.failure.empty())
   {
-    return finish("every start of the unconstrained fit diverged");
+    return finish(side_fits.failure);
   }
-  const AccParameters& u = unconstrained.parameters;
-  const double u_margin = stabilityMargin(u);
-  const bool u_stable = u_margin >= 0.0;
-  SideFit u_side;
-  u_side.found = true;
-  u_side.parameters = u;
-  u_side.margin = u_margin;
-  u_side.unconstrained_optimum = true;
-  u_side.status = unconstrained.status;
-  const ConstrainedFitResult other = fitWithMarginConstraint(
-      *objective, u_stable ? MarginSide::AtMost : MarginSide::AtLeast, 0.0, options.constrained, {u});
-  result.constrained_evaluations = other.evaluations;
-  SideFit other_side;
-  other_side.found = other.found;
-  other_side.parameters = other.parameters;
-  other_side.margin = other.margin;
-  other_side.status = other.status;
-  SideFit stable = u_stable ? u_side : other_side;
-  SideFit unstable = u_stable ? other_side : u_side;
-  if (!stable.found || !unstable.found)
-  {
-    return finish(std::string("no ") + (stable.found ? "string-unstable" : "string-stable") +
-                  " model within the parameter bounds fits the training data");
-  }
+  const AccParameters& u = side_fits.unconstrained;
+  const bool u_stable = side_fits.unconstrained_stable;
+  SideFit stable = side_fits.stable;
+  SideFit unstable = side_fits.unstable;
   if (options.with_quantities)
   {
     const ParameterUncertainty uncertainty = estimateUncertainty(u, training);
@@ -448,9 +363,8 @@ StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& trai
     double block_s = options.block_length_s;
     if (!(block_s > 0.0))
     {
-      const double rho = std::clamp(lag1Autocorrelation(d, segment_lengths), 1e-6, 0.9999);
-      const double correlation_time_s = -mean_step_s / std::log(rho);
-      block_s = std::clamp(5.0 * correlation_time_s, options.min_block_length_s, options.max_block_length_s);
+      block_s = correlationBlockLengthS(d, segment_lengths, mean_step_s, 5.0, options.min_block_length_s,
+                                        options.max_block_length_s);
       block_s =
           std::min(block_s, held_out_duration_s / static_cast<double>(std::max<std::size_t>(1, options.min_blocks)));
     }

@@ -40,7 +40,8 @@ void printStabilityTest(const StabilityTestResult& result, std::ostream& out)
 {
   char line[400];
   std::snprintf(line, sizeof line,
-                "String stability decided from the data (each run's first half fits, its second half judges; "
+                "String stability decided from the data, fixed-sample test (one look at all the data: each run's first "
+                "half fits, its second half judges; "
                 "alpha %.3g):\n",
                 result.alpha);
   out << line;

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
+#include "acc_identification/calibration/margin_constrained_fit.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/normal_source.h"
 
@@ -83,6 +86,17 @@ CarFollowingRun synthesizeRun(const AccParameters& truth, double duration_s, dou
     run.leader_speed_mps[k] += noise.speed_std_mps * random.standardNormal();
   }
   return run;
+}
+
+AccParameters truthWithMargin(double margin)
+{
+  const std::vector<AccParameters> on_margin = projectOntoMargin({0.1, 0.5, 1.5, 6.0}, margin, ParameterBounds{});
+  if (on_margin.empty())
+  {
+    throw std::invalid_argument("truthWithMargin: no k1 = 0.1, k2 = 0.5 model within the bounds has margin " +
+                                std::to_string(margin));
+  }
+  return on_margin.front();
 }
 
 }  // namespace acc

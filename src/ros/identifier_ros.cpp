@@ -111,8 +111,36 @@ void fillDrive(const OnlineUpdate& update, double drive_start_s, acc_identificat
   m.drive_note = !update.drive.solved ? update.drive.note : undeterminedNote(q);
 }
 
+/// The sequential verdict's fields (the node's published verdict).
+void fillSequentialVerdict(const SequentialLook& look, acc_identification::AccParameters& m)
+{
+  m.stability_verdict = toString(look.verdict);
+  m.stability_p_value = look.p_value;
+  m.stability_margin_low = kNaN;
+  m.stability_margin_high = kNaN;
+  m.stability_samples = static_cast<std::uint32_t>(look.samples);
+  m.stability_reason = look.reason;
+  m.stability_e_value_unstable = look.e_value_unstable;
+  m.stability_e_value_stable = look.e_value_stable;
+  m.stability_decided_at_s = look.decided_at_s;
+  m.stability_reversed = look.reversed;
+  m.stability_blocks_scored = static_cast<std::uint32_t>(look.blocks_scored);
+  m.stability_stable_fit_margin = look.stable_fit_margin;
+  m.stability_unstable_fit_margin = look.unstable_fit_margin;
+}
+
 void fillVerdict(const OnlineUpdate& update, acc_identification::AccParameters& m)
 {
+  m.stability_e_value_unstable = kNaN;
+  m.stability_e_value_stable = kNaN;
+  m.stability_decided_at_s = kNaN;
+  m.stability_stable_fit_margin = kNaN;
+  m.stability_unstable_fit_margin = kNaN;
+  if (update.sequential)
+  {
+    fillSequentialVerdict(*update.sequential, m);
+    return;
+  }
   if (!update.stability)
   {
     m.stability_verdict = toString(StabilityVerdict::Undecided);
@@ -248,6 +276,10 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node,
   options.stability_every_updates = 0;  // on the stability thread instead
   options.stability.alpha = settings_.alpha;
   identifier_.emplace(options);
+  SequentialVerdictOptions verdict_options;
+  verdict_options.alpha = settings_.alpha;
+  verdict_options.look_period_s = settings_.stability_period_s;
+  sequential_.emplace(verdict_options);
   publisher_ = node.advertise<acc_identification::AccParameters>("acc_parameters", 10);
   subscriber_ = node.subscribe("relative_state", static_cast<std::uint32_t>(settings_.queue_size),
                                &IdentifierRos::onRelativeState, this);
@@ -261,8 +293,8 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node,
   diagnostic_timer_ = node.createWallTimer(ros::WallDuration(1.0),
                                            [this](const ros::WallTimerEvent&) { updater_.force_update(); });
   ROS_INFO("identifier: window %.0f s and the drive so far (at most %zu samples, let go of in %.0f s blocks), "
-           "every %.2f s, %d fresh starts plus a warm start; string-stability test of the drive at most every %.0f s "
-           "(alpha %.3g); excitation: speed std >= %.2f m/s; a jump in time needs %d consistent samples",
+           "every %.2f s, %d fresh starts plus a warm start; sequential string-stability verdict of the drive, a look every %.0f s "
+           "of data (alpha %.3g, anytime-valid); excitation: speed std >= %.2f m/s; a jump in time needs %d consistent samples",
            settings_.window_s, settings_.drive_bound.max_samples, settings_.drive_bound.block_s, settings_.period_s,
            settings_.starts, settings_.stability_period_s, settings_.alpha, settings_.criteria.min_speed_std_mps,
            settings_.jump_confirm_samples);
@@ -389,6 +421,7 @@ void IdentifierRos::onPeriod(const ros::TimerEvent& event)
   if (grown && (due || stalled))
   {
     job.test_stability = true;
+    job.data_stopped = stalled;
     last_stability_request_s_ = now_s;
     last_stability_request_samples_ = drive_samples;
   }
@@ -442,6 +475,7 @@ void IdentifierRos::runJob(Job& job)
     ++drive_resets_;
     std::lock_guard<std::mutex> lock(stability_mutex_);
     stability_result_.reset();
+    ++drive_generation_;
   }
   OnlineUpdate update = solve_(*identifier_, job.segments, job.drive_segments);
   if (update.window.solved)
@@ -458,8 +492,7 @@ void IdentifierRos::runJob(Job& job)
   }
   {
     std::lock_guard<std::mutex> lock(stability_mutex_);
-    update.stability = stability_result_;
-    update.stability_drive_samples = stability_samples_;
+    update.sequential = stability_result_;
   }
   if (job.test_stability)
   {
@@ -479,19 +512,15 @@ void IdentifierRos::noteFailure(const char* what, const std::string& failure)
   last_failure_ = std::string(what) + ": " + failure;
 }
 
-void IdentifierRos::offerStabilityJob(const Job& job, const OnlineUpdate& update)
+void IdentifierRos::offerStabilityJob(const Job& job, const OnlineUpdate&)
 {
-  if (!update.drive.solved || update.drive.calibration.diverged)
-  {
-    return;
-  }
   std::lock_guard<std::mutex> lock(stability_mutex_);
   if (stability_busy_)
   {
-    stability_request_dropped_ = true;  // still on an earlier drive: the timer asks again
+    stability_request_dropped_ = true;  // still on an earlier look: the timer asks again
     return;
   }
-  stability_job_ = StabilityJob{job.drive_segments, update.drive.calibration.parameters, update.drive_samples};
+  stability_job_ = StabilityJob{job.drive_segments, job.data_stopped, drive_generation_};
   stability_busy_ = true;
   stability_ready_.notify_one();
 }
@@ -511,21 +540,25 @@ void IdentifierRos::stabilityLoop()
       job = std::move(*stability_job_);
       stability_job_.reset();
     }
-    std::optional<StabilityTestResult> result;
+    if (job.drive_generation != sequential_generation_)
+    {
+      sequential_->reset();  // a new drive: its verdict starts from nothing
+      sequential_generation_ = job.drive_generation;
+    }
+    std::vector<SequentialLook> looks;
     const auto start = std::chrono::steady_clock::now();
     std::string failure;
-    if (!runCatchingEverything([&] { result = identifier_->testDrive(job.drive_segments, job.drive_fit); }, failure))
+    if (!runCatchingEverything([&] { looks = sequential_->lookLive(job.drive_segments, job.data_stopped); }, failure))
     {
-      result.reset();
-      noteFailure("string-stability test", failure);
+      looks.clear();
+      noteFailure("sequential string-stability verdict", failure);
     }
     last_stability_time_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::lock_guard<std::mutex> lock(stability_mutex_);
-    if (result)
+    if (!looks.empty() && job.drive_generation == drive_generation_)
     {
-      ++stability_tests_;
-      stability_result_ = std::move(result);
-      stability_samples_ = job.drive_samples;
+      stability_tests_ += looks.size();
+      stability_result_ = looks.back();
     }
     stability_busy_ = false;
   }
@@ -650,10 +683,10 @@ void IdentifierRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status
   status.add("messages published", c.published);
   status.add("failed solves or tests", c.failures);
   status.add("last failure", last_failure.empty() ? std::string("none") : last_failure);
-  status.add("string-stability tests of the drive", c.stability_tests);
+  status.add("looks of the sequential string-stability verdict", c.stability_tests);
   status.add("last window solve [s]", last_solve_time_s_.load());
   status.add("last drive solve [s]", last_drive_time_s_.load());
-  status.add("last string-stability test [s]", last_stability_time_s_.load());
+  status.add("last sequential-verdict update [s]", last_stability_time_s_.load());
 }
 
 }  // namespace acc

@@ -12,6 +12,7 @@
 
 #include "acc_identification/calibration/calibration_report.h"
 #include "acc_identification/calibration/identification.h"
+#include "acc_identification/calibration/sequential_verdict.h"
 #include "acc_identification/calibration/stability_test.h"
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/ros/run_bag_reader.h"
@@ -65,6 +66,63 @@ void printPairsRead(const std::vector<PairsRead>& pairs_read, std::ostream& out)
   }
 }
 
+/// One drive for the sequential verdict: the consecutive runs of one RUN argument (pieces between
+/// holes), while each starts after the one before ends (another pair of an OpenACC file starts
+/// its own drive).
+struct Drive
+{
+  std::string path;
+  std::vector<acc::CarFollowingRun> runs;
+};
+
+std::vector<Drive> groupIntoDrives(const std::vector<LoadedRun>& loaded)
+{
+  std::vector<Drive> drives;
+  for (const LoadedRun& item : loaded)
+  {
+    const bool continues = !drives.empty() && drives.back().path == item.path && !item.run.time_s.empty() &&
+                           !drives.back().runs.back().time_s.empty() &&
+                           item.run.time_s.front() > drives.back().runs.back().time_s.back();
+    if (!continues)
+    {
+      drives.push_back({item.path, {}});
+    }
+    drives.back().runs.push_back(item.run);
+  }
+  return drives;
+}
+
+/// The looks the identifier node would make on each drive, printed and as JSON.
+nlohmann::json replayVerdicts(const std::vector<Drive>& drives, double every_s, double alpha, std::ostream& out)
+{
+  acc::SequentialVerdictOptions options;
+  options.alpha = alpha;
+  options.look_period_s = every_s;
+  nlohmann::json all = nlohmann::json::array();
+  for (const Drive& drive : drives)
+  {
+    const std::vector<acc::SequentialLook> looks = acc::replaySequentialVerdict(drive.runs, options);
+    out << "\nSequential verdict (anytime-valid: what the identifier node publishes over the drive; a look every "
+        << every_s << " s of data time): " << drive.path << " (" << drive.runs.front().name << ", "
+        << drive.runs.size() << " segment(s))\n";
+    acc::printVerdictSequence(looks, out);
+    nlohmann::json entry{{"path", drive.path}, {"drive", drive.runs.front().name}, {"look_period_s", every_s}};
+    entry["verdict_sequence"] = nlohmann::json::array();
+    for (const acc::SequentialLook& look : looks)
+    {
+      entry["verdict_sequence"].push_back(acc::toSequenceEntryJson(look));
+    }
+    if (!looks.empty())
+    {
+      out << "  sequential verdict: " << acc::toString(looks.back().verdict) << ", p = " << looks.back().p_value
+          << ": " << looks.back().reason << "\n";
+      entry["sequential_verdict"] = acc::toJson(looks.back());
+    }
+    all.push_back(entry);
+  }
+  return all;
+}
+
 /// Progress on stderr: a live counter on a terminal, a line per tenth otherwise.
 void showProgress(std::size_t done, std::size_t total)
 {
@@ -95,6 +153,7 @@ int main(int argc, char** argv)
   double max_gap_s = 0.5, alpha = 0.05;
   std::uint64_t seed = 0;
   bool quiet = false, no_stability_test = false, all_pairs = false;
+  double verdict_every_s = 0.0;
   std::string follower;
   app.add_option("RUN", paths,
                  "a canonical CSV (time_s,space_gap_m,follower_speed_mps,leader_speed_mps), an OpenACC CSV, or a "
@@ -120,6 +179,10 @@ int main(int argc, char** argv)
       ->check(CLI::Range(1e-9, 1.0 - 1e-9))
       ->capture_default_str();
   auto* seed_option = app.add_option("--seed", seed, "seed of the test's bootstrap (default: the library's fixed seed)");
+  app.add_option("--verdict-every", verdict_every_s,
+                 "also replay each drive look by look every SECONDS of data time and report the sequential "
+                 "(anytime-valid) verdicts the identifier node would publish, by the node's own code")
+      ->check(CLI::PositiveNumber);
   app.add_flag("--no-stability-test", no_stability_test, "skip the string-stability test on held-out halves");
   app.add_flag("--quiet", quiet, "no progress display");
   auto* follower_option =
@@ -243,12 +306,23 @@ int main(int argc, char** argv)
   }
   printPairsRead(pairs_read, std::cout);
   acc::printReport(report, std::cout);
+  nlohmann::json sequential_verdicts;
+  if (verdict_every_s > 0.0)
+  {
+    if (!quiet)
+      std::cerr << "sequential verdict: replaying the drives look by look...\n";
+    sequential_verdicts = replayVerdicts(groupIntoDrives(loaded), verdict_every_s, alpha, std::cout);
+  }
   if (!json_path.empty())
   {
     auto json = acc::reportToJson(report);
     for (const PairsRead& file : pairs_read)
     {
       json["openacc_pairs"].push_back({{"path", file.path}, {"pairs", file.pairs}});
+    }
+    if (!sequential_verdicts.is_null())
+    {
+      json["sequential_verdicts"] = sequential_verdicts;
     }
     std::ofstream file(json_path);
     file << json.dump(2) << "\n";

@@ -10,7 +10,7 @@ identifier. Listens until the replay has ended (no relative_state for ~idle_s of
                  parameters in ~truth_json.
   ~mode batch:   the last acc_parameters agrees within ~tolerance with calibrate run on the same
                  relative_state samples (those of its window, written to a bag); with
-                 ~expect_verdict, the last string-stability verdict equals calibrate's on the
+                 ~expect_verdict, the last sequential verdict equals calibrate --verdict-every's on the
                  samples its test saw, and with ~expect_decided a decided verdict comes before the
                  end of the drive.
   ~mode dropout: no acc_parameters window ends inside the gap of the leader's sentences; the
@@ -209,17 +209,23 @@ class EndToEnd(unittest.TestCase):
             self.check_verdict(directory)
 
     def check_verdict(self, directory):
-        """The issue's rostest: a decided verdict before the end of the drive, and the last verdict
-        is batch calibrate's on the very samples the node's last test saw."""
+        """The issue's rostest: a decided verdict before the end of the drive, never withdrawn once
+        published, and the last verdict is calibrate --verdict-every's (the same sequential code)
+        on the very samples the node's last look saw."""
         decided = [p for p in self.params if p.stability_verdict in ("stable", "unstable")]
         drive_total = self.last_params().drive_samples
         if rospy.get_param("~expect_decided", False):
             self.assertTrue(decided, "no acc_parameters carried a decided verdict")
             self.assertLess(decided[0].stability_samples, drive_total, "the verdict came only at the very end")
+        taken = "undecided"
+        for p in self.params:
+            if taken != "undecided" and not p.stability_reversed:
+                self.assertEqual(p.stability_verdict, taken, "a decided verdict was withdrawn: " + p.stability_reason)
+            taken = p.stability_verdict
         last = self.last_params()
-        self.assertGreater(last.stability_samples, 0, "the string-stability test never ran")
-        # The batch comparison below rebuilds the tested samples from every valid one: it holds for
-        # a drive within the node's bound (~drive_max_samples), which this one must be.
+        self.assertGreater(last.stability_samples, 0, "the sequential verdict never looked")
+        # The batch comparison below rebuilds the looked-at samples from every valid one: it holds
+        # for a drive within the node's bound (~drive_max_samples), which this one must be.
         self.assertEqual(last.drive_samples_let_go, 0, "the drive outgrew ~drive_max_samples")
         drive_start = last.drive_start.to_sec()
         tested = sorted((s for s in self.states if s.valid and s.header.stamp.to_sec() >= drive_start - 1e-6),
@@ -229,13 +235,15 @@ class EndToEnd(unittest.TestCase):
             for s in tested:
                 bag.write("relative_state", s, s.header.stamp)
         out = os.path.join(directory, "tested.json")
-        subprocess.run(["rosrun", PKG, "calibrate", "--quiet", "--json", out, tested_bag], check=True,
-                       stdout=subprocess.DEVNULL)
-        batch = json.load(open(out))["stability_test"]
-        print("verdict: live %s (p %.4f, %d samples; %d updates decided, of %d drive samples); batch %s (p %.4f)" % (
-            last.stability_verdict, last.stability_p_value, last.stability_samples, len(decided), drive_total,
-            batch["verdict"], batch["p_value"]), file=sys.stderr)
-        self.assertEqual(last.stability_verdict, batch["verdict"], "live verdict vs batch calibrate of its samples")
+        every = str(rospy.get_param("~stability_period_s", 10.0))
+        subprocess.run(["rosrun", PKG, "calibrate", "--quiet", "--no-stability-test", "--verdict-every", every,
+                        "--json", out, tested_bag], check=True, stdout=subprocess.DEVNULL)
+        batch = json.load(open(out))["sequential_verdicts"][0]["sequential_verdict"]
+        print("sequential verdict: live %s (p %.4f, %d samples; %d messages decided, of %d drive samples); "
+              "calibrate --verdict-every %s (p %.4f)" % (
+                  last.stability_verdict, last.stability_p_value, last.stability_samples, len(decided), drive_total,
+                  batch["verdict"], batch["p_value"]), file=sys.stderr)
+        self.assertEqual(last.stability_verdict, batch["verdict"], "live verdict vs calibrate --verdict-every")
 
     def check_dropout(self):
         gap_start = rospy.get_param("~gap_start_s")  # bag times of the leader's missing sentences

@@ -107,6 +107,19 @@ TEST(Identifier, SyntheticRelativeStateGivesTheTrueParameters)
   EXPECT_LT(last.rmse_speed_mps, 0.08);
   EXPECT_FALSE(last.string_stable);
   EXPECT_GT(last.lambda2, 0.0);
+  // The sequential verdict: looked at once there were samples to fit (e-values published), and a
+  // decision, once in a message, in every later one (never withdrawn).
+  EXPECT_FALSE(std::isnan(last.stability_e_value_unstable)) << last.stability_reason;
+  EXPECT_GT(last.stability_samples, 0u);
+  std::string taken = "undecided";
+  for (const acc_identification::AccParameters& message : received)
+  {
+    if (taken != "undecided")
+    {
+      EXPECT_EQ(message.stability_verdict, taken) << message.stability_reason;
+    }
+    taken = message.stability_verdict;
+  }
   // The solve is timed and published; its speed is a benchmark's business (bench_online_identifier).
   EXPECT_GE(last.solve_time_s, 0.0);
 }

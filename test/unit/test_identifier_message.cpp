@@ -129,6 +129,43 @@ namespace
 {
 /// The node applies the batch readers' plausibility bounds: a sample the pairing marked valid but
 /// with a 1e9 m/s follower speed is a split point, as a CSV row or a bag message would be.
+// The node publishes the sequential verdict's look when there is one: its verdict, anytime-valid
+// p-value, e-values, when it was decided, and no margin interval (NaN).
+TEST(IdentifierMessage, SequentialLookIsThePublishedVerdict)
+{
+  acc::OnlineUpdate update;
+  acc::SequentialLook look;
+  look.time_s = 420.0;
+  look.samples = 4200;
+  look.blocks_scored = 39;
+  look.verdict = acc::StabilityVerdict::Unstable;
+  look.p_value = 0.03;
+  look.e_value_unstable = 33.0;
+  look.e_value_stable = 0.2;
+  look.decided_at_s = 410.0;
+  look.stable_fit_margin = 0.0;
+  look.unstable_fit_margin = -0.6;
+  look.reason = "sequential";
+  update.sequential = look;
+  const auto m = acc::toMessage(update, 100.0, 420.0, 0.0);
+  EXPECT_EQ(m.stability_verdict, "unstable");
+  EXPECT_DOUBLE_EQ(m.stability_p_value, 0.03);
+  EXPECT_DOUBLE_EQ(m.stability_e_value_unstable, 33.0);
+  EXPECT_DOUBLE_EQ(m.stability_e_value_stable, 0.2);
+  EXPECT_DOUBLE_EQ(m.stability_decided_at_s, 410.0);
+  EXPECT_FALSE(m.stability_reversed);
+  EXPECT_EQ(m.stability_blocks_scored, 39u);
+  EXPECT_EQ(m.stability_samples, 4200u);
+  EXPECT_DOUBLE_EQ(m.stability_unstable_fit_margin, -0.6);
+  EXPECT_TRUE(std::isnan(m.stability_margin_low));
+  EXPECT_EQ(m.stability_reason, "sequential");
+  // Before the first look: undecided, and every sequential number NaN.
+  const auto none = acc::toMessage(acc::OnlineUpdate{}, 100.0, 420.0, 0.0);
+  EXPECT_EQ(none.stability_verdict, "undecided");
+  EXPECT_TRUE(std::isnan(none.stability_e_value_unstable));
+  EXPECT_TRUE(std::isnan(none.stability_decided_at_s));
+}
+
 TEST(IdentifierSamples, ImplausibleValuesAreSplitPointsLikeInBatch)
 {
   acc_identification::RelativeState message;

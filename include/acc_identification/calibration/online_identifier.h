@@ -6,6 +6,7 @@
 
 #include "acc_identification/calibration/identification.h"
 #include "acc_identification/calibration/quantity_identifiability.h"
+#include "acc_identification/calibration/sequential_verdict.h"
 #include "acc_identification/calibration/stability_test.h"
 #include "acc_identification/model/car_following_run.h"
 
@@ -47,6 +48,9 @@ struct OnlineUpdate
   std::optional<StabilityTestResult> stability;
   bool stability_ran_now = false;  ///< false: carried over from an earlier update
   std::size_t stability_drive_samples = 0;  ///< samples of the drive when that test ran
+  /// The latest look of the sequential verdict (the identifier node's, which runs it on its own
+  /// thread; when set, it is the published verdict instead of `stability`).
+  std::optional<SequentialLook> sequential;
   double window_cpu_s = 0.0;     ///< wall time of each stage of this update
   double drive_cpu_s = 0.0;
   double stability_cpu_s = 0.0;

@@ -14,6 +14,7 @@
 #include "acc_identification/calibration/margin_constrained_fit.h"
 #include "acc_identification/calibration/multistart_calibrator.h"
 #include "acc_identification/calibration/quantity_identifiability.h"
+#include "acc_identification/calibration/side_fits.h"
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/car_following_run.h"
 #include "acc_identification/model/string_stability.h"
@@ -112,20 +113,6 @@ struct StabilityTestOptions
   /// ConstrainedFitOptions with no Halton starts, one local solve from the better warm start, at
   /// most 100 evaluations, relative f tolerance 1e-8.
   static ConstrainedFitOptions defaultProfileOptions();
-};
-
-/// One of the two side fits.
-struct SideFit
-{
-  bool found = false;             ///< false when no fit exists on that side (then the rest is unset)
-  AccParameters parameters;
-  /// stabilityMargin(parameters): >= 0 for best_stable, <= 0 for best_unstable; a fit on the
-  /// boundary m = 0 has |margin| of a few ulps.
-  double margin = 0.0;
-  double train_rmse_speed_mps = 0.0;
-  double test_rmse_speed_mps = 0.0;  ///< over the held-out samples the test scores
-  bool unconstrained_optimum = false;  ///< this is the training data's unconstrained optimum U
-  std::string status;             ///< the optimiser's stop reason
 };
 
 /// One point of the margin profile.

@@ -29,4 +29,8 @@ constexpr std::size_t kTruthSubsteps = 10;
 CarFollowingRun synthesizeRun(const AccParameters& truth, double duration_s, double time_step_s,
                               double cruise_speed_mps, std::uint32_t seed, const MeasurementNoise& noise = {});
 
+/// A truth with string-stability margin m for studies and tests: k1 = 0.1 /s^2, k2 = 0.5 /s,
+/// eta = 6 m and the tau_e that gives m (projectOntoMargin); for m in [-2, 78).
+AccParameters truthWithMargin(double margin);
+
 }  // namespace acc

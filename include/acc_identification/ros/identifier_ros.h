@@ -109,9 +109,11 @@ bool runCatchingEverything(const std::function<void()>& work, std::string& failu
 /// every period recalibrates the ACC model on the window (warm-started from the previous fit),
 /// continues the drive's calibration, and publishes acc_parameters. Solves run on a worker thread
 /// so that the subscriber never waits; a solve still running when the next period comes makes
-/// that period skip (counted, and said). The string-stability test of the drive runs on a thread
-/// of its own (about 1.5 s on a 3-hour drive), at most once per ~stability_period_s; each message
-/// carries its latest result. Whatever a solve or a test throws is caught on its thread, counted
+/// that period skip (counted, and said). The drive's sequential string-stability verdict
+/// (SequentialVerdict: anytime-valid, a decision once taken is kept) runs on a thread of its own:
+/// at most once per ~stability_period_s of ROS time it makes every look due at data times
+/// drive start + k ~stability_period_s (late, never lost, when the thread was busy), and one at
+/// the last sample when the data stop; each message carries its latest look. Whatever a solve or a test throws is caught on its thread, counted
 /// and reported (ERROR with what it threw): the node goes on with the next period.
 ///
 /// Samples are checked as the batch readers check them (acc::RunPlausibilityBounds: implausible
@@ -144,13 +146,14 @@ private:
     std::uint64_t drive_samples_let_go = 0;  ///< of this drive, to keep within the bound
     bool drive_reset = false;  ///< time went back: the drive starts anew
     bool test_stability = false;  ///< hand the drive to the stability thread after this solve
+    bool data_stopped = false;    ///< the drive did not grow this period: look at its last sample too
   };
   /// What the worker hands to the stability thread.
   struct StabilityJob
   {
     std::vector<CarFollowingRun> drive_segments;
-    AccParameters drive_fit;
-    std::size_t drive_samples = 0;
+    bool data_stopped = false;
+    std::uint64_t drive_generation = 0;  ///< which drive: a newer one resets the sequential verdict
   };
 
   void onRelativeState(const acc_identification::RelativeState::ConstPtr& message);
@@ -190,8 +193,11 @@ private:
   std::optional<StabilityJob> stability_job_;
   bool stability_busy_ = false;
   bool stopping_stability_ = false;
-  std::optional<StabilityTestResult> stability_result_;  ///< the latest, under stability_mutex_
-  std::size_t stability_samples_ = 0;                    ///< drive samples it ran on
+  std::optional<SequentialLook> stability_result_;  ///< the latest look, under stability_mutex_
+  std::uint64_t drive_generation_ = 0;              ///< drive resets so far, under stability_mutex_
+  /// The drive's sequential verdict: stability thread only (with the generation it belongs to).
+  std::optional<SequentialVerdict> sequential_;
+  std::uint64_t sequential_generation_ = 0;
   std::thread stability_worker_;
 
   ros::Subscriber subscriber_;
