@@ -1,9 +1,14 @@
 # Run files: canonical and OpenACC CSV read into runs, with the plausibility checks every reader
 # of runs (CSV or bag) shares. Used by every tool that takes runs. openacc_file.cpp is the one
-# reader of OpenACC files (every layout); the runs and the NMEA conversion are views on it.
+# reader of OpenACC files (every layout); the runs and the NMEA conversion are views on it. Its
+# pieces: openacc_text (fields, cells, column names), openacc_angle_unit (radians or degrees),
+# openacc_pairs (which leader-follower pairs a file holds, and the one chosen).
 acc_add_library(acc_run_io
   SOURCES
     src/io/openacc_file.cpp
+    src/io/openacc_text.cpp
+    src/io/openacc_angle_unit.cpp
+    src/io/openacc_pairs.cpp
     src/io/run_csv.cpp
     src/io/run_plausibility.cpp
   LINK acc_model)

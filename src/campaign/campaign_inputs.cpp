@@ -62,7 +62,7 @@ CampaignFileList openAccFilesIn(const std::string& folder)
       list.files.push_back(path);
     else
       list.skipped.push_back(path + ": not an OpenACC file (its first line is neither a Date line nor a header with "
-                                    "Time and Speed1, ...), skipped");
+                                    "Time and a car's Speedk), skipped");
   }
   if (list.files.empty())
     throw std::invalid_argument(folder + ": no OpenACC *.csv file in this folder" +

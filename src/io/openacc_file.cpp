@@ -1,128 +1,23 @@
 #include "acc_identification/io/openacc_file.h"
 
 #include <algorithm>
-#include <cctype>
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <optional>
-#include <set>
-#include <sstream>
 #include <utility>
+
+#include "openacc_text.h"
 
 namespace acc
 {
+using namespace openacc;
+
 namespace
 {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kPi = 3.14159265358979323846;
-// The same constant as the NMEA conversion has always used, so that radians give the same degrees
-// to the last bit (the bundled Casale bags are compared byte for byte).
-constexpr double kRadToDeg = 180.0 / kPi;
-constexpr double kEarthRadiusM = 6371000.0;
 // Metadata and the header are at the top; a file without a Time header this far down is not OpenACC.
 constexpr std::size_t kMaxLinesBeforeHeader = 50;
-// Fixes further apart than this are not consecutive (holes, cuts) for the unit check.
-constexpr double kMaxConsecutiveStepS = 1.0;
-// Below this much motion by E/N, the unit check cannot tell radians from degrees.
-constexpr double kMinMotionForUnitCheckM = 1.0;
-
-std::string trim(const std::string& text)
-{
-  const auto first = text.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos)
-  {
-    return "";
-  }
-  const auto last = text.find_last_not_of(" \t\r\n");
-  return text.substr(first, last - first + 1);
-}
-
-/// Every comma separates: "a,b," is three fields, the last empty.
-std::vector<std::string> splitFields(const std::string& line)
-{
-  std::vector<std::string> fields;
-  std::size_t start = 0;
-  while (true)
-  {
-    const auto comma = line.find(',', start);
-    fields.push_back(trim(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
-    if (comma == std::string::npos)
-    {
-      break;
-    }
-    start = comma + 1;
-  }
-  return fields;
-}
-
-bool isBlank(const std::string& line)
-{
-  return line.find_first_not_of(" \t\r\n,") == std::string::npos;
-}
-
-std::string upper(std::string text)
-{
-  for (char& c : text)
-  {
-    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  }
-  return text;
-}
-
-std::optional<long> parseInteger(const std::string& text)
-{
-  if (text.empty())
-  {
-    return std::nullopt;
-  }
-  char* end = nullptr;
-  errno = 0;
-  const long value = std::strtol(text.c_str(), &end, 10);
-  if (end != text.c_str() + text.size() || errno == ERANGE)
-  {
-    return std::nullopt;
-  }
-  return value;
-}
-
-/// How a cell reads: a finite number, or why not.
-enum class CellKind
-{
-  kNumber,
-  kEmpty,
-  kNotFinite,
-  kNotANumber
-};
-
-CellKind parseCell(const std::string& text, double& value)
-{
-  value = kNaN;
-  if (text.empty())
-  {
-    return CellKind::kEmpty;
-  }
-  char* end = nullptr;
-  errno = 0;
-  const double parsed = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size())
-  {
-    return CellKind::kNotANumber;
-  }
-  if (!std::isfinite(parsed))
-  {
-    return CellKind::kNotFinite;
-  }
-  if (errno == ERANGE && std::abs(parsed) > 1.0)
-  {
-    return CellKind::kNotFinite;  // overflow (strtod returned HUGE_VAL)
-  }
-  value = parsed;
-  return CellKind::kNumber;
-}
 
 bool isLeapYear(long year)
 {
@@ -147,64 +42,6 @@ std::string baseName(const std::string& path)
   return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
 }
 
-std::string join(const std::vector<std::string>& parts, const std::string& separator)
-{
-  std::string text;
-  for (const std::string& part : parts)
-  {
-    text += (text.empty() ? "" : separator) + part;
-  }
-  return text;
-}
-
-std::string formatNumber(double value, int precision = 4)
-{
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*g", precision, value);
-  return text;
-}
-
-/// The quantity of a per-vehicle or per-pair column ("Speed3" -> Speed, 3).
-enum class Quantity
-{
-  kSpeed,
-  kEast,
-  kNorth,
-  kUp,
-  kAltitude,
-  kLatitude,
-  kLongitude,
-  kDriver,
-  kGap
-};
-
-std::optional<std::pair<Quantity, int>> classifyColumn(const std::string& name)
-{
-  static const std::vector<std::pair<std::string, Quantity>> kPrefixes{
-      {"Speed", Quantity::kSpeed}, {"E", Quantity::kEast},      {"N", Quantity::kNorth},
-      {"U", Quantity::kUp},        {"Alt", Quantity::kAltitude}, {"Lat", Quantity::kLatitude},
-      {"Lon", Quantity::kLongitude}, {"Driver", Quantity::kDriver}, {"IVS", Quantity::kGap}};
-  const auto digits = name.find_first_of("0123456789");
-  if (digits == std::string::npos || digits == 0 ||
-      name.find_first_not_of("0123456789", digits) != std::string::npos || name[digits] == '0')
-  {
-    return std::nullopt;
-  }
-  const std::string prefix = name.substr(0, digits);
-  const auto number = parseInteger(name.substr(digits));
-  if (!number || *number < 1 || *number > 1000)
-  {
-    return std::nullopt;
-  }
-  for (const auto& [known, quantity] : kPrefixes)
-  {
-    if (prefix == known)
-    {
-      return std::make_pair(quantity, static_cast<int>(*number));
-    }
-  }
-  return std::nullopt;
-}
 
 /// Where one column's values go while the rows are read.
 struct ColumnTarget
@@ -222,207 +59,6 @@ struct VehicleUnderConstruction
   bool any_column = false;
 };
 
-/// The small-distance length of the step between two fixes, the angles read in the given unit.
-double stepLengthM(double lat0, double lon0, double lat1, double lon1, double to_radians)
-{
-  const double dlat = (lat1 - lat0) * to_radians;
-  const double dlon = (lon1 - lon0) * to_radians * std::cos(lat0 * to_radians);
-  return kEarthRadiusM * std::hypot(dlat, dlon);
-}
-
-/// The largest |Lat| and |Lon| over the finite fixes of the cars with Lat/Lon columns.
-struct LatLonRange
-{
-  double max_latitude = 0.0, max_longitude = 0.0;
-  std::size_t values = 0, columns = 0;
-
-  std::string describe() const
-  {
-    return "|Lat| up to " + formatNumber(max_latitude, 6) + ", |Lon| up to " + formatNumber(max_longitude, 6);
-  }
-};
-
-LatLonRange latLonRange(const OpenAccFile& file)
-{
-  LatLonRange range;
-  for (const OpenAccVehicle& vehicle : file.vehicles)
-  {
-    if (!vehicle.has_lat_lon)
-    {
-      continue;
-    }
-    ++range.columns;
-    for (std::size_t i = 0; i < file.rows(); ++i)
-    {
-      if (std::isfinite(vehicle.latitude_deg[i]) && std::isfinite(vehicle.longitude_deg[i]))
-      {
-        ++range.values;
-        range.max_latitude = std::max(range.max_latitude, std::abs(vehicle.latitude_deg[i]));
-        range.max_longitude = std::max(range.max_longitude, std::abs(vehicle.longitude_deg[i]));
-      }
-    }
-  }
-  return range;
-}
-
-/// How far the cars move over consecutive fixes: by E/N, and by Lat/Lon read either way.
-struct ConsecutiveMotion
-{
-  double en_m = 0.0, as_radians_m = 0.0, as_degrees_m = 0.0;
-  std::size_t steps = 0;
-};
-
-/// Whether fixes i-1 and i of the car are consecutive (close in time) with every value finite.
-bool isCheckableStep(const OpenAccFile& file, const OpenAccVehicle& vehicle, std::size_t i)
-{
-  const double dt = file.time_s[i] - file.time_s[i - 1];
-  const double values_of_step[] = {vehicle.latitude_deg[i - 1], vehicle.longitude_deg[i - 1],
-                                   vehicle.latitude_deg[i],     vehicle.longitude_deg[i],
-                                   vehicle.east_m[i - 1],       vehicle.north_m[i - 1],
-                                   vehicle.east_m[i],           vehicle.north_m[i]};
-  return dt > 0.0 && dt <= kMaxConsecutiveStepS &&
-         std::all_of(std::begin(values_of_step), std::end(values_of_step), [](double v) { return std::isfinite(v); });
-}
-
-ConsecutiveMotion consecutiveMotion(const OpenAccFile& file)
-{
-  ConsecutiveMotion motion;
-  for (const OpenAccVehicle& v : file.vehicles)
-  {
-    if (!v.has_lat_lon || !v.has_east_north)
-    {
-      continue;
-    }
-    for (std::size_t i = 1; i < file.rows(); ++i)
-    {
-      if (!isCheckableStep(file, v, i))
-      {
-        continue;
-      }
-      ++motion.steps;
-      motion.en_m += std::hypot(v.east_m[i] - v.east_m[i - 1], v.north_m[i] - v.north_m[i - 1]);
-      motion.as_radians_m +=
-          stepLengthM(v.latitude_deg[i - 1], v.longitude_deg[i - 1], v.latitude_deg[i], v.longitude_deg[i], 1.0);
-      motion.as_degrees_m += stepLengthM(v.latitude_deg[i - 1], v.longitude_deg[i - 1], v.latitude_deg[i],
-                                         v.longitude_deg[i], kPi / 180.0);
-    }
-  }
-  return motion;
-}
-
-/// Values that fit both units: the unit in which the fixes move as far as E/N says, and why.
-void chooseUnitByMotion(OpenAccFile& file, const std::string& range)
-{
-  const ConsecutiveMotion motion = consecutiveMotion(file);
-  file.angle_unit = OpenAccAngleUnit::kRadians;
-  if (motion.steps == 0)
-  {
-    file.angle_unit_reason = "Lat/Lon in radians, the database's unit: the values fit both units (" + range +
-                             ") and there are no consecutive fixes with E/N to check them against";
-    return;
-  }
-  if (motion.en_m < kMinMotionForUnitCheckM)
-  {
-    file.angle_unit_reason = "Lat/Lon in radians, the database's unit: the values fit both units (" + range +
-                             ") and the cars move only " + formatNumber(motion.en_m, 3) +
-                             " m by E/N, too little to check them";
-    return;
-  }
-  const bool degrees = std::abs(std::log(motion.as_degrees_m / motion.en_m)) <
-                       std::abs(std::log(motion.as_radians_m / motion.en_m));
-  file.angle_unit = degrees ? OpenAccAngleUnit::kDegrees : OpenAccAngleUnit::kRadians;
-  const double chosen_m = degrees ? motion.as_degrees_m : motion.as_radians_m;
-  std::ostringstream reason;
-  reason << "Lat/Lon in " << (degrees ? "degrees" : "radians") << ": the values fit both units (" << range
-         << "); over " << motion.steps << " consecutive fixes the cars move " << formatNumber(motion.en_m, 6)
-         << " m by their E/N columns, " << formatNumber(motion.as_radians_m, 6) << " m by Lat/Lon read as radians, "
-         << formatNumber(motion.as_degrees_m, 6) << " m read as degrees";
-  if (chosen_m > 2.0 * motion.en_m || chosen_m < 0.5 * motion.en_m)
-  {
-    reason << " (neither unit matches E/N within a factor 2: check the file)";
-  }
-  file.angle_unit_reason = reason.str();
-}
-
-void convertRadiansToDegrees(OpenAccFile& file)
-{
-  for (OpenAccVehicle& vehicle : file.vehicles)
-  {
-    for (std::vector<double>* angles : {&vehicle.latitude_deg, &vehicle.longitude_deg})
-    {
-      for (double& value : *angles)
-      {
-        value *= kRadToDeg;
-      }
-    }
-  }
-}
-
-/// Decides the unit of the Lat/Lon cells and says why; converts them to degrees.
-void detectAngleUnit(OpenAccFile& file)
-{
-  const LatLonRange range = latLonRange(file);
-  if (range.columns == 0 || range.values == 0)
-  {
-    file.angle_unit = OpenAccAngleUnit::kRadians;
-    file.angle_unit_reason = std::string("Lat/Lon: ") +
-                             (range.columns == 0 ? "no Lat/Lon columns" : "no Lat/Lon values") +
-                             " (radians assumed, the database's unit; nothing to convert)";
-  }
-  else if (range.max_latitude > kPi / 2.0 || range.max_longitude > kPi)
-  {
-    file.angle_unit = OpenAccAngleUnit::kDegrees;
-    file.angle_unit_reason = "Lat/Lon in degrees: " + range.describe() +
-                             ", beyond radians (|Lat| <= pi/2, |Lon| <= pi), although the database's notes say radians";
-  }
-  else
-  {
-    chooseUnitByMotion(file, range.describe());
-  }
-  if (file.angle_unit == OpenAccAngleUnit::kRadians)
-  {
-    convertRadiansToDegrees(file);
-  }
-}
-
-
-bool hasColumn(const OpenAccFile& file, const std::string& name)
-{
-  return std::find(file.header.begin(), file.header.end(), name) != file.header.end();
-}
-
-/// Whether the header has any column of the car at this position (not counting IVS).
-bool hasAnyColumnOf(const OpenAccFile& file, int position)
-{
-  for (const std::string& name : file.header)
-  {
-    const auto column = classifyColumn(name);
-    if (column && column->first != Quantity::kGap && column->second == position)
-    {
-      return true;
-    }
-  }
-  return false;
-}
-
-int highestPosition(const OpenAccFile& file)
-{
-  int highest = static_cast<int>(file.metadata.vehicle_order.size());
-  for (const std::string& name : file.header)
-  {
-    const auto column = classifyColumn(name);
-    if (column)
-    {
-      highest = std::max(highest, column->second + (column->first == Quantity::kGap ? 1 : 0));
-    }
-  }
-  return highest;
-}
-
-std::string noDataReason(const OpenAccFile& file, int position)
-{
-  return hasAnyColumnOf(file, position) ? "its columns are empty" : "its columns are absent";
-}
 
 /// Which metadata lines were seen before the header.
 struct MetadataSeen
@@ -706,7 +342,9 @@ void addVehicleColumn(const OpenAccFile& file, Quantity quantity, int k, Vehicle
     case Quantity::kUp: car.vehicle.has_up = true; break;
     case Quantity::kAltitude: car.vehicle.has_altitude = true; break;
     case Quantity::kLatitude:
-    case Quantity::kLongitude: car.vehicle.has_lat_lon = hasColumn(file, "Lat" + n) && hasColumn(file, "Lon" + n); break;
+    case Quantity::kLongitude:
+      car.vehicle.has_lat_lon = hasColumn(file, "Lat" + n) && hasColumn(file, "Lon" + n);
+      break;
     case Quantity::kDriver: car.vehicle.has_driver = true; break;
     case Quantity::kGap: break;
   }
@@ -887,7 +525,8 @@ void readDataRows(std::istream& in, OpenAccFile& file, const std::vector<ColumnT
 
 std::size_t countFinite(const std::vector<double>& values)
 {
-  return static_cast<std::size_t>(std::count_if(values.begin(), values.end(), [](double x) { return std::isfinite(x); }));
+  return static_cast<std::size_t>(
+      std::count_if(values.begin(), values.end(), [](double x) { return std::isfinite(x); }));
 }
 
 /// Absent columns become NaN in every row; the counts of speed and gap values are taken.
@@ -928,7 +567,8 @@ void keepCarsWithData(OpenAccFile& file, std::map<int, VehicleUnderConstruction>
     }
     else
     {
-      without_data.emplace_back(k, file.vehicleName(k) + " (" + std::to_string(k) + ", every cell of its columns empty)");
+      without_data.emplace_back(k,
+                                file.vehicleName(k) + " (" + std::to_string(k) + ", every cell of its columns empty)");
     }
   }
   for (int k = 1; k <= static_cast<int>(file.metadata.vehicle_order.size()); ++k)
@@ -1119,220 +759,6 @@ OpenAccFile readOpenAccFile(const std::string& path)
   // The unit matters to every position read from the file: said with the other notes.
   file.notes.push_back(file.path + ": " + file.angle_unit_reason);
   return file;
-}
-
-std::string OpenAccPair::label() const
-{
-  return follower_name + " behind " + leader_name + ", positions " + std::to_string(follower_position) + "/" +
-         std::to_string(leader_position);
-}
-
-std::string describePairlessFollower(const OpenAccFile& file, int follower_position)
-{
-  const int k = follower_position;
-  const int highest = highestPosition(file);
-  if (k < 1 || k > highest)
-  {
-    return "no car at position " + std::to_string(k) + " (Vehicle_order names " +
-           std::to_string(file.metadata.vehicle_order.size()) + " cars)";
-  }
-  const std::string follower = file.vehicleName(k) + " (" + std::to_string(k) + ")";
-  if (k == 1)
-  {
-    return follower + " leads the platoon: no car ahead of it";
-  }
-  const OpenAccVehicle* behind = file.vehicle(k);
-  if (behind == nullptr)
-  {
-    return follower + " has no data in this file (" + noDataReason(file, k) + ")";
-  }
-  if (behind->speed_values == 0)
-  {
-    return follower + " has no pair: it has no Speed" + std::to_string(k) + " data";
-  }
-  const std::string ahead = file.vehicleName(k - 1) + " (" + std::to_string(k - 1) + ")";
-  const OpenAccVehicle* leader = file.vehicle(k - 1);
-  if (leader == nullptr)
-  {
-    return follower + " has no pair: the car directly ahead of it, " + ahead + ", has no data in this file (" +
-           noDataReason(file, k - 1) + "); a car further ahead is never taken as its leader";
-  }
-  if (leader->speed_values == 0)
-  {
-    return follower + " has no pair: the car directly ahead of it, " + ahead + ", has no Speed" +
-           std::to_string(k - 1) + " data";
-  }
-  const std::string gap = "IVS" + std::to_string(k - 1);
-  if (!leader->has_gap_to_follower)
-  {
-    return follower + " has no pair: their gap " + gap + " (behind " + ahead + ") has no column";
-  }
-  if (leader->gap_values == 0)
-  {
-    return follower + " has no pair: their gap " + gap + " (behind " + ahead + ") has no value";
-  }
-  return "";
-}
-
-std::vector<OpenAccPair> availablePairs(const OpenAccFile& file)
-{
-  std::vector<OpenAccPair> pairs;
-  for (const OpenAccVehicle& follower : file.vehicles)
-  {
-    if (follower.position >= 2 && describePairlessFollower(file, follower.position).empty())
-    {
-      pairs.push_back({follower.position - 1, follower.position, file.vehicleName(follower.position - 1), follower.name});
-    }
-  }
-  return pairs;
-}
-
-std::string describeAvailablePairs(const OpenAccFile& file)
-{
-  std::vector<std::string> labels;
-  for (const OpenAccPair& pair : availablePairs(file))
-  {
-    labels.push_back(pair.label());
-  }
-  return labels.empty() ? "none" : join(labels, "; ");
-}
-
-OpenAccPairSelector OpenAccPairSelector::parse(const std::string& text)
-{
-  const std::string trimmed = trim(text);
-  if (trimmed.empty())
-  {
-    return first();
-  }
-  if (upper(trimmed) == "ALL")
-  {
-    return all();
-  }
-  return byFollower(trimmed);
-}
-
-std::string OpenAccPairSelector::describe() const
-{
-  switch (kind)
-  {
-    case Kind::kFirst: return "the first available pair";
-    case Kind::kAll: return "all pairs";
-    case Kind::kFollower: break;
-  }
-  return "follower '" + follower + "'";
-}
-
-namespace
-{
-/// Why the file has no pair: each follower's reason.
-std::string noPairError(const OpenAccFile& file)
-{
-  std::vector<std::string> why;
-  for (int k = 2; k <= highestPosition(file); ++k)
-  {
-    if (file.vehicle(k) != nullptr)
-    {
-      why.push_back(describePairlessFollower(file, k));
-    }
-  }
-  return file.path + ": no leader-follower pair (a follower and the car directly ahead, both with Speed "
-                     "data, and their IVS gap)" +
-         (why.empty() ? std::string("") : ": " + join(why, "; "));
-}
-
-/// The first pair, and the others named: never chosen silently.
-OpenAccPairChoice firstPair(const OpenAccFile& file, const std::vector<OpenAccPair>& pairs)
-{
-  OpenAccPairChoice choice;
-  choice.pairs.push_back(pairs.front());
-  std::vector<std::string> others;
-  for (std::size_t i = 1; i < pairs.size(); ++i)
-  {
-    others.push_back(pairs[i].label());
-  }
-  choice.note = file.path + ": pair read: " + pairs.front().label() + " (no follower chosen: the first available " +
-                (others.empty() ? std::string("and only pair)") : "pair; the others: " + join(others, "; ") + ")");
-  return choice;
-}
-
-/// The position of the follower named by a number or a Vehicle_order name (any case); 0 with
-/// error set when the name is not there or not unique; -1 for a number too large to be one.
-int followerPosition(const OpenAccFile& file, const std::string& wanted, const std::string& listed, std::string& error)
-{
-  if (!wanted.empty() && wanted.find_first_not_of("0123456789") == std::string::npos)
-  {
-    const auto number = parseInteger(wanted);
-    return number && *number <= 100000 ? static_cast<int>(*number) : -1;
-  }
-  std::vector<std::string> at;  // the positions of the name, as written in messages
-  int position = 0;
-  for (std::size_t i = 0; i < file.metadata.vehicle_order.size(); ++i)
-  {
-    if (upper(file.metadata.vehicle_order[i]) == upper(wanted))
-    {
-      position = at.empty() ? static_cast<int>(i) + 1 : position;
-      at.push_back(std::to_string(i + 1));
-    }
-  }
-  if (at.empty())
-  {
-    error = file.path + ": no car '" + wanted + "' in Vehicle_order (" + join(file.metadata.vehicle_order, ", ") +
-            "); " + listed;
-  }
-  else if (at.size() > 1)
-  {
-    error = file.path + ": '" + wanted + "' is at positions " + join(at, " and ") +
-            " of Vehicle_order: choose the follower by position; " + listed;
-  }
-  return error.empty() ? position : 0;
-}
-
-/// The pair of one follower, by position or by name.
-OpenAccPairChoice followerPair(const OpenAccFile& file, const std::vector<OpenAccPair>& pairs,
-                               const std::string& follower)
-{
-  OpenAccPairChoice choice;
-  const std::string wanted = trim(follower);
-  const std::string listed = "pairs in this file: " + describeAvailablePairs(file);
-  const int position = followerPosition(file, wanted, listed, choice.error);
-  if (!choice.error.empty())
-  {
-    return choice;
-  }
-  for (const OpenAccPair& pair : pairs)
-  {
-    if (pair.follower_position == position)
-    {
-      choice.pairs.push_back(pair);
-      choice.note = file.path + ": pair read: " + pair.label() + " (follower '" + wanted + "' chosen)";
-      return choice;
-    }
-  }
-  choice.error = file.path + ": no pair with follower '" + wanted + "'" +
-                 (position >= 1 ? " (position " + std::to_string(position) + ")" : "") + ": " +
-                 describePairlessFollower(file, std::max(position, 0)) + "; " + listed;
-  return choice;
-}
-}  // namespace
-
-OpenAccPairChoice selectOpenAccPairs(const OpenAccFile& file, const OpenAccPairSelector& selector)
-{
-  const std::vector<OpenAccPair> pairs = availablePairs(file);
-  if (pairs.empty())
-  {
-    OpenAccPairChoice choice;
-    choice.error = noPairError(file);
-    return choice;
-  }
-  switch (selector.kind)
-  {
-    case OpenAccPairSelector::Kind::kFirst: return firstPair(file, pairs);
-    case OpenAccPairSelector::Kind::kAll:
-      return {pairs, "", file.path + ": every pair read (" + std::to_string(pairs.size()) + "): " +
-                             describeAvailablePairs(file)};
-    case OpenAccPairSelector::Kind::kFollower: break;
-  }
-  return followerPair(file, pairs, selector.follower);
 }
 
 }  // namespace acc

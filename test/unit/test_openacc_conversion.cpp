@@ -72,6 +72,19 @@ TEST(OpenAccReader, RefusesAFileWithoutDateOrColumns)
   fs::remove_all(dir);
 }
 
+TEST(OpenAccReader, RefusesToDateSentencesOfAFileWithoutMetadata)
+{
+  // The AstaZero layout (the header first) reads, but has no Date line for the NMEA sentences.
+  fs::path dir = freshDirectory("openacc_reader_no_metadata");
+  std::ofstream(dir / "asta.csv") << "Time,Speed1,Lat1,Lon1,E1,N1,Speed2,Lat2,Lon2,E2,N2,IVS1\n"
+                                     "0.0,10,0.79,0.14,0,0,10,0.79,0.14,0,-20,15\n"
+                                     "0.1,10,0.79,0.14,0,1,10,0.79,0.14,0,-19,15\n";
+  const acc::OpenAccPairTrack track = acc::readOpenAccPairTrack((dir / "asta.csv").string());
+  EXPECT_NE(track.error.find("no Date line (the file starts with its header)"), std::string::npos) << track.error;
+  EXPECT_TRUE(track.rows.empty());
+  fs::remove_all(dir);
+}
+
 TEST(OpenAccToNmea, WritesGgaAndRmcAsAUbloxWouldAndReadsBack)
 {
   auto file = acc::readOpenAccPairTrack(kSmall);

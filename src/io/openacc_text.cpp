@@ -1,0 +1,194 @@
+#include "openacc_text.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+
+namespace acc
+{
+namespace openacc
+{
+namespace
+{
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+}  // namespace
+
+std::string trim(const std::string& text)
+{
+  const auto first = text.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos)
+  {
+    return "";
+  }
+  const auto last = text.find_last_not_of(" \t\r\n");
+  return text.substr(first, last - first + 1);
+}
+
+/// Every comma separates: "a,b," is three fields, the last empty.
+std::vector<std::string> splitFields(const std::string& line)
+{
+  std::vector<std::string> fields;
+  std::size_t start = 0;
+  while (true)
+  {
+    const auto comma = line.find(',', start);
+    fields.push_back(trim(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
+    if (comma == std::string::npos)
+    {
+      break;
+    }
+    start = comma + 1;
+  }
+  return fields;
+}
+
+bool isBlank(const std::string& line)
+{
+  return line.find_first_not_of(" \t\r\n,") == std::string::npos;
+}
+
+std::string upper(std::string text)
+{
+  for (char& c : text)
+  {
+    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  }
+  return text;
+}
+
+std::optional<long> parseInteger(const std::string& text)
+{
+  if (text.empty())
+  {
+    return std::nullopt;
+  }
+  char* end = nullptr;
+  errno = 0;
+  const long value = std::strtol(text.c_str(), &end, 10);
+  if (end != text.c_str() + text.size() || errno == ERANGE)
+  {
+    return std::nullopt;
+  }
+  return value;
+}
+
+
+CellKind parseCell(const std::string& text, double& value)
+{
+  value = kNaN;
+  if (text.empty())
+  {
+    return CellKind::kEmpty;
+  }
+  char* end = nullptr;
+  errno = 0;
+  const double parsed = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size())
+  {
+    return CellKind::kNotANumber;
+  }
+  if (!std::isfinite(parsed))
+  {
+    return CellKind::kNotFinite;
+  }
+  if (errno == ERANGE && std::abs(parsed) > 1.0)
+  {
+    return CellKind::kNotFinite;  // overflow (strtod returned HUGE_VAL)
+  }
+  value = parsed;
+  return CellKind::kNumber;
+}
+
+
+std::string join(const std::vector<std::string>& parts, const std::string& separator)
+{
+  std::string text;
+  for (const std::string& part : parts)
+  {
+    text += (text.empty() ? "" : separator) + part;
+  }
+  return text;
+}
+
+std::string formatNumber(double value, int precision)
+{
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*g", precision, value);
+  return text;
+}
+
+
+std::optional<std::pair<Quantity, int>> classifyColumn(const std::string& name)
+{
+  static const std::vector<std::pair<std::string, Quantity>> kPrefixes{
+      {"Speed", Quantity::kSpeed}, {"E", Quantity::kEast},      {"N", Quantity::kNorth},
+      {"U", Quantity::kUp},        {"Alt", Quantity::kAltitude}, {"Lat", Quantity::kLatitude},
+      {"Lon", Quantity::kLongitude}, {"Driver", Quantity::kDriver}, {"IVS", Quantity::kGap}};
+  const auto digits = name.find_first_of("0123456789");
+  if (digits == std::string::npos || digits == 0 ||
+      name.find_first_not_of("0123456789", digits) != std::string::npos || name[digits] == '0')
+  {
+    return std::nullopt;
+  }
+  const std::string prefix = name.substr(0, digits);
+  const auto number = parseInteger(name.substr(digits));
+  if (!number || *number < 1 || *number > 1000)
+  {
+    return std::nullopt;
+  }
+  for (const auto& [known, quantity] : kPrefixes)
+  {
+    if (prefix == known)
+    {
+      return std::make_pair(quantity, static_cast<int>(*number));
+    }
+  }
+  return std::nullopt;
+}
+
+
+bool hasColumn(const OpenAccFile& file, const std::string& name)
+{
+  return std::find(file.header.begin(), file.header.end(), name) != file.header.end();
+}
+
+/// Whether the header has any column of the car at this position (not counting IVS).
+bool hasAnyColumnOf(const OpenAccFile& file, int position)
+{
+  for (const std::string& name : file.header)
+  {
+    const auto column = classifyColumn(name);
+    if (column && column->first != Quantity::kGap && column->second == position)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+int highestPosition(const OpenAccFile& file)
+{
+  int highest = static_cast<int>(file.metadata.vehicle_order.size());
+  for (const std::string& name : file.header)
+  {
+    const auto column = classifyColumn(name);
+    if (column)
+    {
+      highest = std::max(highest, column->second + (column->first == Quantity::kGap ? 1 : 0));
+    }
+  }
+  return highest;
+}
+
+std::string noDataReason(const OpenAccFile& file, int position)
+{
+  return hasAnyColumnOf(file, position) ? "its columns are empty" : "its columns are absent";
+}
+
+
+}  // namespace openacc
+}  // namespace acc

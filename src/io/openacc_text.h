@@ -1,0 +1,71 @@
+#pragma once
+
+// The pieces the OpenACC reader's files share (openacc_file.cpp, openacc_angle_unit.cpp,
+// openacc_pairs.cpp): the text of fields and cells, the kind of a column by its name, and what
+// the header says about a car. Internal to the reader: not part of the package's API.
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "acc_identification/io/openacc_file.h"
+
+namespace acc
+{
+namespace openacc
+{
+/// Without the spaces, tabs and line ends around it.
+std::string trim(const std::string& text);
+/// Every comma separates: "a,b," is three fields, the last empty; each field trimmed.
+std::vector<std::string> splitFields(const std::string& line);
+/// Nothing but white space and commas.
+bool isBlank(const std::string& line);
+std::string upper(std::string text);
+/// A whole decimal number, the whole text; nullopt otherwise.
+std::optional<long> parseInteger(const std::string& text);
+std::string join(const std::vector<std::string>& parts, const std::string& separator);
+/// printf's %g with this many significant digits.
+std::string formatNumber(double value, int precision = 4);
+
+/// How a cell reads: a finite number, or why not.
+enum class CellKind
+{
+  kNumber,
+  kEmpty,
+  kNotFinite,
+  kNotANumber
+};
+/// Reads a cell into value (NaN unless it is a finite number).
+CellKind parseCell(const std::string& text, double& value);
+
+/// The quantity of a per-vehicle or per-pair column ("Speed3" -> Speed, 3).
+enum class Quantity
+{
+  kSpeed,
+  kEast,
+  kNorth,
+  kUp,
+  kAltitude,
+  kLatitude,
+  kLongitude,
+  kDriver,
+  kGap
+};
+/// The quantity and car number of a column name ("IVS2" -> gap, 2), or nullopt for any other name.
+std::optional<std::pair<Quantity, int>> classifyColumn(const std::string& name);
+
+bool hasColumn(const OpenAccFile& file, const std::string& name);
+/// Whether the header has any column of the car at this position (not counting IVS).
+bool hasAnyColumnOf(const OpenAccFile& file, int position);
+/// The last position the file names: by Vehicle_order, or by a column (IVSk names car k+1).
+int highestPosition(const OpenAccFile& file);
+/// "its columns are empty" or "its columns are absent", for a car without data.
+std::string noDataReason(const OpenAccFile& file, int position);
+
+/// Decides the unit of the Lat/Lon cells and says why (file.angle_unit, angle_unit_reason);
+/// converts them to degrees (openacc_angle_unit.cpp).
+void detectAngleUnit(OpenAccFile& file);
+
+}  // namespace openacc
+}  // namespace acc
