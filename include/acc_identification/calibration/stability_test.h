@@ -207,4 +207,8 @@ nlohmann::json toJson(const StabilityTestResult& result);
 /// The verdict, its p-values, both side fits, the margins allowed and why, as lines of text.
 void printStabilityTest(const StabilityTestResult& result, std::ostream& out);
 
+/// The null hypothesis result.p_value tests: "stable" for an unstable verdict, "unstable" for a
+/// stable one, and for "undecided" the one whose p-value is the smaller (the p-value reported).
+std::string pValueHypothesis(const StabilityTestResult& result);
+
 }  // namespace acc
