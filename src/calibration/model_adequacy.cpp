@@ -57,29 +57,35 @@ void checkRmse(const char* what, const char* unit, double rmse, double spread, d
                                  unit, what, spread, unit));
 }
 
-/// (b): each parameter held by a bound of the fit.
-void checkBounds(const AccParameters& p, const ModelAdequacyOptions& options, ModelAdequacy& out)
+/// (b): each parameter held by a bound of the fit where the data pin it there.
+void checkBounds(const AccParameters& p, const std::optional<AccParameters>& standard_errors,
+                 const ModelAdequacyOptions& options, ModelAdequacy& out)
 {
   struct Named
   {
     const char* name;
-    double value, lower, upper;
+    double value, lower, upper, standard_error;
   };
   const ParameterBounds& b = options.bounds;
-  const Named parameters[] = {{"k1_per_s2", p.k1_per_s2, b.lower.k1_per_s2, b.upper.k1_per_s2},
-                              {"k2_per_s", p.k2_per_s, b.lower.k2_per_s, b.upper.k2_per_s},
-                              {"tau_e_s", p.tau_e_s, b.lower.tau_e_s, b.upper.tau_e_s},
-                              {"eta_m", p.eta_m, b.lower.eta_m, b.upper.eta_m}};
+  // Without standard errors every parameter at a bound counts (0: pinned).
+  const AccParameters se = standard_errors.value_or(AccParameters{0.0, 0.0, 0.0, 0.0});
+  const Named parameters[] = {{"k1_per_s2", p.k1_per_s2, b.lower.k1_per_s2, b.upper.k1_per_s2, se.k1_per_s2},
+                              {"k2_per_s", p.k2_per_s, b.lower.k2_per_s, b.upper.k2_per_s, se.k2_per_s},
+                              {"tau_e_s", p.tau_e_s, b.lower.tau_e_s, b.upper.tau_e_s, se.tau_e_s},
+                              {"eta_m", p.eta_m, b.lower.eta_m, b.upper.eta_m, se.eta_m}};
   for (const Named& q : parameters)
   {
-    const double tolerance = options.bound_fraction * (q.upper - q.lower);
+    const double range = q.upper - q.lower, tolerance = options.bound_fraction * range;
     const bool at_lower = q.value <= q.lower + tolerance, at_upper = q.value >= q.upper - tolerance;
     if (!at_lower && !at_upper)
       continue;
     const std::string text = format("%s = %.4g at its %s bound %g", q.name, q.value, at_lower ? "lower" : "upper",
                                     at_lower ? q.lower : q.upper);
     out.checks.parameters_at_bound.push_back(text);
-    out.reasons.push_back(text + " (held by the bound, not by the data)");
+    // NaN (unknown) fails this comparison too: such a parameter is listed, not held against the model.
+    const std::string error = standard_errors ? format(" +- %.3g", q.standard_error) : "";
+    if (q.standard_error < options.max_standard_error_at_bound_fraction * range)
+      out.reasons.push_back(text + error + ": held by the bound, not by the data");
   }
 }
 
@@ -171,13 +177,15 @@ double residualCorrelationTimeS(const std::vector<std::vector<double>>& segment_
 }
 
 ModelAdequacy assessModelAdequacy(const AccParameters& p, const std::vector<CarFollowingRun>& runs,
-                                  const ModelAdequacyOptions& options)
+                                  const ModelAdequacyOptions& options,
+                                  const std::optional<AccParameters>& standard_errors)
 {
-  return assessModelAdequacy(p, EffectSettings{}, runs, options);
+  return assessModelAdequacy(p, EffectSettings{}, runs, options, standard_errors);
 }
 
 ModelAdequacy assessModelAdequacy(const AccParameters& p, const EffectSettings& effects,
-                                  const std::vector<CarFollowingRun>& runs, const ModelAdequacyOptions& options)
+                                  const std::vector<CarFollowingRun>& runs, const ModelAdequacyOptions& options,
+                                  const std::optional<AccParameters>& standard_errors)
 {
   ModelAdequacy out;
   for (const CarFollowingRun& run : runs)
@@ -223,7 +231,7 @@ ModelAdequacy assessModelAdequacy(const AccParameters& p, const EffectSettings& 
             options.gap_rmse_floor_m, out);
   checkRmse("speed", "m/s", fit.rmse_speed_mps, out.checks.speed_spread_mps, options.max_speed_rmse_over_spread,
             options.speed_rmse_floor_mps, out);
-  checkBounds(p, options, out);
+  checkBounds(p, standard_errors, options, out);
   checkCorrelation(options, out);
   out.adequate = out.reasons.empty();
   return out;

@@ -265,7 +265,7 @@ int main(int argc, char** argv)
   // to 1.8 m of gap, the second misses by 8.1 m).
   std::vector<acc::CarFollowingRun> judged = training;
   judged.insert(judged.end(), testing.begin(), testing.end());
-  report.model_adequacy = acc::assessModelAdequacy(p, judged);
+  report.model_adequacy = acc::assessModelAdequacy(p, judged, {}, report.uncertainty.standard_error);
   report.model_adequacy_data = testing.empty() ? "the runs it was fitted on"
                                                : "every run's training and held-out halves, each from its own start";
   std::vector<acc::FitQuality> train_fits, test_fits;

@@ -82,6 +82,14 @@ TEST(ModelAdequacy, ParameterAtABoundIsNamed)
   ASSERT_EQ(adequacy.checks.parameters_at_bound.size(), 1u);
   EXPECT_NE(adequacy.checks.parameters_at_bound[0].find("eta_m"), std::string::npos);
   EXPECT_TRUE(anyReasonMentions(adequacy, "upper bound 50"));
+  // A parameter the data do not pin (standard error a fifth of its range) is listed, not held
+  // against the model; one they pin is.
+  const acc::ModelAdequacy loose = acc::assessModelAdequacy(at_bound, runs, {}, acc::AccParameters{0.01, 0.01, 0.01, 10.0});
+  EXPECT_EQ(loose.checks.parameters_at_bound.size(), 1u);
+  EXPECT_FALSE(anyReasonMentions(loose, "eta_m")) << acc::describeAdequacy(loose);
+  const acc::ModelAdequacy pinned = acc::assessModelAdequacy(at_bound, runs, {}, acc::AccParameters{0.01, 0.01, 0.01, 0.5});
+  EXPECT_TRUE(anyReasonMentions(pinned, "eta_m = 50 at its upper bound 50 +- 0.5"));
+  EXPECT_FALSE(pinned.adequate);
 }
 
 // Complex roots decay at (k2 + k1 tau_e) / 2; real ones at the slower root; k1 = 0 at k2.
