@@ -246,9 +246,9 @@ void addDipCheck(ModelAdequacy& adequacy, std::size_t perturbations, double medi
     return;
   if (median_dip_error > options.max_median_dip_error)
   {
-    adequacy.reasons.push_back(format("its dips miss the measured ones by %.0f %% (median over %zu "
-                                      "car-perturbations)",
-                                      100.0 * median_dip_error, perturbations));
+    adequacy.reasons.push_back(format("its dips miss the measured ones by %.1f %% (median over %zu "
+                                      "car-perturbations; limit %.0f %%)",
+                                      100.0 * median_dip_error, perturbations, 100.0 * options.max_median_dip_error));
     adequacy.adequate = false;
   }
 }

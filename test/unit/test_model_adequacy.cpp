@@ -136,7 +136,7 @@ TEST(ModelAdequacy, DipCheckDecidesOnlyWithEnoughPerturbations)
   acc::ModelAdequacy many = acc::assessModelAdequacy(p, runs);
   acc::addDipCheck(many, 12, 0.8);
   EXPECT_FALSE(many.adequate);
-  EXPECT_TRUE(anyReasonMentions(many, "80 %"));
+  EXPECT_TRUE(anyReasonMentions(many, "80.0 %"));
   acc::ModelAdequacy close = acc::assessModelAdequacy(p, runs);
   acc::addDipCheck(close, 12, 0.1);
   EXPECT_TRUE(close.adequate);
