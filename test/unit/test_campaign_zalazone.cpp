@@ -54,11 +54,22 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesAReactionDelayThatShrinksTheDipGa
     const nlohmann::json& adequacy = json["vehicles"][g]["model_adequacy"];
     ASSERT_TRUE(adequacy.is_object()) << group.vehicle;
     EXPECT_EQ(adequacy["assessed"], group.fitted()) << group.vehicle;
+    EXPECT_EQ(json["vehicles"][g]["fitted"], group.fitted());
     if (group.fitted())
     {
       EXPECT_EQ(adequacy["adequate"], group.model_adequacy.adequate);
       EXPECT_EQ(adequacy["adequate"], adequacy["reasons"].empty()) << adequacy.dump();
       EXPECT_GT(adequacy["checks"]["gap_spread_m"].get<double>(), 0.0);
+      EXPECT_TRUE(json["vehicles"][g]["unfitted_data"].is_null());
+    }
+    else
+    {
+      // Valid data without a fit (three steady groups here) still say what they hold.
+      const nlohmann::json& data = json["vehicles"][g]["unfitted_data"];
+      EXPECT_GT(data["samples"].get<std::size_t>(), 0u) << group.vehicle;
+      EXPECT_LE(data["samples"].get<std::size_t>(), group.samples);
+      EXPECT_GT(data["duration_s"].get<double>(), 0.0);
+      EXPECT_TRUE(adequacy["adequate"].is_null());
     }
     dip_checked += group.model_adequacy.checks.dip_perturbations > 0 ? 1 : 0;
     const nlohmann::json& hypothesis = json["vehicles"][g]["stability_test"]["p_value_hypothesis"];

@@ -4,6 +4,7 @@
 // (its synthesiser belongs to the diagnosis).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <iostream>
 
@@ -140,6 +141,19 @@ TEST(ModelAdequacy, DipCheckDecidesOnlyWithEnoughPerturbations)
   acc::ModelAdequacy close = acc::assessModelAdequacy(p, runs);
   acc::addDipCheck(close, 12, 0.1);
   EXPECT_TRUE(close.adequate);
+}
+
+// The node judges the drive so far every period: a 3-hour drive (108 000 samples) must cost
+// milliseconds, not the period. A generous bound (the scan is geometric in the lag), not a benchmark.
+TEST(ModelAdequacy, AThreeHourDriveIsJudgedWellWithinAPeriod)
+{
+  const std::vector<acc::CarFollowingRun> drive{acc::synthesizeRun(acc::paperMinimumSetting(), 10800.0, 0.1, 25.0, 8)};
+  const auto started = std::chrono::steady_clock::now();
+  const acc::ModelAdequacy adequacy = acc::assessModelAdequacy(acc::paperMinimumSetting(), drive);
+  const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  std::cout << "3-hour drive judged in " << 1000.0 * elapsed_s << " ms\n";
+  EXPECT_TRUE(adequacy.adequate) << acc::describeAdequacy(adequacy);
+  EXPECT_LT(elapsed_s, 0.5);
 }
 
 // Nothing to judge: "not assessed", adequate null in JSON (neither a pass nor a fail).
