@@ -110,6 +110,7 @@ TEST(CalibrationReport, StabilityTestAndQuantitiesAreInTheJsonAndTheTable)
     EXPECT_TRUE(test["best_unstable"].contains(key)) << key;
   }
   EXPECT_EQ(test["verdict"], acc::toString(report.stability_test->verdict));
+  EXPECT_EQ(test["p_value_hypothesis"], acc::pValueHypothesis(*report.stability_test));
   ASSERT_TRUE(json.contains("identifiable_quantities"));
   EXPECT_TRUE(json["identifiable_quantities"]["quantities"].contains("stability_margin"));
 
