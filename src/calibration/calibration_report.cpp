@@ -6,6 +6,8 @@
 #include <limits>
 #include <string>
 
+#include "acc_identification/model/pooled_moments.h"
+
 namespace acc
 {
 namespace
@@ -263,30 +265,15 @@ UnfittedDataSummary summarizeUnfittedData(const std::vector<CarFollowingRun>& ru
   out.reason = reason;
   out.runs = runs.size();
   out.steady_speed_spread_mps = steady_speed_spread_mps;
-  double speed_sum = 0.0, speed_sq = 0.0, gap_sum = 0.0, gap_sq = 0.0;
   for (const CarFollowingRun& run : runs)
-  {
-    out.samples += run.size();
     out.duration_s += run.durationS();
-    for (std::size_t k = 0; k < run.size(); ++k)
-    {
-      speed_sum += run.follower_speed_mps[k];
-      speed_sq += run.follower_speed_mps[k] * run.follower_speed_mps[k];
-      gap_sum += run.space_gap_m[k];
-      gap_sq += run.space_gap_m[k] * run.space_gap_m[k];
-    }
-  }
-  const double n = static_cast<double>(out.samples);
-  if (out.samples == 0)
-  {
-    out.follower_speed_mean_mps = out.follower_speed_spread_mps = out.gap_mean_m = out.gap_spread_m = kNaN;
-    out.equilibrium_gap_m = kNaN;
-    return out;
-  }
-  out.follower_speed_mean_mps = speed_sum / n;
-  out.follower_speed_spread_mps = std::sqrt(std::max(0.0, speed_sq / n - out.follower_speed_mean_mps * out.follower_speed_mean_mps));
-  out.gap_mean_m = gap_sum / n;
-  out.gap_spread_m = std::sqrt(std::max(0.0, gap_sq / n - out.gap_mean_m * out.gap_mean_m));
+  const PooledMoments speed = pooledMoments(runs, &CarFollowingRun::follower_speed_mps);
+  const PooledMoments gap = pooledMoments(runs, &CarFollowingRun::space_gap_m);
+  out.samples = speed.samples;
+  out.follower_speed_mean_mps = speed.mean;
+  out.follower_speed_spread_mps = speed.standard_deviation;
+  out.gap_mean_m = gap.mean;
+  out.gap_spread_m = gap.standard_deviation;
   out.equilibrium_gap_m = out.follower_speed_spread_mps < steady_speed_spread_mps ? out.gap_mean_m : kNaN;
   return out;
 }

@@ -6,6 +6,7 @@
 
 #include "acc_identification/calibration/fit_statistics.h"
 #include "acc_identification/model/follower_simulation.h"
+#include "acc_identification/model/pooled_moments.h"
 
 namespace acc
 {
@@ -23,26 +24,6 @@ std::string format(const char* pattern, Args... args)
   char text[256];
   std::snprintf(text, sizeof text, pattern, args...);
   return text;
-}
-
-/// Standard deviation of every sample of one column over all runs (pooled around one mean).
-double pooledSpread(const std::vector<CarFollowingRun>& runs, std::vector<double> CarFollowingRun::*column)
-{
-  double sum = 0.0, sum_sq = 0.0;
-  std::size_t n = 0;
-  for (const CarFollowingRun& run : runs)
-  {
-    for (double value : run.*column)
-    {
-      sum += value;
-      sum_sq += value * value;
-      ++n;
-    }
-  }
-  if (n < 2)
-    return kNaN;
-  const double mean = sum / static_cast<double>(n);
-  return std::sqrt(std::max(0.0, sum_sq / static_cast<double>(n) - mean * mean));
 }
 
 /// (a): an RMSE is a miss when it is both a large part of the data's own spread and above the
@@ -212,8 +193,8 @@ ModelAdequacy assessModelAdequacy(const AccParameters& p, const EffectSettings& 
   }
   out.checks.gap_rmse_m = fit.rmse_gap_m;
   out.checks.speed_rmse_mps = fit.rmse_speed_mps;
-  out.checks.gap_spread_m = pooledSpread(runs, &CarFollowingRun::space_gap_m);
-  out.checks.speed_spread_mps = pooledSpread(runs, &CarFollowingRun::follower_speed_mps);
+  out.checks.gap_spread_m = pooledMoments(runs, &CarFollowingRun::space_gap_m).standard_deviation;
+  out.checks.speed_spread_mps = pooledMoments(runs, &CarFollowingRun::follower_speed_mps).standard_deviation;
   std::vector<std::vector<double>> times, residuals;
   for (const CarFollowingRun& run : runs)
   {
