@@ -14,7 +14,8 @@ acc_add_library(acc_diagnosis
     src/diagnosis/determined_effects.cpp
     src/diagnosis/injected_effect.cpp
     src/diagnosis/diagnosis_output.cpp
-  LINK acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
+  # acc_calibration: the model-adequacy checks of the base and the final model (model_adequacy.h).
+  LINK acc_calibration acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 
 # The tool reads runs (CSV or bags) as the calibrate tool does (calibration component).
 if(TARGET acc_calibration_ros)
@@ -42,7 +43,8 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_diagnosis_forward.cpp
     test/unit/test_diagnosis_injected.cpp
     test/unit/test_diagnosis_combined.cpp
-    test/unit/test_diagnosis_determined.cpp)
+    test/unit/test_diagnosis_determined.cpp
+    test/unit/test_diagnosis_adequacy.cpp)
   # The semi-real test reads a bundled real run (acc_run_io, cmake/data.cmake).
   target_link_libraries(test_diagnosis acc_diagnosis acc_run_io)
   target_compile_definitions(test_diagnosis PRIVATE ACC_CASALE_DIR="${ACC_DATA_CASALE_DIR}"

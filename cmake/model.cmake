@@ -5,6 +5,7 @@ acc_add_library(acc_model
   SOURCES
     src/model/acc_model.cpp
     src/model/car_following_run.cpp
+    src/model/pooled_moments.cpp
     src/model/follower_simulation.cpp
     src/model/platoon_simulation.cpp
     src/model/string_stability.cpp

@@ -86,7 +86,8 @@ def last(bag_path, out_path):
     keys = ["samples", "segments", "k1_per_s2", "k2_per_s", "tau_e_s", "eta_m", "lambda2", "string_stable",
             "rmse_speed_mps", "rmse_gap_m", "identifiable", "identifiability_note", "drive_samples",
             "stability_verdict", "stability_p_value", "stability_margin_low", "stability_margin_high",
-            "stability_samples", "stability_reason", "stability_margin", "stability_margin_std_error"]
+            "stability_samples", "stability_reason", "stability_margin", "stability_margin_std_error",
+            "model_adequate", "model_adequacy_reasons"]
     out = {k: getattr(message, k) for k in keys}
     out["window_start_s"] = message.window_start.to_sec()
     out["window_end_s"] = message.window_end.to_sec()

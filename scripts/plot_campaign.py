@@ -93,7 +93,10 @@ def plot_margins(vehicles, path, attribution):
         if not math.isnan(value):
             ax.errorbar(i, value, yerr=0 if math.isnan(error) else error, fmt="o", color=colour, capsize=3)
         p = number(v["stability_test"]["p_value"])
-        ax.annotate(f"{verdict}\np={p:.3f}", (i, 0), fontsize=5, ha="center", va="bottom", rotation=90,
+        # The p-value named by the hypothesis it tests; none when the test did not run.
+        hypothesis = v["stability_test"].get("p_value_hypothesis")
+        label = f"{verdict}\np (H0 {hypothesis})={p:.3f}" if hypothesis else f"{verdict}\n(not run)"
+        ax.annotate(label, (i, 0), fontsize=5, ha="center", va="bottom", rotation=90,
                     color=colour, xytext=(0, 4), textcoords="offset points")
     ax.axhline(0.0, color="black", lw=0.8)
     ax.set_ylabel("margin m = k1 tau_e^2 + 2 k2 tau_e - 2")

@@ -205,7 +205,7 @@ def combination_lines(d):
               "parameters (± std. error) |", "|---|---|---|---|---|---|---|"]
     base = d["baseline"]
     lines.append(f"| 0 | base | {fmt(base['test_rmse_speed'])} | {fmt(base['test_rmse_gap'])} | - | "
-                 f"{'stable' if base['stability']['string_stable'] else 'unstable'} | {parameter_text(base)} |")
+                 f"{point_estimate_stability(base)} | {parameter_text(base)} |")
     for i, step in enumerate(chain, 1):
         imp = step["improvement"]
         test = step.get("stability_test")
@@ -214,9 +214,22 @@ def combination_lines(d):
         params = parameter_text({"parameters": values, "standard_errors": step["standard_errors"]})
         lines.append(f"| {i} | {step['effect']} | {fmt(step['test_rmse_speed'])} | {fmt(step['test_rmse_gap'])} | "
                      f"{imp['relative'] * 100:.1f} ({fmt(imp['lower_bound'], 3)}) | "
-                     f"{'stable' if step['stability']['string_stable'] else 'unstable'} ({verdict}) | {params} |")
+                     f"{point_estimate_stability(step)} ({verdict}) | {params} |")
     lines += ["", f"Stopped: {forward.get('stop_reason', '')}.", ""]
     return lines
+
+
+def point_estimate_stability(model):
+    """The point estimate's string stability in words; null (parameters not finite) is not "unstable"."""
+    stable = model["stability"]["string_stable"]
+    return "undetermined" if stable is None else "stable" if stable else "unstable"
+
+
+def adequacy_text(adequacy):
+    """model_adequacy in words: ADEQUATE, NOT ADEQUATE (reasons) or not assessed (why)."""
+    if adequacy is None or adequacy.get("adequate") is None:
+        return "not assessed" + (f" ({'; '.join(adequacy['reasons'])})" if adequacy else "")
+    return "ADEQUATE" if adequacy["adequate"] else "NOT ADEQUATE (" + "; ".join(adequacy["reasons"]) + ")"
 
 
 def write_report(report_dir, d):
@@ -240,10 +253,17 @@ def write_report(report_dir, d):
         verdict = "changes" if chosen["stability_verdict_changes"] else "does not change"
         lines.append("")
         lines.append(f"String stability: base peak gain {fmt(base['stability']['peak_gain_db'])} dB "
-                     f"({'stable' if base['stability']['string_stable'] else 'unstable'}), with the effect "
+                     f"({point_estimate_stability(base)}), with the effect "
                      f"{fmt(chosen['stability']['peak_gain_db'])} dB "
-                     f"({'stable' if chosen['stability']['string_stable'] else 'unstable'}): the verdict {verdict}. "
+                     f"({point_estimate_stability(chosen)}): the point estimate's stability {verdict}. "
                      f"({chosen['stability']['note']}.)")
+    verdict = d.get("verdict")
+    if verdict:
+        lines += ["", f"Model adequacy of the base model: {adequacy_text(base.get('model_adequacy'))}.",
+                  f"Model adequacy of the final model: {adequacy_text(d['final_model'].get('model_adequacy'))}.", "",
+                  f"**The verdict** (string-stability test of the {verdict['model']}): "
+                  f"{verdict['verdict'] or 'not tested'}, p (H0: stable) = {fmt(verdict['p_value_stable_rejected'])}, "
+                  f"p (H0: unstable) = {fmt(verdict['p_value_unstable_rejected'])}. Why this model: {verdict['why']}."]
     lines += ["", "Selection rule: " + d["selection"]["rule"], "", "## Models", ""]
     lines.append("| model | train speed RMSE [m/s] | held-out speed RMSE [m/s] | held-out gap RMSE [m] | "
                  "MSE reduction [%] (bounds) | significant | peak gain [dB] | parameters (± std. error) |")

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
+
+#include "acc_identification/model/pooled_moments.h"
 
 namespace acc
 {
@@ -26,6 +29,49 @@ nlohmann::json fitJson(const FitQuality& fit)
           {"rmse_speed_mps", number(fit.rmse_speed_mps)},
           {"rmse_gap_m", number(fit.rmse_gap_m)},
           {"diverged", fit.diverged}};
+}
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string equilibriumGapNote(const UnfittedDataSummary& summary)
+{
+  char text[256];
+  if (std::isfinite(summary.equilibrium_gap_m))
+    std::snprintf(text, sizeof text,
+                  "steady following: the equilibrium gap eta + tau_e v at %.2f m/s is %.2f m (the mean gap), though "
+                  "not eta and tau_e apart",
+                  summary.follower_speed_mean_mps, summary.equilibrium_gap_m);
+  else
+    std::snprintf(text, sizeof text,
+                  "no equilibrium gap: the follower speed spread %.3f m/s is not steady (below %.3f m/s)",
+                  summary.follower_speed_spread_mps, summary.steady_speed_spread_mps);
+  return text;
+}
+
+/// The point estimate's lambda2, labelled as such: beside a stability test it is not the verdict.
+std::string pointEstimateStabilityLine(const StringStabilityReport& s, bool tested)
+{
+  char line[400];
+  const std::optional<bool> stable = knownStringStability(s);
+  if (!stable)
+    return "  lambda2 of the point estimate: not determined (NaN)\n";
+  std::snprintf(line, sizeof line,
+                "  lambda2 of the point estimate = %.4g (point estimate string %s%s); amplified band [0, %.4f) rad/s, "
+                "peak %.3f dB at %.4f rad/s\n",
+                s.lambda2, *stable ? "stable" : "unstable", tested ? "; the verdict is the test's, below" : "",
+                s.amplified_band_upper_rad_s, s.peak_gain_db, s.peak_frequency_rad_s);
+  return line;
+}
+
+/// "model adequacy: NOT ADEQUATE (...) -> ..." said before the verdict it qualifies.
+std::string adequacyLine(const ModelAdequacy& adequacy, const std::string& data, bool tested)
+{
+  std::string line = "Model adequacy" + (data.empty() ? "" : " (on " + data + ")") + ": " + describeAdequacy(adequacy);
+  if (adequacy.assessed && !adequacy.adequate)
+    line += tested ? "\n  -> the verdict below compares two versions of a model that misses these data; run "
+                     "`diagnose` on them for a model that does not (and its verdict)"
+                   : "\n  -> the model misses these data; run `diagnose` on them";
+  return line + "\n";
 }
 
 std::string fitCells(const std::optional<FitQuality>& fit)
@@ -70,8 +116,11 @@ nlohmann::json reportToJson(const CalibrationReport& report)
   json["reciprocal_condition"] = number(report.uncertainty.reciprocal_condition);
   json["identifiable"] = report.identifiability_note.empty();
   json["identifiability_note"] = report.identifiability_note;
+  json["fitted"] = true;
+  const std::optional<bool> stable = knownStringStability(report.stability);
   json["stability"] = {{"lambda2", number(report.stability.lambda2)},
-                       {"string_stable", report.stability.string_stable},
+                       {"lambda2_of", "the point estimate (parameters above); the verdict is stability_test's"},
+                       {"string_stable", stable ? nlohmann::json(*stable) : nlohmann::json()},
                        {"amplified_band_upper_rad_s", number(report.stability.amplified_band_upper_rad_s)},
                        {"peak_gain_db", number(report.stability.peak_gain_db)},
                        {"peak_frequency_rad_s", number(report.stability.peak_frequency_rad_s)}};
@@ -118,6 +167,11 @@ nlohmann::json reportToJson(const CalibrationReport& report)
   {
     json["stability_test"] = toJson(*report.stability_test);
   }
+  if (report.model_adequacy)
+  {
+    json["model_adequacy"] = toJson(*report.model_adequacy);
+    json["model_adequacy"]["data"] = report.model_adequacy_data;
+  }
   return json;
 }
 
@@ -157,11 +211,7 @@ void printReport(const CalibrationReport& report, std::ostream& out)
                 report.uncertainty.blocks, report.uncertainty.block_length_s,
                 report.uncertainty.residual_lag1_autocorrelation, report.uncertainty.reciprocal_condition);
   out << line;
-  const StringStabilityReport& s = report.stability;
-  std::snprintf(line, sizeof line, "  lambda2 = %.4g -> %s; amplified band [0, %.4f) rad/s, peak %.3f dB at %.4f rad/s\n",
-                s.lambda2, s.string_stable ? "string STABLE" : "string UNSTABLE", s.amplified_band_upper_rad_s,
-                s.peak_gain_db, s.peak_frequency_rad_s);
-  out << line;
+  out << pointEstimateStabilityLine(report.stability, report.stability_test.has_value());
   out << "  identifiable: " << (report.identifiability_note.empty() ? "yes" : "no (" + report.identifiability_note + ")")
       << "\n";
   std::snprintf(line, sizeof line,
@@ -197,11 +247,68 @@ void printReport(const CalibrationReport& report, std::ostream& out)
     out << "\n";
     printQuantities(*report.quantities, out);
   }
+  if (report.model_adequacy)
+  {
+    out << "\n" << adequacyLine(*report.model_adequacy, report.model_adequacy_data, report.stability_test.has_value());
+  }
   if (report.stability_test)
   {
     out << "\n";
     printStabilityTest(*report.stability_test, out);
   }
+}
+
+UnfittedDataSummary summarizeUnfittedData(const std::vector<CarFollowingRun>& runs, const std::string& reason,
+                                          double steady_speed_spread_mps)
+{
+  UnfittedDataSummary out;
+  out.reason = reason;
+  out.runs = runs.size();
+  out.steady_speed_spread_mps = steady_speed_spread_mps;
+  for (const CarFollowingRun& run : runs)
+    out.duration_s += run.durationS();
+  const PooledMoments speed = pooledMoments(runs, &CarFollowingRun::follower_speed_mps);
+  const PooledMoments gap = pooledMoments(runs, &CarFollowingRun::space_gap_m);
+  out.samples = speed.samples;
+  out.follower_speed_mean_mps = speed.mean;
+  out.follower_speed_spread_mps = speed.standard_deviation;
+  out.gap_mean_m = gap.mean;
+  out.gap_spread_m = gap.standard_deviation;
+  out.equilibrium_gap_m = out.follower_speed_spread_mps < steady_speed_spread_mps ? out.gap_mean_m : kNaN;
+  return out;
+}
+
+nlohmann::json unfittedToJson(const UnfittedDataSummary& summary)
+{
+  nlohmann::json json;
+  json["fitted"] = false;
+  json["reason"] = summary.reason;
+  json["data"] = {{"runs", summary.runs},
+                  {"samples", summary.samples},
+                  {"duration_s", number(summary.duration_s)},
+                  {"follower_speed_mean_mps", number(summary.follower_speed_mean_mps)},
+                  {"follower_speed_spread_mps", number(summary.follower_speed_spread_mps)},
+                  {"gap_mean_m", number(summary.gap_mean_m)},
+                  {"gap_spread_m", number(summary.gap_spread_m)},
+                  {"equilibrium_gap_m", number(summary.equilibrium_gap_m)},
+                  {"equilibrium_gap_note", equilibriumGapNote(summary)}};
+  json["parameters"] = nullptr;
+  json["stability"] = nullptr;
+  json["model_adequacy"] = nullptr;
+  return json;
+}
+
+void printUnfitted(const UnfittedDataSummary& summary, std::ostream& out)
+{
+  char line[512];
+  out << "No fit: " << summary.reason << "\n";
+  std::snprintf(line, sizeof line,
+                "What the data say: %zu run(s), %zu samples over %.1f s; follower speed %.2f m/s mean, %.3f m/s "
+                "spread; gap %.2f m mean, %.2f m spread\n",
+                summary.runs, summary.samples, summary.duration_s, summary.follower_speed_mean_mps,
+                summary.follower_speed_spread_mps, summary.gap_mean_m, summary.gap_spread_m);
+  out << line << "  " << equilibriumGapNote(summary) << "\n";
+  out << "No parameters, no lambda2 and no string-stability verdict: these data do not decide them.\n";
 }
 
 }  // namespace acc

@@ -20,11 +20,16 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 FitQuality evaluateFit(const AccParameters& p, const std::vector<CarFollowingRun>& runs)
 {
+  return evaluateFit(p, EffectSettings{}, runs);
+}
+
+FitQuality evaluateFit(const AccParameters& p, const EffectSettings& effects, const std::vector<CarFollowingRun>& runs)
+{
   double speed_sq = 0.0, gap_sq = 0.0;
   FitQuality fit;
   for (const CarFollowingRun& run : runs)
   {
-    const SimulatedFollower sim = simulateFollower(p, run);
+    const SimulatedFollower sim = simulateFollower(p, effects, run);
     fit.diverged = fit.diverged || sim.diverged;
     for (std::size_t k = 0; k < run.size(); ++k)
     {

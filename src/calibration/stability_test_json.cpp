@@ -37,6 +37,8 @@ nlohmann::json toJson(const StabilityTestResult& result)
   nlohmann::json json;
   json["verdict"] = toString(result.verdict);
   json["p_value"] = number(result.p_value);
+  // Which null hypothesis p_value tests ("stable": a small p says unstable); null when not tested.
+  json["p_value_hypothesis"] = result.tested ? nlohmann::json(pValueHypothesis(result)) : nlohmann::json();
   json["p_value_stable_rejected"] = number(result.p_value_stable_rejected);
   json["p_value_unstable_rejected"] = number(result.p_value_unstable_rejected);
   json["alpha"] = number(result.alpha);

@@ -48,8 +48,11 @@ void printStabilityTest(const StabilityTestResult& result, std::ostream& out)
   std::string verdict = toString(result.verdict);
   for (char& c : verdict)
     c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  std::snprintf(line, sizeof line, "  verdict: %s, p = %.3g  (p of H0 stable %.3g, of H0 unstable %.3g)\n",
-                verdict.c_str(), result.p_value, result.p_value_stable_rejected, result.p_value_unstable_rejected);
+  // THE verdict, each p-value named by the hypothesis it tests: nothing above (a point estimate's
+  // lambda2) competes with it.
+  std::snprintf(line, sizeof line, "  verdict: %s%s  (p (H0: stable) = %.3g; p (H0: unstable) = %.3g)\n",
+                result.verdict == StabilityVerdict::Undecided ? "" : "string ", verdict.c_str(),
+                result.p_value_stable_rejected, result.p_value_unstable_rejected);
   out << line;
   if (result.tested)
   {
@@ -70,5 +73,15 @@ void printStabilityTest(const StabilityTestResult& result, std::ostream& out)
   out << "  why: " << result.reason << "\n";
 }
 
+std::string pValueHypothesis(const StabilityTestResult& result)
+{
+  switch (result.verdict)
+  {
+    case StabilityVerdict::Unstable: return "stable";
+    case StabilityVerdict::Stable: return "unstable";
+    case StabilityVerdict::Undecided: break;
+  }
+  return result.p_value_stable_rejected <= result.p_value_unstable_rejected ? "stable" : "unstable";
+}
 
 }  // namespace acc

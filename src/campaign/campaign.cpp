@@ -216,6 +216,20 @@ std::vector<PlatoonCarModel> diagnosedModels(std::vector<PlatoonCarModel> models
   }
   return models;
 }
+
+/// Check (d) of each group's model adequacy: its cars' dips in the platoon runs, each predicted at
+/// pair level (driven by the real leader) by the car's leave-one-run-out base model.
+void addDipChecks(const std::vector<PlatoonCheck>& platoons, std::vector<GroupResult>& groups)
+{
+  for (GroupResult& group : groups)
+  {
+    const DipPredictionSummary dips = summarizeDipPredictions(
+        platoons, DipPrediction::pair_base, 0.3, 0.2, [&group](const PlatoonCheck& check, const DipComparison& row) {
+          return row.name == group.vehicle && check.setting == group.setting;
+        });
+    addDipCheck(group.model_adequacy, dips.car_perturbations, dips.median_abs_dip_error);
+  }
+}
 }  // namespace
 
 
@@ -280,6 +294,7 @@ CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& 
     result.platoons.push_back(checkPlatoon(inputs.files[f], models, options.platoon, &diagnosed));
     result.run_effect_selections.push_back(selection);
   }
+  addDipChecks(result.platoons, result.groups);
   if (diagnose)
     result.links = gatherLinkEvidence(inputs, result.groups, result.platoons, result.effect_selection.model,
                                       options.threads, options.platoon);

@@ -6,6 +6,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "acc_identification/calibration/calibration_report.h"
 #include "acc_identification/calibration/quantity_identifiability.h"
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/model/string_stability.h"
@@ -83,6 +84,7 @@ nlohmann::json stabilityTestJson(const StabilityTestResult& test)
 {
   return {{"verdict", toString(test.verdict)},
           {"p_value", test.p_value},
+          {"p_value_hypothesis", test.tested ? nlohmann::json(pValueHypothesis(test)) : nlohmann::json()},
           {"p_value_stable_rejected", test.p_value_stable_rejected},
           {"p_value_unstable_rejected", test.p_value_unstable_rejected},
           {"alpha", test.alpha},
@@ -121,6 +123,12 @@ nlohmann::json vehicleJson(const CampaignInputs& inputs, std::size_t index, cons
             {"band_upper_rad_s", dynamics ? id.stability.amplified_band_upper_rad_s : kNaN},
             {"peak_gain_db", dynamics ? id.stability.peak_gain_db : kNaN}}},
           {"stability_test", stabilityTestJson(group.stability_test)},
+          {"model_adequacy", toJson(group.model_adequacy)},
+          {"fitted", fitted},
+          // Valid data without a fit (steady speed, too short) still say what they decide, as calibrate's JSON.
+          {"unfitted_data", fitted ? nlohmann::json() : unfittedToJson(summarizeUnfittedData(
+                                                             inputs.groups[index].segments(), group.reason,
+                                                             IdentifiabilityCriteria{}.min_speed_std_mps))["data"]},
           {"seed", group.seed}};
 }
 
@@ -378,6 +386,14 @@ nlohmann::json platoonJson(const PlatoonCheck& check, const EffectSetSelection* 
           {"notes", check.notes}};
 }
 
+/// "yes", "NO" (the reasons are in the notes) or "not assessed".
+std::string adequacyCell(const ModelAdequacy& adequacy)
+{
+  if (!adequacy.assessed)
+    return "not assessed";
+  return adequacy.adequate ? "yes" : "NO";
+}
+
 /// One table row per group, in the columns of printCampaignTables.
 std::vector<std::string> groupCells(const GroupResult& g)
 {
@@ -392,13 +408,18 @@ std::vector<std::string> groupCells(const GroupResult& g)
           valuePlusMinus(g, "eta", "%.1f"),
           valuePlusMinus(g, "stability_margin", "%.2f"),
           toString(g.stability_test.verdict),
-          format("%.3f", g.stability_test.p_value),
+          // A test that did not run has no p-value (its default 1 would read as "no evidence").
+          g.stability_test.tested
+              ? format("%.3f", g.stability_test.p_value) + " (H0 " + pValueHypothesis(g.stability_test) + ")"
+              : "- (not run)",
+          adequacyCell(g.model_adequacy),
           format("%.3f", g.dynamicsDetermined() ? id.stability.amplified_band_upper_rad_s : kNaN),
           format("%.2f", g.dynamicsDetermined() ? id.stability.peak_gain_db : kNaN)};
 }
 
 const std::vector<std::string> kGroupHeader{"vehicle", "set", "runs", "samples", "k1 [1/s2]", "k2 [1/s]", "tau_e [s]",
-                                            "eta [m]", "margin", "verdict", "p", "band [rad/s]", "peak [dB]"};
+                                            "eta [m]", "margin", "verdict", "p (H0)", "model adequate",
+                                            "band [rad/s]", "peak [dB]"};
 
 const std::vector<std::string> kPlatoonHeader{"run", "dip", "pos", "car", "meas dip", "pred dip", "diag dip",
                                               "meas amp", "pred amp", "diag amp", "pair dip", "pair diag"};
@@ -477,9 +498,15 @@ std::vector<std::string> groupNotes(const CampaignResult& result)
   std::vector<std::string> notes;
   for (const GroupResult& g : result.groups)
   {
+    const std::string name = g.vehicle + "/" + g.setting + ": ";
     const std::string why = g.fitted() ? g.identification.note : g.reason;
     if (!why.empty())
-      notes.push_back(g.vehicle + "/" + g.setting + ": " + why);
+      notes.push_back(name + why);
+    if (g.model_adequacy.assessed && !g.model_adequacy.adequate)
+      notes.push_back(name + "model " + describeAdequacy(g.model_adequacy) +
+                      ": its verdict compares two versions of a model that misses these data");
+    if (g.stability_test.verdict == StabilityVerdict::Undecided)
+      notes.push_back(name + "undecided: " + g.stability_test.reason);
   }
   return notes;
 }
@@ -648,8 +675,11 @@ std::string campaignReportMarkdown(const CampaignResult& result, const std::vect
     md << " `" << path << "`";
   md << "\n\n## Models by vehicle and distance setting\n\n"
      << "identifyAcc on all of a group's runs (value +- standard error where the data determine it, NaN "
-        "where not); margin m = k1 tau_e^2 + 2 k2 tau_e - 2; verdict and p of the string-stability test on "
-        "held-out halves; amplified band and peak gain of the fit.\n\n";
+        "where not); margin m = k1 tau_e^2 + 2 k2 tau_e - 2; verdict of the string-stability test on "
+        "held-out halves and its p-value with the null hypothesis it tests (H0 stable: small p says unstable); "
+        "whether the fit describes the car's runs (model_adequacy: gap and speed RMSE against their spread, "
+        "parameters at a bound, residual correlation, pair-level dips; reasons in the notes); amplified band and "
+        "peak gain of the fit. The notes say why a verdict is undecided.\n\n";
   printMarkdownTable(kGroupHeader, groupRows(result), md);
   for (const std::string& note : groupNotes(result))
     md << "\n- " << note;

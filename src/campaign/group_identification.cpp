@@ -63,6 +63,11 @@ GroupResult identifyGroup(const CampaignGroup& group, const GroupIdentificationO
       result.reason = result.identification.note;
     else if (result.identification.calibration.diverged)
       result.reason = "every start of the fit diverged";
+    if (result.fitted())
+      result.model_adequacy = assessModelAdequacy(result.identification.calibration.parameters, segments, {},
+                                                  result.identification.uncertainty.standard_error);
+    else
+      result.model_adequacy.reasons = {"not assessed: no fit (" + result.reason + ")"};
     StabilityTestOptions test = testOptions(options, result.seed);
     if (result.fitted())
       test.warm_starts = {result.identification.calibration.parameters};

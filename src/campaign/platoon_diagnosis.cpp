@@ -470,7 +470,8 @@ double predictedOf(const DipComparison& row, DipPrediction which)
 }  // namespace
 
 DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& platoons, DipPrediction which,
-                                             double min_dip_mps, double min_link_change_mps)
+                                             double min_dip_mps, double min_link_change_mps,
+                                             const DipRowFilter& include)
 {
   std::vector<double> errors;
   std::size_t right = 0;
@@ -485,7 +486,7 @@ DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& pl
         // The first car is the input: its "prediction" is the measurement, whatever the model.
         const double ahead_predicted = i == 1 ? rows[0].measured_dip_mps : predictedOf(rows[i - 1], which);
         const double measured = rows[i].measured_dip_mps, predicted = predictedOf(rows[i], which);
-        if (!(measured > min_dip_mps) || !std::isfinite(predicted))
+        if (!(measured > min_dip_mps) || !std::isfinite(predicted) || (include && !include(check, rows[i])))
           continue;
         errors.push_back((predicted - measured) / measured);
         const double ahead_measured = rows[i - 1].measured_dip_mps;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "acc_identification/model/follower_simulation.h"
@@ -232,6 +233,34 @@ void forwardSelect(const DiagnosisOptions& options, const std::vector<SquaredErr
 }
 }  // namespace
 
+namespace
+{
+/// The standard errors of (k1, k2, tau_e, eta) of a fit; none when it has none (diverged).
+std::optional<AccParameters> baseStandardErrors(const AugmentedFit& fit)
+{
+  const std::vector<double>& se = fit.standard_errors;
+  if (se.size() < AugmentedParameterBox::kBaseDimension)
+    return std::nullopt;
+  return AccParameters{se[0], se[1], se[2], se[3]};
+}
+
+/// Model adequacy of the base and the final model on the training and the held-out parts (the
+/// verdicts are judged on the held-out ones), with the diagnosis's own bounds on the base
+/// parameters.
+void assessAdequacy(const DiagnosisOptions& options, DiagnosisResult* result)
+{
+  ModelAdequacyOptions adequacy;
+  adequacy.bounds = {options.calibration.lower, options.calibration.upper};
+  std::vector<CarFollowingRun> parts = result->train;
+  parts.insert(parts.end(), result->test.begin(), result->test.end());
+  const AugmentedFit& base = result->baseline.fit;
+  const AugmentedFit& final_fit = finalModel(*result).fit;
+  result->baseline_adequacy = assessModelAdequacy(base.base, base.settings, parts, adequacy, baseStandardErrors(base));
+  result->final_adequacy =
+      assessModelAdequacy(final_fit.base, final_fit.settings, parts, adequacy, baseStandardErrors(final_fit));
+}
+}  // namespace
+
 DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const DiagnosisOptions& options)
 {
   DiagnosisResult result;
@@ -305,6 +334,7 @@ DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const Dia
                                                          options.stability_test);
   }
   forwardSelect(options, candidate_errors, &result);
+  assessAdequacy(options, &result);
   return result;
 }
 
@@ -323,6 +353,48 @@ const ModelDiagnosis& dominantModel(const DiagnosisResult& result)
 const ModelDiagnosis& finalModel(const DiagnosisResult& result)
 {
   return result.selected_effects.empty() ? result.baseline : result.selected_effects.back().model;
+}
+
+const AugmentedStabilityTestResult* finalModelStabilityTest(const DiagnosisResult& result)
+{
+  if (!result.selected_effects.empty())
+  {
+    const auto& test = result.selected_effects.back().stability_test;
+    return test ? &*test : nullptr;
+  }
+  return result.selection.dominant == EffectKind::none && result.stability_test ? &*result.stability_test : nullptr;
+}
+
+DiagnosisVerdict statedVerdict(const DiagnosisResult& result)
+{
+  DiagnosisVerdict out;
+  out.test = finalModelStabilityTest(result);
+  out.model_adequate = result.final_adequacy.adequate;
+  char text[400];
+  if (!result.selected_effects.empty())
+  {
+    std::string chain;
+    for (EffectKind kind : selectedChain(result))
+      chain += (chain.empty() ? "" : " + ") + effectName(kind);
+    out.model = "final model (" + chain + ")";
+    std::snprintf(text, sizeof text,
+                  "the final model predicts the held-out parts better than the base model (speed RMSE %.3f against "
+                  "%.3f m/s, gap RMSE %.2f against %.2f m)",
+                  finalModel(result).test_rmse_speed_mps, result.baseline.test_rmse_speed_mps,
+                  finalModel(result).test_rmse_gap_m, result.baseline.test_rmse_gap_m);
+    out.why = text;
+  }
+  else
+  {
+    out.model = "base model";
+    out.why = "no effect improves the base model significantly";
+  }
+  if (result.final_adequacy.assessed && !result.final_adequacy.adequate)
+    out.why += "; but this model still misses the data (" + describeAdequacy(result.final_adequacy) +
+               "): its verdict compares two versions of a model that misses";
+  if (out.test == nullptr)
+    out.why += "; this model's string stability was not tested";
+  return out;
 }
 
 std::vector<EffectKind> selectedChain(const DiagnosisResult& result)

@@ -49,7 +49,8 @@ nlohmann::json stabilityJson(const AugmentedStability& s)
 {
   return {{"peak_gain_db", number(s.peak_gain_db)},
           {"peak_frequency_rad_s", number(s.peak_frequency_rad_s)},
-          {"string_stable", s.string_stable},
+          // Meaningless without a gain (parameters not finite): null rather than a "false" that reads unstable.
+          {"string_stable", std::isfinite(s.peak_gain_db) ? nlohmann::json(s.string_stable) : nlohmann::json()},
           {"lambda2", number(s.lambda2)},
           {"note", s.note}};
 }
@@ -245,7 +246,20 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
                         {"parameters", parametersJson(final_model.fit)},
                         {"standard_errors", standardErrorsJson(final_model.fit)},
                         {"test_rmse_speed", number(final_model.test_rmse_speed_mps)},
-                        {"test_rmse_gap", number(final_model.test_rmse_gap_m)}};
+                        {"test_rmse_gap", number(final_model.test_rmse_gap_m)},
+                        {"model_adequacy", toJson(r.final_adequacy)}};
+  }
+  j["baseline"]["model_adequacy"] = toJson(r.baseline_adequacy);
+  {
+    // One verdict, stated once: which model's test it is and why that model.
+    const DiagnosisVerdict verdict = statedVerdict(r);
+    j["verdict"] = {{"model", verdict.model},
+                    {"verdict", verdict.test ? nlohmann::json(toString(verdict.test->verdict)) : nlohmann::json()},
+                    {"p_value_stable_rejected", verdict.test ? number(verdict.test->p_value_stable_rejected) : nlohmann::json()},
+                    {"p_value_unstable_rejected",
+                     verdict.test ? number(verdict.test->p_value_unstable_rejected) : nlohmann::json()},
+                    {"model_adequate", verdict.model_adequate},
+                    {"why", verdict.why}};
   }
   j["effects"] = nlohmann::json::array();
   for (std::size_t k = 0; k < r.effects.size(); ++k)

@@ -98,4 +98,11 @@ std::string toString(StabilityVerdict verdict)
   return "undecided";
 }
 
+std::optional<bool> knownStringStability(const StringStabilityReport& report)
+{
+  if (std::isnan(report.lambda2))
+    return std::nullopt;
+  return report.string_stable;
+}
+
 }  // namespace acc

@@ -87,7 +87,10 @@ void fillWindow(const OnlineUpdate& update, acc_identification::AccParameters& m
   const bool dynamics = result.solved && q && allDetermined(*q, {"k1", "k2", "tau_e"});
   const bool all = dynamics && allDetermined(*q, {"eta"});
   m.lambda2 = dynamics ? result.stability.lambda2 : kNaN;
-  m.string_stable = dynamics && result.stability.string_stable;
+  const std::optional<bool> stable = dynamics ? knownStringStability(result.stability) : std::nullopt;
+  m.string_stable = !stable ? acc_identification::AccParameters::STRING_STABILITY_UNKNOWN
+                    : *stable ? acc_identification::AccParameters::STRING_STABLE
+                              : acc_identification::AccParameters::STRING_UNSTABLE;
   m.amplified_band_upper_rad_s = dynamics ? result.stability.amplified_band_upper_rad_s : kNaN;
   m.peak_gain_db = dynamics ? result.stability.peak_gain_db : kNaN;
   m.peak_frequency_rad_s = dynamics ? result.stability.peak_frequency_rad_s : kNaN;
@@ -206,6 +209,25 @@ bool loadIdentifierSettings(const ros::NodeHandle& p, IdentifierSettings& s, std
     error = "parameters ~drive_max_evaluations must be >= 1, ~stability_period_s > 0, ~alpha in (0, 1)";
     return false;
   }
+  ModelAdequacyOptions& a = s.adequacy;
+  p.param("adequacy_max_gap_rmse_over_spread", a.max_gap_rmse_over_spread, a.max_gap_rmse_over_spread);
+  p.param("adequacy_gap_rmse_floor_m", a.gap_rmse_floor_m, a.gap_rmse_floor_m);
+  p.param("adequacy_max_speed_rmse_over_spread", a.max_speed_rmse_over_spread, a.max_speed_rmse_over_spread);
+  p.param("adequacy_speed_rmse_floor_mps", a.speed_rmse_floor_mps, a.speed_rmse_floor_mps);
+  p.param("adequacy_bound_fraction", a.bound_fraction, a.bound_fraction);
+  p.param("adequacy_max_standard_error_at_bound_fraction", a.max_standard_error_at_bound_fraction,
+          a.max_standard_error_at_bound_fraction);
+  p.param("adequacy_max_correlation_over_response_time", a.max_correlation_over_response_time,
+          a.max_correlation_over_response_time);
+  if (!(a.max_gap_rmse_over_spread > 0.0) || !(a.gap_rmse_floor_m >= 0.0) || !(a.max_speed_rmse_over_spread > 0.0) ||
+      !(a.speed_rmse_floor_mps >= 0.0) || !(a.bound_fraction >= 0.0 && a.bound_fraction < 0.5) ||
+      !(a.max_standard_error_at_bound_fraction >= 0.0) ||
+      !(a.max_correlation_over_response_time > 0.0))
+  {
+    error = "parameters ~adequacy_*: the ratios must be positive, the floors not negative, ~adequacy_bound_fraction "
+            "in [0, 0.5)";
+    return false;
+  }
   p.param("min_speed_std_mps", c.min_speed_std_mps, c.min_speed_std_mps);
   if (s.starts < 0 || c.min_speed_std_mps < 0.0)
   {
@@ -225,7 +247,20 @@ acc_identification::AccParameters toMessage(const OnlineUpdate& update, double w
   fillWindow(update, m);
   fillDrive(update, drive_start_s, m);
   fillVerdict(update, m);
+  // Until setModelAdequacy: the caller has the drive's segments, the update does not.
+  m.model_adequate = acc_identification::AccParameters::MODEL_ADEQUACY_NOT_ASSESSED;
+  m.model_adequacy_reasons = "not assessed: no drive fit judged yet";
   return m;
+}
+
+void setModelAdequacy(const ModelAdequacy& adequacy, acc_identification::AccParameters& m)
+{
+  m.model_adequate = !adequacy.assessed ? acc_identification::AccParameters::MODEL_ADEQUACY_NOT_ASSESSED
+                     : adequacy.adequate ? acc_identification::AccParameters::MODEL_ADEQUATE
+                                         : acc_identification::AccParameters::MODEL_NOT_ADEQUATE;
+  m.model_adequacy_reasons.clear();
+  for (const std::string& reason : adequacy.reasons)
+    m.model_adequacy_reasons += (m.model_adequacy_reasons.empty() ? "" : "; ") + reason;
 }
 
 acc_identification::AccParameters toMessage(const Identification& identification, double window_start_s, double window_end_s)
@@ -500,6 +535,13 @@ void IdentifierRos::runJob(Job& job)
   }
   acc_identification::AccParameters message = toMessage(update, job.window_start_s, job.window_end_s, job.drive_start_s);
   message.drive_samples_let_go = static_cast<std::uint32_t>(job.drive_samples_let_go);
+  // The drive fit judged on the drive so far: one simulation and one autocorrelation scan (a few
+  // milliseconds on a 3-hour drive), so every message says whether its verdict rests on a model
+  // that fits.
+  if (update.drive.solved && !update.drive.calibration.diverged)
+    setModelAdequacy(assessModelAdequacy(update.drive.calibration.parameters, job.drive_segments, settings_.adequacy,
+                                         update.drive.uncertainty.standard_error),
+                     message);
   publisher_.publish(message);
   ++published_;
 }

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <chrono>
 #include <filesystem>
+#include <cctype>
 #include <cmath>
 #include <optional>
 #include <cstdio>
@@ -280,6 +281,32 @@ int runSuite(const std::string& size, const acc::DiagnosisOptions& options, cons
   return 0;
 }
 
+/// "string UNSTABLE (p (H0: stable) = 0.002; p (H0: unstable) = 0.97)": p-values named by the
+/// hypothesis they test.
+std::string testVerdictText(const acc::AugmentedStabilityTestResult& test)
+{
+  char text[200];
+  std::string verdict = acc::toString(test.verdict);
+  for (char& c : verdict)
+    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  std::snprintf(text, sizeof text, "%s%s (p (H0: stable) = %.3g; p (H0: unstable) = %.3g)",
+                test.verdict == acc::StabilityVerdict::Undecided ? "" : "string ", verdict.c_str(),
+                test.p_value_stable_rejected, test.p_value_unstable_rejected);
+  return text;
+}
+
+/// Each model's adequacy, then THE verdict: the final model's test where the diagnosis found a
+/// better model, the base model's otherwise, and why.
+void printVerdict(const acc::DiagnosisResult& r)
+{
+  const acc::DiagnosisVerdict verdict = acc::statedVerdict(r);
+  std::printf("model adequacy, base model: %s\n", acc::describeAdequacy(r.baseline_adequacy).c_str());
+  if (!r.selected_effects.empty())
+    std::printf("model adequacy, %s: %s\n", verdict.model.c_str(), acc::describeAdequacy(r.final_adequacy).c_str());
+  std::printf("verdict (string-stability test of the %s): %s\n  why this model: %s\n", verdict.model.c_str(),
+              verdict.test ? testVerdictText(*verdict.test).c_str() : "not tested", verdict.why.c_str());
+}
+
 /// The forward selection's chain: one line per step with its held-out RMSE, gain and verdict,
 /// then the parameters of that step's model with their standard errors.
 void printChain(const acc::DiagnosisResult& r)
@@ -293,11 +320,10 @@ void printChain(const acc::DiagnosisResult& r)
     std::printf("  %zu. + %-26s test_v %.4f m/s, test_gap %.3f m, MSE -%.1f%% of the previous model's (lower bound %.4g m^2/s^2), %s",
                 i + 1, acc::effectName(step.added).c_str(), m.test_rmse_speed_mps, m.test_rmse_gap_m,
                 100.0 * m.improvement.relative, m.improvement.lower_bound,
-                m.stability.string_stable ? "stable" : "UNSTABLE");
+                m.stability.string_stable ? "point estimate stable" : "point estimate unstable");
     if (step.stability_test)
     {
-      std::printf(", test: %s (p = %.3g)", acc::toString(step.stability_test->verdict).c_str(),
-                  step.stability_test->p_value);
+      std::printf(", test: %s", testVerdictText(*step.stability_test).c_str());
     }
     // A diverged fit has no standard errors: print nan rather than fail.
     auto se = [&m](std::size_t i) { return i < m.fit.standard_errors.size() ? m.fit.standard_errors[i] : NAN; };
@@ -317,7 +343,7 @@ void printChain(const acc::DiagnosisResult& r)
 void printSummary(const acc::DiagnosisResult& r)
 {
   std::printf("%-26s %10s %10s %10s %9s %11s  %s\n", "model", "train_v", "test_v", "test_gap", "improve", "significant",
-              "stability");
+              "point estimate's stability (not a verdict)");
   auto row = [](const acc::ModelDiagnosis& m, bool is_base) {
     std::printf("%-26s %10.4f %10.4f %10.3f %8.1f%% %11s  %s (peak %.3f dB)\n", acc::effectName(m.fit.effect).c_str(),
                 m.train_rmse_speed_mps, m.test_rmse_speed_mps, m.test_rmse_gap_m, 100.0 * m.improvement.relative,
@@ -344,9 +370,11 @@ void printSummary(const acc::DiagnosisResult& r)
   if (r.stability_test)
   {
     const acc::AugmentedStabilityTestResult& t = *r.stability_test;
-    std::printf("string stability of the %s model, decided on the held-out parts: %s, p = %.3g\n  why: %s\n",
-                acc::effectName(t.effect).c_str(), acc::toString(t.verdict).c_str(), t.p_value, t.reason.c_str());
-  }  printChain(r);
+    std::printf("string-stability test of the %s model on the held-out parts: %s\n  why: %s\n",
+                acc::effectName(t.effect).c_str(), testVerdictText(t).c_str(), t.reason.c_str());
+  }
+  printChain(r);
+  printVerdict(r);
 }
 }  // namespace
 

@@ -105,7 +105,9 @@ TEST(Identifier, SyntheticRelativeStateGivesTheTrueParameters)
   EXPECT_NEAR(last.eta_m, truth.eta_m, allowed(last.eta_std_error, truth.eta_m));
   EXPECT_LT(last.k1_std_error, 0.25 * truth.k1_per_s2);
   EXPECT_LT(last.rmse_speed_mps, 0.08);
-  EXPECT_FALSE(last.string_stable);
+  EXPECT_EQ(last.string_stable, acc_identification::AccParameters::STRING_UNSTABLE);
+  // The drive fit of the truth's own data describes them.
+  EXPECT_EQ(last.model_adequate, acc_identification::AccParameters::MODEL_ADEQUATE) << last.model_adequacy_reasons;
   EXPECT_GT(last.lambda2, 0.0);
   // The sequential verdict: looked at once there were samples to fit (e-values published), and a
   // decision, once in a message, in every later one (never withdrawn).

@@ -58,7 +58,7 @@ TEST(CalibrationReport, JsonHasTheKeysOtherToolsRead)
   EXPECT_DOUBLE_EQ(json["summary"]["test"]["rmse_speed_mps"].get<double>(), 0.25);
   std::ostringstream table;
   acc::printReport(report, table);
-  EXPECT_NE(table.str().find("string UNSTABLE"), std::string::npos) << table.str();
+  EXPECT_NE(table.str().find("(point estimate string unstable)"), std::string::npos) << table.str();
   EXPECT_NE(table.str().find("part3"), std::string::npos);
 }
 
@@ -110,18 +110,103 @@ TEST(CalibrationReport, StabilityTestAndQuantitiesAreInTheJsonAndTheTable)
     EXPECT_TRUE(test["best_unstable"].contains(key)) << key;
   }
   EXPECT_EQ(test["verdict"], acc::toString(report.stability_test->verdict));
+  EXPECT_EQ(test["p_value_hypothesis"], acc::pValueHypothesis(*report.stability_test));
   ASSERT_TRUE(json.contains("identifiable_quantities"));
   EXPECT_TRUE(json["identifiable_quantities"]["quantities"].contains("stability_margin"));
 
   std::ostringstream table;
   acc::printReport(report, table);
   EXPECT_NE(table.str().find("verdict: " + std::string(report.stability_test->verdict == acc::StabilityVerdict::Unstable
-                                                            ? "UNSTABLE"
+                                                            ? "string UNSTABLE"
                                                             : report.stability_test->verdict ==
                                                                       acc::StabilityVerdict::Stable
-                                                                  ? "STABLE"
+                                                                  ? "string STABLE"
                                                                   : "UNDECIDED")),
             std::string::npos)
       << table.str();
+  // One verdict: the point estimate's lambda2 is labelled as such, the p-values by their hypothesis.
+  EXPECT_NE(table.str().find("lambda2 of the point estimate = "), std::string::npos) << table.str();
+  EXPECT_NE(table.str().find("the verdict is the test's"), std::string::npos);
+  EXPECT_NE(table.str().find("p (H0: stable) = "), std::string::npos);
+  EXPECT_EQ(table.str().find("-> string UNSTABLE"), std::string::npos);
   EXPECT_NE(table.str().find("stability_margin"), std::string::npos);
+}
+
+// lambda2 NaN (parameters not determined): string_stable is null, not a "false" that reads as
+// unstable, and the text says "not determined".
+TEST(CalibrationReport, StringStableIsNullWhereLambda2IsNaN)
+{
+  acc::CalibrationReport report;
+  report.calibration.parameters = acc::paperMinimumSetting();
+  report.stability.lambda2 = std::nan("");
+  report.stability.string_stable = false;
+  const auto json = acc::reportToJson(report);
+  EXPECT_TRUE(json["stability"]["lambda2"].is_null());
+  EXPECT_TRUE(json["stability"]["string_stable"].is_null());
+  EXPECT_EQ(json["fitted"], true);
+  std::ostringstream text;
+  acc::printReport(report, text);
+  EXPECT_NE(text.str().find("lambda2 of the point estimate: not determined"), std::string::npos) << text.str();
+  EXPECT_FALSE(acc::knownStringStability(report.stability).has_value());
+  report.stability = acc::analyzeStringStability(acc::paperMinimumSetting());
+  EXPECT_EQ(acc::knownStringStability(report.stability), std::optional<bool>(false));
+}
+
+// The adequacy is written beside the verdict, in JSON and in words, with its pointer to diagnose.
+TEST(CalibrationReport, ModelAdequacyIsWrittenBesideTheVerdict)
+{
+  const auto run = acc::synthesizeRun(acc::paperMinimumSetting(), 300.0, 0.1, 25.0, 3);
+  acc::CalibrationReport report;
+  acc::AccParameters wrong = acc::paperMinimumSetting();
+  wrong.eta_m += 15.0;
+  report.calibration.parameters = wrong;
+  report.stability = acc::analyzeStringStability(wrong);
+  report.model_adequacy = acc::assessModelAdequacy(wrong, {run});
+  const auto json = acc::reportToJson(report);
+  ASSERT_TRUE(json.contains("model_adequacy"));
+  EXPECT_EQ(json["model_adequacy"]["adequate"], false);
+  EXPECT_FALSE(json["model_adequacy"]["reasons"].empty());
+  EXPECT_TRUE(json["model_adequacy"]["checks"]["gap_rmse_m"].is_number());
+  std::ostringstream text;
+  acc::printReport(report, text);
+  EXPECT_NE(text.str().find("Model adequacy: NOT ADEQUATE (gap RMSE"), std::string::npos) << text.str();
+  report.model_adequacy_data = "the runs it was fitted on";
+  std::ostringstream named;
+  acc::printReport(report, named);
+  EXPECT_NE(named.str().find("Model adequacy (on the runs it was fitted on): NOT ADEQUATE"), std::string::npos);
+  EXPECT_EQ(acc::reportToJson(report)["model_adequacy"]["data"], "the runs it was fitted on");
+  EXPECT_NE(text.str().find("run `diagnose`"), std::string::npos);
+}
+
+// Valid data that cannot be fitted still get their JSON: fitted false, the reason, and what the
+// data decide (steady following: the equilibrium gap at the observed speed).
+TEST(CalibrationReport, UnfittableDataGetJsonWithTheReason)
+{
+  acc::CarFollowingRun steady;
+  steady.name = "steady";
+  for (int k = 0; k < 600; ++k)
+  {
+    steady.time_s.push_back(0.1 * k);
+    steady.follower_speed_mps.push_back(25.0 + 0.05 * std::sin(0.3 * k));
+    steady.leader_speed_mps.push_back(25.0);
+    steady.space_gap_m.push_back(40.0 + 0.3 * std::cos(0.2 * k));
+  }
+  const acc::UnfittedDataSummary summary =
+      acc::summarizeUnfittedData({steady}, "the follower speed spread is 0.04 m/s", 0.5);
+  const auto json = acc::unfittedToJson(summary);
+  EXPECT_EQ(json["fitted"], false);
+  EXPECT_EQ(json["reason"], "the follower speed spread is 0.04 m/s");
+  EXPECT_EQ(json["data"]["samples"], 600);
+  EXPECT_NEAR(json["data"]["duration_s"].get<double>(), 59.9, 1e-9);
+  EXPECT_NEAR(json["data"]["equilibrium_gap_m"].get<double>(), 40.0, 0.05);
+  EXPECT_NEAR(json["data"]["follower_speed_mean_mps"].get<double>(), 25.0, 0.01);
+  EXPECT_TRUE(json["parameters"].is_null());
+  EXPECT_TRUE(json["stability"].is_null());
+  // Not steady: no equilibrium gap, and the note says why.
+  const auto moving = acc::unfittedToJson(acc::summarizeUnfittedData({steady}, "too short", 0.01));
+  EXPECT_TRUE(moving["data"]["equilibrium_gap_m"].is_null());
+  EXPECT_NE(moving["data"]["equilibrium_gap_note"].get<std::string>().find("not steady"), std::string::npos);
+  std::ostringstream text;
+  acc::printUnfitted(summary, text);
+  EXPECT_NE(text.str().find("No fit: the follower speed spread"), std::string::npos) << text.str();
 }

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "acc_identification/campaign/campaign.h"
+#include "acc_identification/campaign/campaign_output.h"
 #include "acc_identification/campaign/group_identification.h"
 
 TEST(CampaignZalaZone, GroupsTheNineRunsAndFindsTheRav4AtSUnstable)
@@ -43,4 +44,39 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesAReactionDelayThatShrinksTheDipGa
   EXPECT_LT(diagnosed.median_abs_dip_error, base.median_abs_dip_error - 0.1);
   EXPECT_GE(diagnosed.share_links_growth_right, base.share_links_growth_right);
   ASSERT_EQ(result.links.size(), result.groups.size());
+  // Every fitted car carries its model adequacy, in the result and the JSON; the cars that follow in
+  // the platoon runs got the dip check from their pair-level predictions (issue 23).
+  const nlohmann::json json = acc::campaignToJson(inputs, result, {ACC_ZALAZONE_DYNAMIC_DIR}, options);
+  std::size_t dip_checked = 0;
+  for (std::size_t g = 0; g < result.groups.size(); ++g)
+  {
+    const acc::GroupResult& group = result.groups[g];
+    const nlohmann::json& adequacy = json["vehicles"][g]["model_adequacy"];
+    ASSERT_TRUE(adequacy.is_object()) << group.vehicle;
+    EXPECT_EQ(adequacy["assessed"], group.fitted()) << group.vehicle;
+    EXPECT_EQ(json["vehicles"][g]["fitted"], group.fitted());
+    if (group.fitted())
+    {
+      EXPECT_EQ(adequacy["adequate"], group.model_adequacy.adequate);
+      EXPECT_EQ(adequacy["adequate"], adequacy["reasons"].empty()) << adequacy.dump();
+      EXPECT_GT(adequacy["checks"]["gap_spread_m"].get<double>(), 0.0);
+      EXPECT_TRUE(json["vehicles"][g]["unfitted_data"].is_null());
+    }
+    else
+    {
+      // Valid data without a fit (three steady groups here) still say what they hold.
+      const nlohmann::json& data = json["vehicles"][g]["unfitted_data"];
+      EXPECT_GT(data["samples"].get<std::size_t>(), 0u) << group.vehicle;
+      EXPECT_LE(data["samples"].get<std::size_t>(), group.samples);
+      EXPECT_GT(data["duration_s"].get<double>(), 0.0);
+      EXPECT_TRUE(adequacy["adequate"].is_null());
+    }
+    dip_checked += group.model_adequacy.checks.dip_perturbations > 0 ? 1 : 0;
+    const nlohmann::json& hypothesis = json["vehicles"][g]["stability_test"]["p_value_hypothesis"];
+    if (group.stability_test.tested)
+      EXPECT_TRUE(hypothesis == "stable" || hypothesis == "unstable") << hypothesis;
+    else
+      EXPECT_TRUE(hypothesis.is_null());
+  }
+  EXPECT_GT(dip_checked, result.groups.size() / 2);
 }

@@ -25,7 +25,9 @@ TEST(IdentifierMessage, IdentifiableWindowCarriesEverything)
   EXPECT_DOUBLE_EQ(m.k1_per_s2, result.calibration.parameters.k1_per_s2);
   EXPECT_DOUBLE_EQ(m.eta_std_error, result.uncertainty.standard_error.eta_m);
   EXPECT_DOUBLE_EQ(m.lambda2, result.stability.lambda2);
-  EXPECT_EQ(m.string_stable, result.stability.string_stable);
+  EXPECT_EQ(m.string_stable, result.stability.string_stable ? acc_identification::AccParameters::STRING_STABLE
+                                                             : acc_identification::AccParameters::STRING_UNSTABLE);
+  EXPECT_EQ(m.model_adequate, acc_identification::AccParameters::MODEL_ADEQUACY_NOT_ASSESSED);
   EXPECT_TRUE(m.identifiable);
   EXPECT_TRUE(m.identifiability_note.empty());
   EXPECT_FALSE(m.optimizer_status.empty());
@@ -44,7 +46,27 @@ TEST(IdentifierMessage, UnidentifiableWindowSaysSoInsteadOfPublishingNoise)
   EXPECT_TRUE(std::isnan(m.k1_per_s2));
   EXPECT_TRUE(std::isnan(m.tau_e_std_error));
   EXPECT_TRUE(std::isnan(m.lambda2));
-  EXPECT_FALSE(m.string_stable);
+  // lambda2 NaN: unknown, not "unstable".
+  EXPECT_EQ(m.string_stable, acc_identification::AccParameters::STRING_STABILITY_UNKNOWN);
+}
+
+// The drive fit's adequacy, tri-state, with its reasons: adequate on the truth's own data, not
+// adequate with the numbers when the model misses, not assessed without data.
+TEST(IdentifierMessage, ModelAdequacyIsATriStateWithReasons)
+{
+  const auto run = acc::synthesizeRun(acc::paperMinimumSetting(), 300.0, 0.1, 25.0, 5);
+  acc_identification::AccParameters m;
+  acc::setModelAdequacy(acc::assessModelAdequacy(acc::paperMinimumSetting(), {run}), m);
+  EXPECT_EQ(m.model_adequate, acc_identification::AccParameters::MODEL_ADEQUATE) << m.model_adequacy_reasons;
+  EXPECT_TRUE(m.model_adequacy_reasons.empty());
+  acc::AccParameters wrong = acc::paperMinimumSetting();
+  wrong.eta_m += 15.0;
+  acc::setModelAdequacy(acc::assessModelAdequacy(wrong, {run}), m);
+  EXPECT_EQ(m.model_adequate, acc_identification::AccParameters::MODEL_NOT_ADEQUATE);
+  EXPECT_NE(m.model_adequacy_reasons.find("gap RMSE"), std::string::npos) << m.model_adequacy_reasons;
+  acc::setModelAdequacy(acc::assessModelAdequacy(wrong, {}), m);
+  EXPECT_EQ(m.model_adequate, acc_identification::AccParameters::MODEL_ADEQUACY_NOT_ASSESSED);
+  EXPECT_FALSE(m.model_adequacy_reasons.empty());
 }
 }  // namespace
 
@@ -198,7 +220,7 @@ TEST(IdentifierMessage, Lambda2NeedsTheDynamicsNotEta)
   EXPECT_FALSE(m.identifiable);
   EXPECT_DOUBLE_EQ(m.lambda2, update.window.stability.lambda2);
   EXPECT_FALSE(std::isnan(m.amplified_band_upper_rad_s));
-  EXPECT_FALSE(m.string_stable);  // Table II's minimum setting is unstable
+  EXPECT_EQ(m.string_stable, acc_identification::AccParameters::STRING_UNSTABLE);  // Table II's minimum setting
 }
 
 }  // namespace

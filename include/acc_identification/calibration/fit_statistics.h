@@ -8,6 +8,7 @@
 
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/car_following_run.h"
+#include "acc_identification/model/follower_effects.h"
 
 namespace acc
 {
@@ -22,6 +23,9 @@ struct FitQuality
 };
 
 FitQuality evaluateFit(const AccParameters& p, const std::vector<CarFollowingRun>& runs);
+
+/// The same for the model with unmodelled effects switched on (diagnosis/augmented models).
+FitQuality evaluateFit(const AccParameters& p, const EffectSettings& effects, const std::vector<CarFollowingRun>& runs);
 
 /// Pools the squared errors of several fits (each weighted by its samples).
 FitQuality poolFits(const std::vector<FitQuality>& fits);

@@ -181,6 +181,7 @@ StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& trai
                                         const StabilityTestOptions& options);
 
 /// The "stability_test" object: {verdict ("stable" | "unstable" | "undecided"), p_value,
+/// p_value_hypothesis ("stable" | "unstable": the H0 p_value tests; null when not tested),
 /// p_value_stable_rejected, p_value_unstable_rejected, alpha, tested,
 /// mean_squared_error_difference, best_stable: {parameters: {k1, k2, tau_e, eta}, margin,
 /// train_rmse_speed, test_rmse_speed, unconstrained_optimum, status} (null when no fit was made),
@@ -193,5 +194,9 @@ nlohmann::json toJson(const StabilityTestResult& result);
 
 /// The verdict, its p-values, both side fits, the margins allowed and why, as lines of text.
 void printStabilityTest(const StabilityTestResult& result, std::ostream& out);
+
+/// The null hypothesis result.p_value tests: "stable" for an unstable verdict, "unstable" for a
+/// stable one, and for "undecided" the one whose p-value is the smaller (the p-value reported).
+std::string pValueHypothesis(const StabilityTestResult& result);
 
 }  // namespace acc

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "acc_identification/calibration/identification.h"
+#include "acc_identification/calibration/model_adequacy.h"
 #include "acc_identification/calibration/stability_test.h"
 #include "acc_identification/campaign/campaign_inputs.h"
 
@@ -30,6 +31,9 @@ struct GroupResult
   std::uint64_t seed = 0;              ///< the test's bootstrap seed (groupSeed)
   /// Why the parameters are NaN (no excitation, no fit, an exception), "" when a fit was made.
   std::string reason;
+  /// Does the fit describe the group's runs (checks a-c of model_adequacy.h on all its runs); the
+  /// campaign adds the dip check (d) from the platoon check's pair-level predictions.
+  ModelAdequacy model_adequacy;
 
   /// A fit exists (solved, not diverged): the parameters that are determined are meaningful.
   bool fitted() const;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -167,7 +168,11 @@ enum class DipPrediction
   pair_diagnosed
 };
 
+/// Only the car-perturbations `include` accepts (all when empty): e.g. one car and setting, for its
+/// model's adequacy.
+using DipRowFilter = std::function<bool(const PlatoonCheck&, const DipComparison&)>;
 DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& platoons, DipPrediction which,
-                                             double min_dip_mps = 0.3, double min_link_change_mps = 0.2);
+                                             double min_dip_mps = 0.3, double min_link_change_mps = 0.2,
+                                             const DipRowFilter& include = {});
 
 }  // namespace acc

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "acc_identification/calibration/model_adequacy.h"
 #include "acc_identification/model/car_following_run.h"
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/augmented_stability.h"
@@ -101,6 +102,10 @@ struct DiagnosisResult
   /// Effects whose size the training data pin away from none (determined_effects.h), whether or
   /// not the held-out rule names them: what a timing effect absorbed by tau_e leaves to see.
   std::vector<DeterminedEffect> determined;
+  /// Does the base model, and the model the diagnosis ends with (finalModel), describe the
+  /// training and the held-out parts (model_adequacy.h, with the diagnosis's own parameter box).
+  ModelAdequacy baseline_adequacy;
+  ModelAdequacy final_adequacy;
 };
 
 /// Splits every run, fits the base model and each candidate effect on the first parts, scores
@@ -114,6 +119,24 @@ const ModelDiagnosis& dominantModel(const DiagnosisResult& result);
 /// The model the diagnosis ends with: the last of the forward-selection chain, or the baseline
 /// when the chain is empty.
 const ModelDiagnosis& finalModel(const DiagnosisResult& result);
+
+/// The string-stability test of finalModel(): the chain's last step's, or the diagnosis's own when
+/// the chain is empty and no effect was named (it is then the base model's); nullptr when that
+/// model was not tested.
+const AugmentedStabilityTestResult* finalModelStabilityTest(const DiagnosisResult& result);
+
+/// THE verdict of a diagnosis, stated once: the final model's string-stability test when the
+/// diagnosis ends with a better model than the base (the chain is not empty), else the base
+/// model's; why, with the held-out RMSEs and each model's adequacy.
+struct DiagnosisVerdict
+{
+  std::string model;  ///< "final model (effect + effect)" or "base model"
+  const AugmentedStabilityTestResult* test = nullptr;  ///< nullptr: that model was not tested
+  bool model_adequate = false;
+  std::string why;
+};
+
+DiagnosisVerdict statedVerdict(const DiagnosisResult& result);
 
 /// The effects of the forward-selection chain in the order they were added (empty when none).
 std::vector<EffectKind> selectedChain(const DiagnosisResult& result);

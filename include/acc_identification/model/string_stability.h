@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "acc_identification/model/acc_parameters.h"
@@ -41,6 +42,10 @@ double amplifiedBandUpperRadS(const AccParameters& p);
 double peakFrequencyRadS(const AccParameters& p);
 
 StringStabilityReport analyzeStringStability(const AccParameters& p);
+
+/// report.string_stable where lambda2 says anything; nullopt where lambda2 is NaN (parameters not
+/// determined): a "false" there would read as "unstable". Every output writes this one (JSON null).
+std::optional<bool> knownStringStability(const StringStabilityReport& report);
 
 /// What held-out data say of string stability (calibration/stability_test.h for the paper's
 /// model, diagnosis/augmented_stability_test.h for an augmented one).

@@ -15,6 +15,7 @@
 
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/calibration/identification.h"
+#include "acc_identification/calibration/model_adequacy.h"
 #include "acc_identification/calibration/online_identifier.h"
 #include "acc_identification/calibration/drive_record.h"
 #include "acc_identification/calibration/sliding_window.h"
@@ -45,6 +46,9 @@ struct IdentifierSettings
   double stability_period_s = 10.0;   ///< at most one string-stability test of the drive per this (ROS time)
   double alpha = 0.05;                ///< level of the string-stability test
   IdentifiabilityCriteria criteria;
+  /// The drive fit's model adequacy (~adequacy_* parameters; the dip check needs perturbations
+  /// of a platoon and is the campaign's).
+  ModelAdequacyOptions adequacy;
 };
 
 /// Reads the private parameters; false and a message on a bad value.
@@ -59,6 +63,9 @@ acc_identification::AccParameters toMessage(const OnlineUpdate& update, double w
 /// are physically impossible (acc::RunPlausibilityBounds, the batch readers' check) is marked
 /// invalid, a split point, and why says so; otherwise why is left empty.
 WindowSample toWindowSample(const acc_identification::RelativeState& message, std::string& why);
+
+/// The drive fit's model adequacy into the message (model_adequate, model_adequacy_reasons).
+void setModelAdequacy(const ModelAdequacy& adequacy, acc_identification::AccParameters& m);
 
 /// The same for a window alone (no drive, no test yet).
 acc_identification::AccParameters toMessage(const Identification& identification, double window_start_s, double window_end_s);
