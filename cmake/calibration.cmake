@@ -22,8 +22,9 @@ acc_add_library(acc_calibration
     src/calibration/stability_test_json.cpp
     src/calibration/stability_test_text.cpp
     src/calibration/online_identifier.cpp
+    src/calibration/model_dip_check.cpp
     src/calibration/model_adequacy.cpp
-  LINK acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
+  LINK acc_evidence acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 
 # ROS side: runs from bags of RelativeState (rosbag API), with the CSV reader's checks.
 acc_add_ros_library(acc_calibration_ros SOURCES src/ros/run_bag_reader.cpp LINK acc_calibration acc_run_io)
@@ -51,7 +52,8 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_drive_record.cpp
     test/unit/test_calibration_report.cpp
     test/unit/test_synthetic_runs.cpp
-    test/unit/test_model_adequacy.cpp)
+    test/unit/test_model_adequacy.cpp
+    test/unit/test_model_dip_check.cpp)
   target_compile_definitions(test_calibration PRIVATE ACC_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/test/data/runs")
   target_link_libraries(test_calibration acc_calibration acc_run_io)
 

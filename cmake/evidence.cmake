@@ -7,7 +7,8 @@ acc_add_library(acc_evidence
     src/evidence/perturbation.cpp
     src/evidence/empirical_response.cpp
     src/evidence/pair_dip_evidence.cpp
-  LINK acc_model Eigen3::Eigen)
+    src/evidence/evidence_json.cpp
+  LINK acc_model Eigen3::Eigen nlohmann_json::nlohmann_json)
 
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_evidence

@@ -1,5 +1,7 @@
 #include "acc_identification/calibration/calibration_report.h"
 
+#include "acc_identification/evidence/evidence_json.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -85,6 +87,40 @@ std::string fitCells(const std::optional<FitQuality>& fit)
                 fit->diverged ? " (diverged)" : "");
   return buffer;
 }
+nlohmann::json dipEvidenceJson(const CalibrationReport& report)
+{
+  nlohmann::json json = toJson(*report.dip_evidence);
+  if (report.model_dips)
+  {
+    for (std::size_t i = 0; i < json["dips"].size() && i < report.model_dips->model_dips_mps.size(); ++i)
+      json["dips"][i]["model_dip_mps"] = number(report.model_dips->model_dips_mps[i]);
+    json["model"] = {{"scored", report.model_dips->scored},
+                     {"median_abs_dip_error", number(report.model_dips->median_abs_dip_error)},
+                     {"ratio_of_means", number(report.model_dips->model_ratio_of_means)}};
+  }
+  json["verdict_contradiction"] =
+      report.verdict_contradiction.empty() ? nlohmann::json() : nlohmann::json(report.verdict_contradiction);
+  return json;
+}
+
+void printDipEvidence(const CalibrationReport& report, std::ostream& out)
+{
+  const DipRatioEstimate& r = report.dip_evidence->ratio;
+  out << "\nDips of the leader's perturbations (the data's own, no model): " << report.dip_evidence->dips.size()
+      << " perturbation(s); " << r.reason << "\n";
+  if (report.model_dips && report.model_dips->scored > 0)
+  {
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "  the fitted model's dips: ratio %.2f against the data's %.2f, median |error| %.0f %% over %zu\n",
+                  report.model_dips->model_ratio_of_means, r.ratio_of_means,
+                  100.0 * report.model_dips->median_abs_dip_error, report.model_dips->scored);
+    out << line;
+  }
+  if (!report.verdict_contradiction.empty())
+    out << "  CONTRADICTION: " << report.verdict_contradiction << "\n";
+}
+
 }  // namespace
 
 std::pair<CarFollowingRun, CarFollowingRun> splitRunInHalf(const CarFollowingRun& run)
@@ -172,8 +208,11 @@ nlohmann::json reportToJson(const CalibrationReport& report)
     json["model_adequacy"] = toJson(*report.model_adequacy);
     json["model_adequacy"]["data"] = report.model_adequacy_data;
   }
+  if (report.dip_evidence)
+    json["dip_evidence"] = dipEvidenceJson(report);
   return json;
 }
+
 
 void printReport(const CalibrationReport& report, std::ostream& out)
 {
@@ -250,6 +289,10 @@ void printReport(const CalibrationReport& report, std::ostream& out)
   if (report.model_adequacy)
   {
     out << "\n" << adequacyLine(*report.model_adequacy, report.model_adequacy_data, report.stability_test.has_value());
+  }
+  if (report.dip_evidence)
+  {
+    printDipEvidence(report, out);
   }
   if (report.stability_test)
   {

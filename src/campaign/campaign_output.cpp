@@ -9,6 +9,7 @@
 #include "acc_identification/calibration/calibration_report.h"
 #include "acc_identification/calibration/quantity_identifiability.h"
 #include "acc_identification/diagnosis/augmented_calibration.h"
+#include "acc_identification/evidence/evidence_json.h"
 #include "acc_identification/model/string_stability.h"
 
 namespace acc
@@ -241,23 +242,13 @@ nlohmann::json linkJson(const LinkEvidence& e)
   nlohmann::json informative = nlohmann::json::array();
   for (bool flag : r.informative)
     informative.push_back(flag);
-  const DipRatioEstimate& d = e.dip_ratio;
   nlohmann::json values = nlohmann::json::object();
   const std::vector<std::string> names = effectParameterNames(e.diagnosed.effects);
   for (std::size_t i = 0; i < names.size() && i < e.diagnosed_effect_values.size(); ++i)
     values[names[i]] = e.diagnosed_effect_values[i];
   return {{"vehicle", e.vehicle},
           {"setting", e.setting},
-          {"dip_ratio",
-           {{"perturbations", d.count},
-            {"skipped", d.skipped},
-            {"ratio_of_means", d.ratio_of_means},
-            {"median_ratio", d.median_ratio},
-            {"lower", d.lower},
-            {"upper", d.upper},
-            {"confidence", d.confidence},
-            {"verdict", toString(d.amplifies)},
-            {"reason", d.reason}}},
+          {"dip_ratio", toJson(e.dip_ratio)},
           {"frequency_response",
            {{"segments_used", r.segments_used},
             {"segments_skipped", r.segments_skipped},

@@ -331,6 +331,17 @@ int main(int argc, char** argv)
   report.model_adequacy = acc::assessModelAdequacy(p, judged, {}, report.uncertainty.standard_error);
   report.model_adequacy_data = testing.empty() ? "the runs it was fitted on"
                                                : "every run's training and held-out halves, each from its own start";
+  // The second line of evidence: what each run's own dips say (whole runs, no model), and the
+  // fitted model's dips beside them (the dip check of the adequacy).
+  std::vector<acc::CarFollowingRun> whole_runs;
+  for (const LoadedRun& item : loaded)
+    whole_runs.push_back(item.run);
+  report.dip_evidence = acc::pairDipEvidence(whole_runs);
+  report.model_dips = acc::checkModelDips(p, whole_runs, *report.dip_evidence);
+  acc::addDipCheck(*report.model_adequacy, report.model_dips->scored, report.model_dips->median_abs_dip_error);
+  if (report.stability_test)
+    report.verdict_contradiction = acc::verdictContradiction(acc::toString(report.stability_test->verdict),
+                                                             *report.dip_evidence);
   std::vector<acc::FitQuality> train_fits, test_fits;
   for (std::size_t i = 0; i < loaded.size(); ++i)
   {

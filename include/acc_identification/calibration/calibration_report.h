@@ -10,6 +10,7 @@
 #include "acc_identification/calibration/fit_statistics.h"
 #include "acc_identification/calibration/grid_search.h"
 #include "acc_identification/calibration/model_adequacy.h"
+#include "acc_identification/calibration/model_dip_check.h"
 #include "acc_identification/calibration/multistart_calibrator.h"
 #include "acc_identification/calibration/quantity_identifiability.h"
 #include "acc_identification/calibration/stability_test.h"
@@ -51,6 +52,11 @@ struct CalibrationReport
   /// Does the fitted model describe its training data well enough for that verdict to mean anything.
   std::optional<ModelAdequacy> model_adequacy;
   std::string model_adequacy_data;  ///< which data it was judged on, in words
+  /// What the runs' own dips say without a model (every run, whole), the fitted model's dips
+  /// beside them, and the sentence when the verdict and the dips disagree (empty when not).
+  std::optional<PairDipEvidence> dip_evidence;
+  std::optional<ModelDipCheck> model_dips;
+  std::string verdict_contradiction;
 };
 
 /// What valid data that cannot be fitted (steady speed, too short) still decide, for the JSON

@@ -1,0 +1,17 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "acc_identification/evidence/empirical_response.h"
+#include "acc_identification/evidence/pair_dip_evidence.h"
+
+namespace acc
+{
+/// {perturbations, skipped, ratio_of_means, median_ratio, lower, upper, confidence, verdict
+/// ("amplifies" | "attenuates" | "undecided" | "insufficient"), reason}; NaN as null.
+nlohmann::json toJson(const DipRatioEstimate& estimate);
+
+/// {dips: [{run, onset_s, leader_dip_mps, follower_dip_mps}], dip_ratio: toJson(ratio)}.
+nlohmann::json toJson(const PairDipEvidence& evidence);
+
+}  // namespace acc

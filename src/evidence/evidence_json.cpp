@@ -1,0 +1,38 @@
+#include "acc_identification/evidence/evidence_json.h"
+
+#include <cmath>
+
+namespace acc
+{
+namespace
+{
+nlohmann::json number(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
+}  // namespace
+
+nlohmann::json toJson(const DipRatioEstimate& d)
+{
+  return {{"perturbations", d.count},
+          {"skipped", d.skipped},
+          {"ratio_of_means", number(d.ratio_of_means)},
+          {"median_ratio", number(d.median_ratio)},
+          {"lower", number(d.lower)},
+          {"upper", number(d.upper)},
+          {"confidence", d.confidence},
+          {"verdict", toString(d.amplifies)},
+          {"reason", d.reason}};
+}
+
+nlohmann::json toJson(const PairDipEvidence& evidence)
+{
+  nlohmann::json dips = nlohmann::json::array();
+  for (const PairDip& dip : evidence.dips)
+  {
+    dips.push_back({{"run", dip.run},
+                    {"onset_s", dip.onset_s},
+                    {"leader_dip_mps", number(dip.leader_dip_mps)},
+                    {"follower_dip_mps", number(dip.follower_dip_mps)}});
+  }
+  return {{"dips", dips}, {"dip_ratio", toJson(evidence.ratio)}};
+}
+
+}  // namespace acc
