@@ -1,6 +1,5 @@
 #include "acc_identification/calibration/model_dip_check.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -10,15 +9,6 @@ namespace acc
 {
 namespace
 {
-double median(std::vector<double> values)
-{
-  if (values.empty())
-    return std::numeric_limits<double>::quiet_NaN();
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 /// The model's follower speed over the run, NaN from where the simulation diverged.
 std::vector<double> modelSpeed(const AccParameters& p, const CarFollowingRun& run)
 {
@@ -38,31 +28,30 @@ ModelDipCheck checkModelDips(const AccParameters& p, const std::vector<CarFollow
   ModelDipCheck check;
   std::vector<double> errors;
   double model_sum = 0.0, leader_sum = 0.0;
-  for (const CarFollowingRun& run : runs)
+  std::vector<std::vector<double>> speeds(runs.size());  // each run simulated once, when it has a dip
+  for (const PairDip& measured : evidence.dips)
   {
-    const std::vector<Perturbation> perturbations = findPerturbations(run.time_s, run.leader_speed_mps, criteria);
-    if (perturbations.empty() || run.size() < 2)
-      continue;
-    const std::vector<double> speed = modelSpeed(p, run);
-    for (const Perturbation& perturbation : perturbations)
+    if (measured.run_index >= runs.size())
     {
-      const std::size_t index = check.model_dips_mps.size();
-      const double model_dip = dipDepthMps(run.time_s, speed, perturbation, criteria);
-      check.model_dips_mps.push_back(model_dip);
-      if (index >= evidence.dips.size())
-        continue;  // evidence of other runs or criteria: nothing to compare with
-      const PairDip& measured = evidence.dips[index];
-      if (std::isfinite(model_dip) && std::isfinite(measured.follower_dip_mps) &&
-          measured.follower_dip_mps >= min_dip_mps && std::isfinite(measured.leader_dip_mps))
-      {
-        errors.push_back(std::fabs(model_dip - measured.follower_dip_mps) / measured.follower_dip_mps);
-        model_sum += model_dip;
-        leader_sum += measured.leader_dip_mps;
-      }
+      check.model_dips_mps.push_back(std::numeric_limits<double>::quiet_NaN());  // not a run given here
+      continue;
+    }
+    const CarFollowingRun& run = runs[measured.run_index];
+    std::vector<double>& speed = speeds[measured.run_index];
+    if (speed.empty())
+      speed = modelSpeed(p, run);
+    const double model_dip = dipDepthMps(run.time_s, speed, measured.perturbation, criteria);
+    check.model_dips_mps.push_back(model_dip);
+    if (std::isfinite(model_dip) && std::isfinite(measured.follower_dip_mps) &&
+        measured.follower_dip_mps >= min_dip_mps && std::isfinite(measured.leader_dip_mps))
+    {
+      errors.push_back(std::fabs(model_dip - measured.follower_dip_mps) / measured.follower_dip_mps);
+      model_sum += model_dip;
+      leader_sum += measured.leader_dip_mps;
     }
   }
   check.scored = errors.size();
-  check.median_abs_dip_error = median(errors);
+  check.median_abs_dip_error = finiteMedian(errors);
   if (leader_sum > 0.0)
     check.model_ratio_of_means = model_sum / leader_sum;
   return check;

@@ -7,12 +7,15 @@ PairDipEvidence pairDipEvidence(const std::vector<CarFollowingRun>& runs, const 
 {
   PairDipEvidence evidence;
   std::vector<double> leader_dips, follower_dips;
-  for (const CarFollowingRun& run : runs)
+  for (std::size_t r = 0; r < runs.size(); ++r)
   {
+    const CarFollowingRun& run = runs[r];
     for (const Perturbation& perturbation : findPerturbations(run.time_s, run.leader_speed_mps, criteria))
     {
       PairDip dip;
       dip.run = run.name;
+      dip.run_index = r;
+      dip.perturbation = perturbation;
       dip.onset_s = perturbation.onset_s;
       dip.leader_dip_mps = dipDepthMps(run.time_s, run.leader_speed_mps, perturbation, criteria);
       dip.follower_dip_mps = dipDepthMps(run.time_s, run.follower_speed_mps, perturbation, criteria);

@@ -27,6 +27,15 @@ struct LoadedRun
   std::string path;
 };
 
+/// The runs as read, whole (what the test splits itself, and the dips are found in).
+std::vector<acc::CarFollowingRun> runsOf(const std::vector<LoadedRun>& loaded)
+{
+  std::vector<acc::CarFollowingRun> runs;
+  for (const LoadedRun& item : loaded)
+    runs.push_back(item.run);
+  return runs;
+}
+
 /// The OpenACC pair(s) read from one RUN argument, for the output.
 struct PairsRead
 {
@@ -150,10 +159,7 @@ constexpr int kExitValidDataNoFit = 3;
 int reportUnfitted(const std::vector<LoadedRun>& loaded, const std::string& reason, double steady_speed_spread_mps,
                    const std::vector<PairsRead>& pairs_read, const std::string& json_path)
 {
-  std::vector<acc::CarFollowingRun> runs;
-  for (const LoadedRun& item : loaded)
-    runs.push_back(item.run);
-  const acc::UnfittedDataSummary summary = acc::summarizeUnfittedData(runs, reason, steady_speed_spread_mps);
+  const acc::UnfittedDataSummary summary = acc::summarizeUnfittedData(runsOf(loaded), reason, steady_speed_spread_mps);
   printPairsRead(pairs_read, std::cout);
   acc::printUnfitted(summary, std::cout);
   std::cerr << "no fit: " << reason << " (exit status " << kExitValidDataNoFit << ")\n";
@@ -310,9 +316,6 @@ int main(int argc, char** argv)
   report.quantities = identification.quantities;
   if (!no_stability_test)
   {
-    std::vector<acc::CarFollowingRun> runs;
-    for (const LoadedRun& item : loaded)
-      runs.push_back(item.run);
     acc::StabilityTestOptions test_options;
     test_options.alpha = alpha;
     if (seed_option->count() > 0)
@@ -321,7 +324,7 @@ int main(int argc, char** argv)
     test_options.warm_starts = {p};
     if (!quiet)
       std::cerr << "string-stability test on held-out halves...\n";
-    report.stability_test = acc::testStringStability(runs, test_options);
+    report.stability_test = acc::testStringStability(runsOf(loaded), test_options);
   }
   // Before the verdict is read: does the model describe the data at all? With --split half on both
   // halves: the test's verdict is judged on the held-out ones (on Casale part6 the first half fits
@@ -333,9 +336,7 @@ int main(int argc, char** argv)
                                                : "every run's training and held-out halves, each from its own start";
   // The second line of evidence: what each run's own dips say (whole runs, no model), and the
   // fitted model's dips beside them (the dip check of the adequacy).
-  std::vector<acc::CarFollowingRun> whole_runs;
-  for (const LoadedRun& item : loaded)
-    whole_runs.push_back(item.run);
+  const std::vector<acc::CarFollowingRun> whole_runs = runsOf(loaded);
   report.dip_evidence = acc::pairDipEvidence(whole_runs);
   report.model_dips = acc::checkModelDips(p, whole_runs, *report.dip_evidence);
   acc::addDipCheck(*report.model_adequacy, report.model_dips->scored, report.model_dips->median_abs_dip_error);

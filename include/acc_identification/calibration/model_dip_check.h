@@ -29,7 +29,8 @@ struct ModelDipCheck
 };
 
 /// The check of p on `runs`, whose dips `evidence` holds (pairDipEvidence of the same runs and
-/// criteria). Dips below min_dip_mps are within GNSS noise and driving jitter: not scored.
+/// criteria: its perturbations are taken as found there, each run simulated once). Dips below
+/// min_dip_mps are within GNSS noise and driving jitter: not scored.
 ModelDipCheck checkModelDips(const AccParameters& p, const std::vector<CarFollowingRun>& runs,
                              const PairDipEvidence& evidence, const PerturbationCriteria& criteria = {},
                              double min_dip_mps = 0.3);

@@ -15,6 +15,8 @@ namespace acc
 struct PairDip
 {
   std::string run;          ///< the run's name
+  std::size_t run_index = 0;  ///< the run's index among the runs given
+  Perturbation perturbation;  ///< where it lies in that run (sample indices)
   double onset_s = 0.0;     ///< time of the leader's onset (the run's clock)
   double leader_dip_mps = 0.0;
   double follower_dip_mps = 0.0;
