@@ -1,4 +1,5 @@
 #include "acc_identification/calibration/calibration_report.h"
+#include "acc_identification/model/json_number.h"
 
 #include "acc_identification/evidence/evidence_json.h"
 
@@ -15,21 +16,19 @@ namespace acc
 namespace
 {
 /// JSON has no NaN: a value that does not exist is null.
-nlohmann::json number(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
-
 nlohmann::json parametersJson(const AccParameters& p)
 {
-  return {{"k1_per_s2", number(p.k1_per_s2)},
-          {"k2_per_s", number(p.k2_per_s)},
-          {"tau_e_s", number(p.tau_e_s)},
-          {"eta_m", number(p.eta_m)}};
+  return {{"k1_per_s2", jsonNumber(p.k1_per_s2)},
+          {"k2_per_s", jsonNumber(p.k2_per_s)},
+          {"tau_e_s", jsonNumber(p.tau_e_s)},
+          {"eta_m", jsonNumber(p.eta_m)}};
 }
 
 nlohmann::json fitJson(const FitQuality& fit)
 {
   return {{"samples", fit.samples},
-          {"rmse_speed_mps", number(fit.rmse_speed_mps)},
-          {"rmse_gap_m", number(fit.rmse_gap_m)},
+          {"rmse_speed_mps", jsonNumber(fit.rmse_speed_mps)},
+          {"rmse_gap_m", jsonNumber(fit.rmse_gap_m)},
           {"diverged", fit.diverged}};
 }
 
@@ -93,10 +92,10 @@ nlohmann::json dipEvidenceJson(const CalibrationReport& report)
   if (report.model_dips)
   {
     for (std::size_t i = 0; i < json["dips"].size() && i < report.model_dips->model_dips_mps.size(); ++i)
-      json["dips"][i]["model_dip_mps"] = number(report.model_dips->model_dips_mps[i]);
+      json["dips"][i]["model_dip_mps"] = jsonNumber(report.model_dips->model_dips_mps[i]);
     json["model"] = {{"scored", report.model_dips->scored},
-                     {"median_abs_dip_error", number(report.model_dips->median_abs_dip_error)},
-                     {"ratio_of_means", number(report.model_dips->model_ratio_of_means)}};
+                     {"median_abs_dip_error", jsonNumber(report.model_dips->median_abs_dip_error)},
+                     {"ratio_of_means", jsonNumber(report.model_dips->model_ratio_of_means)}};
   }
   json["verdict_contradiction"] =
       report.verdict_contradiction.empty() ? nlohmann::json() : nlohmann::json(report.verdict_contradiction);
@@ -146,22 +145,22 @@ nlohmann::json reportToJson(const CalibrationReport& report)
   json["standard_errors"] = parametersJson(report.uncertainty.standard_error);
   json["standard_errors_method"] =
       "Gauss-Newton sandwich at the optimum, score covariance by batch means over blocks of block_length_s";
-  json["block_length_s"] = number(report.uncertainty.block_length_s);
+  json["block_length_s"] = jsonNumber(report.uncertainty.block_length_s);
   json["blocks"] = report.uncertainty.blocks;
-  json["residual_lag1_autocorrelation"] = number(report.uncertainty.residual_lag1_autocorrelation);
-  json["reciprocal_condition"] = number(report.uncertainty.reciprocal_condition);
+  json["residual_lag1_autocorrelation"] = jsonNumber(report.uncertainty.residual_lag1_autocorrelation);
+  json["reciprocal_condition"] = jsonNumber(report.uncertainty.reciprocal_condition);
   json["identifiable"] = report.identifiability_note.empty();
   json["identifiability_note"] = report.identifiability_note;
   json["fitted"] = true;
   const std::optional<bool> stable = knownStringStability(report.stability);
-  json["stability"] = {{"lambda2", number(report.stability.lambda2)},
+  json["stability"] = {{"lambda2", jsonNumber(report.stability.lambda2)},
                        {"lambda2_of", "the point estimate (parameters above); the verdict is stability_test's"},
                        {"string_stable", stable ? nlohmann::json(*stable) : nlohmann::json()},
-                       {"amplified_band_upper_rad_s", number(report.stability.amplified_band_upper_rad_s)},
-                       {"peak_gain_db", number(report.stability.peak_gain_db)},
-                       {"peak_frequency_rad_s", number(report.stability.peak_frequency_rad_s)}};
+                       {"amplified_band_upper_rad_s", jsonNumber(report.stability.amplified_band_upper_rad_s)},
+                       {"peak_gain_db", jsonNumber(report.stability.peak_gain_db)},
+                       {"peak_frequency_rad_s", jsonNumber(report.stability.peak_frequency_rad_s)}};
   json["objective"] = {{"status", c.status},
-                       {"rmse_speed_mps", number(c.rmse_speed_mps)},
+                       {"rmse_speed_mps", jsonNumber(c.rmse_speed_mps)},
                        {"samples", report.training_samples},
                        {"starts", c.starts},
                        {"local_solves", c.local_solves},
@@ -187,12 +186,12 @@ nlohmann::json reportToJson(const CalibrationReport& report)
     json["grid_check"] = {{"nodes", report.grid->nodes},
                           {"diverged_nodes", report.grid->diverged_nodes},
                           {"best_node", parametersJson(report.grid->best)},
-                          {"best_node_rmse_speed_mps", number(report.grid->best_rmse_speed_mps)},
+                          {"best_node_rmse_speed_mps", jsonNumber(report.grid->best_rmse_speed_mps)},
                           {"spacing", report.grid->spacing}};
     if (report.grid_polished)
     {
       json["grid_check"]["polished"] = parametersJson(report.grid_polished->parameters);
-      json["grid_check"]["polished_rmse_speed_mps"] = number(report.grid_polished->rmse_speed_mps);
+      json["grid_check"]["polished_rmse_speed_mps"] = jsonNumber(report.grid_polished->rmse_speed_mps);
     }
   }
   if (report.quantities)
@@ -328,12 +327,12 @@ nlohmann::json unfittedToJson(const UnfittedDataSummary& summary)
   json["reason"] = summary.reason;
   json["data"] = {{"runs", summary.runs},
                   {"samples", summary.samples},
-                  {"duration_s", number(summary.duration_s)},
-                  {"follower_speed_mean_mps", number(summary.follower_speed_mean_mps)},
-                  {"follower_speed_spread_mps", number(summary.follower_speed_spread_mps)},
-                  {"gap_mean_m", number(summary.gap_mean_m)},
-                  {"gap_spread_m", number(summary.gap_spread_m)},
-                  {"equilibrium_gap_m", number(summary.equilibrium_gap_m)},
+                  {"duration_s", jsonNumber(summary.duration_s)},
+                  {"follower_speed_mean_mps", jsonNumber(summary.follower_speed_mean_mps)},
+                  {"follower_speed_spread_mps", jsonNumber(summary.follower_speed_spread_mps)},
+                  {"gap_mean_m", jsonNumber(summary.gap_mean_m)},
+                  {"gap_spread_m", jsonNumber(summary.gap_spread_m)},
+                  {"equilibrium_gap_m", jsonNumber(summary.equilibrium_gap_m)},
                   {"equilibrium_gap_note", equilibriumGapNote(summary)}};
   json["parameters"] = nullptr;
   json["stability"] = nullptr;

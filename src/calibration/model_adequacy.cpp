@@ -1,4 +1,5 @@
 #include "acc_identification/calibration/model_adequacy.h"
+#include "acc_identification/model/json_number.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,8 +15,6 @@ namespace
 {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-nlohmann::json number(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
 
 /// printf into a std::string: every reason is a short sentence with its numbers.
 template <typename... Args>
@@ -242,17 +241,17 @@ nlohmann::json toJson(const ModelAdequacy& adequacy)
           {"reasons", adequacy.reasons},
           {"checks",
            {{"samples", c.samples},
-            {"gap_rmse_m", number(c.gap_rmse_m)},
-            {"gap_spread_m", number(c.gap_spread_m)},
-            {"speed_rmse_mps", number(c.speed_rmse_mps)},
-            {"speed_spread_mps", number(c.speed_spread_mps)},
+            {"gap_rmse_m", jsonNumber(c.gap_rmse_m)},
+            {"gap_spread_m", jsonNumber(c.gap_spread_m)},
+            {"speed_rmse_mps", jsonNumber(c.speed_rmse_mps)},
+            {"speed_spread_mps", jsonNumber(c.speed_spread_mps)},
             {"parameters_at_bound", c.parameters_at_bound},
-            {"residual_correlation_time_s", number(c.residual_correlation_time_s)},
+            {"residual_correlation_time_s", jsonNumber(c.residual_correlation_time_s)},
             // +inf would be null like "not computed": say it.
             {"residual_correlated_beyond_quarter_run", std::isinf(c.residual_correlation_time_s)},
-            {"model_response_time_s", number(c.model_response_time_s)},
+            {"model_response_time_s", jsonNumber(c.model_response_time_s)},
             {"dip_perturbations", c.dip_perturbations},
-            {"median_dip_error", number(c.median_dip_error)}}}};
+            {"median_dip_error", jsonNumber(c.median_dip_error)}}}};
 }
 
 std::string describeAdequacy(const ModelAdequacy& adequacy)

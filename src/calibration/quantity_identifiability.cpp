@@ -1,4 +1,5 @@
 #include "acc_identification/calibration/quantity_identifiability.h"
+#include "acc_identification/model/json_number.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,11 +15,6 @@ namespace acc
 namespace
 {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-nlohmann::json number(double value)
-{
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json();
-}
 
 bool covarianceUsable(const ParameterUncertainty& u)
 {
@@ -170,12 +166,12 @@ nlohmann::json toJson(const IdentifiableQuantities& quantities)
 {
   nlohmann::json json;
   json["basis"] = quantities.basis;
-  json["reciprocal_condition"] = number(quantities.reciprocal_condition);
+  json["reciprocal_condition"] = jsonNumber(quantities.reciprocal_condition);
   nlohmann::json items = nlohmann::json::object();
   for (const QuantityEstimate& q : quantities.quantities)
   {
-    nlohmann::json item{{"value", number(q.value)},
-                        {"standard_error", number(q.standard_error)},
+    nlohmann::json item{{"value", jsonNumber(q.value)},
+                        {"standard_error", jsonNumber(q.standard_error)},
                         {"unit", q.unit},
                         {"determined", q.determined},
                         {"reason", q.reason}};

@@ -1,4 +1,5 @@
 #include "acc_identification/diagnosis/augmented_stability_test.h"
+#include "acc_identification/model/json_number.h"
 
 #include <algorithm>
 #include <cmath>
@@ -226,8 +227,6 @@ void decide(AugmentedStabilityTestResult* r, double mean_difference)
   }
 }
 
-nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
-
 nlohmann::json sideJson(const AugmentedSideFit& s, const std::vector<EffectKind>& effects)
 {
   if (!s.found)
@@ -235,17 +234,17 @@ nlohmann::json sideJson(const AugmentedSideFit& s, const std::vector<EffectKind>
   nlohmann::json effect_parameters = nlohmann::json::object();
   const std::vector<std::string> names = effectParameterNames(effects);
   for (std::size_t i = 0; i < names.size() && i < s.effect_values.size(); ++i)
-    effect_parameters[names[i]] = number(s.effect_values[i]);
+    effect_parameters[names[i]] = jsonNumber(s.effect_values[i]);
   return {{"parameters",
-           {{"k1", number(s.base.k1_per_s2)},
-            {"k2", number(s.base.k2_per_s)},
-            {"tau_e", number(s.base.tau_e_s)},
-            {"eta", number(s.base.eta_m)}}},
+           {{"k1", jsonNumber(s.base.k1_per_s2)},
+            {"k2", jsonNumber(s.base.k2_per_s)},
+            {"tau_e", jsonNumber(s.base.tau_e_s)},
+            {"eta", jsonNumber(s.base.eta_m)}}},
           {"effect_parameters", effect_parameters},
-          {"stability_index", number(s.stability_index)},
-          {"peak_gain_db", number(s.peak_gain_db)},
-          {"train_rmse_speed", number(s.train_rmse_speed_mps)},
-          {"test_rmse_speed", number(s.test_rmse_speed_mps)}};
+          {"stability_index", jsonNumber(s.stability_index)},
+          {"peak_gain_db", jsonNumber(s.peak_gain_db)},
+          {"train_rmse_speed", jsonNumber(s.train_rmse_speed_mps)},
+          {"test_rmse_speed", jsonNumber(s.test_rmse_speed_mps)}};
 }
 }  // namespace
 
@@ -339,14 +338,14 @@ nlohmann::json toJson(const AugmentedStabilityTestResult& r)
   return {{"effect", effectName(r.effect)},
           {"effects", effects},
           {"verdict", toString(r.verdict)},
-          {"p_value", number(r.p_value)},
-          {"p_value_stable_rejected", number(r.p_value_stable_rejected)},
-          {"p_value_unstable_rejected", number(r.p_value_unstable_rejected)},
+          {"p_value", jsonNumber(r.p_value)},
+          {"p_value_stable_rejected", jsonNumber(r.p_value_stable_rejected)},
+          {"p_value_unstable_rejected", jsonNumber(r.p_value_unstable_rejected)},
           {"alpha", r.alpha},
           {"best_stable", sideJson(r.best_stable, r.effects)},
           {"best_unstable", sideJson(r.best_unstable, r.effects)},
           {"held_out_samples", r.held_out_samples},
-          {"block_length_s", number(r.block_length_s)},
+          {"block_length_s", jsonNumber(r.block_length_s)},
           {"side_fit_evaluations", r.side_fit_evaluations},
           {"reason", r.reason}};
 }

@@ -1,4 +1,5 @@
 #include "acc_identification/diagnosis/diagnosis_output.h"
+#include "acc_identification/model/json_number.h"
 
 #include <cmath>
 #include <fstream>
@@ -10,22 +11,17 @@ namespace acc
 {
 namespace
 {
-nlohmann::json number(double value)
-{
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
-
 nlohmann::json parametersJson(const AugmentedFit& fit)
 {
   nlohmann::json p;
-  p["k1_per_s2"] = number(fit.base.k1_per_s2);
-  p["k2_per_s"] = number(fit.base.k2_per_s);
-  p["tau_e_s"] = number(fit.base.tau_e_s);
-  p["eta_m"] = number(fit.base.eta_m);
+  p["k1_per_s2"] = jsonNumber(fit.base.k1_per_s2);
+  p["k2_per_s"] = jsonNumber(fit.base.k2_per_s);
+  p["tau_e_s"] = jsonNumber(fit.base.tau_e_s);
+  p["eta_m"] = jsonNumber(fit.base.eta_m);
   const std::vector<std::string> names = effectParameterNames(effectsOf(fit));
   for (std::size_t i = 0; i < names.size() && i < fit.effect_values.size(); ++i)
   {
-    p[names[i]] = number(fit.effect_values[i]);
+    p[names[i]] = jsonNumber(fit.effect_values[i]);
   }
   return p;
 }
@@ -40,27 +36,27 @@ nlohmann::json standardErrorsJson(const AugmentedFit& fit)
   nlohmann::json e = nlohmann::json::object();
   for (std::size_t i = 0; i < names.size() && i < fit.standard_errors.size(); ++i)
   {
-    e[names[i]] = number(fit.standard_errors[i]);
+    e[names[i]] = jsonNumber(fit.standard_errors[i]);
   }
   return e;
 }
 
 nlohmann::json stabilityJson(const AugmentedStability& s)
 {
-  return {{"peak_gain_db", number(s.peak_gain_db)},
-          {"peak_frequency_rad_s", number(s.peak_frequency_rad_s)},
+  return {{"peak_gain_db", jsonNumber(s.peak_gain_db)},
+          {"peak_frequency_rad_s", jsonNumber(s.peak_frequency_rad_s)},
           // Meaningless without a gain (parameters not finite): null rather than a "false" that reads unstable.
           {"string_stable", std::isfinite(s.peak_gain_db) ? nlohmann::json(s.string_stable) : nlohmann::json()},
-          {"lambda2", number(s.lambda2)},
+          {"lambda2", jsonNumber(s.lambda2)},
           {"note", s.note}};
 }
 
 nlohmann::json improvementJson(const ImprovementEstimate& e)
 {
-  return {{"mean_mse_reduction", number(e.mean)},
-          {"relative", number(e.relative)},
-          {"lower_bound", number(e.lower_bound)},
-          {"upper_bound", number(e.upper_bound)}};
+  return {{"mean_mse_reduction", jsonNumber(e.mean)},
+          {"relative", jsonNumber(e.relative)},
+          {"lower_bound", jsonNumber(e.lower_bound)},
+          {"upper_bound", jsonNumber(e.upper_bound)}};
 }
 
 nlohmann::json modelJson(const ModelDiagnosis& m)
@@ -69,9 +65,9 @@ nlohmann::json modelJson(const ModelDiagnosis& m)
   j["name"] = effectName(m.fit.effect);
   j["parameters"] = parametersJson(m.fit);
   j["standard_errors"] = standardErrorsJson(m.fit);
-  j["train_rmse_speed"] = number(m.train_rmse_speed_mps);
-  j["test_rmse_speed"] = number(m.test_rmse_speed_mps);
-  j["test_rmse_gap"] = number(m.test_rmse_gap_m);
+  j["train_rmse_speed"] = jsonNumber(m.train_rmse_speed_mps);
+  j["test_rmse_speed"] = jsonNumber(m.test_rmse_speed_mps);
+  j["test_rmse_gap"] = jsonNumber(m.test_rmse_gap_m);
   j["test_diverged"] = m.test_diverged;
   j["fit_diverged"] = m.fit.diverged;
   j["evaluations"] = m.fit.evaluations;
@@ -92,27 +88,27 @@ nlohmann::json chainStepJson(const ForwardSelectionStep& step)
   const std::vector<std::string> names = effectParameterNames(effectsOf(fit));
   for (std::size_t i = 0; i < names.size() && i < fit.effect_values.size(); ++i)
   {
-    effect_parameters[names[i]] = number(fit.effect_values[i]);
+    effect_parameters[names[i]] = jsonNumber(fit.effect_values[i]);
   }
   nlohmann::json test = nullptr;
   if (step.stability_test)
   {
     test = {{"verdict", toString(step.stability_test->verdict)},
-            {"p_value", number(step.stability_test->p_value)},
+            {"p_value", jsonNumber(step.stability_test->p_value)},
             {"reason", step.stability_test->reason}};
   }
   return {{"effect", effectName(step.added)},
           {"model_effects", effects},
-          {"train_rmse_speed", number(step.model.train_rmse_speed_mps)},
-          {"test_rmse_speed", number(step.model.test_rmse_speed_mps)},
-          {"test_rmse_gap", number(step.model.test_rmse_gap_m)},
+          {"train_rmse_speed", jsonNumber(step.model.train_rmse_speed_mps)},
+          {"test_rmse_speed", jsonNumber(step.model.test_rmse_speed_mps)},
+          {"test_rmse_gap", jsonNumber(step.model.test_rmse_gap_m)},
           {"test_diverged", step.model.test_diverged},
           {"improvement", improvementJson(step.model.improvement)},
           {"parameters",
-           {{"k1_per_s2", number(fit.base.k1_per_s2)},
-            {"k2_per_s", number(fit.base.k2_per_s)},
-            {"tau_e_s", number(fit.base.tau_e_s)},
-            {"eta_m", number(fit.base.eta_m)}}},
+           {{"k1_per_s2", jsonNumber(fit.base.k1_per_s2)},
+            {"k2_per_s", jsonNumber(fit.base.k2_per_s)},
+            {"tau_e_s", jsonNumber(fit.base.tau_e_s)},
+            {"eta_m", jsonNumber(fit.base.eta_m)}}},
           {"effect_parameters", effect_parameters},
           {"standard_errors", standardErrorsJson(fit)},
           {"stability", stabilityJson(step.model.stability)},
@@ -150,13 +146,13 @@ nlohmann::json groupsJson(const std::vector<ResidualGroup>& groups)
   {
     list.push_back({{"name", g.name},
                     {"samples", g.samples},
-                    {"share_of_time", number(g.share_of_time)},
-                    {"rmse_speed_before", number(g.rmse_speed_before_mps)},
-                    {"rmse_gap_before", number(g.rmse_gap_before_m)},
-                    {"share_of_squared_speed_error", number(g.share_of_squared_speed_error)},
-                    {"share_of_squared_gap_error", number(g.share_of_squared_gap_error)},
-                    {"rmse_speed_after", number(g.rmse_speed_after_mps)},
-                    {"rmse_gap_after", number(g.rmse_gap_after_m)}});
+                    {"share_of_time", jsonNumber(g.share_of_time)},
+                    {"rmse_speed_before", jsonNumber(g.rmse_speed_before_mps)},
+                    {"rmse_gap_before", jsonNumber(g.rmse_gap_before_m)},
+                    {"share_of_squared_speed_error", jsonNumber(g.share_of_squared_speed_error)},
+                    {"share_of_squared_gap_error", jsonNumber(g.share_of_squared_gap_error)},
+                    {"rmse_speed_after", jsonNumber(g.rmse_speed_after_mps)},
+                    {"rmse_gap_after", jsonNumber(g.rmse_gap_after_m)}});
   }
   return list;
 }
@@ -170,21 +166,21 @@ nlohmann::json whereJson(const ResidualBreakdown& where)
   for (const FrequencyBand& b : where.frequency_bands)
   {
     j["frequency_bands"].push_back({{"name", b.name},
-                                    {"lower_hz", number(b.lower_hz)},
-                                    {"upper_hz", b.upper_hz > 0.0 ? number(b.upper_hz) : nlohmann::json(nullptr)},
-                                    {"share_of_squared_speed_error_before", number(b.share_of_speed_residual_power_before)},
-                                    {"share_of_squared_speed_error_after", number(b.share_of_speed_residual_power_after)}});
+                                    {"lower_hz", jsonNumber(b.lower_hz)},
+                                    {"upper_hz", b.upper_hz > 0.0 ? jsonNumber(b.upper_hz) : nlohmann::json(nullptr)},
+                                    {"share_of_squared_speed_error_before", jsonNumber(b.share_of_speed_residual_power_before)},
+                                    {"share_of_squared_speed_error_after", jsonNumber(b.share_of_speed_residual_power_after)}});
   }
   j["segments"] = nlohmann::json::array();
   for (const WorstSegment& s : where.segments)
   {
     j["segments"].push_back({{"run", s.run},
-                             {"start_s", number(s.start_s)},
-                             {"end_s", number(s.end_s)},
-                             {"share_of_squared_speed_error", number(s.share_of_squared_speed_error)},
-                             {"rmse_speed_before", number(s.rmse_speed_before_mps)},
-                             {"rmse_speed_after", number(s.rmse_speed_after_mps)},
-                             {"rmse_gap_before", number(s.rmse_gap_before_m)},
+                             {"start_s", jsonNumber(s.start_s)},
+                             {"end_s", jsonNumber(s.end_s)},
+                             {"share_of_squared_speed_error", jsonNumber(s.share_of_squared_speed_error)},
+                             {"rmse_speed_before", jsonNumber(s.rmse_speed_before_mps)},
+                             {"rmse_speed_after", jsonNumber(s.rmse_speed_after_mps)},
+                             {"rmse_gap_before", jsonNumber(s.rmse_gap_before_m)},
                              {"main_regime", s.main_regime}});
   }
   return j;
@@ -216,13 +212,13 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
   for (const DeterminedEffect& e : r.determined)
   {
     auto base = [](const AccParameters& p) {
-      return nlohmann::json{{"k1_per_s2", number(p.k1_per_s2)}, {"k2_per_s", number(p.k2_per_s)},
-                            {"tau_e_s", number(p.tau_e_s)}, {"eta_m", number(p.eta_m)}};
+      return nlohmann::json{{"k1_per_s2", jsonNumber(p.k1_per_s2)}, {"k2_per_s", jsonNumber(p.k2_per_s)},
+                            {"tau_e_s", jsonNumber(p.tau_e_s)}, {"eta_m", jsonNumber(p.eta_m)}};
     };
     j["determined_effects"].push_back({{"effect", effectName(e.effect)},
-                                       {"value", number(e.value)},
-                                       {"standard_error", number(e.standard_error)},
-                                       {"z", number(e.z)},
+                                       {"value", jsonNumber(e.value)},
+                                       {"standard_error", jsonNumber(e.standard_error)},
+                                       {"z", jsonNumber(e.z)},
                                        {"base_with_effect", base(e.base_with)},
                                        {"base_without_effect", base(e.base_without)}});
   }
@@ -245,8 +241,8 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
     j["final_model"] = {{"effects", effects},
                         {"parameters", parametersJson(final_model.fit)},
                         {"standard_errors", standardErrorsJson(final_model.fit)},
-                        {"test_rmse_speed", number(final_model.test_rmse_speed_mps)},
-                        {"test_rmse_gap", number(final_model.test_rmse_gap_m)},
+                        {"test_rmse_speed", jsonNumber(final_model.test_rmse_speed_mps)},
+                        {"test_rmse_gap", jsonNumber(final_model.test_rmse_gap_m)},
                         {"model_adequacy", toJson(r.final_adequacy)}};
   }
   j["baseline"]["model_adequacy"] = toJson(r.baseline_adequacy);
@@ -255,9 +251,9 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
     const DiagnosisVerdict verdict = statedVerdict(r);
     j["verdict"] = {{"model", verdict.model},
                     {"verdict", verdict.test ? nlohmann::json(toString(verdict.test->verdict)) : nlohmann::json()},
-                    {"p_value_stable_rejected", verdict.test ? number(verdict.test->p_value_stable_rejected) : nlohmann::json()},
+                    {"p_value_stable_rejected", verdict.test ? jsonNumber(verdict.test->p_value_stable_rejected) : nlohmann::json()},
                     {"p_value_unstable_rejected",
-                     verdict.test ? number(verdict.test->p_value_unstable_rejected) : nlohmann::json()},
+                     verdict.test ? jsonNumber(verdict.test->p_value_unstable_rejected) : nlohmann::json()},
                     {"model_adequate", verdict.model_adequate},
                     {"why", verdict.why}};
   }
@@ -278,13 +274,13 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
     j["ranking"].push_back(effectName(r.selection.candidates[index]));
   }
   j["selection"] = {{"rule", r.selection_rule},
-                    {"block_length_samples", number(r.selection.block_length_samples)},
+                    {"block_length_samples", jsonNumber(r.selection.block_length_samples)},
                     {"has_runner_up", r.selection.has_runner_up},
                     {"best_versus_runner_up", improvementJson(r.selection.best_versus_runner_up)}};
   j["stability_test"] = r.stability_test ? toJson(*r.stability_test) : nlohmann::json(nullptr);
   j["where"] = whereJson(r.where);
-  j["operating_speed_mps"] = number(r.operating_speed_mps);
-  j["sample_period_s"] = number(r.sample_period_s);
+  j["operating_speed_mps"] = jsonNumber(r.operating_speed_mps);
+  j["sample_period_s"] = jsonNumber(r.sample_period_s);
   j["runs"] = nlohmann::json::array();
   for (std::size_t i = 0; i < r.train.size(); ++i)
   {

@@ -1,4 +1,5 @@
 #include "acc_identification/evidence/evidence_json.h"
+#include "acc_identification/model/json_number.h"
 
 #include <cmath>
 
@@ -6,17 +7,16 @@ namespace acc
 {
 namespace
 {
-nlohmann::json number(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
 }  // namespace
 
 nlohmann::json toJson(const DipRatioEstimate& d)
 {
   return {{"perturbations", d.count},
           {"skipped", d.skipped},
-          {"ratio_of_means", number(d.ratio_of_means)},
-          {"median_ratio", number(d.median_ratio)},
-          {"lower", number(d.lower)},
-          {"upper", number(d.upper)},
+          {"ratio_of_means", jsonNumber(d.ratio_of_means)},
+          {"median_ratio", jsonNumber(d.median_ratio)},
+          {"lower", jsonNumber(d.lower)},
+          {"upper", jsonNumber(d.upper)},
           {"confidence", d.confidence},
           {"verdict", toString(d.amplifies)},
           {"reason", d.reason}};
@@ -29,8 +29,8 @@ nlohmann::json toJson(const PairDipEvidence& evidence)
   {
     dips.push_back({{"run", dip.run},
                     {"onset_s", dip.onset_s},
-                    {"leader_dip_mps", number(dip.leader_dip_mps)},
-                    {"follower_dip_mps", number(dip.follower_dip_mps)}});
+                    {"leader_dip_mps", jsonNumber(dip.leader_dip_mps)},
+                    {"follower_dip_mps", jsonNumber(dip.follower_dip_mps)}});
   }
   return {{"dips", dips}, {"dip_ratio", toJson(evidence.ratio)}};
 }
