@@ -94,8 +94,11 @@ def imported_modules(path):
 
 def python_module_packages(module):
     """The Debian packages that provide a Python module; empty when none is installed."""
+    # SUMO's TraCI client lives in its tools folder (Debian's sumo-tools), which the replay script
+    # puts on its path itself.
     for candidate in (f"/usr/lib/python3/dist-packages/{module}",
-                      f"/usr/lib/python3/dist-packages/{module}.py"):
+                      f"/usr/lib/python3/dist-packages/{module}.py",
+                      f"/usr/share/sumo/tools/{module}"):
         if os.path.exists(candidate):
             return owning_packages(candidate)
     return set()

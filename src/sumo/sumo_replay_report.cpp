@@ -1,0 +1,109 @@
+#include "acc_identification/sumo/sumo_replay_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "acc_identification/model/json_number.h"
+
+namespace acc
+{
+namespace
+{
+std::vector<SumoAccVType> chosenVTypes(const std::string& vtype_file, const std::vector<std::string>& ids,
+                                       std::ostream& out)
+{
+  const std::vector<SumoAccVType> all = readSumoAccVTypes(vtype_file);
+  if (all.empty())
+    throw std::runtime_error(vtype_file + " holds no vType with carFollowModel=\"ACC\"");
+  if (ids.empty())
+  {
+    out << "vType: " << all.front().id << " (the first ACC vType of " << vtype_file << ")\n";
+    return {all.front()};
+  }
+  std::vector<SumoAccVType> chosen;
+  for (const std::string& id : ids)
+  {
+    auto found = std::find_if(all.begin(), all.end(), [&](const SumoAccVType& v) { return v.id == id; });
+    if (found == all.end())
+    {
+      std::string known;
+      for (const SumoAccVType& v : all)
+        known += (known.empty() ? "" : ", ") + v.id;
+      throw std::runtime_error("no ACC vType '" + id + "' in " + vtype_file + " (it has: " + known + ")");
+    }
+    chosen.push_back(*found);
+  }
+  return chosen;
+}
+
+/// sqrt of the sample-weighted mean of squares: the RMSE over all segments' samples.
+double pooledRmse(const std::vector<SumoPairReplay>& replays, double SumoPairReplay::*field)
+{
+  double sum = 0.0, count = 0.0;
+  for (const SumoPairReplay& r : replays)
+  {
+    const double value = r.*field;
+    if (std::isfinite(value))
+    {
+      sum += value * value * static_cast<double>(r.samples);
+      count += static_cast<double>(r.samples);
+    }
+  }
+  return count > 0.0 ? std::sqrt(sum / count) : std::numeric_limits<double>::quiet_NaN();
+}
+
+nlohmann::json pairsJson(const std::vector<SumoPairReplay>& replays)
+{
+  nlohmann::json json{
+      {"mode", "pair"},
+      {"vtype", replays.front().vtype_id},
+      {"rmse_speed_sumo_vs_model_mps", jsonNumber(pooledRmse(replays, &SumoPairReplay::rmse_speed_sumo_vs_model_mps))},
+      {"rmse_speed_sumo_vs_measured_mps",
+       jsonNumber(pooledRmse(replays, &SumoPairReplay::rmse_speed_sumo_vs_measured_mps))},
+      {"rmse_speed_model_vs_measured_mps",
+       jsonNumber(pooledRmse(replays, &SumoPairReplay::rmse_speed_model_vs_measured_mps))},
+      {"rmse_speed_sumo_vs_sumo_law_replica_mps",
+       jsonNumber(pooledRmse(replays, &SumoPairReplay::rmse_speed_sumo_vs_replica_mps))}};
+  json["segments"] = nlohmann::json::array();
+  for (const SumoPairReplay& r : replays)
+    json["segments"].push_back(toJson(r));
+  return json;
+}
+}  // namespace
+
+nlohmann::json replayRunInSumo(const std::vector<CarFollowingRun>& runs, const std::string& vtype_file,
+                               const std::vector<std::string>& ids, const SumoReplayOptions& options,
+                               std::ostream& out)
+{
+  if (runs.empty())
+    throw std::runtime_error("no run to replay");
+  const std::vector<SumoAccVType> vtypes = chosenVTypes(vtype_file, ids, out);
+  nlohmann::json json;
+  if (vtypes.size() == 1)
+  {
+    std::vector<SumoPairReplay> replays;
+    for (const CarFollowingRun& run : runs)
+    {
+      replays.push_back(replayPairInSumo(run, vtypes.front(), vtype_file, options));
+      printReplay(replays.back(), out);
+    }
+    json = pairsJson(replays);
+  }
+  else
+  {
+    json = {{"mode", "platoon"}, {"segments", nlohmann::json::array()}};
+    for (const CarFollowingRun& run : runs)
+    {
+      const SumoPlatoonReplay replay = replayPlatoonInSumo(run, vtypes, vtype_file, options);
+      printReplay(replay, out);
+      json["segments"].push_back(toJson(replay));
+    }
+  }
+  json["vtype_file"] = vtype_file;
+  json["sumo_law"] = "SUMO 1.15 MSCFModel_ACC (docs/SUMO.md)";
+  return json;
+}
+
+}  // namespace acc

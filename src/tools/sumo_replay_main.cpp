@@ -1,0 +1,57 @@
+// sumo_replay: replays a run's real leader in SUMO (headless, TraCI) with an exported vType behind
+// it, and reports SUMO's follower against the package's own simulation and the measured car; with
+// several --id, a platoon of those vTypes behind the leader, dips by position (docs/SUMO.md).
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "acc_identification/ros/run_bag_reader.h"
+#include "acc_identification/sumo/sumo_replay_report.h"
+
+int main(int argc, char** argv)
+{
+  CLI::App app{"Replays a run's leader in SUMO with an identified ACC's vType behind it (or a platoon of vTypes) "
+               "and compares SUMO with the package's simulation and the measured car."};
+  std::string path, vtype_file, json_path, follower, topic = "relative_state";
+  std::vector<std::string> ids;
+  acc::SumoReplayOptions options;
+  double max_gap_s = 0.5;
+  app.add_option("RUN", path, "a canonical CSV, an OpenACC CSV or a bag of RelativeState")
+      ->required()
+      ->check(CLI::ExistingFile);
+  app.add_option("--vtype", vtype_file, "SUMO additional file with the vType(s) (calibrate/diagnose/campaign "
+                                        "--sumo-vtype)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  app.add_option("--id", ids, "the vType to replay (default: the file's first ACC vType); several: a platoon in "
+                              "this order behind the run's leader");
+  app.add_option("--json", json_path, "write the comparison as JSON");
+  app.add_option("--follower", follower, "OpenACC files: the follower of the pair to read (its leader is replayed)");
+  app.add_option("--topic", topic, "RelativeState topic in bags")->capture_default_str();
+  app.add_option("--max-gap", max_gap_s, "split runs at holes longer than this [s]")->capture_default_str();
+  app.add_option("--keep", options.work_dir, "keep SUMO's scenario, trace and log in this folder");
+  app.add_option("--sumo", options.sumo, "the SUMO binary")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  std::error_code error;
+  const auto executable = std::filesystem::read_symlink("/proc/self/exe", error);
+  options.driver_script = (error ? std::filesystem::path(".") : executable.parent_path()) / "sumo_traci_replay.py";
+  try
+  {
+    const acc::RunArgument argument =
+        acc::readRunArgument(path, topic, max_gap_s, std::cerr, acc::pairSelectorFromOptions(follower, false));
+    const nlohmann::json json = acc::replayRunInSumo(argument.runs, vtype_file, ids, options, std::cout);
+    if (!json_path.empty() && !(std::ofstream(json_path) << json.dump(2) << "\n"))
+    {
+      std::cerr << "error: cannot write " << json_path << "\n";
+      return 1;
+    }
+  }
+  catch (const std::exception& failure)
+  {
+    std::cerr << "error: " << failure.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
