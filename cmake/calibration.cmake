@@ -30,7 +30,7 @@ acc_add_library(acc_calibration
 acc_add_ros_library(acc_calibration_ros SOURCES src/ros/run_bag_reader.cpp LINK acc_calibration acc_run_io)
 
 # rosrun acc_identification calibrate [options] RUN...
-acc_add_tool(calibrate LINK acc_calibration_ros acc_run_io)
+acc_add_tool(calibrate LINK acc_calibration_ros acc_run_io acc_sumo)
 
 # rosrun acc_identification verdict_study --drives N: size and power of the sequential verdict.
 acc_add_tool(verdict_study LINK acc_calibration)

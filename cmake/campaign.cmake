@@ -12,7 +12,9 @@ acc_add_library(acc_campaign
     src/campaign/link_evidence.cpp
     src/campaign/campaign.cpp
     src/campaign/campaign_output.cpp
-  LINK acc_diagnosis acc_calibration acc_evidence acc_run_io acc_model nlohmann_json::nlohmann_json)
+    src/campaign/campaign_sumo_export.cpp
+    src/campaign/campaign_sumo_platoon.cpp
+  LINK acc_diagnosis acc_calibration acc_sumo acc_evidence acc_run_io acc_model nlohmann_json::nlohmann_json)
 
 # rosrun acc_identification campaign [options] FILE_OR_DIR... --json FILE --report DIR
 acc_add_tool(campaign LINK acc_campaign)
@@ -32,7 +34,8 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/gtest_main.cpp
     test/unit/test_campaign_grouping.cpp
     test/unit/test_campaign_platoon.cpp
-    test/unit/test_campaign_zalazone.cpp)
+    test/unit/test_campaign_zalazone.cpp
+    test/unit/test_campaign_sumo.cpp)
   target_compile_definitions(test_campaign PRIVATE ACC_ZALAZONE_DYNAMIC_DIR="${ACC_DATA_ZALAZONE_DYNAMIC_DIR}")
   target_link_libraries(test_campaign acc_campaign)
 endif()

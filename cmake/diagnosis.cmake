@@ -19,7 +19,7 @@ acc_add_library(acc_diagnosis
 
 # The tool reads runs (CSV or bags) as the calibrate tool does (calibration component).
 if(TARGET acc_calibration_ros)
-  acc_add_tool(diagnose LINK acc_diagnosis acc_calibration_ros acc_run_io)
+  acc_add_tool(diagnose LINK acc_diagnosis acc_calibration_ros acc_run_io acc_sumo)
   # --withheld-suite semi-real injects effects into the bundled real runs (cmake/data.cmake).
   target_compile_definitions(diagnose PRIVATE ACC_CASALE_DIR="${ACC_DATA_CASALE_DIR}"
     ACC_ZALAZONE_TOYOTA_DIR="${ACC_DATA_ZALAZONE_TOYOTA_RAV4_S_DIR}")

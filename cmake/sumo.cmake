@@ -17,9 +17,9 @@ configure_file(scripts/sumo_traci_replay.py
   ${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_BIN_DESTINATION}/sumo_traci_replay.py COPYONLY)
 install(PROGRAMS scripts/sumo_traci_replay.py DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 
-if(TARGET acc_calibration_ros)
-  # rosrun acc_identification sumo_replay RUN --vtype FILE [--id ID...] --json OUT
-  acc_add_tool(sumo_replay LINK acc_sumo acc_calibration_ros acc_run_io)
+if(TARGET acc_calibration_ros AND TARGET acc_campaign)
+  # rosrun acc_identification sumo_replay RUN --vtype FILE [--id ID...|--platoon] --json OUT
+  acc_add_tool(sumo_replay LINK acc_campaign acc_sumo acc_calibration_ros acc_run_io)
 endif()
 
 if(CATKIN_ENABLE_TESTING)

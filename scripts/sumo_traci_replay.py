@@ -144,7 +144,7 @@ def run(job):
     try:
         traci.start(command, numRetries=20)
     except Exception as error:  # SUMO refused the scenario: its log says why
-        fail("SUMO did not start (%s); see %s" % (error, os.path.join(work_dir, "sumo.log")))
+        fail("SUMO did not start (%s): %s" % (error, first_error(os.path.join(work_dir, "sumo.log"))))
     vehicles = ["leader"] + ["car%d" % (i + 1) for i in range(len(job["followers"]))]
     lengths_by_vehicle = dict(zip(vehicles, [job["leader"]["length_m"]] +
                                   [lengths[f["vtype"]] for f in job["followers"]]))
@@ -169,6 +169,18 @@ def run(job):
     finally:
         traci.close()
     write_trace(job["output"], job["step_length_s"], len(job["followers"]), rows)
+
+
+def first_error(log_path):
+    """SUMO's first error line, or where to look."""
+    try:
+        with open(log_path) as log:
+            for line in log:
+                if line.startswith("Error:"):
+                    return line.strip()
+    except OSError:
+        pass
+    return "see " + log_path
 
 
 def write_trace(path, step_s, followers, rows):

@@ -206,9 +206,9 @@ double uniformStepS(const CarFollowingRun& run)
 namespace
 {
 /// Whether SUMO's gap-control gains are the model's k1 and k2 in every mode (asymmetric models:
-/// collision avoidance's space gain k1 r_s), and the model has nothing SUMO lacks. eta counts as
-/// the same within SUMO's shortest vehicle length (an eta below it cannot be exported exactly: a
-/// desired gap 0.1 m longer, k1 0.1 m of acceleration).
+/// collision avoidance's space gain k1 r_s), and the model has nothing SUMO lacks. eta and tau_e
+/// count as the same within SUMO's shortest vehicle length and headway (below them they cannot be
+/// exported exactly: a desired gap at most 0.1 m + 1 ms of travel longer).
 bool gainsAreTheModels(const SumoAccVType& vtype, const PackageModel& model)
 {
   const EffectSettings settings = model.settings();
@@ -222,7 +222,7 @@ bool gainsAreTheModels(const SumoAccVType& vtype, const PackageModel& model)
          same(g.gap_closing_gain_speed_per_s, k2) && same(g.gap_control_gain_speed_per_s, k2) &&
          same(g.collision_avoidance_gain_speed_per_s, k2) &&
          same(g.collision_avoidance_gain_space_per_s2, k1 * settings.short_gap_gain_ratio) &&
-         same(vtype.tau_s, model.parameters.tau_e_s) &&
+         std::abs(vtype.tau_s - model.parameters.tau_e_s) <= kShortestSumoTauS &&
          std::abs(vtype.min_gap_m + vtype.length_m - model.parameters.eta_m) <= kShortestSumoLengthM + 1e-9;
 }
 
@@ -321,66 +321,90 @@ SumoPairReplay replayPairInSumo(const CarFollowingRun& run, const SumoAccVType& 
 
 namespace
 {
-/// The package's chain: each car driven by the simulated car ahead, started at its equilibrium.
-std::vector<SimulatedFollower> simulateChain(const std::vector<PackageModel>& models, const CarFollowingRun& lead,
-                                             const std::vector<SumoCarStart>& starts)
+/// The package's chain: each car driven by the simulated car ahead, from its start.
+std::vector<std::vector<double>> simulateChain(const SumoPlatoonInput& input, const std::vector<PackageModel>& models)
 {
-  std::vector<SimulatedFollower> chain;
-  std::vector<double> ahead_mps = lead.leader_speed_mps;
+  std::vector<std::vector<double>> chain;
+  std::vector<double> ahead_mps = input.leader_speed_mps;
+  const std::size_t n = input.time_s.size();
   for (std::size_t i = 0; i < models.size(); ++i)
   {
-    CarFollowingRun link{lead.name, lead.time_s, {}, {}, ahead_mps};
-    link.space_gap_m.assign(lead.size(), starts[i].gap_m);
-    link.follower_speed_mps.assign(lead.size(), starts[i].speed_mps);
-    chain.push_back(simulateFollower(models[i].parameters, models[i].settings(), link));
-    ahead_mps = chain.back().speed_mps;
+    CarFollowingRun link{input.name, input.time_s, std::vector<double>(n, input.starts[i].gap_m),
+                         std::vector<double>(n, input.starts[i].speed_mps), ahead_mps};
+    chain.push_back(simulateFollower(models[i].parameters, models[i].settings(), link).speed_mps);
+    ahead_mps = chain.back();
   }
   return chain;
 }
+
+/// The same chain with SUMO's law (sumo_acc_simulation.h).
+std::vector<std::vector<double>> simulateSumoChain(const SumoPlatoonInput& input, double step_s,
+                                                   const SumoReplayOptions& options)
+{
+  std::vector<std::vector<double>> chain;
+  std::vector<double> ahead_mps = input.leader_speed_mps;
+  for (std::size_t i = 0; i < input.vtypes.size(); ++i)
+  {
+    chain.push_back(simulateSumoAcc(input.vtypes[i], ahead_mps, step_s, input.starts[i].gap_m,
+                                    input.starts[i].speed_mps, options.lane_speed_limit_mps)
+                        .speed_mps);
+    ahead_mps = chain.back();
+  }
+  return chain;
+}
+
+double measuredDip(const SumoPlatoonInput& input, std::size_t car, const Perturbation& perturbation)
+{
+  if (car >= input.measured_speed_mps.size() || input.measured_speed_mps[car].empty())
+    return std::numeric_limits<double>::quiet_NaN();
+  return dipDepthMps(input.time_s, input.measured_speed_mps[car], perturbation);
+}
 }  // namespace
 
-SumoPlatoonReplay replayPlatoonInSumo(const CarFollowingRun& run, const std::vector<SumoAccVType>& vtypes,
-                                      const std::string& vtype_file, const SumoReplayOptions& options)
+SumoPlatoonInput equilibriumPlatoon(const CarFollowingRun& run, const std::vector<SumoAccVType>& vtypes)
 {
-  SumoPlatoonReplay r;
-  r.run = run.name;
-  r.samples = run.size();
-  r.step_s = uniformStepS(run);
-  std::vector<PackageModel> models;
-  std::vector<SumoCarStart> starts;
+  SumoPlatoonInput input{run.name, run.time_s, run.leader_speed_mps, vtypes, {}, {}};
   const double u0 = run.leader_speed_mps.front();
   for (const SumoAccVType& vtype : vtypes)
   {
+    const AccParameters p = packageModelOf(vtype).parameters;
+    input.starts.push_back({vtype.id, p.eta_m + p.tau_e_s * u0, u0});
+  }
+  return input;
+}
+
+SumoPlatoonReplay replayPlatoonInSumo(const SumoPlatoonInput& input, const std::string& vtype_file,
+                                      const SumoReplayOptions& options)
+{
+  SumoPlatoonReplay r;
+  r.run = input.name;
+  r.samples = input.time_s.size();
+  r.step_s = uniformStepS({input.name, input.time_s, input.leader_speed_mps, input.leader_speed_mps,
+                           input.leader_speed_mps});
+  std::vector<PackageModel> models;
+  for (const SumoAccVType& vtype : input.vtypes)
+  {
     r.vtype_ids.push_back(vtype.id);
     models.push_back(packageModelOf(vtype));
-    const AccParameters& p = models.back().parameters;
-    starts.push_back({vtype.id, p.eta_m + p.tau_e_s * u0, u0});
   }
-  const SumoRun sumo = runSumo(run.leader_speed_mps, r.step_s, starts, vtype_file, options);
-  const std::vector<SimulatedFollower> chain = simulateChain(models, run, starts);
-  std::vector<double> ahead_mps = run.leader_speed_mps;
-  std::vector<std::vector<double>> replica;
-  for (std::size_t i = 0; i < vtypes.size(); ++i)
+  const SumoRun sumo = runSumo(input.leader_speed_mps, r.step_s, input.starts, vtype_file, options);
+  const std::vector<std::vector<double>> chain = simulateChain(input, models);
+  const std::vector<std::vector<double>> replica = simulateSumoChain(input, r.step_s, options);
+  for (std::size_t i = 0; i < input.vtypes.size(); ++i)
   {
-    replica.push_back(simulateSumoAcc(vtypes[i], ahead_mps, r.step_s, starts[i].gap_m, starts[i].speed_mps,
-                                      options.lane_speed_limit_mps)
-                          .speed_mps);
-    ahead_mps = replica.back();
-  }
-  for (std::size_t i = 0; i < vtypes.size(); ++i)
-  {
-    r.rmse_speed_sumo_vs_model_mps.push_back(rmse(sumo.speed_mps[i + 1], chain[i].speed_mps));
+    r.rmse_speed_sumo_vs_model_mps.push_back(rmse(sumo.speed_mps[i + 1], chain[i]));
     r.rmse_speed_sumo_vs_replica_mps.push_back(rmse(sumo.speed_mps[i + 1], replica[i]));
   }
-  for (const Perturbation& perturbation : findPerturbations(run.time_s, run.leader_speed_mps))
+  for (const Perturbation& perturbation : findPerturbations(input.time_s, input.leader_speed_mps))
   {
     SumoPlatoonPerturbation entry;
     entry.onset_s = perturbation.onset_s;
-    entry.leader_dip_mps = dipDepthMps(run.time_s, run.leader_speed_mps, perturbation);
-    for (std::size_t i = 0; i < vtypes.size(); ++i)
-      entry.positions.push_back({vtypes[i].id, dipDepthMps(run.time_s, sumo.speed_mps[i + 1], perturbation),
-                                 dipDepthMps(run.time_s, chain[i].speed_mps, perturbation),
-                                 dipDepthMps(run.time_s, replica[i], perturbation)});
+    entry.leader_dip_mps = dipDepthMps(input.time_s, input.leader_speed_mps, perturbation);
+    for (std::size_t i = 0; i < input.vtypes.size(); ++i)
+      entry.positions.push_back({input.vtypes[i].id, dipDepthMps(input.time_s, sumo.speed_mps[i + 1], perturbation),
+                                 dipDepthMps(input.time_s, chain[i], perturbation),
+                                 dipDepthMps(input.time_s, replica[i], perturbation),
+                                 measuredDip(input, i, perturbation)});
     r.perturbations.push_back(entry);
   }
   return r;
@@ -449,7 +473,8 @@ nlohmann::json toJson(const SumoPlatoonReplay& r)
                            {"vtype", p.positions[i].vtype_id},
                            {"sumo_dip_mps", jsonNumber(p.positions[i].sumo_dip_mps)},
                            {"model_dip_mps", jsonNumber(p.positions[i].model_dip_mps)},
-                           {"sumo_law_replica_dip_mps", jsonNumber(p.positions[i].replica_dip_mps)}});
+                           {"sumo_law_replica_dip_mps", jsonNumber(p.positions[i].replica_dip_mps)},
+                           {"measured_dip_mps", jsonNumber(p.positions[i].measured_dip_mps)}});
     perturbations.push_back(
         {{"onset_s", p.onset_s}, {"leader_dip_mps", jsonNumber(p.leader_dip_mps)}, {"positions", positions}});
   }
@@ -478,6 +503,15 @@ void printReplay(const SumoPairReplay& r, std::ostream& out)
     out << "  - " << line << "\n";
 }
 
+namespace
+{
+bool hasMeasured(const SumoPlatoonPerturbation& p)
+{
+  return std::any_of(p.positions.begin(), p.positions.end(),
+                     [](const SumoPlatoonDip& d) { return std::isfinite(d.measured_dip_mps); });
+}
+}  // namespace
+
 void printReplay(const SumoPlatoonReplay& r, std::ostream& out)
 {
   out << r.run << ": platoon of " << r.vtype_ids.size() << " in SUMO behind the run's leader\n";
@@ -487,9 +521,14 @@ void printReplay(const SumoPlatoonReplay& r, std::ostream& out)
         << r.rmse_speed_sumo_vs_replica_mps[i] << " m/s\n";
   for (const SumoPlatoonPerturbation& p : r.perturbations)
   {
-    out << "  perturbation at " << p.onset_s << " s, leader dip " << p.leader_dip_mps << " m/s; dips SUMO / model:";
+    out << "  perturbation at " << p.onset_s << " s, leader dip " << p.leader_dip_mps
+        << " m/s; dips by position, SUMO / package model" << (hasMeasured(p) ? " / measured" : "") << " [m/s]:";
     for (const SumoPlatoonDip& d : p.positions)
+    {
       out << "  " << d.sumo_dip_mps << " / " << d.model_dip_mps;
+      if (hasMeasured(p))
+        out << " / " << d.measured_dip_mps;
+    }
     out << "\n";
   }
   if (r.perturbations.empty())

@@ -96,7 +96,7 @@ nlohmann::json replayRunInSumo(const std::vector<CarFollowingRun>& runs, const s
     json = {{"mode", "platoon"}, {"segments", nlohmann::json::array()}};
     for (const CarFollowingRun& run : runs)
     {
-      const SumoPlatoonReplay replay = replayPlatoonInSumo(run, vtypes, vtype_file, options);
+      const SumoPlatoonReplay replay = replayPlatoonInSumo(equilibriumPlatoon(run, vtypes), vtype_file, options);
       printReplay(replay, out);
       json["segments"].push_back(toJson(replay));
     }

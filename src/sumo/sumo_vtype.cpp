@@ -12,6 +12,12 @@
 
 namespace acc
 {
+const char* const kSumoOpenAccProvenance =
+    "Identified from the JRC OpenACC database (Makridis, Mattas, Anesiadou, Ciuffo, Transportation Research Part "
+    "C 125 (2021) 103047), (c) European Union, licensed under CC BY 4.0 "
+    "(https://creativecommons.org/licenses/by/4.0); the JRC does not endorse this package. Changes: the cars' "
+    "speeds and gaps calibrated with the ACC model, the model mapped onto SUMO's ACC.";
+
 std::string toString(SumoMapping mapping)
 {
   switch (mapping)
@@ -63,6 +69,14 @@ EffectSettings PackageModel::settings() const
 
 namespace
 {
+/// A number as 17 significant digits: read back, it is the same double.
+std::string shortest(double value)
+{
+  std::ostringstream out;
+  out << std::setprecision(17) << value;
+  return out.str();
+}
+
 /// The exported limits: the fitted ones when the model has them, else the data's, floored.
 void exportLimits(const EffectSettings& settings, bool fitted, const ObservedAccelerationLimits& limits,
                   const SumoExportOptions& options, SumoExport& out)
@@ -70,24 +84,26 @@ void exportLimits(const EffectSettings& settings, bool fitted, const ObservedAcc
   SumoAccVType& vtype = out.vtype;
   if (fitted)
   {
+    // The fitted limits bound the command exactly: SUMO lets an ACC command brake down to
+    // emergencyDecel, so that is the fitted deceleration too.
     vtype.accel_mps2 = settings.max_acceleration_mps2;
-    vtype.decel_mps2 = settings.max_deceleration_mps2;
+    vtype.decel_mps2 = vtype.emergency_decel_mps2 = settings.max_deceleration_mps2;
     out.notes.push_back({"acceleration_limits", SumoMapping::exact,
                          "accel and decel = emergencyDecel are the fitted limits (SUMO bounds each step's speed "
-                         "change by them)"});
+                         "change by them; its safe speed may then override the law, which sumo_replay counts)"});
+    return;
   }
-  else
-  {
-    const bool observed = std::isfinite(limits.max_acceleration_mps2);
-    vtype.accel_mps2 = std::max(options.min_accel_mps2, observed ? limits.max_acceleration_mps2 : 0.0);
-    vtype.decel_mps2 = std::max(options.min_decel_mps2, observed ? limits.max_deceleration_mps2 : 0.0);
-    out.notes.push_back({"accel, decel", SumoMapping::approximate,
-                         "not identified: the largest acceleration and deceleration the car showed in the data "
-                         "(1 s speed differences), which SUMO enforces and the package's model does not"});
-  }
-  // decel = emergencyDecel: SUMO lets an ACC command brake down to emergencyDecel, and decel is
-  // what its safe-speed check assumes; one number keeps both at what the car did.
-  vtype.emergency_decel_mps2 = vtype.decel_mps2;
+  const bool observed = std::isfinite(limits.max_acceleration_mps2);
+  vtype.accel_mps2 = std::max(options.min_accel_mps2, observed ? limits.max_acceleration_mps2 : 0.0);
+  vtype.decel_mps2 = std::max(options.min_decel_mps2, observed ? limits.max_deceleration_mps2 : 0.0);
+  // What the car can brake in an emergency the data do not show: SUMO's own default. An ACC
+  // command may brake harder than decel (down to this) in SUMO, as in the identified model, and
+  // SUMO's safe speed falls back on it instead of overriding the law.
+  vtype.emergency_decel_mps2 = std::max(vtype.decel_mps2, options.emergency_decel_mps2);
+  out.notes.push_back({"accel, decel", SumoMapping::approximate,
+                       "not identified: the largest acceleration (accel, a bound SUMO enforces and the model does "
+                       "not) and deceleration (decel, what SUMO's safe speed assumes) the car showed in the data, "
+                       "from 1 s speed differences; emergencyDecel is SUMO's default"});
 }
 
 /// minGap + length = eta (SUMO 1.15 subtracts the follower's length from the spacing error).
@@ -112,7 +128,13 @@ void exportResponseEffects(const AccParameters& p, const EffectSettings& setting
   out.notes.push_back({"k1, k2", SumoMapping::exact,
                        "k1 on the spacing error and k2 on the speed difference in all three gap-control modes "
                        "(gap, gap closing, collision avoidance), so SUMO's mode switches change nothing"});
-  out.notes.push_back({"tau_e", SumoMapping::exact, "tau = tau_e"});
+  // SUMO refuses tau = 0 (a fit can put tau_e on its lower bound): the shortest tau it takes
+  // changes the desired gap by under a centimetre.
+  out.vtype.tau_s = std::max(kShortestSumoTauS, p.tau_e_s);
+  out.notes.push_back({"tau_e", p.tau_e_s >= kShortestSumoTauS ? SumoMapping::exact : SumoMapping::approximate,
+                       p.tau_e_s >= kShortestSumoTauS ? "tau = tau_e"
+                                                      : "tau = " + shortest(kShortestSumoTauS) +
+                                                            " s: tau_e is 0, which SUMO refuses"});
   if (!asymmetric)
     return;
   gains.collision_avoidance_gain_space_per_s2 = p.k1_per_s2 * settings.short_gap_gain_ratio;
@@ -162,7 +184,6 @@ SumoExport exportToSumo(const std::string& id, const AccParameters& parameters, 
 {
   SumoExport out;
   out.vtype.id = id;
-  out.vtype.tau_s = parameters.tau_e_s;
   out.vtype.has_source_model = true;
   out.vtype.source_parameters = parameters;
   out.vtype.source_effects = effects;
@@ -201,13 +222,6 @@ std::string sumoId(const std::string& name)
 
 namespace
 {
-std::string shortest(double value)
-{
-  std::ostringstream out;
-  out << std::setprecision(17) << value;
-  return out.str();
-}
-
 void setNumber(tinyxml2::XMLElement* element, const char* name, double value)
 {
   element->SetAttribute(name, shortest(value).c_str());
@@ -239,6 +253,8 @@ void addSourceModel(tinyxml2::XMLElement* element, const SumoAccVType& vtype)
 void addVType(tinyxml2::XMLDocument& document, tinyxml2::XMLElement* root, const SumoExport& item)
 {
   const SumoAccVType& v = item.vtype;
+  for (const std::string& caveat : item.caveats)
+    root->InsertEndChild(document.NewComment((" " + v.id + ": CAVEAT: " + caveat + " ").c_str()));
   for (const SumoMappingNote& note : item.notes)
     root->InsertEndChild(document.NewComment((" " + v.id + ": " + note.part + " [" + toString(note.mapping) +
                                               "]: " + note.note + " ")

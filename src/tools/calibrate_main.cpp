@@ -17,6 +17,7 @@
 #include "acc_identification/calibration/stability_test.h"
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/ros/run_bag_reader.h"
+#include "acc_identification/sumo/sumo_vtype.h"
 
 
 namespace
@@ -178,6 +179,29 @@ int reportUnfitted(const std::vector<LoadedRun>& loaded, const std::string& reas
   }
   return kExitValidDataNoFit;
 }
+
+/// The fitted model as a SUMO vType (docs/SUMO.md), with the model's adequacy as a caveat when it
+/// does not describe the data.
+bool writeSumoVType(const std::string& path, const std::string& id, const acc::CalibrationReport& report,
+                    const std::vector<acc::CarFollowingRun>& runs, bool from_openacc)
+{
+  acc::SumoExport exported = acc::exportToSumo(acc::sumoId(id), report.calibration.parameters, {}, {},
+                                               acc::observedAccelerationLimits(runs));
+  if (report.model_adequacy && report.model_adequacy->assessed && !report.model_adequacy->adequate)
+    exported.caveats.push_back("the model is " + acc::describeAdequacy(*report.model_adequacy) +
+                               " for the data it was fitted on: see `diagnose` before simulating with it");
+  try
+  {
+    acc::writeSumoAdditional({exported}, path, from_openacc ? acc::kSumoOpenAccProvenance : "");
+  }
+  catch (const std::exception& error)
+  {
+    std::cerr << "error: " << error.what() << "\n";
+    return false;
+  }
+  std::cerr << "SUMO vType '" << exported.vtype.id << "' written to " << path << "\n";
+  return true;
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -194,7 +218,7 @@ int main(int argc, char** argv)
   std::uint64_t seed = 0;
   bool quiet = false, no_stability_test = false, all_pairs = false;
   double verdict_every_s = 0.0;
-  std::string follower;
+  std::string follower, sumo_vtype_path, sumo_id;
   app.add_option("RUN", paths,
                  "a canonical CSV (time_s,space_gap_m,follower_speed_mps,leader_speed_mps), an OpenACC CSV, or a "
                  "bag of acc_identification/RelativeState")
@@ -223,6 +247,9 @@ int main(int argc, char** argv)
                  "also replay each drive look by look every SECONDS of data time and report the sequential "
                  "(anytime-valid) verdicts the identifier node would publish, by the node's own code")
       ->check(CLI::PositiveNumber);
+  app.add_option("--sumo-vtype", sumo_vtype_path,
+                 "also write the fitted model as a SUMO vType (carFollowModel ACC) into this additional file");
+  app.add_option("--sumo-id", sumo_id, "the vType's id (default: the first run's name)");
   app.add_flag("--no-stability-test", no_stability_test, "skip the string-stability test on held-out halves");
   app.add_flag("--quiet", quiet, "no progress display");
   auto* follower_option =
@@ -369,6 +396,10 @@ int main(int argc, char** argv)
       std::cerr << "sequential verdict: replaying the drives look by look...\n";
     sequential_verdicts = replayVerdicts(groupIntoDrives(loaded), verdict_every_s, alpha, std::cout);
   }
+  if (!sumo_vtype_path.empty() &&
+      !writeSumoVType(sumo_vtype_path, sumo_id.empty() ? loaded.front().run.name : sumo_id, report, whole_runs,
+                      !pairs_read.empty()))
+    return 1;
   if (!json_path.empty())
   {
     auto json = acc::reportToJson(report);

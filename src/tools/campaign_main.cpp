@@ -17,6 +17,7 @@
 
 #include "acc_identification/campaign/campaign.h"
 #include "acc_identification/campaign/campaign_output.h"
+#include "acc_identification/campaign/campaign_sumo_export.h"
 #include "acc_identification/io/run_csv.h"
 
 namespace
@@ -57,6 +58,23 @@ bool writeText(const std::string& text, const std::string& path)
     std::cerr << "error: cannot write " << path << "\n";
     return false;
   }
+  return true;
+}
+
+/// Every fitted car as a SUMO vType (campaign_sumo_export.h), with the data's attribution.
+bool writeSumoVTypes(const std::string& path, const acc::CampaignInputs& inputs, const acc::CampaignResult& result)
+{
+  const std::vector<acc::SumoExport> exports = acc::campaignSumoExports(inputs, result);
+  try
+  {
+    acc::writeSumoAdditional(exports, path, acc::kSumoOpenAccProvenance);
+  }
+  catch (const std::exception& error)
+  {
+    std::cerr << "error: " << error.what() << "\n";
+    return false;
+  }
+  std::cerr << exports.size() << " SUMO vType(s) written to " << path << "\n";
   return true;
 }
 
@@ -118,6 +136,9 @@ int main(int argc, char** argv)
   app.add_option("--json", json_path, "write vehicles, platoons, inputs and attribution as JSON");
   app.add_option("--report", report_dir, "write report.md, campaign.json and PNG figures into DIR");
   app.add_option("--plot-script", plot_script, "figure script")->capture_default_str();
+  std::string sumo_vtype_path;
+  app.add_option("--sumo-vtype", sumo_vtype_path,
+                 "also write every fitted car (and setting) as a SUMO vType into this additional file");
   app.add_flag("--no-platoon-check", no_platoon_check, "identify the cars only");
   app.add_flag("--no-plots", no_plots, "write the report's tables and JSON but draw nothing");
   app.add_flag("--quiet", quiet, "no progress bar");
@@ -173,6 +194,8 @@ int main(int argc, char** argv)
   acc::printCampaignTables(result, std::cout);
   const nlohmann::json json = acc::campaignToJson(inputs, result, paths, options);
   if (!json_path.empty() && !writeText(json.dump(2) + "\n", json_path))
+    return 1;
+  if (!sumo_vtype_path.empty() && !writeSumoVTypes(sumo_vtype_path, inputs, result))
     return 1;
   if (!report_dir.empty())
     return writeReport(report_dir, json, result, paths, no_plots, plot_script);

@@ -23,6 +23,7 @@
 #include "acc_identification/diagnosis/withheld_effect_suite.h"
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/ros/run_bag_reader.h"
+#include "acc_identification/sumo/sumo_vtype.h"
 
 
 namespace
@@ -297,6 +298,34 @@ std::string testVerdictText(const acc::AugmentedStabilityTestResult& test)
 
 /// Each model's adequacy, then THE verdict: the final model's test where the diagnosis found a
 /// better model, the base model's otherwise, and why.
+/// The final model as a SUMO vType (docs/SUMO.md): its effects where SUMO has an equivalent, the
+/// others named in the file, its adequacy as a caveat when it does not describe the data.
+bool writeSumoVType(const std::string& path, const std::string& id, const acc::DiagnosisResult& result,
+                    const std::vector<acc::CarFollowingRun>& runs, bool from_openacc)
+{
+  const acc::AugmentedFit& fit = acc::finalModel(result).fit;
+  if (fit.diverged)
+  {
+    std::cerr << "error: --sumo-vtype: the final model has no fit to export\n";
+    return false;
+  }
+  acc::SumoExport exported = acc::exportToSumo(acc::sumoId(id), fit.base, fit.effects, fit.effect_values,
+                                               acc::observedAccelerationLimits(runs));
+  if (result.final_adequacy.assessed && !result.final_adequacy.adequate)
+    exported.caveats.push_back("the final model is " + acc::describeAdequacy(result.final_adequacy));
+  try
+  {
+    acc::writeSumoAdditional({exported}, path, from_openacc ? acc::kSumoOpenAccProvenance : "");
+  }
+  catch (const std::exception& error)
+  {
+    std::cerr << "error: " << error.what() << "\n";
+    return false;
+  }
+  std::cerr << "SUMO vType '" << exported.vtype.id << "' (final model) written to " << path << "\n";
+  return true;
+}
+
 void printVerdict(const acc::DiagnosisResult& r)
 {
   const acc::DiagnosisVerdict verdict = acc::statedVerdict(r);
@@ -397,6 +426,10 @@ int main(int argc, char** argv)
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_option("--json", json_path, "write the diagnosis as JSON");
+  std::string sumo_vtype_path, sumo_id;
+  app.add_option("--sumo-vtype", sumo_vtype_path,
+                 "also write the final model as a SUMO vType (carFollowModel ACC; its effects where SUMO has them)");
+  app.add_option("--sumo-id", sumo_id, "the vType's id (default: the first run's name)");
   app.add_option("--report", report_dir, "write tables, diagnosis.json, PNG figures and report.md into DIR");
   app.add_option("--train-fraction", options.train_fraction, "share of each run used for fitting")
       ->check(CLI::Range(0.05, 0.95))
@@ -500,6 +533,10 @@ int main(int argc, char** argv)
   }
   std::cerr << result.notes.size() << " run(s) or part(s) not used\n";
   printSummary(result);
+  if (!sumo_vtype_path.empty() &&
+      !writeSumoVType(sumo_vtype_path, sumo_id.empty() ? runs.front().name : sumo_id, result, runs,
+                      !pairs_read.empty()))
+    return 1;
   nlohmann::json json = acc::diagnosisToJson(result);
   json["inputs"] = paths;
   json["openacc_pairs"] = pairs_read;

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "acc_identification/campaign/campaign_sumo_platoon.h"
 #include "acc_identification/ros/run_bag_reader.h"
 #include "acc_identification/sumo/sumo_replay_report.h"
 
@@ -18,6 +19,7 @@ int main(int argc, char** argv)
   std::vector<std::string> ids;
   acc::SumoReplayOptions options;
   double max_gap_s = 0.5;
+  bool platoon = false;
   app.add_option("RUN", path, "a canonical CSV, an OpenACC CSV or a bag of RelativeState")
       ->required()
       ->check(CLI::ExistingFile);
@@ -28,6 +30,10 @@ int main(int argc, char** argv)
   app.add_option("--id", ids, "the vType to replay (default: the file's first ACC vType); several: a platoon in "
                               "this order behind the run's leader");
   app.add_option("--json", json_path, "write the comparison as JSON");
+  app.add_flag("--platoon", platoon,
+               "RUN is an OpenACC platoon file: replay its first car with every following car's vType "
+               "(<VEHICLE>_<setting>, as campaign --sumo-vtype names them) behind it, from the measured starts; "
+               "dips by position in SUMO, the package's chain and the real cars");
   app.add_option("--follower", follower, "OpenACC files: the follower of the pair to read (its leader is replayed)");
   app.add_option("--topic", topic, "RelativeState topic in bags")->capture_default_str();
   app.add_option("--max-gap", max_gap_s, "split runs at holes longer than this [s]")->capture_default_str();
@@ -39,9 +45,17 @@ int main(int argc, char** argv)
   options.driver_script = (error ? std::filesystem::path(".") : executable.parent_path()) / "sumo_traci_replay.py";
   try
   {
-    const acc::RunArgument argument =
-        acc::readRunArgument(path, topic, max_gap_s, std::cerr, acc::pairSelectorFromOptions(follower, false));
-    const nlohmann::json json = acc::replayRunInSumo(argument.runs, vtype_file, ids, options, std::cout);
+    nlohmann::json json;
+    if (platoon)
+    {
+      json = acc::replayFilePlatoonInSumo(path, vtype_file, options, std::cout, std::cerr);
+    }
+    else
+    {
+      const acc::RunArgument argument =
+          acc::readRunArgument(path, topic, max_gap_s, std::cerr, acc::pairSelectorFromOptions(follower, false));
+      json = acc::replayRunInSumo(argument.runs, vtype_file, ids, options, std::cout);
+    }
     if (!json_path.empty() && !(std::ofstream(json_path) << json.dump(2) << "\n"))
     {
       std::cerr << "error: cannot write " << json_path << "\n";

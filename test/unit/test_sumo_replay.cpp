@@ -113,7 +113,8 @@ TEST(SumoReplay, PlatoonDipsInSumoMatchThePackagesChainWhereTheLawsCoincide)
                                       exportToSumo("unstable", {0.05, 0.1, 1.2, 5.0}, {}, {}, {5.0, 8.0})},
                                      "platoon.add.xml");
   const std::vector<SumoAccVType> vtypes = readSumoAccVTypes(path);
-  const SumoPlatoonReplay replay = replayPlatoonInSumo(run, {vtypes[0], vtypes[1], vtypes[1]}, path, replayOptions());
+  const SumoPlatoonReplay replay =
+      replayPlatoonInSumo(equilibriumPlatoon(run, {vtypes[0], vtypes[1], vtypes[1]}), path, replayOptions());
   std::remove(path.c_str());
   ASSERT_EQ(replay.perturbations.size(), 1u);
   ASSERT_EQ(replay.perturbations[0].positions.size(), 3u);

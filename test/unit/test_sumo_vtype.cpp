@@ -80,7 +80,7 @@ TEST(SumoExport, BaseModelMapsOntoEveryGapControlMode)
     EXPECT_DOUBLE_EQ(gain, 0.45);
   EXPECT_DOUBLE_EQ(v.accel_mps2, 2.0);
   EXPECT_DOUBLE_EQ(v.decel_mps2, 3.0);
-  EXPECT_DOUBLE_EQ(v.emergency_decel_mps2, 3.0);
+  EXPECT_DOUBLE_EQ(v.emergency_decel_mps2, 9.0);  // SUMO's default: the data show no emergency
   EXPECT_TRUE(std::isnan(v.max_speed_mps));
   ASSERT_NE(findNote(exported, "free-road speed"), nullptr);
   EXPECT_EQ(findNote(exported, "free-road speed")->mapping, SumoMapping::none);

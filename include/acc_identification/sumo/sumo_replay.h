@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -91,15 +92,31 @@ struct SumoPairReplay
 SumoPairReplay replayPairInSumo(const CarFollowingRun& run, const SumoAccVType& vtype, const std::string& vtype_file,
                                 const SumoReplayOptions& options);
 
-/// A platoon replay: the vTypes in order behind the run's leader, every car started at its model's
-/// equilibrium at the leader's first speed; each perturbation's dip by position in SUMO and in the
-/// package's chain of the same models.
+/// A platoon to replay: the leader's speeds (uniform step) and the vTypes in order behind it, each
+/// car's start, and (optional, per car) its measured speeds on the same samples.
+struct SumoPlatoonInput
+{
+  std::string name;
+  std::vector<double> time_s;
+  std::vector<double> leader_speed_mps;
+  std::vector<SumoAccVType> vtypes;
+  std::vector<SumoCarStart> starts;
+  std::vector<std::vector<double>> measured_speed_mps;  ///< empty, or one (possibly empty) per car
+};
+
+/// The vTypes behind the run's leader, every car started at its model's equilibrium at the
+/// leader's first speed (nothing measured).
+SumoPlatoonInput equilibriumPlatoon(const CarFollowingRun& run, const std::vector<SumoAccVType>& vtypes);
+
+/// Each perturbation's dip by position: in SUMO, in the package's chain of the vTypes' models
+/// (the platoon check's simulation), in the package's chain of SUMO's law, and measured.
 struct SumoPlatoonDip
 {
   std::string vtype_id;
   double sumo_dip_mps = 0.0;
   double model_dip_mps = 0.0;    ///< the package's chain of the vTypes' models
   double replica_dip_mps = 0.0;  ///< the package's chain of SUMO's law (sumo_acc_simulation.h)
+  double measured_dip_mps = std::numeric_limits<double>::quiet_NaN();  ///< the real car's, where given
 };
 struct SumoPlatoonPerturbation
 {
@@ -118,8 +135,8 @@ struct SumoPlatoonReplay
   std::vector<SumoPlatoonPerturbation> perturbations;
 };
 
-SumoPlatoonReplay replayPlatoonInSumo(const CarFollowingRun& run, const std::vector<SumoAccVType>& vtypes,
-                                      const std::string& vtype_file, const SumoReplayOptions& options);
+SumoPlatoonReplay replayPlatoonInSumo(const SumoPlatoonInput& input, const std::string& vtype_file,
+                                      const SumoReplayOptions& options);
 
 nlohmann::json toJson(const SumoPairReplay& replay);
 nlohmann::json toJson(const SumoPlatoonReplay& replay);

@@ -21,7 +21,7 @@ struct SumoAccVType
   double length_m = 5.0;              ///< length (SUMO's default)
   double accel_mps2 = 2.6;            ///< accel: largest acceleration (SUMO's passenger default)
   double decel_mps2 = 4.5;            ///< decel: the deceleration SUMO's safe speeds assume
-  double emergency_decel_mps2 = 9.0;  ///< emergencyDecel: the hardest braking SUMO lets the ACC command
+  double emergency_decel_mps2 = 9.0;  ///< emergencyDecel: the hardest braking SUMO lets the ACC command and its safe speed use
   /// maxSpeed; NaN: not written (the lane's speed limit is then the ACC's desired speed).
   double max_speed_mps = std::numeric_limits<double>::quiet_NaN();
   SumoAccGains gains;
@@ -35,6 +35,8 @@ struct SumoAccVType
 
 /// The shortest vehicle length the export gives SUMO [m] (SUMO's own position resolution).
 constexpr double kShortestSumoLengthM = 0.1;
+/// The shortest headway time the export gives SUMO, which refuses 0 [s].
+constexpr double kShortestSumoTauS = 0.001;
 
 /// How one part of the identified model reaches SUMO.
 enum class SumoMapping
@@ -70,6 +72,9 @@ struct SumoExportOptions
   /// Floors of the exported limits when the data hold no braking or acceleration at all.
   double min_accel_mps2 = 0.5;
   double min_decel_mps2 = 1.0;
+  /// emergencyDecel when the model has no fitted deceleration limit: SUMO's default (the data do
+  /// not show what the car can brake in an emergency).
+  double emergency_decel_mps2 = 9.0;
 };
 
 /// A vType and the notes on what each part of the model became.
@@ -77,13 +82,17 @@ struct SumoExport
 {
   SumoAccVType vtype;
   std::vector<SumoMappingNote> notes;
+  /// What a user of the vType must know of the model itself (its adequacy, an effect the platoon
+  /// diagnosis found that SUMO cannot carry), written beside the notes.
+  std::vector<std::string> caveats;
 };
 
 /// The identified model (base parameters and effects) as SUMO's ACC:
 ///   gapClosing/gapControl/collisionAvoidance gains: k2 on the speed difference, k1 on the spacing
 ///   error (all three modes alike, so the mode switches change nothing above 15 m/s);
-///   tau = tau_e; minGap + length = eta; accel / decel = emergencyDecel from the data (or the
-///   fitted acceleration limits); the effects where SUMO has an equivalent (notes say which).
+///   tau = tau_e; minGap + length = eta; accel and decel from the data, emergencyDecel SUMO's
+///   default (or all three the fitted acceleration limits); the effects where SUMO has an
+///   equivalent (notes say which).
 /// The identified parameters must be finite.
 SumoExport exportToSumo(const std::string& id, const AccParameters& parameters, const std::vector<EffectKind>& effects,
                         const std::vector<double>& effect_values, const ObservedAccelerationLimits& limits,
@@ -92,8 +101,12 @@ SumoExport exportToSumo(const std::string& id, const AccParameters& parameters, 
 /// A vType id from a car's name: letters, digits, '_', '-' and '.' kept, anything else '_'.
 std::string sumoId(const std::string& name);
 
-/// The additional file: every vType, the notes as comments, and the data's attribution line when
-/// given. Throws std::runtime_error when the file cannot be written.
+/// The data's attribution for vTypes identified from JRC OpenACC files (CC BY 4.0 asks for it
+/// wherever something made from the data is shipped).
+extern const char* const kSumoOpenAccProvenance;
+
+/// The additional file: every vType, the notes and caveats as comments, and the data's
+/// provenance line when given. Throws std::runtime_error when the file cannot be written.
 void writeSumoAdditional(const std::vector<SumoExport>& exports, const std::string& path,
                          const std::string& provenance);
 

@@ -1,0 +1,31 @@
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "acc_identification/campaign/campaign_inputs.h"
+#include "acc_identification/sumo/sumo_replay.h"
+
+namespace acc
+{
+/// An OpenACC platoon file as SUMO replays it (sumo_replay --platoon): the first car's longest
+/// stretch with data (longestLeadStretch) from the first row where every car of the chain has its
+/// speed and gap, the chain of cars from position 2 whose vType ("<VEHICLE>_<setting>", as
+/// campaign --sumo-vtype names them) is in vtypes, each started from its measured gap and speed,
+/// and every car's measured speeds for the dips. notes say where the chain stops and why.
+struct FilePlatoonForSumo
+{
+  SumoPlatoonInput input;
+  std::vector<std::string> notes;
+};
+
+FilePlatoonForSumo filePlatoonForSumo(const CampaignFile& file, const std::vector<SumoAccVType>& vtypes);
+
+/// sumo_replay --platoon: the OpenACC file's platoon replayed in SUMO with the vTypes of
+/// vtype_file, SUMO's dips by position beside the package's chain of the same models and the real
+/// cars'. Prints to out (notes to log), returns the JSON. Throws std::runtime_error with the reason.
+nlohmann::json replayFilePlatoonInSumo(const std::string& path, const std::string& vtype_file,
+                                       const SumoReplayOptions& options, std::ostream& out, std::ostream& log);
+
+}  // namespace acc

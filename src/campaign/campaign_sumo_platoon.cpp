@@ -1,0 +1,114 @@
+#include "acc_identification/campaign/campaign_sumo_platoon.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "acc_identification/campaign/platoon_check.h"
+
+namespace acc
+{
+namespace
+{
+/// The cars of the chain from position 2 with data and a vType, in order.
+std::vector<int> chainPositions(const CampaignFile& file, const std::vector<SumoAccVType>& vtypes,
+                                std::vector<std::string>& notes)
+{
+  std::vector<int> positions;
+  const OpenAccFile& contents = file.contents;
+  for (int position = 2;; ++position)
+  {
+    const OpenAccVehicle* car = contents.vehicle(position);
+    const OpenAccVehicle* ahead = contents.vehicle(position - 1);
+    if (car == nullptr || !car->has_speed || ahead == nullptr || !ahead->has_gap_to_follower)
+    {
+      if (position <= static_cast<int>(contents.metadata.vehicle_order.size()))
+        notes.push_back("the chain stops at position " + std::to_string(position) + " (" +
+                        contents.vehicleName(position) + "): no speed or no gap to the car ahead in the file");
+      break;
+    }
+    const std::string id = sumoId(car->name + "_" + file.setting);
+    if (std::none_of(vtypes.begin(), vtypes.end(), [&](const SumoAccVType& v) { return v.id == id; }))
+    {
+      notes.push_back("the chain stops at position " + std::to_string(position) + ": no vType '" + id +
+                      "' in the file (campaign --sumo-vtype writes one per fitted car and setting)");
+      break;
+    }
+    positions.push_back(position);
+  }
+  return positions;
+}
+
+bool chainHasData(const OpenAccFile& file, const std::vector<int>& positions, std::size_t row)
+{
+  if (!std::isfinite(file.time_s[row]))
+    return false;
+  for (int position : positions)
+    if (!std::isfinite(file.vehicle(position)->speed_mps[row]) ||
+        !std::isfinite(file.vehicle(position - 1)->gap_to_follower_m[row]))
+      return false;
+  return true;
+}
+
+std::vector<double> rows(const std::vector<double>& column, std::size_t first, std::size_t end)
+{
+  return std::vector<double>(column.begin() + static_cast<std::ptrdiff_t>(first),
+                             column.begin() + static_cast<std::ptrdiff_t>(end));
+}
+}  // namespace
+
+FilePlatoonForSumo filePlatoonForSumo(const CampaignFile& file, const std::vector<SumoAccVType>& vtypes)
+{
+  FilePlatoonForSumo out;
+  const OpenAccFile& contents = file.contents;
+  std::vector<int> positions = chainPositions(file, vtypes, out.notes);
+  const auto [first, end] = longestLeadStretch(contents, PlatoonCheckOptions{}.max_time_step_s);
+  // The first row where the whole chain has data; a car that never has it with the others ends it.
+  std::size_t start = end;
+  while (!positions.empty())
+  {
+    for (start = first; start < end && !chainHasData(contents, positions, start); ++start)
+    {
+    }
+    if (start + 1 < end)
+      break;
+    out.notes.push_back("the chain stops before position " + std::to_string(positions.back()) +
+                        ": no row where it and every car ahead have speed and gap");
+    positions.pop_back();
+  }
+  out.input.name = file.name;
+  if (positions.empty() || start + 1 >= end)
+    return out;
+  out.input.time_s = rows(contents.time_s, start, end);
+  out.input.leader_speed_mps = rows(contents.vehicle(1)->speed_mps, start, end);
+  for (int position : positions)
+  {
+    const OpenAccVehicle* car = contents.vehicle(position);
+    const std::string id = sumoId(car->name + "_" + file.setting);
+    out.input.vtypes.push_back(*std::find_if(vtypes.begin(), vtypes.end(), [&](const SumoAccVType& v) {
+      return v.id == id;
+    }));
+    out.input.starts.push_back({id, contents.vehicle(position - 1)->gap_to_follower_m[start], car->speed_mps[start]});
+    out.input.measured_speed_mps.push_back(rows(car->speed_mps, start, end));
+  }
+  return out;
+}
+
+nlohmann::json replayFilePlatoonInSumo(const std::string& path, const std::string& vtype_file,
+                                       const SumoReplayOptions& options, std::ostream& out, std::ostream& log)
+{
+  const CampaignInputs inputs = loadCampaign({path});
+  const FilePlatoonForSumo platoon = filePlatoonForSumo(inputs.files.front(), readSumoAccVTypes(vtype_file));
+  for (const std::string& note : platoon.notes)
+    log << "note: " << note << "\n";
+  if (platoon.input.vtypes.empty())
+    throw std::runtime_error(path + ": no car of the platoon can be replayed (see the notes)");
+  const SumoPlatoonReplay replay = replayPlatoonInSumo(platoon.input, vtype_file, options);
+  printReplay(replay, out);
+  nlohmann::json json{{"mode", "platoon"}, {"file", path}, {"vtype_file", vtype_file}, {"notes", platoon.notes}};
+  json["segments"] = nlohmann::json::array({toJson(replay)});
+  json["sumo_law"] = "SUMO 1.15 MSCFModel_ACC (docs/SUMO.md)";
+  return json;
+}
+
+}  // namespace acc

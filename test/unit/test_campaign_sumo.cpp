@@ -1,0 +1,86 @@
+// The campaign's cars as SUMO vTypes, and an OpenACC platoon file laid out for a SUMO replay: the
+// chain of cars with a vType, started from their measured gaps and speeds (no SUMO run here; the
+// replay itself is test_sumo's).
+#include <algorithm>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "acc_identification/campaign/campaign.h"
+#include "acc_identification/campaign/campaign_sumo_export.h"
+#include "acc_identification/campaign/campaign_sumo_platoon.h"
+#include "campaign_test_data.h"
+
+namespace
+{
+namespace fs = std::filesystem;
+
+const acc::AccParameters kCarA{0.10, 0.60, 1.2, 5.0};
+const acc::AccParameters kCarB{0.08, 0.45, 1.5, 6.0};
+
+struct SyntheticCampaign
+{
+  acc::CampaignInputs inputs;
+  fs::path folder;
+  ~SyntheticCampaign() { fs::remove_all(folder); }
+};
+
+/// Two runs of CAR_A then CAR_B at setting L (the second in the other order).
+void makeCampaign(SyntheticCampaign& campaign)
+{
+  campaign.folder = fs::temp_directory_path() / ("acc_campaign_sumo_" + std::to_string(::getpid()));
+  fs::create_directories(campaign.folder);
+  acc_test::writeSyntheticPlatoon((campaign.folder / "a.csv").string(), "L", {{"CAR_A", kCarA}, {"CAR_B", kCarB}}, 7);
+  acc_test::writeSyntheticPlatoon((campaign.folder / "b.csv").string(), "L", {{"CAR_B", kCarB}, {"CAR_A", kCarA}}, 8);
+  campaign.inputs = acc::loadCampaign({campaign.folder.string()});
+}
+
+TEST(CampaignSumo, EveryFittedCarBecomesAVTypeOfItsSetting)
+{
+  SyntheticCampaign campaign;
+  makeCampaign(campaign);
+  acc::CampaignOptions options;
+  options.group.starts = 8;
+  options.threads = 2;
+  options.platoon_diagnosis = false;
+  const acc::CampaignResult result = acc::runCampaign(campaign.inputs, options);
+  const std::vector<acc::SumoExport> exports = acc::campaignSumoExports(campaign.inputs, result);
+  ASSERT_EQ(exports.size(), 2u);
+  std::vector<std::string> ids{exports[0].vtype.id, exports[1].vtype.id};
+  std::sort(ids.begin(), ids.end());
+  EXPECT_EQ(ids, (std::vector<std::string>{"CAR_A_L", "CAR_B_L"}));
+  for (const acc::SumoExport& exported : exports)
+  {
+    const acc::AccParameters& truth = exported.vtype.id == "CAR_A_L" ? kCarA : kCarB;
+    EXPECT_NEAR(exported.vtype.gains.gap_closing_gain_space_per_s2, truth.k1_per_s2, 0.02) << exported.vtype.id;
+    EXPECT_NEAR(exported.vtype.tau_s, truth.tau_e_s, 0.1) << exported.vtype.id;
+    EXPECT_GT(exported.vtype.decel_mps2, 0.5) << exported.vtype.id;  // the dips' braking, from the data
+  }
+}
+
+TEST(CampaignSumo, APlatoonFileIsLaidOutFromItsMeasuredStarts)
+{
+  SyntheticCampaign campaign;
+  makeCampaign(campaign);
+  const std::vector<acc::SumoAccVType> vtypes{acc::exportToSumo("CAR_A_L", kCarA, {}, {}, {}).vtype,
+                                              acc::exportToSumo("CAR_B_L", kCarB, {}, {}, {}).vtype};
+  const acc::CampaignFile& file = campaign.inputs.files.front();  // a.csv: CAR_A then CAR_B
+  const acc::FilePlatoonForSumo platoon = acc::filePlatoonForSumo(file, vtypes);
+  ASSERT_EQ(platoon.input.vtypes.size(), 2u);
+  EXPECT_EQ(platoon.input.vtypes[0].id, "CAR_A_L");
+  EXPECT_EQ(platoon.input.vtypes[1].id, "CAR_B_L");
+  EXPECT_EQ(platoon.input.time_s.size(), file.contents.rows());
+  EXPECT_EQ(platoon.input.starts[1].gap_m, file.contents.vehicle(2)->gap_to_follower_m.front());
+  EXPECT_EQ(platoon.input.starts[1].speed_mps, file.contents.vehicle(3)->speed_mps.front());
+  ASSERT_EQ(platoon.input.measured_speed_mps.size(), 2u);
+  EXPECT_EQ(platoon.input.measured_speed_mps[0], file.contents.vehicle(2)->speed_mps);
+  // Without CAR_B's vType the chain stops before it, and says why.
+  const acc::FilePlatoonForSumo shorter = acc::filePlatoonForSumo(file, {vtypes[0]});
+  ASSERT_EQ(shorter.input.vtypes.size(), 1u);
+  ASSERT_FALSE(shorter.notes.empty());
+  EXPECT_NE(shorter.notes.front().find("no vType 'CAR_B_L'"), std::string::npos) << shorter.notes.front();
+}
+
+}  // namespace
