@@ -11,6 +11,7 @@
 #include <acc_identification/Sentence.h>
 #include <geometry_msgs/TwistStamped.h>
 #include <sensor_msgs/NavSatFix.h>
+#include <sensor_msgs/TimeReference.h>
 
 #include "acc_identification/gnss/gnss_velocity.h"
 
@@ -19,20 +20,6 @@ namespace acc
 namespace
 {
 double seconds(std::chrono::steady_clock::duration d) { return std::chrono::duration<double>(d).count(); }
-
-
-/// GGA quality to NavSatStatus: DGPS counts as SBAS, RTK as ground-based augmentation.
-std::int8_t navSatStatus(std::uint8_t quality)
-{
-  switch (quality)
-  {
-    case 0: return sensor_msgs::NavSatStatus::STATUS_NO_FIX;
-    case 2: return sensor_msgs::NavSatStatus::STATUS_SBAS_FIX;
-    case 4:
-    case 5: return sensor_msgs::NavSatStatus::STATUS_GBAS_FIX;
-    default: return sensor_msgs::NavSatStatus::STATUS_FIX;
-  }
-}
 }  // namespace
 
 acc_identification::GnssFix toMessage(const GnssFix& fix, const std::string& frame_id)
@@ -77,11 +64,65 @@ GnssFix fromMessage(const acc_identification::GnssFix& m)
   return fix;
 }
 
+std::int8_t navSatStatusOf(std::uint8_t gga_quality)
+{
+  switch (gga_quality)
+  {
+    case 1:
+    case 3: return sensor_msgs::NavSatStatus::STATUS_FIX;
+    case 2: return sensor_msgs::NavSatStatus::STATUS_SBAS_FIX;
+    case 4:
+    case 5: return sensor_msgs::NavSatStatus::STATUS_GBAS_FIX;
+    default: return sensor_msgs::NavSatStatus::STATUS_NO_FIX;  // 0, 6 dead reckoning, 7, 8
+  }
+}
+
 namespace
 {
 bool standardStamp(const GnssFix& fix, bool use_gnss_time, ros::Time& stamp)
 {
   return toRosTime(use_gnss_time ? fix.gnss_time_s : fix.receive_time_s, stamp);
+}
+
+/// GST (or PUBX,00) gave all three sigmas: a partial set (e.g. a GST with an empty altitude sigma)
+/// would put NaN into a covariance declared known, so it counts as none.
+bool hasAllPositionSigmas(const GnssFix& fix)
+{
+  return fix.has(GnssFix::kValidPositionSigma) && std::isfinite(fix.latitude_sigma_m) &&
+         std::isfinite(fix.longitude_sigma_m) && std::isfinite(fix.altitude_sigma_m);
+}
+
+void setDiagonalCovariance(double east_sigma_m, double north_sigma_m, double up_sigma_m, std::uint8_t type,
+                           sensor_msgs::NavSatFix& navsat)
+{
+  navsat.position_covariance.fill(0.0);
+  navsat.position_covariance[0] = east_sigma_m * east_sigma_m;
+  navsat.position_covariance[4] = north_sigma_m * north_sigma_m;
+  navsat.position_covariance[8] = up_sigma_m * up_sigma_m;
+  navsat.position_covariance_type = type;
+}
+
+/// The covariance rule of toNavSatFix (gps_driver_ros.h, docs/ROS_API.md). position_covariance is
+/// in ENU (REP-145), so east takes the longitude sigma and north the latitude sigma.
+void setPositionCovariance(const GnssFix& fix, double hdop_uere_m, sensor_msgs::NavSatFix& navsat)
+{
+  if (hasAllPositionSigmas(fix))
+  {
+    setDiagonalCovariance(fix.longitude_sigma_m, fix.latitude_sigma_m, fix.altitude_sigma_m,
+                          sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN, navsat);
+  }
+  else if (fix.has(GnssFix::kValidHdop))
+  {
+    // The usual rule of thumb (nmea_navsat_driver's too): the vertical error is about twice the
+    // horizontal one.
+    const double horizontal_sigma_m = fix.hdop * hdop_uere_m;
+    setDiagonalCovariance(horizontal_sigma_m, horizontal_sigma_m, 2.0 * horizontal_sigma_m,
+                          sensor_msgs::NavSatFix::COVARIANCE_TYPE_APPROXIMATED, navsat);
+  }
+  else
+  {
+    setDiagonalCovariance(0.0, 0.0, 0.0, sensor_msgs::NavSatFix::COVARIANCE_TYPE_UNKNOWN, navsat);
+  }
 }
 }  // namespace
 
@@ -99,7 +140,7 @@ bool toNavSatFix(const GnssFix& fix, const std::string& frame_id, double hdop_ue
     return false;
   }
   navsat.header.frame_id = frame_id;
-  navsat.status.status = navSatStatus(fix.fix_quality);
+  navsat.status.status = navSatStatusOf(fix.fix_quality);
   navsat.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;
   navsat.latitude = fix.latitude_deg;
   navsat.longitude = fix.longitude_deg;
@@ -107,20 +148,7 @@ bool toNavSatFix(const GnssFix& fix, const std::string& frame_id, double hdop_ue
   navsat.altitude = fix.has(GnssFix::kValidAltitude)
                         ? fix.altitude_m + (std::isnan(fix.geoid_separation_m) ? 0.0 : fix.geoid_separation_m)
                         : std::nan("");
-  if (fix.has(GnssFix::kValidPositionSigma))
-  {
-    navsat.position_covariance[0] = fix.longitude_sigma_m * fix.longitude_sigma_m;  // east
-    navsat.position_covariance[4] = fix.latitude_sigma_m * fix.latitude_sigma_m;    // north
-    navsat.position_covariance[8] = fix.altitude_sigma_m * fix.altitude_sigma_m;    // up
-    navsat.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN;
-  }
-  else if (fix.has(GnssFix::kValidHdop))
-  {
-    const double horizontal = fix.hdop * hdop_uere_m;
-    navsat.position_covariance[0] = navsat.position_covariance[4] = horizontal * horizontal;
-    navsat.position_covariance[8] = 4.0 * horizontal * horizontal;  // vertical about twice as poor
-    navsat.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_APPROXIMATED;
-  }
+  setPositionCovariance(fix, hdop_uere_m, navsat);
   return true;
 }
 
@@ -138,6 +166,22 @@ bool toEnuTwist(const GnssFix& fix, const std::string& frame_id, bool use_gnss_t
   return true;
 }
 
+TimeReferenceOutcome toTimeReference(const GnssFix& fix, const std::string& frame_id, const std::string& source,
+                                     sensor_msgs::TimeReference& reference)
+{
+  // A time of day counted from 1970 (no date yet) would state a GNSS time decades off.
+  if (!fix.has_date)
+    return TimeReferenceOutcome::kNoDate;
+  ros::Time gnss_time, receive_time;
+  if (!toRosTime(fix.gnss_time_s, gnss_time) || !toRosTime(fix.receive_time_s, receive_time))
+    return TimeReferenceOutcome::kOutsideRosTime;
+  reference.header.stamp = receive_time;
+  reference.header.frame_id = frame_id;
+  reference.time_ref = gnss_time;
+  reference.source = source;
+  return TimeReferenceOutcome::kMade;
+}
+
 GpsDriverRos::GpsDriverRos(ros::NodeHandle node, ros::NodeHandle private_node)
   : node_(node)
   , decoder_([this](std::string_view line, NmeaParseOutcome) { publishLine(line); },
@@ -147,6 +191,10 @@ GpsDriverRos::GpsDriverRos(ros::NodeHandle node, ros::NodeHandle private_node)
   private_node.param<std::string>("source", source_uri_, "serial:///dev/ttyACM0?baud=115200");
   private_node.param<std::string>("frame_id", frame_id_, "gps");
   private_node.param<std::string>("vel_frame_id", vel_frame_id_, "enu");
+  // nmea_navsat_driver's parameter and default: the source is the receiver, named by its frame.
+  private_node.param<std::string>("time_ref_source", time_ref_source_, "");
+  if (time_ref_source_.empty())
+    time_ref_source_ = frame_id_;
   private_node.param("epoch_idle_s", epoch_idle_s_, epoch_idle_s_);
   private_node.param("epoch_idle_wall_s", epoch_idle_wall_s_, epoch_idle_wall_s_);
   private_node.param("end_of_file_wait_s", end_of_file_wait_s_, end_of_file_wait_s_);
@@ -171,6 +219,7 @@ GpsDriverRos::GpsDriverRos(ros::NodeHandle node, ros::NodeHandle private_node)
   fix_publisher_ = node_.advertise<acc_identification::GnssFix>("fix", queue_size);
   navsat_publisher_ = node_.advertise<sensor_msgs::NavSatFix>("navsat_fix", queue_size);
   vel_publisher_ = node_.advertise<geometry_msgs::TwistStamped>("vel", queue_size);
+  time_reference_publisher_ = node_.advertise<sensor_msgs::TimeReference>("time_reference", queue_size);
 
   if (topic_source_)
   {
@@ -277,7 +326,8 @@ void GpsDriverRos::waitForSubscribers()
 {
   if (wait_for_subscribers_ <= 0)
     return;
-  // ~wait_for_topics: by default every output topic, so that a test or a recorder subscribed to
+  // ~wait_for_topics: by default every output topic but time_reference (added later: a listener
+  // that does not know it would wait for the timeout), so that a test or a recorder subscribed to
   // all of them misses nothing; a chain needs only fix (and from a topic source the sentences are
   // not republished).
   std::vector<const ros::Publisher*> publishers;
@@ -291,6 +341,8 @@ void GpsDriverRos::waitForSubscribers()
       publishers.push_back(&navsat_publisher_);
     else if (topic == "vel")
       publishers.push_back(&vel_publisher_);
+    else if (topic == "time_reference")
+      publishers.push_back(&time_reference_publisher_);
     else if (topic != "nmea_sentence")
       ROS_WARN("gps_driver: ~wait_for_topics: no output topic '%s' (ignored)", topic.c_str());
   }
@@ -368,6 +420,18 @@ void GpsDriverRos::publishFix(const GnssFix& fix)
   {
     vel_publisher_.publish(twist);
   }
+  publishTimeReference(fix);
+}
+
+void GpsDriverRos::publishTimeReference(const GnssFix& fix)
+{
+  sensor_msgs::TimeReference reference;
+  switch (toTimeReference(fix, frame_id_, time_ref_source_, reference))
+  {
+    case TimeReferenceOutcome::kMade: time_reference_publisher_.publish(reference); break;
+    case TimeReferenceOutcome::kNoDate: ++time_references_without_date_; break;
+    case TimeReferenceOutcome::kOutsideRosTime: ++time_references_outside_ros_time_; break;
+  }
 }
 
 void GpsDriverRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
@@ -376,12 +440,13 @@ void GpsDriverRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   const NmeaStatistics s = decoder_.statistics();
   const double period_s = std::max(1e-3, seconds(now - last_diagnostic_));
   const double rate_hz = static_cast<double>(s.fixes - fixes_at_last_diagnostic_) / period_s;
-  const std::uint64_t new_errors =
-      s.bad_checksum + s.malformed + fixes_outside_ros_time_ - errors_at_last_diagnostic_;
+  const std::uint64_t errors =
+      s.bad_checksum + s.malformed + fixes_outside_ros_time_ + time_references_outside_ros_time_;
+  const std::uint64_t new_errors = errors - errors_at_last_diagnostic_;
   const double since_fix_s = seconds(now - last_fix_);
   last_diagnostic_ = now;
   fixes_at_last_diagnostic_ = s.fixes;
-  errors_at_last_diagnostic_ = s.bad_checksum + s.malformed + fixes_outside_ros_time_;
+  errors_at_last_diagnostic_ = errors;
 
   if (source_ && !source_->isOpen())
     status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "source closed: " + source_->state());
@@ -420,6 +485,8 @@ void GpsDriverRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("late sentences after their epoch's fix", s.late_sentences_after_fix);
   status.add("fixes", s.fixes);
   status.add("fixes with a GNSS time outside ros::Time (not published on fix)", fixes_outside_ros_time_);
+  status.add("fixes without a date (no time_reference)", time_references_without_date_);
+  status.add("dated fixes with a time outside ros::Time (no time_reference)", time_references_outside_ros_time_);
 }
 
 }  // namespace acc

@@ -16,6 +16,7 @@
 
 #include <geometry_msgs/TwistStamped.h>
 #include <sensor_msgs/NavSatFix.h>
+#include <sensor_msgs/TimeReference.h>
 
 #include <acc_identification/GnssFix.h>
 #include <acc_identification/Sentence.h>
@@ -33,10 +34,22 @@ GnssFix fromMessage(const acc_identification::GnssFix& message);
 /// then: a fix stamped 0 would pair as a time reset downstream.
 bool hasRosGnssTime(const GnssFix& fix);
 
+/// GGA quality (0..8, FIX_* of msg/GnssFix.msg) to sensor_msgs/NavSatStatus, as nmea_navsat_driver
+/// maps it where it has a row: 0 NO_FIX, 1 FIX, 2 (DGPS) SBAS_FIX, 4 and 5 (RTK fixed and float)
+/// GBAS_FIX. 3 (PPS, the precise code) is a standalone fix: FIX. 6 (dead reckoning), 7 (manual
+/// input), 8 (simulator) and anything above are NO_FIX: no satellite fix, and navsat_transform and
+/// other fusers take every status but NO_FIX as a GNSS measurement, so an extrapolated position
+/// would be fused as one (nmea_navsat_driver has no row for them and also says NO_FIX).
+/// NavSatStatus cannot tell RTK fixed from float: fix.fix_quality (acc_identification/GnssFix) does.
+std::int8_t navSatStatusOf(std::uint8_t gga_quality);
+
 /// The standard ROS messages of a fix. Stamped with the receive time on the ROS clock by default,
 /// as nmea_navsat_driver does, because tf and message_filters users (robot_localization's
 /// navsat_transform) drop messages stamped far from now, and a GNSS time before the first date is
 /// counted from 1970; with use_gnss_time, the GNSS time (acc_identification/GnssFix carries both).
+/// position_covariance (ENU, m^2): the three GST (or PUBX,00) sigmas squared, DIAGONAL_KNOWN, when
+/// all three are there; else from HDOP, APPROXIMATED: east = north = (hdop * hdop_uere_m)^2,
+/// up = (2 * hdop * hdop_uere_m)^2; else zero and UNKNOWN. The same for every fix quality.
 /// hdop_uere_m: the range error behind an HDOP-only covariance. false when the fix has no position
 /// (or no velocity, for the twist), or when ros::Time cannot hold the chosen stamp.
 bool toNavSatFix(const GnssFix& fix, const std::string& frame_id, double hdop_uere_m, bool use_gnss_time,
@@ -44,10 +57,26 @@ bool toNavSatFix(const GnssFix& fix, const std::string& frame_id, double hdop_ue
 bool toEnuTwist(const GnssFix& fix, const std::string& frame_id, bool use_gnss_time,
                 geometry_msgs::TwistStamped& twist);
 
+/// Why a fix gives no time_reference (kMade: it gives one).
+enum class TimeReferenceOutcome
+{
+  kMade,
+  kNoDate,          ///< GNSS time of day only (VALID_DATE clear): no absolute time to state
+  kOutsideRosTime,  ///< the GNSS or the receive time is one ros::Time cannot hold
+};
+
+/// sensor_msgs/TimeReference of a fix, as nmea_navsat_driver publishes it: header.stamp = the
+/// receive time of the epoch on the ROS clock (the stamp navsat_fix has by default), time_ref = the
+/// epoch's GNSS (UTC) time, header.frame_id = frame_id, source = source. Only a dated fix has
+/// an absolute GNSS time to give; reference is left as it was when the outcome is not kMade.
+TimeReferenceOutcome toTimeReference(const GnssFix& fix, const std::string& frame_id, const std::string& source,
+                                     sensor_msgs::TimeReference& reference);
+
 /// gps_driver_node: one instance per receiver. Reads bytes from ~source, publishes every line on
 /// nmea_sentence, one fix per epoch on fix (acc_identification/GnssFix), navsat_fix
-/// (sensor_msgs/NavSatFix) and vel (geometry_msgs/TwistStamped, ENU), and health on
-/// /diagnostics. All parsing is in the ROS-free NmeaDecoder.
+/// (sensor_msgs/NavSatFix), vel (geometry_msgs/TwistStamped, ENU) and, for dated fixes,
+/// time_reference (sensor_msgs/TimeReference), and health on /diagnostics. All parsing is in the
+/// ROS-free NmeaDecoder.
 /// With ~source "topic" the bytes come from nmea_sentence_in (acc_identification/Sentence, e.g. a
 /// bag of recorded sentences under rosbag play): each sentence goes through the same decoder with
 /// its header.stamp as receive time, and nothing is republished on nmea_sentence (the bag has it).
@@ -72,6 +101,7 @@ private:
   std::string sourceDescription() const;
   void publishLine(std::string_view line);
   void publishFix(const GnssFix& fix);
+  void publishTimeReference(const GnssFix& fix);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
   void waitForSubscribers();
   void finishReplay();
@@ -80,6 +110,7 @@ private:
   std::string source_uri_;
   std::string frame_id_;
   std::string vel_frame_id_;
+  std::string time_ref_source_;  ///< TimeReference.source: ~time_ref_source, or frame_id_ when empty
   double epoch_idle_s_ = 0.05;
   double epoch_idle_wall_s_ = 1.0;
   double end_of_file_wait_s_ = 0.5;  // ~end_of_file_wait_s: file source, stay this long after the end
@@ -98,7 +129,7 @@ private:
 
   std::unique_ptr<ByteSource> source_;
   NmeaDecoder decoder_;
-  ros::Publisher sentence_publisher_, fix_publisher_, navsat_publisher_, vel_publisher_;
+  ros::Publisher sentence_publisher_, fix_publisher_, navsat_publisher_, vel_publisher_, time_reference_publisher_;
   diagnostic_updater::Updater updater_;
 
   ros::Time receive_time_;  ///< ROS time of the bytes being decoded
@@ -106,8 +137,13 @@ private:
   bool have_fix_ = false;
   std::uint8_t last_fix_quality_ = 0;
   std::uint64_t fixes_at_last_diagnostic_ = 0;
-  std::uint64_t errors_at_last_diagnostic_ = 0;  ///< bad sentences and fixes outside ros::Time
+  std::uint64_t errors_at_last_diagnostic_ = 0;  ///< bad sentences, fixes and time references outside ros::Time
   std::uint64_t fixes_outside_ros_time_ = 0;     ///< GNSS time ros::Time cannot hold: fix not published
+  /// Fixes without a date (time of day only, e.g. before the first RMC/ZDA): no time_reference.
+  /// Expected at start-up, so counted but not a warning.
+  std::uint64_t time_references_without_date_ = 0;
+  /// Dated fixes whose GNSS or receive time ros::Time cannot hold: no time_reference (an error).
+  std::uint64_t time_references_outside_ros_time_ = 0;
 };
 
 }  // namespace acc
