@@ -1,6 +1,6 @@
 // rostest node: subscribes to everything gps_driver_node publishes while it replays
 // test/data/nmea/drive_10s.nmea (100 epochs, 600 lines, see make_drive_fixture.py) and checks
-// counts and values.
+// counts and values, time_reference against fix, and the final diagnostics' counts.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,6 +14,7 @@
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <sensor_msgs/NavSatFix.h>
+#include <sensor_msgs/TimeReference.h>
 
 namespace
 {
@@ -27,12 +28,41 @@ struct Received
   std::vector<sensor_msgs::NavSatFix> navsat;
   std::vector<geometry_msgs::TwistStamped> vel;
   std::vector<acc_identification::Sentence> sentences;
+  std::vector<sensor_msgs::TimeReference> time_references;
+  /// This driver's diagnostics once it had made all 100 fixes (key -> value); empty if none came.
+  std::vector<diagnostic_msgs::KeyValue> final_diagnostics;
 };
 
-Received receiveAll()
+/// The status of the driver publishing frame_id's fixes in a diagnostics array, or nullptr.
+const diagnostic_msgs::DiagnosticStatus* driverStatus(const diagnostic_msgs::DiagnosticArray& array,
+                                                      const std::string& frame_id)
+{
+  for (const auto& status : array.status)
+    if (status.name.find("NMEA receiver " + frame_id) != std::string::npos)
+      return &status;
+  return nullptr;
+}
+
+std::string valueOf(const std::vector<diagnostic_msgs::KeyValue>& values, const std::string& key)
+{
+  for (const auto& kv : values)
+    if (kv.key == key)
+      return kv.value;
+  return "(missing)";
+}
+
+Received receiveAll(const std::string& frame_id)
 {
   ros::NodeHandle node;
   Received r;
+  // Subscribed first: the driver waits for its topics' subscribers only, and reports its final
+  // counts once, at the end of the file.
+  auto diagnostics = node.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 100, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& array) {
+        const diagnostic_msgs::DiagnosticStatus* status = driverStatus(*array, frame_id);
+        if (status && valueOf(status->values, "fixes") == "100")
+          r.final_diagnostics = status->values;
+      });
   auto s1 = node.subscribe<acc_identification::Sentence>(
       "nmea_sentence", 1000, [&](const acc_identification::Sentence::ConstPtr& m) { r.sentences.push_back(*m); });
   auto s2 = node.subscribe<sensor_msgs::NavSatFix>(
@@ -41,6 +71,8 @@ Received receiveAll()
       "vel", 1000, [&](const geometry_msgs::TwistStamped::ConstPtr& m) { r.vel.push_back(*m); });
   auto s4 = node.subscribe<acc_identification::GnssFix>(
       "fix", 1000, [&](const acc_identification::GnssFix::ConstPtr& m) { r.fixes.push_back(*m); });
+  auto s5 = node.subscribe<sensor_msgs::TimeReference>(
+      "time_reference", 1000, [&](const sensor_msgs::TimeReference::ConstPtr& m) { r.time_references.push_back(*m); });
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(30.0);
   // Until everything came, then a little longer to catch anything extra.
   while (ros::ok() && ros::WallTime::now() < end && (r.fixes.size() < 100 || r.sentences.size() < 600))
@@ -56,7 +88,7 @@ TEST(GpsDriverFile, PublishesEveryLineAndOneFixPerEpoch)
 {
   std::string frame_id;
   ASSERT_TRUE(ros::NodeHandle("~").getParam("expected_frame_id", frame_id));
-  const Received r = receiveAll();
+  const Received r = receiveAll(frame_id);
   EXPECT_EQ(r.sentences.size(), 600u);
   ASSERT_EQ(r.fixes.size(), 100u);
   EXPECT_EQ(r.navsat.size(), 100u);
@@ -121,6 +153,24 @@ TEST(GpsDriverFile, PublishesEveryLineAndOneFixPerEpoch)
   // Epochs 0.1 s apart, in order.
   for (std::size_t i = 4; i < r.fixes.size(); ++i)
     EXPECT_NEAR((r.fixes[i].header.stamp - r.fixes[i - 1].header.stamp).toSec(), 0.1, 1e-3) << i;
+
+  // time_reference: one per dated fix (the first three epochs have a time of day only), time_ref =
+  // the fix's GNSS time, header.stamp = its receive time whatever ~use_gnss_time says; the
+  // undated fixes are counted in the diagnostics.
+  constexpr std::size_t kUndatedFixes = 3;
+  ASSERT_EQ(r.time_references.size(), r.fixes.size() - kUndatedFixes);
+  for (std::size_t i = 0; i < r.time_references.size(); ++i)
+  {
+    const acc_identification::GnssFix& fix = r.fixes[i + kUndatedFixes];
+    const sensor_msgs::TimeReference& reference = r.time_references[i];
+    EXPECT_EQ(reference.time_ref, fix.header.stamp) << i;
+    EXPECT_EQ(reference.header.stamp, fix.receive_time) << i;
+    EXPECT_EQ(reference.header.frame_id, frame_id) << i;
+    EXPECT_EQ(reference.source, frame_id) << i;  // ~time_ref_source unset: the frame_id
+  }
+  ASSERT_FALSE(r.final_diagnostics.empty()) << "no diagnostics after the last fix";
+  EXPECT_EQ(valueOf(r.final_diagnostics, "fixes without a date (no time_reference)"), "3");
+  EXPECT_EQ(valueOf(r.final_diagnostics, "dated fixes with a time outside ros::Time (no time_reference)"), "0");
 }
 
 TEST(GpsDriverDiagnostics, RateAndBadSentencesDuringARealTimeReplay)
