@@ -270,9 +270,12 @@ std::vector<std::string> explain(const SumoPairReplay& r, bool same_gains)
   if (c.law_coincides == c.steps)
     lines.push_back("SUMO's law and the model coincide at every step: what differs is the position update (SUMO "
                     "moves by the new speed, the package's Euler step by the old one)");
-  if (!same_gains)
-    lines.push_back("the vType's gains, tau or minGap + length are not the model's in every mode (a vType made "
-                    "elsewhere, or an effect SUMO lacks): the model compared is the nearest one");
+  if (!same_gains && r.model_from_vtype_params)
+    lines.push_back("SUMO's law lacks part of the model the vType was exported from (an effect SUMO's ACC cannot "
+                    "carry; the file's notes name it): that part is the difference at every step");
+  else if (!same_gains)
+    lines.push_back("the vType's gap-control modes have different gains (a vType made elsewhere): the model "
+                    "compared is the nearest one, with SUMO's gap-closing gains");
   if (c.below_15_mps > 0)
     lines.push_back(share(c.below_15_mps, c.steps) +
                     " of steps at or below 15 m/s, where SUMO 1.15's desired gap adds the margin d0 (up to 2 m)");
@@ -394,6 +397,9 @@ SumoPlatoonReplay replayPlatoonInSumo(const SumoPlatoonInput& input, const std::
   {
     r.rmse_speed_sumo_vs_model_mps.push_back(rmse(sumo.speed_mps[i + 1], chain[i]));
     r.rmse_speed_sumo_vs_replica_mps.push_back(rmse(sumo.speed_mps[i + 1], replica[i]));
+    // SUMO's steps classified at SUMO's own states, driven by SUMO's car ahead.
+    r.steps.push_back(countSteps(input.vtypes[i], models[i], sumo.speed_mps[i], sumo.speed_mps[i + 1],
+                                 sumo.gap_m[i + 1], r.step_s, options));
   }
   for (const Perturbation& perturbation : findPerturbations(input.time_s, input.leader_speed_mps))
   {
@@ -478,7 +484,10 @@ nlohmann::json toJson(const SumoPlatoonReplay& r)
     perturbations.push_back(
         {{"onset_s", p.onset_s}, {"leader_dip_mps", jsonNumber(p.leader_dip_mps)}, {"positions", positions}});
   }
-  nlohmann::json rmse = nlohmann::json::array(), rmse_replica = nlohmann::json::array();
+  nlohmann::json rmse = nlohmann::json::array(), rmse_replica = nlohmann::json::array(),
+                 steps = nlohmann::json::array();
+  for (const SumoStepCounts& counts : r.steps)
+    steps.push_back(countsJson(counts));
   for (double value : r.rmse_speed_sumo_vs_model_mps)
     rmse.push_back(jsonNumber(value));
   for (double value : r.rmse_speed_sumo_vs_replica_mps)
@@ -486,6 +495,7 @@ nlohmann::json toJson(const SumoPlatoonReplay& r)
   return {{"run", r.run},         {"samples", r.samples},
           {"step_s", r.step_s},   {"vtypes", r.vtype_ids},
           {"rmse_speed_sumo_vs_model_mps", rmse}, {"rmse_speed_sumo_vs_sumo_law_replica_mps", rmse_replica},
+          {"steps", steps},
           {"perturbations", perturbations}};
 }
 
@@ -516,9 +526,17 @@ void printReplay(const SumoPlatoonReplay& r, std::ostream& out)
 {
   out << r.run << ": platoon of " << r.vtype_ids.size() << " in SUMO behind the run's leader\n";
   for (std::size_t i = 0; i < r.vtype_ids.size(); ++i)
+  {
     out << "  position " << i + 2 << " (" << r.vtype_ids[i] << "): speed RMSE SUMO vs the package's chain "
         << r.rmse_speed_sumo_vs_model_mps[i] << " m/s, vs the replica of SUMO's law "
-        << r.rmse_speed_sumo_vs_replica_mps[i] << " m/s\n";
+        << r.rmse_speed_sumo_vs_replica_mps[i] << " m/s";
+    const SumoStepCounts& c = r.steps[i];
+    if (c.below_15_mps > 0)
+      out << "; at or below 15 m/s (margin d0) " << share(c.below_15_mps, c.steps);
+    if (c.safe_speed_override > 0)
+      out << "; SUMO's safe speed overrode the law in " << c.safe_speed_override << " steps";
+    out << "\n";
+  }
   for (const SumoPlatoonPerturbation& p : r.perturbations)
   {
     out << "  perturbation at " << p.onset_s << " s, leader dip " << p.leader_dip_mps

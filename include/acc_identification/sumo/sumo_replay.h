@@ -132,6 +132,7 @@ struct SumoPlatoonReplay
   std::vector<std::string> vtype_ids;
   std::vector<double> rmse_speed_sumo_vs_model_mps;    ///< per position
   std::vector<double> rmse_speed_sumo_vs_replica_mps;  ///< per position: near 0 when SUMO's law is read right
+  std::vector<SumoStepCounts> steps;                   ///< per position: SUMO's modes, margins, overrides
   std::vector<SumoPlatoonPerturbation> perturbations;
 };
 
