@@ -24,6 +24,7 @@ acc_add_library(acc_calibration
     src/calibration/online_identifier.cpp
     src/calibration/model_dip_check.cpp
     src/calibration/model_adequacy.cpp
+    src/calibration/calibrate_runs.cpp
   LINK acc_evidence acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 
 # ROS side: runs from bags of RelativeState (rosbag API), with the CSV reader's checks.

@@ -1,0 +1,71 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "acc_identification/calibration/calibration_report.h"
+#include "acc_identification/model/car_following_run.h"
+
+namespace acc
+{
+/// One run (or segment) to calibrate and the RUN argument it came from (a drive for the
+/// sequential verdict is the consecutive runs of one path).
+struct CalibrationInput
+{
+  CarFollowingRun run;
+  std::string path;
+};
+
+/// The OpenACC pair(s) read from one RUN argument, for the output.
+struct PairsRead
+{
+  std::string path;
+  std::vector<std::string> pairs;
+};
+
+/// What `calibrate` does, as options (docs/TOOLS.md).
+struct CalibrateSettings
+{
+  bool split_half = false;         ///< --split half: train on first halves, report the second
+  std::size_t starts = 100;        ///< Halton starts of every multistart
+  std::size_t grid_nodes = 0;      ///< --grid N (0: no grid check)
+  double alpha = 0.05;             ///< level of the string-stability tests
+  std::optional<std::uint64_t> seed;  ///< the fixed-sample test's bootstrap seed (default: the library's)
+  bool stability_test = true;
+  double verdict_every_s = 0.0;    ///< > 0: replay the sequential verdict look by look
+  /// Called after each multistart start (done, total); may be empty.
+  std::function<void(std::size_t, std::size_t)> progress;
+  bool quiet = false;              ///< no progress lines on the log
+};
+
+/// Exit status for valid data that cannot be fitted (steady speed, too short): the JSON is still
+/// made (fitted: false, the reason, what the data do decide), but there are no parameters to use,
+/// so a script must not take the run for a fit (docs/TOOLS.md).
+constexpr int kExitValidDataNoFit = 3;
+
+struct CalibrateOutcome
+{
+  /// 0 (a fit), kExitValidDataNoFit, or 1 (the fit diverged).
+  int exit_status = 0;
+  std::optional<CalibrationReport> report;  ///< empty when there is no fit
+  nlohmann::json json;                      ///< exactly what `calibrate --json` writes
+};
+
+/// The whole of `calibrate` after its inputs are read: the fit (the identifier node's
+/// identifyAcc), the grid check, the fixed-sample string-stability test, the model's adequacy,
+/// the dips' evidence, each run's scores, the report on out, the sequential verdict's replay, and
+/// the JSON. Progress goes to log. Throws std::invalid_argument for a grid the objective refuses.
+CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, const std::vector<PairsRead>& pairs_read,
+                               const CalibrateSettings& settings, std::ostream& out, std::ostream& log);
+
+/// "OpenACC pair read: part3.csv: Hyundai behind Rexton, positions 2/1", one line per file.
+void printPairsRead(const std::vector<PairsRead>& pairs_read, std::ostream& out);
+
+}  // namespace acc
