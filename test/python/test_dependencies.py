@@ -24,8 +24,9 @@ import yaml
 REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
 DEPENDENCY_TAGS = ("depend", "build_depend", "build_export_depend", "exec_depend", "test_depend",
                    "buildtool_depend", "buildtool_export_depend", "doc_depend")
-# Folders whose Python files run with the package (scripts, rostest checkers, test helpers).
-PYTHON_FOLDERS = ("scripts", "test")
+# Folders whose Python files run with the package (scripts, rostest checkers, test helpers, the
+# Python API).
+PYTHON_FOLDERS = ("scripts", "test", "python")
 OWN_MODULES = {"acc_identification"}
 
 

@@ -1,0 +1,105 @@
+"""acc_identification from Python: read runs into pandas, calibrate, diagnose and run campaigns
+with the package's own C++ code (the same calls as the command-line tools, so the same numbers;
+docs/PYTHON.md).
+
+    import acc_identification as acc
+    run = acc.read_run("part9.csv")              # pandas.DataFrame, canonical columns
+    fit = acc.calibrate([run], split="half")     # dict: what `calibrate --json` writes
+    diag = acc.diagnose([run]); camp = acc.campaign(["dir/"])
+
+Errors raise the tools' messages (ValueError for bad input, RuntimeError otherwise); the solves
+release the GIL, so threads can run several at once. The generated ROS messages stay where catkin
+puts them: acc_identification.msg.
+"""
+import json
+import sys
+
+from acc_identification import _core
+
+COLUMNS = ("time_s", "space_gap_m", "follower_speed_mps", "leader_speed_mps")
+__all__ = ["COLUMNS", "read_run", "calibrate", "diagnose", "campaign"]
+
+
+def read_run(path, follower=None, all_pairs=False, max_gap_s=0.5, topic="relative_state"):
+    """A run file as the tools read it (canonical CSV, OpenACC CSV of any layout, or a bag of
+    RelativeState), as one pandas.DataFrame with the canonical columns and a `segment` column (the
+    reader splits a run at holes and rows it rejects). The reader's notes go to stderr, as the tools
+    print them. attrs: path, openacc_pairs (the pair(s) read), segment_names."""
+    import pandas
+
+    read = _core.read_run(str(path), follower or "", all_pairs, max_gap_s, topic)
+    if read["log"]:
+        sys.stderr.write(read["log"])
+    frames = []
+    for index, run in enumerate(read["runs"]):
+        frame = pandas.DataFrame({name: run[name] for name in COLUMNS})
+        frame.insert(0, "segment", index)
+        frames.append(frame)
+    frame = pandas.concat(frames, ignore_index=True)
+    frame.attrs = {"path": str(path), "openacc_pairs": list(read["pairs"]),
+                   "segment_names": [run["name"] for run in read["runs"]]}
+    return frame
+
+
+def _as_frames(runs):
+    """A DataFrame, a path, or a list of either: a list of DataFrames."""
+    if not isinstance(runs, (list, tuple)):
+        runs = [runs]
+    return [run if hasattr(run, "columns") else read_run(run) for run in runs]
+
+
+def _segments(frames):
+    """The C++ side's runs: one dict per segment, and the OpenACC pairs read per file."""
+    runs, pairs_read = [], []
+    for number, frame in enumerate(frames):
+        missing = [name for name in COLUMNS if name not in frame.columns]
+        if missing:
+            raise ValueError("a run needs the columns %s; missing: %s" % (", ".join(COLUMNS), ", ".join(missing)))
+        path = frame.attrs.get("path", "DataFrame %d" % (number + 1))
+        names = frame.attrs.get("segment_names", [])
+        groups = frame.groupby("segment", sort=True) if "segment" in frame.columns else [(0, frame)]
+        for index, (_, part) in enumerate(groups):
+            name = names[index] if index < len(names) else "%s #%d" % (path, index + 1)
+            runs.append({"name": name, "path": path, **{column: part[column].to_numpy(dtype=float)
+                                                          for column in COLUMNS}})
+        if frame.attrs.get("openacc_pairs"):
+            pairs_read.append({"path": path, "pairs": list(frame.attrs["openacc_pairs"])})
+    return runs, pairs_read
+
+
+def calibrate(runs, split="none", starts=None, alpha=None, seed=None, stability_test=True, verdict_every_s=None,
+              grid=None):
+    """`calibrate` on runs (DataFrames from read_run, or paths): the dict `calibrate --json` writes.
+    split "half": train on the first half of each run, test on the second (the paper)."""
+    if split not in ("none", "half"):
+        raise ValueError("split must be 'none' or 'half', not %r" % (split,))
+    defaults = _core.DEFAULTS["calibrate"]
+    segments, pairs_read = _segments(_as_frames(runs))
+    result = _core.calibrate(segments, pairs_read, split == "half", defaults["starts"] if starts is None else starts,
+                             defaults["alpha"] if alpha is None else alpha, seed, stability_test,
+                             verdict_every_s or 0.0, grid or 0)
+    return json.loads(result["json"])
+
+
+def diagnose(runs, train_fraction=None, effects=None, threads=None, seed=None, forward_selection=True):
+    """`diagnose` on runs (DataFrames from read_run, or paths): the dict `diagnose --json` writes."""
+    defaults = _core.DEFAULTS["diagnose"]
+    frames = _as_frames(runs)
+    segments, pairs_read = _segments(frames)
+    inputs = [frame.attrs.get("path", "DataFrame %d" % (number + 1)) for number, frame in enumerate(frames)]
+    return json.loads(_core.diagnose(segments, pairs_read, inputs,
+                                     defaults["train_fraction"] if train_fraction is None else train_fraction,
+                                     list(effects or []), defaults["threads"] if threads is None else threads,
+                                     defaults["seed"] if seed is None else seed, forward_selection))
+
+
+def campaign(paths, starts=None, threads=None, alpha=None, seed=None, platoon_check=True, platoon_diagnosis=True):
+    """`campaign` on OpenACC files or folders: the dict `campaign --json` writes."""
+    defaults = _core.DEFAULTS["campaign"]
+    if isinstance(paths, str):
+        paths = [paths]
+    return json.loads(_core.campaign([str(path) for path in paths],
+                                     defaults["starts"] if starts is None else starts,
+                                     defaults["threads"] if threads is None else threads,
+                                     defaults["alpha"] if alpha is None else alpha,
+                                     defaults["seed"] if seed is None else seed, platoon_check, platoon_diagnosis))

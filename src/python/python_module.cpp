@@ -1,0 +1,217 @@
+// acc_identification._core: the package's tools as Python functions (pybind11). Each takes and
+// gives plain data (numpy arrays, lists, JSON text) and runs the same library calls as its
+// command-line tool, so that a notebook and `calibrate --json` give the same numbers; the
+// DataFrames and dicts are made in python/acc_identification/__init__.py. Errors raise the
+// tools' messages as Python exceptions; the GIL is released while the C++ solves.
+#include <sstream>
+#include <stdexcept>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "acc_identification/calibration/calibrate_runs.h"
+#include "acc_identification/campaign/campaign.h"
+#include "acc_identification/campaign/campaign_output.h"
+#include "acc_identification/diagnosis/diagnosis.h"
+#include "acc_identification/diagnosis/diagnosis_output.h"
+#include "acc_identification/ros/run_bag_reader.h"
+
+namespace py = pybind11;
+
+namespace
+{
+py::array_t<double> toArray(const std::vector<double>& values)
+{
+  return py::array_t<double>(static_cast<py::ssize_t>(values.size()), values.data());
+}
+
+std::vector<double> column(const py::dict& run, const char* name)
+{
+  if (!run.contains(name))
+    throw std::invalid_argument(std::string("a run needs the column ") + name);
+  const auto array = run[name].cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+  return std::vector<double>(array.data(), array.data() + array.size());
+}
+
+/// A run as the Python side hands it: {name, path, time_s, space_gap_m, follower_speed_mps,
+/// leader_speed_mps}; checked as the readers check a file's runs.
+acc::CalibrationInput toInput(const py::dict& run)
+{
+  acc::CalibrationInput input;
+  input.run.name = run["name"].cast<std::string>();
+  input.path = run["path"].cast<std::string>();
+  input.run.time_s = column(run, "time_s");
+  input.run.space_gap_m = column(run, "space_gap_m");
+  input.run.follower_speed_mps = column(run, "follower_speed_mps");
+  input.run.leader_speed_mps = column(run, "leader_speed_mps");
+  const std::string problem = acc::describeRunProblem(input.run);
+  if (!problem.empty())
+    throw std::invalid_argument("run '" + input.run.name + "': " + problem);
+  return input;
+}
+
+std::vector<acc::CalibrationInput> toInputs(const py::list& runs)
+{
+  std::vector<acc::CalibrationInput> inputs;
+  for (const py::handle& run : runs)
+    inputs.push_back(toInput(run.cast<py::dict>()));
+  if (inputs.empty())
+    throw std::invalid_argument("no run given");
+  return inputs;
+}
+
+std::vector<acc::PairsRead> toPairsRead(const py::list& pairs_read)
+{
+  std::vector<acc::PairsRead> out;
+  for (const py::handle& item : pairs_read)
+  {
+    const py::dict entry = item.cast<py::dict>();
+    out.push_back({entry["path"].cast<std::string>(), entry["pairs"].cast<std::vector<std::string>>()});
+  }
+  return out;
+}
+
+/// read_run: the tools' reader of one RUN argument (CSV of any layout, or a bag).
+py::dict readRun(const std::string& path, const std::string& follower, bool all_pairs, double max_gap_s,
+                 const std::string& topic)
+{
+  std::ostringstream log;
+  acc::RunArgument argument;
+  {
+    py::gil_scoped_release unlocked;
+    argument = acc::readRunArgument(path, topic, max_gap_s, log, acc::pairSelectorFromOptions(follower, all_pairs));
+  }
+  py::list runs;
+  for (const acc::CarFollowingRun& run : argument.runs)
+  {
+    py::dict entry;
+    entry["name"] = run.name;
+    entry["time_s"] = toArray(run.time_s);
+    entry["space_gap_m"] = toArray(run.space_gap_m);
+    entry["follower_speed_mps"] = toArray(run.follower_speed_mps);
+    entry["leader_speed_mps"] = toArray(run.leader_speed_mps);
+    runs.append(entry);
+  }
+  py::dict result;
+  result["runs"] = runs;
+  result["pairs"] = argument.pairs;
+  result["log"] = log.str();
+  return result;
+}
+
+py::dict calibrate(const py::list& runs, const py::list& pairs_read, bool split_half, std::size_t starts,
+                   double alpha, const py::object& seed, bool stability_test, double verdict_every_s,
+                   std::size_t grid_nodes)
+{
+  const std::vector<acc::CalibrationInput> inputs = toInputs(runs);
+  const std::vector<acc::PairsRead> pairs = toPairsRead(pairs_read);
+  acc::CalibrateSettings settings;
+  settings.split_half = split_half;
+  settings.starts = starts;
+  settings.alpha = alpha;
+  if (!seed.is_none())
+    settings.seed = seed.cast<std::uint64_t>();
+  settings.stability_test = stability_test;
+  settings.verdict_every_s = verdict_every_s;
+  settings.grid_nodes = grid_nodes;
+  settings.quiet = true;
+  std::ostringstream text, log;
+  acc::CalibrateOutcome outcome;
+  {
+    py::gil_scoped_release unlocked;
+    outcome = acc::calibrateRuns(inputs, pairs, settings, text, log);
+  }
+  py::dict result;
+  result["json"] = outcome.json.dump();
+  result["text"] = text.str();
+  result["log"] = log.str();
+  result["exit_status"] = outcome.exit_status;
+  return result;
+}
+
+std::string diagnose(const py::list& runs, const py::list& pairs_read, const std::vector<std::string>& inputs,
+                     double train_fraction, const std::vector<std::string>& effects, std::size_t threads,
+                     const py::object& seed, bool forward_selection)
+{
+  std::vector<acc::CarFollowingRun> plain;
+  for (const acc::CalibrationInput& input : toInputs(runs))
+    plain.push_back(input.run);
+  acc::DiagnosisOptions options;
+  options.train_fraction = train_fraction;
+  options.threads = threads;
+  options.forward_selection = forward_selection;
+  if (!seed.is_none())
+    options.selection.seed = seed.cast<std::uint32_t>();
+  if (!effects.empty())
+  {
+    options.candidates.clear();
+    for (const std::string& name : effects)
+    {
+      acc::EffectKind kind = acc::EffectKind::none;
+      if (!acc::parseEffectName(name, &kind) || kind == acc::EffectKind::none)
+        throw std::invalid_argument("unknown effect '" + name + "'");
+      options.candidates.push_back(kind);
+    }
+  }
+  acc::DiagnosisResult result;
+  {
+    py::gil_scoped_release unlocked;
+    result = acc::diagnoseRuns(plain, options);
+  }
+  nlohmann::json json = acc::diagnosisToJson(result);
+  json["inputs"] = inputs;
+  json["openacc_pairs"] = nlohmann::json::array();
+  for (const acc::PairsRead& file : toPairsRead(pairs_read))
+    json["openacc_pairs"].push_back({{"path", file.path}, {"pairs", file.pairs}});
+  return json.dump();
+}
+
+std::string campaign(const std::vector<std::string>& paths, std::size_t starts, std::size_t threads, double alpha,
+                     std::uint64_t seed, bool platoon_check, bool platoon_diagnosis)
+{
+  acc::CampaignOptions options;
+  options.group.starts = starts;
+  options.group.alpha = alpha;
+  options.group.seed = seed;
+  options.threads = threads;
+  options.platoon_check = platoon_check;
+  options.platoon_diagnosis = platoon_diagnosis;
+  py::gil_scoped_release unlocked;
+  const acc::CampaignInputs inputs = acc::loadCampaign(paths);
+  const acc::CampaignResult result = acc::runCampaign(inputs, options);
+  return acc::campaignToJson(inputs, result, paths, options).dump();
+}
+}  // namespace
+
+/// The tools' defaults, read from the option structs themselves so that the Python functions
+/// default to exactly what the command-line tools do.
+py::dict defaults()
+{
+  const acc::CalibrateSettings calibrate;
+  const acc::DiagnosisOptions diagnose;
+  const acc::CampaignOptions campaign;
+  py::dict all;
+  all["calibrate"] = py::dict(py::arg("starts") = calibrate.starts, py::arg("alpha") = calibrate.alpha);
+  all["diagnose"] = py::dict(py::arg("train_fraction") = diagnose.train_fraction,
+                             py::arg("seed") = diagnose.selection.seed, py::arg("threads") = diagnose.threads);
+  all["campaign"] = py::dict(py::arg("starts") = campaign.group.starts, py::arg("alpha") = campaign.group.alpha,
+                             py::arg("seed") = campaign.group.seed, py::arg("threads") = campaign.threads);
+  return all;
+}
+
+PYBIND11_MODULE(_core, module)
+{
+  module.attr("DEFAULTS") = defaults();
+  module.doc() = "acc_identification's tools as functions; use the package's own module (import acc_identification)";
+  module.def("read_run", &readRun, py::arg("path"), py::arg("follower"), py::arg("all_pairs"), py::arg("max_gap_s"),
+             py::arg("topic"));
+  module.def("calibrate", &calibrate, py::arg("runs"), py::arg("pairs_read"), py::arg("split_half"), py::arg("starts"),
+             py::arg("alpha"), py::arg("seed"), py::arg("stability_test"), py::arg("verdict_every_s"),
+             py::arg("grid_nodes"));
+  module.def("diagnose", &diagnose, py::arg("runs"), py::arg("pairs_read"), py::arg("inputs"),
+             py::arg("train_fraction"), py::arg("effects"), py::arg("threads"), py::arg("seed"),
+             py::arg("forward_selection"));
+  module.def("campaign", &campaign, py::arg("paths"), py::arg("starts"), py::arg("threads"), py::arg("alpha"),
+             py::arg("seed"), py::arg("platoon_check"), py::arg("platoon_diagnosis"));
+}

@@ -1,0 +1,108 @@
+"""The Python API (python/acc_identification) against the command-line tools: every function's
+dict must be the tool's --json on the same bundled file, to the last digit (solve times aside),
+and bad input must raise the tools' messages. Run by `make test` (cmake/python.cmake) with the
+workspace sourced; ACC_DATA_CASALE_DIR and ACC_DATA_TOYOTA_DIR name the unpacked bundled data."""
+import json
+import math
+import os
+import subprocess
+import threading
+
+import pytest
+
+import acc_identification as acc
+
+CASALE = os.environ.get("ACC_DATA_CASALE_DIR", "")
+TOYOTA = os.environ.get("ACC_DATA_TOYOTA_DIR", "")
+TIMING_KEYS = {"solve_time_s", "wall_time_s", "threads"}
+
+
+def without_timing(value):
+    """The JSON with its wall-clock times (and thread counts) taken out: they differ between runs."""
+    if isinstance(value, dict):
+        return {key: without_timing(item) for key, item in value.items() if key not in TIMING_KEYS}
+    if isinstance(value, list):
+        return [without_timing(item) for item in value]
+    return value
+
+
+def tool_json(tmp_path, tool, *arguments):
+    out = tmp_path / (tool + ".json")
+    completed = subprocess.run(["rosrun", "acc_identification", tool, *arguments, "--json", str(out)],
+                               capture_output=True, text=True)
+    assert out.exists(), completed.stderr
+    with open(out) as stream:
+        return json.load(stream), completed.returncode
+
+
+def test_read_run_gives_the_canonical_columns_and_what_was_read():
+    run = acc.read_run(os.path.join(CASALE, "part5.csv"))
+    assert list(run.columns) == ["segment"] + list(acc.COLUMNS)
+    assert len(run) == 1051
+    assert run.attrs["openacc_pairs"] == ["Hyundai behind Rexton, positions 2/1"]
+    assert run.attrs["segment_names"] == ["part5 Hyundai"]
+    assert run["follower_speed_mps"].between(27.0, 40.0).all()
+
+
+def test_calibrate_equals_the_tool_to_the_last_digit(tmp_path):
+    path = os.path.join(CASALE, "part5.csv")
+    expected, status = tool_json(tmp_path, "calibrate", "--quiet", "--split", "half", path)
+    assert status == 0
+    got = acc.calibrate([acc.read_run(path)], split="half")
+    assert without_timing(got) == without_timing(expected)
+    assert got["parameters"]["k1_per_s2"] == expected["parameters"]["k1_per_s2"]  # exact, not approximate
+
+
+def test_calibrate_takes_paths_and_says_when_valid_data_cannot_be_fitted(tmp_path):
+    steady = tmp_path / "steady.csv"
+    steady.write_text("time_s,space_gap_m,follower_speed_mps,leader_speed_mps\n" +
+                      "".join("%.1f,30,20,20\n" % (0.1 * k) for k in range(300)))
+    expected, status = tool_json(tmp_path, "calibrate", "--quiet", str(steady))
+    assert status == 3
+    got = acc.calibrate(str(steady))
+    assert got["fitted"] is False
+    assert without_timing(got) == without_timing(expected)
+
+
+def test_diagnose_equals_the_tool(tmp_path):
+    path = os.path.join(CASALE, "part5.csv")
+    expected, status = tool_json(tmp_path, "diagnose", "--threads", "2", path)
+    assert status == 0
+    got = acc.diagnose([acc.read_run(path)], threads=2)
+    assert without_timing(got) == without_timing(expected)
+
+
+def test_campaign_equals_the_tool(tmp_path):
+    expected, status = tool_json(tmp_path, "campaign", "--quiet", "--threads", "2", "--no-platoon-diagnosis", TOYOTA)
+    assert status == 0
+    got = acc.campaign([TOYOTA], threads=2, platoon_diagnosis=False)
+    assert without_timing(got) == without_timing(expected)
+
+
+def test_bad_input_raises_the_tools_messages():
+    with pytest.raises(Exception, match="nope.csv"):
+        acc.read_run("/nonexistent/nope.csv")
+    run = acc.read_run(os.path.join(CASALE, "part5.csv"))
+    with pytest.raises(ValueError, match="missing: space_gap_m"):
+        acc.calibrate(run.drop(columns=["space_gap_m"]))
+    broken = run.copy()
+    broken.loc[10, "leader_speed_mps"] = math.nan
+    with pytest.raises(ValueError, match="part5 Hyundai"):
+        acc.calibrate(broken)
+    with pytest.raises(ValueError, match="unknown effect 'teleportation'"):
+        acc.diagnose(run, effects=["teleportation"])
+    with pytest.raises(ValueError, match="split"):
+        acc.calibrate(run, split="thirds")
+
+
+def test_the_solves_release_the_gil():
+    run = acc.read_run(os.path.join(CASALE, "part5.csv"))
+    done = []
+    worker = threading.Thread(target=lambda: done.append(acc.calibrate(run, stability_test=True)))
+    worker.start()
+    spins = 0
+    while worker.is_alive():
+        spins += 1  # runs only while the calibration in the other thread lets go of the GIL
+    worker.join()
+    assert done and done[0]["fitted"] is True
+    assert spins > 10000
