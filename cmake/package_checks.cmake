@@ -11,7 +11,7 @@ if(CATKIN_ENABLE_TESTING)
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   # Both run the package's nodes and tools: built first.
   set(_acc_user_targets gps_driver_node relative_state_node identifier_node openacc_to_nmea platoon
-      calibrate diagnose stability_report campaign synthesize nmea_to_bag)
+      calibrate diagnose stability_report campaign synthesize nmea_to_bag sumo_replay)
   set(_acc_user_dependencies)
   foreach(_target ${_acc_user_targets})
     if(TARGET ${_target})
