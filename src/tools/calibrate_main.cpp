@@ -105,8 +105,9 @@ int main(int argc, char** argv)
   app.add_option("--split", split, "half: train on the first half of each run, test on the second (the paper)")
       ->check(CLI::IsMember({"none", "half"}))
       ->capture_default_str();
+  // At least one: with none nothing is tried, and "every start diverged" would be a false reason.
   app.add_option("--starts", starts, "starting points of the multistart search")
-      ->check(CLI::Range(0, 100000))
+      ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   app.add_option("--json", json_path, "write parameters, standard errors, stability, the stability test, per-run RMSEs");
   app.add_option("--grid", settings.grid_nodes,

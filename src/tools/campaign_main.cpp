@@ -124,8 +124,8 @@ int main(int argc, char** argv)
   app.add_option("FILE_OR_DIR", paths, "OpenACC CSV files, or folders: every *.csv OpenACC file in them")
       ->required()
       ->check(CLI::ExistingPath);
-  app.add_option("--starts", options.group.starts, "Halton starts of every multistart fit")
-      ->check(CLI::Range(std::size_t{0}, std::size_t{100000}))
+  app.add_option("--starts", options.group.starts, "Halton starts of every multistart fit (at least one)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100000}))
       ->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads (0: every core)")->capture_default_str();
   app.add_option("--alpha", options.group.alpha, "level of the string-stability test")

@@ -490,6 +490,12 @@ int main(int argc, char** argv)
     std::cerr << "error: no run given (see --help)\n";
     return 2;
   }
+  // The report's folder before the work: a diagnosis should not end in "cannot create" after it.
+  if (!report_dir.empty() && !makeDirectory(report_dir))
+  {
+    std::cerr << "error: cannot create " << report_dir << ": " << std::strerror(errno) << "\n";
+    return 1;
+  }
   std::vector<acc::CarFollowingRun> runs;
   nlohmann::json pairs_read = nlohmann::json::array();
   try
@@ -547,11 +553,6 @@ int main(int argc, char** argv)
   if (!report_dir.empty())
   {
     const std::string* dir = &report_dir;
-    if (!makeDirectory(*dir))
-    {
-      std::cerr << "error: cannot create " << *dir << ": " << std::strerror(errno) << "\n";
-      return 1;
-    }
     try
     {
       acc::writeDiagnosisTables(result, *dir);

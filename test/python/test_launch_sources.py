@@ -6,6 +6,8 @@
   after its logs, both at once when a source is missing, with the reason on the screen.
 - `platoon` takes the paper's figure numbers (fig1 ... fig8) as well as the figures' names, and
   an unknown figure gets a message that lists them.
+- `--starts 0` is refused by calibrate and campaign (not "every start diverged"), and diagnose
+  refuses a report folder it cannot create before it reads the runs.
 
 Each roslaunch gets a master of its own on a free port, in its own process group, ended by its id.
 Usage: test_launch_sources.py [--junit FILE]   (with the workspace's devel/setup.bash sourced)
@@ -120,6 +122,20 @@ class UserCommands(unittest.TestCase):
         self.assertNotEqual(unknown.returncode, 0)
         for figure in ["fig%d" % number for number in range(1, 9)] + ["sinusoid", "lead-profile"]:
             self.assertIn(figure, unknown.stderr, unknown.stderr)
+
+    def test_calibrate_and_campaign_refuse_zero_starts(self):
+        for tool, data in (("calibrate", OPENACC_EXCERPT), ("campaign", OPENACC_EXCERPT)):
+            result = self.run_command(["rosrun", "acc_identification", tool, "--starts", "0", str(data)])
+            self.assertNotEqual(result.returncode, 0, tool + ": " + result.stdout + result.stderr)
+            self.assertIn("--starts", result.stderr, tool + ": " + result.stderr)
+            self.assertNotIn("diverged", result.stdout + result.stderr)
+
+    def test_diagnose_refuses_an_unwritable_report_before_the_work(self):
+        result = self.run_command(["rosrun", "acc_identification", "diagnose", "--no-plots", "--report",
+                                   "/proc/no_such_report_folder", str(OPENACC_EXCERPT)])
+        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+        self.assertIn("cannot create /proc/no_such_report_folder", result.stderr)
+        self.assertNotIn("pair read", result.stdout + result.stderr)  # stopped before reading the runs
 
 
 def main():
