@@ -25,6 +25,7 @@ acc_add_library(acc_calibration
     src/calibration/model_dip_check.cpp
     src/calibration/model_adequacy.cpp
     src/calibration/calibrate_runs.cpp
+    src/calibration/fit_traces.cpp
   LINK acc_evidence acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 
 # ROS side: runs from bags of RelativeState (rosbag API), with the CSV reader's checks.
@@ -32,6 +33,13 @@ acc_add_ros_library(acc_calibration_ros SOURCES src/ros/run_bag_reader.cpp LINK 
 
 # rosrun acc_identification calibrate [options] RUN...
 acc_add_tool(calibrate LINK acc_calibration_ros acc_run_io acc_sumo)
+# calibrate --report finds its figure script next to itself, as diagnose and campaign do.
+configure_file(scripts/plot_calibration.py
+  ${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_BIN_DESTINATION}/plot_calibration.py COPYONLY)
+configure_file(scripts/report_headline.py
+  ${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_BIN_DESTINATION}/report_headline.py COPYONLY)
+install(PROGRAMS scripts/plot_calibration.py scripts/report_headline.py
+  DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 
 # rosrun acc_identification verdict_study --drives N: size and power of the sequential verdict.
 acc_add_tool(verdict_study LINK acc_calibration)

@@ -17,6 +17,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from report_headline import headline, verdict_words  # noqa: E402
+
 OPENACC_ATTRIBUTION = (
     "Data: JRC OpenACC database, Casale campaign (Makridis, Mattas, Anesiadou, Ciuffo, "
     "Transportation Research Part C 125 (2021) 103047), (c) European Union, licensed CC BY 4.0. "
@@ -236,7 +238,10 @@ def write_report(report_dir, d):
     base = d["baseline"]
     dominant = d["dominant_effect"]
     chosen = next((e for e in d["effects"] if e["name"] == dominant), None)
-    lines = ["# Sim-to-real gap diagnosis", ""]
+    verdict = d.get("verdict") or {}
+    lines = headline("Sim-to-real gap diagnosis",
+                     verdict_words(verdict) + (f", of the {verdict['model']}" if verdict.get("model") else ""),
+                     d["final_model"].get("model_adequacy"), ", ".join(f"`{p}`" for p in d.get("inputs", [])))
     lines.append("Inputs: " + ", ".join(f"`{p}`" for p in d.get("inputs", [])) + ". Each run is fitted on its "
                  "first part and scored on the rest (held-out).")
     lines += ["", "## Verdict", ""]

@@ -230,6 +230,8 @@ CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, cons
   }
   outcome.exit_status = report.calibration.diverged ? 1 : 0;
   outcome.report = std::move(report);
+  outcome.training = std::move(training);
+  outcome.testing = std::move(testing);
   return outcome;
 }
 

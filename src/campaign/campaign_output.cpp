@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <limits>
 #include <ostream>
+#include <cctype>
+#include <map>
 #include <sstream>
 
 #include "acc_identification/calibration/calibration_report.h"
@@ -656,11 +658,45 @@ void printCampaignTables(const CampaignResult& result, std::ostream& out)
     printAligned({"run", "dip", "pos", "car", "what"}, disagreements, out);
 }
 
+namespace
+{
+/// The headline every report.md of the package has (scripts/report_headline.py): the verdicts,
+/// whether the models describe their data, and what data, here counted over the cars.
+std::string campaignHeadline(const CampaignResult& result)
+{
+  std::map<std::string, std::size_t> verdicts;
+  std::size_t adequate = 0, assessed = 0, runs = 0;
+  for (const GroupResult& g : result.groups)
+  {
+    ++verdicts[g.stability_test.tested ? toString(g.stability_test.verdict) : std::string("not tested")];
+    assessed += g.model_adequacy.assessed;
+    adequate += g.model_adequacy.assessed && g.model_adequacy.adequate;
+    runs += g.runs;
+  }
+  std::ostringstream line;
+  line << "**Verdict:** ";
+  const char* separator = "";
+  for (const auto& [verdict, count] : verdicts)
+  {
+    std::string upper = verdict;
+    for (char& c : upper)
+      c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    line << separator << count << " " << upper;
+    separator = ", ";
+  }
+  line << " (string-stability test per car and setting) · **Model:** " << adequate << " of " << assessed
+       << " cars ADEQUATE · **Data:** " << result.groups.size() << " cars (vehicle, setting), " << runs
+       << " car-runs, " << result.platoons.size() << " platoon(s)";
+  return line.str();
+}
+}  // namespace
+
 std::string campaignReportMarkdown(const CampaignResult& result, const std::vector<std::string>& input_paths,
                                    bool with_figures)
 {
   std::ostringstream md;
-  md << "# ACC campaign: models by car and setting, and the platoons they predict\n\n";
+  md << "# ACC campaign: models by car and setting, and the platoons they predict\n\n" << campaignHeadline(result)
+     << "\n\n";
   md << "Inputs:";
   for (const std::string& path : input_paths)
     md << " `" << path << "`";

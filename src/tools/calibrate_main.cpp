@@ -3,7 +3,11 @@
 // work is calibrateRuns (calibration/calibrate_runs.h), which the Python API calls too.
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -12,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include "acc_identification/calibration/calibrate_runs.h"
+#include "acc_identification/calibration/fit_traces.h"
 #include "acc_identification/ros/run_bag_reader.h"
 #include "acc_identification/sumo/sumo_vtype.h"
 
@@ -83,6 +88,47 @@ bool writeJson(const nlohmann::json& json, const std::string& path)
     std::cerr << "error: cannot write " << path << "\n";
   return static_cast<bool>(file);
 }
+
+/// The figure script installed next to this executable (devel and install space alike).
+std::string besideThisTool(const std::string& script)
+{
+  std::error_code error;
+  const auto executable = std::filesystem::read_symlink("/proc/self/exe", error);
+  return error ? script : (executable.parent_path() / script).string();
+}
+
+/// --report DIR: calibration.json, fit_traces.csv (every run measured and simulated) and, drawn
+/// by plot_calibration.py, a figure per run and report.md.
+bool writeReport(const std::string& dir, const acc::CalibrateOutcome& outcome,
+                 const std::vector<acc::CalibrationInput>& inputs)
+{
+  std::vector<std::string> names;
+  for (const acc::CalibrationInput& input : inputs)
+    names.push_back(input.run.name);
+  if (!writeJson(outcome.json, dir + "/calibration.json"))
+    return false;
+  try
+  {
+    if (outcome.report)
+      acc::writeFitTracesCsv(acc::fitTraces(outcome.report->calibration.parameters, names, outcome.training,
+                                            outcome.testing),
+                             dir + "/fit_traces.csv");
+  }
+  catch (const std::exception& error)
+  {
+    std::cerr << "error: " << error.what() << "\n";
+    return false;
+  }
+  const std::string script = besideThisTool("plot_calibration.py");
+  const std::string command = "/usr/bin/python3 '" + script + "' '" + dir + "'";
+  if (std::system(command.c_str()) != 0)
+  {
+    std::cerr << "error: the report figures failed (" << command << "); the JSON and traces are in " << dir << "\n";
+    return false;
+  }
+  std::cerr << "report: " << dir << "/report.md\n";
+  return true;
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -91,7 +137,7 @@ int main(int argc, char** argv)
                "reports the fit, the parameters with standard errors, what the data determine, and whether the "
                "ACC is string stable, decided on held-out halves."};
   std::vector<std::string> paths;
-  std::string split = "none", topic = "relative_state", json_path, follower, sumo_vtype_path, sumo_id;
+  std::string split = "none", topic = "relative_state", json_path, follower, sumo_vtype_path, sumo_id, report_dir;
   int starts = 100;
   double max_gap_s = 0.5;
   std::uint64_t seed = 0;
@@ -126,6 +172,9 @@ int main(int argc, char** argv)
                  "also replay each drive look by look every SECONDS of data time and report the sequential "
                  "(anytime-valid) verdicts the identifier node would publish, by the node's own code")
       ->check(CLI::PositiveNumber);
+  app.add_option("--report", report_dir,
+                 "write calibration.json, fit_traces.csv (each run measured and simulated), a figure per run and "
+                 "report.md into DIR");
   app.add_option("--sumo-vtype", sumo_vtype_path,
                  "also write the fitted model as a SUMO vType (carFollowModel ACC) into this additional file");
   app.add_option("--sumo-id", sumo_id, "the vType's id (default: the first run's name)");
@@ -149,6 +198,13 @@ int main(int argc, char** argv)
     settings.seed = seed;
   if (!settings.quiet)
     settings.progress = showProgress;
+  // The report's folder before the work, so that a folder that cannot be made fails at once.
+  std::error_code made;
+  if (!report_dir.empty() && !std::filesystem::create_directories(report_dir, made) && made)
+  {
+    std::cerr << "error: cannot create " << report_dir << ": " << made.message() << "\n";
+    return 1;
+  }
 
   try
   {
@@ -161,6 +217,8 @@ int main(int argc, char** argv)
                         inputs, !pairs_read.empty()))
       return 1;
     if (!json_path.empty() && !writeJson(outcome.json, json_path))
+      return 1;
+    if (!report_dir.empty() && !writeReport(report_dir, outcome, inputs))
       return 1;
     return outcome.exit_status;
   }

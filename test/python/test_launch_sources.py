@@ -6,12 +6,15 @@
   after its logs, both at once when a source is missing, with the reason on the screen.
 - `platoon` takes the paper's figure numbers (fig1 ... fig8) as well as the figures' names, and
   an unknown figure gets a message that lists them.
+- `calibrate --report DIR` gives the fit as a picture: a figure per run, the traces as CSV, and
+  report.md opening with the package's headline.
 - `--starts 0` is refused by calibrate and campaign (not "every start diverged"), and diagnose
   refuses a report folder it cannot create before it reads the runs.
 
 Each roslaunch gets a master of its own on a free port, in its own process group, ended by its id.
 Usage: test_launch_sources.py [--junit FILE]   (with the workspace's devel/setup.bash sourced)
 """
+import csv
 import os
 import pathlib
 import shutil
@@ -27,6 +30,8 @@ import junit_main
 REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
 # An OpenACC excerpt shipped in the repository (JRC OpenACC, CC BY 4.0: see its ATTRIBUTION.md).
 OPENACC_EXCERPT = REPOSITORY / "test/data/openacc/zalazone_dynamic_part26_excerpt.csv"
+# A canonical run shipped in the repository (Casale part 4, JRC OpenACC, CC BY 4.0: see the folder's ATTRIBUTION.md).
+CASALE_RUN = REPOSITORY / "test/data/runs/casale_part4.csv"
 # A bag of raw sentences of both receivers (made by test/data/end_to_end/make_dropout_bag.sh).
 SENTENCE_BAG = REPOSITORY / "test/data/end_to_end/leader_dropout_5s.bag"
 LAUNCH_TIMEOUT_S = 90
@@ -136,6 +141,22 @@ class UserCommands(unittest.TestCase):
         self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
         self.assertIn("cannot create /proc/no_such_report_folder", result.stderr)
         self.assertNotIn("pair read", result.stdout + result.stderr)  # stopped before reading the runs
+
+    def test_calibrate_report_has_the_headline_traces_and_a_figure_per_run(self):
+        result = self.run_command(["rosrun", "acc_identification", "calibrate", "--quiet", "--split", "half",
+                                   "--report", "fit", str(CASALE_RUN)])
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        report = (self.directory / "fit/report.md").read_text().splitlines()
+        self.assertEqual(report[0], "# ACC calibration")
+        self.assertTrue(report[2].startswith("**Verdict:** "), report[2])
+        self.assertIn("· **Model:** ", report[2])
+        with open(self.directory / "fit/fit_traces.csv") as traces:
+            rows = list(csv.DictReader(traces))
+        self.assertEqual({row["part"] for row in rows}, {"train", "held_out"})
+        residual = float(rows[5]["measured_speed_mps"]) - float(rows[5]["simulated_speed_mps"])
+        self.assertAlmostEqual(float(rows[5]["speed_residual_mps"]), residual, places=9)
+        self.assertTrue((self.directory / "fit/fit_1.png").stat().st_size > 10000)
+        self.assertTrue((self.directory / "fit/calibration.json").exists())
 
 
 def main():

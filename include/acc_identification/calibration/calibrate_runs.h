@@ -56,6 +56,8 @@ struct CalibrateOutcome
   int exit_status = 0;
   std::optional<CalibrationReport> report;  ///< empty when there is no fit
   nlohmann::json json;                      ///< exactly what `calibrate --json` writes
+  /// What the model was fitted on, and judged on with --split half (empty otherwise).
+  std::vector<CarFollowingRun> training, testing;
 };
 
 /// The whole of `calibrate` after its inputs are read: the fit (the identifier node's

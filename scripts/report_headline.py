@@ -1,0 +1,31 @@
+"""The one headline of every report.md the tools write (calibrate, diagnose; campaign writes the
+same shape from C++): the title, then one line with the verdict, whether the model describes the
+data, and what data it came from, so that a reader of any report sees the answer first."""
+
+
+def fmt(value, digits=3):
+    if value is None:
+        return "n/a"
+    return f"{value:.{digits}g}" if isinstance(value, float) else str(value)
+
+
+def adequacy_words(adequacy):
+    """ADEQUATE, NOT ADEQUATE (reasons) or not assessed (why)."""
+    if adequacy is None or adequacy.get("adequate") is None:
+        reasons = "; ".join((adequacy or {}).get("reasons", []))
+        return "not assessed" + (f" ({reasons})" if reasons else "")
+    return "ADEQUATE" if adequacy["adequate"] else "NOT ADEQUATE (" + "; ".join(adequacy["reasons"]) + ")"
+
+
+def verdict_words(test):
+    """The string-stability test's verdict with both p-values named by their hypothesis."""
+    if not test or not test.get("verdict"):
+        return "not tested"
+    return (f"{test['verdict'].upper()} (p (H0: stable) = {fmt(test.get('p_value_stable_rejected'))}, "
+            f"p (H0: unstable) = {fmt(test.get('p_value_unstable_rejected'))})")
+
+
+def headline(title, verdict, adequacy, data):
+    """Markdown lines: '# title', a blank line, and the headline line."""
+    return [f"# {title}", "",
+            f"**Verdict:** {verdict} · **Model:** {adequacy_words(adequacy)} · **Data:** {data}", ""]
