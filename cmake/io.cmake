@@ -11,6 +11,7 @@ acc_add_library(acc_run_io
     src/io/openacc_pairs.cpp
     src/io/run_csv.cpp
     src/io/run_plausibility.cpp
+    src/io/installed_beside.cpp
   LINK acc_model)
 
 if(CATKIN_ENABLE_TESTING)

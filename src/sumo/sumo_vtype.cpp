@@ -304,6 +304,25 @@ void writeSumoAdditional(const std::vector<SumoExport>& exports, const std::stri
     throw std::runtime_error("cannot write the SUMO vType file " + path);
 }
 
+bool saveSumoVTypes(const std::vector<SumoExport>& exports, const std::string& path, const std::string& provenance,
+                    std::ostream& log)
+{
+  try
+  {
+    writeSumoAdditional(exports, path, provenance);
+  }
+  catch (const std::exception& error)
+  {
+    log << "error: " << error.what() << "\n";
+    return false;
+  }
+  log << "SUMO vType" << (exports.size() == 1 ? " " : "s ");
+  for (std::size_t i = 0; i < exports.size(); ++i)
+    log << (i > 0 ? ", " : "") << exports[i].vtype.id;
+  log << " written to " << path << "\n";
+  return true;
+}
+
 namespace
 {
 double number(const tinyxml2::XMLElement* element, const char* name, double fallback, const std::string& path)

@@ -17,6 +17,7 @@
 
 #include "acc_identification/calibration/calibrate_runs.h"
 #include "acc_identification/calibration/fit_traces.h"
+#include "acc_identification/io/installed_beside.h"
 #include "acc_identification/ros/run_bag_reader.h"
 #include "acc_identification/sumo/sumo_vtype.h"
 
@@ -67,17 +68,7 @@ bool writeSumoVType(const std::string& path, const std::string& id, const acc::C
   if (report.model_adequacy && report.model_adequacy->assessed && !report.model_adequacy->adequate)
     exported.caveats.push_back("the model is " + acc::describeAdequacy(*report.model_adequacy) +
                                " for the data it was fitted on: see `diagnose` before simulating with it");
-  try
-  {
-    acc::writeSumoAdditional({exported}, path, from_openacc ? acc::kSumoOpenAccProvenance : "");
-  }
-  catch (const std::exception& error)
-  {
-    std::cerr << "error: " << error.what() << "\n";
-    return false;
-  }
-  std::cerr << "SUMO vType '" << exported.vtype.id << "' written to " << path << "\n";
-  return true;
+  return acc::saveSumoVTypes({exported}, path, from_openacc ? acc::kSumoOpenAccProvenance : "", std::cerr);
 }
 
 bool writeJson(const nlohmann::json& json, const std::string& path)
@@ -87,14 +78,6 @@ bool writeJson(const nlohmann::json& json, const std::string& path)
   if (!file)
     std::cerr << "error: cannot write " << path << "\n";
   return static_cast<bool>(file);
-}
-
-/// The figure script installed next to this executable (devel and install space alike).
-std::string besideThisTool(const std::string& script)
-{
-  std::error_code error;
-  const auto executable = std::filesystem::read_symlink("/proc/self/exe", error);
-  return error ? script : (executable.parent_path() / script).string();
 }
 
 /// --report DIR: calibration.json, fit_traces.csv (every run measured and simulated) and, drawn
@@ -119,7 +102,7 @@ bool writeReport(const std::string& dir, const acc::CalibrateOutcome& outcome,
     std::cerr << "error: " << error.what() << "\n";
     return false;
   }
-  const std::string script = besideThisTool("plot_calibration.py");
+  const std::string script = acc::installedBeside("plot_calibration.py");
   const std::string command = "/usr/bin/python3 '" + script + "' '" + dir + "'";
   if (std::system(command.c_str()) != 0)
   {

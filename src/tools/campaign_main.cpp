@@ -18,18 +18,11 @@
 #include "acc_identification/campaign/campaign.h"
 #include "acc_identification/campaign/campaign_output.h"
 #include "acc_identification/campaign/campaign_sumo_export.h"
+#include "acc_identification/io/installed_beside.h"
 #include "acc_identification/io/run_csv.h"
 
 namespace
 {
-/// The figure script installed next to this executable (devel and install space alike).
-std::string defaultPlotScript()
-{
-  std::error_code error;
-  const auto executable = std::filesystem::read_symlink("/proc/self/exe", error);
-  return error ? std::string("plot_campaign.py") : (executable.parent_path() / "plot_campaign.py").string();
-}
-
 /// A progress bar on stderr: redrawn in place on a terminal, a line per tenth otherwise.
 void showProgress(const std::string& stage, std::size_t done, std::size_t total)
 {
@@ -58,23 +51,6 @@ bool writeText(const std::string& text, const std::string& path)
     std::cerr << "error: cannot write " << path << "\n";
     return false;
   }
-  return true;
-}
-
-/// Every fitted car as a SUMO vType (campaign_sumo_export.h), with the data's attribution.
-bool writeSumoVTypes(const std::string& path, const acc::CampaignInputs& inputs, const acc::CampaignResult& result)
-{
-  const std::vector<acc::SumoExport> exports = acc::campaignSumoExports(inputs, result);
-  try
-  {
-    acc::writeSumoAdditional(exports, path, acc::kSumoOpenAccProvenance);
-  }
-  catch (const std::exception& error)
-  {
-    std::cerr << "error: " << error.what() << "\n";
-    return false;
-  }
-  std::cerr << exports.size() << " SUMO vType(s) written to " << path << "\n";
   return true;
 }
 
@@ -118,7 +94,7 @@ int main(int argc, char** argv)
                "parallel, and predicts each run's platoon from its real first car with models fitted without that "
                "run."};
   std::vector<std::string> paths;
-  std::string json_path, report_dir, plot_script = defaultPlotScript();
+  std::string json_path, report_dir, plot_script = acc::installedBeside("plot_campaign.py");
   acc::CampaignOptions options;
   bool quiet = false, no_platoon_check = false, no_plots = false;
   app.add_option("FILE_OR_DIR", paths, "OpenACC CSV files, or folders: every *.csv OpenACC file in them")
@@ -195,7 +171,8 @@ int main(int argc, char** argv)
   const nlohmann::json json = acc::campaignToJson(inputs, result, paths, options);
   if (!json_path.empty() && !writeText(json.dump(2) + "\n", json_path))
     return 1;
-  if (!sumo_vtype_path.empty() && !writeSumoVTypes(sumo_vtype_path, inputs, result))
+  if (!sumo_vtype_path.empty() && !acc::saveSumoVTypes(acc::campaignSumoExports(inputs, result), sumo_vtype_path,
+                                                        acc::kSumoOpenAccProvenance, std::cerr))
     return 1;
   if (!report_dir.empty())
     return writeReport(report_dir, json, result, paths, no_plots, plot_script);

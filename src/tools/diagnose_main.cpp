@@ -22,6 +22,7 @@
 #include "acc_identification/diagnosis/combined_effect_suite.h"
 #include "acc_identification/diagnosis/withheld_effect_suite.h"
 #include "acc_identification/io/run_csv.h"
+#include "acc_identification/io/installed_beside.h"
 #include "acc_identification/ros/run_bag_reader.h"
 #include "acc_identification/sumo/sumo_vtype.h"
 
@@ -79,14 +80,6 @@ bool applyEffects(const std::vector<std::string>& names, acc::DiagnosisOptions* 
     options->candidates.push_back(kind);
   }
   return true;
-}
-
-/// The figure script installed next to this executable (devel and install space alike).
-std::string defaultPlotScript()
-{
-  std::error_code error;
-  const auto executable = std::filesystem::read_symlink("/proc/self/exe", error);
-  return error ? std::string("plot_diagnosis.py") : (executable.parent_path() / "plot_diagnosis.py").string();
 }
 
 /// The real data sets of the semi-real suite, read from the bundled data unpacked at build time:
@@ -313,17 +306,7 @@ bool writeSumoVType(const std::string& path, const std::string& id, const acc::D
                                                acc::observedAccelerationLimits(runs));
   if (result.final_adequacy.assessed && !result.final_adequacy.adequate)
     exported.caveats.push_back("the final model is " + acc::describeAdequacy(result.final_adequacy));
-  try
-  {
-    acc::writeSumoAdditional({exported}, path, from_openacc ? acc::kSumoOpenAccProvenance : "");
-  }
-  catch (const std::exception& error)
-  {
-    std::cerr << "error: " << error.what() << "\n";
-    return false;
-  }
-  std::cerr << "SUMO vType '" << exported.vtype.id << "' (final model) written to " << path << "\n";
-  return true;
+  return acc::saveSumoVTypes({exported}, path, from_openacc ? acc::kSumoOpenAccProvenance : "", std::cerr);
 }
 
 void printVerdict(const acc::DiagnosisResult& r)
@@ -414,7 +397,7 @@ int main(int argc, char** argv)
                "--withheld-suite: synthetic runs with a hidden effect, and the confusion matrix."};
   acc::DiagnosisOptions options;
   std::vector<std::string> paths, effects;
-  std::string topic = "relative_state", json_path, report_dir, plot_script = defaultPlotScript(), suite;
+  std::string topic = "relative_state", json_path, report_dir, plot_script = acc::installedBeside("plot_diagnosis.py"), suite;
   double max_gap_s = 0.5;
   std::uint32_t seed = options.selection.seed;
   bool no_plots = false, all_pairs = false;

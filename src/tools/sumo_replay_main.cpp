@@ -1,13 +1,13 @@
 // sumo_replay: replays a run's real leader in SUMO (headless, TraCI) with an exported vType behind
 // it, and reports SUMO's follower against the package's own simulation and the measured car; with
 // several --id, a platoon of those vTypes behind the leader, dips by position (docs/SUMO.md).
-#include <filesystem>
 #include <fstream>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
 
 #include "acc_identification/campaign/campaign_sumo_platoon.h"
+#include "acc_identification/io/installed_beside.h"
 #include "acc_identification/ros/run_bag_reader.h"
 #include "acc_identification/sumo/sumo_replay_report.h"
 
@@ -40,9 +40,7 @@ int main(int argc, char** argv)
   app.add_option("--keep", options.work_dir, "keep SUMO's scenario, trace and log in this folder");
   app.add_option("--sumo", options.sumo, "the SUMO binary")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
-  std::error_code error;
-  const auto executable = std::filesystem::read_symlink("/proc/self/exe", error);
-  options.driver_script = (error ? std::filesystem::path(".") : executable.parent_path()) / "sumo_traci_replay.py";
+  options.driver_script = acc::installedBeside("sumo_traci_replay.py");
   try
   {
     nlohmann::json json;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <limits>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -109,6 +110,11 @@ extern const char* const kSumoOpenAccProvenance;
 /// provenance line when given. Throws std::runtime_error when the file cannot be written.
 void writeSumoAdditional(const std::vector<SumoExport>& exports, const std::string& path,
                          const std::string& provenance);
+
+/// writeSumoAdditional for the tools' --sumo-vtype: says on log what was written ("SUMO vType(s)
+/// ID, ... written to PATH") or why not ("error: ..."), and returns whether it was.
+bool saveSumoVTypes(const std::vector<SumoExport>& exports, const std::string& path, const std::string& provenance,
+                    std::ostream& log);
 
 /// Every vType with carFollowModel="ACC" in a SUMO additional or route file (attributes absent:
 /// SUMO 1.15's defaults). Throws std::runtime_error naming the file and what is wrong.
