@@ -1,6 +1,7 @@
 # Sim-to-real gap diagnosis (issue 6): where the calibrated model's held-out residual lies, which
 # missing physical effect explains it, and what adding that effect buys. ROS-free library, the
-# diagnose tool, unit tests and the withheld-effect suite.
+# diagnose tool and unit tests; the suites that check the diagnosis on data with known effects
+# are the validation library beside it.
 acc_add_library(acc_diagnosis
   SOURCES
     src/diagnosis/augmented_calibration.cpp
@@ -9,17 +10,18 @@ acc_add_library(acc_diagnosis
     src/diagnosis/augmented_stability.cpp
     src/diagnosis/augmented_stability_test.cpp
     src/diagnosis/diagnosis.cpp
-    src/diagnosis/withheld_effect_suite.cpp
-    src/diagnosis/combined_effect_suite.cpp
     src/diagnosis/determined_effects.cpp
-    src/diagnosis/injected_effect.cpp
     src/diagnosis/diagnosis_output.cpp
+    src/diagnosis/diagnosis_text.cpp
   # acc_calibration: the model-adequacy checks of the base and the final model (model_adequacy.h).
   LINK acc_calibration acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 
+# The diagnosis's own checks, a library of their own (cmake/validation.cmake).
+include(cmake/validation.cmake)
+
 # The tool reads runs (CSV or bags) as the calibrate tool does (calibration component).
 if(TARGET acc_calibration_ros)
-  acc_add_tool(diagnose LINK acc_diagnosis acc_calibration_ros acc_run_io acc_sumo)
+  acc_add_tool(diagnose LINK acc_validation acc_diagnosis acc_calibration_ros acc_run_io acc_sumo)
   # --withheld-suite semi-real injects effects into the bundled real runs (cmake/data.cmake).
   target_compile_definitions(diagnose PRIVATE ACC_CASALE_DIR="${ACC_DATA_CASALE_DIR}"
     ACC_ZALAZONE_TOYOTA_DIR="${ACC_DATA_ZALAZONE_TOYOTA_RAV4_S_DIR}")
@@ -46,7 +48,7 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_diagnosis_determined.cpp
     test/unit/test_diagnosis_adequacy.cpp)
   # The semi-real test reads a bundled real run (acc_run_io, cmake/data.cmake).
-  target_link_libraries(test_diagnosis acc_diagnosis acc_run_io)
+  target_link_libraries(test_diagnosis acc_validation acc_diagnosis acc_run_io)
   target_compile_definitions(test_diagnosis PRIVATE ACC_CASALE_DIR="${ACC_DATA_CASALE_DIR}"
     ACC_ZALAZONE_TOYOTA_DIR="${ACC_DATA_ZALAZONE_TOYOTA_RAV4_S_DIR}")
 endif()

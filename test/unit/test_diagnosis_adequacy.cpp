@@ -7,7 +7,7 @@
 
 #include "acc_identification/calibration/identification.h"
 #include "acc_identification/calibration/model_adequacy.h"
-#include "acc_identification/diagnosis/withheld_effect_suite.h"
+#include "acc_identification/validation/withheld_effect_suite.h"
 
 namespace
 {

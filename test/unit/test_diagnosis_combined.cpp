@@ -5,7 +5,7 @@
 #include <cmath>
 #include <set>
 
-#include "acc_identification/diagnosis/combined_effect_suite.h"
+#include "acc_identification/validation/combined_effect_suite.h"
 
 namespace
 {

@@ -6,7 +6,7 @@
 
 #include "acc_identification/diagnosis/determined_effects.h"
 #include "acc_identification/diagnosis/diagnosis.h"
-#include "acc_identification/diagnosis/withheld_effect_suite.h"
+#include "acc_identification/validation/withheld_effect_suite.h"
 
 namespace
 {

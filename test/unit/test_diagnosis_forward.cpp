@@ -10,7 +10,7 @@
 
 #include "acc_identification/diagnosis/diagnosis.h"
 #include "acc_identification/diagnosis/diagnosis_output.h"
-#include "acc_identification/diagnosis/withheld_effect_suite.h"
+#include "acc_identification/validation/withheld_effect_suite.h"
 
 namespace
 {

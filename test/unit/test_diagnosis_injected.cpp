@@ -12,8 +12,8 @@
 #include <string>
 
 #include "acc_identification/diagnosis/augmented_calibration.h"
-#include "acc_identification/diagnosis/injected_effect.h"
-#include "acc_identification/diagnosis/withheld_effect_suite.h"
+#include "acc_identification/validation/injected_effect.h"
+#include "acc_identification/validation/withheld_effect_suite.h"
 #include "acc_identification/io/run_csv.h"
 
 namespace

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "acc_identification/diagnosis/diagnosis_output.h"
-#include "acc_identification/diagnosis/withheld_effect_suite.h"
+#include "acc_identification/validation/withheld_effect_suite.h"
 
 
 TEST(DiagnosisOutput, JsonHasTheFieldsOfTheIssueAndTablesAreWritten)

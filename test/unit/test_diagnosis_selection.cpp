@@ -5,7 +5,7 @@
 
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/effect_selection.h"
-#include "acc_identification/diagnosis/withheld_effect_suite.h"
+#include "acc_identification/validation/withheld_effect_suite.h"
 #include "acc_identification/model/normal_source.h"
 
 

@@ -9,7 +9,7 @@
 #include "acc_identification/diagnosis/augmented_stability.h"
 #include "acc_identification/model/follower_effects.h"
 #include "acc_identification/diagnosis/residual_breakdown.h"
-#include "acc_identification/diagnosis/withheld_effect_suite.h"
+#include "acc_identification/validation/withheld_effect_suite.h"
 #include "acc_identification/model/string_stability.h"
 
 

@@ -8,7 +8,7 @@
 #include "acc_identification/diagnosis/augmented_stability.h"
 #include "acc_identification/diagnosis/augmented_stability_test.h"
 #include "acc_identification/diagnosis/diagnosis.h"
-#include "acc_identification/diagnosis/withheld_effect_suite.h"
+#include "acc_identification/validation/withheld_effect_suite.h"
 #include "acc_identification/model/halton_sequence.h"
 #include "acc_identification/model/paper_settings.h"
 

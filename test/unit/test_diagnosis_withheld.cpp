@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "acc_identification/diagnosis/withheld_effect_suite.h"
+#include "acc_identification/validation/withheld_effect_suite.h"
 #include "acc_identification/model/normal_source.h"
 
 

@@ -1,5 +1,5 @@
-#include "acc_identification/diagnosis/combined_effect_suite.h"
-#include "acc_identification/diagnosis/withheld_effect_suite.h"
+#include "acc_identification/validation/combined_effect_suite.h"
+#include "acc_identification/validation/withheld_effect_suite.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,4 +1,4 @@
-#include "acc_identification/diagnosis/injected_effect.h"
+#include "acc_identification/validation/injected_effect.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "acc_identification/diagnosis/withheld_effect_suite.h"
+#include "acc_identification/validation/withheld_effect_suite.h"
 
 #include <algorithm>
 #include <chrono>
@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "acc_identification/diagnosis/determined_effects.h"
-#include "acc_identification/diagnosis/injected_effect.h"
+#include "acc_identification/validation/injected_effect.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/normal_source.h"
 

@@ -1,0 +1,110 @@
+#include "acc_identification/diagnosis/diagnosis_text.h"
+
+#include <cctype>
+#include <cmath>
+
+#include "acc_identification/diagnosis/determined_effects.h"
+
+namespace acc
+{
+/// "string UNSTABLE (p (H0: stable) = 0.002; p (H0: unstable) = 0.97)": p-values named by the
+/// hypothesis they test.
+std::string testVerdictText(const AugmentedStabilityTestResult& test)
+{
+  char text[200];
+  std::string verdict = toString(test.verdict);
+  for (char& c : verdict)
+    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  std::snprintf(text, sizeof text, "%s%s (p (H0: stable) = %.3g; p (H0: unstable) = %.3g)",
+                test.verdict == StabilityVerdict::Undecided ? "" : "string ", verdict.c_str(),
+                test.p_value_stable_rejected, test.p_value_unstable_rejected);
+  return text;
+}
+
+namespace
+{
+/// Each model's adequacy, then THE verdict: the final model's test where the diagnosis found a
+/// better model, the base model's otherwise, and why.
+void printVerdict(const DiagnosisResult& r, std::FILE* out)
+{
+  const DiagnosisVerdict verdict = statedVerdict(r);
+  std::fprintf(out, "model adequacy, base model: %s\n", describeAdequacy(r.baseline_adequacy).c_str());
+  if (!r.selected_effects.empty())
+    std::fprintf(out, "model adequacy, %s: %s\n", verdict.model.c_str(), describeAdequacy(r.final_adequacy).c_str());
+  std::fprintf(out, "verdict (string-stability test of the %s): %s\n  why this model: %s\n", verdict.model.c_str(),
+              verdict.test ? testVerdictText(*verdict.test).c_str() : "not tested", verdict.why.c_str());
+}
+
+/// The forward selection's chain: one line per step with its held-out RMSE, gain and verdict,
+/// then the parameters of that step's model with their standard errors.
+void printChain(const DiagnosisResult& r, std::FILE* out)
+{
+  std::fprintf(out, "effects in combination (forward selection): %s\n",
+              r.selected_effects.empty() ? "none" : "");
+  for (std::size_t i = 0; i < r.selected_effects.size(); ++i)
+  {
+    const ForwardSelectionStep& step = r.selected_effects[i];
+    const ModelDiagnosis& m = step.model;
+    std::fprintf(out, "  %zu. + %-26s test_v %.4f m/s, test_gap %.3f m, MSE -%.1f%% of the previous model's (lower bound %.4g m^2/s^2), %s",
+                i + 1, effectName(step.added).c_str(), m.test_rmse_speed_mps, m.test_rmse_gap_m,
+                100.0 * m.improvement.relative, m.improvement.lower_bound,
+                m.stability.string_stable ? "point estimate stable" : "point estimate unstable");
+    if (step.stability_test)
+    {
+      std::fprintf(out, ", test: %s", testVerdictText(*step.stability_test).c_str());
+    }
+    // A diverged fit has no standard errors: print nan rather than fail.
+    auto se = [&m](std::size_t i) { return i < m.fit.standard_errors.size() ? m.fit.standard_errors[i] : NAN; };
+    std::fprintf(out, "\n     k1 %.4g +- %.2g, k2 %.4g +- %.2g, tau_e %.4g +- %.2g, eta %.4g +- %.2g", m.fit.base.k1_per_s2, se(0),
+                m.fit.base.k2_per_s, se(1), m.fit.base.tau_e_s, se(2), m.fit.base.eta_m, se(3));
+    const std::vector<std::string> names = effectParameterNames(effectsOf(m.fit));
+    for (std::size_t j = 0; j < names.size() && j < m.fit.effect_values.size(); ++j)
+    {
+      std::fprintf(out, ", %s %.4g +- %.2g", names[j].c_str(), m.fit.effect_values[j],
+                  se(AugmentedParameterBox::kBaseDimension + j));
+    }
+    std::fprintf(out, "\n");
+  }
+  std::fprintf(out, "  stopped: %s\n", r.forward_stop_reason.c_str());
+}
+
+}  // namespace
+
+void printDiagnosisSummary(const DiagnosisResult& r, std::FILE* out)
+{
+  std::fprintf(out, "%-26s %10s %10s %10s %9s %11s  %s\n", "model", "train_v", "test_v", "test_gap", "improve", "significant",
+              "point estimate's stability (not a verdict)");
+  auto row = [out](const ModelDiagnosis& m, bool is_base) {
+    std::fprintf(out, "%-26s %10.4f %10.4f %10.3f %8.1f%% %11s  %s (peak %.3f dB)\n", effectName(m.fit.effect).c_str(),
+                m.train_rmse_speed_mps, m.test_rmse_speed_mps, m.test_rmse_gap_m, 100.0 * m.improvement.relative,
+                is_base ? "-" : (m.significant ? "yes" : "no"), m.stability.string_stable ? "stable" : "UNSTABLE",
+                m.stability.peak_gain_db);
+  };
+  row(r.baseline, true);
+  for (const ModelDiagnosis& m : r.effects)
+  {
+    row(m, false);
+  }
+  std::fprintf(out, "dominant effect: %s; plausible:", effectName(r.selection.dominant).c_str());
+  for (EffectKind kind : r.selection.plausible)
+  {
+    std::fprintf(out, " %s", effectName(kind).c_str());
+  }
+  std::fprintf(out, "%s\n", r.selection.plausible.empty() ? " (none)" : "");
+  // What the training data pin down, named by the held-out rule or not (determined_effects.h).
+  std::fprintf(out, "determined by the training data (size away from none, Bonferroni):%s\n", r.determined.empty() ? " none" : "");
+  for (const DeterminedEffect& e : r.determined)
+  {
+    std::fprintf(out, "  %s\n", describeDeterminedEffect(e).c_str());
+  }
+  if (r.stability_test)
+  {
+    const AugmentedStabilityTestResult& t = *r.stability_test;
+    std::fprintf(out, "string-stability test of the %s model on the held-out parts: %s\n  why: %s\n",
+                effectName(t.effect).c_str(), testVerdictText(t).c_str(), t.reason.c_str());
+  }
+  printChain(r, out);
+  printVerdict(r, out);
+}
+
+}  // namespace acc
