@@ -33,6 +33,11 @@ acc_add_ros_library(acc_calibration_ros SOURCES src/ros/run_bag_reader.cpp LINK 
 
 # rosrun acc_identification calibrate [options] RUN...
 acc_add_tool(calibrate LINK acc_calibration_ros acc_run_io acc_sumo)
+# Its second opinion where the model does not describe the data is the diagnosis (cmake/diagnosis.cmake).
+if(TARGET acc_diagnosis OR "diagnosis" IN_LIST ACC_COMPONENTS)
+  target_link_libraries(calibrate acc_diagnosis)
+  target_compile_definitions(calibrate PRIVATE ACC_WITH_DIAGNOSIS=1)
+endif()
 # calibrate --report finds its figure script next to itself, as diagnose and campaign do.
 configure_file(scripts/plot_calibration.py
   ${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_BIN_DESTINATION}/plot_calibration.py COPYONLY)

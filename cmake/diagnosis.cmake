@@ -13,6 +13,7 @@ acc_add_library(acc_diagnosis
     src/diagnosis/determined_effects.cpp
     src/diagnosis/diagnosis_output.cpp
     src/diagnosis/diagnosis_text.cpp
+    src/diagnosis/calibration_second_opinion.cpp
   # acc_calibration: the model-adequacy checks of the base and the final model (model_adequacy.h).
   LINK acc_calibration acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 

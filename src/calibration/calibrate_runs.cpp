@@ -221,6 +221,16 @@ CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, cons
   CalibrateOutcome outcome;
   outcome.json = reportToJson(report);
   addPairsRead(pairs_read, outcome.json);
+  const bool inadequate =
+      report.model_adequacy && report.model_adequacy->assessed && !report.model_adequacy->adequate;
+  if (inadequate && report.stability_test && settings.second_opinion)
+  {
+    if (!settings.quiet)
+      log << "the model does not describe the data: diagnosing them for one that does...\n";
+    const SecondOpinion opinion = settings.second_opinion(whole_runs);
+    out << opinion.text;
+    outcome.json["diagnosed_verdict"] = opinion.json;
+  }
   if (settings.verdict_every_s > 0.0)
   {
     if (!settings.quiet)

@@ -198,6 +198,19 @@ std::ofstream openForWriting(const std::string& path)
 }
 }  // namespace
 
+nlohmann::json verdictJson(const DiagnosisResult& r)
+{
+  // One verdict, stated once: which model's test it is and why that model.
+  const DiagnosisVerdict verdict = statedVerdict(r);
+  return {{"model", verdict.model},
+          {"verdict", verdict.test ? nlohmann::json(toString(verdict.test->verdict)) : nlohmann::json()},
+          {"p_value_stable_rejected", verdict.test ? jsonNumber(verdict.test->p_value_stable_rejected) : nlohmann::json()},
+          {"p_value_unstable_rejected",
+           verdict.test ? jsonNumber(verdict.test->p_value_unstable_rejected) : nlohmann::json()},
+          {"model_adequate", verdict.model_adequate},
+          {"why", verdict.why}};
+}
+
 nlohmann::json diagnosisToJson(const DiagnosisResult& r)
 {
   nlohmann::json j;
@@ -246,17 +259,7 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
                         {"model_adequacy", toJson(r.final_adequacy)}};
   }
   j["baseline"]["model_adequacy"] = toJson(r.baseline_adequacy);
-  {
-    // One verdict, stated once: which model's test it is and why that model.
-    const DiagnosisVerdict verdict = statedVerdict(r);
-    j["verdict"] = {{"model", verdict.model},
-                    {"verdict", verdict.test ? nlohmann::json(toString(verdict.test->verdict)) : nlohmann::json()},
-                    {"p_value_stable_rejected", verdict.test ? jsonNumber(verdict.test->p_value_stable_rejected) : nlohmann::json()},
-                    {"p_value_unstable_rejected",
-                     verdict.test ? jsonNumber(verdict.test->p_value_unstable_rejected) : nlohmann::json()},
-                    {"model_adequate", verdict.model_adequate},
-                    {"why", verdict.why}};
-  }
+  j["verdict"] = verdictJson(r);
   j["effects"] = nlohmann::json::array();
   for (std::size_t k = 0; k < r.effects.size(); ++k)
   {

@@ -13,6 +13,7 @@
 #include "acc_identification/calibration/calibrate_runs.h"
 #include "acc_identification/campaign/campaign.h"
 #include "acc_identification/campaign/campaign_output.h"
+#include "acc_identification/diagnosis/calibration_second_opinion.h"
 #include "acc_identification/diagnosis/diagnosis.h"
 #include "acc_identification/diagnosis/diagnosis_output.h"
 #include "acc_identification/ros/run_bag_reader.h"
@@ -116,6 +117,7 @@ py::dict calibrate(const py::list& runs, const py::list& pairs_read, bool split_
   settings.verdict_every_s = verdict_every_s;
   settings.grid_nodes = grid_nodes;
   settings.quiet = true;
+  settings.second_opinion = acc::diagnosisSecondOpinion();  // as the calibrate tool
   std::ostringstream text, log;
   acc::CalibrateOutcome outcome;
   {

@@ -17,6 +17,9 @@
 
 #include "acc_identification/calibration/calibrate_runs.h"
 #include "acc_identification/calibration/fit_traces.h"
+#ifdef ACC_WITH_DIAGNOSIS
+#include "acc_identification/diagnosis/calibration_second_opinion.h"
+#endif
 #include "acc_identification/io/installed_beside.h"
 #include "acc_identification/ros/run_bag_reader.h"
 #include "acc_identification/sumo/sumo_vtype.h"
@@ -181,6 +184,9 @@ int main(int argc, char** argv)
     settings.seed = seed;
   if (!settings.quiet)
     settings.progress = showProgress;
+#ifdef ACC_WITH_DIAGNOSIS
+  settings.second_opinion = acc::diagnosisSecondOpinion();
+#endif
   // The report's folder before the work, so that a folder that cannot be made fails at once.
   std::error_code made;
   if (!report_dir.empty() && !std::filesystem::create_directories(report_dir, made) && made)

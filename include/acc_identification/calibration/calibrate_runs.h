@@ -30,6 +30,16 @@ struct PairsRead
   std::vector<std::string> pairs;
 };
 
+/// What a second look at runs the fitted model does not describe gives: its JSON and its text.
+struct SecondOpinion
+{
+  nlohmann::json json;
+  std::string text;
+};
+
+/// A second look at the runs (the diagnosis, which this library cannot call: it depends on it).
+using SecondOpinionOf = std::function<SecondOpinion(const std::vector<CarFollowingRun>& runs)>;
+
 /// What `calibrate` does, as options (docs/TOOLS.md).
 struct CalibrateSettings
 {
@@ -43,6 +53,11 @@ struct CalibrateSettings
   /// Called after each multistart start (done, total); may be empty.
   std::function<void(std::size_t, std::size_t)> progress;
   bool quiet = false;              ///< no progress lines on the log
+  /// Asked when the model is assessed NOT ADEQUATE (and a stability test ran): its JSON becomes
+  /// "diagnosed_verdict" and its text follows the report, so that the verdict a user reads comes
+  /// from a model that describes the data where one exists (the tool and the Python API pass the
+  /// diagnosis, diagnosis/calibration_second_opinion.h). Empty: not asked.
+  SecondOpinionOf second_opinion;
 };
 
 /// Exit status for valid data that cannot be fitted (steady speed, too short): the JSON is still

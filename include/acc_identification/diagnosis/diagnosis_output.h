@@ -9,6 +9,10 @@
 
 namespace acc
 {
+/// THE verdict of a diagnosis (statedVerdict) as JSON: {model, verdict, p_value_stable_rejected,
+/// p_value_unstable_rejected, model_adequate, why}; diagnosisToJson's "verdict".
+nlohmann::json verdictJson(const DiagnosisResult& r);
+
 /// The diagnosis as JSON: dominant_effect, plausible_effects, selected_effects (the forward
 /// selection's chain, in order: [{effect, model_effects, train_rmse_speed, test_rmse_speed,
 /// test_rmse_gap, improvement over the previous step {mean_mse_reduction, relative (to the base
