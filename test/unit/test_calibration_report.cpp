@@ -3,7 +3,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "acc_identification/calibration/calibrate_runs.h"
 #include "acc_identification/calibration/calibration_report.h"
+#include "acc_identification/io/run_csv.h"
 #include "acc_identification/calibration/synthetic_runs.h"
 #include "acc_identification/model/paper_settings.h"
 
@@ -210,3 +212,61 @@ TEST(CalibrationReport, UnfittableDataGetJsonWithTheReason)
   acc::printUnfitted(summary, text);
   EXPECT_NE(text.str().find("No fit: the follower speed spread"), std::string::npos) << text.str();
 }
+
+namespace
+{
+/// calibrateRuns' second opinion (calibrate_runs.h): asked exactly when the model does not
+/// describe the data, and what it says is in the JSON and the text.
+struct CountingOpinion
+{
+  int calls = 0;
+  acc::SecondOpinionOf hook()
+  {
+    return [this](const std::vector<acc::CarFollowingRun>& runs) {
+      ++calls;
+      return acc::SecondOpinion{{{"runs", runs.size()}}, "SECOND OPINION\n"};
+    };
+  }
+};
+
+acc::CalibrateOutcome calibrateWith(const std::vector<acc::CarFollowingRun>& runs, CountingOpinion& opinion,
+                                    std::ostringstream& text)
+{
+  std::vector<acc::CalibrationInput> inputs;
+  for (const acc::CarFollowingRun& run : runs)
+    inputs.push_back({run, run.name});
+  acc::CalibrateSettings settings;
+  settings.split_half = true;
+  settings.starts = 20;
+  settings.quiet = true;
+  settings.second_opinion = opinion.hook();
+  std::ostringstream log;
+  return acc::calibrateRuns(inputs, {}, settings, text, log);
+}
+
+TEST(CalibrateRuns, AModelThatDescribesTheDataGetsNoSecondOpinion)
+{
+  CountingOpinion opinion;
+  std::ostringstream text;
+  const acc::CalibrateOutcome outcome =
+      calibrateWith({acc::synthesizeRun(acc::paperMinimumSetting(), 600.0, 0.1, 20.0, 5)}, opinion, text);
+  ASSERT_EQ(outcome.exit_status, 0);
+  ASSERT_TRUE(outcome.json["model_adequacy"]["adequate"].get<bool>()) << outcome.json["model_adequacy"].dump();
+  EXPECT_EQ(opinion.calls, 0);
+  EXPECT_FALSE(outcome.json.contains("diagnosed_verdict"));
+}
+
+TEST(CalibrateRuns, AModelThatMissesGetsTheSecondOpinionInJsonAndText)
+{
+  CountingOpinion opinion;
+  std::ostringstream text;
+  // Casale part 4 (JRC OpenACC, CC BY 4.0): 115 s at 33-41 m/s, which the model misses by 25 m of gap.
+  const acc::CalibrateOutcome outcome =
+      calibrateWith(acc::readRuns(std::string(ACC_TEST_DATA_DIR) + "/casale_part4.csv"), opinion, text);
+  ASSERT_EQ(outcome.exit_status, 0);
+  ASSERT_FALSE(outcome.json["model_adequacy"]["adequate"].get<bool>());
+  EXPECT_EQ(opinion.calls, 1);
+  EXPECT_EQ(outcome.json["diagnosed_verdict"]["runs"], 1);  // the whole runs, not the halves
+  EXPECT_NE(text.str().find("SECOND OPINION"), std::string::npos);
+}
+}  // namespace
