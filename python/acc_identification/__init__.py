@@ -68,16 +68,17 @@ def _segments(frames):
 
 
 def calibrate(runs, split="none", starts=None, alpha=None, seed=None, stability_test=True, verdict_every_s=None,
-              grid=None):
+              grid=None, second_opinion=True):
     """`calibrate` on runs (DataFrames from read_run, or paths): the dict `calibrate --json` writes.
-    split "half": train on the first half of each run, test on the second (the paper)."""
+    split "half": train on the first half of each run, test on the second (the paper).
+    second_opinion=False: as --no-second-opinion, no diagnosis when the model misses the data."""
     if split not in ("none", "half"):
         raise ValueError("split must be 'none' or 'half', not %r" % (split,))
     defaults = _core.DEFAULTS["calibrate"]
     segments, pairs_read = _segments(_as_frames(runs))
     result = _core.calibrate(segments, pairs_read, split == "half", defaults["starts"] if starts is None else starts,
                              defaults["alpha"] if alpha is None else alpha, seed, stability_test,
-                             verdict_every_s or 0.0, grid or 0)
+                             verdict_every_s or 0.0, grid or 0, second_opinion)
     return json.loads(result["json"])
 
 

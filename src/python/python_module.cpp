@@ -103,7 +103,7 @@ py::dict readRun(const std::string& path, const std::string& follower, bool all_
 
 py::dict calibrate(const py::list& runs, const py::list& pairs_read, bool split_half, std::size_t starts,
                    double alpha, const py::object& seed, bool stability_test, double verdict_every_s,
-                   std::size_t grid_nodes)
+                   std::size_t grid_nodes, bool second_opinion)
 {
   const std::vector<acc::CalibrationInput> inputs = toInputs(runs);
   const std::vector<acc::PairsRead> pairs = toPairsRead(pairs_read);
@@ -117,7 +117,8 @@ py::dict calibrate(const py::list& runs, const py::list& pairs_read, bool split_
   settings.verdict_every_s = verdict_every_s;
   settings.grid_nodes = grid_nodes;
   settings.quiet = true;
-  settings.second_opinion = acc::diagnosisSecondOpinion();  // as the calibrate tool
+  if (second_opinion)
+    settings.second_opinion = acc::diagnosisSecondOpinion();  // as the calibrate tool
   std::ostringstream text, log;
   acc::CalibrateOutcome outcome;
   {
@@ -210,7 +211,7 @@ PYBIND11_MODULE(_core, module)
              py::arg("topic"));
   module.def("calibrate", &calibrate, py::arg("runs"), py::arg("pairs_read"), py::arg("split_half"), py::arg("starts"),
              py::arg("alpha"), py::arg("seed"), py::arg("stability_test"), py::arg("verdict_every_s"),
-             py::arg("grid_nodes"));
+             py::arg("grid_nodes"), py::arg("second_opinion"));
   module.def("diagnose", &diagnose, py::arg("runs"), py::arg("pairs_read"), py::arg("inputs"),
              py::arg("train_fraction"), py::arg("effects"), py::arg("threads"), py::arg("seed"),
              py::arg("forward_selection"));

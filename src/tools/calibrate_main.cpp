@@ -127,7 +127,7 @@ int main(int argc, char** argv)
   int starts = 100;
   double max_gap_s = 0.5;
   std::uint64_t seed = 0;
-  bool no_stability_test = false, all_pairs = false;
+  bool no_stability_test = false, all_pairs = false, no_second_opinion = false;
   acc::CalibrateSettings settings;
   app.add_option("RUN", paths,
                  "a canonical CSV (time_s,space_gap_m,follower_speed_mps,leader_speed_mps), an OpenACC CSV, or a "
@@ -165,6 +165,8 @@ int main(int argc, char** argv)
                  "also write the fitted model as a SUMO vType (carFollowModel ACC) into this additional file");
   app.add_option("--sumo-id", sumo_id, "the vType's id (default: the first run's name)");
   app.add_flag("--no-stability-test", no_stability_test, "skip the string-stability test on held-out halves");
+  app.add_flag("--no-second-opinion", no_second_opinion,
+               "do not diagnose the runs when the model does not describe them (saves the diagnosis's time)");
   app.add_flag("--quiet", settings.quiet, "no progress display");
   auto* follower_option =
       app.add_option("--follower", follower,
@@ -185,7 +187,8 @@ int main(int argc, char** argv)
   if (!settings.quiet)
     settings.progress = showProgress;
 #ifdef ACC_WITH_DIAGNOSIS
-  settings.second_opinion = acc::diagnosisSecondOpinion();
+  if (!no_second_opinion)
+    settings.second_opinion = acc::diagnosisSecondOpinion();
 #endif
   // The report's folder before the work, so that a folder that cannot be made fails at once.
   std::error_code made;
