@@ -10,7 +10,7 @@ bool sumoCarriesEvery(const std::vector<EffectKind>& effects)
 {
   return std::all_of(effects.begin(), effects.end(), [](EffectKind kind) {
     return kind == EffectKind::asymmetric_response || kind == EffectKind::acceleration_limits ||
-           kind == EffectKind::set_speed_cruise;
+           kind == EffectKind::set_speed_cruise || kind == EffectKind::reaction_delay;
   });
 }
 

@@ -10,8 +10,27 @@ namespace acc
 {
 namespace
 {
+bool hasVType(const std::vector<SumoAccVType>& vtypes, const std::string& id)
+{
+  return std::any_of(vtypes.begin(), vtypes.end(), [&](const SumoAccVType& v) { return v.id == id; });
+}
+
+/// The car's vType id: its diagnosed one when asked for and there, else its base one.
+std::string vtypeIdOf(const std::string& name, const std::string& setting, const std::vector<SumoAccVType>& vtypes,
+                      bool diagnosed, std::vector<std::string>& notes)
+{
+  const std::string base = sumoId(name + "_" + setting);
+  if (!diagnosed)
+    return base;
+  if (hasVType(vtypes, base + "_diagnosed"))
+    return base + "_diagnosed";
+  if (hasVType(vtypes, base))
+    notes.push_back(name + ": no diagnosed vType '" + base + "_diagnosed', its base vType instead");
+  return base;
+}
+
 /// The cars of the chain from position 2 with data and a vType, in order.
-std::vector<int> chainPositions(const CampaignFile& file, const std::vector<SumoAccVType>& vtypes,
+std::vector<int> chainPositions(const CampaignFile& file, const std::vector<SumoAccVType>& vtypes, bool diagnosed,
                                 std::vector<std::string>& notes)
 {
   std::vector<int> positions;
@@ -27,8 +46,8 @@ std::vector<int> chainPositions(const CampaignFile& file, const std::vector<Sumo
                         contents.vehicleName(position) + "): no speed or no gap to the car ahead in the file");
       break;
     }
-    const std::string id = sumoId(car->name + "_" + file.setting);
-    if (std::none_of(vtypes.begin(), vtypes.end(), [&](const SumoAccVType& v) { return v.id == id; }))
+    const std::string id = vtypeIdOf(car->name, file.setting, vtypes, diagnosed, notes);
+    if (!hasVType(vtypes, id))
     {
       notes.push_back("the chain stops at position " + std::to_string(position) + ": no vType '" + id +
                       "' in the file (campaign --sumo-vtype writes one per fitted car and setting)");
@@ -57,11 +76,12 @@ std::vector<double> rows(const std::vector<double>& column, std::size_t first, s
 }
 }  // namespace
 
-FilePlatoonForSumo filePlatoonForSumo(const CampaignFile& file, const std::vector<SumoAccVType>& vtypes)
+FilePlatoonForSumo filePlatoonForSumo(const CampaignFile& file, const std::vector<SumoAccVType>& vtypes,
+                                      bool diagnosed)
 {
   FilePlatoonForSumo out;
   const OpenAccFile& contents = file.contents;
-  std::vector<int> positions = chainPositions(file, vtypes, out.notes);
+  std::vector<int> positions = chainPositions(file, vtypes, diagnosed, out.notes);
   const auto [first, end] = longestLeadStretch(contents, PlatoonCheckOptions{}.max_time_step_s);
   // The first row where the whole chain has data; a car that never has it with the others ends it.
   std::size_t start = end;
@@ -84,7 +104,8 @@ FilePlatoonForSumo filePlatoonForSumo(const CampaignFile& file, const std::vecto
   for (int position : positions)
   {
     const OpenAccVehicle* car = contents.vehicle(position);
-    const std::string id = sumoId(car->name + "_" + file.setting);
+    std::vector<std::string> said;  // chainPositions said it already
+    const std::string id = vtypeIdOf(car->name, file.setting, vtypes, diagnosed, said);
     out.input.vtypes.push_back(*std::find_if(vtypes.begin(), vtypes.end(), [&](const SumoAccVType& v) {
       return v.id == id;
     }));
@@ -94,11 +115,11 @@ FilePlatoonForSumo filePlatoonForSumo(const CampaignFile& file, const std::vecto
   return out;
 }
 
-nlohmann::json replayFilePlatoonInSumo(const std::string& path, const std::string& vtype_file,
+nlohmann::json replayFilePlatoonInSumo(const std::string& path, const std::string& vtype_file, bool diagnosed,
                                        const SumoReplayOptions& options, std::ostream& out, std::ostream& log)
 {
   const CampaignInputs inputs = loadCampaign({path});
-  const FilePlatoonForSumo platoon = filePlatoonForSumo(inputs.files.front(), readSumoAccVTypes(vtype_file));
+  const FilePlatoonForSumo platoon = filePlatoonForSumo(inputs.files.front(), readSumoAccVTypes(vtype_file), diagnosed);
   for (const std::string& note : platoon.notes)
     log << "note: " << note << "\n";
   if (platoon.input.vtypes.empty())

@@ -30,6 +30,21 @@ SumoAccStep sumoAccStep(const SumoAccVType& vtype, double gap_m, double speed_mp
   return step;
 }
 
+std::size_t sumoActionEvery(const SumoAccVType& vtype, double step_s)
+{
+  if (!(vtype.action_step_length_s > step_s))
+    return 1;
+  return static_cast<std::size_t>(std::lround(vtype.action_step_length_s / step_s));
+}
+
+SumoAccStep heldStep(double speed_mps, double held_acceleration_mps2, SumoAccMode mode, double step_s)
+{
+  SumoAccStep step;
+  step.next_speed_mps = std::max(0.0, speed_mps + held_acceleration_mps2 * step_s);
+  step.mode = mode;
+  return step;
+}
+
 SumoAccTrace simulateSumoAcc(const SumoAccVType& vtype, const std::vector<double>& leader_speed_mps, double step_s,
                              double initial_gap_m, double initial_speed_mps, double lane_speed_limit_mps)
 {
@@ -44,10 +59,21 @@ SumoAccTrace simulateSumoAcc(const SumoAccVType& vtype, const std::vector<double
   trace.speed_mps[0] = initial_speed_mps;
   trace.space_gap_m[0] = initial_gap_m;
   SumoAccMode mode = SumoAccMode::speed_control;  // SUMO starts every ACC in speed control
+  const std::size_t every = sumoActionEvery(vtype, step_s);
+  double held_acceleration_mps2 = 0.0;
   for (std::size_t k = 0; k + 1 < n; ++k)
   {
-    const SumoAccStep step = sumoAccStep(vtype, trace.space_gap_m[k], trace.speed_mps[k], leader_speed_mps[k], mode,
-                                         step_s, lane_speed_limit_mps);
+    SumoAccStep step;
+    if (k % every == 0)
+    {
+      step = sumoAccStep(vtype, trace.space_gap_m[k], trace.speed_mps[k], leader_speed_mps[k], mode, step_s,
+                         lane_speed_limit_mps);
+      held_acceleration_mps2 = (step.next_speed_mps - trace.speed_mps[k]) / step_s;
+    }
+    else
+    {
+      step = heldStep(trace.speed_mps[k], held_acceleration_mps2, mode, step_s);
+    }
     mode = step.mode;
     trace.mode[k] = step.mode;
     trace.speed_bound_active[k] = step.speed_bound_active;

@@ -234,10 +234,18 @@ SumoStepCounts countSteps(const SumoAccVType& vtype, const PackageModel& model, 
   SumoStepCounts counts;
   const bool same_gains = gainsAreTheModels(vtype, model);
   SumoAccMode mode = SumoAccMode::speed_control;
+  const std::size_t every = sumoActionEvery(vtype, step_s);
+  double held_acceleration_mps2 = 0.0;
   for (std::size_t k = 0; k + 1 < speed_mps.size(); ++k)
   {
+    // Between action steps SUMO holds the acceleration it decided at SUMO's own last action step.
+    const bool acting = k % every == 0;
     const SumoAccStep step =
-        sumoAccStep(vtype, gap_m[k], speed_mps[k], leader_mps[k], mode, step_s, options.lane_speed_limit_mps);
+        acting ? sumoAccStep(vtype, gap_m[k], speed_mps[k], leader_mps[k], mode, step_s, options.lane_speed_limit_mps)
+               : heldStep(speed_mps[k], held_acceleration_mps2, mode, step_s);
+    if (acting)
+      held_acceleration_mps2 = (speed_mps[k + 1] - speed_mps[k]) / step_s;
+    counts.held += !acting;
     mode = step.mode;
     ++counts.steps;
     counts.speed_control += step.mode == SumoAccMode::speed_control;
@@ -287,6 +295,10 @@ std::vector<std::string> explain(const SumoPairReplay& r, bool same_gains)
   if (c.safe_speed_override > 0)
     lines.push_back(share(c.safe_speed_override, c.steps) +
                     " of steps overridden by SUMO's safe speed (collisionAvoidanceOverride)");
+  if (c.held > 0)
+    lines.push_back(share(c.held, c.steps) +
+                    " of steps between SUMO's action steps, where it holds its last decision (actionStepLength: "
+                    "the export's stand-in for a reaction delay)");
   return lines;
 }
 }  // namespace
@@ -428,6 +440,7 @@ nlohmann::json countsJson(const SumoStepCounts& c)
           {"at_or_below_15_mps", c.below_15_mps},
           {"speed_bound_active", c.speed_bound_active},
           {"safe_speed_override", c.safe_speed_override},
+          {"held_between_action_steps", c.held},
           {"law_coincides", c.law_coincides}};
 }
 

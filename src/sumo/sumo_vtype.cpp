@@ -3,6 +3,7 @@
 #include <tinyxml2.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cctype>
 #include <cmath>
 #include <iomanip>
@@ -69,12 +70,12 @@ EffectSettings PackageModel::settings() const
 
 namespace
 {
-/// A number as 17 significant digits: read back, it is the same double.
+/// The shortest text that reads back as the same double ("2.4", not "2.4000000000000004").
 std::string shortest(double value)
 {
-  std::ostringstream out;
-  out << std::setprecision(17) << value;
-  return out.str();
+  char text[32];
+  const auto [end, error] = std::to_chars(text, text + sizeof text, value);
+  return error == std::errc() ? std::string(text, end) : std::string("nan");
 }
 
 /// The exported limits: the fitted ones when the model has them, else the data's, floored.
@@ -147,6 +148,27 @@ void exportResponseEffects(const AccParameters& p, const EffectSettings& setting
                            std::to_string(settings.closing_gain_ratio) + " is lost)"});
 }
 
+/// A dead time d as SUMO's actionStepLength = 2 d: SUMO decides every 2 d and holds the
+/// acceleration in between, so its decisions are d old on average, as the delayed model's are.
+/// Not the same law: it reproduces what a delay does to a braking passed along a platoon (the
+/// dips), not the speed trace (docs/SUMO.md, measured).
+void exportReactionDelay(const EffectSettings& settings, SumoExport& out)
+{
+  // SUMO takes action steps in whole simulation steps: whole 0.1 s steps (the data's 10 Hz).
+  const double steps = std::round(20.0 * settings.reaction_delay_s);
+  if (steps < 2.0)
+  {
+    out.notes.push_back({"reaction_delay", SumoMapping::none,
+                         "a dead time under one 0.1 s step: SUMO's ACC acts every step"});
+    return;
+  }
+  out.vtype.action_step_length_s = steps / 10.0;  // whole 0.1 s steps, "2.4" in the file
+  out.notes.push_back({"reaction_delay", SumoMapping::approximate,
+                       "actionStepLength = 2 d (SUMO decides every 2 d and holds its acceleration, a decision d old "
+                       "on average): it passes a braking on along a platoon as the delayed model does, but it is "
+                       "not the same law and its speed trace differs (docs/SUMO.md)"});
+}
+
 void exportSetSpeed(const EffectSettings& settings, SumoExport& out)
 {
   out.vtype.max_speed_mps = settings.set_speed_mps;
@@ -160,8 +182,6 @@ std::string noEquivalentNote(EffectKind kind)
 {
   switch (kind)
   {
-    case EffectKind::reaction_delay:
-      return "SUMO 1.15's ACC acts on the current state (actionStepLength holds a decision, it does not delay it)";
     case EffectKind::actuation_lag:
       return "SUMO 1.15's ACC realises its command within the step (no first-order lag)";
     case EffectKind::sensor_time_offset:
@@ -193,6 +213,8 @@ SumoExport exportToSumo(const std::string& id, const AccParameters& parameters, 
   exportResponseEffects(parameters, settings, has(EffectKind::asymmetric_response), out);
   exportStandstillGap(parameters.eta_m, options, out);
   exportLimits(settings, has(EffectKind::acceleration_limits), limits, options, out);
+  if (has(EffectKind::reaction_delay))
+    exportReactionDelay(settings, out);
   if (has(EffectKind::set_speed_cruise))
     exportSetSpeed(settings, out);
   else
@@ -270,6 +292,8 @@ void addVType(tinyxml2::XMLDocument& document, tinyxml2::XMLElement* root, const
   setNumber(element, "emergencyDecel", v.emergency_decel_mps2);
   if (std::isfinite(v.max_speed_mps))
     setNumber(element, "maxSpeed", v.max_speed_mps);
+  if (std::isfinite(v.action_step_length_s))
+    setNumber(element, "actionStepLength", v.action_step_length_s);
   // The identified car drives the lane's limit exactly: no speed deviation drawn per vehicle.
   element->SetAttribute("speedFactor", "1");
   element->SetAttribute("speedDev", "0");
@@ -403,6 +427,7 @@ SumoAccVType readVType(const tinyxml2::XMLElement* element, const std::string& p
   v.decel_mps2 = number(element, "decel", v.decel_mps2, path);
   v.emergency_decel_mps2 = number(element, "emergencyDecel", std::max(v.decel_mps2, 9.0), path);
   v.max_speed_mps = number(element, "maxSpeed", v.max_speed_mps, path);
+  v.action_step_length_s = number(element, "actionStepLength", v.action_step_length_s, path);
   SumoAccGains& g = v.gains;
   g.speed_control_gain_per_s = number(element, "speedControlGain", g.speed_control_gain_per_s, path);
   g.gap_closing_gain_speed_per_s = number(element, "gapClosingControlGainSpeed", g.gap_closing_gain_speed_per_s, path);

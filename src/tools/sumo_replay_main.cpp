@@ -19,7 +19,7 @@ int main(int argc, char** argv)
   std::vector<std::string> ids;
   acc::SumoReplayOptions options;
   double max_gap_s = 0.5;
-  bool platoon = false;
+  bool platoon = false, diagnosed = false;
   app.add_option("RUN", path, "a canonical CSV, an OpenACC CSV or a bag of RelativeState")
       ->required()
       ->check(CLI::ExistingFile);
@@ -34,6 +34,9 @@ int main(int argc, char** argv)
                "RUN is an OpenACC platoon file: replay its first car with every following car's vType "
                "(<VEHICLE>_<setting>, as campaign --sumo-vtype names them) behind it, from the measured starts; "
                "dips by position in SUMO, the package's chain and the real cars");
+  app.add_flag("--diagnosed", diagnosed,
+               "with --platoon: each car's <VEHICLE>_<setting>_diagnosed vType (the platoon diagnosis's model) "
+               "where the file has one");
   app.add_option("--follower", follower, "OpenACC files: the follower of the pair to read (its leader is replayed)");
   app.add_option("--topic", topic, "RelativeState topic in bags")->capture_default_str();
   app.add_option("--max-gap", max_gap_s, "split runs at holes longer than this [s]")->capture_default_str();
@@ -46,7 +49,7 @@ int main(int argc, char** argv)
     nlohmann::json json;
     if (platoon)
     {
-      json = acc::replayFilePlatoonInSumo(path, vtype_file, options, std::cout, std::cerr);
+      json = acc::replayFilePlatoonInSumo(path, vtype_file, diagnosed, options, std::cout, std::cerr);
     }
     else
     {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <limits>
 #include <filesystem>
 #include <sstream>
 
@@ -127,6 +128,45 @@ TEST(SumoReplay, PlatoonDipsInSumoMatchThePackagesChainWhereTheLawsCoincide)
   }
   // The weakly damped cars amplify the braking, in SUMO as in the package.
   EXPECT_GT(replay.perturbations[0].positions[2].sumo_dip_mps, replay.perturbations[0].positions[1].sumo_dip_mps);
+}
+
+/// A delayed model exported with SUMO's action step (2 d): SUMO holds its decisions between action
+/// steps, which the replica does too, step for step; the delayed model and SUMO pass the braking on
+/// alike, and far more than SUMO without the action step.
+TEST(SumoReplay, TheDelayAsAnActionStepIsHeldAsSumoHoldsIt)
+{
+  CarFollowingRun run;
+  run.name = "braking";
+  for (int k = 0; k < 900; ++k)
+  {
+    const double t = 0.1 * k;
+    double u = 25.0;
+    if (t > 30.0 && t <= 34.0)
+      u -= 5.0 * (t - 30.0) / 4.0;
+    else if (t > 34.0 && t <= 44.0)
+      u -= 5.0 * (44.0 - t) / 10.0;
+    run.time_s.push_back(t);
+    run.leader_speed_mps.push_back(u);
+  }
+  const AccParameters p{0.05, 0.6, 0.8, 8.0};
+  run.space_gap_m.assign(run.size(), p.eta_m + p.tau_e_s * 25.0);
+  run.follower_speed_mps.assign(run.size(), 25.0);
+  SumoExport delayed = exportToSumo("delayed", p, {EffectKind::reaction_delay}, {0.8}, {5.0, 8.0});
+  ASSERT_NEAR(delayed.vtype.action_step_length_s, 1.6, 1e-12);
+  SumoExport prompt = exportToSumo("prompt", p, {EffectKind::reaction_delay}, {0.8}, {5.0, 8.0});
+  prompt.vtype.action_step_length_s = std::numeric_limits<double>::quiet_NaN();
+  const std::string path = vtypeFile({delayed, prompt}, "delay.add.xml");
+  const std::vector<SumoAccVType> vtypes = readSumoAccVTypes(path);
+  const SumoPlatoonReplay with_step = replayPlatoonInSumo(equilibriumPlatoon(run, {vtypes[0]}), path, replayOptions());
+  const SumoPlatoonReplay without = replayPlatoonInSumo(equilibriumPlatoon(run, {vtypes[1]}), path, replayOptions());
+  std::remove(path.c_str());
+  ASSERT_EQ(with_step.perturbations.size(), 1u);
+  EXPECT_LT(with_step.rmse_speed_sumo_vs_replica_mps[0], 1e-6);
+  EXPECT_GT(with_step.steps[0].held, 800u);  // 15 of every 16 steps
+  const SumoPlatoonDip& held = with_step.perturbations[0].positions[0];
+  const SumoPlatoonDip& prompt_dip = without.perturbations[0].positions[0];
+  EXPECT_NEAR(held.sumo_dip_mps, held.model_dip_mps, 0.15 * held.model_dip_mps);
+  EXPECT_GT(held.model_dip_mps - prompt_dip.sumo_dip_mps, 0.1);  // the delay deepens the dip
 }
 
 TEST(SumoReplay, UnknownIdsAndNonUniformRunsAreRefused)

@@ -107,10 +107,21 @@ TEST(SumoExport, EffectsMapWhereSumoHasThemAndAreNamedWhereNot)
   EXPECT_DOUBLE_EQ(exported.vtype.gains.collision_avoidance_gain_speed_per_s, 0.45);
   EXPECT_EQ(findNote(exported, "asymmetric_response.short_gap_gain_ratio")->mapping, SumoMapping::exact);
   EXPECT_EQ(findNote(exported, "asymmetric_response.closing_gain_ratio")->mapping, SumoMapping::none);
-  EXPECT_EQ(findNote(exported, "reaction_delay")->mapping, SumoMapping::none);
+  EXPECT_EQ(findNote(exported, "reaction_delay")->mapping, SumoMapping::approximate);
+  EXPECT_NEAR(exported.vtype.action_step_length_s, 1.2, 1e-12);  // 2 d: decisions d old on average
   EXPECT_EQ(findNote(exported, "acceleration_limits")->mapping, SumoMapping::exact);
   EXPECT_DOUBLE_EQ(exported.vtype.accel_mps2, 1.5);  // the fitted limits, not the data's
   EXPECT_DOUBLE_EQ(exported.vtype.emergency_decel_mps2, 4.0);
+}
+
+TEST(SumoExport, EffectsSumoLacksAreNamedAndAShortDelayIsNoActionStep)
+{
+  const SumoExport lag = exportToSumo("a", kModel, {EffectKind::actuation_lag}, {0.5}, {});
+  EXPECT_EQ(findNote(lag, "actuation_lag")->mapping, SumoMapping::none);
+  EXPECT_TRUE(std::isnan(lag.vtype.action_step_length_s));
+  const SumoExport short_delay = exportToSumo("a", kModel, {EffectKind::reaction_delay}, {0.04}, {});
+  EXPECT_EQ(findNote(short_delay, "reaction_delay")->mapping, SumoMapping::none);
+  EXPECT_TRUE(std::isnan(short_delay.vtype.action_step_length_s));
 }
 
 TEST(SumoExport, SetSpeedBecomesMaxSpeedAndTheSpeedControlGain)
@@ -154,6 +165,7 @@ TEST(SumoVTypeFile, RoundTripKeepsEveryNumberAndTheSourceModel)
   EXPECT_EQ(v.gains.gap_closing_gain_space_per_s2, 0.0812345678901234);
   EXPECT_EQ(v.gains.collision_avoidance_gain_space_per_s2, exported.vtype.gains.collision_avoidance_gain_space_per_s2);
   EXPECT_EQ(v.accel_mps2, 1.9);
+  EXPECT_TRUE(std::isnan(v.action_step_length_s));
   EXPECT_EQ(v.min_gap_m, exported.vtype.min_gap_m);
   ASSERT_TRUE(v.has_source_model);
   EXPECT_EQ(v.source_effects, effects);

@@ -20,12 +20,15 @@ struct FilePlatoonForSumo
   std::vector<std::string> notes;
 };
 
-FilePlatoonForSumo filePlatoonForSumo(const CampaignFile& file, const std::vector<SumoAccVType>& vtypes);
+/// diagnosed: each car's "<VEHICLE>_<setting>_diagnosed" vType where the file has one (the platoon
+/// diagnosis's model, campaign_sumo_export.h), its base vType otherwise (said in the notes).
+FilePlatoonForSumo filePlatoonForSumo(const CampaignFile& file, const std::vector<SumoAccVType>& vtypes,
+                                      bool diagnosed = false);
 
 /// sumo_replay --platoon: the OpenACC file's platoon replayed in SUMO with the vTypes of
 /// vtype_file, SUMO's dips by position beside the package's chain of the same models and the real
 /// cars'. Prints to out (notes to log), returns the JSON. Throws std::runtime_error with the reason.
-nlohmann::json replayFilePlatoonInSumo(const std::string& path, const std::string& vtype_file,
+nlohmann::json replayFilePlatoonInSumo(const std::string& path, const std::string& vtype_file, bool diagnosed,
                                        const SumoReplayOptions& options, std::ostream& out, std::ostream& log);
 
 }  // namespace acc

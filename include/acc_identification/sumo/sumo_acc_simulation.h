@@ -37,4 +37,11 @@ struct SumoAccStep
 SumoAccStep sumoAccStep(const SumoAccVType& vtype, double gap_m, double speed_mps, double leader_speed_mps,
                         SumoAccMode previous_mode, double step_s, double lane_speed_limit_mps);
 
+/// How many simulation steps of step_s one action step of the vType spans (1 without an
+/// actionStepLength): SUMO decides at the first step and every that many after.
+std::size_t sumoActionEvery(const SumoAccVType& vtype, double step_s);
+
+/// A step between two action steps: SUMO keeps the acceleration it decided (speed not below 0).
+SumoAccStep heldStep(double speed_mps, double held_acceleration_mps2, SumoAccMode mode, double step_s);
+
 }  // namespace acc

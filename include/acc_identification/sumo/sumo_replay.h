@@ -62,6 +62,7 @@ struct SumoStepCounts
   std::size_t below_15_mps = 0;         ///< SUMO's gap margin d0 > 0: its desired gap is longer
   std::size_t speed_bound_active = 0;   ///< accel, emergencyDecel or the desired speed cut the law
   std::size_t safe_speed_override = 0;  ///< SUMO departed from its ACC law (its safe speed)
+  std::size_t held = 0;                 ///< between action steps: the last decision held
   std::size_t law_coincides = 0;        ///< none of the above changed the law, and its gains are the model's
 };
 

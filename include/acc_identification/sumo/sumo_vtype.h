@@ -25,6 +25,9 @@ struct SumoAccVType
   double emergency_decel_mps2 = 9.0;  ///< emergencyDecel: the hardest braking SUMO lets the ACC command and its safe speed use
   /// maxSpeed; NaN: not written (the lane's speed limit is then the ACC's desired speed).
   double max_speed_mps = std::numeric_limits<double>::quiet_NaN();
+  /// actionStepLength: SUMO decides every this long and holds its acceleration in between (the
+  /// export's stand-in for a reaction delay d: 2 d); NaN: not written (every simulation step).
+  double action_step_length_s = std::numeric_limits<double>::quiet_NaN();
   SumoAccGains gains;
   /// The package's model this vType was made from, written as <param> entries so that a replay
   /// compares SUMO with exactly that model; absent in a vType made elsewhere.
