@@ -162,14 +162,6 @@ nlohmann::json disagreementsJson(const std::vector<PlatoonDisagreement>& list)
   return j;
 }
 
-nlohmann::json effectNamesJson(const std::vector<EffectKind>& effects)
-{
-  nlohmann::json j = nlohmann::json::array();
-  for (EffectKind kind : effects)
-    j.push_back(effectName(kind));
-  return j;
-}
-
 /// The effects of a model with their values and standard errors (effect parameters only).
 nlohmann::json effectsJson(const PlatoonCarModel& model)
 {
@@ -181,7 +173,7 @@ nlohmann::json effectsJson(const PlatoonCarModel& model)
     const std::size_t se = AugmentedParameterBox::kBaseDimension + i;
     errors[names[i]] = se < model.standard_errors.size() ? model.standard_errors[se] : kNaN;
   }
-  return {{"effects", effectNamesJson(model.effects)}, {"values", values}, {"standard_errors", errors}};
+  return {{"effects", effectNames(model.effects)}, {"values", values}, {"standard_errors", errors}};
 }
 
 nlohmann::json parametersJson(const AccParameters& p)
@@ -192,7 +184,7 @@ nlohmann::json parametersJson(const AccParameters& p)
 nlohmann::json candidateJson(const PlatoonCandidate& candidate)
 {
   return {{"name", candidate.name()},
-          {"effects", effectNamesJson(candidate.effects)},
+          {"effects", effectNames(candidate.effects)},
           {"objective", objectiveName(candidate.objective)}};
 }
 
@@ -214,7 +206,7 @@ nlohmann::json selectionJson(const EffectSetSelection& selection)
                            {"significant", c.significant}});
   }
   return {{"model", candidateJson(selection.model)},
-          {"effects", effectNamesJson(selection.model.effects)},
+          {"effects", effectNames(selection.model.effects)},
           {"objective", objectiveName(selection.model.objective)},
           {"excluded_run", selection.excluded_run},
           {"comparisons", comparisons}};

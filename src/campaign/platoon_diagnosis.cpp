@@ -243,9 +243,7 @@ bool parseObjective(const std::string& text, FitObjective* objective)
 
 std::vector<std::string> PlatoonCandidate::features() const
 {
-  std::vector<std::string> out;
-  for (EffectKind kind : effects)
-    out.push_back(effectName(kind));
+  std::vector<std::string> out = effectNames(effects);
   if (objective != FitObjective::speed)
     out.push_back(objectiveName(objective) + " objective");
   return out;

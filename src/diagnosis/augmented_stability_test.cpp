@@ -332,11 +332,8 @@ AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& ch
 
 nlohmann::json toJson(const AugmentedStabilityTestResult& r)
 {
-  nlohmann::json effects = nlohmann::json::array();
-  for (EffectKind kind : r.effects)
-    effects.push_back(effectName(kind));
   return {{"effect", effectName(r.effect)},
-          {"effects", effects},
+          {"effects", effectNames(r.effects)},
           {"verdict", toString(r.verdict)},
           {"p_value", jsonNumber(r.p_value)},
           {"p_value_stable_rejected", jsonNumber(r.p_value_stable_rejected)},

@@ -15,10 +15,7 @@ SecondOpinion opinionOf(const DiagnosisResult& result)
 {
   SecondOpinion opinion;
   opinion.json = verdictJson(result);
-  nlohmann::json effects = nlohmann::json::array();
-  for (EffectKind kind : selectedChain(result))
-    effects.push_back(effectName(kind));
-  opinion.json["effects"] = effects;
+  opinion.json["effects"] = effectNames(selectedChain(result));
   opinion.json["model_adequacy"] = toJson(result.final_adequacy);
   const DiagnosisVerdict verdict = statedVerdict(result);
   std::ostringstream text;

@@ -79,11 +79,7 @@ nlohmann::json modelJson(const ModelDiagnosis& m)
 nlohmann::json chainStepJson(const ForwardSelectionStep& step)
 {
   const AugmentedFit& fit = step.model.fit;
-  nlohmann::json effects = nlohmann::json::array();
-  for (EffectKind kind : effectsOf(fit))
-  {
-    effects.push_back(effectName(kind));
-  }
+  const std::vector<std::string> effects = effectNames(effectsOf(fit));
   nlohmann::json effect_parameters = nlohmann::json::object();
   const std::vector<std::string> names = effectParameterNames(effectsOf(fit));
   for (std::size_t i = 0; i < names.size() && i < fit.effect_values.size(); ++i)
@@ -246,12 +242,7 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
     // The model the diagnosis ends with (the last of the forward-selection chain, or the base
     // model): what a user takes away, beside the baseline it is judged against.
     const ModelDiagnosis& final_model = finalModel(r);
-    nlohmann::json effects = nlohmann::json::array();
-    for (EffectKind kind : effectsOf(final_model.fit))
-    {
-      effects.push_back(effectName(kind));
-    }
-    j["final_model"] = {{"effects", effects},
+    j["final_model"] = {{"effects", effectNames(effectsOf(final_model.fit))},
                         {"parameters", parametersJson(final_model.fit)},
                         {"standard_errors", standardErrorsJson(final_model.fit)},
                         {"test_rmse_speed", jsonNumber(final_model.test_rmse_speed_mps)},

@@ -80,6 +80,14 @@ const CandidateEffect& candidateEffect(EffectKind kind)
 
 std::string effectName(EffectKind kind) { return candidateEffect(kind).name; }
 
+std::vector<std::string> effectNames(const std::vector<EffectKind>& kinds)
+{
+  std::vector<std::string> names;
+  for (EffectKind kind : kinds)
+    names.push_back(effectName(kind));
+  return names;
+}
+
 bool parseEffectName(const std::string& name, EffectKind* kind)
 {
   if (name == "none")

@@ -446,16 +446,13 @@ nlohmann::json countsJson(const SumoStepCounts& c)
 
 nlohmann::json modelJson(const PackageModel& model, bool from_params)
 {
-  nlohmann::json effects = nlohmann::json::array();
-  for (EffectKind kind : model.effects)
-    effects.push_back(effectName(kind));
   return {{"source", from_params ? "the vType's acc_identification params (the model it was exported from)"
                                  : "the model SUMO's law equals above 15 m/s (the vType carries no source model)"},
           {"k1_per_s2", model.parameters.k1_per_s2},
           {"k2_per_s", model.parameters.k2_per_s},
           {"tau_e_s", model.parameters.tau_e_s},
           {"eta_m", model.parameters.eta_m},
-          {"effects", effects},
+          {"effects", effectNames(model.effects)},
           {"effect_values", model.effect_values}};
 }
 }  // namespace

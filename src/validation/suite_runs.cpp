@@ -35,22 +35,13 @@ std::vector<SemiRealSet> bundledSemiRealSets(const std::string& casale_dir, cons
 
 namespace
 {
-/// The names of effects, in order (a forward-selection chain).
-nlohmann::json effectNamesJson(const std::vector<EffectKind>& effects)
-{
-  nlohmann::json names = nlohmann::json::array();
-  for (EffectKind kind : effects)
-    names.push_back(effectName(kind));
-  return names;
-}
-
 nlohmann::json semiRealJson(const SemiRealOutcome& o)
 {
   return {{"set", o.set_name},
           {"injected", effectName(o.input.injected)},
           {"injected_value", o.input.magnitude},
           {"dominant_effect", effectName(o.dominant)},
-          {"selected_effects", effectNamesJson(o.chain)},
+          {"selected_effects", effectNames(o.chain)},
           {"selected", o.selected},
           {"fitted_magnitude", jsonNumber(o.fitted_magnitude)},
           {"baseline_magnitude", o.baseline_magnitude},
@@ -115,7 +106,7 @@ SuiteReport runCombinedSuite(const DiagnosisOptions& options, std::FILE* progres
                  effectName(o.withheld[0].first).c_str(), effectName(o.withheld[1].first).c_str(), o.chain.size(),
                  o.named(), o.seconds);
     cases.push_back({{"withheld", withheld},
-                     {"chain", effectNamesJson(o.chain)},
+                     {"chain", effectNames(o.chain)},
                      {"seed", o.input.seed},
                      {"base_test_rmse_speed", o.base_test_rmse_speed_mps},
                      {"chain_test_rmse_speed", o.final_test_rmse_speed_mps},
@@ -141,7 +132,7 @@ nlohmann::json withheldJson(const WithheldOutcome& o)
           {"speed_noise_std_mps", o.input.speed_noise_std_mps},
           {"seed", o.input.seed},
           {"dominant_effect", effectName(o.dominant)},
-          {"plausible_effects", effectNamesJson(o.plausible)},
+          {"plausible_effects", effectNames(o.plausible)},
           {"recovered_magnitude", jsonNumber(o.recovered_magnitude)},
           {"recovered_standard_error", jsonNumber(o.recovered_standard_error)},
           {"base_test_rmse_speed", o.base_test_rmse_speed_mps},

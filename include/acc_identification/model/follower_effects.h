@@ -107,6 +107,9 @@ const CandidateEffect& candidateEffect(EffectKind kind);
 /// "none" or the effect's name.
 std::string effectName(EffectKind kind);
 
+/// The names of effects, in order (for JSON lists: an empty list is []).
+std::vector<std::string> effectNames(const std::vector<EffectKind>& kinds);
+
 /// Parses a name as printed by effectName(); false when unknown.
 bool parseEffectName(const std::string& name, EffectKind* kind);
 
