@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "acc_identification/model/block_bootstrap.h"
@@ -215,100 +216,160 @@ StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& runs
   return result;
 }
 
-StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& training_in,
-                                        const std::vector<CarFollowingRun>& held_out_in,
-                                        const StabilityTestOptions& options)
+namespace
 {
-  const auto started = std::chrono::steady_clock::now();
-  StabilityTestResult result;
-  result.alpha = options.alpha;
-  result.seed = options.seed;
-  result.bootstrap_replicates = options.bootstrap_replicates;
-  auto finish = [&](std::string reason) {
-    result.reason = std::move(reason);
-    result.solve_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    return result;
-  };
+/// The held-out comparison of one pass: the bootstrap on the held-out segments, and the errors of
+/// the side fit that predicts them better, which every profile point is scored against.
+struct HeldOutComparison
+{
+  std::optional<MovingBlockBootstrap> bootstrap;
+  std::vector<double> reference_errors;
+  bool stable_wins = true;
+};
 
-  // --- Data ---------------------------------------------------------------------------------
-  std::vector<CarFollowingRun> training, held_out;
-  for (const CarFollowingRun& run : training_in)
+/// One run of the test (testStringStability below), its stages as methods: the data, the two
+/// side fits, then up to two passes of the held-out comparison and the margin profile.
+class StringStabilityTestRun
+{
+public:
+  explicit StringStabilityTestRun(const StabilityTestOptions& options)
+    : options_(options), started_(std::chrono::steady_clock::now())
   {
-    if (describeRunProblem(run).empty())
+    result_.alpha = options.alpha;
+    result_.seed = options.seed;
+    result_.bootstrap_replicates = options.bootstrap_replicates;
+  }
+
+  StabilityTestResult run(const std::vector<CarFollowingRun>& training_in,
+                          const std::vector<CarFollowingRun>& held_out_in)
+  {
+    std::string failure = takeData(training_in, held_out_in);
+    if (failure.empty())
+      failure = fitSides();
+    if (!failure.empty())
+      return finish(failure);
+    grid_ = marginGrid();
+    for (int pass = 0; pass < 2; ++pass)
     {
-      training.push_back(run);
-      result.training_samples += run.size();
+      HeldOutComparison comparison;
+      failure = compareSides(comparison);
+      if (!failure.empty())
+        return finish(failure);
+      // A profile fit better on the training data than the side fit of its side (a local search
+      // missed it) replaces that side fit, and the test is made again with it (once).
+      if (adoptBetterProfileFits(profileOutwards(comparison)) && pass == 0)
+        continue;
+      refineEnds(comparison);
+      break;
     }
+    spanAllowedMargins(result_, leastMargin(options_.bounds), largestMargin(options_.bounds),
+                       1e-3 * options_.multistart.start_box_upper.k1_per_s2, options_.alpha);
+    return finish(decideVerdict(result_, options_.alpha));
   }
-  std::vector<std::size_t> segment_lengths;
-  double held_out_duration_s = 0.0;
-  for (const CarFollowingRun& run : held_out_in)
+
+private:
+  StabilityTestResult finish(std::string reason)
   {
-    if (describeRunProblem(run).empty())
+    result_.reason = std::move(reason);
+    result_.solve_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    return result_;
+  }
+
+  /// The simulable runs, and whether there are enough of them to test; "" when there are.
+  std::string takeData(const std::vector<CarFollowingRun>& training_in, const std::vector<CarFollowingRun>& held_out_in)
+  {
+    for (const CarFollowingRun& run : training_in)
     {
-      held_out.push_back(run);
-      segment_lengths.push_back(run.size() - 1);
-      result.held_out_samples += run.size() - 1;
-      held_out_duration_s += run.durationS();
+      if (describeRunProblem(run).empty())
+      {
+        training_.push_back(run);
+        result_.training_samples += run.size();
+      }
     }
-  }
-  result.held_out_segments = held_out.size();
-  if (result.training_samples < options.min_training_samples)
-  {
-    return finish("too few training samples (" + std::to_string(result.training_samples) + " < " +
-                  std::to_string(options.min_training_samples) + ")");
-  }
-  if (result.held_out_samples < options.min_held_out_samples || held_out_duration_s < options.min_held_out_duration_s)
-  {
-    return finish("too few held-out samples (" + std::to_string(result.held_out_samples) + " over " +
-                  formatNumber(held_out_duration_s) + " s; need " + std::to_string(options.min_held_out_samples) +
-                  " samples and " + formatNumber(options.min_held_out_duration_s) + " s)");
-  }
-  const double speed_std = followerSpeedStdMps(training);
-  if (speed_std < options.min_training_speed_std_mps)
-  {
-    return finish("flat data: the training follower speed varies by " + formatNumber(speed_std) + " m/s (std) < " +
-                  formatNumber(options.min_training_speed_std_mps) +
-                  " m/s; without speed changes the data pin only eta + tau_e v, not the margin");
-  }
-
-  // --- The two side fits on the training data -------------------------------------------------
-  std::optional<CalibrationObjective> objective;
-  try
-  {
-    objective.emplace(training, options.bounds);
-  }
-  catch (const std::exception& error)
-  {
-    return finish(std::string("training data cannot be simulated: ") + error.what());
-  }
-  const SideFits side_fits = fitBothSides(*objective, options.multistart, options.constrained, options.warm_starts);
-  result.unconstrained_evaluations = side_fits.unconstrained_evaluations;
-  result.constrained_evaluations = side_fits.constrained_evaluations;
-  if (!side_fits.failure.empty())
-  {
-    return finish(side_fits.failure);
-  }
-  const AccParameters& u = side_fits.unconstrained;
-  const bool u_stable = side_fits.unconstrained_stable;
-  SideFit stable = side_fits.stable;
-  SideFit unstable = side_fits.unstable;
-  if (options.with_quantities)
-  {
-    const ParameterUncertainty uncertainty = estimateUncertainty(u, training);
-    result.quantities = assessQuantities(u, uncertainty, training, options.quantity_criteria);
-    result.quantities->basis = "training data's unconstrained fit; " + result.quantities->basis;
+    for (const CarFollowingRun& run : held_out_in)
+    {
+      if (describeRunProblem(run).empty())
+      {
+        held_out_.push_back(run);
+        segment_lengths_.push_back(run.size() - 1);
+        result_.held_out_samples += run.size() - 1;
+        held_out_duration_s_ += run.durationS();
+      }
+    }
+    result_.held_out_segments = held_out_.size();
+    if (result_.training_samples < options_.min_training_samples)
+      return "too few training samples (" + std::to_string(result_.training_samples) + " < " +
+             std::to_string(options_.min_training_samples) + ")";
+    if (result_.held_out_samples < options_.min_held_out_samples ||
+        held_out_duration_s_ < options_.min_held_out_duration_s)
+      return "too few held-out samples (" + std::to_string(result_.held_out_samples) + " over " +
+             formatNumber(held_out_duration_s_) + " s; need " + std::to_string(options_.min_held_out_samples) +
+             " samples and " + formatNumber(options_.min_held_out_duration_s) + " s)";
+    const double speed_std = followerSpeedStdMps(training_);
+    if (speed_std < options_.min_training_speed_std_mps)
+      return "flat data: the training follower speed varies by " + formatNumber(speed_std) + " m/s (std) < " +
+             formatNumber(options_.min_training_speed_std_mps) +
+             " m/s; without speed changes the data pin only eta + tau_e v, not the margin";
+    return "";
   }
 
-  auto trainMse = [&](const AccParameters& p) {
-    const ReducedObjectiveValue value = objective->evaluate(p.k1_per_s2, p.k2_per_s, p.tau_e_s, false);
+  /// The unconstrained fit U and the best fit on the other side of m = 0; "" when both are found.
+  std::string fitSides()
+  {
+    try
+    {
+      objective_.emplace(training_, options_.bounds);
+    }
+    catch (const std::exception& error)
+    {
+      return std::string("training data cannot be simulated: ") + error.what();
+    }
+    const SideFits side_fits = fitBothSides(*objective_, options_.multistart, options_.constrained, options_.warm_starts);
+    result_.unconstrained_evaluations = side_fits.unconstrained_evaluations;
+    result_.constrained_evaluations = side_fits.constrained_evaluations;
+    if (!side_fits.failure.empty())
+      return side_fits.failure;
+    u_ = side_fits.unconstrained;
+    u_stable_ = side_fits.unconstrained_stable;
+    stable_ = side_fits.stable;
+    unstable_ = side_fits.unstable;
+    if (options_.with_quantities)
+    {
+      const ParameterUncertainty uncertainty = estimateUncertainty(u_, training_);
+      result_.quantities = assessQuantities(u_, uncertainty, training_, options_.quantity_criteria);
+      result_.quantities->basis = "training data's unconstrained fit; " + result_.quantities->basis;
+    }
+    return "";
+  }
+
+  /// The margins of the profile: the grid within the bounds' margins, with 0.
+  std::vector<double> marginGrid() const
+  {
+    std::vector<double> grid;
+    const double least = leastMargin(options_.bounds), largest = largestMargin(options_.bounds);
+    for (double m0 : options_.margin_grid)
+      if (std::isfinite(m0) && m0 >= least && m0 <= largest)
+        grid.push_back(m0);
+    if (!grid.empty() && 0.0 >= least && 0.0 <= largest)
+      grid.push_back(0.0);
+    std::sort(grid.begin(), grid.end());
+    grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
+    return grid;
+  }
+
+  double trainMse(const AccParameters& p) const
+  {
+    const ReducedObjectiveValue value = objective_->evaluate(p.k1_per_s2, p.k2_per_s, p.tau_e_s, false);
     return value.diverged ? kInfinity : value.mse_speed_mps2;
-  };
-  auto solveAt = [&](double m0, const std::vector<AccParameters>& warm) {
+  }
+
+  /// The best training fit with m = m0.
+  ProfileFit solveAt(double m0, const std::vector<AccParameters>& warm)
+  {
     ProfileFit fit;
     fit.margin = m0;
-    const ConstrainedFitResult r = fitWithMarginConstraint(*objective, MarginSide::EqualTo, m0, options.profile, warm);
-    result.profile_evaluations += r.evaluations;
+    const ConstrainedFitResult r = fitWithMarginConstraint(*objective_, MarginSide::EqualTo, m0, options_.profile, warm);
+    result_.profile_evaluations += r.evaluations;
     if (r.found)
     {
       fit.parameters = r.parameters;
@@ -317,87 +378,84 @@ StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& trai
       fit.fitted = true;
     }
     return fit;
-  };
-
-  // The margins of the profile: the grid within the bounds' margins, with 0.
-  std::vector<double> grid;
-  const double least = leastMargin(options.bounds), largest = largestMargin(options.bounds);
-  for (double m0 : options.margin_grid)
-  {
-    if (std::isfinite(m0) && m0 >= least && m0 <= largest)
-    {
-      grid.push_back(m0);
-    }
   }
-  if (!grid.empty() && 0.0 >= least && 0.0 <= largest)
-  {
-    grid.push_back(0.0);
-  }
-  std::sort(grid.begin(), grid.end());
-  grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
 
-  // --- Held-out test and margin profile (again, once, if the profile finds a better side fit) ---
-  std::vector<MarginProfilePoint>& points = result.margin_profile;
-  for (int pass = 0; pass < 2; ++pass)
+  /// The verdict's test: both side fits on the held-out data, their paired squared errors, the
+  /// bootstrap's p-values; then the side fits as the first profile points. "" when it ran.
+  std::string compareSides(HeldOutComparison& comparison)
   {
-    points.clear();
-    stable.train_rmse_speed_mps = evaluateFit(stable.parameters, training).rmse_speed_mps;
-    unstable.train_rmse_speed_mps = evaluateFit(unstable.parameters, training).rmse_speed_mps;
-    const HeldOutErrors stable_errors = heldOutErrors(stable.parameters, held_out);
-    const HeldOutErrors unstable_errors = heldOutErrors(unstable.parameters, held_out);
-    stable.test_rmse_speed_mps = rms(stable_errors.error);
-    unstable.test_rmse_speed_mps = rms(unstable_errors.error);
-    result.best_stable = stable;
-    result.best_unstable = unstable;
+    result_.margin_profile.clear();
+    stable_.train_rmse_speed_mps = evaluateFit(stable_.parameters, training_).rmse_speed_mps;
+    unstable_.train_rmse_speed_mps = evaluateFit(unstable_.parameters, training_).rmse_speed_mps;
+    const HeldOutErrors stable_errors = heldOutErrors(stable_.parameters, held_out_);
+    const HeldOutErrors unstable_errors = heldOutErrors(unstable_.parameters, held_out_);
+    stable_.test_rmse_speed_mps = rms(stable_errors.error);
+    unstable_.test_rmse_speed_mps = rms(unstable_errors.error);
+    result_.best_stable = stable_;
+    result_.best_unstable = unstable_;
     if (stable_errors.diverged || unstable_errors.diverged)
     {
-      result.tested = false;
-      return finish(std::string("the best ") + (stable_errors.diverged ? "stable" : "unstable") +
-                    " model's simulation diverges on the held-out data");
+      result_.tested = false;
+      return std::string("the best ") + (stable_errors.diverged ? "stable" : "unstable") +
+             " model's simulation diverges on the held-out data";
     }
     const std::vector<double> d = squaredErrorDifference(stable_errors.error, unstable_errors.error);
-    result.mean_squared_error_difference = mean(d);
+    result_.mean_squared_error_difference = mean(d);
+    const std::size_t block_samples = blockSamples(d);
+    comparison.bootstrap.emplace(segment_lengths_, block_samples, options_.bootstrap_replicates, options_.seed);
+    result_.p_value_stable_rejected = comparison.bootstrap->pValueMeanPositive(d);
+    result_.p_value_unstable_rejected = comparison.bootstrap->pValueMeanNegative(d);
+    result_.tested = true;
+    comparison.stable_wins = result_.mean_squared_error_difference <= 0.0;
+    comparison.reference_errors = comparison.stable_wins ? stable_errors.error : unstable_errors.error;
+    addSidePoints(comparison);
+    return "";
+  }
 
+  /// The bootstrap's block length in samples: options.block_length_s, or from d's correlation.
+  std::size_t blockSamples(const std::vector<double>& d)
+  {
     const double mean_step_s =
-        held_out_duration_s / static_cast<double>(std::max<std::size_t>(1, result.held_out_samples));
-    double block_s = options.block_length_s;
+        held_out_duration_s_ / static_cast<double>(std::max<std::size_t>(1, result_.held_out_samples));
+    double block_s = options_.block_length_s;
     if (!(block_s > 0.0))
     {
-      block_s = correlationBlockLengthS(d, segment_lengths, mean_step_s, 5.0, options.min_block_length_s,
-                                        options.max_block_length_s);
-      block_s =
-          std::min(block_s, held_out_duration_s / static_cast<double>(std::max<std::size_t>(1, options.min_blocks)));
+      block_s = correlationBlockLengthS(d, segment_lengths_, mean_step_s, 5.0, options_.min_block_length_s,
+                                        options_.max_block_length_s);
+      block_s = std::min(block_s,
+                         held_out_duration_s_ / static_cast<double>(std::max<std::size_t>(1, options_.min_blocks)));
     }
     const std::size_t block_samples =
         std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(block_s / mean_step_s)));
-    result.block_length_s = static_cast<double>(block_samples) * mean_step_s;
-    const MovingBlockBootstrap bootstrap(segment_lengths, block_samples, options.bootstrap_replicates, options.seed);
-    result.p_value_stable_rejected = bootstrap.pValueMeanPositive(d);
-    result.p_value_unstable_rejected = bootstrap.pValueMeanNegative(d);
-    result.tested = true;
+    result_.block_length_s = static_cast<double>(block_samples) * mean_step_s;
+    return block_samples;
+  }
 
-    // Profile points, each scored against the better held-out side fit as it is made.
-    const bool stable_wins = result.mean_squared_error_difference <= 0.0;
-    const std::vector<double>& reference_errors = stable_wins ? stable_errors.error : unstable_errors.error;
-    auto score = [&](const ProfileFit& fit) {
-      MarginProfilePoint point;
-      point.margin = fit.margin;
-      point.fitted = fit.fitted;
-      if (!fit.fitted)
-      {
-        return point;
-      }
-      point.parameters = fit.parameters;
-      point.train_rmse_speed_mps = std::sqrt(fit.train_mse);
-      const HeldOutErrors errors = heldOutErrors(fit.parameters, held_out);
-      point.test_rmse_speed_mps = rms(errors.error);
-      point.p_value =
-          errors.diverged ? 0.0 : bootstrap.pValueMeanPositive(squaredErrorDifference(errors.error, reference_errors));
-      point.allowed = point.p_value > options.alpha;
+  /// A profile point, scored against the better held-out side fit.
+  MarginProfilePoint score(const HeldOutComparison& comparison, const ProfileFit& fit) const
+  {
+    MarginProfilePoint point;
+    point.margin = fit.margin;
+    point.fitted = fit.fitted;
+    if (!fit.fitted)
       return point;
-    };
-    // The side fits: the same numbers as the verdict's test (the same series and draws, up to sign).
-    for (const SideFit* side : {&stable, &unstable})
+    point.parameters = fit.parameters;
+    point.train_rmse_speed_mps = std::sqrt(fit.train_mse);
+    const HeldOutErrors errors = heldOutErrors(fit.parameters, held_out_);
+    point.test_rmse_speed_mps = rms(errors.error);
+    point.p_value = errors.diverged ? 0.0
+                                    : comparison.bootstrap->pValueMeanPositive(
+                                          squaredErrorDifference(errors.error, comparison.reference_errors));
+    point.allowed = point.p_value > options_.alpha;
+    return point;
+  }
+
+  /// The side fits as profile points: the same numbers as the verdict's test (the same series and
+  /// draws, up to sign).
+  void addSidePoints(const HeldOutComparison& comparison)
+  {
+    std::vector<MarginProfilePoint>& points = result_.margin_profile;
+    for (const SideFit* side : {&stable_, &unstable_})
     {
       MarginProfilePoint point;
       point.margin = side->margin;
@@ -405,104 +463,96 @@ StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& trai
       point.parameters = side->parameters;
       point.train_rmse_speed_mps = side->train_rmse_speed_mps;
       point.test_rmse_speed_mps = side->test_rmse_speed_mps;
-      const bool is_stable = side == &stable;
-      point.p_value = is_stable == stable_wins ? 1.0
-                      : is_stable               ? result.p_value_stable_rejected
-                                                : result.p_value_unstable_rejected;
-      point.allowed = point.p_value > options.alpha;
+      const bool is_stable = side == &stable_;
+      point.p_value = is_stable == comparison.stable_wins ? 1.0
+                      : is_stable                          ? result_.p_value_stable_rejected
+                                                           : result_.p_value_unstable_rejected;
+      point.allowed = point.p_value > options_.alpha;
       if (points.empty() || std::abs(points.front().margin - point.margin) > kSameMargin)
-      {
         points.push_back(point);
-      }
     }
-    std::vector<ProfileFit> grid_fits;
-    if (!grid.empty())
-    {
-      // m = 0: the side fit on the boundary when there is one, else its own fit.
-      const SideFit* boundary = nullptr;
-      for (const SideFit* side : {&stable, &unstable})
-      {
-        boundary = std::abs(side->margin) <= kSameMargin ? side : boundary;
-      }
-      AccParameters at_zero = u;
-      if (boundary != nullptr)
-      {
-        at_zero = boundary->parameters;
-      }
-      else
-      {
-        const ProfileFit zero = solveAt(0.0, {u, u_stable ? unstable.parameters : stable.parameters});
-        points.push_back(score(zero));
-        grid_fits.push_back(zero);
-        at_zero = zero.fitted ? zero.parameters : u;
-      }
-      // Outwards from 0, each m0 warm-started from its neighbour and from U; a direction stops
-      // after profile_stop_after_rejections rejected margins in a row beyond its side fit.
-      for (int direction : {+1, -1})
-      {
-        const double side_margin = direction > 0 ? stable.margin : unstable.margin;
-        AccParameters previous = at_zero;
-        std::size_t rejected_in_a_row = 0;
-        std::vector<double> ordered;
-        for (double m0 : grid)
-        {
-          if (direction * m0 > 0.0)
-          {
-            ordered.push_back(m0);
-          }
-        }
-        if (direction < 0)
-        {
-          std::reverse(ordered.begin(), ordered.end());
-        }
-        for (double m0 : ordered)
-        {
-          if (options.profile_stop_after_rejections > 0 && rejected_in_a_row >= options.profile_stop_after_rejections)
-          {
-            break;
-          }
-          const ProfileFit fit = solveAt(m0, {previous, u});
-          const MarginProfilePoint point = score(fit);
-          points.push_back(point);
-          grid_fits.push_back(fit);
-          if (fit.fitted)
-          {
-            previous = fit.parameters;
-          }
-          const bool beyond_side = direction * m0 > direction * side_margin;
-          rejected_in_a_row = beyond_side && !point.allowed ? rejected_in_a_row + 1 : 0;
-        }
-      }
-    }
+  }
 
-    // A profile fit better on the training data than the side fit of its side (a local search
-    // missed it) replaces that side fit, and the test is made again with it.
+  /// The profile outwards from m = 0 over the grid; the fits made (for adoptBetterProfileFits).
+  std::vector<ProfileFit> profileOutwards(const HeldOutComparison& comparison)
+  {
+    std::vector<ProfileFit> grid_fits;
+    if (grid_.empty())
+      return grid_fits;
+    // m = 0: the side fit on the boundary when there is one, else its own fit.
+    const SideFit* boundary = nullptr;
+    for (const SideFit* side : {&stable_, &unstable_})
+      boundary = std::abs(side->margin) <= kSameMargin ? side : boundary;
+    AccParameters at_zero = u_;
+    if (boundary != nullptr)
+    {
+      at_zero = boundary->parameters;
+    }
+    else
+    {
+      const ProfileFit zero = solveAt(0.0, {u_, u_stable_ ? unstable_.parameters : stable_.parameters});
+      result_.margin_profile.push_back(score(comparison, zero));
+      grid_fits.push_back(zero);
+      at_zero = zero.fitted ? zero.parameters : u_;
+    }
+    for (int direction : {+1, -1})
+      profileInDirection(comparison, direction, at_zero, grid_fits);
+    return grid_fits;
+  }
+
+  /// Each m0 warm-started from its neighbour and from U; a direction stops after
+  /// profile_stop_after_rejections rejected margins in a row beyond its side fit.
+  void profileInDirection(const HeldOutComparison& comparison, int direction, const AccParameters& at_zero,
+                          std::vector<ProfileFit>& grid_fits)
+  {
+    const double side_margin = direction > 0 ? stable_.margin : unstable_.margin;
+    AccParameters previous = at_zero;
+    std::size_t rejected_in_a_row = 0;
+    std::vector<double> ordered;
+    for (double m0 : grid_)
+      if (direction * m0 > 0.0)
+        ordered.push_back(m0);
+    if (direction < 0)
+      std::reverse(ordered.begin(), ordered.end());
+    for (double m0 : ordered)
+    {
+      if (options_.profile_stop_after_rejections > 0 && rejected_in_a_row >= options_.profile_stop_after_rejections)
+        break;
+      const ProfileFit fit = solveAt(m0, {previous, u_});
+      const MarginProfilePoint point = score(comparison, fit);
+      result_.margin_profile.push_back(point);
+      grid_fits.push_back(fit);
+      if (fit.fitted)
+        previous = fit.parameters;
+      const bool beyond_side = direction * m0 > direction * side_margin;
+      rejected_in_a_row = beyond_side && !point.allowed ? rejected_in_a_row + 1 : 0;
+    }
+  }
+
+  /// A profile fit better on the training data than the side fit of its side replaces it; true
+  /// when one did.
+  bool adoptBetterProfileFits(const std::vector<ProfileFit>& grid_fits)
+  {
     bool improved = false;
     for (const ProfileFit& fit : grid_fits)
     {
       if (!fit.fitted)
-      {
         continue;
-      }
       // A fit on the boundary m = 0 belongs to both closed sides.
-      for (SideFit* side : {&stable, &unstable})
+      for (SideFit* side : {&stable_, &unstable_})
       {
-        const bool on_side = side == &stable ? fit.margin >= -kSameMargin : fit.margin <= kSameMargin;
+        const bool on_side = side == &stable_ ? fit.margin >= -kSameMargin : fit.margin <= kSameMargin;
         if (!on_side || !(fit.train_mse < trainMse(side->parameters) * (1.0 - 1e-9)))
-        {
           continue;
-        }
         AccParameters p = fit.parameters;
-        if (side == &unstable && fit.margin > 0.0)
+        if (side == &unstable_ && fit.margin > 0.0)
         {
           // The boundary fit sits a few ulps above 0: move it to m <= 0 by ulps of tau_e.
-          const auto below = projectOntoMargin(p, 0.0, options.bounds, MarginSide::AtMost);
+          const auto below = projectOntoMargin(p, 0.0, options_.bounds, MarginSide::AtMost);
           if (below.empty())
-          {
             continue;
-          }
           p = below.front();
-          p.eta_m = objective->evaluate(p.k1_per_s2, p.k2_per_s, p.tau_e_s, false).eta_m;
+          p.eta_m = objective_->evaluate(p.k1_per_s2, p.k2_per_s, p.tau_e_s, false).eta_m;
         }
         side->parameters = p;
         side->margin = stabilityMargin(p);
@@ -511,13 +561,14 @@ StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& trai
         improved = true;
       }
     }
-    if (improved && pass == 0)
-    {
-      continue;
-    }
+    return improved;
+  }
 
-    // Each end of the allowed margins, when a rejected margin lies beyond it, is refined by
-    // bisection between the two.
+  /// Each end of the allowed margins, when a rejected margin lies beyond it, refined by bisection
+  /// between the two; the profile sorted by margin.
+  void refineEnds(const HeldOutComparison& comparison)
+  {
+    std::vector<MarginProfilePoint>& points = result_.margin_profile;
     auto byMargin = [](const MarginProfilePoint& a, const MarginProfilePoint& b) { return a.margin < b.margin; };
     std::sort(points.begin(), points.end(), byMargin);
     for (int end : {-1, +1})
@@ -533,32 +584,42 @@ StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& trai
         }
       }
       if (inner == points.size() || (end < 0 && inner == 0) || (end > 0 && inner + 1 == points.size()))
-      {
         continue;
-      }
       MarginProfilePoint allowed = points[inner];
       double outer = points[end < 0 ? inner - 1 : inner + 1].margin;
-      for (std::size_t step = 0; step < options.interval_bisections; ++step)
+      for (std::size_t step = 0; step < options_.interval_bisections; ++step)
       {
         const double m0 = 0.5 * (allowed.margin + outer);
-        const MarginProfilePoint point = score(solveAt(m0, {allowed.parameters, u}));
+        const MarginProfilePoint point = score(comparison, solveAt(m0, {allowed.parameters, u_}));
         points.push_back(point);
         if (point.allowed)
-        {
           allowed = point;
-        }
         else
-        {
           outer = m0;
-        }
       }
     }
     std::sort(points.begin(), points.end(), byMargin);
-    break;
   }
 
-  spanAllowedMargins(result, least, largest, 1e-3 * options.multistart.start_box_upper.k1_per_s2, options.alpha);
-  return finish(decideVerdict(result, options.alpha));
+  const StabilityTestOptions& options_;
+  const std::chrono::steady_clock::time_point started_;
+  StabilityTestResult result_;
+  std::vector<CarFollowingRun> training_, held_out_;
+  std::vector<std::size_t> segment_lengths_;
+  double held_out_duration_s_ = 0.0;
+  std::optional<CalibrationObjective> objective_;
+  AccParameters u_;
+  bool u_stable_ = false;
+  SideFit stable_, unstable_;
+  std::vector<double> grid_;
+};
+}  // namespace
+
+StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& training_in,
+                                        const std::vector<CarFollowingRun>& held_out_in,
+                                        const StabilityTestOptions& options)
+{
+  return StringStabilityTestRun(options).run(training_in, held_out_in);
 }
 
 }  // namespace acc
