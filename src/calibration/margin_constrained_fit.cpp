@@ -244,53 +244,62 @@ std::vector<AccParameters> projectOntoMargin(const AccParameters& p, double targ
   return result;
 }
 
-ConstrainedFitResult fitWithMarginConstraint(const CalibrationObjective& objective, MarginSide side, double margin,
-                                             const ConstrainedFitOptions& options,
-                                             const std::vector<AccParameters>& warm_starts)
+namespace
 {
-  ConstrainedFitResult result;
-  const ParameterBounds& bounds = objective.bounds();
+/// The search's state, its parameters scaled by the start box's upper corner.
+SearchState makeSearchState(const CalibrationObjective& objective, MarginSide side, double margin,
+                            const ConstrainedFitOptions& options)
+{
   SearchState state;
   state.objective = &objective;
   state.side = side;
   state.margin = margin;
   state.feasibility_tolerance = options.feasibility_tolerance;
+  const double upper[3] = {options.start_box_upper.k1_per_s2, options.start_box_upper.k2_per_s,
+                           options.start_box_upper.tau_e_s};
   for (int i = 0; i < 3; ++i)
-  {
-    const double upper[3] = {options.start_box_upper.k1_per_s2, options.start_box_upper.k2_per_s,
-                             options.start_box_upper.tau_e_s};
     state.scale[i] = upper[i] > 0.0 ? upper[i] : 1.0;
+  return state;
+}
+
+/// Evaluates a start and keeps it (and the best so far) unless its simulation diverges.
+void evaluateStart(SearchState& state, const AccParameters& p, std::vector<Start>& into)
+{
+  const ReducedObjectiveValue value = state.objective->evaluate(p.k1_per_s2, p.k2_per_s, p.tau_e_s, false);
+  ++state.evaluations;
+  if (value.diverged)
+    return;
+  into.push_back({{p.k1_per_s2, p.k2_per_s, p.tau_e_s}, value.mse_speed_mps2});
+  if (value.mse_speed_mps2 < state.best_mse)
+  {
+    state.best_mse = value.mse_speed_mps2;
+    state.best_theta = into.back().theta;
   }
+}
 
-  auto evaluateStart = [&](const AccParameters& p, std::vector<Start>& into) {
-    const ReducedObjectiveValue value = objective.evaluate(p.k1_per_s2, p.k2_per_s, p.tau_e_s, false);
-    ++state.evaluations;
-    if (!value.diverged)
-    {
-      into.push_back({{p.k1_per_s2, p.k2_per_s, p.tau_e_s}, value.mse_speed_mps2});
-      if (value.mse_speed_mps2 < state.best_mse)
-      {
-        state.best_mse = value.mse_speed_mps2;
-        state.best_theta = into.back().theta;
-      }
-    }
-  };
-
+/// The warm starts, clamped into the bounds and made feasible, evaluated.
+std::vector<Start> warmStarts(SearchState& state, const std::vector<AccParameters>& warm_starts,
+                              const ParameterBounds& bounds)
+{
   std::vector<Start> warm;
   for (const AccParameters& p : warm_starts)
   {
-    if (std::isfinite(p.k1_per_s2) && std::isfinite(p.k2_per_s) && std::isfinite(p.tau_e_s))
-    {
-      AccParameters clamped = p;
-      clamped.k1_per_s2 = std::clamp(p.k1_per_s2, bounds.lower.k1_per_s2, bounds.upper.k1_per_s2);
-      clamped.k2_per_s = std::clamp(p.k2_per_s, bounds.lower.k2_per_s, bounds.upper.k2_per_s);
-      clamped.tau_e_s = std::clamp(p.tau_e_s, bounds.lower.tau_e_s, bounds.upper.tau_e_s);
-      for (const AccParameters& start : feasibleStarts(clamped, side, margin, bounds, true))
-      {
-        evaluateStart(start, warm);
-      }
-    }
+    if (!(std::isfinite(p.k1_per_s2) && std::isfinite(p.k2_per_s) && std::isfinite(p.tau_e_s)))
+      continue;
+    AccParameters clamped = p;
+    clamped.k1_per_s2 = std::clamp(p.k1_per_s2, bounds.lower.k1_per_s2, bounds.upper.k1_per_s2);
+    clamped.k2_per_s = std::clamp(p.k2_per_s, bounds.lower.k2_per_s, bounds.upper.k2_per_s);
+    clamped.tau_e_s = std::clamp(p.tau_e_s, bounds.lower.tau_e_s, bounds.upper.tau_e_s);
+    for (const AccParameters& start : feasibleStarts(clamped, state.side, state.margin, bounds, true))
+      evaluateStart(state, start, warm);
   }
+  return warm;
+}
+
+/// The Halton points of the start box, made feasible, evaluated.
+std::vector<Start> haltonStarts(SearchState& state, const ConstrainedFitOptions& options,
+                                const ParameterBounds& bounds)
+{
   std::vector<Start> halton;
   const AccParameters& low = options.start_box_lower;
   const AccParameters& high = options.start_box_upper;
@@ -304,11 +313,18 @@ ConstrainedFitResult fitWithMarginConstraint(const CalibrationObjective& objecti
                     std::clamp(low.tau_e_s + unit[2] * (high.tau_e_s - low.tau_e_s), bounds.lower.tau_e_s,
                                bounds.upper.tau_e_s),
                     0.0};
-    for (const AccParameters& start : feasibleStarts(p, side, margin, bounds, false))
-    {
-      evaluateStart(start, halton);
-    }
+    for (const AccParameters& start : feasibleStarts(p, state.side, state.margin, bounds, false))
+      evaluateStart(state, start, halton);
   }
+  return halton;
+}
+
+/// The starts to solve from: the best max_warm_solves warm starts, then multi-level single linkage
+/// over the Halton starts (from the best, skipping those close to a better one chosen, at most
+/// max_local_solves of them).
+std::vector<Start> startsToSolve(std::vector<Start> warm, std::vector<Start> halton, const SearchState& state,
+                                 const ConstrainedFitOptions& options)
+{
   auto byMse = [](const Start& a, const Start& b) { return a.mse < b.mse; };
   std::sort(halton.begin(), halton.end(), byMse);
   if (options.max_warm_solves > 0 && warm.size() > options.max_warm_solves)
@@ -316,25 +332,18 @@ ConstrainedFitResult fitWithMarginConstraint(const CalibrationObjective& objecti
     std::stable_sort(warm.begin(), warm.end(), byMse);
     warm.resize(options.max_warm_solves);
   }
-
-  // Multi-level single linkage over the Halton starts: solve from the best, skip those close to a
-  // better one, at most max_local_solves of them.
   std::vector<Start> to_solve = warm;
   std::vector<const Start*> chosen;
   for (const Start& start : halton)
   {
     if (chosen.size() >= options.max_local_solves)
-    {
       break;
-    }
     bool near_better = false;
     for (const Start* better : chosen)
     {
       double d2 = 0.0;
       for (int i = 0; i < 3; ++i)
-      {
         d2 += std::pow((start.theta[i] - better->theta[i]) / state.scale[i], 2);
-      }
       near_better = near_better || std::sqrt(d2) < options.cluster_radius;
     }
     if (!near_better)
@@ -343,6 +352,75 @@ ConstrainedFitResult fitWithMarginConstraint(const CalibrationObjective& objecti
       to_solve.push_back(start);
     }
   }
+  return to_solve;
+}
+
+/// NLopt's SLSQP on the scaled parameters within the bounds, with the margin as a constraint
+/// (an equality, or an inequality whose sign is the side's).
+void configureLocalSolver(nlopt::opt& local, SearchState& state, ConstraintData& constraint,
+                          const ParameterBounds& bounds, const ConstrainedFitOptions& options)
+{
+  local.set_lower_bounds(std::vector<double>{bounds.lower.k1_per_s2 / state.scale[0],
+                                             bounds.lower.k2_per_s / state.scale[1],
+                                             bounds.lower.tau_e_s / state.scale[2]});
+  local.set_upper_bounds(std::vector<double>{bounds.upper.k1_per_s2 / state.scale[0],
+                                             bounds.upper.k2_per_s / state.scale[1],
+                                             bounds.upper.tau_e_s / state.scale[2]});
+  local.set_min_objective(nloptObjective, &state);
+  if (state.side == MarginSide::EqualTo)
+    local.add_equality_constraint(nloptConstraint, &constraint, 1e-10);
+  else
+    local.add_inequality_constraint(nloptConstraint, &constraint, 1e-10);
+  local.set_maxeval(options.max_evaluations_per_solve);
+  local.set_xtol_rel(options.relative_x_tolerance);
+  local.set_ftol_rel(options.relative_f_tolerance);
+}
+
+/// The best feasible point, moved onto the constraint exactly when it is within the feasibility
+/// tolerance of it (on either side): a fit on the boundary then has a margin a few ulps from it.
+void finishAtBestPoint(SearchState& state, const ParameterBounds& bounds, const ConstrainedFitOptions& options,
+                       ConstrainedFitResult& result)
+{
+  AccParameters best = toParameters(state.best_theta);
+  const double m = stabilityMargin(best);
+  if (state.side == MarginSide::EqualTo || !satisfies(state.side, m, state.margin) ||
+      std::abs(m - state.margin) <= options.feasibility_tolerance)
+  {
+    const auto projected = projectOntoMargin(best, state.margin, bounds, state.side);
+    if (projected.empty())
+    {
+      result.status = "NO_FEASIBLE_POINT";
+      result.evaluations = state.evaluations;
+      return;
+    }
+    best = projected.front();
+  }
+  const ReducedObjectiveValue value = state.objective->evaluate(best.k1_per_s2, best.k2_per_s, best.tau_e_s, false);
+  ++state.evaluations;
+  result.evaluations = state.evaluations;
+  if (value.diverged)
+  {
+    result.status = "DIVERGED";
+    return;
+  }
+  best.eta_m = value.eta_m;
+  result.found = true;
+  result.parameters = best;
+  result.margin = stabilityMargin(best);
+  result.rmse_speed_mps = std::sqrt(value.mse_speed_mps2);
+}
+}  // namespace
+
+ConstrainedFitResult fitWithMarginConstraint(const CalibrationObjective& objective, MarginSide side, double margin,
+                                             const ConstrainedFitOptions& options,
+                                             const std::vector<AccParameters>& warm_starts)
+{
+  ConstrainedFitResult result;
+  const ParameterBounds& bounds = objective.bounds();
+  SearchState state = makeSearchState(objective, side, margin, options);
+  std::vector<Start> warm = warmStarts(state, warm_starts, bounds);
+  std::vector<Start> halton = haltonStarts(state, options, bounds);
+  const std::vector<Start> to_solve = startsToSolve(std::move(warm), std::move(halton), state, options);
   if (!std::isfinite(state.best_mse))
   {
     result.status = "NO_FEASIBLE_START";
@@ -350,69 +428,18 @@ ConstrainedFitResult fitWithMarginConstraint(const CalibrationObjective& objecti
     return result;
   }
   state.objective_scale = std::max(state.best_mse, 1e-12);
-
   nlopt::opt local(nlopt::LD_SLSQP, 3);
-  std::vector<double> lower_x{bounds.lower.k1_per_s2 / state.scale[0], bounds.lower.k2_per_s / state.scale[1],
-                              bounds.lower.tau_e_s / state.scale[2]};
-  std::vector<double> upper_x{bounds.upper.k1_per_s2 / state.scale[0], bounds.upper.k2_per_s / state.scale[1],
-                              bounds.upper.tau_e_s / state.scale[2]};
-  local.set_lower_bounds(lower_x);
-  local.set_upper_bounds(upper_x);
-  local.set_min_objective(nloptObjective, &state);
   ConstraintData constraint{&state, side == MarginSide::AtLeast ? -1.0 : 1.0};
-  if (side == MarginSide::EqualTo)
-  {
-    local.add_equality_constraint(nloptConstraint, &constraint, 1e-10);
-  }
-  else
-  {
-    local.add_inequality_constraint(nloptConstraint, &constraint, 1e-10);
-  }
-  local.set_maxeval(options.max_evaluations_per_solve);
-  local.set_xtol_rel(options.relative_x_tolerance);
-  local.set_ftol_rel(options.relative_f_tolerance);
-
+  configureLocalSolver(local, state, constraint, bounds, options);
   result.status = "START";
   for (const Start& start : to_solve)
   {
     const std::string status = solveLocally(local, state, start.theta);
     ++result.local_solves;
     if (state.improved_in_this_solve)
-    {
       result.status = status;
-    }
   }
-
-  // The best feasible point, moved onto the constraint exactly when it is within the feasibility
-  // tolerance of it (on either side): a fit on the boundary then has a margin a few ulps from it.
-  AccParameters best = toParameters(state.best_theta);
-  const double m = stabilityMargin(best);
-  if (side == MarginSide::EqualTo || !satisfies(side, m, margin) ||
-      std::abs(m - margin) <= options.feasibility_tolerance)
-  {
-    const auto projected = projectOntoMargin(best, margin, bounds, side);
-    if (projected.empty())
-    {
-      result.status = "NO_FEASIBLE_POINT";
-      result.evaluations = state.evaluations;
-      return result;
-    }
-    best = projected.front();
-  }
-  const ReducedObjectiveValue value = objective.evaluate(best.k1_per_s2, best.k2_per_s, best.tau_e_s, false);
-  ++state.evaluations;
-  if (value.diverged)
-  {
-    result.status = "DIVERGED";
-    result.evaluations = state.evaluations;
-    return result;
-  }
-  best.eta_m = value.eta_m;
-  result.found = true;
-  result.parameters = best;
-  result.margin = stabilityMargin(best);
-  result.rmse_speed_mps = std::sqrt(value.mse_speed_mps2);
-  result.evaluations = state.evaluations;
+  finishAtBestPoint(state, bounds, options, result);
   return result;
 }
 
