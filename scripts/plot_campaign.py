@@ -82,14 +82,23 @@ def plot_parameters(vehicles, path, attribution):
 def plot_margins(vehicles, path, attribution):
     labels = [f"{v['name']}/{v['setting']}" for v in vehicles]
     fig, ax = plt.subplots(figsize=(max(8, 0.45 * len(labels) + 2), 5))
+    finite = [x for v in vehicles for x in [number(v["margin"]["value"])] +
+              [number(e) for e in v["stability_test"]["margin_interval"]] if not math.isnan(x)]
+    open_bottom, open_top = (min(finite) - 1.0, max(finite) + 1.0) if finite else (-3.0, 3.0)
     for i, v in enumerate(vehicles):
         verdict = v["stability_test"]["verdict"]
         colour = VERDICT_COLOURS.get(verdict, "black")
         value = number(v["margin"]["value"])
         error = number(v["margin"]["standard_error"])
         low, high = (number(x) for x in v["stability_test"]["margin_interval"])
-        if not math.isnan(low) and not math.isnan(high):
-            ax.plot([i, i], [low, high], color=colour, alpha=0.3, lw=6)
+        if v["stability_test"].get("tested") and not (math.isnan(low) and math.isnan(high)):
+            # An end at infinity (null in the JSON: the data allow every margin that way) is drawn
+            # to the plot's edge with an arrow, not dropped.
+            bottom, top = (open_bottom if math.isnan(low) else low), (open_top if math.isnan(high) else high)
+            ax.plot([i, i], [bottom, top], color=colour, alpha=0.3, lw=6)
+            for end, marker in ((low, "v"), (high, "^")):
+                if math.isnan(end):
+                    ax.plot(i, bottom if marker == "v" else top, marker=marker, color=colour, alpha=0.5)
         if not math.isnan(value):
             ax.errorbar(i, value, yerr=0 if math.isnan(error) else error, fmt="o", color=colour, capsize=3)
         p = number(v["stability_test"]["p_value"])
@@ -100,7 +109,8 @@ def plot_margins(vehicles, path, attribution):
                     color=colour, xytext=(0, 4), textcoords="offset points")
     ax.axhline(0.0, color="black", lw=0.8)
     ax.set_ylabel("margin m = k1 tau_e^2 + 2 k2 tau_e - 2")
-    ax.set_title("String-stability margin +- SE (dot), interval the held-out data allow (band), verdict (colour)")
+    ax.set_title("String-stability margin +- SE (dot), interval the held-out data allow (band; an arrow: open "
+                 "that way), verdict (colour)", fontsize=9)
     handles = [plt.Line2D([], [], marker="o", ls="", color=c, label=k) for k, c in VERDICT_COLOURS.items()]
     ax.legend(handles=handles, fontsize=7)
     ax.set_xticks(range(len(labels)))
