@@ -58,6 +58,13 @@ def by_run(rows):
     return runs
 
 
+def significant(value, digits=2):
+    """A standard error to its significant digits: 0.0042, not 0.00."""
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "n/a"
+    return f"{value:.{digits}g}"
+
+
 def fmt(value, digits=3):
     if value is None or (isinstance(value, float) and not math.isfinite(value)):
         return "n/a"
@@ -185,7 +192,7 @@ def parameter_text(effect):
     parts = []
     for name, value in effect["parameters"].items():
         se = effect["standard_errors"].get(name)
-        parts.append(f"{name} = {fmt(value, 4)}" + (f" ± {fmt(se, 2)}" if se is not None else " (± n/a)"))
+        parts.append(f"{name} = {fmt(value, 4)}" + (f" ± {significant(se)}" if se is not None else " (± n/a)"))
     return "; ".join(parts)
 
 
