@@ -267,6 +267,21 @@ std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std:
   return readRunArgument(path, topic, max_gap_s, log, OpenAccPairSelector::first()).runs;
 }
 
+RunArguments readRunArguments(const std::vector<std::string>& paths, const std::string& topic, double max_gap_s,
+                              std::ostream& log, const OpenAccPairSelector& selector)
+{
+  RunArguments arguments;
+  for (const std::string& path : paths)
+  {
+    RunArgument argument = readRunArgument(path, topic, max_gap_s, log, selector);
+    if (!argument.pairs.empty())
+      arguments.pairs_read.push_back({path, argument.pairs});
+    for (CarFollowingRun& run : argument.runs)
+      arguments.runs.push_back({std::move(run), path});
+  }
+  return arguments;
+}
+
 OpenAccPairSelector pairSelectorFromOptions(const std::string& follower, bool all_pairs)
 {
   if (all_pairs)

@@ -26,22 +26,6 @@
 
 namespace
 {
-std::vector<acc::CalibrationInput> loadRuns(const std::vector<std::string>& paths, const std::string& topic,
-                                            double max_gap_s, const acc::OpenAccPairSelector& selector,
-                                            std::vector<acc::PairsRead>& pairs_read)
-{
-  std::vector<acc::CalibrationInput> loaded;
-  for (const std::string& path : paths)
-  {
-    acc::RunArgument argument = acc::readRunArgument(path, topic, max_gap_s, std::cerr, selector);
-    if (!argument.pairs.empty())
-      pairs_read.push_back({path, argument.pairs});
-    for (auto& run : argument.runs)
-      loaded.push_back({std::move(run), path});
-  }
-  return loaded;
-}
-
 /// Progress on stderr: a live counter on a terminal, a line per tenth otherwise.
 void showProgress(std::size_t done, std::size_t total)
 {
@@ -200,9 +184,10 @@ int main(int argc, char** argv)
 
   try
   {
-    std::vector<acc::PairsRead> pairs_read;
-    const std::vector<acc::CalibrationInput> inputs =
-        loadRuns(paths, topic, max_gap_s, acc::pairSelectorFromOptions(follower, all_pairs), pairs_read);
+    const acc::RunArguments read =
+        acc::readRunArguments(paths, topic, max_gap_s, std::cerr, acc::pairSelectorFromOptions(follower, all_pairs));
+    const std::vector<acc::CalibrationInput>& inputs = read.runs;
+    const std::vector<acc::PairsRead>& pairs_read = read.pairs_read;
     const acc::CalibrateOutcome outcome = acc::calibrateRuns(inputs, pairs_read, settings, std::cout, std::cerr);
     if (outcome.report && !sumo_vtype_path.empty() &&
         !writeSumoVType(sumo_vtype_path, sumo_id.empty() ? inputs.front().run.name : sumo_id, *outcome.report,

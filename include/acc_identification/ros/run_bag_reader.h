@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "acc_identification/calibration/calibrate_runs.h"
 #include "acc_identification/model/car_following_run.h"
 #include "acc_identification/io/openacc_file.h"
 #include "acc_identification/io/run_plausibility.h"
@@ -61,6 +62,16 @@ RunArgument readRunArgument(const std::string& path, const std::string& topic, d
 /// readRunArgument() with the first pair of an OpenACC file; the runs only.
 std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std::string& topic,
                                              double max_gap_s, std::ostream& log);
+
+/// Every RUN argument of a tool read with readRunArgument: each run with the argument it came
+/// from, and the OpenACC pair(s) read per file. Throws as readRunArgument.
+struct RunArguments
+{
+  std::vector<CalibrationInput> runs;
+  std::vector<PairsRead> pairs_read;
+};
+RunArguments readRunArguments(const std::vector<std::string>& paths, const std::string& topic, double max_gap_s,
+                              std::ostream& log, const OpenAccPairSelector& selector);
 
 /// The selector of the tools' --follower NAME|POSITION and --all-pairs options (mutually
 /// exclusive): all pairs, one follower, or by default the first pair.
