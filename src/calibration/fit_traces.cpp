@@ -1,7 +1,6 @@
 #include "acc_identification/calibration/fit_traces.h"
 
 #include <fstream>
-#include <limits>
 #include <stdexcept>
 
 #include "acc_identification/model/follower_simulation.h"
@@ -12,16 +11,8 @@ namespace
 {
 FitTrace traceOf(const AccParameters& p, const std::string& name, const CarFollowingRun& run, const std::string& part)
 {
-  const SimulatedFollower simulated = simulateFollower(p, run);
-  FitTrace trace{name, part, run.time_s, run.follower_speed_mps, simulated.speed_mps, run.space_gap_m,
-                 simulated.space_gap_m};
-  if (simulated.diverged)
-  {
-    constexpr double kNotSimulated = std::numeric_limits<double>::quiet_NaN();
-    for (std::size_t k = simulated.diverged_at_index; k < trace.time_s.size(); ++k)
-      trace.simulated_speed_mps[k] = trace.simulated_gap_m[k] = kNotSimulated;
-  }
-  return trace;
+  const SimulatedFollower simulated = scorable(simulateFollower(p, run));
+  return {name, part, run.time_s, run.follower_speed_mps, simulated.speed_mps, run.space_gap_m, simulated.space_gap_m};
 }
 }  // namespace
 

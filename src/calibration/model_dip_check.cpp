@@ -12,13 +12,7 @@ namespace
 /// The model's follower speed over the run, NaN from where the simulation diverged.
 std::vector<double> modelSpeed(const AccParameters& p, const CarFollowingRun& run)
 {
-  SimulatedFollower simulated = simulateFollower(p, run);
-  if (simulated.diverged)
-  {
-    for (std::size_t i = simulated.diverged_at_index; i < simulated.speed_mps.size(); ++i)
-      simulated.speed_mps[i] = std::numeric_limits<double>::quiet_NaN();
-  }
-  return simulated.speed_mps;
+  return scorable(simulateFollower(p, run)).speed_mps;
 }
 }  // namespace
 

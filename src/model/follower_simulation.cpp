@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -296,6 +297,17 @@ FollowerSpeedSensitivities sensitivitiesWithCapacity(const std::vector<EffectKin
   return out;
 }
 }  // namespace
+
+SimulatedFollower scorable(SimulatedFollower simulated)
+{
+  if (simulated.diverged)
+  {
+    constexpr double kNotSimulated = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t k = simulated.diverged_at_index; k < simulated.speed_mps.size(); ++k)
+      simulated.speed_mps[k] = simulated.space_gap_m[k] = kNotSimulated;
+  }
+  return simulated;
+}
 
 SimulatedFollower simulateFollower(const AccParameters& p, const EffectSettings& e, const CarFollowingRun& run)
 {

@@ -84,3 +84,23 @@ TEST(FollowerSimulation, FlagsDivergenceInsteadOfReturningNaN)
     EXPECT_TRUE(std::isfinite(sim.space_gap_m[k]));
   }
 }
+
+TEST(FollowerSimulation, ScorableBlanksWhatADivergedSimulationMustNotScore)
+{
+  const acc::AccParameters p{5.0, 40.0, 3.0, 2.0};
+  auto run = constantLeaderRun(20.0, 30.0, 2000, 0.1);
+  run.follower_speed_mps[0] = 15.0;
+  const auto sim = acc::scorable(acc::simulateFollower(p, run));
+  ASSERT_TRUE(sim.diverged);
+  for (std::size_t k = 0; k < run.size(); ++k)
+  {
+    const bool kept = k < sim.diverged_at_index;
+    EXPECT_EQ(std::isfinite(sim.speed_mps[k]), kept) << k;
+    EXPECT_EQ(std::isfinite(sim.space_gap_m[k]), kept) << k;
+  }
+  // A simulation that did not diverge is left as it is.
+  const auto calm = acc::simulateFollower({0.1, 0.5, 1.2, 5.0}, run);
+  const auto same = acc::scorable(calm);
+  EXPECT_EQ(same.speed_mps, calm.speed_mps);
+  EXPECT_EQ(same.space_gap_m, calm.space_gap_m);
+}

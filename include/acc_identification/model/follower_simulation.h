@@ -74,6 +74,10 @@ struct FollowerSpeedSensitivities
 FollowerSpeedSensitivities simulateFollowerSensitivities(const std::vector<EffectKind>& effects,
                                                          const std::vector<double>& x, const CarFollowingRun& run);
 
+/// The simulation with NaN from where it diverged on (speed and gap): what may be scored, for
+/// scores that skip NaN samples.
+SimulatedFollower scorable(SimulatedFollower simulated);
+
 /// The paper's model: every effect off.
 inline SimulatedFollower simulateFollower(const AccParameters& p, const CarFollowingRun& run)
 {
