@@ -227,12 +227,11 @@ bool gainsAreTheModels(const SumoAccVType& vtype, const PackageModel& model)
 }
 
 /// Classifies SUMO's own steps with the law at SUMO's state.
-SumoStepCounts countSteps(const SumoAccVType& vtype, const PackageModel& model, const std::vector<double>& leader_mps,
+SumoStepCounts countSteps(const SumoAccVType& vtype, bool same_gains, const std::vector<double>& leader_mps,
                           const std::vector<double>& speed_mps, const std::vector<double>& gap_m, double step_s,
                           const SumoReplayOptions& options)
 {
   SumoStepCounts counts;
-  const bool same_gains = gainsAreTheModels(vtype, model);
   SumoAccMode mode = SumoAccMode::speed_control;
   const std::size_t every = sumoActionEvery(vtype, step_s);
   double held_acceleration_mps2 = 0.0;
@@ -315,7 +314,8 @@ SumoPairReplay replayPairInSumo(const CarFollowingRun& run, const SumoAccVType& 
   r.model_from_vtype_params = vtype.has_source_model;
   const SumoRun sumo = runSumo(run.leader_speed_mps, r.step_s,
                                {{vtype.id, run.space_gap_m.front(), run.follower_speed_mps.front()}}, vtype_file, options);
-  const SimulatedFollower model = simulateFollower(r.model.parameters, r.model.settings(), run);
+  // A model that diverges is scored up to its divergence only (rmse skips NaN).
+  const SimulatedFollower model = scorable(simulateFollower(r.model.parameters, r.model.settings(), run));
   const SumoAccTrace replica = simulateSumoAcc(vtype, run.leader_speed_mps, r.step_s, run.space_gap_m.front(),
                                                run.follower_speed_mps.front(), options.lane_speed_limit_mps);
   r.rmse_speed_sumo_vs_model_mps = rmse(sumo.speed_mps[1], model.speed_mps);
@@ -325,12 +325,9 @@ SumoPairReplay replayPairInSumo(const CarFollowingRun& run, const SumoAccVType& 
   r.rmse_gap_sumo_vs_measured_m = rmse(sumo.gap_m[1], run.space_gap_m);
   r.rmse_gap_model_vs_measured_m = rmse(model.space_gap_m, run.space_gap_m);
   r.rmse_speed_sumo_vs_replica_mps = rmse(sumo.speed_mps[1], replica.speed_mps);
-  r.counts = countSteps(vtype, r.model, run.leader_speed_mps, sumo.speed_mps[1], sumo.gap_m[1], r.step_s, options);
-  r.explanation = explain(r, gainsAreTheModels(vtype, r.model));
-  r.time_s = run.time_s;
-  r.sumo_speed_mps = sumo.speed_mps[1];
-  r.model_speed_mps = model.speed_mps;
-  r.measured_speed_mps = run.follower_speed_mps;
+  const bool same_gains = gainsAreTheModels(vtype, r.model);
+  r.counts = countSteps(vtype, same_gains, run.leader_speed_mps, sumo.speed_mps[1], sumo.gap_m[1], r.step_s, options);
+  r.explanation = explain(r, same_gains);
   return r;
 }
 
@@ -346,7 +343,7 @@ std::vector<std::vector<double>> simulateChain(const SumoPlatoonInput& input, co
   {
     CarFollowingRun link{input.name, input.time_s, std::vector<double>(n, input.starts[i].gap_m),
                          std::vector<double>(n, input.starts[i].speed_mps), ahead_mps};
-    chain.push_back(simulateFollower(models[i].parameters, models[i].settings(), link).speed_mps);
+    chain.push_back(scorable(simulateFollower(models[i].parameters, models[i].settings(), link)).speed_mps);
     ahead_mps = chain.back();
   }
   return chain;
@@ -410,8 +407,8 @@ SumoPlatoonReplay replayPlatoonInSumo(const SumoPlatoonInput& input, const std::
     r.rmse_speed_sumo_vs_model_mps.push_back(rmse(sumo.speed_mps[i + 1], chain[i]));
     r.rmse_speed_sumo_vs_replica_mps.push_back(rmse(sumo.speed_mps[i + 1], replica[i]));
     // SUMO's steps classified at SUMO's own states, driven by SUMO's car ahead.
-    r.steps.push_back(countSteps(input.vtypes[i], models[i], sumo.speed_mps[i], sumo.speed_mps[i + 1],
-                                 sumo.gap_m[i + 1], r.step_s, options));
+    r.steps.push_back(countSteps(input.vtypes[i], gainsAreTheModels(input.vtypes[i], models[i]), sumo.speed_mps[i],
+                                 sumo.speed_mps[i + 1], sumo.gap_m[i + 1], r.step_s, options));
   }
   for (const Perturbation& perturbation : findPerturbations(input.time_s, input.leader_speed_mps))
   {

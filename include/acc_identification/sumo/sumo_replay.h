@@ -86,7 +86,6 @@ struct SumoPairReplay
   PackageModel model;
   bool model_from_vtype_params = false;  ///< the vType carried its source model
   std::vector<std::string> explanation;  ///< why SUMO and the model differ, largest cause first
-  std::vector<double> time_s, sumo_speed_mps, model_speed_mps, measured_speed_mps;
 };
 
 /// Replays run's leader in SUMO with the vType behind it, from the measured start.
