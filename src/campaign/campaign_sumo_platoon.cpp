@@ -10,9 +10,10 @@ namespace acc
 {
 namespace
 {
-bool hasVType(const std::vector<SumoAccVType>& vtypes, const std::string& id)
+const SumoAccVType* findVType(const std::vector<SumoAccVType>& vtypes, const std::string& id)
 {
-  return std::any_of(vtypes.begin(), vtypes.end(), [&](const SumoAccVType& v) { return v.id == id; });
+  const auto found = std::find_if(vtypes.begin(), vtypes.end(), [&](const SumoAccVType& v) { return v.id == id; });
+  return found == vtypes.end() ? nullptr : &*found;
 }
 
 /// The car's vType id: its diagnosed one when asked for and there, else its base one.
@@ -22,18 +23,25 @@ std::string vtypeIdOf(const std::string& name, const std::string& setting, const
   const std::string base = sumoId(name + "_" + setting);
   if (!diagnosed)
     return base;
-  if (hasVType(vtypes, base + "_diagnosed"))
+  if (findVType(vtypes, base + "_diagnosed") != nullptr)
     return base + "_diagnosed";
-  if (hasVType(vtypes, base))
+  if (findVType(vtypes, base) != nullptr)
     notes.push_back(name + ": no diagnosed vType '" + base + "_diagnosed', its base vType instead");
   return base;
 }
 
+/// A car of the chain: its position in the file and its vType.
+struct ChainCar
+{
+  int position = 0;
+  const SumoAccVType* vtype = nullptr;
+};
+
 /// The cars of the chain from position 2 with data and a vType, in order.
-std::vector<int> chainPositions(const CampaignFile& file, const std::vector<SumoAccVType>& vtypes, bool diagnosed,
+std::vector<ChainCar> chainCars(const CampaignFile& file, const std::vector<SumoAccVType>& vtypes, bool diagnosed,
                                 std::vector<std::string>& notes)
 {
-  std::vector<int> positions;
+  std::vector<ChainCar> chain;
   const OpenAccFile& contents = file.contents;
   for (int position = 2;; ++position)
   {
@@ -47,24 +55,25 @@ std::vector<int> chainPositions(const CampaignFile& file, const std::vector<Sumo
       break;
     }
     const std::string id = vtypeIdOf(car->name, file.setting, vtypes, diagnosed, notes);
-    if (!hasVType(vtypes, id))
+    const SumoAccVType* vtype = findVType(vtypes, id);
+    if (vtype == nullptr)
     {
       notes.push_back("the chain stops at position " + std::to_string(position) + ": no vType '" + id +
                       "' in the file (campaign --sumo-vtype writes one per fitted car and setting)");
       break;
     }
-    positions.push_back(position);
+    chain.push_back({position, vtype});
   }
-  return positions;
+  return chain;
 }
 
-bool chainHasData(const OpenAccFile& file, const std::vector<int>& positions, std::size_t row)
+bool chainHasData(const OpenAccFile& file, const std::vector<ChainCar>& chain, std::size_t row)
 {
   if (!std::isfinite(file.time_s[row]))
     return false;
-  for (int position : positions)
-    if (!std::isfinite(file.vehicle(position)->speed_mps[row]) ||
-        !std::isfinite(file.vehicle(position - 1)->gap_to_follower_m[row]))
+  for (const ChainCar& car : chain)
+    if (!std::isfinite(file.vehicle(car.position)->speed_mps[row]) ||
+        !std::isfinite(file.vehicle(car.position - 1)->gap_to_follower_m[row]))
       return false;
   return true;
 }
@@ -81,36 +90,33 @@ FilePlatoonForSumo filePlatoonForSumo(const CampaignFile& file, const std::vecto
 {
   FilePlatoonForSumo out;
   const OpenAccFile& contents = file.contents;
-  std::vector<int> positions = chainPositions(file, vtypes, diagnosed, out.notes);
+  std::vector<ChainCar> chain = chainCars(file, vtypes, diagnosed, out.notes);
   const auto [first, end] = longestLeadStretch(contents, PlatoonCheckOptions{}.max_time_step_s);
   // The first row where the whole chain has data; a car that never has it with the others ends it.
   std::size_t start = end;
-  while (!positions.empty())
+  while (!chain.empty())
   {
-    for (start = first; start < end && !chainHasData(contents, positions, start); ++start)
+    for (start = first; start < end && !chainHasData(contents, chain, start); ++start)
     {
     }
     if (start + 1 < end)
       break;
-    out.notes.push_back("the chain stops before position " + std::to_string(positions.back()) +
+    out.notes.push_back("the chain stops before position " + std::to_string(chain.back().position) +
                         ": no row where it and every car ahead have speed and gap");
-    positions.pop_back();
+    chain.pop_back();
   }
   out.input.name = file.name;
-  if (positions.empty() || start + 1 >= end)
+  if (chain.empty() || start + 1 >= end)
     return out;
   out.input.time_s = rows(contents.time_s, start, end);
   out.input.leader_speed_mps = rows(contents.vehicle(1)->speed_mps, start, end);
-  for (int position : positions)
+  for (const ChainCar& car : chain)
   {
-    const OpenAccVehicle* car = contents.vehicle(position);
-    std::vector<std::string> said;  // chainPositions said it already
-    const std::string id = vtypeIdOf(car->name, file.setting, vtypes, diagnosed, said);
-    out.input.vtypes.push_back(*std::find_if(vtypes.begin(), vtypes.end(), [&](const SumoAccVType& v) {
-      return v.id == id;
-    }));
-    out.input.starts.push_back({id, contents.vehicle(position - 1)->gap_to_follower_m[start], car->speed_mps[start]});
-    out.input.measured_speed_mps.push_back(rows(car->speed_mps, start, end));
+    const std::vector<double>& speed_mps = contents.vehicle(car.position)->speed_mps;
+    out.input.vtypes.push_back(*car.vtype);
+    out.input.starts.push_back(
+        {car.vtype->id, contents.vehicle(car.position - 1)->gap_to_follower_m[start], speed_mps[start]});
+    out.input.measured_speed_mps.push_back(rows(speed_mps, start, end));
   }
   return out;
 }
