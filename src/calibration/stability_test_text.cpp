@@ -1,5 +1,4 @@
 // The string-stability test as text, for the calibrate tool (the JSON is in stability_test_json.cpp).
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <ostream>
@@ -45,9 +44,7 @@ void printStabilityTest(const StabilityTestResult& result, std::ostream& out)
                 "alpha %.3g):\n",
                 result.alpha);
   out << line;
-  std::string verdict = toString(result.verdict);
-  for (char& c : verdict)
-    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  const std::string verdict = verdictInCapitals(result.verdict);
   // THE verdict, each p-value named by the hypothesis it tests: nothing above (a point estimate's
   // lambda2) competes with it.
   std::snprintf(line, sizeof line, "  verdict: %s%s  (p (H0: stable) = %.3g; p (H0: unstable) = %.3g)\n",

@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <limits>
 #include <ostream>
-#include <cctype>
 #include <map>
 #include <sstream>
 
@@ -660,7 +659,7 @@ std::string campaignHeadline(const CampaignResult& result)
   std::size_t adequate = 0, assessed = 0, runs = 0;
   for (const GroupResult& g : result.groups)
   {
-    ++verdicts[g.stability_test.tested ? toString(g.stability_test.verdict) : std::string("not tested")];
+    ++verdicts[g.stability_test.tested ? verdictInCapitals(g.stability_test.verdict) : std::string("NOT TESTED")];
     assessed += g.model_adequacy.assessed;
     adequate += g.model_adequacy.assessed && g.model_adequacy.adequate;
     runs += g.runs;
@@ -670,10 +669,7 @@ std::string campaignHeadline(const CampaignResult& result)
   const char* separator = "";
   for (const auto& [verdict, count] : verdicts)
   {
-    std::string upper = verdict;
-    for (char& c : upper)
-      c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    line << separator << count << " " << upper;
+    line << separator << count << " " << verdict;
     separator = ", ";
   }
   line << " (string-stability test per car and setting) · **Model:** " << adequate << " of " << assessed

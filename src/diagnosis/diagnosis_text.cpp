@@ -1,6 +1,5 @@
 #include "acc_identification/diagnosis/diagnosis_text.h"
 
-#include <cctype>
 #include <cmath>
 
 #include "acc_identification/diagnosis/determined_effects.h"
@@ -12,9 +11,7 @@ namespace acc
 std::string testVerdictText(const AugmentedStabilityTestResult& test)
 {
   char text[200];
-  std::string verdict = toString(test.verdict);
-  for (char& c : verdict)
-    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  const std::string verdict = verdictInCapitals(test.verdict);
   std::snprintf(text, sizeof text, "%s%s (p (H0: stable) = %.3g; p (H0: unstable) = %.3g)",
                 test.verdict == StabilityVerdict::Undecided ? "" : "string ", verdict.c_str(),
                 test.p_value_stable_rejected, test.p_value_unstable_rejected);

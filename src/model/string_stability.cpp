@@ -1,5 +1,6 @@
 #include "acc_identification/model/string_stability.h"
 
+#include <cctype>
 #include <cmath>
 #include <limits>
 
@@ -96,6 +97,14 @@ std::string toString(StabilityVerdict verdict)
     case StabilityVerdict::Undecided: return "undecided";
   }
   return "undecided";
+}
+
+std::string verdictInCapitals(StabilityVerdict verdict)
+{
+  std::string capitals = toString(verdict);
+  for (char& c : capitals)
+    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return capitals;
 }
 
 std::optional<bool> knownStringStability(const StringStabilityReport& report)

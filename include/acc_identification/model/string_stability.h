@@ -59,4 +59,7 @@ enum class StabilityVerdict
 /// "stable", "unstable", "undecided".
 std::string toString(StabilityVerdict verdict);
 
+/// "STABLE", "UNSTABLE", "UNDECIDED": the verdict as the reports print it.
+std::string verdictInCapitals(StabilityVerdict verdict);
+
 }  // namespace acc
