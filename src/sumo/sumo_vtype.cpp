@@ -349,6 +349,13 @@ bool saveSumoVTypes(const std::vector<SumoExport>& exports, const std::string& p
 
 namespace
 {
+/// The vType's id, "" when the file gives none (SUMO then refuses it; here it names errors).
+std::string vtypeId(const tinyxml2::XMLElement* element)
+{
+  const char* id = element->Attribute("id");
+  return id != nullptr ? id : "";
+}
+
 double number(const tinyxml2::XMLElement* element, const char* name, double fallback, const std::string& path)
 {
   const char* text = element->Attribute(name);
@@ -357,7 +364,7 @@ double number(const tinyxml2::XMLElement* element, const char* name, double fall
   char* end = nullptr;
   const double value = std::strtod(text, &end);
   if (end == text || *end != '\0' || !std::isfinite(value))
-    throw std::runtime_error(path + ": vType '" + element->Attribute("id") + "': " + name + "=\"" + text +
+    throw std::runtime_error(path + ": vType '" + vtypeId(element) + "': " + name + "=\"" + text +
                              "\" is not a number");
   return value;
 }
@@ -419,7 +426,7 @@ void readSourceModel(const tinyxml2::XMLElement* element, const std::string& pat
 SumoAccVType readVType(const tinyxml2::XMLElement* element, const std::string& path)
 {
   SumoAccVType v;
-  v.id = element->Attribute("id") != nullptr ? element->Attribute("id") : "";
+  v.id = vtypeId(element);
   v.tau_s = number(element, "tau", v.tau_s, path);
   v.min_gap_m = number(element, "minGap", v.min_gap_m, path);
   v.length_m = number(element, "length", v.length_m, path);

@@ -210,6 +210,18 @@ TEST(SumoVTypeFile, BadFilesAreRefusedWithTheReason)
   {
     EXPECT_NE(std::string(error.what()).find("tau=\"fast\" is not a number"), std::string::npos) << error.what();
   }
+  // Without an id the message still says what is wrong (it once built the message from a null id).
+  std::ofstream(path) << "<additional><vType carFollowModel=\"ACC\" minGap=\"near\"/></additional>\n";
+  try
+  {
+    readSumoAccVTypes(path);
+    FAIL() << "a non-numeric minGap was accepted";
+  }
+  catch (const std::runtime_error& error)
+  {
+    EXPECT_NE(std::string(error.what()).find("vType '': minGap=\"near\" is not a number"), std::string::npos)
+        << error.what();
+  }
   std::ofstream(path) << "<additional><vType id=\"a\"";
   EXPECT_THROW(readSumoAccVTypes(path), std::runtime_error);
   std::remove(path.c_str());
