@@ -18,9 +18,10 @@ acc_add_library(acc_calibration
     src/calibration/betting_e_process.cpp
     src/calibration/sequential_verdict.cpp
     src/calibration/sequential_verdict_report.cpp
-    src/calibration/stability_test.cpp
-    src/calibration/stability_test_json.cpp
-    src/calibration/stability_test_text.cpp
+    src/calibration/held_out_side_comparison.cpp
+    src/calibration/string_stability_verdict.cpp
+    src/calibration/string_stability_verdict_json.cpp
+    src/calibration/string_stability_verdict_text.cpp
     src/calibration/online_identifier.cpp
     src/calibration/model_dip_check.cpp
     src/calibration/model_adequacy.cpp
@@ -54,7 +55,7 @@ acc_add_ros_library(acc_identifier_ros SOURCES src/ros/identifier_ros.cpp LINK a
 acc_add_node(identifier_node WRAPPER acc_identifier_ros)
 
 acc_add_benchmark(bench_calibration LINK acc_calibration)
-acc_add_benchmark(bench_stability_test LINK acc_calibration)
+acc_add_benchmark(bench_string_stability_verdict LINK acc_calibration)
 acc_add_benchmark(bench_online_identifier LINK acc_calibration)
 
 if(CATKIN_ENABLE_TESTING)
@@ -71,9 +72,10 @@ if(CATKIN_ENABLE_TESTING)
   target_compile_definitions(test_calibration PRIVATE ACC_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/test/data/runs")
   target_link_libraries(test_calibration acc_calibration acc_run_io)
 
-  # The string-stability test (stability_test.h) on seeded synthetic drives: size, power, interval.
-  catkin_add_gtest(test_stability_test test/unit/gtest_main.cpp test/unit/test_stability_test.cpp)
-  target_link_libraries(test_stability_test acc_calibration)
+  # The string-stability test (string_stability_verdict.h) on seeded synthetic drives: size, power, interval.
+  catkin_add_gtest(test_string_stability_verdict test/unit/gtest_main.cpp test/unit/test_string_stability_verdict.cpp
+    test/unit/test_held_out_side_comparison.cpp)
+  target_link_libraries(test_string_stability_verdict acc_calibration)
 
   # The sequential verdict: betting under H0, synthetic truths decided and kept, node path = replay.
   catkin_add_gtest(test_sequential_verdict test/unit/gtest_main.cpp test/unit/test_sequential_verdict.cpp)

@@ -8,7 +8,7 @@ acc_add_library(acc_diagnosis
     src/diagnosis/residual_breakdown.cpp
     src/diagnosis/effect_selection.cpp
     src/diagnosis/augmented_stability.cpp
-    src/diagnosis/augmented_stability_test.cpp
+    src/diagnosis/augmented_stability_verdict.cpp
     src/diagnosis/diagnosis.cpp
     src/diagnosis/determined_effects.cpp
     src/diagnosis/diagnosis_output.cpp

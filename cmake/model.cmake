@@ -12,6 +12,7 @@ acc_add_library(acc_model
     src/model/paper_settings.cpp
     src/model/halton_sequence.cpp
     src/model/block_bootstrap.cpp
+    src/model/sample_statistics.cpp
     src/model/normal_source.cpp
     src/model/follower_effects.cpp
     src/model/batch_means.cpp

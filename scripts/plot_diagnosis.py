@@ -27,7 +27,7 @@ OPENACC_ATTRIBUTION = (
 
 
 def stability_test_lines(test):
-    """The verdict of the chosen model, decided on held-out data (diagnosis/augmented_stability_test.h)."""
+    """The verdict of the chosen model, decided on held-out data (diagnosis/augmented_stability_verdict.h)."""
     if not test:
         return ["The string-stability test was not run.", ""]
 

@@ -3,7 +3,7 @@
 #include "acc_identification/calibration/identification.h"
 #include "acc_identification/calibration/model_adequacy.h"
 #include "acc_identification/calibration/sequential_verdict.h"
-#include "acc_identification/calibration/stability_test.h"
+#include "acc_identification/calibration/string_stability_verdict.h"
 
 namespace acc
 {

@@ -1,4 +1,5 @@
 #include "acc_identification/model/block_bootstrap.h"
+#include "acc_identification/model/sample_statistics.h"
 
 #include <algorithm>
 #include <random>
@@ -114,22 +115,10 @@ std::vector<double> MovingBlockBootstrap::centredReplicates(const std::vector<do
   return result;
 }
 
-namespace
-{
-double mean(const std::vector<double>& x)
-{
-  double sum = 0.0;
-  for (double value : x)
-  {
-    sum += value;
-  }
-  return x.empty() ? 0.0 : sum / static_cast<double>(x.size());
-}
-}  // namespace
 
 double MovingBlockBootstrap::pValueMeanPositive(const std::vector<double>& x) const
 {
-  const double observed = mean(x);
+  const double observed = meanOf(x);
   std::size_t at_least = 0;
   for (double t : centredReplicates(x))
   {
@@ -140,7 +129,7 @@ double MovingBlockBootstrap::pValueMeanPositive(const std::vector<double>& x) co
 
 double MovingBlockBootstrap::pValueMeanNegative(const std::vector<double>& x) const
 {
-  const double observed = mean(x);
+  const double observed = meanOf(x);
   std::size_t at_most = 0;
   for (double t : centredReplicates(x))
   {

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "acc_identification/diagnosis/augmented_stability.h"
-#include "acc_identification/diagnosis/augmented_stability_test.h"
+#include "acc_identification/diagnosis/augmented_stability_verdict.h"
 #include "acc_identification/diagnosis/diagnosis.h"
 #include "acc_identification/validation/withheld_effect_suite.h"
 #include "acc_identification/model/halton_sequence.h"

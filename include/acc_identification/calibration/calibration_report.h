@@ -13,7 +13,7 @@
 #include "acc_identification/calibration/model_dip_check.h"
 #include "acc_identification/calibration/multistart_calibrator.h"
 #include "acc_identification/calibration/quantity_identifiability.h"
-#include "acc_identification/calibration/stability_test.h"
+#include "acc_identification/calibration/string_stability_verdict.h"
 #include "acc_identification/model/car_following_run.h"
 #include "acc_identification/model/string_stability.h"
 
@@ -91,7 +91,7 @@ void printUnfitted(const UnfittedDataSummary& summary, std::ostream& out);
 
 /// The --json document. Keys "parameters" (k1_per_s2, k2_per_s, tau_e_s, eta_m),
 /// "standard_errors", "stability", "objective", "runs", "summary" are read by other tools;
-/// "identifiable_quantities" and "stability_test" (stability_test.h) when they were computed;
+/// "identifiable_quantities" and "stability_test" (string_stability_verdict.h) when they were computed;
 /// "fitted": true; "model_adequacy" (model_adequacy.h) when assessed. stability.string_stable is
 /// null where lambda2 is NaN.
 nlohmann::json reportToJson(const CalibrationReport& report);

@@ -7,7 +7,7 @@
 #include "acc_identification/calibration/identification.h"
 #include "acc_identification/calibration/quantity_identifiability.h"
 #include "acc_identification/calibration/sequential_verdict.h"
-#include "acc_identification/calibration/stability_test.h"
+#include "acc_identification/calibration/string_stability_verdict.h"
 #include "acc_identification/model/car_following_run.h"
 
 namespace acc

@@ -14,7 +14,7 @@
 namespace acc
 {
 /// The two side fits of the string-stability question, and how they are scored on data they were
-/// not fitted to: shared by the fixed-sample test (stability_test.h) and the sequential verdict
+/// not fitted to: shared by the fixed-sample test (string_stability_verdict.h) and the sequential verdict
 /// (sequential_verdict.h), so both judge the same two models the same way.
 
 /// One of the two side fits.

@@ -9,7 +9,7 @@
 #include "acc_identification/model/car_following_run.h"
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/augmented_stability.h"
-#include "acc_identification/diagnosis/augmented_stability_test.h"
+#include "acc_identification/diagnosis/augmented_stability_verdict.h"
 #include "acc_identification/diagnosis/determined_effects.h"
 #include "acc_identification/model/follower_effects.h"
 #include "acc_identification/diagnosis/effect_selection.h"

@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <string>
 
-#include "acc_identification/diagnosis/augmented_stability_test.h"
+#include "acc_identification/diagnosis/augmented_stability_verdict.h"
 #include "acc_identification/diagnosis/diagnosis.h"
 
 namespace acc

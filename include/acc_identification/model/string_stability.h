@@ -47,8 +47,8 @@ StringStabilityReport analyzeStringStability(const AccParameters& p);
 /// determined): a "false" there would read as "unstable". Every output writes this one (JSON null).
 std::optional<bool> knownStringStability(const StringStabilityReport& report);
 
-/// What held-out data say of string stability (calibration/stability_test.h for the paper's
-/// model, diagnosis/augmented_stability_test.h for an augmented one).
+/// What held-out data say of string stability (calibration/string_stability_verdict.h for the paper's
+/// model, diagnosis/augmented_stability_verdict.h for an augmented one).
 enum class StabilityVerdict
 {
   Stable,

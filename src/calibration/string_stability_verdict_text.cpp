@@ -1,9 +1,9 @@
-// The string-stability test as text, for the calibrate tool (the JSON is in stability_test_json.cpp).
+// The string-stability test as text, for the calibrate tool (the JSON is in string_stability_verdict_json.cpp).
 #include <cmath>
 #include <cstdio>
 #include <ostream>
 
-#include "acc_identification/calibration/stability_test.h"
+#include "acc_identification/calibration/string_stability_verdict.h"
 
 namespace acc
 {
@@ -47,9 +47,12 @@ void printStabilityTest(const StabilityTestResult& result, std::ostream& out)
   const std::string verdict = verdictInCapitals(result.verdict);
   // THE verdict, each p-value named by the hypothesis it tests: nothing above (a point estimate's
   // lambda2) competes with it.
-  std::snprintf(line, sizeof line, "  verdict: %s%s  (p (H0: stable) = %.3g; p (H0: unstable) = %.3g)\n",
-                result.verdict == StabilityVerdict::Undecided ? "" : "string ", verdict.c_str(),
-                result.p_value_stable_rejected, result.p_value_unstable_rejected);
+  if (result.tested)
+    std::snprintf(line, sizeof line, "  verdict: %s%s  (p (H0: stable) = %.3g; p (H0: unstable) = %.3g)\n",
+                  result.verdict == StabilityVerdict::Undecided ? "" : "string ", verdict.c_str(),
+                  result.p_value_stable_rejected, result.p_value_unstable_rejected);
+  else
+    std::snprintf(line, sizeof line, "  verdict: %s  (not tested, no p-values: see why)\n", verdict.c_str());
   out << line;
   if (result.tested)
   {

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "acc_identification/calibration/calibration_objective.h"
+#include "acc_identification/calibration/held_out_side_comparison.h"
 #include "acc_identification/calibration/margin_constrained_fit.h"
 #include "acc_identification/calibration/multistart_calibrator.h"
 #include "acc_identification/calibration/quantity_identifiability.h"
@@ -53,8 +54,12 @@ namespace acc
 ///     margins < 0; stable: all > 0); otherwise "undecided" with the reason. A winner on the
 ///     boundary m = 0 (which belongs to both closed sides) therefore never decides.
 ///
+/// Steps 1, 3 and the rule of step 5 are the engine shared with the augmented models' test
+/// (held_out_side_comparison.h); this test plugs in its side search (step 2) and the margin
+/// profile (step 4).
+///
 /// Cost: one multistart calibration of the training halves plus about ten local solves; with the
-/// defaults about the time of one calibration of all the data (bench/bench_stability_test.cpp).
+/// defaults about the time of one calibration of all the data (bench/bench_string_stability_verdict.cpp).
 ///
 /// Typical use (the calibrate tool, the identifier node):
 ///   acc::StabilityTestOptions options;            // alpha 0.05, 999 replicates, fixed seed
@@ -62,9 +67,8 @@ namespace acc
 ///   const acc::StabilityTestResult test = acc::testStringStability(runs, options);
 ///   json["stability_test"] = acc::toJson(test);   // with "identifiable_quantities" inside
 ///   if (test.verdict == acc::StabilityVerdict::Unstable) ...
-struct StabilityTestOptions
+struct StabilityTestOptions : HeldOutComparisonOptions
 {
-  double alpha = 0.05;
   ParameterBounds bounds;
   /// The unconstrained fit on the training data, with warm_starts first (e.g. the fit on all the
   /// data, or the previous window's).
@@ -85,19 +89,7 @@ struct StabilityTestOptions
   /// rejected margin next to it (an end at the grid's edge is not).
   std::size_t interval_bisections = 5;
 
-  std::size_t bootstrap_replicates = 999;
-  std::uint64_t seed = 20240601;
-  /// Fixed block length [s]; 0: automatic, five correlation times of d_t (from its lag-1
-  /// autocorrelation, as fit_statistics does for the residuals) clamped to
-  /// [min_block_length_s, max_block_length_s] and to at most 1/min_blocks of the held-out time.
-  double block_length_s = 0.0;
-  double min_block_length_s = 20.0;
-  double max_block_length_s = 60.0;
-  std::size_t min_blocks = 4;
-
   /// Below these the test is not run and the verdict is "undecided" with the reason.
-  std::size_t min_held_out_samples = 300;
-  double min_held_out_duration_s = 80.0;
   std::size_t min_training_samples = 300;
   /// Standard deviation of the training follower speed below which there are no speed changes
   /// to learn the dynamics from (GNSS noise alone gives about 0.06 m/s).
@@ -128,16 +120,10 @@ struct MarginProfilePoint
   bool fitted = false;  ///< false: no feasible fit at this margin (then not allowed)
 };
 
-struct StabilityTestResult
+/// The verdict, its p-values and the comparison's numbers (HeldOutVerdict), and the base model's
+/// own: both side fits, the margins allowed and the profile behind them.
+struct StabilityTestResult : HeldOutVerdict
 {
-  StabilityVerdict verdict = StabilityVerdict::Undecided;
-  /// The decided verdict's p-value; for "undecided" the smaller of the two (see reason).
-  double p_value = 1.0;
-  double p_value_stable_rejected = 1.0;    ///< H0: stable (E d <= 0) against E d > 0
-  double p_value_unstable_rejected = 1.0;  ///< H0: unstable (E d >= 0) against E d < 0
-  double alpha = 0.05;
-  /// D = mean of d_t = e_stable^2 - e_unstable^2 over the held-out samples [m^2/s^2].
-  double mean_squared_error_difference = 0.0;
   bool tested = false;                     ///< the fits and the bootstrap ran (else see reason)
 
   SideFit best_stable;
@@ -153,13 +139,8 @@ struct StabilityTestResult
   std::string margin_interval_note;
   std::vector<MarginProfilePoint> margin_profile;  ///< by increasing margin
 
-  std::size_t bootstrap_replicates = 0;
-  double block_length_s = 0.0;
-  std::uint64_t seed = 0;
   std::size_t training_samples = 0;
-  std::size_t held_out_samples = 0;     ///< scored: all held-out samples but each segment's first
   std::size_t held_out_segments = 0;
-  std::string reason;                   ///< why this verdict, in words
 
   std::optional<IdentifiableQuantities> quantities;  ///< of the training fit U (with_quantities)
   /// Cost: objective passes over the training data of each stage, and the wall time of it all.

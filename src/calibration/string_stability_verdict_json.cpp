@@ -1,4 +1,4 @@
-#include "acc_identification/calibration/stability_test.h"
+#include "acc_identification/calibration/string_stability_verdict.h"
 #include "acc_identification/model/json_number.h"
 
 #include <cmath>

@@ -1,4 +1,5 @@
-#include "acc_identification/diagnosis/augmented_stability_test.h"
+#include "acc_identification/diagnosis/augmented_stability_verdict.h"
+#include "acc_identification/model/sample_statistics.h"
 #include "acc_identification/model/json_number.h"
 
 #include <algorithm>
@@ -178,53 +179,23 @@ std::vector<double> heldOutSquaredErrors(const AugmentedSideFit& model, const st
   return errors;
 }
 
-double meanOf(const std::vector<double>& x)
+/// The verdict from the two p-values and the sides' indices, with its reason.
+void decide(AugmentedStabilityTestResult* r)
 {
-  double sum = 0.0;
-  for (double v : x)
-    sum += v;
-  return x.empty() ? 0.0 : sum / static_cast<double>(x.size());
-}
-
-std::string describe(const AugmentedStabilityTestResult& r, double mean_difference)
-{
-  std::ostringstream out;
-  out.precision(4);
-  out << combinedEffectName(r.effects) << " model: held-out speed RMSE best stable " << r.best_stable.test_rmse_speed_mps
-      << " m/s (index " << r.best_stable.stability_index << "), best unstable " << r.best_unstable.test_rmse_speed_mps
-      << " m/s (index " << r.best_unstable.stability_index << "), mean paired squared-error difference "
-      << mean_difference << " m^2/s^2 over " << r.held_out_samples << " samples; p(stable rejected) = "
-      << r.p_value_stable_rejected << ", p(unstable rejected) = " << r.p_value_unstable_rejected
-      << " (moving-block bootstrap, blocks of " << r.block_length_s << " s)";
-  return out.str();
-}
-
-void decide(AugmentedStabilityTestResult* r, double mean_difference)
-{
-  const std::string numbers = describe(*r, mean_difference);
-  const bool unstable_strict = r->best_unstable.stability_index < 0.0;
-  const bool stable_strict = r->best_stable.stability_index > 0.0;
-  if (r->p_value_stable_rejected <= r->alpha && unstable_strict)
+  const std::string numbers =
+      combinedEffectName(r->effects) + " model: " +
+      describeComparison(*r, r->best_stable.test_rmse_speed_mps, "index " + reasonNumber(r->best_stable.stability_index),
+                         r->best_unstable.test_rmse_speed_mps,
+                         "index " + reasonNumber(r->best_unstable.stability_index));
+  if (decideSides(*r, r->best_unstable.stability_index < 0.0, r->best_stable.stability_index > 0.0) ==
+      SideDecision::Decided)
   {
-    r->verdict = StabilityVerdict::Unstable;
-    r->p_value = r->p_value_stable_rejected;
-    r->reason = numbers + ": the data reject string stability";
+    r->reason = numbers + (r->verdict == StabilityVerdict::Unstable ? ": the data reject string stability"
+                                                                     : ": the data reject string instability");
+    return;
   }
-  else if (r->p_value_unstable_rejected <= r->alpha && stable_strict)
-  {
-    r->verdict = StabilityVerdict::Stable;
-    r->p_value = r->p_value_unstable_rejected;
-    r->reason = numbers + ": the data reject string instability";
-  }
-  else
-  {
-    r->verdict = StabilityVerdict::Undecided;
-    r->p_value = std::min(r->p_value_stable_rejected, r->p_value_unstable_rejected);
-    std::ostringstream alpha;
-    alpha << r->alpha;
-    r->reason = numbers + ": neither side predicts the held-out data significantly better with a model strictly "
-                          "inside its side (alpha " + alpha.str() + ")";
-  }
+  r->reason = numbers + ": neither side predicts the held-out data significantly better with a model strictly "
+                        "inside its side (alpha " + reasonNumber(r->alpha) + ")";
 }
 
 nlohmann::json sideJson(const AugmentedSideFit& s, const std::vector<EffectKind>& effects)
@@ -272,20 +243,12 @@ AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& ch
   r.effect = chosen.effect;
   r.effects = effectsOf(chosen);
   r.alpha = options.alpha;
-  std::vector<std::size_t> lengths;
-  for (const CarFollowingRun& run : test)
+  const HeldOutSegments segments = heldOutSegmentsOf(test);
+  r.held_out_samples = segments.scored_samples;
+  r.held_out_duration_s = segments.duration_s;
+  if (const std::string shortage = heldOutShortage(segments, options); !shortage.empty())
   {
-    if (run.size() < 2)
-      continue;
-    lengths.push_back(run.size() - 1);
-    r.held_out_samples += run.size() - 1;
-    r.held_out_duration_s += run.time_s.back() - run.time_s.front();
-  }
-  if (r.held_out_samples < options.min_held_out_samples || r.held_out_duration_s < options.min_held_out_duration_s)
-  {
-    r.reason = "too few held-out samples (" + std::to_string(r.held_out_samples) + " over " +
-               std::to_string(r.held_out_duration_s) + " s; need " + std::to_string(options.min_held_out_samples) +
-               " samples and " + std::to_string(options.min_held_out_duration_s) + " s)";
+    r.reason = shortage;
     return r;
   }
 
@@ -313,20 +276,10 @@ AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& ch
 
   const std::vector<double> stable_errors = heldOutSquaredErrors(r.best_stable, test);
   const std::vector<double> unstable_errors = heldOutSquaredErrors(r.best_unstable, test);
-  r.best_stable.test_rmse_speed_mps = std::sqrt(meanOf(stable_errors));
-  r.best_unstable.test_rmse_speed_mps = std::sqrt(meanOf(unstable_errors));
-  std::vector<double> difference(stable_errors.size());
-  for (std::size_t k = 0; k < difference.size(); ++k)
-    difference[k] = stable_errors[k] - unstable_errors[k];
-
-  const double sample_period_s = r.held_out_duration_s / static_cast<double>(r.held_out_samples);
-  const double block_s = std::min(options.block_length_s, r.held_out_duration_s / static_cast<double>(options.min_blocks));
-  const auto block_samples = static_cast<std::size_t>(std::max(1.0, std::round(block_s / sample_period_s)));
-  r.block_length_s = static_cast<double>(block_samples) * sample_period_s;
-  const MovingBlockBootstrap bootstrap(lengths, block_samples, options.bootstrap_replicates, options.seed);
-  r.p_value_stable_rejected = bootstrap.pValueMeanPositive(difference);
-  r.p_value_unstable_rejected = bootstrap.pValueMeanNegative(difference);
-  decide(&r, meanOf(difference));
+  r.best_stable.test_rmse_speed_mps = rootMeanOf(stable_errors);
+  r.best_unstable.test_rmse_speed_mps = rootMeanOf(unstable_errors);
+  HeldOutSideComparison(stable_errors, unstable_errors, segments, options).report(r);
+  decide(&r);
   return r;
 }
 

@@ -1,4 +1,4 @@
-// The string-stability test (calibration/stability_test.h) on seeded synthetic drives with known
+// The string-stability test (calibration/string_stability_verdict.h) on seeded synthetic drives with known
 // truth, made honestly: the truth is integrated by RK4 at 0.01 s (finer than the fit's Euler at the
 // data's 0.1 s) from equilibrium, driven by a piecewise-linear leader; then sampled at 10 Hz with
 // white Gaussian noise of 0.05 m/s on both speeds and 0.4 m on the gap (acc::NormalSource, the
@@ -13,6 +13,8 @@
 // 999 bootstrap replicates. About 20 ms per test of a 500 s drive.
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -26,7 +28,7 @@
 #include "acc_identification/calibration/fit_statistics.h"
 #include "acc_identification/calibration/margin_constrained_fit.h"
 #include "acc_identification/calibration/quantity_identifiability.h"
-#include "acc_identification/calibration/stability_test.h"
+#include "acc_identification/calibration/string_stability_verdict.h"
 #include "acc_identification/model/paper_settings.h"
 
 namespace
@@ -476,8 +478,17 @@ TEST(StabilityTest, FlatDataIsUndecidedWithAReason)
     const auto r = acc::testStringStability({flat}, fastOptions());
     EXPECT_EQ(r.verdict, acc::StabilityVerdict::Undecided);
     EXPECT_NE(r.reason.find("flat"), std::string::npos) << r.reason;
-    EXPECT_TRUE(std::isfinite(r.p_value));
-    EXPECT_FALSE(toJson(r).dump().empty());
+    // Not tested: no p-value (a default of 1 would read as "no evidence"), null in JSON.
+    EXPECT_FALSE(r.tested);
+    EXPECT_TRUE(std::isnan(r.p_value));
+    const nlohmann::json json = toJson(r);
+    EXPECT_TRUE(json["p_value"].is_null());
+    EXPECT_TRUE(json["p_value_stable_rejected"].is_null());
+    EXPECT_TRUE(json["p_value_hypothesis"].is_null());
+    std::ostringstream text;
+    printStabilityTest(r, text);
+    EXPECT_NE(text.str().find("not tested, no p-values"), std::string::npos) << text.str();
+    EXPECT_EQ(text.str().find("nan"), std::string::npos) << text.str();
   }
 }
 

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "acc_identification/calibration/held_out_side_comparison.h"
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/model/follower_effects.h"
 #include "acc_identification/model/acc_parameters.h"
@@ -28,7 +29,7 @@ namespace acc
 double augmentedStabilityIndex(const AccParameters& p, const EffectSettings& effects, double operating_speed_mps);
 
 /// The string-stability test of the model the diagnosis chose (an augmented model, or the base
-/// model when no effect is significant), the counterpart of calibration/stability_test.h:
+/// model when no effect is significant), the counterpart of calibration/string_stability_verdict.h:
 ///  1. the chosen fit U (trained on the first parts) is on one side of the boundary; the best fit
 ///     on the other side is searched on the same training data: NLopt COBYLA on the unit-scaled
 ///     box of the base and effect parameters, with side * augmentedStabilityIndex >= 0 as a
@@ -44,18 +45,14 @@ double augmentedStabilityIndex(const AccParameters& p, const EffectSettings& eff
 ///  3. "unstable" when p_value_stable_rejected <= alpha and the better model is strictly unstable
 ///     (index < 0); "stable" in the mirror case; otherwise "undecided" with the reason (also
 ///     when the held-out data are too short, or no fit exists on one side).
-/// Unlike the base model's test there is no interval of allowed margins: the augmented index is a
-/// sign, not a calibrated scale.
-struct AugmentedStabilityTestOptions
+/// Steps 2 and 3 are the engine shared with the base model's test (held_out_side_comparison.h); this
+/// test plugs in its side search (step 1). Unlike the base model's test there is no interval of
+/// allowed margins: the augmented index is a sign, not a calibrated scale.
+struct AugmentedStabilityTestOptions : HeldOutComparisonOptions
 {
-  double alpha = 0.05;
-  std::size_t bootstrap_replicates = 999;
-  std::uint64_t seed = 20240601;
-  /// Blocks of this length [s], shortened so that the held-out data hold at least min_blocks.
-  double block_length_s = 30.0;
-  std::size_t min_blocks = 4;
-  std::size_t min_held_out_samples = 300;
-  double min_held_out_duration_s = 80.0;
+  /// Blocks of 30 s (shortened so that the held-out data hold at least min_blocks), fixed rather
+  /// than from the correlation: the diagnosis compares many models on the same draws.
+  AugmentedStabilityTestOptions() { block_length_s = 30.0; }
   /// The side fit: Halton starts besides U and its projection, evaluations per start.
   std::size_t halton_starts = 4;
   int max_evaluations_per_start = 400;
@@ -75,22 +72,13 @@ struct AugmentedSideFit
   double test_rmse_speed_mps = std::numeric_limits<double>::quiet_NaN();
 };
 
-struct AugmentedStabilityTestResult
+/// The verdict, its p-values and the comparison's numbers (HeldOutVerdict), and the two side models.
+struct AugmentedStabilityTestResult : HeldOutVerdict
 {
   EffectKind effect = EffectKind::none;  ///< the chosen fit's effect (the last added, for a combination)
   std::vector<EffectKind> effects;       ///< every effect of the chosen model (effectsOf)
-  StabilityVerdict verdict = StabilityVerdict::Undecided;
-  /// The verdict's p-value: of the side rejected when decided, else the smaller of the two.
-  double p_value = std::numeric_limits<double>::quiet_NaN();
-  double p_value_stable_rejected = std::numeric_limits<double>::quiet_NaN();
-  double p_value_unstable_rejected = std::numeric_limits<double>::quiet_NaN();
-  double alpha = 0.05;
   AugmentedSideFit best_stable, best_unstable;
-  std::size_t held_out_samples = 0;
-  double held_out_duration_s = 0.0;
-  double block_length_s = 0.0;
   std::size_t side_fit_evaluations = 0;
-  std::string reason;  ///< why this verdict, in one sentence with the numbers
 };
 
 /// Runs the test for `chosen` (fitted on `train`; one effect or several, effectsOf(chosen)) with the data of the diagnosis: `train` the

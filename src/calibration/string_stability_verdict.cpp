@@ -1,4 +1,4 @@
-#include "acc_identification/calibration/stability_test.h"
+#include "acc_identification/calibration/string_stability_verdict.h"
 
 #include <algorithm>
 #include <chrono>
@@ -6,10 +6,10 @@
 #include <optional>
 #include <sstream>
 
-#include "acc_identification/model/block_bootstrap.h"
 #include "acc_identification/calibration/calibration_report.h"
 #include "acc_identification/calibration/fit_statistics.h"
 #include "acc_identification/model/follower_simulation.h"
+#include "acc_identification/model/sample_statistics.h"
 
 namespace acc
 {
@@ -19,45 +19,6 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 /// Margins closer than this count as the same profile point (the boundary fits sit a few ulps
 /// above 0).
 constexpr double kSameMargin = 1e-9;
-
-double rms(const std::vector<double>& x)
-{
-  double sum = 0.0;
-  for (double value : x)
-  {
-    sum += value * value;
-  }
-  return x.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(x.size()));
-}
-
-/// a^2 - b^2 term by term.
-std::vector<double> squaredErrorDifference(const std::vector<double>& a, const std::vector<double>& b)
-{
-  std::vector<double> d(a.size());
-  for (std::size_t i = 0; i < a.size(); ++i)
-  {
-    d[i] = a[i] * a[i] - b[i] * b[i];
-  }
-  return d;
-}
-
-double mean(const std::vector<double>& x)
-{
-  double sum = 0.0;
-  for (double value : x)
-  {
-    sum += value;
-  }
-  return x.empty() ? 0.0 : sum / static_cast<double>(x.size());
-}
-
-std::string formatNumber(double value, int precision = 4)
-{
-  std::ostringstream out;
-  out.precision(precision);
-  out << value;
-  return out.str();
-}
 
 /// A profile point's fit, before its held-out scoring.
 struct ProfileFit
@@ -128,51 +89,29 @@ void spanAllowedMargins(StabilityTestResult& result, double least, double larges
 }
 
 /// The verdict from the two p-values and the interval, with its reason.
-std::string decideVerdict(StabilityTestResult& result, double alpha)
+std::string decideVerdict(StabilityTestResult& result)
 {
-  const double D = result.mean_squared_error_difference;
-  std::ostringstream why;
-  why << "held-out speed RMSE best stable " << formatNumber(result.best_stable.test_rmse_speed_mps)
-      << " m/s (m = " << formatNumber(result.best_stable.margin) << "), best unstable "
-      << formatNumber(result.best_unstable.test_rmse_speed_mps) << " m/s (m = "
-      << formatNumber(result.best_unstable.margin) << "), mean paired squared-error difference " << formatNumber(D)
-      << " m^2/s^2 over " << result.held_out_samples << " samples; p(stable rejected) = "
-      << formatNumber(result.p_value_stable_rejected)
-      << ", p(unstable rejected) = " << formatNumber(result.p_value_unstable_rejected) << " (moving-block bootstrap, "
-      << result.bootstrap_replicates << " replicates, blocks of " << formatNumber(result.block_length_s) << " s)";
-  const bool reject_stable = result.p_value_stable_rejected <= alpha;
-  const bool reject_unstable = result.p_value_unstable_rejected <= alpha;
-  if (reject_stable && result.margin_high < -kSameMargin)
+  std::string why = describeComparison(result, result.best_stable.test_rmse_speed_mps,
+                                       "m = " + reasonNumber(result.best_stable.margin),
+                                       result.best_unstable.test_rmse_speed_mps,
+                                       "m = " + reasonNumber(result.best_unstable.margin));
+  const std::string allowed = "[" + reasonNumber(result.margin_low) + ", " + reasonNumber(result.margin_high) + "]";
+  switch (decideSides(result, result.margin_high < -kSameMargin, result.margin_low > kSameMargin))
   {
-    result.verdict = StabilityVerdict::Unstable;
-    result.p_value = result.p_value_stable_rejected;
-    why << ": the data reject string stability; allowed margins [" << formatNumber(result.margin_low) << ", "
-        << formatNumber(result.margin_high) << "]";
+    case SideDecision::Decided:
+      return why + (result.verdict == StabilityVerdict::Unstable ? ": the data reject string stability"
+                                                                 : ": the data reject string instability") +
+             "; allowed margins " + allowed;
+    case SideDecision::RejectedWinnerNotInside:
+      return why + ": the paired test rejects " +
+             (result.p_value_stable_rejected <= result.alpha ? "stability" : "instability") +
+             ", but the held-out data still allow margins on both sides of 0 or on the boundary (allowed " + allowed +
+             "): a model at or across m = 0 predicts as well";
+    case SideDecision::NeitherRejected:
+      break;
   }
-  else if (reject_unstable && result.margin_low > kSameMargin)
-  {
-    result.verdict = StabilityVerdict::Stable;
-    result.p_value = result.p_value_unstable_rejected;
-    why << ": the data reject string instability; allowed margins [" << formatNumber(result.margin_low) << ", "
-        << formatNumber(result.margin_high) << "]";
-  }
-  else
-  {
-    result.verdict = StabilityVerdict::Undecided;
-    result.p_value = std::min(result.p_value_stable_rejected, result.p_value_unstable_rejected);
-    if (reject_stable || reject_unstable)
-    {
-      why << ": the paired test rejects " << (reject_stable ? "stability" : "instability")
-          << ", but the held-out data still allow margins on both sides of 0 or on the boundary (allowed ["
-          << formatNumber(result.margin_low) << ", " << formatNumber(result.margin_high)
-          << "]): a model at or across m = 0 predicts as well";
-    }
-    else
-    {
-      why << ": neither model predicts the held-out data significantly better (alpha " << alpha << ")";
-    }
-  }
-  return why.str();
+  return why + ": neither model predicts the held-out data significantly better (alpha " + reasonNumber(result.alpha) +
+         ")";
 }
 
 }  // namespace
@@ -218,15 +157,6 @@ StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& runs
 
 namespace
 {
-/// The held-out comparison of one pass: the bootstrap on the held-out segments, and the errors of
-/// the side fit that predicts them better, which every profile point is scored against.
-struct HeldOutComparison
-{
-  std::optional<MovingBlockBootstrap> bootstrap;
-  std::vector<double> reference_errors;
-  bool stable_wins = true;
-};
-
 /// One run of the test (testStringStability below), its stages as methods: the data, the two
 /// side fits, then up to two passes of the held-out comparison and the margin profile.
 class StringStabilityTestRun
@@ -251,10 +181,11 @@ public:
     grid_ = marginGrid();
     for (int pass = 0; pass < 2; ++pass)
     {
-      HeldOutComparison comparison;
-      failure = compareSides(comparison);
+      std::optional<HeldOutSideComparison> compared;
+      failure = compareSides(compared);
       if (!failure.empty())
         return finish(failure);
+      const HeldOutSideComparison& comparison = *compared;
       // A profile fit better on the training data than the side fit of its side (a local search
       // missed it) replaces that side fit, and the test is made again with it (once).
       if (adoptBetterProfileFits(profileOutwards(comparison)) && pass == 0)
@@ -264,7 +195,7 @@ public:
     }
     spanAllowedMargins(result_, leastMargin(options_.bounds), largestMargin(options_.bounds),
                        1e-3 * options_.multistart.start_box_upper.k1_per_s2, options_.alpha);
-    return finish(decideVerdict(result_, options_.alpha));
+    return finish(decideVerdict(result_));
   }
 
 private:
@@ -287,28 +218,21 @@ private:
       }
     }
     for (const CarFollowingRun& run : held_out_in)
-    {
       if (describeRunProblem(run).empty())
-      {
         held_out_.push_back(run);
-        segment_lengths_.push_back(run.size() - 1);
-        result_.held_out_samples += run.size() - 1;
-        held_out_duration_s_ += run.durationS();
-      }
-    }
-    result_.held_out_segments = held_out_.size();
+    segments_ = heldOutSegmentsOf(held_out_);
+    result_.held_out_samples = segments_.scored_samples;
+    result_.held_out_duration_s = segments_.duration_s;
+    result_.held_out_segments = segments_.scored_lengths.size();
     if (result_.training_samples < options_.min_training_samples)
       return "too few training samples (" + std::to_string(result_.training_samples) + " < " +
              std::to_string(options_.min_training_samples) + ")";
-    if (result_.held_out_samples < options_.min_held_out_samples ||
-        held_out_duration_s_ < options_.min_held_out_duration_s)
-      return "too few held-out samples (" + std::to_string(result_.held_out_samples) + " over " +
-             formatNumber(held_out_duration_s_) + " s; need " + std::to_string(options_.min_held_out_samples) +
-             " samples and " + formatNumber(options_.min_held_out_duration_s) + " s)";
+    if (const std::string shortage = heldOutShortage(segments_, options_); !shortage.empty())
+      return shortage;
     const double speed_std = followerSpeedStdMps(training_);
     if (speed_std < options_.min_training_speed_std_mps)
-      return "flat data: the training follower speed varies by " + formatNumber(speed_std) + " m/s (std) < " +
-             formatNumber(options_.min_training_speed_std_mps) +
+      return "flat data: the training follower speed varies by " + reasonNumber(speed_std) + " m/s (std) < " +
+             reasonNumber(options_.min_training_speed_std_mps) +
              " m/s; without speed changes the data pin only eta + tau_e v, not the margin";
     return "";
   }
@@ -382,15 +306,17 @@ private:
 
   /// The verdict's test: both side fits on the held-out data, their paired squared errors, the
   /// bootstrap's p-values; then the side fits as the first profile points. "" when it ran.
-  std::string compareSides(HeldOutComparison& comparison)
+  std::string compareSides(std::optional<HeldOutSideComparison>& comparison)
   {
     result_.margin_profile.clear();
     stable_.train_rmse_speed_mps = evaluateFit(stable_.parameters, training_).rmse_speed_mps;
     unstable_.train_rmse_speed_mps = evaluateFit(unstable_.parameters, training_).rmse_speed_mps;
     const HeldOutErrors stable_errors = heldOutErrors(stable_.parameters, held_out_);
     const HeldOutErrors unstable_errors = heldOutErrors(unstable_.parameters, held_out_);
-    stable_.test_rmse_speed_mps = rms(stable_errors.error);
-    unstable_.test_rmse_speed_mps = rms(unstable_errors.error);
+    const std::vector<double> stable_squared = squared(stable_errors.error);
+    const std::vector<double> unstable_squared = squared(unstable_errors.error);
+    stable_.test_rmse_speed_mps = rootMeanOf(stable_squared);
+    unstable_.test_rmse_speed_mps = rootMeanOf(unstable_squared);
     result_.best_stable = stable_;
     result_.best_unstable = unstable_;
     if (stable_errors.diverged || unstable_errors.diverged)
@@ -399,40 +325,15 @@ private:
       return std::string("the best ") + (stable_errors.diverged ? "stable" : "unstable") +
              " model's simulation diverges on the held-out data";
     }
-    const std::vector<double> d = squaredErrorDifference(stable_errors.error, unstable_errors.error);
-    result_.mean_squared_error_difference = mean(d);
-    const std::size_t block_samples = blockSamples(d);
-    comparison.bootstrap.emplace(segment_lengths_, block_samples, options_.bootstrap_replicates, options_.seed);
-    result_.p_value_stable_rejected = comparison.bootstrap->pValueMeanPositive(d);
-    result_.p_value_unstable_rejected = comparison.bootstrap->pValueMeanNegative(d);
+    comparison.emplace(stable_squared, unstable_squared, segments_, options_);
+    comparison->report(result_);
     result_.tested = true;
-    comparison.stable_wins = result_.mean_squared_error_difference <= 0.0;
-    comparison.reference_errors = comparison.stable_wins ? stable_errors.error : unstable_errors.error;
-    addSidePoints(comparison);
+    addSidePoints(*comparison);
     return "";
   }
 
-  /// The bootstrap's block length in samples: options.block_length_s, or from d's correlation.
-  std::size_t blockSamples(const std::vector<double>& d)
-  {
-    const double mean_step_s =
-        held_out_duration_s_ / static_cast<double>(std::max<std::size_t>(1, result_.held_out_samples));
-    double block_s = options_.block_length_s;
-    if (!(block_s > 0.0))
-    {
-      block_s = correlationBlockLengthS(d, segment_lengths_, mean_step_s, 5.0, options_.min_block_length_s,
-                                        options_.max_block_length_s);
-      block_s = std::min(block_s,
-                         held_out_duration_s_ / static_cast<double>(std::max<std::size_t>(1, options_.min_blocks)));
-    }
-    const std::size_t block_samples =
-        std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(block_s / mean_step_s)));
-    result_.block_length_s = static_cast<double>(block_samples) * mean_step_s;
-    return block_samples;
-  }
-
   /// A profile point, scored against the better held-out side fit.
-  MarginProfilePoint score(const HeldOutComparison& comparison, const ProfileFit& fit) const
+  MarginProfilePoint score(const HeldOutSideComparison& comparison, const ProfileFit& fit) const
   {
     MarginProfilePoint point;
     point.margin = fit.margin;
@@ -442,17 +343,16 @@ private:
     point.parameters = fit.parameters;
     point.train_rmse_speed_mps = std::sqrt(fit.train_mse);
     const HeldOutErrors errors = heldOutErrors(fit.parameters, held_out_);
-    point.test_rmse_speed_mps = rms(errors.error);
-    point.p_value = errors.diverged ? 0.0
-                                    : comparison.bootstrap->pValueMeanPositive(
-                                          squaredErrorDifference(errors.error, comparison.reference_errors));
+    const std::vector<double> squared_errors = squared(errors.error);
+    point.test_rmse_speed_mps = rootMeanOf(squared_errors);
+    point.p_value = errors.diverged ? 0.0 : comparison.pValueWorseThanBetterSide(squared_errors);
     point.allowed = point.p_value > options_.alpha;
     return point;
   }
 
   /// The side fits as profile points: the same numbers as the verdict's test (the same series and
   /// draws, up to sign).
-  void addSidePoints(const HeldOutComparison& comparison)
+  void addSidePoints(const HeldOutSideComparison& comparison)
   {
     std::vector<MarginProfilePoint>& points = result_.margin_profile;
     for (const SideFit* side : {&stable_, &unstable_})
@@ -464,7 +364,7 @@ private:
       point.train_rmse_speed_mps = side->train_rmse_speed_mps;
       point.test_rmse_speed_mps = side->test_rmse_speed_mps;
       const bool is_stable = side == &stable_;
-      point.p_value = is_stable == comparison.stable_wins ? 1.0
+      point.p_value = is_stable == comparison.stableWins() ? 1.0
                       : is_stable                          ? result_.p_value_stable_rejected
                                                            : result_.p_value_unstable_rejected;
       point.allowed = point.p_value > options_.alpha;
@@ -474,7 +374,7 @@ private:
   }
 
   /// The profile outwards from m = 0 over the grid; the fits made (for adoptBetterProfileFits).
-  std::vector<ProfileFit> profileOutwards(const HeldOutComparison& comparison)
+  std::vector<ProfileFit> profileOutwards(const HeldOutSideComparison& comparison)
   {
     std::vector<ProfileFit> grid_fits;
     if (grid_.empty())
@@ -502,7 +402,7 @@ private:
 
   /// Each m0 warm-started from its neighbour and from U; a direction stops after
   /// profile_stop_after_rejections rejected margins in a row beyond its side fit.
-  void profileInDirection(const HeldOutComparison& comparison, int direction, const AccParameters& at_zero,
+  void profileInDirection(const HeldOutSideComparison& comparison, int direction, const AccParameters& at_zero,
                           std::vector<ProfileFit>& grid_fits)
   {
     const double side_margin = direction > 0 ? stable_.margin : unstable_.margin;
@@ -566,7 +466,7 @@ private:
 
   /// Each end of the allowed margins, when a rejected margin lies beyond it, refined by bisection
   /// between the two; the profile sorted by margin.
-  void refineEnds(const HeldOutComparison& comparison)
+  void refineEnds(const HeldOutSideComparison& comparison)
   {
     std::vector<MarginProfilePoint>& points = result_.margin_profile;
     auto byMargin = [](const MarginProfilePoint& a, const MarginProfilePoint& b) { return a.margin < b.margin; };
@@ -605,8 +505,7 @@ private:
   const std::chrono::steady_clock::time_point started_;
   StabilityTestResult result_;
   std::vector<CarFollowingRun> training_, held_out_;
-  std::vector<std::size_t> segment_lengths_;
-  double held_out_duration_s_ = 0.0;
+  HeldOutSegments segments_;
   std::optional<CalibrationObjective> objective_;
   AccParameters u_;
   bool u_stable_ = false;

@@ -1,0 +1,13 @@
+#pragma once
+
+#include <vector>
+
+namespace acc
+{
+/// The mean of the samples; 0 without samples (callers that must tell "none" apart check size).
+double meanOf(const std::vector<double>& samples);
+
+/// sqrt(mean) of squared errors: the RMSE from the squares; 0 without samples.
+double rootMeanOf(const std::vector<double>& squared_errors);
+
+}  // namespace acc

@@ -1,0 +1,112 @@
+// The engine both string-stability tests share (held_out_side_comparison.h): the held-out data's
+// shortage, the paired bootstrap of squared errors, and the verdict rule.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "acc_identification/calibration/held_out_side_comparison.h"
+
+namespace acc
+{
+namespace
+{
+/// n samples at 10 Hz in segments of `length` samples each.
+HeldOutSegments segmentsOf(std::size_t segments, std::size_t length)
+{
+  HeldOutSegments out;
+  for (std::size_t i = 0; i < segments; ++i)
+  {
+    out.scored_lengths.push_back(length);
+    out.scored_samples += length;
+    out.duration_s += 0.1 * static_cast<double>(length);
+  }
+  return out;
+}
+
+/// Squared errors of a model whose error has this standard deviation, seeded.
+std::vector<double> squaredErrors(std::size_t n, double sigma, std::uint64_t seed)
+{
+  std::mt19937_64 engine(seed);
+  std::normal_distribution<double> normal(0.0, sigma);
+  std::vector<double> out(n);
+  for (double& value : out)
+  {
+    const double e = normal(engine);
+    value = e * e;
+  }
+  return out;
+}
+}  // namespace
+
+TEST(HeldOutSideComparison, ShortageSaysWhyInPlainNumbers)
+{
+  HeldOutComparisonOptions options;
+  EXPECT_EQ(heldOutShortage(segmentsOf(4, 200), options), "");
+  // 699 samples over 69.9 s: long enough in samples, too short in time.
+  EXPECT_EQ(heldOutShortage(segmentsOf(1, 699), options),
+            "too few held-out samples (699 over 69.9 s; need 300 samples and 80 s)");
+}
+
+TEST(HeldOutSideComparison, TheBetterSideIsFoundAndTheOtherRejected)
+{
+  const HeldOutSegments segments = segmentsOf(4, 1000);
+  HeldOutComparisonOptions options;
+  const std::vector<double> good = squaredErrors(4000, 0.2, 1), bad = squaredErrors(4000, 0.4, 2);
+  const HeldOutSideComparison stable_better(good, bad, segments, options);
+  EXPECT_TRUE(stable_better.stableWins());
+  EXPECT_LT(stable_better.meanDifference(), 0.0);
+  EXPECT_LE(stable_better.pValueUnstableRejected(), 0.01);
+  EXPECT_GE(stable_better.pValueStableRejected(), 0.99);
+  // The blocks: automatic, within [20, 60] s and at most a quarter of the 400 s held out.
+  EXPECT_GE(stable_better.blockLengthS(), 20.0 - 1e-9);
+  EXPECT_LE(stable_better.blockLengthS(), 60.0 + 1e-9);
+  // The better side scored against itself is not worse; the worse side is.
+  EXPECT_GT(stable_better.pValueWorseThanBetterSide(good), 0.4);
+  EXPECT_LE(stable_better.pValueWorseThanBetterSide(bad), 0.01);
+
+  const HeldOutSideComparison unstable_better(bad, good, segments, options);
+  EXPECT_FALSE(unstable_better.stableWins());
+  EXPECT_LE(unstable_better.pValueStableRejected(), 0.01);
+}
+
+TEST(HeldOutSideComparison, AFixedBlockLengthIsKeptUnlessTooFewBlocksFit)
+{
+  HeldOutComparisonOptions options;
+  options.block_length_s = 30.0;
+  const std::vector<double> a = squaredErrors(4000, 0.2, 3), b = squaredErrors(4000, 0.2, 4);
+  EXPECT_NEAR(HeldOutSideComparison(a, b, segmentsOf(4, 1000), options).blockLengthS(), 30.0, 1e-9);
+  // 100 s held out hold only four blocks of 25 s.
+  const std::vector<double> c = squaredErrors(1000, 0.2, 5), d = squaredErrors(1000, 0.2, 6);
+  EXPECT_NEAR(HeldOutSideComparison(c, d, segmentsOf(1, 1000), options).blockLengthS(), 25.0, 1e-9);
+}
+
+TEST(HeldOutSideComparison, AVerdictNeedsTheWinnerStrictlyInsideItsSide)
+{
+  HeldOutVerdict result;
+  result.p_value_stable_rejected = 0.01;
+  result.p_value_unstable_rejected = 0.99;
+  EXPECT_EQ(decideSides(result, true, false), SideDecision::Decided);
+  EXPECT_EQ(result.verdict, StabilityVerdict::Unstable);
+  EXPECT_DOUBLE_EQ(result.p_value, 0.01);
+  // The same p-values with the unstable winner on the boundary: undecided.
+  EXPECT_EQ(decideSides(result, false, true), SideDecision::RejectedWinnerNotInside);
+  EXPECT_EQ(result.verdict, StabilityVerdict::Undecided);
+  EXPECT_DOUBLE_EQ(result.p_value, 0.01);
+  result.p_value_stable_rejected = 0.2;
+  EXPECT_EQ(decideSides(result, true, true), SideDecision::NeitherRejected);
+  EXPECT_EQ(result.verdict, StabilityVerdict::Undecided);
+  result.p_value_unstable_rejected = 0.04;
+  EXPECT_EQ(decideSides(result, true, true), SideDecision::Decided);
+  EXPECT_EQ(result.verdict, StabilityVerdict::Stable);
+}
+
+TEST(HeldOutSideComparison, AVerdictNotTestedHasNoPValue)
+{
+  const HeldOutVerdict untested;
+  EXPECT_TRUE(std::isnan(untested.p_value));
+  EXPECT_TRUE(std::isnan(untested.p_value_stable_rejected));
+  EXPECT_EQ(untested.verdict, StabilityVerdict::Undecided);
+}
+
+}  // namespace acc
