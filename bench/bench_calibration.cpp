@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "acc_identification/calibration/identification.h"
-#include "acc_identification/calibration/synthetic_runs.h"
+#include "acc_identification/synthesis/synthetic_runs.h"
 #include "acc_identification/model/paper_settings.h"
 
 

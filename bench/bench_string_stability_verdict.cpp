@@ -18,7 +18,7 @@
 #include "acc_identification/calibration/multistart_calibrator.h"
 #include "acc_identification/calibration/sequential_verdict.h"
 #include "acc_identification/calibration/string_stability_verdict.h"
-#include "acc_identification/calibration/synthetic_runs.h"
+#include "acc_identification/synthesis/synthetic_runs.h"
 #include "acc_identification/model/paper_settings.h"
 
 namespace

@@ -7,7 +7,6 @@ acc_add_library(acc_calibration
     src/calibration/multistart_calibrator.cpp
     src/calibration/fit_statistics.cpp
     src/calibration/identification.cpp
-    src/calibration/synthetic_runs.cpp
     src/calibration/sliding_window.cpp
     src/calibration/drive_record.cpp
     src/calibration/grid_search.cpp
@@ -29,6 +28,11 @@ acc_add_library(acc_calibration
     src/calibration/fit_traces.cpp
   LINK acc_evidence acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 
+# Car-following runs made from known parameters (synthesis/synthetic_runs.h): the seeded truths
+# the calibration's tests, benchmarks and verdict_study recover. Beside the calibration, whose
+# margin projection places a truth at a chosen stability margin.
+acc_add_library(acc_synthetic_runs SOURCES src/synthesis/synthetic_runs.cpp LINK acc_calibration)
+
 # ROS side: runs from bags of RelativeState (rosbag API), with the CSV reader's checks.
 acc_add_ros_library(acc_calibration_ros SOURCES src/ros/run_bag_reader.cpp LINK acc_calibration acc_run_io)
 
@@ -48,15 +52,15 @@ install(PROGRAMS scripts/plot_calibration.py scripts/report_headline.py
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 
 # rosrun acc_identification verdict_study --drives N: size and power of the sequential verdict.
-acc_add_tool(verdict_study LINK acc_calibration)
+acc_add_tool(verdict_study LINK acc_calibration acc_synthetic_runs)
 
 # identifier_node: the sliding-window identifier (ROS wrapper and its ten-line main).
 acc_add_ros_library(acc_identifier_ros SOURCES src/ros/identifier_ros.cpp LINK acc_calibration acc_run_io)
 acc_add_node(identifier_node WRAPPER acc_identifier_ros)
 
-acc_add_benchmark(bench_calibration LINK acc_calibration)
-acc_add_benchmark(bench_string_stability_verdict LINK acc_calibration)
-acc_add_benchmark(bench_online_identifier LINK acc_calibration)
+acc_add_benchmark(bench_calibration LINK acc_calibration acc_synthetic_runs)
+acc_add_benchmark(bench_string_stability_verdict LINK acc_calibration acc_synthetic_runs)
+acc_add_benchmark(bench_online_identifier LINK acc_calibration acc_synthetic_runs)
 
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_calibration
@@ -70,7 +74,7 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_model_adequacy.cpp
     test/unit/test_model_dip_check.cpp)
   target_compile_definitions(test_calibration PRIVATE ACC_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/test/data/runs")
-  target_link_libraries(test_calibration acc_calibration acc_run_io)
+  target_link_libraries(test_calibration acc_calibration acc_run_io acc_synthetic_runs)
 
   # The string-stability test (string_stability_verdict.h) on seeded synthetic drives: size, power, interval.
   catkin_add_gtest(test_string_stability_verdict test/unit/gtest_main.cpp test/unit/test_string_stability_verdict.cpp
@@ -79,11 +83,11 @@ if(CATKIN_ENABLE_TESTING)
 
   # The sequential verdict: betting under H0, synthetic truths decided and kept, node path = replay.
   catkin_add_gtest(test_sequential_verdict test/unit/gtest_main.cpp test/unit/test_sequential_verdict.cpp)
-  target_link_libraries(test_sequential_verdict acc_calibration)
+  target_link_libraries(test_sequential_verdict acc_calibration acc_synthetic_runs)
 
   # The live identifier's computation: the drive so far converges to the batch estimate and verdict.
   catkin_add_gtest(test_online_identifier test/unit/gtest_main.cpp test/unit/test_online_identifier.cpp)
-  target_link_libraries(test_online_identifier acc_calibration)
+  target_link_libraries(test_online_identifier acc_calibration acc_synthetic_runs)
 
   # The ROS-side pieces that need no master: bags in, messages out.
   catkin_add_gtest(test_calibration_ros
@@ -91,12 +95,12 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_calibration_bag.cpp
     test/unit/test_identifier_message.cpp
     test/unit/test_identifier_health.cpp)
-  target_link_libraries(test_calibration_ros acc_calibration_ros acc_identifier_ros)
+  target_link_libraries(test_calibration_ros acc_calibration_ros acc_identifier_ros acc_synthetic_runs)
 
   # relative_state in, acc_parameters out, on simulated time.
   add_rostest_gtest(test_identifier_rostest test/rostest/identifier.test test/rostest/identifier_check.cpp)
   target_include_directories(test_identifier_rostest PRIVATE include ${catkin_INCLUDE_DIRS})
-  target_link_libraries(test_identifier_rostest acc_calibration ${catkin_LIBRARIES})
+  target_link_libraries(test_identifier_rostest acc_calibration acc_synthetic_runs ${catkin_LIBRARIES})
   add_dependencies(test_identifier_rostest ${PROJECT_NAME}_generate_messages_cpp identifier_node)
 
   # The node's wrapper in the test process with an injected solve: input faults, throwing solves.

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "acc_identification/calibration/sequential_verdict.h"
-#include "acc_identification/calibration/synthetic_runs.h"
+#include "acc_identification/synthesis/synthetic_runs.h"
 
 namespace
 {

@@ -9,7 +9,7 @@
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
 
-#include "acc_identification/calibration/synthetic_runs.h"
+#include "acc_identification/synthesis/synthetic_runs.h"
 #include "acc_identification/model/paper_settings.h"
 
 #include <acc_identification/AccParameters.h>

@@ -6,7 +6,7 @@
 
 #include "acc_identification/calibration/grid_search.h"
 #include "acc_identification/calibration/identification.h"
-#include "acc_identification/calibration/synthetic_runs.h"
+#include "acc_identification/synthesis/synthetic_runs.h"
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/model/paper_settings.h"
 

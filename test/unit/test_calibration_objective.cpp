@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "acc_identification/calibration/calibration_objective.h"
-#include "acc_identification/calibration/synthetic_runs.h"
+#include "acc_identification/synthesis/synthetic_runs.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/paper_settings.h"
 

@@ -6,7 +6,7 @@
 #include "acc_identification/calibration/calibrate_runs.h"
 #include "acc_identification/calibration/calibration_report.h"
 #include "acc_identification/io/run_csv.h"
-#include "acc_identification/calibration/synthetic_runs.h"
+#include "acc_identification/synthesis/synthetic_runs.h"
 #include "acc_identification/model/paper_settings.h"
 
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "acc_identification/calibration/synthetic_runs.h"
+#include "acc_identification/synthesis/synthetic_runs.h"
 #include "acc_identification/model/paper_settings.h"
 #include "acc_identification/ros/identifier_ros.h"
 

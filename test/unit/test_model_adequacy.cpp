@@ -10,7 +10,7 @@
 
 #include "acc_identification/calibration/identification.h"
 #include "acc_identification/calibration/model_adequacy.h"
-#include "acc_identification/calibration/synthetic_runs.h"
+#include "acc_identification/synthesis/synthetic_runs.h"
 #include "acc_identification/model/normal_source.h"
 #include "acc_identification/model/paper_settings.h"
 

@@ -8,7 +8,7 @@
 #include "acc_identification/calibration/drive_record.h"
 #include "acc_identification/calibration/online_identifier.h"
 #include "acc_identification/calibration/sliding_window.h"
-#include "acc_identification/calibration/synthetic_runs.h"
+#include "acc_identification/synthesis/synthetic_runs.h"
 #include "acc_identification/model/paper_settings.h"
 
 namespace

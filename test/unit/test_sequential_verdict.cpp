@@ -15,7 +15,7 @@
 #include "acc_identification/calibration/betting_e_process.h"
 #include "acc_identification/calibration/drive_record.h"
 #include "acc_identification/calibration/sequential_verdict.h"
-#include "acc_identification/calibration/synthetic_runs.h"
+#include "acc_identification/synthesis/synthetic_runs.h"
 #include "acc_identification/model/string_stability.h"
 
 namespace

@@ -1,11 +1,11 @@
-// The synthetic runs of the calibration's tests and benchmarks (calibration/synthetic_runs.h):
+// The synthetic runs of the calibration's tests and benchmarks (synthesis/synthetic_runs.h):
 // portable seeded noise, and a truth finer than the fit's Euler recursion.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "acc_identification/calibration/synthetic_runs.h"
+#include "acc_identification/synthesis/synthetic_runs.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/normal_source.h"
 #include "acc_identification/model/paper_settings.h"

@@ -19,7 +19,7 @@ struct MeasurementNoise
 /// Explicit-Euler steps of the truth per data step in synthesizeRun.
 constexpr std::size_t kTruthSubsteps = 10;
 
-/// A car-following run made from known parameters, for tests and benchmarks: a leader that
+/// A car-following run made from known parameters (tests, benchmarks, verdict_study): a leader that
 /// oscillates (three sinusoids of 25-90 s period, random phases) around cruise_speed_mps and
 /// brakes hard now and then; a follower simulated from equilibrium by the ACC model at a step
 /// kTruthSubsteps times finer than time_step_s and sampled every time_step_s (not by the

@@ -1,4 +1,4 @@
-#include "acc_identification/calibration/synthetic_runs.h"
+#include "acc_identification/synthesis/synthetic_runs.h"
 
 #include <algorithm>
 #include <cmath>
