@@ -26,7 +26,7 @@ acc_add_library(acc_calibration
     src/calibration/model_adequacy.cpp
     src/calibration/calibrate_runs.cpp
     src/calibration/fit_traces.cpp
-  LINK acc_evidence acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
+  LINK acc_evidence acc_run_io acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 
 # Car-following runs made from known parameters (synthesis/synthetic_runs.h): the seeded truths
 # the calibration's tests, benchmarks and verdict_study recover. Beside the calibration, whose
@@ -34,7 +34,8 @@ acc_add_library(acc_calibration
 acc_add_library(acc_synthetic_runs SOURCES src/synthesis/synthetic_runs.cpp LINK acc_calibration)
 
 # ROS side: runs from bags of RelativeState (rosbag API), with the CSV reader's checks.
-acc_add_ros_library(acc_calibration_ros SOURCES src/ros/run_bag_reader.cpp LINK acc_calibration acc_run_io)
+acc_add_ros_library(acc_calibration_ros SOURCES src/ros/run_bag_reader.cpp src/ros/run_input_options.cpp
+  LINK acc_calibration acc_run_io CLI11::CLI11)
 
 # rosrun acc_identification calibrate [options] RUN...
 acc_add_tool(calibrate LINK acc_calibration_ros acc_run_io acc_sumo)

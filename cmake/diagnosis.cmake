@@ -15,7 +15,7 @@ acc_add_library(acc_diagnosis
     src/diagnosis/diagnosis_text.cpp
     src/diagnosis/calibration_second_opinion.cpp
   # acc_calibration: the model-adequacy checks of the base and the final model (model_adequacy.h).
-  LINK acc_calibration acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
+  LINK acc_calibration acc_sumo acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 
 # The diagnosis's own checks, a library of their own (cmake/validation.cmake).
 include(cmake/validation.cmake)

@@ -1,9 +1,11 @@
 #include "acc_identification/calibration/calibrate_runs.h"
 
+#include "acc_identification/calibration/fit_traces.h"
 #include "acc_identification/calibration/identification.h"
 #include "acc_identification/calibration/model_adequacy.h"
 #include "acc_identification/calibration/sequential_verdict.h"
 #include "acc_identification/calibration/string_stability_verdict.h"
+#include "acc_identification/io/output_files.h"
 
 namespace acc
 {
@@ -18,9 +20,14 @@ void printPairsRead(const std::vector<PairsRead>& pairs_read, std::ostream& out)
   }
 }
 
-namespace
+nlohmann::json pairsReadJson(const std::vector<PairsRead>& pairs_read)
 {
-/// The runs as read, whole (what the test splits itself, and the dips are found in).
+  nlohmann::json json = nlohmann::json::array();
+  for (const PairsRead& file : pairs_read)
+    json.push_back({{"path", file.path}, {"pairs", file.pairs}});
+  return json;
+}
+
 std::vector<CarFollowingRun> runsOf(const std::vector<CalibrationInput>& inputs)
 {
   std::vector<CarFollowingRun> runs;
@@ -29,10 +36,12 @@ std::vector<CarFollowingRun> runsOf(const std::vector<CalibrationInput>& inputs)
   return runs;
 }
 
+namespace
+{
 void addPairsRead(const std::vector<PairsRead>& pairs_read, nlohmann::json& json)
 {
-  for (const PairsRead& file : pairs_read)
-    json["openacc_pairs"].push_back({{"path", file.path}, {"pairs", file.pairs}});
+  if (!pairs_read.empty())
+    json["openacc_pairs"] = pairsReadJson(pairs_read);
 }
 
 /// One drive for the sequential verdict: the consecutive runs of one RUN argument (pieces between
@@ -243,6 +252,26 @@ CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, cons
   outcome.training = std::move(training);
   outcome.testing = std::move(testing);
   return outcome;
+}
+
+bool writeCalibrationReport(const std::string& dir, const CalibrateOutcome& outcome,
+                            const std::vector<std::string>& run_names, const std::string& plot_script,
+                            std::ostream& log)
+{
+  if (!writeJsonFile(outcome.json, dir + "/calibration.json", log))
+    return false;
+  try
+  {
+    if (outcome.report)
+      writeFitTracesCsv(fitTraces(outcome.report->calibration.parameters, run_names, outcome.training, outcome.testing),
+                        dir + "/fit_traces.csv");
+  }
+  catch (const std::exception& error)
+  {
+    log << "error: " << error.what() << "\n";
+    return false;
+  }
+  return drawReportFigures(plot_script, dir, "the JSON and traces", log);
 }
 
 }  // namespace acc

@@ -1,4 +1,6 @@
 #include "acc_identification/diagnosis/diagnosis_output.h"
+#include "acc_identification/io/output_files.h"
+#include "acc_identification/sumo/sumo_vtype.h"
 #include "acc_identification/model/json_number.h"
 
 #include <cmath>
@@ -352,6 +354,38 @@ void writeDiagnosisTables(const DiagnosisResult& r, const std::string& dir)
       out << '\n';
     }
   }
+}
+
+bool writeDiagnosisReport(const DiagnosisResult& result, const nlohmann::json& json, const std::string& dir,
+                          const std::string& plot_script, bool no_plots, std::ostream& log)
+{
+  try
+  {
+    writeDiagnosisTables(result, dir);
+  }
+  catch (const std::exception& e)
+  {
+    log << "error: " << e.what() << "\n";
+    return false;
+  }
+  if (!writeJsonFile(json, dir + "/diagnosis.json", log))
+    return false;
+  return no_plots || drawReportFigures(plot_script, dir, "tables and JSON", log);
+}
+
+bool saveFinalModelVType(const DiagnosisResult& result, const std::vector<CarFollowingRun>& runs,
+                         const std::string& path, const std::string& id, bool from_openacc, std::ostream& log)
+{
+  const AugmentedFit& fit = finalModel(result).fit;
+  if (fit.diverged)
+  {
+    log << "error: --sumo-vtype: the final model has no fit to export\n";
+    return false;
+  }
+  const bool misses = result.final_adequacy.assessed && !result.final_adequacy.adequate;
+  return saveFittedModelVType(path, id, fit.base, fit.effects, fit.effect_values, runs,
+                              misses ? "the final model is " + describeAdequacy(result.final_adequacy) : "",
+                              from_openacc, log);
 }
 
 }  // namespace acc

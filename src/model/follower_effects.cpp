@@ -109,6 +109,22 @@ bool parseEffectName(const std::string& name, EffectKind* kind)
   return false;
 }
 
+bool parseEffectNames(const std::vector<std::string>& names, std::vector<EffectKind>* kinds, std::string* unknown)
+{
+  kinds->clear();
+  for (const std::string& name : names)
+  {
+    EffectKind kind = EffectKind::none;
+    if (!parseEffectName(name, &kind) || kind == EffectKind::none)
+    {
+      *unknown = name;
+      return false;
+    }
+    kinds->push_back(kind);
+  }
+  return true;
+}
+
 EffectSettings makeEffectSettings(EffectKind kind, const std::vector<double>& values)
 {
   if (values.size() != candidateEffect(kind).parameters.size())

@@ -84,4 +84,25 @@ SentenceBagSummary writeSentenceBag(const std::string& path, const std::vector<S
   return summary;
 }
 
+std::vector<SentenceStream> leaderFollowerStreams()
+{
+  return {{"/leader/nmea_sentence", "leader_gnss", {}}, {"/follower/nmea_sentence", "follower_gnss", {}}};
+}
+
+std::string loadSentenceStreams(const std::vector<std::string>& logs, const NmeaLineTiming& timing,
+                                std::vector<SentenceStream>& streams, std::ostream& log)
+{
+  for (std::size_t i = 0; i < logs.size() && i < streams.size(); ++i)
+  {
+    TimedNmeaLog timed = readTimedNmeaLog(logs[i], timing);
+    if (!timed.error.empty())
+      return timed.error;
+    if (timed.untimed_lines > 0)
+      log << "warning: " << logs[i] << ": " << timed.untimed_lines
+          << " line(s) without a readable time, stamped after the previous line\n";
+    streams[i].lines = std::move(timed.lines);
+  }
+  return "";
+}
+
 }  // namespace acc

@@ -347,6 +347,17 @@ bool saveSumoVTypes(const std::vector<SumoExport>& exports, const std::string& p
   return true;
 }
 
+bool saveFittedModelVType(const std::string& path, const std::string& id, const AccParameters& base,
+                          const std::vector<EffectKind>& effects, const std::vector<double>& effect_values,
+                          const std::vector<CarFollowingRun>& runs, const std::string& caveat, bool from_openacc,
+                          std::ostream& log)
+{
+  SumoExport exported = exportToSumo(sumoId(id), base, effects, effect_values, observedAccelerationLimits(runs));
+  if (!caveat.empty())
+    exported.caveats.push_back(caveat);
+  return saveSumoVTypes({exported}, path, from_openacc ? kSumoOpenAccProvenance : "", log);
+}
+
 namespace
 {
 /// The vType's id, "" when the file gives none (SUMO then refuses it; here it names errors).

@@ -8,6 +8,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "acc_identification/conversion/openacc_to_nmea.h"
+#include "acc_identification/io/output_files.h"
+#include "acc_identification/model/paper_settings.h"
+
 #include "acc_identification/reproduction/lead_profiles.h"
 
 namespace acc
@@ -175,6 +179,84 @@ std::string synthesisJson(const SynthesisOptions& options, const std::string& se
                          {"position_correlation_time_s", e.position_correlation_time_s},
                          {"speed_sigma_mps", e.speed_sigma_mps}};
   return json.dump(2) + "\n";
+}
+
+std::vector<std::string> implausibilityWarnings(const CarFollowingRun& run)
+{
+  std::size_t collisions = 0, reversing = 0;
+  double first_collision_s = 0.0, first_reversing_s = 0.0;
+  for (std::size_t k = 0; k < run.size(); ++k)
+  {
+    if (run.space_gap_m[k] < 0.0 && collisions++ == 0)
+      first_collision_s = run.time_s[k];
+    if (run.follower_speed_mps[k] < 0.0 && reversing++ == 0)
+      first_reversing_s = run.time_s[k];
+  }
+  std::vector<std::string> warnings;
+  std::ostringstream line;
+  if (collisions > 0)
+  {
+    line << "the gap is negative (a collision) in " << collisions << " epochs, first at t = " << first_collision_s
+         << " s";
+    warnings.push_back(line.str());
+  }
+  if (reversing > 0)
+  {
+    line.str("");
+    line << "the follower's speed is negative in " << reversing << " epochs, first at t = " << first_reversing_s
+         << " s (the receiver reports speed 0 there)";
+    warnings.push_back(line.str());
+  }
+  return warnings;
+}
+
+bool chooseParameters(const std::string& setting, const std::array<std::optional<double>, 4>& values,
+                      AccParameters* parameters, std::string* setting_name, std::string* error)
+{
+  static const char* const kOptions[4] = {"--k1", "--k2", "--tau-e", "--eta"};
+  double* fields[4] = {&parameters->k1_per_s2, &parameters->k2_per_s, &parameters->tau_e_s, &parameters->eta_m};
+  const std::optional<NamedSetting> named = setting.empty() ? std::nullopt : findNamedSetting(setting);
+  if (!setting.empty() && !named)
+  {
+    *error = "unknown setting '" + setting + "'";
+    return false;
+  }
+  if (named)
+    *parameters = named->parameters;
+  *setting_name = setting;
+  for (int i = 0; i < 4; ++i)
+  {
+    if (values[i])
+    {
+      *fields[i] = *values[i];
+      *setting_name = "custom";
+    }
+    else if (!named)
+    {
+      *error = std::string("no value for ") + kOptions[i] + " (give --setting or all of --k1 --k2 --tau-e --eta)";
+      return false;
+    }
+  }
+  return true;
+}
+
+bool writeSynthesisFiles(const SynthesizedDrive& drive, const SynthesisOptions& options,
+                         const std::string& setting_name, const SynthesisFiles& files, std::ostream& log)
+{
+  for (const std::string& warning : implausibilityWarnings(drive.truth.run))
+    log << "warning: " << warning << "\n";
+  std::string error;
+  bool ok = writeNmeaLog(files.leader_log, drive.leader_fixes, "GN", error) &&
+            writeNmeaLog(files.follower_log, drive.follower_fixes, "GN", error);
+  if (ok && !files.truth_csv.empty())
+    ok = writeTruthCsv(files.truth_csv, drive.truth.run, &error);
+  if (!ok)
+  {
+    log << "error: " << error << "\n";
+    return false;
+  }
+  return files.parameters_json.empty() ||
+         writeTextFile(synthesisJson(options, setting_name), files.parameters_json, log);
 }
 
 }  // namespace acc

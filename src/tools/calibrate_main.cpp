@@ -1,14 +1,6 @@
 // calibrate: fits one ACC model across runs (CSV or bags), as Gunter et al. do for each
 // following setting (Section IV), and reports the fit, the parameters and string stability. The
 // work is calibrateRuns (calibration/calibrate_runs.h), which the Python API calls too.
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -16,88 +8,36 @@
 #include <CLI/CLI.hpp>
 
 #include "acc_identification/calibration/calibrate_runs.h"
-#include "acc_identification/calibration/fit_traces.h"
 #ifdef ACC_WITH_DIAGNOSIS
 #include "acc_identification/diagnosis/calibration_second_opinion.h"
 #endif
 #include "acc_identification/io/installed_beside.h"
-#include "acc_identification/ros/run_bag_reader.h"
+#include "acc_identification/io/output_files.h"
+#include "acc_identification/ros/run_input_options.h"
 #include "acc_identification/sumo/sumo_vtype.h"
 
 namespace
 {
-/// Progress on stderr: a live counter on a terminal, a line per tenth otherwise.
-void showProgress(std::size_t done, std::size_t total)
-{
-  static const bool terminal = isatty(STDERR_FILENO) != 0;
-  if (terminal)
-  {
-    std::fprintf(stderr, "\rcalibrating: start %zu/%zu", done, total);
-    if (done == total)
-      std::fprintf(stderr, "\n");
-  }
-  else if (total >= 10 && done % (total / 10) == 0)
-  {
-    std::fprintf(stderr, "calibrating: start %zu/%zu\n", done, total);
-  }
-}
-
 /// The fitted model as a SUMO vType (docs/SUMO.md), with the model's adequacy as a caveat when it
 /// does not describe the data.
 bool writeSumoVType(const std::string& path, const std::string& id, const acc::CalibrationReport& report,
                     const std::vector<acc::CalibrationInput>& inputs, bool from_openacc)
 {
-  std::vector<acc::CarFollowingRun> runs;
-  for (const acc::CalibrationInput& input : inputs)
-    runs.push_back(input.run);
-  acc::SumoExport exported = acc::exportToSumo(acc::sumoId(id), report.calibration.parameters, {}, {},
-                                               acc::observedAccelerationLimits(runs));
-  if (report.model_adequacy && report.model_adequacy->assessed && !report.model_adequacy->adequate)
-    exported.caveats.push_back("the model is " + acc::describeAdequacy(*report.model_adequacy) +
-                               " for the data it was fitted on: see `diagnose` before simulating with it");
-  return acc::saveSumoVTypes({exported}, path, from_openacc ? acc::kSumoOpenAccProvenance : "", std::cerr);
+  const std::vector<acc::CarFollowingRun> runs = acc::runsOf(inputs);
+  const bool misses = report.model_adequacy && report.model_adequacy->assessed && !report.model_adequacy->adequate;
+  const std::string caveat = misses ? "the model is " + acc::describeAdequacy(*report.model_adequacy) +
+                                          " for the data it was fitted on: see `diagnose` before simulating with it"
+                                    : "";
+  return acc::saveFittedModelVType(path, id, report.calibration.parameters, {}, {}, runs, caveat, from_openacc,
+                                   std::cerr);
 }
 
-bool writeJson(const nlohmann::json& json, const std::string& path)
-{
-  std::ofstream file(path);
-  file << json.dump(2) << "\n";
-  if (!file)
-    std::cerr << "error: cannot write " << path << "\n";
-  return static_cast<bool>(file);
-}
-
-/// --report DIR: calibration.json, fit_traces.csv (every run measured and simulated) and, drawn
-/// by plot_calibration.py, a figure per run and report.md.
-bool writeReport(const std::string& dir, const acc::CalibrateOutcome& outcome,
-                 const std::vector<acc::CalibrationInput>& inputs)
+std::vector<std::string> runNames(const std::vector<acc::CalibrationInput>& inputs)
 {
   std::vector<std::string> names;
   for (const acc::CalibrationInput& input : inputs)
     names.push_back(input.run.name);
-  if (!writeJson(outcome.json, dir + "/calibration.json"))
-    return false;
-  try
-  {
-    if (outcome.report)
-      acc::writeFitTracesCsv(acc::fitTraces(outcome.report->calibration.parameters, names, outcome.training,
-                                            outcome.testing),
-                             dir + "/fit_traces.csv");
-  }
-  catch (const std::exception& error)
-  {
-    std::cerr << "error: " << error.what() << "\n";
-    return false;
-  }
-  const std::string script = acc::installedBeside("plot_calibration.py");
-  const std::string command = "/usr/bin/python3 '" + script + "' '" + dir + "'";
-  if (std::system(command.c_str()) != 0)
-  {
-    std::cerr << "error: the report figures failed (" << command << "); the JSON and traces are in " << dir << "\n";
-    return false;
-  }
-  std::cerr << "report: " << dir << "/report.md\n";
-  return true;
+  return names;
 }
 }  // namespace
 
@@ -106,18 +46,16 @@ int main(int argc, char** argv)
   CLI::App app{"Fits one ACC model (Gunter et al.) across runs, as the paper does for each following setting, and "
                "reports the fit, the parameters with standard errors, what the data determine, and whether the "
                "ACC is string stable, decided on held-out halves."};
-  std::vector<std::string> paths;
-  std::string split = "none", topic = "relative_state", json_path, follower, sumo_vtype_path, sumo_id, report_dir;
+  acc::RunInputOptions input;
+  std::string split = "none", json_path, sumo_vtype_path, sumo_id, report_dir;
   int starts = 100;
-  double max_gap_s = 0.5;
   std::uint64_t seed = 0;
-  bool no_stability_test = false, all_pairs = false, no_second_opinion = false;
+  bool no_stability_test = false, no_second_opinion = false;
   acc::CalibrateSettings settings;
-  app.add_option("RUN", paths,
-                 "a canonical CSV (time_s,space_gap_m,follower_speed_mps,leader_speed_mps), an OpenACC CSV, or a "
-                 "bag of acc_identification/RelativeState")
-      ->required()
-      ->check(CLI::ExistingFile);
+  input.declare(app,
+                "ONE model is fitted across all their runs, as across several RUN files (one model per car: fit "
+                "each --follower separately)",
+                true);
   app.add_option("--split", split, "half: train on the first half of each run, test on the second (the paper)")
       ->check(CLI::IsMember({"none", "half"}))
       ->capture_default_str();
@@ -130,10 +68,6 @@ int main(int argc, char** argv)
                  "also search a dense grid of N nodes per axis (k1 0-0.5, k2 0-1.5, tau_e 0-3) and check that the "
                  "multistart optimum is the global one")
       ->check(CLI::Range(std::size_t{2}, std::size_t{1000}));
-  app.add_option("--topic", topic, "RelativeState topic in bags")->capture_default_str();
-  app.add_option("--max-gap", max_gap_s, "split runs at holes longer than this [s]")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
   app.add_option("--alpha", settings.alpha, "level of the string-stability test")
       ->check(CLI::Range(1e-9, 1.0 - 1e-9))
       ->capture_default_str();
@@ -152,16 +86,6 @@ int main(int argc, char** argv)
   app.add_flag("--no-second-opinion", no_second_opinion,
                "do not diagnose the runs when the model does not describe them (saves the diagnosis's time)");
   app.add_flag("--quiet", settings.quiet, "no progress display");
-  auto* follower_option =
-      app.add_option("--follower", follower,
-                     "OpenACC files: the follower of the pair to read, by its Vehicle_order name (e.g. BMW_I3, any "
-                     "case) or position (e.g. 3); its leader is the car directly ahead (default: the first pair, "
-                     "said on stderr)");
-  auto* all_pairs_option =
-      app.add_flag("--all-pairs", all_pairs,
-                   "OpenACC files: read every leader-follower pair; ONE model is fitted across all their runs, as "
-                   "across several RUN files (one model per car: fit each --follower separately)");
-  follower_option->excludes(all_pairs_option);
   CLI11_PARSE(app, argc, argv);
   settings.split_half = split == "half";
   settings.starts = static_cast<std::size_t>(starts);
@@ -169,23 +93,17 @@ int main(int argc, char** argv)
   if (seed_option->count() > 0)
     settings.seed = seed;
   if (!settings.quiet)
-    settings.progress = showProgress;
+    settings.progress = [](std::size_t done, std::size_t total) { acc::showProgress("calibrating", done, total); };
 #ifdef ACC_WITH_DIAGNOSIS
   if (!no_second_opinion)
     settings.second_opinion = acc::diagnosisSecondOpinion();
 #endif
-  // The report's folder before the work, so that a folder that cannot be made fails at once.
-  std::error_code made;
-  if (!report_dir.empty() && !std::filesystem::create_directories(report_dir, made) && made)
-  {
-    std::cerr << "error: cannot create " << report_dir << ": " << made.message() << "\n";
+  if (!report_dir.empty() && !acc::makeOutputFolder(report_dir, std::cerr))
     return 1;
-  }
 
   try
   {
-    const acc::RunArguments read =
-        acc::readRunArguments(paths, topic, max_gap_s, std::cerr, acc::pairSelectorFromOptions(follower, all_pairs));
+    const acc::RunArguments read = input.read(std::cerr);
     const std::vector<acc::CalibrationInput>& inputs = read.runs;
     const std::vector<acc::PairsRead>& pairs_read = read.pairs_read;
     const acc::CalibrateOutcome outcome = acc::calibrateRuns(inputs, pairs_read, settings, std::cout, std::cerr);
@@ -193,9 +111,10 @@ int main(int argc, char** argv)
         !writeSumoVType(sumo_vtype_path, sumo_id.empty() ? inputs.front().run.name : sumo_id, *outcome.report,
                         inputs, !pairs_read.empty()))
       return 1;
-    if (!json_path.empty() && !writeJson(outcome.json, json_path))
+    if (!json_path.empty() && !acc::writeJsonFile(outcome.json, json_path, std::cerr))
       return 1;
-    if (!report_dir.empty() && !writeReport(report_dir, outcome, inputs))
+    if (!report_dir.empty() && !acc::writeCalibrationReport(report_dir, outcome, runNames(inputs),
+                                                            acc::installedBeside("plot_calibration.py"), std::cerr))
       return 1;
     return outcome.exit_status;
   }

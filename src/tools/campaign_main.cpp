@@ -1,15 +1,8 @@
 // campaign: every car of a set of OpenACC platoon runs identified per (vehicle, distance setting)
 // with the paper's protocol, in parallel, and each run's platoon predicted from its real first car
 // with models fitted without that run: where does the model's string (in)stability match the data?
-#include <unistd.h>
-
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <mutex>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -19,71 +12,18 @@
 #include "acc_identification/campaign/campaign_output.h"
 #include "acc_identification/campaign/campaign_sumo_export.h"
 #include "acc_identification/io/installed_beside.h"
+#include "acc_identification/io/output_files.h"
 #include "acc_identification/io/run_csv.h"
 
 namespace
 {
-/// A progress bar on stderr: redrawn in place on a terminal, a line per tenth otherwise.
-void showProgress(const std::string& stage, std::size_t done, std::size_t total)
-{
-  static const bool terminal = isatty(STDERR_FILENO) != 0;
-  constexpr std::size_t kWidth = 30;
-  if (terminal)
-  {
-    const std::size_t filled = total > 0 ? kWidth * done / total : kWidth;
-    std::fprintf(stderr, "\r%-13s [%s%s] %zu/%zu", stage.c_str(), std::string(filled, '#').c_str(),
-                 std::string(kWidth - filled, '.').c_str(), done, total);
-    if (done == total)
-      std::fprintf(stderr, "\n");
-  }
-  else if (done == total || (total >= 10 && done % (total / 10) == 0))
-  {
-    std::fprintf(stderr, "%s: %zu/%zu done\n", stage.c_str(), done, total);
-  }
-}
-
-bool writeText(const std::string& text, const std::string& path)
-{
-  std::ofstream out(path);
-  out << text;
-  if (!out)
-  {
-    std::cerr << "error: cannot write " << path << "\n";
-    return false;
-  }
-  return true;
-}
-
 /// report.md, campaign.json and (unless no_plots) the figures in DIR.
-int writeReport(const std::string& dir, const nlohmann::json& json, const acc::CampaignResult& result,
-                const std::vector<std::string>& paths, bool no_plots, const std::string& plot_script)
+bool writeReport(const std::string& dir, const nlohmann::json& json, const acc::CampaignResult& result,
+                 const std::vector<std::string>& paths, bool no_plots, const std::string& plot_script)
 {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error)
-  {
-    std::cerr << "error: cannot create " << dir << ": " << error.message() << "\n";
-    return 1;
-  }
-  if (!writeText(json.dump(2) + "\n", dir + "/campaign.json") ||
-      !writeText(acc::campaignReportMarkdown(result, paths, !no_plots), dir + "/report.md"))
-    return 1;
-  if (no_plots)
-    return 0;
-  if (!std::filesystem::exists(plot_script))
-  {
-    std::cerr << "error: no figure script at " << plot_script << " (--plot-script, or --no-plots); tables and JSON are in "
-              << dir << "\n";
-    return 1;
-  }
-  const std::string command = "/usr/bin/python3 '" + plot_script + "' '" + dir + "'";
-  if (std::system(command.c_str()) != 0)
-  {
-    std::cerr << "error: the report figures failed (" << command << "); tables and JSON are in " << dir << "\n";
-    return 1;
-  }
-  std::cerr << "report: " << dir << "/report.md\n";
-  return 0;
+  return acc::makeOutputFolder(dir, std::cerr) && acc::writeJsonFile(json, dir + "/campaign.json", std::cerr) &&
+         acc::writeTextFile(acc::campaignReportMarkdown(result, paths, !no_plots), dir + "/report.md", std::cerr) &&
+         (no_plots || acc::drawReportFigures(plot_script, dir, "tables and JSON", std::cerr));
 }
 }  // namespace
 
@@ -128,6 +68,8 @@ int main(int argc, char** argv)
                  "are still reported");
   CLI11_PARSE(app, argc, argv);
   options.platoon_check = !no_platoon_check;
+  if (!quiet)
+    options.progress = acc::showProgress;
   options.platoon_diagnosis = !no_platoon_diagnosis;
   if (!platoon_effects.empty())
   {
@@ -169,12 +111,10 @@ int main(int argc, char** argv)
     std::fprintf(stderr, "done in %.1f s on %zu thread(s)\n", result.wall_time_s, result.threads);
   acc::printCampaignTables(result, std::cout);
   const nlohmann::json json = acc::campaignToJson(inputs, result, paths, options);
-  if (!json_path.empty() && !writeText(json.dump(2) + "\n", json_path))
+  if (!json_path.empty() && !acc::writeJsonFile(json, json_path, std::cerr))
     return 1;
   if (!sumo_vtype_path.empty() && !acc::saveSumoVTypes(acc::campaignSumoExports(inputs, result), sumo_vtype_path,
                                                         acc::kSumoOpenAccProvenance, std::cerr))
     return 1;
-  if (!report_dir.empty())
-    return writeReport(report_dir, json, result, paths, no_plots, plot_script);
-  return 0;
+  return report_dir.empty() || writeReport(report_dir, json, result, paths, no_plots, plot_script) ? 0 : 1;
 }

@@ -15,8 +15,7 @@ int main(int argc, char** argv)
                "the same epoch. Lines without a time are stamped just after the previous one."};
   acc::NmeaLineTiming timing;
   std::string compression = "lz4";
-  std::vector<acc::SentenceStream> streams{{"/leader/nmea_sentence", "leader_gnss", {}},
-                                           {"/follower/nmea_sentence", "follower_gnss", {}}};
+  std::vector<acc::SentenceStream> streams = acc::leaderFollowerStreams();
   std::string leader_path, follower_path, bag_path;
   app.add_option("--compression", compression, "bag compression")
       ->check(CLI::IsMember({"lz4", "bz2", "none"}))
@@ -36,21 +35,15 @@ int main(int argc, char** argv)
   app.add_option("OUT", bag_path, "bag to write")->required();
   CLI11_PARSE(app, argc, argv);
 
-  const std::string paths[2] = {leader_path, follower_path};
-  for (int i = 0; i < 2; ++i)
+  const std::string error = acc::loadSentenceStreams({leader_path, follower_path}, timing, streams, std::cerr);
+  if (!error.empty())
   {
-    acc::TimedNmeaLog log = acc::readTimedNmeaLog(paths[i], timing);
-    if (!log.error.empty())
-    {
-      std::cerr << "error: " << log.error << "\n";
-      return 1;
-    }
-    if (log.untimed_lines > 0)
-      std::cerr << "warning: " << paths[i] << ": " << log.untimed_lines
-                << " line(s) without a readable time, stamped after the previous line\n";
-    std::cout << "nmea_to_bag: " << paths[i] << ": " << log.lines.size() << " lines -> " << streams[i].topic << "\n";
-    streams[i].lines = std::move(log.lines);
+    std::cerr << "error: " << error << "\n";
+    return 1;
   }
+  for (const acc::SentenceStream& stream : streams)
+    std::cout << "nmea_to_bag: " << (&stream == &streams[0] ? leader_path : follower_path) << ": "
+              << stream.lines.size() << " lines -> " << stream.topic << "\n";
   try
   {
     const auto summary = acc::writeSentenceBag(bag_path, streams, compression);

@@ -1,4 +1,5 @@
 #include "acc_identification/validation/suite_runs.h"
+#include "acc_identification/io/output_files.h"
 
 #include <chrono>
 #include <cmath>
@@ -171,6 +172,25 @@ SuiteReport runSuite(const std::string& name, const DiagnosisOptions& options,
   if (name == "small" || name == "large")
     return runWithheldSuite(name, options, progress);
   throw std::invalid_argument("--withheld-suite takes small, large, semi-real or combined, not '" + name + "'");
+}
+
+int runSuiteCommand(const std::string& name, const DiagnosisOptions& options, const std::string& casale_dir,
+                    const std::string& toyota_dir, const std::string& json_path, std::ostream& out,
+                    std::ostream& errors)
+{
+  try
+  {
+    const std::vector<SemiRealSet> sets =
+        name == "semi-real" ? bundledSemiRealSets(casale_dir, toyota_dir) : std::vector<SemiRealSet>{};
+    const SuiteReport report = runSuite(name, options, sets, stderr);
+    out << report.tables;
+    return !json_path.empty() && !writeJsonFile(report.json, json_path, errors) ? 1 : 0;
+  }
+  catch (const std::exception& e)
+  {
+    errors << "error: " << e.what() << "\n";
+    return 1;
+  }
 }
 
 }  // namespace acc

@@ -253,6 +253,15 @@ TEST(CandidateEffects, NamesRoundTripAndSettingsInvert)
   acc::EffectKind unused;
   EXPECT_FALSE(acc::parseEffectName("brake_fade", &unused));
   EXPECT_THROW(acc::makeEffectSettings(acc::EffectKind::actuation_lag, {}), std::invalid_argument);
+  // A list of names (diagnose --effect): in order; "none" is no candidate; the first unknown named.
+  std::vector<acc::EffectKind> kinds;
+  std::string unknown;
+  ASSERT_TRUE(acc::parseEffectNames({"reaction_delay", "actuation_lag"}, &kinds, &unknown));
+  EXPECT_EQ(kinds, (std::vector<acc::EffectKind>{acc::EffectKind::reaction_delay, acc::EffectKind::actuation_lag}));
+  EXPECT_FALSE(acc::parseEffectNames({"actuation_lag", "none", "brake_fade"}, &kinds, &unknown));
+  EXPECT_EQ(unknown, "none");
+  EXPECT_FALSE(acc::parseEffectNames({"brake_fade"}, &kinds, &unknown));
+  EXPECT_EQ(unknown, "brake_fade");
 }
 
 // The sensitivities the fits descend on: the speeds are simulateFollower's number for number, and

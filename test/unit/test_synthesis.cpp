@@ -290,3 +290,43 @@ TEST(Synthesis, UtcTimesParse)
 
 }  // namespace
 }  // namespace acc
+
+TEST(SynthesisParameters, ASettingValuesOverridingItOrAllFour)
+{
+  std::string name, error;
+  acc::AccParameters p;
+  ASSERT_TRUE(acc::chooseParameters("min", {}, &p, &name, &error)) << error;
+  EXPECT_EQ(name, "min");
+  EXPECT_DOUBLE_EQ(p.k1_per_s2, acc::findNamedSetting("min")->parameters.k1_per_s2);
+  // One value overridden: the rest of the setting stays, the name says it is no longer the setting.
+  ASSERT_TRUE(acc::chooseParameters("min", {std::nullopt, 0.9, std::nullopt, std::nullopt}, &p, &name, &error));
+  EXPECT_EQ(name, "custom");
+  EXPECT_DOUBLE_EQ(p.k2_per_s, 0.9);
+  EXPECT_DOUBLE_EQ(p.eta_m, acc::findNamedSetting("min")->parameters.eta_m);
+  ASSERT_TRUE(acc::chooseParameters("", {0.1, 0.5, 1.2, 6.0}, &p, &name, &error)) << error;
+  EXPECT_DOUBLE_EQ(p.tau_e_s, 1.2);
+  // Without a setting every value is needed, and the missing one is named.
+  EXPECT_FALSE(acc::chooseParameters("", {0.1, 0.5, std::nullopt, 6.0}, &p, &name, &error));
+  EXPECT_NE(error.find("no value for --tau-e"), std::string::npos) << error;
+  EXPECT_FALSE(acc::chooseParameters("no_such_setting", {}, &p, &name, &error));
+  EXPECT_NE(error.find("unknown setting"), std::string::npos) << error;
+}
+
+TEST(SynthesisWarnings, CollisionsAndReversingAreCountedFromTheirFirstTime)
+{
+  acc::CarFollowingRun run;
+  for (int k = 0; k < 10; ++k)
+  {
+    run.time_s.push_back(0.1 * k);
+    run.space_gap_m.push_back(k >= 4 && k <= 6 ? -0.5 : 10.0);
+    run.follower_speed_mps.push_back(k == 8 ? -0.1 : 5.0);
+    run.leader_speed_mps.push_back(5.0);
+  }
+  const std::vector<std::string> warnings = acc::implausibilityWarnings(run);
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_EQ(warnings[0], "the gap is negative (a collision) in 3 epochs, first at t = 0.4 s");
+  EXPECT_NE(warnings[1].find("negative in 1 epochs, first at t = 0.8 s"), std::string::npos) << warnings[1];
+  run.space_gap_m.assign(10, 10.0);
+  run.follower_speed_mps.assign(10, 5.0);
+  EXPECT_TRUE(acc::implausibilityWarnings(run).empty());
+}

@@ -82,6 +82,19 @@ struct CalibrateOutcome
 CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, const std::vector<PairsRead>& pairs_read,
                                const CalibrateSettings& settings, std::ostream& out, std::ostream& log);
 
+/// calibrate --report DIR: calibration.json, fit_traces.csv (every run measured and simulated,
+/// run_names naming them) and, drawn by plot_script (plot_calibration.py), a figure per run and
+/// report.md. False after saying on log what failed.
+bool writeCalibrationReport(const std::string& dir, const CalibrateOutcome& outcome,
+                            const std::vector<std::string>& run_names, const std::string& plot_script,
+                            std::ostream& log);
+
+/// The runs as read, whole.
+std::vector<CarFollowingRun> runsOf(const std::vector<CalibrationInput>& inputs);
+
+/// [{path, pairs: ["Hyundai behind Rexton, positions 2/1", ...]}] of each OpenACC file read.
+nlohmann::json pairsReadJson(const std::vector<PairsRead>& pairs_read);
+
 /// "OpenACC pair read: part3.csv: Hyundai behind Rexton, positions 2/1", one line per file.
 void printPairsRead(const std::vector<PairsRead>& pairs_read, std::ostream& out);
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -33,5 +34,17 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& result);
 ///   train_fit.csv  run,time_s,speed_mps,base_speed_mps,effect_speed_mps (first parts)
 /// Throws std::runtime_error when a file cannot be written.
 void writeDiagnosisTables(const DiagnosisResult& result, const std::string& dir);
+
+/// diagnose --sumo-vtype PATH: the final model as a SUMO vType (docs/SUMO.md), its effects where
+/// SUMO has an equivalent and the others named in the file, its adequacy as a caveat when it does
+/// not describe the data (runs: those diagnosed). False after saying on log why not.
+bool saveFinalModelVType(const DiagnosisResult& result, const std::vector<CarFollowingRun>& runs,
+                         const std::string& path, const std::string& id, bool from_openacc, std::ostream& log);
+
+/// diagnose --report DIR (which must exist): the tables, diagnosis.json (json) and, unless
+/// no_plots, the figures and report.md drawn by plot_script (plot_diagnosis.py). False after
+/// saying on log what failed.
+bool writeDiagnosisReport(const DiagnosisResult& result, const nlohmann::json& json, const std::string& dir,
+                          const std::string& plot_script, bool no_plots, std::ostream& log);
 
 }  // namespace acc

@@ -113,6 +113,10 @@ std::vector<std::string> effectNames(const std::vector<EffectKind>& kinds);
 /// Parses a name as printed by effectName(); false when unknown.
 bool parseEffectName(const std::string& name, EffectKind* kind);
 
+/// Parses the names of effects (not "none"), in order; false with the first name that is not one
+/// in *unknown.
+bool parseEffectNames(const std::vector<std::string>& names, std::vector<EffectKind>* kinds, std::string* unknown);
+
 /// The settings with kind's parameters set to values (in the catalogue's order); every other
 /// effect stays off. values.size() must equal the number of the effect's parameters.
 EffectSettings makeEffectSettings(EffectKind kind, const std::vector<double>& values);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,16 @@ struct SentenceBagSummary
   double start_time_s = 0.0;  ///< first and last receive stamps [Unix s]
   double end_time_s = 0.0;
 };
+
+/// The two receivers' streams as the drivers subscribe to them: /leader/nmea_sentence (frame
+/// leader_gnss) and /follower/nmea_sentence (follower_gnss), without lines yet.
+std::vector<SentenceStream> leaderFollowerStreams();
+
+/// Each log (readTimedNmeaLog with timing) into the lines of its stream, logs[i] into streams[i];
+/// lines without a readable time are counted in a warning on log. "" when all were read, else the
+/// first error.
+std::string loadSentenceStreams(const std::vector<std::string>& logs, const NmeaLineTiming& timing,
+                                std::vector<SentenceStream>& streams, std::ostream& log);
 
 /// Writes every line of every stream as an acc_identification/Sentence message, header.stamp and
 /// bag time = the line's receive time, in time order across the streams (so `rosbag play

@@ -119,6 +119,14 @@ void writeSumoAdditional(const std::vector<SumoExport>& exports, const std::stri
 bool saveSumoVTypes(const std::vector<SumoExport>& exports, const std::string& path, const std::string& provenance,
                     std::ostream& log);
 
+/// One fitted model as calibrate's and diagnose's --sumo-vtype write it: exportToSumo with the
+/// acceleration limits observed in its runs, the caveat when one is given (e.g. a model that does
+/// not describe its data), the OpenACC attribution when the runs came from OpenACC files.
+bool saveFittedModelVType(const std::string& path, const std::string& id, const AccParameters& base,
+                          const std::vector<EffectKind>& effects, const std::vector<double>& effect_values,
+                          const std::vector<CarFollowingRun>& runs, const std::string& caveat, bool from_openacc,
+                          std::ostream& log);
+
 /// Every vType with carFollowModel="ACC" in a SUMO additional or route file (attributes absent:
 /// SUMO 1.15's defaults). Throws std::runtime_error naming the file and what is wrong.
 std::vector<SumoAccVType> readSumoAccVTypes(const std::string& path);

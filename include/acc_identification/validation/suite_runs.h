@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdio>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -31,5 +32,12 @@ SuiteReport runSuite(const std::string& name, const DiagnosisOptions& options,
 /// The semi-real suite's real runs: Casale parts 3-6 (one set) and the ZalaZone Toyota RAV4 runs
 /// (another), read from the folders the bundled data are unpacked into. Throws as readRuns.
 std::vector<SemiRealSet> bundledSemiRealSets(const std::string& casale_dir, const std::string& toyota_dir);
+
+/// `diagnose --withheld-suite NAME`: the suite run (semi-real on the bundled runs in casale_dir and
+/// toyota_dir), its tables on out, its JSON in json_path when one is given, progress on stderr.
+/// The exit status: 0, or 1 after saying on errors what failed.
+int runSuiteCommand(const std::string& name, const DiagnosisOptions& options, const std::string& casale_dir,
+                    const std::string& toyota_dir, const std::string& json_path, std::ostream& out,
+                    std::ostream& errors);
 
 }  // namespace acc

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <cstddef>
+#include <iosfwd>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace acc
+{
+/// What every tool does with the files it is asked to write. Each returns false after saying on
+/// `errors` what failed ("error: cannot write PATH"), so a tool can end with status 1.
+
+/// The text, as it is.
+bool writeTextFile(const std::string& text, const std::string& path, std::ostream& errors);
+
+/// The JSON, indented by two, with a final newline.
+bool writeJsonFile(const nlohmann::json& json, const std::string& path, std::ostream& errors);
+
+/// The folder and its parents. Tools make their report folder before the work, so that a folder
+/// that cannot be made fails at once rather than after minutes of fitting.
+bool makeOutputFolder(const std::string& dir, std::ostream& errors);
+
+/// Draws a report's figures and report.md: `/usr/bin/python3 SCRIPT DIR`. Says which script is
+/// missing or which command failed, and that `kept` (e.g. "tables and JSON") are in DIR all the
+/// same; "report: DIR/report.md" when done.
+bool drawReportFigures(const std::string& script, const std::string& dir, const std::string& kept,
+                       std::ostream& errors);
+
+/// A progress display for long batch work on stderr: redrawn in place on a terminal, a line per
+/// tenth otherwise (logs stay short).
+void showProgress(const std::string& stage, std::size_t done, std::size_t total);
+
+}  // namespace acc

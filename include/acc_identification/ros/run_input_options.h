@@ -1,0 +1,32 @@
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "acc_identification/ros/run_bag_reader.h"
+
+namespace acc
+{
+/// The run inputs calibrate and diagnose take alike: RUN files (canonical CSV, OpenACC CSV, bags
+/// of RelativeState), the bag topic, the hole that splits a run, and which OpenACC pair(s) to read.
+/// One declaration, so that the tools' options and their help cannot drift apart.
+struct RunInputOptions
+{
+  std::vector<std::string> paths;
+  std::string topic = "relative_state";
+  double max_gap_s = 0.5;
+  std::string follower;
+  bool all_pairs = false;
+
+  /// Declares RUN..., --topic, --max-gap, --follower and --all-pairs (mutually exclusive);
+  /// all_pairs_means says what reading every pair does in this tool. required: RUN must be given.
+  void declare(CLI::App& app, const std::string& all_pairs_means, bool required);
+
+  /// readRunArguments of the options; the readers' notes on log. Throws as it does.
+  RunArguments read(std::ostream& log) const;
+};
+
+}  // namespace acc

@@ -1,0 +1,74 @@
+#include "acc_identification/io/output_files.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+
+namespace acc
+{
+bool writeTextFile(const std::string& text, const std::string& path, std::ostream& errors)
+{
+  std::ofstream out(path);
+  out << text;
+  out.flush();
+  if (!out)
+    errors << "error: cannot write " << path << "\n";
+  return static_cast<bool>(out);
+}
+
+bool writeJsonFile(const nlohmann::json& json, const std::string& path, std::ostream& errors)
+{
+  return writeTextFile(json.dump(2) + "\n", path, errors);
+}
+
+bool makeOutputFolder(const std::string& dir, std::ostream& errors)
+{
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error)
+    errors << "error: cannot create " << dir << ": " << error.message() << "\n";
+  return !error;
+}
+
+bool drawReportFigures(const std::string& script, const std::string& dir, const std::string& kept,
+                       std::ostream& errors)
+{
+  if (!std::filesystem::exists(script))
+  {
+    errors << "error: no figure script at " << script << " (--plot-script, or --no-plots); " << kept << " are in "
+           << dir << "\n";
+    return false;
+  }
+  const std::string command = "/usr/bin/python3 '" + script + "' '" + dir + "'";
+  if (std::system(command.c_str()) != 0)
+  {
+    errors << "error: the report figures failed (" << command << "); " << kept << " are in " << dir << "\n";
+    return false;
+  }
+  errors << "report: " << dir << "/report.md\n";
+  return true;
+}
+
+void showProgress(const std::string& stage, std::size_t done, std::size_t total)
+{
+  static const bool terminal = isatty(STDERR_FILENO) != 0;
+  constexpr std::size_t kWidth = 30;
+  if (terminal)
+  {
+    const std::size_t filled = total > 0 ? kWidth * done / total : kWidth;
+    std::fprintf(stderr, "\r%-13s [%s%s] %zu/%zu", stage.c_str(), std::string(filled, '#').c_str(),
+                 std::string(kWidth - filled, '.').c_str(), done, total);
+    if (done == total)
+      std::fprintf(stderr, "\n");
+  }
+  else if (done == total || (total >= 10 && done % (total / 10) == 0))
+  {
+    std::fprintf(stderr, "%s: %zu/%zu done\n", stage.c_str(), done, total);
+  }
+}
+
+}  // namespace acc

@@ -1,0 +1,32 @@
+#include "acc_identification/ros/run_input_options.h"
+
+namespace acc
+{
+void RunInputOptions::declare(CLI::App& app, const std::string& all_pairs_means, bool required)
+{
+  auto* run_option = app.add_option("RUN", paths,
+                                    "a canonical CSV (time_s,space_gap_m,follower_speed_mps,leader_speed_mps), an "
+                                    "OpenACC CSV, or a bag of acc_identification/RelativeState")
+                         ->check(CLI::ExistingFile);
+  if (required)
+    run_option->required();
+  app.add_option("--topic", topic, "RelativeState topic in bags")->capture_default_str();
+  app.add_option("--max-gap", max_gap_s, "split runs at holes longer than this [s]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  auto* follower_option =
+      app.add_option("--follower", follower,
+                     "OpenACC files: the follower of the pair to read, by its Vehicle_order name (e.g. BMW_I3, any "
+                     "case) or position (e.g. 3); its leader is the car directly ahead (default: the first pair, "
+                     "said on stderr)");
+  auto* all_pairs_option =
+      app.add_flag("--all-pairs", all_pairs, "OpenACC files: read every leader-follower pair; " + all_pairs_means);
+  follower_option->excludes(all_pairs_option);
+}
+
+RunArguments RunInputOptions::read(std::ostream& log) const
+{
+  return readRunArguments(paths, topic, max_gap_s, log, pairSelectorFromOptions(follower, all_pairs));
+}
+
+}  // namespace acc
