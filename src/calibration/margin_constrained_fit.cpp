@@ -10,6 +10,17 @@
 
 namespace acc
 {
+ConstrainedFitOptions ConstrainedFitOptions::warmStartsOnly(std::size_t warm_solves, int max_evaluations)
+{
+  ConstrainedFitOptions options;
+  options.starts = 0;
+  options.max_local_solves = 0;
+  options.max_warm_solves = warm_solves;
+  options.max_evaluations_per_solve = max_evaluations;
+  options.relative_f_tolerance = 1e-8;
+  return options;
+}
+
 namespace
 {
 bool withinBounds(const AccParameters& p, const ParameterBounds& bounds)

@@ -110,13 +110,7 @@ MultistartOptions SequentialVerdictOptions::defaultRefitMultistart()
 
 ConstrainedFitOptions SequentialVerdictOptions::defaultRefitConstrained()
 {
-  ConstrainedFitOptions options;
-  options.starts = 0;
-  options.max_local_solves = 0;
-  options.max_warm_solves = 2;
-  options.max_evaluations_per_solve = 60;
-  options.relative_f_tolerance = 1e-8;
-  return options;
+  return ConstrainedFitOptions::warmStartsOnly(2, 60);
 }
 
 SequentialVerdict::SequentialVerdict(SequentialVerdictOptions options)

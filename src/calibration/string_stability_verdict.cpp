@@ -124,13 +124,7 @@ std::vector<double> StabilityTestOptions::defaultMarginGrid()
 
 ConstrainedFitOptions StabilityTestOptions::defaultProfileOptions()
 {
-  ConstrainedFitOptions options;
-  options.starts = 0;
-  options.max_local_solves = 0;
-  options.max_warm_solves = 1;
-  options.max_evaluations_per_solve = 100;
-  options.relative_f_tolerance = 1e-8;
-  return options;
+  return ConstrainedFitOptions::warmStartsOnly(1, 100);
 }
 
 StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& runs, const StabilityTestOptions& options)

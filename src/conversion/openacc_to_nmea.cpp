@@ -1,4 +1,5 @@
 #include <acc_identification/conversion/openacc_to_nmea.h>
+#include <acc_identification/model/angles.h>
 
 #include <acc_identification/gnss/nmea_writer.h>
 #include <acc_identification/gnss/utc_date.h>
@@ -12,8 +13,6 @@ namespace acc
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kRadToDeg = 180.0 / kPi;
 // Rows further apart than this are not neighbours (the database removed tolls and tunnels).
 constexpr double kMaxNeighbourSpacing_s = 0.25;
 constexpr double kMinCourseSpeed_mps = 0.5;

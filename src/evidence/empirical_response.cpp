@@ -10,6 +10,7 @@
 #include <unsupported/Eigen/FFT>
 
 #include "acc_identification/evidence/perturbation.h"
+#include "acc_identification/model/angles.h"
 #include "acc_identification/model/portable_uniform.h"
 
 namespace acc
@@ -17,7 +18,6 @@ namespace acc
 namespace
 {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kPi = 3.14159265358979323846;
 
 void requireConfidence(double confidence, const char* what)
 {

@@ -1,4 +1,5 @@
 #include "acc_identification/gnss/nmea_parser.h"
+#include "acc_identification/model/angles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +12,6 @@ namespace acc
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kKnotToMps = 1852.0 / 3600.0;
 constexpr double kKmhToMps = 1.0 / 3.6;
 // Satellite counts beyond GnssFix::satellites_used (uint16) are malformed, in GGA as in PUBX,00

@@ -1,4 +1,5 @@
 #include "acc_identification/gnss/nmea_writer.h"
+#include "acc_identification/model/angles.h"
 
 #include <cmath>
 #include <cstdint>
@@ -11,7 +12,6 @@ namespace acc
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kMpsToKnot = 3600.0 / 1852.0;
 
 /// hhmmss.ss, rounded to the centisecond as a whole (so 59.996 s carries into the minute).

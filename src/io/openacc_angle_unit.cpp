@@ -1,5 +1,7 @@
 #include "openacc_text.h"
 
+#include "acc_identification/model/angles.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -11,10 +13,6 @@ namespace openacc
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
-// The same constant as the NMEA conversion has always used, so that radians give the same degrees
-// to the last bit (the bundled Casale bags are compared byte for byte).
-constexpr double kRadToDeg = 180.0 / kPi;
 constexpr double kEarthRadiusM = 6371000.0;
 // Fixes further apart than this are not consecutive (holes, cuts) for the unit check.
 constexpr double kMaxConsecutiveStepS = 1.0;

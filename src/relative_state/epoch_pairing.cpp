@@ -1,4 +1,5 @@
 #include <acc_identification/relative_state/epoch_pairing.h>
+#include <acc_identification/model/angles.h>
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +10,6 @@ namespace acc
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 
 double lerp(double a, double b, double w) { return a + (b - a) * w; }
 

@@ -1,4 +1,5 @@
 #include <acc_identification/relative_state/vehicle_geometry.h>
+#include <acc_identification/model/angles.h>
 
 #include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/LocalCartesian.hpp>
@@ -11,7 +12,6 @@ namespace acc
 {
 namespace
 {
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 struct PlanePoint
 {

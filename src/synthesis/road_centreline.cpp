@@ -1,4 +1,5 @@
 #include "acc_identification/synthesis/road_centreline.h"
+#include "acc_identification/model/angles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,8 +9,6 @@ namespace acc
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDegToRad = kPi / 180.0;
 // Below this curvature an arc is computed as a straight (radius beyond 10,000 km).
 constexpr double kStraightCurvature_per_m = 1e-10;
 }  // namespace

@@ -1,4 +1,5 @@
 #include "acc_identification/synthesis/synthetic_runs.h"
+#include "acc_identification/model/angles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +14,6 @@ namespace acc
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 
 /// The leader's speed [m/s] at time t: three sinusoids around the cruise speed and a braking
 /// event every 150 s (down 5 m/s at 2 m/s^2, hold 10 s, back at 1 m/s^2).

@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "acc_identification/conversion/openacc_to_nmea.h"
+#include "acc_identification/model/angles.h"
 #include "acc_identification/model/paper_settings.h"
 #include "acc_identification/reproduction/lead_profiles.h"
 #include "acc_identification/ros/sentence_bag_writer.h"
@@ -18,7 +19,6 @@
 
 namespace
 {
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 /// What the command line asks for, beyond SynthesisOptions.
 struct Outputs
@@ -68,7 +68,7 @@ int main(int argc, char** argv)
   std::string profile, setting, start_time;
   std::vector<std::string> effects;
   double overrides[4] = {0, 0, 0, 0};
-  double heading_deg = options.start_heading_rad / kDegToRad;
+  double heading_deg = options.start_heading_rad / acc::kDegToRad;
   std::vector<std::string> setting_names;
   for (const auto& named : acc::namedSettings())
     setting_names.push_back(named.name);
@@ -129,7 +129,7 @@ int main(int argc, char** argv)
   }
   options.profile = static_cast<char>(std::toupper(static_cast<unsigned char>(profile[0])));
   if (heading_option->count() > 0)
-    options.start_heading_rad = heading_deg * kDegToRad;  // the default stays exactly as the library has it
+    options.start_heading_rad = heading_deg * acc::kDegToRad;  // the default stays exactly as the library has it
   for (const std::string& effect : effects)
     if (!acc::addEffectOption(effect, &options.effects, &error))
     {

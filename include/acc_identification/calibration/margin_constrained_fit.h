@@ -62,6 +62,11 @@ struct ConstrainedFitOptions
   /// A point counts as feasible while it violates the constraint by at most this much in m; the
   /// best such point is then moved onto the constraint exactly (projectOntoMargin) and re-scored.
   double feasibility_tolerance = 1e-6;
+
+  /// A refit near a known answer: no Halton starts, warm_solves local solves from the best warm
+  /// starts, at most max_evaluations each, relative f tolerance 1e-8 (the margin profile's and
+  /// the sequential verdict's refits).
+  static ConstrainedFitOptions warmStartsOnly(std::size_t warm_solves, int max_evaluations);
 };
 
 /// The best fit found under a margin constraint.
