@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "acc_identification/calibration/side_fits.h"
@@ -137,6 +138,16 @@ std::string describeComparison(const HeldOutVerdict& result, double stable_test_
       << ", p(unstable rejected) = " << reasonNumber(result.p_value_unstable_rejected) << " (moving-block bootstrap, "
       << result.bootstrap_replicates << " replicates, blocks of " << reasonNumber(result.block_length_s) << " s)";
   return why.str();
+}
+
+std::string pValuesText(const HeldOutVerdict& result)
+{
+  if (!std::isfinite(result.p_value_stable_rejected) || !std::isfinite(result.p_value_unstable_rejected))
+    return "(not tested, no p-values)";
+  char text[120];
+  std::snprintf(text, sizeof text, "(p (H0: stable) = %.3g; p (H0: unstable) = %.3g)", result.p_value_stable_rejected,
+                result.p_value_unstable_rejected);
+  return text;
 }
 
 std::string reasonNumber(double value)

@@ -47,13 +47,8 @@ void printStabilityTest(const StabilityTestResult& result, std::ostream& out)
   const std::string verdict = verdictInCapitals(result.verdict);
   // THE verdict, each p-value named by the hypothesis it tests: nothing above (a point estimate's
   // lambda2) competes with it.
-  if (result.tested)
-    std::snprintf(line, sizeof line, "  verdict: %s%s  (p (H0: stable) = %.3g; p (H0: unstable) = %.3g)\n",
-                  result.verdict == StabilityVerdict::Undecided ? "" : "string ", verdict.c_str(),
-                  result.p_value_stable_rejected, result.p_value_unstable_rejected);
-  else
-    std::snprintf(line, sizeof line, "  verdict: %s  (not tested, no p-values: see why)\n", verdict.c_str());
-  out << line;
+  out << "  verdict: " << (result.verdict == StabilityVerdict::Undecided ? "" : "string ") << verdict << "  "
+      << pValuesText(result) << "\n";
   if (result.tested)
   {
     out << sideFitLine("best string-stable model", result.best_stable);

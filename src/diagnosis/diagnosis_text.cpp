@@ -10,12 +10,8 @@ namespace acc
 /// hypothesis they test.
 std::string testVerdictText(const AugmentedStabilityTestResult& test)
 {
-  char text[200];
-  const std::string verdict = verdictInCapitals(test.verdict);
-  std::snprintf(text, sizeof text, "%s%s (p (H0: stable) = %.3g; p (H0: unstable) = %.3g)",
-                test.verdict == StabilityVerdict::Undecided ? "" : "string ", verdict.c_str(),
-                test.p_value_stable_rejected, test.p_value_unstable_rejected);
-  return text;
+  return (test.verdict == StabilityVerdict::Undecided ? "" : "string ") + verdictInCapitals(test.verdict) + " " +
+         pValuesText(test);
 }
 
 namespace

@@ -107,6 +107,12 @@ TEST(HeldOutSideComparison, AVerdictNotTestedHasNoPValue)
   EXPECT_TRUE(std::isnan(untested.p_value));
   EXPECT_TRUE(std::isnan(untested.p_value_stable_rejected));
   EXPECT_EQ(untested.verdict, StabilityVerdict::Undecided);
+  // Said in words, never as "nan"; a tested one names each p-value's hypothesis.
+  EXPECT_EQ(pValuesText(untested), "(not tested, no p-values)");
+  HeldOutVerdict tested;
+  tested.p_value_stable_rejected = 0.002;
+  tested.p_value_unstable_rejected = 0.97;
+  EXPECT_EQ(pValuesText(tested), "(p (H0: stable) = 0.002; p (H0: unstable) = 0.97)");
 }
 
 }  // namespace acc

@@ -133,6 +133,10 @@ SideDecision decideSides(HeldOutVerdict& result, bool unstable_strictly_inside, 
 std::string describeComparison(const HeldOutVerdict& result, double stable_test_rmse_mps, const std::string& stable_label,
                                double unstable_test_rmse_mps, const std::string& unstable_label);
 
+/// "(p (H0: stable) = 0.002; p (H0: unstable) = 0.97)": the p-values named by the hypothesis
+/// each tests; "(not tested, no p-values)" when the comparison did not run.
+std::string pValuesText(const HeldOutVerdict& result);
+
 /// A number as the reasons print it (4 significant digits).
 std::string reasonNumber(double value);
 
