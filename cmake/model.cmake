@@ -13,6 +13,7 @@ acc_add_library(acc_model
     src/model/halton_sequence.cpp
     src/model/block_bootstrap.cpp
     src/model/sample_statistics.cpp
+    src/model/number_text.cpp
     src/model/normal_source.cpp
     src/model/follower_effects.cpp
     src/model/batch_means.cpp
@@ -28,6 +29,7 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_string_stability.cpp
     test/unit/test_follower_simulation.cpp
     test/unit/test_platoon_simulation.cpp
-    test/unit/test_normal_source.cpp)
+    test/unit/test_normal_source.cpp
+    test/unit/test_number_text.cpp)
   target_link_libraries(test_model acc_model)
 endif()

@@ -1,4 +1,5 @@
 #include "acc_identification/calibration/held_out_side_comparison.h"
+#include "acc_identification/model/number_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -51,8 +52,8 @@ std::string heldOutShortage(const HeldOutSegments& segments, const HeldOutCompar
   if (segments.scored_samples >= options.min_held_out_samples && segments.duration_s >= options.min_held_out_duration_s)
     return "";
   return "too few held-out samples (" + std::to_string(segments.scored_samples) + " over " +
-         reasonNumber(segments.duration_s) + " s; need " + std::to_string(options.min_held_out_samples) +
-         " samples and " + reasonNumber(options.min_held_out_duration_s) + " s)";
+         significant(segments.duration_s) + " s; need " + std::to_string(options.min_held_out_samples) +
+         " samples and " + significant(options.min_held_out_duration_s) + " s)";
 }
 
 std::vector<double> squared(const std::vector<double>& errors)
@@ -130,13 +131,13 @@ std::string describeComparison(const HeldOutVerdict& result, double stable_test_
                                double unstable_test_rmse_mps, const std::string& unstable_label)
 {
   std::ostringstream why;
-  why << "held-out speed RMSE best stable " << reasonNumber(stable_test_rmse_mps) << " m/s (" << stable_label
-      << "), best unstable " << reasonNumber(unstable_test_rmse_mps) << " m/s (" << unstable_label
-      << "), mean paired squared-error difference " << reasonNumber(result.mean_squared_error_difference)
+  why << "held-out speed RMSE best stable " << significant(stable_test_rmse_mps) << " m/s (" << stable_label
+      << "), best unstable " << significant(unstable_test_rmse_mps) << " m/s (" << unstable_label
+      << "), mean paired squared-error difference " << significant(result.mean_squared_error_difference)
       << " m^2/s^2 over " << result.held_out_samples
-      << " samples; p(stable rejected) = " << reasonNumber(result.p_value_stable_rejected)
-      << ", p(unstable rejected) = " << reasonNumber(result.p_value_unstable_rejected) << " (moving-block bootstrap, "
-      << result.bootstrap_replicates << " replicates, blocks of " << reasonNumber(result.block_length_s) << " s)";
+      << " samples; p(stable rejected) = " << significant(result.p_value_stable_rejected)
+      << ", p(unstable rejected) = " << significant(result.p_value_unstable_rejected) << " (moving-block bootstrap, "
+      << result.bootstrap_replicates << " replicates, blocks of " << significant(result.block_length_s) << " s)";
   return why.str();
 }
 
@@ -150,12 +151,5 @@ std::string pValuesText(const HeldOutVerdict& result)
   return text;
 }
 
-std::string reasonNumber(double value)
-{
-  std::ostringstream out;
-  out.precision(4);
-  out << value;
-  return out.str();
-}
 
 }  // namespace acc

@@ -1,4 +1,5 @@
 #include "acc_identification/calibration/model_adequacy.h"
+#include "acc_identification/model/number_text.h"
 #include "acc_identification/model/json_number.h"
 
 #include <algorithm>
@@ -16,15 +17,6 @@ namespace
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// printf into a std::string: every reason is a short sentence with its numbers.
-template <typename... Args>
-std::string format(const char* pattern, Args... args)
-{
-  char text[256];
-  std::snprintf(text, sizeof text, pattern, args...);
-  return text;
-}
-
 /// (a): an RMSE is a miss when it is both a large part of the data's own spread and above the
 /// floor that noise alone reaches.
 void checkRmse(const char* what, const char* unit, double rmse, double spread, double max_over_spread, double floor,
@@ -33,7 +25,7 @@ void checkRmse(const char* what, const char* unit, double rmse, double spread, d
   if (!std::isfinite(rmse) || !std::isfinite(spread))
     return;
   if (rmse > floor && rmse > max_over_spread * spread)
-    out.reasons.push_back(format("%s RMSE %.2f %s against a %s spread (standard deviation) of %.2f %s", what, rmse,
+    out.reasons.push_back(printfText("%s RMSE %.2f %s against a %s spread (standard deviation) of %.2f %s", what, rmse,
                                  unit, what, spread, unit));
 }
 
@@ -59,11 +51,11 @@ void checkBounds(const AccParameters& p, const std::optional<AccParameters>& sta
     const bool at_lower = q.value <= q.lower + tolerance, at_upper = q.value >= q.upper - tolerance;
     if (!at_lower && !at_upper)
       continue;
-    const std::string text = format("%s = %.4g at its %s bound %g", q.name, q.value, at_lower ? "lower" : "upper",
+    const std::string text = printfText("%s = %.4g at its %s bound %g", q.name, q.value, at_lower ? "lower" : "upper",
                                     at_lower ? q.lower : q.upper);
     out.checks.parameters_at_bound.push_back(text);
     // NaN (unknown) fails this comparison too: such a parameter is listed, not held against the model.
-    const std::string error = standard_errors ? format(" +- %.3g", q.standard_error) : "";
+    const std::string error = standard_errors ? printfText(" +- %.3g", q.standard_error) : "";
     if (q.standard_error < options.max_standard_error_at_bound_fraction * range)
       out.reasons.push_back(text + error + ": held by the bound, not by the data");
   }
@@ -78,10 +70,10 @@ void checkCorrelation(const ModelAdequacyOptions& options, ModelAdequacy& out)
   if (correlation > options.max_correlation_over_response_time * response)
   {
     out.reasons.push_back(std::isinf(correlation)
-                              ? format("the speed residual stays correlated over a quarter of the longest run "
+                              ? printfText("the speed residual stays correlated over a quarter of the longest run "
                                        "(model response time %.1f s): structure left unexplained",
                                        response)
-                              : format("speed residual correlation time %.0f s against the model's response time "
+                              : printfText("speed residual correlation time %.0f s against the model's response time "
                                        "%.1f s: structure left unexplained",
                                        correlation, response));
   }
@@ -226,7 +218,7 @@ void addDipCheck(ModelAdequacy& adequacy, std::size_t perturbations, double medi
     return;
   if (median_dip_error > options.max_median_dip_error)
   {
-    adequacy.reasons.push_back(format("its dips miss the measured ones by %.1f %% (median over %zu "
+    adequacy.reasons.push_back(printfText("its dips miss the measured ones by %.1f %% (median over %zu "
                                       "car-perturbations; limit %.0f %%)",
                                       100.0 * median_dip_error, perturbations, 100.0 * options.max_median_dip_error));
     adequacy.adequate = false;

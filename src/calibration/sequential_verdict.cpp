@@ -1,4 +1,5 @@
 #include "acc_identification/calibration/sequential_verdict.h"
+#include "acc_identification/model/number_text.h"
 
 #include <algorithm>
 #include <chrono>
@@ -73,13 +74,6 @@ std::size_t sampleCount(const std::vector<CarFollowingRun>& runs)
   return n;
 }
 
-std::string formatNumber(double value, int precision = 4)
-{
-  std::ostringstream out;
-  out.precision(precision);
-  out << value;
-  return out.str();
-}
 }  // namespace
 
 MultistartOptions SequentialVerdictOptions::defaultFirstMultistart()
@@ -273,7 +267,7 @@ std::size_t SequentialVerdict::refit(const std::vector<CarFollowingRun>& segment
   const double speed_std = followerSpeedStdMps(segments);
   if (fits_.empty() && speed_std < options_.min_training_speed_std_mps)
   {
-    note = "flat data so far: the follower speed varies by " + formatNumber(speed_std) +
+    note = "flat data so far: the follower speed varies by " + significant(speed_std) +
            " m/s (std); without speed changes the data pin only eta + tau_e v, not the margin";
     return 0;
   }
@@ -371,15 +365,15 @@ SequentialLook SequentialVerdict::summarize(double now_s, std::size_t samples, c
   why << "sequential (anytime-valid) over " << blocks_scored_ << " block(s)";
   if (block_length_s_ > 0.0)
   {
-    why << " of " << formatNumber(block_length_s_) << " s";
+    why << " of " << significant(block_length_s_) << " s";
   }
   if (blocks_skipped_ > 0)
   {
     why << " (" << blocks_skipped_ << " skipped: holes)";
   }
   why << ", each predicted by side fits made before it; max E against stable "
-      << formatNumber(against_stable.maxEValue()) << ", against unstable " << formatNumber(against_unstable.maxEValue())
-      << " (decides at 1/alpha = " << formatNumber(1.0 / options_.alpha) << ")";
+      << significant(against_stable.maxEValue()) << ", against unstable " << significant(against_unstable.maxEValue())
+      << " (decides at 1/alpha = " << significant(1.0 / options_.alpha) << ")";
   if (look.reversed)
   {
     why << ": first " << toString(look.first_verdict) << " at " << formatTime(look.decided_at_s) << " s, then "

@@ -1,4 +1,5 @@
 #include "acc_identification/calibration/string_stability_verdict.h"
+#include "acc_identification/model/number_text.h"
 
 #include <algorithm>
 #include <chrono>
@@ -92,10 +93,10 @@ void spanAllowedMargins(StabilityTestResult& result, double least, double larges
 std::string decideVerdict(StabilityTestResult& result)
 {
   std::string why = describeComparison(result, result.best_stable.test_rmse_speed_mps,
-                                       "m = " + reasonNumber(result.best_stable.margin),
+                                       "m = " + significant(result.best_stable.margin),
                                        result.best_unstable.test_rmse_speed_mps,
-                                       "m = " + reasonNumber(result.best_unstable.margin));
-  const std::string allowed = "[" + reasonNumber(result.margin_low) + ", " + reasonNumber(result.margin_high) + "]";
+                                       "m = " + significant(result.best_unstable.margin));
+  const std::string allowed = "[" + significant(result.margin_low) + ", " + significant(result.margin_high) + "]";
   switch (decideSides(result, result.margin_high < -kSameMargin, result.margin_low > kSameMargin))
   {
     case SideDecision::Decided:
@@ -110,7 +111,7 @@ std::string decideVerdict(StabilityTestResult& result)
     case SideDecision::NeitherRejected:
       break;
   }
-  return why + ": neither model predicts the held-out data significantly better (alpha " + reasonNumber(result.alpha) +
+  return why + ": neither model predicts the held-out data significantly better (alpha " + significant(result.alpha) +
          ")";
 }
 
@@ -225,8 +226,8 @@ private:
       return shortage;
     const double speed_std = followerSpeedStdMps(training_);
     if (speed_std < options_.min_training_speed_std_mps)
-      return "flat data: the training follower speed varies by " + reasonNumber(speed_std) + " m/s (std) < " +
-             reasonNumber(options_.min_training_speed_std_mps) +
+      return "flat data: the training follower speed varies by " + significant(speed_std) + " m/s (std) < " +
+             significant(options_.min_training_speed_std_mps) +
              " m/s; without speed changes the data pin only eta + tau_e v, not the margin";
     return "";
   }

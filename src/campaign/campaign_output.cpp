@@ -1,4 +1,5 @@
 #include "acc_identification/campaign/campaign_output.h"
+#include "acc_identification/model/number_text.h"
 
 #include <cmath>
 #include <cstdio>
@@ -30,15 +31,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 const char* const kParameterNames[] = {"k1", "k2", "tau_e", "eta"};
 const char* const kParameterKeys[] = {"k1_per_s2", "k2_per_s", "tau_e_s", "eta_m"};
 
-std::string format(const char* pattern, double value)
-{
-  if (!std::isfinite(value))
-    return "NaN";
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), pattern, value);
-  return buffer;
-}
-
 /// The quantity's value and standard error where the data determine it, NaN otherwise.
 std::pair<double, double> determined(const GroupResult& group, const std::string& name)
 {
@@ -55,7 +47,7 @@ std::string valuePlusMinus(const GroupResult& group, const std::string& name, co
   const auto [value, error] = determined(group, name);
   if (!std::isfinite(value))
     return "NaN";
-  return format(pattern, value) + "+-" + format(pattern, error);
+  return cellNumber(pattern, value) + "+-" + cellNumber(pattern, error);
 }
 
 double parameterOf(const AccParameters& p, int i)
@@ -286,7 +278,7 @@ std::string rangesText(const std::vector<std::pair<double, double>>& ranges)
     return "nowhere";
   std::string text;
   for (const auto& [low, high] : ranges)
-    text += (text.empty() ? "" : " ") + format("%.2f", low) + "-" + format("%.2f", high);
+    text += (text.empty() ? "" : " ") + cellNumber("%.2f", low) + "-" + cellNumber("%.2f", high);
   return text;
 }
 
@@ -297,12 +289,12 @@ std::vector<std::vector<std::string>> linkRows(const CampaignResult& result)
   {
     const DipRatioEstimate& d = e.dip_ratio;
     rows.push_back({e.vehicle, e.setting, std::to_string(d.count),
-                    format("%.2f", d.ratio_of_means) + " [" + format("%.2f", d.lower) + ", " + format("%.2f", d.upper) + "]",
+                    cellNumber("%.2f", d.ratio_of_means) + " [" + cellNumber("%.2f", d.lower) + ", " + cellNumber("%.2f", d.upper) + "]",
                     toString(d.amplifies),
                     responseRead(e) ? rangesText(e.base_departs_rad_s) : "too short",
                     responseRead(e) ? rangesText(e.diagnosed_departs_rad_s) : "too short",
-                    format("%.2f", e.diagnosed_available ? e.diagnosed_small_signal.peak_gain_db : kNaN),
-                    format("%.2f", e.long_platoon_dip_ratio)});
+                    cellNumber("%.2f", e.diagnosed_available ? e.diagnosed_small_signal.peak_gain_db : kNaN),
+                    cellNumber("%.2f", e.long_platoon_dip_ratio)});
   }
   return rows;
 }
@@ -394,11 +386,11 @@ std::vector<std::string> groupCells(const GroupResult& g)
           toString(g.stability_test.verdict),
           // A test that did not run has no p-value (its default 1 would read as "no evidence").
           g.stability_test.tested
-              ? format("%.3f", g.stability_test.p_value) + " (H0 " + pValueHypothesis(g.stability_test) + ")"
+              ? cellNumber("%.3f", g.stability_test.p_value) + " (H0 " + pValueHypothesis(g.stability_test) + ")"
               : "- (not run)",
           adequacyCell(g.model_adequacy),
-          format("%.3f", g.dynamicsDetermined() ? id.stability.amplified_band_upper_rad_s : kNaN),
-          format("%.2f", g.dynamicsDetermined() ? id.stability.peak_gain_db : kNaN)};
+          cellNumber("%.3f", g.dynamicsDetermined() ? id.stability.amplified_band_upper_rad_s : kNaN),
+          cellNumber("%.2f", g.dynamicsDetermined() ? id.stability.peak_gain_db : kNaN)};
 }
 
 const std::vector<std::string> kGroupHeader{"vehicle", "set", "runs", "samples", "k1 [1/s2]", "k2 [1/s]", "tau_e [s]",
@@ -418,11 +410,11 @@ std::vector<std::vector<std::string>> platoonRows(const CampaignResult& result)
       for (const DipComparison& row : check.perturbations[i].positions)
       {
         rows.push_back({check.run + "/" + check.setting, std::to_string(i + 1), std::to_string(row.position), row.name,
-                        format("%.2f", row.measured_dip_mps), format("%.2f", row.predicted_dip_mps),
-                        format("%.2f", row.predicted_dip_mps_diagnosed), format("%.2f", row.measured_amplification),
-                        format("%.2f", row.predicted_amplification),
-                        format("%.2f", row.predicted_amplification_diagnosed), format("%.2f", row.pair_predicted_dip_mps),
-                        format("%.2f", row.pair_predicted_dip_mps_diagnosed)});
+                        cellNumber("%.2f", row.measured_dip_mps), cellNumber("%.2f", row.predicted_dip_mps),
+                        cellNumber("%.2f", row.predicted_dip_mps_diagnosed), cellNumber("%.2f", row.measured_amplification),
+                        cellNumber("%.2f", row.predicted_amplification),
+                        cellNumber("%.2f", row.predicted_amplification_diagnosed), cellNumber("%.2f", row.pair_predicted_dip_mps),
+                        cellNumber("%.2f", row.pair_predicted_dip_mps_diagnosed)});
       }
     }
   }
@@ -510,9 +502,9 @@ std::vector<std::vector<std::string>> gapRows(const CampaignResult& result)
   for (const auto& [label, which] : kinds)
   {
     const DipPredictionSummary s = summarizeDipPredictions(result.platoons, which);
-    rows.push_back({label, std::to_string(s.car_perturbations), format("%+.0f %%", 100.0 * s.median_dip_error),
-                    format("%.0f %%", 100.0 * s.median_abs_dip_error), format("%.0f %%", 100.0 * s.share_within_30_percent),
-                    std::to_string(s.links), format("%.0f %%", 100.0 * s.share_links_growth_right)});
+    rows.push_back({label, std::to_string(s.car_perturbations), cellNumber("%+.0f %%", 100.0 * s.median_dip_error),
+                    cellNumber("%.0f %%", 100.0 * s.median_abs_dip_error), cellNumber("%.0f %%", 100.0 * s.share_within_30_percent),
+                    std::to_string(s.links), cellNumber("%.0f %%", 100.0 * s.share_links_growth_right)});
   }
   return rows;
 }
@@ -522,10 +514,10 @@ std::vector<std::string> selectionLines(const EffectSetSelection& selection)
   std::vector<std::string> lines;
   for (const EffectSetComparison& c : selection.comparisons)
   {
-    lines.push_back(c.candidate.name() + " against " + c.against.name() + ": loss " + format("%.3f", c.mean_loss) +
-                    " vs " + format("%.3f", c.against_loss) + " (" + format("%+.0f %%", -100.0 * c.relative_improvement) +
-                    "; pair window MSE " + format("%.3f", c.mean_window_mse) + " vs " +
-                    format("%.3f", c.against_window_mse) + "), p = " + format("%.4f", c.p_value) +
+    lines.push_back(c.candidate.name() + " against " + c.against.name() + ": loss " + cellNumber("%.3f", c.mean_loss) +
+                    " vs " + cellNumber("%.3f", c.against_loss) + " (" + cellNumber("%+.0f %%", -100.0 * c.relative_improvement) +
+                    "; pair window MSE " + cellNumber("%.3f", c.mean_window_mse) + " vs " +
+                    cellNumber("%.3f", c.against_window_mse) + "), p = " + cellNumber("%.4f", c.p_value) +
                     " over " + std::to_string(c.perturbations) + " perturbations" +
                     (c.significant ? ": named" : ": not named"));
   }

@@ -1,4 +1,5 @@
 #include "acc_identification/campaign/platoon_check.h"
+#include "acc_identification/model/number_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,13 +16,6 @@ namespace
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// Dips below this are GNSS noise: no ratio is formed with them as the denominator.
 constexpr double kMinDipForRatioMps = 0.1;
-
-std::string format(const char* pattern, double value)
-{
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), pattern, value);
-  return buffer;
-}
 
 int lastPosition(const OpenAccFile& file)
 {
@@ -82,7 +76,7 @@ void predictCar(const OpenAccFile& file, const std::vector<double>& input_mps, s
   car.start_row = start;
   car.predicted = true;
   if (sim.diverged)
-    car.note = "simulation diverged at t = " + format("%.1f s", run.time_s[valid]);
+    car.note = "simulation diverged at t = " + printfText("%.1f s", run.time_s[valid]);
 }
 
 double rmseAgainstMeasured(const std::vector<double>& predicted, const std::vector<double>& measured)
@@ -166,16 +160,16 @@ void findDisagreements(PerturbationCheck& check, std::size_t index, double max_r
     {
       check.disagreements.push_back({index, row.position, row.name,
                                      std::string(predicted > 1.0 ? "predicted amplification " : "predicted attenuation ") +
-                                         format("%.2f", predicted) +
+                                         printfText("%.2f", predicted) +
                                          (measured > 1.0 ? ", measured amplification " : ", measured attenuation ") +
-                                         format("%.2f", measured)});
+                                         printfText("%.2f", measured)});
     }
     if (std::isfinite(row.measured_dip_mps) && std::isfinite(row.predicted_dip_mps) &&
         row.measured_dip_mps >= kMinDipForRatioMps)
     {
       const double error = (row.predicted_dip_mps - row.measured_dip_mps) / row.measured_dip_mps;
       if (std::abs(error) > max_relative_dip_error)
-        check.disagreements.push_back({index, row.position, row.name, "dip error " + format("%+.0f %%", 100.0 * error)});
+        check.disagreements.push_back({index, row.position, row.name, "dip error " + printfText("%+.0f %%", 100.0 * error)});
     }
   }
 }
@@ -343,7 +337,7 @@ PlatoonCheck checkPlatoon(const CampaignFile& file, const std::vector<PlatoonCar
   const std::vector<double> time_s = sliceRows(data.time_s, check.first_row, check.end_row);
   if (found.empty())
     check.notes.push_back("no perturbation: the first car's speed never drops more than " +
-                          format("%.1f m/s", options.perturbation.drop_below_median_mps) + " below its median");
+                          printfText("%.1f m/s", options.perturbation.drop_below_median_mps) + " below its median");
   for (std::size_t i = 0; i < found.size(); ++i)
     check.perturbations.push_back(comparePerturbation(check, data, time_s, found[i], i, options));
   return check;

@@ -1,4 +1,5 @@
 #include "acc_identification/diagnosis/augmented_stability_verdict.h"
+#include "acc_identification/model/number_text.h"
 #include "acc_identification/model/sample_statistics.h"
 #include "acc_identification/model/json_number.h"
 
@@ -184,9 +185,9 @@ void decide(AugmentedStabilityTestResult* r)
 {
   const std::string numbers =
       combinedEffectName(r->effects) + " model: " +
-      describeComparison(*r, r->best_stable.test_rmse_speed_mps, "index " + reasonNumber(r->best_stable.stability_index),
+      describeComparison(*r, r->best_stable.test_rmse_speed_mps, "index " + significant(r->best_stable.stability_index),
                          r->best_unstable.test_rmse_speed_mps,
-                         "index " + reasonNumber(r->best_unstable.stability_index));
+                         "index " + significant(r->best_unstable.stability_index));
   if (decideSides(*r, r->best_unstable.stability_index < 0.0, r->best_stable.stability_index > 0.0) ==
       SideDecision::Decided)
   {
@@ -195,7 +196,7 @@ void decide(AugmentedStabilityTestResult* r)
     return;
   }
   r->reason = numbers + ": neither side predicts the held-out data significantly better with a model strictly "
-                        "inside its side (alpha " + reasonNumber(r->alpha) + ")";
+                        "inside its side (alpha " + significant(r->alpha) + ")";
 }
 
 nlohmann::json sideJson(const AugmentedSideFit& s, const std::vector<EffectKind>& effects)

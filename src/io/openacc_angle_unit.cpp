@@ -1,6 +1,7 @@
 #include "openacc_text.h"
 
 #include "acc_identification/model/angles.h"
+#include "acc_identification/model/number_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,7 +36,7 @@ struct LatLonRange
 
   std::string describe() const
   {
-    return "|Lat| up to " + formatNumber(max_latitude, 6) + ", |Lon| up to " + formatNumber(max_longitude, 6);
+    return "|Lat| up to " + significant(max_latitude, 6) + ", |Lon| up to " + significant(max_longitude, 6);
   }
 };
 
@@ -121,7 +122,7 @@ void chooseUnitByMotion(OpenAccFile& file, const std::string& range)
   if (motion.en_m < kMinMotionForUnitCheckM)
   {
     file.angle_unit_reason = "Lat/Lon in radians, the database's unit: the values fit both units (" + range +
-                             ") and the cars move only " + formatNumber(motion.en_m, 3) +
+                             ") and the cars move only " + significant(motion.en_m, 3) +
                              " m by E/N, too little to check them";
     return;
   }
@@ -131,9 +132,9 @@ void chooseUnitByMotion(OpenAccFile& file, const std::string& range)
   const double chosen_m = degrees ? motion.as_degrees_m : motion.as_radians_m;
   std::ostringstream reason;
   reason << "Lat/Lon in " << (degrees ? "degrees" : "radians") << ": the values fit both units (" << range
-         << "); over " << motion.steps << " consecutive fixes the cars move " << formatNumber(motion.en_m, 6)
-         << " m by their E/N columns, " << formatNumber(motion.as_radians_m, 6) << " m by Lat/Lon read as radians, "
-         << formatNumber(motion.as_degrees_m, 6) << " m read as degrees";
+         << "); over " << motion.steps << " consecutive fixes the cars move " << significant(motion.en_m, 6)
+         << " m by their E/N columns, " << significant(motion.as_radians_m, 6) << " m by Lat/Lon read as radians, "
+         << significant(motion.as_degrees_m, 6) << " m read as degrees";
   if (chosen_m > 2.0 * motion.en_m || chosen_m < 0.5 * motion.en_m)
   {
     reason << " (neither unit matches E/N within a factor 2: check the file)";

@@ -114,12 +114,6 @@ std::string join(const std::vector<std::string>& parts, const std::string& separ
   return text;
 }
 
-std::string formatNumber(double value, int precision)
-{
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*g", precision, value);
-  return text;
-}
 
 
 std::optional<std::pair<Quantity, int>> classifyColumn(const std::string& name)

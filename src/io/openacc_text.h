@@ -25,8 +25,6 @@ std::string upper(std::string text);
 /// A whole decimal number, the whole text; nullopt otherwise.
 std::optional<long> parseInteger(const std::string& text);
 std::string join(const std::vector<std::string>& parts, const std::string& separator);
-/// printf's %g with this many significant digits.
-std::string formatNumber(double value, int precision = 4);
 
 /// How a cell reads: a finite number, or why not.
 enum class CellKind

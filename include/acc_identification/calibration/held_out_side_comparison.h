@@ -137,7 +137,4 @@ std::string describeComparison(const HeldOutVerdict& result, double stable_test_
 /// each tests; "(not tested, no p-values)" when the comparison did not run.
 std::string pValuesText(const HeldOutVerdict& result);
 
-/// A number as the reasons print it (4 significant digits).
-std::string reasonNumber(double value);
-
 }  // namespace acc
