@@ -122,21 +122,6 @@ void printDipEvidence(const CalibrationReport& report, std::ostream& out)
 
 }  // namespace
 
-std::pair<CarFollowingRun, CarFollowingRun> splitRunInHalf(const CarFollowingRun& run)
-{
-  const std::size_t half = run.size() / 2;
-  auto slice = [&run](std::size_t from, std::size_t to, const std::string& suffix) {
-    CarFollowingRun part;
-    part.name = run.name + suffix;
-    part.time_s.assign(run.time_s.begin() + from, run.time_s.begin() + to);
-    part.space_gap_m.assign(run.space_gap_m.begin() + from, run.space_gap_m.begin() + to);
-    part.follower_speed_mps.assign(run.follower_speed_mps.begin() + from, run.follower_speed_mps.begin() + to);
-    part.leader_speed_mps.assign(run.leader_speed_mps.begin() + from, run.leader_speed_mps.begin() + to);
-    return part;
-  };
-  return {slice(0, half, " (train)"), slice(half, run.size(), " (test)")};
-}
-
 nlohmann::json reportToJson(const CalibrationReport& report)
 {
   const MultistartResult& c = report.calibration;

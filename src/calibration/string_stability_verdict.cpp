@@ -7,7 +7,6 @@
 #include <optional>
 #include <sstream>
 
-#include "acc_identification/calibration/calibration_report.h"
 #include "acc_identification/calibration/fit_statistics.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/sample_statistics.h"

@@ -45,6 +45,12 @@ CarFollowingRun CarFollowingRun::slice(std::size_t first, std::size_t end, const
   return part;
 }
 
+std::pair<CarFollowingRun, CarFollowingRun> splitRunInHalf(const CarFollowingRun& run)
+{
+  const std::size_t half = run.size() / 2;
+  return {run.slice(0, half, " (train)"), run.slice(half, run.size(), " (test)")};
+}
+
 std::string describeRunProblem(const CarFollowingRun& run)
 {
   const std::size_t n = run.time_s.size();

@@ -28,10 +28,6 @@ struct RunScore
   std::optional<FitQuality> test;
 };
 
-/// The first half of a run (samples [0, n/2)) for training and the second ([n/2, n)), simulated
-/// from its own measured start, for testing: the paper's protocol (Section V-B).
-std::pair<CarFollowingRun, CarFollowingRun> splitRunInHalf(const CarFollowingRun& run);
-
 /// Everything the calibrate tool reports.
 struct CalibrationReport
 {

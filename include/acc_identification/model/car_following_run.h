@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace acc
@@ -22,6 +23,11 @@ struct CarFollowingRun
   /// Throws std::out_of_range when the rows are not within the run (first <= end <= size()).
   CarFollowingRun slice(std::size_t first, std::size_t end, const std::string& name_suffix = "") const;
 };
+
+/// The first half of a run (samples [0, n/2), named "... (train)") for training and the second
+/// ([n/2, n), "... (test)"), simulated from its own measured start, for testing: the paper's
+/// protocol (Section V-B). The columns must be of equal length (describeRunProblem).
+std::pair<CarFollowingRun, CarFollowingRun> splitRunInHalf(const CarFollowingRun& run);
 
 /// The rows [first, end) of one column: the one slicing of the package, for runs (above) and for
 /// the columns of a file read row by row. Throws std::out_of_range unless first <= end <= size.
