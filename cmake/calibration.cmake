@@ -31,7 +31,8 @@ acc_add_library(acc_calibration
 # Car-following runs made from known parameters (synthesis/synthetic_runs.h): the seeded truths
 # the calibration's tests, benchmarks and verdict_study recover. Beside the calibration, whose
 # margin projection places a truth at a chosen stability margin.
-acc_add_library(acc_synthetic_runs SOURCES src/synthesis/synthetic_runs.cpp LINK acc_calibration)
+acc_add_library(acc_synthetic_runs SOURCES src/synthesis/synthetic_runs.cpp src/synthesis/verdict_study.cpp
+  LINK acc_calibration)
 
 # ROS side: runs from bags of RelativeState (rosbag API), with the CSV reader's checks.
 acc_add_ros_library(acc_calibration_ros SOURCES src/ros/run_bag_reader.cpp src/ros/run_input_options.cpp

@@ -2,12 +2,17 @@
 # against rosdep.yaml, the Makefile's apt list and what dpkg says each Debian package provides
 # (test/python/test_dependencies.py); the launch files and tools as a newcomer types them
 # (test/python/test_launch_sources.py); and every `bash tested` command of README.md and docs/*.md
-# run as written on the bundled data (test/python/test_doc_commands.py). Debian's python3 on
+# run as written on the bundled data (test/python/test_doc_commands.py); and the house rules of
+# the code (test/python/test_code_shape.py: short functions, thin mains, headers mirroring
+# sources, no production file named like a test). Debian's python3 on
 # purpose: a python3 from another installation earlier on PATH lacks ROS's modules.
 if(CATKIN_ENABLE_TESTING)
   set(_acc_results ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
   catkin_run_tests_target("python" "dependencies" "python-dependencies.xml"
     COMMAND "/usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/python/test_dependencies.py --junit ${_acc_results}/python-dependencies.xml"
+    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  catkin_run_tests_target("python" "code_shape" "python-code_shape.xml"
+    COMMAND "/usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/python/test_code_shape.py --junit ${_acc_results}/python-code_shape.xml"
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   # Both run the package's nodes and tools: built first.
   set(_acc_user_targets gps_driver_node relative_state_node identifier_node openacc_to_nmea platoon

@@ -16,6 +16,7 @@
 #include "acc_identification/calibration/drive_record.h"
 #include "acc_identification/calibration/sequential_verdict.h"
 #include "acc_identification/synthesis/synthetic_runs.h"
+#include "acc_identification/synthesis/verdict_study.h"
 #include "acc_identification/model/string_stability.h"
 
 namespace
@@ -253,4 +254,38 @@ TEST(SequentialVerdict, BadInputIsUndecidedWithAReason)
   const auto short_look = acc::replaySequentialVerdict({short_run}, {});
   ASSERT_FALSE(short_look.empty());
   EXPECT_NE(short_look.back().reason.find("too few samples"), std::string::npos) << short_look.back().reason;
+}
+
+// verdict_study's study (synthesis/verdict_study.h): its tallies follow the looks, and its table
+// and JSON say the same.
+TEST(VerdictStudy, TalliesTheDrivesOfEachClassAsTheNodeWouldShowThem)
+{
+  acc::VerdictStudyOptions options;
+  options.drives = 2;
+  options.duration_s = 300.0;
+  options.margins = {-1.0, 1.0};
+  options.checkpoints_s = {150.0, 300.0};
+  const std::vector<acc::VerdictStudyClass> classes = acc::runVerdictStudy(options, nullptr);
+  ASSERT_EQ(classes.size(), 2u);
+  for (const acc::VerdictStudyClass& c : classes)
+  {
+    EXPECT_EQ(c.drives, 2);
+    EXPECT_EQ(c.wrong, 0) << "margin " << c.margin;
+    EXPECT_EQ(c.withdrawn, 0) << "margin " << c.margin;
+    ASSERT_EQ(c.right_by_length.size(), 2u);
+    EXPECT_LE(c.right_by_length[0], c.right_by_length[1]);  // a decision kept is still right later
+    EXPECT_EQ(c.right_by_length[1], c.decided_right);        // the last checkpoint is the drive's end
+    if (c.decided_right > 0)
+    {
+      EXPECT_GT(c.meanDecidedAtS(), 0.0);
+      EXPECT_LE(c.meanDecidedAtS(), 300.0);
+    }
+  }
+  const nlohmann::json json = acc::verdictStudyJson(classes, options);
+  EXPECT_EQ(json["classes"][0]["drives"], 2);
+  EXPECT_DOUBLE_EQ(json["classes"][1]["power_by_length"][1]["decided_right"].get<double>(),
+                   classes[1].right_by_length[1] / 2.0);
+  const std::string table = acc::verdictStudyTable(classes, options);
+  EXPECT_NE(table.find("right@ 300s"), std::string::npos) << table;
+  EXPECT_NE(table.find("   -1.00       2       0          0"), std::string::npos) << table;
 }
