@@ -97,19 +97,34 @@ nlohmann::json replayVerdicts(const std::vector<Drive>& drives, double every_s, 
   return all;
 }
 
-/// Valid data without a fit: says so and makes the JSON anyway.
+/// --verdict-every: the looks the identifier node would make on each drive, with a line on log.
+void addSequentialVerdicts(const std::vector<CalibrationInput>& inputs, const CalibrateSettings& settings,
+                           CalibrateOutcome& outcome, std::ostream& out, std::ostream& log)
+{
+  if (!(settings.verdict_every_s > 0.0))
+    return;
+  if (!settings.quiet)
+    log << "sequential verdict: replaying the drives look by look...\n";
+  outcome.json["sequential_verdicts"] =
+      replayVerdicts(groupIntoDrives(inputs), settings.verdict_every_s, settings.alpha, out);
+}
+
+/// Valid data without a fit: says so and makes the JSON anyway, with what the data do decide (the
+/// dips' own evidence; with --verdict-every, the verdicts the node would publish on them, as it
+/// runs on data that a batch fit refuses).
 CalibrateOutcome unfitted(const std::vector<CalibrationInput>& inputs, const std::string& reason,
-                          double steady_speed_spread_mps, const std::vector<PairsRead>& pairs_read, std::ostream& out,
-                          std::ostream& log)
+                          double steady_speed_spread_mps, const std::vector<PairsRead>& pairs_read,
+                          const CalibrateSettings& settings, std::ostream& out, std::ostream& log)
 {
   const UnfittedDataSummary summary = summarizeUnfittedData(runsOf(inputs), reason, steady_speed_spread_mps);
   printPairsRead(pairs_read, out);
   printUnfitted(summary, out);
-  log << "no fit: " << reason << " (exit status " << kExitValidDataNoFit << ")\n";
   CalibrateOutcome outcome;
   outcome.exit_status = kExitValidDataNoFit;
   outcome.json = unfittedToJson(summary);
   addPairsRead(pairs_read, outcome.json);
+  addSequentialVerdicts(inputs, settings, outcome, out, log);
+  log << "no fit: " << reason << " (exit status " << kExitValidDataNoFit << ")\n";
   return outcome;
 }
 
@@ -188,7 +203,7 @@ CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, cons
       return unfitted(inputs,
                       "run '" + item.run.name + "' has " + std::to_string(item.run.size()) +
                           " samples, too few to split in halves",
-                      IdentifiabilityCriteria{}.min_speed_std_mps, pairs_read, out, log);
+                      IdentifiabilityCriteria{}.min_speed_std_mps, pairs_read, settings, out, log);
     training.push_back(std::move(train));
     testing.push_back(std::move(test));
   }
@@ -200,7 +215,7 @@ CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, cons
   const Identification identification = identifyAcc(training, options);
   if (!identification.solved || identification.calibration.diverged)
     return unfitted(inputs, identification.note.empty() ? "the fit diverged" : identification.note,
-                    options.criteria.min_speed_std_mps, pairs_read, out, log);
+                    options.criteria.min_speed_std_mps, pairs_read, settings, out, log);
   CalibrationReport report;
   report.calibration = identification.calibration;
   report.training_samples = identification.samples;
@@ -240,13 +255,7 @@ CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, cons
     out << opinion.text;
     outcome.json["diagnosed_verdict"] = opinion.json;
   }
-  if (settings.verdict_every_s > 0.0)
-  {
-    if (!settings.quiet)
-      log << "sequential verdict: replaying the drives look by look...\n";
-    outcome.json["sequential_verdicts"] =
-        replayVerdicts(groupIntoDrives(inputs), settings.verdict_every_s, settings.alpha, out);
-  }
+  addSequentialVerdicts(inputs, settings, outcome, out, log);
   outcome.exit_status = report.calibration.diverged ? 1 : 0;
   outcome.report = std::move(report);
   outcome.training = std::move(training);

@@ -86,6 +86,13 @@ std::string fitCells(const std::optional<FitQuality>& fit)
                 fit->diverged ? " (diverged)" : "");
   return buffer;
 }
+/// "Dips of the leader's perturbations (the data's own, no model): N perturbation(s); ...".
+void printDipRatioLine(const PairDipEvidence& evidence, std::ostream& out)
+{
+  out << "Dips of the leader's perturbations (the data's own, no model): " << evidence.dips.size()
+      << " perturbation(s); " << evidence.ratio.reason << "\n";
+}
+
 nlohmann::json dipEvidenceJson(const CalibrationReport& report)
 {
   nlohmann::json json = toJson(*report.dip_evidence);
@@ -105,8 +112,8 @@ nlohmann::json dipEvidenceJson(const CalibrationReport& report)
 void printDipEvidence(const CalibrationReport& report, std::ostream& out)
 {
   const DipRatioEstimate& r = report.dip_evidence->ratio;
-  out << "\nDips of the leader's perturbations (the data's own, no model): " << report.dip_evidence->dips.size()
-      << " perturbation(s); " << r.reason << "\n";
+  out << "\n";
+  printDipRatioLine(*report.dip_evidence, out);
   if (report.model_dips && report.model_dips->scored > 0)
   {
     char line[256];
@@ -302,6 +309,7 @@ UnfittedDataSummary summarizeUnfittedData(const std::vector<CarFollowingRun>& ru
   out.gap_mean_m = gap.mean;
   out.gap_spread_m = gap.standard_deviation;
   out.equilibrium_gap_m = out.follower_speed_spread_mps < steady_speed_spread_mps ? out.gap_mean_m : kNaN;
+  out.dip_evidence = pairDipEvidence(runs);
   return out;
 }
 
@@ -322,6 +330,8 @@ nlohmann::json unfittedToJson(const UnfittedDataSummary& summary)
   json["parameters"] = nullptr;
   json["stability"] = nullptr;
   json["model_adequacy"] = nullptr;
+  if (summary.dip_evidence)
+    json["dip_evidence"] = toJson(*summary.dip_evidence);
   return json;
 }
 
@@ -335,7 +345,9 @@ void printUnfitted(const UnfittedDataSummary& summary, std::ostream& out)
                 summary.runs, summary.samples, summary.duration_s, summary.follower_speed_mean_mps,
                 summary.follower_speed_spread_mps, summary.gap_mean_m, summary.gap_spread_m);
   out << line << "  " << equilibriumGapNote(summary) << "\n";
-  out << "No parameters, no lambda2 and no string-stability verdict: these data do not decide them.\n";
+  if (summary.dip_evidence)
+    printDipRatioLine(*summary.dip_evidence, out);
+  out << "No parameters, no lambda2 and no model's string-stability verdict: these data do not decide them.\n";
 }
 
 }  // namespace acc

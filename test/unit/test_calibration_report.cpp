@@ -211,6 +211,40 @@ TEST(CalibrationReport, UnfittableDataGetJsonWithTheReason)
   std::ostringstream text;
   acc::printUnfitted(summary, text);
   EXPECT_NE(text.str().find("No fit: the follower speed spread"), std::string::npos) << text.str();
+  // What the data decide without a model: their dips' evidence (none here: no perturbation).
+  ASSERT_TRUE(json.contains("dip_evidence"));
+  EXPECT_NE(text.str().find("Dips of the leader's perturbations"), std::string::npos) << text.str();
+}
+
+// Data a batch fit refuses still get the verdicts the identifier node would publish on them
+// (--verdict-every): the node runs on them, so calibrate must say what it would show.
+TEST(CalibrationReport, UnfittedDataStillGetTheNodesVerdictSequence)
+{
+  acc::CarFollowingRun steady;
+  steady.name = "steady";
+  for (int k = 0; k < 1200; ++k)
+  {
+    steady.time_s.push_back(0.1 * k);
+    steady.follower_speed_mps.push_back(20.0 + 0.3 * std::sin(0.05 * k));
+    steady.leader_speed_mps.push_back(20.0 + 0.3 * std::sin(0.05 * k + 0.3));
+    steady.space_gap_m.push_back(30.0 + 0.5 * std::cos(0.05 * k));
+  }
+  acc::CalibrateSettings settings;
+  settings.quiet = true;
+  settings.starts = 5;
+  settings.verdict_every_s = 10.0;
+  std::ostringstream text, log;
+  const acc::CalibrateOutcome outcome = acc::calibrateRuns({{steady, "steady.csv"}}, {}, settings, text, log);
+  EXPECT_EQ(outcome.exit_status, acc::kExitValidDataNoFit) << text.str();
+  EXPECT_EQ(outcome.json["fitted"], false);
+  ASSERT_TRUE(outcome.json.contains("sequential_verdicts")) << outcome.json.dump(1);
+  // A look every 10 s of the 119.9 s (11), and one where the data end.
+  EXPECT_EQ(outcome.json["sequential_verdicts"][0]["verdict_sequence"].size(), 12u);
+  EXPECT_NE(text.str().find("Sequential verdict"), std::string::npos) << text.str();
+  // Without --verdict-every, none.
+  settings.verdict_every_s = 0.0;
+  EXPECT_FALSE(acc::calibrateRuns({{steady, "steady.csv"}}, {}, settings, text, log).json.contains(
+      "sequential_verdicts"));
 }
 
 namespace

@@ -71,6 +71,9 @@ struct UnfittedDataSummary
   /// equilibrium gap eta + tau_e v at the mean speed, whatever eta and tau_e are; NaN otherwise.
   double equilibrium_gap_m = 0.0;
   double steady_speed_spread_mps = 0.0;
+  /// What the runs' own dips say without a model (pairDipEvidence): decided by the data even
+  /// where no model can be fitted.
+  std::optional<PairDipEvidence> dip_evidence;
 };
 
 /// The summary of the runs, with `reason`. Steady: follower speed spread below steady_speed_spread_mps.
