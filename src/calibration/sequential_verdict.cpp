@@ -293,7 +293,7 @@ std::size_t SequentialVerdict::refit(const std::vector<CarFollowingRun>& segment
     // U is one of the two sides: both sides' fits are the warm starts, U's first.
     const SideFit& previous_u = previous.unconstrained_stable ? previous.stable : previous.unstable;
     fits = fitBothSides(*objective, options_.refit_multistart, options_.refit_constrained,
-                        {previous_u.parameters, previous_other.parameters}, {previous_other.parameters});
+                        {previous_u.parameters}, {previous_other.parameters});
   }
   const std::size_t evaluations = fits.unconstrained_evaluations + fits.constrained_evaluations;
   if (!fits.failure.empty())
