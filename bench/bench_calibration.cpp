@@ -12,23 +12,12 @@
 #include "acc_identification/synthesis/synthetic_runs.h"
 #include "acc_identification/model/paper_settings.h"
 
-
 namespace
 {
-/// Nine runs of 480 s (4,320 s) from Table II's minimum setting with the paper's GPS noise.
-std::vector<acc::CarFollowingRun> paperScaleRuns()
-{
-  std::vector<acc::CarFollowingRun> runs;
-  for (std::uint32_t seed = 1; seed <= 9; ++seed)
-  {
-    runs.push_back(acc::synthesizeRun(acc::paperMinimumSetting(), 480.0, 0.1, 12.0 + 2.0 * seed, seed));
-  }
-  return runs;
-}
-
+/// The reference data (paperScaleRuns): nine runs of 480 s from Table II's minimum setting.
 void BM_BatchCalibration100Starts(benchmark::State& state)
 {
-  const auto runs = paperScaleRuns();
+  const auto runs = acc::paperScaleRuns(acc::paperMinimumSetting());
   const acc::CalibrationObjective objective(runs);
   acc::MultistartOptions options;
   options.starts = 100;
@@ -66,7 +55,7 @@ BENCHMARK(BM_LiveWindowRecalibration)->Arg(0)->Arg(8)->Arg(32)->Unit(benchmark::
 
 void BM_ObjectivePassWithGradient(benchmark::State& state)
 {
-  const acc::CalibrationObjective objective(paperScaleRuns());
+  const acc::CalibrationObjective objective(acc::paperScaleRuns(acc::paperMinimumSetting()));
   for (auto _ : state)
   {
     benchmark::DoNotOptimize(objective.evaluate(0.08, 0.44, 0.52, state.range(0) != 0));

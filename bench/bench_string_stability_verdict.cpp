@@ -23,19 +23,9 @@
 
 namespace
 {
-std::vector<acc::CarFollowingRun> paperScaleRuns(const acc::AccParameters& truth)
-{
-  std::vector<acc::CarFollowingRun> runs;
-  for (std::uint32_t seed = 1; seed <= 9; ++seed)
-  {
-    runs.push_back(acc::synthesizeRun(truth, 480.0, 0.1, 12.0 + 2.0 * seed, seed));
-  }
-  return runs;
-}
-
 void BM_BatchCalibration100Starts(benchmark::State& state)
 {
-  const auto runs = paperScaleRuns(acc::paperMinimumSetting());
+  const auto runs = acc::paperScaleRuns(acc::paperMinimumSetting());
   const acc::CalibrationObjective objective(runs);
   acc::MultistartOptions options;
   options.starts = 100;
@@ -52,7 +42,7 @@ BENCHMARK(BM_BatchCalibration100Starts)->Unit(benchmark::kMillisecond);
 
 void stabilityTest(benchmark::State& state, const acc::AccParameters& truth)
 {
-  const auto runs = paperScaleRuns(truth);
+  const auto runs = acc::paperScaleRuns(truth);
   const acc::StabilityTestOptions options;
   acc::StabilityTestResult result;
   for (auto _ : state)
@@ -82,7 +72,7 @@ void BM_StabilityTestStableTruth(benchmark::State& state)
 BENCHMARK(BM_StabilityTestStableTruth)->Unit(benchmark::kMillisecond);
 void BM_SequentialReplayEvery10s(benchmark::State& state)
 {
-  const auto runs = paperScaleRuns(acc::paperMinimumSetting());
+  const auto runs = acc::paperScaleRuns(acc::paperMinimumSetting());
   acc::SequentialVerdictOptions options;
   options.look_period_s = 10.0;
   std::size_t looks = 0, decided = 0;

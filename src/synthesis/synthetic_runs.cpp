@@ -99,4 +99,12 @@ AccParameters truthWithMargin(double margin)
   return on_margin.front();
 }
 
+std::vector<CarFollowingRun> paperScaleRuns(const AccParameters& truth)
+{
+  std::vector<CarFollowingRun> runs;
+  for (std::uint32_t seed = 1; seed <= 9; ++seed)
+    runs.push_back(synthesizeRun(truth, 480.0, 0.1, 12.0 + 2.0 * seed, seed));
+  return runs;
+}
+
 }  // namespace acc

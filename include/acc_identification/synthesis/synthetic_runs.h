@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/car_following_run.h"
@@ -32,5 +33,10 @@ CarFollowingRun synthesizeRun(const AccParameters& truth, double duration_s, dou
 /// A truth with string-stability margin m for studies and tests: k1 = 0.1 /s^2, k2 = 0.5 /s,
 /// eta = 6 m and the tau_e that gives m (projectOntoMargin); for m in [-2, 78).
 AccParameters truthWithMargin(double margin);
+
+/// The benchmarks' reference data (docs/PERFORMANCE.md): nine synthesizeRun drives of 480 s at
+/// 10 Hz (4,320 s, 43,209 samples, the scale of the paper's calibration data), seeds 1 to 9,
+/// cruising at 14, 16, ..., 30 m/s, followed by `truth`.
+std::vector<CarFollowingRun> paperScaleRuns(const AccParameters& truth);
 
 }  // namespace acc
