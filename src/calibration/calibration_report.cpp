@@ -91,6 +91,13 @@ void printDipRatioLine(const PairDipEvidence& evidence, std::ostream& out)
 {
   out << "Dips of the leader's perturbations (the data's own, no model): " << evidence.dips.size()
       << " perturbation(s); " << evidence.ratio.reason << "\n";
+  // What that says in words: for the inputs the drive had, not for every frequency.
+  if (evidence.ratio.amplifies == DipAmplification::Amplifies)
+    out << "  the car amplified its leader's dips beyond their interval: string unstable for these inputs, "
+           "whatever the model says\n";
+  else if (evidence.ratio.amplifies == DipAmplification::Attenuates)
+    out << "  the car damped its leader's dips beyond their interval: these inputs did not grow (a stable answer "
+           "for them only)\n";
 }
 
 nlohmann::json dipEvidenceJson(const CalibrationReport& report)

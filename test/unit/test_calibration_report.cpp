@@ -214,6 +214,13 @@ TEST(CalibrationReport, UnfittableDataGetJsonWithTheReason)
   // What the data decide without a model: their dips' evidence (none here: no perturbation).
   ASSERT_TRUE(json.contains("dip_evidence"));
   EXPECT_NE(text.str().find("Dips of the leader's perturbations"), std::string::npos) << text.str();
+  EXPECT_EQ(text.str().find("string unstable for these inputs"), std::string::npos) << text.str();
+  // Dips amplified beyond their interval are said in words, as what the data show for those inputs.
+  acc::UnfittedDataSummary amplified = summary;
+  amplified.dip_evidence->ratio.amplifies = acc::DipAmplification::Amplifies;
+  std::ostringstream amplified_text;
+  acc::printUnfitted(amplified, amplified_text);
+  EXPECT_NE(amplified_text.str().find("string unstable for these inputs"), std::string::npos) << amplified_text.str();
 }
 
 // Data a batch fit refuses still get the verdicts the identifier node would publish on them
