@@ -7,6 +7,8 @@
 #include <sstream>
 
 #include "acc_identification/calibration/fit_statistics.h"
+#include "acc_identification/calibration/held_out_side_comparison.h"
+#include "acc_identification/model/sample_statistics.h"
 
 namespace acc
 {
@@ -305,27 +307,17 @@ std::size_t SequentialVerdict::refit(const std::vector<CarFollowingRun>& segment
   made.trained_until_s = now_s;
   made.fits = fits;
   const HeldOutErrors residual = heldOutErrors(fits.unconstrained, segments);
-  double sum = 0.0;
-  for (double e : residual.error)
-  {
-    sum += e * e;
-  }
-  made.training_mse_m2ps2 = residual.error.empty() ? 0.0 : sum / static_cast<double>(residual.error.size());
+  made.training_mse_m2ps2 = meanOf(squared(residual.error));
   if (!next_block_start_s_)
   {
     // The first fits: fix L once, from their residual's correlation, and start the blocks.
-    double duration_s = 0.0;
-    std::vector<std::size_t> lengths;
-    for (const CarFollowingRun& segment : segments)
-    {
-      duration_s += segment.durationS();
-      lengths.push_back(segment.size() - 1);
-    }
-    mean_step_s_ = duration_s / static_cast<double>(std::max<std::size_t>(1, residual.error.size()));
+    const HeldOutSegments scored = heldOutSegmentsOf(segments);
+    mean_step_s_ = scored.duration_s / static_cast<double>(std::max<std::size_t>(1, scored.scored_samples));
     block_length_s_ = options_.block_length_s > 0.0
                           ? options_.block_length_s
-                          : correlationBlockLengthS(residual.error, lengths, mean_step_s_, options_.correlation_times,
-                                                    options_.min_block_length_s, options_.max_block_length_s);
+                          : correlationBlockLengthS(residual.error, scored.scored_lengths, mean_step_s_,
+                                                    options_.correlation_times, options_.min_block_length_s,
+                                                    options_.max_block_length_s);
     next_block_start_s_ = now_s;
   }
   fits_.push_back(std::move(made));
