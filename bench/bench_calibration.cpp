@@ -6,6 +6,8 @@
 //  - One objective pass with gradient over the batch data, the unit everything else is made of.
 #include <benchmark/benchmark.h>
 
+#include "batch_calibration_benchmark.h"
+
 #include <vector>
 
 #include "acc_identification/calibration/identification.h"
@@ -14,24 +16,6 @@
 
 namespace
 {
-/// The reference data (paperScaleRuns): nine runs of 480 s from Table II's minimum setting.
-void BM_BatchCalibration100Starts(benchmark::State& state)
-{
-  const auto runs = acc::paperScaleRuns(acc::paperMinimumSetting());
-  const acc::CalibrationObjective objective(runs);
-  acc::MultistartOptions options;
-  options.starts = 100;
-  acc::MultistartResult result;
-  for (auto _ : state)
-  {
-    result = acc::calibrateMultistart(objective, options);
-    benchmark::DoNotOptimize(result);
-  }
-  state.counters["samples"] = static_cast<double>(objective.sampleCount());
-  state.counters["evaluations"] = static_cast<double>(result.evaluations);
-  state.counters["rmse_mps"] = result.rmse_speed_mps;
-  state.counters["k1"] = result.parameters.k1_per_s2;
-}
 BENCHMARK(BM_BatchCalibration100Starts)->Unit(benchmark::kMillisecond);
 
 void BM_LiveWindowRecalibration(benchmark::State& state)

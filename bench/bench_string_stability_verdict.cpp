@@ -13,6 +13,8 @@
 //    hour the node keeps (36,000 samples) and on all three hours (108,000).
 #include <benchmark/benchmark.h>
 
+#include "batch_calibration_benchmark.h"
+
 #include <vector>
 
 #include "acc_identification/calibration/multistart_calibrator.h"
@@ -23,21 +25,6 @@
 
 namespace
 {
-void BM_BatchCalibration100Starts(benchmark::State& state)
-{
-  const auto runs = acc::paperScaleRuns(acc::paperMinimumSetting());
-  const acc::CalibrationObjective objective(runs);
-  acc::MultistartOptions options;
-  options.starts = 100;
-  acc::MultistartResult result;
-  for (auto _ : state)
-  {
-    result = acc::calibrateMultistart(objective, options);
-    benchmark::DoNotOptimize(result);
-  }
-  state.counters["samples"] = static_cast<double>(objective.sampleCount());
-  state.counters["evaluations"] = static_cast<double>(result.evaluations);
-}
 BENCHMARK(BM_BatchCalibration100Starts)->Unit(benchmark::kMillisecond);
 
 void stabilityTest(benchmark::State& state, const acc::AccParameters& truth)
