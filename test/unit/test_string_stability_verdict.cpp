@@ -269,13 +269,7 @@ double denseGridBest(const acc::CalibrationObjective& objective, acc::MarginSide
 
 acc::CarFollowingRun firstHalf(const acc::CarFollowingRun& run)
 {
-  acc::CarFollowingRun half = run;
-  const std::size_t n = run.size() / 2;
-  half.time_s.resize(n);
-  half.space_gap_m.resize(n);
-  half.follower_speed_mps.resize(n);
-  half.leader_speed_mps.resize(n);
-  return half;
+  return run.slice(0, run.size() / 2);
 }
 }  // namespace
 
