@@ -52,10 +52,16 @@ SideFits fitBothSides(const CalibrationObjective& objective, const MultistartOpt
 
 HeldOutErrors heldOutErrors(const AccParameters& p, const std::vector<CarFollowingRun>& held_out, double score_from_s)
 {
+  return heldOutErrors(p, EffectSettings{}, held_out, score_from_s);
+}
+
+HeldOutErrors heldOutErrors(const AccParameters& p, const EffectSettings& effects,
+                            const std::vector<CarFollowingRun>& held_out, double score_from_s)
+{
   HeldOutErrors result;
   for (const CarFollowingRun& run : held_out)
   {
-    const SimulatedFollower sim = simulateFollower(p, run);
+    const SimulatedFollower sim = simulateFollower(p, effects, run);
     result.diverged = result.diverged || sim.diverged;
     for (std::size_t k = 1; k < run.size(); ++k)
     {
@@ -67,6 +73,15 @@ HeldOutErrors heldOutErrors(const AccParameters& p, const std::vector<CarFollowi
     }
   }
   return result;
+}
+
+std::string heldOutDivergence(const HeldOutErrors& stable, const HeldOutErrors& unstable,
+                              const std::string& model_name)
+{
+  if (!stable.diverged && !unstable.diverged)
+    return "";
+  return std::string("the best ") + (stable.diverged ? "stable " : "unstable ") +
+         (model_name.empty() ? "" : model_name + " ") + "model's simulation diverges on the held-out data";
 }
 
 double followerSpeedStdMps(const std::vector<CarFollowingRun>& runs)

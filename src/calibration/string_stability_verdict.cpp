@@ -313,11 +313,10 @@ private:
     unstable_.test_rmse_speed_mps = rootMeanOf(unstable_squared);
     result_.best_stable = stable_;
     result_.best_unstable = unstable_;
-    if (stable_errors.diverged || unstable_errors.diverged)
+    if (std::string divergence = heldOutDivergence(stable_errors, unstable_errors); !divergence.empty())
     {
       result_.tested = false;
-      return std::string("the best ") + (stable_errors.diverged ? "stable" : "unstable") +
-             " model's simulation diverges on the held-out data";
+      return divergence;
     }
     comparison.emplace(stable_squared, unstable_squared, segments_, options_);
     comparison->report(result_);

@@ -9,6 +9,7 @@
 
 #include <nlopt.hpp>
 
+#include "acc_identification/calibration/side_fits.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/diagnosis/augmented_stability.h"
 #include "acc_identification/model/block_bootstrap.h"
@@ -162,24 +163,6 @@ AugmentedSideFit sideFitOf(const std::vector<double>& x, double train_mse, const
   return side;
 }
 
-/// Held-out squared speed errors of a model, the parts concatenated, each part's first sample
-/// (the measured start) left out. A diverged simulation counts at the divergence bound.
-std::vector<double> heldOutSquaredErrors(const AugmentedSideFit& model, const std::vector<CarFollowingRun>& test)
-{
-  std::vector<double> errors;
-  for (const CarFollowingRun& run : test)
-  {
-    const SimulatedFollower sim = simulateFollower(model.base, model.settings, run);
-    for (std::size_t k = 1; k < run.size(); ++k)
-    {
-      const bool lost = sim.diverged && k >= sim.diverged_at_index;
-      const double e = lost ? kDivergenceBound : run.follower_speed_mps[k] - sim.speed_mps[k];
-      errors.push_back(e * e);
-    }
-  }
-  return errors;
-}
-
 /// The verdict from the two p-values and the sides' indices, with its reason.
 void decide(AugmentedStabilityTestResult* r)
 {
@@ -275,11 +258,19 @@ AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& ch
     return r;
   }
 
-  const std::vector<double> stable_errors = heldOutSquaredErrors(r.best_stable, test);
-  const std::vector<double> unstable_errors = heldOutSquaredErrors(r.best_unstable, test);
-  r.best_stable.test_rmse_speed_mps = rootMeanOf(stable_errors);
-  r.best_unstable.test_rmse_speed_mps = rootMeanOf(unstable_errors);
-  HeldOutSideComparison(stable_errors, unstable_errors, segments, options).report(r);
+  const HeldOutErrors stable_errors = heldOutErrors(r.best_stable.base, r.best_stable.settings, test);
+  const HeldOutErrors unstable_errors = heldOutErrors(r.best_unstable.base, r.best_unstable.settings, test);
+  const std::vector<double> stable_squared = squared(stable_errors.error);
+  const std::vector<double> unstable_squared = squared(unstable_errors.error);
+  r.best_stable.test_rmse_speed_mps = rootMeanOf(stable_squared);
+  r.best_unstable.test_rmse_speed_mps = rootMeanOf(unstable_squared);
+  if (std::string divergence = heldOutDivergence(stable_errors, unstable_errors, combinedEffectName(r.effects));
+      !divergence.empty())
+  {
+    r.reason = divergence;
+    return r;
+  }
+  HeldOutSideComparison(stable_squared, unstable_squared, segments, options).report(r);
   decide(&r);
   return r;
 }

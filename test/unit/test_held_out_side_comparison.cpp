@@ -1,11 +1,14 @@
 // The engine both string-stability tests share (held_out_side_comparison.h): the held-out data's
-// shortage, the paired bootstrap of squared errors, and the verdict rule.
+// shortage, the paired bootstrap of squared errors, and the verdict rule; and the held-out scoring
+// both use (side_fits.h), with or without effects, and its rule for a diverged prediction.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
 #include "acc_identification/calibration/held_out_side_comparison.h"
+#include "acc_identification/calibration/side_fits.h"
+#include "acc_identification/model/follower_simulation.h"
 
 namespace acc
 {
@@ -36,6 +39,22 @@ std::vector<double> squaredErrors(std::size_t n, double sigma, std::uint64_t see
     value = e * e;
   }
   return out;
+}
+
+/// 60 s at 10 Hz behind a leader that slows from 20 to 16 m/s and back, the follower in
+/// equilibrium at the start.
+CarFollowingRun brakingLeaderRun()
+{
+  CarFollowingRun run;
+  for (std::size_t k = 0; k < 600; ++k)
+  {
+    const double t = 0.1 * static_cast<double>(k);
+    run.time_s.push_back(t);
+    run.leader_speed_mps.push_back(t > 20.0 && t < 26.0 ? 16.0 : 20.0);
+    run.follower_speed_mps.push_back(20.0);
+    run.space_gap_m.push_back(30.0);
+  }
+  return run;
 }
 }  // namespace
 
@@ -115,4 +134,35 @@ TEST(HeldOutSideComparison, AVerdictNotTestedHasNoPValue)
   EXPECT_EQ(pValuesText(tested), "(p (H0: stable) = 0.002; p (H0: unstable) = 0.97)");
 }
 
+TEST(HeldOutErrors, AModelWithoutEffectsIsScoredAsTheBaseModelAndEffectsEnterTheSimulation)
+{
+  const std::vector<CarFollowingRun> held_out = {brakingLeaderRun()};
+  const AccParameters p{0.1, 0.5, 1.2, 6.0};
+  const HeldOutErrors base = heldOutErrors(p, held_out);
+  const HeldOutErrors none = heldOutErrors(p, EffectSettings{}, held_out);
+  EXPECT_EQ(base.error, none.error);
+  ASSERT_EQ(base.error.size(), 599u);  // every sample but the measured start
+  EffectSettings delayed;
+  delayed.reaction_delay_s = 0.8;
+  const HeldOutErrors with_delay = heldOutErrors(p, delayed, held_out);
+  const SimulatedFollower sim = simulateFollower(p, delayed, held_out[0]);
+  ASSERT_EQ(with_delay.error.size(), 599u);
+  EXPECT_DOUBLE_EQ(with_delay.error[250], held_out[0].follower_speed_mps[251] - sim.speed_mps[251]);
+  EXPECT_NE(with_delay.error[250], base.error[250]);
+  EXPECT_FALSE(with_delay.diverged);
+}
+
+TEST(HeldOutErrors, ADivergedPredictionStopsTheComparisonWithTheReason)
+{
+  const std::vector<CarFollowingRun> held_out = {brakingLeaderRun()};
+  // k2 h = 3 > 2: the explicit Euler step itself is unstable and the simulation runs away.
+  const HeldOutErrors runaway = heldOutErrors({0.1, 30.0, 1.2, 6.0}, held_out);
+  const HeldOutErrors fine = heldOutErrors({0.1, 0.5, 1.2, 6.0}, held_out);
+  ASSERT_TRUE(runaway.diverged);
+  ASSERT_FALSE(fine.diverged);
+  EXPECT_EQ(heldOutDivergence(fine, fine), "");
+  EXPECT_EQ(heldOutDivergence(runaway, fine), "the best stable model's simulation diverges on the held-out data");
+  EXPECT_EQ(heldOutDivergence(fine, runaway, "reaction_delay"),
+            "the best unstable reaction_delay model's simulation diverges on the held-out data");
+}
 }  // namespace acc

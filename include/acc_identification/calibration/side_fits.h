@@ -10,6 +10,7 @@
 #include "acc_identification/calibration/multistart_calibrator.h"
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/car_following_run.h"
+#include "acc_identification/model/follower_effects.h"
 
 namespace acc
 {
@@ -61,6 +62,19 @@ struct HeldOutErrors
 
 HeldOutErrors heldOutErrors(const AccParameters& p, const std::vector<CarFollowingRun>& held_out,
                             double score_from_s = -std::numeric_limits<double>::infinity());
+
+/// The same for a model with effects (the diagnosis's augmented models): one scoring for both
+/// string-stability tests.
+HeldOutErrors heldOutErrors(const AccParameters& p, const EffectSettings& effects,
+                            const std::vector<CarFollowingRun>& held_out,
+                            double score_from_s = -std::numeric_limits<double>::infinity());
+
+/// Why the two sides cannot be compared on the held-out data: "the best stable [model_name] model's
+/// simulation diverges on the held-out data" (or unstable), "" when neither diverged. A diverged
+/// prediction has no error to pair, and a verdict won by a model that blew up would say nothing
+/// about string stability: both tests then leave the verdict undecided, untested, with this reason.
+std::string heldOutDivergence(const HeldOutErrors& stable, const HeldOutErrors& unstable,
+                              const std::string& model_name = "");
 
 /// Standard deviation of the follower speed over all samples of the runs [m/s]: below about
 /// 0.1 m/s (GNSS noise alone gives 0.06) there are no speed changes to tell the sides apart.
