@@ -497,7 +497,8 @@ std::vector<std::vector<std::string>> gapRows(const CampaignResult& result)
       {"platoon, base model", DipPrediction::chain_base},
       {"platoon, diagnosed", DipPrediction::chain_diagnosed},
       {"pair (real leader), base", DipPrediction::pair_base},
-      {"pair (real leader), diagnosed", DipPrediction::pair_diagnosed}};
+      {"pair (real leader), diagnosed", DipPrediction::pair_diagnosed},
+      {"no model: every car dips as the first", DipPrediction::unchanged_dip}};
   std::vector<std::vector<std::string>> rows;
   for (const auto& [label, which] : kinds)
   {
@@ -604,7 +605,9 @@ nlohmann::json campaignToJson(const CampaignInputs& inputs, const CampaignResult
                                         {"pair_base", summaryJson(summarizeDipPredictions(
                                                           result.platoons, DipPrediction::pair_base))},
                                         {"pair_diagnosed", summaryJson(summarizeDipPredictions(
-                                                               result.platoons, DipPrediction::pair_diagnosed))}}}}
+                                                               result.platoons, DipPrediction::pair_diagnosed))},
+                                        {"unchanged_dip", summaryJson(summarizeDipPredictions(
+                                                              result.platoons, DipPrediction::unchanged_dip))}}}}
                      : nlohmann::json(nullptr)}};
 }
 

@@ -453,10 +453,14 @@ namespace acc
 {
 namespace
 {
-double predictedOf(const DipComparison& row, DipPrediction which)
+/// The predicted dip of rows[i] (rows[0] the first car, the input).
+double predictedOf(const std::vector<DipComparison>& rows, std::size_t i, DipPrediction which)
 {
+  const DipComparison& row = rows[i];
   switch (which)
   {
+    case DipPrediction::unchanged_dip:
+      return std::isfinite(row.predicted_dip_mps) ? rows[0].measured_dip_mps : std::numeric_limits<double>::quiet_NaN();
     case DipPrediction::chain_base: return row.predicted_dip_mps;
     case DipPrediction::chain_diagnosed: return row.predicted_dip_mps_diagnosed;
     case DipPrediction::pair_base: return row.pair_predicted_dip_mps;
@@ -482,8 +486,8 @@ DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& pl
       for (std::size_t i = 1; i < rows.size(); ++i)
       {
         // The first car is the input: its "prediction" is the measurement, whatever the model.
-        const double ahead_predicted = i == 1 ? rows[0].measured_dip_mps : predictedOf(rows[i - 1], which);
-        const double measured = rows[i].measured_dip_mps, predicted = predictedOf(rows[i], which);
+        const double ahead_predicted = i == 1 ? rows[0].measured_dip_mps : predictedOf(rows, i - 1, which);
+        const double measured = rows[i].measured_dip_mps, predicted = predictedOf(rows, i, which);
         if (!(measured > min_dip_mps) || !std::isfinite(predicted) || (include && !include(check, rows[i])))
           continue;
         errors.push_back((predicted - measured) / measured);

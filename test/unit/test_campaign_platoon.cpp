@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -156,4 +157,33 @@ TEST(CampaignPlatoon, TheDiagnosisFindsWhatClosesTheDipGapOfLateReactingCars)
       EXPECT_NEAR(car.model.effect_values[0], 1.0, 0.15) << check.run << " " << car.name;
     }
   }
+}
+
+TEST(DipPredictionSummary, TheNoModelReferencePassesTheFirstCarsDipOnWhereTheChainPredicts)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  acc::PerturbationCheck perturbation;
+  // position, name, measured, chain (base) prediction; the fourth car has no chain prediction.
+  const double measured[] = {3.0, 3.1, 2.5, 2.0};
+  const double chain[] = {3.0, 2.8, 2.6, nan};
+  for (int i = 0; i < 4; ++i)
+  {
+    acc::DipComparison row;
+    row.position = i + 1;
+    row.measured_dip_mps = measured[i];
+    row.predicted_dip_mps = chain[i];
+    perturbation.positions.push_back(row);
+  }
+  acc::PlatoonCheck check;
+  check.perturbations = {perturbation};
+  const acc::DipPredictionSummary copy = acc::summarizeDipPredictions({check}, acc::DipPrediction::unchanged_dip);
+  ASSERT_EQ(copy.car_perturbations, 2u);  // cars 2 and 3: the fourth is not predicted by the chain
+  EXPECT_NEAR(copy.median_dip_error, 0.5 * ((3.0 - 3.1) / 3.1 + (3.0 - 2.5) / 2.5), 1e-12);
+  EXPECT_NEAR(copy.share_within_30_percent, 1.0, 1e-12);
+  // One link changes by more than 0.2 m/s (3.1 -> 2.5): a decay, and an unchanged dip is no growth.
+  ASSERT_EQ(copy.links, 1u);
+  EXPECT_NEAR(copy.share_links_growth_right, 1.0, 1e-12);
+  const acc::DipPredictionSummary base = acc::summarizeDipPredictions({check}, acc::DipPrediction::chain_base);
+  EXPECT_EQ(base.car_perturbations, 2u);
+  EXPECT_NEAR(base.median_dip_error, 0.5 * ((2.8 - 3.1) / 3.1 + (2.6 - 2.5) / 2.5), 1e-12);
 }

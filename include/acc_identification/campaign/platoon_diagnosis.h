@@ -165,7 +165,11 @@ enum class DipPrediction
   chain_base,
   chain_diagnosed,
   pair_base,
-  pair_diagnosed
+  pair_diagnosed,
+  /// No model: every car dips as deep as the first car did (a platoon that passes a braking on
+  /// unchanged, Newell's time-shifted copy), scored on the car-perturbations the base chain
+  /// predicts. The reference a model must beat to say anything about growth or decay.
+  unchanged_dip
 };
 
 /// Only the car-perturbations `include` accepts (all when empty): e.g. one car and setting, for its
