@@ -7,6 +7,7 @@ acc_add_library(acc_evidence
     src/evidence/perturbation.cpp
     src/evidence/empirical_response.cpp
     src/evidence/pair_dip_evidence.cpp
+    src/evidence/perturbation_windows.cpp
     src/evidence/evidence_json.cpp
   LINK acc_model Eigen3::Eigen nlohmann_json::nlohmann_json)
 
@@ -14,6 +15,7 @@ if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_evidence
     test/unit/gtest_main.cpp
     test/unit/test_empirical_response.cpp
-    test/unit/test_pair_dip_evidence.cpp)
+    test/unit/test_pair_dip_evidence.cpp
+    test/unit/test_perturbation_windows.cpp)
   target_link_libraries(test_evidence acc_evidence)
 endif()

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "acc_identification/diagnosis/augmented_calibration.h"
+#include "acc_identification/evidence/perturbation_windows.h"
 #include "acc_identification/model/portable_uniform.h"
 
 namespace acc
@@ -27,32 +28,6 @@ constexpr std::size_t kColdStarts = 4;
 /// Dips below this are within GNSS noise and driving jitter: no relative error is formed with them
 /// (the same floor as the package's platoon scores).
 constexpr double kMinScoredDipMps = 0.3;
-
-/// Mean squared difference over the rows [first, end) where both are finite; NaN when none.
-double windowMse(const std::vector<double>& predicted, const std::vector<double>& measured, std::size_t first,
-                 std::size_t end)
-{
-  double sum = 0.0;
-  std::size_t n = 0;
-  for (std::size_t r = first; r < end && r < predicted.size(); ++r)
-  {
-    if (std::isfinite(predicted[r]) && std::isfinite(measured[r]))
-    {
-      sum += (predicted[r] - measured[r]) * (predicted[r] - measured[r]);
-      ++n;
-    }
-  }
-  return n > 0 ? sum / static_cast<double>(n) : kNaN;
-}
-
-/// The row (file index) where a perturbation's scoring window starts: pre_window_s before its onset.
-std::size_t windowStartRow(const std::vector<double>& time_s, std::size_t onset_row, double pre_window_s)
-{
-  std::size_t r = onset_row;
-  while (r > 0 && std::isfinite(time_s[r - 1]) && time_s[r - 1] >= time_s[onset_row] - pre_window_s)
-    --r;
-  return r;
-}
 
 /// The model a fit makes, with its source.
 PlatoonCarModel modelOf(const AugmentedFit& fit, const std::string& source)
@@ -79,83 +54,47 @@ double lossOf(const PairPerturbationScore& s, std::size_t m, SelectionCriterion 
   return log_ratio * log_ratio;
 }
 
-/// The sums over one perturbation's cars of two models' losses (a against, b candidate).
-struct Cluster
+/// The clusters of two models' losses (a against, b candidate): one per perturbation, its cars'
+/// losses summed, since they share its input.
+std::vector<LossCluster> clustersOf(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
+                                    std::size_t a, std::size_t b, SelectionCriterion criterion)
 {
-  double sum_a = 0.0, sum_b = 0.0;
-  std::size_t n = 0;
-};
-
-std::vector<Cluster> clustersOf(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
-                                std::size_t a, std::size_t b, SelectionCriterion criterion, std::size_t* entries)
-{
-  std::map<std::pair<std::size_t, std::size_t>, Cluster> by_perturbation;
-  *entries = 0;
+  std::map<std::pair<std::size_t, std::size_t>, LossCluster> by_perturbation;
   for (const PairPerturbationScore& s : scores)
   {
     const double loss_a = lossOf(s, a, criterion), loss_b = lossOf(s, b, criterion);
     if (s.file_index == exclude_file || !std::isfinite(loss_a) || !std::isfinite(loss_b))
       continue;
-    Cluster& c = by_perturbation[{s.file_index, s.perturbation}];
-    c.sum_a += loss_a;
-    c.sum_b += loss_b;
+    LossCluster& c = by_perturbation[{s.file_index, s.perturbation}];
+    c.against += loss_a;
+    c.candidate += loss_b;
     ++c.n;
-    ++*entries;
   }
-  std::vector<Cluster> out;
+  std::vector<LossCluster> out;
   for (const auto& entry : by_perturbation)
     out.push_back(entry.second);
   return out;
 }
 
-/// Mean losses of the two models over the clusters.
-std::pair<double, double> meanLosses(const std::vector<Cluster>& clusters)
-{
-  double sum_a = 0.0, sum_b = 0.0;
-  std::size_t n = 0;
-  for (const Cluster& c : clusters)
-  {
-    sum_a += c.sum_a;
-    sum_b += c.sum_b;
-    n += c.n;
-  }
-  return n == 0 ? std::pair<double, double>{kNaN, kNaN}
-                : std::pair<double, double>{sum_a / static_cast<double>(n), sum_b / static_cast<double>(n)};
-}
-
 /// Model `candidate` against model `against`: mean losses, the relative improvement, and the
-/// cluster-bootstrap p-value of "no improvement" (share of replicates whose mean difference is not
-/// positive, the percentile test); the other criterion's means beside.
+/// cluster-bootstrap p-value of "no improvement" (comparePairedLosses); the pair-window criterion's
+/// means beside.
 EffectSetComparison compare(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
                             std::size_t candidate, std::size_t against, const EffectSetSelectionOptions& options)
 {
   EffectSetComparison out;
-  const std::vector<Cluster> clusters =
-      clustersOf(scores, exclude_file, against, candidate, options.criterion, &out.car_perturbations);
-  out.perturbations = clusters.size();
-  std::tie(out.against_loss, out.mean_loss) = meanLosses(clusters);
-  std::size_t ignored = 0;
-  std::tie(out.against_window_mse, out.mean_window_mse) =
-      meanLosses(clustersOf(scores, exclude_file, against, candidate, SelectionCriterion::pair_windows, &ignored));
-  out.relative_improvement = out.against_loss > 0.0 ? 1.0 - out.mean_loss / out.against_loss : kNaN;
-  if (clusters.size() < 2)
-    return out;  // no spread to resample: p stays 1
-  std::mt19937_64 engine(options.seed);
-  std::size_t not_better = 0;
-  for (std::size_t b = 0; b < options.replicates; ++b)
-  {
-    double diff = 0.0;
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < clusters.size(); ++i)
-    {
-      const Cluster& c = clusters[static_cast<std::size_t>(uniformBelow(engine, clusters.size()))];
-      diff += c.sum_a - c.sum_b;
-      n += c.n;
-    }
-    if (!(diff / static_cast<double>(n) > 0.0))
-      ++not_better;
-  }
-  out.p_value = static_cast<double>(1 + not_better) / static_cast<double>(options.replicates + 1);
+  const PairedLossComparison losses = comparePairedLosses(
+      clustersOf(scores, exclude_file, against, candidate, options.criterion), options.replicates, options.seed);
+  out.car_perturbations = losses.entries;
+  out.perturbations = losses.clusters;
+  out.against_loss = losses.against_loss;
+  out.mean_loss = losses.candidate_loss;
+  out.relative_improvement = losses.relative_improvement;
+  out.p_value = losses.p_value;
+  const PairedLossComparison windows = comparePairedLosses(
+      clustersOf(scores, exclude_file, against, candidate, SelectionCriterion::pair_windows), 0, options.seed);
+  out.against_window_mse = windows.against_loss;
+  out.mean_window_mse = windows.candidate_loss;
   return out;
 }
 
@@ -364,13 +303,12 @@ std::vector<PairPerturbationScore> scorePairPerturbations(const CampaignFile& fi
     score.position = position;
     score.perturbation = p;
     score.measured_dip_mps = dipDepthMps(time_s, measured, perturbation, options.perturbation);
-    const std::size_t window_first = windowStartRow(time_s, perturbation.onset, options.perturbation.pre_window_s);
     for (const PlatoonCarPrediction& prediction : predictions)
     {
       const std::vector<double> predicted = prediction.predicted
                                                 ? sliceRows(prediction.predicted_speed_mps, first_row, end_row)
                                                 : std::vector<double>(time_s.size(), kNaN);
-      score.window_mse.push_back(windowMse(predicted, measured, window_first, perturbation.window_end));
+      score.window_mse.push_back(perturbationWindowMse(time_s, predicted, measured, perturbation, options.perturbation));
       score.predicted_dip_mps.push_back(dipDepthMps(time_s, predicted, perturbation, options.perturbation));
     }
     if (std::isfinite(score.measured_dip_mps))

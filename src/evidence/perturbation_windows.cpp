@@ -1,0 +1,79 @@
+#include "acc_identification/evidence/perturbation_windows.h"
+
+#include <cmath>
+#include <random>
+
+#include "acc_identification/model/portable_uniform.h"
+
+namespace acc
+{
+namespace
+{
+/// The first sample of the window: pre_window_s before the onset (or the run's start).
+std::size_t windowStartRow(const std::vector<double>& time_s, std::size_t onset_row, double pre_window_s)
+{
+  std::size_t r = onset_row;
+  while (r > 0 && std::isfinite(time_s[r - 1]) && time_s[r - 1] >= time_s[onset_row] - pre_window_s)
+    --r;
+  return r;
+}
+}  // namespace
+
+double perturbationWindowMse(const std::vector<double>& time_s, const std::vector<double>& predicted_mps,
+                             const std::vector<double>& measured_mps, const Perturbation& perturbation,
+                             const PerturbationCriteria& criteria)
+{
+  double sum = 0.0;
+  std::size_t n = 0;
+  const std::size_t first = windowStartRow(time_s, perturbation.onset, criteria.pre_window_s);
+  for (std::size_t r = first; r < perturbation.window_end && r < predicted_mps.size() && r < measured_mps.size(); ++r)
+  {
+    if (std::isfinite(predicted_mps[r]) && std::isfinite(measured_mps[r]))
+    {
+      sum += (predicted_mps[r] - measured_mps[r]) * (predicted_mps[r] - measured_mps[r]);
+      ++n;
+    }
+  }
+  return n > 0 ? sum / static_cast<double>(n) : std::numeric_limits<double>::quiet_NaN();
+}
+
+PairedLossComparison comparePairedLosses(const std::vector<LossCluster>& clusters, std::size_t replicates,
+                                         std::uint64_t seed)
+{
+  PairedLossComparison out;
+  out.clusters = clusters.size();
+  double sum_against = 0.0, sum_candidate = 0.0;
+  for (const LossCluster& c : clusters)
+  {
+    sum_against += c.against;
+    sum_candidate += c.candidate;
+    out.entries += c.n;
+  }
+  if (out.entries == 0)
+    return out;
+  out.against_loss = sum_against / static_cast<double>(out.entries);
+  out.candidate_loss = sum_candidate / static_cast<double>(out.entries);
+  out.relative_improvement =
+      out.against_loss > 0.0 ? 1.0 - out.candidate_loss / out.against_loss : std::numeric_limits<double>::quiet_NaN();
+  if (clusters.size() < 2 || replicates == 0)
+    return out;  // no spread to resample: p stays 1
+  std::mt19937_64 engine(seed);
+  std::size_t not_better = 0;
+  for (std::size_t b = 0; b < replicates; ++b)
+  {
+    double difference = 0.0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < clusters.size(); ++i)
+    {
+      const LossCluster& c = clusters[static_cast<std::size_t>(uniformBelow(engine, clusters.size()))];
+      difference += c.against - c.candidate;
+      n += c.n;
+    }
+    if (!(difference / static_cast<double>(n) > 0.0))
+      ++not_better;
+  }
+  out.p_value = static_cast<double>(1 + not_better) / static_cast<double>(replicates + 1);
+  return out;
+}
+
+}  // namespace acc

@@ -1,0 +1,55 @@
+// What the campaign's platoon diagnosis and diagnose share to judge models inside a leader's
+// perturbations (perturbation_windows.h): the window's speed MSE and the paired comparison of two
+// models over perturbations with its cluster bootstrap.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "acc_identification/evidence/perturbation_windows.h"
+
+namespace acc
+{
+TEST(PerturbationWindowMse, AveragesOverTheWindowFromBeforeTheOnsetSkippingMissingSamples)
+{
+  std::vector<double> time_s, measured, predicted;
+  for (std::size_t k = 0; k < 100; ++k)
+  {
+    time_s.push_back(static_cast<double>(k));
+    measured.push_back(10.0);
+    predicted.push_back(k < 40 ? 10.0 : 11.0);  // off by 1 m/s from t = 40 s
+  }
+  predicted[50] = std::numeric_limits<double>::quiet_NaN();
+  Perturbation p;
+  p.onset = 45;
+  p.window_end = 60;
+  PerturbationCriteria criteria;
+  criteria.pre_window_s = 10.0;  // the window is rows 35 .. 59
+  // Rows 35-39 are right, 40-59 off by 1 except the missing row 50: 19 of 24 scored rows.
+  EXPECT_DOUBLE_EQ(perturbationWindowMse(time_s, predicted, measured, p, criteria), 19.0 / 24.0);
+  std::vector<double> none(100, std::numeric_limits<double>::quiet_NaN());
+  EXPECT_TRUE(std::isnan(perturbationWindowMse(time_s, none, measured, p, criteria)));
+}
+
+TEST(PairedLossComparison, MeansImprovementAndTheBootstrapOverClusters)
+{
+  // Three clusters, the candidate better in each: every replicate improves, p = 1 / (R + 1).
+  const std::vector<LossCluster> better = {{2.0, 1.0, 1}, {4.0, 3.0, 2}, {1.0, 0.5, 1}};
+  const PairedLossComparison c = comparePairedLosses(better, 999, 7);
+  EXPECT_EQ(c.clusters, 3u);
+  EXPECT_EQ(c.entries, 4u);
+  EXPECT_DOUBLE_EQ(c.against_loss, 7.0 / 4.0);
+  EXPECT_DOUBLE_EQ(c.candidate_loss, 4.5 / 4.0);
+  EXPECT_DOUBLE_EQ(c.relative_improvement, 1.0 - 4.5 / 7.0);
+  EXPECT_DOUBLE_EQ(c.p_value, 1.0 / 1000.0);
+  // Swapped, no replicate improves: p = 1.
+  std::vector<LossCluster> worse;
+  for (const LossCluster& k : better)
+    worse.push_back({k.candidate, k.against, k.n});
+  EXPECT_DOUBLE_EQ(comparePairedLosses(worse, 999, 7).p_value, 1.0);
+  // One cluster has no spread to resample.
+  EXPECT_DOUBLE_EQ(comparePairedLosses({better[0]}, 999, 7).p_value, 1.0);
+}
+
+}  // namespace acc
