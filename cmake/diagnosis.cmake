@@ -7,6 +7,7 @@ acc_add_library(acc_diagnosis
     src/diagnosis/augmented_calibration.cpp
     src/diagnosis/residual_breakdown.cpp
     src/diagnosis/effect_selection.cpp
+    src/diagnosis/perturbation_window_criterion.cpp
     src/diagnosis/augmented_stability.cpp
     src/diagnosis/augmented_stability_verdict.cpp
     src/diagnosis/diagnosis.cpp
@@ -15,7 +16,7 @@ acc_add_library(acc_diagnosis
     src/diagnosis/diagnosis_text.cpp
     src/diagnosis/calibration_second_opinion.cpp
   # acc_calibration: the model-adequacy checks of the base and the final model (model_adequacy.h).
-  LINK acc_calibration acc_sumo acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
+  LINK acc_calibration acc_evidence acc_sumo acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 
 # The diagnosis's own checks, a library of their own (cmake/validation.cmake).
 include(cmake/validation.cmake)
@@ -44,6 +45,7 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_diagnosis_output.cpp
     test/unit/test_diagnosis_stability.cpp
     test/unit/test_diagnosis_forward.cpp
+    test/unit/test_diagnosis_perturbation_windows.cpp
     test/unit/test_diagnosis_injected.cpp
     test/unit/test_diagnosis_combined.cpp
     test/unit/test_diagnosis_determined.cpp

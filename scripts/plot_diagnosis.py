@@ -241,6 +241,24 @@ def adequacy_text(adequacy):
     return "ADEQUATE" if adequacy["adequate"] else "NOT ADEQUATE (" + "; ".join(adequacy["reasons"]) + ")"
 
 
+def perturbation_window_lines(windows):
+    """Each effect inside the leaders' perturbations, beside the whole-run table above it."""
+    if not windows:
+        return []
+    lines = ["## Inside the leader's perturbations (held out)", "",
+             f"{windows['perturbations']} perturbation(s) of the leaders in the held-out parts; base model's "
+             f"window speed RMSE {fmt(windows['base_window_rmse_speed_mps'])} m/s. Rule: {windows['rule']}.", ""]
+    if windows["reason"]:
+        return lines + [f"Not judged: {windows['reason']}.", ""]
+    lines += ["| model | window speed RMSE [m/s] | window MSE change [%] | p | named |", "|---|---|---|---|---|"]
+    for e in windows["effects"]:
+        change = -100 * e["relative_improvement"] if e["relative_improvement"] is not None else None
+        lines.append(f"| {e['effect']} | {fmt(e['window_rmse_speed_mps'])} | "
+                     f"{'-' if change is None else f'{change:+.1f}'} | {fmt(e['p_value'])} | "
+                     f"{'yes' if e['significant'] else 'no'} |")
+    return lines + ["", f"Named on the perturbation windows: `{windows['named']}`.", ""]
+
+
 def write_report(report_dir, d):
     base = d["baseline"]
     dominant = d["dominant_effect"]
@@ -293,6 +311,7 @@ def write_report(report_dir, d):
                      f"{'yes' if e['significant'] else 'no'} | {fmt(e['stability']['peak_gain_db'])} | "
                      f"{parameter_text(e)} |")
     lines += ["", "![improvements](effect_improvements.png)", ""]
+    lines += perturbation_window_lines(d.get("perturbation_windows"))
     lines += combination_lines(d)
     lines += ["## Where the residual lies (base model, held out)", ""]
     for key, title in [("regimes", "Driving regime"), ("speed_bands", "Speed band")]:

@@ -314,6 +314,11 @@ DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const Dia
   result.selection = selectEffect(base_errors, candidate_errors, options.candidates, result.sample_period_s,
                                   options.selection, resolvable);
   result.selection_rule = describeSelectionRule(options.selection, options.candidates.size());
+  std::vector<HeldOutPredictions> effect_predictions;
+  for (const ModelDiagnosis& model : result.effects)
+    effect_predictions.emplace_back(model.fit.effect, &model.test_simulations);
+  result.perturbation_windows = judgeOnPerturbationWindows(result.test, result.baseline.test_simulations,
+                                                           effect_predictions, options.perturbation_windows);
   std::vector<AugmentedFit> effect_fits;
   for (const ModelDiagnosis& model : result.effects)
   {

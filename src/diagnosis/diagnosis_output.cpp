@@ -196,6 +196,25 @@ std::ofstream openForWriting(const std::string& path)
 }
 }  // namespace
 
+nlohmann::json perturbationWindowsJson(const PerturbationWindowCriterion& c)
+{
+  nlohmann::json effects = nlohmann::json::array();
+  for (const PerturbationWindowScore& e : c.effects)
+  {
+    effects.push_back({{"effect", effectName(e.effect)},
+                       {"window_rmse_speed_mps", jsonNumber(e.window_rmse_speed_mps)},
+                       {"relative_improvement", jsonNumber(e.versus_base.relative_improvement)},
+                       {"p_value", c.reason.empty() ? jsonNumber(e.versus_base.p_value) : nlohmann::json(nullptr)},
+                       {"significant", e.significant}});
+  }
+  return {{"perturbations", c.perturbations},
+          {"base_window_rmse_speed_mps", jsonNumber(c.base_window_rmse_speed_mps)},
+          {"effects", effects},
+          {"named", effectName(c.named)},
+          {"rule", c.rule},
+          {"reason", c.reason}};
+}
+
 nlohmann::json verdictJson(const DiagnosisResult& r)
 {
   // One verdict, stated once: which model's test it is and why that model.
@@ -239,6 +258,7 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
     j["selected_effects"].push_back(chainStepJson(step));
   }
   j["forward_selection"] = forwardSelectionJson(r);
+  j["perturbation_windows"] = perturbationWindowsJson(r.perturbation_windows);
   j["baseline"] = modelJson(r.baseline);
   {
     // The model the diagnosis ends with (the last of the forward-selection chain, or the base

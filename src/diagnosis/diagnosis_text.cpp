@@ -63,6 +63,26 @@ void printChain(const DiagnosisResult& r, std::FILE* out)
 
 }  // namespace
 
+/// The perturbation-window criterion, beside the whole-run ranking above it.
+void printPerturbationWindows(const PerturbationWindowCriterion& c, std::FILE* out)
+{
+  std::fprintf(out, "inside the leaders' perturbations of the held-out parts (%zu; the pair-level criterion beside the "
+                    "whole-run one): base window speed RMSE %.4f m/s\n",
+               c.perturbations, c.base_window_rmse_speed_mps);
+  if (!c.reason.empty())
+  {
+    std::fprintf(out, "  not judged: %s\n", c.reason.c_str());
+    return;
+  }
+  for (const PerturbationWindowScore& e : c.effects)
+  {
+    std::fprintf(out, "  %-26s window_v %.4f  MSE %+.1f%%  p %.4f%s\n", effectName(e.effect).c_str(),
+                 e.window_rmse_speed_mps, -100.0 * e.versus_base.relative_improvement, e.versus_base.p_value,
+                 e.significant ? "  significant" : "");
+  }
+  std::fprintf(out, "  named on the perturbation windows: %s\n", effectName(c.named).c_str());
+}
+
 void printDiagnosisSummary(const DiagnosisResult& r, std::FILE* out)
 {
   std::fprintf(out, "%-26s %10s %10s %10s %9s %11s  %s\n", "model", "train_v", "test_v", "test_gap", "improve", "significant",
@@ -84,6 +104,7 @@ void printDiagnosisSummary(const DiagnosisResult& r, std::FILE* out)
     std::fprintf(out, " %s", effectName(kind).c_str());
   }
   std::fprintf(out, "%s\n", r.selection.plausible.empty() ? " (none)" : "");
+  printPerturbationWindows(r.perturbation_windows, out);
   // What the training data pin down, named by the held-out rule or not (determined_effects.h).
   std::fprintf(out, "determined by the training data (size away from none, Bonferroni):%s\n", r.determined.empty() ? " none" : "");
   for (const DeterminedEffect& e : r.determined)

@@ -13,6 +13,7 @@
 #include "acc_identification/diagnosis/determined_effects.h"
 #include "acc_identification/model/follower_effects.h"
 #include "acc_identification/diagnosis/effect_selection.h"
+#include "acc_identification/diagnosis/perturbation_window_criterion.h"
 #include "acc_identification/diagnosis/residual_breakdown.h"
 #include "acc_identification/model/follower_simulation.h"
 
@@ -34,6 +35,9 @@ struct DiagnosisOptions
                                         EffectKind::asymmetric_response, EffectKind::speed_dependent_gains};
   AugmentedCalibrationOptions calibration;
   SelectionOptions selection;
+  /// The pair-level judge beside the whole-run rule: each effect on the leaders' perturbation
+  /// windows of the held-out parts (perturbation_window_criterion.h).
+  PerturbationWindowOptions perturbation_windows;
   BreakdownOptions breakdown;
   /// The string-stability test of the chosen model (dominant effect, or the base model).
   bool with_stability_test = true;
@@ -88,6 +92,9 @@ struct DiagnosisResult
   std::vector<ModelDiagnosis> effects;  ///< in the order of options.candidates
   SelectionResult selection;
   std::string selection_rule;
+  /// Each effect's model inside the leaders' perturbations of the held-out parts, beside the
+  /// whole-run rule (which names the dominant effect): where a braking passed on shows.
+  PerturbationWindowCriterion perturbation_windows;
   ResidualBreakdown where;             ///< base model's held-out residual; "after" is the dominant effect
   /// Is the chosen model (dominantModel()) string stable, decided from the held-out data
   /// (testAugmentedStringStability); unset when options.with_stability_test is false.
