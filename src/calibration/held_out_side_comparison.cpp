@@ -64,6 +64,18 @@ std::vector<double> squared(const std::vector<double>& errors)
   return out;
 }
 
+HeldOutSides scoreHeldOutSides(const HeldOutErrors& stable, const HeldOutErrors& unstable,
+                               const std::string& model_name)
+{
+  HeldOutSides sides;
+  sides.stable_squared = squared(stable.error);
+  sides.unstable_squared = squared(unstable.error);
+  sides.stable_rmse_speed_mps = rootMeanOf(sides.stable_squared);
+  sides.unstable_rmse_speed_mps = rootMeanOf(sides.unstable_squared);
+  sides.divergence = heldOutDivergence(stable, unstable, model_name);
+  return sides;
+}
+
 namespace
 {
 std::vector<double> differenceOf(const std::vector<double>& a, const std::vector<double>& b)
@@ -150,6 +162,5 @@ std::string pValuesText(const HeldOutVerdict& result)
                 result.p_value_unstable_rejected);
   return text;
 }
-
 
 }  // namespace acc

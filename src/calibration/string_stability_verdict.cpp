@@ -305,20 +305,18 @@ private:
     result_.margin_profile.clear();
     stable_.train_rmse_speed_mps = evaluateFit(stable_.parameters, training_).rmse_speed_mps;
     unstable_.train_rmse_speed_mps = evaluateFit(unstable_.parameters, training_).rmse_speed_mps;
-    const HeldOutErrors stable_errors = heldOutErrors(stable_.parameters, held_out_);
-    const HeldOutErrors unstable_errors = heldOutErrors(unstable_.parameters, held_out_);
-    const std::vector<double> stable_squared = squared(stable_errors.error);
-    const std::vector<double> unstable_squared = squared(unstable_errors.error);
-    stable_.test_rmse_speed_mps = rootMeanOf(stable_squared);
-    unstable_.test_rmse_speed_mps = rootMeanOf(unstable_squared);
+    const HeldOutSides sides =
+        scoreHeldOutSides(heldOutErrors(stable_.parameters, held_out_), heldOutErrors(unstable_.parameters, held_out_));
+    stable_.test_rmse_speed_mps = sides.stable_rmse_speed_mps;
+    unstable_.test_rmse_speed_mps = sides.unstable_rmse_speed_mps;
     result_.best_stable = stable_;
     result_.best_unstable = unstable_;
-    if (std::string divergence = heldOutDivergence(stable_errors, unstable_errors); !divergence.empty())
+    if (!sides.divergence.empty())
     {
       result_.tested = false;
-      return divergence;
+      return sides.divergence;
     }
-    comparison.emplace(stable_squared, unstable_squared, segments_, options_);
+    comparison.emplace(sides.stable_squared, sides.unstable_squared, segments_, options_);
     comparison->report(result_);
     result_.tested = true;
     addSidePoints(*comparison);

@@ -5,14 +5,11 @@
 #include <cstdio>
 #include <limits>
 #include <map>
-#include <random>
 #include <stdexcept>
-#include <tuple>
 #include <utility>
 
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/evidence/perturbation_windows.h"
-#include "acc_identification/model/portable_uniform.h"
 
 namespace acc
 {

@@ -258,19 +258,17 @@ AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& ch
     return r;
   }
 
-  const HeldOutErrors stable_errors = heldOutErrors(r.best_stable.base, r.best_stable.settings, test);
-  const HeldOutErrors unstable_errors = heldOutErrors(r.best_unstable.base, r.best_unstable.settings, test);
-  const std::vector<double> stable_squared = squared(stable_errors.error);
-  const std::vector<double> unstable_squared = squared(unstable_errors.error);
-  r.best_stable.test_rmse_speed_mps = rootMeanOf(stable_squared);
-  r.best_unstable.test_rmse_speed_mps = rootMeanOf(unstable_squared);
-  if (std::string divergence = heldOutDivergence(stable_errors, unstable_errors, combinedEffectName(r.effects));
-      !divergence.empty())
+  const HeldOutSides sides =
+      scoreHeldOutSides(heldOutErrors(r.best_stable.base, r.best_stable.settings, test),
+                        heldOutErrors(r.best_unstable.base, r.best_unstable.settings, test), combinedEffectName(r.effects));
+  r.best_stable.test_rmse_speed_mps = sides.stable_rmse_speed_mps;
+  r.best_unstable.test_rmse_speed_mps = sides.unstable_rmse_speed_mps;
+  if (!sides.divergence.empty())
   {
-    r.reason = divergence;
+    r.reason = sides.divergence;
     return r;
   }
-  HeldOutSideComparison(stable_squared, unstable_squared, segments, options).report(r);
+  HeldOutSideComparison(sides.stable_squared, sides.unstable_squared, segments, options).report(r);
   decide(&r);
   return r;
 }

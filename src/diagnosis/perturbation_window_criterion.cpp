@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "acc_identification/model/number_text.h"
+#include "acc_identification/model/sample_statistics.h"
 
 namespace acc
 {
@@ -43,12 +44,10 @@ std::vector<std::vector<double>> windowLosses(const std::vector<CarFollowingRun>
   return losses;
 }
 
-double rootMean(const std::vector<double>& values)
+/// The root of the mean window MSE; NaN without a window (rootMeanOf would say 0).
+double rootMean(const std::vector<double>& window_mse)
 {
-  double sum = 0.0;
-  for (double v : values)
-    sum += v;
-  return values.empty() ? std::numeric_limits<double>::quiet_NaN() : std::sqrt(sum / static_cast<double>(values.size()));
+  return window_mse.empty() ? std::numeric_limits<double>::quiet_NaN() : rootMeanOf(window_mse);
 }
 }  // namespace
 

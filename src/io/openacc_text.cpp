@@ -114,8 +114,6 @@ std::string join(const std::vector<std::string>& parts, const std::string& separ
   return text;
 }
 
-
-
 std::optional<std::pair<Quantity, int>> classifyColumn(const std::string& name)
 {
   static const std::vector<std::pair<std::string, Quantity>> kPrefixes{

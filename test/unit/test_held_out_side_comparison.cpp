@@ -165,4 +165,20 @@ TEST(HeldOutErrors, ADivergedPredictionStopsTheComparisonWithTheReason)
   EXPECT_EQ(heldOutDivergence(fine, runaway, "reaction_delay"),
             "the best unstable reaction_delay model's simulation diverges on the held-out data");
 }
+TEST(HeldOutErrors, BothSidesAreScoredAsTheComparisonTakesThem)
+{
+  HeldOutErrors stable, unstable;
+  stable.error = {1.0, -3.0};
+  unstable.error = {0.5, 0.5};
+  const HeldOutSides sides = scoreHeldOutSides(stable, unstable);
+  EXPECT_EQ(sides.stable_squared, (std::vector<double>{1.0, 9.0}));
+  EXPECT_EQ(sides.unstable_squared, (std::vector<double>{0.25, 0.25}));
+  EXPECT_DOUBLE_EQ(sides.stable_rmse_speed_mps, std::sqrt(5.0));
+  EXPECT_DOUBLE_EQ(sides.unstable_rmse_speed_mps, 0.5);
+  EXPECT_EQ(sides.divergence, "");
+  unstable.diverged = true;
+  EXPECT_EQ(scoreHeldOutSides(stable, unstable, "reaction_delay").divergence,
+            "the best unstable reaction_delay model's simulation diverges on the held-out data");
+}
+
 }  // namespace acc

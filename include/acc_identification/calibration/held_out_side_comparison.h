@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "acc_identification/calibration/side_fits.h"
 #include "acc_identification/model/block_bootstrap.h"
 #include "acc_identification/model/car_following_run.h"
 #include "acc_identification/model/string_stability.h"
@@ -78,6 +79,20 @@ std::string heldOutShortage(const HeldOutSegments& segments, const HeldOutCompar
 
 /// Squares of the errors, term by term.
 std::vector<double> squared(const std::vector<double>& errors);
+
+/// Step 2 for both tests: the two sides' held-out errors (heldOutErrors) as the comparison takes
+/// them, with each side's held-out RMSE, and why they cannot be compared (heldOutDivergence; ""
+/// when they can).
+struct HeldOutSides
+{
+  std::vector<double> stable_squared;
+  std::vector<double> unstable_squared;
+  double stable_rmse_speed_mps = 0.0;
+  double unstable_rmse_speed_mps = 0.0;
+  std::string divergence;
+};
+HeldOutSides scoreHeldOutSides(const HeldOutErrors& stable, const HeldOutErrors& unstable,
+                               const std::string& model_name = "");
 
 /// Step 3: the bootstrap comparison of the two sides' held-out squared errors (one per scored
 /// sample, the segments concatenated), and the scoring of further models against the better side.
