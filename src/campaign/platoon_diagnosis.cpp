@@ -201,11 +201,13 @@ const std::vector<PlatoonCandidate>& platoonCandidates()
       {{E::leader_acceleration_feedforward}, O::speed},
       {{E::reaction_delay}, O::speed},
       {{E::actuation_lag}, O::speed},
+      {{E::quadratic_closing_response}, O::speed},
       {{}, O::gap},
       {{}, O::speed_and_gap},
       {{E::asymmetric_response, E::reaction_delay}, O::speed},
       {{E::asymmetric_response, E::actuation_lag}, O::speed},
       {{E::leader_acceleration_feedforward, E::reaction_delay}, O::speed},
+      {{E::quadratic_closing_response, E::reaction_delay}, O::speed},
       {{E::reaction_delay}, O::speed_and_gap},
       {{E::actuation_lag}, O::speed_and_gap},
   };

@@ -46,6 +46,8 @@ std::string smallSignalNote(EffectKind effect)
     case EffectKind::asymmetric_response:
       return "no single transfer function: the braking branch (k1 r_s, k2 r_c), active when the leader brakes";
     case EffectKind::speed_dependent_gains: return "gains scheduled at the operating speed: k exp(g (v0 - 15 m/s))";
+    case EffectKind::quadratic_closing_response:
+      return "a quadratic term has no slope at equilibrium: small-signal Gamma equals the base one";
     case EffectKind::set_speed_cruise:
       return "cruise mode is inactive while following below the set speed: small-signal Gamma equals the base one";
   }

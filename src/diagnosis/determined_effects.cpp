@@ -16,7 +16,8 @@ double neutralValue(EffectKind kind)
     case EffectKind::sensor_time_offset:
     case EffectKind::speed_dependent_time_gap:
     case EffectKind::speed_dependent_gains:
-    case EffectKind::leader_acceleration_feedforward: return 0.0;
+    case EffectKind::leader_acceleration_feedforward:
+    case EffectKind::quadratic_closing_response: return 0.0;
     case EffectKind::asymmetric_response: return 1.0;
     default: return std::numeric_limits<double>::quiet_NaN();
   }

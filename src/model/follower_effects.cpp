@@ -54,6 +54,10 @@ const std::vector<CandidateEffect>& responseEffects()
       {EffectKind::leader_acceleration_feedforward, "leader_acceleration_feedforward",
        {{"leader_acceleration_gain", 0.0, 1.5, 0.05, 0.8}},
        "command += k_a times the leader's acceleration (backward difference of its speed)"},
+      // q up to 2 /m: a closing speed of 3 m/s then adds up to 18 m/s^2, beyond any car's brakes.
+      {EffectKind::quadratic_closing_response, "quadratic_closing_response",
+       {{"closing_quadratic_gain_per_m", 0.0, 2.0, 0.02, 0.5}},
+       "command -= q (u - v)^2 while closing in: harder braking for a fast-closing leader, none for small differences"},
   };
   return extra;
 }
@@ -153,6 +157,7 @@ EffectSettings makeEffectSettings(EffectKind kind, const std::vector<double>& va
       s.short_gap_gain_ratio = values[1];
       break;
     case EffectKind::speed_dependent_gains: s.gain_speed_slope_s_per_m = values[0]; break;
+    case EffectKind::quadratic_closing_response: s.closing_quadratic_gain_per_m = values[0]; break;
   }
   return s;
 }
@@ -171,6 +176,7 @@ std::vector<double> effectValues(EffectKind kind, const EffectSettings& s)
     case EffectKind::leader_acceleration_feedforward: return {s.leader_acceleration_gain};
     case EffectKind::asymmetric_response: return {s.closing_gain_ratio, s.short_gap_gain_ratio};
     case EffectKind::speed_dependent_gains: return {s.gain_speed_slope_s_per_m};
+    case EffectKind::quadratic_closing_response: return {s.closing_quadratic_gain_per_m};
   }
   return {};
 }
@@ -204,6 +210,9 @@ void applyEffectValues(EffectKind kind, const std::vector<double>& values, Effec
       settings->closing_gain_ratio = own.closing_gain_ratio;
       break;
     case EffectKind::speed_dependent_gains: settings->gain_speed_slope_s_per_m = own.gain_speed_slope_s_per_m; break;
+    case EffectKind::quadratic_closing_response:
+      settings->closing_quadratic_gain_per_m = own.closing_quadratic_gain_per_m;
+      break;
   }
 }
 

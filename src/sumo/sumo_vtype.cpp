@@ -192,6 +192,8 @@ std::string noEquivalentNote(EffectKind kind)
       return "SUMO's ACC has no term in the leader's acceleration (its CACC model does, from communication)";
     case EffectKind::speed_dependent_gains:
       return "SUMO's gains are constants";
+    case EffectKind::quadratic_closing_response:
+      return "SUMO's ACC is linear in the speed difference within each of its modes";
     default:
       return "";
   }

@@ -36,7 +36,9 @@ void addDiagnosisOptions(CLI::App& app, DiagnoseRequest& r)
   app.add_option("--train-fraction", r.options.train_fraction, "share of each run used for fitting")
       ->check(CLI::Range(0.05, 0.95))
       ->capture_default_str();
-  app.add_option("--effect", r.effects, "candidate effect (repeatable; default all six)");
+  app.add_option("--effect", r.effects, "candidate effect (repeatable; replaces the default list: the six timing and spacing effects, "
+                 "asymmetric_response and speed_dependent_gains; leader_acceleration_feedforward and "
+                 "quadratic_closing_response are tested only when named here)");
   app.add_option("--block-length-s", r.options.selection.block_length_s, "bootstrap block length [s]")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

@@ -101,6 +101,32 @@ INSTANTIATE_TEST_SUITE_P(
         Expectation{acc::EffectKind::asymmetric_response, {3.0, 3.0}, acc::SyntheticLeadProfile::dip, 0.6}),
     [](const ::testing::TestParamInfo<Expectation>& info) { return acc::effectName(info.param.truth); });
 
+// The platoon diagnosis's quadratic closing response, hidden in a drive with hard brakings: named,
+// sized within its standard error; and not named on a drive without it (a quadratic term has no
+// slope at equilibrium, so noise alone cannot pay for it).
+TEST(WithheldEffects, AQuadraticClosingResponseIsFoundAndSizedWhenAskedFor)
+{
+  acc::DiagnosisOptions options = quickOptions();
+  options.candidates.push_back(acc::EffectKind::quadratic_closing_response);
+  acc::WithheldCase c;
+  c.truth = acc::EffectKind::quadratic_closing_response;
+  c.truth_values = {0.15};
+  c.profile = acc::SyntheticLeadProfile::dip;
+  c.seed = 21;
+  const auto outcome = acc::runWithheldCase(c, options);
+  EXPECT_EQ(outcome.dominant, acc::EffectKind::quadratic_closing_response)
+      << "named " << acc::effectName(outcome.dominant);
+  ASSERT_TRUE(std::isfinite(outcome.recovered_standard_error));
+  EXPECT_LT(std::abs(outcome.recovered_magnitude - 0.15), 4.0 * outcome.recovered_standard_error)
+      << "recovered " << outcome.recovered_magnitude << " +- " << outcome.recovered_standard_error;
+  EXPECT_LT(outcome.effect_test_rmse_speed_mps, outcome.base_test_rmse_speed_mps);
+
+  c.truth = acc::EffectKind::none;
+  c.truth_values = {};
+  const auto none = acc::runWithheldCase(c, options);
+  EXPECT_NE(none.dominant, acc::EffectKind::quadratic_closing_response);
+}
+
 TEST(WithheldEffects, AnAnticipationIsNamedWhenAskedFor)
 {
   acc::WithheldCase c;

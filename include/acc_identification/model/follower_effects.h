@@ -26,6 +26,10 @@ enum class EffectKind
   asymmetric_response,
   /// Gains that scale with speed, exp(g (v - v_ref)): a controller scheduled on speed.
   speed_dependent_gains,
+  /// Braking that grows with the square of the closing speed, q (u - v)^2 while closing in: an
+  /// ACC that ignores small speed differences yet answers a fast-closing leader harder than in
+  /// proportion (IDM's intelligent-braking term, Gipps' safe speed). Small signals see no change.
+  quadratic_closing_response,
 };
 
 /// The speed at which speed_dependent_gains leaves k1 and k2 as they are [m/s]: a reparametrisation
@@ -60,6 +64,8 @@ struct EffectSettings
   double closing_gain_ratio = 1.0;
   /// g: k1 and k2 are multiplied by exp(g (v - kGainReferenceSpeedMps)) [s/m; 0: constant gains].
   double gain_speed_slope_s_per_m = 0.0;
+  /// q: command -= q (u - v)^2 while the follower closes in (u - v < 0) [1/m; 0: off].
+  double closing_quadratic_gain_per_m = 0.0;
 };
 
 /// One calibrated parameter of an effect: its name with unit, the hard bounds of the search and
@@ -97,7 +103,8 @@ bool isResolvable(EffectKind kind, const std::vector<double>& values, double sam
 const std::vector<CandidateEffect>& candidateEffects();
 
 /// The response effects: how the ACC answers, beyond the linear law's two constant gains
-/// (asymmetric_response, speed_dependent_gains, leader_acceleration_feedforward). Candidates of
+/// (asymmetric_response, speed_dependent_gains, leader_acceleration_feedforward,
+/// quadratic_closing_response). Candidates of
 /// the diagnosis beside the six above, and of the campaign's platoon diagnosis.
 const std::vector<CandidateEffect>& responseEffects();
 
