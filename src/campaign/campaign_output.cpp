@@ -265,7 +265,9 @@ nlohmann::json linkJson(const LinkEvidence& e)
               {"perturbations", e.long_platoon_perturbations},
               {"median_last_to_first_dip_ratio", e.long_platoon_dip_ratio},
               {"amplifies", std::isfinite(e.long_platoon_dip_ratio) ? nlohmann::json(e.long_platoon_dip_ratio > 1.0)
-                                                                     : nlohmann::json(nullptr)}}}}},
+                                                                     : nlohmann::json(nullptr)},
+              {"ran_away_at_car", e.long_platoon_ran_away_at_car > 0 ? nlohmann::json(e.long_platoon_ran_away_at_car)
+                                                                      : nlohmann::json(nullptr)}}}}},
           {"note", e.note}};
 }
 
@@ -282,6 +284,16 @@ std::string rangesText(const std::vector<std::pair<double, double>>& ranges)
   return text;
 }
 
+/// The ten-car ratio, and where a simulation ran away, at which car (a NaN alone would hide it).
+std::string longPlatoonText(const LinkEvidence& e)
+{
+  const std::string ratio = cellNumber("%.2f", e.long_platoon_dip_ratio);
+  if (e.long_platoon_ran_away_at_car == 0)
+    return ratio;
+  const std::string ran_away = "ran away at car " + std::to_string(e.long_platoon_ran_away_at_car);
+  return std::isfinite(e.long_platoon_dip_ratio) ? ratio + " (" + ran_away + " in a run)" : ran_away;
+}
+
 std::vector<std::vector<std::string>> linkRows(const CampaignResult& result)
 {
   std::vector<std::vector<std::string>> rows;
@@ -294,7 +306,7 @@ std::vector<std::vector<std::string>> linkRows(const CampaignResult& result)
                     responseRead(e) ? rangesText(e.base_departs_rad_s) : "too short",
                     responseRead(e) ? rangesText(e.diagnosed_departs_rad_s) : "too short",
                     cellNumber("%.2f", e.diagnosed_available ? e.diagnosed_small_signal.peak_gain_db : kNaN),
-                    cellNumber("%.2f", e.long_platoon_dip_ratio)});
+                    longPlatoonText(e)});
   }
   return rows;
 }

@@ -116,49 +116,6 @@ void fitDiagnosed(const CampaignGroup& group, const GroupResult& result, const P
       analyzeAugmentedStability(fit.base, last, fit.settings, evidence->operating_speed_mps);
 }
 
-/// Ten identical cars with the diagnosed model behind the real first car of each platoon run of the
-/// setting, from equilibrium at its first speed: the last car's dip over the first car's, median
-/// over the perturbations.
-void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& setting,
-                         const PlatoonCheckOptions& platoon_options, LinkEvidence* evidence)
-{
-  std::vector<double> ratios;
-  for (const CampaignFile& file : inputs.files)
-  {
-    if (file.setting != setting || file.contents.vehicle(1) == nullptr)
-      continue;
-    std::size_t first = 0, end = 0;
-    const std::vector<Perturbation> perturbations = leadPerturbations(file.contents, platoon_options, &first, &end);
-    if (perturbations.empty())
-      continue;
-    CarFollowingRun run;
-    run.time_s = sliceRows(file.contents.time_s, first, end);
-    run.leader_speed_mps = sliceRows(file.contents.vehicle(1)->speed_mps, first, end);
-    const std::vector<double> lead_speed = run.leader_speed_mps;
-    const double v0 = run.leader_speed_mps.front();
-    const AccParameters& p = evidence->diagnosed_parameters;
-    bool diverged = false;
-    for (int car = 0; car < kLongPlatoonCars && !diverged; ++car)
-    {
-      run.follower_speed_mps.assign(run.size(), v0);
-      run.space_gap_m.assign(run.size(), p.eta_m + p.tau_e_s * v0);
-      const SimulatedFollower sim = simulateFollower(p, evidence->diagnosed_settings, run);
-      diverged = sim.diverged;
-      run.leader_speed_mps = sim.speed_mps;
-    }
-    for (const Perturbation& perturbation : perturbations)
-    {
-      const double lead_dip = dipDepthMps(run.time_s, lead_speed, perturbation, platoon_options.perturbation);
-      const double last_dip =
-          diverged ? kNaN : dipDepthMps(run.time_s, run.leader_speed_mps, perturbation, platoon_options.perturbation);
-      if (lead_dip > 0.3 && std::isfinite(last_dip))
-        ratios.push_back(last_dip / lead_dip);
-    }
-  }
-  evidence->long_platoon_perturbations = ratios.size();
-  evidence->long_platoon_dip_ratio = finiteMedian(ratios);
-}
-
 LinkEvidence evidenceOf(const CampaignInputs& inputs, const CampaignGroup& group, const GroupResult& result,
                         const std::vector<PlatoonCheck>& platoons, const PlatoonCandidate& diagnosed,
                         const PlatoonCheckOptions& platoon_options)
@@ -203,6 +160,49 @@ LinkEvidence evidenceOf(const CampaignInputs& inputs, const CampaignGroup& group
   return evidence;
 }
 }  // namespace
+
+void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& setting,
+                         const PlatoonCheckOptions& platoon_options, LinkEvidence* evidence)
+{
+  std::vector<double> ratios;
+  evidence->long_platoon_ran_away_at_car = 0;
+  for (const CampaignFile& file : inputs.files)
+  {
+    if (file.setting != setting || file.contents.vehicle(1) == nullptr)
+      continue;
+    std::size_t first = 0, end = 0;
+    const std::vector<Perturbation> perturbations = leadPerturbations(file.contents, platoon_options, &first, &end);
+    if (perturbations.empty())
+      continue;
+    CarFollowingRun run;
+    run.time_s = sliceRows(file.contents.time_s, first, end);
+    run.leader_speed_mps = sliceRows(file.contents.vehicle(1)->speed_mps, first, end);
+    const std::vector<double> lead_speed = run.leader_speed_mps;
+    const double v0 = run.leader_speed_mps.front();
+    const AccParameters& p = evidence->diagnosed_parameters;
+    bool diverged = false;
+    for (int car = 0; car < kLongPlatoonCars && !diverged; ++car)
+    {
+      run.follower_speed_mps.assign(run.size(), v0);
+      run.space_gap_m.assign(run.size(), p.eta_m + p.tau_e_s * v0);
+      const SimulatedFollower sim = simulateFollower(p, evidence->diagnosed_settings, run);
+      diverged = sim.diverged;
+      if (diverged && evidence->long_platoon_ran_away_at_car == 0)
+        evidence->long_platoon_ran_away_at_car = static_cast<std::size_t>(car) + 1;
+      run.leader_speed_mps = sim.speed_mps;
+    }
+    for (const Perturbation& perturbation : perturbations)
+    {
+      const double lead_dip = dipDepthMps(run.time_s, lead_speed, perturbation, platoon_options.perturbation);
+      const double last_dip =
+          diverged ? kNaN : dipDepthMps(run.time_s, run.leader_speed_mps, perturbation, platoon_options.perturbation);
+      if (lead_dip > 0.3 && std::isfinite(last_dip))
+        ratios.push_back(last_dip / lead_dip);
+    }
+  }
+  evidence->long_platoon_perturbations = ratios.size();
+  evidence->long_platoon_dip_ratio = finiteMedian(ratios);
+}
 
 std::vector<LinkEvidence> gatherLinkEvidence(const CampaignInputs& inputs, const std::vector<GroupResult>& groups,
                                              const std::vector<PlatoonCheck>& platoons,

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "acc_identification/campaign/campaign.h"
+#include "acc_identification/campaign/link_evidence.h"
 #include "acc_identification/model/string_stability.h"
 #include "campaign_test_data.h"
 
@@ -157,6 +158,37 @@ TEST(CampaignPlatoon, TheDiagnosisFindsWhatClosesTheDipGapOfLateReactingCars)
       EXPECT_NEAR(car.model.effect_values[0], 1.0, 0.15) << check.run << " " << car.name;
     }
   }
+}
+
+// Ten identical cars behind the real first cars: an unstable law amplifies the synthetic runs'
+// dips (ratio above 1), a stable one damps them, and a law whose chain leaves the simulator's
+// bounds says at which car instead of leaving a bare NaN.
+TEST(CampaignPlatoon, TheLongPlatoonSaysWhetherItAmplifiesAndWhereItRanAway)
+{
+  const std::vector<acc_test::SyntheticCar> cars{{"CAR_A", kUnstable}, {"CAR_B", kUnstable}};
+  const acc::CampaignInputs inputs = rotatedPlatoons("long", cars, 1, 61);
+  acc::LinkEvidence evidence;
+  evidence.diagnosed_parameters = kUnstable;
+  acc::simulateLongPlatoon(inputs, "S", acc::PlatoonCheckOptions{}, &evidence);
+  ASSERT_GT(evidence.long_platoon_perturbations, 0u);
+  EXPECT_GT(evidence.long_platoon_dip_ratio, 1.0);
+  EXPECT_EQ(evidence.long_platoon_ran_away_at_car, 0u);
+
+  evidence.diagnosed_parameters = acc::AccParameters{0.10, 0.60, 1.5, 4.0};
+  acc::simulateLongPlatoon(inputs, "S", acc::PlatoonCheckOptions{}, &evidence);
+  EXPECT_LT(evidence.long_platoon_dip_ratio, 1.0);
+  EXPECT_EQ(evidence.long_platoon_ran_away_at_car, 0u);
+
+  // A second's delay and a hard quadratic braking on the unstable law: each car brakes far harder
+  // than the one ahead, and the chain runs away within the ten cars.
+  evidence.diagnosed_parameters = kUnstable;
+  evidence.diagnosed_settings.reaction_delay_s = 1.5;
+  evidence.diagnosed_settings.closing_quadratic_gain_per_m = 2.0;
+  acc::simulateLongPlatoon(inputs, "S", acc::PlatoonCheckOptions{}, &evidence);
+  EXPECT_GT(evidence.long_platoon_ran_away_at_car, 0u);
+  EXPECT_LE(evidence.long_platoon_ran_away_at_car, static_cast<std::size_t>(acc::kLongPlatoonCars));
+  EXPECT_EQ(evidence.long_platoon_perturbations, 0u);
+  EXPECT_TRUE(std::isnan(evidence.long_platoon_dip_ratio));
 }
 
 TEST(DipPredictionSummary, TheNoModelReferencePassesTheFirstCarsDipOnWhereTheChainPredicts)

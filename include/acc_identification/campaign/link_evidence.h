@@ -51,6 +51,10 @@ struct LinkEvidence
   /// perturbations (NaN without one). Above 1: the model amplifies these real perturbations.
   double long_platoon_dip_ratio = 0.0;
   std::size_t long_platoon_perturbations = 0;
+  /// The first of the ten cars (1-based) whose simulation ran away (left the simulator's bounds:
+  /// a dip grown past standstill into the absurd) behind some run's first car; 0 when none did.
+  /// That run's perturbations then give no ratio, and the text says so instead of a silent NaN.
+  std::size_t long_platoon_ran_away_at_car = 0;
   std::string note;  ///< what could not be computed, and why
 };
 
@@ -66,6 +70,13 @@ inline bool responseRead(const LinkEvidence& evidence)
 
 /// Number of identical cars in the simulated long platoon.
 constexpr int kLongPlatoonCars = 10;
+
+/// Ten identical cars with evidence's diagnosed model behind the real first car of each platoon
+/// run at setting, from equilibrium at its first speed: sets the tenth car's dip over the first
+/// car's (median over the perturbations), how many perturbations gave one, and the first car whose
+/// simulation ran away.
+void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& setting,
+                         const PlatoonCheckOptions& platoon_options, LinkEvidence* evidence);
 
 /// The evidence of every group (same order as result.groups), after the platoon check and its
 /// diagnosis (result.platoons, result.effect_selection). Groups run on options.threads.
