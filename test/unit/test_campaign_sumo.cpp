@@ -60,6 +60,45 @@ TEST(CampaignSumo, EveryFittedCarBecomesAVTypeOfItsSetting)
   }
 }
 
+// A diagnosed model with an effect SUMO has no term for: the effects SUMO carries are refitted
+// without it and exported as the diagnosed vType (a model of its own, not the diagnosed fit
+// stripped of an effect), and both vTypes say what is lost.
+TEST(CampaignSumo, ADiagnosedModelIsExportedAsFarAsSumoCarriesIt)
+{
+  SyntheticCampaign campaign;
+  makeCampaign(campaign);
+  acc::CampaignOptions options;
+  options.group.starts = 8;
+  options.threads = 2;
+  options.effect_selection.force = true;
+  options.effect_selection.forced = {{acc::EffectKind::quadratic_closing_response, acc::EffectKind::reaction_delay},
+                                     acc::FitObjective::speed};
+  const acc::CampaignResult result = acc::runCampaign(campaign.inputs, options);
+  const std::vector<acc::SumoExport> exports = acc::campaignSumoExports(campaign.inputs, result);
+  ASSERT_EQ(exports.size(), 4u);
+  for (const acc::SumoExport& exported : exports)
+  {
+    std::string caveats;
+    for (const std::string& c : exported.caveats)
+      caveats += c + "\n";
+    EXPECT_NE(caveats.find("cannot carry quadratic_closing_response"), std::string::npos) << exported.vtype.id << caveats;
+    const std::string& id = exported.vtype.id;
+    const bool diagnosed = id.size() > 10 && id.compare(id.size() - 10, 10, "_diagnosed") == 0;
+    if (!diagnosed)
+    {
+      EXPECT_TRUE(exported.vtype.source_effects.empty()) << id;
+      continue;
+    }
+    EXPECT_EQ(exported.vtype.source_effects, std::vector<acc::EffectKind>{acc::EffectKind::reaction_delay}) << id;
+    ASSERT_EQ(exported.vtype.source_effect_values.size(), 1u) << id;
+    EXPECT_NE(caveats.find("refitted"), std::string::npos) << id << caveats;
+    // The refit is the delay model's own: its parameters are those of a fit with the delay alone
+    // (these cars have none, so they stay near the truth).
+    const acc::AccParameters& truth = id == "CAR_A_L_diagnosed" ? kCarA : kCarB;
+    EXPECT_NEAR(exported.vtype.source_parameters.k2_per_s, truth.k2_per_s, 0.05) << id;
+  }
+}
+
 TEST(CampaignSumo, APlatoonFileIsLaidOutFromItsMeasuredStarts)
 {
   SyntheticCampaign campaign;

@@ -9,10 +9,10 @@ namespace acc
 {
 /// The campaign's cars as SUMO vTypes (docs/SUMO.md): one per fitted (vehicle, setting) group,
 /// "<VEHICLE>_<setting>", its base model with the group's own acceleration limits; and, where the
-/// platoon diagnosis gave the group a model whose every effect SUMO can carry (exactly, or as the
-/// reaction delay, approximately), that model too as "<VEHICLE>_<setting>_diagnosed". A diagnosed
-/// effect SUMO lacks is a caveat on the base vType instead: exporting a fit without one of its
-/// effects would be neither model.
+/// platoon diagnosis gave the group a model, "<VEHICLE>_<setting>_diagnosed": that model when SUMO
+/// can carry its every effect (exactly, or as the reaction delay, approximately), else the effects
+/// it carries refitted on the group's runs without the others (a caveat on both vTypes names what
+/// is lost). Exporting the diagnosed fit stripped of an effect would be neither model.
 std::vector<SumoExport> campaignSumoExports(const CampaignInputs& inputs, const CampaignResult& result);
 
 }  // namespace acc
