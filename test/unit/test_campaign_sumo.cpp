@@ -37,13 +37,20 @@ void makeCampaign(SyntheticCampaign& campaign)
   campaign.inputs = acc::loadCampaign({campaign.folder.string()});
 }
 
+/// A quick campaign: eight starts per fit, both cores.
+acc::CampaignOptions quickOptions()
+{
+  acc::CampaignOptions options;
+  options.group.starts = 8;
+  options.threads = 2;
+  return options;
+}
+
 TEST(CampaignSumo, EveryFittedCarBecomesAVTypeOfItsSetting)
 {
   SyntheticCampaign campaign;
   makeCampaign(campaign);
-  acc::CampaignOptions options;
-  options.group.starts = 8;
-  options.threads = 2;
+  acc::CampaignOptions options = quickOptions();
   options.platoon_diagnosis = false;
   const acc::CampaignResult result = acc::runCampaign(campaign.inputs, options);
   const std::vector<acc::SumoExport> exports = acc::campaignSumoExports(campaign.inputs, result);
@@ -67,9 +74,7 @@ TEST(CampaignSumo, ADiagnosedModelIsExportedAsFarAsSumoCarriesIt)
 {
   SyntheticCampaign campaign;
   makeCampaign(campaign);
-  acc::CampaignOptions options;
-  options.group.starts = 8;
-  options.threads = 2;
+  acc::CampaignOptions options = quickOptions();
   options.effect_selection.force = true;
   options.effect_selection.forced = {{acc::EffectKind::quadratic_closing_response, acc::EffectKind::reaction_delay},
                                      acc::FitObjective::speed};
