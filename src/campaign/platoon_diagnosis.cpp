@@ -77,7 +77,8 @@ std::vector<LossCluster> clustersOf(const std::vector<PairPerturbationScore>& sc
 /// cluster-bootstrap p-value of "no improvement" (comparePairedLosses); the pair-window criterion's
 /// means beside.
 EffectSetComparison compare(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
-                            std::size_t candidate, std::size_t against, const EffectSetSelectionOptions& options)
+                            std::size_t candidate, std::size_t against, std::size_t stage_size,
+                            const EffectSetSelectionOptions& options)
 {
   EffectSetComparison out;
   const PairedLossComparison losses = comparePairedLosses(
@@ -88,6 +89,7 @@ EffectSetComparison compare(const std::vector<PairPerturbationScore>& scores, st
   out.mean_loss = losses.candidate_loss;
   out.relative_improvement = losses.relative_improvement;
   out.p_value = losses.p_value;
+  out.significant = namedByRule(losses, options.alpha, stage_size, options.min_relative_improvement);
   const PairedLossComparison windows = comparePairedLosses(
       clustersOf(scores, exclude_file, against, candidate, SelectionCriterion::pair_windows), 0, options.seed);
   out.against_window_mse = windows.against_loss;
@@ -125,11 +127,9 @@ std::size_t runStage(const std::vector<PairPerturbationScore>& scores, std::size
   double best_mse = std::numeric_limits<double>::infinity();
   for (std::size_t candidate : candidates)
   {
-    EffectSetComparison c = compare(scores, exclude_file, candidate, against, options);
+    EffectSetComparison c = compare(scores, exclude_file, candidate, against, candidates.size(), options);
     c.candidate = candidateAt(candidate);
     c.against = candidateAt(against);
-    c.significant = c.p_value <= options.alpha / static_cast<double>(candidates.size()) &&
-                    c.relative_improvement >= options.min_relative_improvement;
     if (c.significant && c.mean_loss < best_mse)
     {
       best = candidate;

@@ -42,10 +42,10 @@ const std::vector<double>& indexFrequencyGridRadS()
 /// Tracks the best feasible point of one side seen by any solve, whatever NLopt returns.
 struct SideSearch
 {
-  const AugmentedParameterBox* box;
-  const std::vector<CarFollowingRun>* train;
-  double operating_speed_mps;
-  double side;  ///< +1: stable (index >= 0), -1: unstable (index <= 0)
+  const AugmentedParameterBox* box = nullptr;
+  const std::vector<CarFollowingRun>* train = nullptr;
+  double operating_speed_mps = 0.0;
+  double side = 1.0;  ///< +1: stable (index >= 0), -1: unstable (index <= 0)
   std::vector<double> best_x;
   double best_mse = std::numeric_limits<double>::infinity();
   std::size_t evaluations = 0;
@@ -241,7 +241,11 @@ AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& ch
   const AugmentedParameterBox box(r.effects, bounds);
   const std::vector<double> chosen_x = physicalOf(chosen);
   const bool chosen_stable = augmentedStabilityIndex(chosen.base, chosen.settings, operating_speed_mps) >= 0.0;
-  SideSearch search{&box, &train, operating_speed_mps, chosen_stable ? -1.0 : 1.0};
+  SideSearch search;
+  search.box = &box;
+  search.train = &train;
+  search.operating_speed_mps = operating_speed_mps;
+  search.side = chosen_stable ? -1.0 : 1.0;
   for (const std::vector<double>& start : sideStarts(chosen_x, box, bounds, options))
     solveFrom(&search, start, options);
   r.side_fit_evaluations = search.evaluations;

@@ -77,9 +77,8 @@ PerturbationWindowCriterion judgeOnPerturbationWindows(const std::vector<CarFoll
     for (std::size_t i = 0; i < out.perturbations; ++i)
       clusters.push_back({losses[0][i], losses[e + 1][i], 1});
     score.versus_base = comparePairedLosses(clusters, options.replicates, options.seed);
-    score.significant = out.perturbations >= 2 &&
-                        score.versus_base.p_value <= options.alpha / static_cast<double>(effects.size()) &&
-                        score.versus_base.relative_improvement >= options.min_relative_improvement;
+    score.significant = out.perturbations >= 2 && namedByRule(score.versus_base, options.alpha, effects.size(),
+                                                               options.min_relative_improvement);
     if (score.significant && score.versus_base.candidate_loss < best_loss)
     {
       best_loss = score.versus_base.candidate_loss;

@@ -50,4 +50,14 @@ struct PairedLossComparison
 PairedLossComparison comparePairedLosses(const std::vector<LossCluster>& clusters, std::size_t replicates,
                                          std::uint64_t seed);
 
+/// The naming rule both perturbation judges state (campaign's platoon diagnosis, diagnose's window
+/// criterion): p at most alpha divided by the candidates compared (Bonferroni) and a mean loss at
+/// least min_relative_improvement below the reference's.
+inline bool namedByRule(const PairedLossComparison& comparison, double alpha, std::size_t candidates,
+                        double min_relative_improvement)
+{
+  return comparison.p_value <= alpha / static_cast<double>(candidates) &&
+         comparison.relative_improvement >= min_relative_improvement;
+}
+
 }  // namespace acc
