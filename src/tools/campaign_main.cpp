@@ -1,6 +1,7 @@
 // campaign: every car of a set of OpenACC platoon runs identified per (vehicle, distance setting)
 // with the paper's protocol, in parallel, and each run's platoon predicted from its real first car
 // with models fitted without that run: where does the model's string (in)stability match the data?
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -78,6 +79,25 @@ int main(int argc, char** argv)
     {
       std::cerr << "error: --platoon-effects: cannot read '" << platoon_effects
                 << "' (effect names joined by commas, optionally @speed, @gap or @speed_and_gap)\n";
+      return 2;
+    }
+    // Said before the fits, not after a minute of them.
+    const auto& candidates = acc::platoonCandidates();
+    const acc::PlatoonCandidate& forced = options.effect_selection.forced;
+    if (!(forced == acc::PlatoonCandidate{}) && std::find(candidates.begin(), candidates.end(), forced) == candidates.end())
+    {
+      std::cerr << "error: --platoon-effects: " << forced.name() << " is not among the platoon diagnosis's candidates:";
+      for (const acc::PlatoonCandidate& candidate : candidates)
+      {
+        // As the option is written: effects joined by commas, @objective when not speed.
+        std::string text;
+        for (const std::string& effect : acc::effectNames(candidate.effects))
+          text += (text.empty() ? "" : ",") + effect;
+        if (candidate.objective != acc::FitObjective::speed)
+          text = (text.empty() ? "none" : text) + "@" + acc::objectiveName(candidate.objective);
+        std::cerr << (&candidate == &candidates.front() ? " " : ", ") << text;
+      }
+      std::cerr << "\n";
       return 2;
     }
   }

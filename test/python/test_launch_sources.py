@@ -135,6 +135,16 @@ class UserCommands(unittest.TestCase):
             self.assertIn("--starts", result.stderr, tool + ": " + result.stderr)
             self.assertNotIn("diverged", result.stdout + result.stderr)
 
+    def test_campaign_refuses_an_unknown_platoon_candidate_before_the_work(self):
+        result = self.run_command(["rosrun", "acc_identification", "campaign", "--platoon-effects",
+                                   "speed_dependent_gains", str(OPENACC_EXCERPT)])
+        self.assertEqual(result.returncode, 2, result.stdout + result.stderr)
+        self.assertIn("speed_dependent_gains is not among the platoon diagnosis's candidates", result.stderr)
+        # The candidates as the option is written, so that one can be copied from the message.
+        self.assertIn("quadratic_closing_response,reaction_delay", result.stderr)
+        self.assertIn("reaction_delay@speed_and_gap", result.stderr)
+        self.assertNotIn("group(s)", result.stderr)  # stopped before reading the runs
+
     def test_diagnose_refuses_an_unwritable_report_before_the_work(self):
         result = self.run_command(["rosrun", "acc_identification", "diagnose", "--no-plots", "--report",
                                    "/proc/no_such_report_folder", str(OPENACC_EXCERPT)])
