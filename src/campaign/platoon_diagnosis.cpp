@@ -18,7 +18,7 @@ namespace
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// Starts of every candidate fit: the warm start's effect values at this many low-discrepancy
 /// points (plus "almost off"), and for timing effects this many cold starts (Halton points of the
-/// base box) beside. Fewer than the diagnosis's own (6 and 12): a campaign fits ten candidates for
+/// base box) beside. Fewer than the diagnosis's own (6 and 12): a campaign fits every candidate for
 /// every car of every run.
 constexpr std::size_t kEffectStarts = 3;
 constexpr std::size_t kColdStarts = 4;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -329,6 +330,10 @@ std::string formatConfusionMatrix(const ConfusionMatrix& matrix)
   std::size_t correct = 0;
   for (std::size_t r = 0; r < matrix.labels.size(); ++r)
   {
+    // A truth never hidden has no row (an all-zero row would read as an effect never found); every
+    // label stays a column, since any can be named.
+    if (std::accumulate(matrix.counts[r].begin(), matrix.counts[r].end(), std::size_t{0}) == 0)
+      continue;
     out << "| " << effectName(matrix.labels[r]) << " |";
     for (std::size_t c = 0; c < matrix.labels.size(); ++c)
     {
@@ -351,6 +356,10 @@ std::string formatMagnitudeRecovery(const std::vector<WithheldOutcome>& outcomes
     if (kind == EffectKind::none)
       continue;
     const CandidateEffect& effect = candidateEffect(kind);
+    const bool hidden = std::any_of(outcomes.begin(), outcomes.end(),
+                                    [&](const WithheldOutcome& o) { return o.input.truth == kind; });
+    if (!hidden)
+      continue;
     std::vector<double> absolute, relative;
     for (const WithheldOutcome& o : outcomes)
     {

@@ -141,3 +141,26 @@ TEST(WithheldEffects, AnAnticipationIsNamedWhenAskedFor)
       << "named " << acc::effectName(outcome.dominant);
   EXPECT_NEAR(outcome.recovered_magnitude, 0.4, 0.1);
 }
+
+// The tables print a row only for a truth that was hidden: an effect never hidden (the exploratory
+// ones) would otherwise read as never found. Every effect stays a column, as any can be named.
+TEST(WithheldEffects, TablesShowOnlyTheTruthsThatWereHidden)
+{
+  acc::WithheldOutcome none_case;
+  none_case.input.truth = acc::EffectKind::none;
+  acc::WithheldOutcome lag_case;
+  lag_case.input.truth = acc::EffectKind::actuation_lag;
+  lag_case.input.truth_values = {0.6};
+  lag_case.dominant = acc::EffectKind::actuation_lag;
+  lag_case.recovered_magnitude = 0.58;
+  const std::vector<acc::WithheldOutcome> outcomes{none_case, lag_case};
+  const std::string matrix = acc::formatConfusionMatrix(acc::confusionMatrix(outcomes));
+  EXPECT_NE(matrix.find("| none | 1 |"), std::string::npos) << matrix;
+  EXPECT_NE(matrix.find("| actuation_lag | 0 | 1 |"), std::string::npos) << matrix;
+  EXPECT_EQ(matrix.find("| quadratic_closing_response | 0"), std::string::npos) << matrix;
+  EXPECT_NE(matrix.find(" quadratic_closing_response |\n"), std::string::npos) << matrix;  // still a column
+  EXPECT_NE(matrix.find("named correctly: 2 of 2"), std::string::npos) << matrix;
+  const std::string magnitudes = acc::formatMagnitudeRecovery(outcomes);
+  EXPECT_NE(magnitudes.find("| actuation_lag | lag_time_constant_s | 1 |"), std::string::npos) << magnitudes;
+  EXPECT_EQ(magnitudes.find("reaction_delay"), std::string::npos) << magnitudes;
+}
