@@ -238,6 +238,23 @@ bool parsePlatoonCandidate(const std::string& text, PlatoonCandidate* candidate)
   return true;
 }
 
+std::string platoonCandidateText(const PlatoonCandidate& candidate)
+{
+  std::string text;
+  for (const std::string& effect : effectNames(candidate.effects))
+    text += (text.empty() ? "" : ",") + effect;
+  if (candidate.objective != FitObjective::speed)
+    text = (text.empty() ? "none" : text) + "@" + objectiveName(candidate.objective);
+  return text.empty() ? "none" : text;
+}
+
+bool isPlatoonCandidate(const PlatoonCandidate& candidate)
+{
+  const std::vector<PlatoonCandidate>& candidates = platoonCandidates();
+  return candidate == PlatoonCandidate{} ||
+         std::find(candidates.begin(), candidates.end(), candidate) != candidates.end();
+}
+
 std::vector<PlatoonCarModel> fitCandidateModels(const std::vector<CarFollowingRun>& training,
                                                 const PlatoonCarModel& base)
 {
@@ -353,11 +370,11 @@ EffectSetSelection selectEffectSet(const std::vector<PairPerturbationScore>& sco
   }
   if (options.force)
   {
-    const bool base = options.forced == PlatoonCandidate{};
-    const auto forced = std::find(candidates.begin(), candidates.end(), options.forced);
-    if (!base && forced == candidates.end())
+    if (!isPlatoonCandidate(options.forced))
       throw std::invalid_argument(options.forced.name() + " is not among the platoon diagnosis's candidates");
-    chosen = base ? 0 : static_cast<std::size_t>(forced - candidates.begin()) + 1;
+    const bool base = options.forced == PlatoonCandidate{};
+    chosen = base ? 0 : static_cast<std::size_t>(std::find(candidates.begin(), candidates.end(), options.forced) -
+                                                 candidates.begin()) + 1;
   }
   selection.chosen = chosen;
   selection.model = candidateAt(chosen);

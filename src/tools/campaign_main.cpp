@@ -1,7 +1,6 @@
 // campaign: every car of a set of OpenACC platoon runs identified per (vehicle, distance setting)
 // with the paper's protocol, in parallel, and each run's platoon predicted from its real first car
 // with models fitted without that run: where does the model's string (in)stability match the data?
-#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -82,21 +81,12 @@ int main(int argc, char** argv)
       return 2;
     }
     // Said before the fits, not after a minute of them.
-    const auto& candidates = acc::platoonCandidates();
-    const acc::PlatoonCandidate& forced = options.effect_selection.forced;
-    if (!(forced == acc::PlatoonCandidate{}) && std::find(candidates.begin(), candidates.end(), forced) == candidates.end())
+    if (!acc::isPlatoonCandidate(options.effect_selection.forced))
     {
-      std::cerr << "error: --platoon-effects: " << forced.name() << " is not among the platoon diagnosis's candidates:";
-      for (const acc::PlatoonCandidate& candidate : candidates)
-      {
-        // As the option is written: effects joined by commas, @objective when not speed.
-        std::string text;
-        for (const std::string& effect : acc::effectNames(candidate.effects))
-          text += (text.empty() ? "" : ",") + effect;
-        if (candidate.objective != acc::FitObjective::speed)
-          text = (text.empty() ? "none" : text) + "@" + acc::objectiveName(candidate.objective);
-        std::cerr << (&candidate == &candidates.front() ? " " : ", ") << text;
-      }
+      std::cerr << "error: --platoon-effects: " << options.effect_selection.forced.name()
+                << " is not among the platoon diagnosis's candidates:";
+      for (const acc::PlatoonCandidate& candidate : acc::platoonCandidates())
+        std::cerr << (&candidate == &acc::platoonCandidates().front() ? " " : ", ") << acc::platoonCandidateText(candidate);
       std::cerr << "\n";
       return 2;
     }

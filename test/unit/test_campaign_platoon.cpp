@@ -219,3 +219,22 @@ TEST(DipPredictionSummary, TheNoModelReferencePassesTheFirstCarsDipOnWhereTheCha
   EXPECT_EQ(base.car_perturbations, 2u);
   EXPECT_NEAR(base.median_dip_error, 0.5 * ((2.8 - 3.1) / 3.1 + (2.6 - 2.5) / 2.5), 1e-12);
 }
+
+// What --platoon-effects takes: every candidate's text reads back as that candidate, so the list
+// the tool prints on a wrong name can be copied from; what is not a candidate is not forceable.
+TEST(PlatoonCandidates, TextReadsBackAndOnlyCandidatesMayBeForced)
+{
+  for (const acc::PlatoonCandidate& candidate : acc::platoonCandidates())
+  {
+    acc::PlatoonCandidate parsed;
+    ASSERT_TRUE(acc::parsePlatoonCandidate(acc::platoonCandidateText(candidate), &parsed))
+        << acc::platoonCandidateText(candidate);
+    EXPECT_EQ(parsed, candidate) << acc::platoonCandidateText(candidate);
+    EXPECT_TRUE(acc::isPlatoonCandidate(candidate)) << candidate.name();
+  }
+  EXPECT_EQ(acc::platoonCandidateText({{acc::EffectKind::reaction_delay}, acc::FitObjective::speed_and_gap}),
+            "reaction_delay@speed_and_gap");
+  EXPECT_EQ(acc::platoonCandidateText({{}, acc::FitObjective::gap}), "none@gap");
+  EXPECT_TRUE(acc::isPlatoonCandidate(acc::PlatoonCandidate{}));  // the base model
+  EXPECT_FALSE(acc::isPlatoonCandidate({{acc::EffectKind::speed_dependent_gains}, acc::FitObjective::speed}));
+}

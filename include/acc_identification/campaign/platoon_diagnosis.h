@@ -40,6 +40,13 @@ const std::vector<PlatoonCandidate>& platoonCandidates();
 /// "reaction_delay@speed_and_gap" (effects joined by commas, then @objective); false when unknown.
 bool parsePlatoonCandidate(const std::string& text, PlatoonCandidate* candidate);
 
+/// The candidate as parsePlatoonCandidate reads it: "asymmetric_response,reaction_delay",
+/// "none@gap" (its inverse, for messages that list what may be given).
+std::string platoonCandidateText(const PlatoonCandidate& candidate);
+
+/// Whether candidate is the base model or one of platoonCandidates(): what may be forced.
+bool isPlatoonCandidate(const PlatoonCandidate& candidate);
+
 /// Each candidate's model of one car, fitted (calibrateAugmentedSet with the candidate's
 /// objective) on the same training segments as its base model, warm-started from it; a candidate
 /// that extends another is warm-started from that one's fit. One entry per platoonCandidates();
