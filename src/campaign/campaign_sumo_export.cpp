@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "acc_identification/diagnosis/augmented_calibration.h"
+#include "acc_identification/campaign/link_evidence.h"
 
 namespace acc
 {
@@ -42,11 +42,7 @@ std::optional<SumoExport> carriedPartExport(const std::string& id, const Campaig
   std::copy_if(link.diagnosed.effects.begin(), link.diagnosed.effects.end(), std::back_inserter(carried), sumoCarries);
   if (carried.empty())
     return std::nullopt;
-  AugmentedFit warm;
-  warm.base = result.identification.calibration.parameters;
-  AugmentedCalibrationOptions options;
-  options.objective = link.diagnosed.objective;
-  const AugmentedFit fit = calibrateAugmentedSet(carried, group.segments(), options, &warm);
+  const AugmentedFit fit = fitOnAllRuns({carried, link.diagnosed.objective}, group, result);
   if (fit.diverged)
     return std::nullopt;
   SumoExport out = exportToSumo(id, fit.base, carried, fit.effect_values, limits);

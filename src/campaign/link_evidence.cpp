@@ -100,13 +100,7 @@ void fitDiagnosed(const CampaignGroup& group, const GroupResult& result, const P
     evidence->note = "no base fit: " + result.reason;
     return;
   }
-  AugmentedFit warm;
-  warm.base = result.identification.calibration.parameters;
-  AugmentedCalibrationOptions options;
-  options.objective = candidate.objective;
-  const AugmentedFit fit = candidate == PlatoonCandidate{} ? warm
-                                                          : calibrateAugmentedSet(candidate.effects, group.segments(),
-                                                                                  options, &warm);
+  const AugmentedFit fit = fitOnAllRuns(candidate, group, result);
   evidence->diagnosed_available = !fit.diverged;
   evidence->diagnosed_parameters = fit.base;
   evidence->diagnosed_effect_values = fit.effect_values;
@@ -160,6 +154,17 @@ LinkEvidence evidenceOf(const CampaignInputs& inputs, const CampaignGroup& group
   return evidence;
 }
 }  // namespace
+
+AugmentedFit fitOnAllRuns(const PlatoonCandidate& candidate, const CampaignGroup& group, const GroupResult& result)
+{
+  AugmentedFit warm;
+  warm.base = result.identification.calibration.parameters;
+  if (candidate == PlatoonCandidate{})
+    return warm;
+  AugmentedCalibrationOptions options;
+  options.objective = candidate.objective;
+  return calibrateAugmentedSet(candidate.effects, group.segments(), options, &warm);
+}
 
 void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& setting,
                          const PlatoonCheckOptions& platoon_options, LinkEvidence* evidence)

@@ -10,6 +10,7 @@
 #include "acc_identification/campaign/group_identification.h"
 #include "acc_identification/campaign/platoon_check.h"
 #include "acc_identification/campaign/platoon_diagnosis.h"
+#include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/augmented_stability.h"
 
 namespace acc
@@ -70,6 +71,10 @@ inline bool responseRead(const LinkEvidence& evidence)
 
 /// Number of identical cars in the simulated long platoon.
 constexpr int kLongPlatoonCars = 10;
+
+/// candidate fitted on all the group's runs, warm-started from the group's base fit (result must
+/// be fitted): the diagnosed model, and the part of it SUMO carries (campaign_sumo_export.h).
+AugmentedFit fitOnAllRuns(const PlatoonCandidate& candidate, const CampaignGroup& group, const GroupResult& result);
 
 /// Ten identical cars with evidence's diagnosed model behind the real first car of each platoon
 /// run at setting, from equilibrium at its first speed: sets the tenth car's dip over the first
