@@ -54,10 +54,12 @@ const std::vector<CandidateEffect>& responseEffects()
       {EffectKind::leader_acceleration_feedforward, "leader_acceleration_feedforward",
        {{"leader_acceleration_gain", 0.0, 1.5, 0.05, 0.8}},
        "command += k_a times the leader's acceleration (backward difference of its speed)"},
-      // q up to 2 /m: a closing speed of 3 m/s then adds up to 18 m/s^2, beyond any car's brakes.
+      // c up to 20: closing at 3 m/s on a 10 m gap then adds up to 9 m/s^2, beyond any car's brakes.
       {EffectKind::quadratic_closing_response, "quadratic_closing_response",
-       {{"closing_quadratic_gain_per_m", 0.0, 2.0, 0.02, 0.5}},
-       "command -= q (u - v)^2 while closing in: harder braking for a fast-closing leader, none for small differences"},
+       {{"kinematic_braking_ratio", 0.0, 20.0, 0.2, 5.0}},
+       "command -= c (u - v)^2 / (2 s) while closing in: c times the deceleration that would just match the "
+       "leader's speed within the gap; harder braking for a fast-closing leader on a short gap, none for small "
+       "differences"},
   };
   return extra;
 }
@@ -157,7 +159,7 @@ EffectSettings makeEffectSettings(EffectKind kind, const std::vector<double>& va
       s.short_gap_gain_ratio = values[1];
       break;
     case EffectKind::speed_dependent_gains: s.gain_speed_slope_s_per_m = values[0]; break;
-    case EffectKind::quadratic_closing_response: s.closing_quadratic_gain_per_m = values[0]; break;
+    case EffectKind::quadratic_closing_response: s.kinematic_braking_ratio = values[0]; break;
   }
   return s;
 }
@@ -176,7 +178,7 @@ std::vector<double> effectValues(EffectKind kind, const EffectSettings& s)
     case EffectKind::leader_acceleration_feedforward: return {s.leader_acceleration_gain};
     case EffectKind::asymmetric_response: return {s.closing_gain_ratio, s.short_gap_gain_ratio};
     case EffectKind::speed_dependent_gains: return {s.gain_speed_slope_s_per_m};
-    case EffectKind::quadratic_closing_response: return {s.closing_quadratic_gain_per_m};
+    case EffectKind::quadratic_closing_response: return {s.kinematic_braking_ratio};
   }
   return {};
 }
@@ -211,7 +213,7 @@ void applyEffectValues(EffectKind kind, const std::vector<double>& values, Effec
       break;
     case EffectKind::speed_dependent_gains: settings->gain_speed_slope_s_per_m = own.gain_speed_slope_s_per_m; break;
     case EffectKind::quadratic_closing_response:
-      settings->closing_quadratic_gain_per_m = own.closing_quadratic_gain_per_m;
+      settings->kinematic_braking_ratio = own.kinematic_braking_ratio;
       break;
   }
 }

@@ -73,7 +73,7 @@ struct ModelScalars
   Scalar actuation_lag_s, reaction_delay_s, max_acceleration_mps2, max_deceleration_mps2;
   Scalar sensor_time_offset_s, time_gap_speed_slope_s2_per_m, set_speed_mps, cruise_gain_per_s,
       leader_acceleration_gain;
-  Scalar short_gap_gain_ratio, closing_gain_ratio, gain_speed_slope_s_per_m, closing_quadratic_gain_per_m;
+  Scalar short_gap_gain_ratio, closing_gain_ratio, gain_speed_slope_s_per_m, kinematic_braking_ratio;
 };
 
 ModelScalars<double> plainScalars(const AccParameters& p, const EffectSettings& e)
@@ -83,7 +83,7 @@ ModelScalars<double> plainScalars(const AccParameters& p, const EffectSettings& 
           e.max_acceleration_mps2, e.max_deceleration_mps2, e.sensor_time_offset_s,
           e.time_gap_speed_slope_s2_per_m, e.set_speed_mps, e.cruise_gain_per_s,
           e.leader_acceleration_gain, e.short_gap_gain_ratio, e.closing_gain_ratio,
-          e.gain_speed_slope_s_per_m, e.closing_quadratic_gain_per_m};
+          e.gain_speed_slope_s_per_m, e.kinematic_braking_ratio};
 }
 
 /// The leader speed the ACC really saw at each sample: recorded at t + delta (only made when a
@@ -154,11 +154,15 @@ Scalar commandedAcceleration(const ModelScalars<Scalar>& m, const Scalar& gap, c
   {
     command += m.leader_acceleration_gain * leader_acceleration;
   }
-  if (entersModel(m.closing_quadratic_gain_per_m))
+  if (entersModel(m.kinematic_braking_ratio))
   {
     const Scalar relative_speed = leader_speed - speed;
     if (valueOf(relative_speed) < 0.0)
-      command = command - m.closing_quadratic_gain_per_m * relative_speed * relative_speed;
+    {
+      const Scalar kinematic_deceleration =
+          relative_speed * relative_speed / (2.0 * largerOf(Scalar(kKinematicBrakingMinGapM), gap));
+      command = command - m.kinematic_braking_ratio * kinematic_deceleration;
+    }
   }
   if (!shaped && entersModel(m.time_gap_speed_slope_s2_per_m))
   {
@@ -277,7 +281,7 @@ ModelScalars<ForwardDual<N>> seededScalars(const std::vector<EffectKind>& kinds,
           seed(plain.short_gap_gain_ratio, where.short_gap_gain_ratio),
           seed(plain.closing_gain_ratio, where.closing_gain_ratio),
           seed(plain.gain_speed_slope_s_per_m, where.gain_speed_slope_s_per_m),
-          seed(plain.closing_quadratic_gain_per_m, where.closing_quadratic_gain_per_m)};
+          seed(plain.kinematic_braking_ratio, where.kinematic_braking_ratio)};
 }
 
 template <std::size_t N>

@@ -183,7 +183,7 @@ TEST(CampaignPlatoon, TheLongPlatoonSaysWhetherItAmplifiesAndWhereItRanAway)
   // than the one ahead, and the chain runs away within the ten cars.
   evidence.diagnosed_parameters = kUnstable;
   evidence.diagnosed_settings.reaction_delay_s = 1.5;
-  evidence.diagnosed_settings.closing_quadratic_gain_per_m = 2.0;
+  evidence.diagnosed_settings.kinematic_braking_ratio = 20.0;
   acc::simulateLongPlatoon(inputs, "S", acc::PlatoonCheckOptions{}, &evidence);
   EXPECT_GT(evidence.long_platoon_ran_away_at_car, 0u);
   EXPECT_LE(evidence.long_platoon_ran_away_at_car, static_cast<std::size_t>(acc::kLongPlatoonCars));

@@ -284,8 +284,8 @@ TEST(AugmentedSimulation, SensitivitiesAreExactDerivativesOfTheSameSimulation)
       {{acc::EffectKind::speed_dependent_gains}, {0.04}},
       {{acc::EffectKind::leader_acceleration_feedforward}, {0.3}},
       {{acc::EffectKind::asymmetric_response, acc::EffectKind::reaction_delay}, {2.0, 1.5, 0.4}},
-      {{acc::EffectKind::quadratic_closing_response}, {0.3}},
-      {{acc::EffectKind::quadratic_closing_response, acc::EffectKind::reaction_delay}, {0.2, 0.5}},
+      {{acc::EffectKind::quadratic_closing_response}, {3.0}},
+      {{acc::EffectKind::quadratic_closing_response, acc::EffectKind::reaction_delay}, {2.0, 0.5}},
   };
   for (const auto& [kinds, values] : models)
   {

@@ -110,14 +110,14 @@ TEST(WithheldEffects, AQuadraticClosingResponseIsFoundAndSizedWhenAskedFor)
   options.candidates.push_back(acc::EffectKind::quadratic_closing_response);
   acc::WithheldCase c;
   c.truth = acc::EffectKind::quadratic_closing_response;
-  c.truth_values = {0.15};
+  c.truth_values = {4.0};
   c.profile = acc::SyntheticLeadProfile::dip;
   c.seed = 21;
   const auto outcome = acc::runWithheldCase(c, options);
   EXPECT_EQ(outcome.dominant, acc::EffectKind::quadratic_closing_response)
       << "named " << acc::effectName(outcome.dominant);
   ASSERT_TRUE(std::isfinite(outcome.recovered_standard_error));
-  EXPECT_LT(std::abs(outcome.recovered_magnitude - 0.15), 4.0 * outcome.recovered_standard_error)
+  EXPECT_LT(std::abs(outcome.recovered_magnitude - 4.0), 4.0 * outcome.recovered_standard_error)
       << "recovered " << outcome.recovered_magnitude << " +- " << outcome.recovered_standard_error;
   EXPECT_LT(outcome.effect_test_rmse_speed_mps, outcome.base_test_rmse_speed_mps);
 

@@ -26,15 +26,22 @@ enum class EffectKind
   asymmetric_response,
   /// Gains that scale with speed, exp(g (v - v_ref)): a controller scheduled on speed.
   speed_dependent_gains,
-  /// Braking that grows with the square of the closing speed, q (u - v)^2 while closing in: an
-  /// ACC that ignores small speed differences yet answers a fast-closing leader harder than in
-  /// proportion (IDM's intelligent-braking term, Gipps' safe speed). Small signals see no change.
+  /// Braking that grows with the square of the closing speed over the gap, c (u - v)^2 / (2 s)
+  /// while closing in: c times the kinematic deceleration, the constant deceleration that would
+  /// just match the leader's speed within the gap. An ACC that ignores small speed differences yet
+  /// answers a fast-closing leader on a short gap harder than in proportion (IDM's
+  /// intelligent-braking term, Gipps' safe speed, the constant-acceleration heuristic of Kesting,
+  /// Treiber and Helbing's ACC model). Small signals see no change.
   quadratic_closing_response,
 };
 
 /// The speed at which speed_dependent_gains leaves k1 and k2 as they are [m/s]: a reparametrisation
 /// only (k1 and k2 are then the gains at this speed), chosen inside every campaign's range.
 constexpr double kGainReferenceSpeedMps = 15.0;
+
+/// The gap below which quadratic_closing_response's kinematic deceleration stops growing [m]: a
+/// simulated gap near zero is a collision, and the term must not divide by it.
+constexpr double kKinematicBrakingMinGapM = 2.0;
 
 /// Every option of the augmented follower model. The defaults switch every effect off, and the
 /// augmented simulator then reduces exactly to simulateFollower().
@@ -64,8 +71,9 @@ struct EffectSettings
   double closing_gain_ratio = 1.0;
   /// g: k1 and k2 are multiplied by exp(g (v - kGainReferenceSpeedMps)) [s/m; 0: constant gains].
   double gain_speed_slope_s_per_m = 0.0;
-  /// q: command -= q (u - v)^2 while the follower closes in (u - v < 0) [1/m; 0: off].
-  double closing_quadratic_gain_per_m = 0.0;
+  /// c: command -= c (u - v)^2 / (2 max(s, kKinematicBrakingMinGapM)) while the follower closes
+  /// in (u - v < 0), s the true gap [dimensionless: multiples of the kinematic deceleration; 0: off].
+  double kinematic_braking_ratio = 0.0;
 };
 
 /// One calibrated parameter of an effect: its name with unit, the hard bounds of the search and
