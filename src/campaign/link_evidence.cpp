@@ -105,9 +105,8 @@ void fitDiagnosed(const CampaignGroup& group, const GroupResult& result, const P
   evidence->diagnosed_parameters = fit.base;
   evidence->diagnosed_effect_values = fit.effect_values;
   evidence->diagnosed_settings = fit.settings;
-  const EffectKind last = candidate.effects.empty() ? EffectKind::none : candidate.effects.back();
   evidence->diagnosed_small_signal =
-      analyzeAugmentedStability(fit.base, last, fit.settings, evidence->operating_speed_mps);
+      analyzeAugmentedStability(fit.base, candidate.effects, fit.settings, evidence->operating_speed_mps);
 }
 
 LinkEvidence evidenceOf(const CampaignInputs& inputs, const CampaignGroup& group, const GroupResult& result,

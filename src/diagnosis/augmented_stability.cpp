@@ -114,4 +114,16 @@ AugmentedStability analyzeAugmentedStability(const AccParameters& p, EffectKind 
   return out;
 }
 
+AugmentedStability analyzeAugmentedStability(const AccParameters& p, const std::vector<EffectKind>& kinds,
+                                             const EffectSettings& e, double operating_speed_mps)
+{
+  AugmentedStability out =
+      analyzeAugmentedStability(p, kinds.empty() ? EffectKind::none : kinds.front(), e, operating_speed_mps);
+  for (std::size_t i = 1; i < kinds.size(); ++i)
+  {
+    out.note += "; " + smallSignalNote(kinds[i]);
+  }
+  return out;
+}
+
 }  // namespace acc

@@ -164,16 +164,8 @@ ForwardSelectionStep makeStep(EffectKind added, ModelDiagnosis model, const Impr
   step.model = std::move(model);
   step.model.improvement = improvement;
   step.model.significant = true;
-  step.model.stability =
-      analyzeAugmentedStability(step.model.fit.base, added, step.model.fit.settings, data.operating_speed_mps);
-  // The note says how each effect of the combination enters the small-signal model, not only the last.
-  step.model.stability.note.clear();
-  for (EffectKind kind : effectsOf(step.model.fit))
-  {
-    const std::string note =
-        analyzeAugmentedStability(step.model.fit.base, kind, step.model.fit.settings, data.operating_speed_mps).note;
-    step.model.stability.note += (step.model.stability.note.empty() ? "" : "; ") + note;
-  }
+  step.model.stability = analyzeAugmentedStability(step.model.fit.base, effectsOf(step.model.fit),
+                                                   step.model.fit.settings, data.operating_speed_mps);
   step.model.stability_verdict_changes = step.model.stability.string_stable != data.baseline.stability.string_stable;
   if (options.with_stability_test)
   {

@@ -174,6 +174,24 @@ TEST(AugmentedStability, LagAndDelayRaiseThePeakAndCanFlipTheVerdict)
   EXPECT_NEAR(acc::augmentedTransferGain(stable, limits, 25.0, w), acc::transferGain(stable, w), 1e-12);
 }
 
+// A model of several effects: one peak (the settings decide it), and a note for each effect.
+TEST(AugmentedStability, ACombinationsNoteSaysHowEachOfItsEffectsEnters)
+{
+  const acc::AccParameters stable{0.05, 0.6, 1.6, 4.0};
+  const std::vector<acc::EffectKind> kinds{acc::EffectKind::quadratic_closing_response,
+                                           acc::EffectKind::reaction_delay};
+  const acc::EffectSettings settings = acc::makeCombinedEffectSettings(kinds, {3.0, 1.5});
+  const auto both = acc::analyzeAugmentedStability(stable, kinds, settings, 25.0);
+  const auto delay_only = acc::analyzeAugmentedStability(stable, acc::EffectKind::reaction_delay, settings, 25.0);
+  EXPECT_EQ(both.peak_gain_db, delay_only.peak_gain_db);
+  EXPECT_EQ(both.string_stable, delay_only.string_stable);
+  const auto quadratic_only =
+      acc::analyzeAugmentedStability(stable, acc::EffectKind::quadratic_closing_response, settings, 25.0);
+  EXPECT_EQ(both.note, quadratic_only.note + "; " + delay_only.note);
+  EXPECT_EQ(acc::analyzeAugmentedStability(stable, std::vector<acc::EffectKind>{}, acc::EffectSettings{}, 25.0).note,
+            acc::analyzeAugmentedStability(stable, acc::EffectKind::none, acc::EffectSettings{}, 25.0).note);
+}
+
 TEST(ResidualBreakdown, SharesSumToOneAndTheWorstSegmentHoldsTheInjectedError)
 {
   acc::CarFollowingRun run = dipRun();

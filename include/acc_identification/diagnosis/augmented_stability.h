@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/follower_effects.h"
@@ -40,5 +41,10 @@ double augmentedTransferGainSquared(const AccParameters& p, const EffectSettings
 /// verdict is reproduced exactly.
 AugmentedStability analyzeAugmentedStability(const AccParameters& p, EffectKind effect, const EffectSettings& effects,
                                              double operating_speed_mps);
+
+/// The same for a model of several effects (none: the base model): the gain does not depend on
+/// the list, the note says how each effect enters the small-signal model, joined by "; ".
+AugmentedStability analyzeAugmentedStability(const AccParameters& p, const std::vector<EffectKind>& kinds,
+                                             const EffectSettings& effects, double operating_speed_mps);
 
 }  // namespace acc
