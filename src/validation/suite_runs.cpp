@@ -117,12 +117,14 @@ SuiteReport runCombinedSuite(const DiagnosisOptions& options, std::FILE* progres
   return {formatCombinedTables(outcomes), {{"cases", cases}}};
 }
 
-std::vector<WithheldCase> withheldGrid(const std::string& size)
+/// The grid of a size; the effects the run adds with --effect beyond the default list are hidden too.
+std::vector<WithheldCase> withheldGrid(const std::string& size, const std::vector<EffectKind>& candidates)
 {
+  const std::vector<EffectKind> exploratory = exploratoryCandidates(candidates);
   if (size == "small")
-    return withheldCaseGrid(1, {SyntheticLeadProfile::steps, SyntheticLeadProfile::dip}, {1.0}, 1);
+    return withheldCaseGrid(1, {SyntheticLeadProfile::steps, SyntheticLeadProfile::dip}, {1.0}, 1, exploratory);
   return withheldCaseGrid(3, {SyntheticLeadProfile::steps, SyntheticLeadProfile::oscillation, SyntheticLeadProfile::dip},
-                          {0.5, 1.5}, 1);
+                          {0.5, 1.5}, 1, exploratory);
 }
 
 nlohmann::json withheldJson(const WithheldOutcome& o)
@@ -143,7 +145,7 @@ nlohmann::json withheldJson(const WithheldOutcome& o)
 /// Synthetic runs with one effect withheld: the confusion matrix and the magnitudes recovered.
 SuiteReport runWithheldSuite(const std::string& size, const DiagnosisOptions& options, std::FILE* progress)
 {
-  const std::vector<WithheldCase> grid = withheldGrid(size);
+  const std::vector<WithheldCase> grid = withheldGrid(size, options.candidates);
   std::vector<WithheldOutcome> outcomes;
   nlohmann::json cases = nlohmann::json::array();
   for (std::size_t i = 0; i < grid.size(); ++i)

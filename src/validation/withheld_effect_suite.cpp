@@ -243,9 +243,22 @@ std::vector<EffectKind> diagnosableEffects()
   return kinds;
 }
 
+std::vector<EffectKind> exploratoryCandidates(const std::vector<EffectKind>& candidates)
+{
+  const std::vector<EffectKind> defaults = DiagnosisOptions{}.candidates;
+  std::vector<EffectKind> out;
+  for (EffectKind kind : candidates)
+  {
+    if (std::find(defaults.begin(), defaults.end(), kind) == defaults.end())
+      out.push_back(kind);
+  }
+  return out;
+}
+
 std::vector<WithheldCase> withheldCaseGrid(std::size_t magnitudes_per_effect,
                                            const std::vector<SyntheticLeadProfile>& profiles,
-                                           const std::vector<double>& noise_scales, std::size_t seeds)
+                                           const std::vector<double>& noise_scales, std::size_t seeds,
+                                           const std::vector<EffectKind>& exploratory)
 {
   // Magnitudes in the range reported for production ACCs; set speeds are below the profiles'
   // top speeds (30-33 m/s) so that the leader pulls away at times.
@@ -263,9 +276,23 @@ std::vector<WithheldCase> withheldCaseGrid(std::size_t magnitudes_per_effect,
       {EffectKind::asymmetric_response, {{3.0, 3.0}, {2.0, 4.0}, {4.0, 1.5}}},
       {EffectKind::speed_dependent_gains, {{0.05}, {-0.04}, {0.06}}},
   };
+  // Exploratory effects, hidden only when asked for: an anticipation of 15-50 % of the leader's
+  // acceleration; braking at 2-7 times the kinematic deceleration (the range the ZalaZone cars
+  // were fitted to in the platoon diagnosis).
+  const std::map<EffectKind, std::vector<std::vector<double>>> exploratory_magnitudes = {
+      {EffectKind::leader_acceleration_feedforward, {{0.3}, {0.5}, {0.15}}},
+      {EffectKind::quadratic_closing_response, {{4.0}, {2.0}, {7.0}}},
+  };
+  std::vector<std::pair<EffectKind, std::vector<std::vector<double>>>> truths(magnitudes.begin(), magnitudes.end());
+  for (EffectKind kind : exploratory)
+  {
+    const auto found = exploratory_magnitudes.find(kind);
+    if (found != exploratory_magnitudes.end())
+      truths.push_back(*found);
+  }
   std::vector<WithheldCase> grid;
   std::uint32_t seed_base = 1;
-  for (const auto& [kind, list] : magnitudes)
+  for (const auto& [kind, list] : truths)
   {
     // The no-effect case gets as many repetitions as an effect gets magnitudes.
     const std::size_t count = kind == EffectKind::none ? magnitudes_per_effect : std::min(magnitudes_per_effect, list.size());

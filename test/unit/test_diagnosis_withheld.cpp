@@ -164,3 +164,30 @@ TEST(WithheldEffects, TablesShowOnlyTheTruthsThatWereHidden)
   EXPECT_NE(magnitudes.find("| actuation_lag | lag_time_constant_s | 1 |"), std::string::npos) << magnitudes;
   EXPECT_EQ(magnitudes.find("reaction_delay"), std::string::npos) << magnitudes;
 }
+
+// An effect a run adds with --effect joins the grid as a hidden truth, after the default grid's
+// cases, which keep their truths, magnitudes and seeds (so the default suite's table still holds).
+TEST(WithheldEffects, TheGridHidesTheEffectsARunAsksForAfterItsOwnCases)
+{
+  const std::vector<acc::SyntheticLeadProfile> profiles{acc::SyntheticLeadProfile::steps,
+                                                        acc::SyntheticLeadProfile::dip};
+  const auto plain = acc::withheldCaseGrid(3, profiles, {0.5, 1.5}, 1);
+  acc::DiagnosisOptions options;
+  options.candidates.push_back(acc::EffectKind::quadratic_closing_response);
+  const std::vector<acc::EffectKind> exploratory = acc::exploratoryCandidates(options.candidates);
+  ASSERT_EQ(exploratory, std::vector<acc::EffectKind>{acc::EffectKind::quadratic_closing_response});
+  EXPECT_TRUE(acc::exploratoryCandidates(acc::DiagnosisOptions{}.candidates).empty());
+  const auto extended = acc::withheldCaseGrid(3, profiles, {0.5, 1.5}, 1, exploratory);
+  ASSERT_EQ(extended.size(), plain.size() + 3 * profiles.size() * 2);
+  for (std::size_t i = 0; i < plain.size(); ++i)
+  {
+    EXPECT_EQ(extended[i].truth, plain[i].truth);
+    EXPECT_EQ(extended[i].truth_values, plain[i].truth_values);
+    EXPECT_EQ(extended[i].seed, plain[i].seed);
+  }
+  for (std::size_t i = plain.size(); i < extended.size(); ++i)
+  {
+    EXPECT_EQ(extended[i].truth, acc::EffectKind::quadratic_closing_response);
+    EXPECT_GT(extended[i].seed, plain.back().seed);
+  }
+}

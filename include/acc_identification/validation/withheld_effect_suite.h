@@ -74,11 +74,19 @@ WithheldOutcome runWithheldCase(const WithheldCase& c, const DiagnosisOptions& o
 /// confusion matrices (every effect the diagnosis can name by default).
 std::vector<EffectKind> diagnosableEffects();
 
-/// The grid of cases: every effect at several magnitudes and none, on the given profiles, noise
-/// scales and seeds. magnitudes_per_effect picks from a fixed list per effect (1 to 3).
+/// The grid of cases: none and every effect of the default candidates at several magnitudes, on
+/// the given profiles, noise scales and seeds. magnitudes_per_effect picks from a fixed list per
+/// effect (1 to 3). `exploratory` adds effects the diagnosis tests only when asked for
+/// (leader_acceleration_feedforward, quadratic_closing_response) as truths after the others, so
+/// that the default grid's cases and seeds stay as they are.
 std::vector<WithheldCase> withheldCaseGrid(std::size_t magnitudes_per_effect,
                                            const std::vector<SyntheticLeadProfile>& profiles,
-                                           const std::vector<double>& noise_scales, std::size_t seeds);
+                                           const std::vector<double>& noise_scales, std::size_t seeds,
+                                           const std::vector<EffectKind>& exploratory = {});
+
+/// The effects of `candidates` that are not among the diagnosis's default candidates: what a run
+/// with --effect adds, and what the withheld grid then hides too.
+std::vector<EffectKind> exploratoryCandidates(const std::vector<EffectKind>& candidates);
 
 /// For the suites' tables: effects joined by " + " ("-" for none), and the median of values (NaN
 /// for none; the mean of the middle two for an even count).
