@@ -140,7 +140,12 @@ nlohmann::json positionsJson(const std::vector<DipComparison>& positions)
                  {"predicted_dip_mps_diagnosed", row.predicted_dip_mps_diagnosed},
                  {"predicted_amplification_diagnosed", row.predicted_amplification_diagnosed},
                  {"pair_predicted_dip_mps", row.pair_predicted_dip_mps},
-                 {"pair_predicted_dip_mps_diagnosed", row.pair_predicted_dip_mps_diagnosed}});
+                 {"pair_predicted_dip_mps_diagnosed", row.pair_predicted_dip_mps_diagnosed},
+                 {"measured_distance_lost_m", row.measured_distance_lost_m},
+                 {"predicted_distance_lost_m", row.predicted_distance_lost_m},
+                 {"predicted_distance_lost_m_diagnosed", row.predicted_distance_lost_m_diagnosed},
+                 {"pair_predicted_distance_lost_m", row.pair_predicted_distance_lost_m},
+                 {"pair_predicted_distance_lost_m_diagnosed", row.pair_predicted_distance_lost_m_diagnosed}});
   }
   return j;
 }
@@ -210,7 +215,9 @@ nlohmann::json summaryJson(const DipPredictionSummary& s)
           {"median_abs_dip_error", s.median_abs_dip_error},
           {"share_within_30_percent", s.share_within_30_percent},
           {"links", s.links},
-          {"share_links_growth_right", s.share_links_growth_right}};
+          {"share_links_growth_right", s.share_links_growth_right},
+          {"median_distance_lost_error", s.median_distance_lost_error},
+          {"distance_lost_scored", s.distance_lost_scored}};
 }
 
 nlohmann::json rangesJson(const std::vector<std::pair<double, double>>& ranges)
@@ -409,8 +416,9 @@ const std::vector<std::string> kGroupHeader{"vehicle", "set", "runs", "samples",
                                             "eta [m]", "margin", "verdict", "p (H0)", "model adequate",
                                             "band [rad/s]", "peak [dB]"};
 
-const std::vector<std::string> kPlatoonHeader{"run", "dip", "pos", "car", "meas dip", "pred dip", "diag dip",
-                                              "meas amp", "pred amp", "diag amp", "pair dip", "pair diag"};
+const std::vector<std::string> kPlatoonHeader{"run",      "dip",      "pos",       "car",      "meas dip",
+                                              "pred dip", "diag dip", "meas amp",  "pred amp", "diag amp",
+                                              "pair dip", "pair diag", "meas lost", "diag lost", "pair diag lost"};
 
 std::vector<std::vector<std::string>> platoonRows(const CampaignResult& result)
 {
@@ -426,7 +434,10 @@ std::vector<std::vector<std::string>> platoonRows(const CampaignResult& result)
                         cellNumber("%.2f", row.predicted_dip_mps_diagnosed), cellNumber("%.2f", row.measured_amplification),
                         cellNumber("%.2f", row.predicted_amplification),
                         cellNumber("%.2f", row.predicted_amplification_diagnosed), cellNumber("%.2f", row.pair_predicted_dip_mps),
-                        cellNumber("%.2f", row.pair_predicted_dip_mps_diagnosed)});
+                        cellNumber("%.2f", row.pair_predicted_dip_mps_diagnosed),
+                        cellNumber("%.1f", row.measured_distance_lost_m),
+                        cellNumber("%.1f", row.predicted_distance_lost_m_diagnosed),
+                        cellNumber("%.1f", row.pair_predicted_distance_lost_m_diagnosed)});
       }
     }
   }
@@ -500,7 +511,8 @@ std::vector<std::string> groupNotes(const CampaignResult& result)
 }
 
 const std::vector<std::string> kGapHeader{"prediction", "car-perturbations", "median dip error", "median |error|",
-                                          "within 30 %", "links", "growth/decay right"};
+                                          "within 30 %", "links", "growth/decay right",
+                                          "median distance-lost error"};
 
 /// "How far the gap shrinks": each kind of prediction against what the cars did.
 std::vector<std::vector<std::string>> gapRows(const CampaignResult& result)
@@ -517,7 +529,8 @@ std::vector<std::vector<std::string>> gapRows(const CampaignResult& result)
     const DipPredictionSummary s = summarizeDipPredictions(result.platoons, which);
     rows.push_back({label, std::to_string(s.car_perturbations), cellNumber("%+.0f %%", 100.0 * s.median_dip_error),
                     cellNumber("%.0f %%", 100.0 * s.median_abs_dip_error), cellNumber("%.0f %%", 100.0 * s.share_within_30_percent),
-                    std::to_string(s.links), cellNumber("%.0f %%", 100.0 * s.share_links_growth_right)});
+                    std::to_string(s.links), cellNumber("%.0f %%", 100.0 * s.share_links_growth_right),
+                    cellNumber("%+.0f %%", 100.0 * s.median_distance_lost_error)});
   }
   return rows;
 }

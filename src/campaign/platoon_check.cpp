@@ -195,23 +195,36 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
   auto dip = [&](const std::vector<double>& speed) {
     return dipDepthMps(time_s, sliceRows(speed, check.first_row, check.end_row), perturbation, options.perturbation);
   };
-  auto predictedDip = [&](const std::vector<PlatoonCarPrediction>& cars, std::size_t i) {
-    return i < cars.size() && cars[i].predicted ? dip(cars[i].predicted_speed_mps) : kNaN;
+  auto lost = [&](const std::vector<double>& speed) {
+    return distanceLostM(time_s, sliceRows(speed, check.first_row, check.end_row), perturbation, options.perturbation);
   };
-  const double lead_dip = dip(data.vehicle(1)->speed_mps);
+  auto predicted = [&](const std::vector<PlatoonCarPrediction>& cars, std::size_t i, const auto& measure) {
+    return i < cars.size() && cars[i].predicted ? measure(cars[i].predicted_speed_mps) : kNaN;
+  };
+  const std::vector<double>& lead_speed = data.vehicle(1)->speed_mps;
+  const double lead_dip = dip(lead_speed);
   DipComparison lead{1, data.vehicleName(1), lead_dip, lead_dip, kNaN, kNaN};
   lead.predicted_dip_mps_diagnosed = check.cars_diagnosed.empty() ? kNaN : lead_dip;
+  lead.measured_distance_lost_m = lead.predicted_distance_lost_m = lost(lead_speed);
+  lead.predicted_distance_lost_m_diagnosed = check.cars_diagnosed.empty() ? kNaN : lead.measured_distance_lost_m;
   result.positions.push_back(lead);
   for (std::size_t i = 0; i < check.cars.size(); ++i)
   {
     const PlatoonCarPrediction& car = check.cars[i];
     DipComparison row{car.position, car.name, kNaN, kNaN, kNaN, kNaN};
     if (hasSpeed(data.vehicle(car.position)))
+    {
       row.measured_dip_mps = dip(data.vehicle(car.position)->speed_mps);
-    row.predicted_dip_mps = predictedDip(check.cars, i);
-    row.predicted_dip_mps_diagnosed = predictedDip(check.cars_diagnosed, i);
-    row.pair_predicted_dip_mps = predictedDip(check.pairs, i);
-    row.pair_predicted_dip_mps_diagnosed = predictedDip(check.pairs_diagnosed, i);
+      row.measured_distance_lost_m = lost(data.vehicle(car.position)->speed_mps);
+    }
+    row.predicted_dip_mps = predicted(check.cars, i, dip);
+    row.predicted_dip_mps_diagnosed = predicted(check.cars_diagnosed, i, dip);
+    row.pair_predicted_dip_mps = predicted(check.pairs, i, dip);
+    row.pair_predicted_dip_mps_diagnosed = predicted(check.pairs_diagnosed, i, dip);
+    row.predicted_distance_lost_m = predicted(check.cars, i, lost);
+    row.predicted_distance_lost_m_diagnosed = predicted(check.cars_diagnosed, i, lost);
+    row.pair_predicted_distance_lost_m = predicted(check.pairs, i, lost);
+    row.pair_predicted_distance_lost_m_diagnosed = predicted(check.pairs_diagnosed, i, lost);
     const DipComparison& ahead = result.positions.back();
     row.measured_amplification = ratio(row.measured_dip_mps, ahead.measured_dip_mps);
     row.predicted_amplification = ratio(row.predicted_dip_mps, ahead.predicted_dip_mps);

@@ -423,13 +423,30 @@ double predictedOf(const std::vector<DipComparison>& rows, std::size_t i, DipPre
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+/// The predicted distance lost of rows[i], as predictedOf gives its dip.
+double predictedLostOf(const std::vector<DipComparison>& rows, std::size_t i, DipPrediction which)
+{
+  const DipComparison& row = rows[i];
+  switch (which)
+  {
+    case DipPrediction::unchanged_dip:
+      return std::isfinite(row.predicted_dip_mps) ? rows[0].measured_distance_lost_m
+                                                  : std::numeric_limits<double>::quiet_NaN();
+    case DipPrediction::chain_base: return row.predicted_distance_lost_m;
+    case DipPrediction::chain_diagnosed: return row.predicted_distance_lost_m_diagnosed;
+    case DipPrediction::pair_base: return row.pair_predicted_distance_lost_m;
+    case DipPrediction::pair_diagnosed: return row.pair_predicted_distance_lost_m_diagnosed;
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
 }  // namespace
 
 DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& platoons, DipPrediction which,
                                              double min_dip_mps, double min_link_change_mps,
                                              const DipRowFilter& include)
 {
-  std::vector<double> errors;
+  std::vector<double> errors, lost_errors;
   std::size_t right = 0;
   DipPredictionSummary out;
   for (const PlatoonCheck& check : platoons)
@@ -445,6 +462,9 @@ DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& pl
         if (!(measured > min_dip_mps) || !std::isfinite(predicted) || (include && !include(check, rows[i])))
           continue;
         errors.push_back((predicted - measured) / measured);
+        const double measured_lost = rows[i].measured_distance_lost_m, predicted_lost = predictedLostOf(rows, i, which);
+        if (measured_lost > 0.0 && std::isfinite(predicted_lost))
+          lost_errors.push_back((predicted_lost - measured_lost) / measured_lost);
         const double ahead_measured = rows[i - 1].measured_dip_mps;
         if (std::isfinite(ahead_measured) && std::isfinite(ahead_predicted) &&
             std::abs(measured - ahead_measured) > min_link_change_mps)
@@ -457,6 +477,8 @@ DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& pl
   }
   out.car_perturbations = errors.size();
   out.median_dip_error = finiteMedian(errors);
+  out.distance_lost_scored = lost_errors.size();
+  out.median_distance_lost_error = finiteMedian(lost_errors);
   std::vector<double> absolute;
   std::size_t within = 0;
   for (double e : errors)

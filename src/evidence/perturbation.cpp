@@ -109,13 +109,16 @@ std::vector<Perturbation> findPerturbations(const std::vector<double>& time_s, c
   return found;
 }
 
-double dipDepthMps(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
-                   const Perturbation& perturbation, const PerturbationCriteria& criteria)
+namespace
+{
+/// The car's mean speed over the pre-window before the onset (NaN without a finite sample).
+double preWindowMeanMps(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
+                        const Perturbation& perturbation, const PerturbationCriteria& criteria)
 {
   double sum = 0.0;
   std::size_t count = 0;
   const double pre_start_s = perturbation.onset_s - criteria.pre_window_s;
-  for (std::size_t i = perturbation.onset + 1; i-- > 0;)
+  for (std::size_t i = std::min(perturbation.onset + 1, speed_mps.size()); i-- > 0;)
   {
     if (std::isfinite(time_s[i]) && time_s[i] < pre_start_s)
       break;
@@ -125,15 +128,47 @@ double dipDepthMps(const std::vector<double>& time_s, const std::vector<double>&
       ++count;
     }
   }
+  return count == 0 ? kNaN : sum / static_cast<double>(count);
+}
+}  // namespace
+
+double dipDepthMps(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
+                   const Perturbation& perturbation, const PerturbationCriteria& criteria)
+{
+  const double pre_mps = preWindowMeanMps(time_s, speed_mps, perturbation, criteria);
   double minimum = std::numeric_limits<double>::infinity();
   for (std::size_t i = perturbation.onset; i < perturbation.window_end && i < speed_mps.size(); ++i)
   {
     if (finiteAt(time_s, speed_mps, i))
       minimum = std::min(minimum, speed_mps[i]);
   }
-  if (count == 0 || !std::isfinite(minimum))
+  if (!std::isfinite(pre_mps) || !std::isfinite(minimum))
     return kNaN;
-  return sum / static_cast<double>(count) - minimum;
+  return pre_mps - minimum;
+}
+
+double distanceLostM(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
+                     const Perturbation& perturbation, const PerturbationCriteria& criteria)
+{
+  const double pre_mps = preWindowMeanMps(time_s, speed_mps, perturbation, criteria);
+  const std::size_t end = std::min(perturbation.window_end, speed_mps.size());
+  // A window whose ends are missing is not covered: the loss there is unknown, not zero.
+  if (!std::isfinite(pre_mps) || end <= perturbation.onset + 1 || !finiteAt(time_s, speed_mps, perturbation.onset) ||
+      !finiteAt(time_s, speed_mps, end - 1))
+    return kNaN;
+  double lost_m = 0.0;
+  std::size_t previous = perturbation.onset;
+  for (std::size_t i = perturbation.onset + 1; i < end; ++i)
+  {
+    if (!finiteAt(time_s, speed_mps, i))
+      continue;
+    const double step_s = time_s[i] - time_s[previous];
+    if (step_s > criteria.max_bridged_hole_s)
+      return kNaN;
+    lost_m += 0.5 * step_s * (std::max(0.0, pre_mps - speed_mps[previous]) + std::max(0.0, pre_mps - speed_mps[i]));
+    previous = i;
+  }
+  return lost_m;
 }
 
 }  // namespace acc

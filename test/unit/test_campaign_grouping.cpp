@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -168,6 +169,36 @@ TEST(CampaignPerturbation, FindsTheDipAndItsDepth)
   // The dip plus the slow wave's swing (0.4 m/s amplitude).
   EXPECT_NEAR(acc::dipDepthMps(time_s, speed_mps, found[0]), 6.4, 0.4);
   EXPECT_NEAR(acc::dipDepthMps(time_s, speed_mps, found[1]), 5.4, 0.4);
+}
+
+// A dip of known area: 10 m/s, 2 m/s less for 4 s from t = 20 s: the car loses 2 * 4 = 8 m
+// against its pre-perturbation speed (the trapezoids across the two steps add half a sample each),
+// and the same with a short hole bridged; a long hole or a missing end leaves it unknown (NaN),
+// never a smaller number.
+TEST(CampaignPerturbation, TheDistanceLostIsTheAreaOfTheDipAndUnknownWhereTheWindowIsNotCovered)
+{
+  auto speed = [](double t) { return t >= 20.0 - 1e-9 && t < 24.0 - 1e-9 ? 8.0 : 10.0; };
+  std::vector<double> time_s, speed_mps;
+  for (int i = 0; i < 800; ++i)
+  {
+    time_s.push_back(0.05 * i);
+    speed_mps.push_back(speed(0.05 * i));
+  }
+  const auto found = acc::findPerturbations(time_s, speed_mps);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_NEAR(acc::dipDepthMps(time_s, speed_mps, found[0]), 2.0, 1e-9);
+  EXPECT_NEAR(acc::distanceLostM(time_s, speed_mps, found[0]), 8.0, 1e-9);
+
+  std::vector<double> holed = speed_mps;
+  for (std::size_t i = 450; i < 460; ++i)  // 0.5 s missing inside the held dip: bridged exactly
+    holed[i] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NEAR(acc::distanceLostM(time_s, holed, found[0]), 8.0, 1e-9);
+  for (std::size_t i = 430; i < 470; ++i)  // 2 s missing: longer than the 1 s bridged
+    holed[i] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(std::isnan(acc::distanceLostM(time_s, holed, found[0])));
+  std::vector<double> cut = speed_mps;
+  cut[found[0].window_end - 1] = std::numeric_limits<double>::quiet_NaN();  // a chain stopped before the end
+  EXPECT_TRUE(std::isnan(acc::distanceLostM(time_s, cut, found[0])));
 }
 
 TEST(CampaignInputs, EverySkippedFileIsNamedWithItsReasonAndCounted)

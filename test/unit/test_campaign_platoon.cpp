@@ -71,6 +71,9 @@ TEST(CampaignPlatoon, UnstableCarsAmplifyAndThePredictionAgrees)
         EXPECT_GT(row.measured_amplification, 1.0) << check.run << " position " << row.position;
         EXPECT_GT(row.predicted_amplification, 1.0) << check.run << " position " << row.position;
         EXPECT_NEAR(row.predicted_dip_mps, row.measured_dip_mps, 0.1 * row.measured_dip_mps) << check.run;
+        // Right models lose the distance the cars lost, not only dip as deep.
+        EXPECT_NEAR(row.predicted_distance_lost_m, row.measured_distance_lost_m, 0.15 * row.measured_distance_lost_m)
+            << check.run << " position " << row.position;
       }
       EXPECT_TRUE(perturbation.disagreements.empty()) << check.run << ": " << perturbation.disagreements.front().what;
     }
@@ -198,12 +201,17 @@ TEST(DipPredictionSummary, TheNoModelReferencePassesTheFirstCarsDipOnWhereTheCha
   // position, name, measured, chain (base) prediction; the fourth car has no chain prediction.
   const double measured[] = {3.0, 3.1, 2.5, 2.0};
   const double chain[] = {3.0, 2.8, 2.6, nan};
+  // The distances lost [m]: the third car's predicted one is unknown (a window not covered).
+  const double measured_lost[] = {20.0, 30.0, 25.0, 18.0};
+  const double chain_lost[] = {20.0, 24.0, nan, nan};
   for (int i = 0; i < 4; ++i)
   {
     acc::DipComparison row;
     row.position = i + 1;
     row.measured_dip_mps = measured[i];
     row.predicted_dip_mps = chain[i];
+    row.measured_distance_lost_m = measured_lost[i];
+    row.predicted_distance_lost_m = chain_lost[i];
     perturbation.positions.push_back(row);
   }
   acc::PlatoonCheck check;
@@ -218,6 +226,11 @@ TEST(DipPredictionSummary, TheNoModelReferencePassesTheFirstCarsDipOnWhereTheCha
   const acc::DipPredictionSummary base = acc::summarizeDipPredictions({check}, acc::DipPrediction::chain_base);
   EXPECT_EQ(base.car_perturbations, 2u);
   EXPECT_NEAR(base.median_dip_error, 0.5 * ((2.8 - 3.1) / 3.1 + (2.6 - 2.5) / 2.5), 1e-12);
+  // Distance lost: scored where both are known, on the same car-perturbations.
+  ASSERT_EQ(base.distance_lost_scored, 1u);
+  EXPECT_NEAR(base.median_distance_lost_error, (24.0 - 30.0) / 30.0, 1e-12);
+  ASSERT_EQ(copy.distance_lost_scored, 2u);  // every car loses what the first lost
+  EXPECT_NEAR(copy.median_distance_lost_error, 0.5 * ((20.0 - 30.0) / 30.0 + (20.0 - 25.0) / 25.0), 1e-12);
 }
 
 // What --platoon-effects takes: every candidate's text reads back as that candidate, so the list

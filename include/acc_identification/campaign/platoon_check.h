@@ -51,6 +51,13 @@ struct DipComparison
   /// diagnosed model.
   double pair_predicted_dip_mps = std::numeric_limits<double>::quiet_NaN();
   double pair_predicted_dip_mps_diagnosed = std::numeric_limits<double>::quiet_NaN();
+  /// The distance each lost against its pre-perturbation speed (distanceLostM): measured, then as
+  /// the dips above. NaN where the dip is, or where the window is not covered.
+  double measured_distance_lost_m = std::numeric_limits<double>::quiet_NaN();
+  double predicted_distance_lost_m = std::numeric_limits<double>::quiet_NaN();
+  double predicted_distance_lost_m_diagnosed = std::numeric_limits<double>::quiet_NaN();
+  double pair_predicted_distance_lost_m = std::numeric_limits<double>::quiet_NaN();
+  double pair_predicted_distance_lost_m_diagnosed = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Where the model and the data disagree.

@@ -164,6 +164,10 @@ struct DipPredictionSummary
   double share_within_30_percent = 0.0;
   std::size_t links = 0;
   double share_links_growth_right = 0.0;  ///< predicted growth (or decay) where the data show it
+  /// Median of (predicted - measured) / measured distance lost (distanceLostM) over the same
+  /// car-perturbations, where both are known: whether a dip predicted right lasts as long.
+  double median_distance_lost_error = 0.0;
+  std::size_t distance_lost_scored = 0;
 };
 
 /// Which prediction to summarise.

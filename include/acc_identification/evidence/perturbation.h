@@ -20,6 +20,9 @@ struct PerturbationCriteria
   double pre_window_s = 5.0;
   /// The window a dip's minimum is searched in: from the onset to the first car's recovery plus this.
   double extension_s = 30.0;
+  /// The distance lost integrates across holes in a car's speed up to this long; a longer hole
+  /// (or a window whose first or last sample is missing) leaves it unknown.
+  double max_bridged_hole_s = 1.0;
 };
 
 /// One perturbation, as sample indices into the run's time vector.
@@ -42,6 +45,15 @@ std::vector<Perturbation> findPerturbations(const std::vector<double>& time_s, c
 /// [onset, window_end). NaN when either has no finite sample.
 double dipDepthMps(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
                    const Perturbation& perturbation, const PerturbationCriteria& criteria = {});
+
+/// The distance a car loses in this perturbation against keeping its pre-perturbation speed: the
+/// integral over [onset, window_end) of (mean speed over the pre-window - speed) where positive
+/// (trapezoids; holes up to criteria.max_bridged_hole_s bridged). It is what the gap behind the
+/// car gives up, so a follower's dip follows it as much as the car's own dip: two cars that dip
+/// equally deep pass on different dips if one recovers more slowly. NaN when the pre-window has
+/// no finite sample or the window is not covered.
+double distanceLostM(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
+                     const Perturbation& perturbation, const PerturbationCriteria& criteria = {});
 
 /// The median of the finite values (NaN when none).
 double finiteMedian(std::vector<double> values);
