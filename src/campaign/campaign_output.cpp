@@ -469,10 +469,16 @@ void printAligned(const std::vector<std::string>& header, const std::vector<std:
 void printMarkdownTable(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows,
                         std::ostream& out)
 {
+  // A '|' inside a cell ("median |error|") would split it: Markdown's escape keeps the columns.
   auto line = [&out](const std::vector<std::string>& cells) {
     out << "|";
     for (const std::string& cell : cells)
-      out << " " << cell << " |";
+    {
+      out << " ";
+      for (char c : cell)
+        out << (c == '|' ? "\\|" : std::string(1, c));
+      out << " |";
+    }
     out << "\n";
   };
   line(header);

@@ -3,6 +3,7 @@
 // with `calibrate --follower TOYOTA_RAV4 dynamic_part5/6/12/14.csv` (unstable, p 0.001).
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -10,6 +11,42 @@
 #include "acc_identification/campaign/campaign.h"
 #include "acc_identification/campaign/campaign_output.h"
 #include "acc_identification/campaign/group_identification.h"
+
+namespace
+{
+/// The cells of a Markdown table line: split at every '|' that is not escaped as "\|".
+std::size_t markdownCells(const std::string& line)
+{
+  std::size_t pipes = 0;
+  for (std::size_t i = 0; i < line.size(); ++i)
+    pipes += line[i] == '|' && (i == 0 || line[i - 1] != '\\') ? 1 : 0;
+  return pipes - 1;
+}
+
+/// Every row of every table in the report has as many cells as its header ("median |error|" in a
+/// header once made the rows one cell short of it).
+void expectEveryMarkdownTableRectangular(const std::string& markdown)
+{
+  std::istringstream lines(markdown);
+  std::string line;
+  std::size_t header_cells = 0, tables = 0;
+  while (std::getline(lines, line))
+  {
+    if (line.empty() || line[0] != '|')
+    {
+      header_cells = 0;
+      continue;
+    }
+    if (header_cells == 0)
+    {
+      header_cells = markdownCells(line);
+      ++tables;
+    }
+    EXPECT_EQ(markdownCells(line), header_cells) << line;
+  }
+  EXPECT_GE(tables, 3u);
+}
+}  // namespace
 
 TEST(CampaignZalaZone, GroupsTheNineRunsAndFindsTheRav4AtSUnstable)
 {
@@ -111,4 +148,5 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesADelayAndAQuadraticClosingRespons
   EXPECT_EQ(row["pair_predicted_distance_lost_m_diagnosed"].get<double>(), dips.pair_predicted_distance_lost_m_diagnosed);
   EXPECT_EQ(json.at("platoon_diagnosis").at("how_far_the_gap_shrinks").at("chain_base").at("median_distance_lost_error").get<double>(),
             base.median_distance_lost_error);
+  expectEveryMarkdownTableRectangular(acc::campaignReportMarkdown(result, {ACC_ZALAZONE_DYNAMIC_DIR}, false));
 }
