@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -115,6 +116,19 @@ const PlatoonCandidate& candidateAt(std::size_t index)
 {
   static const PlatoonCandidate base{};
   return index == 0 ? base : platoonCandidates()[index - 1];
+}
+
+/// The inverse of candidateAt: 0 for the base model, i + 1 for platoonCandidates()[i]; nothing
+/// for what is not a candidate.
+std::optional<std::size_t> candidateIndex(const PlatoonCandidate& candidate)
+{
+  if (candidate == PlatoonCandidate{})
+    return 0;
+  const std::vector<PlatoonCandidate>& candidates = platoonCandidates();
+  const auto found = std::find(candidates.begin(), candidates.end(), candidate);
+  if (found == candidates.end())
+    return std::nullopt;
+  return static_cast<std::size_t>(found - candidates.begin()) + 1;
 }
 
 /// One stage: each candidate index against `against`; returns the significant one with the lowest
@@ -248,12 +262,7 @@ std::string platoonCandidateText(const PlatoonCandidate& candidate)
   return text.empty() ? "none" : text;
 }
 
-bool isPlatoonCandidate(const PlatoonCandidate& candidate)
-{
-  const std::vector<PlatoonCandidate>& candidates = platoonCandidates();
-  return candidate == PlatoonCandidate{} ||
-         std::find(candidates.begin(), candidates.end(), candidate) != candidates.end();
-}
+bool isPlatoonCandidate(const PlatoonCandidate& candidate) { return candidateIndex(candidate).has_value(); }
 
 std::vector<PlatoonCarModel> fitCandidateModels(const std::vector<CarFollowingRun>& training,
                                                 const PlatoonCarModel& base)
@@ -358,7 +367,6 @@ std::string criterionName(SelectionCriterion criterion)
 EffectSetSelection selectEffectSet(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
                                    const std::string& excluded_run, const EffectSetSelectionOptions& options)
 {
-  const auto& candidates = platoonCandidates();
   EffectSetSelection selection;
   selection.excluded_run = excluded_run;
   std::size_t chosen = runStage(scores, exclude_file, extensionsOf(0), 0, options, &selection);
@@ -370,11 +378,10 @@ EffectSetSelection selectEffectSet(const std::vector<PairPerturbationScore>& sco
   }
   if (options.force)
   {
-    if (!isPlatoonCandidate(options.forced))
+    const std::optional<std::size_t> forced = candidateIndex(options.forced);
+    if (!forced)
       throw std::invalid_argument(options.forced.name() + " is not among the platoon diagnosis's candidates");
-    const bool base = options.forced == PlatoonCandidate{};
-    chosen = base ? 0 : static_cast<std::size_t>(std::find(candidates.begin(), candidates.end(), options.forced) -
-                                                 candidates.begin()) + 1;
+    chosen = *forced;
   }
   selection.chosen = chosen;
   selection.model = candidateAt(chosen);
