@@ -224,7 +224,7 @@ void addDipChecks(const std::vector<PlatoonCheck>& platoons, std::vector<GroupRe
   for (GroupResult& group : groups)
   {
     const DipPredictionSummary dips = summarizeDipPredictions(
-        platoons, DipPrediction::pair_base, 0.3, 0.2, [&group](const PlatoonCheck& check, const DipComparison& row) {
+        platoons, DipPrediction::pair_base, kScoredMinDipMps, kScoredMinLinkChangeMps, [&group](const PlatoonCheck& check, const DipComparison& row) {
           return row.name == group.vehicle && check.setting == group.setting;
         });
     addDipCheck(group.model_adequacy, dips.car_perturbations, dips.median_abs_dip_error);

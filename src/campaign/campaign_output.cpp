@@ -520,25 +520,62 @@ const std::vector<std::string> kGapHeader{"prediction", "car-perturbations", "me
                                           "within 30 %", "links", "growth/decay right",
                                           "median distance-lost error"};
 
+/// One row of "how far the gap shrinks": its label in the report, its key in the JSON, and the
+/// car-perturbations it scores (all when `include` is empty).
+struct GapPrediction
+{
+  const char* label;
+  const char* key;
+  DipPrediction which;
+  DipRowFilter include;
+};
+
+/// The first follower (behind the platoon's real first car) apart from the cars further back: the
+/// place where the models' recovery departs most (docs/PLATOON_DIAGNOSIS.md).
+bool isFirstFollower(const PlatoonCheck&, const DipComparison& row) { return row.position == 2; }
+bool isFurtherBack(const PlatoonCheck&, const DipComparison& row) { return row.position > 2; }
+
+const std::vector<GapPrediction>& gapPredictions()
+{
+  static const std::vector<GapPrediction> kinds{
+      {"platoon, base model", "chain_base", DipPrediction::chain_base, {}},
+      {"platoon, diagnosed", "chain_diagnosed", DipPrediction::chain_diagnosed, {}},
+      {"pair (real leader), base", "pair_base", DipPrediction::pair_base, {}},
+      {"pair (real leader), diagnosed", "pair_diagnosed", DipPrediction::pair_diagnosed, {}},
+      {"  of which first followers", "pair_diagnosed_first_follower", DipPrediction::pair_diagnosed, isFirstFollower},
+      {"  of which cars further back", "pair_diagnosed_further_back", DipPrediction::pair_diagnosed, isFurtherBack},
+      {"no model: every car dips as the first", "unchanged_dip", DipPrediction::unchanged_dip, {}}};
+  return kinds;
+}
+
+DipPredictionSummary summarizeGapPrediction(const CampaignResult& result, const GapPrediction& prediction)
+{
+  return summarizeDipPredictions(result.platoons, prediction.which, kScoredMinDipMps, kScoredMinLinkChangeMps,
+                                 prediction.include);
+}
+
 /// "How far the gap shrinks": each kind of prediction against what the cars did.
 std::vector<std::vector<std::string>> gapRows(const CampaignResult& result)
 {
-  const std::pair<const char*, DipPrediction> kinds[] = {
-      {"platoon, base model", DipPrediction::chain_base},
-      {"platoon, diagnosed", DipPrediction::chain_diagnosed},
-      {"pair (real leader), base", DipPrediction::pair_base},
-      {"pair (real leader), diagnosed", DipPrediction::pair_diagnosed},
-      {"no model: every car dips as the first", DipPrediction::unchanged_dip}};
   std::vector<std::vector<std::string>> rows;
-  for (const auto& [label, which] : kinds)
+  for (const GapPrediction& prediction : gapPredictions())
   {
-    const DipPredictionSummary s = summarizeDipPredictions(result.platoons, which);
-    rows.push_back({label, std::to_string(s.car_perturbations), cellNumber("%+.0f %%", 100.0 * s.median_dip_error),
-                    cellNumber("%.0f %%", 100.0 * s.median_abs_dip_error), cellNumber("%.0f %%", 100.0 * s.share_within_30_percent),
-                    std::to_string(s.links), cellNumber("%.0f %%", 100.0 * s.share_links_growth_right),
+    const DipPredictionSummary s = summarizeGapPrediction(result, prediction);
+    rows.push_back({prediction.label, std::to_string(s.car_perturbations),
+                    cellNumber("%+.0f %%", 100.0 * s.median_dip_error), cellNumber("%.0f %%", 100.0 * s.median_abs_dip_error),
+                    cellNumber("%.0f %%", 100.0 * s.share_within_30_percent), std::to_string(s.links),
+                    cellNumber("%.0f %%", 100.0 * s.share_links_growth_right),
                     cellNumber("%+.0f %%", 100.0 * s.median_distance_lost_error)});
   }
   return rows;
+}
+
+nlohmann::json gapJson(const CampaignResult& result)
+{
+  nlohmann::json j = nlohmann::json::object();
+  for (const GapPrediction& prediction : gapPredictions())
+    j[prediction.key] = summaryJson(summarizeGapPrediction(result, prediction));
+  return j;
 }
 
 std::vector<std::string> selectionLines(const EffectSetSelection& selection)
@@ -628,17 +665,7 @@ nlohmann::json campaignToJson(const CampaignInputs& inputs, const CampaignResult
            diagnosed ? nlohmann::json{{"rule", effectSetSelectionRule(options.effect_selection)},
                                       {"criterion", criterionName(result.effect_selection_criterion)},
                                       {"selection", selectionJson(result.effect_selection)},
-                                      {"how_far_the_gap_shrinks",
-                                       {{"chain_base", summaryJson(summarizeDipPredictions(
-                                                           result.platoons, DipPrediction::chain_base))},
-                                        {"chain_diagnosed", summaryJson(summarizeDipPredictions(
-                                                                result.platoons, DipPrediction::chain_diagnosed))},
-                                        {"pair_base", summaryJson(summarizeDipPredictions(
-                                                          result.platoons, DipPrediction::pair_base))},
-                                        {"pair_diagnosed", summaryJson(summarizeDipPredictions(
-                                                               result.platoons, DipPrediction::pair_diagnosed))},
-                                        {"unchanged_dip", summaryJson(summarizeDipPredictions(
-                                                              result.platoons, DipPrediction::unchanged_dip))}}}}
+                                      {"how_far_the_gap_shrinks", gapJson(result)}}
                      : nlohmann::json(nullptr)}};
 }
 

@@ -183,11 +183,17 @@ enum class DipPrediction
   unchanged_dip
 };
 
+/// The car-perturbations scored: a measured dip above this [m/s] (what platoon_score.py scores).
+constexpr double kScoredMinDipMps = 0.3;
+/// The links scored: measured dips of the car and the one ahead more than this apart [m/s].
+constexpr double kScoredMinLinkChangeMps = 0.2;
+
 /// Only the car-perturbations `include` accepts (all when empty): e.g. one car and setting, for its
 /// model's adequacy.
 using DipRowFilter = std::function<bool(const PlatoonCheck&, const DipComparison&)>;
 DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& platoons, DipPrediction which,
-                                             double min_dip_mps = 0.3, double min_link_change_mps = 0.2,
+                                             double min_dip_mps = kScoredMinDipMps,
+                                             double min_link_change_mps = kScoredMinLinkChangeMps,
                                              const DipRowFilter& include = {});
 
 }  // namespace acc
