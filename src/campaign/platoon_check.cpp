@@ -186,27 +186,36 @@ bool dataShowGrowth(const std::vector<DipComparison>& positions)
   return std::isfinite(first) && std::isfinite(last) && last > first;
 }
 
+/// A speed series' dip and distance lost in one perturbation (NaN: not predicted or not covered).
+struct DipMeasures
+{
+  double dip_mps = kNaN;
+  double lost_m = kNaN;
+};
+
 PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFile& data,
                                       const std::vector<double>& time_s, const Perturbation& perturbation,
                                       std::size_t index, const PlatoonCheckOptions& options)
 {
   PerturbationCheck result;
   result.perturbation = perturbation;
-  auto dip = [&](const std::vector<double>& speed) {
-    return dipDepthMps(time_s, sliceRows(speed, check.first_row, check.end_row), perturbation, options.perturbation);
+  // Both measures of one speed series, from one copy of the check's rows.
+  auto measure = [&](const std::vector<double>& speed) {
+    const std::vector<double> rows = sliceRows(speed, check.first_row, check.end_row);
+    return DipMeasures{dipDepthMps(time_s, rows, perturbation, options.perturbation),
+                       distanceLostM(time_s, rows, perturbation, options.perturbation)};
   };
-  auto lost = [&](const std::vector<double>& speed) {
-    return distanceLostM(time_s, sliceRows(speed, check.first_row, check.end_row), perturbation, options.perturbation);
+  auto predicted = [&](const std::vector<PlatoonCarPrediction>& cars, std::size_t i) {
+    return i < cars.size() && cars[i].predicted ? measure(cars[i].predicted_speed_mps) : DipMeasures{};
   };
-  auto predicted = [&](const std::vector<PlatoonCarPrediction>& cars, std::size_t i, const auto& measure) {
-    return i < cars.size() && cars[i].predicted ? measure(cars[i].predicted_speed_mps) : kNaN;
-  };
-  const std::vector<double>& lead_speed = data.vehicle(1)->speed_mps;
-  const double lead_dip = dip(lead_speed);
-  DipComparison lead{1, data.vehicleName(1), lead_dip, lead_dip, kNaN, kNaN};
-  lead.predicted_dip_mps_diagnosed = check.cars_diagnosed.empty() ? kNaN : lead_dip;
-  lead.measured_distance_lost_m = lead.predicted_distance_lost_m = lost(lead_speed);
-  lead.predicted_distance_lost_m_diagnosed = check.cars_diagnosed.empty() ? kNaN : lead.measured_distance_lost_m;
+  const DipMeasures lead_measured = measure(data.vehicle(1)->speed_mps);
+  DipComparison lead{1, data.vehicleName(1), lead_measured.dip_mps, lead_measured.dip_mps, kNaN, kNaN};
+  lead.measured_distance_lost_m = lead.predicted_distance_lost_m = lead_measured.lost_m;
+  if (!check.cars_diagnosed.empty())
+  {
+    lead.predicted_dip_mps_diagnosed = lead_measured.dip_mps;
+    lead.predicted_distance_lost_m_diagnosed = lead_measured.lost_m;
+  }
   result.positions.push_back(lead);
   for (std::size_t i = 0; i < check.cars.size(); ++i)
   {
@@ -214,17 +223,20 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
     DipComparison row{car.position, car.name, kNaN, kNaN, kNaN, kNaN};
     if (hasSpeed(data.vehicle(car.position)))
     {
-      row.measured_dip_mps = dip(data.vehicle(car.position)->speed_mps);
-      row.measured_distance_lost_m = lost(data.vehicle(car.position)->speed_mps);
+      const DipMeasures measured = measure(data.vehicle(car.position)->speed_mps);
+      row.measured_dip_mps = measured.dip_mps;
+      row.measured_distance_lost_m = measured.lost_m;
     }
-    row.predicted_dip_mps = predicted(check.cars, i, dip);
-    row.predicted_dip_mps_diagnosed = predicted(check.cars_diagnosed, i, dip);
-    row.pair_predicted_dip_mps = predicted(check.pairs, i, dip);
-    row.pair_predicted_dip_mps_diagnosed = predicted(check.pairs_diagnosed, i, dip);
-    row.predicted_distance_lost_m = predicted(check.cars, i, lost);
-    row.predicted_distance_lost_m_diagnosed = predicted(check.cars_diagnosed, i, lost);
-    row.pair_predicted_distance_lost_m = predicted(check.pairs, i, lost);
-    row.pair_predicted_distance_lost_m_diagnosed = predicted(check.pairs_diagnosed, i, lost);
+    const DipMeasures chain = predicted(check.cars, i), chain_diagnosed = predicted(check.cars_diagnosed, i);
+    const DipMeasures pair = predicted(check.pairs, i), pair_diagnosed = predicted(check.pairs_diagnosed, i);
+    row.predicted_dip_mps = chain.dip_mps;
+    row.predicted_distance_lost_m = chain.lost_m;
+    row.predicted_dip_mps_diagnosed = chain_diagnosed.dip_mps;
+    row.predicted_distance_lost_m_diagnosed = chain_diagnosed.lost_m;
+    row.pair_predicted_dip_mps = pair.dip_mps;
+    row.pair_predicted_distance_lost_m = pair.lost_m;
+    row.pair_predicted_dip_mps_diagnosed = pair_diagnosed.dip_mps;
+    row.pair_predicted_distance_lost_m_diagnosed = pair_diagnosed.lost_m;
     const DipComparison& ahead = result.positions.back();
     row.measured_amplification = ratio(row.measured_dip_mps, ahead.measured_dip_mps);
     row.predicted_amplification = ratio(row.predicted_dip_mps, ahead.predicted_dip_mps);

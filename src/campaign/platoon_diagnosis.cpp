@@ -414,35 +414,29 @@ namespace acc
 {
 namespace
 {
-/// The predicted dip of rows[i] (rows[0] the first car, the input).
-double predictedOf(const std::vector<DipComparison>& rows, std::size_t i, DipPrediction which)
+/// What a row holds twice, measured and predicted: the dip and the distance lost.
+enum class Quantity
 {
-  const DipComparison& row = rows[i];
-  switch (which)
-  {
-    case DipPrediction::unchanged_dip:
-      return std::isfinite(row.predicted_dip_mps) ? rows[0].measured_dip_mps : std::numeric_limits<double>::quiet_NaN();
-    case DipPrediction::chain_base: return row.predicted_dip_mps;
-    case DipPrediction::chain_diagnosed: return row.predicted_dip_mps_diagnosed;
-    case DipPrediction::pair_base: return row.pair_predicted_dip_mps;
-    case DipPrediction::pair_diagnosed: return row.pair_predicted_dip_mps_diagnosed;
-  }
-  return std::numeric_limits<double>::quiet_NaN();
-}
+  dip,
+  distance_lost
+};
 
-/// The predicted distance lost of rows[i], as predictedOf gives its dip.
-double predictedLostOf(const std::vector<DipComparison>& rows, std::size_t i, DipPrediction which)
+/// The predicted dip or distance lost of rows[i] (rows[0] the first car, the input).
+double predictedOf(const std::vector<DipComparison>& rows, std::size_t i, DipPrediction which, Quantity quantity)
 {
+  const bool dip = quantity == Quantity::dip;
   const DipComparison& row = rows[i];
   switch (which)
   {
     case DipPrediction::unchanged_dip:
-      return std::isfinite(row.predicted_dip_mps) ? rows[0].measured_distance_lost_m
+      return std::isfinite(row.predicted_dip_mps) ? (dip ? rows[0].measured_dip_mps : rows[0].measured_distance_lost_m)
                                                   : std::numeric_limits<double>::quiet_NaN();
-    case DipPrediction::chain_base: return row.predicted_distance_lost_m;
-    case DipPrediction::chain_diagnosed: return row.predicted_distance_lost_m_diagnosed;
-    case DipPrediction::pair_base: return row.pair_predicted_distance_lost_m;
-    case DipPrediction::pair_diagnosed: return row.pair_predicted_distance_lost_m_diagnosed;
+    case DipPrediction::chain_base: return dip ? row.predicted_dip_mps : row.predicted_distance_lost_m;
+    case DipPrediction::chain_diagnosed:
+      return dip ? row.predicted_dip_mps_diagnosed : row.predicted_distance_lost_m_diagnosed;
+    case DipPrediction::pair_base: return dip ? row.pair_predicted_dip_mps : row.pair_predicted_distance_lost_m;
+    case DipPrediction::pair_diagnosed:
+      return dip ? row.pair_predicted_dip_mps_diagnosed : row.pair_predicted_distance_lost_m_diagnosed;
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
@@ -464,12 +458,14 @@ DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& pl
       for (std::size_t i = 1; i < rows.size(); ++i)
       {
         // The first car is the input: its "prediction" is the measurement, whatever the model.
-        const double ahead_predicted = i == 1 ? rows[0].measured_dip_mps : predictedOf(rows, i - 1, which);
-        const double measured = rows[i].measured_dip_mps, predicted = predictedOf(rows, i, which);
+        const double ahead_predicted =
+            i == 1 ? rows[0].measured_dip_mps : predictedOf(rows, i - 1, which, Quantity::dip);
+        const double measured = rows[i].measured_dip_mps, predicted = predictedOf(rows, i, which, Quantity::dip);
         if (!(measured > min_dip_mps) || !std::isfinite(predicted) || (include && !include(check, rows[i])))
           continue;
         errors.push_back((predicted - measured) / measured);
-        const double measured_lost = rows[i].measured_distance_lost_m, predicted_lost = predictedLostOf(rows, i, which);
+        const double measured_lost = rows[i].measured_distance_lost_m,
+                     predicted_lost = predictedOf(rows, i, which, Quantity::distance_lost);
         if (measured_lost > 0.0 && std::isfinite(predicted_lost))
           lost_errors.push_back((predicted_lost - measured_lost) / measured_lost);
         const double ahead_measured = rows[i - 1].measured_dip_mps;
