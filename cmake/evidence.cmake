@@ -5,6 +5,7 @@
 acc_add_library(acc_evidence
   SOURCES
     src/evidence/perturbation.cpp
+    src/evidence/clustered_ratio.cpp
     src/evidence/empirical_response.cpp
     src/evidence/pair_dip_evidence.cpp
     src/evidence/perturbation_windows.cpp
@@ -14,6 +15,7 @@ acc_add_library(acc_evidence
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_evidence
     test/unit/gtest_main.cpp
+    test/unit/test_clustered_ratio.cpp
     test/unit/test_empirical_response.cpp
     test/unit/test_pair_dip_evidence.cpp
     test/unit/test_perturbation_windows.cpp)

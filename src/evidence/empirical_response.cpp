@@ -4,14 +4,13 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
-#include <random>
 #include <stdexcept>
 
 #include <unsupported/Eigen/FFT>
 
+#include "acc_identification/evidence/clustered_ratio.h"
 #include "acc_identification/evidence/perturbation.h"
 #include "acc_identification/model/angles.h"
-#include "acc_identification/model/portable_uniform.h"
 
 namespace acc
 {
@@ -39,16 +38,6 @@ double twoSidedNormalQuantile(double confidence)
     (std::erfc(mid / std::sqrt(2.0)) > tail ? low : high) = mid;
   }
   return 0.5 * (low + high);
-}
-
-/// The q-quantile with linear interpolation between order statistics (values not empty).
-double interpolatedQuantile(std::vector<double> values, double q)
-{
-  std::sort(values.begin(), values.end());
-  const double position = std::clamp(q, 0.0, 1.0) * static_cast<double>(values.size() - 1);
-  const std::size_t lo = static_cast<std::size_t>(std::floor(position));
-  const std::size_t hi = std::min(values.size() - 1, lo + 1);
-  return values[lo] + (position - static_cast<double>(lo)) * (values[hi] - values[lo]);
 }
 
 // ---- dip ratio ---------------------------------------------------------------------------------
@@ -80,17 +69,6 @@ DipPairs usableDipPairs(const std::vector<double>& follower_dips_mps, const std:
   return pairs;
 }
 
-double ratioOfSums(const std::vector<double>& numerator, const std::vector<double>& denominator)
-{
-  double top = 0.0, bottom = 0.0;
-  for (std::size_t i = 0; i < numerator.size(); ++i)
-  {
-    top += numerator[i];
-    bottom += denominator[i];
-  }
-  return top / bottom;
-}
-
 double medianOfRatios(const DipPairs& pairs)
 {
   std::vector<double> ratios;
@@ -99,26 +77,6 @@ double medianOfRatios(const DipPairs& pairs)
     ratios.push_back(pairs.follower_mps[i] / pairs.leader_mps[i]);
   }
   return finiteMedian(ratios);
-}
-
-/// ratio_of_means of `replicates` resamples of the perturbations with replacement.
-std::vector<double> bootstrapRatios(const DipPairs& pairs, std::size_t replicates, std::uint64_t seed)
-{
-  std::mt19937_64 engine(seed);
-  const std::size_t n = pairs.follower_mps.size();
-  std::vector<double> ratios(replicates);
-  for (double& ratio : ratios)
-  {
-    double top = 0.0, bottom = 0.0;
-    for (std::size_t j = 0; j < n; ++j)
-    {
-      const std::size_t pick = static_cast<std::size_t>(uniformBelow(engine, n));
-      top += pairs.follower_mps[pick];
-      bottom += pairs.leader_mps[pick];
-    }
-    ratio = top / bottom;  // every leader dip is positive: bottom > 0
-  }
-  return ratios;
 }
 
 DipAmplification classify(const DipRatioEstimate& e)
@@ -337,17 +295,16 @@ DipRatioEstimate linkDipRatio(const std::vector<double>& follower_dips_mps, cons
   e.skipped = pairs.skipped;
   e.confidence = confidence;
   e.replicates = replicates;
+  // Each perturbation of a pair is its own cluster (one follower per input).
+  std::vector<RatioCluster> clusters;
+  for (std::size_t i = 0; i < e.count; ++i)
+    clusters.push_back({pairs.follower_mps[i], pairs.leader_mps[i], 1});
+  const ClusteredRatio ratio = clusteredRatioOfSums(clusters, replicates, seed, confidence);
+  e.ratio_of_means = ratio.ratio;
+  e.lower = ratio.lower;
+  e.upper = ratio.upper;
   if (e.count > 0)
-  {
-    e.ratio_of_means = ratioOfSums(pairs.follower_mps, pairs.leader_mps);
     e.median_ratio = medianOfRatios(pairs);
-  }
-  if (e.count >= 2)
-  {
-    const std::vector<double> ratios = bootstrapRatios(pairs, replicates, seed);
-    e.lower = interpolatedQuantile(ratios, 0.5 * (1.0 - confidence));
-    e.upper = interpolatedQuantile(ratios, 0.5 * (1.0 + confidence));
-  }
   e.amplifies = classify(e);
   e.reason = dipReason(e);
   return e;

@@ -5,10 +5,6 @@
 
 namespace acc
 {
-namespace
-{
-}  // namespace
-
 nlohmann::json toJson(const DipRatioEstimate& d)
 {
   return {{"perturbations", d.count},
@@ -20,6 +16,16 @@ nlohmann::json toJson(const DipRatioEstimate& d)
           {"confidence", d.confidence},
           {"verdict", toString(d.amplifies)},
           {"reason", d.reason}};
+}
+
+nlohmann::json toJson(const ClusteredRatio& r)
+{
+  return {{"ratio", jsonNumber(r.ratio)},
+          {"lower", jsonNumber(r.lower)},
+          {"upper", jsonNumber(r.upper)},
+          {"confidence", r.confidence},
+          {"clusters", r.clusters},
+          {"observations", r.observations}};
 }
 
 nlohmann::json toJson(const PairDipEvidence& evidence)

@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "acc_identification/evidence/clustered_ratio.h"
 #include "acc_identification/evidence/empirical_response.h"
 #include "acc_identification/evidence/pair_dip_evidence.h"
 
@@ -10,6 +11,9 @@ namespace acc
 /// {perturbations, skipped, ratio_of_means, median_ratio, lower, upper, confidence, verdict
 /// ("amplifies" | "attenuates" | "undecided" | "insufficient"), reason}; NaN as null.
 nlohmann::json toJson(const DipRatioEstimate& estimate);
+
+/// {ratio, lower, upper, confidence, clusters, observations}; NaN as null.
+nlohmann::json toJson(const ClusteredRatio& ratio);
 
 /// {dips: [{run, onset_s, leader_dip_mps, follower_dip_mps}], dip_ratio: toJson(ratio)}.
 nlohmann::json toJson(const PairDipEvidence& evidence);
