@@ -145,7 +145,13 @@ nlohmann::json positionsJson(const std::vector<DipComparison>& positions)
                  {"predicted_distance_lost_m", row.predicted_distance_lost_m},
                  {"predicted_distance_lost_m_diagnosed", row.predicted_distance_lost_m_diagnosed},
                  {"pair_predicted_distance_lost_m", row.pair_predicted_distance_lost_m},
-                 {"pair_predicted_distance_lost_m_diagnosed", row.pair_predicted_distance_lost_m_diagnosed}});
+                 {"pair_predicted_distance_lost_m_diagnosed", row.pair_predicted_distance_lost_m_diagnosed},
+                 {"measured_peak_braking_mps2", row.measured_rates.braking_mps2},
+                 {"measured_peak_recovery_mps2", row.measured_rates.recovery_mps2},
+                 {"pair_predicted_peak_braking_mps2", row.pair_predicted_rates.braking_mps2},
+                 {"pair_predicted_peak_recovery_mps2", row.pair_predicted_rates.recovery_mps2},
+                 {"pair_predicted_peak_braking_mps2_diagnosed", row.pair_predicted_rates_diagnosed.braking_mps2},
+                 {"pair_predicted_peak_recovery_mps2_diagnosed", row.pair_predicted_rates_diagnosed.recovery_mps2}});
   }
   return j;
 }
@@ -530,11 +536,6 @@ struct GapPrediction
   DipRowFilter include;
 };
 
-/// The first follower (behind the platoon's real first car) apart from the cars further back: the
-/// place where the models' recovery departs most (docs/PLATOON_DIAGNOSIS.md).
-bool isFirstFollower(const PlatoonCheck&, const DipComparison& row) { return row.position == 2; }
-bool isFurtherBack(const PlatoonCheck&, const DipComparison& row) { return row.position > 2; }
-
 const std::vector<GapPrediction>& gapPredictions()
 {
   static const std::vector<GapPrediction> kinds{
@@ -576,6 +577,50 @@ nlohmann::json gapJson(const CampaignResult& result)
   for (const GapPrediction& prediction : gapPredictions())
     j[prediction.key] = summaryJson(summarizeGapPrediction(result, prediction));
   return j;
+}
+
+const std::vector<std::string> kRatesHeader{"car ahead",         "car-perturbations", "braking passed on: cars",
+                                           "base model",        "diagnosed model",   "recovery passed on: cars",
+                                           "base model",        "diagnosed model"};
+
+/// The two places of "how much of the car ahead's braking and recovery each car passes on".
+std::vector<std::pair<const char*, const RateTransferSummary*>> ratePlaces(const CampaignResult& result)
+{
+  return {{"the real first car (first followers)", &result.rates_first_followers},
+          {"another ACC car (further back)", &result.rates_further_back}};
+}
+
+/// The span the rates are slopes over, as the report states it ("2 s").
+std::string rateSpanText() { return cellNumber("%g s", PerturbationCriteria{}.acceleration_span_s); }
+
+std::string ratioCell(const ClusteredRatio& r, bool with_interval)
+{
+  const std::string ratio = cellNumber("%.2f", r.ratio);
+  return with_interval && std::isfinite(r.lower) ? ratio + " [" + cellNumber("%.2f", r.lower) + ", " +
+                                                       cellNumber("%.2f", r.upper) + "]"
+                                                 : ratio;
+}
+
+std::vector<std::vector<std::string>> rateRows(const CampaignResult& result)
+{
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& [label, s] : ratePlaces(result))
+  {
+    rows.push_back({label, std::to_string(s->cars.recovery.observations), ratioCell(s->cars.braking, true),
+                    ratioCell(s->pair_base.braking, false), ratioCell(s->pair_diagnosed.braking, false),
+                    ratioCell(s->cars.recovery, true), ratioCell(s->pair_base.recovery, false),
+                    ratioCell(s->pair_diagnosed.recovery, false)});
+  }
+  return rows;
+}
+
+nlohmann::json ratesJson(const RateTransferSummary& s)
+{
+  auto kind = [](const ClusteredRatio& cars, const ClusteredRatio& base, const ClusteredRatio& diagnosed) {
+    return nlohmann::json{{"cars", toJson(cars)}, {"pair_base", toJson(base)}, {"pair_diagnosed", toJson(diagnosed)}};
+  };
+  return {{"braking", kind(s.cars.braking, s.pair_base.braking, s.pair_diagnosed.braking)},
+          {"recovery", kind(s.cars.recovery, s.pair_base.recovery, s.pair_diagnosed.recovery)}};
 }
 
 std::vector<std::string> selectionLines(const EffectSetSelection& selection)
@@ -665,7 +710,10 @@ nlohmann::json campaignToJson(const CampaignInputs& inputs, const CampaignResult
            diagnosed ? nlohmann::json{{"rule", effectSetSelectionRule(options.effect_selection)},
                                       {"criterion", criterionName(result.effect_selection_criterion)},
                                       {"selection", selectionJson(result.effect_selection)},
-                                      {"how_far_the_gap_shrinks", gapJson(result)}}
+                                      {"how_far_the_gap_shrinks", gapJson(result)},
+                                      {"rates_passed_on",
+                                       {{"first_follower", ratesJson(result.rates_first_followers)},
+                                        {"further_back", ratesJson(result.rates_further_back)}}}}
                      : nlohmann::json(nullptr)}};
 }
 
@@ -690,6 +738,10 @@ void printCampaignTables(const CampaignResult& result, std::ostream& out)
       out << "  " << line << "\n";
     out << "\nHow far the gap shrinks (each run's diagnosed models chosen without that run)\n";
     printAligned(kGapHeader, gapRows(result), out);
+    out << "\nHow much of the car ahead's peak braking and recovery (speed slope over " << rateSpanText()
+        << ") each car passes on, against the models driven by the same real leaders (95 % bootstrap CI over "
+           "perturbations)\n";
+    printAligned(kRatesHeader, rateRows(result), out);
     out << "\nEach car as a link, without a model and beside its models: dip over the dip of the car ahead (95 % "
            "bootstrap CI over perturbations), where the base and diagnosed |Gamma| leave the band of the empirical "
            "one (coherence >= 0.5), the diagnosed model's small-signal peak and its dip ratio over "
@@ -767,6 +819,13 @@ std::string campaignReportMarkdown(const CampaignResult& result, const std::vect
     md << "\n### How far the gap shrinks\n\nEach run's diagnosed models use the effect set chosen without that "
           "run, fitted on the car's other runs.\n\n";
     printMarkdownTable(kGapHeader, gapRows(result), md);
+    md << "\n### How much of the car ahead's braking and recovery each car passes on\n\nThe sum of the cars' "
+          "peak braking (and recovery) rates, each the steepest least-squares slope of its speed over "
+       << rateSpanText() << " within the dip, over the sum of the car "
+          "ahead's measured ones; 95 % bootstrap interval over perturbations. The models are driven by the same real "
+          "leaders (pair level), so all three answer the same input. A ratio near 1 passes a braking on with its "
+          "shape; a model below the cars damps what they pass on, and that compounds along a chain.\n\n";
+    printMarkdownTable(kRatesHeader, rateRows(result), md);
     md << "\n### Each car as a link: what the data show without a model\n\nDip ratio: the car's dip over the dip "
           "of the car directly ahead, with a 95 % bootstrap interval over perturbations. Where the base and the "
           "diagnosed model's |Gamma(jw)| leave the band of the empirical one (Welch, coherence >= 0.5). The "

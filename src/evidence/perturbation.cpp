@@ -171,4 +171,79 @@ double distanceLostM(const std::vector<double>& time_s, const std::vector<double
   return lost_m;
 }
 
+namespace
+{
+/// The least-squares slope of the speed over [t_i, t_i + span] (samples before `end`): a
+/// straight line through every sample, not the two end points, so white speed noise adds less to
+/// a peak taken over many spans. NaN when a sample at either end is missing, a hole inside is
+/// longer than criteria.max_bridged_hole_s, or the span runs past `end`.
+double rateOverSpan(const std::vector<double>& time_s, const std::vector<double>& speed_mps, std::size_t i,
+                    std::size_t end, const PerturbationCriteria& criteria)
+{
+  if (!finiteAt(time_s, speed_mps, i))
+    return kNaN;
+  // (A microsecond of tolerance: 0.1 s steps do not add up to exactly one second.)
+  const std::size_t last = indexBefore(time_s, i, time_s[i] + criteria.acceleration_span_s - 1e-6);
+  if (last >= end || !finiteAt(time_s, speed_mps, last))
+    return kNaN;
+  double sum_t = 0.0, sum_v = 0.0, sum_tt = 0.0, sum_tv = 0.0, previous_s = time_s[i];
+  std::size_t n = 0;
+  for (std::size_t k = i; k <= last; ++k)
+  {
+    if (!finiteAt(time_s, speed_mps, k))
+      continue;
+    if (time_s[k] - previous_s > criteria.max_bridged_hole_s)
+      return kNaN;
+    previous_s = time_s[k];
+    const double t = time_s[k] - time_s[i], v = speed_mps[k];
+    sum_t += t;
+    sum_v += v;
+    sum_tt += t * t;
+    sum_tv += t * v;
+    ++n;
+  }
+  const double count = static_cast<double>(n), spread = count * sum_tt - sum_t * sum_t;
+  return spread > 0.0 ? (count * sum_tv - sum_t * sum_v) / spread : kNaN;
+}
+}  // namespace
+
+DipRatesMps2 peakDipRates(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
+                          const Perturbation& perturbation, const PerturbationCriteria& criteria)
+{
+  DipRatesMps2 rates;
+  const std::size_t end = std::min(perturbation.window_end, speed_mps.size());
+  // As for the distance lost: a window whose ends are missing may hide the peak, so it is unknown.
+  if (end <= perturbation.onset + 1 || !finiteAt(time_s, speed_mps, perturbation.onset) ||
+      !finiteAt(time_s, speed_mps, end - 1))
+    return rates;
+  std::size_t lowest = perturbation.onset;
+  for (std::size_t i = perturbation.onset; i < end; ++i)
+  {
+    if (finiteAt(time_s, speed_mps, i) && speed_mps[i] < speed_mps[lowest])
+      lowest = i;
+  }
+  // Braking spans may start up to a span before the onset (the first car's onset is where its
+  // speed has already left the median by a little) and end at the minimum; recovery spans start there.
+  std::size_t first = perturbation.onset;
+  while (first > 0 && std::isfinite(time_s[first - 1]) &&
+         time_s[first - 1] >= perturbation.onset_s - criteria.acceleration_span_s - 1e-6)
+    --first;
+  double braking = -std::numeric_limits<double>::infinity(), recovery = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = first; i < end; ++i)
+  {
+    const double rate = rateOverSpan(time_s, speed_mps, i, i < lowest ? lowest + 1 : end, criteria);
+    if (!std::isfinite(rate))
+      continue;
+    if (i < lowest)
+      braking = std::max(braking, -rate);
+    else
+      recovery = std::max(recovery, rate);
+  }
+  if (std::isfinite(braking))
+    rates.braking_mps2 = braking;
+  if (std::isfinite(recovery))
+    rates.recovery_mps2 = recovery;
+  return rates;
+}
+
 }  // namespace acc

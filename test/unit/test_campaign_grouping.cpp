@@ -201,6 +201,44 @@ TEST(CampaignPerturbation, TheDistanceLostIsTheAreaOfTheDipAndUnknownWhereTheWin
   EXPECT_TRUE(std::isnan(acc::distanceLostM(time_s, cut, found[0])));
 }
 
+// Braking at 2 m/s^2 from 10 to 6 m/s, 4 s held, back at 0.5 m/s^2: the peaks are those two rates
+// (each ramp lasts at least the 2 s span), each over the part of the dip it belongs to; a window
+// the data do not cover (they stop at the bottom of the dip) is unknown, not a flat zero.
+TEST(CampaignPerturbation, TheBrakingAndRecoveryRatesAreThePeaksOnEitherSideOfTheMinimum)
+{
+  auto speed = [](double t) {
+    if (t < 20.0)
+      return 10.0;
+    if (t < 22.0)
+      return 10.0 - 2.0 * (t - 20.0);
+    if (t < 26.0)
+      return 6.0;
+    return std::min(10.0, 6.0 + 0.5 * (t - 26.0));
+  };
+  std::vector<double> time_s, speed_mps;
+  for (int i = 0; i < 800; ++i)
+  {
+    time_s.push_back(0.1 * i);
+    speed_mps.push_back(speed(0.1 * i));
+  }
+  const auto found = acc::findPerturbations(time_s, speed_mps);
+  ASSERT_EQ(found.size(), 1u);
+  const acc::DipRatesMps2 rates = acc::peakDipRates(time_s, speed_mps, found[0]);
+  EXPECT_NEAR(rates.braking_mps2, 2.0, 1e-6);
+  EXPECT_NEAR(rates.recovery_mps2, 0.5, 1e-6);
+
+  std::vector<double> holed = speed_mps;
+  for (std::size_t i = 283; i < 287; ++i)  // 0.4 s missing in the recovery: the spans across it still count
+    holed[i] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NEAR(acc::peakDipRates(time_s, holed, found[0]).recovery_mps2, 0.5, 1e-6);
+  std::vector<double> cut = speed_mps;
+  for (std::size_t i = 240; i < cut.size(); ++i)  // a chain that stopped at the bottom of the dip
+    cut[i] = std::numeric_limits<double>::quiet_NaN();
+  const acc::DipRatesMps2 cut_rates = acc::peakDipRates(time_s, cut, found[0]);
+  EXPECT_TRUE(std::isnan(cut_rates.braking_mps2));
+  EXPECT_TRUE(std::isnan(cut_rates.recovery_mps2));
+}
+
 TEST(CampaignInputs, EverySkippedFileIsNamedWithItsReasonAndCounted)
 {
   TempFolder folder("acc_campaign_skipped");

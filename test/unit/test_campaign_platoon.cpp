@@ -74,6 +74,15 @@ TEST(CampaignPlatoon, UnstableCarsAmplifyAndThePredictionAgrees)
         // Right models lose the distance the cars lost, not only dip as deep.
         EXPECT_NEAR(row.predicted_distance_lost_m, row.measured_distance_lost_m, 0.15 * row.measured_distance_lost_m)
             << check.run << " position " << row.position;
+        // ... and brake and recover as hard, driven by the same real leader (the measured speeds
+        // carry 0.06 m/s of white noise, which a peak rate over many spans picks up: the rate's
+        // least-squares slope over 2 s keeps that under 8 %; two end points over 1 s gave 20 %).
+        EXPECT_NEAR(row.pair_predicted_rates.braking_mps2, row.measured_rates.braking_mps2,
+                    0.08 * row.measured_rates.braking_mps2)
+            << check.run << " position " << row.position;
+        EXPECT_NEAR(row.pair_predicted_rates.recovery_mps2, row.measured_rates.recovery_mps2,
+                    0.08 * row.measured_rates.recovery_mps2)
+            << check.run << " position " << row.position;
       }
       EXPECT_TRUE(perturbation.disagreements.empty()) << check.run << ": " << perturbation.disagreements.front().what;
     }
@@ -231,6 +240,44 @@ TEST(DipPredictionSummary, TheNoModelReferencePassesTheFirstCarsDipOnWhereTheCha
   EXPECT_NEAR(base.median_distance_lost_error, (24.0 - 30.0) / 30.0, 1e-12);
   ASSERT_EQ(copy.distance_lost_scored, 2u);  // every car loses what the first lost
   EXPECT_NEAR(copy.median_distance_lost_error, 0.5 * ((20.0 - 30.0) / 30.0 + (20.0 - 25.0) / 25.0), 1e-12);
+}
+
+// The rates passed on: sums over the cars a filter accepts, one bootstrap cluster per
+// perturbation; a car below the scored dip, or whose leader's rate is unknown, adds nothing; a
+// model's ratio sums only where it predicted.
+TEST(RateTransfer, SumsTheRatesOverTheScoredCarsWithOneClusterPerPerturbation)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto row = [](int position, double dip_mps, double braking, double recovery, double model_recovery) {
+    acc::DipComparison r;
+    r.position = position;
+    r.measured_dip_mps = dip_mps;
+    r.measured_rates = {braking, recovery};
+    r.pair_predicted_rates = {braking, model_recovery};
+    return r;
+  };
+  acc::PerturbationCheck one, two;
+  one.positions = {row(1, 3.0, 2.0, 2.0, nan), row(2, 2.5, 1.0, 1.0, 0.5), row(3, 2.0, 1.0, 0.8, 0.4),
+                   row(4, 0.2, 0.5, 0.5, 0.5)};
+  two.positions = {row(1, 3.0, 2.0, 1.0, nan), row(2, 2.0, 1.5, 1.0, nan), row(3, 2.0, 1.5, nan, 0.7),
+                   row(4, 1.0, 1.0, 0.9, 0.9)};
+  acc::PlatoonCheck check;
+  check.perturbations = {one, two};
+  const acc::RateTransferSummary back = acc::summarizeRateTransfer({check}, acc::isFurtherBack, 999, 3);
+  // Car 3 of one (0.8 over 1.0), car 4 of two (0.9 over its leader's unknown recovery: skipped);
+  // car 4 of one is below the scored dip; car 3 of two has no recovery of its own.
+  EXPECT_EQ(back.cars.recovery.observations, 1u);
+  EXPECT_DOUBLE_EQ(back.cars.recovery.ratio, 0.8);
+  EXPECT_DOUBLE_EQ(back.pair_base.recovery.ratio, 0.4);
+  // Braking: car 3 of one (1.0 / 1.0), cars 3 and 4 of two (1.5 / 1.5, 1.0 / 1.5).
+  EXPECT_EQ(back.cars.braking.observations, 3u);
+  EXPECT_EQ(back.cars.braking.clusters, 2u);
+  EXPECT_DOUBLE_EQ(back.cars.braking.ratio, 3.5 / 4.0);
+  const acc::RateTransferSummary first = acc::summarizeRateTransfer({check}, acc::isFirstFollower, 999, 3);
+  EXPECT_DOUBLE_EQ(first.cars.recovery.ratio, 2.0 / 3.0);
+  EXPECT_EQ(first.pair_base.recovery.observations, 1u);  // the second perturbation's model did not predict
+  EXPECT_DOUBLE_EQ(first.pair_base.recovery.ratio, 0.25);
+  EXPECT_TRUE(std::isnan(first.pair_diagnosed.recovery.ratio));  // no diagnosed models at all
 }
 
 // What --platoon-effects takes: every candidate's text reads back as that candidate, so the list

@@ -191,6 +191,12 @@ constexpr double kScoredMinLinkChangeMps = 0.2;
 /// Only the car-perturbations `include` accepts (all when empty): e.g. one car and setting, for its
 /// model's adequacy.
 using DipRowFilter = std::function<bool(const PlatoonCheck&, const DipComparison&)>;
+
+/// The first follower (behind the platoon's real first car) apart from the cars further back: the
+/// place where the models' recovery departs most (docs/PLATOON_DIAGNOSIS.md).
+inline bool isFirstFollower(const PlatoonCheck&, const DipComparison& row) { return row.position == 2; }
+inline bool isFurtherBack(const PlatoonCheck&, const DipComparison& row) { return row.position > 2; }
+
 DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& platoons, DipPrediction which,
                                              double min_dip_mps = kScoredMinDipMps,
                                              double min_link_change_mps = kScoredMinLinkChangeMps,

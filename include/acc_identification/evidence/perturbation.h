@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace acc
@@ -23,6 +24,10 @@ struct PerturbationCriteria
   /// The distance lost integrates across holes in a car's speed up to this long; a longer hole
   /// (or a window whose first or last sample is missing) leaves it unknown.
   double max_bridged_hole_s = 1.0;
+  /// A car's braking and recovery rates are least-squares slopes of its speed over this span: long
+  /// enough that white speed noise (GNSS Doppler: a few cm/s) adds little to a peak taken over
+  /// many spans, short against a braking of a few seconds.
+  double acceleration_span_s = 2.0;
 };
 
 /// One perturbation, as sample indices into the run's time vector.
@@ -54,6 +59,20 @@ double dipDepthMps(const std::vector<double>& time_s, const std::vector<double>&
 /// no finite sample or the window is not covered.
 double distanceLostM(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
                      const Perturbation& perturbation, const PerturbationCriteria& criteria = {});
+
+/// How hard a car braked into its dip and accelerated out of it [m/s^2, both positive]: the
+/// steepest falling and rising least-squares slope of its speed over criteria.acceleration_span_s,
+/// braking on spans from a span before the onset to the dip's minimum, recovery on spans from the
+/// minimum to the window's end. A follower's rates over its leader's say how much of a braking's
+/// shape it passes on. NaN where the window's first or last sample is missing (the peak may lie
+/// outside the data) or no span is covered (holes longer than criteria.max_bridged_hole_s).
+struct DipRatesMps2
+{
+  double braking_mps2 = std::numeric_limits<double>::quiet_NaN();
+  double recovery_mps2 = std::numeric_limits<double>::quiet_NaN();
+};
+DipRatesMps2 peakDipRates(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
+                          const Perturbation& perturbation, const PerturbationCriteria& criteria = {});
 
 /// The median of the finite values (NaN when none).
 double finiteMedian(std::vector<double> values);
