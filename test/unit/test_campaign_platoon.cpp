@@ -297,4 +297,10 @@ TEST(PlatoonCandidates, TextReadsBackAndOnlyCandidatesMayBeForced)
   EXPECT_EQ(acc::platoonCandidateText({{}, acc::FitObjective::gap}), "none@gap");
   EXPECT_TRUE(acc::isPlatoonCandidate(acc::PlatoonCandidate{}));  // the base model
   EXPECT_FALSE(acc::isPlatoonCandidate({{acc::EffectKind::speed_dependent_gains}, acc::FitObjective::speed}));
+  // A set of effects, in whatever order it is written (the list prints them in the catalogue's).
+  acc::PlatoonCandidate reversed;
+  ASSERT_TRUE(acc::parsePlatoonCandidate("reaction_delay,leader_acceleration_feedforward", &reversed));
+  EXPECT_TRUE(acc::isPlatoonCandidate(reversed));
+  EXPECT_FALSE(acc::isPlatoonCandidate({{acc::EffectKind::reaction_delay, acc::EffectKind::reaction_delay},
+                                        acc::FitObjective::speed}));
 }

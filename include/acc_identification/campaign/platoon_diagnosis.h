@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <functional>
 #include <cstdint>
@@ -25,9 +26,14 @@ struct PlatoonCandidate
   std::vector<std::string> features() const;
   /// "asymmetric_response + reaction_delay", "none (speed_and_gap objective)".
   std::string name() const;
+  /// The same effects (in any order: "reaction_delay,leader_acceleration_feedforward" is the
+  /// candidate listed the other way round) and the same objective.
   bool operator==(const PlatoonCandidate& other) const
   {
-    return effects == other.effects && objective == other.objective;
+    std::vector<EffectKind> own = effects, theirs = other.effects;
+    std::sort(own.begin(), own.end());
+    std::sort(theirs.begin(), theirs.end());
+    return own == theirs && objective == other.objective;
   }
 };
 
