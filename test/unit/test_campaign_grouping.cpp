@@ -81,6 +81,17 @@ acc::CampaignOptions fastOptions(std::size_t threads)
   options.threads = threads;
   return options;
 }
+
+/// 800 samples of speed(t), every step_s from t = 0.
+template <typename Speed>
+void sampleSpeed(Speed speed, double step_s, std::vector<double>* time_s, std::vector<double>* speed_mps)
+{
+  for (int i = 0; i < 800; ++i)
+  {
+    time_s->push_back(step_s * i);
+    speed_mps->push_back(speed(step_s * i));
+  }
+}
 }  // namespace
 
 TEST(CampaignGrouping, GroupsByVehicleAndSettingAndRecoversEachTruth)
@@ -177,13 +188,8 @@ TEST(CampaignPerturbation, FindsTheDipAndItsDepth)
 // never a smaller number.
 TEST(CampaignPerturbation, TheDistanceLostIsTheAreaOfTheDipAndUnknownWhereTheWindowIsNotCovered)
 {
-  auto speed = [](double t) { return t >= 20.0 - 1e-9 && t < 24.0 - 1e-9 ? 8.0 : 10.0; };
   std::vector<double> time_s, speed_mps;
-  for (int i = 0; i < 800; ++i)
-  {
-    time_s.push_back(0.05 * i);
-    speed_mps.push_back(speed(0.05 * i));
-  }
+  sampleSpeed([](double t) { return t >= 20.0 - 1e-9 && t < 24.0 - 1e-9 ? 8.0 : 10.0; }, 0.05, &time_s, &speed_mps);
   const auto found = acc::findPerturbations(time_s, speed_mps);
   ASSERT_EQ(found.size(), 1u);
   EXPECT_NEAR(acc::dipDepthMps(time_s, speed_mps, found[0]), 2.0, 1e-9);
@@ -216,11 +222,7 @@ TEST(CampaignPerturbation, TheBrakingAndRecoveryRatesAreThePeaksOnEitherSideOfTh
     return std::min(10.0, 6.0 + 0.5 * (t - 26.0));
   };
   std::vector<double> time_s, speed_mps;
-  for (int i = 0; i < 800; ++i)
-  {
-    time_s.push_back(0.1 * i);
-    speed_mps.push_back(speed(0.1 * i));
-  }
+  sampleSpeed(speed, 0.1, &time_s, &speed_mps);
   const auto found = acc::findPerturbations(time_s, speed_mps);
   ASSERT_EQ(found.size(), 1u);
   const acc::DipRatesMps2 rates = acc::peakDipRates(time_s, speed_mps, found[0]);
