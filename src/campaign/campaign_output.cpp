@@ -146,12 +146,17 @@ nlohmann::json positionsJson(const std::vector<DipComparison>& positions)
                  {"predicted_distance_lost_m_diagnosed", row.predicted_distance_lost_m_diagnosed},
                  {"pair_predicted_distance_lost_m", row.pair_predicted_distance_lost_m},
                  {"pair_predicted_distance_lost_m_diagnosed", row.pair_predicted_distance_lost_m_diagnosed},
-                 {"measured_peak_braking_mps2", row.measured_rates.braking_mps2},
-                 {"measured_peak_recovery_mps2", row.measured_rates.recovery_mps2},
-                 {"pair_predicted_peak_braking_mps2", row.pair_predicted_rates.braking_mps2},
-                 {"pair_predicted_peak_recovery_mps2", row.pair_predicted_rates.recovery_mps2},
-                 {"pair_predicted_peak_braking_mps2_diagnosed", row.pair_predicted_rates_diagnosed.braking_mps2},
-                 {"pair_predicted_peak_recovery_mps2_diagnosed", row.pair_predicted_rates_diagnosed.recovery_mps2}});
+                 {"measured_peak_braking_mps2", row.measured_shape.braking_mps2},
+                 {"measured_peak_recovery_mps2", row.measured_shape.recovery_mps2},
+                 {"pair_predicted_peak_braking_mps2", row.pair_predicted_shape.braking_mps2},
+                 {"pair_predicted_peak_recovery_mps2", row.pair_predicted_shape.recovery_mps2},
+                 {"pair_predicted_peak_braking_mps2_diagnosed", row.pair_predicted_shape_diagnosed.braking_mps2},
+                 {"pair_predicted_peak_recovery_mps2_diagnosed", row.pair_predicted_shape_diagnosed.recovery_mps2},
+                 {"measured_dip_width_s", row.measured_shape.width_s},
+                 {"predicted_dip_width_s", row.predicted_shape.width_s},
+                 {"predicted_dip_width_s_diagnosed", row.predicted_shape_diagnosed.width_s},
+                 {"pair_predicted_dip_width_s", row.pair_predicted_shape.width_s},
+                 {"pair_predicted_dip_width_s_diagnosed", row.pair_predicted_shape_diagnosed.width_s}});
   }
   return j;
 }
@@ -223,7 +228,9 @@ nlohmann::json summaryJson(const DipPredictionSummary& s)
           {"links", s.links},
           {"share_links_growth_right", s.share_links_growth_right},
           {"median_distance_lost_error", s.median_distance_lost_error},
-          {"distance_lost_scored", s.distance_lost_scored}};
+          {"distance_lost_scored", s.distance_lost_scored},
+          {"median_dip_width_error", s.median_dip_width_error},
+          {"dip_width_scored", s.dip_width_scored}};
 }
 
 nlohmann::json rangesJson(const std::vector<std::pair<double, double>>& ranges)
@@ -524,7 +531,7 @@ std::vector<std::string> groupNotes(const CampaignResult& result)
 
 const std::vector<std::string> kGapHeader{"prediction", "car-perturbations", "median dip error", "median |error|",
                                           "within 30 %", "links", "growth/decay right",
-                                          "median distance-lost error"};
+                                          "median distance-lost error", "median dip-width error"};
 
 /// One row of "how far the gap shrinks": its label in the report, its key in the JSON, and the
 /// car-perturbations it scores (all when `include` is empty).
@@ -566,7 +573,8 @@ std::vector<std::vector<std::string>> gapRows(const CampaignResult& result)
                     cellNumber("%+.0f %%", 100.0 * s.median_dip_error), cellNumber("%.0f %%", 100.0 * s.median_abs_dip_error),
                     cellNumber("%.0f %%", 100.0 * s.share_within_30_percent), std::to_string(s.links),
                     cellNumber("%.0f %%", 100.0 * s.share_links_growth_right),
-                    cellNumber("%+.0f %%", 100.0 * s.median_distance_lost_error)});
+                    cellNumber("%+.0f %%", 100.0 * s.median_distance_lost_error),
+                    cellNumber("%+.0f %%", 100.0 * s.median_dip_width_error)});
   }
   return rows;
 }

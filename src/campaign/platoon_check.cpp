@@ -186,12 +186,12 @@ bool dataShowGrowth(const std::vector<DipComparison>& positions)
   return std::isfinite(first) && std::isfinite(last) && last > first;
 }
 
-/// A speed series' dip, distance lost and rates in one perturbation (NaN: not predicted or not covered).
+/// A speed series' dip, distance lost and shape in one perturbation (NaN: not predicted or not covered).
 struct DipMeasures
 {
   double dip_mps = kNaN;
   double lost_m = kNaN;
-  DipRatesMps2 rates;
+  DipShape shape;
 };
 
 PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFile& data,
@@ -205,7 +205,7 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
     const std::vector<double> rows = sliceRows(speed, check.first_row, check.end_row);
     return DipMeasures{dipDepthMps(time_s, rows, perturbation, options.perturbation),
                        distanceLostM(time_s, rows, perturbation, options.perturbation),
-                       peakDipRates(time_s, rows, perturbation, options.perturbation)};
+                       dipShape(time_s, rows, perturbation, options.perturbation)};
   };
   auto predicted = [&](const std::vector<PlatoonCarPrediction>& cars, std::size_t i) {
     return i < cars.size() && cars[i].predicted ? measure(cars[i].predicted_speed_mps) : DipMeasures{};
@@ -213,7 +213,7 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
   const DipMeasures lead_measured = measure(data.vehicle(1)->speed_mps);
   DipComparison lead{1, data.vehicleName(1), lead_measured.dip_mps, lead_measured.dip_mps, kNaN, kNaN};
   lead.measured_distance_lost_m = lead.predicted_distance_lost_m = lead_measured.lost_m;
-  lead.measured_rates = lead_measured.rates;
+  lead.measured_shape = lead_measured.shape;
   if (!check.cars_diagnosed.empty())
   {
     lead.predicted_dip_mps_diagnosed = lead_measured.dip_mps;
@@ -229,7 +229,7 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
       const DipMeasures measured = measure(data.vehicle(car.position)->speed_mps);
       row.measured_dip_mps = measured.dip_mps;
       row.measured_distance_lost_m = measured.lost_m;
-      row.measured_rates = measured.rates;
+      row.measured_shape = measured.shape;
     }
     const DipMeasures chain = predicted(check.cars, i), chain_diagnosed = predicted(check.cars_diagnosed, i);
     const DipMeasures pair = predicted(check.pairs, i), pair_diagnosed = predicted(check.pairs_diagnosed, i);
@@ -237,12 +237,14 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
     row.predicted_distance_lost_m = chain.lost_m;
     row.predicted_dip_mps_diagnosed = chain_diagnosed.dip_mps;
     row.predicted_distance_lost_m_diagnosed = chain_diagnosed.lost_m;
+    row.predicted_shape = chain.shape;
+    row.predicted_shape_diagnosed = chain_diagnosed.shape;
     row.pair_predicted_dip_mps = pair.dip_mps;
     row.pair_predicted_distance_lost_m = pair.lost_m;
     row.pair_predicted_dip_mps_diagnosed = pair_diagnosed.dip_mps;
     row.pair_predicted_distance_lost_m_diagnosed = pair_diagnosed.lost_m;
-    row.pair_predicted_rates = pair.rates;
-    row.pair_predicted_rates_diagnosed = pair_diagnosed.rates;
+    row.pair_predicted_shape = pair.shape;
+    row.pair_predicted_shape_diagnosed = pair_diagnosed.shape;
     const DipComparison& ahead = result.positions.back();
     row.measured_amplification = ratio(row.measured_dip_mps, ahead.measured_dip_mps);
     row.predicted_amplification = ratio(row.predicted_dip_mps, ahead.predicted_dip_mps);

@@ -414,31 +414,61 @@ namespace acc
 {
 namespace
 {
-/// What a row holds twice, measured and predicted: the dip and the distance lost.
+/// What a row holds for the measurement and each prediction.
 enum class Quantity
 {
   dip,
-  distance_lost
+  distance_lost,
+  width
 };
 
-/// The predicted dip or distance lost of rows[i] (rows[0] the first car, the input).
+double quantityOf(double dip_mps, double lost_m, const DipShape& shape, Quantity quantity)
+{
+  switch (quantity)
+  {
+    case Quantity::dip: return dip_mps;
+    case Quantity::distance_lost: return lost_m;
+    case Quantity::width: return shape.width_s;
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+double measuredOf(const DipComparison& row, Quantity quantity)
+{
+  return quantityOf(row.measured_dip_mps, row.measured_distance_lost_m, row.measured_shape, quantity);
+}
+
+/// The predicted quantity of rows[i] (rows[0] the first car, the input).
 double predictedOf(const std::vector<DipComparison>& rows, std::size_t i, DipPrediction which, Quantity quantity)
 {
-  const bool dip = quantity == Quantity::dip;
   const DipComparison& row = rows[i];
   switch (which)
   {
     case DipPrediction::unchanged_dip:
-      return std::isfinite(row.predicted_dip_mps) ? (dip ? rows[0].measured_dip_mps : rows[0].measured_distance_lost_m)
+      return std::isfinite(row.predicted_dip_mps) ? measuredOf(rows[0], quantity)
                                                   : std::numeric_limits<double>::quiet_NaN();
-    case DipPrediction::chain_base: return dip ? row.predicted_dip_mps : row.predicted_distance_lost_m;
+    case DipPrediction::chain_base:
+      return quantityOf(row.predicted_dip_mps, row.predicted_distance_lost_m, row.predicted_shape, quantity);
     case DipPrediction::chain_diagnosed:
-      return dip ? row.predicted_dip_mps_diagnosed : row.predicted_distance_lost_m_diagnosed;
-    case DipPrediction::pair_base: return dip ? row.pair_predicted_dip_mps : row.pair_predicted_distance_lost_m;
+      return quantityOf(row.predicted_dip_mps_diagnosed, row.predicted_distance_lost_m_diagnosed,
+                        row.predicted_shape_diagnosed, quantity);
+    case DipPrediction::pair_base:
+      return quantityOf(row.pair_predicted_dip_mps, row.pair_predicted_distance_lost_m, row.pair_predicted_shape,
+                        quantity);
     case DipPrediction::pair_diagnosed:
-      return dip ? row.pair_predicted_dip_mps_diagnosed : row.pair_predicted_distance_lost_m_diagnosed;
+      return quantityOf(row.pair_predicted_dip_mps_diagnosed, row.pair_predicted_distance_lost_m_diagnosed,
+                        row.pair_predicted_shape_diagnosed, quantity);
   }
   return std::numeric_limits<double>::quiet_NaN();
+}
+
+/// (predicted - measured) / measured of rows[i]'s quantity, appended where both are known.
+void addRelativeError(const std::vector<DipComparison>& rows, std::size_t i, DipPrediction which, Quantity quantity,
+                      std::vector<double>* errors)
+{
+  const double measured = measuredOf(rows[i], quantity), predicted = predictedOf(rows, i, which, quantity);
+  if (measured > 0.0 && std::isfinite(predicted))
+    errors->push_back((predicted - measured) / measured);
 }
 
 }  // namespace
@@ -447,7 +477,7 @@ DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& pl
                                              double min_dip_mps, double min_link_change_mps,
                                              const DipRowFilter& include)
 {
-  std::vector<double> errors, lost_errors;
+  std::vector<double> errors, lost_errors, width_errors;
   std::size_t right = 0;
   DipPredictionSummary out;
   for (const PlatoonCheck& check : platoons)
@@ -464,10 +494,8 @@ DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& pl
         if (!(measured > min_dip_mps) || !std::isfinite(predicted) || (include && !include(check, rows[i])))
           continue;
         errors.push_back((predicted - measured) / measured);
-        const double measured_lost = rows[i].measured_distance_lost_m,
-                     predicted_lost = predictedOf(rows, i, which, Quantity::distance_lost);
-        if (measured_lost > 0.0 && std::isfinite(predicted_lost))
-          lost_errors.push_back((predicted_lost - measured_lost) / measured_lost);
+        addRelativeError(rows, i, which, Quantity::distance_lost, &lost_errors);
+        addRelativeError(rows, i, which, Quantity::width, &width_errors);
         const double ahead_measured = rows[i - 1].measured_dip_mps;
         if (std::isfinite(ahead_measured) && std::isfinite(ahead_predicted) &&
             std::abs(measured - ahead_measured) > min_link_change_mps)
@@ -482,6 +510,8 @@ DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& pl
   out.median_dip_error = finiteMedian(errors);
   out.distance_lost_scored = lost_errors.size();
   out.median_distance_lost_error = finiteMedian(lost_errors);
+  out.dip_width_scored = width_errors.size();
+  out.median_dip_width_error = finiteMedian(width_errors);
   std::vector<double> absolute;
   std::size_t within = 0;
   for (double e : errors)

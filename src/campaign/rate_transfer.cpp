@@ -43,8 +43,8 @@ std::vector<RatioCluster> clustersOf(const std::vector<PlatoonCheck>& platoons, 
 RateTransferSummary summarizeRateTransfer(const std::vector<PlatoonCheck>& platoons, const DipRowFilter& include,
                                           std::size_t replicates, std::uint64_t seed, double min_dip_mps)
 {
-  const RateOf braking = [](const DipComparison& r) { return r.measured_rates.braking_mps2; };
-  const RateOf recovery = [](const DipComparison& r) { return r.measured_rates.recovery_mps2; };
+  const RateOf braking = [](const DipComparison& r) { return r.measured_shape.braking_mps2; };
+  const RateOf recovery = [](const DipComparison& r) { return r.measured_shape.recovery_mps2; };
   auto passedOn = [&](const RateOf& braking_of, const RateOf& recovery_of) {
     return RatesPassedOn{
         clusteredRatioOfSums(clustersOf(platoons, include, min_dip_mps, braking_of, braking, braking), replicates, seed),
@@ -53,10 +53,10 @@ RateTransferSummary summarizeRateTransfer(const std::vector<PlatoonCheck>& plato
   };
   RateTransferSummary out;
   out.cars = passedOn(braking, recovery);
-  out.pair_base = passedOn([](const DipComparison& r) { return r.pair_predicted_rates.braking_mps2; },
-                           [](const DipComparison& r) { return r.pair_predicted_rates.recovery_mps2; });
-  out.pair_diagnosed = passedOn([](const DipComparison& r) { return r.pair_predicted_rates_diagnosed.braking_mps2; },
-                                [](const DipComparison& r) { return r.pair_predicted_rates_diagnosed.recovery_mps2; });
+  out.pair_base = passedOn([](const DipComparison& r) { return r.pair_predicted_shape.braking_mps2; },
+                           [](const DipComparison& r) { return r.pair_predicted_shape.recovery_mps2; });
+  out.pair_diagnosed = passedOn([](const DipComparison& r) { return r.pair_predicted_shape_diagnosed.braking_mps2; },
+                                [](const DipComparison& r) { return r.pair_predicted_shape_diagnosed.recovery_mps2; });
   return out;
 }
 

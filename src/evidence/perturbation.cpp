@@ -207,21 +207,12 @@ double rateOverSpan(const std::vector<double>& time_s, const std::vector<double>
 }
 }  // namespace
 
-DipRatesMps2 peakDipRates(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
-                          const Perturbation& perturbation, const PerturbationCriteria& criteria)
+namespace
 {
-  DipRatesMps2 rates;
-  const std::size_t end = std::min(perturbation.window_end, speed_mps.size());
-  // As for the distance lost: a window whose ends are missing may hide the peak, so it is unknown.
-  if (end <= perturbation.onset + 1 || !finiteAt(time_s, speed_mps, perturbation.onset) ||
-      !finiteAt(time_s, speed_mps, end - 1))
-    return rates;
-  std::size_t lowest = perturbation.onset;
-  for (std::size_t i = perturbation.onset; i < end; ++i)
-  {
-    if (finiteAt(time_s, speed_mps, i) && speed_mps[i] < speed_mps[lowest])
-      lowest = i;
-  }
+/// The steepest braking and recovery slopes around the minimum at `lowest` (see DipShape).
+void peakRates(const std::vector<double>& time_s, const std::vector<double>& speed_mps, const Perturbation& perturbation,
+               std::size_t lowest, std::size_t end, const PerturbationCriteria& criteria, DipShape* shape)
+{
   // Braking spans may start up to a span before the onset (the first car's onset is where its
   // speed has already left the median by a little) and end at the minimum; recovery spans start there.
   std::size_t first = perturbation.onset;
@@ -240,10 +231,80 @@ DipRatesMps2 peakDipRates(const std::vector<double>& time_s, const std::vector<d
       recovery = std::max(recovery, rate);
   }
   if (std::isfinite(braking))
-    rates.braking_mps2 = braking;
+    shape->braking_mps2 = braking;
   if (std::isfinite(recovery))
-    rates.recovery_mps2 = recovery;
-  return rates;
+    shape->recovery_mps2 = recovery;
+}
+
+/// The time at which the speed crosses `level` between the finite samples `from` and `to`
+/// (linear interpolation); NaN across a hole longer than the bridged one.
+double crossingTime(const std::vector<double>& time_s, const std::vector<double>& speed_mps, std::size_t from,
+                    std::size_t to, double level, const PerturbationCriteria& criteria)
+{
+  const double step_s = time_s[to] - time_s[from];
+  if (step_s > criteria.max_bridged_hole_s)
+    return kNaN;
+  const double change = speed_mps[to] - speed_mps[from];
+  const double share = change == 0.0 ? 0.0 : (level - speed_mps[from]) / change;
+  return time_s[from] + std::clamp(share, 0.0, 1.0) * step_s;
+}
+
+/// The dip's full width at half depth (see DipShape): from the first crossing below the level to
+/// the first crossing back above it after the minimum.
+double halfDepthWidthS(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
+                       const Perturbation& perturbation, std::size_t lowest, std::size_t end, double level,
+                       const PerturbationCriteria& criteria)
+{
+  // The speed is below the level at the minimum at the latest (the level lies above it).
+  double down_s = kNaN;
+  std::size_t previous = perturbation.onset;
+  for (std::size_t i = perturbation.onset; i <= lowest; ++i)
+  {
+    if (!finiteAt(time_s, speed_mps, i))
+      continue;
+    if (speed_mps[i] < level)
+    {
+      down_s = i == perturbation.onset ? time_s[i] : crossingTime(time_s, speed_mps, previous, i, level, criteria);
+      break;
+    }
+    previous = i;
+  }
+  if (std::isnan(down_s))
+    return kNaN;  // the crossing lies in a hole
+  previous = lowest;
+  for (std::size_t i = lowest + 1; i < end; ++i)
+  {
+    if (!finiteAt(time_s, speed_mps, i))
+      continue;
+    if (speed_mps[i] >= level)
+      return crossingTime(time_s, speed_mps, previous, i, level, criteria) - down_s;
+    previous = i;
+  }
+  return kNaN;  // still below half its dip at the window's end
+}
+}  // namespace
+
+DipShape dipShape(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
+                  const Perturbation& perturbation, const PerturbationCriteria& criteria)
+{
+  DipShape shape;
+  const std::size_t end = std::min(perturbation.window_end, speed_mps.size());
+  // As for the distance lost: a window whose ends are missing may hide the dip, so it is unknown.
+  if (end <= perturbation.onset + 1 || !finiteAt(time_s, speed_mps, perturbation.onset) ||
+      !finiteAt(time_s, speed_mps, end - 1))
+    return shape;
+  std::size_t lowest = perturbation.onset;
+  for (std::size_t i = perturbation.onset; i < end; ++i)
+  {
+    if (finiteAt(time_s, speed_mps, i) && speed_mps[i] < speed_mps[lowest])
+      lowest = i;
+  }
+  peakRates(time_s, speed_mps, perturbation, lowest, end, criteria, &shape);
+  const double pre_mps = preWindowMeanMps(time_s, speed_mps, perturbation, criteria);
+  if (std::isfinite(pre_mps) && pre_mps > speed_mps[lowest])
+    shape.width_s = halfDepthWidthS(time_s, speed_mps, perturbation, lowest, end, 0.5 * (pre_mps + speed_mps[lowest]),
+                                    criteria);
+  return shape;
 }
 
 }  // namespace acc

@@ -208,9 +208,10 @@ TEST(CampaignPerturbation, TheDistanceLostIsTheAreaOfTheDipAndUnknownWhereTheWin
 }
 
 // Braking at 2 m/s^2 from 10 to 6 m/s, 4 s held, back at 0.5 m/s^2: the peaks are those two rates
-// (each ramp lasts at least the 2 s span), each over the part of the dip it belongs to; a window
-// the data do not cover (they stop at the bottom of the dip) is unknown, not a flat zero.
-TEST(CampaignPerturbation, TheBrakingAndRecoveryRatesAreThePeaksOnEitherSideOfTheMinimum)
+// (each ramp lasts at least the 2 s span), each over the part of the dip it belongs to, and the
+// width is the time below half the dip; a window the data do not cover (they stop at the bottom
+// of the dip) is unknown, not a flat zero.
+TEST(CampaignPerturbation, TheDipsShapeIsItsPeakRatesOnEitherSideOfTheMinimumAndItsWidthAtHalfDepth)
 {
   auto speed = [](double t) {
     if (t < 20.0)
@@ -225,20 +226,29 @@ TEST(CampaignPerturbation, TheBrakingAndRecoveryRatesAreThePeaksOnEitherSideOfTh
   sampleSpeed(speed, 0.1, &time_s, &speed_mps);
   const auto found = acc::findPerturbations(time_s, speed_mps);
   ASSERT_EQ(found.size(), 1u);
-  const acc::DipRatesMps2 rates = acc::peakDipRates(time_s, speed_mps, found[0]);
+  const acc::DipShape rates = acc::dipShape(time_s, speed_mps, found[0]);
   EXPECT_NEAR(rates.braking_mps2, 2.0, 1e-6);
   EXPECT_NEAR(rates.recovery_mps2, 0.5, 1e-6);
+  // Below 8 m/s (half the 4 m/s dip) from t = 21 s to t = 30 s (within 0.01 s: the pre-window's
+  // mean holds the onset's sample, already 0.2 m/s down, so the level lies a little below 8).
+  EXPECT_NEAR(rates.width_s, 9.0, 0.01);
 
   std::vector<double> holed = speed_mps;
   for (std::size_t i = 283; i < 287; ++i)  // 0.4 s missing in the recovery: the spans across it still count
     holed[i] = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_NEAR(acc::peakDipRates(time_s, holed, found[0]).recovery_mps2, 0.5, 1e-6);
+  EXPECT_NEAR(acc::dipShape(time_s, holed, found[0]).recovery_mps2, 0.5, 1e-6);
+  EXPECT_NEAR(acc::dipShape(time_s, holed, found[0]).width_s, 9.0, 0.01);
+  std::vector<double> stays_down = speed_mps;  // never back above half its dip in the window
+  for (std::size_t i = 260; i < stays_down.size(); ++i)
+    stays_down[i] = 6.5;
+  EXPECT_TRUE(std::isnan(acc::dipShape(time_s, stays_down, found[0]).width_s));
   std::vector<double> cut = speed_mps;
   for (std::size_t i = 240; i < cut.size(); ++i)  // a chain that stopped at the bottom of the dip
     cut[i] = std::numeric_limits<double>::quiet_NaN();
-  const acc::DipRatesMps2 cut_rates = acc::peakDipRates(time_s, cut, found[0]);
+  const acc::DipShape cut_rates = acc::dipShape(time_s, cut, found[0]);
   EXPECT_TRUE(std::isnan(cut_rates.braking_mps2));
   EXPECT_TRUE(std::isnan(cut_rates.recovery_mps2));
+  EXPECT_TRUE(std::isnan(cut_rates.width_s));
 }
 
 TEST(CampaignInputs, EverySkippedFileIsNamedWithItsReasonAndCounted)

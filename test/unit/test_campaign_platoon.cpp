@@ -74,14 +74,17 @@ TEST(CampaignPlatoon, UnstableCarsAmplifyAndThePredictionAgrees)
         // Right models lose the distance the cars lost, not only dip as deep.
         EXPECT_NEAR(row.predicted_distance_lost_m, row.measured_distance_lost_m, 0.15 * row.measured_distance_lost_m)
             << check.run << " position " << row.position;
-        // ... and brake and recover as hard, driven by the same real leader (the measured speeds
-        // carry 0.06 m/s of white noise, which a peak rate over many spans picks up: the rate's
-        // least-squares slope over 2 s keeps that under 8 %; two end points over 1 s gave 20 %).
-        EXPECT_NEAR(row.pair_predicted_rates.braking_mps2, row.measured_rates.braking_mps2,
-                    0.08 * row.measured_rates.braking_mps2)
+        // ... and brake and recover as hard and stay down as long, driven by the same real leader
+        // (the measured speeds carry 0.06 m/s of white noise, which a peak rate over many spans
+        // picks up: the rate's least-squares slope over 2 s keeps that under 8 %; two end points
+        // over 1 s gave 20 %).
+        EXPECT_NEAR(row.pair_predicted_shape.braking_mps2, row.measured_shape.braking_mps2,
+                    0.08 * row.measured_shape.braking_mps2)
             << check.run << " position " << row.position;
-        EXPECT_NEAR(row.pair_predicted_rates.recovery_mps2, row.measured_rates.recovery_mps2,
-                    0.08 * row.measured_rates.recovery_mps2)
+        EXPECT_NEAR(row.pair_predicted_shape.recovery_mps2, row.measured_shape.recovery_mps2,
+                    0.08 * row.measured_shape.recovery_mps2)
+            << check.run << " position " << row.position;
+        EXPECT_NEAR(row.pair_predicted_shape.width_s, row.measured_shape.width_s, 0.1 * row.measured_shape.width_s)
             << check.run << " position " << row.position;
       }
       EXPECT_TRUE(perturbation.disagreements.empty()) << check.run << ": " << perturbation.disagreements.front().what;
@@ -213,6 +216,9 @@ TEST(DipPredictionSummary, TheNoModelReferencePassesTheFirstCarsDipOnWhereTheCha
   // The distances lost [m]: the third car's predicted one is unknown (a window not covered).
   const double measured_lost[] = {20.0, 30.0, 25.0, 18.0};
   const double chain_lost[] = {20.0, 24.0, nan, nan};
+  // The widths at half depth [s]: the second car's is unknown in the data.
+  const double measured_width[] = {4.0, nan, 8.0, 9.0};
+  const double chain_width[] = {4.0, 6.0, 6.0, nan};
   for (int i = 0; i < 4; ++i)
   {
     acc::DipComparison row;
@@ -221,6 +227,8 @@ TEST(DipPredictionSummary, TheNoModelReferencePassesTheFirstCarsDipOnWhereTheCha
     row.predicted_dip_mps = chain[i];
     row.measured_distance_lost_m = measured_lost[i];
     row.predicted_distance_lost_m = chain_lost[i];
+    row.measured_shape.width_s = measured_width[i];
+    row.predicted_shape.width_s = chain_width[i];
     perturbation.positions.push_back(row);
   }
   acc::PlatoonCheck check;
@@ -240,6 +248,11 @@ TEST(DipPredictionSummary, TheNoModelReferencePassesTheFirstCarsDipOnWhereTheCha
   EXPECT_NEAR(base.median_distance_lost_error, (24.0 - 30.0) / 30.0, 1e-12);
   ASSERT_EQ(copy.distance_lost_scored, 2u);  // every car loses what the first lost
   EXPECT_NEAR(copy.median_distance_lost_error, 0.5 * ((20.0 - 30.0) / 30.0 + (20.0 - 25.0) / 25.0), 1e-12);
+  // Width: the third car only (the second's measured width is unknown).
+  ASSERT_EQ(base.dip_width_scored, 1u);
+  EXPECT_NEAR(base.median_dip_width_error, (6.0 - 8.0) / 8.0, 1e-12);
+  ASSERT_EQ(copy.dip_width_scored, 1u);  // every car as wide as the first
+  EXPECT_NEAR(copy.median_dip_width_error, (4.0 - 8.0) / 8.0, 1e-12);
 }
 
 // The rates passed on: sums over the cars a filter accepts, one bootstrap cluster per
@@ -252,8 +265,8 @@ TEST(RateTransfer, SumsTheRatesOverTheScoredCarsWithOneClusterPerPerturbation)
     acc::DipComparison r;
     r.position = position;
     r.measured_dip_mps = dip_mps;
-    r.measured_rates = {braking, recovery};
-    r.pair_predicted_rates = {braking, model_recovery};
+    r.measured_shape = {braking, recovery};
+    r.pair_predicted_shape = {braking, model_recovery};
     return r;
   };
   acc::PerturbationCheck one, two;

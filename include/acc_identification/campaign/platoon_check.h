@@ -58,9 +58,10 @@ struct DipComparison
   double predicted_distance_lost_m_diagnosed = std::numeric_limits<double>::quiet_NaN();
   double pair_predicted_distance_lost_m = std::numeric_limits<double>::quiet_NaN();
   double pair_predicted_distance_lost_m_diagnosed = std::numeric_limits<double>::quiet_NaN();
-  /// How hard the car braked and recovered (peakDipRates): measured, and at pair level (its real
-  /// leader ahead, so the rates answer the same input), base and diagnosed model.
-  DipRatesMps2 measured_rates{}, pair_predicted_rates{}, pair_predicted_rates_diagnosed{};
+  /// How hard the car braked and recovered and how long it stayed below half its dip (dipShape):
+  /// measured, then as the dips above.
+  DipShape measured_shape{}, predicted_shape{}, predicted_shape_diagnosed{}, pair_predicted_shape{},
+      pair_predicted_shape_diagnosed{};
 };
 
 /// Where the model and the data disagree.

@@ -174,6 +174,10 @@ struct DipPredictionSummary
   /// car-perturbations, where both are known: whether a dip predicted right lasts as long.
   double median_distance_lost_error = 0.0;
   std::size_t distance_lost_scored = 0;
+  /// Median of (predicted - measured) / measured dip width at half depth (DipShape::width_s), where
+  /// both are known: whether a dip lasts as long, apart from its tails.
+  double median_dip_width_error = 0.0;
+  std::size_t dip_width_scored = 0;
 };
 
 /// Which prediction to summarise.

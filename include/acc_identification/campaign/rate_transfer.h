@@ -10,7 +10,7 @@
 
 namespace acc
 {
-// How much of the car ahead's braking and recovery a car passes on (peakDipRates): the sum of the
+// How much of the car ahead's braking and recovery a car passes on (dipShape): the sum of the
 // car's peak rates over the sum of its leader's measured ones. Without a model for the cars, and
 // for the pair-level models driven by the same real leaders, so the two answer the same input.
 // A platoon that passes its leaders' rates on unchanged (ratio 1) keeps a braking's shape from

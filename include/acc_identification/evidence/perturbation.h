@@ -60,19 +60,24 @@ double dipDepthMps(const std::vector<double>& time_s, const std::vector<double>&
 double distanceLostM(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
                      const Perturbation& perturbation, const PerturbationCriteria& criteria = {});
 
-/// How hard a car braked into its dip and accelerated out of it [m/s^2, both positive]: the
-/// steepest falling and rising least-squares slope of its speed over criteria.acceleration_span_s,
-/// braking on spans from a span before the onset to the dip's minimum, recovery on spans from the
-/// minimum to the window's end. A follower's rates over its leader's say how much of a braking's
-/// shape it passes on. NaN where the window's first or last sample is missing (the peak may lie
-/// outside the data) or no span is covered (holes longer than criteria.max_bridged_hole_s).
-struct DipRatesMps2
+/// The shape of a car's dip beyond its depth. Rates [m/s^2, both positive]: the steepest falling
+/// and rising least-squares slope of its speed over criteria.acceleration_span_s, braking on spans
+/// from a span before the onset to the dip's minimum, recovery on spans from the minimum to the
+/// window's end; a follower's rates over its leader's say how much of a braking's shape it passes
+/// on. Width [s]: how long its speed stays below half its dip (below the mean of its
+/// pre-perturbation speed and its minimum; crossings interpolated linearly), the dip's full width
+/// at half depth: two dips of one depth lose different distances when one is wider.
+/// Each NaN where the window's first or last sample is missing (the dip may lie outside the data),
+/// where a hole longer than criteria.max_bridged_hole_s hides what it measures, and the width
+/// also where the speed is not back above half its dip by the window's end.
+struct DipShape
 {
   double braking_mps2 = std::numeric_limits<double>::quiet_NaN();
   double recovery_mps2 = std::numeric_limits<double>::quiet_NaN();
+  double width_s = std::numeric_limits<double>::quiet_NaN();
 };
-DipRatesMps2 peakDipRates(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
-                          const Perturbation& perturbation, const PerturbationCriteria& criteria = {});
+DipShape dipShape(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
+                  const Perturbation& perturbation, const PerturbationCriteria& criteria = {});
 
 /// The median of the finite values (NaN when none).
 double finiteMedian(std::vector<double> values);
