@@ -10,7 +10,7 @@ acc_add_library(acc_campaign
     src/campaign/platoon_check.cpp
     src/campaign/platoon_diagnosis.cpp
     src/campaign/link_evidence.cpp
-    src/campaign/rate_transfer.cpp
+    src/campaign/shape_transfer.cpp
     src/campaign/campaign.cpp
     src/campaign/campaign_output.cpp
     src/campaign/campaign_sumo_export.cpp

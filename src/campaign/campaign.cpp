@@ -300,8 +300,8 @@ CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& 
     result.links = gatherLinkEvidence(inputs, result.groups, result.platoons, result.effect_selection.model,
                                       options.threads, options.platoon);
     const EffectSetSelectionOptions& draws = options.effect_selection;
-    result.rates_first_followers = summarizeRateTransfer(result.platoons, isFirstFollower, draws.replicates, draws.seed);
-    result.rates_further_back = summarizeRateTransfer(result.platoons, isFurtherBack, draws.replicates, draws.seed);
+    result.shapes_first_followers = summarizeShapeTransfer(result.platoons, isFirstFollower, draws.replicates, draws.seed);
+    result.shapes_further_back = summarizeShapeTransfer(result.platoons, isFurtherBack, draws.replicates, draws.seed);
   }
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;

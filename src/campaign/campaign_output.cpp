@@ -587,15 +587,16 @@ nlohmann::json gapJson(const CampaignResult& result)
   return j;
 }
 
-const std::vector<std::string> kRatesHeader{"car ahead",         "car-perturbations", "braking passed on: cars",
-                                           "base model",        "diagnosed model",   "recovery passed on: cars",
-                                           "base model",        "diagnosed model"};
+const std::vector<std::string> kShapeHeader{
+    "car ahead",       "car-perturbations", "braking passed on: cars", "base model",     "diagnosed model",
+    "recovery passed on: cars", "base model", "diagnosed model",       "dip widened: cars", "base model",
+    "diagnosed model"};
 
 /// The two places of "how much of the car ahead's braking and recovery each car passes on".
-std::vector<std::pair<const char*, const RateTransferSummary*>> ratePlaces(const CampaignResult& result)
+std::vector<std::pair<const char*, const ShapeTransferSummary*>> shapePlaces(const CampaignResult& result)
 {
-  return {{"the real first car (first followers)", &result.rates_first_followers},
-          {"another ACC car (further back)", &result.rates_further_back}};
+  return {{"the real first car (first followers)", &result.shapes_first_followers},
+          {"another ACC car (further back)", &result.shapes_further_back}};
 }
 
 /// The span the rates are slopes over, as the report states it ("2 s").
@@ -609,26 +610,30 @@ std::string ratioCell(const ClusteredRatio& r, bool with_interval)
                                                  : ratio;
 }
 
-std::vector<std::vector<std::string>> rateRows(const CampaignResult& result)
+std::vector<std::vector<std::string>> shapeRows(const CampaignResult& result)
 {
   std::vector<std::vector<std::string>> rows;
-  for (const auto& [label, s] : ratePlaces(result))
+  for (const auto& [label, s] : shapePlaces(result))
   {
     rows.push_back({label, std::to_string(s->cars.recovery.observations), ratioCell(s->cars.braking, true),
                     ratioCell(s->pair_base.braking, false), ratioCell(s->pair_diagnosed.braking, false),
                     ratioCell(s->cars.recovery, true), ratioCell(s->pair_base.recovery, false),
-                    ratioCell(s->pair_diagnosed.recovery, false)});
+                    ratioCell(s->pair_diagnosed.recovery, false), cellNumber("%+.1f s", s->cars.median_widening_s),
+                    cellNumber("%+.1f s", s->pair_base.median_widening_s),
+                    cellNumber("%+.1f s", s->pair_diagnosed.median_widening_s)});
   }
   return rows;
 }
 
-nlohmann::json ratesJson(const RateTransferSummary& s)
+nlohmann::json shapesJson(const ShapeTransferSummary& s)
 {
-  auto kind = [](const ClusteredRatio& cars, const ClusteredRatio& base, const ClusteredRatio& diagnosed) {
-    return nlohmann::json{{"cars", toJson(cars)}, {"pair_base", toJson(base)}, {"pair_diagnosed", toJson(diagnosed)}};
+  auto kind = [](const ShapePassedOn& shape) {
+    return nlohmann::json{{"braking", toJson(shape.braking)},
+                          {"recovery", toJson(shape.recovery)},
+                          {"median_widening_s", shape.median_widening_s},
+                          {"widenings", shape.widenings}};
   };
-  return {{"braking", kind(s.cars.braking, s.pair_base.braking, s.pair_diagnosed.braking)},
-          {"recovery", kind(s.cars.recovery, s.pair_base.recovery, s.pair_diagnosed.recovery)}};
+  return {{"cars", kind(s.cars)}, {"pair_base", kind(s.pair_base)}, {"pair_diagnosed", kind(s.pair_diagnosed)}};
 }
 
 std::vector<std::string> selectionLines(const EffectSetSelection& selection)
@@ -719,9 +724,9 @@ nlohmann::json campaignToJson(const CampaignInputs& inputs, const CampaignResult
                                       {"criterion", criterionName(result.effect_selection_criterion)},
                                       {"selection", selectionJson(result.effect_selection)},
                                       {"how_far_the_gap_shrinks", gapJson(result)},
-                                      {"rates_passed_on",
-                                       {{"first_follower", ratesJson(result.rates_first_followers)},
-                                        {"further_back", ratesJson(result.rates_further_back)}}}}
+                                      {"shape_passed_on",
+                                       {{"first_follower", shapesJson(result.shapes_first_followers)},
+                                        {"further_back", shapesJson(result.shapes_further_back)}}}}
                      : nlohmann::json(nullptr)}};
 }
 
@@ -746,10 +751,12 @@ void printCampaignTables(const CampaignResult& result, std::ostream& out)
       out << "  " << line << "\n";
     out << "\nHow far the gap shrinks (each run's diagnosed models chosen without that run)\n";
     printAligned(kGapHeader, gapRows(result), out);
-    out << "\nHow much of the car ahead's peak braking and recovery (speed slope over " << rateSpanText()
-        << ") each car passes on, against the models driven by the same real leaders (95 % bootstrap CI over "
-           "perturbations)\n";
-    printAligned(kRatesHeader, rateRows(result), out);
+    out << "\nHow much of the car ahead's dip shape each car passes on: its peak braking and recovery (speed slope "
+           "over "
+        << rateSpanText()
+        << ") over the car ahead's (95 % bootstrap CI over perturbations) and how much wider its dip is at half "
+           "depth (median), against the models driven by the same real leaders\n";
+    printAligned(kShapeHeader, shapeRows(result), out);
     out << "\nEach car as a link, without a model and beside its models: dip over the dip of the car ahead (95 % "
            "bootstrap CI over perturbations), where the base and diagnosed |Gamma| leave the band of the empirical "
            "one (coherence >= 0.5), the diagnosed model's small-signal peak and its dip ratio over "
@@ -827,13 +834,15 @@ std::string campaignReportMarkdown(const CampaignResult& result, const std::vect
     md << "\n### How far the gap shrinks\n\nEach run's diagnosed models use the effect set chosen without that "
           "run, fitted on the car's other runs.\n\n";
     printMarkdownTable(kGapHeader, gapRows(result), md);
-    md << "\n### How much of the car ahead's braking and recovery each car passes on\n\nThe sum of the cars' "
+    md << "\n### How much of the car ahead's dip shape each car passes on\n\nThe sum of the cars' "
           "peak braking (and recovery) rates, each the steepest least-squares slope of its speed over "
-       << rateSpanText() << " within the dip, over the sum of the car "
-          "ahead's measured ones; 95 % bootstrap interval over perturbations. The models are driven by the same real "
-          "leaders (pair level), so all three answer the same input. A ratio near 1 passes a braking on with its "
-          "shape; a model below the cars damps what they pass on, and that compounds along a chain.\n\n";
-    printMarkdownTable(kRatesHeader, rateRows(result), md);
+       << rateSpanText()
+       << " within the dip, over the sum of the car ahead's measured ones (95 % bootstrap interval over "
+          "perturbations), and the median of how much wider the car's dip is at half depth than the car ahead's. "
+          "The models are driven by the same real leaders (pair level), so all three answer the same input. A "
+          "ratio near 1 and no widening pass a braking on with its shape; a model that cuts the rates or widens "
+          "the dip where the cars do not smooths what they pass on, and that compounds along a chain.\n\n";
+    printMarkdownTable(kShapeHeader, shapeRows(result), md);
     md << "\n### Each car as a link: what the data show without a model\n\nDip ratio: the car's dip over the dip "
           "of the car directly ahead, with a 95 % bootstrap interval over perturbations. Where the base and the "
           "diagnosed model's |Gamma(jw)| leave the band of the empirical one (Welch, coherence >= 0.5). The "

@@ -255,10 +255,10 @@ TEST(DipPredictionSummary, TheNoModelReferencePassesTheFirstCarsDipOnWhereTheCha
   EXPECT_NEAR(copy.median_dip_width_error, (4.0 - 8.0) / 8.0, 1e-12);
 }
 
-// The rates passed on: sums over the cars a filter accepts, one bootstrap cluster per
-// perturbation; a car below the scored dip, or whose leader's rate is unknown, adds nothing; a
-// model's ratio sums only where it predicted.
-TEST(RateTransfer, SumsTheRatesOverTheScoredCarsWithOneClusterPerPerturbation)
+// The shape passed on: rate sums over the cars a filter accepts, one bootstrap cluster per
+// perturbation, and the median widening; a car below the scored dip, or whose leader's rate or
+// width is unknown, adds nothing; a model's ratio and widening take only where it predicted.
+TEST(ShapeTransfer, SumsTheRatesAndTakesTheWideningsOverTheScoredCarsWithOneClusterPerPerturbation)
 {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto row = [](int position, double dip_mps, double braking, double recovery, double model_recovery) {
@@ -274,9 +274,19 @@ TEST(RateTransfer, SumsTheRatesOverTheScoredCarsWithOneClusterPerPerturbation)
                    row(4, 0.2, 0.5, 0.5, 0.5)};
   two.positions = {row(1, 3.0, 2.0, 1.0, nan), row(2, 2.0, 1.5, 1.0, nan), row(3, 2.0, 1.5, nan, 0.7),
                    row(4, 1.0, 1.0, 0.9, 0.9)};
+  // Widths at half depth [s], measured and the base model's.
+  const double widths[2][4] = {{2.0, 3.5, 4.0, 9.0}, {2.0, 3.0, nan, 5.0}};
+  const double model_widths[2][4] = {{nan, 3.0, 5.0, 9.0}, {nan, nan, 4.0, 6.0}};
+  for (std::size_t k = 0; k < 4; ++k)
+  {
+    one.positions[k].measured_shape.width_s = widths[0][k];
+    one.positions[k].pair_predicted_shape.width_s = model_widths[0][k];
+    two.positions[k].measured_shape.width_s = widths[1][k];
+    two.positions[k].pair_predicted_shape.width_s = model_widths[1][k];
+  }
   acc::PlatoonCheck check;
   check.perturbations = {one, two};
-  const acc::RateTransferSummary back = acc::summarizeRateTransfer({check}, acc::isFurtherBack, 999, 3);
+  const acc::ShapeTransferSummary back = acc::summarizeShapeTransfer({check}, acc::isFurtherBack, 999, 3);
   // Car 3 of one (0.8 over 1.0), car 4 of two (0.9 over its leader's unknown recovery: skipped);
   // car 4 of one is below the scored dip; car 3 of two has no recovery of its own.
   EXPECT_EQ(back.cars.recovery.observations, 1u);
@@ -286,11 +296,21 @@ TEST(RateTransfer, SumsTheRatesOverTheScoredCarsWithOneClusterPerPerturbation)
   EXPECT_EQ(back.cars.braking.observations, 3u);
   EXPECT_EQ(back.cars.braking.clusters, 2u);
   EXPECT_DOUBLE_EQ(back.cars.braking.ratio, 3.5 / 4.0);
-  const acc::RateTransferSummary first = acc::summarizeRateTransfer({check}, acc::isFirstFollower, 999, 3);
+  const acc::ShapeTransferSummary first = acc::summarizeShapeTransfer({check}, acc::isFirstFollower, 999, 3);
   EXPECT_DOUBLE_EQ(first.cars.recovery.ratio, 2.0 / 3.0);
   EXPECT_EQ(first.pair_base.recovery.observations, 1u);  // the second perturbation's model did not predict
   EXPECT_DOUBLE_EQ(first.pair_base.recovery.ratio, 0.25);
   EXPECT_TRUE(std::isnan(first.pair_diagnosed.recovery.ratio));  // no diagnosed models at all
+  // Widening further back: car 3 of one only (4.0 - 3.5; the model's 5.0 - 3.5). Car 4 of one is
+  // below the scored dip, car 3 of two has no width, car 4 of two's leader has none.
+  EXPECT_EQ(back.cars.widenings, 1u);
+  EXPECT_DOUBLE_EQ(back.cars.median_widening_s, 0.5);
+  EXPECT_DOUBLE_EQ(back.pair_base.median_widening_s, 1.5);
+  // The first followers: 1.5 and 1.0 s; the model predicted the first perturbation only.
+  EXPECT_EQ(first.cars.widenings, 2u);
+  EXPECT_DOUBLE_EQ(first.cars.median_widening_s, 1.25);
+  EXPECT_EQ(first.pair_base.widenings, 1u);
+  EXPECT_DOUBLE_EQ(first.pair_base.median_widening_s, 1.0);
 }
 
 // What --platoon-effects takes: every candidate's text reads back as that candidate, so the list

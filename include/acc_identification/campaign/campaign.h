@@ -11,7 +11,7 @@
 #include "acc_identification/campaign/platoon_check.h"
 #include "acc_identification/campaign/link_evidence.h"
 #include "acc_identification/campaign/platoon_diagnosis.h"
-#include "acc_identification/campaign/rate_transfer.h"
+#include "acc_identification/campaign/shape_transfer.h"
 
 namespace acc
 {
@@ -47,8 +47,8 @@ struct CampaignResult
   /// frequency response beside the base and diagnosed models, and the diagnosed model's stability.
   std::vector<LinkEvidence> links;
   /// With the platoon diagnosis: how much of the car ahead's braking and recovery the cars and
-  /// their pair-level models pass on (rate_transfer.h), behind the real first car and further back.
-  RateTransferSummary rates_first_followers, rates_further_back;
+  /// their pair-level models pass on (shape_transfer.h), behind the real first car and further back.
+  ShapeTransferSummary shapes_first_followers, shapes_further_back;
   std::size_t threads = 0;             ///< threads used
   double wall_time_s = 0.0;
 };
