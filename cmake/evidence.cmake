@@ -6,6 +6,7 @@ acc_add_library(acc_evidence
   SOURCES
     src/evidence/perturbation.cpp
     src/evidence/clustered_ratio.cpp
+    src/evidence/dip_shape_transfer.cpp
     src/evidence/empirical_response.cpp
     src/evidence/pair_dip_evidence.cpp
     src/evidence/perturbation_windows.cpp

@@ -9,6 +9,7 @@
 #include <limits>
 #include <string>
 
+#include "acc_identification/model/number_text.h"
 #include "acc_identification/model/pooled_moments.h"
 
 namespace acc
@@ -86,6 +87,26 @@ std::string fitCells(const std::optional<FitQuality>& fit)
                 fit->diverged ? " (diverged)" : "");
   return buffer;
 }
+/// "  shape: the car passes on 0.81 [0.70, 0.93] of its leader's peak braking, ..."; nothing
+/// without a scored perturbation.
+void printDipShapeLine(const DipShapeTransfer& shape, std::ostream& out)
+{
+  if (shape.braking.observations == 0 && shape.recovery.observations == 0 && shape.widenings == 0)
+    return;
+  auto ratio = [](const ClusteredRatio& r) {
+    std::string text = printfText("%.2f", r.ratio);
+    if (std::isfinite(r.lower))
+      text += printfText(" [%.2f, %.2f]", r.lower, r.upper);
+    return text;
+  };
+  out << "  shape (no model): the car passes on " << ratio(shape.braking) << " of its leader's peak braking and "
+      << ratio(shape.recovery) << " of its peak recovery (slopes over "
+      << printfText("%g", PerturbationCriteria{}.acceleration_span_s)
+      << " s, 95 % interval over perturbations); its dips "
+      << printfText("%+.1f", shape.median_widening_s) << " s wider at half depth (median of " << shape.widenings
+      << ")\n";
+}
+
 /// "Dips of the leader's perturbations (the data's own, no model): N perturbation(s); ...".
 void printDipRatioLine(const PairDipEvidence& evidence, std::ostream& out)
 {
@@ -98,6 +119,7 @@ void printDipRatioLine(const PairDipEvidence& evidence, std::ostream& out)
   else if (evidence.ratio.amplifies == DipAmplification::Attenuates)
     out << "  the car damped its leader's dips beyond their interval: these inputs did not grow (a stable answer "
            "for them only)\n";
+  printDipShapeLine(evidence.shape, out);
 }
 
 nlohmann::json dipEvidenceJson(const CalibrationReport& report)

@@ -627,13 +627,7 @@ std::vector<std::vector<std::string>> shapeRows(const CampaignResult& result)
 
 nlohmann::json shapesJson(const ShapeTransferSummary& s)
 {
-  auto kind = [](const ShapePassedOn& shape) {
-    return nlohmann::json{{"braking", toJson(shape.braking)},
-                          {"recovery", toJson(shape.recovery)},
-                          {"median_widening_s", shape.median_widening_s},
-                          {"widenings", shape.widenings}};
-  };
-  return {{"cars", kind(s.cars)}, {"pair_base", kind(s.pair_base)}, {"pair_diagnosed", kind(s.pair_diagnosed)}};
+  return {{"cars", toJson(s.cars)}, {"pair_base", toJson(s.pair_base)}, {"pair_diagnosed", toJson(s.pair_diagnosed)}};
 }
 
 std::vector<std::string> selectionLines(const EffectSetSelection& selection)

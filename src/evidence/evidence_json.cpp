@@ -28,6 +28,14 @@ nlohmann::json toJson(const ClusteredRatio& r)
           {"observations", r.observations}};
 }
 
+nlohmann::json toJson(const DipShapeTransfer& t)
+{
+  return {{"braking", toJson(t.braking)},
+          {"recovery", toJson(t.recovery)},
+          {"median_widening_s", jsonNumber(t.median_widening_s)},
+          {"widenings", t.widenings}};
+}
+
 nlohmann::json toJson(const PairDipEvidence& evidence)
 {
   nlohmann::json dips = nlohmann::json::array();
@@ -36,9 +44,15 @@ nlohmann::json toJson(const PairDipEvidence& evidence)
     dips.push_back({{"run", dip.run},
                     {"onset_s", dip.onset_s},
                     {"leader_dip_mps", jsonNumber(dip.leader_dip_mps)},
-                    {"follower_dip_mps", jsonNumber(dip.follower_dip_mps)}});
+                    {"follower_dip_mps", jsonNumber(dip.follower_dip_mps)},
+                    {"leader_peak_braking_mps2", jsonNumber(dip.leader_shape.braking_mps2)},
+                    {"follower_peak_braking_mps2", jsonNumber(dip.follower_shape.braking_mps2)},
+                    {"leader_peak_recovery_mps2", jsonNumber(dip.leader_shape.recovery_mps2)},
+                    {"follower_peak_recovery_mps2", jsonNumber(dip.follower_shape.recovery_mps2)},
+                    {"leader_dip_width_s", jsonNumber(dip.leader_shape.width_s)},
+                    {"follower_dip_width_s", jsonNumber(dip.follower_shape.width_s)}});
   }
-  return {{"dips", dips}, {"dip_ratio", toJson(evidence.ratio)}};
+  return {{"dips", dips}, {"dip_ratio", toJson(evidence.ratio)}, {"shape_passed_on", toJson(evidence.shape)}};
 }
 
 }  // namespace acc

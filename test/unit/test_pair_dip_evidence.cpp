@@ -53,6 +53,23 @@ TEST(PairDipEvidence, AFollowerThatDeepensEveryDipAmplifies)
   EXPECT_EQ(evidence.ratio.amplifies, DipAmplification::Amplifies) << evidence.ratio.reason;
 }
 
+// The follower's V-dips are the leader's, 1.4 times as deep and as long: it brakes and recovers
+// 1.4 times as steeply and stays below half its dip exactly as long (4 s), so it passes the shape
+// on at 1.4 with no widening.
+TEST(PairDipEvidence, TheShapePassedOnIsTheRatioOfThePeakSlopesAndTheWidening)
+{
+  const PairDipEvidence evidence = pairDipEvidence({pairRun(1.4, "steeper")});
+  ASSERT_EQ(evidence.dips.size(), 3u);
+  EXPECT_NEAR(evidence.dips[1].leader_shape.braking_mps2, 0.75, 1e-6);
+  EXPECT_NEAR(evidence.dips[1].follower_shape.recovery_mps2, 1.05, 1e-6);
+  EXPECT_NEAR(evidence.dips[1].leader_shape.width_s, 4.0, 0.05);
+  EXPECT_EQ(evidence.shape.braking.observations, 3u);
+  EXPECT_NEAR(evidence.shape.braking.ratio, 1.4, 1e-6);
+  EXPECT_NEAR(evidence.shape.recovery.ratio, 1.4, 1e-6);
+  EXPECT_EQ(evidence.shape.widenings, 3u);
+  EXPECT_NEAR(evidence.shape.median_widening_s, 0.0, 0.05);
+}
+
 TEST(PairDipEvidence, AFollowerThatSoftensEveryDipAttenuates)
 {
   const PairDipEvidence evidence = pairDipEvidence({pairRun(0.7, "a"), pairRun(0.7, "b")});

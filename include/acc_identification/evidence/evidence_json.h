@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "acc_identification/evidence/clustered_ratio.h"
+#include "acc_identification/evidence/dip_shape_transfer.h"
 #include "acc_identification/evidence/empirical_response.h"
 #include "acc_identification/evidence/pair_dip_evidence.h"
 
@@ -15,7 +16,11 @@ nlohmann::json toJson(const DipRatioEstimate& estimate);
 /// {ratio, lower, upper, confidence, clusters, observations}; NaN as null.
 nlohmann::json toJson(const ClusteredRatio& ratio);
 
-/// {dips: [{run, onset_s, leader_dip_mps, follower_dip_mps}], dip_ratio: toJson(ratio)}.
+/// {braking: toJson(ratio), recovery: toJson(ratio), median_widening_s, widenings}; NaN as null.
+nlohmann::json toJson(const DipShapeTransfer& transfer);
+
+/// {dips: [{run, onset_s, leader_dip_mps, follower_dip_mps, leader_/follower_peak_braking_mps2,
+/// _peak_recovery_mps2, _dip_width_s}], dip_ratio: toJson(ratio), shape_passed_on: toJson(shape)}.
 nlohmann::json toJson(const PairDipEvidence& evidence);
 
 }  // namespace acc

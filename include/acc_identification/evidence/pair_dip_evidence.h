@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "acc_identification/evidence/dip_shape_transfer.h"
 #include "acc_identification/evidence/empirical_response.h"
 #include "acc_identification/evidence/perturbation.h"
 #include "acc_identification/model/car_following_run.h"
@@ -20,6 +21,8 @@ struct PairDip
   double onset_s = 0.0;     ///< time of the leader's onset (the run's clock)
   double leader_dip_mps = 0.0;
   double follower_dip_mps = 0.0;
+  DipShape leader_shape;    ///< how steep and how wide each dip is (dipShape)
+  DipShape follower_shape;
 };
 
 /// What the data of leader-follower runs say of string stability without any model: every
@@ -32,6 +35,9 @@ struct PairDipEvidence
 {
   std::vector<PairDip> dips;    ///< every perturbation found, in run order
   DipRatioEstimate ratio;       ///< over the dips (skips counted in it)
+  /// How much of its leader's dip shape the follower passes on (one cluster per perturbation): a
+  /// car that cuts a steep braking or recovery, or comes back later than it went down, smooths it.
+  DipShapeTransfer shape;
 };
 
 /// The dips of runs whose leader perturbs (pair runs: each run's leader is the car ahead), with
