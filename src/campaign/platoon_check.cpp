@@ -213,10 +213,11 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
   const DipMeasures lead_measured = measure(data.vehicle(1)->speed_mps);
   DipComparison lead{1, data.vehicleName(1), lead_measured.dip_mps, lead_measured.dip_mps, kNaN, kNaN};
   lead.measured_distance_lost_m = lead.predicted_distance_lost_m = lead_measured.lost_m;
-  lead.measured_shape = lead_measured.shape;
+  lead.measured_shape = lead.predicted_shape = lead_measured.shape;
   if (!check.cars_diagnosed.empty())
   {
     lead.predicted_dip_mps_diagnosed = lead_measured.dip_mps;
+    lead.predicted_shape_diagnosed = lead_measured.shape;
     lead.predicted_distance_lost_m_diagnosed = lead_measured.lost_m;
   }
   result.positions.push_back(lead);
