@@ -100,6 +100,13 @@ std::vector<Perturbation> findPerturbations(const std::vector<double>& time_s, c
                             lead_speed_mps[p.onset] >= median - criteria.onset_below_median_mps))
       --p.onset;
     p.end = std::min(drop.second, time_s.size() - 1);
+    // A speed that never came back near the median since the last drop: one perturbation, not a
+    // second one with the same onset (its dip would be counted twice).
+    if (!found.empty() && p.onset <= found.back().end)
+    {
+      p.onset = found.back().onset;
+      found.pop_back();
+    }
     p.onset_s = time_s[p.onset];
     p.end_s = time_s[p.end];
     p.window_end = indexBefore(time_s, p.end, p.end_s + criteria.extension_s);

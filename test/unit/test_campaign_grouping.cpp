@@ -182,6 +182,29 @@ TEST(CampaignPerturbation, FindsTheDipAndItsDepth)
   EXPECT_NEAR(acc::dipDepthMps(time_s, speed_mps, found[1]), 5.4, 0.4);
 }
 
+// Two drops 10 s apart (more than the 5 s merged as noise) between which the speed comes back
+// above the drop threshold but not near the median: the onset of the second would be the first's,
+// so they are one perturbation (once two with one onset, the same dip counted twice).
+TEST(CampaignPerturbation, DropsWithoutARecoveryNearTheMedianBetweenThemAreOnePerturbation)
+{
+  auto speed = [](double t) {
+    if (t >= 20.0 && t < 23.0)
+      return 7.0;  // the first drop
+    if (t >= 23.0 && t < 33.0)
+      return 9.5;  // back above 10 - 1 but not within 0.25 of 10
+    if (t >= 33.0 && t < 36.0)
+      return 6.0;  // the second drop
+    return 10.0;
+  };
+  std::vector<double> time_s, speed_mps;
+  sampleSpeed(speed, 0.1, &time_s, &speed_mps);
+  const auto found = acc::findPerturbations(time_s, speed_mps);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_NEAR(found[0].onset_s, 19.9, 1e-6);
+  EXPECT_NEAR(found[0].end_s, 36.0, 1e-6);
+  EXPECT_NEAR(acc::dipDepthMps(time_s, speed_mps, found[0]), 4.0, 1e-9);
+}
+
 // A dip of known area: 10 m/s, 2 m/s less for 4 s from t = 20 s: the car loses 2 * 4 = 8 m
 // against its pre-perturbation speed (the trapezoids across the two steps add half a sample each),
 // and the same with a short hole bridged; a long hole or a missing end leaves it unknown (NaN),
