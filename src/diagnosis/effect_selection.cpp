@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "acc_identification/model/portable_uniform.h"
+#include "acc_identification/model/sample_statistics.h"
 
 namespace acc
 {
@@ -108,21 +109,6 @@ std::vector<std::vector<double>> bootstrapMeans(const std::vector<SquaredErrorsB
   return means;
 }
 
-double quantile(std::vector<double> values, double q)
-{
-  if (values.empty())
-  {
-    return 0.0;
-  }
-  const double position = std::clamp(q, 0.0, 1.0) * static_cast<double>(values.size() - 1);
-  const std::size_t lo = static_cast<std::size_t>(std::floor(position));
-  const std::size_t hi = std::min(values.size() - 1, lo + 1);
-  std::nth_element(values.begin(), values.begin() + static_cast<long>(lo), values.end());
-  const double a = values[lo];
-  std::nth_element(values.begin(), values.begin() + static_cast<long>(hi), values.end());
-  const double b = values[hi];
-  return a + (position - static_cast<double>(lo)) * (b - a);
-}
 
 std::vector<double> column(const std::vector<std::vector<double>>& matrix, std::size_t k)
 {
@@ -140,8 +126,8 @@ ImprovementEstimate estimate(const SquaredErrorsByRun& diff, const std::vector<d
   ImprovementEstimate e;
   e.mean = meanOf(diff);
   e.relative = base_mse > 0.0 ? e.mean / base_mse : 0.0;
-  e.lower_bound = quantile(boot, level);
-  e.upper_bound = quantile(boot, 1.0 - level);
+  e.lower_bound = interpolatedQuantile(boot, level);
+  e.upper_bound = interpolatedQuantile(boot, 1.0 - level);
   return e;
 }
 }  // namespace

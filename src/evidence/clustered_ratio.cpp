@@ -1,25 +1,16 @@
 #include "acc_identification/evidence/clustered_ratio.h"
 
-#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
 
 #include "acc_identification/model/portable_uniform.h"
+#include "acc_identification/model/sample_statistics.h"
 
 namespace acc
 {
 namespace
 {
-double interpolatedQuantile(std::vector<double> values, double q)
-{
-  std::sort(values.begin(), values.end());
-  const double position = std::clamp(q, 0.0, 1.0) * static_cast<double>(values.size() - 1);
-  const std::size_t lo = static_cast<std::size_t>(std::floor(position));
-  const std::size_t hi = std::min(values.size() - 1, lo + 1);
-  return values[lo] + (position - static_cast<double>(lo)) * (values[hi] - values[lo]);
-}
-
 /// The ratio of sums of `replicates` resamples of the clusters with replacement.
 std::vector<double> bootstrapRatios(const std::vector<RatioCluster>& clusters, std::size_t replicates,
                                     std::uint64_t seed)

@@ -1,5 +1,6 @@
 #include "acc_identification/model/sample_statistics.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace acc
@@ -15,6 +16,20 @@ double meanOf(const std::vector<double>& samples)
 double rootMeanOf(const std::vector<double>& squared_errors)
 {
   return std::sqrt(meanOf(squared_errors));
+}
+
+double interpolatedQuantile(std::vector<double> values, double q)
+{
+  if (values.empty())
+    return 0.0;
+  const double position = std::clamp(q, 0.0, 1.0) * static_cast<double>(values.size() - 1);
+  const std::size_t lo = static_cast<std::size_t>(std::floor(position));
+  const std::size_t hi = std::min(values.size() - 1, lo + 1);
+  std::nth_element(values.begin(), values.begin() + static_cast<long>(lo), values.end());
+  const double a = values[lo];
+  std::nth_element(values.begin(), values.begin() + static_cast<long>(hi), values.end());
+  const double b = values[hi];
+  return a + (position - static_cast<double>(lo)) * (b - a);
 }
 
 }  // namespace acc

@@ -10,4 +10,8 @@ double meanOf(const std::vector<double>& samples);
 /// sqrt(mean) of squared errors: the RMSE from the squares; 0 without samples.
 double rootMeanOf(const std::vector<double>& squared_errors);
 
+/// The q-quantile (q clamped to [0, 1]) with linear interpolation between order statistics; 0
+/// without samples.
+double interpolatedQuantile(std::vector<double> values, double q);
+
 }  // namespace acc
