@@ -23,9 +23,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// every car of every run.
 constexpr std::size_t kEffectStarts = 3;
 constexpr std::size_t kColdStarts = 4;
-/// Dips below this are within GNSS noise and driving jitter: no relative error is formed with them
-/// (the same floor as the package's platoon scores).
-constexpr double kMinScoredDipMps = 0.3;
 
 /// The model a fit makes, with its source.
 PlatoonCarModel modelOf(const AugmentedFit& fit, const std::string& source)
@@ -46,7 +43,7 @@ double lossOf(const PairPerturbationScore& s, std::size_t m, SelectionCriterion 
 {
   if (criterion == SelectionCriterion::pair_windows)
     return m < s.window_mse.size() ? s.window_mse[m] : kNaN;
-  if (m >= s.chain_dip_mps.size() || !(s.measured_dip_mps > kMinScoredDipMps) || !(s.chain_dip_mps[m] > 0.0))
+  if (m >= s.chain_dip_mps.size() || !(s.measured_dip_mps > kScoredMinDipMps) || !(s.chain_dip_mps[m] > 0.0))
     return kNaN;
   const double log_ratio = std::log(s.chain_dip_mps[m] / s.measured_dip_mps);
   return log_ratio * log_ratio;

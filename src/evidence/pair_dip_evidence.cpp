@@ -2,12 +2,6 @@
 
 namespace acc
 {
-namespace
-{
-/// linkDipRatio's default floor: a shape of a dip the GNSS noise could make is noise.
-constexpr double kMinLeaderDipForShapeMps = 0.3;
-}  // namespace
-
 PairDipEvidence pairDipEvidence(const std::vector<CarFollowingRun>& runs, const PerturbationCriteria& criteria,
                                 std::size_t replicates, std::uint64_t seed)
 {
@@ -31,7 +25,7 @@ PairDipEvidence pairDipEvidence(const std::vector<CarFollowingRun>& runs, const 
       leader_dips.push_back(dip.leader_dip_mps);
       follower_dips.push_back(dip.follower_dip_mps);
       // The shape is scored where the dip ratio is: a leader dip above the ratio's floor.
-      if (dip.leader_dip_mps >= kMinLeaderDipForShapeMps)
+      if (dip.leader_dip_mps >= kMinLeaderDipMps)
         shapes.push_back({evidence.dips.size(), dip.follower_shape, dip.follower_shape, dip.leader_shape});
       evidence.dips.push_back(dip);
     }

@@ -212,10 +212,7 @@ double rateOverSpan(const std::vector<double>& time_s, const std::vector<double>
   const double count = static_cast<double>(n), spread = count * sum_tt - sum_t * sum_t;
   return spread > 0.0 ? (count * sum_tv - sum_t * sum_v) / spread : kNaN;
 }
-}  // namespace
 
-namespace
-{
 /// The steepest braking and recovery slopes around the minimum at `lowest` (see DipShape).
 void peakRates(const std::vector<double>& time_s, const std::vector<double>& speed_mps, const Perturbation& perturbation,
                std::size_t lowest, std::size_t end, const PerturbationCriteria& criteria, DipShape* shape)

@@ -47,6 +47,10 @@ struct DipRatioEstimate
   std::string reason;  ///< one line: the ratio, its interval, the counts and the verdict
 };
 
+/// A leader dip below this [m/s] is within GNSS noise and driving jitter: a follower's ratio to
+/// it (or to its shape) is noise, so it is not scored.
+constexpr double kMinLeaderDipMps = 0.3;
+
 /// The dip ratio of one link over its perturbations. follower_dips_mps[i] and leader_dips_mps[i]
 /// are the two cars' dips in perturbation i (dipDepthMps); the vectors must have one size.
 /// A pair is skipped (and counted) when either dip is not finite or the leader's is below
@@ -62,7 +66,7 @@ struct DipRatioEstimate
 /// outside (0, 1).
 DipRatioEstimate linkDipRatio(const std::vector<double>& follower_dips_mps, const std::vector<double>& leader_dips_mps,
                               std::size_t replicates, std::uint64_t seed, double confidence = 0.95,
-                              double min_leader_dip_mps = 0.3);
+                              double min_leader_dip_mps = kMinLeaderDipMps);
 
 /// Options of Welch's estimate of a link's frequency response.
 struct WelchOptions
