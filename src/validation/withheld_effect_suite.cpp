@@ -523,7 +523,10 @@ bool SemiRealOutcome::passed(double tolerance) const
   {
     return true;  // the baseline is a measurement, not a check
   }
-  return detectable() ? foundWithin(tolerance) : !misattributed(tolerance);
+  // Found at its size passes wherever the limit puts the case: the limit predicts whether the data
+  // can be asked to find it, and a find below it is judged as one above it (another timing effect
+  // named beside it is a stand-in there, allowed above the limit, so it is allowed below it too).
+  return foundWithin(tolerance) || (!detectable() && !misattributed(tolerance));
 }
 
 namespace
@@ -701,7 +704,8 @@ std::string formatSemiRealTables(const std::vector<SemiRealOutcome>& outcomes)
   out << "| set | injected | value [s] | expected [s] | untouched estimate +- SE | net / SE | dominant | chain | "
          "determined | selected: fitted | recovered | single fit | shift | found | pass | time [s] |\n"
          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  std::size_t checks = 0, detectable = 0, found_within = 0, named_within = 0, below = 0, below_clean = 0, shifts_within = 0;
+  std::size_t checks = 0, detectable = 0, found_within = 0, named_within = 0, below = 0, below_clean = 0,
+              below_found = 0, shifts_within = 0, passed = 0;
   for (const SemiRealOutcome& o : outcomes)
   {
     const bool check = o.input.injected != EffectKind::none;
@@ -726,11 +730,14 @@ std::string formatSemiRealTables(const std::vector<SemiRealOutcome>& outcomes)
     named_within += o.detectable() && o.selected && o.foundWithin() ? 1 : 0;
     below += o.detectable() ? 0 : 1;
     below_clean += !o.detectable() && !o.misattributed() ? 1 : 0;
+    below_found += !o.detectable() && o.foundWithin() ? 1 : 0;
+    passed += o.passed() ? 1 : 0;
     shifts_within += std::abs(o.singleFitShift() - o.expected_magnitude) <= 0.25 * std::abs(o.expected_magnitude) ? 1 : 0;
   }
   out << "\ndetectable (net effect at least z standard errors of the untouched runs from none): " << detectable << " of "
       << checks << "; of them found within 25% of the expected size: " << found_within << " (named by the held-out rule: "
       << named_within << "); below the limit: " << below << ", nothing misattributed in " << below_clean
+      << ", found at its size in " << below_found << "; passed: " << passed << " of " << checks
       << "; single-fit shift within 25% of the expected size: " << shifts_within << " of " << checks << "\n";
   return out.str();
 }

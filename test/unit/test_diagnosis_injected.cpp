@@ -263,6 +263,22 @@ TEST(SemiRealRule, BelowTheLimitNothingMayBeMisattributed)
   EXPECT_TRUE(o.detectable());
 }
 
+TEST(SemiRealRule, BelowTheLimitAFindAtItsSizeIsJudgedAsAboveIt)
+{
+  acc::SemiRealOutcome o = offsetOutcome(0.3);  // net -0.2: 1 standard error
+  ASSERT_FALSE(o.detectable());
+  o.chain = {acc::EffectKind::reaction_delay};  // a timing stand-in named beside the find
+  o.determined = true;
+  o.single_fit_magnitude = -0.2;  // shift +0.3: found at its size
+  o.baseline_single_fit_magnitude = -0.5;
+  ASSERT_TRUE(o.misattributed());
+  EXPECT_TRUE(o.passed());  // as it would pass above the limit
+  o.single_fit_magnitude = 0.0;  // shift +0.5: 67 % off
+  EXPECT_FALSE(o.passed());
+  o.determined = false;  // not found, the stand-in alone
+  EXPECT_FALSE(o.passed());
+}
+
 // The untouched runs' case asks for no effect: nothing is attributed, whatever the diagnosis
 // named (a "none" dominant effect is not a fitted effect with a value).
 TEST(SemiRealRule, NoEffectHasNoSelectedMagnitude)

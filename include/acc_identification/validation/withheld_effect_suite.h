@@ -199,8 +199,9 @@ struct SemiRealOutcome
   /// Another effect than the injected one named beyond the untouched runs' chain, or the injected
   /// one named or determined with a size off by more than the tolerance.
   bool misattributed(double tolerance = 0.25) const;
-  /// The check: a detectable injection is found within tolerance; one below the limit is not
-  /// misattributed.
+  /// The check: the injection is found within tolerance, or, below the limit, nothing is
+  /// misattributed. A detectable injection must be found; one below the limit that is found at
+  /// its size passes as it would above the limit.
   bool passed(double tolerance = 0.25) const;
 };
 
