@@ -136,6 +136,7 @@ nlohmann::json withheldJson(const WithheldOutcome& o)
           {"seed", o.input.seed},
           {"dominant_effect", effectName(o.dominant)},
           {"plausible_effects", effectNames(o.plausible)},
+          {"determined_effects", effectNames(o.determined)},
           {"recovered_magnitude", jsonNumber(o.recovered_magnitude)},
           {"recovered_standard_error", jsonNumber(o.recovered_standard_error)},
           {"base_test_rmse_speed", o.base_test_rmse_speed_mps},
@@ -160,7 +161,9 @@ SuiteReport runWithheldSuite(const std::string& size, const DiagnosisOptions& op
     outcomes.push_back(o);
   }
   const ConfusionMatrix matrix = confusionMatrix(outcomes);
-  return {formatConfusionMatrix(matrix) + "\n" + formatMagnitudeRecovery(outcomes), {{"cases", cases}}};
+  return {formatConfusionMatrix(matrix) + "\n" + formatMagnitudeRecovery(outcomes) + "\n" +
+              formatDeterminedTable(determinedTable(outcomes)),
+          {{"cases", cases}}};
 }
 }  // namespace
 

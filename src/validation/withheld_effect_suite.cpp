@@ -216,6 +216,10 @@ WithheldOutcome runWithheldCase(const WithheldCase& c, const DiagnosisOptions& o
   outcome.recovered_magnitude = std::numeric_limits<double>::quiet_NaN();
   outcome.recovered_standard_error = std::numeric_limits<double>::quiet_NaN();
   outcome.effect_test_rmse_speed_mps = result.baseline.test_rmse_speed_mps;
+  for (const DeterminedEffect& effect : result.determined)
+  {
+    outcome.determined.push_back(effect.effect);
+  }
   for (const ModelDiagnosis& model : result.effects)
   {
     if (model.fit.effect == c.truth)
@@ -320,17 +324,27 @@ std::vector<WithheldCase> withheldCaseGrid(std::size_t magnitudes_per_effect,
   return grid;
 }
 
+namespace
+{
+std::size_t labelIndex(const std::vector<EffectKind>& labels, EffectKind kind)
+{
+  const auto found = std::find(labels.begin(), labels.end(), kind);
+  if (found == labels.end())
+  {
+    throw std::logic_error("effect " + effectName(kind) + " is not a label of the suite's tables");
+  }
+  return static_cast<std::size_t>(found - labels.begin());
+}
+}  // namespace
+
 ConfusionMatrix confusionMatrix(const std::vector<WithheldOutcome>& outcomes)
 {
   ConfusionMatrix matrix;
   matrix.labels = diagnosableEffects();
   matrix.counts.assign(matrix.labels.size(), std::vector<std::size_t>(matrix.labels.size(), 0));
-  auto index = [&](EffectKind kind) {
-    return static_cast<std::size_t>(std::find(matrix.labels.begin(), matrix.labels.end(), kind) - matrix.labels.begin());
-  };
   for (const WithheldOutcome& o : outcomes)
   {
-    ++matrix.counts[index(o.input.truth)][index(o.dominant)];
+    ++matrix.counts[labelIndex(matrix.labels, o.input.truth)][labelIndex(matrix.labels, o.dominant)];
     const bool in_plausible = o.input.truth == EffectKind::none
                                   ? o.plausible.empty()
                                   : std::find(o.plausible.begin(), o.plausible.end(), o.input.truth) != o.plausible.end();
@@ -340,37 +354,95 @@ ConfusionMatrix confusionMatrix(const std::vector<WithheldOutcome>& outcomes)
   return matrix;
 }
 
-std::string formatConfusionMatrix(const ConfusionMatrix& matrix)
+namespace
 {
-  std::ostringstream out;
-  out << "| truth \\ named |";
-  for (EffectKind label : matrix.labels)
+/// Counts by truth (rows) and effect (columns) as a Markdown table; a row per truth with cases
+/// (cases_per_truth, or the row's sum when that is empty), labelled with its cases when given.
+/// Returns the diagonal's sum.
+std::size_t writeCountTable(const std::vector<EffectKind>& labels, const std::vector<std::vector<std::size_t>>& counts,
+                            const std::vector<std::size_t>& cases_per_truth, const std::string& corner,
+                            std::ostream& out)
+{
+  out << "| " << corner << " |";
+  for (EffectKind label : labels)
   {
     out << " " << effectName(label) << " |";
   }
   out << "\n|---|";
-  for (std::size_t i = 0; i < matrix.labels.size(); ++i)
+  for (std::size_t i = 0; i < labels.size(); ++i)
   {
     out << "---|";
   }
   out << "\n";
-  std::size_t correct = 0;
-  for (std::size_t r = 0; r < matrix.labels.size(); ++r)
+  std::size_t diagonal = 0;
+  for (std::size_t r = 0; r < labels.size(); ++r)
   {
     // A truth never hidden has no row (an all-zero row would read as an effect never found); every
     // label stays a column, since any can be named.
-    if (std::accumulate(matrix.counts[r].begin(), matrix.counts[r].end(), std::size_t{0}) == 0)
+    const std::size_t row_sum = std::accumulate(counts[r].begin(), counts[r].end(), std::size_t{0});
+    const bool counted_cases = !cases_per_truth.empty();
+    if ((counted_cases ? cases_per_truth[r] : row_sum) == 0)
       continue;
-    out << "| " << effectName(matrix.labels[r]) << " |";
-    for (std::size_t c = 0; c < matrix.labels.size(); ++c)
+    out << "| " << effectName(labels[r]);
+    if (counted_cases)
+      out << " (" << cases_per_truth[r] << ")";
+    out << " |";
+    for (std::size_t c = 0; c < labels.size(); ++c)
     {
-      out << " " << matrix.counts[r][c] << " |";
+      out << " " << counts[r][c] << " |";
     }
     out << "\n";
-    correct += matrix.counts[r][r];
+    diagonal += counts[r][r];
   }
+  return diagonal;
+}
+}  // namespace
+
+std::string formatConfusionMatrix(const ConfusionMatrix& matrix)
+{
+  std::ostringstream out;
+  const std::size_t correct = writeCountTable(matrix.labels, matrix.counts, {}, "truth \\ named", out);
   out << "\nnamed correctly: " << correct << " of " << matrix.cases << "; truth in the plausible set: "
       << matrix.truth_in_plausible << " of " << matrix.cases << "\n";
+  return out.str();
+}
+
+DeterminedTable determinedTable(const std::vector<WithheldOutcome>& outcomes)
+{
+  DeterminedTable table;
+  table.labels = diagnosableEffects();
+  table.counts.assign(table.labels.size(), std::vector<std::size_t>(table.labels.size(), 0));
+  table.cases_per_truth.assign(table.labels.size(), 0);
+  for (const WithheldOutcome& o : outcomes)
+  {
+    const std::size_t row = labelIndex(table.labels, o.input.truth);
+    ++table.cases_per_truth[row];
+    for (EffectKind kind : o.determined)
+    {
+      ++table.counts[row][labelIndex(table.labels, kind)];
+    }
+    // Only an effect with a "none" value can be determined: limits and a set speed are not asked.
+    if (o.input.truth != EffectKind::none && std::isfinite(neutralValue(o.input.truth)))
+    {
+      ++table.determinable_cases;
+      table.truth_determined +=
+          std::find(o.determined.begin(), o.determined.end(), o.input.truth) != o.determined.end() ? 1 : 0;
+    }
+  }
+  return table;
+}
+
+std::string formatDeterminedTable(const DeterminedTable& table)
+{
+  std::ostringstream out;
+  out << "Determined by the training data (an effect's single fit at least z standard errors from none; "
+         "a case counts in every column it determines):\n\n";
+  writeCountTable(table.labels, table.counts, table.cases_per_truth, "truth (cases) \\ determined", out);
+  const std::size_t none_row = labelIndex(table.labels, EffectKind::none);
+  const std::size_t none_any = std::accumulate(table.counts[none_row].begin(), table.counts[none_row].end(), std::size_t{0});
+  out << "\nthe hidden effect determined: " << table.truth_determined << " of " << table.determinable_cases
+      << " (the cases whose effect has a none value); determinations where nothing is hidden: " << none_any << " in "
+      << table.cases_per_truth[none_row] << " cases\n";
   return out.str();
 }
 

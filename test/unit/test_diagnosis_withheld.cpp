@@ -165,6 +165,34 @@ TEST(WithheldEffects, TablesShowOnlyTheTruthsThatWereHidden)
   EXPECT_EQ(magnitudes.find("reaction_delay"), std::string::npos) << magnitudes;
 }
 
+// The determined table counts a case in every column its training data determine, and a truth
+// row with cases but no determination still shows (a none row of zeros is the point of it).
+TEST(WithheldEffects, TheDeterminedTableCountsEveryEffectACaseDetermines)
+{
+  acc::WithheldOutcome none_case;
+  none_case.input.truth = acc::EffectKind::none;
+  acc::WithheldOutcome lag_case;
+  lag_case.input.truth = acc::EffectKind::actuation_lag;
+  lag_case.determined = {acc::EffectKind::actuation_lag, acc::EffectKind::reaction_delay};
+  acc::WithheldOutcome missed_lag = lag_case;
+  missed_lag.determined = {acc::EffectKind::sensor_time_offset};
+  const acc::DeterminedTable determined = acc::determinedTable({none_case, lag_case, missed_lag});
+  EXPECT_EQ(determined.truth_determined, 1u);  // one of the two lags determines the lag itself
+  const std::string table = acc::formatDeterminedTable(determined);
+  EXPECT_NE(table.find("| none (1) | 0 | 0 | 0 |"), std::string::npos) << table;
+  EXPECT_NE(table.find("| actuation_lag (2) | 0 | 1 | 1 | 0 | 1 |"), std::string::npos) << table;
+  EXPECT_NE(table.find("the hidden effect determined: 1 of 2 (the cases whose effect has a none value); "
+                       "determinations where nothing is hidden: 0 in 1 cases"),
+            std::string::npos)
+      << table;
+  acc::WithheldOutcome limits_case;  // no none value: a row, but not a case of the count
+  limits_case.input.truth = acc::EffectKind::acceleration_limits;
+  EXPECT_EQ(acc::determinedTable({lag_case, limits_case}).determinable_cases, 1u);
+  acc::WithheldOutcome unknown = lag_case;
+  unknown.determined = {static_cast<acc::EffectKind>(999)};
+  EXPECT_THROW(acc::determinedTable({unknown}), std::logic_error);
+}
+
 // An effect a run adds with --effect joins the grid as a hidden truth, after the default grid's
 // cases, which keep their truths, magnitudes and seeds (so the default suite's table still holds).
 TEST(WithheldEffects, TheGridHidesTheEffectsARunAsksForAfterItsOwnCases)

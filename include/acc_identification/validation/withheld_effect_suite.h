@@ -66,6 +66,8 @@ struct WithheldOutcome
   double recovered_standard_error = 0.0;  ///< its standard error (NaN for none)
   double base_test_rmse_speed_mps = 0.0;
   double effect_test_rmse_speed_mps = 0.0;  ///< of the truth's effect model (base for none)
+  /// The effects the training data determine (determinedEffects), whatever the rule names.
+  std::vector<EffectKind> determined;
 };
 
 WithheldOutcome runWithheldCase(const WithheldCase& c, const DiagnosisOptions& options);
@@ -104,9 +106,25 @@ struct ConfusionMatrix
 
 ConfusionMatrix confusionMatrix(const std::vector<WithheldOutcome>& outcomes);
 
+/// Rows: truth, columns: the effects the training data determine; a case counts once in every
+/// column it determines.
+struct DeterminedTable
+{
+  std::vector<EffectKind> labels;
+  std::vector<std::vector<std::size_t>> counts;
+  std::vector<std::size_t> cases_per_truth;
+  /// The cases whose hidden effect has a "none" value (neutralValue), so can be determined at all,
+  /// and how many of them determine it.
+  std::size_t determinable_cases = 0;
+  std::size_t truth_determined = 0;
+};
+
+DeterminedTable determinedTable(const std::vector<WithheldOutcome>& outcomes);
+
 /// The matrix as a Markdown table, and a per-effect magnitude recovery table (median absolute
 /// and relative error of the first parameter over correctly named cases).
 std::string formatConfusionMatrix(const ConfusionMatrix& matrix);
+std::string formatDeterminedTable(const DeterminedTable& table);
 std::string formatMagnitudeRecovery(const std::vector<WithheldOutcome>& outcomes);
 
 /// Semi-real checks: a real data set with a known effect injected into its record
