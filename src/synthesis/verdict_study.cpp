@@ -1,6 +1,9 @@
 #include "acc_identification/synthesis/verdict_study.h"
 
+#include <cmath>
+
 #include "acc_identification/calibration/sequential_verdict.h"
+#include "acc_identification/model/json_number.h"
 #include "acc_identification/model/number_text.h"
 #include "acc_identification/synthesis/synthetic_runs.h"
 
@@ -83,7 +86,8 @@ std::string verdictStudyTable(const std::vector<VerdictStudyClass>& classes, con
     table += printfText("%8.2f %7d %7d %10d %9d", r.margin, r.drives, r.wrong, r.withdrawn, r.reversed);
     for (int right : r.right_by_length)
       table += printfText("  %11.2f", static_cast<double>(right) / r.drives);
-    table += printfText("  %8.0f\n", r.meanDecidedAtS());
+    const double decided_at_s = r.meanDecidedAtS();
+    table += std::isfinite(decided_at_s) ? printfText("  %8.0f\n", decided_at_s) : printfText("  %8s\n", "-");
   }
   return table;
 }
@@ -103,7 +107,7 @@ nlohmann::json verdictStudyJson(const std::vector<VerdictStudyClass>& classes, c
                     {"withdrawn", r.withdrawn},
                     {"reversed", r.reversed},
                     {"power_by_length", power},
-                    {"mean_decided_at_s", r.meanDecidedAtS()}});
+                    {"mean_decided_at_s", jsonNumber(r.meanDecidedAtS())}});
   }
   return {{"drives_per_class", options.drives},
           {"duration_s", options.duration_s},

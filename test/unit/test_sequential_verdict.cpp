@@ -287,5 +287,12 @@ TEST(VerdictStudy, TalliesTheDrivesOfEachClassAsTheNodeWouldShowThem)
                    classes[1].right_by_length[1] / 2.0);
   const std::string table = acc::verdictStudyTable(classes, options);
   EXPECT_NE(table.find("right@ 300s"), std::string::npos) << table;
+  acc::VerdictStudyClass undecided;  // no drive decided: no mean time, not 0
+  undecided.drives = 2;
+  undecided.right_by_length = {0, 0};
+  EXPECT_TRUE(std::isnan(undecided.meanDecidedAtS()));
+  EXPECT_TRUE(acc::verdictStudyJson({undecided}, options)["classes"][0]["mean_decided_at_s"].is_null());
+  const std::string undecided_table = acc::verdictStudyTable({undecided}, options);
+  EXPECT_EQ(undecided_table.substr(undecided_table.size() - 3), " -\n") << undecided_table;
   EXPECT_NE(table.find("   -1.00       2       0          0"), std::string::npos) << table;
 }

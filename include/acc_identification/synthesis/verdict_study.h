@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -38,7 +39,11 @@ struct VerdictStudyClass
   int decided_right = 0;             ///< right at the drive's end
   double decided_at_sum_s = 0.0;     ///< over those, the drive time of the decision
 
-  double meanDecidedAtS() const { return decided_right > 0 ? decided_at_sum_s / decided_right : 0.0; }
+  /// NaN when no drive was decided right: there is no time to average (0 would read as "at once").
+  double meanDecidedAtS() const
+  {
+    return decided_right > 0 ? decided_at_sum_s / decided_right : std::numeric_limits<double>::quiet_NaN();
+  }
 };
 
 /// Every class's drives replayed (a line per drive on progress, may be null).
