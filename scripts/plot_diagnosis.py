@@ -211,10 +211,10 @@ def combination_lines(d):
                  "threshold relative to the base model's held-out MSE); the best significant one is added.")
     lines += ["", "| step | effect added | held-out speed RMSE [m/s] | held-out gap RMSE [m] | "
               "MSE reduction vs previous step [% of base] (lower bound [m²/s²]) | string stability (test, p) | "
-              "parameters (± std. error) |", "|---|---|---|---|---|---|---|"]
+              "its size, by the training data | parameters (± std. error) |", "|---|---|---|---|---|---|---|---|"]
     base = d["baseline"]
     lines.append(f"| 0 | base | {fmt(base['test_rmse_speed'])} | {fmt(base['test_rmse_gap'])} | - | "
-                 f"{point_estimate_stability(base)} | {parameter_text(base)} |")
+                 f"{point_estimate_stability(base)} | - | {parameter_text(base)} |")
     for i, step in enumerate(chain, 1):
         imp = step["improvement"]
         test = step.get("stability_test")
@@ -223,9 +223,20 @@ def combination_lines(d):
         params = parameter_text({"parameters": values, "standard_errors": step["standard_errors"]})
         lines.append(f"| {i} | {step['effect']} | {fmt(step['test_rmse_speed'])} | {fmt(step['test_rmse_gap'])} | "
                      f"{imp['relative'] * 100:.1f} ({fmt(imp['lower_bound'], 3)}) | "
-                     f"{point_estimate_stability(step)} ({verdict}) | {params} |")
+                     f"{point_estimate_stability(step)} ({verdict}) | {added_size_text(step)} | {params} |")
     lines += ["", f"Stopped: {forward.get('stop_reason', '')}.", ""]
     return lines
+
+
+def added_size_text(step):
+    """Whether the training data pin the added effect's size (z from none at the determined rule's threshold)."""
+    size = step.get("added_effect_size")
+    if size is None:
+        return "-"  # a diagnosis.json from before the size was judged
+    if size["z"] is None:
+        return "not judged"
+    bound = ", at a bound" if size["at_bound"] else ""
+    return f"{'determined' if size['determined'] else '**not determined**'} ({size['z']:.1f} SE from none{bound})"
 
 
 def point_estimate_stability(model):

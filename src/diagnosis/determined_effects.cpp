@@ -52,6 +52,38 @@ bool atBound(const EffectParameterSpec& spec, double value)
 }
 }  // namespace
 
+EffectSize effectSizeIn(const AugmentedFit& fit, EffectKind kind, double threshold)
+{
+  EffectSize size;
+  // The effect's parameters follow the base ones, in the order of the fit's effects.
+  std::size_t offset = 0;
+  const std::vector<EffectKind> effects = effectsOf(fit);
+  const auto own = std::find(effects.begin(), effects.end(), kind);
+  if (own == effects.end() || fit.diverged)
+  {
+    return size;
+  }
+  for (auto it = effects.begin(); it != own; ++it)
+  {
+    offset += candidateEffect(*it).parameters.size();
+  }
+  if (offset >= fit.effect_values.size())
+  {
+    return size;
+  }
+  size.value = fit.effect_values[offset];
+  const std::size_t se_index = AugmentedParameterBox::kBaseDimension + offset;
+  size.standard_error = se_index < fit.standard_errors.size() ? fit.standard_errors[se_index] : size.standard_error;
+  size.at_bound = atBound(candidateEffect(kind).parameters.front(), size.value);
+  const double neutral = neutralValue(kind);
+  if (std::isfinite(neutral) && std::isfinite(size.standard_error) && size.standard_error > 0.0)
+  {
+    size.z = std::abs(size.value - neutral) / size.standard_error;
+    size.determined = size.z > threshold && !size.at_bound;
+  }
+  return size;
+}
+
 std::vector<DeterminedEffect> determinedEffects(const AugmentedFit& base_fit, const std::vector<AugmentedFit>& effect_fits,
                                                 double sample_period_s, double alpha)
 {
@@ -64,24 +96,10 @@ std::vector<DeterminedEffect> determinedEffects(const AugmentedFit& base_fit, co
   std::vector<DeterminedEffect> out;
   for (const AugmentedFit& fit : effect_fits)
   {
-    const double neutral = neutralValue(fit.effect);
-    const std::size_t index = AugmentedParameterBox::kBaseDimension;  // the effect's first parameter
-    if (!std::isfinite(neutral) || fit.diverged || fit.effect_values.empty() || fit.standard_errors.size() <= index)
+    const EffectSize size = effectSizeIn(fit, fit.effect, threshold);
+    if (size.determined && isResolvable(fit.effect, fit.effect_values, sample_period_s))
     {
-      continue;
-    }
-    const double value = fit.effect_values.front();
-    const double standard_error = fit.standard_errors[index];
-    if (!(standard_error > 0.0) || !std::isfinite(standard_error) ||
-        atBound(candidateEffect(fit.effect).parameters.front(), value) ||
-        !isResolvable(fit.effect, fit.effect_values, sample_period_s))
-    {
-      continue;
-    }
-    const double z = std::abs(value - neutral) / standard_error;
-    if (z > threshold)
-    {
-      out.push_back({fit.effect, value, standard_error, z, base_fit.base, fit.base});
+      out.push_back({fit.effect, size.value, size.standard_error, size.z, base_fit.base, fit.base});
     }
   }
   std::sort(out.begin(), out.end(), [](const DeterminedEffect& a, const DeterminedEffect& b) { return a.z > b.z; });

@@ -167,6 +167,7 @@ ForwardSelectionStep makeStep(EffectKind added, ModelDiagnosis model, const Impr
   step.model.stability = analyzeAugmentedStability(step.model.fit.base, effectsOf(step.model.fit),
                                                    step.model.fit.settings, data.operating_speed_mps);
   step.model.stability_verdict_changes = step.model.stability.string_stable != data.baseline.stability.string_stable;
+  step.added_size = effectSizeIn(step.model.fit, added, determinedThreshold(options.selection.alpha, options.candidates));
   if (options.with_stability_test)
   {
     step.stability_test = testAugmentedStringStability(step.model.fit, data.train, data.test, data.operating_speed_mps,
@@ -196,7 +197,10 @@ void forwardSelect(const DiagnosisOptions& options, const std::vector<SquaredErr
   }
   // Step 1 is the dominant model exactly as selected against the base model (and tested above).
   const std::size_t first = indexOf(options.candidates, result->selection.dominant);
-  result->selected_effects.push_back({result->selection.dominant, result->effects[first], result->stability_test});
+  ForwardSelectionStep dominant{result->selection.dominant, result->effects[first], result->stability_test, {}};
+  dominant.added_size = effectSizeIn(dominant.model.fit, dominant.added,
+                                     determinedThreshold(options.selection.alpha, options.candidates));
+  result->selected_effects.push_back(std::move(dominant));
   SquaredErrorsByRun current_errors = candidate_errors[first];
   std::vector<EffectKind> remaining = options.candidates;
   remaining.erase(remaining.begin() + static_cast<long>(first));

@@ -109,6 +109,12 @@ nlohmann::json chainStepJson(const ForwardSelectionStep& step)
             {"eta_m", jsonNumber(fit.base.eta_m)}}},
           {"effect_parameters", effect_parameters},
           {"standard_errors", standardErrorsJson(fit)},
+          {"added_effect_size",
+           {{"value", jsonNumber(step.added_size.value)},
+            {"standard_error", jsonNumber(step.added_size.standard_error)},
+            {"z", jsonNumber(step.added_size.z)},
+            {"at_bound", step.added_size.at_bound},
+            {"determined", step.added_size.determined}}},
           {"stability", stabilityJson(step.model.stability)},
           {"stability_test", test}};
 }

@@ -1,6 +1,7 @@
 #include "acc_identification/diagnosis/diagnosis_text.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "acc_identification/diagnosis/determined_effects.h"
 
@@ -28,8 +29,29 @@ void printVerdict(const DiagnosisResult& r, std::FILE* out)
               verdict.test ? testVerdictText(*verdict.test).c_str() : "not tested", verdict.why.c_str());
 }
 
+/// Whether the training data pin the size of the effect a step adds: the held-out rule can name
+/// an effect whose size they leave open.
+std::string describeAddedSize(const ForwardSelectionStep& step)
+{
+  const EffectSize& size = step.added_size;
+  char text[256];
+  if (!std::isfinite(size.z))
+  {
+    std::snprintf(text, sizeof text, "size of %s: not judged (%s)", effectName(step.added).c_str(),
+                  std::isfinite(neutralValue(step.added)) ? "no finite standard error" : "no none value in its range");
+  }
+  else
+  {
+    std::snprintf(text, sizeof text, "size of %s: %s (%.1f standard errors from none%s)", effectName(step.added).c_str(),
+                  size.determined ? "determined by the training data" : "NOT determined by the training data", size.z,
+                  size.at_bound ? ", at a bound of its range" : "");
+  }
+  return text;
+}
+
 /// The forward selection's chain: one line per step with its held-out RMSE, gain and verdict,
-/// then the parameters of that step's model with their standard errors.
+/// then the parameters of that step's model with their standard errors and whether the training
+/// data pin the added effect's size.
 void printChain(const DiagnosisResult& r, std::FILE* out)
 {
   std::fprintf(out, "effects in combination (forward selection): %s\n",
@@ -56,7 +78,7 @@ void printChain(const DiagnosisResult& r, std::FILE* out)
       std::fprintf(out, ", %s %.4g +- %.2g", names[j].c_str(), m.fit.effect_values[j],
                   se(AugmentedParameterBox::kBaseDimension + j));
     }
-    std::fprintf(out, "\n");
+    std::fprintf(out, "\n     %s\n", describeAddedSize(step).c_str());
   }
   std::fprintf(out, "  stopped: %s\n", r.forward_stop_reason.c_str());
 }

@@ -71,4 +71,35 @@ TEST(DeterminedEffects, AValueAtABoundOrBelowTheResolutionOrWithoutAnErrorIsNotD
   EXPECT_EQ(determined.front().effect, acc::EffectKind::speed_dependent_time_gap);
   EXPECT_NEAR(determined.front().z, 20.0, 1e-9);
 }
+
+// In a chain step's model the added effect's parameters follow the earlier effects'; its size is
+// judged there (the asymmetric response's against a ratio of 1), and an effect without a none
+// value or not in the model is not judged.
+TEST(DeterminedEffects, AnEffectsSizeIsFoundAfterTheEffectsBeforeIt)
+{
+  acc::AugmentedFit chain;
+  chain.effect = acc::EffectKind::speed_dependent_gains;
+  chain.effects = {acc::EffectKind::speed_dependent_gains, acc::EffectKind::asymmetric_response,
+                   acc::EffectKind::acceleration_limits};
+  chain.effect_values = {-0.01, 0.5, 2.5, 1.5, 3.0};  // g; closing and short-gap ratios; the two limits
+  chain.standard_errors = {0.01, 0.01, 0.1, 1.0, 0.022, 0.2, 1.6, 0.1, 0.1};
+  const acc::EffectSize gains = acc::effectSizeIn(chain, acc::EffectKind::speed_dependent_gains, 2.64);
+  EXPECT_NEAR(gains.z, 0.01 / 0.022, 1e-12);
+  EXPECT_FALSE(gains.determined);
+  const acc::EffectSize response = acc::effectSizeIn(chain, acc::EffectKind::asymmetric_response, 2.4);
+  EXPECT_DOUBLE_EQ(response.value, 0.5);
+  EXPECT_DOUBLE_EQ(response.standard_error, 0.2);
+  EXPECT_NEAR(response.z, 2.5, 1e-12);
+  EXPECT_TRUE(response.determined);
+  EXPECT_FALSE(acc::effectSizeIn(chain, acc::EffectKind::asymmetric_response, 2.64).determined);
+  const acc::EffectSize limits = acc::effectSizeIn(chain, acc::EffectKind::acceleration_limits, 2.64);
+  EXPECT_DOUBLE_EQ(limits.value, 1.5);
+  EXPECT_TRUE(std::isnan(limits.z));
+  EXPECT_FALSE(limits.determined);
+  EXPECT_TRUE(std::isnan(acc::effectSizeIn(chain, acc::EffectKind::reaction_delay, 2.64).value));
+  chain.effect_values[1] = acc::candidateEffect(acc::EffectKind::asymmetric_response).parameters.front().upper;
+  const acc::EffectSize at_bound = acc::effectSizeIn(chain, acc::EffectKind::asymmetric_response, 0.1);
+  EXPECT_TRUE(at_bound.at_bound);
+  EXPECT_FALSE(at_bound.determined);
+}
 }  // namespace

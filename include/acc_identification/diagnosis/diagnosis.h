@@ -79,6 +79,9 @@ struct ForwardSelectionStep
   /// (the base model for the first step), relative to that model's held-out MSE.
   ModelDiagnosis model;
   std::optional<AugmentedStabilityTestResult> stability_test;
+  /// How precisely the training data pin the added effect's size in this step's model, at the
+  /// determined effects' threshold (determinedThreshold over the candidates).
+  EffectSize added_size;
 };
 
 struct DiagnosisResult
