@@ -12,6 +12,7 @@ acc_add_library(acc_diagnosis
     src/diagnosis/augmented_stability_verdict.cpp
     src/diagnosis/diagnosis.cpp
     src/diagnosis/determined_effects.cpp
+    src/diagnosis/augmented_fit_json.cpp
     src/diagnosis/diagnosis_output.cpp
     src/diagnosis/diagnosis_text.cpp
     src/diagnosis/calibration_second_opinion.cpp

@@ -11,6 +11,7 @@
 #include "acc_identification/calibration/calibration_report.h"
 #include "acc_identification/calibration/quantity_identifiability.h"
 #include "acc_identification/diagnosis/augmented_calibration.h"
+#include "acc_identification/diagnosis/augmented_fit_json.h"
 #include "acc_identification/evidence/evidence_json.h"
 #include "acc_identification/model/string_stability.h"
 
@@ -241,6 +242,15 @@ nlohmann::json rangesJson(const std::vector<std::pair<double, double>>& ranges)
   return j;
 }
 
+/// Each effect of the diagnosed model by name: how precisely the group's runs pin its size.
+nlohmann::json effectSizesJson(const LinkEvidence& e)
+{
+  nlohmann::json sizes = nlohmann::json::object();
+  for (std::size_t i = 0; i < e.diagnosed.effects.size() && i < e.diagnosed_effect_sizes.size(); ++i)
+    sizes[effectName(e.diagnosed.effects[i])] = effectSizeJson(e.diagnosed_effect_sizes[i]);
+  return sizes;
+}
+
 nlohmann::json linkJson(const LinkEvidence& e)
 {
   const EmpiricalResponse& r = e.response;
@@ -273,6 +283,8 @@ nlohmann::json linkJson(const LinkEvidence& e)
             {"available", e.diagnosed_available},
             {"parameters", parametersJson(e.diagnosed_parameters)},
             {"effect_values", values},
+            {"standard_errors", standardErrorsJson(e.diagnosed.effects, e.diagnosed_standard_errors)},
+            {"effect_sizes", effectSizesJson(e)},
             {"small_signal",
              e.diagnosed_available
                  ? nlohmann::json{{"peak_gain_db", e.diagnosed_small_signal.peak_gain_db},
@@ -327,6 +339,43 @@ std::vector<std::vector<std::string>> linkRows(const CampaignResult& result)
                     responseRead(e) ? rangesText(e.diagnosed_departs_rad_s) : "too short",
                     cellNumber("%.2f", e.diagnosed_available ? e.diagnosed_small_signal.peak_gain_db : kNaN),
                     longPlatoonText(e)});
+  }
+  return rows;
+}
+
+const std::vector<std::string> kDiagnosedModelHeader{"vehicle", "set", "diagnosed model",
+                                                     "effect parameters +- SE (size: z from none)"};
+
+/// One effect's parameters with their standard errors, and whether the runs pin its size.
+std::string effectSizeText(const LinkEvidence& e, std::size_t effect, std::size_t* parameter)
+{
+  const EffectKind kind = e.diagnosed.effects[effect];
+  std::string text;
+  for (const EffectParameterSpec& spec : candidateEffect(kind).parameters)
+  {
+    const std::size_t i = (*parameter)++;
+    const std::size_t se = AugmentedParameterBox::kBaseDimension + i;
+    const double value = i < e.diagnosed_effect_values.size() ? e.diagnosed_effect_values[i] : kNaN;
+    const double error = se < e.diagnosed_standard_errors.size() ? e.diagnosed_standard_errors[se] : kNaN;
+    text += (text.empty() ? "" : ", ") + spec.name + " " + cellNumber("%.3g", value) + "+-" + cellNumber("%.2g", error);
+  }
+  const EffectSize size = effect < e.diagnosed_effect_sizes.size() ? e.diagnosed_effect_sizes[effect] : EffectSize{};
+  if (std::isfinite(size.z))
+    text += " (z " + cellNumber("%.1f", size.z) + (size.determined ? ", determined)" : ", not determined)");
+  return text;
+}
+
+/// Each diagnosed model's effects as fitted on all of its group's runs, with standard errors.
+std::vector<std::vector<std::string>> diagnosedModelRows(const CampaignResult& result)
+{
+  std::vector<std::vector<std::string>> rows;
+  for (const LinkEvidence& e : result.links)
+  {
+    std::string effects = e.diagnosed_available ? "" : "no fit";
+    std::size_t parameter = 0;
+    for (std::size_t k = 0; e.diagnosed_available && k < e.diagnosed.effects.size(); ++k)
+      effects += (effects.empty() ? "" : "; ") + effectSizeText(e, k, &parameter);
+    rows.push_back({e.vehicle, e.setting, e.diagnosed.name(), effects.empty() ? "-" : effects});
   }
   return rows;
 }
@@ -756,6 +805,9 @@ void printCampaignTables(const CampaignResult& result, std::ostream& out)
            "one (coherence >= 0.5), the diagnosed model's small-signal peak and its dip ratio over "
         << kLongPlatoonCars << " identical cars behind the real first cars\n";
     printAligned(kLinkHeader, linkRows(result), out);
+    out << "\nThe diagnosed models fitted on all of each group's runs, and how precisely the runs pin each effect's "
+           "size (z standard errors from none; determined: above the Bonferroni quantile over the model's effects)\n";
+    printAligned(kDiagnosedModelHeader, diagnosedModelRows(result), out);
   }
   const auto disagreements = disagreementRows(result);
   out << "\nWhere model and data disagree: " << disagreements.size() << "\n";
@@ -843,6 +895,12 @@ std::string campaignReportMarkdown(const CampaignResult& result, const std::vect
           "diagnosed model's small-signal peak (an asymmetric law: its braking branch) and the tenth car's dip over "
           "the first in a simulated platoon of ten identical cars behind the runs' real first cars.\n\n";
     printMarkdownTable(kLinkHeader, linkRows(result), md);
+    md << "\n### The diagnosed models and what the runs pin\n\nEach car's diagnosed model fitted on all of its "
+          "group's runs (the model the link table, the ten-car platoon and the SUMO export use), every effect "
+          "parameter with its standard error, and for each effect how far its size stands from none in standard "
+          "errors: determined when above the Bonferroni normal quantile over the model's effects at alpha 0.05 "
+          "and not at a bound of its range. A size not determined is a fit the runs allow, not a measurement.\n\n";
+    printMarkdownTable(kDiagnosedModelHeader, diagnosedModelRows(result), md);
   }
   md << "\n### Where model and data disagree\n\n";
   const auto disagreements = disagreementRows(result);

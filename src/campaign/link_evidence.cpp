@@ -105,6 +105,10 @@ void fitDiagnosed(const CampaignGroup& group, const GroupResult& result, const P
   evidence->diagnosed_parameters = fit.base;
   evidence->diagnosed_effect_values = fit.effect_values;
   evidence->diagnosed_settings = fit.settings;
+  evidence->diagnosed_standard_errors = fit.standard_errors;
+  const double threshold = determinedThreshold(kDiagnosedSizeAlpha, candidate.effects);
+  for (EffectKind kind : candidate.effects)
+    evidence->diagnosed_effect_sizes.push_back(effectSizeIn(fit, kind, threshold));
   evidence->diagnosed_small_signal =
       analyzeAugmentedStability(fit.base, candidate.effects, fit.settings, evidence->operating_speed_mps);
 }

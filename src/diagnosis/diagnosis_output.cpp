@@ -1,4 +1,5 @@
 #include "acc_identification/diagnosis/diagnosis_output.h"
+#include "acc_identification/diagnosis/augmented_fit_json.h"
 #include "acc_identification/io/output_files.h"
 #include "acc_identification/sumo/sumo_vtype.h"
 #include "acc_identification/model/json_number.h"
@@ -30,17 +31,7 @@ nlohmann::json parametersJson(const AugmentedFit& fit)
 
 nlohmann::json standardErrorsJson(const AugmentedFit& fit)
 {
-  std::vector<std::string> names = {"k1_per_s2", "k2_per_s", "tau_e_s", "eta_m"};
-  for (const std::string& name : effectParameterNames(effectsOf(fit)))
-  {
-    names.push_back(name);
-  }
-  nlohmann::json e = nlohmann::json::object();
-  for (std::size_t i = 0; i < names.size() && i < fit.standard_errors.size(); ++i)
-  {
-    e[names[i]] = jsonNumber(fit.standard_errors[i]);
-  }
-  return e;
+  return standardErrorsJson(effectsOf(fit), fit.standard_errors);
 }
 
 nlohmann::json stabilityJson(const AugmentedStability& s)
@@ -109,12 +100,7 @@ nlohmann::json chainStepJson(const ForwardSelectionStep& step)
             {"eta_m", jsonNumber(fit.base.eta_m)}}},
           {"effect_parameters", effect_parameters},
           {"standard_errors", standardErrorsJson(fit)},
-          {"added_effect_size",
-           {{"value", jsonNumber(step.added_size.value)},
-            {"standard_error", jsonNumber(step.added_size.standard_error)},
-            {"z", jsonNumber(step.added_size.z)},
-            {"at_bound", step.added_size.at_bound},
-            {"determined", step.added_size.determined}}},
+          {"added_effect_size", effectSizeJson(step.added_size)},
           {"stability", stabilityJson(step.model.stability)},
           {"stability_test", test}};
 }

@@ -12,6 +12,7 @@
 #include "acc_identification/campaign/platoon_diagnosis.h"
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/augmented_stability.h"
+#include "acc_identification/diagnosis/determined_effects.h"
 
 namespace acc
 {
@@ -47,6 +48,12 @@ struct LinkEvidence
   std::vector<double> diagnosed_effect_values;
   EffectSettings diagnosed_settings;
   AugmentedStability diagnosed_small_signal;
+  /// How precisely the group's runs pin the diagnosed model: the fit's standard errors (base
+  /// parameters, then the effects', AugmentedFit::standard_errors) and each effect's size against
+  /// its none value (Bonferroni over the model's effects at kDiagnosedSizeAlpha), in the order of
+  /// diagnosed.effects.
+  std::vector<double> diagnosed_standard_errors;
+  std::vector<EffectSize> diagnosed_effect_sizes;
   /// Simulated propagation: ten identical cars with the diagnosed model behind each platoon run's
   /// real first car, from equilibrium; the tenth car's dip over the first car's, median over the
   /// perturbations (NaN without one). Above 1: the model amplifies these real perturbations.
@@ -58,6 +65,10 @@ struct LinkEvidence
   std::size_t long_platoon_ran_away_at_car = 0;
   std::string note;  ///< what could not be computed, and why
 };
+
+/// The level at which a diagnosed model's effect sizes are called determined (the diagnosis's own
+/// default, DiagnosisOptions::selection.alpha).
+constexpr double kDiagnosedSizeAlpha = 0.05;
 
 /// A coherence averaged over fewer effective Welch segments is biased towards 1 (exactly 1 from one
 /// segment): below this many the empirical response is not read.
