@@ -12,6 +12,8 @@
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 ws="${1:?usage: diagnose_casale.sh WORKSPACE [OUT_DIR] [DATA_DIR]}"
+# Absolute: the tool runs from the data folder below, where a relative workspace would not resolve.
+ws="$(cd "$ws" && pwd)" || { echo "error: no workspace at $1" >&2; exit 1; }
 out="${2:-$here/docs/diagnosis/casale}"
 source "$here/scripts/bundled_data.sh"
 data="${3:-$(bundled_openacc_dir casale)}"

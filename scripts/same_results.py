@@ -1,0 +1,67 @@
+#!/usr/bin/env python3
+"""Whether a tool's JSON gives the results a committed one holds: the check that keeps a report in
+docs/ from going stale (docs/DIAGNOSIS.md runs it on the Casale diagnosis).
+
+Usage: same_results.py EXPECTED.json ACTUAL.json [--rtol R] [--ignore KEY ...]
+
+Strings, booleans, nulls and the shape of lists and objects must be equal; numbers equal to a
+relative tolerance (default 1e-4: the fits end where their tolerances let them, and a CPU's libm
+may differ in the last bits). Keys named by --ignore are skipped wherever they occur (default:
+solver evaluation counts, which follow those last bits). Prints every difference with its path,
+exits 1 if there is one.
+"""
+import argparse
+import json
+import math
+import sys
+
+DEFAULT_IGNORED = ["evaluations", "side_fit_evaluations"]
+
+
+def differences(expected, actual, path, rtol, ignored):
+    """Yields (path, expected, actual) for every difference."""
+    if isinstance(expected, bool) or isinstance(actual, bool) or expected is None or actual is None:
+        if expected is not actual and expected != actual:
+            yield path, expected, actual
+    elif isinstance(expected, (int, float)) and isinstance(actual, (int, float)):
+        if not math.isclose(expected, actual, rel_tol=rtol, abs_tol=1e-12):
+            yield path, expected, actual
+    elif isinstance(expected, dict) and isinstance(actual, dict):
+        for key in sorted(set(expected) | set(actual)):
+            if key in ignored:
+                continue
+            if key not in expected or key not in actual:
+                yield f"{path}/{key}", expected.get(key, "<absent>"), actual.get(key, "<absent>")
+            else:
+                yield from differences(expected[key], actual[key], f"{path}/{key}", rtol, ignored)
+    elif isinstance(expected, list) and isinstance(actual, list):
+        if len(expected) != len(actual):
+            yield f"{path} (length)", len(expected), len(actual)
+        for i, (e, a) in enumerate(zip(expected, actual)):
+            yield from differences(e, a, f"{path}[{i}]", rtol, ignored)
+    elif expected != actual:
+        yield path, expected, actual
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("expected")
+    parser.add_argument("actual")
+    parser.add_argument("--rtol", type=float, default=1e-4)
+    parser.add_argument("--ignore", nargs="*", default=DEFAULT_IGNORED)
+    args = parser.parse_args()
+    with open(args.expected) as f:
+        expected = json.load(f)
+    with open(args.actual) as f:
+        actual = json.load(f)
+    found = list(differences(expected, actual, "", args.rtol, set(args.ignore)))
+    for path, e, a in found[:50]:
+        print(f"{path}: {args.expected} has {json.dumps(e)[:120]}, {args.actual} has {json.dumps(a)[:120]}")
+    if len(found) > 50:
+        print(f"... and {len(found) - 50} more")
+    print(f"{len(found)} difference(s)" if found else f"same results: {args.actual} gives what {args.expected} holds")
+    return 1 if found else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
