@@ -21,7 +21,7 @@ DEFAULT_IGNORED = ["evaluations", "side_fit_evaluations"]
 def differences(expected, actual, path, rtol, ignored):
     """Yields (path, expected, actual) for every difference."""
     if isinstance(expected, bool) or isinstance(actual, bool) or expected is None or actual is None:
-        if expected is not actual and expected != actual:
+        if type(expected) is not type(actual) or expected != actual:  # true is not 1, null is not 0
             yield path, expected, actual
     elif isinstance(expected, (int, float)) and isinstance(actual, (int, float)):
         if not math.isclose(expected, actual, rel_tol=rtol, abs_tol=1e-12):

@@ -246,8 +246,9 @@ nlohmann::json rangesJson(const std::vector<std::pair<double, double>>& ranges)
 nlohmann::json effectSizesJson(const LinkEvidence& e)
 {
   nlohmann::json sizes = nlohmann::json::object();
-  for (std::size_t i = 0; i < e.diagnosed.effects.size() && i < e.diagnosed_effect_sizes.size(); ++i)
-    sizes[effectName(e.diagnosed.effects[i])] = effectSizeJson(e.diagnosed_effect_sizes[i]);
+  const std::vector<EffectSize> effect_sizes = diagnosedEffectSizes(e);
+  for (std::size_t i = 0; i < e.diagnosed.effects.size() && i < effect_sizes.size(); ++i)
+    sizes[effectName(e.diagnosed.effects[i])] = effectSizeJson(effect_sizes[i]);
   return sizes;
 }
 
@@ -259,8 +260,8 @@ nlohmann::json linkJson(const LinkEvidence& e)
     informative.push_back(flag);
   nlohmann::json values = nlohmann::json::object();
   const std::vector<std::string> names = effectParameterNames(e.diagnosed.effects);
-  for (std::size_t i = 0; i < names.size() && i < e.diagnosed_effect_values.size(); ++i)
-    values[names[i]] = e.diagnosed_effect_values[i];
+  for (std::size_t i = 0; i < names.size() && i < e.diagnosed_fit.effect_values.size(); ++i)
+    values[names[i]] = e.diagnosed_fit.effect_values[i];
   return {{"vehicle", e.vehicle},
           {"setting", e.setting},
           {"dip_ratio", toJson(e.dip_ratio)},
@@ -281,9 +282,9 @@ nlohmann::json linkJson(const LinkEvidence& e)
           {"diagnosed_model",
            {{"name", e.diagnosed.name()},
             {"available", e.diagnosed_available},
-            {"parameters", parametersJson(e.diagnosed_parameters)},
+            {"parameters", parametersJson(e.diagnosed_fit.base)},
             {"effect_values", values},
-            {"standard_errors", standardErrorsJson(e.diagnosed.effects, e.diagnosed_standard_errors)},
+            {"standard_errors", standardErrorsJson(e.diagnosed.effects, e.diagnosed_fit.standard_errors)},
             {"effect_sizes", effectSizesJson(e)},
             {"small_signal",
              e.diagnosed_available
@@ -346,20 +347,19 @@ std::vector<std::vector<std::string>> linkRows(const CampaignResult& result)
 const std::vector<std::string> kDiagnosedModelHeader{"vehicle", "set", "diagnosed model",
                                                      "effect parameters +- SE (size: z from none)"};
 
-/// One effect's parameters with their standard errors, and whether the runs pin its size.
-std::string effectSizeText(const LinkEvidence& e, std::size_t effect, std::size_t* parameter)
+/// One effect's parameters in fit with their standard errors (its first at *parameter among the
+/// fit's effect values, advanced past them), and whether the runs pin its size.
+std::string effectSizeText(const AugmentedFit& fit, EffectKind kind, const EffectSize& size, std::size_t* parameter)
 {
-  const EffectKind kind = e.diagnosed.effects[effect];
   std::string text;
   for (const EffectParameterSpec& spec : candidateEffect(kind).parameters)
   {
     const std::size_t i = (*parameter)++;
     const std::size_t se = AugmentedParameterBox::kBaseDimension + i;
-    const double value = i < e.diagnosed_effect_values.size() ? e.diagnosed_effect_values[i] : kNaN;
-    const double error = se < e.diagnosed_standard_errors.size() ? e.diagnosed_standard_errors[se] : kNaN;
+    const double value = i < fit.effect_values.size() ? fit.effect_values[i] : kNaN;
+    const double error = se < fit.standard_errors.size() ? fit.standard_errors[se] : kNaN;
     text += (text.empty() ? "" : ", ") + spec.name + " " + cellNumber("%.3g", value) + "+-" + cellNumber("%.2g", error);
   }
-  const EffectSize size = effect < e.diagnosed_effect_sizes.size() ? e.diagnosed_effect_sizes[effect] : EffectSize{};
   if (std::isfinite(size.z))
     text += " (z " + cellNumber("%.1f", size.z) + (size.determined ? ", determined)" : ", not determined)");
   return text;
@@ -372,9 +372,10 @@ std::vector<std::vector<std::string>> diagnosedModelRows(const CampaignResult& r
   for (const LinkEvidence& e : result.links)
   {
     std::string effects = e.diagnosed_available ? "" : "no fit";
+    const std::vector<EffectSize> sizes = diagnosedEffectSizes(e);
     std::size_t parameter = 0;
     for (std::size_t k = 0; e.diagnosed_available && k < e.diagnosed.effects.size(); ++k)
-      effects += (effects.empty() ? "" : "; ") + effectSizeText(e, k, &parameter);
+      effects += (effects.empty() ? "" : "; ") + effectSizeText(e.diagnosed_fit, e.diagnosed.effects[k], sizes[k], &parameter);
     rows.push_back({e.vehicle, e.setting, e.diagnosed.name(), effects.empty() ? "-" : effects});
   }
   return rows;

@@ -79,8 +79,8 @@ std::vector<SumoExport> campaignSumoExports(const CampaignInputs& inputs, const 
     if (lost.empty())
     {
       exports.push_back(base);
-      exports.push_back(exportToSumo(id + "_diagnosed", link->diagnosed_parameters, link->diagnosed.effects,
-                                     link->diagnosed_effect_values, limits));
+      exports.push_back(exportToSumo(id + "_diagnosed", link->diagnosed_fit.base, link->diagnosed.effects,
+                                     link->diagnosed_fit.effect_values, limits));
       continue;
     }
     base.caveats.push_back("the platoon diagnosis gives this car " + effectList(link->diagnosed.effects) +

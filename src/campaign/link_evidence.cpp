@@ -102,13 +102,7 @@ void fitDiagnosed(const CampaignGroup& group, const GroupResult& result, const P
   }
   const AugmentedFit fit = fitOnAllRuns(candidate, group, result);
   evidence->diagnosed_available = !fit.diverged;
-  evidence->diagnosed_parameters = fit.base;
-  evidence->diagnosed_effect_values = fit.effect_values;
-  evidence->diagnosed_settings = fit.settings;
-  evidence->diagnosed_standard_errors = fit.standard_errors;
-  const double threshold = determinedThreshold(kDiagnosedSizeAlpha, candidate.effects);
-  for (EffectKind kind : candidate.effects)
-    evidence->diagnosed_effect_sizes.push_back(effectSizeIn(fit, kind, threshold));
+  evidence->diagnosed_fit = fit;
   evidence->diagnosed_small_signal =
       analyzeAugmentedStability(fit.base, candidate.effects, fit.settings, evidence->operating_speed_mps);
 }
@@ -140,7 +134,7 @@ LinkEvidence evidenceOf(const CampaignInputs& inputs, const CampaignGroup& group
     evidence.model_gain_base.push_back(result.fitted() ? transferGain(result.identification.calibration.parameters, w)
                                                        : kNaN);
     evidence.model_gain_diagnosed.push_back(
-        evidence.diagnosed_available ? augmentedTransferGain(evidence.diagnosed_parameters, evidence.diagnosed_settings,
+        evidence.diagnosed_available ? augmentedTransferGain(evidence.diagnosed_fit.base, evidence.diagnosed_fit.settings,
                                                              evidence.operating_speed_mps, w)
                                      : kNaN);
   }
@@ -157,6 +151,17 @@ LinkEvidence evidenceOf(const CampaignInputs& inputs, const CampaignGroup& group
   return evidence;
 }
 }  // namespace
+
+std::vector<EffectSize> diagnosedEffectSizes(const LinkEvidence& evidence)
+{
+  std::vector<EffectSize> sizes;
+  if (evidence.diagnosed_fit.effects.empty())
+    return sizes;  // not fitted: the group has no base fit
+  const double threshold = determinedThreshold(kDiagnosedSizeAlpha, evidence.diagnosed.effects);
+  for (EffectKind kind : evidence.diagnosed.effects)
+    sizes.push_back(effectSizeIn(evidence.diagnosed_fit, kind, threshold));
+  return sizes;
+}
 
 AugmentedFit fitOnAllRuns(const PlatoonCandidate& candidate, const CampaignGroup& group, const GroupResult& result)
 {
@@ -187,13 +192,13 @@ void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& settin
     run.leader_speed_mps = sliceRows(file.contents.vehicle(1)->speed_mps, first, end);
     const std::vector<double> lead_speed = run.leader_speed_mps;
     const double v0 = run.leader_speed_mps.front();
-    const AccParameters& p = evidence->diagnosed_parameters;
+    const AccParameters& p = evidence->diagnosed_fit.base;
     bool diverged = false;
     for (int car = 0; car < kLongPlatoonCars && !diverged; ++car)
     {
       run.follower_speed_mps.assign(run.size(), v0);
       run.space_gap_m.assign(run.size(), p.eta_m + p.tau_e_s * v0);
-      const SimulatedFollower sim = simulateFollower(p, evidence->diagnosed_settings, run);
+      const SimulatedFollower sim = simulateFollower(p, evidence->diagnosed_fit.settings, run);
       diverged = sim.diverged;
       if (diverged && evidence->long_platoon_ran_away_at_car == 0)
         evidence->long_platoon_ran_away_at_car = static_cast<std::size_t>(car) + 1;

@@ -155,6 +155,13 @@ ForwardRound fitOnTop(const AugmentedFit& current, const std::vector<EffectKind>
   return round;
 }
 
+/// How precisely the training data pin the size of the effect a chain step adds, at the
+/// determined effects' threshold over the candidates.
+EffectSize addedEffectSize(const AugmentedFit& fit, EffectKind added, const DiagnosisOptions& options)
+{
+  return effectSizeIn(fit, added, determinedThreshold(options.selection.alpha, options.candidates));
+}
+
 /// The model of one chosen step: its small-signal stability and, if asked, the held-out test.
 ForwardSelectionStep makeStep(EffectKind added, ModelDiagnosis model, const ImprovementEstimate& improvement,
                               const DiagnosisOptions& options, const DiagnosisResult& data)
@@ -167,7 +174,7 @@ ForwardSelectionStep makeStep(EffectKind added, ModelDiagnosis model, const Impr
   step.model.stability = analyzeAugmentedStability(step.model.fit.base, effectsOf(step.model.fit),
                                                    step.model.fit.settings, data.operating_speed_mps);
   step.model.stability_verdict_changes = step.model.stability.string_stable != data.baseline.stability.string_stable;
-  step.added_size = effectSizeIn(step.model.fit, added, determinedThreshold(options.selection.alpha, options.candidates));
+  step.added_size = addedEffectSize(step.model.fit, added, options);
   if (options.with_stability_test)
   {
     step.stability_test = testAugmentedStringStability(step.model.fit, data.train, data.test, data.operating_speed_mps,
@@ -197,10 +204,8 @@ void forwardSelect(const DiagnosisOptions& options, const std::vector<SquaredErr
   }
   // Step 1 is the dominant model exactly as selected against the base model (and tested above).
   const std::size_t first = indexOf(options.candidates, result->selection.dominant);
-  ForwardSelectionStep dominant{result->selection.dominant, result->effects[first], result->stability_test, {}};
-  dominant.added_size = effectSizeIn(dominant.model.fit, dominant.added,
-                                     determinedThreshold(options.selection.alpha, options.candidates));
-  result->selected_effects.push_back(std::move(dominant));
+  result->selected_effects.push_back({result->selection.dominant, result->effects[first], result->stability_test,
+                                      addedEffectSize(result->effects[first].fit, result->selection.dominant, options)});
   SquaredErrorsByRun current_errors = candidate_errors[first];
   std::vector<EffectKind> remaining = options.candidates;
   remaining.erase(remaining.begin() + static_cast<long>(first));

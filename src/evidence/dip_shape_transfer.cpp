@@ -11,6 +11,7 @@ using Measure = double (*)(const DipShape&);
 
 double brakingOf(const DipShape& shape) { return shape.braking_mps2; }
 double recoveryOf(const DipShape& shape) { return shape.recovery_mps2; }
+double widthOf(const DipShape& shape) { return shape.width_s; }
 
 bool scored(const DipShapeObservation& o, Measure measure)
 {
@@ -47,7 +48,7 @@ DipShapeTransfer dipShapeTransfer(const std::vector<DipShapeObservation>& observ
   std::vector<double> widenings;
   for (const DipShapeObservation& o : observations)
   {
-    if (scored(o, [](const DipShape& s) { return s.width_s; }))
+    if (scored(o, widthOf))
       widenings.push_back(o.judged.width_s - o.leader.width_s);
   }
   out.widenings = widenings.size();

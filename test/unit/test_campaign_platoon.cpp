@@ -183,22 +183,22 @@ TEST(CampaignPlatoon, TheLongPlatoonSaysWhetherItAmplifiesAndWhereItRanAway)
   const std::vector<acc_test::SyntheticCar> cars{{"CAR_A", kUnstable}, {"CAR_B", kUnstable}};
   const acc::CampaignInputs inputs = rotatedPlatoons("long", cars, 1, 61);
   acc::LinkEvidence evidence;
-  evidence.diagnosed_parameters = kUnstable;
+  evidence.diagnosed_fit.base = kUnstable;
   acc::simulateLongPlatoon(inputs, "S", acc::PlatoonCheckOptions{}, &evidence);
   ASSERT_GT(evidence.long_platoon_perturbations, 0u);
   EXPECT_GT(evidence.long_platoon_dip_ratio, 1.0);
   EXPECT_EQ(evidence.long_platoon_ran_away_at_car, 0u);
 
-  evidence.diagnosed_parameters = acc::AccParameters{0.10, 0.60, 1.5, 4.0};
+  evidence.diagnosed_fit.base = acc::AccParameters{0.10, 0.60, 1.5, 4.0};
   acc::simulateLongPlatoon(inputs, "S", acc::PlatoonCheckOptions{}, &evidence);
   EXPECT_LT(evidence.long_platoon_dip_ratio, 1.0);
   EXPECT_EQ(evidence.long_platoon_ran_away_at_car, 0u);
 
   // A second's delay and a hard quadratic braking on the unstable law: each car brakes far harder
   // than the one ahead, and the chain runs away within the ten cars.
-  evidence.diagnosed_parameters = kUnstable;
-  evidence.diagnosed_settings.reaction_delay_s = 1.5;
-  evidence.diagnosed_settings.kinematic_braking_ratio = 20.0;
+  evidence.diagnosed_fit.base = kUnstable;
+  evidence.diagnosed_fit.settings.reaction_delay_s = 1.5;
+  evidence.diagnosed_fit.settings.kinematic_braking_ratio = 20.0;
   acc::simulateLongPlatoon(inputs, "S", acc::PlatoonCheckOptions{}, &evidence);
   EXPECT_GT(evidence.long_platoon_ran_away_at_car, 0u);
   EXPECT_LE(evidence.long_platoon_ran_away_at_car, static_cast<std::size_t>(acc::kLongPlatoonCars));

@@ -40,20 +40,13 @@ struct LinkEvidence
   /// model departs from the data.
   std::vector<std::pair<double, double>> base_departs_rad_s;
   std::vector<std::pair<double, double>> diagnosed_departs_rad_s;
-  /// The diagnosed model: its candidate, fit, and small-signal stability (for an asymmetric law,
+  /// The diagnosed model: its candidate, its fit on all the group's runs (base parameters, effect
+  /// values, settings and standard errors), and its small-signal stability (for an asymmetric law,
   /// of its braking branch: augmented_stability.h).
   PlatoonCandidate diagnosed;
   bool diagnosed_available = false;
-  AccParameters diagnosed_parameters;
-  std::vector<double> diagnosed_effect_values;
-  EffectSettings diagnosed_settings;
+  AugmentedFit diagnosed_fit;
   AugmentedStability diagnosed_small_signal;
-  /// How precisely the group's runs pin the diagnosed model: the fit's standard errors (base
-  /// parameters, then the effects', AugmentedFit::standard_errors) and each effect's size against
-  /// its none value (Bonferroni over the model's effects at kDiagnosedSizeAlpha), in the order of
-  /// diagnosed.effects.
-  std::vector<double> diagnosed_standard_errors;
-  std::vector<EffectSize> diagnosed_effect_sizes;
   /// Simulated propagation: ten identical cars with the diagnosed model behind each platoon run's
   /// real first car, from equilibrium; the tenth car's dip over the first car's, median over the
   /// perturbations (NaN without one). Above 1: the model amplifies these real perturbations.
@@ -69,6 +62,12 @@ struct LinkEvidence
 /// The level at which a diagnosed model's effect sizes are called determined (the diagnosis's own
 /// default, DiagnosisOptions::selection.alpha).
 constexpr double kDiagnosedSizeAlpha = 0.05;
+
+/// How precisely the group's runs pin each effect of the diagnosed model, in the order of
+/// diagnosed.effects: its size against its none value, determined above the Bonferroni quantile
+/// over the model's effects at kDiagnosedSizeAlpha (effectSizeIn). None where the model was not
+/// fitted (the group has no base fit).
+std::vector<EffectSize> diagnosedEffectSizes(const LinkEvidence& evidence);
 
 /// A coherence averaged over fewer effective Welch segments is biased towards 1 (exactly 1 from one
 /// segment): below this many the empirical response is not read.
