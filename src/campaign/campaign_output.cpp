@@ -134,30 +134,30 @@ nlohmann::json positionsJson(const std::vector<DipComparison>& positions)
   {
     j.push_back({{"position", row.position},
                  {"name", row.name},
-                 {"measured_dip_mps", row.measured_dip_mps},
-                 {"predicted_dip_mps", row.predicted_dip_mps},
+                 {"measured_dip_mps", row.measured.dip_mps},
+                 {"predicted_dip_mps", row.chain.dip_mps},
                  {"measured_amplification", row.measured_amplification},
-                 {"predicted_amplification", row.predicted_amplification},
-                 {"predicted_dip_mps_diagnosed", row.predicted_dip_mps_diagnosed},
-                 {"predicted_amplification_diagnosed", row.predicted_amplification_diagnosed},
-                 {"pair_predicted_dip_mps", row.pair_predicted_dip_mps},
-                 {"pair_predicted_dip_mps_diagnosed", row.pair_predicted_dip_mps_diagnosed},
-                 {"measured_distance_lost_m", row.measured_distance_lost_m},
-                 {"predicted_distance_lost_m", row.predicted_distance_lost_m},
-                 {"predicted_distance_lost_m_diagnosed", row.predicted_distance_lost_m_diagnosed},
-                 {"pair_predicted_distance_lost_m", row.pair_predicted_distance_lost_m},
-                 {"pair_predicted_distance_lost_m_diagnosed", row.pair_predicted_distance_lost_m_diagnosed},
-                 {"measured_peak_braking_mps2", row.measured_shape.braking_mps2},
-                 {"measured_peak_recovery_mps2", row.measured_shape.recovery_mps2},
-                 {"pair_predicted_peak_braking_mps2", row.pair_predicted_shape.braking_mps2},
-                 {"pair_predicted_peak_recovery_mps2", row.pair_predicted_shape.recovery_mps2},
-                 {"pair_predicted_peak_braking_mps2_diagnosed", row.pair_predicted_shape_diagnosed.braking_mps2},
-                 {"pair_predicted_peak_recovery_mps2_diagnosed", row.pair_predicted_shape_diagnosed.recovery_mps2},
-                 {"measured_dip_width_s", row.measured_shape.width_s},
-                 {"predicted_dip_width_s", row.predicted_shape.width_s},
-                 {"predicted_dip_width_s_diagnosed", row.predicted_shape_diagnosed.width_s},
-                 {"pair_predicted_dip_width_s", row.pair_predicted_shape.width_s},
-                 {"pair_predicted_dip_width_s_diagnosed", row.pair_predicted_shape_diagnosed.width_s}});
+                 {"predicted_amplification", row.chain_amplification},
+                 {"predicted_dip_mps_diagnosed", row.chain_diagnosed.dip_mps},
+                 {"predicted_amplification_diagnosed", row.chain_amplification_diagnosed},
+                 {"pair_predicted_dip_mps", row.pair.dip_mps},
+                 {"pair_predicted_dip_mps_diagnosed", row.pair_diagnosed.dip_mps},
+                 {"measured_distance_lost_m", row.measured.distance_lost_m},
+                 {"predicted_distance_lost_m", row.chain.distance_lost_m},
+                 {"predicted_distance_lost_m_diagnosed", row.chain_diagnosed.distance_lost_m},
+                 {"pair_predicted_distance_lost_m", row.pair.distance_lost_m},
+                 {"pair_predicted_distance_lost_m_diagnosed", row.pair_diagnosed.distance_lost_m},
+                 {"measured_peak_braking_mps2", row.measured.shape.braking_mps2},
+                 {"measured_peak_recovery_mps2", row.measured.shape.recovery_mps2},
+                 {"pair_predicted_peak_braking_mps2", row.pair.shape.braking_mps2},
+                 {"pair_predicted_peak_recovery_mps2", row.pair.shape.recovery_mps2},
+                 {"pair_predicted_peak_braking_mps2_diagnosed", row.pair_diagnosed.shape.braking_mps2},
+                 {"pair_predicted_peak_recovery_mps2_diagnosed", row.pair_diagnosed.shape.recovery_mps2},
+                 {"measured_dip_width_s", row.measured.shape.width_s},
+                 {"predicted_dip_width_s", row.chain.shape.width_s},
+                 {"predicted_dip_width_s_diagnosed", row.chain_diagnosed.shape.width_s},
+                 {"pair_predicted_dip_width_s", row.pair.shape.width_s},
+                 {"pair_predicted_dip_width_s_diagnosed", row.pair_diagnosed.shape.width_s}});
   }
   return j;
 }
@@ -493,14 +493,14 @@ std::vector<std::vector<std::string>> platoonRows(const CampaignResult& result)
       for (const DipComparison& row : check.perturbations[i].positions)
       {
         rows.push_back({check.run + "/" + check.setting, std::to_string(i + 1), std::to_string(row.position), row.name,
-                        cellNumber("%.2f", row.measured_dip_mps), cellNumber("%.2f", row.predicted_dip_mps),
-                        cellNumber("%.2f", row.predicted_dip_mps_diagnosed), cellNumber("%.2f", row.measured_amplification),
-                        cellNumber("%.2f", row.predicted_amplification),
-                        cellNumber("%.2f", row.predicted_amplification_diagnosed), cellNumber("%.2f", row.pair_predicted_dip_mps),
-                        cellNumber("%.2f", row.pair_predicted_dip_mps_diagnosed),
-                        cellNumber("%.1f", row.measured_distance_lost_m),
-                        cellNumber("%.1f", row.predicted_distance_lost_m_diagnosed),
-                        cellNumber("%.1f", row.pair_predicted_distance_lost_m_diagnosed)});
+                        cellNumber("%.2f", row.measured.dip_mps), cellNumber("%.2f", row.chain.dip_mps),
+                        cellNumber("%.2f", row.chain_diagnosed.dip_mps), cellNumber("%.2f", row.measured_amplification),
+                        cellNumber("%.2f", row.chain_amplification),
+                        cellNumber("%.2f", row.chain_amplification_diagnosed), cellNumber("%.2f", row.pair.dip_mps),
+                        cellNumber("%.2f", row.pair_diagnosed.dip_mps),
+                        cellNumber("%.1f", row.measured.distance_lost_m),
+                        cellNumber("%.1f", row.chain_diagnosed.distance_lost_m),
+                        cellNumber("%.1f", row.pair_diagnosed.distance_lost_m)});
       }
     }
   }

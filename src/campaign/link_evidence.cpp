@@ -32,8 +32,8 @@ void collectDips(const std::vector<PlatoonCheck>& platoons, const std::string& v
       {
         if (rows[i].name == vehicle && rows[i - 1].position + 1 == rows[i].position)
         {
-          follower->push_back(rows[i].measured_dip_mps);
-          leader->push_back(rows[i - 1].measured_dip_mps);
+          follower->push_back(rows[i].measured.dip_mps);
+          leader->push_back(rows[i - 1].measured.dip_mps);
         }
       }
     }

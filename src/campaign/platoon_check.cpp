@@ -155,7 +155,7 @@ void findDisagreements(PerturbationCheck& check, std::size_t index, double max_r
   {
     if (row.position < 2)
       continue;
-    const double measured = row.measured_amplification, predicted = row.predicted_amplification;
+    const double measured = row.measured_amplification, predicted = row.chain_amplification;
     if (std::isfinite(measured) && std::isfinite(predicted) && (predicted > 1.0) != (measured > 1.0))
     {
       check.disagreements.push_back({index, row.position, row.name,
@@ -164,10 +164,10 @@ void findDisagreements(PerturbationCheck& check, std::size_t index, double max_r
                                          (measured > 1.0 ? ", measured amplification " : ", measured attenuation ") +
                                          printfText("%.2f", measured)});
     }
-    if (std::isfinite(row.measured_dip_mps) && std::isfinite(row.predicted_dip_mps) &&
-        row.measured_dip_mps >= kMinDipForRatioMps)
+    if (std::isfinite(row.measured.dip_mps) && std::isfinite(row.chain.dip_mps) &&
+        row.measured.dip_mps >= kMinDipForRatioMps)
     {
-      const double error = (row.predicted_dip_mps - row.measured_dip_mps) / row.measured_dip_mps;
+      const double error = (row.chain.dip_mps - row.measured.dip_mps) / row.measured.dip_mps;
       if (std::abs(error) > max_relative_dip_error)
         check.disagreements.push_back({index, row.position, row.name, "dip error " + printfText("%+.0f %%", 100.0 * error)});
     }
@@ -176,23 +176,15 @@ void findDisagreements(PerturbationCheck& check, std::size_t index, double max_r
 
 bool dataShowGrowth(const std::vector<DipComparison>& positions)
 {
-  const double first = positions.empty() ? kNaN : positions.front().measured_dip_mps;
+  const double first = positions.empty() ? kNaN : positions.front().measured.dip_mps;
   double last = kNaN;
   for (std::size_t k = 1; k < positions.size(); ++k)
   {
-    if (std::isfinite(positions[k].measured_dip_mps))
-      last = positions[k].measured_dip_mps;
+    if (std::isfinite(positions[k].measured.dip_mps))
+      last = positions[k].measured.dip_mps;
   }
   return std::isfinite(first) && std::isfinite(last) && last > first;
 }
-
-/// A speed series' dip, distance lost and shape in one perturbation (NaN: not predicted or not covered).
-struct DipMeasures
-{
-  double dip_mps = kNaN;
-  double lost_m = kNaN;
-  DipShape shape;
-};
 
 PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFile& data,
                                       const std::vector<double>& time_s, const Perturbation& perturbation,
@@ -210,46 +202,29 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
   auto predicted = [&](const std::vector<PlatoonCarPrediction>& cars, std::size_t i) {
     return i < cars.size() && cars[i].predicted ? measure(cars[i].predicted_speed_mps) : DipMeasures{};
   };
-  const DipMeasures lead_measured = measure(data.vehicle(1)->speed_mps);
-  DipComparison lead{1, data.vehicleName(1), lead_measured.dip_mps, lead_measured.dip_mps, kNaN, kNaN};
-  lead.measured_distance_lost_m = lead.predicted_distance_lost_m = lead_measured.lost_m;
-  lead.measured_shape = lead.predicted_shape = lead_measured.shape;
+  DipComparison lead;
+  lead.position = 1;
+  lead.name = data.vehicleName(1);
+  lead.measured = lead.chain = measure(data.vehicle(1)->speed_mps);
   if (!check.cars_diagnosed.empty())
-  {
-    lead.predicted_dip_mps_diagnosed = lead_measured.dip_mps;
-    lead.predicted_shape_diagnosed = lead_measured.shape;
-    lead.predicted_distance_lost_m_diagnosed = lead_measured.lost_m;
-  }
+    lead.chain_diagnosed = lead.measured;
   result.positions.push_back(lead);
   for (std::size_t i = 0; i < check.cars.size(); ++i)
   {
     const PlatoonCarPrediction& car = check.cars[i];
-    DipComparison row{car.position, car.name, kNaN, kNaN, kNaN, kNaN};
+    DipComparison row;
+    row.position = car.position;
+    row.name = car.name;
     if (hasSpeed(data.vehicle(car.position)))
-    {
-      const DipMeasures measured = measure(data.vehicle(car.position)->speed_mps);
-      row.measured_dip_mps = measured.dip_mps;
-      row.measured_distance_lost_m = measured.lost_m;
-      row.measured_shape = measured.shape;
-    }
-    const DipMeasures chain = predicted(check.cars, i), chain_diagnosed = predicted(check.cars_diagnosed, i);
-    const DipMeasures pair = predicted(check.pairs, i), pair_diagnosed = predicted(check.pairs_diagnosed, i);
-    row.predicted_dip_mps = chain.dip_mps;
-    row.predicted_distance_lost_m = chain.lost_m;
-    row.predicted_dip_mps_diagnosed = chain_diagnosed.dip_mps;
-    row.predicted_distance_lost_m_diagnosed = chain_diagnosed.lost_m;
-    row.predicted_shape = chain.shape;
-    row.predicted_shape_diagnosed = chain_diagnosed.shape;
-    row.pair_predicted_dip_mps = pair.dip_mps;
-    row.pair_predicted_distance_lost_m = pair.lost_m;
-    row.pair_predicted_dip_mps_diagnosed = pair_diagnosed.dip_mps;
-    row.pair_predicted_distance_lost_m_diagnosed = pair_diagnosed.lost_m;
-    row.pair_predicted_shape = pair.shape;
-    row.pair_predicted_shape_diagnosed = pair_diagnosed.shape;
+      row.measured = measure(data.vehicle(car.position)->speed_mps);
+    row.chain = predicted(check.cars, i);
+    row.chain_diagnosed = predicted(check.cars_diagnosed, i);
+    row.pair = predicted(check.pairs, i);
+    row.pair_diagnosed = predicted(check.pairs_diagnosed, i);
     const DipComparison& ahead = result.positions.back();
-    row.measured_amplification = ratio(row.measured_dip_mps, ahead.measured_dip_mps);
-    row.predicted_amplification = ratio(row.predicted_dip_mps, ahead.predicted_dip_mps);
-    row.predicted_amplification_diagnosed = ratio(row.predicted_dip_mps_diagnosed, ahead.predicted_dip_mps_diagnosed);
+    row.measured_amplification = ratio(row.measured.dip_mps, ahead.measured.dip_mps);
+    row.chain_amplification = ratio(row.chain.dip_mps, ahead.chain.dip_mps);
+    row.chain_amplification_diagnosed = ratio(row.chain_diagnosed.dip_mps, ahead.chain_diagnosed.dip_mps);
     result.positions.push_back(row);
   }
   result.data_show_growth = dataShowGrowth(result.positions);

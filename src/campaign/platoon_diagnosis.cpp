@@ -351,7 +351,7 @@ void addChainDips(const PlatoonCheck& check, std::size_t file_index, std::size_t
       if (row.position != score.position)
         continue;
       score.chain_dip_mps.resize(models, kNaN);
-      score.chain_dip_mps[model_index] = model_index == 0 ? row.predicted_dip_mps : row.predicted_dip_mps_diagnosed;
+      score.chain_dip_mps[model_index] = model_index == 0 ? row.chain.dip_mps : row.chain_diagnosed.dip_mps;
     }
   }
 }
@@ -419,21 +419,18 @@ enum class Quantity
   width
 };
 
-double quantityOf(double dip_mps, double lost_m, const DipShape& shape, Quantity quantity)
+double quantityOf(const DipMeasures& dip, Quantity quantity)
 {
   switch (quantity)
   {
-    case Quantity::dip: return dip_mps;
-    case Quantity::distance_lost: return lost_m;
-    case Quantity::width: return shape.width_s;
+    case Quantity::dip: return dip.dip_mps;
+    case Quantity::distance_lost: return dip.distance_lost_m;
+    case Quantity::width: return dip.shape.width_s;
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-double measuredOf(const DipComparison& row, Quantity quantity)
-{
-  return quantityOf(row.measured_dip_mps, row.measured_distance_lost_m, row.measured_shape, quantity);
-}
+double measuredOf(const DipComparison& row, Quantity quantity) { return quantityOf(row.measured, quantity); }
 
 /// The predicted quantity of rows[i] (rows[0] the first car, the input).
 double predictedOf(const std::vector<DipComparison>& rows, std::size_t i, DipPrediction which, Quantity quantity)
@@ -442,19 +439,12 @@ double predictedOf(const std::vector<DipComparison>& rows, std::size_t i, DipPre
   switch (which)
   {
     case DipPrediction::unchanged_dip:
-      return std::isfinite(row.predicted_dip_mps) ? measuredOf(rows[0], quantity)
-                                                  : std::numeric_limits<double>::quiet_NaN();
-    case DipPrediction::chain_base:
-      return quantityOf(row.predicted_dip_mps, row.predicted_distance_lost_m, row.predicted_shape, quantity);
-    case DipPrediction::chain_diagnosed:
-      return quantityOf(row.predicted_dip_mps_diagnosed, row.predicted_distance_lost_m_diagnosed,
-                        row.predicted_shape_diagnosed, quantity);
-    case DipPrediction::pair_base:
-      return quantityOf(row.pair_predicted_dip_mps, row.pair_predicted_distance_lost_m, row.pair_predicted_shape,
-                        quantity);
-    case DipPrediction::pair_diagnosed:
-      return quantityOf(row.pair_predicted_dip_mps_diagnosed, row.pair_predicted_distance_lost_m_diagnosed,
-                        row.pair_predicted_shape_diagnosed, quantity);
+      return std::isfinite(row.chain.dip_mps) ? measuredOf(rows[0], quantity)
+                                              : std::numeric_limits<double>::quiet_NaN();
+    case DipPrediction::chain_base: return quantityOf(row.chain, quantity);
+    case DipPrediction::chain_diagnosed: return quantityOf(row.chain_diagnosed, quantity);
+    case DipPrediction::pair_base: return quantityOf(row.pair, quantity);
+    case DipPrediction::pair_diagnosed: return quantityOf(row.pair_diagnosed, quantity);
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
@@ -486,14 +476,14 @@ DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& pl
       {
         // The first car is the input: its "prediction" is the measurement, whatever the model.
         const double ahead_predicted =
-            i == 1 ? rows[0].measured_dip_mps : predictedOf(rows, i - 1, which, Quantity::dip);
-        const double measured = rows[i].measured_dip_mps, predicted = predictedOf(rows, i, which, Quantity::dip);
+            i == 1 ? rows[0].measured.dip_mps : predictedOf(rows, i - 1, which, Quantity::dip);
+        const double measured = rows[i].measured.dip_mps, predicted = predictedOf(rows, i, which, Quantity::dip);
         if (!(measured > min_dip_mps) || !std::isfinite(predicted) || (include && !include(check, rows[i])))
           continue;
         errors.push_back((predicted - measured) / measured);
         addRelativeError(rows, i, which, Quantity::distance_lost, &lost_errors);
         addRelativeError(rows, i, which, Quantity::width, &width_errors);
-        const double ahead_measured = rows[i - 1].measured_dip_mps;
+        const double ahead_measured = rows[i - 1].measured.dip_mps;
         if (std::isfinite(ahead_measured) && std::isfinite(ahead_predicted) &&
             std::abs(measured - ahead_measured) > min_link_change_mps)
         {

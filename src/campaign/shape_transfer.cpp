@@ -7,9 +7,9 @@ namespace
 /// The shape a prediction (or the measurement) gives a row.
 using ShapeOf = const DipShape& (*)(const DipComparison&);
 
-const DipShape& measuredShape(const DipComparison& row) { return row.measured_shape; }
-const DipShape& pairBaseShape(const DipComparison& row) { return row.pair_predicted_shape; }
-const DipShape& pairDiagnosedShape(const DipComparison& row) { return row.pair_predicted_shape_diagnosed; }
+const DipShape& measuredShape(const DipComparison& row) { return row.measured.shape; }
+const DipShape& pairBaseShape(const DipComparison& row) { return row.pair.shape; }
+const DipShape& pairDiagnosedShape(const DipComparison& row) { return row.pair_diagnosed.shape; }
 
 DipShapeTransfer transferOf(const std::vector<PlatoonCheck>& platoons, const DipRowFilter& include, double min_dip_mps,
                             ShapeOf judged, std::size_t replicates, std::uint64_t seed)
@@ -23,8 +23,8 @@ DipShapeTransfer transferOf(const std::vector<PlatoonCheck>& platoons, const Dip
       const auto& rows = perturbation.positions;
       for (std::size_t i = 1; i < rows.size(); ++i)
       {
-        if (rows[i].measured_dip_mps > min_dip_mps && (!include || include(check, rows[i])))
-          observations.push_back({cluster, judged(rows[i]), rows[i].measured_shape, rows[i - 1].measured_shape});
+        if (rows[i].measured.dip_mps > min_dip_mps && (!include || include(check, rows[i])))
+          observations.push_back({cluster, judged(rows[i]), rows[i].measured.shape, rows[i - 1].measured.shape});
       }
       ++cluster;
     }

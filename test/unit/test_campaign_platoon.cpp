@@ -69,22 +69,22 @@ TEST(CampaignPlatoon, UnstableCarsAmplifyAndThePredictionAgrees)
       {
         const acc::DipComparison& row = perturbation.positions[k];
         EXPECT_GT(row.measured_amplification, 1.0) << check.run << " position " << row.position;
-        EXPECT_GT(row.predicted_amplification, 1.0) << check.run << " position " << row.position;
-        EXPECT_NEAR(row.predicted_dip_mps, row.measured_dip_mps, 0.1 * row.measured_dip_mps) << check.run;
+        EXPECT_GT(row.chain_amplification, 1.0) << check.run << " position " << row.position;
+        EXPECT_NEAR(row.chain.dip_mps, row.measured.dip_mps, 0.1 * row.measured.dip_mps) << check.run;
         // Right models lose the distance the cars lost, not only dip as deep.
-        EXPECT_NEAR(row.predicted_distance_lost_m, row.measured_distance_lost_m, 0.15 * row.measured_distance_lost_m)
+        EXPECT_NEAR(row.chain.distance_lost_m, row.measured.distance_lost_m, 0.15 * row.measured.distance_lost_m)
             << check.run << " position " << row.position;
         // ... and brake and recover as hard and stay down as long, driven by the same real leader
         // (the measured speeds carry 0.06 m/s of white noise, which a peak rate over many spans
         // picks up: the rate's least-squares slope over 2 s keeps that under 8 %; two end points
         // over 1 s gave 20 %).
-        EXPECT_NEAR(row.pair_predicted_shape.braking_mps2, row.measured_shape.braking_mps2,
-                    0.08 * row.measured_shape.braking_mps2)
+        EXPECT_NEAR(row.pair.shape.braking_mps2, row.measured.shape.braking_mps2,
+                    0.08 * row.measured.shape.braking_mps2)
             << check.run << " position " << row.position;
-        EXPECT_NEAR(row.pair_predicted_shape.recovery_mps2, row.measured_shape.recovery_mps2,
-                    0.08 * row.measured_shape.recovery_mps2)
+        EXPECT_NEAR(row.pair.shape.recovery_mps2, row.measured.shape.recovery_mps2,
+                    0.08 * row.measured.shape.recovery_mps2)
             << check.run << " position " << row.position;
-        EXPECT_NEAR(row.pair_predicted_shape.width_s, row.measured_shape.width_s, 0.1 * row.measured_shape.width_s)
+        EXPECT_NEAR(row.pair.shape.width_s, row.measured.shape.width_s, 0.1 * row.measured.shape.width_s)
             << check.run << " position " << row.position;
       }
       EXPECT_TRUE(perturbation.disagreements.empty()) << check.run << ": " << perturbation.disagreements.front().what;
@@ -223,12 +223,12 @@ TEST(DipPredictionSummary, TheNoModelReferencePassesTheFirstCarsDipOnWhereTheCha
   {
     acc::DipComparison row;
     row.position = i + 1;
-    row.measured_dip_mps = measured[i];
-    row.predicted_dip_mps = chain[i];
-    row.measured_distance_lost_m = measured_lost[i];
-    row.predicted_distance_lost_m = chain_lost[i];
-    row.measured_shape.width_s = measured_width[i];
-    row.predicted_shape.width_s = chain_width[i];
+    row.measured.dip_mps = measured[i];
+    row.chain.dip_mps = chain[i];
+    row.measured.distance_lost_m = measured_lost[i];
+    row.chain.distance_lost_m = chain_lost[i];
+    row.measured.shape.width_s = measured_width[i];
+    row.chain.shape.width_s = chain_width[i];
     perturbation.positions.push_back(row);
   }
   acc::PlatoonCheck check;
@@ -264,9 +264,9 @@ TEST(ShapeTransfer, SumsTheRatesAndTakesTheWideningsOverTheScoredCarsWithOneClus
   auto row = [](int position, double dip_mps, double braking, double recovery, double model_recovery) {
     acc::DipComparison r;
     r.position = position;
-    r.measured_dip_mps = dip_mps;
-    r.measured_shape = {braking, recovery};
-    r.pair_predicted_shape = {braking, model_recovery};
+    r.measured.dip_mps = dip_mps;
+    r.measured.shape = {braking, recovery};
+    r.pair.shape = {braking, model_recovery};
     return r;
   };
   acc::PerturbationCheck one, two;
@@ -279,10 +279,10 @@ TEST(ShapeTransfer, SumsTheRatesAndTakesTheWideningsOverTheScoredCarsWithOneClus
   const double model_widths[2][4] = {{nan, 3.0, 5.0, 9.0}, {nan, nan, 4.0, 6.0}};
   for (std::size_t k = 0; k < 4; ++k)
   {
-    one.positions[k].measured_shape.width_s = widths[0][k];
-    one.positions[k].pair_predicted_shape.width_s = model_widths[0][k];
-    two.positions[k].measured_shape.width_s = widths[1][k];
-    two.positions[k].pair_predicted_shape.width_s = model_widths[1][k];
+    one.positions[k].measured.shape.width_s = widths[0][k];
+    one.positions[k].pair.shape.width_s = model_widths[0][k];
+    two.positions[k].measured.shape.width_s = widths[1][k];
+    two.positions[k].pair.shape.width_s = model_widths[1][k];
   }
   acc::PlatoonCheck check;
   check.perturbations = {one, two};

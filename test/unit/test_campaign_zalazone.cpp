@@ -142,10 +142,10 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesADelayAndAQuadraticClosingRespons
   ASSERT_GE(perturbed->perturbations[0].positions.size(), 2u);
   const acc::DipComparison& dips = perturbed->perturbations[0].positions[1];
   const nlohmann::json& row = json.at("platoons").at(p).at("perturbations").at(0).at("positions").at(1);
-  ASSERT_TRUE(std::isfinite(dips.measured_distance_lost_m) && std::isfinite(dips.pair_predicted_distance_lost_m_diagnosed));
-  EXPECT_EQ(row["measured_distance_lost_m"].get<double>(), dips.measured_distance_lost_m);
-  EXPECT_EQ(row["predicted_distance_lost_m_diagnosed"].get<double>(), dips.predicted_distance_lost_m_diagnosed);
-  EXPECT_EQ(row["pair_predicted_distance_lost_m_diagnosed"].get<double>(), dips.pair_predicted_distance_lost_m_diagnosed);
+  ASSERT_TRUE(std::isfinite(dips.measured.distance_lost_m) && std::isfinite(dips.pair_diagnosed.distance_lost_m));
+  EXPECT_EQ(row["measured_distance_lost_m"].get<double>(), dips.measured.distance_lost_m);
+  EXPECT_EQ(row["predicted_distance_lost_m_diagnosed"].get<double>(), dips.chain_diagnosed.distance_lost_m);
+  EXPECT_EQ(row["pair_predicted_distance_lost_m_diagnosed"].get<double>(), dips.pair_diagnosed.distance_lost_m);
   EXPECT_EQ(json.at("platoon_diagnosis").at("how_far_the_gap_shrinks").at("chain_base").at("median_distance_lost_error").get<double>(),
             base.median_distance_lost_error);
   // Where the rest of the gap enters (docs/PLATOON_DIAGNOSIS.md): the first followers' models lose

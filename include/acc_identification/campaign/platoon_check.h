@@ -35,33 +35,34 @@ struct PlatoonCarModel
   std::vector<double> standard_errors;
 };
 
+/// What one speed series did in one perturbation: its dip, the distance it lost against its
+/// pre-perturbation speed (distanceLostM), and how hard it braked and recovered and how long it
+/// stayed below half its dip (dipShape). NaN where there is no such series or the window is not
+/// covered.
+struct DipMeasures
+{
+  double dip_mps = std::numeric_limits<double>::quiet_NaN();
+  double distance_lost_m = std::numeric_limits<double>::quiet_NaN();
+  DipShape shape{};
+};
+
 /// One car's measured and predicted dip in one perturbation.
 struct DipComparison
 {
   int position = 0;  ///< 1 = the platoon's first car (the input: predicted = measured)
   std::string name;
-  double measured_dip_mps = 0.0;        ///< NaN without data
-  double predicted_dip_mps = 0.0;       ///< NaN where the chain stopped
-  double measured_amplification = 0.0;  ///< dip(k) / dip(k-1); NaN for the first car or without data
-  double predicted_amplification = 0.0;
-  /// The same with each car's diagnosed model (platoon_diagnosis.h); NaN without one.
-  double predicted_dip_mps_diagnosed = std::numeric_limits<double>::quiet_NaN();
-  double predicted_amplification_diagnosed = std::numeric_limits<double>::quiet_NaN();
+  DipMeasures measured;  ///< NaN without data
+  /// Chained from the real first car (each car driven by the prediction ahead of it), with the base
+  /// models (NaN where the chain stopped) and with each car's diagnosed model (NaN without one).
+  DipMeasures chain, chain_diagnosed;
   /// Pair level: the car driven by its REAL leader's measured speed (nothing compounds), base and
   /// diagnosed model.
-  double pair_predicted_dip_mps = std::numeric_limits<double>::quiet_NaN();
-  double pair_predicted_dip_mps_diagnosed = std::numeric_limits<double>::quiet_NaN();
-  /// The distance each lost against its pre-perturbation speed (distanceLostM): measured, then as
-  /// the dips above. NaN where the dip is, or where the window is not covered.
-  double measured_distance_lost_m = std::numeric_limits<double>::quiet_NaN();
-  double predicted_distance_lost_m = std::numeric_limits<double>::quiet_NaN();
-  double predicted_distance_lost_m_diagnosed = std::numeric_limits<double>::quiet_NaN();
-  double pair_predicted_distance_lost_m = std::numeric_limits<double>::quiet_NaN();
-  double pair_predicted_distance_lost_m_diagnosed = std::numeric_limits<double>::quiet_NaN();
-  /// How hard the car braked and recovered and how long it stayed below half its dip (dipShape):
-  /// measured, then as the dips above.
-  DipShape measured_shape{}, predicted_shape{}, predicted_shape_diagnosed{}, pair_predicted_shape{},
-      pair_predicted_shape_diagnosed{};
+  DipMeasures pair, pair_diagnosed;
+  /// dip(k) / dip(k-1), measured and chained; NaN for the first car, without data, or behind a dip
+  /// too shallow for a ratio.
+  double measured_amplification = std::numeric_limits<double>::quiet_NaN();
+  double chain_amplification = std::numeric_limits<double>::quiet_NaN();
+  double chain_amplification_diagnosed = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Where the model and the data disagree.
