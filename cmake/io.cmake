@@ -1,10 +1,12 @@
-# Run files: canonical and OpenACC CSV read into runs, with the plausibility checks every reader
+# Run files: canonical and OpenACC CSV (csv_fields: one line's fields, quotes and a byte-order
+# mark as spreadsheet exports write them) read into runs, with the plausibility checks every reader
 # of runs (CSV or bag) shares. Used by every tool that takes runs. openacc_file.cpp is the one
 # reader of OpenACC files (every layout); the runs and the NMEA conversion are views on it. Its
 # pieces: openacc_text (fields, cells, column names), openacc_angle_unit (radians or degrees),
 # openacc_pairs (which leader-follower pairs a file holds, and the one chosen).
 acc_add_library(acc_run_io
   SOURCES
+    src/io/csv_fields.cpp
     src/io/openacc_file.cpp
     src/io/openacc_text.cpp
     src/io/openacc_angle_unit.cpp

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "openacc_text.h"
+#include "acc_identification/io/csv_fields.h"
 
 namespace acc
 {
@@ -252,11 +253,13 @@ bool readMetadataAndHeader(std::istream& in, OpenAccFile& file, std::size_t& lin
   while (std::getline(in, line))
   {
     ++line_number;
+    if (line_number == 1)
+      line = withoutByteOrderMark(line);
     if (isBlank(line))
     {
       continue;
     }
-    const std::vector<std::string> fields = splitFields(line);
+    const std::vector<std::string> fields = splitCsvFields(line);
     if (isHeaderLine(fields))
     {
       file.header = headerNames(fields);
@@ -497,6 +500,7 @@ void readDataRows(std::istream& in, OpenAccFile& file, const std::vector<ColumnT
                   std::size_t& line_number)
 {
   std::string line;
+  std::vector<std::string> previous_fields;
   while (std::getline(in, line))
   {
     ++line_number;
@@ -504,13 +508,23 @@ void readDataRows(std::istream& in, OpenAccFile& file, const std::vector<ColumnT
     {
       continue;  // a blank line (usually the last) carries no sample
     }
-    file.line.push_back(line_number);
-    std::vector<std::string> fields = splitFields(line);
+    std::vector<std::string> fields = splitCsvFields(line);
     // Empty fields past the header's (a trailing comma) carry nothing.
     while (fields.size() > file.header.size() && fields.back().empty())
     {
       fields.pop_back();
     }
+    if (!file.line.empty() && fields == previous_fields)
+    {
+      // An export's duplicate: no sample of its own, and a second row at one time would stop
+      // every stretch there. Listed and counted, not kept.
+      file.duplicate_lines.push_back(line_number);
+      file.problems.push_back(file.path + ":" + std::to_string(line_number) +
+                              ": the same cells as the row before; duplicate row dropped");
+      continue;
+    }
+    previous_fields = fields;
+    file.line.push_back(line_number);
     const std::string where = file.path + ":" + std::to_string(line_number) + ": ";
     if (fields.size() != file.header.size())
     {
@@ -627,12 +641,24 @@ void noteBadCellsAndRows(OpenAccFile& file)
     file.notes.push_back(file.path + ": " + std::to_string(file.bad_rows) + " of " + std::to_string(rows) +
                          " rows not read, each listed");
   }
-  if (rows == 0)
+  if (!file.duplicate_lines.empty())
   {
-    file.notes.push_back(file.path + ": no data rows after the header");
+    file.notes.push_back(describeDuplicateRows(file));
   }
 }
 }  // namespace
+
+std::string describeDuplicateRows(const OpenAccFile& file)
+{
+  constexpr std::size_t kLinesNamed = 10;
+  std::vector<std::string> lines;
+  for (std::size_t i = 0; i < file.duplicate_lines.size() && i < kLinesNamed; ++i)
+    lines.push_back(std::to_string(file.duplicate_lines[i]));
+  const std::size_t n = file.duplicate_lines.size();
+  return file.path + ": " + std::to_string(n) + " row" + (n == 1 ? "" : "s") +
+         " with the same cells as the row before, dropped as duplicates (line" + (n == 1 ? " " : "s ") +
+         join(lines, ", ") + (n > kLinesNamed ? ", ..." : "") + ")";
+}
 
 const char* angleUnitName(OpenAccAngleUnit unit)
 {
@@ -716,11 +742,13 @@ bool looksLikeOpenAccFile(const std::string& path)
 {
   std::ifstream in(path);
   std::string line;
-  while (std::getline(in, line))
+  for (bool first = true; std::getline(in, line); first = false)
   {
+    if (first)
+      line = withoutByteOrderMark(line);
     if (!isBlank(line))
     {
-      const std::vector<std::string> fields = splitFields(line);
+      const std::vector<std::string> fields = splitCsvFields(line);
       return upper(fields[0]) == "DATE" || isHeaderWithoutMetadata(fields);
     }
   }
@@ -751,7 +779,13 @@ OpenAccFile readOpenAccFile(const std::string& path)
     return file;
   }
   attachGapColumns(file, layout);
+  const std::size_t header_line = line_number;
   readDataRows(in, file, columnTargets(file, layout, index), line_number);
+  if (file.rows() == 0)
+  {
+    file.error = file.path + ": no data rows after the header (line " + std::to_string(header_line) + ")";
+    return file;
+  }
   keepCarsWithData(file, layout.cars);
   notePairlessFollowers(file);
   noteBadCellsAndRows(file);

@@ -28,24 +28,6 @@ std::string trim(const std::string& text)
   return text.substr(first, last - first + 1);
 }
 
-/// Every comma separates: "a,b," is three fields, the last empty.
-std::vector<std::string> splitFields(const std::string& line)
-{
-  std::vector<std::string> fields;
-  std::size_t start = 0;
-  while (true)
-  {
-    const auto comma = line.find(',', start);
-    fields.push_back(trim(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
-    if (comma == std::string::npos)
-    {
-      break;
-    }
-    start = comma + 1;
-  }
-  return fields;
-}
-
 bool isBlank(const std::string& line)
 {
   return line.find_first_not_of(" \t\r\n,") == std::string::npos;

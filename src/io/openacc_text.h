@@ -17,8 +17,6 @@ namespace openacc
 {
 /// Without the spaces, tabs and line ends around it.
 std::string trim(const std::string& text);
-/// Every comma separates: "a,b," is three fields, the last empty; each field trimmed.
-std::vector<std::string> splitFields(const std::string& line);
 /// Nothing but white space and commas.
 bool isBlank(const std::string& line);
 std::string upper(std::string text);

@@ -1,6 +1,9 @@
 #include "acc_identification/io/run_csv.h"
+#include "acc_identification/io/csv_fields.h"
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -22,25 +25,6 @@ struct ColumnMap
   std::array<std::size_t, 4> index{};  ///< time, gap, follower speed, leader speed
   std::size_t field_count = 0;
 };
-
-std::vector<std::string> splitFields(const std::string& line)
-{
-  std::vector<std::string> fields;
-  std::string field;
-  std::istringstream stream(line);
-  while (std::getline(stream, field, ','))
-  {
-    // Trim spaces and a Windows line end, which some exports carry.
-    const auto first = field.find_first_not_of(" \t\r");
-    const auto last = field.find_last_not_of(" \t\r");
-    fields.push_back(first == std::string::npos ? "" : field.substr(first, last - first + 1));
-  }
-  if (!line.empty() && line.back() == ',')
-  {
-    fields.emplace_back();
-  }
-  return fields;
-}
 
 std::optional<std::size_t> findColumn(const std::vector<std::string>& header, const std::string& name)
 {
@@ -122,6 +106,13 @@ public:
     }
     if (!current_.time_s.empty())
     {
+      if (repeatsLastSample(values))
+      {
+        ++contents_.rejected_rows;
+        ++contents_.duplicate_rows;
+        report(line_number, "the same time and values as the row before; duplicate row rejected, run not split");
+        return;
+      }
       const std::string not_increasing = describeTimeNotIncreasing(values[0]);
       if (!not_increasing.empty())
       {
@@ -169,6 +160,12 @@ public:
   }
 
 private:
+  bool repeatsLastSample(const std::array<double, 4>& values) const
+  {
+    return values[0] == current_.time_s.back() && values[1] == current_.space_gap_m.back() &&
+           values[2] == current_.follower_speed_mps.back() && values[3] == current_.leader_speed_mps.back();
+  }
+
   std::string describeTimeNotIncreasing(double time_s) const
   {
     if (time_s > current_.time_s.back())
@@ -245,7 +242,7 @@ RunFileContents readCanonicalFile(const std::string& path, const RunPlausibility
   while (!map && std::getline(file, line))
   {
     ++line_number;
-    map = mapColumns(splitFields(line));
+    map = mapColumns(splitCsvFields(line_number == 1 ? withoutByteOrderMark(line) : line));
     if (line_number > 20 && !map)
     {
       break;
@@ -266,7 +263,7 @@ RunFileContents readCanonicalFile(const std::string& path, const RunPlausibility
     }
     ++contents.data_rows;
     std::array<double, 4> values{};
-    const std::string malformed = parseRow(splitFields(line), *map, values);
+    const std::string malformed = parseRow(splitCsvFields(line), *map, values);
     if (!malformed.empty())
     {
       assembler.reject(line_number, malformed);
@@ -278,6 +275,15 @@ RunFileContents readCanonicalFile(const std::string& path, const RunPlausibility
   }
   assembler.split(line_number);
   return contents;
+}
+
+/// A Driverk cell that says ACC, in any case ("ACC", "acc"); the database writes ACC or Human.
+bool isAccDriver(const std::string& cell)
+{
+  static const std::string kAcc = "ACC";
+  return cell.size() == kAcc.size() &&
+         std::equal(cell.begin(), cell.end(), kAcc.begin(),
+                    [](char a, char b) { return std::toupper(static_cast<unsigned char>(a)) == b; });
 }
 
 /// How the follower's rows are known to be on ACC: its Driverk column, else the file's ACC line.
@@ -341,7 +347,7 @@ RunFileContents readPairRuns(const OpenAccFile& file, const OpenAccPair& pair, c
   {
     ++contents.data_rows;
     const std::string problem = pairRowProblem(file, pair, i);
-    const bool acc_on = source == AccSource::kDriverColumn ? follower.driver[i] == "ACC"
+    const bool acc_on = source == AccSource::kDriverColumn ? isAccDriver(follower.driver[i])
                                                            : source == AccSource::kOnThroughout;
     if (!problem.empty())
     {
@@ -399,6 +405,7 @@ void append(RunFileContents& all, RunFileContents&& one)
   all.data_rows += one.data_rows;
   all.rejected_rows += one.rejected_rows;
   all.implausible_rows += one.implausible_rows;
+  all.duplicate_rows += one.duplicate_rows;
   all.time_holes += one.time_holes;
   all.acc_off_rows += one.acc_off_rows;
   all.problems.insert(all.problems.end(), one.problems.begin(), one.problems.end());
@@ -458,10 +465,7 @@ AllPairRuns readAllPairRuns(const std::string& path, const RunPlausibilityBounds
   return all;
 }
 
-namespace
-{
-/// One line with the counts behind the problems, or "" when nothing was rejected or split.
-std::string describeCounts(const std::string& path, const RunFileContents& contents)
+std::string describeRowCounts(const std::string& path, const RunFileContents& contents)
 {
   if (contents.rejected_rows == 0 && contents.time_holes == 0)
   {
@@ -469,11 +473,10 @@ std::string describeCounts(const std::string& path, const RunFileContents& conte
   }
   std::ostringstream counts;
   counts << path << ": " << contents.rejected_rows << " of " << contents.data_rows << " rows rejected ("
-         << contents.implausible_rows << " outside the plausibility bounds), " << contents.time_holes
-         << " holes in time split a run";
+         << contents.implausible_rows << " outside the plausibility bounds, " << contents.duplicate_rows
+         << " duplicates), " << contents.time_holes << " holes in time split a run";
   return counts.str();
 }
-}  // namespace
 
 std::vector<CarFollowingRun> readRuns(const std::string& path, const RunPlausibilityBounds& bounds)
 {
@@ -497,7 +500,7 @@ std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileC
   {
     log << "warning: " << problem << "\n";
   }
-  const std::string counts = describeCounts(path, contents);
+  const std::string counts = describeRowCounts(path, contents);
   if (!counts.empty())
   {
     log << "warning: " << counts << "\n";

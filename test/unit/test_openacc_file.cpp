@@ -310,17 +310,20 @@ TEST_F(OpenAccFileTest, WithoutADriverColumnTheAccLineTells)
   EXPECT_THROW(acc::readRuns(write("manual2.csv", manual)), acc::RunReadError);
 }
 
+/// A Casale-like two-vehicle file of two rows, both on ACC.
+const std::string kTwoVehicleFile =
+    "Date,27,10,2020\n"
+    "Vehicle_order,Rexton,Hyundai\n"
+    "Number_of_vehicles,2\n"
+    "ACC,1\n"
+    "Distance_setting,min\n"
+    "Time,Speed1,Lat1,Lon1,E1,N1,Speed2,Lat2,Lon2,Alt2,E2,N2,U2,IVS1,Driver2\n"
+    "100.0,30.0,0,0,0,0,29.0,0,0,0,0,0,0,40.0,ACC\n"
+    "100.1,30.1,0,0,0,0,29.1,0,0,0,0,0,0,40.1,ACC\n";
+
 TEST_F(OpenAccFileTest, MetadataDistanceSettingAndTwoVehicleLayout)
 {
-  const std::string path = write("part9.csv",
-                                 "Date,27,10,2020\n"
-                                 "Vehicle_order,Rexton,Hyundai\n"
-                                 "Number_of_vehicles,2\n"
-                                 "ACC,1\n"
-                                 "Distance_setting,min\n"
-                                 "Time,Speed1,Lat1,Lon1,E1,N1,Speed2,Lat2,Lon2,Alt2,E2,N2,U2,IVS1,Driver2\n"
-                                 "100.0,30.0,0,0,0,0,29.0,0,0,0,0,0,0,40.0,ACC\n"
-                                 "100.1,30.1,0,0,0,0,29.1,0,0,0,0,0,0,40.1,ACC\n");
+  const std::string path = write("part9.csv", kTwoVehicleFile);
   const acc::OpenAccFile file = acc::readOpenAccFile(path);
   ASSERT_EQ(file.error, "");
   EXPECT_EQ(file.metadata.distance_setting, "min");
@@ -331,6 +334,39 @@ TEST_F(OpenAccFileTest, MetadataDistanceSettingAndTwoVehicleLayout)
   ASSERT_EQ(contents.runs.size(), 1u);
   EXPECT_EQ(contents.runs[0].name, "part9 Hyundai");
   EXPECT_TRUE(anyContains(contents.notes, {"ACC on where Driver2 is ACC"})) << joined(contents.notes);
+}
+
+TEST_F(OpenAccFileTest, ASpreadsheetExportReadsAsTheDatabasesFile)
+{
+  // The same two-vehicle file as a spreadsheet writes it back: a byte-order mark, Windows line
+  // ends, every field quoted, and the Driver2 cells in lower case.
+  const std::string plain =
+      write("plain.csv", kTwoVehicleFile + "100.2,30.2,0,0,0,0,29.2,0,0,0,0,0,0,40.2,Human\n");
+  std::string exported = "\xEF\xBB\xBF";
+  std::ifstream in(plain);
+  for (std::string line; std::getline(in, line);)
+  {
+    std::string quoted = "\"";
+    for (const char c : line)
+      quoted += c == ',' ? std::string("\",\"") : std::string(1, c);
+    exported += quoted + "\"\r\n";
+  }
+  const std::string acc_upper = "\"ACC\"";
+  for (auto at = exported.find(acc_upper, exported.find("\"Time\"")); at != std::string::npos;
+       at = exported.find(acc_upper, at))
+    exported.replace(at, acc_upper.size(), "\"acc\"");
+  const acc::OpenAccFile file = acc::readOpenAccFile(write("exported.csv", exported));
+  ASSERT_EQ(file.error, "");
+  EXPECT_EQ(file.metadata.distance_setting, "min");
+  EXPECT_EQ(file.vehicleName(2), "Hyundai");
+  const acc::RunFileContents a = acc::readRunFile(plain);
+  const acc::RunFileContents b = acc::readRunFile(write("exported2.csv", exported));
+  ASSERT_EQ(a.runs.size(), 1u);
+  ASSERT_EQ(b.runs.size(), 1u);
+  EXPECT_EQ(b.acc_off_rows, 1u);
+  EXPECT_EQ(a.runs[0].time_s, b.runs[0].time_s);
+  EXPECT_EQ(a.runs[0].space_gap_m, b.runs[0].space_gap_m);
+  EXPECT_EQ(a.runs[0].follower_speed_mps, b.runs[0].follower_speed_mps);
 }
 
 TEST_F(OpenAccFileTest, ChoosingAFollowerInACanonicalCsvIsAnError)

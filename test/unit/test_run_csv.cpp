@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "acc_identification/io/run_csv.h"
 
@@ -272,11 +273,11 @@ TEST(RunCsvPlausibility, ReadRunsCountsImplausibleRowsAndHolesOnStderr)
   EXPECT_EQ(hole_runs.size(), 2u);
   EXPECT_TRUE(contains(log, ":5: follower_speed_mps 1e+09 outside [-1, 100] m/s")) << log;
   EXPECT_TRUE(contains(log, "canonical_implausible_speed.csv: 1 of 7 rows rejected (1 outside the plausibility "
-                            "bounds), 0 holes in time split a run"))
+                            "bounds, 0 duplicates), 0 holes in time split a run"))
       << log;
   EXPECT_TRUE(contains(log, ":4: hole of 10 s before this row (max 0.5 s); run split")) << log;
-  EXPECT_TRUE(contains(log, "canonical_time_hole.csv: 0 of 4 rows rejected (0 outside the plausibility bounds), "
-                            "1 holes in time split a run"))
+  EXPECT_TRUE(contains(log, "canonical_time_hole.csv: 0 of 4 rows rejected (0 outside the plausibility bounds, "
+                            "0 duplicates), 1 holes in time split a run"))
       << log;
 }
 
@@ -287,4 +288,64 @@ TEST(RunCsv, RealOpenAccCopyReadsWhole)
   EXPECT_EQ(runs[0].size(), 1151u);
   EXPECT_NEAR(runs[0].durationS(), 115.0, 1e-6);
 }
+
+/// Writes text to a file in the test's temporary folder; returns its path.
+std::string writeTemporary(const std::string& name, const std::string& text)
+{
+  const std::string path = testing::TempDir() + "/" + name;
+  FILE* file = std::fopen(path.c_str(), "w");
+  std::fputs(text.c_str(), file);
+  std::fclose(file);
+  return path;
+}
+
+TEST(RunCsv, AnExactDuplicateRowIsRejectedAndCountedWithoutSplittingTheRun)
+{
+  const std::string path = writeTemporary("run_csv_duplicate.csv",
+                                          "time_s,space_gap_m,follower_speed_mps,leader_speed_mps\n"
+                                          "0.0,20.0,10.0,10.5\n0.1,20.05,10.01,10.5\n0.1,20.05,10.01,10.5\n"
+                                          "0.2,20.1,10.02,10.5\n0.2,20.2,10.02,10.5\n0.3,20.15,10.03,10.5\n"
+                                          "0.4,20.2,10.04,10.5\n");
+  const auto contents = acc::readRunFile(path);
+  EXPECT_EQ(contents.data_rows, 7u);
+  // Line 4 repeats line 3: dropped, counted, the run goes on. Line 6 repeats line 5's time with
+  // another gap: which one is right is unknown, so it is rejected and splits, as before.
+  EXPECT_EQ(contents.rejected_rows, 2u);
+  EXPECT_EQ(contents.duplicate_rows, 1u);
+  ASSERT_EQ(contents.problems.size(), 2u);
+  EXPECT_TRUE(contains(contents.problems[0], ":4: the same time and values as the row before; duplicate row "
+                                             "rejected, run not split"))
+      << contents.problems[0];
+  EXPECT_TRUE(contains(contents.problems[1], ":6: time 0.2 s does not increase")) << contents.problems[1];
+  ASSERT_EQ(contents.runs.size(), 2u);
+  EXPECT_EQ(contents.runs[0].time_s, (std::vector<double>{0.0, 0.1, 0.2}));
+  EXPECT_EQ(contents.runs[1].time_s, (std::vector<double>{0.3, 0.4}));
+  std::remove(path.c_str());
+}
+
+TEST(RunCsv, SpreadsheetExportsReadAsThePlainFile)
+{
+  // A byte-order mark before the header, quoted fields (one with a comma inside a quoted note
+  // column), Windows line ends: the same four values as the plain file.
+  const std::string plain = writeTemporary("run_csv_plain.csv",
+                                           "time_s,space_gap_m,follower_speed_mps,leader_speed_mps\n"
+                                           "0.0,20.0,10.0,10.5\n0.1,20.05,10.01,10.5\n0.2,20.1,10.02,10.5\n");
+  const std::string exported = writeTemporary(
+      "run_csv_exported.csv",
+      "\xEF\xBB\xBF\"time_s\",\"space_gap_m\",\"follower_speed_mps\",\"leader_speed_mps\",\"note\"\r\n"
+      "\"0.0\",\"20.0\",\"10.0\",\"10.5\",\"start, on \"\"ACC\"\"\"\r\n"
+      "0.1,20.05,10.01,10.5,\r\n\"0.2\", 20.1 ,10.02,10.5,x\r\n");
+  const auto a = acc::readRunFile(plain);
+  const auto b = acc::readRunFile(exported);
+  EXPECT_EQ(b.rejected_rows, 0u);
+  ASSERT_EQ(a.runs.size(), 1u);
+  ASSERT_EQ(b.runs.size(), 1u);
+  EXPECT_EQ(a.runs[0].time_s, b.runs[0].time_s);
+  EXPECT_EQ(a.runs[0].space_gap_m, b.runs[0].space_gap_m);
+  EXPECT_EQ(a.runs[0].follower_speed_mps, b.runs[0].follower_speed_mps);
+  EXPECT_EQ(a.runs[0].leader_speed_mps, b.runs[0].leader_speed_mps);
+  std::remove(plain.c_str());
+  std::remove(exported.c_str());
+}
+
 }  // namespace

@@ -80,7 +80,8 @@ struct OpenAccBadCell
 };
 
 /// Everything read from one OpenACC file. Nothing is dropped silently: every data row is kept (a
-/// malformed row with all its values NaN), and every bad cell and row is counted and listed.
+/// malformed row with all its values NaN) but an exact repeat of the row before, and every bad
+/// cell, row and repeat is counted and listed.
 struct OpenAccFile
 {
   std::string path;
@@ -99,6 +100,9 @@ struct OpenAccFile
   std::vector<OpenAccBadCell> bad_cells;  ///< in row order
   std::map<std::string, std::size_t> bad_cells_by_column;
   std::size_t bad_rows = 0;  ///< rows with a bad cell or unread as a whole
+  /// Lines that repeat the data row before cell for cell (an export's duplicate): dropped, not
+  /// rows, each listed in problems and counted in a note.
+  std::vector<std::size_t> duplicate_lines;
   /// "path:line: why", one per row with a bad cell (naming every one) or unread as a whole.
   std::vector<std::string> problems;
   /// "path: ...": what the file holds and what was made of it (the unit and why, the cars without
@@ -121,6 +125,9 @@ struct OpenAccFile
   /// numbers. Cells of other columns do not matter (a reader asks for the pair it reads).
   std::string rowProblem(std::size_t row, const std::vector<std::string>& columns) const;
 };
+
+/// "path: 3 rows with the same cells as the row before, dropped as duplicates (lines 12, 40, 41)".
+std::string describeDuplicateRows(const OpenAccFile& file);
 
 /// Reads an OpenACC file; never throws for the file's content (see OpenAccFile::error).
 OpenAccFile readOpenAccFile(const std::string& path);

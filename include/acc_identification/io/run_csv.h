@@ -26,6 +26,9 @@ struct RunFileContents
   std::size_t data_rows = 0;          ///< rows after the header
   std::size_t rejected_rows = 0;      ///< rows not used (each one listed in problems)
   std::size_t implausible_rows = 0;   ///< of rejected_rows: values outside the plausibility bounds
+  /// Of rejected_rows: exact repeats of the row before (the same time and values), which carry no
+  /// sample of their own and so do not split the run.
+  std::size_t duplicate_rows = 0;
   std::size_t time_holes = 0;         ///< steps longer than max_time_step_s (split points, no row lost)
   std::size_t acc_off_rows = 0;       ///< OpenACC rows where the follower was not on ACC (split points)
   std::vector<std::string> problems;  ///< "path:line: why", one per rejected row, hole or short piece
@@ -44,7 +47,8 @@ struct RunFileContents
 /// readOpenAccFile, openacc_file.h) as the runs of one leader-follower pair: by default the first
 /// pair the file holds, said in notes. A bad row (wrong field count, not a number, not finite, a
 /// value outside the plausibility bounds, time not increasing) is rejected, listed with its line
-/// number, and splits the run, so that no simulation ever integrates across it. For OpenACC only
+/// number, and splits the run, so that no simulation ever integrates across it; an exact repeat of
+/// the row before (an export's duplicate) is rejected and listed too, without a split. For OpenACC only
 /// the pair's own cells count (Time, IVS(k-1), Speed(k), Speed(k-1)): a NaN in another car's
 /// column does not touch it. A time step longer than bounds.max_time_step_s splits the run too,
 /// keeping both rows, and is listed. OpenACC rows where the follower's Driverk is not ACC split
@@ -81,6 +85,10 @@ struct AllPairRuns
 /// The runs of every pair of an OpenACC file, pair by pair (a canonical CSV: its one pair). Throws
 /// as readRunFile, and RunReadError when the file holds no pair.
 AllPairRuns readAllPairRuns(const std::string& path, const RunPlausibilityBounds& bounds = RunPlausibilityBounds{});
+
+/// "path: 3 of 2530 rows rejected (1 outside the plausibility bounds, 0 duplicates), 2 holes in
+/// time split a run", or "" when no row is rejected and no hole splits.
+std::string describeRowCounts(const std::string& path, const RunFileContents& contents);
 
 /// readRunFile() for tools: returns the runs, and writes every note and problem (and the counts of
 /// rejected rows and holes) to stderr, so nothing is dropped silently. Throws as readRunFile, and

@@ -1,0 +1,18 @@
+#pragma once
+
+// The text of one CSV line, as both run readers (canonical and OpenACC) take it.
+
+#include <string>
+#include <vector>
+
+namespace acc
+{
+/// The fields of one line: split at every comma outside double quotes, so "a,b," is three fields,
+/// the last empty; each field trimmed of spaces, tabs and line ends, and a quoted one unquoted
+/// ("" inside it is one "), as spreadsheet exports write them. An unterminated quote runs to the
+/// line's end.
+std::vector<std::string> splitCsvFields(const std::string& line);
+
+/// The line without the UTF-8 byte-order mark a spreadsheet export may put at a file's start.
+std::string withoutByteOrderMark(const std::string& line);
+}  // namespace acc
