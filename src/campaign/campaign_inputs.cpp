@@ -86,11 +86,71 @@ std::string whyNoUsableRun(const RunFileContents& contents)
   return why;
 }
 
+std::string upperCase(std::string text)
+{
+  for (char& c : text)
+    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return text;
+}
+
+/// The file's Distance_setting as the campaign spells it: "?" when unknown; a setting met before in
+/// another case ("Min" after "min") takes the first spelling, said in a note, so that one car's
+/// runs at one setting are one group.
+std::string settingSpelling(const std::string& written, std::map<std::string, std::string>& spellings,
+                            const std::string& path, std::vector<std::string>& notes)
+{
+  if (written.empty())
+    return "?";
+  const auto [known, first] = spellings.emplace(upperCase(written), written);
+  if (!first && known->second != written)
+    notes.push_back(path + ": Distance_setting '" + written + "' taken as '" + known->second +
+                    "', as an earlier file writes it");
+  return known->second;
+}
+
+std::string joinWith(const std::vector<std::string>& parts, const std::string& separator)
+{
+  std::string text;
+  for (const std::string& part : parts)
+    text += (text.empty() ? "" : separator) + part;
+  return text;
+}
+
+/// The file's cars that give the campaign no pair, each with the reader's reason.
+void noteCarsWithoutPair(const OpenAccFile& file, std::vector<std::string>& notes)
+{
+  int last = static_cast<int>(file.metadata.vehicle_order.size());
+  for (const OpenAccVehicle& car : file.vehicles)
+    last = std::max(last, car.position);
+  if (file.vehicle(1) == nullptr)
+    notes.push_back(file.path + ": the first car, " + file.vehicleName(1) +
+                    ", has no data: the platoon of this file is not checked");
+  std::vector<std::string> without_data;
+  for (int k = 2; k <= last; ++k)
+  {
+    if (file.vehicle(k) == nullptr)
+      without_data.push_back(file.vehicleName(k) + " (" + std::to_string(k) + ")");
+    else if (const std::string why = describePairlessFollower(file, k); !why.empty())
+      notes.push_back(file.path + ": " + why + ": not in the campaign");
+  }
+  if (!without_data.empty())
+    notes.push_back(file.path + ": no data for " + joinWith(without_data, ", ") + ": not in the campaign");
+}
+
+/// "TESLA_MODEL3 59" or "BMW_I3 3 and 1 hole in time": what one pair loses.
+std::string describePairLosses(const PairRunContents& pair)
+{
+  const std::size_t holes = pair.contents.time_holes;
+  return pair.pair.follower_name + " " + std::to_string(pair.contents.rejected_rows) +
+         (holes == 0 ? "" : " and " + std::to_string(holes) + (holes == 1 ? " hole" : " holes") + " in time");
+}
+
 /// Adds the pairs of one file to the groups being built (keyed by vehicle and setting).
 void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile& file,
               std::map<std::pair<std::string, std::string>, CampaignGroup>& groups, std::vector<std::string>& notes,
               std::size_t& skipped_pairs)
 {
+  std::vector<std::string> rejected;  // "TESLA_MODEL3 59": the pairs that lose rows, in one note
   for (const PairRunContents& pair : all.pairs)
   {
     if (pair.contents.runs.empty())
@@ -100,11 +160,17 @@ void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile
       ++skipped_pairs;
       continue;
     }
+    if (pair.contents.rejected_rows + pair.contents.time_holes > 0)
+      rejected.push_back(describePairLosses(pair));
     CampaignGroup& group = groups[{pair.pair.follower_name, file.setting}];
     group.vehicle = pair.pair.follower_name;
     group.setting = file.setting;
     group.runs.push_back({file_index, pair.pair, pair.contents.runs});
   }
+  if (!rejected.empty())
+    notes.push_back(file.path + ": rows a pair cannot use (a bad or implausible cell of its own, its time not "
+                    "increasing) split its runs there, each listed by calibrate --all-pairs; rejected of " +
+                    std::to_string(file.contents.rows()) + " rows: " + joinWith(rejected, ", "));
 }
 
 bool groupLess(const CampaignGroup& a, const CampaignGroup& b)
@@ -211,7 +277,8 @@ namespace
 {
 /// One file into the inputs: its pairs into the groups, or a note saying why it is skipped.
 void addFile(const std::string& path, const RunPlausibilityBounds& bounds, CampaignInputs& inputs,
-             std::map<std::pair<std::string, std::string>, CampaignGroup>& groups)
+             std::map<std::pair<std::string, std::string>, CampaignGroup>& groups,
+             std::map<std::string, std::string>& setting_spellings)
 {
   CampaignFile file;
   file.path = path;
@@ -228,7 +295,7 @@ void addFile(const std::string& path, const RunPlausibilityBounds& bounds, Campa
     inputs.notes.push_back(file.contents.notes.front());
   }
   file.name = file.contents.name;
-  file.setting = file.contents.metadata.distance_setting.empty() ? "?" : file.contents.metadata.distance_setting;
+  file.setting = settingSpelling(file.contents.metadata.distance_setting, setting_spellings, path, inputs.notes);
   AllPairRuns all;
   try
   {
@@ -240,6 +307,9 @@ void addFile(const std::string& path, const RunPlausibilityBounds& bounds, Campa
     ++inputs.skipped_files;
     return;
   }
+  if (!file.contents.duplicate_lines.empty())
+    inputs.notes.push_back(describeDuplicateRows(file.contents));
+  noteCarsWithoutPair(file.contents, inputs.notes);
   inputs.files.push_back(std::move(file));
   addPairs(all, inputs.files.size() - 1, inputs.files.back(), groups, inputs.notes, inputs.skipped_pairs);
 }
@@ -260,8 +330,9 @@ CampaignInputs loadCampaign(const std::vector<std::string>& paths, const RunPlau
   inputs.notes = list.skipped;
   inputs.skipped_files = list.skipped.size();
   std::map<std::pair<std::string, std::string>, CampaignGroup> groups;
+  std::map<std::string, std::string> setting_spellings;  // by the setting in upper case
   for (const std::string& path : list.files)
-    addFile(path, bounds, inputs, groups);
+    addFile(path, bounds, inputs, groups, setting_spellings);
   for (auto& entry : groups)
     inputs.groups.push_back(std::move(entry.second));
   std::sort(inputs.groups.begin(), inputs.groups.end(), groupLess);

@@ -233,6 +233,16 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
 }
 }  // namespace
 
+std::string describeRowsLeftOut(const OpenAccFile& file, std::size_t first_row, std::size_t end_row)
+{
+  const std::size_t left_out = file.rows() - (end_row - first_row);
+  return "only the first car's longest unbroken stretch is checked: lines " + std::to_string(file.line[first_row]) +
+         "-" + std::to_string(file.line[end_row - 1]) + " (" + std::to_string(end_row - first_row) + " of " +
+         std::to_string(file.rows()) + " rows); the " + std::to_string(left_out) +
+         " rows outside it (where its time or speed is missing, time does not increase, or a step is longer than "
+         "the maximum) are not";
+}
+
 std::pair<std::size_t, std::size_t> longestLeadStretch(const OpenAccFile& file, double max_time_step_s)
 {
   const OpenAccVehicle* lead = file.vehicle(1);
@@ -343,6 +353,8 @@ PlatoonCheck checkPlatoon(const CampaignFile& file, const std::vector<PlatoonCar
     for (const PlatoonCarPrediction& car : check.cars_diagnosed)
       check.pairs_diagnosed.push_back(predictPair(data, car.position, car.model, check.first_row, check.end_row));
   }
+  if (check.end_row - check.first_row < data.rows())
+    check.notes.push_back(describeRowsLeftOut(data, check.first_row, check.end_row));
   const std::vector<double> time_s = sliceRows(data.time_s, check.first_row, check.end_row);
   if (found.empty())
     check.notes.push_back("no perturbation: the first car's speed never drops more than " +

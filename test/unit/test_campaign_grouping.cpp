@@ -4,6 +4,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <vector>
+#include <sstream>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -11,6 +14,7 @@
 
 #include "acc_identification/campaign/campaign.h"
 #include "acc_identification/campaign/campaign_output.h"
+#include "acc_identification/campaign/platoon_check.h"
 #include "acc_identification/model/parallel_tasks.h"
 #include "acc_identification/evidence/perturbation.h"
 #include "acc_identification/io/run_csv.h"
@@ -291,6 +295,100 @@ TEST(CampaignInputs, EverySkippedFileIsNamedWithItsReasonAndCounted)
   EXPECT_NE(inputs.notes[1].find("lonely.csv: no leader-follower pair"), std::string::npos) << inputs.notes[1];
   EXPECT_NE(inputs.notes[1].find("skipped"), std::string::npos) << inputs.notes[1];
   EXPECT_EQ(inputs.describeSkipped(), "skipped 2 file(s) and 0 pair(s) (each in a note above)");
+}
+
+/// The file's lines, edited by `edit` (line index from 0, the line; returns the lines to write).
+void rewriteLines(const std::string& path,
+                  const std::function<std::vector<std::string>(std::size_t, const std::string&)>& edit)
+{
+  std::vector<std::string> lines;
+  {
+    std::ifstream in(path);
+    for (std::string line; std::getline(in, line);)
+      lines.push_back(line);
+  }
+  std::ofstream out(path);
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    for (const std::string& written : edit(i, lines[i]))
+      out << written << "\n";
+}
+
+bool anyNoteHas(const acc::CampaignInputs& inputs, const std::vector<std::string>& parts)
+{
+  for (const std::string& note : inputs.notes)
+  {
+    bool all = true;
+    for (const std::string& part : parts)
+      all = all && note.find(part) != std::string::npos;
+    if (all)
+      return true;
+  }
+  return false;
+}
+
+TEST(CampaignInputs, WhatIsLeftOutOfAFileIsSaid)
+{
+  TempFolder folder("acc_campaign_left_out");
+  // a.csv at "S"; b.csv the same cars at "s", with two duplicated rows, a NaN in CAR_A's speed and
+  // CAR_B's speed empty throughout (header: Time,Speed1,Speed2,Speed3,IVS1,IVS2; data from line 7).
+  acc_test::writeSyntheticPlatoon(folder.file("a.csv"), "S", {kAS, kBS}, 61, 60.0);
+  acc_test::writeSyntheticPlatoon(folder.file("b.csv"), "s", {kAS, kBS}, 62, 60.0);
+  rewriteLines(folder.file("b.csv"), [](std::size_t i, const std::string& line) -> std::vector<std::string> {
+    if (i < 6)
+      return {line};
+    std::vector<std::string> cells;
+    std::stringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');)
+      cells.push_back(cell);
+    cells[3] = "";  // Speed3
+    if (i == 100)
+      cells[2] = "NaN";  // Speed2
+    std::string text = cells[0];
+    for (std::size_t c = 1; c < cells.size(); ++c)
+      text += "," + cells[c];
+    if (i == 200 || i == 300)
+      return {text, text};
+    return {text};
+  });
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.file("a.csv"), folder.file("b.csv")});
+  std::string all;
+  for (const std::string& note : inputs.notes)
+    all += note + "\n";
+  // One group per car and setting whatever the case of the setting.
+  ASSERT_EQ(inputs.groups.size(), 2u) << all;
+  EXPECT_EQ(inputs.groups[0].label(), "CAR_A/S");
+  EXPECT_EQ(inputs.groups[0].runs.size(), 2u);
+  EXPECT_TRUE(anyNoteHas(inputs, {"b.csv: Distance_setting 's' taken as 'S'"})) << all;
+  EXPECT_EQ(inputs.files[1].setting, "S");
+  // The duplicates dropped, by line; the rejected row counted per pair; the car without data named.
+  EXPECT_TRUE(anyNoteHas(inputs, {"b.csv: 2 rows with the same cells as the row before, dropped as duplicates "
+                                  "(lines 202, 303)"}))
+      << all;
+  EXPECT_EQ(inputs.files[1].contents.rows(), 601u);
+  EXPECT_TRUE(anyNoteHas(inputs, {"b.csv: rows a pair cannot use", "rejected of 601 rows: CAR_A 1"})) << all;
+  EXPECT_TRUE(anyNoteHas(inputs, {"b.csv: no data for CAR_B (3): not in the campaign"})) << all;
+  EXPECT_EQ(inputs.skipped_pairs, 0u);
+}
+
+TEST(CampaignInputs, ThePlatoonCheckSaysWhichRowsItLeavesOut)
+{
+  TempFolder folder("acc_campaign_stretch");
+  acc_test::writeSyntheticPlatoon(folder.file("a.csv"), "S", {kAS, kBS}, 63, 60.0);
+  // The first car's speed missing at line 207: the stretch after it (lines 208-607) is the longer.
+  rewriteLines(folder.file("a.csv"), [](std::size_t i, const std::string& line) -> std::vector<std::string> {
+    if (i != 206)
+      return {line};
+    const std::size_t first = line.find(','), second = line.find(',', first + 1);
+    return {line.substr(0, first + 1) + "NaN" + line.substr(second)};
+  });
+  const acc::OpenAccFile file = acc::readOpenAccFile(folder.file("a.csv"));
+  const auto [first, end] = acc::longestLeadStretch(file, 0.5);
+  EXPECT_EQ(file.line[first], 208u);
+  EXPECT_EQ(end, file.rows());
+  EXPECT_EQ(acc::describeRowsLeftOut(file, first, end),
+            "only the first car's longest unbroken stretch is checked: lines 208-607 (400 of 601 rows); the 201 rows "
+            "outside it (where its time or speed is missing, time does not increase, or a step is longer than the "
+            "maximum) are not");
 }
 
 TEST(CampaignInputs, WithNothingUsableTheErrorNamesEverySkip)

@@ -147,4 +147,7 @@ std::vector<Perturbation> leadPerturbations(const OpenAccFile& file, const Plato
 /// and time increases by at most max_time_step_s.
 std::pair<std::size_t, std::size_t> longestLeadStretch(const OpenAccFile& file, double max_time_step_s);
 
+/// The note that says which rows a check of the stretch [first_row, end_row) leaves out, and why.
+std::string describeRowsLeftOut(const OpenAccFile& file, std::size_t first_row, std::size_t end_row);
+
 }  // namespace acc
