@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "acc_identification/io/gap_kinematics.h"
 #include "acc_identification/io/run_csv.h"
 
 namespace acc
@@ -162,6 +163,8 @@ void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile
     }
     if (pair.contents.rejected_rows + pair.contents.time_holes > 0)
       rejected.push_back(describePairLosses(pair));
+    for (const std::string& disagreement : checkGapKinematics(pair.contents.runs).warnings)
+      notes.push_back(file.path + ": " + pair.pair.label() + ": " + disagreement);
     CampaignGroup& group = groups[{pair.pair.follower_name, file.setting}];
     group.vehicle = pair.pair.follower_name;
     group.setting = file.setting;

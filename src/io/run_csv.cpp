@@ -1,5 +1,6 @@
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/io/csv_fields.h"
+#include "acc_identification/io/gap_kinematics.h"
 
 #include <algorithm>
 #include <array>
@@ -504,6 +505,10 @@ std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileC
   if (!counts.empty())
   {
     log << "warning: " << counts << "\n";
+  }
+  for (const std::string& disagreement : checkGapKinematics(contents.runs).warnings)
+  {
+    log << "warning: " << path << ": " << disagreement << "\n";
   }
   if (contents.runs.empty())
   {

@@ -1,0 +1,103 @@
+// The gap against the integrated speeds (io/gap_kinematics.h): agreement, a unit error, a jump.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "acc_identification/io/gap_kinematics.h"
+
+namespace
+{
+/// 120 s at 10 Hz: the leader oscillates by 3 m/s with a 30 s period, the follower lags it by 2 s,
+/// and the gap is the integral of the difference (exact to the trapezoid), plus 0.3 m of
+/// alternating noise.
+acc::CarFollowingRun consistentRun()
+{
+  acc::CarFollowingRun run;
+  run.name = "synthetic";
+  double gap_m = 30.0;
+  for (int k = 0; k <= 1200; ++k)
+  {
+    const double t = 0.1 * k;
+    const double leader = 20.0 + 3.0 * std::sin(2.0 * M_PI * t / 30.0);
+    const double follower = 20.0 + 3.0 * std::sin(2.0 * M_PI * (t - 2.0) / 30.0);
+    if (k > 0)
+    {
+      const double before = run.leader_speed_mps.back() - run.follower_speed_mps.back();
+      gap_m += 0.05 * (before + leader - follower);
+    }
+    run.time_s.push_back(t);
+    run.leader_speed_mps.push_back(leader);
+    run.follower_speed_mps.push_back(follower);
+    run.space_gap_m.push_back(gap_m);
+  }
+  for (std::size_t k = 0; k < run.size(); ++k)
+    run.space_gap_m[k] += k % 2 == 0 ? 0.3 : -0.3;
+  return run;
+}
+
+TEST(GapKinematics, AGapThatFollowsTheSpeedsPasses)
+{
+  const acc::GapKinematics k = acc::checkGapKinematics({consistentRun()});
+  EXPECT_EQ(k.windows, 12u);
+  EXPECT_NEAR(k.scale, 1.0, 0.05);
+  EXPECT_GT(k.relative_motion_m, 3.0);
+  EXPECT_LT(k.rms_mismatch_m, 0.7);
+  EXPECT_EQ(k.jump_windows, 0u);
+  EXPECT_TRUE(k.warnings.empty()) << k.warnings.front();
+}
+
+TEST(GapKinematics, SpeedsInKilometresPerHourAreAUnitError)
+{
+  acc::CarFollowingRun run = consistentRun();
+  for (std::size_t k = 0; k < run.size(); ++k)
+  {
+    run.leader_speed_mps[k] *= 3.6;
+    run.follower_speed_mps[k] *= 3.6;
+  }
+  const acc::GapKinematics k = acc::checkGapKinematics({run});
+  EXPECT_NEAR(k.scale, 1.0 / 3.6, 0.02);
+  ASSERT_GE(k.warnings.size(), 1u);
+  EXPECT_NE(k.warnings[0].find("the gap changes at 0.28 of the rate the speed difference says"), std::string::npos)
+      << k.warnings[0];
+  EXPECT_NE(k.warnings[0].find("check the units"), std::string::npos) << k.warnings[0];
+}
+
+TEST(GapKinematics, AGapThatJumpsIsNamedWithItsWindow)
+{
+  acc::CarFollowingRun run = consistentRun();
+  for (std::size_t k = 455; k < 655; ++k)  // 45.5-65.4 s: the gap reads 25 m short
+    run.space_gap_m[k] -= 25.0;
+  const acc::GapKinematics k = acc::checkGapKinematics({run});
+  EXPECT_EQ(k.jump_windows, 2u);
+  ASSERT_EQ(k.warnings.size(), 1u);  // the ratio over all windows is not a unit error
+  EXPECT_EQ(k.worst_start_s, 40.0);
+  EXPECT_NE(k.warnings[0].find("synthetic: the gap changes by -35.1 m from t = 40.0 s to 50.0 s where the speeds say -10.1 m"),
+            std::string::npos)
+      << k.warnings[0];
+  EXPECT_NE(k.warnings[0].find("2 of 12 windows are off by more than 10 m"), std::string::npos) << k.warnings[0];
+}
+
+TEST(GapKinematics, SteadyFollowingDoesNotJudgeTheRatio)
+{
+  acc::CarFollowingRun run = consistentRun();
+  for (std::size_t k = 0; k < run.size(); ++k)
+  {
+    run.leader_speed_mps[k] = 3.6 * 20.0;  // km/h, but the cars never move against each other
+    run.follower_speed_mps[k] = 3.6 * 20.0;
+    run.space_gap_m[k] = 30.0 + (k % 2 == 0 ? 0.3 : -0.3);
+  }
+  const acc::GapKinematics k = acc::checkGapKinematics({run});
+  EXPECT_LT(k.relative_motion_m, 3.0);
+  EXPECT_TRUE(k.warnings.empty());
+}
+
+TEST(GapKinematics, RunsShorterThanAWindowGiveNoWindow)
+{
+  acc::CarFollowingRun run = consistentRun().slice(0, 50);
+  const acc::GapKinematics k = acc::checkGapKinematics({run});
+  EXPECT_EQ(k.windows, 0u);
+  EXPECT_TRUE(std::isnan(k.scale));
+  EXPECT_TRUE(k.warnings.empty());
+}
+}  // namespace
