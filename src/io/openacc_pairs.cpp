@@ -118,10 +118,8 @@ std::string noPairError(const OpenAccFile& file)
   std::vector<std::string> why;
   for (int k = 2; k <= highestPosition(file); ++k)
   {
-    if (file.vehicle(k) != nullptr)
-    {
-      why.push_back(describePairlessFollower(file, k));
-    }
+    why.push_back(file.vehicle(k) != nullptr ? describePairlessFollower(file, k)
+                                             : file.vehicleName(k) + " (" + std::to_string(k) + ") has no data");
   }
   return file.path + ": no leader-follower pair (a follower and the car directly ahead, both with Speed "
                      "data, and their IVS gap)" +

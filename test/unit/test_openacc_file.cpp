@@ -369,6 +369,39 @@ TEST_F(OpenAccFileTest, ASpreadsheetExportReadsAsTheDatabasesFile)
   EXPECT_EQ(a.runs[0].follower_speed_mps, b.runs[0].follower_speed_mps);
 }
 
+TEST_F(OpenAccFileTest, AFileWithoutAPairSaysWhichCarHasNoData)
+{
+  // Every cell of the follower's empty, as the database leaves a car whose data are missing.
+  const std::string text = kTwoVehicleFile.substr(0, kTwoVehicleFile.find("100.0,")) +
+                           "100.0,30.0,0,0,0,0,,,,,,,,40.0,\n100.1,30.1,0,0,0,0,,,,,,,,40.1,\n";
+  try
+  {
+    acc::readRunFile(write("empty_follower.csv", text));
+    FAIL() << "a file without a pair read";
+  }
+  catch (const acc::RunReadError& error)
+  {
+    EXPECT_NE(std::string(error.what()).find("no leader-follower pair"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find(": Hyundai (2) has no data"), std::string::npos) << error.what();
+  }
+}
+
+TEST_F(OpenAccFileTest, SemicolonSeparatedFieldsAreNamedInTheError)
+{
+  std::string text = kTwoVehicleFile;
+  for (char& c : text)
+    c = c == ',' ? ';' : c;
+  try
+  {
+    acc::readRunFile(write("semicolons.csv", text));
+    FAIL() << "a semicolon-separated file read";
+  }
+  catch (const acc::RunReadError& error)
+  {
+    EXPECT_NE(std::string(error.what()).find("its fields are separated by ';'"), std::string::npos) << error.what();
+  }
+}
+
 TEST_F(OpenAccFileTest, ChoosingAFollowerInACanonicalCsvIsAnError)
 {
   const std::string path = write("canonical.csv", "time_s,space_gap_m,follower_speed_mps,leader_speed_mps\n"
