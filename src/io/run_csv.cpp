@@ -325,7 +325,10 @@ std::string describeAccSource(const OpenAccFile& file, const OpenAccPair& pair, 
   switch (source)
   {
     case AccSource::kDriverColumn:
-      return file.path + ": " + follower + ": ACC on where " + driver + " is ACC; other rows split the run";
+      return file.path + ": " + follower + ": ACC on where " + driver + " is ACC (any case); other rows split the run" +
+             (file.metadata.acc == 0 ? " (the ACC line says 0, manual driving throughout: the " + driver +
+                                           " column, row by row, is followed)"
+                                     : "");
     case AccSource::kOnThroughout:
       return file.path + ": " + follower + ": no " + driver + " column; ACC on throughout, as the ACC line says (" +
              (file.metadata.acc == 1 ? std::string("1") : std::string("absent: assumed")) + ")";

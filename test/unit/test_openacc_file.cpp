@@ -386,6 +386,17 @@ TEST_F(OpenAccFileTest, AFileWithoutAPairSaysWhichCarHasNoData)
   }
 }
 
+TEST_F(OpenAccFileTest, AnAccLineThatContradictsTheDriverColumnIsSaidAndTheColumnFollowed)
+{
+  std::string text = kTwoVehicleFile;
+  text.replace(text.find("ACC,1"), 5, "ACC,0");
+  const acc::RunFileContents contents = acc::readRunFile(write("acc_zero.csv", text));
+  ASSERT_EQ(contents.runs.size(), 1u);
+  EXPECT_EQ(contents.runs[0].size(), 2u);
+  EXPECT_TRUE(anyContains(contents.notes, {"ACC on where Driver2 is ACC", "the ACC line says 0"}))
+      << joined(contents.notes);
+}
+
 TEST_F(OpenAccFileTest, SemicolonSeparatedFieldsAreNamedInTheError)
 {
   std::string text = kTwoVehicleFile;
