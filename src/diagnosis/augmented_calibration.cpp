@@ -384,7 +384,7 @@ std::vector<std::vector<double>> effectStarts(const std::vector<EffectKind>& eff
                                               const AugmentedCalibrationOptions& options)
 {
   std::vector<double> start = {warm.base.k1_per_s2, warm.base.k2_per_s, warm.base.tau_e_s, warm.base.eta_m};
-  std::vector<double> near_off = start;
+  const std::vector<double> near_off = nestedStart(effects, warm);
   std::vector<std::size_t> new_positions;
   std::vector<const EffectParameterSpec*> new_specs;
   for (EffectKind kind : effects)
@@ -393,7 +393,6 @@ std::vector<std::vector<double>> effectStarts(const std::vector<EffectKind>& eff
     if (valuesIn(warm, kind, &known))
     {
       start.insert(start.end(), known.begin(), known.end());
-      near_off.insert(near_off.end(), known.begin(), known.end());
       continue;
     }
     for (const EffectParameterSpec& spec : candidateEffect(kind).parameters)
@@ -402,8 +401,6 @@ std::vector<std::vector<double>> effectStarts(const std::vector<EffectKind>& eff
       new_specs.push_back(&spec);
       start.push_back(0.0);
     }
-    const std::vector<double> off = nearOffValues(kind);
-    near_off.insert(near_off.end(), off.begin(), off.end());
   }
   if (new_specs.empty())
   {
@@ -540,6 +537,23 @@ double augmentedSpeedMse(const AccParameters& p, const EffectSettings& effects,
   return std::isfinite(mse) ? std::min(mse, kDivergedObjective) : kDivergedObjective;
 }
 
+MseWithGradient augmentedSpeedMseWithGradient(const AugmentedParameterBox& box, const std::vector<double>& x,
+                                              const std::vector<CarFollowingRun>& segments)
+{
+  const GaussNewtonPass pass = gaussNewtonPass(box, x, segments, ResidualWeights{});
+  MseWithGradient result;
+  result.mse = pass.mse;
+  std::size_t count = 0;
+  for (const CarFollowingRun& run : segments)
+    count += run.size();
+  if (pass.diverged || count == 0)
+    return result;
+  // descent = J^T r with r = measured - simulated, so d mse / d u = -2 J^T r / n.
+  const Eigen::VectorXd gradient = -2.0 / static_cast<double>(count) * pass.descent;
+  result.unit_gradient.assign(gradient.data(), gradient.data() + gradient.size());
+  return result;
+}
+
 AugmentedFit calibrateAugmented(EffectKind effect, const std::vector<CarFollowingRun>& segments,
                                 const AugmentedCalibrationOptions& options, const AugmentedFit* warm_start)
 {
@@ -636,6 +650,19 @@ std::string objectiveName(FitObjective objective)
     case FitObjective::speed_and_gap: return "speed_and_gap";
   }
   return "";
+}
+
+std::vector<double> nestedStart(const std::vector<EffectKind>& effects, const AugmentedFit& nested)
+{
+  std::vector<double> x = {nested.base.k1_per_s2, nested.base.k2_per_s, nested.base.tau_e_s, nested.base.eta_m};
+  for (EffectKind kind : effects)
+  {
+    std::vector<double> values;
+    if (!valuesIn(nested, kind, &values))
+      values = nearOffValues(kind);
+    x.insert(x.end(), values.begin(), values.end());
+  }
+  return x;
 }
 
 std::vector<EffectKind> effectsOf(const AugmentedFit& fit)

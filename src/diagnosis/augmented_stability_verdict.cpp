@@ -64,10 +64,23 @@ struct SideSearch
     }
     return indexed_value;
   }
-  double objective(const std::vector<double>& unit_x)
+  double objective(const std::vector<double>& unit_x, std::vector<double>& gradient)
   {
     const std::vector<double> x = box->physical(unit_x);
-    const double mse = augmentedSpeedMse(AugmentedParameterBox::baseOf(x), box->settingsOf(x), *train);
+    double mse = 0.0;
+    if (gradient.empty())
+    {
+      mse = augmentedSpeedMse(AugmentedParameterBox::baseOf(x), box->settingsOf(x), *train);
+    }
+    else
+    {
+      const MseWithGradient at = augmentedSpeedMseWithGradient(*box, x, *train);
+      mse = at.mse;
+      if (at.unit_gradient.size() == gradient.size())
+        gradient = at.unit_gradient;
+      else
+        std::fill(gradient.begin(), gradient.end(), 0.0);  // diverged: a plateau, the solver turns back
+    }
     ++evaluations;
     if (mse < best_mse && side * index(x) >= 0.0)
     {
@@ -78,29 +91,43 @@ struct SideSearch
   }
 };
 
-double sideObjective(const std::vector<double>& unit_x, std::vector<double>& /*gradient*/, void* data)
+double sideObjective(const std::vector<double>& unit_x, std::vector<double>& gradient, void* data)
 {
-  return static_cast<SideSearch*>(data)->objective(unit_x);
+  return static_cast<SideSearch*>(data)->objective(unit_x, gradient);
 }
 
-/// NLopt's form c(x) <= 0 of side * index(x) >= 0.
-double sideConstraint(const std::vector<double>& unit_x, std::vector<double>& /*gradient*/, void* data)
+/// NLopt's form c(x) <= 0 of side * index(x) >= 0; its gradient by forward differences in the unit
+/// box (the index is a minimum over a frequency grid: smooth where the minimising frequency stays).
+double sideConstraint(const std::vector<double>& unit_x, std::vector<double>& gradient, void* data)
 {
   SideSearch& search = *static_cast<SideSearch*>(data);
-  return -search.side * search.index(search.box->physical(unit_x));
+  const double value = -search.side * search.index(search.box->physical(unit_x));
+  constexpr double kStep = 1e-7;
+  for (std::size_t j = 0; j < gradient.size(); ++j)
+  {
+    std::vector<double> moved = unit_x;
+    const double step = moved[j] + kStep <= 1.0 ? kStep : -kStep;
+    moved[j] += step;
+    gradient[j] = (-search.side * augmentedStabilityIndex(AugmentedParameterBox::baseOf(search.box->physical(moved)),
+                                                         search.box->settingsOf(search.box->physical(moved)),
+                                                         search.operating_speed_mps) -
+                   value) /
+                  step;
+  }
+  return value;
 }
 
 void solveFrom(SideSearch* search, const std::vector<double>& start, const AugmentedStabilityTestOptions& options)
 {
   const std::size_t n = search->box->dimension();
-  nlopt::opt solver(nlopt::LN_COBYLA, static_cast<unsigned>(n));
+  nlopt::opt solver(nlopt::LD_SLSQP, static_cast<unsigned>(n));
   solver.set_lower_bounds(std::vector<double>(n, 0.0));
   solver.set_upper_bounds(std::vector<double>(n, 1.0));
   solver.set_min_objective(sideObjective, search);
   solver.add_inequality_constraint(sideConstraint, search, 1e-9);
   solver.set_maxeval(options.max_evaluations_per_start);
   solver.set_xtol_rel(options.relative_x_tolerance);
-  solver.set_initial_step(0.05);
+  solver.set_ftol_rel(options.relative_mse_tolerance);
   std::vector<double> x = search->box->unit(start);
   double value = 0.0;
   try
@@ -121,6 +148,24 @@ std::vector<double> ontoBaseBoundary(std::vector<double> x, const AugmentedParam
   double tau = k1 > 1e-12 ? (-k2 + std::sqrt(k2 * k2 + 2.0 * k1)) / k1 : (k2 > 1e-12 ? 1.0 / k2 : x[2]);
   x[2] = std::clamp(tau, box.lower[2], box.upper[2]);
   return x;
+}
+
+/// The nested test's best model on the side searched, as a point of this model (its new effects
+/// off); none when there is no nested test or it found no model on that side.
+std::vector<std::vector<double>> nestedSideStart(const AugmentedStabilityTestResult* nested, double side,
+                                                 const std::vector<EffectKind>& effects)
+{
+  if (nested == nullptr)
+    return {};
+  const AugmentedSideFit& same_side = side > 0.0 ? nested->best_stable : nested->best_unstable;
+  if (!same_side.found)
+    return {};
+  AugmentedFit fit;
+  fit.effect = nested->effect;
+  fit.effects = nested->effects;
+  fit.base = same_side.base;
+  fit.effect_values = same_side.effect_values;
+  return {nestedStart(effects, fit)};
 }
 
 std::vector<std::vector<double>> sideStarts(const std::vector<double>& chosen, const AugmentedParameterBox& box,
@@ -221,7 +266,8 @@ AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& ch
                                                           const std::vector<CarFollowingRun>& test,
                                                           double operating_speed_mps,
                                                           const AugmentedCalibrationOptions& bounds,
-                                                          const AugmentedStabilityTestOptions& options)
+                                                          const AugmentedStabilityTestOptions& options,
+                                                          const AugmentedStabilityTestResult* nested)
 {
   AugmentedStabilityTestResult r;
   r.effect = chosen.effect;
@@ -246,7 +292,10 @@ AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& ch
   search.train = &train;
   search.operating_speed_mps = operating_speed_mps;
   search.side = chosen_stable ? -1.0 : 1.0;
-  for (const std::vector<double>& start : sideStarts(chosen_x, box, bounds, options))
+  std::vector<std::vector<double>> starts = sideStarts(chosen_x, box, bounds, options);
+  for (std::vector<double>& start : nestedSideStart(nested, search.side, r.effects))
+    starts.push_back(std::move(start));
+  for (const std::vector<double>& start : starts)
     solveFrom(&search, start, options);
   r.side_fit_evaluations = search.evaluations;
   AugmentedSideFit chosen_side = sideFitOf(chosen_x, chosen.train_mse_speed, box, operating_speed_mps);

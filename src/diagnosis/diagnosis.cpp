@@ -177,8 +177,13 @@ ForwardSelectionStep makeStep(EffectKind added, ModelDiagnosis model, const Impr
   step.added_size = addedEffectSize(step.model.fit, added, options);
   if (options.with_stability_test)
   {
+    // The previous step's model is nested in this one: its side models are starts of this test's.
+    const AugmentedStabilityTestResult* nested =
+        data.selected_effects.empty() || !data.selected_effects.back().stability_test
+            ? nullptr
+            : &*data.selected_effects.back().stability_test;
     step.stability_test = testAugmentedStringStability(step.model.fit, data.train, data.test, data.operating_speed_mps,
-                                                       options.calibration, options.stability_test);
+                                                       options.calibration, options.stability_test, nested);
   }
   return step;
 }

@@ -116,6 +116,17 @@ double augmentedSpeedMse(const AccParameters& p, const EffectSettings& effects,
 
 constexpr double kDivergedObjective = 1.0e6;
 
+/// augmentedSpeedMse at the physical point x of the box and its exact gradient with respect to
+/// x's unit coordinates in the box (from the simulator's sensitivities), for gradient-based
+/// searches; the gradient is empty when a simulation diverges (mse is then kDivergedObjective).
+struct MseWithGradient
+{
+  double mse = kDivergedObjective;
+  std::vector<double> unit_gradient;
+};
+MseWithGradient augmentedSpeedMseWithGradient(const AugmentedParameterBox& box, const std::vector<double>& x,
+                                              const std::vector<CarFollowingRun>& segments);
+
 /// Least-squares fit of the speed (the paper's objective) of the base model plus `effect` over
 /// the segments: Levenberg-Marquardt with the simulator's exact Jacobian (simulateFollowerSensitivities)
 /// on the unit-scaled box from several starts. For effect none the
@@ -136,6 +147,12 @@ AugmentedFit calibrateAugmentedSet(const std::vector<EffectKind>& effects, const
 
 /// The effects of a fit: fit.effects, or {fit.effect} for a fit made before combinations existed.
 std::vector<EffectKind> effectsOf(const AugmentedFit& fit);
+
+/// The point x = (k1, k2, tau_e, eta, effect values) of a model with `effects` that is the nested
+/// fit: its base and the values of the effects it has, every other effect at its "almost off"
+/// values (the edge of its start range nearest the base model, or its neutral value: a gain ratio
+/// of 1), so that a search over the larger model can start where the smaller one ended.
+std::vector<double> nestedStart(const std::vector<EffectKind>& effects, const AugmentedFit& nested);
 
 /// "none", an effect's name, or the names joined by " + " (for reports).
 std::string combinedEffectName(const std::vector<EffectKind>& effects);
