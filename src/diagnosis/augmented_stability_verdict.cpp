@@ -39,6 +39,40 @@ const std::vector<double>& indexFrequencyGridRadS()
   return grid;
 }
 
+/// One term of the index: k1 (1 - |Gamma(j w)|^2) / w^2.
+double indexTerm(const AccParameters& p, const EffectSettings& effects, double operating_speed_mps, double w)
+{
+  // Grouped as gridIndex groups it, so that a difference against its value is the term's alone.
+  return p.k1_per_s2 * ((1.0 - augmentedTransferGainSquared(p, effects, operating_speed_mps, w)) / (w * w));
+}
+
+/// The index and the grid frequency of its least term (0 and NaN when k1 = 0, as the index is).
+struct GridIndex
+{
+  double value = 0.0;
+  double frequency_rad_s = std::numeric_limits<double>::quiet_NaN();
+};
+
+GridIndex gridIndex(const AccParameters& p, const EffectSettings& effects, double operating_speed_mps)
+{
+  GridIndex least;
+  if (!(p.k1_per_s2 > 0.0))
+    return least;
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const double w : indexFrequencyGridRadS())
+  {
+    const double gain_squared = augmentedTransferGainSquared(p, effects, operating_speed_mps, w);
+    const double term = (1.0 - gain_squared) / (w * w);
+    if (term < lowest)
+    {
+      lowest = term;
+      least.frequency_rad_s = w;
+    }
+  }
+  least.value = p.k1_per_s2 * lowest;
+  return least;
+}
+
 /// Tracks the best feasible point of one side seen by any solve, whatever NLopt returns.
 struct SideSearch
 {
@@ -50,19 +84,20 @@ struct SideSearch
   double best_mse = std::numeric_limits<double>::infinity();
   std::size_t evaluations = 0;
 
-  /// COBYLA asks for the objective and the constraint at the same point: the index (2,001
-  /// transfer-function evaluations) is computed once per point.
+  /// The solver asks for the objective and the constraint at the same point: the index (2,001
+  /// transfer-function evaluations) is computed once per point, with the grid frequency where
+  /// its minimum lies.
   std::vector<double> indexed_x;
-  double indexed_value = 0.0;
+  GridIndex indexed;
 
-  double index(const std::vector<double>& x)
+  const GridIndex& index(const std::vector<double>& x)
   {
     if (x != indexed_x)
     {
-      indexed_value = augmentedStabilityIndex(AugmentedParameterBox::baseOf(x), box->settingsOf(x), operating_speed_mps);
+      indexed = gridIndex(AugmentedParameterBox::baseOf(x), box->settingsOf(x), operating_speed_mps);
       indexed_x = x;
     }
-    return indexed_value;
+    return indexed;
   }
   double objective(const std::vector<double>& unit_x, std::vector<double>& gradient)
   {
@@ -82,7 +117,7 @@ struct SideSearch
         std::fill(gradient.begin(), gradient.end(), 0.0);  // diverged: a plateau, the solver turns back
     }
     ++evaluations;
-    if (mse < best_mse && side * index(x) >= 0.0)
+    if (mse < best_mse && side * index(x).value >= 0.0)
     {
       best_mse = mse;
       best_x = x;
@@ -96,23 +131,25 @@ double sideObjective(const std::vector<double>& unit_x, std::vector<double>& gra
   return static_cast<SideSearch*>(data)->objective(unit_x, gradient);
 }
 
-/// NLopt's form c(x) <= 0 of side * index(x) >= 0; its gradient by forward differences in the unit
-/// box (the index is a minimum over a frequency grid: smooth where the minimising frequency stays).
+/// NLopt's form c(x) <= 0 of side * index(x) >= 0. The index is the least of 2,001 smooth terms,
+/// so its gradient is the gradient of the least one (the envelope theorem; not at a tie), taken by
+/// forward differences in the unit box at that term's frequency: one transfer-function evaluation
+/// per parameter instead of a whole grid.
 double sideConstraint(const std::vector<double>& unit_x, std::vector<double>& gradient, void* data)
 {
   SideSearch& search = *static_cast<SideSearch*>(data);
-  const double value = -search.side * search.index(search.box->physical(unit_x));
+  const GridIndex& at = search.index(search.box->physical(unit_x));
+  const double value = -search.side * at.value;
   constexpr double kStep = 1e-7;
   for (std::size_t j = 0; j < gradient.size(); ++j)
   {
     std::vector<double> moved = unit_x;
     const double step = moved[j] + kStep <= 1.0 ? kStep : -kStep;
     moved[j] += step;
-    gradient[j] = (-search.side * augmentedStabilityIndex(AugmentedParameterBox::baseOf(search.box->physical(moved)),
-                                                         search.box->settingsOf(search.box->physical(moved)),
-                                                         search.operating_speed_mps) -
-                   value) /
-                  step;
+    const std::vector<double> x = search.box->physical(moved);
+    const double term = indexTerm(AugmentedParameterBox::baseOf(x), search.box->settingsOf(x),
+                                  search.operating_speed_mps, at.frequency_rad_s);
+    gradient[j] = (-search.side * term - value) / step;
   }
   return value;
 }
@@ -250,15 +287,7 @@ nlohmann::json sideJson(const AugmentedSideFit& s, const std::vector<EffectKind>
 
 double augmentedStabilityIndex(const AccParameters& p, const EffectSettings& effects, double operating_speed_mps)
 {
-  if (!(p.k1_per_s2 > 0.0))
-    return 0.0;
-  double lowest = std::numeric_limits<double>::infinity();
-  for (const double w : indexFrequencyGridRadS())
-  {
-    const double gain_squared = augmentedTransferGainSquared(p, effects, operating_speed_mps, w);
-    lowest = std::min(lowest, (1.0 - gain_squared) / (w * w));
-  }
-  return p.k1_per_s2 * lowest;
+  return gridIndex(p, effects, operating_speed_mps).value;
 }
 
 AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& chosen,

@@ -34,7 +34,8 @@ double augmentedStabilityIndex(const AccParameters& p, const EffectSettings& eff
 ///     on the other side is searched on the same training data: NLopt SLSQP on the unit-scaled
 ///     box of the base and effect parameters, with the exact gradient of the training MSE (the
 ///     simulator's sensitivities) and side * augmentedStabilityIndex >= 0 as a nonlinear
-///     inequality constraint (its gradient by differences), from U, from U moved onto the base
+///     inequality constraint (its gradient by differences of the index's least term: the envelope
+///     theorem), from U, from U moved onto the base
 ///     model's boundary (tau_e solving k1 tau^2 + 2 k2 tau = 2), from Halton points of the base
 ///     start box (the effect at U's values) and, when the model extends a nested one already
 ///     tested (a forward-selection step), from the nested test's best model on this side with the
