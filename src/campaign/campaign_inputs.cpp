@@ -138,12 +138,15 @@ void noteCarsWithoutPair(const OpenAccFile& file, std::vector<std::string>& note
     notes.push_back(file.path + ": no data for " + joinWith(without_data, ", ") + ": not in the campaign");
 }
 
-/// "TESLA_MODEL3 59" or "BMW_I3 3 and 1 hole in time": what one pair loses.
+/// "TESLA_MODEL3 59", "BMW_I3 3 and 1 hole in time" or "Hyundai none, 1 hole in time": what one
+/// pair loses.
 std::string describePairLosses(const PairRunContents& pair)
 {
-  const std::size_t holes = pair.contents.time_holes;
-  return pair.pair.follower_name + " " + std::to_string(pair.contents.rejected_rows) +
-         (holes == 0 ? "" : " and " + std::to_string(holes) + (holes == 1 ? " hole" : " holes") + " in time");
+  const std::size_t rows = pair.contents.rejected_rows, holes = pair.contents.time_holes;
+  const std::string hole_text = std::to_string(holes) + (holes == 1 ? " hole" : " holes") + " in time";
+  if (rows == 0)
+    return pair.pair.follower_name + " none, " + hole_text;
+  return pair.pair.follower_name + " " + std::to_string(rows) + (holes == 0 ? "" : " and " + hole_text);
 }
 
 /// Adds the pairs of one file to the groups being built (keyed by vehicle and setting).

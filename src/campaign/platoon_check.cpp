@@ -238,9 +238,9 @@ std::string describeRowsLeftOut(const OpenAccFile& file, std::size_t first_row, 
   const std::size_t left_out = file.rows() - (end_row - first_row);
   return "only the first car's longest unbroken stretch is checked: lines " + std::to_string(file.line[first_row]) +
          "-" + std::to_string(file.line[end_row - 1]) + " (" + std::to_string(end_row - first_row) + " of " +
-         std::to_string(file.rows()) + " rows); the " + std::to_string(left_out) +
-         " rows outside it (where its time or speed is missing, time does not increase, or a step is longer than "
-         "the maximum) are not";
+         std::to_string(file.rows()) + " rows); the " + std::to_string(left_out) + (left_out == 1 ? " row" : " rows") +
+         " outside it (where its time or speed is missing, time does not increase, or a step is longer than "
+         "the maximum) " + (left_out == 1 ? "is" : "are") + " not";
 }
 
 std::pair<std::size_t, std::size_t> longestLeadStretch(const OpenAccFile& file, double max_time_step_s)

@@ -1,5 +1,7 @@
 #include "acc_identification/io/csv_fields.h"
 
+#include <fstream>
+
 namespace acc
 {
 namespace
@@ -62,5 +64,15 @@ std::string withoutByteOrderMark(const std::string& line)
 {
   static const std::string kUtf8Mark = "\xEF\xBB\xBF";
   return line.compare(0, kUtf8Mark.size(), kUtf8Mark) == 0 ? line.substr(kUtf8Mark.size()) : line;
+}
+std::string semicolonSeparatorHint(const std::string& path)
+{
+  std::ifstream file(path);
+  std::string first_line;
+  std::getline(file, first_line);
+  if (first_line.find(';') == std::string::npos || first_line.find(',') != std::string::npos)
+    return "";
+  return " (its fields are separated by ';', as a spreadsheet set to a decimal comma writes them: save it with "
+         "',' between fields and '.' in numbers)";
 }
 }  // namespace acc

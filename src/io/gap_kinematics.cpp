@@ -48,7 +48,7 @@ void describeScale(const GapKinematics& k, const GapKinematicsOptions& options, 
       (k.scale >= options.min_scale && k.scale <= options.max_scale))
     return;
   warnings->push_back("the gap and the speeds disagree: over " + std::to_string(k.windows) + " windows of " +
-                      text("%g s the gap changes at %.2f", options.window_s, k.scale) +
+                      text("%g s the gap changes at %.2g", options.window_s, k.scale) +
                       " of the rate the speed difference says (1 when the gap is in metres and the speeds in m/s; "
                       "speeds in km/h give 0.28, a gap in feet 3.3): check the units");
 }

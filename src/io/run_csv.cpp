@@ -228,19 +228,6 @@ void checkBounds(const RunPlausibilityBounds& bounds)
   }
 }
 
-/// " (its fields are separated by ';' ...)" when the file's first line has semicolons and no comma:
-/// a spreadsheet set to a decimal comma writes that, and every reader here takes commas.
-std::string separatorHint(const std::string& path)
-{
-  std::ifstream file(path);
-  std::string first_line;
-  std::getline(file, first_line);
-  if (first_line.find(';') == std::string::npos || first_line.find(',') != std::string::npos)
-    return "";
-  return " (its fields are separated by ';', as a spreadsheet set to a decimal comma writes them: save it with "
-         "',' between fields and '.' in numbers)";
-}
-
 RunFileContents readCanonicalFile(const std::string& path, const RunPlausibilityBounds& bounds)
 {
   std::ifstream file(path);
@@ -266,7 +253,7 @@ RunFileContents readCanonicalFile(const std::string& path, const RunPlausibility
   {
     throw RunReadError(path + ": no header with time_s,space_gap_m,follower_speed_mps,leader_speed_mps in the "
                               "first 20 lines, and no OpenACC Date line or Time,Speed1,... header first" +
-                       separatorHint(path));
+                       semicolonSeparatorHint(path));
   }
   RunAssembler assembler(path, baseName(path), "", bounds, contents);
   while (std::getline(file, line))

@@ -15,4 +15,8 @@ std::vector<std::string> splitCsvFields(const std::string& line);
 
 /// The line without the UTF-8 byte-order mark a spreadsheet export may put at a file's start.
 std::string withoutByteOrderMark(const std::string& line);
+
+/// For a reader's error: " (its fields are separated by ';' ...)" when the file's first line has
+/// semicolons and no comma, as a spreadsheet set to a decimal comma writes it; "" otherwise.
+std::string semicolonSeparatorHint(const std::string& path);
 }  // namespace acc
