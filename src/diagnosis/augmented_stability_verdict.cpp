@@ -14,6 +14,7 @@
 #include "acc_identification/diagnosis/augmented_stability.h"
 #include "acc_identification/model/block_bootstrap.h"
 #include "acc_identification/model/halton_sequence.h"
+#include "acc_identification/model/parallel_tasks.h"
 
 namespace acc
 {
@@ -46,7 +47,8 @@ double indexTerm(const AccParameters& p, const EffectSettings& effects, double o
   return p.k1_per_s2 * ((1.0 - augmentedTransferGainSquared(p, effects, operating_speed_mps, w)) / (w * w));
 }
 
-/// The index and the grid frequency of its least term (0 and NaN when k1 = 0, as the index is).
+/// The index and the grid frequency of its least term. The frequency is found for k1 = 0 too
+/// (the index is then 0), where the side search still needs the index's slope in k1.
 struct GridIndex
 {
   double value = 0.0;
@@ -56,8 +58,6 @@ struct GridIndex
 GridIndex gridIndex(const AccParameters& p, const EffectSettings& effects, double operating_speed_mps)
 {
   GridIndex least;
-  if (!(p.k1_per_s2 > 0.0))
-    return least;
   double lowest = std::numeric_limits<double>::infinity();
   for (const double w : indexFrequencyGridRadS())
   {
@@ -69,7 +69,7 @@ GridIndex gridIndex(const AccParameters& p, const EffectSettings& effects, doubl
       least.frequency_rad_s = w;
     }
   }
-  least.value = p.k1_per_s2 * lowest;
+  least.value = p.k1_per_s2 > 0.0 ? p.k1_per_s2 * lowest : 0.0;
   return least;
 }
 
@@ -175,6 +175,27 @@ void solveFrom(SideSearch* search, const std::vector<double>& start, const Augme
   {
     // Round-off or a forced stop: the search already holds the best feasible point evaluated.
   }
+}
+
+/// Every start solved on its own copy of the search, on options.threads; the best feasible point
+/// of all wins, the first start's on a tie, so the result does not depend on the thread count.
+SideSearch bestOfStarts(const SideSearch& empty, const std::vector<std::vector<double>>& starts,
+                        const AugmentedStabilityTestOptions& options)
+{
+  std::vector<SideSearch> searches(starts.size(), empty);
+  runTasksInParallel(starts.size(), effectiveThreadCount(options.threads, starts.size()),
+                     [&](std::size_t i) { solveFrom(&searches[i], starts[i], options); });
+  SideSearch best = empty;
+  for (const SideSearch& one : searches)
+  {
+    best.evaluations += one.evaluations;
+    if (one.best_mse < best.best_mse)
+    {
+      best.best_mse = one.best_mse;
+      best.best_x = one.best_x;
+    }
+  }
+  return best;
 }
 
 /// tau_e on the base model's boundary k1 tau^2 + 2 k2 tau = 2 for the start's k1 and k2 (the
@@ -324,8 +345,7 @@ AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& ch
   std::vector<std::vector<double>> starts = sideStarts(chosen_x, box, bounds, options);
   for (std::vector<double>& start : nestedSideStart(nested, search.side, r.effects))
     starts.push_back(std::move(start));
-  for (const std::vector<double>& start : starts)
-    solveFrom(&search, start, options);
+  search = bestOfStarts(search, starts, options);
   r.side_fit_evaluations = search.evaluations;
   AugmentedSideFit chosen_side = sideFitOf(chosen_x, chosen.train_mse_speed, box, operating_speed_mps);
   AugmentedSideFit other_side;

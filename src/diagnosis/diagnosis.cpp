@@ -162,6 +162,14 @@ EffectSize addedEffectSize(const AugmentedFit& fit, EffectKind added, const Diag
   return effectSizeIn(fit, added, determinedThreshold(options.selection.alpha, options.candidates));
 }
 
+/// The stability test's options, on the diagnosis's threads.
+AugmentedStabilityTestOptions stabilityTestOptions(const DiagnosisOptions& options)
+{
+  AugmentedStabilityTestOptions test = options.stability_test;
+  test.threads = options.threads;
+  return test;
+}
+
 /// The model of one chosen step: its small-signal stability and, if asked, the held-out test.
 ForwardSelectionStep makeStep(EffectKind added, ModelDiagnosis model, const ImprovementEstimate& improvement,
                               const DiagnosisOptions& options, const DiagnosisResult& data)
@@ -183,7 +191,7 @@ ForwardSelectionStep makeStep(EffectKind added, ModelDiagnosis model, const Impr
             ? nullptr
             : &*data.selected_effects.back().stability_test;
     step.stability_test = testAugmentedStringStability(step.model.fit, data.train, data.test, data.operating_speed_mps,
-                                                       options.calibration, options.stability_test, nested);
+                                                       options.calibration, stabilityTestOptions(options), nested);
   }
   return step;
 }
@@ -342,7 +350,7 @@ DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const Dia
   {
     result.stability_test = testAugmentedStringStability(dominantModel(result).fit, result.train, result.test,
                                                          result.operating_speed_mps, options.calibration,
-                                                         options.stability_test);
+                                                         stabilityTestOptions(options));
   }
   forwardSelect(options, candidate_errors, &result);
   assessAdequacy(options, &result);

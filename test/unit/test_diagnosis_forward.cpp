@@ -210,9 +210,9 @@ TEST(ForwardSelection, OffLeavesTheChainEmptyAndTheDominantEffectAsItWas)
 
 TEST(ForwardSelection, TheResultIsTheSameOnOneThreadAndOnTwo)
 {
-  // The effect fits and each round's candidates run on a thread pool, each stored by its index:
-  // the JSON of the whole diagnosis (fits, bootstrap bounds, chain, stability test) must not
-  // depend on how many threads ran them.
+  // The effect fits, each round's candidates and the side searches' starts run on a thread pool,
+  // each stored by its index: the JSON of the whole diagnosis (fits, bootstrap bounds, chain,
+  // stability test) must not depend on how many threads ran them.
   const acc::WithheldCase c = lagAndLimits();
   const std::vector<acc::CarFollowingRun> runs = {acc::synthesizeWithheldRun(c)};
   acc::DiagnosisOptions one_thread = quickOptions(true);

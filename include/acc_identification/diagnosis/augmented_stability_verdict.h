@@ -66,6 +66,8 @@ struct AugmentedStabilityTestOptions : HeldOutComparisonOptions
   int max_evaluations_per_start = 400;
   double relative_x_tolerance = 1e-6;
   double relative_mse_tolerance = 1e-10;
+  /// Threads for the side search's starts (0: every core); the result does not depend on it.
+  std::size_t threads = 1;
 };
 
 /// One side's best model.
