@@ -54,7 +54,7 @@ struct CampaignInputs
 {
   std::vector<CampaignFile> files;
   std::vector<CampaignGroup> groups;  ///< by vehicle name, then setting (S, M, L, then others)
-  std::vector<std::string> notes;     ///< files and pairs skipped, and why, one note each
+  std::vector<std::string> notes;     ///< files and pairs skipped and why, and what read files lose
   std::size_t skipped_files = 0;      ///< files not read (not OpenACC, unreadable, no pair)
   std::size_t skipped_pairs = 0;      ///< pairs of read files without a usable run
 
@@ -79,9 +79,12 @@ struct CampaignFileList
 CampaignFileList listCampaignFiles(const std::vector<std::string>& files_or_folders);
 
 /// Reads every file (readOpenAccFile and readAllPairRuns: every available pair) and groups the
-/// followers by (vehicle name, Distance_setting). A file that cannot be read as OpenACC, or a pair
-/// without usable runs, is skipped with a note that says why, and counted. Throws RunReadError,
-/// naming every skip, when no group results.
+/// followers by (vehicle name, Distance_setting; a setting written in another case than an earlier
+/// file's takes the earlier spelling). A file that cannot be read as OpenACC, or a pair without
+/// usable runs, is skipped with a note that says why, and counted. What a read file loses is a
+/// note too: duplicate rows dropped, cars without data or without a pair, the rows each pair
+/// rejects, a first car without data, and where a pair's gap and speeds disagree
+/// (checkGapKinematics). Throws RunReadError, naming every skip, when no group results.
 CampaignInputs loadCampaign(const std::vector<std::string>& paths,
                             const RunPlausibilityBounds& bounds = RunPlausibilityBounds{});
 
