@@ -65,8 +65,9 @@ struct GaussNewtonPass
 {
   double mse = kDivergedObjective;  ///< as augmentedSpeedMse, number for number
   bool diverged = true;
-  Eigen::MatrixXd normal;
+  Eigen::MatrixXd normal;  ///< zero when the pass was asked for the descent alone
   Eigen::VectorXd descent;
+  std::size_t samples = 0;  ///< the samples the MSE averages over
 };
 
 /// Weights of the speed and gap residuals in the objective (squared weights multiply the squares).
@@ -134,8 +135,11 @@ void addGapResiduals(const CarFollowingRun& run, const FollowerSpeedSensitivitie
   }
 }
 
+/// with_normal false: the descent J^T r alone (all a gradient needs), without the p^2 work per
+/// sample of J^T J.
 GaussNewtonPass gaussNewtonPass(const AugmentedParameterBox& box, const std::vector<double>& x,
-                                const std::vector<CarFollowingRun>& segments, const ResidualWeights& weights)
+                                const std::vector<CarFollowingRun>& segments, const ResidualWeights& weights,
+                                bool with_normal = true)
 {
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   const auto p = static_cast<Eigen::Index>(x.size());
@@ -164,16 +168,12 @@ GaussNewtonPass gaussNewtonPass(const AugmentedParameterBox& box, const std::vec
         residual[static_cast<Eigen::Index>(k)] = error;
       }
       const Eigen::Map<const RowMajor> jacobian(sim.speed_derivatives.data(), n, p);
-      if (weights.speed == 1.0)
-      {
-        pass.normal.selfadjointView<Eigen::Upper>().rankUpdate(jacobian.transpose());
-        pass.descent += jacobian.transpose() * residual;
-      }
-      else
-      {
+      if (with_normal)
         pass.normal.selfadjointView<Eigen::Upper>().rankUpdate(jacobian.transpose(), weights.speed * weights.speed);
+      if (weights.speed == 1.0)
+        pass.descent += jacobian.transpose() * residual;
+      else
         pass.descent += weights.speed * (jacobian.transpose() * residual);
-      }
     }
     if (weights.gap != 0.0)
     {
@@ -188,6 +188,7 @@ GaussNewtonPass gaussNewtonPass(const AugmentedParameterBox& box, const std::vec
   pass.normal = width.asDiagonal() * pass.normal * width.asDiagonal();
   pass.descent = width.asDiagonal() * pass.descent;
   const double mse = count > 0 ? sum / static_cast<double>(count) : 0.0;
+  pass.samples = count;
   pass.mse = std::isfinite(mse) ? std::min(mse, kDivergedObjective) : kDivergedObjective;
   pass.diverged = !(pass.mse < kDivergedObjective);
   return pass;
@@ -540,16 +541,13 @@ double augmentedSpeedMse(const AccParameters& p, const EffectSettings& effects,
 MseWithGradient augmentedSpeedMseWithGradient(const AugmentedParameterBox& box, const std::vector<double>& x,
                                               const std::vector<CarFollowingRun>& segments)
 {
-  const GaussNewtonPass pass = gaussNewtonPass(box, x, segments, ResidualWeights{});
+  const GaussNewtonPass pass = gaussNewtonPass(box, x, segments, ResidualWeights{}, false);
   MseWithGradient result;
   result.mse = pass.mse;
-  std::size_t count = 0;
-  for (const CarFollowingRun& run : segments)
-    count += run.size();
-  if (pass.diverged || count == 0)
+  if (pass.diverged || pass.samples == 0)
     return result;
   // descent = J^T r with r = measured - simulated, so d mse / d u = -2 J^T r / n.
-  const Eigen::VectorXd gradient = -2.0 / static_cast<double>(count) * pass.descent;
+  const Eigen::VectorXd gradient = -2.0 / static_cast<double>(pass.samples) * pass.descent;
   result.unit_gradient.assign(gradient.data(), gradient.data() + gradient.size());
   return result;
 }
