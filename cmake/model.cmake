@@ -14,6 +14,7 @@ acc_add_library(acc_model
     src/model/block_bootstrap.cpp
     src/model/sample_statistics.cpp
     src/model/number_text.cpp
+    src/model/plain_text.cpp
     src/model/normal_source.cpp
     src/model/follower_effects.cpp
     src/model/batch_means.cpp

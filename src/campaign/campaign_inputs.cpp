@@ -9,6 +9,7 @@
 
 #include "acc_identification/io/gap_kinematics.h"
 #include "acc_identification/io/run_csv.h"
+#include "acc_identification/model/plain_text.h"
 
 namespace acc
 {
@@ -75,8 +76,6 @@ CampaignFileList openAccFilesIn(const std::string& folder)
 /// Why a pair read from the file gave no run: its rows' counts, and the first problem met.
 std::string whyNoUsableRun(const RunFileContents& contents)
 {
-  if (contents.data_rows == 0)
-    return "no data rows";
   if (contents.acc_off_rows == contents.data_rows)
     return "the follower is on ACC in none of its " + std::to_string(contents.data_rows) + " rows";
   std::string why = std::to_string(contents.data_rows) + " rows, " + std::to_string(contents.rejected_rows) +
@@ -85,13 +84,6 @@ std::string whyNoUsableRun(const RunFileContents& contents)
   if (!contents.problems.empty())
     why += " (first problem: " + contents.problems.front() + ")";
   return why;
-}
-
-std::string upperCase(std::string text)
-{
-  for (char& c : text)
-    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return text;
 }
 
 /// The file's Distance_setting as the campaign spells it: "?" when unknown; a setting met before in
@@ -109,25 +101,14 @@ std::string settingSpelling(const std::string& written, std::map<std::string, st
   return known->second;
 }
 
-std::string joinWith(const std::vector<std::string>& parts, const std::string& separator)
-{
-  std::string text;
-  for (const std::string& part : parts)
-    text += (text.empty() ? "" : separator) + part;
-  return text;
-}
-
 /// The file's cars that give the campaign no pair, each with the reader's reason.
 void noteCarsWithoutPair(const OpenAccFile& file, std::vector<std::string>& notes)
 {
-  int last = static_cast<int>(file.metadata.vehicle_order.size());
-  for (const OpenAccVehicle& car : file.vehicles)
-    last = std::max(last, car.position);
   if (file.vehicle(1) == nullptr)
     notes.push_back(file.path + ": the first car, " + file.vehicleName(1) +
                     ", has no data: the platoon of this file is not checked");
   std::vector<std::string> without_data;
-  for (int k = 2; k <= last; ++k)
+  for (int k = 2; k <= file.lastPosition(); ++k)
   {
     if (file.vehicle(k) == nullptr)
       without_data.push_back(file.vehicleName(k) + " (" + std::to_string(k) + ")");
@@ -135,7 +116,7 @@ void noteCarsWithoutPair(const OpenAccFile& file, std::vector<std::string>& note
       notes.push_back(file.path + ": " + why + ": not in the campaign");
   }
   if (!without_data.empty())
-    notes.push_back(file.path + ": no data for " + joinWith(without_data, ", ") + ": not in the campaign");
+    notes.push_back(file.path + ": no data for " + join(without_data, ", ") + ": not in the campaign");
 }
 
 /// "TESLA_MODEL3 59", "BMW_I3 3 and 1 hole in time" or "Hyundai none, 1 hole in time": what one
@@ -176,7 +157,7 @@ void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile
   if (!rejected.empty())
     notes.push_back(file.path + ": rows a pair cannot use (a bad or implausible cell of its own, its time not "
                     "increasing) split its runs there, each listed by calibrate --all-pairs; rejected of " +
-                    std::to_string(file.contents.rows()) + " rows: " + joinWith(rejected, ", "));
+                    std::to_string(file.contents.rows()) + " rows: " + join(rejected, ", "));
 }
 
 bool groupLess(const CampaignGroup& a, const CampaignGroup& b)

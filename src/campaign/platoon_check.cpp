@@ -17,14 +17,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// Dips below this are GNSS noise: no ratio is formed with them as the denominator.
 constexpr double kMinDipForRatioMps = 0.1;
 
-int lastPosition(const OpenAccFile& file)
-{
-  int last = static_cast<int>(file.metadata.vehicle_order.size());
-  for (const OpenAccVehicle& vehicle : file.vehicles)
-    last = std::max(last, vehicle.position);
-  return last;
-}
-
 bool hasSpeed(const OpenAccVehicle* vehicle)
 {
   return vehicle != nullptr && vehicle->has_speed && vehicle->speed_values > 0;
@@ -108,7 +100,7 @@ std::vector<PlatoonCarPrediction> predictChain(const CampaignFile& file, const s
       input[r] = kNaN;
   }
   bool stopped = false;
-  for (int k = 2; k <= lastPosition(data); ++k)
+  for (int k = 2; k <= data.lastPosition(); ++k)
   {
     PlatoonCarPrediction car;
     car.position = k;

@@ -1,7 +1,8 @@
 #include "acc_identification/io/gap_kinematics.h"
 
 #include <cmath>
-#include <cstdio>
+
+#include "acc_identification/model/number_text.h"
 
 namespace acc
 {
@@ -35,20 +36,13 @@ void addWindows(const CarFollowingRun& run, double window_s, std::vector<Window>
   }
 }
 
-std::string text(const char* format, double a, double b = 0.0, double c = 0.0, double d = 0.0)
-{
-  char buffer[160];
-  std::snprintf(buffer, sizeof buffer, format, a, b, c, d);
-  return buffer;
-}
-
 void describeScale(const GapKinematics& k, const GapKinematicsOptions& options, std::vector<std::string>* warnings)
 {
   if (!(k.relative_motion_m >= options.min_relative_motion_m) ||
       (k.scale >= options.min_scale && k.scale <= options.max_scale))
     return;
   warnings->push_back("the gap and the speeds disagree: over " + std::to_string(k.windows) + " windows of " +
-                      text("%g s the gap changes at %.2g", options.window_s, k.scale) +
+                      printfText("%g s the gap changes at %.2g", options.window_s, k.scale) +
                       " of the rate the speed difference says (1 when the gap is in metres and the speeds in m/s; "
                       "speeds in km/h give 0.28, a gap in feet 3.3): check the units");
 }
@@ -57,11 +51,12 @@ void describeJumps(const GapKinematics& k, const GapKinematicsOptions& options, 
 {
   if (k.jump_windows == 0)
     return;
-  warnings->push_back(
-      k.worst_run + text(": the gap changes by %+.1f m from t = %.1f s to %.1f s where the speeds say %+.1f m", k.worst_gap_change_m,
-                         k.worst_start_s, k.worst_end_s, k.worst_speed_change_m) +
-      " (a lost target, a car cutting in, a sign or unit error?); " + std::to_string(k.jump_windows) + " of " +
-      std::to_string(k.windows) + text(" windows are off by more than %g m", options.max_window_mismatch_m));
+  warnings->push_back(k.worst_run +
+                      printfText(": the gap changes by %+.1f m from t = %.1f s to %.1f s where the speeds say %+.1f m",
+                                 k.worst_gap_change_m, k.worst_start_s, k.worst_end_s, k.worst_speed_change_m) +
+                      " (a lost target, a car cutting in, a sign or unit error?); " + std::to_string(k.jump_windows) +
+                      " of " + std::to_string(k.windows) +
+                      printfText(" windows are off by more than %g m", options.max_window_mismatch_m));
 }
 }  // namespace
 

@@ -119,7 +119,7 @@ int readNumberLine(const std::vector<std::string>& fields, const std::string& li
 bool readMetadataLine(const std::string& line, const std::vector<std::string>& fields, const std::string& where,
                       OpenAccFile& file, MetadataSeen& seen)
 {
-  const std::string key = upper(fields[0]);
+  const std::string key = upperCase(fields[0]);
   if (key == "DATE")
   {
     seen.date = true;
@@ -237,7 +237,7 @@ bool checkMetadataLines(const MetadataSeen& seen, std::size_t header_line, OpenA
 void noteAbsentMetadata(OpenAccFile& file)
 {
   file.metadata.lines_present = false;
-  const int cars = highestPosition(file);
+  const int cars = file.lastPosition();
   file.notes.push_back(file.path + ": no metadata lines (Date, Vehicle_order, Number_of_vehicles, ACC, "
                                    "Distance_setting): the file starts with its header, as the AstaZero layout does; " +
                        std::to_string(cars) + " car" + (cars == 1 ? "" : "s") +
@@ -608,7 +608,7 @@ void keepCarsWithData(OpenAccFile& file, std::map<int, VehicleUnderConstruction>
 /// Why each car with data is not the follower of a pair.
 void notePairlessFollowers(OpenAccFile& file)
 {
-  for (int k = 2; k <= highestPosition(file); ++k)
+  for (int k = 2; k <= file.lastPosition(); ++k)
   {
     if (file.vehicle(k) != nullptr)
     {
@@ -696,6 +696,20 @@ const OpenAccVehicle* OpenAccFile::vehicle(int position) const
   return nullptr;
 }
 
+int OpenAccFile::lastPosition() const
+{
+  int highest = static_cast<int>(metadata.vehicle_order.size());
+  for (const std::string& name : header)
+  {
+    const auto column = classifyColumn(name);
+    if (column)
+    {
+      highest = std::max(highest, column->second + (column->first == Quantity::kGap ? 1 : 0));
+    }
+  }
+  return highest;
+}
+
 std::string OpenAccFile::vehicleName(int position) const
 {
   const std::size_t index = static_cast<std::size_t>(position - 1);
@@ -749,7 +763,7 @@ bool looksLikeOpenAccFile(const std::string& path)
     if (!isBlank(line))
     {
       const std::vector<std::string> fields = splitCsvFields(line);
-      return upper(fields[0]) == "DATE" || isHeaderWithoutMetadata(fields);
+      return upperCase(fields[0]) == "DATE" || isHeaderWithoutMetadata(fields);
     }
   }
   return false;

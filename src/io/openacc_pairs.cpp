@@ -17,7 +17,7 @@ std::string OpenAccPair::label() const
 std::string describePairlessFollower(const OpenAccFile& file, int follower_position)
 {
   const int k = follower_position;
-  const int highest = highestPosition(file);
+  const int highest = file.lastPosition();
   if (k < 1 || k > highest)
   {
     return "no car at position " + std::to_string(k) + " (Vehicle_order names " +
@@ -92,7 +92,7 @@ OpenAccPairSelector OpenAccPairSelector::parse(const std::string& text)
   {
     return first();
   }
-  if (upper(trimmed) == "ALL")
+  if (upperCase(trimmed) == "ALL")
   {
     return all();
   }
@@ -116,7 +116,7 @@ namespace
 std::string noPairError(const OpenAccFile& file)
 {
   std::vector<std::string> why;
-  for (int k = 2; k <= highestPosition(file); ++k)
+  for (int k = 2; k <= file.lastPosition(); ++k)
   {
     why.push_back(file.vehicle(k) != nullptr ? describePairlessFollower(file, k)
                                              : file.vehicleName(k) + " (" + std::to_string(k) + ") has no data");
@@ -154,7 +154,7 @@ int followerPosition(const OpenAccFile& file, const std::string& wanted, const s
   int position = 0;
   for (std::size_t i = 0; i < file.metadata.vehicle_order.size(); ++i)
   {
-    if (upper(file.metadata.vehicle_order[i]) == upper(wanted))
+    if (upperCase(file.metadata.vehicle_order[i]) == upperCase(wanted))
     {
       position = at.empty() ? static_cast<int>(i) + 1 : position;
       at.push_back(std::to_string(i + 1));

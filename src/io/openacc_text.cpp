@@ -1,7 +1,6 @@
 #include "openacc_text.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -31,15 +30,6 @@ std::string trim(const std::string& text)
 bool isBlank(const std::string& line)
 {
   return line.find_first_not_of(" \t\r\n,") == std::string::npos;
-}
-
-std::string upper(std::string text)
-{
-  for (char& c : text)
-  {
-    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  }
-  return text;
 }
 
 std::optional<long> parseInteger(const std::string& text)
@@ -83,17 +73,6 @@ CellKind parseCell(const std::string& text, double& value)
   }
   value = parsed;
   return CellKind::kNumber;
-}
-
-
-std::string join(const std::vector<std::string>& parts, const std::string& separator)
-{
-  std::string text;
-  for (const std::string& part : parts)
-  {
-    text += (text.empty() ? "" : separator) + part;
-  }
-  return text;
 }
 
 std::optional<std::pair<Quantity, int>> classifyColumn(const std::string& name)
@@ -142,20 +121,6 @@ bool hasAnyColumnOf(const OpenAccFile& file, int position)
     }
   }
   return false;
-}
-
-int highestPosition(const OpenAccFile& file)
-{
-  int highest = static_cast<int>(file.metadata.vehicle_order.size());
-  for (const std::string& name : file.header)
-  {
-    const auto column = classifyColumn(name);
-    if (column)
-    {
-      highest = std::max(highest, column->second + (column->first == Quantity::kGap ? 1 : 0));
-    }
-  }
-  return highest;
 }
 
 std::string noDataReason(const OpenAccFile& file, int position)

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "acc_identification/io/openacc_file.h"
+#include "acc_identification/model/plain_text.h"
 
 namespace acc
 {
@@ -19,10 +20,8 @@ namespace openacc
 std::string trim(const std::string& text);
 /// Nothing but white space and commas.
 bool isBlank(const std::string& line);
-std::string upper(std::string text);
 /// A whole decimal number, the whole text; nullopt otherwise.
 std::optional<long> parseInteger(const std::string& text);
-std::string join(const std::vector<std::string>& parts, const std::string& separator);
 
 /// How a cell reads: a finite number, or why not.
 enum class CellKind
@@ -54,8 +53,6 @@ std::optional<std::pair<Quantity, int>> classifyColumn(const std::string& name);
 bool hasColumn(const OpenAccFile& file, const std::string& name);
 /// Whether the header has any column of the car at this position (not counting IVS).
 bool hasAnyColumnOf(const OpenAccFile& file, int position);
-/// The last position the file names: by Vehicle_order, or by a column (IVSk names car k+1).
-int highestPosition(const OpenAccFile& file);
 /// "its columns are empty" or "its columns are absent", for a car without data.
 std::string noDataReason(const OpenAccFile& file, int position);
 

@@ -1,10 +1,9 @@
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/io/csv_fields.h"
 #include "acc_identification/io/gap_kinematics.h"
+#include "acc_identification/model/plain_text.h"
 
-#include <algorithm>
 #include <array>
-#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -280,13 +279,7 @@ RunFileContents readCanonicalFile(const std::string& path, const RunPlausibility
 }
 
 /// A Driverk cell that says ACC, in any case ("ACC", "acc"); the database writes ACC or Human.
-bool isAccDriver(const std::string& cell)
-{
-  static const std::string kAcc = "ACC";
-  return cell.size() == kAcc.size() &&
-         std::equal(cell.begin(), cell.end(), kAcc.begin(),
-                    [](char a, char b) { return std::toupper(static_cast<unsigned char>(a)) == b; });
-}
+bool isAccDriver(const std::string& cell) { return upperCase(cell) == "ACC"; }
 
 /// How the follower's rows are known to be on ACC: its Driverk column, else the file's ACC line.
 enum class AccSource

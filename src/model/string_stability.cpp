@@ -1,6 +1,6 @@
 #include "acc_identification/model/string_stability.h"
+#include "acc_identification/model/plain_text.h"
 
-#include <cctype>
 #include <cmath>
 #include <limits>
 
@@ -101,10 +101,7 @@ std::string toString(StabilityVerdict verdict)
 
 std::string verdictInCapitals(StabilityVerdict verdict)
 {
-  std::string capitals = toString(verdict);
-  for (char& c : capitals)
-    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return capitals;
+  return upperCase(toString(verdict));
 }
 
 std::optional<bool> knownStringStability(const StringStabilityReport& report)

@@ -19,6 +19,7 @@
 #include "acc_identification/evidence/perturbation.h"
 #include "acc_identification/io/run_csv.h"
 #include "campaign_test_data.h"
+#include "line_matchers.h"
 
 namespace
 {
@@ -313,19 +314,6 @@ void rewriteLines(const std::string& path,
       out << written << "\n";
 }
 
-bool anyNoteHas(const acc::CampaignInputs& inputs, const std::vector<std::string>& parts)
-{
-  for (const std::string& note : inputs.notes)
-  {
-    bool all = true;
-    for (const std::string& part : parts)
-      all = all && note.find(part) != std::string::npos;
-    if (all)
-      return true;
-  }
-  return false;
-}
-
 TEST(CampaignInputs, WhatIsLeftOutOfAFileIsSaid)
 {
   TempFolder folder("acc_campaign_left_out");
@@ -358,15 +346,16 @@ TEST(CampaignInputs, WhatIsLeftOutOfAFileIsSaid)
   ASSERT_EQ(inputs.groups.size(), 2u) << all;
   EXPECT_EQ(inputs.groups[0].label(), "CAR_A/S");
   EXPECT_EQ(inputs.groups[0].runs.size(), 2u);
-  EXPECT_TRUE(anyNoteHas(inputs, {"b.csv: Distance_setting 's' taken as 'S'"})) << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"b.csv: Distance_setting 's' taken as 'S'"})) << all;
   EXPECT_EQ(inputs.files[1].setting, "S");
   // The duplicates dropped, by line; the rejected row counted per pair; the car without data named.
-  EXPECT_TRUE(anyNoteHas(inputs, {"b.csv: 2 rows with the same cells as the row before, dropped as duplicates "
-                                  "(lines 202, 303)"}))
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"b.csv: 2 rows with the same cells as the row before, dropped as "
+                                                   "duplicates (lines 202, 303)"}))
       << all;
   EXPECT_EQ(inputs.files[1].contents.rows(), 601u);
-  EXPECT_TRUE(anyNoteHas(inputs, {"b.csv: rows a pair cannot use", "rejected of 601 rows: CAR_A 1"})) << all;
-  EXPECT_TRUE(anyNoteHas(inputs, {"b.csv: no data for CAR_B (3): not in the campaign"})) << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"b.csv: rows a pair cannot use", "rejected of 601 rows: CAR_A 1"}))
+      << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"b.csv: no data for CAR_B (3): not in the campaign"})) << all;
   EXPECT_EQ(inputs.skipped_pairs, 0u);
 }
 

@@ -14,28 +14,13 @@
 
 #include "acc_identification/io/openacc_file.h"
 #include "acc_identification/io/run_csv.h"
+#include "line_matchers.h"
 
 namespace fs = std::filesystem;
 
 namespace
 {
-/// Whether some line of lines contains every part.
-bool anyContains(const std::vector<std::string>& lines, const std::vector<std::string>& parts)
-{
-  for (const std::string& line : lines)
-  {
-    bool all = true;
-    for (const std::string& part : parts)
-    {
-      all = all && line.find(part) != std::string::npos;
-    }
-    if (all)
-    {
-      return true;
-    }
-  }
-  return false;
-}
+using acc_test::anyContains;
 
 std::string joined(const std::vector<std::string>& lines)
 {

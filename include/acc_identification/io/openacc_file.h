@@ -115,6 +115,9 @@ struct OpenAccFile
   std::size_t rows() const { return time_s.size(); }
   /// The car at this position, or nullptr when it has no data in the file.
   const OpenAccVehicle* vehicle(int position) const;
+  /// The last position the file names: by Vehicle_order, or by a column (IVSk names car k+1),
+  /// whether or not that car has data.
+  int lastPosition() const;
   /// The car's Vehicle_order name ("vehicle k" beyond it), whether or not it has data.
   std::string vehicleName(int position) const;
   /// Why the cell of this column in this row is bad ("IVS1 empty"), or "" when it holds a number

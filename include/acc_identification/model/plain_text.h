@@ -1,0 +1,15 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace acc
+{
+/// Lists and letter case in the package's texts (notes, reasons, names).
+
+/// The parts with `separator` between them ("a, b, c"; "" for none).
+std::string join(const std::vector<std::string>& parts, const std::string& separator);
+
+/// The text in capitals (ASCII letters; "min" -> "MIN"), for names matched in any case.
+std::string upperCase(std::string text);
+}  // namespace acc
