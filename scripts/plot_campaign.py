@@ -137,6 +137,13 @@ def plot_dips(platoons, path, attribution):
         diagnosed = [number(r.get("predicted_dip_mps_diagnosed")) for r in perturbation["positions"]]
         if any(not math.isnan(d) for d in diagnosed):
             ax.plot(positions, diagnosed, "^-", color="tab:blue", label="diagnosed model (leave-one-run-out)")
+        # Behind a car it could not predict, the chain restarts from that car's measured speed.
+        restarts = {r.get(k) for r in perturbation["positions"]
+                    for k in ("predicted_from_position", "predicted_from_position_diagnosed")} - {None, 1}
+        for origin in sorted(restarts):
+            ax.axvline(origin, linestyle=":", color="grey")
+            ax.annotate("chain restarts\nfrom this car", (origin, 0), xycoords=("data", "axes fraction"),
+                        xytext=(2, 4), textcoords="offset points", fontsize=6, color="grey")
         growth = "data: growth" if perturbation["data_show_growth"] else "data: no growth"
         ax.set_title(f"{run} ({setting}), dip {index + 1} at {perturbation['onset_s']:.0f} s; {growth}", fontsize=8)
         ax.set_xlabel("position in the platoon")

@@ -127,6 +127,9 @@ nlohmann::json vehicleJson(const CampaignInputs& inputs, std::size_t index, cons
           {"seed", group.seed}};
 }
 
+/// A car's position, null for 0 (none).
+nlohmann::json positionOrNull(int position) { return position > 0 ? nlohmann::json(position) : nlohmann::json(); }
+
 nlohmann::json positionsJson(const std::vector<DipComparison>& positions)
 {
   nlohmann::json j = nlohmann::json::array();
@@ -136,6 +139,8 @@ nlohmann::json positionsJson(const std::vector<DipComparison>& positions)
                  {"name", row.name},
                  {"measured_dip_mps", row.measured.dip_mps},
                  {"predicted_dip_mps", row.chain.dip_mps},
+                 {"predicted_from_position", positionOrNull(row.chain_driven_by)},
+                 {"predicted_from_position_diagnosed", positionOrNull(row.chain_diagnosed_driven_by)},
                  {"measured_amplification", row.measured_amplification},
                  {"predicted_amplification", row.chain_amplification},
                  {"predicted_dip_mps_diagnosed", row.chain_diagnosed.dip_mps},

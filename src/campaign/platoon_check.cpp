@@ -50,9 +50,10 @@ std::size_t startRow(const OpenAccFile& file, int position, const std::vector<do
   return end;
 }
 
-/// Simulates one car from row `start` to `end`, driven by input_mps; fills car.predicted_speed_mps.
-void predictCar(const OpenAccFile& file, const std::vector<double>& input_mps, std::size_t start, std::size_t end,
-                PlatoonCarPrediction& car)
+/// Simulates one car from row `start` to `end`, driven by input_mps (which the real car at
+/// driven_by drives); fills car.predicted_speed_mps.
+void predictCar(const OpenAccFile& file, const std::vector<double>& input_mps, int driven_by, std::size_t start,
+                std::size_t end, PlatoonCarPrediction& car)
 {
   CarFollowingRun run;
   run.name = file.name + " " + car.name;
@@ -66,6 +67,7 @@ void predictCar(const OpenAccFile& file, const std::vector<double>& input_mps, s
   car.predicted_speed_mps.assign(file.rows(), kNaN);
   std::copy(sim.speed_mps.begin(), sim.speed_mps.begin() + valid, car.predicted_speed_mps.begin() + start);
   car.start_row = start;
+  car.driven_by_position = driven_by;
   car.predicted = true;
   if (sim.diverged)
     car.note = "simulation diverged at t = " + printfText("%.1f s", run.time_s[valid]);
@@ -86,20 +88,31 @@ double rmseAgainstMeasured(const std::vector<double>& predicted, const std::vect
   return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : kNaN;
 }
 
-/// The chain: each car driven by the prediction of the car ahead, until one cannot be simulated.
-/// Returns the cars; notes on where it stopped go to check.notes.
+/// The measured speed of the car at `position` within the check's rows (NaN elsewhere, and all NaN
+/// without speed data): the input of the car behind it.
+std::vector<double> measuredInput(const OpenAccFile& data, int position, const PlatoonCheck& check)
+{
+  std::vector<double> input(data.rows(), kNaN);
+  const OpenAccVehicle* vehicle = data.vehicle(position);
+  if (!hasSpeed(vehicle))
+    return input;
+  std::copy(vehicle->speed_mps.begin() + check.first_row, vehicle->speed_mps.begin() + check.end_row,
+            input.begin() + check.first_row);
+  return input;
+}
+
+/// The chain: each car driven by the prediction of the car ahead. Where a car cannot be predicted
+/// (no data, no model, a diverged simulation), the chain restarts behind it from its measured speed,
+/// as it starts behind the real first car: a hole in one car's record does not silence every car
+/// behind it. Notes on where it stopped and restarted go to check.notes.
 std::vector<PlatoonCarPrediction> predictChain(const CampaignFile& file, const std::vector<PlatoonCarModel>& models,
                                                PlatoonCheck& check)
 {
   std::vector<PlatoonCarPrediction> cars;
   const OpenAccFile& data = file.contents;
-  std::vector<double> input = data.vehicle(1)->speed_mps;  // the real first car drives the chain
-  for (std::size_t r = 0; r < input.size(); ++r)
-  {
-    if (r < check.first_row || r >= check.end_row)
-      input[r] = kNaN;
-  }
-  bool stopped = false;
+  int driven_by = 1;  // the real car whose measured speed drives the chain
+  std::vector<double> input = measuredInput(data, driven_by, check);
+  bool running = true;  // the car ahead was predicted, or is the real car driving the chain
   for (int k = 2; k <= data.lastPosition(); ++k)
   {
     PlatoonCarPrediction car;
@@ -107,27 +120,37 @@ std::vector<PlatoonCarPrediction> predictChain(const CampaignFile& file, const s
     car.name = data.vehicleName(k);
     car.model = k < static_cast<int>(models.size()) ? models[k] : PlatoonCarModel{false, {}, "none given"};
     car.predicted_speed_mps.assign(data.rows(), kNaN);
-    const std::string why = stopped ? "the chain stopped ahead" : whyNotSimulated(data, k, car.model);
+    std::string why = whyNotSimulated(data, k, car.model);
+    if (why.empty() && std::none_of(input.begin(), input.end(), [](double v) { return std::isfinite(v); }))
+      why = car.name + " (" + std::to_string(k) + "): the car ahead has neither a prediction nor speed data";
     const std::size_t start = why.empty() ? startRow(data, k, input, check.first_row, check.end_row) : 0;
-    if (!why.empty() || start + 2 > check.end_row)
+    if (why.empty() && start + 2 > check.end_row)
+      why = "no row with its gap, speed and input all known";
+    if (!why.empty())
     {
-      car.note = why.empty() ? "no row with its gap, speed and input all known" : why;
-      if (!stopped)
-        check.notes.push_back("chain stopped at position " + std::to_string(k) + ": " + car.note);
-      stopped = true;
+      car.note = why;
+      if (running)
+        check.notes.push_back("chain stopped at position " + std::to_string(k) + ": " + why);
+      running = false;
+      driven_by = k;
+      input = measuredInput(data, k, check);
       cars.push_back(car);
       continue;
     }
-    predictCar(data, input, start, check.end_row, car);
+    if (driven_by != 1 && !running)
+      check.notes.push_back("chain restarted at position " + std::to_string(k) + ": driven by the measured speed of " +
+                            data.vehicleName(driven_by) + " (" + std::to_string(driven_by) + ")");
+    predictCar(data, input, driven_by, start, check.end_row, car);
     car.rmse_speed_mps = rmseAgainstMeasured(car.predicted_speed_mps, data.vehicle(k)->speed_mps);
-    if (!car.note.empty())
+    running = car.note.empty();
+    if (!running)
     {
       check.notes.push_back("chain stopped after position " + std::to_string(k) + ": " + car.note);
-      stopped = true;
+      driven_by = k;
     }
     if (car.model.source.find("first half") != std::string::npos)
       check.notes.push_back(car.name + " (" + std::to_string(k) + "): " + car.model.source);
-    input = car.predicted_speed_mps;
+    input = running ? car.predicted_speed_mps : measuredInput(data, k, check);
     cars.push_back(std::move(car));
   }
   return cars;
@@ -194,12 +217,19 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
   auto predicted = [&](const std::vector<PlatoonCarPrediction>& cars, std::size_t i) {
     return i < cars.size() && cars[i].predicted ? measure(cars[i].predicted_speed_mps) : DipMeasures{};
   };
+  auto drivenBy = [](const std::vector<PlatoonCarPrediction>& cars, std::size_t i) {
+    return i < cars.size() && cars[i].predicted ? cars[i].driven_by_position : 0;
+  };
   DipComparison lead;
   lead.position = 1;
   lead.name = data.vehicleName(1);
   lead.measured = lead.chain = measure(data.vehicle(1)->speed_mps);
+  lead.chain_driven_by = 1;
   if (!check.cars_diagnosed.empty())
+  {
     lead.chain_diagnosed = lead.measured;
+    lead.chain_diagnosed_driven_by = 1;
+  }
   result.positions.push_back(lead);
   for (std::size_t i = 0; i < check.cars.size(); ++i)
   {
@@ -213,10 +243,17 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
     row.chain_diagnosed = predicted(check.cars_diagnosed, i);
     row.pair = predicted(check.pairs, i);
     row.pair_diagnosed = predicted(check.pairs_diagnosed, i);
+    row.chain_driven_by = drivenBy(check.cars, i);
+    row.chain_diagnosed_driven_by = drivenBy(check.cars_diagnosed, i);
     const DipComparison& ahead = result.positions.back();
+    // Behind the real car driving a chain, the car ahead's dip is its measured one (as the first car's).
+    auto chainDipAhead = [&ahead](const DipMeasures& chain, int driven_by) {
+      return driven_by == ahead.position ? ahead.measured.dip_mps : chain.dip_mps;
+    };
     row.measured_amplification = ratio(row.measured.dip_mps, ahead.measured.dip_mps);
-    row.chain_amplification = ratio(row.chain.dip_mps, ahead.chain.dip_mps);
-    row.chain_amplification_diagnosed = ratio(row.chain_diagnosed.dip_mps, ahead.chain_diagnosed.dip_mps);
+    row.chain_amplification = ratio(row.chain.dip_mps, chainDipAhead(ahead.chain, row.chain_driven_by));
+    row.chain_amplification_diagnosed =
+        ratio(row.chain_diagnosed.dip_mps, chainDipAhead(ahead.chain_diagnosed, row.chain_diagnosed_driven_by));
     result.positions.push_back(row);
   }
   result.data_show_growth = dataShowGrowth(result.positions);
@@ -300,7 +337,7 @@ PlatoonCarPrediction predictPair(const OpenAccFile& file, int position, const Pl
     return car;
   }
   // A hole in the leader's record makes the simulation non-finite there: it stops and says so.
-  predictCar(file, input, start, end_row, car);
+  predictCar(file, input, position - 1, start, end_row, car);
   car.rmse_speed_mps = rmseAgainstMeasured(car.predicted_speed_mps, file.vehicle(position)->speed_mps);
   return car;
 }
@@ -339,7 +376,7 @@ PlatoonCheck checkPlatoon(const CampaignFile& file, const std::vector<PlatoonCar
     check.cars_diagnosed = predictChain(file, *diagnosed, diagnosed_notes);
     for (const std::string& note : diagnosed_notes.notes)
     {
-      if (note.rfind("chain stopped", 0) == 0)
+      if (note.rfind("chain st", 0) == 0 || note.rfind("chain restarted", 0) == 0)
         check.notes.push_back("diagnosed models: " + note);
     }
     for (const PlatoonCarPrediction& car : check.cars_diagnosed)

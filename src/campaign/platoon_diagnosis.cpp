@@ -438,9 +438,10 @@ double predictedOf(const std::vector<DipComparison>& rows, std::size_t i, DipPre
   const DipComparison& row = rows[i];
   switch (which)
   {
-    case DipPrediction::unchanged_dip:
-      return std::isfinite(row.chain.dip_mps) ? measuredOf(rows[0], quantity)
-                                              : std::numeric_limits<double>::quiet_NaN();
+    case DipPrediction::unchanged_dip:  // as the real car driving the base chain (rows are by position)
+      return std::isfinite(row.chain.dip_mps) && row.chain_driven_by >= 1
+                 ? measuredOf(rows[static_cast<std::size_t>(row.chain_driven_by - 1)], quantity)
+                 : std::numeric_limits<double>::quiet_NaN();
     case DipPrediction::chain_base: return quantityOf(row.chain, quantity);
     case DipPrediction::chain_diagnosed: return quantityOf(row.chain_diagnosed, quantity);
     case DipPrediction::pair_base: return quantityOf(row.pair, quantity);

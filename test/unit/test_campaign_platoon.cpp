@@ -92,16 +92,21 @@ TEST(CampaignPlatoon, UnstableCarsAmplifyAndThePredictionAgrees)
   }
 }
 
-TEST(CampaignPlatoon, TheChainStopsAtACarWithoutData)
+// A hole in one car's record must not silence every car behind it: the chain stops there and
+// restarts behind the first car with speed data, driven by its measured speed, as the chain starts
+// behind the real first car. Fails when the chain stops for good at the hole.
+TEST(CampaignPlatoon, TheChainRestartsBehindACarWithoutData)
 {
   const fs::path path = fs::temp_directory_path() / ("acc_campaign_hole_" + std::to_string(::getpid()) + ".csv");
-  acc_test::writeSyntheticPlatoon(path.string(), "S", {{"CAR_A", kUnstable}, {"CAR_B", kUnstable}, {"CAR_C", kUnstable}},
+  acc_test::writeSyntheticPlatoon(path.string(), "S",
+                                  {{"CAR_A", kUnstable}, {"CAR_B", kUnstable}, {"CAR_C", kUnstable}, {"CAR_D", kUnstable}},
                                   51, 150.0);
   acc::CampaignFile file;
   file.contents = acc::readOpenAccFile(path.string());
   fs::remove(path);
   file.name = file.contents.name;
-  // Position 3 loses its speed column: position 4 cannot be driven by its prediction.
+  // Position 3 loses its speed column: position 4 has nothing to be driven by, position 5 its
+  // leader's measured speed.
   for (acc::OpenAccVehicle& vehicle : file.contents.vehicles)
   {
     if (vehicle.position == 3)
@@ -110,14 +115,44 @@ TEST(CampaignPlatoon, TheChainStopsAtACarWithoutData)
       vehicle.speed_values = 0;
     }
   }
-  std::vector<acc::PlatoonCarModel> models(5, acc::PlatoonCarModel{true, kUnstable, "truth"});
+  std::vector<acc::PlatoonCarModel> models(6, acc::PlatoonCarModel{true, kUnstable, "truth"});
   const acc::PlatoonCheck check = acc::checkPlatoon(file, models);
-  ASSERT_EQ(check.cars.size(), 3u);
+  ASSERT_EQ(check.cars.size(), 4u);
   EXPECT_TRUE(check.cars[0].predicted);
+  EXPECT_EQ(check.cars[0].driven_by_position, 1);
   EXPECT_FALSE(check.cars[1].predicted);
   EXPECT_FALSE(check.cars[2].predicted);
-  ASSERT_FALSE(check.notes.empty());
-  EXPECT_NE(check.notes.front().find("chain stopped at position 3"), std::string::npos) << check.notes.front();
+  EXPECT_NE(check.cars[2].note.find("neither a prediction nor speed data"), std::string::npos) << check.cars[2].note;
+  ASSERT_TRUE(check.cars[3].predicted) << check.cars[3].note;
+  EXPECT_EQ(check.cars[3].driven_by_position, 4);
+  ASSERT_EQ(check.notes.size(), 2u);
+  EXPECT_NE(check.notes[0].find("chain stopped at position 3"), std::string::npos) << check.notes[0];
+  EXPECT_NE(check.notes[1].find("chain restarted at position 5"), std::string::npos) << check.notes[1];
+  // Right behind the real car driving it, the chain is the pair-level prediction.
+  const acc::PlatoonCarPrediction& pair = check.pairs[3];
+  ASSERT_TRUE(pair.predicted);
+  std::size_t compared = 0;
+  for (std::size_t r = 0; r < pair.predicted_speed_mps.size(); ++r)
+  {
+    if (std::isfinite(pair.predicted_speed_mps[r]))
+    {
+      EXPECT_EQ(check.cars[3].predicted_speed_mps[r], pair.predicted_speed_mps[r]) << r;
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 1000u);
+  // Its link is scored against the measured dip of the car driving it.
+  ASSERT_FALSE(check.perturbations.empty());
+  for (const acc::PerturbationCheck& perturbation : check.perturbations)
+  {
+    const acc::DipComparison& behind = perturbation.positions[4], &driving = perturbation.positions[3];
+    EXPECT_EQ(behind.chain_driven_by, 4);
+    EXPECT_EQ(driving.chain_driven_by, 0);
+    if (std::isfinite(behind.chain.dip_mps) && driving.measured.dip_mps > 0.1)
+    {
+      EXPECT_DOUBLE_EQ(behind.chain_amplification, behind.chain.dip_mps / driving.measured.dip_mps);
+    }
+  }
 }
 
 // The platoon diagnosis on cars that react a second late, with gains that make up for it (what the
@@ -225,6 +260,7 @@ TEST(DipPredictionSummary, TheNoModelReferencePassesTheFirstCarsDipOnWhereTheCha
     row.position = i + 1;
     row.measured.dip_mps = measured[i];
     row.chain.dip_mps = chain[i];
+    row.chain_driven_by = std::isfinite(chain[i]) ? 1 : 0;  // as checkPlatoon sets it
     row.measured.distance_lost_m = measured_lost[i];
     row.chain.distance_lost_m = chain_lost[i];
     row.measured.shape.width_s = measured_width[i];
@@ -253,6 +289,32 @@ TEST(DipPredictionSummary, TheNoModelReferencePassesTheFirstCarsDipOnWhereTheCha
   EXPECT_NEAR(base.median_dip_width_error, (6.0 - 8.0) / 8.0, 1e-12);
   ASSERT_EQ(copy.dip_width_scored, 1u);  // every car as wide as the first
   EXPECT_NEAR(copy.median_dip_width_error, (4.0 - 8.0) / 8.0, 1e-12);
+}
+
+// Behind a restarted chain the no-model reference passes on the braking of the real car the chain
+// restarts from, not the first car's. Fails when it reads the first car's dip everywhere.
+TEST(DipPredictionSummary, TheNoModelReferenceBehindARestartedChainStartsFromItsCar)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  acc::PerturbationCheck perturbation;
+  const double measured[] = {3.0, 2.0, 2.4};
+  const double chain[] = {3.0, nan, 2.3};  // car 2 not predicted: car 3's chain restarts from it
+  const int driven_by[] = {1, 0, 2};
+  for (int i = 0; i < 3; ++i)
+  {
+    acc::DipComparison row;
+    row.position = i + 1;
+    row.measured.dip_mps = measured[i];
+    row.chain.dip_mps = chain[i];
+    row.chain_driven_by = driven_by[i];
+    perturbation.positions.push_back(row);
+  }
+  acc::PlatoonCheck check;
+  check.perturbations = {perturbation};
+  const acc::DipPredictionSummary copy = acc::summarizeDipPredictions({check}, acc::DipPrediction::unchanged_dip);
+  ASSERT_EQ(copy.car_perturbations, 1u);
+  EXPECT_NEAR(copy.median_dip_error, (2.0 - 2.4) / 2.4, 1e-12);
+  EXPECT_EQ(copy.links, 0u);  // the car it restarts from has no prediction: its link is not scored
 }
 
 // The shape passed on: rate sums over the cars a filter accepts, one bootstrap cluster per

@@ -53,13 +53,17 @@ struct DipComparison
   std::string name;
   DipMeasures measured;  ///< NaN without data
   /// Chained from the real first car (each car driven by the prediction ahead of it), with the base
-  /// models (NaN where the chain stopped) and with each car's diagnosed model (NaN without one).
+  /// models and with each car's diagnosed model; NaN where the car could not be predicted. Behind
+  /// such a car the chain restarts from its measured speed (checkPlatoon).
   DipMeasures chain, chain_diagnosed;
+  /// The position of the real car whose measured speed drives chain (chain_diagnosed): 1, the first
+  /// car, unless the chain restarted behind a car it could not predict; 0 where not predicted.
+  int chain_driven_by = 0, chain_diagnosed_driven_by = 0;
   /// Pair level: the car driven by its REAL leader's measured speed (nothing compounds), base and
   /// diagnosed model.
   DipMeasures pair, pair_diagnosed;
-  /// dip(k) / dip(k-1), measured and chained; NaN for the first car, without data, or behind a dip
-  /// too shallow for a ratio.
+  /// dip(k) / dip(k-1), measured and chained (behind the real car driving the chain, over its
+  /// measured dip); NaN for the first car, without data, or behind a dip too shallow for a ratio.
   double measured_amplification = std::numeric_limits<double>::quiet_NaN();
   double chain_amplification = std::numeric_limits<double>::quiet_NaN();
   double chain_amplification_diagnosed = std::numeric_limits<double>::quiet_NaN();
@@ -91,6 +95,9 @@ struct PlatoonCarPrediction
   PlatoonCarModel model;
   bool predicted = false;
   std::size_t start_row = 0;                ///< the prediction starts at its measured gap and speed here
+  /// The position of the real car whose measured speed drives the prediction, through the predicted
+  /// cars between: 1 for the chain from the first car, position - 1 at pair level; 0 if not predicted.
+  int driven_by_position = 0;
   std::vector<double> predicted_speed_mps;  ///< per row of the file; NaN outside the prediction
   double rmse_speed_mps = 0.0;              ///< predicted against measured speed where both exist; NaN if never
   std::string note;                         ///< why not predicted
@@ -123,8 +130,9 @@ struct PlatoonCheckOptions
 /// Predicts every following car of the file: car k is simulated (simulateFollower) with
 /// models[k] (index = position; entries 0 and 1 unused) from its measured gap and speed at the
 /// first row where it has both, driven by the PREDICTED speed of car k-1 (for k = 2 the measured
-/// first car's). The chain stops at the first car with no data, no model, or a diverged
-/// simulation, and says so in notes. Then each perturbation of the first car is measured
+/// first car's). The chain stops at a car with no data, no model, or a diverged simulation, and
+/// restarts behind it, driven by its measured speed (none: the next car with speed data); notes
+/// say where it stopped and restarted. Then each perturbation of the first car is measured
 /// (findPerturbations, dipDepthMps) on the measured and the predicted speeds of every position.
 /// With diagnosed models (same indexing; may be nullptr), the chain and the pair-level predictions
 /// are made with them too and every DipComparison gets its *_diagnosed values.

@@ -188,8 +188,9 @@ enum class DipPrediction
   pair_base,
   pair_diagnosed,
   /// No model: every car dips as deep as the first car did (a platoon that passes a braking on
-  /// unchanged, Newell's time-shifted copy), scored on the car-perturbations the base chain
-  /// predicts. The reference a model must beat to say anything about growth or decay.
+  /// unchanged, Newell's time-shifted copy; behind a restarted chain, as the real car driving it),
+  /// scored on the car-perturbations the base chain predicts. The reference a model must beat to
+  /// say anything about growth or decay.
   unchanged_dip
 };
 
