@@ -296,6 +296,8 @@ nlohmann::json linkJson(const LinkEvidence& e)
                  ? nlohmann::json{{"peak_gain_db", e.diagnosed_small_signal.peak_gain_db},
                                   {"peak_frequency_rad_s", e.diagnosed_small_signal.peak_frequency_rad_s},
                                   {"string_stable", e.diagnosed_small_signal.string_stable},
+                                  {"locally_stable", e.diagnosed_small_signal.locally_stable},
+                                  {"phase_margin_deg", e.diagnosed_small_signal.phase_margin_deg},
                                   {"how", e.diagnosed_small_signal.note}}
                  : nlohmann::json(nullptr)},
             {"long_platoon",

@@ -7,6 +7,7 @@
 #include <limits>
 #include <tuple>
 
+#include "acc_identification/diagnosis/augmented_stability.h"
 #include "acc_identification/model/follower_simulation.h"
 
 namespace acc
@@ -50,6 +51,29 @@ std::size_t startRow(const OpenAccFile& file, int position, const std::vector<do
   return end;
 }
 
+/// ", its model is not locally stable (...)" when the model's own loop explains a runaway, else "".
+std::string whyDiverged(const PlatoonCarModel& model, const CarFollowingRun& run)
+{
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (double v : run.leader_speed_mps)
+  {
+    if (std::isfinite(v))
+    {
+      sum += v;
+      ++n;
+    }
+  }
+  const AugmentedStability loop =
+      analyzeAugmentedStability(model.parameters, model.effects, model.settings, n > 0 ? sum / n : 0.0);
+  if (loop.locally_stable)
+    return "";
+  return std::isfinite(loop.phase_margin_deg)
+             ? printfText(": its model is not locally stable (phase margin %.1f deg at %.3f rad/s)",
+                          loop.phase_margin_deg, loop.crossover_rad_s)
+             : ": its model has no feedback";
+}
+
 /// Simulates one car from row `start` to `end`, driven by input_mps (which the real car at
 /// driven_by drives); fills car.predicted_speed_mps.
 void predictCar(const OpenAccFile& file, const std::vector<double>& input_mps, int driven_by, std::size_t start,
@@ -70,7 +94,7 @@ void predictCar(const OpenAccFile& file, const std::vector<double>& input_mps, i
   car.driven_by_position = driven_by;
   car.predicted = true;
   if (sim.diverged)
-    car.note = "simulation diverged at t = " + printfText("%.1f s", run.time_s[valid]);
+    car.note = "simulation diverged at t = " + printfText("%.1f s", run.time_s[valid]) + whyDiverged(car.model, run);
 }
 
 double rmseAgainstMeasured(const std::vector<double>& predicted, const std::vector<double>& measured)

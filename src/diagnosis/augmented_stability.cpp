@@ -2,7 +2,10 @@
 
 #include <cmath>
 #include <complex>
+#include <utility>
 
+#include "acc_identification/model/angles.h"
+#include "acc_identification/model/number_text.h"
 #include "acc_identification/model/string_stability.h"
 
 namespace acc
@@ -30,6 +33,15 @@ AccParameters linearisedGains(const AccParameters& p, const EffectSettings& e, d
   return out;
 }
 
+std::string localInstabilityNote(const AugmentedStability& s)
+{
+  if (!std::isfinite(s.phase_margin_deg))
+    return "NOT LOCALLY STABLE: no feedback from the gap or the leader's speed";
+  return printfText("NOT LOCALLY STABLE: the car's own loop has phase margin %.1f deg at %.3f rad/s, so one car "
+                    "oscillates with growing amplitude behind a steady leader and |Gamma| does not describe it",
+                    s.phase_margin_deg, s.crossover_rad_s);
+}
+
 std::string smallSignalNote(EffectKind effect)
 {
   switch (effect)
@@ -53,7 +65,40 @@ std::string smallSignalNote(EffectKind effect)
   }
   return "";
 }
+/// The frequency where |L(j w)| = 1 (L as in localLoopStability), by bisection on log w: the
+/// log-log slope of |L| is below -1 everywhere, so there is exactly one.
+double loopCrossoverRadS(double k1, double b, double lag_s)
+{
+  auto excess = [&](double w) {  // ln |L(j w)|^2
+    return std::log(k1 * k1 + b * b * w * w) - 4.0 * std::log(w) - std::log1p(lag_s * lag_s * w * w);
+  };
+  double lo = std::log(1e-9), hi = std::log(1e6);
+  for (int i = 0; i < 200; ++i)
+  {
+    const double mid = 0.5 * (lo + hi);
+    (excess(std::exp(mid)) > 0.0 ? lo : hi) = mid;
+  }
+  return std::exp(0.5 * (lo + hi));
+}
 }  // namespace
+
+void localLoopStability(const AccParameters& g, double actuation_lag_s, double reaction_delay_s,
+                        AugmentedStability* out)
+{
+  const double k1 = g.k1_per_s2;
+  const double b = g.k2_per_s + g.k1_per_s2 * g.tau_e_s;
+  if (!(k1 > 0.0 || b != 0.0))
+  {
+    out->locally_stable = false;  // no feedback from the gap or the leader's speed: nothing to follow with
+    out->phase_margin_deg = out->crossover_rad_s = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  const double w = loopCrossoverRadS(k1, b, actuation_lag_s);
+  const double margin_rad = std::atan2(b * w, k1) - std::atan(actuation_lag_s * w) - w * reaction_delay_s;
+  out->crossover_rad_s = w;
+  out->phase_margin_deg = margin_rad * kRadToDeg;
+  out->locally_stable = margin_rad > 0.0;
+}
 
 double augmentedTransferGainSquared(const AccParameters& p, const EffectSettings& e, double operating_speed_mps,
                                     double frequency_rad_s)
@@ -84,11 +129,15 @@ double augmentedTransferGain(const AccParameters& p, const EffectSettings& e, do
   return std::sqrt(augmentedTransferGainSquared(p, e, operating_speed_mps, frequency_rad_s));
 }
 
-AugmentedStability analyzeAugmentedStability(const AccParameters& p, EffectKind effect, const EffectSettings& e,
-                                             double operating_speed_mps)
+namespace
+{
+/// The grid's peak of |Gamma|, the car's own loop, and `note` (how the effects enter), with why
+/// the model is not string stable when its loop is not.
+AugmentedStability analyzeSmallSignal(const AccParameters& p, std::string note, const EffectSettings& e,
+                                      double operating_speed_mps)
 {
   AugmentedStability out;
-  out.note = smallSignalNote(effect);
+  out.note = std::move(note);
   const AccParameters linear = linearisedGains(p, e, operating_speed_mps);
   out.lambda2 = lambda2(linear);
   // The grid, plus the closed-form peak of the delay- and lag-free law.
@@ -110,20 +159,27 @@ AugmentedStability analyzeAugmentedStability(const AccParameters& p, EffectKind 
   }
   out.peak_gain_db = 20.0 * std::log10(best_gain);
   out.peak_frequency_rad_s = best_w;
-  out.string_stable = best_gain <= 1.0 + 1e-12;
+  localLoopStability(linear, e.actuation_lag_s, e.reaction_delay_s, &out);
+  out.string_stable = out.locally_stable && best_gain <= 1.0 + 1e-12;
+  if (!out.locally_stable)
+    out.note += "; " + localInstabilityNote(out);
   return out;
+}
+}  // namespace
+
+AugmentedStability analyzeAugmentedStability(const AccParameters& p, EffectKind effect, const EffectSettings& e,
+                                             double operating_speed_mps)
+{
+  return analyzeSmallSignal(p, smallSignalNote(effect), e, operating_speed_mps);
 }
 
 AugmentedStability analyzeAugmentedStability(const AccParameters& p, const std::vector<EffectKind>& kinds,
                                              const EffectSettings& e, double operating_speed_mps)
 {
-  AugmentedStability out =
-      analyzeAugmentedStability(p, kinds.empty() ? EffectKind::none : kinds.front(), e, operating_speed_mps);
+  std::string note = smallSignalNote(kinds.empty() ? EffectKind::none : kinds.front());
   for (std::size_t i = 1; i < kinds.size(); ++i)
-  {
-    out.note += "; " + smallSignalNote(kinds[i]);
-  }
-  return out;
+    note += "; " + smallSignalNote(kinds[i]);
+  return analyzeSmallSignal(p, note, e, operating_speed_mps);
 }
 
 }  // namespace acc

@@ -41,6 +41,9 @@ nlohmann::json stabilityJson(const AugmentedStability& s)
           // Meaningless without a gain (parameters not finite): null rather than a "false" that reads unstable.
           {"string_stable", std::isfinite(s.peak_gain_db) ? nlohmann::json(s.string_stable) : nlohmann::json()},
           {"lambda2", jsonNumber(s.lambda2)},
+          {"locally_stable", s.locally_stable},
+          {"phase_margin_deg", jsonNumber(s.phase_margin_deg)},
+          {"crossover_rad_s", jsonNumber(s.crossover_rad_s)},
           {"note", s.note}};
 }
 

@@ -3,6 +3,7 @@
 // test decides on synthetic runs whose truth is far from the boundary on either side.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "acc_identification/diagnosis/diagnosis.h"
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/validation/withheld_effect_suite.h"
+#include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/halton_sequence.h"
 #include "acc_identification/model/paper_settings.h"
 
@@ -175,4 +177,77 @@ TEST(AugmentedStabilityTest, TheSideSearchReachesTheSidesOptimumOnARealChainMode
       << searched.train_rmse_speed_mps << " against " << reference.best_stable.train_rmse_speed_mps;
   ASSERT_TRUE(nested.stability_test->best_stable.found);
   EXPECT_LE(searched.train_rmse_speed_mps, nested.stability_test->best_stable.train_rmse_speed_mps + 1e-12);
+}
+
+namespace
+{
+/// How a car's speed error behind a steady leader develops: the largest |v - u| over the last
+/// 100 s of a 600 s simulation over the largest over the first 100 s (infinite if it ran away),
+/// from a gap 2 m longer than its equilibrium one.
+double oscillationGrowth(const acc::AccParameters& p, const acc::EffectSettings& e)
+{
+  constexpr double kLeaderMps = 15.0, kStepS = 0.1;
+  acc::CarFollowingRun run;
+  for (int k = 0; k <= 6000; ++k)
+  {
+    run.time_s.push_back(k * kStepS);
+    run.leader_speed_mps.push_back(kLeaderMps);
+  }
+  run.follower_speed_mps.assign(run.size(), kLeaderMps);
+  run.space_gap_m.assign(run.size(), p.eta_m + p.tau_e_s * kLeaderMps + 2.0);
+  const acc::SimulatedFollower sim = acc::simulateFollower(p, e, run);
+  if (sim.diverged)
+    return INFINITY;
+  double first = 0.0, last = 0.0;
+  for (std::size_t k = 0; k < run.size(); ++k)
+  {
+    const double error = std::abs(sim.speed_mps[k] - kLeaderMps);
+    if (k < 1000)
+      first = std::max(first, error);
+    else if (k >= 5000)
+      last = std::max(last, error);
+  }
+  return last / first;
+}
+}  // namespace
+
+// The car's own loop: stable exactly where Routh says for a lag (b > T k1), and where the car,
+// simulated behind a steady leader, lets an offset die out rather than grow, for a delay. The
+// delayed model is the Mercedes GLE450's fitted without ZalaZone run 12 (k2 almost 0, delay 1.5 s),
+// which ran away in that run's chain. Fails if the margin's sign or the crossover is wrong.
+TEST(LocalLoopStability, AgreesWithRouthForALagAndWithTheCarsOwnMotionForADelay)
+{
+  const acc::AccParameters lagged{0.2, 0.1, 0.5, 5.0};  // b = k2 + k1 tau = 0.2: stable iff T < 1
+  for (const double lag_s : {0.8, 1.2})
+  {
+    acc::EffectSettings e;
+    e.actuation_lag_s = lag_s;
+    const acc::AugmentedStability s = acc::analyzeAugmentedStability(lagged, acc::EffectKind::actuation_lag, e, 15.0);
+    EXPECT_EQ(s.locally_stable, lag_s < 1.0) << lag_s;
+    EXPECT_EQ(oscillationGrowth(lagged, e) < 1.0, lag_s < 1.0) << lag_s;
+  }
+  const acc::AccParameters mercedes{0.1419, 0.00573, 1.4914, 1.62};
+  acc::EffectSettings fitted;
+  fitted.reaction_delay_s = 1.486;
+  const acc::AugmentedStability as_fitted =
+      acc::analyzeAugmentedStability(mercedes, acc::EffectKind::reaction_delay, fitted, 15.0);
+  EXPECT_FALSE(as_fitted.locally_stable);
+  EXPECT_NEAR(as_fitted.phase_margin_deg, -2.8, 0.2);
+  EXPECT_NEAR(as_fitted.crossover_rad_s, 0.409, 0.002);
+  EXPECT_FALSE(as_fitted.string_stable);
+  EXPECT_NE(as_fitted.note.find("NOT LOCALLY STABLE"), std::string::npos) << as_fitted.note;
+  for (const double delay_s : {0.7, 2.0, 9.0})  // margins about +16, -15 and far below -180 deg
+  {
+    acc::EffectSettings e;
+    e.reaction_delay_s = delay_s;
+    const acc::AugmentedStability s = acc::analyzeAugmentedStability(mercedes, acc::EffectKind::reaction_delay, e, 15.0);
+    const double growth = oscillationGrowth(mercedes, e);
+    EXPECT_EQ(s.locally_stable, delay_s < 1.0) << delay_s << ": margin " << s.phase_margin_deg;
+    EXPECT_EQ(growth < 1.0, delay_s < 1.0) << delay_s << ": growth " << growth;
+  }
+  // Without delay or lag every model with positive gains is locally stable, with a margin below 90 deg.
+  const acc::AugmentedStability base = acc::analyzeAugmentedStability(mercedes, acc::EffectKind::none, {}, 15.0);
+  EXPECT_TRUE(base.locally_stable);
+  EXPECT_GT(base.phase_margin_deg, 0.0);
+  EXPECT_LE(base.phase_margin_deg, 90.0);
 }

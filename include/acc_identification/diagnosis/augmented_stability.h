@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -19,14 +20,35 @@ namespace acc
 /// With T = d = c = 0 this is the paper's eq. 9. Acceleration limits and the set-speed cruise
 /// do not act on small disturbances around an unsaturated following equilibrium, and a clock
 /// offset between receivers changes the record, not the vehicle: for those Gamma is the base one.
+///
+/// Gamma describes what a car passes on only when the car's own loop is stable: a car whose loop
+/// L(s) = e^{-s d} ((k2 + k1 tau_lin) s + k1) / ((T s + 1) s^2) is unstable oscillates with
+/// growing amplitude behind a steady leader, whatever |Gamma(j w)| says (see localLoopStability).
+/// Such a model is not string stable.
 struct AugmentedStability
 {
   double peak_gain_db = 0.0;           ///< max over the grid of 20 log10 |Gamma(j w)|
   double peak_frequency_rad_s = 0.0;
-  bool string_stable = true;           ///< |Gamma(j w)| <= 1 on the whole grid
+  bool string_stable = true;           ///< locally stable and |Gamma(j w)| <= 1 on the whole grid
+  bool locally_stable = true;          ///< the car's own loop is stable (localLoopStability)
+  double phase_margin_deg = std::numeric_limits<double>::quiet_NaN();  ///< of L(j w) at its crossover
+  double crossover_rad_s = std::numeric_limits<double>::quiet_NaN();   ///< where |L(j w)| = 1
   double lambda2 = 0.0;                ///< Wilson & Ward's lambda2 of the linearised law (no lag/delay term)
   std::string note;                    ///< how the effect enters the small-signal model
 };
+
+/// Whether a car's own loop is stable: its characteristic equation
+///   (T s + 1) s^2 + e^{-s d} (b s + k1) = 0,  b = k2 + k1 tau_lin,
+/// has no root in the closed right half-plane. |L(j w)| falls monotonically in w (its log-log slope
+/// is below -1), so it crosses 1 once, at w_c; without the delay the cubic is stable iff its
+/// Routh condition b > T k1 holds, which is a positive phase margin; and as the delay grows, roots
+/// can cross the imaginary axis only at w_c, each time to the right (Cooke and van den Driessche's
+/// single-crossing case). So the loop is stable iff the unwrapped phase margin
+///   atan2(b w_c, k1) - atan(T w_c) - w_c d
+/// is positive. Without any feedback (k1 = b = 0) the car does not follow: not stable.
+/// Fills locally_stable, phase_margin_deg and crossover_rad_s of `out`.
+void localLoopStability(const AccParameters& linear_gains, double actuation_lag_s, double reaction_delay_s,
+                        AugmentedStability* out);
 
 /// |Gamma(j w)| of the augmented model as a ratio.
 double augmentedTransferGain(const AccParameters& p, const EffectSettings& effects, double operating_speed_mps,
