@@ -294,6 +294,8 @@ void addFile(const std::string& path, const RunPlausibilityBounds& bounds, Campa
     ++inputs.skipped_files;
     return;
   }
+  for (const std::string& problem : file.contents.metadata_problems)
+    inputs.notes.push_back(problem);
   if (!file.contents.duplicate_lines.empty())
     inputs.notes.push_back(describeDuplicateRows(file.contents));
   noteCarsWithoutPair(file.contents, inputs.notes);

@@ -20,6 +20,13 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Metadata and the header are at the top; a file without a Time header this far down is not OpenACC.
 constexpr std::size_t kMaxLinesBeforeHeader = 50;
 
+/// A note that is also a metadata problem (OpenAccFile::metadata_problems).
+void noteMetadataProblem(OpenAccFile& file, const std::string& text)
+{
+  file.notes.push_back(text);
+  file.metadata_problems.push_back(text);
+}
+
 bool isLeapYear(long year)
 {
   return (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
@@ -109,7 +116,7 @@ int readNumberLine(const std::vector<std::string>& fields, const std::string& li
   const auto value = integerField(fields, 1);
   if (!value)
   {
-    file.notes.push_back(where + what + " is not a number: '" + trim(line) + "'");
+    noteMetadataProblem(file, where + what + " is not a number: '" + trim(line) + "'");
     return -1;
   }
   return static_cast<int>(*value);
@@ -148,7 +155,7 @@ bool readMetadataLine(const std::string& line, const std::vector<std::string>& f
   else
   {
     ++seen.other_lines;
-    file.notes.push_back(where + "line before the header not understood, ignored: '" + trim(line).substr(0, 80) + "'");
+    noteMetadataProblem(file, where + "line before the header not understood, ignored: '" + trim(line).substr(0, 80) + "'");
   }
   return true;
 }
@@ -220,12 +227,12 @@ bool checkMetadataLines(const MetadataSeen& seen, std::size_t header_line, OpenA
   }
   if (!absent.empty())
   {
-    file.notes.push_back(file.path + ": no " + join(absent, ", ") + " line (left unknown)");
+    noteMetadataProblem(file, file.path + ": no " + join(absent, ", ") + " line (left unknown)");
   }
   const int order_size = static_cast<int>(file.metadata.vehicle_order.size());
   if (file.metadata.number_of_vehicles >= 0 && file.metadata.number_of_vehicles != order_size)
   {
-    file.notes.push_back(file.path + ": Number_of_vehicles says " + std::to_string(file.metadata.number_of_vehicles) +
+    noteMetadataProblem(file, file.path + ": Number_of_vehicles says " + std::to_string(file.metadata.number_of_vehicles) +
                          " but Vehicle_order names " + std::to_string(order_size) + " cars");
   }
   return true;
@@ -300,7 +307,7 @@ void noteCarsBeyondVehicleOrder(OpenAccFile& file)
   {
     if (v.position > static_cast<int>(file.metadata.vehicle_order.size()))
     {
-      file.notes.push_back(file.path + ": columns of car " + std::to_string(v.position) + " but Vehicle_order names " +
+      noteMetadataProblem(file, file.path + ": columns of car " + std::to_string(v.position) + " but Vehicle_order names " +
                            std::to_string(file.metadata.vehicle_order.size()) + " cars: called '" + v.name + "'");
     }
   }
@@ -605,6 +612,29 @@ void keepCarsWithData(OpenAccFile& file, std::map<int, VehicleUnderConstruction>
   }
 }
 
+/// The ACC line against the followers' Driver columns, where they have them (the lead car is
+/// driven by a person whatever the line says): ACC 0 (manual driving) while a Driver cell says
+/// ACC, or ACC 1 while none does. The readers follow the Driver column row by row; said here.
+void noteAccLineAgainstDriverColumns(OpenAccFile& file)
+{
+  std::vector<std::string> columns, with_acc;
+  for (const OpenAccVehicle& v : file.vehicles)
+  {
+    if (v.position < 2 || !v.has_driver)
+      continue;
+    const std::string column = "Driver" + std::to_string(v.position);
+    columns.push_back(column);
+    if (std::any_of(v.driver.begin(), v.driver.end(), isAccDriverCell))
+      with_acc.push_back(column);
+  }
+  if (file.metadata.acc == 0 && !with_acc.empty())
+    noteMetadataProblem(file, file.path + ": the ACC line says 0 (manual driving) but " + join(with_acc, ", ") +
+                                  " mark rows ACC; each follower's Driver column is followed row by row");
+  if (file.metadata.acc == 1 && !columns.empty() && with_acc.empty())
+    noteMetadataProblem(file, file.path + ": the ACC line says 1 (ACC on) but no cell of " + join(columns, ", ") +
+                                  " says ACC; each follower's Driver column is followed row by row: no row is on ACC");
+}
+
 /// Why each car with data is not the follower of a pair.
 void notePairlessFollowers(OpenAccFile& file)
 {
@@ -647,6 +677,8 @@ void noteBadCellsAndRows(OpenAccFile& file)
   }
 }
 }  // namespace
+
+bool isAccDriverCell(const std::string& cell) { return upperCase(cell) == "ACC"; }
 
 std::string describeDuplicateRows(const OpenAccFile& file)
 {
@@ -801,6 +833,7 @@ OpenAccFile readOpenAccFile(const std::string& path)
     return file;
   }
   keepCarsWithData(file, layout.cars);
+  noteAccLineAgainstDriverColumns(file);
   notePairlessFollowers(file);
   noteBadCellsAndRows(file);
   detectAngleUnit(file);

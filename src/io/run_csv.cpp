@@ -1,7 +1,6 @@
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/io/csv_fields.h"
 #include "acc_identification/io/gap_kinematics.h"
-#include "acc_identification/model/plain_text.h"
 
 #include <array>
 #include <cerrno>
@@ -278,9 +277,6 @@ RunFileContents readCanonicalFile(const std::string& path, const RunPlausibility
   return contents;
 }
 
-/// A Driverk cell that says ACC, in any case ("ACC", "acc"); the database writes ACC or Human.
-bool isAccDriver(const std::string& cell) { return upperCase(cell) == "ACC"; }
-
 /// How the follower's rows are known to be on ACC: its Driverk column, else the file's ACC line.
 enum class AccSource
 {
@@ -345,7 +341,7 @@ RunFileContents readPairRuns(const OpenAccFile& file, const OpenAccPair& pair, c
   {
     ++contents.data_rows;
     const std::string problem = pairRowProblem(file, pair, i);
-    const bool acc_on = source == AccSource::kDriverColumn ? isAccDriver(follower.driver[i])
+    const bool acc_on = source == AccSource::kDriverColumn ? isAccDriverCell(follower.driver[i])
                                                            : source == AccSource::kOnThroughout;
     if (!problem.empty())
     {

@@ -359,6 +359,35 @@ TEST(CampaignInputs, WhatIsLeftOutOfAFileIsSaid)
   EXPECT_EQ(inputs.skipped_pairs, 0u);
 }
 
+// A file whose metadata lines contradict its columns: the campaign says so, as calibrate does.
+// Fails when the reader's notes on them stay in the reader.
+TEST(CampaignInputs, MetadataThatContradictTheColumnsAreSaid)
+{
+  TempFolder folder("acc_campaign_metadata");
+  acc_test::writeSyntheticPlatoon(folder.file("a.csv"), "S", {kAS, kBS}, 63, 60.0);
+  // Number_of_vehicles 4 for three cars; ACC 0 (manual) while CAR_A's Driver2 says ACC throughout.
+  rewriteLines(folder.file("a.csv"), [](std::size_t i, const std::string& line) -> std::vector<std::string> {
+    if (i == 2)
+      return {"Number_of_vehicles,4"};
+    if (i == 3)
+      return {"ACC,0"};
+    return {line + (i < 5 ? "" : i == 5 ? ",Driver2" : ",acc")};
+  });
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.file("a.csv")});
+  std::string all;
+  for (const std::string& note : inputs.notes)
+    all += note + "\n";
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"a.csv: Number_of_vehicles says 4 but Vehicle_order names 3 cars"}))
+      << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"a.csv: the ACC line says 0 (manual driving) but Driver2 mark rows "
+                                                   "ACC"}))
+      << all;
+  // CAR_A follows its Driver column; CAR_B has none, and the ACC line says manual: not used, and said.
+  ASSERT_EQ(inputs.groups.size(), 1u) << all;
+  EXPECT_EQ(inputs.groups[0].label(), "CAR_A/S");
+  EXPECT_EQ(inputs.skipped_pairs, 1u) << all;
+}
+
 TEST(CampaignInputs, ThePlatoonCheckSaysWhichRowsItLeavesOut)
 {
   TempFolder folder("acc_campaign_stretch");

@@ -108,6 +108,11 @@ struct OpenAccFile
   /// "path: ...": what the file holds and what was made of it (the unit and why, the cars without
   /// data, the followers without a pair and why, metadata that disagree, columns not used).
   std::vector<std::string> notes;
+  /// Those of the notes that say the file's description of itself is missing, not understood or
+  /// contradicted by its columns (a metadata line absent or not a number, a line before the header
+  /// not understood, Number_of_vehicles or Vehicle_order against the columns, the ACC line against
+  /// the followers' Driver columns): what a reader of many files (the campaign) passes on.
+  std::vector<std::string> metadata_problems;
   /// Non-empty when the file cannot be read at all (missing, no Date or Vehicle_order line, no
   /// header with a Time column, a column named twice); the fields above then hold what was read.
   std::string error;
@@ -128,6 +133,9 @@ struct OpenAccFile
   /// numbers. Cells of other columns do not matter (a reader asks for the pair it reads).
   std::string rowProblem(std::size_t row, const std::vector<std::string>& columns) const;
 };
+
+/// A Driverk cell that says ACC, in any case ("ACC", "acc"); the database writes ACC or Human.
+bool isAccDriverCell(const std::string& cell);
 
 /// "path: 3 rows with the same cells as the row before, dropped as duplicates (lines 12, 40, 41)".
 std::string describeDuplicateRows(const OpenAccFile& file);
