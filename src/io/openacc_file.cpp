@@ -160,9 +160,11 @@ bool readMetadataLine(const std::string& line, const std::vector<std::string>& f
   return true;
 }
 
+/// A line with a Time column, in any case.
 bool isHeaderLine(const std::vector<std::string>& fields)
 {
-  return std::find(fields.begin(), fields.end(), "Time") != fields.end();
+  return std::any_of(fields.begin(), fields.end(),
+                     [](const std::string& name) { return canonicalColumnName(name) == "Time"; });
 }
 
 /// A first line that is already the header (the layout without metadata): a Time column and a
@@ -170,18 +172,30 @@ bool isHeaderLine(const std::vector<std::string>& fields)
 bool isHeaderWithoutMetadata(const std::vector<std::string>& fields)
 {
   return isHeaderLine(fields) && std::any_of(fields.begin(), fields.end(), [](const std::string& name) {
-           const auto column = classifyColumn(name);
+           const auto column = classifyColumn(canonicalColumnName(name));
            return column && column->first == Quantity::kSpeed;
          });
 }
 
-/// The header's names, without the empty ones a trailing comma leaves.
-std::vector<std::string> headerNames(std::vector<std::string> fields)
+/// The header's names, without the empty ones a trailing comma leaves, each in the database's
+/// spelling (canonicalColumnName); the names written in another case are said in a note.
+std::vector<std::string> headerNames(std::vector<std::string> fields, OpenAccFile& file)
 {
   while (!fields.empty() && fields.back().empty())
   {
     fields.pop_back();
   }
+  std::vector<std::string> respelled;
+  for (std::string& name : fields)
+  {
+    const std::string canonical = canonicalColumnName(name);
+    if (canonical != name)
+      respelled.push_back(name + " as " + canonical);
+    name = canonical;
+  }
+  if (!respelled.empty())
+    file.notes.push_back(file.path + ": columns written in another case, read as the database names them: " +
+                         join(respelled, ", "));
   return fields;
 }
 
@@ -269,7 +283,7 @@ bool readMetadataAndHeader(std::istream& in, OpenAccFile& file, std::size_t& lin
     const std::vector<std::string> fields = splitCsvFields(line);
     if (isHeaderLine(fields))
     {
-      file.header = headerNames(fields);
+      file.header = headerNames(fields, file);
       break;
     }
     const std::string where = file.path + ":" + std::to_string(line_number) + ": ";

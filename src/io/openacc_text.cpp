@@ -75,12 +75,37 @@ CellKind parseCell(const std::string& text, double& value)
   return CellKind::kNumber;
 }
 
-std::optional<std::pair<Quantity, int>> classifyColumn(const std::string& name)
+namespace
+{
+/// The per-vehicle and per-pair columns: their names' prefixes before the position.
+const std::vector<std::pair<std::string, Quantity>>& columnPrefixes()
 {
   static const std::vector<std::pair<std::string, Quantity>> kPrefixes{
       {"Speed", Quantity::kSpeed}, {"E", Quantity::kEast},      {"N", Quantity::kNorth},
       {"U", Quantity::kUp},        {"Alt", Quantity::kAltitude}, {"Lat", Quantity::kLatitude},
       {"Lon", Quantity::kLongitude}, {"Driver", Quantity::kDriver}, {"IVS", Quantity::kGap}};
+  return kPrefixes;
+}
+}  // namespace
+
+std::string canonicalColumnName(const std::string& name)
+{
+  if (upperCase(name) == "TIME")
+    return "Time";
+  const auto digits = name.find_first_of("0123456789");
+  if (digits == std::string::npos || digits == 0)
+    return name;
+  const std::string prefix = upperCase(name.substr(0, digits));
+  for (const auto& entry : columnPrefixes())
+  {
+    if (prefix == upperCase(entry.first))
+      return entry.first + name.substr(digits);
+  }
+  return name;
+}
+
+std::optional<std::pair<Quantity, int>> classifyColumn(const std::string& name)
+{
   const auto digits = name.find_first_of("0123456789");
   if (digits == std::string::npos || digits == 0 ||
       name.find_first_not_of("0123456789", digits) != std::string::npos || name[digits] == '0')
@@ -93,7 +118,7 @@ std::optional<std::pair<Quantity, int>> classifyColumn(const std::string& name)
   {
     return std::nullopt;
   }
-  for (const auto& [known, quantity] : kPrefixes)
+  for (const auto& [known, quantity] : columnPrefixes())
   {
     if (prefix == known)
     {

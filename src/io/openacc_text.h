@@ -49,6 +49,9 @@ enum class Quantity
 };
 /// The quantity and car number of a column name ("IVS2" -> gap, 2), or nullopt for any other name.
 std::optional<std::pair<Quantity, int>> classifyColumn(const std::string& name);
+/// The database's spelling of a column written in another case ("time" -> "Time", "ivs2" ->
+/// "IVS2", "speed1" -> "Speed1"); any other name unchanged.
+std::string canonicalColumnName(const std::string& name);
 
 bool hasColumn(const OpenAccFile& file, const std::string& name);
 /// Whether the header has any column of the car at this position (not counting IVS).

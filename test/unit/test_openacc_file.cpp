@@ -3,6 +3,7 @@
 // absent or empty columns, NaN cells inside and outside the pair read.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include "acc_identification/io/openacc_file.h"
 #include "acc_identification/io/run_csv.h"
 #include "line_matchers.h"
+#include "run_matchers.h"
 
 namespace fs = std::filesystem;
 
@@ -344,14 +346,27 @@ TEST_F(OpenAccFileTest, ASpreadsheetExportReadsAsTheDatabasesFile)
   ASSERT_EQ(file.error, "");
   EXPECT_EQ(file.metadata.distance_setting, "min");
   EXPECT_EQ(file.vehicleName(2), "Hyundai");
-  const acc::RunFileContents a = acc::readRunFile(plain);
   const acc::RunFileContents b = acc::readRunFile(write("exported2.csv", exported));
-  ASSERT_EQ(a.runs.size(), 1u);
-  ASSERT_EQ(b.runs.size(), 1u);
   EXPECT_EQ(b.acc_off_rows, 1u);
-  EXPECT_EQ(a.runs[0].time_s, b.runs[0].time_s);
-  EXPECT_EQ(a.runs[0].space_gap_m, b.runs[0].space_gap_m);
-  EXPECT_EQ(a.runs[0].follower_speed_mps, b.runs[0].follower_speed_mps);
+  acc_test::expectTheSameSingleRun(acc::readRunFile(plain), b);
+}
+
+// Column names in another case ("time", "speed1", "ivs1", as a script or a spreadsheet may write
+// them) are the database's columns: the file reads as the plain one, and a note says so. Fails
+// when "time" is not taken for a header ("no header line with a Time column").
+TEST_F(OpenAccFileTest, ColumnNamesInAnotherCaseReadAsTheDatabasesColumns)
+{
+  const std::string plain = write("plain_case.csv", kTwoVehicleFile);
+  std::string text = kTwoVehicleFile;
+  const std::size_t header = text.find("Time,");
+  const std::size_t header_end = text.find('\n', header);
+  for (std::size_t i = header; i < header_end; ++i)
+    text[i] = static_cast<char>(std::tolower(static_cast<unsigned char>(text[i])));
+  const acc::OpenAccFile file = acc::readOpenAccFile(write("lower_case.csv", text));
+  ASSERT_EQ(file.error, "");
+  EXPECT_TRUE(anyContains(file.notes, {"columns written in another case", "time as Time", "ivs1 as IVS1"}))
+      << joined(file.notes);
+  acc_test::expectTheSameSingleRun(acc::readRunFile(plain), acc::readRunFile(write("lower_case2.csv", text)));
 }
 
 TEST_F(OpenAccFileTest, AFileWithoutAPairSaysWhichCarHasNoData)
@@ -380,6 +395,18 @@ TEST_F(OpenAccFileTest, AnAccLineThatContradictsTheDriverColumnIsSaidAndTheColum
   EXPECT_EQ(contents.runs[0].size(), 2u);
   EXPECT_TRUE(anyContains(contents.notes, {"ACC on where Driver2 is ACC", "the ACC line says 0"}))
       << joined(contents.notes);
+  // The file itself says it once, among the problems of its metadata (what a campaign passes on);
+  // and the other way round: ACC 1 while no Driver cell says ACC.
+  const acc::OpenAccFile file = acc::readOpenAccFile(write("acc_zero_file.csv", text));
+  EXPECT_TRUE(anyContains(file.metadata_problems, {"the ACC line says 0 (manual driving) but Driver2 mark rows ACC"}))
+      << joined(file.metadata_problems);
+  std::string human = kTwoVehicleFile;
+  for (auto at = human.find(",ACC\n"); at != std::string::npos; at = human.find(",ACC\n", at))
+    human.replace(at, 5, ",Human\n");
+  const acc::OpenAccFile all_human = acc::readOpenAccFile(write("acc_one_human.csv", human));
+  EXPECT_TRUE(anyContains(all_human.metadata_problems, {"the ACC line says 1 (ACC on) but no cell of Driver2 says ACC"}))
+      << joined(all_human.metadata_problems);
+  EXPECT_TRUE(acc::readOpenAccFile(write("plain_acc.csv", kTwoVehicleFile)).metadata_problems.empty());
 }
 
 TEST_F(OpenAccFileTest, SemicolonSeparatedFieldsAreNamedInTheError)

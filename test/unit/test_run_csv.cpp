@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "acc_identification/io/run_csv.h"
+#include "run_matchers.h"
 
 
 namespace
@@ -335,15 +336,9 @@ TEST(RunCsv, SpreadsheetExportsReadAsThePlainFile)
       "\xEF\xBB\xBF\"time_s\",\"space_gap_m\",\"follower_speed_mps\",\"leader_speed_mps\",\"note\"\r\n"
       "\"0.0\",\"20.0\",\"10.0\",\"10.5\",\"start, on \"\"ACC\"\"\"\r\n"
       "0.1,20.05,10.01,10.5,\r\n\"0.2\", 20.1 ,10.02,10.5,x\r\n");
-  const auto a = acc::readRunFile(plain);
   const auto b = acc::readRunFile(exported);
   EXPECT_EQ(b.rejected_rows, 0u);
-  ASSERT_EQ(a.runs.size(), 1u);
-  ASSERT_EQ(b.runs.size(), 1u);
-  EXPECT_EQ(a.runs[0].time_s, b.runs[0].time_s);
-  EXPECT_EQ(a.runs[0].space_gap_m, b.runs[0].space_gap_m);
-  EXPECT_EQ(a.runs[0].follower_speed_mps, b.runs[0].follower_speed_mps);
-  EXPECT_EQ(a.runs[0].leader_speed_mps, b.runs[0].leader_speed_mps);
+  acc_test::expectTheSameSingleRun(acc::readRunFile(plain), b);
   std::remove(plain.c_str());
   std::remove(exported.c_str());
 }
