@@ -54,18 +54,9 @@ std::size_t startRow(const OpenAccFile& file, int position, const std::vector<do
 /// ", its model is not locally stable (...)" when the model's own loop explains a runaway, else "".
 std::string whyDiverged(const PlatoonCarModel& model, const CarFollowingRun& run)
 {
-  double sum = 0.0;
-  std::size_t n = 0;
-  for (double v : run.leader_speed_mps)
-  {
-    if (std::isfinite(v))
-    {
-      sum += v;
-      ++n;
-    }
-  }
+  // At the input's median speed, the operating point the diagnosis and the link evidence use too.
   const AugmentedStability loop =
-      analyzeAugmentedStability(model.parameters, model.effects, model.settings, n > 0 ? sum / n : 0.0);
+      analyzeAugmentedStability(model.parameters, model.effects, model.settings, finiteMedian(run.leader_speed_mps));
   if (loop.locally_stable)
     return "";
   return std::isfinite(loop.phase_margin_deg)
@@ -112,16 +103,15 @@ double rmseAgainstMeasured(const std::vector<double>& predicted, const std::vect
   return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : kNaN;
 }
 
-/// The measured speed of the car at `position` within the check's rows (NaN elsewhere, and all NaN
-/// without speed data): the input of the car behind it.
-std::vector<double> measuredInput(const OpenAccFile& data, int position, const PlatoonCheck& check)
+/// The measured speed of the car at `position` within the rows [first_row, end_row) (NaN
+/// elsewhere, and all NaN without speed data): the input of the car behind it.
+std::vector<double> measuredInput(const OpenAccFile& data, int position, std::size_t first_row, std::size_t end_row)
 {
   std::vector<double> input(data.rows(), kNaN);
   const OpenAccVehicle* vehicle = data.vehicle(position);
   if (!hasSpeed(vehicle))
     return input;
-  std::copy(vehicle->speed_mps.begin() + check.first_row, vehicle->speed_mps.begin() + check.end_row,
-            input.begin() + check.first_row);
+  std::copy(vehicle->speed_mps.begin() + first_row, vehicle->speed_mps.begin() + end_row, input.begin() + first_row);
   return input;
 }
 
@@ -135,7 +125,7 @@ std::vector<PlatoonCarPrediction> predictChain(const CampaignFile& file, const s
   std::vector<PlatoonCarPrediction> cars;
   const OpenAccFile& data = file.contents;
   int driven_by = 1;  // the real car whose measured speed drives the chain
-  std::vector<double> input = measuredInput(data, driven_by, check);
+  std::vector<double> input = measuredInput(data, driven_by, check.first_row, check.end_row);
   bool running = true;  // the car ahead was predicted, or is the real car driving the chain
   for (int k = 2; k <= data.lastPosition(); ++k)
   {
@@ -157,7 +147,7 @@ std::vector<PlatoonCarPrediction> predictChain(const CampaignFile& file, const s
         check.notes.push_back("chain stopped at position " + std::to_string(k) + ": " + why);
       running = false;
       driven_by = k;
-      input = measuredInput(data, k, check);
+      input = measuredInput(data, k, check.first_row, check.end_row);
       cars.push_back(car);
       continue;
     }
@@ -174,7 +164,7 @@ std::vector<PlatoonCarPrediction> predictChain(const CampaignFile& file, const s
     }
     if (car.model.source.find("first half") != std::string::npos)
       check.notes.push_back(car.name + " (" + std::to_string(k) + "): " + car.model.source);
-    input = running ? car.predicted_speed_mps : measuredInput(data, k, check);
+    input = running ? car.predicted_speed_mps : measuredInput(data, k, check.first_row, check.end_row);
     cars.push_back(std::move(car));
   }
   return cars;
@@ -348,12 +338,7 @@ PlatoonCarPrediction predictPair(const OpenAccFile& file, int position, const Pl
     car.note = car.name + ": the car ahead has no speed data";
   if (!car.note.empty())
     return car;
-  std::vector<double> input = ahead->speed_mps;
-  for (std::size_t r = 0; r < input.size(); ++r)
-  {
-    if (r < first_row || r >= end_row)
-      input[r] = kNaN;
-  }
+  const std::vector<double> input = measuredInput(file, position - 1, first_row, end_row);
   const std::size_t start = startRow(file, position, input, first_row, end_row);
   if (start + 2 > end_row)
   {
