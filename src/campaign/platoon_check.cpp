@@ -51,18 +51,36 @@ std::size_t startRow(const OpenAccFile& file, int position, const std::vector<do
   return end;
 }
 
-/// ", its model is not locally stable (...)" when the model's own loop explains a runaway, else "".
+/// ": its model is not locally stable (...)" when the model's own loop explains a runaway; else
+/// that the runaway is large-signal, which a small-signal margin does not cover.
 std::string whyDiverged(const PlatoonCarModel& model, const CarFollowingRun& run)
 {
   // At the input's median speed, the operating point the diagnosis and the link evidence use too.
   const AugmentedStability loop =
       analyzeAugmentedStability(model.parameters, model.effects, model.settings, finiteMedian(run.leader_speed_mps));
   if (loop.locally_stable)
-    return "";
+    return printfText(": its model is locally stable (phase margin %.1f deg at %.3f rad/s), so the runaway is "
+                      "large-signal: what its nonlinear terms or its delay do to a large excursion",
+                      loop.phase_margin_deg, loop.crossover_rad_s);
   return std::isfinite(loop.phase_margin_deg)
              ? printfText(": its model is not locally stable (phase margin %.1f deg at %.3f rad/s)",
                           loop.phase_margin_deg, loop.crossover_rad_s)
              : ": its model has no feedback";
+}
+
+double rmseAgainstMeasured(const std::vector<double>& predicted, const std::vector<double>& measured)
+{
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t r = 0; r < predicted.size(); ++r)
+  {
+    if (std::isfinite(predicted[r]) && std::isfinite(measured[r]))
+    {
+      sum += (predicted[r] - measured[r]) * (predicted[r] - measured[r]);
+      ++n;
+    }
+  }
+  return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : kNaN;
 }
 
 /// Simulates one car from row `start` to `end`, driven by input_mps (which the real car at
@@ -84,24 +102,13 @@ void predictCar(const OpenAccFile& file, const std::vector<double>& input_mps, i
   car.start_row = start;
   car.driven_by_position = driven_by;
   car.predicted = true;
+  // A runaway's growth before the divergence bound would swamp any RMSE: a diverged prediction
+  // has none, and its note says why.
+  car.rmse_speed_mps = sim.diverged ? kNaN : rmseAgainstMeasured(car.predicted_speed_mps, file.vehicle(car.position)->speed_mps);
   if (sim.diverged)
     car.note = "simulation diverged at t = " + printfText("%.1f s", run.time_s[valid]) + whyDiverged(car.model, run);
 }
 
-double rmseAgainstMeasured(const std::vector<double>& predicted, const std::vector<double>& measured)
-{
-  double sum = 0.0;
-  std::size_t n = 0;
-  for (std::size_t r = 0; r < predicted.size(); ++r)
-  {
-    if (std::isfinite(predicted[r]) && std::isfinite(measured[r]))
-    {
-      sum += (predicted[r] - measured[r]) * (predicted[r] - measured[r]);
-      ++n;
-    }
-  }
-  return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : kNaN;
-}
 
 /// The measured speed of the car at `position` within the rows [first_row, end_row) (NaN
 /// elsewhere, and all NaN without speed data): the input of the car behind it.
@@ -155,7 +162,6 @@ std::vector<PlatoonCarPrediction> predictChain(const CampaignFile& file, const s
       check.notes.push_back("chain restarted at position " + std::to_string(k) + ": driven by the measured speed of " +
                             data.vehicleName(driven_by) + " (" + std::to_string(driven_by) + ")");
     predictCar(data, input, driven_by, start, check.end_row, car);
-    car.rmse_speed_mps = rmseAgainstMeasured(car.predicted_speed_mps, data.vehicle(k)->speed_mps);
     running = car.note.empty();
     if (!running)
     {
@@ -347,7 +353,6 @@ PlatoonCarPrediction predictPair(const OpenAccFile& file, int position, const Pl
   }
   // A hole in the leader's record makes the simulation non-finite there: it stops and says so.
   predictCar(file, input, position - 1, start, end_row, car);
-  car.rmse_speed_mps = rmseAgainstMeasured(car.predicted_speed_mps, file.vehicle(position)->speed_mps);
   return car;
 }
 

@@ -28,14 +28,27 @@ constexpr std::size_t kColdStarts = 4;
 PlatoonCarModel modelOf(const AugmentedFit& fit, const std::string& source)
 {
   PlatoonCarModel model;
-  model.available = !fit.diverged;
+  // A model whose own loop is unstable cannot be a car's: its chain would oscillate without bound.
+  model.available = !fit.diverged && fit.locally_stable;
   model.parameters = fit.base;
   model.effects = fit.effects;
   model.effect_values = fit.effect_values;
   model.settings = fit.settings;
   model.standard_errors = fit.standard_errors;
-  model.source = source + (fit.diverged ? ": no fit (diverged)" : "");
+  model.source = source + (fit.diverged            ? ": no fit (diverged)"
+                           : !fit.locally_stable ? ": no fit (no start reached a locally stable model)"
+                                                  : "");
   return model;
+}
+
+/// Whether fit a is to be kept over fit b: a usable fit (not diverged, locally stable) over one
+/// that is not, and between two of a kind the lower training objective.
+bool betterFit(const AugmentedFit& a, const AugmentedFit& b)
+{
+  const bool a_usable = !a.diverged && a.locally_stable, b_usable = !b.diverged && b.locally_stable;
+  if (a_usable != b_usable)
+    return a_usable;
+  return !a.diverged && (b.diverged || a.train_objective < b.train_objective);
 }
 
 /// The criterion's loss of model m for one score; NaN where the model was not scored.
@@ -278,7 +291,7 @@ std::vector<PlatoonCarModel> fitCandidateModels(const std::vector<CarFollowingRu
     const AugmentedFit* start = &warm;
     for (std::size_t j = 0; j < i; ++j)
     {
-      if (extendsByOne(candidates[i], candidates[j]) && !fits[j].diverged)
+      if (extendsByOne(candidates[i], candidates[j]) && !fits[j].diverged && fits[j].locally_stable)
         start = &fits[j];
     }
     AugmentedCalibrationOptions options;
@@ -293,7 +306,7 @@ std::vector<PlatoonCarModel> fitCandidateModels(const std::vector<CarFollowingRu
       AugmentedCalibrationOptions cold_options = options;
       cold_options.base_starts = kColdStarts;
       const AugmentedFit cold = calibrateAugmentedSet(candidates[i].effects, training, cold_options, nullptr);
-      if (!cold.diverged && (fits[i].diverged || cold.train_objective < fits[i].train_objective))
+      if (betterFit(cold, fits[i]))
         fits[i] = cold;
     }
     models[i] = modelOf(fits[i], base.source);

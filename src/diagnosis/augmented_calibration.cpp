@@ -6,8 +6,10 @@
 
 #include <Eigen/Dense>
 
+#include "acc_identification/diagnosis/augmented_stability.h"
 #include "acc_identification/model/batch_means.h"
 #include "acc_identification/model/follower_simulation.h"
+#include "acc_identification/model/sample_statistics.h"
 
 namespace acc
 {
@@ -68,6 +70,7 @@ struct GaussNewtonPass
   Eigen::MatrixXd normal;  ///< zero when the pass was asked for the descent alone
   Eigen::VectorXd descent;
   std::size_t samples = 0;  ///< the samples the MSE averages over
+  bool locally_stable = true;  ///< the model's own loop (locallyStableAt), set by ObjectiveTracker
 };
 
 /// Weights of the speed and gap residuals in the objective (squared weights multiply the squares).
@@ -194,15 +197,31 @@ GaussNewtonPass gaussNewtonPass(const AugmentedParameterBox& box, const std::vec
   return pass;
 }
 
-/// Evaluates the objective at physical points and remembers the best one ever seen, so the
-/// result never depends on where the local solver happens to stop.
+/// The speeds a model's own loop is checked at: the lowest, median and highest follower speed of
+/// the segments (the gains and the time gap of the speed-dependent effects change with speed).
+std::vector<double> operatingSpeedsMps(const std::vector<CarFollowingRun>& segments)
+{
+  std::vector<double> speeds;
+  for (const CarFollowingRun& run : segments)
+    speeds.insert(speeds.end(), run.follower_speed_mps.begin(), run.follower_speed_mps.end());
+  if (speeds.empty())
+    return {};
+  return {interpolatedQuantile(speeds, 0.0), interpolatedQuantile(speeds, 0.5), interpolatedQuantile(speeds, 1.0)};
+}
+
+/// Evaluates the objective at physical points and remembers the best locally stable one ever
+/// seen, so the result never depends on where the local solver happens to stop; and the best
+/// unstable one, kept only for a fit that never reaches a stable model.
 struct ObjectiveTracker
 {
   const AugmentedParameterBox* box;
   const std::vector<CarFollowingRun>* segments;
   ResidualWeights weights;
+  std::vector<double> operating_speeds_mps;
   std::vector<double> best_x;
   double best_value = std::numeric_limits<double>::infinity();
+  std::vector<double> best_unstable_x;
+  double best_unstable_value = std::numeric_limits<double>::infinity();
   std::size_t evaluations = 0;
 
   GaussNewtonPass operator()(const Eigen::VectorXd& unit_x)
@@ -210,14 +229,28 @@ struct ObjectiveTracker
     const std::vector<double> x = box->physical(std::vector<double>(unit_x.data(), unit_x.data() + unit_x.size()));
     GaussNewtonPass pass = gaussNewtonPass(*box, x, *segments, weights);
     ++evaluations;
-    if (pass.mse < best_value)
+    pass.locally_stable = locallyStableAt(AugmentedParameterBox::baseOf(x), box->settingsOf(x), operating_speeds_mps);
+    double& best = pass.locally_stable ? best_value : best_unstable_value;
+    if (pass.mse < best)
     {
-      best_value = pass.mse;
-      best_x = x;
+      best = pass.mse;
+      (pass.locally_stable ? best_x : best_unstable_x) = x;
     }
     return pass;
   }
 };
+
+/// Whether the local solver takes a trial step: it must lower the objective, and once the solver
+/// stands on a locally stable model it must stay on one (a start that is not stable may step
+/// onto a stable model at any cost, and the stable set is then never left).
+bool acceptsStep(const GaussNewtonPass& at, const GaussNewtonPass& trial)
+{
+  if (trial.diverged)
+    return false;
+  if (at.locally_stable && !trial.locally_stable)
+    return false;
+  return trial.mse < at.mse || (trial.locally_stable && !at.locally_stable);
+}
 
 /// Coordinates held at a bound because the descent direction points out of the box there.
 std::vector<Eigen::Index> freeCoordinates(const Eigen::VectorXd& u, const Eigen::VectorXd& descent)
@@ -287,9 +320,10 @@ void localSolve(ObjectiveTracker* tracker, const std::vector<double>& start_phys
       return;
     }
     GaussNewtonPass trial = (*tracker)(next);
-    if (!trial.diverged && trial.mse < at.mse)
+    if (acceptsStep(at, trial))
     {
-      const bool negligible = at.mse - trial.mse <= options.relative_mse_tolerance * at.mse;
+      const bool negligible = at.locally_stable == trial.locally_stable &&
+                              at.mse - trial.mse <= options.relative_mse_tolerance * at.mse;
       u = next;
       at = std::move(trial);
       damping = std::max(damping / 3.0, 1e-12);
@@ -605,8 +639,7 @@ AugmentedFit calibrateAugmentedSet(const std::vector<EffectKind>& effects, const
     throw std::invalid_argument("a clock offset can only be fitted with the speed objective");
   }
   const AugmentedParameterBox box(effects, options);
-  ObjectiveTracker tracker{&box, &segments, residualWeights(options.objective, segments), {},
-                           std::numeric_limits<double>::infinity(), 0};
+  ObjectiveTracker tracker{&box, &segments, residualWeights(options.objective, segments), operatingSpeedsMps(segments)};
   const std::vector<std::vector<double>> starts = warm_start != nullptr && !effects.empty()
                                                       ? effectStarts(effects, *warm_start, options)
                                                       : coldStarts(effects, segments, options, warm_start);
@@ -615,6 +648,12 @@ AugmentedFit calibrateAugmentedSet(const std::vector<EffectKind>& effects, const
     localSolve(&tracker, start, options);
   }
   AugmentedFit fit;
+  fit.locally_stable = !tracker.best_x.empty() || tracker.best_unstable_x.empty();
+  if (!fit.locally_stable)
+  {
+    tracker.best_x = tracker.best_unstable_x;
+    tracker.best_value = tracker.best_unstable_value;
+  }
   fit.effect = box.effect;
   fit.effects = effects;
   fit.evaluations = tracker.evaluations;

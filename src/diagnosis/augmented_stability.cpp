@@ -100,6 +100,29 @@ void localLoopStability(const AccParameters& g, double actuation_lag_s, double r
   out->locally_stable = margin_rad > 0.0;
 }
 
+bool locallyStableAt(const AccParameters& p, const EffectSettings& e, const std::vector<double>& operating_speeds_mps)
+{
+  // Called at every point a fit evaluates, so the two shortcuts: the linearised law is the same at
+  // every speed unless an effect schedules it on speed, and without delay or lag the phase margin
+  // atan2(b w_c, k1) has the sign of atan2(b, k1), with no crossover to search.
+  const bool depends_on_speed = e.gain_speed_slope_s_per_m != 0.0 || e.time_gap_speed_slope_s2_per_m != 0.0;
+  const bool timed = e.actuation_lag_s != 0.0 || e.reaction_delay_s != 0.0;
+  for (const double speed : operating_speeds_mps)
+  {
+    const AccParameters g = linearisedGains(p, e, speed);
+    AugmentedStability loop;
+    if (timed)
+      localLoopStability(g, e.actuation_lag_s, e.reaction_delay_s, &loop);
+    else
+      loop.locally_stable = std::atan2(g.k2_per_s + g.k1_per_s2 * g.tau_e_s, g.k1_per_s2) > 0.0;
+    if (!loop.locally_stable)
+      return false;
+    if (!depends_on_speed)
+      break;
+  }
+  return true;
+}
+
 double augmentedTransferGainSquared(const AccParameters& p, const EffectSettings& e, double operating_speed_mps,
                                     double frequency_rad_s)
 {

@@ -97,6 +97,10 @@ struct AugmentedFit
   FitObjective objective = FitObjective::speed;       ///< what the fit minimised
   double train_objective = std::numeric_limits<double>::infinity();  ///< its value (= train_mse_speed for speed)
   bool diverged = false;              ///< no start found a simulation that does not blow up
+  /// The fit is held to models whose own loop is stable (locallyStableAt the training data's
+  /// lowest, median and highest follower speed), as a production ACC's is: false only when no
+  /// start reached one, and the fit is then the best of the unstable models it saw.
+  bool locally_stable = true;
   std::size_t evaluations = 0;
   /// Standard errors of (k1, k2, tau_e, eta, effect values...): the Gauss-Newton sandwich
   /// (J^T J)^-1 M (J^T J)^-1 with a finite-difference Jacobian J of the simulated speeds and M the

@@ -50,6 +50,12 @@ struct AugmentedStability
 void localLoopStability(const AccParameters& linear_gains, double actuation_lag_s, double reaction_delay_s,
                         AugmentedStability* out);
 
+/// Whether the car of the model (p, effects) is locally stable at each of the operating speeds,
+/// its loop linearised there as analyzeAugmentedStability linearises it. A production ACC is
+/// locally stable, so a fitted model is held to this (calibrateAugmentedSet).
+bool locallyStableAt(const AccParameters& p, const EffectSettings& effects,
+                     const std::vector<double>& operating_speeds_mps);
+
 /// |Gamma(j w)| of the augmented model as a ratio.
 double augmentedTransferGain(const AccParameters& p, const EffectSettings& effects, double operating_speed_mps,
                              double frequency_rad_s);
