@@ -197,6 +197,45 @@ GaussNewtonPass gaussNewtonPass(const AugmentedParameterBox& box, const std::vec
   return pass;
 }
 
+/// The objective of gaussNewtonPass alone, from the plain simulator (whose values agree with the
+/// dual-number pass bit for bit), summed in the same order so that its MSE is the same number:
+/// what a trial step needs to be accepted or refused, at a fraction of the Jacobian's cost.
+GaussNewtonPass objectivePass(const AugmentedParameterBox& box, const std::vector<double>& x,
+                              const std::vector<CarFollowingRun>& segments, const ResidualWeights& weights)
+{
+  GaussNewtonPass pass;
+  const AccParameters base = AugmentedParameterBox::baseOf(x);
+  const EffectSettings settings = box.settingsOf(x);
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const CarFollowingRun& run : segments)
+  {
+    const SimulatedFollower sim = simulateFollower(base, settings, run);
+    if (sim.diverged)
+      return pass;
+    for (std::size_t k = 0; weights.speed != 0.0 && k < run.size(); ++k)
+    {
+      const double error = weights.speed == 1.0 ? run.follower_speed_mps[k] - sim.speed_mps[k]
+                                                : weights.speed * (run.follower_speed_mps[k] - sim.speed_mps[k]);
+      sum += error * error;
+    }
+    double gap = run.space_gap_m.empty() ? 0.0 : run.space_gap_m[0];
+    for (std::size_t k = 0; weights.gap != 0.0 && k < run.size(); ++k)
+    {
+      if (k > 0)
+        gap += (run.time_s[k] - run.time_s[k - 1]) * (run.leader_speed_mps[k - 1] - sim.speed_mps[k - 1]);
+      const double error = weights.gap * (run.space_gap_m[k] - gap);
+      sum += error * error;
+    }
+    count += run.size();
+  }
+  const double mse = count > 0 ? sum / static_cast<double>(count) : 0.0;
+  pass.samples = count;
+  pass.mse = std::isfinite(mse) ? std::min(mse, kDivergedObjective) : kDivergedObjective;
+  pass.diverged = !(pass.mse < kDivergedObjective);
+  return pass;
+}
+
 /// The speeds a model's own loop is checked at: the lowest, median and highest follower speed of
 /// the segments (the gains and the time gap of the speed-dependent effects change with speed).
 std::vector<double> operatingSpeedsMps(const std::vector<CarFollowingRun>& segments)
@@ -224,10 +263,13 @@ struct ObjectiveTracker
   double best_unstable_value = std::numeric_limits<double>::infinity();
   std::size_t evaluations = 0;
 
-  GaussNewtonPass operator()(const Eigen::VectorXd& unit_x)
+  /// The objective at unit_x, with its Jacobian's normal equations or (with_jacobian false, for a
+  /// trial step) without.
+  GaussNewtonPass operator()(const Eigen::VectorXd& unit_x, bool with_jacobian = true)
   {
-    const std::vector<double> x = box->physical(std::vector<double>(unit_x.data(), unit_x.data() + unit_x.size()));
-    GaussNewtonPass pass = gaussNewtonPass(*box, x, *segments, weights);
+    const std::vector<double> x = physicalOf(unit_x);
+    GaussNewtonPass pass = with_jacobian ? gaussNewtonPass(*box, x, *segments, weights)
+                                         : objectivePass(*box, x, *segments, weights);
     ++evaluations;
     pass.locally_stable = locallyStableAt(AugmentedParameterBox::baseOf(x), box->settingsOf(x), operating_speeds_mps);
     double& best = pass.locally_stable ? best_value : best_unstable_value;
@@ -237,6 +279,19 @@ struct ObjectiveTracker
       (pass.locally_stable ? best_x : best_unstable_x) = x;
     }
     return pass;
+  }
+
+  /// The Jacobian at a point already evaluated (value_pass): not counted again, nor recorded.
+  GaussNewtonPass jacobianAt(const Eigen::VectorXd& unit_x, const GaussNewtonPass& value_pass) const
+  {
+    GaussNewtonPass pass = gaussNewtonPass(*box, physicalOf(unit_x), *segments, weights);
+    pass.locally_stable = value_pass.locally_stable;
+    return pass;
+  }
+
+  std::vector<double> physicalOf(const Eigen::VectorXd& unit_x) const
+  {
+    return box->physical(std::vector<double>(unit_x.data(), unit_x.data() + unit_x.size()));
   }
 };
 
@@ -319,18 +374,20 @@ void localSolve(ObjectiveTracker* tracker, const std::vector<double>& start_phys
     {
       return;
     }
-    GaussNewtonPass trial = (*tracker)(next);
+    // The trial's objective first: only a step taken needs the Jacobian at its end, and the last
+    // one (a negligible decrease) none.
+    const GaussNewtonPass trial = (*tracker)(next, false);
     if (acceptsStep(at, trial))
     {
       const bool negligible = at.locally_stable == trial.locally_stable &&
                               at.mse - trial.mse <= options.relative_mse_tolerance * at.mse;
-      u = next;
-      at = std::move(trial);
-      damping = std::max(damping / 3.0, 1e-12);
       if (negligible)
       {
         return;
       }
+      u = next;
+      at = tracker->jacobianAt(u, trial);
+      damping = std::max(damping / 3.0, 1e-12);
     }
     else if ((damping *= 4.0) > 1e12)
     {
