@@ -198,21 +198,19 @@ GaussNewtonPass gaussNewtonPass(const AugmentedParameterBox& box, const std::vec
 }
 
 /// The objective of gaussNewtonPass alone, from the plain simulator (whose values agree with the
-/// dual-number pass bit for bit), summed in the same order so that its MSE is the same number:
-/// what a trial step needs to be accepted or refused, at a fraction of the Jacobian's cost.
-GaussNewtonPass objectivePass(const AugmentedParameterBox& box, const std::vector<double>& x,
-                              const std::vector<CarFollowingRun>& segments, const ResidualWeights& weights)
+/// dual-number pass bit for bit), summed in the same order so that it is the same number:
+/// kDivergedObjective when a simulation diverges. `samples` gets the samples it averages over.
+double plainObjective(const AccParameters& base, const EffectSettings& settings,
+                      const std::vector<CarFollowingRun>& segments, const ResidualWeights& weights,
+                      std::size_t* samples)
 {
-  GaussNewtonPass pass;
-  const AccParameters base = AugmentedParameterBox::baseOf(x);
-  const EffectSettings settings = box.settingsOf(x);
   double sum = 0.0;
   std::size_t count = 0;
   for (const CarFollowingRun& run : segments)
   {
     const SimulatedFollower sim = simulateFollower(base, settings, run);
     if (sim.diverged)
-      return pass;
+      return kDivergedObjective;
     for (std::size_t k = 0; weights.speed != 0.0 && k < run.size(); ++k)
     {
       const double error = weights.speed == 1.0 ? run.follower_speed_mps[k] - sim.speed_mps[k]
@@ -229,23 +227,19 @@ GaussNewtonPass objectivePass(const AugmentedParameterBox& box, const std::vecto
     }
     count += run.size();
   }
+  *samples = count;
   const double mse = count > 0 ? sum / static_cast<double>(count) : 0.0;
-  pass.samples = count;
-  pass.mse = std::isfinite(mse) ? std::min(mse, kDivergedObjective) : kDivergedObjective;
-  pass.diverged = !(pass.mse < kDivergedObjective);
-  return pass;
+  return std::isfinite(mse) ? std::min(mse, kDivergedObjective) : kDivergedObjective;
 }
 
-/// The speeds a model's own loop is checked at: the lowest, median and highest follower speed of
-/// the segments (the gains and the time gap of the speed-dependent effects change with speed).
-std::vector<double> operatingSpeedsMps(const std::vector<CarFollowingRun>& segments)
+/// What a trial step needs to be accepted or refused, at a fraction of the Jacobian's cost.
+GaussNewtonPass objectivePass(const AugmentedParameterBox& box, const std::vector<double>& x,
+                              const std::vector<CarFollowingRun>& segments, const ResidualWeights& weights)
 {
-  std::vector<double> speeds;
-  for (const CarFollowingRun& run : segments)
-    speeds.insert(speeds.end(), run.follower_speed_mps.begin(), run.follower_speed_mps.end());
-  if (speeds.empty())
-    return {};
-  return {interpolatedQuantile(speeds, 0.0), interpolatedQuantile(speeds, 0.5), interpolatedQuantile(speeds, 1.0)};
+  GaussNewtonPass pass;
+  pass.mse = plainObjective(AugmentedParameterBox::baseOf(x), box.settingsOf(x), segments, weights, &pass.samples);
+  pass.diverged = !(pass.mse < kDivergedObjective);
+  return pass;
 }
 
 /// Evaluates the objective at physical points and remembers the best locally stable one ever
@@ -609,24 +603,8 @@ std::vector<double> standardErrors(const std::vector<double>& x, const Augmented
 double augmentedSpeedMse(const AccParameters& p, const EffectSettings& effects,
                          const std::vector<CarFollowingRun>& segments)
 {
-  double sum = 0.0;
-  std::size_t count = 0;
-  for (const CarFollowingRun& run : segments)
-  {
-    const SimulatedFollower sim = simulateFollower(p, effects, run);
-    if (sim.diverged)
-    {
-      return kDivergedObjective;
-    }
-    for (std::size_t k = 0; k < run.size(); ++k)
-    {
-      const double error = run.follower_speed_mps[k] - sim.speed_mps[k];
-      sum += error * error;
-    }
-    count += run.size();
-  }
-  const double mse = count > 0 ? sum / static_cast<double>(count) : 0.0;
-  return std::isfinite(mse) ? std::min(mse, kDivergedObjective) : kDivergedObjective;
+  std::size_t samples = 0;
+  return plainObjective(p, effects, segments, ResidualWeights{}, &samples);
 }
 
 MseWithGradient augmentedSpeedMseWithGradient(const AugmentedParameterBox& box, const std::vector<double>& x,
@@ -641,6 +619,16 @@ MseWithGradient augmentedSpeedMseWithGradient(const AugmentedParameterBox& box, 
   const Eigen::VectorXd gradient = -2.0 / static_cast<double>(pass.samples) * pass.descent;
   result.unit_gradient.assign(gradient.data(), gradient.data() + gradient.size());
   return result;
+}
+
+std::vector<double> loopCheckSpeedsMps(const std::vector<CarFollowingRun>& segments)
+{
+  std::vector<double> speeds;
+  for (const CarFollowingRun& run : segments)
+    speeds.insert(speeds.end(), run.follower_speed_mps.begin(), run.follower_speed_mps.end());
+  if (speeds.empty())
+    return {};
+  return {interpolatedQuantile(speeds, 0.0), interpolatedQuantile(speeds, 0.5), interpolatedQuantile(speeds, 1.0)};
 }
 
 AugmentedFit calibrateAugmented(EffectKind effect, const std::vector<CarFollowingRun>& segments,
@@ -696,7 +684,7 @@ AugmentedFit calibrateAugmentedSet(const std::vector<EffectKind>& effects, const
     throw std::invalid_argument("a clock offset can only be fitted with the speed objective");
   }
   const AugmentedParameterBox box(effects, options);
-  ObjectiveTracker tracker{&box, &segments, residualWeights(options.objective, segments), operatingSpeedsMps(segments)};
+  ObjectiveTracker tracker{&box, &segments, residualWeights(options.objective, segments), loopCheckSpeedsMps(segments)};
   const std::vector<std::vector<double>> starts = warm_start != nullptr && !effects.empty()
                                                       ? effectStarts(effects, *warm_start, options)
                                                       : coldStarts(effects, segments, options, warm_start);

@@ -80,6 +80,9 @@ struct SideSearch
   const std::vector<CarFollowingRun>* train = nullptr;
   double operating_speed_mps = 0.0;
   double side = 1.0;  ///< +1: stable (index >= 0), -1: unstable (index <= 0)
+  /// Both sides are locally stable models, as every fit is (loopCheckSpeedsMps of the training
+  /// data): the test compares the best string-stable and string-unstable cars that can exist.
+  std::vector<double> loop_speeds_mps;
   std::vector<double> best_x;
   double best_mse = std::numeric_limits<double>::infinity();
   std::size_t evaluations = 0;
@@ -117,7 +120,8 @@ struct SideSearch
         std::fill(gradient.begin(), gradient.end(), 0.0);  // diverged: a plateau, the solver turns back
     }
     ++evaluations;
-    if (mse < best_mse && side * index(x).value >= 0.0)
+    if (mse < best_mse && side * index(x).value >= 0.0 &&
+        locallyStableAt(AugmentedParameterBox::baseOf(x), box->settingsOf(x), loop_speeds_mps))
     {
       best_mse = mse;
       best_x = x;
@@ -332,6 +336,11 @@ AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& ch
     return r;
   }
 
+  if (!chosen.locally_stable)
+  {
+    r.reason = "the fit reached no locally stable model, so neither side's best car is known";
+    return r;
+  }
   // The chosen fit is one side's best; the other side's is searched over every parameter of the
   // model (all of its effects), as it was fitted.
   const AugmentedParameterBox box(r.effects, bounds);
@@ -341,6 +350,7 @@ AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& ch
   search.box = &box;
   search.train = &train;
   search.operating_speed_mps = operating_speed_mps;
+  search.loop_speeds_mps = loopCheckSpeedsMps(train);
   search.side = chosen_stable ? -1.0 : 1.0;
   std::vector<std::vector<double>> starts = sideStarts(chosen_x, box, bounds, options);
   for (std::vector<double>& start : nestedSideStart(nested, search.side, r.effects))

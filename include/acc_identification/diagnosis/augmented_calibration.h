@@ -98,7 +98,7 @@ struct AugmentedFit
   double train_objective = std::numeric_limits<double>::infinity();  ///< its value (= train_mse_speed for speed)
   bool diverged = false;              ///< no start found a simulation that does not blow up
   /// The fit is held to models whose own loop is stable (locallyStableAt the training data's
-  /// lowest, median and highest follower speed), as a production ACC's is: false only when no
+  /// loopCheckSpeedsMps), as a production ACC's is: false only when no
   /// start reached one, and the fit is then the best of the unstable models it saw.
   bool locally_stable = true;
   std::size_t evaluations = 0;
@@ -119,6 +119,11 @@ double augmentedSpeedMse(const AccParameters& p, const EffectSettings& effects,
                          const std::vector<CarFollowingRun>& segments);
 
 constexpr double kDivergedObjective = 1.0e6;
+
+/// The speeds at which a fitted model's own loop must be stable (locallyStableAt): the lowest,
+/// median and highest follower speed of the segments, since the gains and the time gap of the
+/// speed-dependent effects change with speed. Empty without samples.
+std::vector<double> loopCheckSpeedsMps(const std::vector<CarFollowingRun>& segments);
 
 /// augmentedSpeedMse at the physical point x of the box and its exact gradient with respect to
 /// x's unit coordinates in the box (from the simulator's sensitivities), for gradient-based
