@@ -4,6 +4,7 @@
 #include <cctype>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <utility>
 
@@ -99,6 +100,26 @@ std::string settingSpelling(const std::string& written, std::map<std::string, st
     notes.push_back(path + ": Distance_setting '" + written + "' taken as '" + known->second +
                     "', as an earlier file writes it");
   return known->second;
+}
+
+/// A ZalaZone setting that names two or three of S, M and L ("SL": the database's mixed runs, the
+/// platoon at the first but for a few cars at the second, listed outside the file).
+bool isMixedSetting(const std::string& setting)
+{
+  const std::string upper = upperCase(setting);
+  return upper.size() >= 2 && upper.size() <= 3 && upper.find_first_not_of("SML") == std::string::npos &&
+         std::set<char>(upper.begin(), upper.end()).size() == upper.size();
+}
+
+/// What a mixed setting means for the grouping, said once per file that has one.
+void noteMixedSetting(const CampaignFile& file, std::vector<std::string>& notes)
+{
+  if (isMixedSetting(file.setting))
+    notes.push_back(file.path + ": Distance_setting '" + file.setting +
+                    "' is a mixed run (in the ZalaZone notes: the platoon at the first setting but for a few "
+                    "cars at the other, which the file does not name): each car's setting here is not known, "
+                    "so its runs of this file form a group of their own at '" + file.setting +
+                    "', apart from its runs at either setting");
 }
 
 /// The file's cars that give the campaign no pair, each with the reader's reason.
@@ -283,6 +304,7 @@ void addFile(const std::string& path, const RunPlausibilityBounds& bounds, Campa
   }
   file.name = file.contents.name;
   file.setting = settingSpelling(file.contents.metadata.distance_setting, setting_spellings, path, inputs.notes);
+  noteMixedSetting(file, inputs.notes);
   AllPairRuns all;
   try
   {
