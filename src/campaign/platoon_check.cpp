@@ -100,6 +100,7 @@ void predictCar(const OpenAccFile& file, const std::vector<double>& input_mps, i
   car.predicted_speed_mps.assign(file.rows(), kNaN);
   std::copy(sim.speed_mps.begin(), sim.speed_mps.begin() + valid, car.predicted_speed_mps.begin() + start);
   car.start_row = start;
+  car.stopped_at_row = sim.diverged ? start + valid : 0;
   car.driven_by_position = driven_by;
   car.predicted = true;
   // A runaway's growth before the divergence bound would swamp any RMSE: a diverged prediction
@@ -235,7 +236,12 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
                        dipShape(time_s, rows, perturbation, options.perturbation)};
   };
   auto predicted = [&](const std::vector<PlatoonCarPrediction>& cars, std::size_t i) {
-    return i < cars.size() && cars[i].predicted ? measure(cars[i].predicted_speed_mps) : DipMeasures{};
+    if (i >= cars.size() || !cars[i].predicted)
+      return DipMeasures{};
+    // A prediction that stopped inside the window would measure part of it (and a runaway's growth).
+    if (cars[i].stopped_at_row > 0 && cars[i].stopped_at_row < check.first_row + perturbation.window_end)
+      return DipMeasures{};
+    return measure(cars[i].predicted_speed_mps);
   };
   auto drivenBy = [](const std::vector<PlatoonCarPrediction>& cars, std::size_t i) {
     return i < cars.size() && cars[i].predicted ? cars[i].driven_by_position : 0;

@@ -155,6 +155,41 @@ TEST(CampaignPlatoon, TheChainRestartsBehindACarWithoutData)
   }
 }
 
+// A prediction the simulation could not carry through a dip window (here its input has a hole in
+// the middle of it; a runaway stops it the same way) has no dip there: the part before the cut
+// would give half a window's minimum. Fails if the cut window is measured.
+TEST(CampaignPlatoon, APredictionStoppedInsideADipWindowHasNoDipThere)
+{
+  const fs::path path = fs::temp_directory_path() / ("acc_campaign_cut_" + std::to_string(::getpid()) + ".csv");
+  acc_test::writeSyntheticPlatoon(path.string(), "S", {{"CAR_A", kUnstable}, {"CAR_B", kUnstable}}, 61, 150.0);
+  acc::CampaignFile file;
+  file.contents = acc::readOpenAccFile(path.string());
+  fs::remove(path);
+  file.name = file.contents.name;
+  const std::vector<acc::PlatoonCarModel> models(4, acc::PlatoonCarModel{true, kUnstable, "truth"});
+  const acc::PlatoonCheck whole = acc::checkPlatoon(file, models);
+  ASSERT_FALSE(whole.perturbations.empty());
+  const acc::Perturbation& first = whole.perturbations.front().perturbation;
+  ASSERT_TRUE(std::isfinite(whole.perturbations.front().positions[2].pair.dip_mps));
+  // CAR_A (position 2) has no speed at one row in the middle of the first window: CAR_B's pair
+  // prediction, driven by it, stops there.
+  const std::size_t hole = whole.first_row + (first.onset + first.window_end) / 2;
+  for (acc::OpenAccVehicle& vehicle : file.contents.vehicles)
+  {
+    if (vehicle.position == 2)
+      vehicle.speed_mps[hole] = std::nan("");
+  }
+  const acc::PlatoonCheck cut = acc::checkPlatoon(file, models);
+  ASSERT_EQ(cut.pairs.size(), 2u);
+  EXPECT_EQ(cut.pairs[1].stopped_at_row, hole + 1) << cut.pairs[1].note;
+  const acc::DipComparison& car_b = cut.perturbations.front().positions[2];
+  EXPECT_TRUE(std::isnan(car_b.pair.dip_mps)) << car_b.pair.dip_mps;
+  EXPECT_TRUE(std::isnan(car_b.pair.distance_lost_m));
+  // Its chain prediction, driven by the predicted CAR_A, is whole and keeps its dip.
+  EXPECT_EQ(cut.cars[1].stopped_at_row, 0u);
+  EXPECT_TRUE(std::isfinite(car_b.chain.dip_mps));
+}
+
 // The platoon diagnosis on cars that react a second late, with gains that make up for it (what the
 // ZalaZone platoons point to). The rule, judging candidates on the dips of platoons predicted
 // without the run, must find a candidate that halves the dip error; the reaction delay must be

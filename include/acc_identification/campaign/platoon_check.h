@@ -99,6 +99,9 @@ struct PlatoonCarPrediction
   /// cars between: 1 for the chain from the first car, position - 1 at pair level; 0 if not predicted.
   int driven_by_position = 0;
   std::vector<double> predicted_speed_mps;  ///< per row of the file; NaN outside the prediction
+  /// The first row the simulation did not reach when it stopped early (it ran away, or its input
+  /// has a hole); 0 when it ran to the end. A dip window it cuts is not measured.
+  std::size_t stopped_at_row = 0;
   double rmse_speed_mps = 0.0;              ///< predicted against measured speed where both exist; NaN if never
   std::string note;                         ///< why not predicted
 };
