@@ -101,7 +101,7 @@ void fitDiagnosed(const CampaignGroup& group, const GroupResult& result, const P
     return;
   }
   const AugmentedFit fit = fitOnAllRuns(candidate, group, result);
-  evidence->diagnosed_available = !fit.diverged && fit.locally_stable;
+  evidence->diagnosed_available = fit.usable();
   if (!fit.diverged && !fit.locally_stable)
     evidence->note = "the diagnosed model's fit reached no locally stable model: not used";
   evidence->diagnosed_fit = fit;

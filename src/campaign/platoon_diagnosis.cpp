@@ -29,7 +29,7 @@ PlatoonCarModel modelOf(const AugmentedFit& fit, const std::string& source)
 {
   PlatoonCarModel model;
   // A model whose own loop is unstable cannot be a car's: its chain would oscillate without bound.
-  model.available = !fit.diverged && fit.locally_stable;
+  model.available = fit.usable();
   model.parameters = fit.base;
   model.effects = fit.effects;
   model.effect_values = fit.effect_values;
@@ -45,9 +45,8 @@ PlatoonCarModel modelOf(const AugmentedFit& fit, const std::string& source)
 /// that is not, and between two of a kind the lower training objective.
 bool betterFit(const AugmentedFit& a, const AugmentedFit& b)
 {
-  const bool a_usable = !a.diverged && a.locally_stable, b_usable = !b.diverged && b.locally_stable;
-  if (a_usable != b_usable)
-    return a_usable;
+  if (a.usable() != b.usable())
+    return a.usable();
   return !a.diverged && (b.diverged || a.train_objective < b.train_objective);
 }
 
@@ -291,7 +290,7 @@ std::vector<PlatoonCarModel> fitCandidateModels(const std::vector<CarFollowingRu
     const AugmentedFit* start = &warm;
     for (std::size_t j = 0; j < i; ++j)
     {
-      if (extendsByOne(candidates[i], candidates[j]) && !fits[j].diverged && fits[j].locally_stable)
+      if (extendsByOne(candidates[i], candidates[j]) && fits[j].usable())
         start = &fits[j];
     }
     AugmentedCalibrationOptions options;

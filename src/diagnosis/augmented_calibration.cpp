@@ -250,7 +250,7 @@ struct ObjectiveTracker
   const AugmentedParameterBox* box;
   const std::vector<CarFollowingRun>* segments;
   ResidualWeights weights;
-  std::vector<double> operating_speeds_mps;
+  std::vector<double> loop_speeds_mps;
   std::vector<double> best_x;
   double best_value = std::numeric_limits<double>::infinity();
   std::vector<double> best_unstable_x;
@@ -265,7 +265,7 @@ struct ObjectiveTracker
     GaussNewtonPass pass = with_jacobian ? gaussNewtonPass(*box, x, *segments, weights)
                                          : objectivePass(*box, x, *segments, weights);
     ++evaluations;
-    pass.locally_stable = locallyStableAt(AugmentedParameterBox::baseOf(x), box->settingsOf(x), operating_speeds_mps);
+    pass.locally_stable = locallyStableAt(AugmentedParameterBox::baseOf(x), box->settingsOf(x), loop_speeds_mps);
     double& best = pass.locally_stable ? best_value : best_unstable_value;
     if (pass.mse < best)
     {

@@ -101,6 +101,8 @@ struct AugmentedFit
   /// loopCheckSpeedsMps), as a production ACC's is: false only when no
   /// start reached one, and the fit is then the best of the unstable models it saw.
   bool locally_stable = true;
+  /// A fit the platoon and the link evidence may use: it neither diverged nor left the stable set.
+  bool usable() const { return !diverged && locally_stable; }
   std::size_t evaluations = 0;
   /// Standard errors of (k1, k2, tau_e, eta, effect values...): the Gauss-Newton sandwich
   /// (J^T J)^-1 M (J^T J)^-1 with a finite-difference Jacobian J of the simulated speeds and M the
