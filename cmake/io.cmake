@@ -4,7 +4,8 @@
 # the integrated speeds). Used by every tool that takes runs. openacc_file.cpp is the one
 # reader of OpenACC files (every layout); the runs and the NMEA conversion are views on it. Its
 # pieces: openacc_text (fields, cells, column names), openacc_angle_unit (radians or degrees),
-# openacc_pairs (which leader-follower pairs a file holds, and the one chosen).
+# openacc_pairs (which leader-follower pairs a file holds, and the one chosen). mixed_setting_listing
+# reads the database's table of the cars at the other setting in its mixed-setting runs.
 acc_add_library(acc_run_io
   SOURCES
     src/io/csv_fields.cpp
@@ -12,6 +13,7 @@ acc_add_library(acc_run_io
     src/io/openacc_text.cpp
     src/io/openacc_angle_unit.cpp
     src/io/openacc_pairs.cpp
+    src/io/mixed_setting_listing.cpp
     src/io/run_csv.cpp
     src/io/run_plausibility.cpp
     src/io/gap_kinematics.cpp

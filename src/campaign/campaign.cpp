@@ -128,7 +128,7 @@ PlatoonCarModel fitPlatoonModelOn(const CampaignInputs& inputs, std::size_t file
 {
   const CampaignFile& file = inputs.files[file_index];
   const std::string name = file.contents.vehicleName(position);
-  const CampaignGroup* group = inputs.findGroup(name, file.setting);
+  const CampaignGroup* group = inputs.findGroup(name, file.settingOf(name));
   const CampaignRun* own = group != nullptr ? group->runIn(file_index) : nullptr;
   if (own == nullptr)
     return {false, {}, "no usable pair of this car in this run"};
@@ -225,7 +225,7 @@ void addDipChecks(const std::vector<PlatoonCheck>& platoons, std::vector<GroupRe
   {
     const DipPredictionSummary dips = summarizeDipPredictions(
         platoons, DipPrediction::pair_base, kScoredMinDipMps, kScoredMinLinkChangeMps, [&group](const PlatoonCheck& check, const DipComparison& row) {
-          return row.name == group.vehicle && check.setting == group.setting;
+          return row.name == group.vehicle && settingOfCar(check.car_settings, check.setting, row.name) == group.setting;
         });
     addDipCheck(group.model_adequacy, dips.car_perturbations, dips.median_abs_dip_error);
   }

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "acc_identification/io/gap_kinematics.h"
+#include "acc_identification/io/mixed_setting_listing.h"
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/model/plain_text.h"
 
@@ -63,6 +64,8 @@ CampaignFileList openAccFilesIn(const std::string& folder)
   {
     if (looksLikeOpenAccFile(path))
       list.files.push_back(path);
+    else if (looksLikeMixedSettingListing(path))
+      list.listings.push_back(path);
     else
       list.skipped.push_back(path + ": not an OpenACC file (its first line is neither a Date line nor a header with "
                                     "Time and a car's Speedk), skipped");
@@ -111,15 +114,112 @@ bool isMixedSetting(const std::string& setting)
          std::set<char>(upper.begin(), upper.end()).size() == upper.size();
 }
 
-/// What a mixed setting means for the grouping, said once per file that has one.
-void noteMixedSetting(const CampaignFile& file, std::vector<std::string>& notes)
+/// One run of a mixed-setting listing: the cars at the listed setting, and the listing's path.
+struct ListedRun
 {
+  std::string setting;
+  std::vector<std::string> cars;
+  std::string listing_path;
+};
+using ListedRuns = std::map<std::string, ListedRun>;  ///< by run name ("handling_part12")
+
+/// Every listing's runs; what a listing leaves out, and a run listed twice, in the notes.
+ListedRuns readListings(const std::vector<std::string>& paths, std::vector<std::string>& notes)
+{
+  ListedRuns runs;
+  for (const std::string& path : paths)
+  {
+    const MixedSettingListing listing = readMixedSettingListing(path);
+    for (const std::string& problem : listing.problems)
+      notes.push_back(path + ": " + problem);
+    if (listing.listed_setting.empty())
+      continue;
+    notes.push_back(path + ": read as the database's listing of mixed-setting runs: " +
+                    std::to_string(listing.cars_by_run.size()) + " run(s) with cars at " + listing.listed_setting);
+    for (const auto& [run, cars] : listing.cars_by_run)
+    {
+      const auto [known, added] = runs.emplace(run, ListedRun{listing.listed_setting, cars, path});
+      if (!added)
+        notes.push_back(path + ": " + run + " is listed in " + known->second.listing_path +
+                        " too: that listing is followed");
+    }
+  }
+  return runs;
+}
+
+/// The file's car of this name in the file's spelling, or "" (matched in any case).
+std::string carNamed(const OpenAccFile& file, const std::string& name)
+{
+  for (int k = 1; k <= file.lastPosition(); ++k)
+  {
+    if (upperCase(file.vehicleName(k)) == upperCase(name))
+      return file.vehicleName(k);
+  }
+  return "";
+}
+
+/// The mixed setting's other letter than `listed` ("SL", "L" -> "S"), or "" when the listed
+/// setting is not one of its two.
+std::string otherSettingOf(const std::string& mixed, const std::string& listed)
+{
+  const std::string upper = upperCase(mixed);
+  if (upper.size() != 2 || upper.find(listed) == std::string::npos)
+    return "";
+  return std::string(1, upper[0] == listed[0] ? upper[1] : upper[0]);
+}
+
+/// Why a listing's entry for this file is not followed, or "" when it is.
+std::string whyListingNotFollowed(const CampaignFile& file, const ListedRun& listed,
+                                  const std::vector<std::string>& unknown_cars)
+{
+  if (!isMixedSetting(file.setting))
+    return "its Distance_setting '" + file.setting + "' is not a mixed one: every car is taken at '" +
+           file.setting + "'";
+  if (otherSettingOf(file.setting, listed.setting).empty())
+    return "'" + listed.setting + "' is not one of the two settings of '" + file.setting + "'";
+  if (!unknown_cars.empty())
+    return join(unknown_cars, ", ") + " not in this file's Vehicle_order";
+  return "";
+}
+
+/// Each car's own setting in a mixed-setting run that a listing names, said in a note; a mixed
+/// run no listing names (or one whose entry does not fit the file) is a group of its own, said too.
+void resolveMixedSetting(CampaignFile& file, const ListedRuns& listed_runs, std::vector<std::string>& notes)
+{
+  const auto entry = listed_runs.find(file.name);
+  std::string why_not;
+  if (entry != listed_runs.end())
+  {
+    const ListedRun& listed = entry->second;
+    std::vector<std::string> unknown_cars, cars;
+    for (const std::string& name : listed.cars)
+    {
+      const std::string car = carNamed(file.contents, name);
+      (car.empty() ? unknown_cars : cars).push_back(car.empty() ? name : car);
+    }
+    why_not = whyListingNotFollowed(file, listed, unknown_cars);
+    if (why_not.empty())
+    {
+      const std::string other = otherSettingOf(file.setting, listed.setting);
+      for (int k = 1; k <= file.contents.lastPosition(); ++k)
+        file.car_settings[file.contents.vehicleName(k)] = other;
+      for (const std::string& car : cars)
+        file.car_settings[car] = listed.setting;
+      notes.push_back(file.path + ": Distance_setting '" + file.setting + "' is a mixed run; " + listed.listing_path +
+                      " names " + join(cars, ", ") + " at " + listed.setting + ": grouped at " + listed.setting +
+                      ", the other cars at " + other);
+      return;
+    }
+    notes.push_back(file.path + ": " + listed.listing_path + " lists " + join(listed.cars, ", ") + " at " +
+                    listed.setting + " in this run, not followed: " + why_not);
+  }
   if (isMixedSetting(file.setting))
     notes.push_back(file.path + ": Distance_setting '" + file.setting +
                     "' is a mixed run (in the ZalaZone notes: the platoon at the first setting but for a few "
-                    "cars at the other, which the file does not name): each car's setting here is not known, "
-                    "so its runs of this file form a group of their own at '" + file.setting +
-                    "', apart from its runs at either setting");
+                    "cars at the other, which the file does not name; the database names them in a separate "
+                    "listing, not given with it" + (why_not.empty() ? "" : " or not followed") +
+                    "): each car's setting here is not known, so its runs of this file form a group of their own at '" +
+                    file.setting + "', apart from its runs at either setting");
 }
 
 /// The file's cars that give the campaign no pair, each with the reader's reason.
@@ -170,9 +270,10 @@ void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile
       rejected.push_back(describePairLosses(pair));
     for (const std::string& disagreement : checkGapKinematics(pair.contents.runs).warnings)
       notes.push_back(file.path + ": " + pair.pair.label() + ": " + disagreement);
-    CampaignGroup& group = groups[{pair.pair.follower_name, file.setting}];
+    const std::string& setting = file.settingOf(pair.pair.follower_name);
+    CampaignGroup& group = groups[{pair.pair.follower_name, setting}];
     group.vehicle = pair.pair.follower_name;
-    group.setting = file.setting;
+    group.setting = setting;
     group.runs.push_back({file_index, pair.pair, pair.contents.runs});
   }
   if (!rejected.empty())
@@ -190,6 +291,18 @@ bool groupLess(const CampaignGroup& a, const CampaignGroup& b)
   return a.setting < b.setting;
 }
 }  // namespace
+
+const std::string& settingOfCar(const std::map<std::string, std::string>& car_settings, const std::string& run_setting,
+                                const std::string& vehicle)
+{
+  const auto own = car_settings.find(vehicle);
+  return own == car_settings.end() ? run_setting : own->second;
+}
+
+const std::string& CampaignFile::settingOf(const std::string& vehicle) const
+{
+  return settingOfCar(car_settings, setting, vehicle);
+}
 
 std::size_t CampaignRun::samples() const
 {
@@ -268,10 +381,11 @@ CampaignFileList listCampaignFiles(const std::vector<std::string>& files_or_fold
       const CampaignFileList found = openAccFilesIn(path);
       list.files.insert(list.files.end(), found.files.begin(), found.files.end());
       list.skipped.insert(list.skipped.end(), found.skipped.begin(), found.skipped.end());
+      list.listings.insert(list.listings.end(), found.listings.begin(), found.listings.end());
     }
     else if (fs::is_regular_file(path))
     {
-      list.files.push_back(path);
+      (looksLikeMixedSettingListing(path) ? list.listings : list.files).push_back(path);
     }
     else
     {
@@ -284,8 +398,8 @@ CampaignFileList listCampaignFiles(const std::vector<std::string>& files_or_fold
 namespace
 {
 /// One file into the inputs: its pairs into the groups, or a note saying why it is skipped.
-void addFile(const std::string& path, const RunPlausibilityBounds& bounds, CampaignInputs& inputs,
-             std::map<std::pair<std::string, std::string>, CampaignGroup>& groups,
+void addFile(const std::string& path, const RunPlausibilityBounds& bounds, const ListedRuns& listed_runs,
+             CampaignInputs& inputs, std::map<std::pair<std::string, std::string>, CampaignGroup>& groups,
              std::map<std::string, std::string>& setting_spellings)
 {
   CampaignFile file;
@@ -304,7 +418,7 @@ void addFile(const std::string& path, const RunPlausibilityBounds& bounds, Campa
   }
   file.name = file.contents.name;
   file.setting = settingSpelling(file.contents.metadata.distance_setting, setting_spellings, path, inputs.notes);
-  noteMixedSetting(file, inputs.notes);
+  resolveMixedSetting(file, listed_runs, inputs.notes);
   AllPairRuns all;
   try
   {
@@ -342,8 +456,9 @@ CampaignInputs loadCampaign(const std::vector<std::string>& paths, const RunPlau
   inputs.skipped_files = list.skipped.size();
   std::map<std::pair<std::string, std::string>, CampaignGroup> groups;
   std::map<std::string, std::string> setting_spellings;  // by the setting in upper case
+  const ListedRuns listed_runs = readListings(list.listings, inputs.notes);
   for (const std::string& path : list.files)
-    addFile(path, bounds, inputs, groups, setting_spellings);
+    addFile(path, bounds, listed_runs, inputs, groups, setting_spellings);
   for (auto& entry : groups)
     inputs.groups.push_back(std::move(entry.second));
   std::sort(inputs.groups.begin(), inputs.groups.end(), groupLess);

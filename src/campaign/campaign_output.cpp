@@ -750,7 +750,12 @@ nlohmann::json campaignToJson(const CampaignInputs& inputs, const CampaignResult
 {
   nlohmann::json files = nlohmann::json::array();
   for (const CampaignFile& file : inputs.files)
-    files.push_back({{"path", file.path}, {"run", file.name}, {"setting", file.setting}});
+  {
+    nlohmann::json entry{{"path", file.path}, {"run", file.name}, {"setting", file.setting}};
+    if (!file.car_settings.empty())
+      entry["car_settings"] = file.car_settings;
+    files.push_back(entry);
+  }
   nlohmann::json vehicles = nlohmann::json::array(), platoons = nlohmann::json::array();
   for (std::size_t i = 0; i < result.groups.size(); ++i)
     vehicles.push_back(vehicleJson(inputs, i, result.groups[i]));

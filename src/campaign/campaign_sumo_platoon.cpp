@@ -54,7 +54,7 @@ std::vector<ChainCar> chainCars(const CampaignFile& file, const std::vector<Sumo
                         contents.vehicleName(position) + "): no speed or no gap to the car ahead in the file");
       break;
     }
-    const std::string id = vtypeIdOf(car->name, file.setting, vtypes, diagnosed, notes);
+    const std::string id = vtypeIdOf(car->name, file.settingOf(car->name), vtypes, diagnosed, notes);
     const SumoAccVType* vtype = findVType(vtypes, id);
     if (vtype == nullptr)
     {

@@ -23,7 +23,7 @@ void collectDips(const std::vector<PlatoonCheck>& platoons, const std::string& v
 {
   for (const PlatoonCheck& check : platoons)
   {
-    if (check.setting != setting)
+    if (settingOfCar(check.car_settings, check.setting, vehicle) != setting)
       continue;
     for (const PerturbationCheck& perturbation : check.perturbations)
     {

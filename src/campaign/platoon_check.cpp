@@ -378,6 +378,7 @@ PlatoonCheck checkPlatoon(const CampaignFile& file, const std::vector<PlatoonCar
   PlatoonCheck check;
   check.run = file.name;
   check.setting = file.setting;
+  check.car_settings = file.car_settings;
   const OpenAccFile& data = file.contents;
   const std::vector<Perturbation> found = leadPerturbations(data, options, &check.first_row, &check.end_row);
   if (check.end_row < check.first_row + 2)

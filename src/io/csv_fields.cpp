@@ -60,6 +60,25 @@ std::vector<std::string> splitCsvFields(const std::string& line)
   return fields;
 }
 
+bool isBlankCsvLine(const std::string& line)
+{
+  return line.find_first_not_of(" \t\r\n,") == std::string::npos;
+}
+
+std::vector<std::string> firstLineFields(const std::string& path)
+{
+  std::ifstream in(path);
+  std::string line;
+  for (bool first = true; std::getline(in, line); first = false)
+  {
+    if (first)
+      line = withoutByteOrderMark(line);
+    if (!isBlankCsvLine(line))
+      return splitCsvFields(line);
+  }
+  return {};
+}
+
 std::string withoutByteOrderMark(const std::string& line)
 {
   static const std::string kUtf8Mark = "\xEF\xBB\xBF";

@@ -276,7 +276,7 @@ bool readMetadataAndHeader(std::istream& in, OpenAccFile& file, std::size_t& lin
     ++line_number;
     if (line_number == 1)
       line = withoutByteOrderMark(line);
-    if (isBlank(line))
+    if (isBlankCsvLine(line))
     {
       continue;
     }
@@ -525,7 +525,7 @@ void readDataRows(std::istream& in, OpenAccFile& file, const std::vector<ColumnT
   while (std::getline(in, line))
   {
     ++line_number;
-    if (isBlank(line))
+    if (isBlankCsvLine(line))
     {
       continue;  // a blank line (usually the last) carries no sample
     }
@@ -800,19 +800,8 @@ std::string OpenAccFile::rowProblem(std::size_t row, const std::vector<std::stri
 
 bool looksLikeOpenAccFile(const std::string& path)
 {
-  std::ifstream in(path);
-  std::string line;
-  for (bool first = true; std::getline(in, line); first = false)
-  {
-    if (first)
-      line = withoutByteOrderMark(line);
-    if (!isBlank(line))
-    {
-      const std::vector<std::string> fields = splitCsvFields(line);
-      return upperCase(fields[0]) == "DATE" || isHeaderWithoutMetadata(fields);
-    }
-  }
-  return false;
+  const std::vector<std::string> fields = firstLineFields(path);
+  return !fields.empty() && (upperCase(fields[0]) == "DATE" || isHeaderWithoutMetadata(fields));
 }
 
 OpenAccFile readOpenAccFile(const std::string& path)

@@ -27,11 +27,6 @@ std::string trim(const std::string& text)
   return text.substr(first, last - first + 1);
 }
 
-bool isBlank(const std::string& line)
-{
-  return line.find_first_not_of(" \t\r\n,") == std::string::npos;
-}
-
 std::optional<long> parseInteger(const std::string& text)
 {
   if (text.empty())

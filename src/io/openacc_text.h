@@ -18,8 +18,6 @@ namespace openacc
 {
 /// Without the spaces, tabs and line ends around it.
 std::string trim(const std::string& text);
-/// Nothing but white space and commas.
-bool isBlank(const std::string& line);
 /// A whole decimal number, the whole text; nullopt otherwise.
 std::optional<long> parseInteger(const std::string& text);
 

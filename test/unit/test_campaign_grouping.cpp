@@ -377,6 +377,76 @@ TEST(CampaignInputs, AMixedSettingIsAGroupOfItsOwnAndSaid)
   EXPECT_FALSE(acc_test::anyContains(inputs.notes, {"short.csv: Distance_setting"}));
 }
 
+/// The database's table of mixed runs' long-setting cars, as it ships it (any file name).
+void writeListing(const std::string& path, const std::string& rows)
+{
+  std::ofstream(path) << "\xEF\xBB\xBF" "filename,Long timegap setting\n" << rows;
+}
+
+std::vector<std::string> groupLabels(const acc::CampaignInputs& inputs)
+{
+  std::vector<std::string> labels;
+  for (const acc::CampaignGroup& group : inputs.groups)
+    labels.push_back(group.label() + " " + std::to_string(group.runs.size()));
+  return labels;
+}
+
+// With the database's listing in the folder, each car of a mixed run joins its own setting's
+// group, and its platoon model is fitted on that group's other runs. Fails when the listing is
+// skipped as a stray CSV, or the platoon model still looks the car up at the file's setting.
+TEST(CampaignInputs, AListedMixedRunGroupsEachCarAtItsOwnSetting)
+{
+  TempFolder folder("acc_campaign_listed_mixed");
+  acc_test::writeSyntheticPlatoon(folder.file("short.csv"), "S", {kAS, kBS}, 73, 60.0);
+  acc_test::writeSyntheticPlatoon(folder.file("long.csv"), "L", {kAL, kBL}, 74, 60.0);
+  acc_test::writeSyntheticPlatoon(folder.file("handling_part12.csv"), "SL", {kAS, kBL}, 75, 60.0);
+  writeListing(folder.file("Long setting vehs in mixed timegap experiment handling.csv"),
+               "handling_part5,CAR_C\nhandling_part12.csv,car_b\n");
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.path()});
+  std::string all;
+  for (const std::string& note : inputs.notes)
+    all += note + "\n";
+  EXPECT_EQ(groupLabels(inputs), (std::vector<std::string>{"CAR_A/S 2", "CAR_A/L 1", "CAR_B/S 1", "CAR_B/L 2"})) << all;
+  EXPECT_EQ(inputs.skipped_files, 0u) << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"handling_part12.csv: Distance_setting 'SL' is a mixed run; ",
+                                                   "names CAR_B at L: grouped at L, the other cars at S"}))
+      << all;
+  const acc::CampaignFile& mixed = inputs.files[0];  // natural order: handling_part12, long, short
+  ASSERT_EQ(mixed.name, "handling_part12");
+  EXPECT_EQ(mixed.settingOf("CAR_B"), "L");
+  EXPECT_EQ(mixed.settingOf("CAR_A"), "S");
+  const std::string b_source = acc::fitPlatoonModel(inputs, 0, 3, 5).source;
+  const std::string a_source = acc::fitPlatoonModel(inputs, 0, 2, 5).source;
+  EXPECT_EQ(b_source.rfind("leave-one-run-out: 1 other run(s) of CAR_B/L", 0), 0u) << b_source;
+  EXPECT_EQ(a_source.rfind("leave-one-run-out: 1 other run(s) of CAR_A/S", 0), 0u) << a_source;
+}
+
+// A listing entry that does not fit its file is not followed, and says why; the mixed run then
+// stays a group of its own. Fails when a car the file does not hold, or a plain setting, is
+// taken from the listing.
+TEST(CampaignInputs, AListingEntryThatDoesNotFitItsFileIsNotFollowed)
+{
+  TempFolder folder("acc_campaign_unfit_listing");
+  acc_test::writeSyntheticPlatoon(folder.file("mixed.csv"), "SL", {kAS, kBS}, 76, 60.0);
+  acc_test::writeSyntheticPlatoon(folder.file("plain.csv"), "S", {kAS, kBS}, 77, 60.0);
+  writeListing(folder.file("listing.csv"), "mixed,CAR_Z\nplain,CAR_B\nplain,CAR_A\n,CAR_A\n");
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.path()});
+  std::string all;
+  for (const std::string& note : inputs.notes)
+    all += note + "\n";
+  EXPECT_EQ(groupLabels(inputs), (std::vector<std::string>{"CAR_A/S 1", "CAR_A/SL 1", "CAR_B/S 1", "CAR_B/SL 1"}))
+      << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"mixed.csv: ", "lists CAR_Z at L in this run, not followed: CAR_Z "
+                                                   "not in this file's Vehicle_order"}))
+      << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"mixed.csv: Distance_setting 'SL' is a mixed run", "or not followed"}))
+      << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"plain.csv: ", "not followed: its Distance_setting 'S' is not a mixed one"}))
+      << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"listing.csv: line 4: plain listed a second time, left out"})) << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"listing.csv: line 5: no file named, left out"})) << all;
+}
+
 TEST(CampaignInputs, MetadataThatContradictTheColumnsAreSaid)
 {
   TempFolder folder("acc_campaign_metadata");

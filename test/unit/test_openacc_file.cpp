@@ -13,6 +13,7 @@
 
 #include <unistd.h>
 
+#include "acc_identification/io/mixed_setting_listing.h"
 #include "acc_identification/io/openacc_file.h"
 #include "acc_identification/io/run_csv.h"
 #include "line_matchers.h"
@@ -486,5 +487,25 @@ TEST_F(OpenAccFileTest, AHeaderFirstNeedsTimeAndACarsSpeedToBeOpenAcc)
   // Metadata lines before the header but no Date or Vehicle_order: still refused, as before.
   const acc::OpenAccFile partial = acc::readOpenAccFile(write("partial.csv", "ACC,1\n" + astaZeroFile(3)));
   EXPECT_NE(partial.error.find("metadata missing before the header"), std::string::npos) << partial.error;
+}
+
+// The database's table of mixed-setting runs is known by its header, whatever its name; the
+// setting it lists is its header's first word. Fails when another CSV passes for one, or when a
+// header naming no known setting is taken for one setting.
+TEST_F(OpenAccFileTest, AMixedSettingListingIsKnownByItsHeaderAndNamesItsSetting)
+{
+  const std::string medium = write("m.csv", "\n filename , Medium timegap setting\nhandling_part3,AUDI_A4 / MAZDA_3/\n");
+  EXPECT_TRUE(acc::looksLikeMixedSettingListing(medium));
+  const acc::MixedSettingListing read = acc::readMixedSettingListing(medium);
+  EXPECT_EQ(read.listed_setting, "M");
+  ASSERT_EQ(read.cars_by_run.count("handling_part3"), 1u);
+  EXPECT_EQ(read.cars_by_run.at("handling_part3"), (std::vector<std::string>{"AUDI_A4", "MAZDA_3"}));
+  EXPECT_TRUE(read.problems.empty()) << joined(read.problems);
+  const acc::MixedSettingListing odd = acc::readMixedSettingListing(write("o.csv", "filename,Odd setting\nx,CAR\n"));
+  EXPECT_EQ(odd.listed_setting, "");
+  EXPECT_TRUE(anyContains(odd.problems, {"line 1: 'Odd setting' names no setting known"})) << joined(odd.problems);
+  EXPECT_FALSE(acc::looksLikeMixedSettingListing(write("v.csv", "filename,vehicle\nx,CAR\n")));
+  EXPECT_FALSE(acc::looksLikeMixedSettingListing(write("p.csv", kPlatoonMetadata)));
+  EXPECT_TRUE(anyContains(acc::readMixedSettingListing((dir_ / "absent.csv").string()).problems, {"cannot open"}));
 }
 }  // namespace

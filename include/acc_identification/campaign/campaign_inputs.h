@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,10 @@
 
 namespace acc
 {
+/// A car's setting in a run: its own from `car_settings` (a resolved mixed run), else the run's.
+const std::string& settingOfCar(const std::map<std::string, std::string>& car_settings, const std::string& run_setting,
+                                const std::string& vehicle);
+
 /// One OpenACC file of a campaign: the file as read (every car's speed and gap, for the platoon
 /// check) and its distance setting.
 struct CampaignFile
@@ -18,6 +23,12 @@ struct CampaignFile
   std::string name;     ///< "dynamic_part12"
   std::string setting;  ///< the Distance_setting line ("S", "M", "L"; "?" when absent)
   OpenAccFile contents;
+  /// Each car's own setting where the file's is a mixed one ("SL") that a mixed-setting listing
+  /// resolves (io/mixed_setting_listing.h): by vehicle name, every car of the file; else empty.
+  std::map<std::string, std::string> car_settings;
+
+  /// The car's setting: its own from car_settings, else the file's.
+  const std::string& settingOf(const std::string& vehicle) const;
 };
 
 /// One leader-follower pair of one file: the follower's runs there (a pair's data split at NaN
@@ -70,17 +81,21 @@ struct CampaignFileList
 {
   std::vector<std::string> files;
   std::vector<std::string> skipped;  ///< "path: not an OpenACC file (...), skipped"
+  std::vector<std::string> listings;  ///< the database's mixed-setting tables (looksLikeMixedSettingListing)
 };
 
 /// The files to read: each FILE as given, each folder's *.csv files that look like OpenACC files
 /// (looksLikeOpenAccFile), in natural name order (part5 before part12); a folder's other *.csv
 /// files are listed as skipped. Throws std::invalid_argument for a path that is neither a file nor
-/// a folder, or a folder without any OpenACC file.
+/// a folder, or a folder without any OpenACC file. A mixed-setting listing, given or in a folder,
+/// goes to `listings`.
 CampaignFileList listCampaignFiles(const std::vector<std::string>& files_or_folders);
 
 /// Reads every file (readOpenAccFile and readAllPairRuns: every available pair) and groups the
 /// followers by (vehicle name, Distance_setting; a setting written in another case than an earlier
-/// file's takes the earlier spelling). A file that cannot be read as OpenACC, or a pair without
+/// file's takes the earlier spelling). In a mixed-setting run ("SL") that a listing among the paths
+/// names, each car is grouped at its own setting (CampaignFile::car_settings), said in a note; one
+/// no listing names is a group of its own at "SL", said too. A file that cannot be read as OpenACC, or a pair without
 /// usable runs, is skipped with a note that says why, and counted. What a read file loses is a
 /// note too: duplicate rows dropped, cars without data or without a pair, the rows each pair
 /// rejects, a first car without data, where a pair's gap and speeds disagree

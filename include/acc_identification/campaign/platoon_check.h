@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -110,7 +111,8 @@ struct PlatoonCarPrediction
 struct PlatoonCheck
 {
   std::string run;      ///< the file's name
-  std::string setting;
+  std::string setting;  ///< the file's
+  std::map<std::string, std::string> car_settings;  ///< as CampaignFile::car_settings (a resolved mixed run)
   std::size_t first_row = 0, end_row = 0;  ///< the rows simulated (the first car's longest stretch with data)
   std::vector<PlatoonCarPrediction> cars;  ///< position 2 onwards
   /// The same chain with each car's diagnosed model (empty when none were given).

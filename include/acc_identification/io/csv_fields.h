@@ -13,6 +13,13 @@ namespace acc
 /// line's end.
 std::vector<std::string> splitCsvFields(const std::string& line);
 
+/// Nothing but white space and commas (a spreadsheet's empty row).
+bool isBlankCsvLine(const std::string& line);
+
+/// The fields of the file's first line that is not blank, its byte-order mark dropped; empty when
+/// the file has none or cannot be opened. What a reader tells a file's kind by.
+std::vector<std::string> firstLineFields(const std::string& path);
+
 /// The line without the UTF-8 byte-order mark a spreadsheet export may put at a file's start.
 std::string withoutByteOrderMark(const std::string& line);
 
