@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <optional>
@@ -42,13 +43,6 @@ bool isRealDay(long year, long month, long day)
   return day <= kDays[month - 1] + (month == 2 && isLeapYear(year) ? 1 : 0);
 }
 
-std::string baseName(const std::string& path)
-{
-  const auto slash = path.find_last_of('/');
-  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  const auto dot = name.find_last_of('.');
-  return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
-}
 
 
 /// Where one column's values go while the rows are read.
@@ -808,7 +802,7 @@ OpenAccFile readOpenAccFile(const std::string& path)
 {
   OpenAccFile file;
   file.path = path;
-  file.name = baseName(path);
+  file.name = std::filesystem::path(path).stem().string();
   std::ifstream in(path);
   if (!in)
   {

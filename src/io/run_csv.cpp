@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -72,13 +73,6 @@ std::optional<double> parseNumber(const std::string& text)
   return value;
 }
 
-std::string baseName(const std::string& path)
-{
-  const auto slash = path.find_last_of('/');
-  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  const auto dot = name.find_last_of('.');
-  return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
-}
 
 /// Accumulates rows into runs, closing the current run at every split point, and accounts for
 /// every row it rejects and every hole it splits at in contents.
@@ -253,7 +247,7 @@ RunFileContents readCanonicalFile(const std::string& path, const RunPlausibility
                               "first 20 lines, and no OpenACC Date line or Time,Speed1,... header first" +
                        semicolonSeparatorHint(path));
   }
-  RunAssembler assembler(path, baseName(path), "", bounds, contents);
+  RunAssembler assembler(path, std::filesystem::path(path).stem().string(), "", bounds, contents);
   while (std::getline(file, line))
   {
     ++line_number;
