@@ -411,6 +411,7 @@ nlohmann::json platoonJson(const PlatoonCheck& check, const EffectSetSelection* 
                              {"lead_median_mps", p.perturbation.lead_median_mps},
                              {"positions", positionsJson(p.positions)},
                              {"data_show_growth", p.data_show_growth},
+                             {"driven_by_hand", p.driven_by_hand},
                              {"disagreements", disagreementsJson(p.disagreements)}});
     for (const auto& d : disagreementsJson(p.disagreements))
       disagreements.push_back(d);

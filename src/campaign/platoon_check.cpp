@@ -9,6 +9,7 @@
 
 #include "acc_identification/diagnosis/augmented_stability.h"
 #include "acc_identification/model/follower_simulation.h"
+#include "acc_identification/model/plain_text.h"
 
 namespace acc
 {
@@ -222,6 +223,21 @@ bool dataShowGrowth(const std::vector<DipComparison>& positions)
   return std::isfinite(first) && std::isfinite(last) && last > first;
 }
 
+/// The cars of one perturbation not compared because they were driven by hand, in one note.
+void noteDrivenByHand(const OpenAccFile& data, const PerturbationCheck& perturbation, std::size_t index,
+                      std::vector<std::string>& notes)
+{
+  if (perturbation.driven_by_hand.empty())
+    return;
+  std::vector<std::string> cars;
+  for (int position : perturbation.driven_by_hand)
+    cars.push_back(data.vehicleName(position) + " (" + std::to_string(position) + ")");
+  notes.push_back("perturbation " + std::to_string(index + 1) + " (onset " +
+                  printfText("%.1f s", perturbation.perturbation.onset_s) + "): " + join(cars, ", ") +
+                  " not on ACC (Driver column) between the stretch's start and the window's end: " +
+                  "their predictions, and the chains' behind them, are not compared");
+}
+
 PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFile& data,
                                       const std::vector<double>& time_s, const Perturbation& perturbation,
                                       std::size_t index, const PlatoonCheckOptions& options)
@@ -245,6 +261,16 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
   };
   auto drivenBy = [](const std::vector<PlatoonCarPrediction>& cars, std::size_t i) {
     return i < cars.size() && cars[i].predicted ? cars[i].driven_by_position : 0;
+  };
+  for (const PlatoonCarPrediction& car : check.cars)
+  {
+    if (!onAccThroughout(data, car.position, check.first_row, check.first_row + perturbation.window_end))
+      result.driven_by_hand.push_back(car.position);
+  }
+  // A prediction passes through the cars from the real car driving it to its own position.
+  auto throughHand = [&result](int driven_by, int position) {
+    return std::any_of(result.driven_by_hand.begin(), result.driven_by_hand.end(),
+                       [&](int hand) { return driven_by < hand && hand <= position; });
   };
   DipComparison lead;
   lead.position = 1;
@@ -271,6 +297,12 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
     row.pair_diagnosed = predicted(check.pairs_diagnosed, i);
     row.chain_driven_by = drivenBy(check.cars, i);
     row.chain_diagnosed_driven_by = drivenBy(check.cars_diagnosed, i);
+    if (throughHand(row.chain_driven_by, row.position))
+      row.chain = DipMeasures{};
+    if (throughHand(row.chain_diagnosed_driven_by, row.position))
+      row.chain_diagnosed = DipMeasures{};
+    if (throughHand(row.position - 1, row.position))
+      row.pair = row.pair_diagnosed = DipMeasures{};
     const DipComparison& ahead = result.positions.back();
     // Behind the real car driving a chain, the car ahead's dip is its measured one (as the first car's).
     auto chainDipAhead = [&ahead](const DipMeasures& chain, int driven_by) {
@@ -287,6 +319,17 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
   return result;
 }
 }  // namespace
+
+bool onAccThroughout(const OpenAccFile& file, int position, std::size_t from_row, std::size_t to_row)
+{
+  const OpenAccVehicle* car = file.vehicle(position);
+  for (std::size_t row = from_row; car != nullptr && row < std::min(to_row, file.rows()); ++row)
+  {
+    if (!isOnAccAt(file, *car, row))
+      return false;
+  }
+  return true;
+}
 
 std::string describeRowsLeftOut(const OpenAccFile& file, std::size_t first_row, std::size_t end_row)
 {
@@ -410,7 +453,10 @@ PlatoonCheck checkPlatoon(const CampaignFile& file, const std::vector<PlatoonCar
     check.notes.push_back("no perturbation: the first car's speed never drops more than " +
                           printfText("%.1f m/s", options.perturbation.drop_below_median_mps) + " below its median");
   for (std::size_t i = 0; i < found.size(); ++i)
+  {
     check.perturbations.push_back(comparePerturbation(check, data, time_s, found[i], i, options));
+    noteDrivenByHand(data, check.perturbations.back(), i, check.notes);
+  }
   return check;
 }
 

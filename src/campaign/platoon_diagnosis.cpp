@@ -345,7 +345,9 @@ std::vector<PairPerturbationScore> scorePairPerturbations(const CampaignFile& fi
       score.window_mse.push_back(perturbationWindowMse(time_s, predicted, measured, perturbation, options.perturbation));
       score.predicted_dip_mps.push_back(dipDepthMps(time_s, predicted, perturbation, options.perturbation));
     }
-    if (std::isfinite(score.measured_dip_mps))
+    // As the platoon check: a car driven by hand before the window's end is not scored.
+    if (std::isfinite(score.measured_dip_mps) &&
+        onAccThroughout(data, position, first_row, first_row + perturbation.window_end))
       scores.push_back(std::move(score));
   }
   return scores;

@@ -688,6 +688,13 @@ void noteBadCellsAndRows(OpenAccFile& file)
 
 bool isAccDriverCell(const std::string& cell) { return upperCase(cell) == "ACC"; }
 
+bool isOnAccAt(const OpenAccFile& file, const OpenAccVehicle& car, std::size_t row)
+{
+  if (car.has_driver)
+    return isAccDriverCell(car.driver[row]);
+  return file.metadata.acc != 0 && file.metadata.acc != 2;
+}
+
 std::string describeDuplicateRows(const OpenAccFile& file)
 {
   constexpr std::size_t kLinesNamed = 10;

@@ -335,8 +335,7 @@ RunFileContents readPairRuns(const OpenAccFile& file, const OpenAccPair& pair, c
   {
     ++contents.data_rows;
     const std::string problem = pairRowProblem(file, pair, i);
-    const bool acc_on = source == AccSource::kDriverColumn ? isAccDriverCell(follower.driver[i])
-                                                           : source == AccSource::kOnThroughout;
+    const bool acc_on = isOnAccAt(file, follower, i);
     if (!problem.empty())
     {
       assembler.reject(file.line[i], problem);

@@ -434,3 +434,51 @@ TEST(PlatoonCandidates, TextReadsBackAndOnlyCandidatesMayBeForced)
   EXPECT_FALSE(acc::isPlatoonCandidate({{acc::EffectKind::reaction_delay, acc::EffectKind::reaction_delay},
                                         acc::FitObjective::speed}));
 }
+
+// A car driven by hand (its Driver column) before a perturbation's window ends is no test of its
+// ACC model: its predictions there, and the chain's behind it, are not compared, and a note says
+// so; the car behind is still compared at pair level (driven by the real car's speed), and a hand
+// driven stretch after the window leaves it alone. Fails when the Driver column is ignored.
+TEST(CampaignPlatoon, ACarDrivenByHandBeforeTheWindowsEndIsNotCompared)
+{
+  const fs::path path = fs::temp_directory_path() / ("acc_campaign_hand_" + std::to_string(::getpid()) + ".csv");
+  acc_test::writeSyntheticPlatoon(path.string(), "S", {{"CAR_A", kUnstable}, {"CAR_B", kUnstable}, {"CAR_C", kUnstable}},
+                                  71, 150.0);
+  acc::CampaignFile file;
+  file.contents = acc::readOpenAccFile(path.string());
+  fs::remove(path);
+  file.name = file.contents.name;
+  const std::vector<acc::PlatoonCarModel> models(5, acc::PlatoonCarModel{true, kUnstable, "truth"});
+  // Every follower on ACC by its Driver column, CAR_B (position 3) driven by hand at one row.
+  auto withHumanAt = [&file](std::size_t row) {
+    acc::CampaignFile edited = file;
+    for (acc::OpenAccVehicle& vehicle : edited.contents.vehicles)
+    {
+      vehicle.has_driver = vehicle.position >= 2;
+      vehicle.driver.assign(edited.contents.rows(), vehicle.has_driver ? "ACC" : "");
+      if (vehicle.position == 3)
+        vehicle.driver[row] = "Human";
+    }
+    return edited;
+  };
+  const acc::PlatoonCheck all_acc = acc::checkPlatoon(file, models);
+  ASSERT_EQ(all_acc.perturbations.size(), 1u);
+  const acc::Perturbation& window = all_acc.perturbations.front().perturbation;
+
+  const acc::PlatoonCheck before = acc::checkPlatoon(withHumanAt(all_acc.first_row + window.onset / 2), models);
+  const acc::PerturbationCheck& p = before.perturbations.front();
+  EXPECT_EQ(p.driven_by_hand, (std::vector<int>{3}));
+  const acc::DipComparison &car_a = p.positions[1], &car_b = p.positions[2], &car_c = p.positions[3];
+  EXPECT_TRUE(std::isfinite(car_a.chain.dip_mps) && std::isfinite(car_a.pair.dip_mps));
+  EXPECT_TRUE(std::isfinite(car_b.measured.dip_mps));
+  EXPECT_TRUE(std::isnan(car_b.chain.dip_mps) && std::isnan(car_b.pair.dip_mps));
+  EXPECT_TRUE(std::isnan(car_c.chain.dip_mps)) << "driven through the car driven by hand";
+  EXPECT_TRUE(std::isfinite(car_c.pair.dip_mps)) << "driven by the real car's measured speed";
+  EXPECT_TRUE(std::any_of(before.notes.begin(), before.notes.end(), [](const std::string& note) {
+    return note.find("CAR_B (3) not on ACC (Driver column)") != std::string::npos;
+  }));
+
+  const acc::PlatoonCheck after = acc::checkPlatoon(withHumanAt(all_acc.first_row + window.window_end + 10), models);
+  EXPECT_TRUE(after.perturbations.front().driven_by_hand.empty());
+  EXPECT_DOUBLE_EQ(after.perturbations.front().positions[3].chain.dip_mps, all_acc.perturbations.front().positions[3].chain.dip_mps);
+}

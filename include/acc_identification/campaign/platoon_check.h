@@ -85,6 +85,10 @@ struct PerturbationCheck
   std::vector<DipComparison> positions;  ///< every car of the file, by position
   /// The measured dip of the last car with data exceeds the first car's.
   bool data_show_growth = false;
+  /// Positions whose car was not on ACC somewhere from the checked stretch's start to this window's
+  /// end (onAccThroughout): their predictions, and the chains driven through them, are not compared
+  /// (NaN); their measured dips stay.
+  std::vector<int> driven_by_hand;
   std::vector<PlatoonDisagreement> disagreements;
 };
 
@@ -131,6 +135,12 @@ struct PlatoonCheckOptions
   /// Steps longer than this end the first car's stretch (a hole in the data).
   double max_time_step_s = 0.5;
 };
+
+/// Whether the car at `position` was on ACC in every row of [from_row, to_row) (isOnAccAt). Where
+/// it was not, its ACC model's prediction is no prediction of what it did (it runs free from the
+/// stretch's start, so a stretch driven by hand before a perturbation counts too), and a chain
+/// driven through it none of the cars behind.
+bool onAccThroughout(const OpenAccFile& file, int position, std::size_t from_row, std::size_t to_row);
 
 /// Predicts every following car of the file: car k is simulated (simulateFollower) with
 /// models[k] (index = position; entries 0 and 1 unused) from its measured gap and speed at the

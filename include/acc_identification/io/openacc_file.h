@@ -137,6 +137,11 @@ struct OpenAccFile
 /// A Driverk cell that says ACC, in any case ("ACC", "acc"); the database writes ACC or Human.
 bool isAccDriverCell(const std::string& cell);
 
+/// Whether the car is known to be on ACC at this row: its Driver cell says ACC; without a Driver
+/// column, the file's ACC line is 1 or absent. The one rule the run readers and the platoon check
+/// follow.
+bool isOnAccAt(const OpenAccFile& file, const OpenAccVehicle& car, std::size_t row);
+
 /// "path: 3 rows with the same cells as the row before, dropped as duplicates (lines 12, 40, 41)".
 std::string describeDuplicateRows(const OpenAccFile& file);
 
