@@ -109,22 +109,53 @@ bool ratioEntersModel(const ForwardDual<N>& ratio)
   return ratio.value != 1.0 || ratio.derivative != std::array<double, N>{};
 }
 
+/// Which optional terms enter the law: decided once per simulation rather than at every step (a
+/// dual number's test looks at its every derivative), with the same outcome.
+struct LawTerms
+{
+  bool shaped = false;             ///< response options: a gain ratio or a gain schedule
+  bool gain_schedule = false;      ///< gains scheduled on speed
+  bool gap_slope = false;          ///< time gap growing with speed
+  bool feedforward = false;        ///< the leader's acceleration
+  bool kinematic_braking = false;  ///< the quadratic closing response
+  bool cruise = false;             ///< a set speed caps the command
+  bool acceleration_limit = false, deceleration_limit = false;
+};
+
+template <typename Scalar>
+LawTerms lawTermsOf(const ModelScalars<Scalar>& m)
+{
+  LawTerms terms;
+  terms.gain_schedule = entersModel(m.gain_speed_slope_s_per_m);
+  terms.shaped = ratioEntersModel(m.short_gap_gain_ratio) || ratioEntersModel(m.closing_gain_ratio) ||
+                 terms.gain_schedule;
+  terms.gap_slope = entersModel(m.time_gap_speed_slope_s2_per_m);
+  terms.feedforward = entersModel(m.leader_acceleration_gain);
+  terms.kinematic_braking = entersModel(m.kinematic_braking_ratio);
+  terms.cruise = std::isfinite(valueOf(m.set_speed_mps));
+  // An infinite limit never binds (a non-finite command runs away either way).
+  terms.acceleration_limit = std::isfinite(valueOf(m.max_acceleration_mps2));
+  terms.deceleration_limit = std::isfinite(valueOf(m.max_deceleration_mps2));
+  return terms;
+}
+
 /// The law with response options: gains scheduled on speed, and each gain multiplied by its ratio
 /// on its own side (k1 while the spacing error is negative, k2 while closing in). Only called when
 /// one of them enters the model, so that the paper's arithmetic stays as it is otherwise.
 template <typename Scalar, typename Leader>
-Scalar shapedLaw(const ModelScalars<Scalar>& m, const Scalar& gap, const Scalar& speed, const Leader& leader_speed)
+Scalar shapedLaw(const ModelScalars<Scalar>& m, const LawTerms& terms, const Scalar& gap, const Scalar& speed,
+                 const Leader& leader_speed)
 {
   using std::exp;
   Scalar spacing_error = gap - m.eta - m.tau_e * speed;
-  if (entersModel(m.time_gap_speed_slope_s2_per_m))
+  if (terms.gap_slope)
   {
     spacing_error = spacing_error - m.time_gap_speed_slope_s2_per_m * speed * speed;
   }
   const Scalar relative_speed = leader_speed - speed;
   Scalar k1 = m.k1;
   Scalar k2 = m.k2;
-  if (entersModel(m.gain_speed_slope_s_per_m))
+  if (terms.gain_schedule)
   {
     const Scalar schedule = exp(m.gain_speed_slope_s_per_m * (speed - kGainReferenceSpeedMps));
     k1 = k1 * schedule;
@@ -143,18 +174,17 @@ Scalar shapedLaw(const ModelScalars<Scalar>& m, const Scalar& gap, const Scalar&
 
 /// The law with the spacing-policy, response and cruise options, then the actuator's limits.
 template <typename Scalar, typename Leader>
-Scalar commandedAcceleration(const ModelScalars<Scalar>& m, const Scalar& gap, const Scalar& speed,
-                             const Leader& leader_speed, const Leader& leader_acceleration)
+Scalar commandedAcceleration(const ModelScalars<Scalar>& m, const LawTerms& terms, const Scalar& gap,
+                             const Scalar& speed, const Leader& leader_speed, const Leader& leader_acceleration)
 {
-  const bool shaped = ratioEntersModel(m.short_gap_gain_ratio) || ratioEntersModel(m.closing_gain_ratio) ||
-                      entersModel(m.gain_speed_slope_s_per_m);
-  Scalar command = shaped ? shapedLaw(m, gap, speed, leader_speed)
-                          : accelerationLaw<Scalar>(m.k1, m.k2, m.tau_e, m.eta, gap, speed, leader_speed - speed);
-  if (entersModel(m.leader_acceleration_gain))
+  Scalar command = terms.shaped
+                       ? shapedLaw(m, terms, gap, speed, leader_speed)
+                       : accelerationLaw<Scalar>(m.k1, m.k2, m.tau_e, m.eta, gap, speed, leader_speed - speed);
+  if (terms.feedforward)
   {
     command += m.leader_acceleration_gain * leader_acceleration;
   }
-  if (entersModel(m.kinematic_braking_ratio))
+  if (terms.kinematic_braking)
   {
     const Scalar relative_speed = leader_speed - speed;
     if (valueOf(relative_speed) < 0.0)
@@ -164,18 +194,25 @@ Scalar commandedAcceleration(const ModelScalars<Scalar>& m, const Scalar& gap, c
       command = command - m.kinematic_braking_ratio * kinematic_deceleration;
     }
   }
-  if (!shaped && entersModel(m.time_gap_speed_slope_s2_per_m))
+  if (!terms.shaped && terms.gap_slope)
   {
     command = command - m.k1 * m.time_gap_speed_slope_s2_per_m * speed * speed;
   }
-  if (std::isfinite(valueOf(m.set_speed_mps)))
+  if (terms.cruise)
   {
     const Scalar cruise = m.cruise_gain_per_s * (m.set_speed_mps - speed);
     command = smallerOf(command, cruise);
   }
-  const Scalar limited = smallerOf(m.max_acceleration_mps2, command);
-  const Scalar floor = -m.max_deceleration_mps2;
-  return largerOf(floor, limited);
+  if (terms.acceleration_limit)
+  {
+    command = smallerOf(m.max_acceleration_mps2, command);
+  }
+  if (terms.deceleration_limit)
+  {
+    const Scalar floor = -m.max_deceleration_mps2;
+    command = largerOf(floor, command);
+  }
+  return command;
 }
 
 /// The recursion of simulateFollower() for any scalar type, `leader` the speeds the ACC saw.
@@ -189,6 +226,7 @@ std::size_t runRecursion(const ModelScalars<Scalar>& m, const CarFollowingRun& r
   const std::size_t n = run.size();
   // The commands so far, kept only when a reaction delay reads them back.
   const bool delayed = valueOf(m.reaction_delay_s) > 0.0;
+  const LawTerms terms = lawTermsOf(m);
   std::vector<Scalar> commands(delayed ? n : 0, Scalar(0.0));
   std::size_t delay_cursor = 0;
   Scalar speed = run.follower_speed_mps[0];
@@ -199,10 +237,10 @@ std::size_t runRecursion(const ModelScalars<Scalar>& m, const CarFollowingRun& r
   {
     const double step_s = run.time_s[k + 1] - run.time_s[k];
     const Scalar relative_speed = leader[k] - speed;
-    const Leader leader_acceleration = entersModel(m.leader_acceleration_gain) && k > 0
+    const Leader leader_acceleration = terms.feedforward && k > 0
                                            ? Leader((leader[k] - leader[k - 1]) / (run.time_s[k] - run.time_s[k - 1]))
                                            : Leader(0.0);
-    const Scalar command = commandedAcceleration<Scalar>(m, gap, speed, leader[k], leader_acceleration);
+    const Scalar command = commandedAcceleration<Scalar>(m, terms, gap, speed, leader[k], leader_acceleration);
     Scalar applied = command;
     if (delayed)
     {
