@@ -1,11 +1,13 @@
 # What the measured speeds say of string stability without any fitted model (always built, like
 # the model core): perturbations of a leader and the dips they cause, the follower/leader dip
-# ratio with its bootstrap interval, and Welch's empirical frequency response of a link. The
+# ratio and a median over perturbations with their cluster-bootstrap intervals, and Welch's empirical frequency response of a link. The
 # calibrate tool states it beside the model's verdict; the campaign per car and link.
 acc_add_library(acc_evidence
   SOURCES
     src/evidence/perturbation.cpp
+    src/evidence/cluster_bootstrap.cpp
     src/evidence/clustered_ratio.cpp
+    src/evidence/clustered_median.cpp
     src/evidence/dip_shape_transfer.cpp
     src/evidence/empirical_response.cpp
     src/evidence/pair_dip_evidence.cpp
@@ -17,6 +19,7 @@ if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_evidence
     test/unit/gtest_main.cpp
     test/unit/test_clustered_ratio.cpp
+    test/unit/test_clustered_median.cpp
     test/unit/test_empirical_response.cpp
     test/unit/test_pair_dip_evidence.cpp
     test/unit/test_perturbation_windows.cpp)

@@ -230,9 +230,11 @@ nlohmann::json summaryJson(const DipPredictionSummary& s)
   return {{"car_perturbations", s.car_perturbations},
           {"median_dip_error", s.median_dip_error},
           {"median_abs_dip_error", s.median_abs_dip_error},
+          {"median_abs_dip_error_interval", {s.median_abs_dip_error_lower, s.median_abs_dip_error_upper}},
           {"share_within_30_percent", s.share_within_30_percent},
           {"links", s.links},
           {"share_links_growth_right", s.share_links_growth_right},
+          {"share_links_growth_right_interval", {s.share_links_growth_right_lower, s.share_links_growth_right_upper}},
           {"median_distance_lost_error", s.median_distance_lost_error},
           {"distance_lost_scored", s.distance_lost_scored},
           {"median_dip_width_error", s.median_dip_width_error},
@@ -587,8 +589,9 @@ std::vector<std::string> groupNotes(const CampaignResult& result)
   return notes;
 }
 
-const std::vector<std::string> kGapHeader{"prediction", "car-perturbations", "median dip error", "median |error|",
-                                          "within 30 %", "links", "growth/decay right",
+const std::vector<std::string> kGapHeader{"prediction", "car-perturbations", "median dip error",
+                                          "median |error| [95 % over perturbations]", "within 30 %", "links",
+                                          "growth/decay right [95 %]",
                                           "median distance-lost error", "median dip-width error"};
 
 /// One row of "how far the gap shrinks": its label in the report, its key in the JSON, and the
@@ -620,6 +623,14 @@ DipPredictionSummary summarizeGapPrediction(const CampaignResult& result, const 
                                  prediction.include);
 }
 
+/// "19 % [12-27]": a share in percent with its interval where it has one.
+std::string percentWithInterval(double value, double lower, double upper)
+{
+  const std::string cell = cellNumber("%.0f %%", 100.0 * value);
+  return std::isfinite(lower) ? cell + " [" + cellNumber("%.0f", 100.0 * lower) + "-" + cellNumber("%.0f", 100.0 * upper) + "]"
+                              : cell;
+}
+
 /// "How far the gap shrinks": each kind of prediction against what the cars did.
 std::vector<std::vector<std::string>> gapRows(const CampaignResult& result)
 {
@@ -628,9 +639,11 @@ std::vector<std::vector<std::string>> gapRows(const CampaignResult& result)
   {
     const DipPredictionSummary s = summarizeGapPrediction(result, prediction);
     rows.push_back({prediction.label, std::to_string(s.car_perturbations),
-                    cellNumber("%+.0f %%", 100.0 * s.median_dip_error), cellNumber("%.0f %%", 100.0 * s.median_abs_dip_error),
+                    cellNumber("%+.0f %%", 100.0 * s.median_dip_error),
+                    percentWithInterval(s.median_abs_dip_error, s.median_abs_dip_error_lower, s.median_abs_dip_error_upper),
                     cellNumber("%.0f %%", 100.0 * s.share_within_30_percent), std::to_string(s.links),
-                    cellNumber("%.0f %%", 100.0 * s.share_links_growth_right),
+                    percentWithInterval(s.share_links_growth_right, s.share_links_growth_right_lower,
+                                        s.share_links_growth_right_upper),
                     cellNumber("%+.0f %%", 100.0 * s.median_distance_lost_error),
                     cellNumber("%+.0f %%", 100.0 * s.median_dip_width_error)});
   }

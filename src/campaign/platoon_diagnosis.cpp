@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <map>
@@ -10,6 +11,8 @@
 #include <utility>
 
 #include "acc_identification/diagnosis/augmented_calibration.h"
+#include "acc_identification/evidence/clustered_median.h"
+#include "acc_identification/evidence/clustered_ratio.h"
 #include "acc_identification/evidence/perturbation_windows.h"
 
 namespace acc
@@ -23,6 +26,10 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// every car of every run.
 constexpr std::size_t kEffectStarts = 3;
 constexpr std::size_t kColdStarts = 4;
+/// The scores' intervals over perturbations (DipPredictionSummary): replicates and a fixed seed,
+/// so that a report says the same interval every time.
+constexpr std::size_t kScoreIntervalReplicates = 1999;
+constexpr std::uint64_t kScoreIntervalSeed = 20210422;
 
 /// The model a fit makes, with its source.
 PlatoonCarModel modelOf(const AugmentedFit& fit, const std::string& source)
@@ -482,10 +489,14 @@ DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& pl
   std::vector<double> errors, lost_errors, width_errors;
   std::size_t right = 0;
   DipPredictionSummary out;
+  // Per perturbation: its cars' |dip errors| and its links (right, scored), for the intervals.
+  std::vector<std::vector<double>> abs_errors_by_perturbation;
+  std::vector<RatioCluster> links_by_perturbation;
   for (const PlatoonCheck& check : platoons)
   {
     for (const PerturbationCheck& perturbation : check.perturbations)
     {
+      const std::size_t errors_before = errors.size(), links_before = out.links, right_before = right;
       const auto& rows = perturbation.positions;
       for (std::size_t i = 1; i < rows.size(); ++i)
       {
@@ -506,8 +517,20 @@ DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& pl
           right += (measured > ahead_measured) == (predicted > ahead_predicted) ? 1 : 0;
         }
       }
+      abs_errors_by_perturbation.emplace_back();
+      for (std::size_t e = errors_before; e < errors.size(); ++e)
+        abs_errors_by_perturbation.back().push_back(std::abs(errors[e]));
+      if (out.links > links_before)
+        links_by_perturbation.push_back({static_cast<double>(right - right_before),
+                                         static_cast<double>(out.links - links_before), out.links - links_before});
     }
   }
+  const ClusteredMedian abs_error = clusteredMedian(abs_errors_by_perturbation, kScoreIntervalReplicates, kScoreIntervalSeed);
+  out.median_abs_dip_error_lower = abs_error.lower;
+  out.median_abs_dip_error_upper = abs_error.upper;
+  const ClusteredRatio links_right = clusteredRatioOfSums(links_by_perturbation, kScoreIntervalReplicates, kScoreIntervalSeed);
+  out.share_links_growth_right_lower = links_right.lower;
+  out.share_links_growth_right_upper = links_right.upper;
   out.car_perturbations = errors.size();
   out.median_dip_error = finiteMedian(errors);
   out.distance_lost_scored = lost_errors.size();

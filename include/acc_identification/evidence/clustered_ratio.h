@@ -31,9 +31,9 @@ struct ClusteredRatio
   std::size_t replicates = 0;
 };
 
-/// The ratio and its interval: `replicates` resamples of the clusters with replacement, drawn by
-/// uniformBelow (model/portable_uniform.h) from std::mt19937_64(seed), so the same seed gives the
-/// same interval bit for bit with every standard library. Every denominator must be positive (a
+/// The ratio and its interval: `replicates` resamples of the clusters with replacement
+/// (clusterBootstrapInterval: the same seed gives the same interval bit for bit with every
+/// standard library). Every denominator must be positive (a
 /// rate or a dip of the car ahead); throws std::invalid_argument otherwise, or for a confidence
 /// outside (0, 1).
 ClusteredRatio clusteredRatioOfSums(const std::vector<RatioCluster>& clusters, std::size_t replicates,
