@@ -37,6 +37,22 @@ void splitRuns(const std::vector<CarFollowingRun>& runs, const DiagnosisOptions&
   }
 }
 
+/// Whole runs onto one side (train or test), each checked as splitRuns checks a part.
+void addWholeRuns(const std::vector<CarFollowingRun>& runs, const DiagnosisOptions& options, const std::string& tag,
+                  std::vector<CarFollowingRun>* side, std::vector<std::string>* notes)
+{
+  for (const CarFollowingRun& run : runs)
+  {
+    std::string problem = describeRunProblem(run);
+    if (problem.empty() && run.size() < options.min_samples_per_half)
+      problem = std::to_string(run.size()) + " samples, fewer than " + std::to_string(options.min_samples_per_half);
+    if (!problem.empty())
+      notes->push_back("run '" + run.name + "' not used: " + problem);
+    else
+      side->push_back(run.slice(0, run.size(), tag));
+  }
+}
+
 double median(std::vector<double> values)
 {
   if (values.empty())
@@ -275,14 +291,11 @@ void assessAdequacy(const DiagnosisOptions& options, DiagnosisResult* result)
 }
 }  // namespace
 
-DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const DiagnosisOptions& options)
+namespace
 {
-  DiagnosisResult result;
-  splitRuns(runs, options, &result);
-  if (result.train.empty())
-  {
-    throw std::invalid_argument("no run is long enough to fit on one part and score on the other");
-  }
+/// The diagnosis of runs already parted into result.train and result.test.
+DiagnosisResult diagnoseParts(DiagnosisResult result, const DiagnosisOptions& options)
+{
   std::vector<double> speeds;
   std::vector<double> steps;
   for (const CarFollowingRun& run : result.train)
@@ -355,6 +368,31 @@ DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const Dia
   forwardSelect(options, candidate_errors, &result);
   assessAdequacy(options, &result);
   return result;
+}
+}  // namespace
+
+DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const DiagnosisOptions& options)
+{
+  DiagnosisResult result;
+  splitRuns(runs, options, &result);
+  if (result.train.empty())
+  {
+    throw std::invalid_argument("no run is long enough to fit on one part and score on the other");
+  }
+  return diagnoseParts(std::move(result), options);
+}
+
+DiagnosisResult diagnoseHeldOutRuns(const std::vector<CarFollowingRun>& fitted,
+                                    const std::vector<CarFollowingRun>& held_out, const DiagnosisOptions& options)
+{
+  DiagnosisResult result;
+  result.held_out_whole_runs = true;
+  addWholeRuns(fitted, options, "[train]", &result.train, &result.notes);
+  addWholeRuns(held_out, options, "[held out]", &result.test, &result.notes);
+  if (result.train.empty() || result.test.empty())
+    throw std::invalid_argument(std::string("no usable ") + (result.train.empty() ? "run to fit" : "held-out run") +
+                                " (each needs " + std::to_string(options.min_samples_per_half) + " samples)");
+  return diagnoseParts(std::move(result), options);
 }
 
 const ModelDiagnosis& dominantModel(const DiagnosisResult& result)

@@ -223,9 +223,44 @@ nlohmann::json verdictJson(const DiagnosisResult& r)
           {"why", verdict.why}};
 }
 
+namespace
+{
+/// Each run's part fitted and part held out; with runs kept aside whole, each fitted run and each
+/// held-out run on its own (a fitted run has no held-out part then, nor the other way round).
+nlohmann::json runsJson(const DiagnosisResult& r)
+{
+  auto trainJson = [](const CarFollowingRun& run) {
+    return nlohmann::json{{"train", run.name}, {"train_start_s", run.time_s.front()}, {"train_end_s", run.time_s.back()}};
+  };
+  auto testJson = [](const CarFollowingRun& run) {
+    return nlohmann::json{{"test", run.name},
+                          {"test_start_s", run.time_s.front()},
+                          {"test_end_s", run.time_s.back()},
+                          {"test_samples", run.size()}};
+  };
+  nlohmann::json runs = nlohmann::json::array();
+  if (r.held_out_whole_runs)
+  {
+    for (const CarFollowingRun& run : r.train)
+      runs.push_back(trainJson(run));
+    for (const CarFollowingRun& run : r.test)
+      runs.push_back(testJson(run));
+    return runs;
+  }
+  for (std::size_t i = 0; i < r.train.size(); ++i)
+  {
+    nlohmann::json entry = trainJson(r.train[i]);
+    entry.update(testJson(r.test[i]));
+    runs.push_back(entry);
+  }
+  return runs;
+}
+}  // namespace
+
 nlohmann::json diagnosisToJson(const DiagnosisResult& r)
 {
   nlohmann::json j;
+  j["held_out"] = r.held_out_whole_runs ? "whole runs kept aside" : "the later part of each run";
   j["dominant_effect"] = effectName(r.selection.dominant);
   j["plausible_effects"] = nlohmann::json::array();
   for (EffectKind kind : r.selection.plausible)
@@ -292,17 +327,7 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
   j["where"] = whereJson(r.where);
   j["operating_speed_mps"] = jsonNumber(r.operating_speed_mps);
   j["sample_period_s"] = jsonNumber(r.sample_period_s);
-  j["runs"] = nlohmann::json::array();
-  for (std::size_t i = 0; i < r.train.size(); ++i)
-  {
-    j["runs"].push_back({{"train", r.train[i].name},
-                         {"train_start_s", r.train[i].time_s.front()},
-                         {"train_end_s", r.train[i].time_s.back()},
-                         {"test", r.test[i].name},
-                         {"test_start_s", r.test[i].time_s.front()},
-                         {"test_end_s", r.test[i].time_s.back()},
-                         {"test_samples", r.test[i].size()}});
-  }
+  j["runs"] = runsJson(r);
   j["notes"] = r.notes;
   return j;
 }

@@ -107,6 +107,8 @@ void printPerturbationWindows(const PerturbationWindowCriterion& c, std::FILE* o
 
 void printDiagnosisSummary(const DiagnosisResult& r, std::FILE* out)
 {
+  if (r.held_out_whole_runs)
+    std::fprintf(out, "fitted on %zu run(s) whole, scored on %zu run(s) kept aside\n", r.train.size(), r.test.size());
   std::fprintf(out, "%-26s %10s %10s %10s %9s %11s  %s\n", "model", "train_v", "test_v", "test_gap", "improve", "significant",
               "point estimate's stability (not a verdict)");
   auto row = [out](const ModelDiagnosis& m, bool is_base) {

@@ -26,6 +26,7 @@ struct DiagnoseRequest
   acc::RunInputOptions input;
   std::vector<std::string> effects;
   std::string json_path, report_dir, suite, sumo_vtype_path, sumo_id;
+  std::vector<std::string> held_out;  ///< runs kept aside whole: the RUN files are then fitted whole
   std::string plot_script = acc::installedBeside("plot_diagnosis.py");
   std::uint32_t seed = acc::DiagnosisOptions{}.selection.seed;
   bool no_plots = false, no_forward_selection = false;
@@ -36,6 +37,11 @@ void addDiagnosisOptions(CLI::App& app, DiagnoseRequest& r)
   app.add_option("--train-fraction", r.options.train_fraction, "share of each run used for fitting")
       ->check(CLI::Range(0.05, 0.95))
       ->capture_default_str();
+  app.add_option("--held-out", r.held_out,
+                 "runs kept aside whole (read as RUN is, same --follower): every model is fitted on the RUN files "
+                 "whole and scored on these, instead of each run's first part and the rest (a run too short to "
+                 "halve, judged by the car's other runs)")
+      ->check(CLI::ExistingFile);
   app.add_option("--effect", r.effects, "candidate effect (repeatable; replaces the default list: the six timing and spacing effects, "
                  "asymmetric_response and speed_dependent_gains; leader_acceleration_feedforward and "
                  "quadratic_closing_response are tested only when named here)");
@@ -92,7 +98,18 @@ int diagnoseFiles(const DiagnoseRequest& r)
     acc::printPairsRead(read.pairs_read, std::cout);
     pairs_read = acc::pairsReadJson(read.pairs_read);
     runs = acc::runsOf(read.runs);
-    result = acc::diagnoseRuns(runs, r.options);
+    if (r.held_out.empty())
+    {
+      result = acc::diagnoseRuns(runs, r.options);
+    }
+    else
+    {
+      acc::RunInputOptions kept_aside = r.input;
+      kept_aside.paths = r.held_out;
+      const acc::RunArguments held_out = kept_aside.read(std::cerr);
+      acc::printPairsRead(held_out.pairs_read, std::cout);
+      result = acc::diagnoseHeldOutRuns(runs, acc::runsOf(held_out.runs), r.options);
+    }
   }
   catch (const std::exception& e)
   {

@@ -67,3 +67,42 @@ TEST(DiagnosisOutput, JsonHasTheFieldsOfTheIssueAndTablesAreWritten)
   std::remove(directory);
   EXPECT_THROW(acc::writeDiagnosisTables(result, "/nonexistent/dir"), std::runtime_error);
 }
+
+// Runs kept aside whole: every model is fitted on the other runs whole and scored on them, the
+// hidden lag is named there too, and the JSON lists each fitted and each held-out run on its own.
+// Fails when the held-out runs are halved, or the runs' list pairs them by index.
+TEST(DiagnosisOutput, RunsKeptAsideAreScoredWholeAndListedOnTheirOwn)
+{
+  acc::WithheldCase c;
+  c.truth = acc::EffectKind::actuation_lag;
+  c.truth_values = {0.8};
+  c.duration_s = 150.0;
+  std::vector<acc::CarFollowingRun> fitted;
+  for (std::uint32_t seed : {11u, 12u})
+  {
+    c.seed = seed;
+    fitted.push_back(acc::synthesizeWithheldRun(c));
+  }
+  c.seed = 13;
+  const acc::CarFollowingRun kept_aside = acc::synthesizeWithheldRun(c);
+  acc::CarFollowingRun too_short = kept_aside.slice(0, 20, "short");
+  acc::DiagnosisOptions options;
+  options.selection.resamples = 300;
+  options.with_stability_test = false;
+  options.candidates = {acc::EffectKind::actuation_lag, acc::EffectKind::reaction_delay};
+  const acc::DiagnosisResult result = acc::diagnoseHeldOutRuns(fitted, {kept_aside, too_short}, options);
+  EXPECT_TRUE(result.held_out_whole_runs);
+  ASSERT_EQ(result.train.size(), 2u);
+  ASSERT_EQ(result.test.size(), 1u);
+  EXPECT_EQ(result.test[0].size(), kept_aside.size());
+  EXPECT_EQ(result.selection.dominant, acc::EffectKind::actuation_lag);
+  const nlohmann::json j = acc::diagnosisToJson(result);
+  EXPECT_EQ(j["held_out"], "whole runs kept aside");
+  ASSERT_EQ(j["runs"].size(), 3u);
+  EXPECT_TRUE(j["runs"][0].contains("train") && !j["runs"][0].contains("test"));
+  EXPECT_TRUE(j["runs"][2].contains("test") && !j["runs"][2].contains("train"));
+  EXPECT_EQ(j["runs"][2]["test_samples"], kept_aside.size());
+  ASSERT_EQ(j["notes"].size(), 1u);
+  EXPECT_NE(j["notes"][0].get<std::string>().find("20 samples, fewer than 50"), std::string::npos) << j["notes"][0];
+  EXPECT_THROW(acc::diagnoseHeldOutRuns(fitted, {too_short}, options), std::invalid_argument);
+}

@@ -86,8 +86,11 @@ struct ForwardSelectionStep
 
 struct DiagnosisResult
 {
-  std::vector<CarFollowingRun> train;  ///< the first halves used for fitting
-  std::vector<CarFollowingRun> test;   ///< the held-out halves
+  std::vector<CarFollowingRun> train;  ///< the first halves used for fitting (whole runs: diagnoseHeldOutRuns)
+  std::vector<CarFollowingRun> test;   ///< the held-out halves (whole runs kept aside: diagnoseHeldOutRuns)
+  /// The held-out parts are whole runs kept aside (diagnoseHeldOutRuns), not the later parts of
+  /// the runs fitted.
+  bool held_out_whole_runs = false;
   std::vector<std::string> notes;      ///< runs or halves that were not used, and why
   double operating_speed_mps = 0.0;    ///< median follower speed of the training data (for linearisation)
   double sample_period_s = 0.0;        ///< median step of the data
@@ -122,6 +125,14 @@ struct DiagnosisResult
 /// them on the held-out parts, applies the selection rule and breaks the residual down.
 /// Throws std::invalid_argument when no run leaves enough samples on both sides of the split.
 DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const DiagnosisOptions& options);
+
+/// As diagnoseRuns, with runs kept aside instead of each run's later part: every model is fitted
+/// on `fitted` whole and scored on `held_out` whole (a run the fits never saw, as the campaign's
+/// leave-one-run-out; the way to judge a run too short to halve). A run with fewer samples than
+/// min_samples_per_half is not used, said in the notes. Throws std::invalid_argument when either
+/// side is left without a run.
+DiagnosisResult diagnoseHeldOutRuns(const std::vector<CarFollowingRun>& fitted,
+                                    const std::vector<CarFollowingRun>& held_out, const DiagnosisOptions& options);
 
 /// The model of the dominant effect, or the baseline when none.
 const ModelDiagnosis& dominantModel(const DiagnosisResult& result);
