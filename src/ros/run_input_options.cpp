@@ -24,9 +24,11 @@ void RunInputOptions::declare(CLI::App& app, const std::string& all_pairs_means,
   follower_option->excludes(all_pairs_option);
 }
 
-RunArguments RunInputOptions::read(std::ostream& log) const
+RunArguments RunInputOptions::read(std::ostream& log) const { return readPaths(paths, log); }
+
+RunArguments RunInputOptions::readPaths(const std::vector<std::string>& other_paths, std::ostream& log) const
 {
-  return readRunArguments(paths, topic, max_gap_s, log, pairSelectorFromOptions(follower, all_pairs));
+  return readRunArguments(other_paths, topic, max_gap_s, log, pairSelectorFromOptions(follower, all_pairs));
 }
 
 }  // namespace acc

@@ -37,11 +37,8 @@ void addDiagnosisOptions(CLI::App& app, DiagnoseRequest& r)
   app.add_option("--train-fraction", r.options.train_fraction, "share of each run used for fitting")
       ->check(CLI::Range(0.05, 0.95))
       ->capture_default_str();
-  app.add_option("--held-out", r.held_out,
-                 "runs kept aside whole (read as RUN is, same --follower): every model is fitted on the RUN files "
-                 "whole and scored on these, instead of each run's first part and the rest (a run too short to "
-                 "halve, judged by the car's other runs)")
-      ->check(CLI::ExistingFile);
+  app.add_option("--held-out", r.held_out, "runs kept aside (read as RUN, same --follower): the RUNs are fitted whole "
+                 "and these scored whole, not each run's first part and the rest")->check(CLI::ExistingFile);
   app.add_option("--effect", r.effects, "candidate effect (repeatable; replaces the default list: the six timing and spacing effects, "
                  "asymmetric_response and speed_dependent_gains; leader_acceleration_feedforward and "
                  "quadratic_closing_response are tested only when named here)");
@@ -98,18 +95,9 @@ int diagnoseFiles(const DiagnoseRequest& r)
     acc::printPairsRead(read.pairs_read, std::cout);
     pairs_read = acc::pairsReadJson(read.pairs_read);
     runs = acc::runsOf(read.runs);
-    if (r.held_out.empty())
-    {
-      result = acc::diagnoseRuns(runs, r.options);
-    }
-    else
-    {
-      acc::RunInputOptions kept_aside = r.input;
-      kept_aside.paths = r.held_out;
-      const acc::RunArguments held_out = kept_aside.read(std::cerr);
-      acc::printPairsRead(held_out.pairs_read, std::cout);
-      result = acc::diagnoseHeldOutRuns(runs, acc::runsOf(held_out.runs), r.options);
-    }
+    result = r.held_out.empty() ? acc::diagnoseRuns(runs, r.options)
+                                : acc::diagnoseHeldOutRuns(runs, acc::runsOf(r.input.readPaths(r.held_out, std::cerr).runs),
+                                                           r.options);
   }
   catch (const std::exception& e)
   {
@@ -126,6 +114,7 @@ int diagnoseFiles(const DiagnoseRequest& r)
     return 1;
   nlohmann::json json = acc::diagnosisToJson(result);
   json["inputs"] = r.input.paths;
+  json["held_out_inputs"] = r.held_out;
   json["openacc_pairs"] = pairs_read;
   if (!r.json_path.empty() && !acc::writeJsonFile(json, r.json_path, std::cerr))
     return 1;

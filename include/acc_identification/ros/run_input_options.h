@@ -27,6 +27,8 @@ struct RunInputOptions
 
   /// readRunArguments of the options; the readers' notes on log. Throws as it does.
   RunArguments read(std::ostream& log) const;
+  /// Other files read with the same options (diagnose --held-out).
+  RunArguments readPaths(const std::vector<std::string>& other_paths, std::ostream& log) const;
 };
 
 }  // namespace acc
