@@ -114,7 +114,6 @@ int diagnoseFiles(const DiagnoseRequest& r)
     return 1;
   nlohmann::json json = acc::diagnosisToJson(result);
   json["inputs"] = r.input.paths;
-  json["held_out_inputs"] = r.held_out;
   json["openacc_pairs"] = pairs_read;
   if (!r.json_path.empty() && !acc::writeJsonFile(json, r.json_path, std::cerr))
     return 1;
