@@ -184,7 +184,9 @@ std::string whyListingNotFollowed(const CampaignFile& file, const ListedRun& lis
 
 /// Each car's own setting in a mixed-setting run that a listing names, said in a note; a mixed
 /// run no listing names (or one whose entry does not fit the file) is a group of its own, said too.
-void resolveMixedSetting(CampaignFile& file, const ListedRuns& listed_runs, std::vector<std::string>& notes)
+/// The two settings are spelled as the files before spell them (settingSpelling).
+void resolveMixedSetting(CampaignFile& file, const ListedRuns& listed_runs,
+                         std::map<std::string, std::string>& setting_spellings, std::vector<std::string>& notes)
 {
   const auto entry = listed_runs.find(file.name);
   std::string why_not;
@@ -200,13 +202,15 @@ void resolveMixedSetting(CampaignFile& file, const ListedRuns& listed_runs, std:
     why_not = whyListingNotFollowed(file, listed, unknown_cars);
     if (why_not.empty())
     {
-      const std::string other = otherSettingOf(file.setting, listed.setting);
+      const std::string other =
+          settingSpelling(otherSettingOf(file.setting, listed.setting), setting_spellings, file.path, notes);
+      const std::string listed_setting = settingSpelling(listed.setting, setting_spellings, file.path, notes);
       for (int k = 1; k <= file.contents.lastPosition(); ++k)
         file.car_settings[file.contents.vehicleName(k)] = other;
       for (const std::string& car : cars)
-        file.car_settings[car] = listed.setting;
+        file.car_settings[car] = listed_setting;
       notes.push_back(file.path + ": Distance_setting '" + file.setting + "' is a mixed run; " + listed.listing_path +
-                      " names " + join(cars, ", ") + " at " + listed.setting + ": grouped at " + listed.setting +
+                      " names " + join(cars, ", ") + " at " + listed_setting + ": grouped at " + listed_setting +
                       ", the other cars at " + other);
       return;
     }
@@ -418,7 +422,7 @@ void addFile(const std::string& path, const RunPlausibilityBounds& bounds, const
   }
   file.name = file.contents.name;
   file.setting = settingSpelling(file.contents.metadata.distance_setting, setting_spellings, path, inputs.notes);
-  resolveMixedSetting(file, listed_runs, inputs.notes);
+  resolveMixedSetting(file, listed_runs, setting_spellings, inputs.notes);
   AllPairRuns all;
   try
   {

@@ -421,6 +421,22 @@ TEST(CampaignInputs, AListedMixedRunGroupsEachCarAtItsOwnSetting)
   EXPECT_EQ(a_source.rfind("leave-one-run-out: 1 other run(s) of CAR_A/S", 0), 0u) << a_source;
 }
 
+// A mixed run's two settings take the spelling an earlier file gave them ("s" before "SL"), so a
+// car's runs at one setting stay one group. Fails when the listed settings bypass the spellings.
+TEST(CampaignInputs, AListedMixedRunsSettingsTakeTheOtherFilesSpelling)
+{
+  TempFolder folder("acc_campaign_listed_spelling");
+  acc_test::writeSyntheticPlatoon(folder.file("a_short.csv"), "s", {kAS, kBS}, 78, 60.0);
+  acc_test::writeSyntheticPlatoon(folder.file("handling_part12.csv"), "SL", {kAS, kBL}, 79, 60.0);
+  writeListing(folder.file("listing.csv"), "handling_part12,CAR_B\n");
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.path()});
+  std::string all;
+  for (const std::string& note : inputs.notes)
+    all += note + "\n";
+  EXPECT_EQ(groupLabels(inputs), (std::vector<std::string>{"CAR_A/s 2", "CAR_B/L 1", "CAR_B/s 1"})) << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"handling_part12.csv: Distance_setting 'S' taken as 's'"})) << all;
+}
+
 // A listing entry that does not fit its file is not followed, and says why; the mixed run then
 // stays a group of its own. Fails when a car the file does not hold, or a plain setting, is
 // taken from the listing.
