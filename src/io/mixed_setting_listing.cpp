@@ -6,6 +6,7 @@
 
 #include "acc_identification/io/csv_fields.h"
 #include "acc_identification/model/plain_text.h"
+#include "openacc_text.h"
 
 namespace acc
 {
@@ -39,10 +40,9 @@ std::vector<std::string> carsOf(const std::string& cell)
   while (start <= cell.size())
   {
     const std::size_t slash = std::min(cell.find('/', start), cell.size());
-    const std::string name = cell.substr(start, slash - start);
-    const std::size_t first = name.find_first_not_of(' '), last = name.find_last_not_of(' ');
-    if (first != std::string::npos)
-      cars.push_back(name.substr(first, last - first + 1));
+    const std::string name = openacc::trim(cell.substr(start, slash - start));
+    if (!name.empty())
+      cars.push_back(name);
     start = slash + 1;
   }
   return cars;

@@ -688,11 +688,11 @@ void noteBadCellsAndRows(OpenAccFile& file)
 
 bool isAccDriverCell(const std::string& cell) { return upperCase(cell) == "ACC"; }
 
+bool accLineSaysOnThroughout(const OpenAccMetadata& metadata) { return metadata.acc != 0 && metadata.acc != 2; }
+
 bool isOnAccAt(const OpenAccFile& file, const OpenAccVehicle& car, std::size_t row)
 {
-  if (car.has_driver)
-    return isAccDriverCell(car.driver[row]);
-  return file.metadata.acc != 0 && file.metadata.acc != 2;
+  return car.has_driver ? isAccDriverCell(car.driver[row]) : accLineSaysOnThroughout(file.metadata);
 }
 
 std::string describeDuplicateRows(const OpenAccFile& file)

@@ -285,7 +285,7 @@ AccSource accSource(const OpenAccFile& file, const OpenAccVehicle& follower)
   {
     return AccSource::kDriverColumn;
   }
-  return file.metadata.acc == 0 || file.metadata.acc == 2 ? AccSource::kNeverKnown : AccSource::kOnThroughout;
+  return accLineSaysOnThroughout(file.metadata) ? AccSource::kOnThroughout : AccSource::kNeverKnown;
 }
 
 std::string describeAccSource(const OpenAccFile& file, const OpenAccPair& pair, AccSource source)

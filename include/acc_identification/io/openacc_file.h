@@ -137,6 +137,10 @@ struct OpenAccFile
 /// A Driverk cell that says ACC, in any case ("ACC", "acc"); the database writes ACC or Human.
 bool isAccDriverCell(const std::string& cell);
 
+/// What the file's ACC line says of a car without a Driver column: on ACC throughout (1, or the
+/// line absent), or no row known to be on ACC (0 manual, 2 mixed).
+bool accLineSaysOnThroughout(const OpenAccMetadata& metadata);
+
 /// Whether the car is known to be on ACC at this row: its Driver cell says ACC; without a Driver
 /// column, the file's ACC line is 1 or absent. The one rule the run readers and the platoon check
 /// follow.
