@@ -298,6 +298,15 @@ TEST(CampaignInputs, EverySkippedFileIsNamedWithItsReasonAndCounted)
   EXPECT_EQ(inputs.describeSkipped(), "skipped 2 file(s) and 0 pair(s) (each in a note above)");
 }
 
+/// Every note of the inputs, a line each (for a failure's message).
+std::string allNotes(const acc::CampaignInputs& inputs)
+{
+  std::string all;
+  for (const std::string& note : inputs.notes)
+    all += note + "\n";
+  return all;
+}
+
 /// The file's lines, edited by `edit` (line index from 0, the line; returns the lines to write).
 void rewriteLines(const std::string& path,
                   const std::function<std::vector<std::string>(std::size_t, const std::string&)>& edit)
@@ -339,9 +348,7 @@ TEST(CampaignInputs, WhatIsLeftOutOfAFileIsSaid)
     return {text};
   });
   const acc::CampaignInputs inputs = acc::loadCampaign({folder.file("a.csv"), folder.file("b.csv")});
-  std::string all;
-  for (const std::string& note : inputs.notes)
-    all += note + "\n";
+  const std::string all = allNotes(inputs);
   // One group per car and setting whatever the case of the setting.
   ASSERT_EQ(inputs.groups.size(), 2u) << all;
   EXPECT_EQ(inputs.groups[0].label(), "CAR_A/S");
@@ -403,9 +410,7 @@ TEST(CampaignInputs, AListedMixedRunGroupsEachCarAtItsOwnSetting)
   writeListing(folder.file("Long setting vehs in mixed timegap experiment handling.csv"),
                "handling_part5,CAR_C\nhandling_part12.csv,car_b\n");
   const acc::CampaignInputs inputs = acc::loadCampaign({folder.path()});
-  std::string all;
-  for (const std::string& note : inputs.notes)
-    all += note + "\n";
+  const std::string all = allNotes(inputs);
   EXPECT_EQ(groupLabels(inputs), (std::vector<std::string>{"CAR_A/S 2", "CAR_A/L 1", "CAR_B/S 1", "CAR_B/L 2"})) << all;
   EXPECT_EQ(inputs.skipped_files, 0u) << all;
   EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"handling_part12.csv: Distance_setting 'SL' is a mixed run; ",
@@ -430,9 +435,7 @@ TEST(CampaignInputs, AListedMixedRunsSettingsTakeTheOtherFilesSpelling)
   acc_test::writeSyntheticPlatoon(folder.file("handling_part12.csv"), "SL", {kAS, kBL}, 79, 60.0);
   writeListing(folder.file("listing.csv"), "handling_part12,CAR_B\n");
   const acc::CampaignInputs inputs = acc::loadCampaign({folder.path()});
-  std::string all;
-  for (const std::string& note : inputs.notes)
-    all += note + "\n";
+  const std::string all = allNotes(inputs);
   EXPECT_EQ(groupLabels(inputs), (std::vector<std::string>{"CAR_A/s 2", "CAR_B/L 1", "CAR_B/s 1"})) << all;
   EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"handling_part12.csv: Distance_setting 'S' taken as 's'"})) << all;
 }
@@ -447,9 +450,7 @@ TEST(CampaignInputs, AListingEntryThatDoesNotFitItsFileIsNotFollowed)
   acc_test::writeSyntheticPlatoon(folder.file("plain.csv"), "S", {kAS, kBS}, 77, 60.0);
   writeListing(folder.file("listing.csv"), "mixed,CAR_Z\nplain,CAR_B\nplain,CAR_A\n,CAR_A\n");
   const acc::CampaignInputs inputs = acc::loadCampaign({folder.path()});
-  std::string all;
-  for (const std::string& note : inputs.notes)
-    all += note + "\n";
+  const std::string all = allNotes(inputs);
   EXPECT_EQ(groupLabels(inputs), (std::vector<std::string>{"CAR_A/S 1", "CAR_A/SL 1", "CAR_B/S 1", "CAR_B/SL 1"}))
       << all;
   EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"mixed.csv: ", "lists CAR_Z at L in this run, not followed: CAR_Z "
@@ -476,9 +477,7 @@ TEST(CampaignInputs, MetadataThatContradictTheColumnsAreSaid)
     return {line + (i < 5 ? "" : i == 5 ? ",Driver2" : ",acc")};
   });
   const acc::CampaignInputs inputs = acc::loadCampaign({folder.file("a.csv")});
-  std::string all;
-  for (const std::string& note : inputs.notes)
-    all += note + "\n";
+  const std::string all = allNotes(inputs);
   EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"a.csv: Number_of_vehicles says 4 but Vehicle_order names 3 cars"}))
       << all;
   EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"a.csv: the ACC line says 0 (manual driving) but Driver2 mark rows "
