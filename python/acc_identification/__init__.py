@@ -48,14 +48,18 @@ def _as_frames(runs):
     return [run if hasattr(run, "columns") else read_run(run) for run in runs]
 
 
-def _segments(frames):
+def _inputs(frames, first_number=1):
+    """What the JSON's inputs name: each frame's path, or its place in the call."""
+    return [frame.attrs.get("path", "DataFrame %d" % (number + first_number)) for number, frame in enumerate(frames)]
+
+
+def _segments(frames, first_number=1):
     """The C++ side's runs: one dict per segment, and the OpenACC pairs read per file."""
     runs, pairs_read = [], []
-    for number, frame in enumerate(frames):
+    for frame, path in zip(frames, _inputs(frames, first_number)):
         missing = [name for name in COLUMNS if name not in frame.columns]
         if missing:
             raise ValueError("a run needs the columns %s; missing: %s" % (", ".join(COLUMNS), ", ".join(missing)))
-        path = frame.attrs.get("path", "DataFrame %d" % (number + 1))
         names = frame.attrs.get("segment_names", [])
         groups = frame.groupby("segment", sort=True) if "segment" in frame.columns else [(0, frame)]
         for index, (_, part) in enumerate(groups):
@@ -82,16 +86,22 @@ def calibrate(runs, split="none", starts=None, alpha=None, seed=None, stability_
     return json.loads(result["json"])
 
 
-def diagnose(runs, train_fraction=None, effects=None, threads=None, seed=None, forward_selection=True):
-    """`diagnose` on runs (DataFrames from read_run, or paths): the dict `diagnose --json` writes."""
+def diagnose(runs, train_fraction=None, effects=None, threads=None, seed=None, forward_selection=True,
+             held_out=None):
+    """`diagnose` on runs (DataFrames from read_run, or paths): the dict `diagnose --json` writes.
+    held_out (runs as `runs`): as --held-out, the runs are fitted whole and these scored whole."""
     defaults = _core.DEFAULTS["diagnose"]
     frames = _as_frames(runs)
+    held_out_frames = _as_frames(held_out) if held_out is not None else []
+    if held_out is not None and not held_out_frames:
+        raise ValueError("held_out names no run")
     segments, pairs_read = _segments(frames)
-    inputs = [frame.attrs.get("path", "DataFrame %d" % (number + 1)) for number, frame in enumerate(frames)]
-    return json.loads(_core.diagnose(segments, pairs_read, inputs,
+    held_out_segments, held_out_pairs_read = _segments(held_out_frames, len(frames) + 1)
+    return json.loads(_core.diagnose(segments, pairs_read + held_out_pairs_read, _inputs(frames),
                                      defaults["train_fraction"] if train_fraction is None else train_fraction,
                                      list(effects or []), defaults["threads"] if threads is None else threads,
-                                     defaults["seed"] if seed is None else seed, forward_selection))
+                                     defaults["seed"] if seed is None else seed, forward_selection,
+                                     held_out_segments, _inputs(held_out_frames, len(frames) + 1)))
 
 
 def campaign(paths, starts=None, threads=None, alpha=None, seed=None, platoon_check=True, platoon_diagnosis=True):

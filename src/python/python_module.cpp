@@ -133,13 +133,25 @@ py::dict calibrate(const py::list& runs, const py::list& pairs_read, bool split_
   return result;
 }
 
-std::string diagnose(const py::list& runs, const py::list& pairs_read, const std::vector<std::string>& inputs,
-                     double train_fraction, const std::vector<std::string>& effects, std::size_t threads,
-                     const py::object& seed, bool forward_selection)
+/// The runs alone, without the files they came from.
+std::vector<acc::CarFollowingRun> plainRuns(const py::list& runs)
 {
   std::vector<acc::CarFollowingRun> plain;
   for (const acc::CalibrationInput& input : toInputs(runs))
     plain.push_back(input.run);
+  return plain;
+}
+
+/// held_out_runs empty: each run fitted on its first part and scored on the rest; otherwise the
+/// runs fitted whole and these scored whole (diagnose --held-out).
+std::string diagnose(const py::list& runs, const py::list& pairs_read, const std::vector<std::string>& inputs,
+                     double train_fraction, const std::vector<std::string>& effects, std::size_t threads,
+                     const py::object& seed, bool forward_selection, const py::list& held_out_runs,
+                     const std::vector<std::string>& held_out_inputs)
+{
+  const std::vector<acc::CarFollowingRun> plain = plainRuns(runs);
+  const std::vector<acc::CarFollowingRun> held_out =
+      held_out_inputs.empty() ? std::vector<acc::CarFollowingRun>{} : plainRuns(held_out_runs);
   acc::DiagnosisOptions options;
   options.train_fraction = train_fraction;
   options.threads = threads;
@@ -160,10 +172,13 @@ std::string diagnose(const py::list& runs, const py::list& pairs_read, const std
   acc::DiagnosisResult result;
   {
     py::gil_scoped_release unlocked;
-    result = acc::diagnoseRuns(plain, options);
+    result = held_out_inputs.empty() ? acc::diagnoseRuns(plain, options)
+                                     : acc::diagnoseHeldOutRuns(plain, held_out, options);
   }
   nlohmann::json json = acc::diagnosisToJson(result);
   json["inputs"] = inputs;
+  if (!held_out_inputs.empty())
+    json["held_out_inputs"] = held_out_inputs;
   json["openacc_pairs"] = nlohmann::json::array();
   for (const acc::PairsRead& file : toPairsRead(pairs_read))
     json["openacc_pairs"].push_back({{"path", file.path}, {"pairs", file.pairs}});
@@ -214,7 +229,7 @@ PYBIND11_MODULE(_core, module)
              py::arg("grid_nodes"), py::arg("second_opinion"));
   module.def("diagnose", &diagnose, py::arg("runs"), py::arg("pairs_read"), py::arg("inputs"),
              py::arg("train_fraction"), py::arg("effects"), py::arg("threads"), py::arg("seed"),
-             py::arg("forward_selection"));
+             py::arg("forward_selection"), py::arg("held_out_runs"), py::arg("held_out_inputs"));
   module.def("campaign", &campaign, py::arg("paths"), py::arg("starts"), py::arg("threads"), py::arg("alpha"),
              py::arg("seed"), py::arg("platoon_check"), py::arg("platoon_diagnosis"));
 }

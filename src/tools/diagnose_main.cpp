@@ -91,13 +91,14 @@ int diagnoseFiles(const DiagnoseRequest& r)
   nlohmann::json pairs_read;
   try
   {
-    const acc::RunArguments read = r.input.read(std::cerr);
-    acc::printPairsRead(read.pairs_read, std::cout);
-    pairs_read = acc::pairsReadJson(read.pairs_read);
+    const acc::RunArguments read = r.input.read(std::cerr), held_out = r.input.readPaths(r.held_out, std::cerr);
+    std::vector<acc::PairsRead> pairs = read.pairs_read;  // the held-out files' pairs are read too
+    pairs.insert(pairs.end(), held_out.pairs_read.begin(), held_out.pairs_read.end());
+    acc::printPairsRead(pairs, std::cout);
+    pairs_read = acc::pairsReadJson(pairs);
     runs = acc::runsOf(read.runs);
     result = r.held_out.empty() ? acc::diagnoseRuns(runs, r.options)
-                                : acc::diagnoseHeldOutRuns(runs, acc::runsOf(r.input.readPaths(r.held_out, std::cerr).runs),
-                                                           r.options);
+                                : acc::diagnoseHeldOutRuns(runs, acc::runsOf(held_out.runs), r.options);
   }
   catch (const std::exception& e)
   {
@@ -114,6 +115,8 @@ int diagnoseFiles(const DiagnoseRequest& r)
     return 1;
   nlohmann::json json = acc::diagnosisToJson(result);
   json["inputs"] = r.input.paths;
+  if (!r.held_out.empty())
+    json["held_out_inputs"] = r.held_out;
   json["openacc_pairs"] = pairs_read;
   if (!r.json_path.empty() && !acc::writeJsonFile(json, r.json_path, std::cerr))
     return 1;

@@ -73,6 +73,16 @@ def test_diagnose_equals_the_tool(tmp_path):
     assert without_timing(got) == without_timing(expected)
 
 
+def test_diagnose_with_runs_kept_aside_equals_the_tool(tmp_path):
+    fitted, kept_aside = os.path.join(CASALE, "part5.csv"), os.path.join(CASALE, "part4.csv")
+    expected, status = tool_json(tmp_path, "diagnose", "--threads", "2", fitted, "--held-out", kept_aside)
+    assert status == 0
+    got = acc.diagnose(fitted, threads=2, held_out=[acc.read_run(kept_aside)])
+    assert without_timing(got) == without_timing(expected)
+    assert got["held_out"] == "whole runs kept aside" and got["held_out_inputs"] == [kept_aside]
+    assert [run.get("test") for run in got["runs"]] == [None, "part4 Hyundai[held out]"]
+
+
 def test_campaign_equals_the_tool(tmp_path):
     expected, status = tool_json(tmp_path, "campaign", "--quiet", "--threads", "2", "--no-platoon-diagnosis", TOYOTA)
     assert status == 0
@@ -92,6 +102,8 @@ def test_bad_input_raises_the_tools_messages():
         acc.calibrate(broken)
     with pytest.raises(ValueError, match="unknown effect 'teleportation'"):
         acc.diagnose(run, effects=["teleportation"])
+    with pytest.raises(ValueError, match="held_out names no run"):
+        acc.diagnose(run, held_out=[])
     with pytest.raises(ValueError, match="split"):
         acc.calibrate(run, split="thirds")
 
