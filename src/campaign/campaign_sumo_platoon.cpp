@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "acc_identification/campaign/platoon_check.h"
+#include "acc_identification/io/mixed_setting_listing.h"
 
 namespace acc
 {
@@ -121,11 +122,28 @@ FilePlatoonForSumo filePlatoonForSumo(const CampaignFile& file, const std::vecto
   return out;
 }
 
-nlohmann::json replayFilePlatoonInSumo(const std::string& path, const std::string& vtype_file, bool diagnosed,
+FilePlatoonForSumo readFilePlatoonForSumo(const std::string& path, const std::vector<std::string>& listings,
+                                          const std::vector<SumoAccVType>& vtypes, bool diagnosed)
+{
+  std::vector<std::string> paths{path};
+  for (const std::string& listing : listings)
+  {
+    if (!looksLikeMixedSettingListing(listing))
+      throw std::invalid_argument(listing + ": not a mixed-setting listing (its first line is not "
+                                            "'filename,Long timegap setting' or alike)");
+    paths.push_back(listing);
+  }
+  const CampaignInputs inputs = loadCampaign(paths);
+  FilePlatoonForSumo platoon = filePlatoonForSumo(inputs.files.front(), vtypes, diagnosed);
+  platoon.notes.insert(platoon.notes.begin(), inputs.notes.begin(), inputs.notes.end());
+  return platoon;
+}
+
+nlohmann::json replayFilePlatoonInSumo(const std::string& path, const std::vector<std::string>& listings,
+                                       const std::string& vtype_file, bool diagnosed,
                                        const SumoReplayOptions& options, std::ostream& out, std::ostream& log)
 {
-  const CampaignInputs inputs = loadCampaign({path});
-  const FilePlatoonForSumo platoon = filePlatoonForSumo(inputs.files.front(), readSumoAccVTypes(vtype_file), diagnosed);
+  const FilePlatoonForSumo platoon = readFilePlatoonForSumo(path, listings, readSumoAccVTypes(vtype_file), diagnosed);
   for (const std::string& note : platoon.notes)
     log << "note: " << note << "\n";
   if (platoon.input.vtypes.empty())

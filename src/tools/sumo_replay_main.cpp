@@ -16,7 +16,7 @@ int main(int argc, char** argv)
   CLI::App app{"Replays a run's leader in SUMO with an identified ACC's vType behind it (or a platoon of vTypes) "
                "and compares SUMO with the package's simulation and the measured car."};
   std::string path, vtype_file, json_path, follower, topic = "relative_state";
-  std::vector<std::string> ids;
+  std::vector<std::string> ids, listings;
   acc::SumoReplayOptions options;
   double max_gap_s = 0.5;
   bool platoon = false, diagnosed = false;
@@ -37,6 +37,10 @@ int main(int argc, char** argv)
   app.add_flag("--diagnosed", diagnosed,
                "with --platoon: each car's <VEHICLE>_<setting>_diagnosed vType (the platoon diagnosis's model) "
                "where the file has one");
+  app.add_option("--listing", listings,
+                 "with --platoon: the database's listing of mixed-setting runs (header 'filename,Long timegap "
+                 "setting'), so that each car of a listed mixed run gets its own setting's vType")
+      ->check(CLI::ExistingFile);
   app.add_option("--follower", follower, "OpenACC files: the follower of the pair to read (its leader is replayed)");
   app.add_option("--topic", topic, "RelativeState topic in bags")->capture_default_str();
   app.add_option("--max-gap", max_gap_s, "split runs at holes longer than this [s]")->capture_default_str();
@@ -49,7 +53,7 @@ int main(int argc, char** argv)
     nlohmann::json json;
     if (platoon)
     {
-      json = acc::replayFilePlatoonInSumo(path, vtype_file, diagnosed, options, std::cout, std::cerr);
+      json = acc::replayFilePlatoonInSumo(path, listings, vtype_file, diagnosed, options, std::cout, std::cerr);
     }
     else
     {

@@ -3,6 +3,8 @@
 // replay itself is test_sumo's).
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <stdexcept>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -125,6 +127,33 @@ TEST(CampaignSumo, APlatoonFileIsLaidOutFromItsMeasuredStarts)
   ASSERT_EQ(shorter.input.vtypes.size(), 1u);
   ASSERT_FALSE(shorter.notes.empty());
   EXPECT_NE(shorter.notes.front().find("no vType 'CAR_B_L'"), std::string::npos) << shorter.notes.front();
+}
+
+// A mixed-setting run ("SL") replays each car with its own setting's vType when the database's
+// listing is given, and without it the chain stops at the first car with the reading's note first.
+// Fails when sumo_replay's reading ignores the listings or drops the campaign reader's notes.
+TEST(CampaignSumo, AListedMixedRunIsLaidOutWithEachCarsOwnSetting)
+{
+  SyntheticCampaign campaign;
+  campaign.folder = fs::temp_directory_path() / ("acc_campaign_sumo_mixed_" + std::to_string(::getpid()));
+  fs::create_directories(campaign.folder);
+  const std::string mixed = (campaign.folder / "handling_part12.csv").string();
+  const std::string listing = (campaign.folder / "long cars.csv").string();
+  acc_test::writeSyntheticPlatoon(mixed, "SL", {{"CAR_A", kCarA}, {"CAR_B", kCarB}}, 9);
+  std::ofstream(listing) << "filename,Long timegap setting\nhandling_part12,CAR_B\n";
+  const std::vector<acc::SumoAccVType> vtypes{acc::exportToSumo("CAR_A_S", kCarA, {}, {}, {}).vtype,
+                                              acc::exportToSumo("CAR_B_L", kCarB, {}, {}, {}).vtype};
+  const acc::FilePlatoonForSumo listed = acc::readFilePlatoonForSumo(mixed, {listing}, vtypes, false);
+  ASSERT_EQ(listed.input.vtypes.size(), 2u);
+  EXPECT_EQ(listed.input.vtypes[0].id, "CAR_A_S");
+  EXPECT_EQ(listed.input.vtypes[1].id, "CAR_B_L");
+
+  const acc::FilePlatoonForSumo unlisted = acc::readFilePlatoonForSumo(mixed, {}, vtypes, false);
+  EXPECT_TRUE(unlisted.input.vtypes.empty());
+  ASSERT_EQ(unlisted.notes.size(), 2u);
+  EXPECT_NE(unlisted.notes[0].find("Distance_setting 'SL' is a mixed run"), std::string::npos) << unlisted.notes[0];
+  EXPECT_NE(unlisted.notes[1].find("no vType 'CAR_A_SL'"), std::string::npos) << unlisted.notes[1];
+  EXPECT_THROW(acc::readFilePlatoonForSumo(mixed, {mixed}, vtypes, false), std::invalid_argument);
 }
 
 }  // namespace

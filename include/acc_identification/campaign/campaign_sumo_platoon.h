@@ -25,10 +25,19 @@ struct FilePlatoonForSumo
 FilePlatoonForSumo filePlatoonForSumo(const CampaignFile& file, const std::vector<SumoAccVType>& vtypes,
                                       bool diagnosed = false);
 
-/// sumo_replay --platoon: the OpenACC file's platoon replayed in SUMO with the vTypes of
-/// vtype_file, SUMO's dips by position beside the package's chain of the same models and the real
-/// cars'. Prints to out (notes to log), returns the JSON. Throws std::runtime_error with the reason.
-nlohmann::json replayFilePlatoonInSumo(const std::string& path, const std::string& vtype_file, bool diagnosed,
+/// The OpenACC file at path read as the campaign reads it, and its platoon laid out as above.
+/// listings: the database's mixed-setting listings (io/mixed_setting_listing.h), so that each car
+/// of a listed mixed run is looked up at its own setting; a path that is no listing throws
+/// std::invalid_argument. The notes hold the reading's notes first, then the chain's.
+FilePlatoonForSumo readFilePlatoonForSumo(const std::string& path, const std::vector<std::string>& listings,
+                                          const std::vector<SumoAccVType>& vtypes, bool diagnosed);
+
+/// sumo_replay --platoon: the OpenACC file's platoon (readFilePlatoonForSumo) replayed in SUMO
+/// with the vTypes of vtype_file, SUMO's dips by position beside the package's chain of the same
+/// models and the real cars'. Prints to out (notes to log), returns the JSON. Throws
+/// std::runtime_error with the reason.
+nlohmann::json replayFilePlatoonInSumo(const std::string& path, const std::vector<std::string>& listings,
+                                       const std::string& vtype_file, bool diagnosed,
                                        const SumoReplayOptions& options, std::ostream& out, std::ostream& log);
 
 }  // namespace acc
