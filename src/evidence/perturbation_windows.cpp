@@ -7,17 +7,27 @@
 
 namespace acc
 {
-namespace
+WindowRows perturbationWindowRows(const std::vector<double>& time_s, const Perturbation& perturbation,
+                                  const PerturbationCriteria& criteria)
 {
-/// The first sample of the window: pre_window_s before the onset (or the run's start).
-std::size_t windowStartRow(const std::vector<double>& time_s, std::size_t onset_row, double pre_window_s)
-{
-  std::size_t r = onset_row;
-  while (r > 0 && std::isfinite(time_s[r - 1]) && time_s[r - 1] >= time_s[onset_row] - pre_window_s)
+  std::size_t r = perturbation.onset;
+  while (r > 0 && std::isfinite(time_s[r - 1]) && time_s[r - 1] >= time_s[perturbation.onset] - criteria.pre_window_s)
     --r;
-  return r;
+  return {r, perturbation.window_end};
 }
-}  // namespace
+
+std::vector<bool> insidePerturbationWindows(const std::vector<double>& time_s, const std::vector<double>& lead_speed_mps,
+                                            const PerturbationCriteria& criteria)
+{
+  std::vector<bool> inside(time_s.size(), false);
+  for (const Perturbation& perturbation : findPerturbations(time_s, lead_speed_mps, criteria))
+  {
+    const WindowRows rows = perturbationWindowRows(time_s, perturbation, criteria);
+    for (std::size_t r = rows.first; r < rows.end && r < inside.size(); ++r)
+      inside[r] = true;
+  }
+  return inside;
+}
 
 double perturbationWindowMse(const std::vector<double>& time_s, const std::vector<double>& predicted_mps,
                              const std::vector<double>& measured_mps, const Perturbation& perturbation,
@@ -25,8 +35,8 @@ double perturbationWindowMse(const std::vector<double>& time_s, const std::vecto
 {
   double sum = 0.0;
   std::size_t n = 0;
-  const std::size_t first = windowStartRow(time_s, perturbation.onset, criteria.pre_window_s);
-  for (std::size_t r = first; r < perturbation.window_end && r < predicted_mps.size() && r < measured_mps.size(); ++r)
+  const WindowRows rows = perturbationWindowRows(time_s, perturbation, criteria);
+  for (std::size_t r = rows.first; r < rows.end && r < predicted_mps.size() && r < measured_mps.size(); ++r)
   {
     if (std::isfinite(predicted_mps[r]) && std::isfinite(measured_mps[r]))
     {

@@ -1,8 +1,9 @@
 // What the campaign's platoon diagnosis and diagnose share to judge models inside a leader's
 // perturbations (perturbation_windows.h): the window's speed MSE and the paired comparison of two
-// models over perturbations with its cluster bootstrap.
+// models over perturbations with its cluster bootstrap, and the samples inside the windows.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -30,6 +31,30 @@ TEST(PerturbationWindowMse, AveragesOverTheWindowFromBeforeTheOnsetSkippingMissi
   EXPECT_DOUBLE_EQ(perturbationWindowMse(time_s, predicted, measured, p, criteria), 19.0 / 24.0);
   std::vector<double> none(100, std::numeric_limits<double>::quiet_NaN());
   EXPECT_TRUE(std::isnan(perturbationWindowMse(time_s, none, measured, p, criteria)));
+}
+
+// The samples a braking decides: from the pre-window before each perturbation's onset to the end
+// of its dip window, as the window MSE scores them, and none where the leader does not brake.
+TEST(InsidePerturbationWindows, MarksEachPerturbationsWindowAndNothingElse)
+{
+  std::vector<double> time_s, lead;
+  for (std::size_t k = 0; k < 1200; ++k)
+  {
+    const double t = 0.1 * static_cast<double>(k);
+    time_s.push_back(t);
+    lead.push_back(t >= 40.0 && t < 44.0 ? 15.0 : 20.0);  // one braking of 4 s, 5 m/s deep
+  }
+  const std::vector<Perturbation> perturbations = findPerturbations(time_s, lead);
+  ASSERT_EQ(perturbations.size(), 1u);
+  const WindowRows rows = perturbationWindowRows(time_s, perturbations[0]);
+  EXPECT_NEAR(time_s[perturbations[0].onset] - time_s[rows.first], PerturbationCriteria{}.pre_window_s, 0.1 + 1e-9);
+  EXPECT_EQ(rows.end, perturbations[0].window_end);
+  const std::vector<bool> inside = insidePerturbationWindows(time_s, lead);
+  ASSERT_EQ(inside.size(), time_s.size());
+  for (std::size_t k = 0; k < inside.size(); ++k)
+    EXPECT_EQ(inside[k], k >= rows.first && k < rows.end) << "row " << k;
+  const std::vector<bool> steady = insidePerturbationWindows(time_s, std::vector<double>(time_s.size(), 20.0));
+  EXPECT_EQ(std::count(steady.begin(), steady.end(), true), 0);
 }
 
 TEST(PairedLossComparison, MeansImprovementAndTheBootstrapOverClusters)

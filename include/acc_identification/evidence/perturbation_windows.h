@@ -14,6 +14,21 @@ namespace acc
 // compare two models paired over perturbations, for the campaign's platoon diagnosis and for
 // diagnose's pair-level criterion alike.
 
+/// The rows [first, end) of a perturbation's window: from criteria.pre_window_s before the onset
+/// (or the run's start) to one past the dip window's last sample.
+struct WindowRows
+{
+  std::size_t first = 0;
+  std::size_t end = 0;
+};
+WindowRows perturbationWindowRows(const std::vector<double>& time_s, const Perturbation& perturbation,
+                                  const PerturbationCriteria& criteria = {});
+
+/// Per sample of a run: whether it lies in the window of one of its leader's perturbations
+/// (findPerturbations on lead_speed_mps), the samples a braking decides.
+std::vector<bool> insidePerturbationWindows(const std::vector<double>& time_s, const std::vector<double>& lead_speed_mps,
+                                            const PerturbationCriteria& criteria = {});
+
 /// The mean squared difference of predicted and measured speed over a perturbation's window,
 /// [onset - criteria.pre_window_s, window_end), over the samples where both are finite [m^2/s^2];
 /// NaN when there is none. time_s is the run's clock (increasing; NaN samples are skipped).
