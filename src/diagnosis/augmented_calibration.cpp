@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 
 #include "acc_identification/diagnosis/augmented_stability.h"
+#include "acc_identification/evidence/perturbation_windows.h"
 #include "acc_identification/model/batch_means.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/sample_statistics.h"
@@ -78,7 +79,35 @@ struct ResidualWeights
 {
   double speed = 1.0;
   double gap = 0.0;
+  /// Per segment, per sample, a further factor on the speed residual; empty: 1 everywhere.
+  std::vector<std::vector<double>> speed_per_sample;
 };
+
+/// speed_and_windows: sum/N + window sum/N_w = sum over samples of (1 + N/N_w inside a window) e^2
+/// over N, so each sample inside a window gets the factor sqrt(1 + N/N_w).
+ResidualWeights perturbationWindowWeights(const std::vector<CarFollowingRun>& segments)
+{
+  std::vector<std::vector<bool>> inside;
+  std::size_t samples = 0, inside_samples = 0;
+  for (const CarFollowingRun& run : segments)
+  {
+    inside.push_back(insidePerturbationWindows(run.time_s, run.leader_speed_mps));
+    inside_samples += static_cast<std::size_t>(std::count(inside.back().begin(), inside.back().end(), true));
+    samples += run.size();
+  }
+  ResidualWeights weights;
+  if (inside_samples == 0)
+    return weights;  // no braking to weigh: the speed objective
+  const double factor = std::sqrt(1.0 + static_cast<double>(samples) / static_cast<double>(inside_samples));
+  for (const std::vector<bool>& flags : inside)
+  {
+    std::vector<double> per_sample(flags.size(), 1.0);
+    for (std::size_t k = 0; k < flags.size(); ++k)
+      per_sample[k] = flags[k] ? factor : 1.0;
+    weights.speed_per_sample.push_back(std::move(per_sample));
+  }
+  return weights;
+}
 
 /// The variance of a column over every sample of the segments (1 when it has none or no spread,
 /// so that a weight never becomes infinite).
@@ -104,11 +133,13 @@ ResidualWeights residualWeights(FitObjective objective, const std::vector<CarFol
 {
   switch (objective)
   {
-    case FitObjective::speed: return {1.0, 0.0};
-    case FitObjective::gap: return {0.0, 1.0};
+    case FitObjective::speed: return {1.0, 0.0, {}};
+    case FitObjective::gap: return {0.0, 1.0, {}};
     case FitObjective::speed_and_gap:
       return {1.0 / std::sqrt(pooledVariance(segments, [](const CarFollowingRun& r) { return r.follower_speed_mps; })),
-              1.0 / std::sqrt(pooledVariance(segments, [](const CarFollowingRun& r) { return r.space_gap_m; }))};
+              1.0 / std::sqrt(pooledVariance(segments, [](const CarFollowingRun& r) { return r.space_gap_m; })),
+              {}};
+    case FitObjective::speed_and_windows: return perturbationWindowWeights(segments);
   }
   return {};
 }
@@ -138,6 +169,36 @@ void addGapResiduals(const CarFollowingRun& run, const FollowerSpeedSensitivitie
   }
 }
 
+/// The speed residuals with a factor per sample (w_k (v_k - v^_k), rows w_k dv^_k): the normal
+/// equations summed over the runs of equal factor, so that no weighted copy of J is made.
+void addWeightedSpeedResiduals(const CarFollowingRun& run, const FollowerSpeedSensitivities& sim,
+                               const std::vector<double>& per_sample, bool with_normal, GaussNewtonPass* pass,
+                               double* sum)
+{
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const auto p = static_cast<Eigen::Index>(sim.dimension);
+  const Eigen::Map<const RowMajor> jacobian(sim.speed_derivatives.data(), static_cast<Eigen::Index>(run.size()), p);
+  Eigen::VectorXd residual(static_cast<Eigen::Index>(run.size()));
+  for (std::size_t k = 0; k < run.size(); ++k)
+  {
+    const double error = per_sample[k] * (run.follower_speed_mps[k] - sim.speed_mps[k]);
+    *sum += error * error;
+    residual[static_cast<Eigen::Index>(k)] = error;
+  }
+  for (std::size_t first = 0; first < run.size();)
+  {
+    std::size_t end = first + 1;
+    while (end < run.size() && per_sample[end] == per_sample[first])
+      ++end;
+    const auto rows = static_cast<Eigen::Index>(end - first);
+    const auto block = jacobian.middleRows(static_cast<Eigen::Index>(first), rows);
+    if (with_normal)
+      pass->normal.selfadjointView<Eigen::Upper>().rankUpdate(block.transpose(), per_sample[first] * per_sample[first]);
+    pass->descent += per_sample[first] * (block.transpose() * residual.segment(static_cast<Eigen::Index>(first), rows));
+    first = end;
+  }
+}
+
 /// with_normal false: the descent J^T r alone (all a gradient needs), without the p^2 work per
 /// sample of J^T J.
 GaussNewtonPass gaussNewtonPass(const AugmentedParameterBox& box, const std::vector<double>& x,
@@ -151,15 +212,20 @@ GaussNewtonPass gaussNewtonPass(const AugmentedParameterBox& box, const std::vec
   pass.descent = Eigen::VectorXd::Zero(p);
   double sum = 0.0;
   std::size_t count = 0;
-  for (const CarFollowingRun& run : segments)
+  for (std::size_t segment = 0; segment < segments.size(); ++segment)
   {
+    const CarFollowingRun& run = segments[segment];
     const FollowerSpeedSensitivities sim = simulateFollowerSensitivities(box.effects, x, run);
     if (sim.diverged)
     {
       return pass;
     }
     const auto n = static_cast<Eigen::Index>(run.size());
-    if (weights.speed != 0.0)
+    if (!weights.speed_per_sample.empty())
+    {
+      addWeightedSpeedResiduals(run, sim, weights.speed_per_sample[segment], with_normal, &pass, &sum);
+    }
+    else if (weights.speed != 0.0)
     {
       Eigen::VectorXd residual(n);
       for (std::size_t k = 0; k < run.size(); ++k)
@@ -206,15 +272,19 @@ double plainObjective(const AccParameters& base, const EffectSettings& settings,
 {
   double sum = 0.0;
   std::size_t count = 0;
-  for (const CarFollowingRun& run : segments)
+  for (std::size_t segment = 0; segment < segments.size(); ++segment)
   {
+    const CarFollowingRun& run = segments[segment];
     const SimulatedFollower sim = simulateFollower(base, settings, run);
     if (sim.diverged)
       return kDivergedObjective;
+    const std::vector<double>* per_sample =
+        weights.speed_per_sample.empty() ? nullptr : &weights.speed_per_sample[segment];
     for (std::size_t k = 0; weights.speed != 0.0 && k < run.size(); ++k)
     {
-      const double error = weights.speed == 1.0 ? run.follower_speed_mps[k] - sim.speed_mps[k]
-                                                : weights.speed * (run.follower_speed_mps[k] - sim.speed_mps[k]);
+      const double error = per_sample != nullptr ? (*per_sample)[k] * (run.follower_speed_mps[k] - sim.speed_mps[k])
+                           : weights.speed == 1.0 ? run.follower_speed_mps[k] - sim.speed_mps[k]
+                                                  : weights.speed * (run.follower_speed_mps[k] - sim.speed_mps[k]);
       sum += error * error;
     }
     double gap = run.space_gap_m.empty() ? 0.0 : run.space_gap_m[0];
@@ -678,10 +748,10 @@ AugmentedFit calibrateAugmentedSet(const std::vector<EffectKind>& effects, const
       throw std::invalid_argument("cannot calibrate on segment '" + run.name + "': " + problem);
     }
   }
-  if (options.objective != FitObjective::speed &&
+  if ((options.objective == FitObjective::gap || options.objective == FitObjective::speed_and_gap) &&
       std::find(effects.begin(), effects.end(), EffectKind::sensor_time_offset) != effects.end())
   {
-    throw std::invalid_argument("a clock offset can only be fitted with the speed objective");
+    throw std::invalid_argument("a clock offset can only be fitted with a speed objective");
   }
   const AugmentedParameterBox box(effects, options);
   ObjectiveTracker tracker{&box, &segments, residualWeights(options.objective, segments), loopCheckSpeedsMps(segments)};
@@ -730,6 +800,7 @@ std::string objectiveName(FitObjective objective)
     case FitObjective::speed: return "speed";
     case FitObjective::gap: return "gap";
     case FitObjective::speed_and_gap: return "speed_and_gap";
+    case FitObjective::speed_and_windows: return "speed_and_windows";
   }
   return "";
 }

@@ -1,10 +1,14 @@
 // The selection rule on squared errors whose truth is known, and the augmented calibration.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/effect_selection.h"
+#include "acc_identification/evidence/perturbation_windows.h"
+#include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/validation/withheld_effect_suite.h"
 #include "acc_identification/model/normal_source.h"
 
@@ -100,6 +104,88 @@ TEST(AugmentedCalibration, RecoversTheBaseParametersFromCleanData)
   EXPECT_NEAR(fit.base.k2_per_s, c.base.k2_per_s, 0.02);
   EXPECT_NEAR(fit.base.tau_e_s, c.base.tau_e_s, 0.05);
   ASSERT_EQ(fit.standard_errors.size(), 4u);
+}
+
+namespace
+{
+/// 200 s behind a leader at about 20 m/s that brakes to 16 m/s once (80-90 s, back by 100 s): the
+/// follower of `truth` with a deterministic speed error added, so that no fit is exact.
+acc::CarFollowingRun runWithOneBraking(const acc::AccParameters& truth)
+{
+  acc::CarFollowingRun run;
+  run.name = "one braking";
+  for (std::size_t k = 0; k <= 2000; ++k)
+  {
+    const double t = 0.1 * static_cast<double>(k);
+    const double dip = t < 80.0 ? 0.0 : t < 90.0 ? 0.4 * (t - 80.0) : t < 100.0 ? 4.0 - 0.4 * (t - 90.0) : 0.0;
+    run.time_s.push_back(t);
+    run.leader_speed_mps.push_back(20.0 + 0.5 * std::sin(0.1 * t) - dip);
+    run.follower_speed_mps.push_back(20.0);
+    run.space_gap_m.push_back(truth.eta_m + truth.tau_e_s * 20.0);
+  }
+  const acc::SimulatedFollower sim = acc::simulateFollower(truth, run);
+  for (std::size_t k = 0; k < run.size(); ++k)
+  {
+    run.follower_speed_mps[k] = sim.speed_mps[k] + 0.2 * std::sin(1.3 * run.time_s[k]);
+    run.space_gap_m[k] = sim.space_gap_m[k];
+  }
+  return run;
+}
+}  // namespace
+
+// The brakings-weighted objective is the whole run's speed MSE plus the speed MSE inside the
+// leader's perturbation windows, at the fitted point; on a run without a braking it is the speed
+// objective. Fails when the window samples are weighted otherwise, or the windows are not the
+// evidence's.
+TEST(AugmentedCalibration, TheBrakingsWeightedObjectiveAddsTheWindowsMseToTheWholeRuns)
+{
+  const acc::AccParameters truth{0.1, 0.5, 1.2, 5.0};
+  const acc::CarFollowingRun run = runWithOneBraking(truth);
+  acc::AugmentedCalibrationOptions options;
+  options.objective = acc::FitObjective::speed_and_windows;
+  const acc::AugmentedFit fit = acc::calibrateAugmentedSet({}, {run}, options);
+  ASSERT_TRUE(fit.usable());
+  const std::vector<bool> inside = acc::insidePerturbationWindows(run.time_s, run.leader_speed_mps);
+  const auto in_windows = static_cast<std::size_t>(std::count(inside.begin(), inside.end(), true));
+  ASSERT_GT(in_windows, 150u);  // the braking's window: 5 s before it to 30 s after the leader is back
+  ASSERT_LT(in_windows, run.size() / 2);
+  // The whole run's speed MSE and the windows', written out here.
+  auto mses = [&](const acc::AccParameters& p) {
+    const acc::SimulatedFollower sim = acc::simulateFollower(p, fit.settings, run);
+    double all = 0.0, windows = 0.0;
+    for (std::size_t k = 0; k < run.size(); ++k)
+    {
+      const double squared = std::pow(run.follower_speed_mps[k] - sim.speed_mps[k], 2);
+      all += squared;
+      windows += inside[k] ? squared : 0.0;
+    }
+    return std::make_pair(all / run.size(), windows / in_windows);
+  };
+  const auto [all, windows] = mses(fit.base);
+  EXPECT_NEAR(fit.train_objective, all + windows, 1e-9 * fit.train_objective);
+  EXPECT_NEAR(fit.train_mse_speed, all, 1e-12 * all);
+  EXPECT_NEAR(fit.base.k2_per_s, truth.k2_per_s, 0.05);
+  EXPECT_NEAR(fit.base.tau_e_s, truth.tau_e_s, 0.1);
+  // It is that objective's minimum: no small move of a gain or the time gap lowers it.
+  for (double step : {-1e-3, 1e-3})
+    for (double acc::AccParameters::*parameter :
+         {&acc::AccParameters::k1_per_s2, &acc::AccParameters::k2_per_s, &acc::AccParameters::tau_e_s})
+    {
+      acc::AccParameters moved = fit.base;
+      moved.*parameter += step;
+      const auto [moved_all, moved_windows] = mses(moved);
+      EXPECT_GE(moved_all + moved_windows, fit.train_objective * (1.0 - 1e-9)) << step;
+    }
+
+  acc::CarFollowingRun steady = run;  // the same run without its braking
+  for (std::size_t k = 0; k < steady.size(); ++k)
+    steady.leader_speed_mps[k] = 20.0 + 0.5 * std::sin(0.1 * steady.time_s[k]);
+  ASSERT_TRUE(acc::findPerturbations(steady.time_s, steady.leader_speed_mps).empty());
+  const acc::AugmentedFit weighted = acc::calibrateAugmentedSet({}, {steady}, options);
+  options.objective = acc::FitObjective::speed;
+  const acc::AugmentedFit plain = acc::calibrateAugmentedSet({}, {steady}, options);
+  EXPECT_EQ(weighted.train_objective, plain.train_objective);
+  EXPECT_EQ(weighted.base.k1_per_s2, plain.base.k1_per_s2);
 }
 
 TEST(AugmentedCalibration, NeverEndsWorseThanTheBaseFitItStartsFrom)

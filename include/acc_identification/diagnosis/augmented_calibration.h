@@ -19,16 +19,21 @@ enum class FitObjective
   gap,            ///< mean squared space-gap error: weighs slow, large deviations (a gap integrates speed)
   speed_and_gap,  ///< the two, each divided by the variance of its measured series (Punzo et al.'s
                   ///< normalised mix, as El-Baklish et al. use it)
+  /// The speed MSE over every sample plus the speed MSE over the samples inside the leader's
+  /// perturbation windows (insidePerturbationWindows): where a whole-run MSE barely sees a
+  /// 3-second braking, half the weight goes to the brakings. The speed objective on runs
+  /// without a perturbation.
+  speed_and_windows,
 };
 
-/// "speed", "gap", "speed_and_gap".
+/// "speed", "gap", "speed_and_gap", "speed_and_windows".
 std::string objectiveName(FitObjective objective);
 
 /// Search box of the base parameters and how hard the local solver works. The same for the base
 /// fit and every augmented fit, so that they differ only by the effect.
 struct AugmentedCalibrationOptions
 {
-  /// The gap objectives need the simulated gap's sensitivities, which a clock offset
+  /// The gap objectives (gap, speed_and_gap) need the simulated gap's sensitivities, which a clock offset
   /// (sensor_time_offset) would make depend on the shifted leader: a fit of that effect must use
   /// the speed objective (calibrateAugmentedSet throws otherwise).
   FitObjective objective = FitObjective::speed;
