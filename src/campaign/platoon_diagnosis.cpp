@@ -195,7 +195,7 @@ bool hasTimingEffect(const PlatoonCandidate& candidate)
 bool parseObjective(const std::string& text, FitObjective* objective)
 {
   for (FitObjective option :
-       {FitObjective::speed, FitObjective::gap, FitObjective::speed_and_gap})
+       {FitObjective::speed, FitObjective::gap, FitObjective::speed_and_gap, FitObjective::speed_and_windows})
   {
     if (objectiveName(option) == text)
     {
@@ -240,6 +240,10 @@ const std::vector<PlatoonCandidate>& platoonCandidates()
       {{E::quadratic_closing_response, E::reaction_delay}, O::speed},
       {{E::reaction_delay}, O::speed_and_gap},
       {{E::actuation_lag}, O::speed_and_gap},
+      // The fit weighted to the brakings, at each stage of the effects a stage may choose.
+      {{}, O::speed_and_windows},
+      {{E::reaction_delay}, O::speed_and_windows},
+      {{E::quadratic_closing_response, E::reaction_delay}, O::speed_and_windows},
   };
   return candidates;
 }
@@ -387,12 +391,15 @@ EffectSetSelection selectEffectSet(const std::vector<PairPerturbationScore>& sco
 {
   EffectSetSelection selection;
   selection.excluded_run = excluded_run;
-  std::size_t chosen = runStage(scores, exclude_file, extensionsOf(0), 0, options, &selection);
-  if (chosen != 0)
+  // Forward: each stage tries what adds one thing to the last choice, until nothing is named or
+  // no candidate extends it.
+  std::size_t chosen = 0;
+  for (std::vector<std::size_t> extensions = extensionsOf(0); !extensions.empty(); extensions = extensionsOf(chosen))
   {
-    const std::vector<std::size_t> extensions = extensionsOf(chosen);
-    if (!extensions.empty())
-      chosen = runStage(scores, exclude_file, extensions, chosen, options, &selection);
+    const std::size_t next = runStage(scores, exclude_file, extensions, chosen, options, &selection);
+    if (next == chosen)
+      break;
+    chosen = next;
   }
   if (options.force)
   {
@@ -417,8 +424,9 @@ std::string effectSetSelectionRule(const EffectSetSelectionOptions& options)
   char text[900];
   std::snprintf(text, sizeof text,
                 "every car's models fitted on its other runs (leave-one-run-out); the loss: %s. Stage 1: each "
-                "candidate adding one effect or objective to the base model against it; stage 2: each candidate "
-                "adding one more to the stage-1 choice against that. A candidate is named when its mean loss is at "
+                "candidate adding one effect or objective to the base model against it; each further stage: each "
+                "candidate adding one more to the last stage's choice against that, until none is named. A "
+                "candidate is named when its mean loss is at "
                 "least %.0f %% lower and a bootstrap over perturbations (%zu replicates, every car of a perturbation "
                 "resampled together) gives p <= %.3g divided by the stage's candidates; the lowest loss among those "
                 "named wins. A run's own diagnosed models use the choice made without that run.",

@@ -77,7 +77,7 @@ int main(int argc, char** argv)
     if (!acc::parsePlatoonCandidate(platoon_effects, &options.effect_selection.forced))
     {
       std::cerr << "error: --platoon-effects: cannot read '" << platoon_effects
-                << "' (effect names joined by commas, optionally @speed, @gap or @speed_and_gap)\n";
+                << "' (effect names joined by commas, optionally @speed, @gap, @speed_and_gap or @speed_and_windows)\n";
       return 2;
     }
     // Said before the fits, not after a minute of them.

@@ -434,6 +434,62 @@ TEST(PlatoonCandidates, TextReadsBackAndOnlyCandidatesMayBeForced)
   EXPECT_FALSE(acc::isPlatoonCandidate({{acc::EffectKind::reaction_delay, acc::EffectKind::reaction_delay},
                                         acc::FitObjective::speed}));
 }
+namespace
+{
+/// The index selectEffectSet's scores use for a candidate: 0 the base model, i + 1 candidate i.
+std::size_t scoreIndexOf(const acc::PlatoonCandidate& candidate)
+{
+  const std::vector<acc::PlatoonCandidate>& all = acc::platoonCandidates();
+  return static_cast<std::size_t>(std::find(all.begin(), all.end(), candidate) - all.begin()) + 1;
+}
+
+/// Eight perturbations of three cars each, measured 1 m/s deep; every model's platoon dip
+/// `depth_of(model)` of it, a little shallower in later perturbations so the bootstrap has spread.
+std::vector<acc::PairPerturbationScore> scoresWithChainDips(const std::vector<double>& depth_of)
+{
+  std::vector<acc::PairPerturbationScore> scores;
+  for (std::size_t p = 0; p < 8; ++p)
+    for (int position = 2; position <= 4; ++position)
+    {
+      acc::PairPerturbationScore s;
+      s.position = position;
+      s.perturbation = p;
+      s.measured_dip_mps = 1.0;
+      for (double depth : depth_of)
+        s.chain_dip_mps.push_back(depth * (1.0 - 0.01 * static_cast<double>(p)));
+      s.window_mse.assign(depth_of.size(), 0.1);
+      scores.push_back(std::move(s));
+    }
+  return scores;
+}
+}  // namespace
+
+// The rule goes on while a stage names something: a delay, then the quadratic closing response on
+// top, then the fit weighted to the brakings on top of both, each closer to the measured dips.
+// Fails when the rule stops after two stages, or goes on past a stage that names nothing.
+TEST(PlatoonEffectSelection, AddsWhatEachStageNamesUntilAStageNamesNothing)
+{
+  using E = acc::EffectKind;
+  using O = acc::FitObjective;
+  const acc::PlatoonCandidate delay{{E::reaction_delay}, O::speed};
+  const acc::PlatoonCandidate both{{E::quadratic_closing_response, E::reaction_delay}, O::speed};
+  const acc::PlatoonCandidate weighted{{E::quadratic_closing_response, E::reaction_delay}, O::speed_and_windows};
+  std::vector<double> depth(acc::platoonCandidates().size() + 1, 0.5);  // nothing helps...
+  depth[scoreIndexOf(delay)] = 0.8;                                      // ...but these three
+  depth[scoreIndexOf(both)] = 0.9;
+  depth[scoreIndexOf(weighted)] = 0.98;
+  const acc::EffectSetSelection three = acc::selectEffectSet(scoresWithChainDips(depth), 99, "", {});
+  EXPECT_EQ(three.model, weighted) << three.model.name();
+  ASSERT_FALSE(three.comparisons.empty());
+  EXPECT_EQ(three.comparisons.back().candidate, weighted);
+  EXPECT_EQ(three.comparisons.back().against, both);
+  EXPECT_TRUE(three.comparisons.back().significant);
+
+  depth[scoreIndexOf(weighted)] = 0.9;  // no better than the two effects: the rule stops there
+  const acc::EffectSetSelection two = acc::selectEffectSet(scoresWithChainDips(depth), 99, "", {});
+  EXPECT_EQ(two.model, both) << two.model.name();
+  EXPECT_FALSE(two.comparisons.back().significant);
+}
 
 // A car driven by hand (its Driver column) before a perturbation's window ends is no test of its
 // ACC model: its predictions there, and the chain's behind it, are not compared, and a note says

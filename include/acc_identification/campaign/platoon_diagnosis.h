@@ -145,9 +145,10 @@ struct EffectSetSelection
 
 /// The stated rule over the pair-level scores of every file but `exclude_file` (pass a value
 /// >= the number of files to use all): stage 1 compares each candidate that adds one thing to the
-/// base model with it, paired over car-perturbations, and keeps the lowest mean window MSE among
-/// those with a significant, relevant improvement; stage 2 compares each candidate that adds one
-/// thing to that choice with it, by the same test. The bootstrap resamples whole perturbations (every car of one
+/// base model with it, paired over car-perturbations, and keeps the lowest mean loss among
+/// those with a significant, relevant improvement; each further stage compares each candidate that
+/// adds one thing to the last choice with it, by the same test, until none is named or none
+/// extends the choice. The bootstrap resamples whole perturbations (every car of one
 /// perturbation together, as they share its input), seeded.
 EffectSetSelection selectEffectSet(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
                                    const std::string& excluded_run, const EffectSetSelectionOptions& options);
