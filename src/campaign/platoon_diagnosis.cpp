@@ -525,7 +525,9 @@ DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& pl
           right += (measured > ahead_measured) == (predicted > ahead_predicted) ? 1 : 0;
         }
       }
-      abs_errors_by_perturbation.emplace_back();
+      // Like the links, a perturbation without a scored car is no cluster of this score.
+      if (errors.size() > errors_before)
+        abs_errors_by_perturbation.emplace_back();
       for (std::size_t e = errors_before; e < errors.size(); ++e)
         abs_errors_by_perturbation.back().push_back(std::abs(errors[e]));
       if (out.links > links_before)

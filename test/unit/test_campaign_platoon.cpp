@@ -355,6 +355,58 @@ TEST(DipPredictionSummary, TheNoModelReferenceBehindARestartedChainStartsFromIts
 // The shape passed on: rate sums over the cars a filter accepts, one bootstrap cluster per
 // perturbation, and the median widening; a car below the scored dip, or whose leader's rate or
 // width is unknown, adds nothing; a model's ratio and widening take only where it predicted.
+namespace
+{
+/// A perturbation of four cars, the measured dips `measured` and the chain's `chain` (NaN: not
+/// predicted), every chain driven by the first car.
+acc::PerturbationCheck perturbationWithDips(const std::vector<double>& measured, const std::vector<double>& chain)
+{
+  acc::PerturbationCheck perturbation;
+  for (std::size_t i = 0; i < measured.size(); ++i)
+  {
+    acc::DipComparison row;
+    row.position = static_cast<int>(i) + 1;
+    row.measured.dip_mps = measured[i];
+    row.chain.dip_mps = chain[i];
+    row.chain_driven_by = std::isfinite(chain[i]) ? 1 : 0;
+    perturbation.positions.push_back(row);
+  }
+  return perturbation;
+}
+}  // namespace
+
+// The two target scores' intervals resample the perturbations that hold a scored car: they
+// bracket the scores, and a perturbation where no car was predicted (all driven by hand, say)
+// neither widens nor moves them. Fails when such a perturbation counts as a cluster of the
+// median's bootstrap, as it never did of the links'.
+TEST(DipPredictionSummary, TheIntervalsResampleOnlyPerturbationsWithAScoredCar)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  acc::PlatoonCheck scored;
+  for (int p = 0; p < 6; ++p)  // six perturbations, each predicted a little shallower than the last
+  {
+    const double shortfall = 0.1 * p;
+    scored.perturbations.push_back(
+        perturbationWithDips({3.0, 3.2, 3.4, 3.1}, {3.0, 3.1 - shortfall, 2.9 - shortfall, 3.3 - 2 * shortfall}));
+  }
+  acc::PlatoonCheck with_empty = scored;  // and twelve where no car was predicted
+  for (int p = 0; p < 12; ++p)
+    with_empty.perturbations.push_back(perturbationWithDips({2.5, 2.6, 2.7, 2.8}, {2.5, nan, nan, nan}));
+  const acc::DipPredictionSummary a = acc::summarizeDipPredictions({scored}, acc::DipPrediction::chain_base);
+  const acc::DipPredictionSummary b = acc::summarizeDipPredictions({with_empty}, acc::DipPrediction::chain_base);
+  ASSERT_EQ(a.car_perturbations, 18u);
+  ASSERT_EQ(b.car_perturbations, 18u);
+  EXPECT_LE(a.median_abs_dip_error_lower, a.median_abs_dip_error);
+  EXPECT_GE(a.median_abs_dip_error_upper, a.median_abs_dip_error);
+  EXPECT_LT(a.median_abs_dip_error_lower, a.median_abs_dip_error_upper);
+  EXPECT_LE(a.share_links_growth_right_lower, a.share_links_growth_right);
+  EXPECT_GE(a.share_links_growth_right_upper, a.share_links_growth_right);
+  EXPECT_EQ(b.median_abs_dip_error_lower, a.median_abs_dip_error_lower);
+  EXPECT_EQ(b.median_abs_dip_error_upper, a.median_abs_dip_error_upper);
+  EXPECT_EQ(b.share_links_growth_right_lower, a.share_links_growth_right_lower);
+  EXPECT_EQ(b.share_links_growth_right_upper, a.share_links_growth_right_upper);
+}
+
 TEST(ShapeTransfer, SumsTheRatesAndTakesTheWideningsOverTheScoredCarsWithOneClusterPerPerturbation)
 {
   const double nan = std::numeric_limits<double>::quiet_NaN();
