@@ -13,6 +13,7 @@ acc_add_library(acc_run_io
     src/io/openacc_text.cpp
     src/io/openacc_angle_unit.cpp
     src/io/openacc_pairs.cpp
+    src/io/distance_setting.cpp
     src/io/mixed_setting_listing.cpp
     src/io/run_csv.cpp
     src/io/run_plausibility.cpp

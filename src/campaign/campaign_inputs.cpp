@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "acc_identification/io/distance_setting.h"
 #include "acc_identification/io/gap_kinematics.h"
 #include "acc_identification/io/mixed_setting_listing.h"
 #include "acc_identification/io/run_csv.h"
@@ -90,18 +91,23 @@ std::string whyNoUsableRun(const RunFileContents& contents)
   return why;
 }
 
-/// The file's Distance_setting as the campaign spells it: "?" when unknown; a setting met before in
-/// another case ("Min" after "min") takes the first spelling, said in a note, so that one car's
-/// runs at one setting are one group.
+/// The file's Distance_setting as the campaign spells it: "?" when unknown. A setting met before
+/// under another spelling takes the first spelling, said in a note, so that one car's runs at one
+/// setting are one group: another case ("Min" after "min"), or another word for the same setting
+/// ("min" after "S": both the shortest, `distanceSettingLetter`).
 std::string settingSpelling(const std::string& written, std::map<std::string, std::string>& spellings,
                             const std::string& path, std::vector<std::string>& notes)
 {
   if (written.empty())
     return "?";
-  const auto [known, first] = spellings.emplace(upperCase(written), written);
-  if (!first && known->second != written)
-    notes.push_back(path + ": Distance_setting '" + written + "' taken as '" + known->second +
-                    "', as an earlier file writes it");
+  const std::string letter = distanceSettingLetter(written);
+  const auto [known, first] = spellings.emplace(letter.empty() ? upperCase(written) : letter, written);
+  if (first || known->second == written)
+    return known->second;
+  const bool same_word = upperCase(known->second) == upperCase(written);
+  notes.push_back(path + ": Distance_setting '" + written + "' taken as '" + known->second +
+                  "', as an earlier file writes it" +
+                  (same_word ? "" : " (both name " + describeDistanceSetting(letter) + ")"));
   return known->second;
 }
 
@@ -371,7 +377,7 @@ const CampaignGroup* CampaignInputs::findGroup(const std::string& vehicle, const
 int settingRank(const std::string& setting)
 {
   static const std::vector<std::string> order{"S", "M", "L"};
-  const auto it = std::find(order.begin(), order.end(), setting);
+  const auto it = std::find(order.begin(), order.end(), distanceSettingLetter(setting));
   return it == order.end() ? static_cast<int>(order.size()) : static_cast<int>(it - order.begin());
 }
 

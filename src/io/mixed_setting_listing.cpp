@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "acc_identification/io/csv_fields.h"
+#include "acc_identification/io/distance_setting.h"
 #include "acc_identification/model/plain_text.h"
 #include "openacc_text.h"
 
@@ -22,14 +23,7 @@ bool isListingHeader(const std::vector<std::string>& fields)
 /// "Long timegap setting" -> "L": the setting a header's first word names, "" for none known.
 std::string settingNamedBy(const std::string& column)
 {
-  const std::string word = upperCase(column.substr(0, column.find_first_of(" _")));
-  if (word == "LONG" || word == "LONGEST")
-    return "L";
-  if (word == "SHORT" || word == "SHORTEST")
-    return "S";
-  if (word == "MEDIUM" || word == "MID" || word == "MIDDLE")
-    return "M";
-  return "";
+  return distanceSettingLetter(column.substr(0, column.find_first_of(" _")));
 }
 
 /// "BMW_I3/MERCEDES_GLE450" -> both names; empty parts dropped.

@@ -7,7 +7,9 @@
 #include <vector>
 #include <sstream>
 #include <functional>
+#include <cstdint>
 #include <limits>
+#include <utility>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -436,8 +438,34 @@ TEST(CampaignInputs, AListedMixedRunsSettingsTakeTheOtherFilesSpelling)
   writeListing(folder.file("listing.csv"), "handling_part12,CAR_B\n");
   const acc::CampaignInputs inputs = acc::loadCampaign({folder.path()});
   const std::string all = allNotes(inputs);
-  EXPECT_EQ(groupLabels(inputs), (std::vector<std::string>{"CAR_A/s 2", "CAR_B/L 1", "CAR_B/s 1"})) << all;
+  EXPECT_EQ(groupLabels(inputs), (std::vector<std::string>{"CAR_A/s 2", "CAR_B/s 1", "CAR_B/L 1"})) << all;
   EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"handling_part12.csv: Distance_setting 'S' taken as 's'"})) << all;
+}
+
+// Another word for one setting ("S" and "Short" after "min", "L" after "max": the ZalaZone and
+// Casale campaigns' spellings) is one group under the first spelling, said in a note; a setting no
+// word names ("2") stays a group of its own. Fails when the spellings are keyed by case alone.
+TEST(CampaignInputs, AnotherWordForOneSettingIsOneGroup)
+{
+  TempFolder folder("acc_campaign_setting_words");
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"a_min.csv", "min"}, {"b_short.csv", "S"}, {"c_short.csv", "Short"},
+      {"d_max.csv", "max"}, {"e_long.csv", "L"},  {"f_two.csv", "2"}};
+  std::uint64_t seed = 81;
+  for (const auto& [name, setting] : files)
+    acc_test::writeSyntheticPlatoon(folder.file(name), setting, {kAS, kBS}, seed++, 60.0);
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.path()});
+  const std::string all = allNotes(inputs);
+  EXPECT_EQ(groupLabels(inputs), (std::vector<std::string>{"CAR_A/min 3", "CAR_A/max 2", "CAR_A/2 1", "CAR_B/min 3",
+                                                           "CAR_B/max 2", "CAR_B/2 1"}))
+      << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"b_short.csv: Distance_setting 'S' taken as 'min', as an earlier "
+                                                   "file writes it (both name the shortest setting)"}))
+      << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"e_long.csv: Distance_setting 'L' taken as 'max'",
+                                                   "(both name the longest setting)"}))
+      << all;
+  EXPECT_FALSE(acc_test::anyContains(inputs.notes, {"f_two.csv: Distance_setting"})) << all;
 }
 
 // A listing entry that does not fit its file is not followed, and says why; the mixed run then

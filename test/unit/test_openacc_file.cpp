@@ -13,6 +13,7 @@
 
 #include <unistd.h>
 
+#include "acc_identification/io/distance_setting.h"
 #include "acc_identification/io/mixed_setting_listing.h"
 #include "acc_identification/io/openacc_file.h"
 #include "acc_identification/io/run_csv.h"
@@ -507,5 +508,20 @@ TEST_F(OpenAccFileTest, AMixedSettingListingIsKnownByItsHeaderAndNamesItsSetting
   EXPECT_FALSE(acc::looksLikeMixedSettingListing(write("v.csv", "filename,vehicle\nx,CAR\n")));
   EXPECT_FALSE(acc::looksLikeMixedSettingListing(write("p.csv", kPlatoonMetadata)));
   EXPECT_TRUE(anyContains(acc::readMixedSettingListing((dir_ / "absent.csv").string()).problems, {"cannot open"}));
+}
+// The campaigns' words for one setting are one letter; a number, a mixed setting or an unknown word
+// is none. Fails when min/max are not read as S/L, or case matters, or a mixed "SL" is taken for one.
+TEST(DistanceSetting, TheCampaignsWordsForOneSettingAreOneLetter)
+{
+  for (const char* word : {"S", "s", "short", "Shortest", "min", "MINIMUM"})
+    EXPECT_EQ(acc::distanceSettingLetter(word), "S") << word;
+  for (const char* word : {"M", "medium", "Mid", "middle"})
+    EXPECT_EQ(acc::distanceSettingLetter(word), "M") << word;
+  for (const char* word : {"L", "long", "LONGEST", "max", "Maximum"})
+    EXPECT_EQ(acc::distanceSettingLetter(word), "L") << word;
+  for (const char* word : {"", "SL", "2", "minimal", "?"})
+    EXPECT_EQ(acc::distanceSettingLetter(word), "") << word;
+  EXPECT_EQ(acc::describeDistanceSetting("S"), "the shortest setting");
+  EXPECT_EQ(acc::describeDistanceSetting("SL"), "");
 }
 }  // namespace

@@ -92,8 +92,8 @@ struct CampaignFileList
 CampaignFileList listCampaignFiles(const std::vector<std::string>& files_or_folders);
 
 /// Reads every file (readOpenAccFile and readAllPairRuns: every available pair) and groups the
-/// followers by (vehicle name, Distance_setting; a setting written in another case than an earlier
-/// file's takes the earlier spelling). In a mixed-setting run ("SL") that a listing among the paths
+/// followers by (vehicle name, Distance_setting; a setting written in another case or another word
+/// than an earlier file's, "Min" or "S" after "min", takes the earlier spelling: distanceSettingLetter). In a mixed-setting run ("SL") that a listing among the paths
 /// names, each car is grouped at its own setting (CampaignFile::car_settings), said in a note; one
 /// no listing names is a group of its own at "SL", said too. A file that cannot be read as OpenACC, or a pair without
 /// usable runs, is skipped with a note that says why, and counted. What a read file loses is a
@@ -103,7 +103,8 @@ CampaignFileList listCampaignFiles(const std::vector<std::string>& files_or_fold
 CampaignInputs loadCampaign(const std::vector<std::string>& paths,
                             const RunPlausibilityBounds& bounds = RunPlausibilityBounds{});
 
-/// Rank of a distance setting for ordering: S, M, L first, then anything else.
+/// Rank of a distance setting for ordering: S, M, L first (in any of their words: min, medium,
+/// max...), then anything else.
 int settingRank(const std::string& setting);
 
 }  // namespace acc

@@ -11,8 +11,8 @@ namespace acc
 /// `Distance_setting,SL` and does not name the two. The database names them in a separate CSV
 /// ("Long setting vehs in mixed timegap experiment handling": a header `filename,Long timegap
 /// setting`, then per file `handling_part12,BMW_I3/MERCEDES_GLE450`). Recognised by that header,
-/// whatever the file is called; the setting it lists is the header's first word (Long -> L,
-/// Short -> S, Medium -> M).
+/// whatever the file is called; the setting it lists is the one the header's first word names
+/// (Long -> L, Short -> S, Medium -> M: `distanceSettingLetter`).
 struct MixedSettingListing
 {
   std::string path;
