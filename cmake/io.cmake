@@ -15,6 +15,7 @@ acc_add_library(acc_run_io
     src/io/openacc_pairs.cpp
     src/io/distance_setting.cpp
     src/io/mixed_setting_listing.cpp
+    src/io/problem_lines.cpp
     src/io/run_csv.cpp
     src/io/run_plausibility.cpp
     src/io/gap_kinematics.cpp

@@ -1,6 +1,7 @@
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/io/csv_fields.h"
 #include "acc_identification/io/gap_kinematics.h"
+#include "acc_identification/io/problem_lines.h"
 
 #include <array>
 #include <cerrno>
@@ -483,7 +484,7 @@ std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileC
   {
     log << "note: " << note << "\n";
   }
-  for (const std::string& problem : contents.problems)
+  for (const std::string& problem : condenseProblemLines(contents.problems))
   {
     log << "warning: " << problem << "\n";
   }

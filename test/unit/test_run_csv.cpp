@@ -1,11 +1,15 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <sstream>
+#include <fstream>
+#include <filesystem>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "acc_identification/io/problem_lines.h"
 #include "acc_identification/io/run_csv.h"
 #include "run_matchers.h"
 
@@ -343,4 +347,44 @@ TEST(RunCsv, SpreadsheetExportsReadAsThePlainFile)
   std::remove(exported.c_str());
 }
 
+// Consecutive lines of one file with one reason are one entry naming the range; another reason, a
+// line that does not follow on, another file or a problem of another form ends it. Fails when
+// stretches are merged across reasons or gaps, or a problem is lost or reordered.
+TEST(ProblemLines, ConsecutiveLinesWithOneReasonAreOneRange)
+{
+  const std::vector<std::string> problems = {
+      "a.csv:7: IVS1 empty; row rejected", "a.csv:8: IVS1 empty; row rejected", "a.csv:9: IVS1 empty; row rejected",
+      "a.csv:10: Speed2 NaN; row rejected",  "a.csv:12: Speed2 NaN; row rejected", "b.csv:13: Speed2 NaN; row rejected",
+      "a.csv: 5 of 90 rows rejected",       "C:/runs/c.csv:4: x: y",            "C:/runs/c.csv:5: x: y"};
+  EXPECT_EQ(acc::condenseProblemLines(problems),
+            (std::vector<std::string>{"a.csv:7-9 (3 lines): IVS1 empty; row rejected",
+                                      "a.csv:10: Speed2 NaN; row rejected", "a.csv:12: Speed2 NaN; row rejected",
+                                      "b.csv:13: Speed2 NaN; row rejected", "a.csv: 5 of 90 rows rejected",
+                                      "C:/runs/c.csv:4-5 (2 lines): x: y"}));
+  EXPECT_TRUE(acc::condenseProblemLines({}).empty());
+}
+
+// A stretch of empty gap cells is one warning on the log, while the contents keep one problem per
+// row and the counts stay whole. Fails when the log lists every row again, or the reader's own
+// problems are condensed.
+TEST(ProblemLines, AStretchOfBadRowsIsOneWarningOnTheLog)
+{
+  const std::string path = (std::filesystem::temp_directory_path() / "acc_stretch_of_bad_rows.csv").string();
+  {
+    std::ofstream file(path);
+    file << "time_s,space_gap_m,follower_speed_mps,leader_speed_mps\n";
+    for (int i = 0; i < 20; ++i)
+      file << 0.1 * i << "," << (i >= 5 && i < 12 ? std::string() : std::string("20")) << ",10,10\n";
+  }
+  acc::RunFileContents contents = acc::readRunFile(path);
+  EXPECT_EQ(contents.rejected_rows, 7u);
+  EXPECT_EQ(contents.problems.size(), 7u);
+  std::ostringstream log;
+  const std::vector<acc::CarFollowingRun> runs = acc::reportAndTakeRuns(path, contents, log);
+  EXPECT_EQ(runs.size(), 2u);
+  EXPECT_TRUE(contains(log.str(), "warning: " + path + ":7-13 (7 lines): space gap"));
+  EXPECT_TRUE(contains(log.str(), "7 of 20 rows rejected")) << log.str();
+  EXPECT_FALSE(contains(log.str(), path + ":8:")) << log.str();
+  std::remove(path.c_str());
+}
 }  // namespace
