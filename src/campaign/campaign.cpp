@@ -147,7 +147,10 @@ PlatoonCarModel fitPlatoonModelOn(const CampaignInputs& inputs, std::size_t file
     fallback = "first half of this run (" + model.source + ")";
   }
   *training = firstHalves(own->segments);
-  return fitModel(*training, starts, fallback);
+  PlatoonCarModel model = fitModel(*training, starts, fallback);
+  for (const CarFollowingRun& half : *training)
+    model.fitted_on_this_run_s.emplace_back(half.time_s.front(), half.time_s.back());
+  return model;
 }
 
 /// Car (file, position): its base model, and with the platoon diagnosis its candidate models on

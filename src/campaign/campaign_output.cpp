@@ -414,6 +414,7 @@ nlohmann::json platoonJson(const PlatoonCheck& check, const EffectSetSelection* 
                              {"positions", positionsJson(p.positions)},
                              {"data_show_growth", p.data_show_growth},
                              {"driven_by_hand", p.driven_by_hand},
+                             {"models_fitted_on_it", p.fitted_on_it},
                              {"disagreements", disagreementsJson(p.disagreements)}});
     for (const auto& d : disagreementsJson(p.disagreements))
       disagreements.push_back(d);

@@ -1,4 +1,6 @@
 #include "acc_identification/campaign/platoon_check.h"
+
+#include "acc_identification/evidence/perturbation_windows.h"
 #include "acc_identification/model/number_text.h"
 
 #include <algorithm>
@@ -221,6 +223,34 @@ bool dataShowGrowth(const std::vector<DipComparison>& positions)
       last = positions[k].measured.dip_mps;
   }
   return std::isfinite(first) && std::isfinite(last) && last > first;
+}
+
+/// The positions whose model was fitted on a stretch of this run overlapping the perturbation's
+/// window (PerturbationCheck::fitted_on_it), and a note naming them.
+void markModelsFittedOnIt(const std::vector<PlatoonCarPrediction>& cars, const OpenAccFile& data,
+                          const std::vector<double>& time_s, std::size_t index, const PlatoonCheckOptions& options,
+                          PerturbationCheck& perturbation, std::vector<std::string>& notes)
+{
+  const WindowRows rows = perturbationWindowRows(time_s, perturbation.perturbation, options.perturbation);
+  if (rows.end <= rows.first)
+    return;
+  const double first_s = time_s[rows.first], last_s = time_s[rows.end - 1];
+  std::vector<std::string> names;
+  for (const PlatoonCarPrediction& car : cars)
+  {
+    const auto& stretches = car.model.fitted_on_this_run_s;
+    if (std::any_of(stretches.begin(), stretches.end(),
+                    [&](const auto& stretch) { return stretch.first <= last_s && first_s <= stretch.second; }))
+    {
+      perturbation.fitted_on_it.push_back(car.position);
+      names.push_back(data.vehicleName(car.position) + " (" + std::to_string(car.position) + ")");
+    }
+  }
+  if (!names.empty())
+    notes.push_back("perturbation " + std::to_string(index + 1) + " (onset " +
+                    printfText("%.1f s", perturbation.perturbation.onset_s) + "): the models of " + join(names, ", ") +
+                    " were fitted on this run (no other run of the car at its setting) over a stretch that holds "
+                    "this dip: their predictions here, and the chains' behind them, are not out of sample");
 }
 
 /// The cars of one perturbation not compared because they were driven by hand, in one note.
@@ -456,6 +486,7 @@ PlatoonCheck checkPlatoon(const CampaignFile& file, const std::vector<PlatoonCar
   {
     check.perturbations.push_back(comparePerturbation(check, data, time_s, found[i], i, options));
     noteDrivenByHand(data, check.perturbations.back(), i, check.notes);
+    markModelsFittedOnIt(check.cars, data, time_s, i, options, check.perturbations.back(), check.notes);
   }
   return check;
 }

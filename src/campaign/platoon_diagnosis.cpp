@@ -320,6 +320,7 @@ std::vector<PlatoonCarModel> fitCandidateModels(const std::vector<CarFollowingRu
         fits[i] = cold;
     }
     models[i] = modelOf(fits[i], base.source);
+    models[i].fitted_on_this_run_s = base.fitted_on_this_run_s;  // the same training data
   }
   return models;
 }

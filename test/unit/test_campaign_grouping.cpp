@@ -468,6 +468,32 @@ TEST(CampaignInputs, AnotherWordForOneSettingIsOneGroup)
   EXPECT_FALSE(acc_test::anyContains(inputs.notes, {"f_two.csv: Distance_setting"})) << all;
 }
 
+// A car with no other run at its setting is fitted on the first half of the predicted run, and
+// its model says over which stretch of that run's clock; a model fitted on other runs names none.
+// Fails when the fallback's stretches are not recorded, or are recorded for a leave-one-run-out fit.
+TEST(CampaignInputs, AFallbackModelSaysWhichStretchOfTheRunItWasFittedOn)
+{
+  TempFolder folder("acc_campaign_fallback_stretch");
+  acc_test::writeSyntheticPlatoon(folder.file("solo.csv"), "S", {kAS, kBS}, 91, 120.0);
+  const acc::CampaignInputs alone = acc::loadCampaign({folder.file("solo.csv")});
+  const acc::PlatoonCarModel fallback = acc::fitPlatoonModel(alone, 0, 2, 5);
+  EXPECT_EQ(fallback.source.rfind("first half of this run", 0), 0u) << fallback.source;
+  ASSERT_FALSE(fallback.fitted_on_this_run_s.empty());
+  const std::vector<double>& time_s = alone.files[0].contents.time_s;
+  const double middle_s = 0.5 * (time_s.front() + time_s.back());
+  for (const auto& [first_s, last_s] : fallback.fitted_on_this_run_s)
+  {
+    EXPECT_GE(first_s, time_s.front());
+    EXPECT_LT(first_s, last_s);
+    EXPECT_LE(last_s, middle_s + 0.2);
+  }
+  acc_test::writeSyntheticPlatoon(folder.file("other.csv"), "S", {kAS, kBS}, 92, 120.0);
+  const acc::CampaignInputs both = acc::loadCampaign({folder.file("other.csv"), folder.file("solo.csv")});
+  const acc::PlatoonCarModel other_runs = acc::fitPlatoonModel(both, 1, 2, 5);
+  EXPECT_EQ(other_runs.source.rfind("leave-one-run-out", 0), 0u) << other_runs.source;
+  EXPECT_TRUE(other_runs.fitted_on_this_run_s.empty());
+}
+
 // A listing entry that does not fit its file is not followed, and says why; the mixed run then
 // stays a group of its own. Fails when a car the file does not hold, or a plain setting, is
 // taken from the listing.

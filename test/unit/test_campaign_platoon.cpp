@@ -543,19 +543,27 @@ TEST(PlatoonEffectSelection, AddsWhatEachStageNamesUntilAStageNamesNothing)
   EXPECT_FALSE(two.comparisons.back().significant);
 }
 
+/// A synthetic three-car platoon behind a perturbing lead car (150 s, the unstable law), read as
+/// the campaign reads a file.
+acc::CampaignFile threeCarPlatoonFile(const std::string& tag, std::uint64_t seed)
+{
+  const fs::path path = fs::temp_directory_path() / ("acc_campaign_" + tag + "_" + std::to_string(::getpid()) + ".csv");
+  acc_test::writeSyntheticPlatoon(path.string(), "S", {{"CAR_A", kUnstable}, {"CAR_B", kUnstable}, {"CAR_C", kUnstable}},
+                                  seed, 150.0);
+  acc::CampaignFile file;
+  file.contents = acc::readOpenAccFile(path.string());
+  fs::remove(path);
+  file.name = file.contents.name;
+  return file;
+}
+
 // A car driven by hand (its Driver column) before a perturbation's window ends is no test of its
 // ACC model: its predictions there, and the chain's behind it, are not compared, and a note says
 // so; the car behind is still compared at pair level (driven by the real car's speed), and a hand
 // driven stretch after the window leaves it alone. Fails when the Driver column is ignored.
 TEST(CampaignPlatoon, ACarDrivenByHandBeforeTheWindowsEndIsNotCompared)
 {
-  const fs::path path = fs::temp_directory_path() / ("acc_campaign_hand_" + std::to_string(::getpid()) + ".csv");
-  acc_test::writeSyntheticPlatoon(path.string(), "S", {{"CAR_A", kUnstable}, {"CAR_B", kUnstable}, {"CAR_C", kUnstable}},
-                                  71, 150.0);
-  acc::CampaignFile file;
-  file.contents = acc::readOpenAccFile(path.string());
-  fs::remove(path);
-  file.name = file.contents.name;
+  const acc::CampaignFile file = threeCarPlatoonFile("hand", 71);
   const std::vector<acc::PlatoonCarModel> models(5, acc::PlatoonCarModel{true, kUnstable, "truth"});
   // Every follower on ACC by its Driver column, CAR_B (position 3) driven by hand at one row.
   auto withHumanAt = [&file](std::size_t row) {
@@ -589,4 +597,30 @@ TEST(CampaignPlatoon, ACarDrivenByHandBeforeTheWindowsEndIsNotCompared)
   const acc::PlatoonCheck after = acc::checkPlatoon(withHumanAt(all_acc.first_row + window.window_end + 10), models);
   EXPECT_TRUE(after.perturbations.front().driven_by_hand.empty());
   EXPECT_DOUBLE_EQ(after.perturbations.front().positions[3].chain.dip_mps, all_acc.perturbations.front().positions[3].chain.dip_mps);
+}
+
+// A car whose model was fitted on a stretch of the predicted run itself that overlaps a
+// perturbation's window (from the pre-window to the dip window's end) is named for that
+// perturbation, and a note says its predictions there are not out of sample; a stretch that ends
+// before the pre-window names nothing. Fails when the overlap is not checked or the pre-window is
+// left out of the window.
+TEST(CampaignPlatoon, AModelFittedOnTheDipItIsJudgedOnIsNamed)
+{
+  const acc::CampaignFile file = threeCarPlatoonFile("in_sample", 72);
+  std::vector<acc::PlatoonCarModel> models(5, acc::PlatoonCarModel{true, kUnstable, "truth"});
+  const acc::PlatoonCheck unmarked = acc::checkPlatoon(file, models);
+  ASSERT_EQ(unmarked.perturbations.size(), 1u);
+  EXPECT_TRUE(unmarked.perturbations.front().fitted_on_it.empty());
+  const double onset_s = unmarked.perturbations.front().perturbation.onset_s;
+
+  models[3].fitted_on_this_run_s = {{0.0, onset_s - 3.0}};  // CAR_B: up to inside the 5 s pre-window
+  models[4].fitted_on_this_run_s = {{0.0, onset_s - 6.0}};  // CAR_C: ends before it
+  const acc::PlatoonCheck marked = acc::checkPlatoon(file, models);
+  EXPECT_EQ(marked.perturbations.front().fitted_on_it, (std::vector<int>{3}));
+  EXPECT_TRUE(std::any_of(marked.notes.begin(), marked.notes.end(), [](const std::string& note) {
+    return note.find("the models of CAR_B (3) were fitted on this run") != std::string::npos &&
+           note.find("not out of sample") != std::string::npos;
+  })) << marked.notes.size();
+  EXPECT_DOUBLE_EQ(marked.perturbations.front().positions[3].chain.dip_mps,
+                   unmarked.perturbations.front().positions[3].chain.dip_mps);
 }

@@ -27,6 +27,10 @@ struct PlatoonCarModel
   /// Where it comes from: "leave-one-run-out: 3 other runs", "first half of this run (no other
   /// run of this car and setting)"; or why there is none.
   std::string source;
+  /// The stretches [first, last] of the predicted run's own clock the model was fitted on [s]: the
+  /// fallback's first halves; empty for a model fitted on other runs. A dip inside one is judged
+  /// by a model that saw it (PerturbationCheck::fitted_on_it).
+  std::vector<std::pair<double, double>> fitted_on_this_run_s;
   /// The unmodelled effects the model adds to the paper's law (empty: the base model), their
   /// values in the catalogue's order, the settings they make, and the standard errors of
   /// (k1, k2, tau_e, eta, effect values) where the fit gives them.
@@ -89,6 +93,11 @@ struct PerturbationCheck
   /// end (onAccThroughout): their predictions, and the chains driven through them, are not compared
   /// (NaN); their measured dips stay.
   std::vector<int> driven_by_hand;
+  /// Positions whose car's models were fitted on a stretch of this run that overlaps this
+  /// perturbation's window (from the pre-window to the dip window's end): the fallback of a car
+  /// with no other run (PlatoonCarModel::fitted_on_this_run_s). Their predictions here, and the
+  /// chains' behind them, are not out of sample; they are compared, and said in a note.
+  std::vector<int> fitted_on_it;
   std::vector<PlatoonDisagreement> disagreements;
 };
 
