@@ -1,4 +1,6 @@
 #include "acc_identification/campaign/campaign_output.h"
+
+#include <algorithm>
 #include "acc_identification/model/number_text.h"
 
 #include <cmath>
@@ -501,9 +503,12 @@ std::vector<std::vector<std::string>> platoonRows(const CampaignResult& result)
   {
     for (std::size_t i = 0; i < check.perturbations.size(); ++i)
     {
+      const std::vector<int>& in_sample = check.perturbations[i].fitted_on_it;
       for (const DipComparison& row : check.perturbations[i].positions)
       {
-        rows.push_back({check.run + "/" + check.setting, std::to_string(i + 1), std::to_string(row.position), row.name,
+        const bool saw_dip = std::find(in_sample.begin(), in_sample.end(), row.position) != in_sample.end();
+        rows.push_back({check.run + "/" + check.setting, std::to_string(i + 1), std::to_string(row.position),
+                        row.name + (saw_dip ? " *" : ""),
                         cellNumber("%.2f", row.measured.dip_mps), cellNumber("%.2f", row.chain.dip_mps),
                         cellNumber("%.2f", row.chain_diagnosed.dip_mps), cellNumber("%.2f", row.measured_amplification),
                         cellNumber("%.2f", row.chain_amplification),
@@ -893,7 +898,9 @@ std::string campaignReportMarkdown(const CampaignResult& result, const std::vect
   for (const std::string& note : groupNotes(result))
     md << "\n- " << note;
   md << "\n\n## Platoons predicted from the real first car\n\n"
-     << "Each following car simulated with its model fitted WITHOUT this run, from its measured gap and speed, "
+     << "Each following car simulated with its model fitted WITHOUT this run (a car with no other run at its "
+        "setting: on the first half of each of its segments of this run; * where such a half holds the dip, "
+        "which its model has then seen), from its measured gap and speed, "
         "driven by the predicted speed of the car ahead. Dip = pre-perturbation speed minus the minimum within "
         "the perturbation (+30 s); amplification = dip(k) / dip(k-1).\n\n";
   printMarkdownTable(kPlatoonHeader, platoonRows(result), md);

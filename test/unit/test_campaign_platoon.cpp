@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <sstream>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -11,6 +12,7 @@
 #include <unistd.h>
 
 #include "acc_identification/campaign/campaign.h"
+#include "acc_identification/campaign/campaign_output.h"
 #include "acc_identification/campaign/link_evidence.h"
 #include "acc_identification/model/string_stability.h"
 #include "campaign_test_data.h"
@@ -623,4 +625,11 @@ TEST(CampaignPlatoon, AModelFittedOnTheDipItIsJudgedOnIsNamed)
   })) << marked.notes.size();
   EXPECT_DOUBLE_EQ(marked.perturbations.front().positions[3].chain.dip_mps,
                    unmarked.perturbations.front().positions[3].chain.dip_mps);
+  // The platoon table marks the car in that perturbation's rows.
+  acc::CampaignResult result;
+  result.platoons = {marked};
+  std::ostringstream table;
+  acc::printCampaignTables(result, table);
+  EXPECT_NE(table.str().find("CAR_B *"), std::string::npos) << table.str();
+  EXPECT_EQ(table.str().find("CAR_C *"), std::string::npos) << table.str();
 }
