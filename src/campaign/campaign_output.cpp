@@ -1,8 +1,7 @@
 #include "acc_identification/campaign/campaign_output.h"
-
-#include <algorithm>
 #include "acc_identification/model/number_text.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>

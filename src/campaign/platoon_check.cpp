@@ -225,6 +225,22 @@ bool dataShowGrowth(const std::vector<DipComparison>& positions)
   return std::isfinite(first) && std::isfinite(last) && last > first;
 }
 
+/// "perturbation 2 (onset 1259.9 s): ", the opening of a note about one perturbation.
+std::string perturbationLabel(const PerturbationCheck& perturbation, std::size_t index)
+{
+  return "perturbation " + std::to_string(index + 1) + " (onset " +
+         printfText("%.1f s", perturbation.perturbation.onset_s) + "): ";
+}
+
+/// "TESLA_MODELX (3), AUDI_E_TRON (5)": the cars at these positions, for a note.
+std::string carsAt(const OpenAccFile& data, const std::vector<int>& positions)
+{
+  std::vector<std::string> cars;
+  for (int position : positions)
+    cars.push_back(data.vehicleName(position) + " (" + std::to_string(position) + ")");
+  return join(cars, ", ");
+}
+
 /// The positions whose model was fitted on a stretch of this run overlapping the perturbation's
 /// window (PerturbationCheck::fitted_on_it), and a note naming them.
 void markModelsFittedOnIt(const std::vector<PlatoonCarPrediction>& cars, const OpenAccFile& data,
@@ -235,20 +251,15 @@ void markModelsFittedOnIt(const std::vector<PlatoonCarPrediction>& cars, const O
   if (rows.end <= rows.first)
     return;
   const double first_s = time_s[rows.first], last_s = time_s[rows.end - 1];
-  std::vector<std::string> names;
   for (const PlatoonCarPrediction& car : cars)
   {
     const auto& stretches = car.model.fitted_on_this_run_s;
     if (std::any_of(stretches.begin(), stretches.end(),
                     [&](const auto& stretch) { return stretch.first <= last_s && first_s <= stretch.second; }))
-    {
       perturbation.fitted_on_it.push_back(car.position);
-      names.push_back(data.vehicleName(car.position) + " (" + std::to_string(car.position) + ")");
-    }
   }
-  if (!names.empty())
-    notes.push_back("perturbation " + std::to_string(index + 1) + " (onset " +
-                    printfText("%.1f s", perturbation.perturbation.onset_s) + "): the models of " + join(names, ", ") +
+  if (!perturbation.fitted_on_it.empty())
+    notes.push_back(perturbationLabel(perturbation, index) + "the models of " + carsAt(data, perturbation.fitted_on_it) +
                     " were fitted on this run (no other run of the car at its setting) over a stretch that holds "
                     "this dip: their predictions here, and the chains' behind them, are not out of sample");
 }
@@ -259,11 +270,7 @@ void noteDrivenByHand(const OpenAccFile& data, const PerturbationCheck& perturba
 {
   if (perturbation.driven_by_hand.empty())
     return;
-  std::vector<std::string> cars;
-  for (int position : perturbation.driven_by_hand)
-    cars.push_back(data.vehicleName(position) + " (" + std::to_string(position) + ")");
-  notes.push_back("perturbation " + std::to_string(index + 1) + " (onset " +
-                  printfText("%.1f s", perturbation.perturbation.onset_s) + "): " + join(cars, ", ") +
+  notes.push_back(perturbationLabel(perturbation, index) + carsAt(data, perturbation.driven_by_hand) +
                   " not on ACC (Driver column) between the stretch's start and the window's end: " +
                   "their predictions, and the chains' behind them, are not compared");
 }
