@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
+#include <stdexcept>
 #include <tuple>
 
 #include "acc_identification/diagnosis/augmented_stability.h"
@@ -247,15 +249,15 @@ void markModelsFittedOnIt(const std::vector<PlatoonCarPrediction>& cars, const O
                           const std::vector<double>& time_s, std::size_t index, const PlatoonCheckOptions& options,
                           PerturbationCheck& perturbation, std::vector<std::string>& notes)
 {
-  const WindowRows rows = perturbationWindowRows(time_s, perturbation.perturbation, options.perturbation);
-  if (rows.end <= rows.first)
+  const std::optional<std::pair<double, double>> window = perturbationWindowS(time_s, perturbation.perturbation, options);
+  if (!window)
     return;
-  const double first_s = time_s[rows.first], last_s = time_s[rows.end - 1];
   for (const PlatoonCarPrediction& car : cars)
   {
     const auto& stretches = car.model.fitted_on_this_run_s;
-    if (std::any_of(stretches.begin(), stretches.end(),
-                    [&](const auto& stretch) { return stretch.first <= last_s && first_s <= stretch.second; }))
+    if (std::any_of(stretches.begin(), stretches.end(), [&](const auto& stretch) {
+          return stretch.first <= window->second && window->first <= stretch.second;
+        }))
       perturbation.fitted_on_it.push_back(car.position);
   }
   if (!perturbation.fitted_on_it.empty())
@@ -452,29 +454,32 @@ std::vector<Perturbation> leadPerturbations(const OpenAccFile& file, const Plato
                            sliceRows(file.vehicle(1)->speed_mps, *first_row, *end_row), options.perturbation);
 }
 
-PlatoonCheck checkPlatoon(const CampaignFile& file, const std::vector<PlatoonCarModel>& models,
-                          const PlatoonCheckOptions& options, const std::vector<PlatoonCarModel>* diagnosed)
+namespace
+{
+/// Everything of checkPlatoon but the perturbations: the chain and the pair-level predictions with
+/// one chain's models, and their notes.
+PlatoonCheck predictPlatoon(const CampaignFile& file, const PlatoonChainModels& chain, const PlatoonCheckOptions& options)
 {
   PlatoonCheck check;
   check.run = file.name;
   check.setting = file.setting;
   check.car_settings = file.car_settings;
   const OpenAccFile& data = file.contents;
-  const std::vector<Perturbation> found = leadPerturbations(data, options, &check.first_row, &check.end_row);
+  std::tie(check.first_row, check.end_row) = longestLeadStretch(data, options.max_time_step_s);
   if (check.end_row < check.first_row + 2)
   {
     check.notes.push_back("the first car (" + data.vehicleName(1) + ") has no stretch of speed data: nothing predicted");
     return check;
   }
-  check.cars = predictChain(file, models, check);
+  check.cars = predictChain(file, chain.models, check);
   for (const PlatoonCarPrediction& car : check.cars)
     check.pairs.push_back(predictPair(data, car.position, car.model, check.first_row, check.end_row));
-  if (diagnosed != nullptr)
+  if (!chain.diagnosed.empty())
   {
     PlatoonCheck diagnosed_notes;  // the same rows; its notes are filtered below
     diagnosed_notes.first_row = check.first_row;
     diagnosed_notes.end_row = check.end_row;
-    check.cars_diagnosed = predictChain(file, *diagnosed, diagnosed_notes);
+    check.cars_diagnosed = predictChain(file, chain.diagnosed, diagnosed_notes);
     for (const std::string& note : diagnosed_notes.notes)
     {
       if (note.rfind("chain st", 0) == 0 || note.rfind("chain restarted", 0) == 0)
@@ -485,15 +490,70 @@ PlatoonCheck checkPlatoon(const CampaignFile& file, const std::vector<PlatoonCar
   }
   if (check.end_row - check.first_row < data.rows())
     check.notes.push_back(describeRowsLeftOut(data, check.first_row, check.end_row));
+  return check;
+}
+
+/// The notes of the other chains that the first chain's do not hold (a chain stopped at another car).
+void addNotesOfOtherChains(const std::vector<PlatoonCheck>& chains, PlatoonCheck& check)
+{
+  for (std::size_t c = 1; c < chains.size(); ++c)
+  {
+    for (const std::string& note : chains[c].notes)
+    {
+      if (std::find(check.notes.begin(), check.notes.end(), note) == check.notes.end())
+        check.notes.push_back("perturbation " + std::to_string(c + 1) + "'s chain: " + note);
+    }
+  }
+}
+}  // namespace
+
+std::optional<std::pair<double, double>> perturbationWindowS(const std::vector<double>& time_s,
+                                                             const Perturbation& perturbation,
+                                                             const PlatoonCheckOptions& options)
+{
+  const WindowRows rows = perturbationWindowRows(time_s, perturbation, options.perturbation);
+  if (rows.end <= rows.first)
+    return std::nullopt;
+  return std::make_pair(time_s[rows.first], time_s[rows.end - 1]);
+}
+
+PlatoonCheck checkPlatoon(const CampaignFile& file, const std::vector<PlatoonCarModel>& models,
+                          const PlatoonCheckOptions& options, const std::vector<PlatoonCarModel>* diagnosed)
+{
+  PlatoonChainModels chain{models, diagnosed != nullptr ? *diagnosed : std::vector<PlatoonCarModel>{}};
+  return checkPlatoonByPerturbation(file, {chain}, options);
+}
+
+PlatoonCheck checkPlatoonByPerturbation(const CampaignFile& file, const std::vector<PlatoonChainModels>& chains,
+                                        const PlatoonCheckOptions& options)
+{
+  const OpenAccFile& data = file.contents;
+  std::size_t first_row = 0, end_row = 0;
+  const std::vector<Perturbation> found = leadPerturbations(data, options, &first_row, &end_row);
+  if (chains.empty() || (chains.size() > 1 && chains.size() != found.size()))
+    throw std::invalid_argument("checkPlatoonByPerturbation: " + std::to_string(chains.size()) + " chains for " +
+                                std::to_string(found.size()) + " perturbations of " + file.name);
+  std::vector<PlatoonCheck> predicted;
+  for (const PlatoonChainModels& chain : chains)
+    predicted.push_back(predictPlatoon(file, chain, options));
+  PlatoonCheck check = predicted.front();
+  if (check.end_row < check.first_row + 2)
+    return check;
+  addNotesOfOtherChains(predicted, check);
+  if (chains.size() > 1)
+    check.notes.push_back("each perturbation is predicted by its own chain, whose models of the cars with no other run "
+                          "at their setting were fitted on this run outside that perturbation's window; the cars' "
+                          "traces and models shown are perturbation 1's chain's");
   const std::vector<double> time_s = sliceRows(data.time_s, check.first_row, check.end_row);
   if (found.empty())
     check.notes.push_back("no perturbation: the first car's speed never drops more than " +
                           printfText("%.1f m/s", options.perturbation.drop_below_median_mps) + " below its median");
   for (std::size_t i = 0; i < found.size(); ++i)
   {
-    check.perturbations.push_back(comparePerturbation(check, data, time_s, found[i], i, options));
+    const PlatoonCheck& chain = predicted[chains.size() == 1 ? 0 : i];
+    check.perturbations.push_back(comparePerturbation(chain, data, time_s, found[i], i, options));
     noteDrivenByHand(data, check.perturbations.back(), i, check.notes);
-    markModelsFittedOnIt(check.cars, data, time_s, i, options, check.perturbations.back(), check.notes);
+    markModelsFittedOnIt(chain.cars, data, time_s, i, options, check.perturbations.back(), check.notes);
   }
   return check;
 }

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -163,6 +164,30 @@ bool onAccThroughout(const OpenAccFile& file, int position, std::size_t from_row
 PlatoonCheck checkPlatoon(const CampaignFile& file, const std::vector<PlatoonCarModel>& models,
                           const PlatoonCheckOptions& options = {},
                           const std::vector<PlatoonCarModel>* diagnosed = nullptr);
+
+/// The models one chain of checkPlatoon simulates the cars with, indexed by position as its models
+/// and diagnosed (empty: no diagnosed models).
+struct PlatoonChainModels
+{
+  std::vector<PlatoonCarModel> models;
+  std::vector<PlatoonCarModel> diagnosed;
+};
+
+/// checkPlatoon with one chain per lead perturbation: perturbation i is predicted and compared with
+/// chains[i]'s models. That is how a car with no other run at its setting is judged out of sample:
+/// each of its models is fitted on its run outside one perturbation's window
+/// (perturbationWindowS). The check's traces (cars, pairs) are chains[0]'s; the notes of the other
+/// chains that differ are added. One chain: checkPlatoon. Throws std::invalid_argument unless
+/// there is one chain or one per lead perturbation (leadPerturbations).
+PlatoonCheck checkPlatoonByPerturbation(const CampaignFile& file, const std::vector<PlatoonChainModels>& chains,
+                                        const PlatoonCheckOptions& options = {});
+
+/// The stretch of the run's clock [first, last] a perturbation is judged on (from the pre-window
+/// to the dip window's end; time_s the check's rows, as the perturbation's indices): what a model
+/// must not be fitted on to predict it out of sample. None when the window holds no sample.
+std::optional<std::pair<double, double>> perturbationWindowS(const std::vector<double>& time_s,
+                                                             const Perturbation& perturbation,
+                                                             const PlatoonCheckOptions& options);
 
 /// Car `position` driven by the measured speed of the car directly ahead (pair level), from its
 /// measured gap and speed at the first row of [first_row, end_row) where all three are known.
