@@ -1,10 +1,14 @@
 #include "acc_identification/campaign/campaign.h"
 
+#include <algorithm>
 #include <chrono>
 #include <mutex>
+#include <optional>
+#include <utility>
 
 #include "acc_identification/calibration/calibration_report.h"
 #include "acc_identification/calibration/identification.h"
+#include "acc_identification/model/number_text.h"
 #include "acc_identification/model/parallel_tasks.h"
 
 namespace acc
@@ -15,11 +19,15 @@ namespace
 /// about 0.06 m/s); StabilityTestOptions::min_training_speed_std_mps.
 constexpr double kMinPredictionSpeedStdMps = 0.1;
 
-/// One model fit of the platoon check: car `position` of file `file_index`.
+/// One model fit of the platoon check: car `position` of file `file_index`, for every
+/// perturbation of the file or, for a car with no other run at its setting, for one: fitted on its
+/// run outside that perturbation's window (leave one perturbation out).
 struct ModelTask
 {
   std::size_t file_index = 0;
   int position = 0;
+  std::optional<std::size_t> perturbation;
+  std::pair<double, double> held_out_s{0.0, 0.0};  ///< the perturbation's window in the run's clock
 };
 
 /// The first half of every segment (the paper's training half), those long enough to simulate.
@@ -33,6 +41,25 @@ std::vector<CarFollowingRun> firstHalves(const std::vector<CarFollowingRun>& seg
       halves.push_back(std::move(half));
   }
   return halves;
+}
+
+/// The pieces of the segments outside [first_s, last_s], those long enough to simulate.
+std::vector<CarFollowingRun> segmentsOutside(const std::vector<CarFollowingRun>& segments, double first_s, double last_s)
+{
+  std::vector<CarFollowingRun> pieces;
+  auto keep = [&pieces](CarFollowingRun piece) {
+    if (piece.size() >= 2)
+      pieces.push_back(std::move(piece));
+  };
+  for (const CarFollowingRun& segment : segments)
+  {
+    const auto& t = segment.time_s;
+    const std::size_t before = std::lower_bound(t.begin(), t.end(), first_s) - t.begin();
+    const std::size_t after = std::upper_bound(t.begin(), t.end(), last_s) - t.begin();
+    keep(segment.slice(0, before));
+    keep(segment.slice(std::max(before, after), t.size()));
+  }
+  return pieces;
 }
 
 /// identifyAcc's fit, or why there is none.
@@ -63,7 +90,27 @@ bool checkable(const CampaignInputs& inputs, std::size_t file_index)
   return false;
 }
 
-std::vector<ModelTask> modelTasks(const CampaignInputs& inputs)
+/// The windows of the file's lead perturbations in its clock (perturbationWindowS); a
+/// perturbation whose window holds no sample gets an empty stretch.
+std::vector<std::pair<double, double>> leadWindowsS(const OpenAccFile& data, const PlatoonCheckOptions& options)
+{
+  std::size_t first_row = 0, end_row = 0;
+  const std::vector<Perturbation> perturbations = leadPerturbations(data, options, &first_row, &end_row);
+  const std::vector<double> time_s = sliceRows(data.time_s, first_row, end_row);
+  std::vector<std::pair<double, double>> windows;
+  for (const Perturbation& perturbation : perturbations)
+    windows.push_back(perturbationWindowS(time_s, perturbation, options).value_or(std::make_pair(0.0, -1.0)));
+  return windows;
+}
+
+/// Whether the car's model comes from other runs: it has another run at its setting.
+bool hasOtherRun(const CampaignInputs& inputs, std::size_t file_index, const std::string& name)
+{
+  const CampaignGroup* group = inputs.findGroup(name, inputs.files[file_index].settingOf(name));
+  return group == nullptr || !group->segmentsExcept(file_index).empty();
+}
+
+std::vector<ModelTask> modelTasks(const CampaignInputs& inputs, const PlatoonCheckOptions& options)
 {
   std::vector<ModelTask> tasks;
   for (std::size_t f = 0; f < inputs.files.size(); ++f)
@@ -71,17 +118,44 @@ std::vector<ModelTask> modelTasks(const CampaignInputs& inputs)
     if (!checkable(inputs, f))
       continue;
     const OpenAccFile& data = inputs.files[f].contents;
+    const std::vector<std::pair<double, double>> windows = leadWindowsS(data, options);
     for (const OpenAccVehicle& vehicle : data.vehicles)
     {
-      if (vehicle.position >= 2)
-        tasks.push_back({f, vehicle.position});
+      if (vehicle.position < 2)
+        continue;
+      if (windows.empty() || hasOtherRun(inputs, f, data.vehicleName(vehicle.position)))
+      {
+        tasks.push_back({f, vehicle.position, std::nullopt});
+        continue;
+      }
+      for (std::size_t k = 0; k < windows.size(); ++k)
+        tasks.push_back({f, vehicle.position, k, windows[k]});
     }
   }
   return tasks;
 }
 
-/// The models of one file's cars, indexed by position.
-std::vector<PlatoonCarModel> modelsOfFile(const CampaignInputs& inputs, std::size_t file_index,
+/// The chains a file's platoon is predicted with: one, or one per lead perturbation when a car of
+/// it has leave-one-perturbation-out models.
+std::size_t chainsOf(std::size_t file_index, const std::vector<ModelTask>& tasks)
+{
+  std::size_t chains = 1;
+  for (const ModelTask& task : tasks)
+  {
+    if (task.file_index == file_index && task.perturbation)
+      chains = std::max(chains, *task.perturbation + 1);
+  }
+  return chains;
+}
+
+/// Whether the task's model serves the chain of the file's perturbation `chain` (chains > 1).
+bool servesChain(const ModelTask& task, std::size_t chain)
+{
+  return !task.perturbation || *task.perturbation == chain;
+}
+
+/// The models of one file's cars in one of its chains (chainsOf), indexed by position.
+std::vector<PlatoonCarModel> modelsOfFile(const CampaignInputs& inputs, std::size_t file_index, std::size_t chain,
                                           const std::vector<ModelTask>& tasks,
                                           const std::vector<PlatoonCarModel>& fitted)
 {
@@ -92,7 +166,7 @@ std::vector<PlatoonCarModel> modelsOfFile(const CampaignInputs& inputs, std::siz
   std::vector<PlatoonCarModel> models(positions, PlatoonCarModel{false, {}, "no data in this run"});
   for (std::size_t i = 0; i < tasks.size(); ++i)
   {
-    if (tasks[i].file_index == file_index)
+    if (tasks[i].file_index == file_index && servesChain(tasks[i], chain))
       models[tasks[i].position] = fitted[i];
   }
   return models;
@@ -111,20 +185,22 @@ struct CarModels
 
 /// fitPlatoonModel, and the segments it was fitted on (empty when none).
 PlatoonCarModel fitPlatoonModelOn(const CampaignInputs& inputs, std::size_t file_index, int position,
-                                  std::size_t starts, std::vector<CarFollowingRun>* training);
+                                  std::size_t starts, std::vector<CarFollowingRun>* training,
+                                  const std::optional<std::pair<double, double>>& held_out);
 }  // namespace
 
 PlatoonCarModel fitPlatoonModel(const CampaignInputs& inputs, std::size_t file_index, int position,
-                                std::size_t starts)
+                                std::size_t starts, const std::optional<std::pair<double, double>>& held_out)
 {
   std::vector<CarFollowingRun> training;
-  return fitPlatoonModelOn(inputs, file_index, position, starts, &training);
+  return fitPlatoonModelOn(inputs, file_index, position, starts, &training, held_out);
 }
 
 namespace
 {
 PlatoonCarModel fitPlatoonModelOn(const CampaignInputs& inputs, std::size_t file_index, int position,
-                                  std::size_t starts, std::vector<CarFollowingRun>* training)
+                                  std::size_t starts, std::vector<CarFollowingRun>* training,
+                                  const std::optional<std::pair<double, double>>& held_out)
 {
   const CampaignFile& file = inputs.files[file_index];
   const std::string name = file.contents.vehicleName(position);
@@ -134,6 +210,18 @@ PlatoonCarModel fitPlatoonModelOn(const CampaignInputs& inputs, std::size_t file
     return {false, {}, "no usable pair of this car in this run"};
   const std::vector<CarFollowingRun> others = group->segmentsExcept(file_index);
   std::string fallback = "first half of this run (no other run of " + group->label() + ")";
+  if (others.empty() && held_out)
+  {
+    *training = segmentsOutside(own->segments, held_out->first, held_out->second);
+    PlatoonCarModel model =
+        fitModel(*training, starts,
+                 "leave-one-perturbation-out: this run outside " +
+                     printfText("%.1f-%.1f s", held_out->first, held_out->second) +
+                     ", the window of the perturbation it predicts (no other run of " + group->label() + ")");
+    for (const CarFollowingRun& piece : *training)
+      model.fitted_on_this_run_s.emplace_back(piece.time_s.front(), piece.time_s.back());
+    return model;
+  }
   if (!others.empty())
   {
     const std::size_t other_runs = group->runs.size() - 1;
@@ -159,14 +247,15 @@ CarModels fitCarModels(const CampaignInputs& inputs, const ModelTask& task, cons
 {
   CarModels out;
   std::vector<CarFollowingRun> training;
-  out.base = fitPlatoonModelOn(inputs, task.file_index, task.position, options.group.starts, &training);
+  const auto held_out = task.perturbation ? std::make_optional(task.held_out_s) : std::nullopt;
+  out.base = fitPlatoonModelOn(inputs, task.file_index, task.position, options.group.starts, &training, held_out);
   if (!options.platoon_diagnosis)
     return out;
   out.candidates = fitCandidateModels(training, out.base);
   std::vector<PlatoonCarModel> all{out.base};
   all.insert(all.end(), out.candidates.begin(), out.candidates.end());
   out.scores = scorePairPerturbations(inputs.files[task.file_index], task.file_index, task.position, all,
-                                      options.platoon);
+                                      options.platoon, task.perturbation);
   return out;
 }
 
@@ -188,14 +277,19 @@ void addPlatoonDips(const CampaignInputs& inputs, const std::vector<ModelTask>& 
   std::vector<PlatoonCheck> checks(files.size() * models);
   runTasksInParallel(checks.size(), options.threads, [&](std::size_t i) {
     const std::size_t f = files[i / models], m = i % models;
-    const std::vector<PlatoonCarModel> base = modelsOfFile(inputs, f, tasks, base_models);
-    std::vector<PlatoonCarModel> candidate = base;
-    for (std::size_t t = 0; m > 0 && t < tasks.size(); ++t)
+    std::vector<PlatoonChainModels> chains;
+    for (std::size_t c = 0; c < chainsOf(f, tasks); ++c)
     {
-      if (tasks[t].file_index == f && fitted[t].candidates[m - 1].available)
-        candidate[tasks[t].position] = fitted[t].candidates[m - 1];
+      PlatoonChainModels chain{modelsOfFile(inputs, f, c, tasks, base_models), {}};
+      chain.diagnosed = chain.models;
+      for (std::size_t t = 0; m > 0 && t < tasks.size(); ++t)
+      {
+        if (tasks[t].file_index == f && servesChain(tasks[t], c) && fitted[t].candidates[m - 1].available)
+          chain.diagnosed[tasks[t].position] = fitted[t].candidates[m - 1];
+      }
+      chains.push_back(std::move(chain));
     }
-    checks[i] = checkPlatoon(inputs.files[f], base, options.platoon, &candidate);
+    checks[i] = checkPlatoonByPerturbation(inputs.files[f], chains, options.platoon);
   });
   for (std::size_t i = 0; i < checks.size(); ++i)
     addChainDips(checks[i], files[i / models], i % models, models, scores);
@@ -205,11 +299,11 @@ void addPlatoonDips(const CampaignInputs& inputs, const std::vector<ModelTask>& 
 /// source) when the set is the base model or its fit failed.
 std::vector<PlatoonCarModel> diagnosedModels(std::vector<PlatoonCarModel> models, const std::vector<ModelTask>& tasks,
                                              const std::vector<CarModels>& fitted, std::size_t file_index,
-                                             const EffectSetSelection& selection)
+                                             std::size_t chain, const EffectSetSelection& selection)
 {
   for (std::size_t i = 0; i < tasks.size(); ++i)
   {
-    if (tasks[i].file_index != file_index || selection.chosen == 0)
+    if (tasks[i].file_index != file_index || !servesChain(tasks[i], chain) || selection.chosen == 0)
       continue;
     const PlatoonCarModel& candidate = fitted[i].candidates[selection.chosen - 1];
     if (candidate.available)
@@ -241,7 +335,8 @@ CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& 
   const auto started = std::chrono::steady_clock::now();
   CampaignResult result;
   result.groups.resize(inputs.groups.size());
-  const std::vector<ModelTask> tasks = options.platoon_check ? modelTasks(inputs) : std::vector<ModelTask>{};
+  const std::vector<ModelTask> tasks =
+      options.platoon_check ? modelTasks(inputs, options.platoon) : std::vector<ModelTask>{};
   std::vector<CarModels> fitted(tasks.size());
   const std::size_t group_count = inputs.groups.size();
   // One pool for both kinds of task, groups first (the longest), so that no core idles between them.
@@ -284,18 +379,21 @@ CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& 
   {
     if (!checkable(inputs, f))
       continue;
-    const std::vector<PlatoonCarModel> models = modelsOfFile(inputs, f, tasks, base_models);
-    if (!diagnose)
-    {
-      result.platoons.push_back(checkPlatoon(inputs.files[f], models, options.platoon));
-      continue;
-    }
     // The run's own effect set is chosen without it: its dips judge a choice they did not make.
     const EffectSetSelection selection =
-        selectEffectSet(result.pair_scores, f, inputs.files[f].name, options.effect_selection);
-    const std::vector<PlatoonCarModel> diagnosed = diagnosedModels(models, tasks, fitted, f, selection);
-    result.platoons.push_back(checkPlatoon(inputs.files[f], models, options.platoon, &diagnosed));
-    result.run_effect_selections.push_back(selection);
+        diagnose ? selectEffectSet(result.pair_scores, f, inputs.files[f].name, options.effect_selection)
+                 : EffectSetSelection{};
+    std::vector<PlatoonChainModels> chains;
+    for (std::size_t c = 0; c < chainsOf(f, tasks); ++c)
+    {
+      PlatoonChainModels chain{modelsOfFile(inputs, f, c, tasks, base_models), {}};
+      if (diagnose)
+        chain.diagnosed = diagnosedModels(chain.models, tasks, fitted, f, c, selection);
+      chains.push_back(std::move(chain));
+    }
+    result.platoons.push_back(checkPlatoonByPerturbation(inputs.files[f], chains, options.platoon));
+    if (diagnose)
+      result.run_effect_selections.push_back(selection);
   }
   addDipChecks(result.platoons, result.groups);
   if (diagnose)

@@ -327,7 +327,8 @@ std::vector<PlatoonCarModel> fitCandidateModels(const std::vector<CarFollowingRu
 
 std::vector<PairPerturbationScore> scorePairPerturbations(const CampaignFile& file, std::size_t file_index,
                                                           int position, const std::vector<PlatoonCarModel>& models,
-                                                          const PlatoonCheckOptions& options)
+                                                          const PlatoonCheckOptions& options,
+                                                          std::optional<std::size_t> only_perturbation)
 {
   const OpenAccFile& data = file.contents;
   std::size_t first_row = 0, end_row = 0;
@@ -343,6 +344,8 @@ std::vector<PairPerturbationScore> scorePairPerturbations(const CampaignFile& fi
   std::vector<PairPerturbationScore> scores;
   for (std::size_t p = 0; p < perturbations.size(); ++p)
   {
+    if (only_perturbation && p != *only_perturbation)
+      continue;
     const Perturbation& perturbation = perturbations[p];
     PairPerturbationScore score;
     score.file_index = file_index;

@@ -494,6 +494,29 @@ TEST(CampaignInputs, AFallbackModelSaysWhichStretchOfTheRunItWasFittedOn)
   EXPECT_TRUE(other_runs.fitted_on_this_run_s.empty());
 }
 
+// Given the window of the perturbation it is to predict, a car with no other run at its setting is
+// fitted on its run outside that window (on both sides of it), and says so. Fails when the window
+// is fitted on, or when the model falls back to the run's first half.
+TEST(CampaignInputs, ACarWithNoOtherRunIsFittedOutsideThePerturbationItPredicts)
+{
+  TempFolder folder("acc_campaign_held_out_window");
+  acc_test::writeSyntheticPlatoon(folder.file("solo.csv"), "S", {kAS, kBS}, 93, 200.0);
+  const acc::CampaignInputs alone = acc::loadCampaign({folder.file("solo.csv")});
+  const std::pair<double, double> window_s{55.0, 100.0};
+  const acc::PlatoonCarModel model = acc::fitPlatoonModel(alone, 0, 2, 5, window_s);
+  ASSERT_TRUE(model.available) << model.source;
+  EXPECT_EQ(model.source.rfind("leave-one-perturbation-out: this run outside 55.0-100.0 s", 0), 0u) << model.source;
+  ASSERT_FALSE(model.fitted_on_this_run_s.empty());
+  bool before = false, after = false;
+  for (const auto& [first_s, last_s] : model.fitted_on_this_run_s)
+  {
+    EXPECT_TRUE(last_s < window_s.first || first_s > window_s.second) << first_s << "-" << last_s;
+    before = before || last_s < window_s.first;
+    after = after || last_s > 150.0;
+  }
+  EXPECT_TRUE(before && after);
+}
+
 // A listing entry that does not fit its file is not followed, and says why; the mixed run then
 // stays a group of its own. Fails when a car the file does not hold, or a plain setting, is
 // taken from the listing.

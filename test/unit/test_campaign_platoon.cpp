@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <sstream>
+#include <stdexcept>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -42,6 +43,20 @@ acc::CampaignInputs rotatedPlatoons(const std::string& label, const std::vector<
   const acc::CampaignInputs inputs = acc::loadCampaign({folder.string()});
   fs::remove_all(folder);
   return inputs;
+}
+
+/// A synthetic platoon of the cars at setting S (duration_s long), read as the campaign reads a
+/// file; the file is removed again.
+acc::CampaignFile syntheticPlatoonFile(const std::string& tag, const std::vector<acc_test::SyntheticCar>& cars,
+                                       std::uint64_t seed, double duration_s)
+{
+  const fs::path path = fs::temp_directory_path() / ("acc_campaign_" + tag + "_" + std::to_string(::getpid()) + ".csv");
+  acc_test::writeSyntheticPlatoon(path.string(), "S", cars, seed, duration_s);
+  acc::CampaignFile file;
+  file.contents = acc::readOpenAccFile(path.string());
+  fs::remove(path);
+  file.name = file.contents.name;
+  return file;
 }
 }  // namespace
 
@@ -162,12 +177,7 @@ TEST(CampaignPlatoon, TheChainRestartsBehindACarWithoutData)
 // would give half a window's minimum. Fails if the cut window is measured.
 TEST(CampaignPlatoon, APredictionStoppedInsideADipWindowHasNoDipThere)
 {
-  const fs::path path = fs::temp_directory_path() / ("acc_campaign_cut_" + std::to_string(::getpid()) + ".csv");
-  acc_test::writeSyntheticPlatoon(path.string(), "S", {{"CAR_A", kUnstable}, {"CAR_B", kUnstable}}, 61, 150.0);
-  acc::CampaignFile file;
-  file.contents = acc::readOpenAccFile(path.string());
-  fs::remove(path);
-  file.name = file.contents.name;
+  acc::CampaignFile file = syntheticPlatoonFile("cut", {{"CAR_A", kUnstable}, {"CAR_B", kUnstable}}, 61, 150.0);
   const std::vector<acc::PlatoonCarModel> models(4, acc::PlatoonCarModel{true, kUnstable, "truth"});
   const acc::PlatoonCheck whole = acc::checkPlatoon(file, models);
   ASSERT_FALSE(whole.perturbations.empty());
@@ -549,14 +559,7 @@ TEST(PlatoonEffectSelection, AddsWhatEachStageNamesUntilAStageNamesNothing)
 /// the campaign reads a file.
 acc::CampaignFile threeCarPlatoonFile(const std::string& tag, std::uint64_t seed)
 {
-  const fs::path path = fs::temp_directory_path() / ("acc_campaign_" + tag + "_" + std::to_string(::getpid()) + ".csv");
-  acc_test::writeSyntheticPlatoon(path.string(), "S", {{"CAR_A", kUnstable}, {"CAR_B", kUnstable}, {"CAR_C", kUnstable}},
-                                  seed, 150.0);
-  acc::CampaignFile file;
-  file.contents = acc::readOpenAccFile(path.string());
-  fs::remove(path);
-  file.name = file.contents.name;
-  return file;
+  return syntheticPlatoonFile(tag, {{"CAR_A", kUnstable}, {"CAR_B", kUnstable}, {"CAR_C", kUnstable}}, seed, 150.0);
 }
 
 // A car driven by hand (its Driver column) before a perturbation's window ends is no test of its
@@ -632,4 +635,59 @@ TEST(CampaignPlatoon, AModelFittedOnTheDipItIsJudgedOnIsNamed)
   acc::printCampaignTables(result, table);
   EXPECT_NE(table.str().find("CAR_B *"), std::string::npos) << table.str();
   EXPECT_EQ(table.str().find("CAR_C *"), std::string::npos) << table.str();
+}
+
+// With one chain per perturbation, perturbation i is compared with chain i's models: a car left
+// without a model in the second chain is predicted in the first perturbation only. Fails when one
+// chain judges every perturbation, or a chain count that fits no perturbation count is taken.
+TEST(CampaignPlatoon, EachPerturbationIsComparedWithItsOwnChain)
+{
+  const acc::CampaignFile file = syntheticPlatoonFile("chains", {{"CAR_A", kUnstable}, {"CAR_B", kUnstable}}, 73, 400.0);
+  const std::vector<acc::PlatoonCarModel> truth(4, acc::PlatoonCarModel{true, kUnstable, "truth"});
+  std::vector<acc::PlatoonCarModel> without_b = truth;
+  without_b[3] = acc::PlatoonCarModel{false, {}, "no fit"};
+  const acc::PlatoonCheck check = acc::checkPlatoonByPerturbation(file, {{truth, {}}, {without_b, {}}});
+  ASSERT_EQ(check.perturbations.size(), 2u);
+  EXPECT_TRUE(std::isfinite(check.perturbations[0].positions[1].chain.dip_mps));
+  EXPECT_TRUE(std::isfinite(check.perturbations[1].positions[1].chain.dip_mps));
+  EXPECT_TRUE(std::isfinite(check.perturbations[0].positions[2].chain.dip_mps));
+  EXPECT_TRUE(std::isnan(check.perturbations[1].positions[2].chain.dip_mps));
+  EXPECT_TRUE(std::isnan(check.perturbations[1].positions[2].pair.dip_mps));
+  ASSERT_EQ(check.cars.size(), 2u);
+  EXPECT_TRUE(check.cars[1].predicted) << "the traces are the first chain's";
+  EXPECT_TRUE(std::any_of(check.notes.begin(), check.notes.end(), [](const std::string& note) {
+    return note.find("each perturbation is predicted by its own chain") != std::string::npos;
+  }));
+  EXPECT_THROW(acc::checkPlatoonByPerturbation(file, {{truth, {}}, {truth, {}}, {truth, {}}}), std::invalid_argument);
+
+  // Its pair-level scores, for models fitted without one perturbation: that perturbation only.
+  const auto scores = acc::scorePairPerturbations(file, 0, 2, truth, {}, 1);
+  ASSERT_EQ(scores.size(), 1u);
+  EXPECT_EQ(scores.front().perturbation, 1u);
+  EXPECT_EQ(acc::scorePairPerturbations(file, 0, 2, truth, {}).size(), 2u);
+}
+
+// A campaign whose cars have no other run at their setting predicts each perturbation with models
+// fitted without its window: no perturbation is judged by a model that saw it. Fails when such a
+// car is fitted on a stretch that holds a dip it is judged on (the first halves did: the dip at
+// 60 s).
+TEST(CampaignPlatoon, ACarWithNoOtherRunIsJudgedOutOfSampleInEveryPerturbation)
+{
+  const std::vector<acc_test::SyntheticCar> cars{{"CAR_A", kUnstable}, {"CAR_B", kUnstable}};
+  const acc::CampaignInputs inputs = rotatedPlatoons("leave_one_perturbation_out", cars, 1, 74);
+  acc::CampaignOptions options;
+  options.group.starts = 5;
+  options.threads = 2;
+  options.platoon_diagnosis = false;
+  const acc::CampaignResult result = acc::runCampaign(inputs, options);
+  ASSERT_EQ(result.platoons.size(), 1u);
+  const acc::PlatoonCheck& check = result.platoons.front();
+  ASSERT_EQ(check.perturbations.size(), 2u);
+  for (const acc::PerturbationCheck& perturbation : check.perturbations)
+  {
+    EXPECT_TRUE(perturbation.fitted_on_it.empty());
+    EXPECT_TRUE(std::isfinite(perturbation.positions[2].chain.dip_mps));
+  }
+  for (const acc::PlatoonCarPrediction& car : check.cars)
+    EXPECT_EQ(car.model.source.rfind("leave-one-perturbation-out", 0), 0u) << car.model.source;
 }

@@ -3,7 +3,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "acc_identification/campaign/campaign_inputs.h"
@@ -54,15 +56,21 @@ struct CampaignResult
 };
 
 /// The model of car (file, position) for the platoon check: identifyAcc on the car's group's
-/// runs in every OTHER file (leave-one-run-out); when the group has no other run, on the first
-/// halves of this file's segments (said in source). A prediction needs a fit, not identifiability:
-/// the excitation floor is the stability test's (follower speed spread 0.1 m/s), not identifyAcc's
-/// 0.5 m/s. Not available when the fit fails.
+/// runs in every OTHER file (leave-one-run-out). When the group has no other run, on this file's
+/// segments outside held_out [first, last] of the run's clock (leave one perturbation out: the
+/// window of the perturbation the model predicts, perturbationWindowS), or without held_out (or
+/// when the other runs' fit fails) on their first halves; said in source, and the stretches in
+/// fitted_on_this_run_s. A prediction needs a fit, not identifiability: the excitation floor is the
+/// stability test's (follower speed spread 0.1 m/s), not identifyAcc's 0.5 m/s. Not available
+/// when the fit fails.
 PlatoonCarModel fitPlatoonModel(const CampaignInputs& inputs, std::size_t file_index, int position,
-                                std::size_t starts);
+                                std::size_t starts,
+                                const std::optional<std::pair<double, double>>& held_out = std::nullopt);
 
 /// Every group identified (identifyGroup) and, unless switched off, every multi-vehicle file's
-/// platoon predicted with leave-one-run-out models (checkPlatoon). Groups and model fits run in
+/// platoon predicted with leave-one-run-out models (checkPlatoon); a file with a car that has no
+/// other run at its setting gets one chain per perturbation, that car's model of each fitted
+/// without its window (checkPlatoonByPerturbation). Groups and model fits run in
 /// parallel (runTasksInParallel); every result is stored by index and seeded by group, so the
 /// numbers are the same whatever the thread count.
 CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& options);

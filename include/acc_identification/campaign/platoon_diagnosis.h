@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <functional>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -77,11 +78,13 @@ struct PairPerturbationScore
   std::vector<double> chain_dip_mps;
 };
 
-/// The scores of car `position` of a file in each of the file's lead perturbations, for the base
-/// model and every candidate (models[0] base, models[i + 1] candidate i): the pair-level part.
+/// The scores of car `position` of a file in each of the file's lead perturbations (only the one
+/// given: models fitted without its window), for the base model and every candidate (models[0]
+/// base, models[i + 1] candidate i): the pair-level part.
 std::vector<PairPerturbationScore> scorePairPerturbations(const CampaignFile& file, std::size_t file_index,
                                                           int position, const std::vector<PlatoonCarModel>& models,
-                                                          const PlatoonCheckOptions& options);
+                                                          const PlatoonCheckOptions& options,
+                                                          std::optional<std::size_t> only_perturbation = std::nullopt);
 
 /// Records the platoon dips of a check made with model `model_index` as the diagnosed models
 /// (checkPlatoon with them; model 0 reads the check's base prediction) into the scores of the
