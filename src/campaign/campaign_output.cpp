@@ -391,6 +391,27 @@ std::vector<std::vector<std::string>> diagnosedModelRows(const CampaignResult& r
   return rows;
 }
 
+/// The cars a perturbation's own chain predicted with other models than the check's cars show.
+nlohmann::json ownChainModelsJson(const std::vector<PerturbationCarModels>& cars)
+{
+  nlohmann::json out = nlohmann::json::array();
+  for (const PerturbationCarModels& car : cars)
+  {
+    out.push_back({{"position", car.position},
+                   {"name", car.name},
+                   {"model_available", car.model.available},
+                   {"model_source", car.model.source},
+                   {"parameters", parametersJson(car.model.parameters)}});
+    if (car.diagnosed.available || !car.diagnosed.source.empty())
+    {
+      out.back()["diagnosed_model_source"] = car.diagnosed.source;
+      out.back()["diagnosed_effects"] = effectsJson(car.diagnosed);
+      out.back()["diagnosed_parameters"] = parametersJson(car.diagnosed.parameters);
+    }
+  }
+  return out;
+}
+
 /// The diagnosed car matching a base car of the chain (same position), or nullptr.
 const PlatoonCarPrediction* diagnosedCar(const PlatoonCheck& check, int position)
 {
@@ -416,6 +437,7 @@ nlohmann::json platoonJson(const PlatoonCheck& check, const EffectSetSelection* 
                              {"data_show_growth", p.data_show_growth},
                              {"driven_by_hand", p.driven_by_hand},
                              {"models_fitted_on_it", p.fitted_on_it},
+                             {"own_chain_models", ownChainModelsJson(p.own_chain_models)},
                              {"disagreements", disagreementsJson(p.disagreements)}});
     for (const auto& d : disagreementsJson(p.disagreements))
       disagreements.push_back(d);
@@ -426,11 +448,7 @@ nlohmann::json platoonJson(const PlatoonCheck& check, const EffectSetSelection* 
                     {"name", car.name},
                     {"model_available", car.model.available},
                     {"model_source", car.model.source},
-                    {"parameters",
-                     {{"k1_per_s2", car.model.parameters.k1_per_s2},
-                      {"k2_per_s", car.model.parameters.k2_per_s},
-                      {"tau_e_s", car.model.parameters.tau_e_s},
-                      {"eta_m", car.model.parameters.eta_m}}},
+                    {"parameters", parametersJson(car.model.parameters)},
                     {"predicted", car.predicted},
                     {"rmse_speed_mps", car.predicted ? car.rmse_speed_mps : kNaN},
                     {"note", car.note}});

@@ -493,6 +493,24 @@ PlatoonCheck predictPlatoon(const CampaignFile& file, const PlatoonChainModels& 
   return check;
 }
 
+/// The cars whose models in `chain` differ from the first chain's (by source: each fit says what it
+/// was fitted on).
+std::vector<PerturbationCarModels> modelsThatDiffer(const PlatoonCheck& first, const PlatoonCheck& chain)
+{
+  std::vector<PerturbationCarModels> differing;
+  for (std::size_t i = 0; i < chain.cars.size() && i < first.cars.size(); ++i)
+  {
+    const PlatoonCarModel& model = chain.cars[i].model;
+    const PlatoonCarModel* diagnosed = i < chain.cars_diagnosed.size() ? &chain.cars_diagnosed[i].model : nullptr;
+    const bool same_diagnosed = diagnosed == nullptr || i >= first.cars_diagnosed.size() ||
+                                diagnosed->source == first.cars_diagnosed[i].model.source;
+    if (model.source != first.cars[i].model.source || !same_diagnosed)
+      differing.push_back({chain.cars[i].position, chain.cars[i].name, model,
+                           diagnosed != nullptr ? *diagnosed : PlatoonCarModel{}});
+  }
+  return differing;
+}
+
 /// The notes of the other chains that the first chain's do not hold (a chain stopped at another car).
 void addNotesOfOtherChains(const std::vector<PlatoonCheck>& chains, PlatoonCheck& check)
 {
@@ -543,7 +561,8 @@ PlatoonCheck checkPlatoonByPerturbation(const CampaignFile& file, const std::vec
   if (chains.size() > 1)
     check.notes.push_back("each perturbation is predicted by its own chain, whose models of the cars with no other run "
                           "at their setting were fitted on this run outside that perturbation's window; the cars' "
-                          "traces and models shown are perturbation 1's chain's");
+                          "traces and models shown are perturbation 1's chain's (each perturbation's own in "
+                          "own_chain_models)");
   const std::vector<double> time_s = sliceRows(data.time_s, check.first_row, check.end_row);
   if (found.empty())
     check.notes.push_back("no perturbation: the first car's speed never drops more than " +
@@ -552,6 +571,8 @@ PlatoonCheck checkPlatoonByPerturbation(const CampaignFile& file, const std::vec
   {
     const PlatoonCheck& chain = predicted[chains.size() == 1 ? 0 : i];
     check.perturbations.push_back(comparePerturbation(chain, data, time_s, found[i], i, options));
+    if (chains.size() > 1)
+      check.perturbations.back().own_chain_models = modelsThatDiffer(predicted.front(), chain);
     noteDrivenByHand(data, check.perturbations.back(), i, check.notes);
     markModelsFittedOnIt(chain.cars, data, time_s, i, options, check.perturbations.back(), check.notes);
   }

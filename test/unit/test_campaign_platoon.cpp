@@ -658,6 +658,11 @@ TEST(CampaignPlatoon, EachPerturbationIsComparedWithItsOwnChain)
   EXPECT_TRUE(std::any_of(check.notes.begin(), check.notes.end(), [](const std::string& note) {
     return note.find("each perturbation is predicted by its own chain") != std::string::npos;
   }));
+  // The second perturbation names the car it predicted with another model than the traces show.
+  EXPECT_TRUE(check.perturbations[0].own_chain_models.empty());
+  ASSERT_EQ(check.perturbations[1].own_chain_models.size(), 1u);
+  EXPECT_EQ(check.perturbations[1].own_chain_models.front().position, 3);
+  EXPECT_FALSE(check.perturbations[1].own_chain_models.front().model.available);
   EXPECT_THROW(acc::checkPlatoonByPerturbation(file, {{truth, {}}, {truth, {}}, {truth, {}}}), std::invalid_argument);
 
   // Its pair-level scores, for models fitted without one perturbation: that perturbation only.
@@ -690,4 +695,15 @@ TEST(CampaignPlatoon, ACarWithNoOtherRunIsJudgedOutOfSampleInEveryPerturbation)
   }
   for (const acc::PlatoonCarPrediction& car : check.cars)
     EXPECT_EQ(car.model.source.rfind("leave-one-perturbation-out", 0), 0u) << car.model.source;
+  // The JSON gives the second perturbation's models, fitted without its window, beside the cars'.
+  const nlohmann::json json = acc::campaignToJson(inputs, result, {"synthetic"}, options);
+  const nlohmann::json& own = json["platoons"][0]["perturbations"][1]["own_chain_models"];
+  ASSERT_EQ(own.size(), 2u) << own.dump();
+  for (std::size_t i = 0; i < own.size(); ++i)
+  {
+    const std::string source = own[i]["model_source"];
+    EXPECT_EQ(source.rfind("leave-one-perturbation-out", 0), 0u) << source;
+    EXPECT_NE(source, json["platoons"][0]["cars"][i]["model_source"].get<std::string>());
+  }
+  EXPECT_TRUE(json["platoons"][0]["perturbations"][0]["own_chain_models"].empty());
 }

@@ -84,6 +84,16 @@ struct PlatoonDisagreement
   std::string what;  ///< "predicted amplification 1.31, measured attenuation 0.84", "dip error +45 %"
 };
 
+/// A car whose models in one perturbation's own chain are not the ones the check's traces show
+/// (checkPlatoonByPerturbation: fitted without that perturbation's window).
+struct PerturbationCarModels
+{
+  int position = 0;
+  std::string name;
+  PlatoonCarModel model;
+  PlatoonCarModel diagnosed;  ///< available false without diagnosed models
+};
+
 struct PerturbationCheck
 {
   Perturbation perturbation;
@@ -99,6 +109,9 @@ struct PerturbationCheck
   /// with no other run (PlatoonCarModel::fitted_on_this_run_s). Their predictions here, and the
   /// chains' behind them, are not out of sample; they are compared, and said in a note.
   std::vector<int> fitted_on_it;
+  /// The cars this perturbation was predicted with other models than PlatoonCheck::cars show
+  /// (its own chain's; empty with one chain).
+  std::vector<PerturbationCarModels> own_chain_models;
   std::vector<PlatoonDisagreement> disagreements;
 };
 
