@@ -8,6 +8,7 @@
 
 #include "acc_identification/calibration/calibration_report.h"
 #include "acc_identification/calibration/identification.h"
+#include "acc_identification/campaign/link_ratio_chain.h"
 #include "acc_identification/model/number_text.h"
 #include "acc_identification/model/parallel_tasks.h"
 
@@ -395,6 +396,7 @@ CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& 
     if (diagnose)
       result.run_effect_selections.push_back(selection);
   }
+  addLinkRatioChains(result.platoons, kScoredMinDipMps);
   addDipChecks(result.platoons, result.groups);
   if (diagnose)
   {

@@ -148,6 +148,7 @@ nlohmann::json positionsJson(const std::vector<DipComparison>& positions)
                  {"predicted_amplification_diagnosed", row.chain_amplification_diagnosed},
                  {"pair_predicted_dip_mps", row.pair.dip_mps},
                  {"pair_predicted_dip_mps_diagnosed", row.pair_diagnosed.dip_mps},
+                 {"predicted_dip_mps_link_ratios", row.link_ratio_chain_dip_mps},
                  {"measured_distance_lost_m", row.measured.distance_lost_m},
                  {"predicted_distance_lost_m", row.chain.distance_lost_m},
                  {"predicted_distance_lost_m_diagnosed", row.chain_diagnosed.distance_lost_m},
@@ -636,7 +637,8 @@ const std::vector<GapPrediction>& gapPredictions()
       {"pair (real leader), diagnosed", "pair_diagnosed", DipPrediction::pair_diagnosed, {}},
       {"  of which first followers", "pair_diagnosed_first_follower", DipPrediction::pair_diagnosed, isFirstFollower},
       {"  of which cars further back", "pair_diagnosed_further_back", DipPrediction::pair_diagnosed, isFurtherBack},
-      {"no model: every car dips as the first", "unchanged_dip", DipPrediction::unchanged_dip, {}}};
+      {"no model: every car dips as the first", "unchanged_dip", DipPrediction::unchanged_dip, {}},
+      {"no model: each car's link ratio, other runs", "link_ratio_chain", DipPrediction::link_ratio_chain, {}}};
   return kinds;
 }
 

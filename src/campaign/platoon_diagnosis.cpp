@@ -475,6 +475,8 @@ double predictedOf(const std::vector<DipComparison>& rows, std::size_t i, DipPre
       return std::isfinite(row.chain.dip_mps) && row.chain_driven_by >= 1
                  ? measuredOf(rows[static_cast<std::size_t>(row.chain_driven_by - 1)], quantity)
                  : std::numeric_limits<double>::quiet_NaN();
+    case DipPrediction::link_ratio_chain:
+      return quantity == Quantity::dip ? row.link_ratio_chain_dip_mps : std::numeric_limits<double>::quiet_NaN();
     case DipPrediction::chain_base: return quantityOf(row.chain, quantity);
     case DipPrediction::chain_diagnosed: return quantityOf(row.chain_diagnosed, quantity);
     case DipPrediction::pair_base: return quantityOf(row.pair, quantity);

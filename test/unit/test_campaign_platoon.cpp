@@ -15,6 +15,7 @@
 #include "acc_identification/campaign/campaign.h"
 #include "acc_identification/campaign/campaign_output.h"
 #include "acc_identification/campaign/link_evidence.h"
+#include "acc_identification/campaign/link_ratio_chain.h"
 #include "acc_identification/model/string_stability.h"
 #include "campaign_test_data.h"
 
@@ -706,4 +707,66 @@ TEST(CampaignPlatoon, ACarWithNoOtherRunIsJudgedOutOfSampleInEveryPerturbation)
     EXPECT_NE(source, json["platoons"][0]["cars"][i]["model_source"].get<std::string>());
   }
   EXPECT_TRUE(json["platoons"][0]["perturbations"][0]["own_chain_models"].empty());
+}
+
+namespace
+{
+/// A perturbation of cars LEAD, CAR_A, CAR_B, CAR_C with these measured dips, every car predicted
+/// by the base chain from the first car.
+acc::PerturbationCheck measuredPerturbation(const std::vector<double>& dips)
+{
+  const char* names[] = {"LEAD", "CAR_A", "CAR_B", "CAR_C"};
+  acc::PerturbationCheck perturbation;
+  for (std::size_t i = 0; i < dips.size(); ++i)
+  {
+    acc::DipComparison row;
+    row.position = static_cast<int>(i) + 1;
+    row.name = names[i];
+    row.measured.dip_mps = dips[i];
+    row.chain.dip_mps = 1.0;  // predicted: its value does not matter here
+    row.chain_driven_by = 1;
+    perturbation.positions.push_back(row);
+  }
+  return perturbation;
+}
+}  // namespace
+
+// Without a model, each car's dip is the one ahead times the car's own link ratio from its other
+// runs (summed dips over summed dips ahead), or from its other perturbations of the run when it
+// has no other run; a car with none restarts the chain from its measured dip. Fails when a run's
+// own links enter its ratio, or the chain is not carried from car to car.
+TEST(LinkRatioChain, EachCarPassesOnWhatItDidInItsOtherRuns)
+{
+  acc::PlatoonCheck run1, run2;
+  run1.setting = run2.setting = "S";
+  // Run 1: CAR_A passes on 2.4 of 3.0 (0.8), CAR_B 3.0 of 2.4 (1.25). CAR_C only in run 2.
+  run1.perturbations = {measuredPerturbation({3.0, 2.4, 3.0})};
+  // Run 2, two perturbations: CAR_A 1.8/2.0 and 2.7/3.0 (0.9), CAR_B 2.0/1.8 and 2.7/2.7, CAR_C
+  // 1.0/2.0 and 2.7/2.7 (its ratio for one from the other: 1.0 and 0.5).
+  run2.perturbations = {measuredPerturbation({2.0, 1.8, 2.0, 1.0}), measuredPerturbation({3.0, 2.7, 2.7, 2.7})};
+  std::vector<acc::PlatoonCheck> platoons{run1, run2};
+  acc::addLinkRatioChains(platoons, 0.3);
+  const auto& first = platoons[0].perturbations[0].positions;
+  EXPECT_NEAR(first[1].link_ratio_chain_dip_mps, 3.0 * (1.8 + 2.7) / (2.0 + 3.0), 1e-12);  // CAR_A from run 2
+  EXPECT_NEAR(first[2].link_ratio_chain_dip_mps, first[1].link_ratio_chain_dip_mps * (2.0 + 2.7) / (1.8 + 2.7), 1e-12);
+  const auto& second = platoons[1].perturbations[0].positions;
+  EXPECT_NEAR(second[1].link_ratio_chain_dip_mps, 2.0 * 0.8, 1e-12);                                  // CAR_A from run 1
+  EXPECT_NEAR(second[2].link_ratio_chain_dip_mps, second[1].link_ratio_chain_dip_mps * 1.25, 1e-12);   // CAR_B from run 1
+  EXPECT_NEAR(second[3].link_ratio_chain_dip_mps, second[2].link_ratio_chain_dip_mps * 1.0, 1e-12);    // CAR_C: the other braking
+  EXPECT_NEAR(platoons[1].perturbations[1].positions[3].link_ratio_chain_dip_mps,
+              platoons[1].perturbations[1].positions[2].link_ratio_chain_dip_mps * 0.5, 1e-12);
+  // A car with no ratio (the only run, with one braking, at its setting) is not predicted, and the
+  // car behind it starts from its measured dip.
+  acc::PlatoonCheck run3;
+  run3.setting = "S";
+  run3.car_settings = {{"CAR_A", "M"}};
+  run3.perturbations = {measuredPerturbation({3.0, 2.0, 2.2})};
+  platoons.push_back(run3);
+  acc::addLinkRatioChains(platoons, 0.3);
+  const auto& third = platoons[2].perturbations[0].positions;
+  EXPECT_TRUE(std::isnan(third[1].link_ratio_chain_dip_mps));
+  EXPECT_NEAR(third[2].link_ratio_chain_dip_mps, 2.0 * (3.0 + 2.0 + 2.7) / (2.4 + 1.8 + 2.7), 1e-12);
+  const acc::DipPredictionSummary summary =
+      acc::summarizeDipPredictions(platoons, acc::DipPrediction::link_ratio_chain);
+  EXPECT_EQ(summary.car_perturbations, 9u);  // every car with a ratio, of the four perturbations
 }

@@ -73,6 +73,9 @@ struct DipComparison
   double measured_amplification = std::numeric_limits<double>::quiet_NaN();
   double chain_amplification = std::numeric_limits<double>::quiet_NaN();
   double chain_amplification_diagnosed = std::numeric_limits<double>::quiet_NaN();
+  /// No model: the dip chained with each car's link ratio from its other runs (addLinkRatioChains;
+  /// NaN until then, and where a car on the way has none).
+  double link_ratio_chain_dip_mps = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Where the model and the data disagree.

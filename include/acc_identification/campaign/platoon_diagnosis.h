@@ -201,7 +201,10 @@ enum class DipPrediction
   /// unchanged, Newell's time-shifted copy; behind a restarted chain, as the real car driving it),
   /// scored on the car-perturbations the base chain predicts. The reference a model must beat to
   /// say anything about growth or decay.
-  unchanged_dip
+  unchanged_dip,
+  /// No model either: each car's dip chained with its own link ratio measured in its other runs
+  /// (addLinkRatioChains; the dip only). Whether a car's past brakings say what it does in this one.
+  link_ratio_chain
 };
 
 /// The car-perturbations scored: a measured dip above this [m/s] (what platoon_score.py scores).
