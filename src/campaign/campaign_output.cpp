@@ -833,8 +833,9 @@ void printCampaignTables(const CampaignResult& result, std::ostream& out)
     out << "  note: " << note << "\n";
   if (result.platoons.empty())
     return;
-  out << "\nPlatoons predicted from the real first car (leave-one-run-out models): speed dips [m/s] and "
-         "amplification dip(k)/dip(k-1)\n";
+  out << "\nPlatoons predicted from the real first car (leave-one-run-out models; a car with no other run at its "
+         "setting: fitted on its run outside the perturbation predicted): speed dips [m/s] and amplification "
+         "dip(k)/dip(k-1)\n";
   printAligned(kPlatoonHeader, platoonRows(result), out);
   for (const std::string& note : platoonNotes(result))
     out << "  " << note << "\n";
