@@ -919,8 +919,9 @@ std::string campaignReportMarkdown(const CampaignResult& result, const std::vect
     md << "\n- " << note;
   md << "\n\n## Platoons predicted from the real first car\n\n"
      << "Each following car simulated with its model fitted WITHOUT this run (a car with no other run at its "
-        "setting: on the first half of each of its segments of this run; * where such a half holds the dip, "
-        "which its model has then seen), from its measured gap and speed, "
+        "setting: on this run outside the perturbation predicted, one chain per perturbation; only where that "
+        "car's fit on its other runs failed, on the first half of each of its segments of this run, and * where "
+        "such a half holds the dip, which its model has then seen), from its measured gap and speed, "
         "driven by the predicted speed of the car ahead. Dip = pre-perturbation speed minus the minimum within "
         "the perturbation (+30 s); amplification = dip(k) / dip(k-1).\n\n";
   printMarkdownTable(kPlatoonHeader, platoonRows(result), md);
