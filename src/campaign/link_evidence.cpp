@@ -11,26 +11,21 @@
 
 namespace acc
 {
-namespace
+void collectLinkDips(const std::vector<PlatoonCheck>& platoons, const std::string& vehicle, const std::string& setting,
+                     std::vector<double>* follower, std::vector<double>* leader, const LinkDipFilter& include)
 {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr std::size_t kDipRatioReplicates = 1999;
-
-/// The car's dips and those of the car directly ahead, perturbation by perturbation, over every
-/// platoon run of its setting where it follows.
-void collectDips(const std::vector<PlatoonCheck>& platoons, const std::string& vehicle, const std::string& setting,
-                 std::vector<double>* follower, std::vector<double>* leader)
-{
-  for (const PlatoonCheck& check : platoons)
+  for (std::size_t r = 0; r < platoons.size(); ++r)
   {
+    const PlatoonCheck& check = platoons[r];
     if (settingOfCar(check.car_settings, check.setting, vehicle) != setting)
       continue;
-    for (const PerturbationCheck& perturbation : check.perturbations)
+    for (std::size_t q = 0; q < check.perturbations.size(); ++q)
     {
-      const auto& rows = perturbation.positions;
+      const auto& rows = check.perturbations[q].positions;
       for (std::size_t i = 1; i < rows.size(); ++i)
       {
-        if (rows[i].name == vehicle && rows[i - 1].position + 1 == rows[i].position)
+        if (rows[i].name == vehicle && rows[i - 1].position + 1 == rows[i].position &&
+            (!include || include(r, q, rows[i].position)))
         {
           follower->push_back(rows[i].measured.dip_mps);
           leader->push_back(rows[i - 1].measured.dip_mps);
@@ -39,6 +34,11 @@ void collectDips(const std::vector<PlatoonCheck>& platoons, const std::string& v
     }
   }
 }
+
+namespace
+{
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr std::size_t kDipRatioReplicates = 1999;
 
 /// Every segment of the group's runs in one series, a NaN sample between segments so that no
 /// Welch segment straddles two; and the median step.
@@ -109,6 +109,7 @@ void fitDiagnosed(const CampaignGroup& group, const GroupResult& result, const P
       analyzeAugmentedStability(fit.base, candidate.effects, fit.settings, evidence->operating_speed_mps);
 }
 
+
 LinkEvidence evidenceOf(const CampaignInputs& inputs, const CampaignGroup& group, const GroupResult& result,
                         const std::vector<PlatoonCheck>& platoons, const PlatoonCandidate& diagnosed,
                         const PlatoonCheckOptions& platoon_options)
@@ -117,7 +118,7 @@ LinkEvidence evidenceOf(const CampaignInputs& inputs, const CampaignGroup& group
   evidence.vehicle = group.vehicle;
   evidence.setting = group.setting;
   std::vector<double> follower_dips, leader_dips;
-  collectDips(platoons, group.vehicle, group.setting, &follower_dips, &leader_dips);
+  collectLinkDips(platoons, group.vehicle, group.setting, &follower_dips, &leader_dips);
   evidence.dip_ratio = linkDipRatio(follower_dips, leader_dips, kDipRatioReplicates, result.seed);
   std::vector<double> leader, follower;
   double step_s = kNaN;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <complex>
 #include <cstdio>
 #include <stdexcept>
@@ -308,6 +309,21 @@ DipRatioEstimate linkDipRatio(const std::vector<double>& follower_dips_mps, cons
   e.amplifies = classify(e);
   e.reason = dipReason(e);
   return e;
+}
+
+double linkDipRatioOfMeans(const std::vector<double>& follower_dips_mps, const std::vector<double>& leader_dips_mps,
+                           double min_leader_dip_mps)
+{
+  if (follower_dips_mps.size() != leader_dips_mps.size())
+    throw std::invalid_argument("link dip ratio: follower and leader dips differ in number");
+  const DipPairs pairs = usableDipPairs(follower_dips_mps, leader_dips_mps, min_leader_dip_mps);
+  double follower = 0.0, leader = 0.0;  // summed in order, as clusteredRatioOfSums sums them
+  for (std::size_t i = 0; i < pairs.follower_mps.size(); ++i)
+  {
+    follower += pairs.follower_mps[i];
+    leader += pairs.leader_mps[i];
+  }
+  return pairs.follower_mps.empty() ? std::numeric_limits<double>::quiet_NaN() : follower / leader;
 }
 
 bool informativeCoherence(double coherence, double threshold)

@@ -320,6 +320,18 @@ TEST(LinkDipRatio, MixedRatiosAreUndecided)
   EXPECT_EQ(e.amplifies, acc::DipAmplification::Undecided);
 }
 
+// The point estimate alone is linkDipRatio's, on the same pairs, and none without a usable pair.
+// Fails when it sums other pairs than linkDipRatio uses.
+TEST(LinkDipRatio, TheRatioOfMeansAloneIsTheEstimates)
+{
+  const std::vector<double> leader{2.0, kNaN, 0.1, 3.0, 0.0, 2.5, 1.6};
+  const std::vector<double> follower{3.0, 2.0, 5.0, kNaN, 1.0, 3.0, 1.0};
+  EXPECT_EQ(acc::linkDipRatioOfMeans(follower, leader), acc::linkDipRatio(follower, leader, 10, 3).ratio_of_means);
+  EXPECT_NEAR(acc::linkDipRatioOfMeans(follower, leader), (3.0 + 3.0 + 1.0) / (2.0 + 2.5 + 1.6), 1e-12);
+  EXPECT_TRUE(std::isnan(acc::linkDipRatioOfMeans({5.0}, {0.1})));
+  EXPECT_THROW(acc::linkDipRatioOfMeans({1.0}, {}), std::invalid_argument);
+}
+
 TEST(LinkDipRatio, NonFiniteDipsAndTinyLeaderDipsAreSkippedAndCounted)
 {
   const std::vector<double> leader{2.0, kNaN, 0.1, 3.0, 0.0, 2.5};

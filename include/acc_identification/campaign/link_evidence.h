@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -58,6 +59,16 @@ struct LinkEvidence
   std::size_t long_platoon_ran_away_at_car = 0;
   std::string note;  ///< what could not be computed, and why
 };
+
+/// Which links collectLinkDips takes: platoons[run].perturbations[perturbation], the follower at
+/// `position`.
+using LinkDipFilter = std::function<bool(std::size_t run, std::size_t perturbation, int position)>;
+
+/// The car's dips and those of the car directly ahead, perturbation by perturbation, over every
+/// platoon run of its setting where it follows (only the links `include` takes; all when empty):
+/// what linkDipRatio reads.
+void collectLinkDips(const std::vector<PlatoonCheck>& platoons, const std::string& vehicle, const std::string& setting,
+                     std::vector<double>* follower, std::vector<double>* leader, const LinkDipFilter& include = {});
 
 /// The level at which a diagnosed model's effect sizes are called determined (the diagnosis's own
 /// default, DiagnosisOptions::selection.alpha).

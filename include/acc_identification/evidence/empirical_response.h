@@ -68,6 +68,11 @@ DipRatioEstimate linkDipRatio(const std::vector<double>& follower_dips_mps, cons
                               std::size_t replicates, std::uint64_t seed, double confidence = 0.95,
                               double min_leader_dip_mps = kMinLeaderDipMps);
 
+/// linkDipRatio's ratio_of_means alone, without its interval (the same pairs used): NaN without a
+/// usable pair. Throws std::invalid_argument for vectors of different sizes.
+double linkDipRatioOfMeans(const std::vector<double>& follower_dips_mps, const std::vector<double>& leader_dips_mps,
+                           double min_leader_dip_mps = kMinLeaderDipMps);
+
 /// Options of Welch's estimate of a link's frequency response.
 struct WelchOptions
 {
