@@ -392,23 +392,32 @@ std::vector<std::vector<std::string>> diagnosedModelRows(const CampaignResult& r
   return rows;
 }
 
+/// A car's model, and its diagnosed model where it has one: as cars[] and own_chain_models give it.
+nlohmann::json carModelJson(int position, const std::string& name, const PlatoonCarModel& model,
+                            const PlatoonCarModel* diagnosed)
+{
+  nlohmann::json j{{"position", position},
+                   {"name", name},
+                   {"model_available", model.available},
+                   {"model_source", model.source},
+                   {"parameters", parametersJson(model.parameters)}};
+  if (diagnosed != nullptr)
+  {
+    j["diagnosed_effects"] = effectsJson(*diagnosed);
+    j["diagnosed_parameters"] = parametersJson(diagnosed->parameters);
+    j["diagnosed_model_source"] = diagnosed->source;
+  }
+  return j;
+}
+
 /// The cars a perturbation's own chain predicted with other models than the check's cars show.
 nlohmann::json ownChainModelsJson(const std::vector<PerturbationCarModels>& cars)
 {
   nlohmann::json out = nlohmann::json::array();
   for (const PerturbationCarModels& car : cars)
   {
-    out.push_back({{"position", car.position},
-                   {"name", car.name},
-                   {"model_available", car.model.available},
-                   {"model_source", car.model.source},
-                   {"parameters", parametersJson(car.model.parameters)}});
-    if (car.diagnosed.available || !car.diagnosed.source.empty())
-    {
-      out.back()["diagnosed_model_source"] = car.diagnosed.source;
-      out.back()["diagnosed_effects"] = effectsJson(car.diagnosed);
-      out.back()["diagnosed_parameters"] = parametersJson(car.diagnosed.parameters);
-    }
+    const bool diagnosed = car.diagnosed.available || !car.diagnosed.source.empty();
+    out.push_back(carModelJson(car.position, car.name, car.model, diagnosed ? &car.diagnosed : nullptr));
   }
   return out;
 }
@@ -445,23 +454,14 @@ nlohmann::json platoonJson(const PlatoonCheck& check, const EffectSetSelection* 
   }
   for (const PlatoonCarPrediction& car : check.cars)
   {
-    cars.push_back({{"position", car.position},
-                    {"name", car.name},
-                    {"model_available", car.model.available},
-                    {"model_source", car.model.source},
-                    {"parameters", parametersJson(car.model.parameters)},
-                    {"predicted", car.predicted},
-                    {"rmse_speed_mps", car.predicted ? car.rmse_speed_mps : kNaN},
-                    {"note", car.note}});
     const PlatoonCarPrediction* diagnosed = diagnosedCar(check, car.position);
+    nlohmann::json j = carModelJson(car.position, car.name, car.model, diagnosed != nullptr ? &diagnosed->model : nullptr);
+    j["predicted"] = car.predicted;
+    j["rmse_speed_mps"] = car.predicted ? car.rmse_speed_mps : kNaN;
+    j["note"] = car.note;
     if (diagnosed != nullptr)
-    {
-      nlohmann::json& j = cars.back();
-      j["diagnosed_effects"] = effectsJson(diagnosed->model);
-      j["diagnosed_parameters"] = parametersJson(diagnosed->model.parameters);
-      j["diagnosed_model_source"] = diagnosed->model.source;
       j["diagnosed_rmse_speed_mps"] = diagnosed->predicted ? diagnosed->rmse_speed_mps : kNaN;
-    }
+    cars.push_back(std::move(j));
   }
   const bool any = !check.perturbations.empty();
   return {{"run", check.run},
