@@ -260,6 +260,44 @@ CarModels fitCarModels(const CampaignInputs& inputs, const ModelTask& task, cons
   return out;
 }
 
+/// Each car's fit of candidate `candidate` (platoonCandidates()[candidate - 1]; 0: the base model)
+/// in one chain of a file, or its base model (said in the source) where that fit failed.
+std::vector<PlatoonCarModel> candidateModels(std::vector<PlatoonCarModel> models, const std::vector<ModelTask>& tasks,
+                                             const std::vector<CarModels>& fitted, std::size_t file_index,
+                                             std::size_t chain, std::size_t candidate)
+{
+  for (std::size_t i = 0; candidate > 0 && i < tasks.size(); ++i)
+  {
+    if (tasks[i].file_index != file_index || !servesChain(tasks[i], chain))
+      continue;
+    const PlatoonCarModel& fit = fitted[i].candidates[candidate - 1];
+    if (fit.available)
+      models[tasks[i].position] = fit;
+    else
+      models[tasks[i].position].source +=
+          "; kept the base model (" + platoonCandidates()[candidate - 1].name() + ": " + fit.source + ")";
+  }
+  return models;
+}
+
+/// A file's chains (chainsOf), each with its base models and, given a candidate, each car's model
+/// of it (candidateModels) as the diagnosed ones.
+std::vector<PlatoonChainModels> chainsOfFile(const CampaignInputs& inputs, std::size_t file_index,
+                                             const std::vector<ModelTask>& tasks, const std::vector<CarModels>& fitted,
+                                             const std::vector<PlatoonCarModel>& base_models,
+                                             std::optional<std::size_t> candidate)
+{
+  std::vector<PlatoonChainModels> chains;
+  for (std::size_t c = 0; c < chainsOf(file_index, tasks); ++c)
+  {
+    PlatoonChainModels chain{modelsOfFile(inputs, file_index, c, tasks, base_models), {}};
+    if (candidate)
+      chain.diagnosed = candidateModels(chain.models, tasks, fitted, file_index, c, *candidate);
+    chains.push_back(std::move(chain));
+  }
+  return chains;
+}
+
 /// Every file's platoon predicted with each candidate's models (each car's fit of it, or its base
 /// model where that fit failed), and the dips recorded in the scores: what the platoon criterion
 /// compares.
@@ -278,41 +316,11 @@ void addPlatoonDips(const CampaignInputs& inputs, const std::vector<ModelTask>& 
   std::vector<PlatoonCheck> checks(files.size() * models);
   runTasksInParallel(checks.size(), options.threads, [&](std::size_t i) {
     const std::size_t f = files[i / models], m = i % models;
-    std::vector<PlatoonChainModels> chains;
-    for (std::size_t c = 0; c < chainsOf(f, tasks); ++c)
-    {
-      PlatoonChainModels chain{modelsOfFile(inputs, f, c, tasks, base_models), {}};
-      chain.diagnosed = chain.models;
-      for (std::size_t t = 0; m > 0 && t < tasks.size(); ++t)
-      {
-        if (tasks[t].file_index == f && servesChain(tasks[t], c) && fitted[t].candidates[m - 1].available)
-          chain.diagnosed[tasks[t].position] = fitted[t].candidates[m - 1];
-      }
-      chains.push_back(std::move(chain));
-    }
-    checks[i] = checkPlatoonByPerturbation(inputs.files[f], chains, options.platoon);
+    checks[i] = checkPlatoonByPerturbation(inputs.files[f], chainsOfFile(inputs, f, tasks, fitted, base_models, m),
+                                           options.platoon);
   });
   for (std::size_t i = 0; i < checks.size(); ++i)
     addChainDips(checks[i], files[i / models], i % models, models, scores);
-}
-
-/// Each car's diagnosed model: its fit of the chosen effect set, or its base model (said in the
-/// source) when the set is the base model or its fit failed.
-std::vector<PlatoonCarModel> diagnosedModels(std::vector<PlatoonCarModel> models, const std::vector<ModelTask>& tasks,
-                                             const std::vector<CarModels>& fitted, std::size_t file_index,
-                                             std::size_t chain, const EffectSetSelection& selection)
-{
-  for (std::size_t i = 0; i < tasks.size(); ++i)
-  {
-    if (tasks[i].file_index != file_index || !servesChain(tasks[i], chain) || selection.chosen == 0)
-      continue;
-    const PlatoonCarModel& candidate = fitted[i].candidates[selection.chosen - 1];
-    if (candidate.available)
-      models[tasks[i].position] = candidate;
-    else
-      models[tasks[i].position].source += "; kept the base model (" + selection.model.name() + ": " + candidate.source + ")";
-  }
-  return models;
 }
 
 /// Check (d) of each group's model adequacy: its cars' dips in the platoon runs, each predicted at
@@ -384,15 +392,9 @@ CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& 
     const EffectSetSelection selection =
         diagnose ? selectEffectSet(result.pair_scores, f, inputs.files[f].name, options.effect_selection)
                  : EffectSetSelection{};
-    std::vector<PlatoonChainModels> chains;
-    for (std::size_t c = 0; c < chainsOf(f, tasks); ++c)
-    {
-      PlatoonChainModels chain{modelsOfFile(inputs, f, c, tasks, base_models), {}};
-      if (diagnose)
-        chain.diagnosed = diagnosedModels(chain.models, tasks, fitted, f, c, selection);
-      chains.push_back(std::move(chain));
-    }
-    result.platoons.push_back(checkPlatoonByPerturbation(inputs.files[f], chains, options.platoon));
+    const std::optional<std::size_t> diagnosed = diagnose ? std::make_optional(selection.chosen) : std::nullopt;
+    result.platoons.push_back(checkPlatoonByPerturbation(
+        inputs.files[f], chainsOfFile(inputs, f, tasks, fitted, base_models, diagnosed), options.platoon));
     if (diagnose)
       result.run_effect_selections.push_back(selection);
   }
