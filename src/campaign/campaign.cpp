@@ -77,6 +77,17 @@ PlatoonCarModel fitModel(const std::vector<CarFollowingRun>& segments, std::size
   return {true, id.calibration.parameters, source + (id.identifiable ? "" : "; not every parameter determined")};
 }
 
+/// fitModel on pieces of the predicted run itself, and the stretches they cover
+/// (fitted_on_this_run_s: what the in-sample flag checks against the dip windows).
+PlatoonCarModel fitModelOnThisRun(const std::vector<CarFollowingRun>& pieces, std::size_t starts,
+                                  const std::string& source)
+{
+  PlatoonCarModel model = fitModel(pieces, starts, source);
+  for (const CarFollowingRun& piece : pieces)
+    model.fitted_on_this_run_s.emplace_back(piece.time_s.front(), piece.time_s.back());
+  return model;
+}
+
 /// Files whose platoon can be checked: a first car and at least one pair.
 bool checkable(const CampaignInputs& inputs, std::size_t file_index)
 {
@@ -214,14 +225,10 @@ PlatoonCarModel fitPlatoonModelOn(const CampaignInputs& inputs, std::size_t file
   if (others.empty() && held_out)
   {
     *training = segmentsOutside(own->segments, held_out->first, held_out->second);
-    PlatoonCarModel model =
-        fitModel(*training, starts,
-                 "leave-one-perturbation-out: this run outside " +
-                     printfText("%.1f-%.1f s", held_out->first, held_out->second) +
-                     ", the window of the perturbation it predicts (no other run of " + group->label() + ")");
-    for (const CarFollowingRun& piece : *training)
-      model.fitted_on_this_run_s.emplace_back(piece.time_s.front(), piece.time_s.back());
-    return model;
+    return fitModelOnThisRun(*training, starts,
+                             "leave-one-perturbation-out: this run outside " +
+                                 printfText("%.1f-%.1f s", held_out->first, held_out->second) +
+                                 ", the window of the perturbation it predicts (no other run of " + group->label() + ")");
   }
   if (!others.empty())
   {
@@ -236,10 +243,7 @@ PlatoonCarModel fitPlatoonModelOn(const CampaignInputs& inputs, std::size_t file
     fallback = "first half of this run (" + model.source + ")";
   }
   *training = firstHalves(own->segments);
-  PlatoonCarModel model = fitModel(*training, starts, fallback);
-  for (const CarFollowingRun& half : *training)
-    model.fitted_on_this_run_s.emplace_back(half.time_s.front(), half.time_s.back());
-  return model;
+  return fitModelOnThisRun(*training, starts, fallback);
 }
 
 /// Car (file, position): its base model, and with the platoon diagnosis its candidate models on

@@ -109,7 +109,6 @@ void fitDiagnosed(const CampaignGroup& group, const GroupResult& result, const P
       analyzeAugmentedStability(fit.base, candidate.effects, fit.settings, evidence->operating_speed_mps);
 }
 
-
 LinkEvidence evidenceOf(const CampaignInputs& inputs, const CampaignGroup& group, const GroupResult& result,
                         const std::vector<PlatoonCheck>& platoons, const PlatoonCandidate& diagnosed,
                         const PlatoonCheckOptions& platoon_options)
