@@ -60,6 +60,8 @@ std::string smallSignalNote(EffectKind effect)
     case EffectKind::speed_dependent_gains: return "gains scheduled at the operating speed: k exp(g (v0 - 15 m/s))";
     case EffectKind::quadratic_closing_response:
       return "a quadratic term has no slope at equilibrium: small-signal Gamma equals the base one";
+    case EffectKind::leader_braking_anticipation:
+      return "no single transfer function: the braking branch, where the feedforward adds k_b s^2 to the numerator";
     case EffectKind::set_speed_cruise:
       return "cruise mode is inactive while following below the set speed: small-signal Gamma equals the base one";
   }
@@ -133,7 +135,7 @@ double augmentedTransferGainSquared(const AccParameters& p, const EffectSettings
   const std::complex<double> delay =
       e.reaction_delay_s != 0.0 ? std::exp(-s * e.reaction_delay_s) : std::complex<double>(1.0, 0.0);
   const std::complex<double> numerator =
-      delay * (e.leader_acceleration_gain * s * s + g.k2_per_s * s + g.k1_per_s2);
+      delay * ((e.leader_acceleration_gain + e.leader_braking_gain) * s * s + g.k2_per_s * s + g.k1_per_s2);
   const std::complex<double> denominator =
       (e.actuation_lag_s * s + 1.0) * s * s + delay * ((g.k2_per_s + g.k1_per_s2 * tau) * s + g.k1_per_s2);
   // |N|^2 / |D|^2: no complex division and no hypot, which the side search's index (thousands of

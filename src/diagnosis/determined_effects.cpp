@@ -17,7 +17,8 @@ double neutralValue(EffectKind kind)
     case EffectKind::speed_dependent_time_gap:
     case EffectKind::speed_dependent_gains:
     case EffectKind::leader_acceleration_feedforward:
-    case EffectKind::quadratic_closing_response: return 0.0;
+    case EffectKind::quadratic_closing_response:
+    case EffectKind::leader_braking_anticipation: return 0.0;
     case EffectKind::asymmetric_response: return 1.0;
     default: return std::numeric_limits<double>::quiet_NaN();
   }

@@ -60,6 +60,11 @@ const std::vector<CandidateEffect>& responseEffects()
        "command -= c (u - v)^2 / (2 s) while closing in: c times the deceleration that would just match the "
        "leader's speed within the gap; harder braking for a fast-closing leader on a short gap, none for small "
        "differences"},
+      // The same range as the two-sided feedforward's: up to 1.5 times the leader's deceleration.
+      {EffectKind::leader_braking_anticipation, "leader_braking_anticipation",
+       {{"leader_braking_gain", 0.0, 1.5, 0.05, 0.8}},
+       "command += k_b times the leader's acceleration while the leader brakes (backward difference of its "
+       "speed, negative): the leader's braking anticipated, its pulling away not"},
   };
   return extra;
 }
@@ -160,6 +165,7 @@ EffectSettings makeEffectSettings(EffectKind kind, const std::vector<double>& va
       break;
     case EffectKind::speed_dependent_gains: s.gain_speed_slope_s_per_m = values[0]; break;
     case EffectKind::quadratic_closing_response: s.kinematic_braking_ratio = values[0]; break;
+    case EffectKind::leader_braking_anticipation: s.leader_braking_gain = values[0]; break;
   }
   return s;
 }
@@ -179,6 +185,7 @@ std::vector<double> effectValues(EffectKind kind, const EffectSettings& s)
     case EffectKind::asymmetric_response: return {s.closing_gain_ratio, s.short_gap_gain_ratio};
     case EffectKind::speed_dependent_gains: return {s.gain_speed_slope_s_per_m};
     case EffectKind::quadratic_closing_response: return {s.kinematic_braking_ratio};
+    case EffectKind::leader_braking_anticipation: return {s.leader_braking_gain};
   }
   return {};
 }
@@ -215,6 +222,7 @@ void applyEffectValues(EffectKind kind, const std::vector<double>& values, Effec
     case EffectKind::quadratic_closing_response:
       settings->kinematic_braking_ratio = own.kinematic_braking_ratio;
       break;
+    case EffectKind::leader_braking_anticipation: settings->leader_braking_gain = own.leader_braking_gain; break;
   }
 }
 

@@ -74,6 +74,7 @@ struct ModelScalars
   Scalar sensor_time_offset_s, time_gap_speed_slope_s2_per_m, set_speed_mps, cruise_gain_per_s,
       leader_acceleration_gain;
   Scalar short_gap_gain_ratio, closing_gain_ratio, gain_speed_slope_s_per_m, kinematic_braking_ratio;
+  Scalar leader_braking_gain;
 };
 
 ModelScalars<double> plainScalars(const AccParameters& p, const EffectSettings& e)
@@ -83,7 +84,7 @@ ModelScalars<double> plainScalars(const AccParameters& p, const EffectSettings& 
           e.max_acceleration_mps2, e.max_deceleration_mps2, e.sensor_time_offset_s,
           e.time_gap_speed_slope_s2_per_m, e.set_speed_mps, e.cruise_gain_per_s,
           e.leader_acceleration_gain, e.short_gap_gain_ratio, e.closing_gain_ratio,
-          e.gain_speed_slope_s_per_m, e.kinematic_braking_ratio};
+          e.gain_speed_slope_s_per_m, e.kinematic_braking_ratio, e.leader_braking_gain};
 }
 
 /// The leader speed the ACC really saw at each sample: recorded at t + delta (only made when a
@@ -117,6 +118,7 @@ struct LawTerms
   bool gain_schedule = false;      ///< gains scheduled on speed
   bool gap_slope = false;          ///< time gap growing with speed
   bool feedforward = false;        ///< the leader's acceleration
+  bool braking_anticipation = false;  ///< the leader's acceleration while it brakes
   bool kinematic_braking = false;  ///< the quadratic closing response
   bool cruise = false;             ///< a set speed caps the command
   bool acceleration_limit = false, deceleration_limit = false;
@@ -131,6 +133,7 @@ LawTerms lawTermsOf(const ModelScalars<Scalar>& m)
                  terms.gain_schedule;
   terms.gap_slope = entersModel(m.time_gap_speed_slope_s2_per_m);
   terms.feedforward = entersModel(m.leader_acceleration_gain);
+  terms.braking_anticipation = entersModel(m.leader_braking_gain);
   terms.kinematic_braking = entersModel(m.kinematic_braking_ratio);
   terms.cruise = std::isfinite(valueOf(m.set_speed_mps));
   // An infinite limit never binds (a non-finite command runs away either way).
@@ -183,6 +186,10 @@ Scalar commandedAcceleration(const ModelScalars<Scalar>& m, const LawTerms& term
   if (terms.feedforward)
   {
     command += m.leader_acceleration_gain * leader_acceleration;
+  }
+  if (terms.braking_anticipation && valueOf(leader_acceleration) < 0.0)
+  {
+    command += m.leader_braking_gain * leader_acceleration;
   }
   if (terms.kinematic_braking)
   {
@@ -237,7 +244,7 @@ std::size_t runRecursion(const ModelScalars<Scalar>& m, const CarFollowingRun& r
   {
     const double step_s = run.time_s[k + 1] - run.time_s[k];
     const Scalar relative_speed = leader[k] - speed;
-    const Leader leader_acceleration = terms.feedforward && k > 0
+    const Leader leader_acceleration = (terms.feedforward || terms.braking_anticipation) && k > 0
                                            ? Leader((leader[k] - leader[k - 1]) / (run.time_s[k] - run.time_s[k - 1]))
                                            : Leader(0.0);
     const Scalar command = commandedAcceleration<Scalar>(m, terms, gap, speed, leader[k], leader_acceleration);
@@ -319,7 +326,8 @@ ModelScalars<ForwardDual<N>> seededScalars(const std::vector<EffectKind>& kinds,
           seed(plain.short_gap_gain_ratio, where.short_gap_gain_ratio),
           seed(plain.closing_gain_ratio, where.closing_gain_ratio),
           seed(plain.gain_speed_slope_s_per_m, where.gain_speed_slope_s_per_m),
-          seed(plain.kinematic_braking_ratio, where.kinematic_braking_ratio)};
+          seed(plain.kinematic_braking_ratio, where.kinematic_braking_ratio),
+          seed(plain.leader_braking_gain, where.leader_braking_gain)};
 }
 
 template <std::size_t N>

@@ -194,6 +194,8 @@ std::string noEquivalentNote(EffectKind kind)
       return "SUMO's gains are constants";
     case EffectKind::quadratic_closing_response:
       return "SUMO's ACC is linear in the speed difference within each of its modes";
+    case EffectKind::leader_braking_anticipation:
+      return "SUMO's ACC has no term in the leader's acceleration, on either side";
     default:
       return "";
   }

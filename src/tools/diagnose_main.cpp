@@ -40,8 +40,8 @@ void addDiagnosisOptions(CLI::App& app, DiagnoseRequest& r)
   app.add_option("--held-out", r.held_out, "runs kept aside (read as RUN, same --follower): the RUNs are fitted whole "
                  "and these scored whole, not each run's first part and the rest")->check(CLI::ExistingFile);
   app.add_option("--effect", r.effects, "candidate effect (repeatable; replaces the default list: the six timing and spacing effects, "
-                 "asymmetric_response and speed_dependent_gains; leader_acceleration_feedforward and "
-                 "quadratic_closing_response are tested only when named here)");
+                 "asymmetric_response and speed_dependent_gains; leader_acceleration_feedforward, "
+                 "quadratic_closing_response and leader_braking_anticipation are tested only when named here)");
   app.add_option("--block-length-s", r.options.selection.block_length_s, "bootstrap block length [s]")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

@@ -282,10 +282,12 @@ std::vector<WithheldCase> withheldCaseGrid(std::size_t magnitudes_per_effect,
   };
   // Exploratory effects, hidden only when asked for: an anticipation of 15-50 % of the leader's
   // acceleration; braking at 2-7 times the kinematic deceleration (the range the ZalaZone cars
-  // were fitted to in the platoon diagnosis).
+  // were fitted to in the platoon diagnosis); an anticipation of 15-60 % of the leader's braking
+  // alone (the ZalaZone cars' 0-0.67).
   const std::map<EffectKind, std::vector<std::vector<double>>> exploratory_magnitudes = {
       {EffectKind::leader_acceleration_feedforward, {{0.3}, {0.5}, {0.15}}},
       {EffectKind::quadratic_closing_response, {{4.0}, {2.0}, {7.0}}},
+      {EffectKind::leader_braking_anticipation, {{0.3}, {0.6}, {0.15}}},
   };
   std::vector<std::pair<EffectKind, std::vector<std::vector<double>>>> truths(magnitudes.begin(), magnitudes.end());
   for (EffectKind kind : exploratory)

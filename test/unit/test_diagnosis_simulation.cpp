@@ -1,6 +1,7 @@
 // The augmented simulator, the catalogue, the transfer functions and the residual breakdown.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 
@@ -251,6 +252,35 @@ TEST(AugmentedSimulation, AnAsymmetricResponseBrakesHarderAndReducesToTheBaseAtR
               1e-12);
 }
 
+// The anticipation of the leader's braking acts only while the leader brakes: behind a leader that
+// only speeds up the car drives as the base model does, bit for bit; behind the dip it brakes
+// earlier and its gap shrinks less. On the braking branch its |Gamma| is the two-sided
+// feedforward's of the same gain.
+TEST(AugmentedSimulation, AnAnticipationOfTheLeadersBrakingActsOnlyWhileTheLeaderBrakes)
+{
+  const acc::EffectSettings anticipation = acc::makeEffectSettings(acc::EffectKind::leader_braking_anticipation, {0.6});
+  acc::CarFollowingRun pulling_away = dipRun();
+  for (std::size_t k = 1; k < pulling_away.size(); ++k)  // the leader never slows down
+    pulling_away.leader_speed_mps[k] = std::max(pulling_away.leader_speed_mps[k], pulling_away.leader_speed_mps[k - 1]);
+  const acc::SimulatedFollower base_away = acc::simulateFollower(kParameters, pulling_away);
+  const acc::SimulatedFollower anticipating_away = acc::simulateFollower(kParameters, anticipation, pulling_away);
+  for (std::size_t k = 0; k < pulling_away.size(); ++k)
+    ASSERT_EQ(anticipating_away.speed_mps[k], base_away.speed_mps[k]) << k;
+
+  const acc::CarFollowingRun run = dipRun();
+  const acc::SimulatedFollower base = acc::simulateFollower(kParameters, run);
+  const acc::SimulatedFollower anticipating = acc::simulateFollower(kParameters, anticipation, run);
+  auto shortestGap = [](const acc::SimulatedFollower& sim) {
+    return *std::min_element(sim.space_gap_m.begin(), sim.space_gap_m.end());
+  };
+  EXPECT_GT(shortestGap(anticipating), shortestGap(base) + 0.5);
+
+  const acc::EffectSettings two_sided = acc::makeEffectSettings(acc::EffectKind::leader_acceleration_feedforward, {0.6});
+  for (double w : {0.05, 0.3, 1.0, 3.0})
+    EXPECT_EQ(acc::augmentedTransferGain(kParameters, anticipation, 20.0, w),
+              acc::augmentedTransferGain(kParameters, two_sided, 20.0, w)) << w;
+}
+
 TEST(CandidateEffects, NamesRoundTripAndSettingsInvert)
 {
   EXPECT_EQ(acc::candidateEffects().size(), 6u);
@@ -304,6 +334,8 @@ TEST(AugmentedSimulation, SensitivitiesAreExactDerivativesOfTheSameSimulation)
       {{acc::EffectKind::asymmetric_response, acc::EffectKind::reaction_delay}, {2.0, 1.5, 0.4}},
       {{acc::EffectKind::quadratic_closing_response}, {3.0}},
       {{acc::EffectKind::quadratic_closing_response, acc::EffectKind::reaction_delay}, {2.0, 0.5}},
+      {{acc::EffectKind::leader_braking_anticipation}, {0.4}},
+      {{acc::EffectKind::leader_braking_anticipation, acc::EffectKind::reaction_delay}, {0.4, 0.8}},
   };
   for (const auto& [kinds, values] : models)
   {

@@ -56,7 +56,8 @@ void localLoopStability(const AccParameters& linear_gains, double actuation_lag_
 bool locallyStableAt(const AccParameters& p, const EffectSettings& effects,
                      const std::vector<double>& operating_speeds_mps);
 
-/// |Gamma(j w)| of the augmented model as a ratio.
+/// |Gamma(j w)| of the augmented model as a ratio; a law with two branches on its braking one
+/// (asymmetric gains, the anticipation of the leader's braking), what a braking leader meets.
 double augmentedTransferGain(const AccParameters& p, const EffectSettings& effects, double operating_speed_mps,
                              double frequency_rad_s);
 

@@ -33,6 +33,11 @@ enum class EffectKind
   /// intelligent-braking term, Gipps' safe speed, the constant-acceleration heuristic of Kesting,
   /// Treiber and Helbing's ACC model). Small signals see no change.
   quadratic_closing_response,
+  /// Anticipation of the leader's braking only: command += k_b min(a_leader, 0). Radar ACCs
+  /// estimate the leader's acceleration, and are built to brake early for a braking leader yet to
+  /// accelerate gently (the asymmetry of FHWA's and SUMO's ACC models): the feedforward acts on
+  /// the braking side alone, so a leader pulling away is followed through the linear law.
+  leader_braking_anticipation,
 };
 
 /// The speed at which speed_dependent_gains leaves k1 and k2 as they are [m/s]: a reparametrisation
@@ -74,6 +79,9 @@ struct EffectSettings
   /// c: command -= c (u - v)^2 / (2 max(s, kKinematicBrakingMinGapM)) while the follower closes
   /// in (u - v < 0), s the true gap [dimensionless: multiples of the kinematic deceleration; 0: off].
   double kinematic_braking_ratio = 0.0;
+  /// k_b: command += k_b min(a_leader, 0), a_leader as for leader_acceleration_gain: only a
+  /// braking leader enters [dimensionless; 0: off].
+  double leader_braking_gain = 0.0;
 };
 
 /// One calibrated parameter of an effect: its name with unit, the hard bounds of the search and
@@ -112,7 +120,7 @@ const std::vector<CandidateEffect>& candidateEffects();
 
 /// The response effects: how the ACC answers, beyond the linear law's two constant gains
 /// (asymmetric_response, speed_dependent_gains, leader_acceleration_feedforward,
-/// quadratic_closing_response). Candidates of
+/// quadratic_closing_response, leader_braking_anticipation). Candidates of
 /// the diagnosis beside the six above, and of the campaign's platoon diagnosis.
 const std::vector<CandidateEffect>& responseEffects();
 

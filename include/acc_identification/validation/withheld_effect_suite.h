@@ -79,8 +79,8 @@ std::vector<EffectKind> diagnosableEffects();
 /// The grid of cases: none and every effect of the default candidates at several magnitudes, on
 /// the given profiles, noise scales and seeds. magnitudes_per_effect picks from a fixed list per
 /// effect (1 to 3). `exploratory` adds effects the diagnosis tests only when asked for
-/// (leader_acceleration_feedforward, quadratic_closing_response) as truths after the others, so
-/// that the default grid's cases and seeds stay as they are.
+/// (leader_acceleration_feedforward, quadratic_closing_response, leader_braking_anticipation) as
+/// truths after the others, so that the default grid's cases and seeds stay as they are.
 std::vector<WithheldCase> withheldCaseGrid(std::size_t magnitudes_per_effect,
                                            const std::vector<SyntheticLeadProfile>& profiles,
                                            const std::vector<double>& noise_scales, std::size_t seeds,
