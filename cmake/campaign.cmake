@@ -39,5 +39,5 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_campaign_zalazone.cpp
     test/unit/test_campaign_sumo.cpp)
   target_compile_definitions(test_campaign PRIVATE ACC_ZALAZONE_DYNAMIC_DIR="${ACC_DATA_ZALAZONE_DYNAMIC_DIR}")
-  target_link_libraries(test_campaign acc_campaign)
+  target_link_libraries(test_campaign acc_campaign acc_validation)
 endif()

@@ -29,6 +29,9 @@ struct ModelTask
   int position = 0;
   std::optional<std::size_t> perturbation;
   std::pair<double, double> held_out_s{0.0, 0.0};  ///< the perturbation's window in the run's clock
+  /// Whether the run has a lead perturbation: only then do its dips score the candidates, so only
+  /// then are they all fitted for its cars (otherwise the one the run's diagnosed chain needs).
+  bool run_has_perturbations = true;
 };
 
 /// The first half of every segment (the paper's training half), those long enough to simulate.
@@ -137,11 +140,11 @@ std::vector<ModelTask> modelTasks(const CampaignInputs& inputs, const PlatoonChe
         continue;
       if (windows.empty() || hasOtherRun(inputs, f, data.vehicleName(vehicle.position)))
       {
-        tasks.push_back({f, vehicle.position, std::nullopt});
+        tasks.push_back({f, vehicle.position, std::nullopt, {0.0, 0.0}, !windows.empty()});
         continue;
       }
       for (std::size_t k = 0; k < windows.size(); ++k)
-        tasks.push_back({f, vehicle.position, k, windows[k]});
+        tasks.push_back({f, vehicle.position, k, windows[k], true});
     }
   }
   return tasks;
@@ -187,12 +190,14 @@ std::vector<PlatoonCarModel> modelsOfFile(const CampaignInputs& inputs, std::siz
 
 namespace
 {
-/// The base model and the candidate models of one car, and its pair-level perturbation scores.
+/// The base model and the candidate models of one car, its pair-level perturbation scores, and the
+/// segments they were fitted on (for the candidates fitted once the run's choice is known).
 struct CarModels
 {
   PlatoonCarModel base;
   std::vector<PlatoonCarModel> candidates;
   std::vector<PairPerturbationScore> scores;
+  std::vector<CarFollowingRun> training;
 };
 
 /// fitPlatoonModel, and the segments it was fitted on (empty when none).
@@ -247,16 +252,18 @@ PlatoonCarModel fitPlatoonModelOn(const CampaignInputs& inputs, std::size_t file
 }
 
 /// Car (file, position): its base model, and with the platoon diagnosis its candidate models on
-/// the same training data and its pair-level scores.
+/// the same training data (none yet where the run has no perturbation to score them:
+/// fitChosenCandidates) and its pair-level scores.
 CarModels fitCarModels(const CampaignInputs& inputs, const ModelTask& task, const CampaignOptions& options)
 {
   CarModels out;
-  std::vector<CarFollowingRun> training;
   const auto held_out = task.perturbation ? std::make_optional(task.held_out_s) : std::nullopt;
-  out.base = fitPlatoonModelOn(inputs, task.file_index, task.position, options.group.starts, &training, held_out);
+  out.base = fitPlatoonModelOn(inputs, task.file_index, task.position, options.group.starts, &out.training, held_out);
   if (!options.platoon_diagnosis)
     return out;
-  out.candidates = fitCandidateModels(training, out.base);
+  out.candidates = fitCandidateModels(out.training, out.base,
+                                      task.run_has_perturbations ? std::nullopt
+                                                                 : std::make_optional(std::vector<std::size_t>{}));
   std::vector<PlatoonCarModel> all{out.base};
   all.insert(all.end(), out.candidates.begin(), out.candidates.end());
   out.scores = scorePairPerturbations(inputs.files[task.file_index], task.file_index, task.position, all,
@@ -302,6 +309,24 @@ std::vector<PlatoonChainModels> chainsOfFile(const CampaignInputs& inputs, std::
   return chains;
 }
 
+/// For the cars of runs without a perturbation, the candidate the run's diagnosed chain is predicted
+/// with (its choice made without it), fitted now: nothing else of theirs is scored.
+void fitChosenCandidates(const std::vector<ModelTask>& tasks, const std::vector<EffectSetSelection>& selections,
+                         std::size_t threads, std::vector<CarModels>* fitted)
+{
+  std::vector<std::size_t> pending;
+  for (std::size_t i = 0; i < tasks.size(); ++i)
+  {
+    if (!tasks[i].run_has_perturbations && selections[tasks[i].file_index].chosen > 0)
+      pending.push_back(i);
+  }
+  runTasksInParallel(pending.size(), threads, [&](std::size_t k) {
+    CarModels& car = (*fitted)[pending[k]];
+    car.candidates = fitCandidateModels(car.training, car.base,
+                                        std::vector<std::size_t>{selections[tasks[pending[k]].file_index].chosen - 1});
+  });
+}
+
 /// Every file's platoon predicted with each candidate's models (each car's fit of it, or its base
 /// model where that fit failed), and the dips recorded in the scores: what the platoon criterion
 /// compares.
@@ -310,11 +335,11 @@ void addPlatoonDips(const CampaignInputs& inputs, const std::vector<ModelTask>& 
                     const CampaignOptions& options, std::vector<PairPerturbationScore>* scores)
 {
   const std::size_t models = platoonCandidates().size() + 1;
-  std::vector<std::size_t> files;
-  for (std::size_t f = 0; f < inputs.files.size(); ++f)
+  std::vector<std::size_t> files;  // the runs with a perturbation: no other run has a dip to score
+  for (const ModelTask& task : tasks)
   {
-    if (checkable(inputs, f))
-      files.push_back(f);
+    if (task.run_has_perturbations && (files.empty() || files.back() != task.file_index))
+      files.push_back(task.file_index);
   }
   // Per (file, candidate): independent, so spread over the threads; each writes its own slot.
   std::vector<PlatoonCheck> checks(files.size() * models);
@@ -388,19 +413,24 @@ CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& 
     result.effect_selection_criterion = options.effect_selection.criterion;
     result.effect_selection = selectEffectSet(result.pair_scores, inputs.files.size(), "", options.effect_selection);
   }
+  // The run's own effect set is chosen without it: its dips judge a choice they did not make.
+  std::vector<EffectSetSelection> selections(inputs.files.size());
+  for (std::size_t f = 0; diagnose && f < inputs.files.size(); ++f)
+  {
+    if (checkable(inputs, f))
+      selections[f] = selectEffectSet(result.pair_scores, f, inputs.files[f].name, options.effect_selection);
+  }
+  if (diagnose)
+    fitChosenCandidates(tasks, selections, options.threads, &fitted);
   for (std::size_t f = 0; options.platoon_check && f < inputs.files.size(); ++f)
   {
     if (!checkable(inputs, f))
       continue;
-    // The run's own effect set is chosen without it: its dips judge a choice they did not make.
-    const EffectSetSelection selection =
-        diagnose ? selectEffectSet(result.pair_scores, f, inputs.files[f].name, options.effect_selection)
-                 : EffectSetSelection{};
-    const std::optional<std::size_t> diagnosed = diagnose ? std::make_optional(selection.chosen) : std::nullopt;
+    const std::optional<std::size_t> diagnosed = diagnose ? std::make_optional(selections[f].chosen) : std::nullopt;
     result.platoons.push_back(checkPlatoonByPerturbation(
         inputs.files[f], chainsOfFile(inputs, f, tasks, fitted, base_models, diagnosed), options.platoon));
     if (diagnose)
-      result.run_effect_selections.push_back(selection);
+      result.run_effect_selections.push_back(selections[f]);
   }
   addLinkRatioChains(result.platoons, kScoredMinDipMps);
   addDipChecks(result.platoons, result.groups);

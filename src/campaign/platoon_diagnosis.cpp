@@ -284,8 +284,28 @@ std::string platoonCandidateText(const PlatoonCandidate& candidate)
 
 bool isPlatoonCandidate(const PlatoonCandidate& candidate) { return candidateIndex(candidate).has_value(); }
 
+namespace
+{
+/// Which candidates to fit: the wanted ones (all when absent) and, recursively, every candidate
+/// one of them extends by one (fitCandidateModels warm-starts it from the last of those).
+std::vector<bool> candidatesToFit(const std::optional<std::vector<std::size_t>>& wanted)
+{
+  const auto& candidates = platoonCandidates();
+  std::vector<bool> fit(candidates.size(), !wanted.has_value());
+  for (std::size_t i : wanted.value_or(std::vector<std::size_t>{}))
+    fit.at(i) = true;
+  for (std::size_t i = candidates.size(); i-- > 0;)
+  {
+    for (std::size_t j = 0; fit[i] && j < i; ++j)
+      fit[j] = fit[j] || extendsByOne(candidates[i], candidates[j]);
+  }
+  return fit;
+}
+}  // namespace
+
 std::vector<PlatoonCarModel> fitCandidateModels(const std::vector<CarFollowingRun>& training,
-                                                const PlatoonCarModel& base)
+                                                const PlatoonCarModel& base,
+                                                const std::optional<std::vector<std::size_t>>& wanted)
 {
   const auto& candidates = platoonCandidates();
   std::vector<PlatoonCarModel> models(candidates.size(), PlatoonCarModel{false, {}, base.source + ": no base model"});
@@ -294,8 +314,14 @@ std::vector<PlatoonCarModel> fitCandidateModels(const std::vector<CarFollowingRu
   AugmentedFit warm;  // the base model: the warm start of every candidate that extends it
   warm.base = base.parameters;
   std::vector<AugmentedFit> fits(candidates.size());
+  const std::vector<bool> fit_it = candidatesToFit(wanted);
   for (std::size_t i = 0; i < candidates.size(); ++i)
   {
+    if (!fit_it[i])
+    {
+      models[i] = PlatoonCarModel{false, {}, "not fitted: not needed"};
+      continue;
+    }
     // A candidate that adds one thing to an earlier one starts from that one's fit, so that it
     // refines a model that already holds the rest.
     const AugmentedFit* start = &warm;

@@ -17,6 +17,7 @@
 #include "acc_identification/campaign/link_evidence.h"
 #include "acc_identification/campaign/link_ratio_chain.h"
 #include "acc_identification/model/string_stability.h"
+#include "acc_identification/validation/withheld_effect_suite.h"
 #include "campaign_test_data.h"
 
 namespace
@@ -499,6 +500,47 @@ TEST(PlatoonCandidates, TextReadsBackAndOnlyCandidatesMayBeForced)
   EXPECT_FALSE(acc::isPlatoonCandidate({{acc::EffectKind::reaction_delay, acc::EffectKind::reaction_delay},
                                         acc::FitObjective::speed}));
 }
+// A car whose run has no perturbation needs only the candidate its diagnosed chain uses: fitted
+// alone, that candidate (and the candidates it is warm-started from) comes out bit for bit as in
+// the full fit, and nothing else is fitted. Fails when a wanted candidate's warm start is left
+// out (it would start from the base model instead) or the unwanted ones are fitted all the same.
+TEST(PlatoonCandidates, OneWantedCandidateIsFittedAsInTheFullSetAndAloneWithItsWarmStarts)
+{
+  using E = acc::EffectKind;
+  using O = acc::FitObjective;
+  acc::WithheldCase drive;
+  drive.truth = E::reaction_delay;
+  drive.truth_values = {0.6};
+  drive.profile = acc::SyntheticLeadProfile::dip;
+  drive.duration_s = 120.0;
+  const std::vector<acc::CarFollowingRun> training{acc::synthesizeWithheldRun(drive)};
+  const acc::PlatoonCarModel base{true, drive.base, "truth"};
+  const auto& candidates = acc::platoonCandidates();
+  const auto index = [&](const acc::PlatoonCandidate& c) {
+    return static_cast<std::size_t>(std::find(candidates.begin(), candidates.end(), c) - candidates.begin());
+  };
+  const std::size_t wanted = index({{E::quadratic_closing_response, E::reaction_delay}, O::speed});
+  const std::size_t warm_start = index({{E::reaction_delay}, O::speed});
+  ASSERT_LT(wanted, candidates.size());
+  const std::vector<acc::PlatoonCarModel> full = acc::fitCandidateModels(training, base);
+  const std::vector<acc::PlatoonCarModel> alone =
+      acc::fitCandidateModels(training, base, std::vector<std::size_t>{wanted});
+  ASSERT_EQ(alone.size(), candidates.size());
+  for (std::size_t i : {wanted, warm_start})
+  {
+    ASSERT_TRUE(alone[i].available) << candidates[i].name() << ": " << alone[i].source;
+    EXPECT_EQ(alone[i].effect_values, full[i].effect_values) << candidates[i].name();
+    EXPECT_EQ(alone[i].parameters.k1_per_s2, full[i].parameters.k1_per_s2) << candidates[i].name();
+    EXPECT_EQ(alone[i].parameters.tau_e_s, full[i].parameters.tau_e_s) << candidates[i].name();
+  }
+  const std::size_t unwanted = index({{E::asymmetric_response}, O::speed});
+  EXPECT_FALSE(alone[unwanted].available);
+  EXPECT_EQ(alone[unwanted].source, "not fitted: not needed");
+  EXPECT_TRUE(full[unwanted].available) << full[unwanted].source;
+  const std::vector<acc::PlatoonCarModel> none = acc::fitCandidateModels(training, base, std::vector<std::size_t>{});
+  EXPECT_TRUE(std::none_of(none.begin(), none.end(), [](const acc::PlatoonCarModel& m) { return m.available; }));
+}
+
 namespace
 {
 /// The index selectEffectSet's scores use for a candidate: 0 the base model, i + 1 candidate i.

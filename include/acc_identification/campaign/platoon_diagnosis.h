@@ -57,9 +57,12 @@ bool isPlatoonCandidate(const PlatoonCandidate& candidate);
 /// Each candidate's model of one car, fitted (calibrateAugmentedSet with the candidate's
 /// objective) on the same training segments as its base model, warm-started from it; a candidate
 /// that extends another is warm-started from that one's fit. One entry per platoonCandidates();
-/// available false where the fit failed or diverged.
+/// available false where the fit failed or diverged, or where `wanted` (indices into
+/// platoonCandidates(); every one when absent) leaves the candidate out. A wanted candidate's warm
+/// starts are fitted with it, so that its fit is the same whatever else is wanted.
 std::vector<PlatoonCarModel> fitCandidateModels(const std::vector<CarFollowingRun>& training,
-                                                const PlatoonCarModel& base);
+                                                const PlatoonCarModel& base,
+                                                const std::optional<std::vector<std::size_t>>& wanted = std::nullopt);
 
 /// What one car did in one perturbation against what each model predicted for it: at pair level
 /// (driven by its real leader's measured speed: nothing compounds) and in the platoon (driven by
