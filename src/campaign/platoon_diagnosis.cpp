@@ -228,7 +228,7 @@ const std::vector<PlatoonCandidate>& platoonCandidates()
   using O = FitObjective;
   static const std::vector<PlatoonCandidate> candidates = {
       {{E::asymmetric_response}, O::speed},
-      {{E::leader_acceleration_feedforward}, O::speed},
+      {{E::leader_braking_anticipation}, O::speed},
       {{E::reaction_delay}, O::speed},
       {{E::actuation_lag}, O::speed},
       {{E::quadratic_closing_response}, O::speed},
@@ -236,13 +236,16 @@ const std::vector<PlatoonCandidate>& platoonCandidates()
       {{}, O::speed_and_gap},
       {{E::asymmetric_response, E::reaction_delay}, O::speed},
       {{E::asymmetric_response, E::actuation_lag}, O::speed},
-      {{E::leader_acceleration_feedforward, E::reaction_delay}, O::speed},
+      {{E::leader_braking_anticipation, E::reaction_delay}, O::speed},
       {{E::quadratic_closing_response, E::reaction_delay}, O::speed},
       {{E::reaction_delay}, O::speed_and_gap},
       {{E::actuation_lag}, O::speed_and_gap},
+      // The two hard-braking responses together, on top of the delay.
+      {{E::leader_braking_anticipation, E::quadratic_closing_response, E::reaction_delay}, O::speed},
       // The fit weighted to the brakings, at each stage of the effects a stage may choose.
       {{}, O::speed_and_windows},
       {{E::reaction_delay}, O::speed_and_windows},
+      {{E::leader_braking_anticipation, E::reaction_delay}, O::speed_and_windows},
       {{E::quadratic_closing_response, E::reaction_delay}, O::speed_and_windows},
   };
   return candidates;

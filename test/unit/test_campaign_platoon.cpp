@@ -495,7 +495,7 @@ TEST(PlatoonCandidates, TextReadsBackAndOnlyCandidatesMayBeForced)
   EXPECT_FALSE(acc::isPlatoonCandidate({{acc::EffectKind::speed_dependent_gains}, acc::FitObjective::speed}));
   // A set of effects, in whatever order it is written (the list prints them in the catalogue's).
   acc::PlatoonCandidate reversed;
-  ASSERT_TRUE(acc::parsePlatoonCandidate("reaction_delay,leader_acceleration_feedforward", &reversed));
+  ASSERT_TRUE(acc::parsePlatoonCandidate("reaction_delay,leader_braking_anticipation", &reversed));
   EXPECT_TRUE(acc::isPlatoonCandidate(reversed));
   EXPECT_FALSE(acc::isPlatoonCandidate({{acc::EffectKind::reaction_delay, acc::EffectKind::reaction_delay},
                                         acc::FitObjective::speed}));

@@ -65,23 +65,28 @@ TEST(CampaignZalaZone, GroupsTheNineRunsAndFindsTheRav4AtSUnstable)
 }
 
 // The platoon diagnosis on the real runs (docs/PLATOON_DIAGNOSIS.md): the rule names the reaction
-// delay with the quadratic closing response on top, and every run's choice made without that run
-// names the same effects (without run 26 fitted with another objective), and the platoons
-// predicted with it are closer to the measured dips than with the base models (-45 % -> -21 % in
+// delay with the anticipation of the leader's braking on top, every run's choice made without that
+// run holds both (without run 8 the quadratic closing response joins them), and the platoons
+// predicted with it are closer to the measured dips than with the base models (-45 % -> -14 % in
 // the median when this was written, every car-perturbation out of sample). Fails when the rule
-// names something else, or the diagnosed platoons are no better, or the closing response on top of
-// the delay lowers the rule's loss by less than half (-68 % with the kinematic deceleration; -28 %
-// with the bare square q (u - v)^2 the effect had first).
-TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesADelayAndAQuadraticClosingResponseThatShrinkTheDipGap)
+// names something else, or the diagnosed platoons are no better, or the anticipation on top of
+// the delay lowers the rule's loss by less than half (-78 % when this was written; the quadratic
+// closing response there -58 %).
+TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesADelayAndAnAnticipationOfBrakingThatShrinkTheDipGap)
 {
   const acc::CampaignInputs inputs = acc::loadCampaign({ACC_ZALAZONE_DYNAMIC_DIR});
   acc::CampaignOptions options;
   options.threads = 2;
   const acc::CampaignResult result = acc::runCampaign(inputs, options);
-  const std::string named = "quadratic_closing_response + reaction_delay";
+  const std::string named = "leader_braking_anticipation + reaction_delay";
   EXPECT_EQ(result.effect_selection.model.name(), named);
   for (const acc::EffectSetSelection& selection : result.run_effect_selections)
-    EXPECT_EQ(selection.model.effects, result.effect_selection.model.effects) << "without " << selection.excluded_run;
+  {
+    for (acc::EffectKind kind : result.effect_selection.model.effects)
+      EXPECT_NE(std::find(selection.model.effects.begin(), selection.model.effects.end(), kind),
+                selection.model.effects.end())
+          << "without " << selection.excluded_run << ": " << selection.model.name();
+  }
   const auto on_top = std::find_if(result.effect_selection.comparisons.begin(),
                                    result.effect_selection.comparisons.end(),
                                    [&](const acc::EffectSetComparison& c) { return c.candidate.name() == named; });
@@ -92,10 +97,10 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesADelayAndAQuadraticClosingRespons
   const auto diagnosed = acc::summarizeDipPredictions(result.platoons, acc::DipPrediction::chain_diagnosed);
   ASSERT_EQ(diagnosed.car_perturbations, base.car_perturbations);
   EXPECT_LT(diagnosed.median_abs_dip_error, base.median_abs_dip_error - 0.1);
-  // Deeper dips are not the links' direction: growth or decay right at 70 % of the links against
-  // the base chains' 80 % when this was written (PLATOON_DIAGNOSIS.md says it); a guard against
-  // losing more.
-  EXPECT_GE(diagnosed.share_links_growth_right, 0.65);
+  // Deeper dips are not the links' direction: growth or decay right at 60 % of the links against
+  // the base chains' 80 % when this was written (70 % with the quadratic closing response the rule
+  // chose before; PLATOON_DIAGNOSIS.md says it); a guard against losing more.
+  EXPECT_GE(diagnosed.share_links_growth_right, 0.55);
   // Without a model, each car's own link ratio from its other runs: unbiased (-3 % in the median
   // when this was written) but right about fewer than half of the links' direction (41 % of 17):
   // a car does not carry one ratio from braking to braking (PLATOON_DIAGNOSIS.md).
@@ -104,7 +109,7 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesADelayAndAQuadraticClosingRespons
   EXPECT_LT(std::abs(own_ratios.median_dip_error), 0.1);
   EXPECT_LT(own_ratios.share_links_growth_right, 0.5);
   // The base chains lose far less distance in a braking than the cars did (-37 % in the median
-  // when this was written); the diagnosed chains half that (-19 %).
+  // when this was written); the diagnosed chains lose about as much as the cars (+1 %).
   ASSERT_GE(base.distance_lost_scored, base.car_perturbations - 2);
   EXPECT_LT(base.median_distance_lost_error, -0.2);
   EXPECT_LT(std::abs(diagnosed.median_distance_lost_error), 0.6 * std::abs(base.median_distance_lost_error));

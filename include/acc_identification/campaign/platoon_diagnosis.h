@@ -27,7 +27,7 @@ struct PlatoonCandidate
   std::vector<std::string> features() const;
   /// "asymmetric_response + reaction_delay", "none (speed_and_gap objective)".
   std::string name() const;
-  /// The same effects (in any order: "reaction_delay,leader_acceleration_feedforward" is the
+  /// The same effects (in any order: "reaction_delay,leader_braking_anticipation" is the
   /// candidate listed the other way round) and the same objective.
   bool operator==(const PlatoonCandidate& other) const
   {
