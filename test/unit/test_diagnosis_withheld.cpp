@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <iostream>
+#include <utility>
+#include <vector>
 
 #include "acc_identification/validation/withheld_effect_suite.h"
 #include "acc_identification/model/normal_source.h"
@@ -19,15 +21,54 @@ acc::DiagnosisOptions quickOptions()
   return options;
 }
 
-acc::WithheldOutcome run(acc::EffectKind truth, std::vector<double> values, acc::SyntheticLeadProfile profile,
-                         std::uint32_t seed)
+/// A synthetic drive made with `truth` at `values` (none: the base model alone).
+acc::WithheldCase withheldCase(acc::EffectKind truth, std::vector<double> values, acc::SyntheticLeadProfile profile,
+                               std::uint32_t seed)
 {
   acc::WithheldCase c;
   c.truth = truth;
-  c.truth_values = values;
+  c.truth_values = std::move(values);
   c.profile = profile;
   c.seed = seed;
-  return acc::runWithheldCase(c, quickOptions());
+  return c;
+}
+
+acc::WithheldOutcome run(acc::EffectKind truth, std::vector<double> values, acc::SyntheticLeadProfile profile,
+                         std::uint32_t seed)
+{
+  return acc::runWithheldCase(withheldCase(truth, std::move(values), profile, seed), quickOptions());
+}
+
+/// quickOptions with `kind` among the candidates (an effect tested only when asked for).
+acc::DiagnosisOptions quickOptionsWith(acc::EffectKind kind)
+{
+  acc::DiagnosisOptions options = quickOptions();
+  options.candidates.push_back(kind);
+  return options;
+}
+
+/// A drive with hard brakings (the dip profile, seed 21) made with `truth` at `values`.
+acc::WithheldCase brakingDrive(acc::EffectKind truth, std::vector<double> values)
+{
+  return withheldCase(truth, std::move(values), acc::SyntheticLeadProfile::dip, 21);
+}
+
+/// The case's effect named, and its magnitude within four of its standard errors of the truth.
+void expectNamedAndSized(const acc::WithheldCase& c, const acc::WithheldOutcome& outcome)
+{
+  EXPECT_EQ(outcome.dominant, c.truth) << "named " << acc::effectName(outcome.dominant);
+  ASSERT_TRUE(std::isfinite(outcome.recovered_standard_error));
+  EXPECT_LT(std::abs(outcome.recovered_magnitude - c.truth_values.front()), 4.0 * outcome.recovered_standard_error)
+      << "recovered " << outcome.recovered_magnitude << " +- " << outcome.recovered_standard_error;
+}
+
+/// The same drive made without the case's effect: the effect is not named.
+void expectNotNamedWithoutIt(acc::WithheldCase c, const acc::DiagnosisOptions& options)
+{
+  const acc::EffectKind hidden = c.truth;
+  c.truth = acc::EffectKind::none;
+  c.truth_values = {};
+  EXPECT_NE(acc::runWithheldCase(c, options).dominant, hidden);
 }
 }  // namespace
 
@@ -107,25 +148,12 @@ INSTANTIATE_TEST_SUITE_P(
 // slope at equilibrium, so noise alone cannot pay for it).
 TEST(WithheldEffects, AQuadraticClosingResponseIsFoundAndSizedWhenAskedFor)
 {
-  acc::DiagnosisOptions options = quickOptions();
-  options.candidates.push_back(acc::EffectKind::quadratic_closing_response);
-  acc::WithheldCase c;
-  c.truth = acc::EffectKind::quadratic_closing_response;
-  c.truth_values = {4.0};
-  c.profile = acc::SyntheticLeadProfile::dip;
-  c.seed = 21;
+  const acc::DiagnosisOptions options = quickOptionsWith(acc::EffectKind::quadratic_closing_response);
+  const acc::WithheldCase c = brakingDrive(acc::EffectKind::quadratic_closing_response, {4.0});
   const auto outcome = acc::runWithheldCase(c, options);
-  EXPECT_EQ(outcome.dominant, acc::EffectKind::quadratic_closing_response)
-      << "named " << acc::effectName(outcome.dominant);
-  ASSERT_TRUE(std::isfinite(outcome.recovered_standard_error));
-  EXPECT_LT(std::abs(outcome.recovered_magnitude - 4.0), 4.0 * outcome.recovered_standard_error)
-      << "recovered " << outcome.recovered_magnitude << " +- " << outcome.recovered_standard_error;
+  expectNamedAndSized(c, outcome);
   EXPECT_LT(outcome.effect_test_rmse_speed_mps, outcome.base_test_rmse_speed_mps);
-
-  c.truth = acc::EffectKind::none;
-  c.truth_values = {};
-  const auto none = acc::runWithheldCase(c, options);
-  EXPECT_NE(none.dominant, acc::EffectKind::quadratic_closing_response);
+  expectNotNamedWithoutIt(c, options);
 }
 
 TEST(WithheldEffects, AnAnticipationIsNamedWhenAskedFor)
@@ -149,31 +177,18 @@ TEST(WithheldEffects, AnAnticipationIsNamedWhenAskedFor)
 // on the same drive without it.
 TEST(WithheldEffects, AnAnticipationOfTheLeadersBrakingIsFoundAndSizedWhenAskedFor)
 {
-  acc::DiagnosisOptions options = quickOptions();
-  options.candidates.push_back(acc::EffectKind::leader_braking_anticipation);
-  acc::WithheldCase c;
-  c.truth = acc::EffectKind::leader_braking_anticipation;
-  c.truth_values = {0.5};
-  c.profile = acc::SyntheticLeadProfile::dip;
-  c.seed = 21;
+  const acc::DiagnosisOptions options = quickOptionsWith(acc::EffectKind::leader_braking_anticipation);
+  acc::WithheldCase c = brakingDrive(acc::EffectKind::leader_braking_anticipation, {0.5});
   const auto noisy = acc::runWithheldCase(c, options);
-  EXPECT_EQ(noisy.dominant, acc::EffectKind::leader_braking_anticipation) << "named " << acc::effectName(noisy.dominant);
+  EXPECT_EQ(noisy.dominant, c.truth) << "named " << acc::effectName(noisy.dominant);
 
   c.speed_noise_std_mps = 0.006;
   const auto outcome = acc::runWithheldCase(c, options);
-  EXPECT_EQ(outcome.dominant, acc::EffectKind::leader_braking_anticipation)
-      << "named " << acc::effectName(outcome.dominant);
-  ASSERT_TRUE(std::isfinite(outcome.recovered_standard_error));
-  EXPECT_LT(std::abs(outcome.recovered_magnitude - 0.5), 4.0 * outcome.recovered_standard_error)
-      << "recovered " << outcome.recovered_magnitude << " +- " << outcome.recovered_standard_error;
+  expectNamedAndSized(c, outcome);
   std::cout << "leader_braking_gain 0.5 recovered as " << outcome.recovered_magnitude << " +- "
             << outcome.recovered_standard_error << " (0.006 m/s noise), " << noisy.recovered_magnitude
             << " (0.06 m/s)\n";
-
-  c.truth = acc::EffectKind::none;
-  c.truth_values = {};
-  const auto none = acc::runWithheldCase(c, options);
-  EXPECT_NE(none.dominant, acc::EffectKind::leader_braking_anticipation);
+  expectNotNamedWithoutIt(c, options);
 }
 
 // The tables print a row only for a truth that was hidden: an effect never hidden (the exploratory
