@@ -46,11 +46,11 @@ std::optional<SumoExport> carriedPartExport(const std::string& id, const Campaig
   if (fit.diverged)
     return std::nullopt;
   SumoExport out = exportToSumo(id, fit.base, carried, fit.effect_values, limits);
+  const std::vector<EffectKind> lost = lostInSumo(link.diagnosed.effects);
   out.caveats.push_back("the platoon diagnosis's model is " + effectList(link.diagnosed.effects) +
-                        "; SUMO's ACC cannot carry " + effectList(lostInSumo(link.diagnosed.effects)) + ", so this is " +
-                        effectList(carried) +
-                        " refitted on the car's runs without it: in SUMO this car passes on less of a hard braking "
-                        "than the diagnosed model (docs/SUMO.md)");
+                        "; SUMO's ACC cannot carry " + effectList(lost) + ", so this is " + effectList(carried) +
+                        " refitted on the car's runs without " + (lost.size() > 1 ? "them" : "it") +
+                        ": in SUMO this car passes on less of a hard braking than the diagnosed model (docs/SUMO.md)");
   return out;
 }
 }  // namespace
