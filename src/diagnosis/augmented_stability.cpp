@@ -54,14 +54,14 @@ std::string smallSignalNote(EffectKind effect)
     case EffectKind::sensor_time_offset:
       return "a clock offset changes the record, not the vehicle: Gamma equals the base one";
     case EffectKind::speed_dependent_time_gap: return "time gap linearised at the operating speed: tau_e + 2 c v0";
-    case EffectKind::leader_acceleration_feedforward: return "feedforward adds k_a s^2 to the numerator";
+    case EffectKind::leader_acceleration_feedforward: return "feedforward adds k_a s (1 - exp(-s W)) / W to the numerator (W its window)";
     case EffectKind::asymmetric_response:
       return "no single transfer function: the braking branch (k1 r_s, k2 r_c), active when the leader brakes";
     case EffectKind::speed_dependent_gains: return "gains scheduled at the operating speed: k exp(g (v0 - 15 m/s))";
     case EffectKind::quadratic_closing_response:
       return "a quadratic term has no slope at equilibrium: small-signal Gamma equals the base one";
     case EffectKind::leader_braking_anticipation:
-      return "no single transfer function: the braking branch, where the feedforward adds k_b s^2 to the numerator";
+      return "no single transfer function: the braking branch, where the feedforward adds k_b s (1 - exp(-s W)) / W to the numerator";
     case EffectKind::set_speed_cruise:
       return "cruise mode is inactive while following below the set speed: small-signal Gamma equals the base one";
   }
@@ -134,8 +134,13 @@ double augmentedTransferGainSquared(const AccParameters& p, const EffectSettings
   // exp(0) is 1 exactly: skip the complex exponential when there is no delay (most models).
   const std::complex<double> delay =
       e.reaction_delay_s != 0.0 ? std::exp(-s * e.reaction_delay_s) : std::complex<double>(1.0, 0.0);
-  const std::complex<double> numerator =
-      delay * ((e.leader_acceleration_gain + e.leader_braking_gain) * s * s + g.k2_per_s * s + g.k1_per_s2);
+  // The anticipation reads the leader's acceleration over a window W: s (1 - e^{-s W}) / W.
+  const double anticipation_gain = e.leader_acceleration_gain + e.leader_braking_gain;
+  const std::complex<double> anticipated =
+      anticipation_gain != 0.0
+          ? anticipation_gain * s * (1.0 - std::exp(-s * kLeaderAccelerationWindowS)) / kLeaderAccelerationWindowS
+          : std::complex<double>(0.0, 0.0);
+  const std::complex<double> numerator = delay * (anticipated + g.k2_per_s * s + g.k1_per_s2);
   const std::complex<double> denominator =
       (e.actuation_lag_s * s + 1.0) * s * s + delay * ((g.k2_per_s + g.k1_per_s2 * tau) * s + g.k1_per_s2);
   // |N|^2 / |D|^2: no complex division and no hypot, which the side search's index (thousands of

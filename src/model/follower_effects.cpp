@@ -53,7 +53,7 @@ const std::vector<CandidateEffect>& responseEffects()
        "k1 and k2 times exp(g (v - 15 m/s)): gains scheduled on speed"},
       {EffectKind::leader_acceleration_feedforward, "leader_acceleration_feedforward",
        {{"leader_acceleration_gain", 0.0, 1.5, 0.05, 0.8}},
-       "command += k_a times the leader's acceleration (backward difference of its speed)"},
+       "command += k_a times the leader's acceleration (its speed's change over the last 0.5 s)"},
       // c up to 20: closing at 3 m/s on a 10 m gap then adds up to 9 m/s^2, beyond any car's brakes.
       {EffectKind::quadratic_closing_response, "quadratic_closing_response",
        {{"kinematic_braking_ratio", 0.0, 20.0, 0.2, 5.0}},
@@ -63,8 +63,8 @@ const std::vector<CandidateEffect>& responseEffects()
       // The same range as the two-sided feedforward's: up to 1.5 times the leader's deceleration.
       {EffectKind::leader_braking_anticipation, "leader_braking_anticipation",
        {{"leader_braking_gain", 0.0, 1.5, 0.05, 0.8}},
-       "command += k_b times the leader's acceleration while the leader brakes (backward difference of its "
-       "speed, negative): the leader's braking anticipated, its pulling away not"},
+       "command += k_b times the leader's acceleration while the leader brakes (its speed's change over the "
+       "last 0.5 s, negative): the leader's braking anticipated, its pulling away not"},
   };
   return extra;
 }

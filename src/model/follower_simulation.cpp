@@ -222,6 +222,21 @@ Scalar commandedAcceleration(const ModelScalars<Scalar>& m, const LawTerms& term
   return command;
 }
 
+/// The leader's acceleration as the ACC reads it at sample k: its speed's change over the last
+/// kLeaderAccelerationWindowS (over what there is of it near the start; 0 at k = 0). `from` is a
+/// cursor that only moves forward, keeping a pass O(n); the tolerance keeps a 10 Hz clock's
+/// rounding from dropping a sample of the window.
+template <typename Leader>
+Leader leaderAccelerationAt(const CarFollowingRun& run, const std::vector<Leader>& leader, std::size_t k,
+                            std::size_t* from)
+{
+  if (k == 0)
+    return Leader(0.0);
+  while (*from + 1 < k && run.time_s[k] - run.time_s[*from + 1] >= kLeaderAccelerationWindowS - 1e-9)
+    ++*from;
+  return Leader((leader[k] - leader[*from]) / (run.time_s[k] - run.time_s[*from]));
+}
+
 /// The recursion of simulateFollower() for any scalar type, `leader` the speeds the ACC saw.
 /// visit(k, speed, true_gap) sees every sample from 0 on; returns the index of the first runaway
 /// sample (never visited), or the run's size.
@@ -236,6 +251,7 @@ std::size_t runRecursion(const ModelScalars<Scalar>& m, const CarFollowingRun& r
   const LawTerms terms = lawTermsOf(m);
   std::vector<Scalar> commands(delayed ? n : 0, Scalar(0.0));
   std::size_t delay_cursor = 0;
+  std::size_t acceleration_cursor = 0;
   Scalar speed = run.follower_speed_mps[0];
   Scalar gap = run.space_gap_m[0] + m.sensor_time_offset_s * leader[0];
   Scalar realised = 0.0;
@@ -244,8 +260,8 @@ std::size_t runRecursion(const ModelScalars<Scalar>& m, const CarFollowingRun& r
   {
     const double step_s = run.time_s[k + 1] - run.time_s[k];
     const Scalar relative_speed = leader[k] - speed;
-    const Leader leader_acceleration = (terms.feedforward || terms.braking_anticipation) && k > 0
-                                           ? Leader((leader[k] - leader[k - 1]) / (run.time_s[k] - run.time_s[k - 1]))
+    const Leader leader_acceleration = terms.feedforward || terms.braking_anticipation
+                                           ? leaderAccelerationAt(run, leader, k, &acceleration_cursor)
                                            : Leader(0.0);
     const Scalar command = commandedAcceleration<Scalar>(m, terms, gap, speed, leader[k], leader_acceleration);
     Scalar applied = command;

@@ -281,6 +281,41 @@ TEST(AugmentedSimulation, AnAnticipationOfTheLeadersBrakingActsOnlyWhileTheLeade
               acc::augmentedTransferGain(kParameters, two_sided, 20.0, w)) << w;
 }
 
+// The ACC reads its leader's acceleration over a window (kLeaderAccelerationWindowS), not from one
+// sample: a single sample of the leader's speed that reads delta low (noise) moves the car's
+// speed by k_b delta dt / W in the step it is read, not by k_b delta; and the small-signal
+// numerator carries the window's k s (1 - e^{-s W}) / W in place of k s^2.
+TEST(AugmentedSimulation, TheLeadersAccelerationIsReadOverItsWindow)
+{
+  const double gain = 0.6, delta_mps = 0.3, step_s = 0.1;
+  const std::size_t glitch = 300;
+  acc::CarFollowingRun run;
+  for (std::size_t k = 0; k < 600; ++k)
+  {
+    run.time_s.push_back(step_s * static_cast<double>(k));
+    run.leader_speed_mps.push_back(k == glitch ? 20.0 - delta_mps : 20.0);
+    run.follower_speed_mps.push_back(20.0);
+    run.space_gap_m.push_back(kParameters.eta_m + kParameters.tau_e_s * 20.0);
+  }
+  const acc::EffectSettings anticipation = acc::makeEffectSettings(acc::EffectKind::leader_braking_anticipation, {gain});
+  const acc::SimulatedFollower base = acc::simulateFollower(kParameters, run);
+  const acc::SimulatedFollower anticipating = acc::simulateFollower(kParameters, anticipation, run);
+  EXPECT_NEAR(anticipating.speed_mps[glitch + 1] - base.speed_mps[glitch + 1],
+              -gain * delta_mps * step_s / acc::kLeaderAccelerationWindowS, 1e-9);
+
+  const acc::AccParameters stable{0.05, 0.6, 1.6, 4.0};
+  const acc::EffectSettings feedforward = acc::makeEffectSettings(acc::EffectKind::leader_acceleration_feedforward, {gain});
+  for (double w : {0.05, 0.5, 2.0, 6.0})
+  {
+    const std::complex<double> s(0.0, w);
+    const std::complex<double> read =
+        s * (1.0 - std::exp(-s * acc::kLeaderAccelerationWindowS)) / acc::kLeaderAccelerationWindowS;
+    const std::complex<double> expected =
+        (gain * read + 0.6 * s + 0.05) / (s * s + (0.6 + 0.05 * 1.6) * s + 0.05);
+    EXPECT_NEAR(acc::augmentedTransferGain(stable, feedforward, 25.0, w), std::abs(expected), 1e-12) << w;
+  }
+}
+
 TEST(CandidateEffects, NamesRoundTripAndSettingsInvert)
 {
   EXPECT_EQ(acc::candidateEffects().size(), 6u);

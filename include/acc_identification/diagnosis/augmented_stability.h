@@ -11,8 +11,10 @@ namespace acc
 {
 /// String stability of the augmented model, from its small-signal speed-to-speed transfer
 /// function evaluated numerically:
-///   Gamma(s) = e^{-s d} (k_a s^2 + k2 s + k1) / ((T s + 1) s^2 + e^{-s d} ((k2 + k1 tau_lin) s + k1))
-/// T the actuation lag, d the reaction delay, k_a the leader-acceleration feedforward, and tau_lin = tau_e + 2 c v0 the time gap of the
+///   Gamma(s) = e^{-s d} (k_a A(s) + k2 s + k1) / ((T s + 1) s^2 + e^{-s d} ((k2 + k1 tau_lin) s + k1))
+/// T the actuation lag, d the reaction delay, k_a the leader-acceleration feedforward (the braking
+/// anticipation's k_b on its braking branch), A(s) = s (1 - e^{-s W}) / W the leader's
+/// acceleration read over W = kLeaderAccelerationWindowS (s^2 as W -> 0), and tau_lin = tau_e + 2 c v0 the time gap of the
 /// speed-dependent spacing policy linearised at the operating speed v0 (d(c v^2)/dv = 2 c v0).
 /// Gains scheduled on speed enter at v0: k exp(g (v0 - 15 m/s)). An asymmetric law has no single
 /// transfer function (its gains switch at equilibrium): Gamma is that of its braking branch,

@@ -48,6 +48,16 @@ constexpr double kGainReferenceSpeedMps = 15.0;
 /// simulated gap near zero is a collision, and the term must not divide by it.
 constexpr double kKinematicBrakingMinGapM = 2.0;
 
+/// The span W over which the two anticipation terms read the leader's acceleration [s]:
+/// a_leader(t) = (u(t) - u(t - W)) / W, the leader's mean acceleration over the last W seconds.
+/// A radar ACC estimates the leader's acceleration through a filter, not from one sample: read
+/// over one 10 Hz sample, white speed noise of 0.06 m/s (raw GNSS Doppler) becomes 0.85 m/s^2 of
+/// acceleration noise, which min(a, 0) rectifies into brakings that are not there (k_b came out
+/// 18 % high on a synthetic drive); over 0.5 s it is 0.17 m/s^2. The lag it adds (W / 2) is a
+/// quarter of a second, within what the reaction delay absorbs. Fixed, not fitted: one more
+/// timing parameter beside the delay would be left for the same brakings to pin.
+constexpr double kLeaderAccelerationWindowS = 0.5;
+
 /// Every option of the augmented follower model. The defaults switch every effect off, and the
 /// augmented simulator then reduces exactly to simulateFollower().
 struct EffectSettings
@@ -66,8 +76,8 @@ struct EffectSettings
   /// Cruise mode: command = min(following law, cruise_gain (v_set - v)); infinity: no set speed.
   double set_speed_mps = std::numeric_limits<double>::infinity();
   double cruise_gain_per_s = 0.0;
-  /// k_a: command += k_a a_leader, a_leader the backward difference of the leader speed the ACC
-  /// saw (0 at the first sample) [dimensionless].
+  /// k_a: command += k_a a_leader, a_leader the leader's acceleration the ACC saw, read over
+  /// kLeaderAccelerationWindowS (0 at the first sample) [dimensionless].
   double leader_acceleration_gain = 0.0;
   /// r_s: k1 is multiplied by r_s while the spacing error s - eta - tau_e v - c v^2 is negative
   /// (the gap is shorter than desired) [dimensionless; 1: symmetric].
