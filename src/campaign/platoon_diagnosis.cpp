@@ -14,6 +14,7 @@
 #include "acc_identification/evidence/clustered_median.h"
 #include "acc_identification/evidence/clustered_ratio.h"
 #include "acc_identification/evidence/perturbation_windows.h"
+#include "acc_identification/model/number_text.h"
 
 namespace acc
 {
@@ -90,6 +91,16 @@ std::vector<LossCluster> clustersOf(const std::vector<PairPerturbationScore>& sc
   return out;
 }
 
+/// Whether a candidate's gain on the platoon dips is larger than what a measured dip can tell
+/// (EffectSetSelectionOptions::min_rms_dip_error_reduction); the pair-window criterion has no
+/// such floor (its loss is a speed MSE with units).
+bool closesAGap(const PairedLossComparison& losses, const EffectSetSelectionOptions& options)
+{
+  if (options.criterion != SelectionCriterion::platoon_dips)
+    return true;
+  return std::sqrt(losses.against_loss) - std::sqrt(losses.candidate_loss) >= options.min_rms_dip_error_reduction;
+}
+
 /// Model `candidate` against model `against`: mean losses, the relative improvement, and the
 /// cluster-bootstrap p-value of "no improvement" (comparePairedLosses); the pair-window criterion's
 /// means beside.
@@ -106,7 +117,8 @@ EffectSetComparison compare(const std::vector<PairPerturbationScore>& scores, st
   out.mean_loss = losses.candidate_loss;
   out.relative_improvement = losses.relative_improvement;
   out.p_value = losses.p_value;
-  out.significant = namedByRule(losses, options.alpha, stage_size, options.min_relative_improvement);
+  out.significant = namedByRule(losses, options.alpha, stage_size, options.min_relative_improvement) &&
+                    closesAGap(losses, options);
   const PairedLossComparison windows = comparePairedLosses(
       clustersOf(scores, exclude_file, against, candidate, SelectionCriterion::pair_windows), 0, options.seed);
   out.against_window_mse = windows.against_loss;
@@ -454,16 +466,22 @@ std::string effectSetSelectionRule(const EffectSetSelectionOptions& options)
             "predicted to measured dip (measured dips above 0.3 m/s)"
           : "per car and perturbation, the car predicted from its real leader, the mean squared speed error from the "
             "pre-window before the onset to the end of the dip window";
-  char text[900];
+  const std::string floor =
+      options.criterion == SelectionCriterion::platoon_dips
+          ? ", its root at least " + printfText("%.3g", options.min_rms_dip_error_reduction) +
+                " lower (a smaller change in the RMS relative dip error is within what a measured dip can tell),"
+          : "";
+  char text[1100];
   std::snprintf(text, sizeof text,
                 "every car's models fitted on its other runs (leave-one-run-out); the loss: %s. Stage 1: each "
                 "candidate adding one effect or objective to the base model against it; each further stage: each "
                 "candidate adding one more to the last stage's choice against that, until none is named. A "
                 "candidate is named when its mean loss is at "
-                "least %.0f %% lower and a bootstrap over perturbations (%zu replicates, every car of a perturbation "
+                "least %.0f %% lower%s and a bootstrap over perturbations (%zu replicates, every car of a perturbation "
                 "resampled together) gives p <= %.3g divided by the stage's candidates; the lowest loss among those "
                 "named wins. A run's own diagnosed models use the choice made without that run.",
-                loss.c_str(), 100.0 * options.min_relative_improvement, options.replicates, options.alpha);
+                loss.c_str(), 100.0 * options.min_relative_improvement, floor.c_str(), options.replicates,
+                options.alpha);
   return text;
 }
 

@@ -47,6 +47,20 @@ acc::CampaignInputs rotatedPlatoons(const std::string& label, const std::vector<
   return inputs;
 }
 
+/// Three cars of one law (CAR_A, CAR_B, CAR_C), each with `effects`.
+std::vector<acc_test::SyntheticCar> threeCarsOf(const acc::AccParameters& law, const acc::EffectSettings& effects = {})
+{
+  return {{"CAR_A", law, effects}, {"CAR_B", law, effects}, {"CAR_C", law, effects}};
+}
+
+/// The campaign as the platoon tests run it: few starts (the synthetic cars are easy to fit), two threads.
+acc::CampaignResult runQuickCampaign(const acc::CampaignInputs& inputs, acc::CampaignOptions options = {})
+{
+  options.group.starts = 8;
+  options.threads = 2;
+  return acc::runCampaign(inputs, options);
+}
+
 /// A synthetic platoon of the cars at setting S (duration_s long), read as the campaign reads a
 /// file; the file is removed again.
 acc::CampaignFile syntheticPlatoonFile(const std::string& tag, const std::vector<acc_test::SyntheticCar>& cars,
@@ -65,12 +79,7 @@ acc::CampaignFile syntheticPlatoonFile(const std::string& tag, const std::vector
 TEST(CampaignPlatoon, UnstableCarsAmplifyAndThePredictionAgrees)
 {
   ASSERT_FALSE(acc::analyzeStringStability(kUnstable).string_stable);
-  const std::vector<acc_test::SyntheticCar> cars{{"CAR_A", kUnstable}, {"CAR_B", kUnstable}, {"CAR_C", kUnstable}};
-  const acc::CampaignInputs inputs = rotatedPlatoons("platoon", cars, 2, 41);
-  acc::CampaignOptions options;
-  options.group.starts = 8;
-  options.threads = 2;
-  const acc::CampaignResult result = acc::runCampaign(inputs, options);
+  const acc::CampaignResult result = runQuickCampaign(rotatedPlatoons("platoon", threeCarsOf(kUnstable), 2, 41));
   ASSERT_EQ(result.platoons.size(), 2u);
   for (const acc::PlatoonCheck& check : result.platoons)
   {
@@ -215,12 +224,8 @@ TEST(CampaignPlatoon, TheDiagnosisFindsWhatClosesTheDipGapOfLateReactingCars)
   const acc::AccParameters brisk{0.10, 0.60, 1.2, 4.0};
   acc::EffectSettings late;
   late.reaction_delay_s = 1.0;
-  const std::vector<acc_test::SyntheticCar> cars{{"CAR_A", brisk, late}, {"CAR_B", brisk, late}, {"CAR_C", brisk, late}};
-  const acc::CampaignInputs inputs = rotatedPlatoons("delay", cars, 3, 51);
-  acc::CampaignOptions options;
-  options.group.starts = 8;
-  options.threads = 2;
-  const acc::CampaignResult result = acc::runCampaign(inputs, options);
+  const acc::CampaignInputs inputs = rotatedPlatoons("delay", threeCarsOf(brisk, late), 3, 51);
+  const acc::CampaignResult result = runQuickCampaign(inputs);
   ASSERT_EQ(result.platoons.size(), 3u);
   ASSERT_NE(result.effect_selection.chosen, 0u) << "nothing named";
   bool delay_named = false;
@@ -246,9 +251,10 @@ TEST(CampaignPlatoon, TheDiagnosisFindsWhatClosesTheDipGapOfLateReactingCars)
     EXPECT_TRUE(link.diagnosed_available) << link.vehicle;
   }
   // Forced, the delay is the diagnosed model of every car, sized at the truth.
+  acc::CampaignOptions options;
   options.effect_selection.force = true;
   options.effect_selection.forced = {{acc::EffectKind::reaction_delay}, acc::FitObjective::speed};
-  const acc::CampaignResult forced = acc::runCampaign(inputs, options);
+  const acc::CampaignResult forced = runQuickCampaign(inputs, options);
   for (const acc::PlatoonCheck& check : forced.platoons)
   {
     for (const acc::PlatoonCarPrediction& car : check.cars_diagnosed)
@@ -257,6 +263,26 @@ TEST(CampaignPlatoon, TheDiagnosisFindsWhatClosesTheDipGapOfLateReactingCars)
       EXPECT_NEAR(car.model.effect_values[0], 1.0, 0.15) << check.run << " " << car.name;
     }
   }
+}
+
+// The negative control of the test above: cars that obey the base law, recorded with the same
+// GNSS-size noise. Whatever the candidates fit to the noise, no stage of the rule names one, in
+// the whole set or in any run's choice made without it, so the diagnosed chains are the base
+// chains. Fails when the rule names effects the platoons do not have (a rule that always names
+// the candidate of lowest loss, or noise read as braking by the anticipation).
+TEST(CampaignPlatoon, OnCarsWithoutAnUnmodelledEffectTheDiagnosisNamesNothing)
+{
+  const acc::AccParameters brisk{0.10, 0.60, 1.2, 4.0};
+  const acc::CampaignResult result = runQuickCampaign(rotatedPlatoons("none", threeCarsOf(brisk), 3, 61));
+  ASSERT_EQ(result.platoons.size(), 3u);
+  EXPECT_EQ(result.effect_selection.chosen, 0u) << result.effect_selection.model.name();
+  ASSERT_FALSE(result.effect_selection.comparisons.empty());
+  for (const acc::EffectSetSelection& selection : result.run_effect_selections)
+    EXPECT_EQ(selection.chosen, 0u) << selection.excluded_run << ": " << selection.model.name();
+  const auto base = acc::summarizeDipPredictions(result.platoons, acc::DipPrediction::chain_base);
+  const auto diagnosed = acc::summarizeDipPredictions(result.platoons, acc::DipPrediction::chain_diagnosed);
+  ASSERT_GT(base.car_perturbations, 10u);
+  EXPECT_EQ(diagnosed.median_abs_dip_error, base.median_abs_dip_error);
 }
 
 // Ten identical cars behind the real first cars: an unstable law amplifies the synthetic runs'

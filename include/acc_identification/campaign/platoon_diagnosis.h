@@ -114,6 +114,12 @@ struct EffectSetSelectionOptions
   double alpha = 0.05;
   /// A candidate must also lower the window MSE by at least this fraction (practical relevance).
   double min_relative_improvement = 0.10;
+  /// With the platoon-dips criterion, a candidate must also lower the root of the mean loss (the
+  /// RMS log ratio of predicted to measured dip: about the RMS relative dip error) by at least this
+  /// much. Where the models already predict the dips within a few percent, a relative gain closes
+  /// no gap: a dip is the minimum of a noisy speed, and even the smoothed OpenACC speeds leave it
+  /// uncertain by 1-6 % (docs/PLATOON_DIAGNOSIS.md, "noise deepening the measured dips").
+  double min_rms_dip_error_reduction = 0.01;
   std::size_t replicates = 1999;
   std::uint64_t seed = 20191008;
   /// When set, this candidate (one of platoonCandidates(), or the base model) is taken instead of
