@@ -1,6 +1,4 @@
 #include "acc_identification/campaign/campaign_output.h"
-#include "acc_identification/model/number_text.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +12,8 @@
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/augmented_fit_json.h"
 #include "acc_identification/evidence/evidence_json.h"
+#include "acc_identification/model/number_text.h"
+#include "acc_identification/model/plain_text.h"
 #include "acc_identification/model/string_stability.h"
 
 namespace acc
@@ -742,6 +742,28 @@ std::vector<std::string> selectionLines(const EffectSetSelection& selection)
   return lines;
 }
 
+/// How the rule's choice holds when each run is left out (the choice that run is predicted with):
+/// the runs whose choice differs, grouped by the model they get. A choice that changes with one run
+/// is one those runs do not make firmly.
+std::string choiceWithoutEachRunLine(const CampaignResult& result)
+{
+  std::map<std::string, std::vector<std::string>> differing;
+  for (const EffectSetSelection& selection : result.run_effect_selections)
+  {
+    if (selection.model.name() != result.effect_selection.model.name())
+      differing[selection.model.name()].push_back(selection.excluded_run);
+  }
+  std::size_t same = result.run_effect_selections.size();
+  std::string text;
+  for (const auto& [model, runs] : differing)
+  {
+    same -= runs.size();
+    text += "; without " + join(runs, ", ") + ": " + model;
+  }
+  return "the choice made without each run (what that run is predicted with): the same for " + std::to_string(same) +
+         " of " + std::to_string(result.run_effect_selections.size()) + " runs" + text;
+}
+
 std::vector<std::string> platoonNotes(const CampaignResult& result)
 {
   std::vector<std::string> notes;
@@ -845,6 +867,7 @@ void printCampaignTables(const CampaignResult& result, std::ostream& out)
         << criterionName(result.effect_selection_criterion) << ")\n";
     for (const std::string& line : selectionLines(result.effect_selection))
       out << "  " << line << "\n";
+    out << "  " << choiceWithoutEachRunLine(result) << "\n";
     out << "\nHow far the gap shrinks (each run's diagnosed models chosen without that run)\n";
     printAligned(kGapHeader, gapRows(result), out);
     out << "\nHow much of the car ahead's dip shape each car passes on: its peak braking and recovery (speed slope "
@@ -933,6 +956,7 @@ std::string campaignReportMarkdown(const CampaignResult& result, const std::vect
     md << "\n## Platoon diagnosis: which unmodelled effect closes the gap\n\n";
     for (const std::string& line : selectionLines(result.effect_selection))
       md << "- " << line << "\n";
+    md << "- " << choiceWithoutEachRunLine(result) << "\n";
     md << "\n### How far the gap shrinks\n\nEach run's diagnosed models use the effect set chosen without that "
           "run, fitted on the car's other runs.\n\n";
     printMarkdownTable(kGapHeader, gapRows(result), md);
