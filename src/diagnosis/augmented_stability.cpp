@@ -57,7 +57,8 @@ std::string smallSignalNote(EffectKind effect)
     case EffectKind::leader_acceleration_feedforward: return "feedforward adds k_a s (1 - exp(-s W)) / W to the numerator (W its window)";
     case EffectKind::asymmetric_response:
       return "no single transfer function: the braking branch (k1 r_s, k2 r_c), active when the leader brakes";
-    case EffectKind::speed_dependent_gains: return "gains scheduled at the operating speed: k exp(g (v0 - 15 m/s))";
+    case EffectKind::speed_dependent_gains:
+      return printfText("gains scheduled at the operating speed: k exp(g (v0 - %g m/s))", kGainReferenceSpeedMps);
     case EffectKind::quadratic_closing_response:
       return "a quadratic term has no slope at equilibrium: small-signal Gamma equals the base one";
     case EffectKind::leader_braking_anticipation:

@@ -3,8 +3,20 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "acc_identification/model/number_text.h"
+
 namespace acc
 {
+namespace
+{
+/// How both anticipation terms read the leader's acceleration: from kLeaderAccelerationWindowS,
+/// so that the text cannot drift from the window the simulator uses.
+std::string leaderAccelerationReading()
+{
+  return printfText("its speed's change over the last %g s", kLeaderAccelerationWindowS);
+}
+}  // namespace
+
 const std::vector<CandidateEffect>& candidateEffects()
 {
   // Bounds: wide enough for any ACC reported in the literature (lags and delays of 0.2-1.5 s,
@@ -50,10 +62,10 @@ const std::vector<CandidateEffect>& responseEffects()
        "k2 times r_c while closing in, k1 times r_s while the gap is shorter than desired"},
       {EffectKind::speed_dependent_gains, "speed_dependent_gains",
        {{"gain_speed_slope_s_per_m", -0.15, 0.15, -0.05, 0.05, 0.0}},
-       "k1 and k2 times exp(g (v - 15 m/s)): gains scheduled on speed"},
+       printfText("k1 and k2 times exp(g (v - %g m/s)): gains scheduled on speed", kGainReferenceSpeedMps)},
       {EffectKind::leader_acceleration_feedforward, "leader_acceleration_feedforward",
        {{"leader_acceleration_gain", 0.0, 1.5, 0.05, 0.8}},
-       "command += k_a times the leader's acceleration (its speed's change over the last 0.5 s)"},
+       "command += k_a times the leader's acceleration (" + leaderAccelerationReading() + ")"},
       // c up to 20: closing at 3 m/s on a 10 m gap then adds up to 9 m/s^2, beyond any car's brakes.
       {EffectKind::quadratic_closing_response, "quadratic_closing_response",
        {{"kinematic_braking_ratio", 0.0, 20.0, 0.2, 5.0}},
@@ -63,8 +75,8 @@ const std::vector<CandidateEffect>& responseEffects()
       // The same range as the two-sided feedforward's: up to 1.5 times the leader's deceleration.
       {EffectKind::leader_braking_anticipation, "leader_braking_anticipation",
        {{"leader_braking_gain", 0.0, 1.5, 0.05, 0.8}},
-       "command += k_b times the leader's acceleration while the leader brakes (its speed's change over the "
-       "last 0.5 s, negative): the leader's braking anticipated, its pulling away not"},
+       "command += k_b times the leader's acceleration while the leader brakes (" + leaderAccelerationReading() +
+           ", negative): the leader's braking anticipated, its pulling away not"},
   };
   return extra;
 }

@@ -1,9 +1,9 @@
 // The platoon check on a synthetic platoon whose cars are string unstable: the prediction from
 // the first car, with leave-one-run-out models, must show the growth the data show.
 #include <algorithm>
-#include <iostream>
 #include <cmath>
 #include <cstdint>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 #include <filesystem>
