@@ -207,8 +207,8 @@ def combination_lines(d):
         lines += [f"No effect was added (forward selection: {forward.get('stop_reason', 'not run')}).", ""]
         return lines
     lines.append("Starting from the dominant effect, every remaining effect is fitted on top of the current model "
-                 "and compared with it by the same rule (Bonferroni over the remaining effects, the practical "
-                 "threshold relative to the base model's held-out MSE); the best significant one is added.")
+                 "and compared with it by the same rule (the family-wise level over the remaining effects, the "
+                 "practical threshold relative to the base model's held-out MSE); the best significant one is added.")
     lines += ["", "| step | effect added | held-out speed RMSE [m/s] | held-out gap RMSE [m] | "
               "MSE reduction vs previous step [% of base] (lower bound [m²/s²]) | string stability (test, p) | "
               "its size, by the training data | parameters (± std. error) |", "|---|---|---|---|---|---|---|---|"]

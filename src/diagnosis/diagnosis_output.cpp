@@ -126,6 +126,7 @@ nlohmann::json forwardSelectionJson(const DiagnosisResult& r)
         i < r.selected_effects.size() ? effectsOf(r.selected_effects[i].model.fit) : std::vector<EffectKind>{};
     candidates = {{"on_top_of", combinedEffectName(on_top_of)},
                   {"added", effectName(s.dominant)},
+                  {"level", jsonNumber(s.level)},
                   {"candidates", candidates}};
     rounds.push_back(candidates);
   }
@@ -321,6 +322,7 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
   }
   j["selection"] = {{"rule", r.selection_rule},
                     {"block_length_samples", jsonNumber(r.selection.block_length_samples)},
+                    {"level", jsonNumber(r.selection.level)},
                     {"has_runner_up", r.selection.has_runner_up},
                     {"best_versus_runner_up", improvementJson(r.selection.best_versus_runner_up)}};
   j["stability_test"] = r.stability_test ? toJson(*r.stability_test) : nlohmann::json(nullptr);

@@ -122,6 +122,10 @@ void printDiagnosisSummary(const DiagnosisResult& r, std::FILE* out)
   {
     row(m, false);
   }
+  if (!r.selection.candidates.empty())
+    std::fprintf(out, "significant: bound above 0 at level %.4g per effect (family-wise %g over %zu effects; Bonferroni's %.4g)\n",
+                 r.selection.level, r.selection.family_wise_alpha, r.selection.candidates.size(),
+                 r.selection.family_wise_alpha / static_cast<double>(r.selection.candidates.size()));
   std::fprintf(out, "dominant effect: %s; plausible:", effectName(r.selection.dominant).c_str());
   for (EffectKind kind : r.selection.plausible)
   {

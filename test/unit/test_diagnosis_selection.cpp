@@ -227,3 +227,65 @@ TEST(EffectSelection, AnEffectBelowTheDataResolutionIsNeverNamed)
   EXPECT_FALSE(acc::isResolvable(acc::EffectKind::actuation_lag, {0.05}, 0.1));
   EXPECT_TRUE(acc::isResolvable(acc::EffectKind::speed_dependent_time_gap, {0.0001}, 0.1));
 }
+
+namespace
+{
+/// [resample][candidate]: `candidates` columns of standard normal draws; each column is
+/// `shared` times one common draw plus sqrt(1 - shared^2) times its own (correlation shared^2).
+std::vector<std::vector<double>> correlatedResamples(std::size_t resamples, std::size_t candidates, double shared,
+                                                     std::uint32_t seed)
+{
+  acc::NormalSource noise(seed);
+  std::vector<std::vector<double>> rows(resamples, std::vector<double>(candidates));
+  for (auto& row : rows)
+  {
+    const double common = noise.standardNormal();
+    for (double& value : row)
+      value = shared * common + std::sqrt(1.0 - shared * shared) * noise.standardNormal();
+  }
+  return rows;
+}
+}  // namespace
+
+TEST(EffectSelection, TheFamilyWiseLevelLiesBetweenBonferroniAndAlphaAsTheCandidatesMoveTogether)
+{
+  const double alpha = 0.05;
+  const std::size_t K = 8;
+  // Independent candidates: Sidak's 1 - (1 - alpha)^(1/K) = 0.0064, hardly above Bonferroni's 0.00625.
+  const double independent = acc::familyWiseLevel(correlatedResamples(20000, K, 0.0, 1), alpha);
+  EXPECT_GE(independent, alpha / K);
+  EXPECT_LT(independent, 0.0075);
+  // Identical candidates are one test: the level is alpha itself.
+  EXPECT_NEAR(acc::familyWiseLevel(correlatedResamples(20000, K, 1.0, 2), alpha), alpha, 1e-3);
+  // In between, in order.
+  const double loose = acc::familyWiseLevel(correlatedResamples(20000, K, 0.7, 3), alpha);
+  const double tight = acc::familyWiseLevel(correlatedResamples(20000, K, 0.97, 4), alpha);
+  EXPECT_GT(loose, independent + 0.002);
+  EXPECT_GT(tight, loose + 0.005);
+  EXPECT_LT(tight, alpha);
+  // One candidate: no family.
+  EXPECT_EQ(acc::familyWiseLevel(correlatedResamples(100, 1, 0.0, 5), alpha), alpha);
+}
+
+TEST(EffectSelection, CandidatesThatMoveTogetherCostTheRuleNoPower)
+{
+  // An improvement the rule names at alpha but not at Bonferroni's alpha / 8 (both checked
+  // first, so that the case decides something), offered as eight near-copies: the copies are one
+  // test, and the rule names it, as it would with one candidate.
+  const auto base = correlatedSquares(10, 1.0);
+  const auto candidate = scaled(base, 0.8, correlatedSquares(11, 0.05), 4.2);  // 5 % less error, noisily
+  acc::SelectionOptions bonferroni;
+  bonferroni.alpha = 0.05 / 8;
+  ASSERT_EQ(acc::selectEffect(base, {candidate}, {acc::EffectKind::actuation_lag}, 0.1, {}).dominant,
+            acc::EffectKind::actuation_lag);
+  ASSERT_EQ(acc::selectEffect(base, {candidate}, {acc::EffectKind::actuation_lag}, 0.1, bonferroni).dominant,
+            acc::EffectKind::none);
+  std::vector<acc::SquaredErrorsByRun> copies;
+  for (std::uint32_t k = 0; k < 8; ++k)
+    copies.push_back(scaled(candidate, 1.0, correlatedSquares(20 + k, 1e-4), 1.0));
+  const auto result = acc::selectEffect(base, copies, std::vector<acc::EffectKind>(8, acc::EffectKind::actuation_lag),
+                                        0.1, acc::SelectionOptions{});
+  EXPECT_GT(result.level, 0.04);
+  EXPECT_EQ(result.family_wise_alpha, 0.05);
+  EXPECT_EQ(result.dominant, acc::EffectKind::actuation_lag);
+}

@@ -17,10 +17,11 @@ namespace acc
 /// drawn within each run so that every run keeps its length; the same blocks for every
 /// candidate, so the comparisons are paired), which keeps the seconds-long correlation of model
 /// errors that an i.i.d. bootstrap would destroy.
-///  - k is significant when the one-sided lower confidence bound of its improvement at level
-///    alpha / K (Bonferroni over the K candidates) is above 0, and the improvement is at least
-///    min_relative_improvement of the base model's held-out MSE (a gain too small to matter is not
-///    reported as a missing effect);
+///  - k is significant when the one-sided lower confidence bound of its improvement is above 0 at
+///    the level that holds the family-wise error rate over the K candidates at alpha
+///    (familyWiseLevel below, between Bonferroni's alpha / K and alpha), and the improvement is at
+///    least min_relative_improvement of the base model's held-out MSE (a gain too small to matter
+///    is not reported as a missing effect);
 ///  - an effect whose fitted magnitude the data cannot resolve (resolvable[k] false; e.g. a lag,
 ///    delay or clock offset shorter than one sample period) is never significant;
 ///  - the best effect is the significant one with the largest improvement; none if none is;
@@ -34,6 +35,16 @@ struct SelectionOptions
   double min_relative_improvement = 0.02;
   std::uint32_t seed = 12345;
 };
+
+/// The per-candidate level of one-sided percentile lower bounds that holds the family-wise error
+/// rate at alpha under the bootstrap's joint distribution (Westfall and Young's minP, on the
+/// resamples' ranks): each resample's smallest rank over the candidates, each rank taken within
+/// its own candidate's resamples, and the largest level that at most alpha of those minima fall
+/// below. resamples: [resample][candidate]. The candidates' fits share the base model and the same
+/// held-out errors, so their improvements move together (a delay, a lag and a clock offset
+/// nearly one for one): the level then lies well above Bonferroni's alpha / K, which holds for
+/// independent candidates, and reaches alpha for identical ones. Never below alpha / K.
+double familyWiseLevel(const std::vector<std::vector<double>>& resamples, double alpha);
 
 /// Held-out squared speed errors of one model, one vector per run (same lengths for every model).
 using SquaredErrorsByRun = std::vector<std::vector<double>>;
@@ -53,7 +64,11 @@ struct ImprovementEstimate
 struct SelectionResult
 {
   std::vector<EffectKind> candidates;          ///< as given
-  std::vector<ImprovementEstimate> versus_base;  ///< per candidate, at level alpha / K
+  std::vector<ImprovementEstimate> versus_base;  ///< per candidate, at the family-wise level
+  /// The one-sided level of each candidate's bound against the base: familyWiseLevel of the
+  /// candidates' resampled improvements (alpha with one candidate).
+  double level = 0.0;
+  double family_wise_alpha = 0.0;  ///< the options' alpha, which `level` holds over the candidates
   std::vector<bool> significant;
   std::vector<std::size_t> ranking;            ///< candidate indices, largest improvement first
   EffectKind dominant = EffectKind::none;
