@@ -141,6 +141,8 @@ double familyWiseLevel(const std::vector<std::vector<double>>& resamples, double
   for (std::size_t k = 0; k < K; ++k)
   {
     std::vector<double> sorted = column(resamples, k);
+    if (!std::all_of(sorted.begin(), sorted.end(), [](double v) { return std::isfinite(v); }))
+      continue;  // never named (its bound is not above 0), so it takes no share of alpha
     std::sort(sorted.begin(), sorted.end());
     for (std::size_t b = 0; b < B; ++b)
     {

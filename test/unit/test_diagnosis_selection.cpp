@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "acc_identification/diagnosis/augmented_calibration.h"
@@ -265,6 +266,11 @@ TEST(EffectSelection, TheFamilyWiseLevelLiesBetweenBonferroniAndAlphaAsTheCandid
   EXPECT_LT(tight, alpha);
   // One candidate: no family.
   EXPECT_EQ(acc::familyWiseLevel(correlatedResamples(100, 1, 0.0, 5), alpha), alpha);
+  // A candidate without a finite improvement is never named and leaves the others' level alone.
+  auto with_nan = correlatedResamples(20000, K, 0.97, 4);
+  for (auto& row : with_nan)
+    row.push_back(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_GE(acc::familyWiseLevel(with_nan, alpha), tight - 1e-12);
 }
 
 TEST(EffectSelection, CandidatesThatMoveTogetherCostTheRuleNoPower)
