@@ -266,10 +266,12 @@ TEST(EffectSelection, TheFamilyWiseLevelLiesBetweenBonferroniAndAlphaAsTheCandid
   EXPECT_LT(tight, alpha);
   // One candidate: no family.
   EXPECT_EQ(acc::familyWiseLevel(correlatedResamples(100, 1, 0.0, 5), alpha), alpha);
-  // A candidate without a finite improvement is never named and leaves the others' level alone.
+  // A candidate without a finite improvement is never named and leaves the others' level alone,
+  // also when only some of its resamples are NaN (which std::sort must never see).
   auto with_nan = correlatedResamples(20000, K, 0.97, 4);
-  for (auto& row : with_nan)
-    row.push_back(std::numeric_limits<double>::quiet_NaN());
+  const auto extra = correlatedResamples(20000, 1, 0.0, 6);
+  for (std::size_t b = 0; b < with_nan.size(); ++b)
+    with_nan[b].push_back(b % 2 == 0 ? std::numeric_limits<double>::quiet_NaN() : extra[b][0]);
   EXPECT_GE(acc::familyWiseLevel(with_nan, alpha), tight - 1e-12);
 }
 
