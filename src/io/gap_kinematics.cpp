@@ -66,9 +66,13 @@ GapKinematics checkGapKinematics(const std::vector<CarFollowingRun>& runs, const
   for (const CarFollowingRun& run : runs)
     addWindows(run, options.window_s, &windows);
   GapKinematics k;
+  k.sawtooth = checkGapSawtooth(runs, options.sawtooth);
   k.windows = windows.size();
   if (windows.empty())
+  {
+    k.warnings = k.sawtooth.warnings;
     return k;
+  }
   double gap_times_speed = 0.0, speed_squared = 0.0, speed_sum = 0.0, mismatch_squared = 0.0;
   const Window* worst = &windows.front();
   for (const Window& w : windows)
@@ -93,6 +97,7 @@ GapKinematics checkGapKinematics(const std::vector<CarFollowingRun>& runs, const
   k.worst_speed_change_m = worst->speed_change_m;
   describeScale(k, options, &k.warnings);
   describeJumps(k, options, &k.warnings);
+  k.warnings.insert(k.warnings.end(), k.sawtooth.warnings.begin(), k.sawtooth.warnings.end());
   return k;
 }
 }  // namespace acc

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "acc_identification/io/gap_kinematics.h"
+#include "oscillating_run.h"
 
 namespace
 {
@@ -13,24 +14,7 @@ namespace
 /// alternating noise.
 acc::CarFollowingRun consistentRun()
 {
-  acc::CarFollowingRun run;
-  run.name = "synthetic";
-  double gap_m = 30.0;
-  for (int k = 0; k <= 1200; ++k)
-  {
-    const double t = 0.1 * k;
-    const double leader = 20.0 + 3.0 * std::sin(2.0 * M_PI * t / 30.0);
-    const double follower = 20.0 + 3.0 * std::sin(2.0 * M_PI * (t - 2.0) / 30.0);
-    if (k > 0)
-    {
-      const double before = run.leader_speed_mps.back() - run.follower_speed_mps.back();
-      gap_m += 0.05 * (before + leader - follower);
-    }
-    run.time_s.push_back(t);
-    run.leader_speed_mps.push_back(leader);
-    run.follower_speed_mps.push_back(follower);
-    run.space_gap_m.push_back(gap_m);
-  }
+  acc::CarFollowingRun run = acc_test::oscillatingRun({120.0, 20.0, 3.0, 30.0, 2.0, 30.0});
   for (std::size_t k = 0; k < run.size(); ++k)
     run.space_gap_m[k] += k % 2 == 0 ? 0.3 : -0.3;
   return run;

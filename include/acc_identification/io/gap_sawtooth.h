@@ -1,0 +1,56 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "acc_identification/model/car_following_run.h"
+
+namespace acc
+{
+/// A gap that saw-tooths: a position or range held and extrapolated at a wrong rate, then reset.
+/// Seen in OpenACC ZalaZone runs (run 26's IVS1 for its first 7 s: +0.82 m every 0.1 s where the
+/// speeds say 0.004 m, and back by 2 m every fourth sample; run 16, the two gaps around one car in
+/// opposite phase, so that car's position was at fault). Its net change over seconds agrees with
+/// the speeds, so the windows of gap_kinematics.h do not see it, and every value is plausible.
+/// Per sample, step_mismatch = (s_k - s_k-1) - the trapezoid integral of (leader - follower) speed
+/// over the step. A saw-tooth makes most steps the same nonzero mismatch (the extrapolation's rate
+/// error times the sample period) and the resets bring the mean back to 0. Noise on the gap
+/// spreads the steps instead: white noise of 1 m moves a window's median by 0.4 m now and then,
+/// but puts a tenth of its steps near it, not half.
+struct GapSawtoothOptions
+{
+  double window_s = 2.0;  ///< consecutive windows of this length within each run
+  /// A window saw-tooths when the median step mismatch exceeds this (metres per sample; on the
+  /// bundled runs' clean windows it stays below 0.2 m, run 26's and run 16's saw-tooths give
+  /// 0.78-0.83 m),
+  double min_median_step_mismatch_m = 0.4;
+  /// at least this share of its steps lie within near_median of the median (relative to it),
+  double min_share_near_median = 0.5;
+  double near_median = 0.25;
+  /// and the mean step mismatch is less than this share of the median (the resets bring the net
+  /// change back: a rate error that does not come back is a jump or a unit error, gap_kinematics.h).
+  double max_mean_to_median = 0.5;
+};
+
+/// A stretch of consecutive saw-tooth windows in one run.
+struct GapSawtoothSpan
+{
+  std::string run;
+  double start_s = 0.0, end_s = 0.0;
+  double median_step_mismatch_m = 0.0;  ///< the largest of its windows', signed
+};
+
+struct GapSawtooth
+{
+  std::size_t windows = 0;           ///< windows judged
+  std::size_t sawtooth_windows = 0;  ///< of them, saw-tooths
+  std::vector<GapSawtoothSpan> spans;
+  /// The spans in words, for a warning; empty when no window saw-tooths.
+  std::vector<std::string> warnings;
+};
+
+/// The check above over every run (windows never cross runs; a run's last window shorter than
+/// window_s is not judged).
+GapSawtooth checkGapSawtooth(const std::vector<CarFollowingRun>& runs, const GapSawtoothOptions& options = {});
+}  // namespace acc

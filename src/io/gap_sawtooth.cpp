@@ -1,0 +1,100 @@
+#include "acc_identification/io/gap_sawtooth.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "acc_identification/model/number_text.h"
+#include "acc_identification/model/sample_statistics.h"
+
+namespace acc
+{
+namespace
+{
+/// The gap's step from sample k - 1 to k minus the step the speeds say (trapezoid rule).
+double stepMismatch(const CarFollowingRun& run, std::size_t k)
+{
+  const double relative_before = run.leader_speed_mps[k - 1] - run.follower_speed_mps[k - 1];
+  const double relative_after = run.leader_speed_mps[k] - run.follower_speed_mps[k];
+  const double speeds_say_m = 0.5 * (relative_before + relative_after) * (run.time_s[k] - run.time_s[k - 1]);
+  return run.space_gap_m[k] - run.space_gap_m[k - 1] - speeds_say_m;
+}
+
+bool isSawtooth(const std::vector<double>& mismatches, double median, const GapSawtoothOptions& options)
+{
+  if (!(std::abs(median) > options.min_median_step_mismatch_m))
+    return false;
+  const auto near = std::count_if(mismatches.begin(), mismatches.end(), [&](double m) {
+    return std::abs(m - median) <= options.near_median * std::abs(median);
+  });
+  return static_cast<double>(near) >= options.min_share_near_median * static_cast<double>(mismatches.size()) &&
+         std::abs(meanOf(mismatches)) < options.max_mean_to_median * std::abs(median);
+}
+
+/// Adds a saw-tooth window [start_s, end_s] of run to the spans: it extends the last one when it
+/// follows it directly.
+void addSawtoothWindow(const std::string& run, double start_s, double end_s, double median,
+                       std::vector<GapSawtoothSpan>* spans)
+{
+  if (!spans->empty() && spans->back().run == run && spans->back().end_s == start_s)
+  {
+    GapSawtoothSpan& span = spans->back();
+    span.end_s = end_s;
+    if (std::abs(median) > std::abs(span.median_step_mismatch_m))
+      span.median_step_mismatch_m = median;
+    return;
+  }
+  spans->push_back({run, start_s, end_s, median});
+}
+
+void checkRun(const CarFollowingRun& run, const GapSawtoothOptions& options, GapSawtooth* result)
+{
+  std::size_t first = 0;
+  std::vector<double> mismatches;
+  for (std::size_t k = 1; k < run.size(); ++k)
+  {
+    mismatches.push_back(stepMismatch(run, k));
+    if (run.time_s[k] - run.time_s[first] < options.window_s)
+      continue;
+    ++result->windows;
+    const double median = interpolatedQuantile(mismatches, 0.5);
+    if (isSawtooth(mismatches, median, options))
+    {
+      ++result->sawtooth_windows;
+      addSawtoothWindow(run.name, run.time_s[first], run.time_s[k], median, &result->spans);
+    }
+    first = k;
+    mismatches.clear();
+  }
+}
+
+/// One warning for all spans (the first few named): what the gap does, and what it is not.
+std::string describeSpans(const GapSawtooth& result, const GapSawtoothOptions& options)
+{
+  constexpr std::size_t kNamed = 3;
+  std::string text = "the gap saw-tooths: ";
+  for (std::size_t i = 0; i < std::min(kNamed, result.spans.size()); ++i)
+  {
+    const GapSawtoothSpan& s = result.spans[i];
+    text += (i > 0 ? "; " : "") + s.run +
+            printfText(" from t = %.1f s to %.1f s steps %+.2f m per sample (median) beyond what the speeds say",
+                       s.start_s, s.end_s, s.median_step_mismatch_m);
+  }
+  if (result.spans.size() > kNamed)
+    text += "; and " + std::to_string(result.spans.size() - kNamed) + " more stretches";
+  return text + ", and steps back (a position or range held and extrapolated at a wrong rate, then reset: the " +
+         "gap there is off by up to a few of its steps, the speeds are not affected); " +
+         std::to_string(result.sawtooth_windows) +
+         " of " + std::to_string(result.windows) + printfText(" windows of %g s", options.window_s);
+}
+}  // namespace
+
+GapSawtooth checkGapSawtooth(const std::vector<CarFollowingRun>& runs, const GapSawtoothOptions& options)
+{
+  GapSawtooth result;
+  for (const CarFollowingRun& run : runs)
+    checkRun(run, options, &result);
+  if (!result.spans.empty())
+    result.warnings.push_back(describeSpans(result, options));
+  return result;
+}
+}  // namespace acc
