@@ -44,7 +44,7 @@ struct DiagnosisOptions
   AugmentedStabilityTestOptions stability_test;
   /// Effects in combination: after the dominant effect, every remaining candidate is fitted on
   /// top of the current model (warm-started from it) and compared with it by the same rule
-  /// (Bonferroni over the remaining candidates, the practical threshold relative to the current
+  /// (the family-wise level over the remaining candidates, the practical threshold relative to the current
   /// model's held-out MSE, timing effects resolvable); the best significant one is added, until
   /// none is or the chain holds max_chain_length effects. Each step's model also gets the
   /// string-stability test when with_stability_test is set.
