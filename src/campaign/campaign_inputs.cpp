@@ -12,6 +12,7 @@
 #include "acc_identification/io/gap_kinematics.h"
 #include "acc_identification/io/mixed_setting_listing.h"
 #include "acc_identification/io/run_csv.h"
+#include "acc_identification/model/number_text.h"
 #include "acc_identification/model/plain_text.h"
 
 namespace acc
@@ -261,12 +262,49 @@ std::string describePairLosses(const PairRunContents& pair)
   return pair.pair.follower_name + " " + std::to_string(rows) + (holes == 0 ? "" : " and " + hole_text);
 }
 
+/// One pair's saw-tooth spans (gap_sawtooth.h), with where the pair sits in the platoon.
+struct PairSawtooth
+{
+  const OpenAccPair* pair = nullptr;
+  std::vector<GapSawtoothSpan> spans;
+};
+
+/// The first span of `ahead` (the gap in front of a car) that overlaps one of `behind` (the gap
+/// behind it) in time with the opposite sign, or nullptr.
+const GapSawtoothSpan* oppositePhaseSpan(const PairSawtooth& ahead, const PairSawtooth& behind)
+{
+  for (const GapSawtoothSpan& a : ahead.spans)
+    for (const GapSawtoothSpan& b : behind.spans)
+      if (a.start_s < b.end_s && b.start_s < a.end_s && a.median_step_mismatch_m * b.median_step_mismatch_m < 0.0)
+        return &a;
+  return nullptr;
+}
+
+/// A car whose gap ahead and gap behind saw-tooth at once, in opposite phase: the two gaps share
+/// only its position, so that position was held and extrapolated, not either range. One note per
+/// such car, beside the pairs' own.
+void addSawtoothCars(const std::vector<PairSawtooth>& pairs, const std::string& path, std::vector<std::string>& notes)
+{
+  for (const PairSawtooth& ahead : pairs)
+    for (const PairSawtooth& behind : pairs)
+    {
+      if (behind.pair->leader_position != ahead.pair->follower_position)
+        continue;
+      if (const GapSawtoothSpan* span = oppositePhaseSpan(ahead, behind))
+        notes.push_back(path + ": " + ahead.pair->follower_name + " (" + std::to_string(ahead.pair->follower_position) +
+                        printfText("): its gaps ahead and behind saw-tooth from t = %.1f s in opposite phase: ",
+                                   span->start_s) +
+                        "its own position was held and extrapolated there, not either gap's measurement");
+    }
+}
+
 /// Adds the pairs of one file to the groups being built (keyed by vehicle and setting).
 void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile& file,
               std::map<std::pair<std::string, std::string>, CampaignGroup>& groups, std::vector<std::string>& notes,
               std::size_t& skipped_pairs)
 {
   std::vector<std::string> rejected;  // "TESLA_MODEL3 59": the pairs that lose rows, in one note
+  std::vector<PairSawtooth> sawtooths;
   for (const PairRunContents& pair : all.pairs)
   {
     if (pair.contents.runs.empty())
@@ -278,14 +316,18 @@ void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile
     }
     if (pair.contents.rejected_rows + pair.contents.time_holes > 0)
       rejected.push_back(describePairLosses(pair));
-    for (const std::string& disagreement : checkGapKinematics(pair.contents.runs).warnings)
+    const GapKinematics kinematics = checkGapKinematics(pair.contents.runs);
+    for (const std::string& disagreement : kinematics.warnings)
       notes.push_back(file.path + ": " + pair.pair.label() + ": " + disagreement);
+    if (!kinematics.sawtooth.spans.empty())
+      sawtooths.push_back({&pair.pair, kinematics.sawtooth.spans});
     const std::string& setting = file.settingOf(pair.pair.follower_name);
     CampaignGroup& group = groups[{pair.pair.follower_name, setting}];
     group.vehicle = pair.pair.follower_name;
     group.setting = setting;
     group.runs.push_back({file_index, pair.pair, pair.contents.runs});
   }
+  addSawtoothCars(sawtooths, file.path, notes);
   if (!rejected.empty())
     notes.push_back(file.path + ": rows a pair cannot use (a bad or implausible cell of its own, its time not "
                     "increasing) split its runs there, each listed by calibrate --all-pairs; rejected of " +

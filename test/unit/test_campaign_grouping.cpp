@@ -325,6 +325,24 @@ void rewriteLines(const std::string& path,
       out << written << "\n";
 }
 
+/// A data line's cells, and the line back from them (the synthetic files quote nothing).
+std::vector<std::string> csvCells(const std::string& line)
+{
+  std::vector<std::string> cells;
+  std::stringstream row(line);
+  for (std::string cell; std::getline(row, cell, ',');)
+    cells.push_back(cell);
+  return cells;
+}
+
+std::string csvLine(const std::vector<std::string>& cells)
+{
+  std::string text = cells[0];
+  for (std::size_t c = 1; c < cells.size(); ++c)
+    text += "," + cells[c];
+  return text;
+}
+
 TEST(CampaignInputs, WhatIsLeftOutOfAFileIsSaid)
 {
   TempFolder folder("acc_campaign_left_out");
@@ -335,16 +353,11 @@ TEST(CampaignInputs, WhatIsLeftOutOfAFileIsSaid)
   rewriteLines(folder.file("b.csv"), [](std::size_t i, const std::string& line) -> std::vector<std::string> {
     if (i < 6)
       return {line};
-    std::vector<std::string> cells;
-    std::stringstream row(line);
-    for (std::string cell; std::getline(row, cell, ',');)
-      cells.push_back(cell);
+    std::vector<std::string> cells = csvCells(line);
     cells[3] = "";  // Speed3
     if (i == 100)
       cells[2] = "NaN";  // Speed2
-    std::string text = cells[0];
-    for (std::size_t c = 1; c < cells.size(); ++c)
-      text += "," + cells[c];
+    const std::string text = csvLine(cells);
     if (i == 200 || i == 300)
       return {text, text};
     return {text};
@@ -366,6 +379,42 @@ TEST(CampaignInputs, WhatIsLeftOutOfAFileIsSaid)
       << all;
   EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"b.csv: no data for CAR_B (3): not in the campaign"})) << all;
   EXPECT_EQ(inputs.skipped_pairs, 0u);
+}
+
+// A car's position held and extrapolated (the two gaps around it saw-tooth in opposite phase) is
+// told apart from two gaps that saw-tooth in the same phase (each its own fault). Fails when the
+// campaign keeps only the pairs' own notes, or ignores the phase.
+TEST(CampaignInputs, ACarWhosePositionSawtoothsIsNamed)
+{
+  TempFolder folder("acc_campaign_sawtooth");
+  // Header Time,Speed1..Speed4,IVS1,IVS2,IVS3 (cells 5-7); data from line 7, at 0.1 s from t = 0.
+  acc_test::writeSyntheticPlatoon(folder.file("a.csv"), "S", {kAS, kBS, kCS}, 71, 60.0, 0.06, 0.05);
+  rewriteLines(folder.file("a.csv"), [](std::size_t i, const std::string& line) -> std::vector<std::string> {
+    if (i < 6)
+      return {line};
+    std::vector<std::string> cells = csvCells(line);
+    const auto drift = [&](std::size_t first) { return 0.8 * static_cast<double>((i - first) % 4); };
+    if (i >= 106 && i < 186)  // 10-17.9 s: CAR_B (3) runs ahead of itself, so IVS2 shrinks and IVS3 grows
+    {
+      cells[6] = std::to_string(std::stod(cells[6]) - drift(106));
+      cells[7] = std::to_string(std::stod(cells[7]) + drift(106));
+    }
+    if (i >= 106 && i < 186)  // at the same time IVS1 in the same phase as IVS2: not CAR_A's position
+      cells[5] = std::to_string(std::stod(cells[5]) - drift(106));
+    const std::string text = csvLine(cells);
+    return {text};
+  });
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.file("a.csv")});
+  const std::string all = allNotes(inputs);
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"CAR_A behind LEAD", "the gap saw-tooths", "from t = 10.0 s to 18.0 s steps -0.7"})) << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"CAR_B behind CAR_A", "the gap saw-tooths", "from t = 10.0 s to 18.0 s steps -0.7"}))
+      << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"CAR_C behind CAR_B", "the gap saw-tooths", "from t = 10.0 s to 18.0 s steps +0.7"}))
+      << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"a.csv: CAR_B (3): its gaps ahead and behind saw-tooth from t = 10.0 s "
+                                                   "in opposite phase: its own position was held and extrapolated"}))
+      << all;
+  EXPECT_FALSE(acc_test::anyContains(inputs.notes, {"CAR_A (2): its gaps"})) << all;
 }
 
 // A file whose metadata lines contradict its columns: the campaign says so, as calibrate does.

@@ -99,7 +99,8 @@ CampaignFileList listCampaignFiles(const std::vector<std::string>& files_or_fold
 /// usable runs, is skipped with a note that says why, and counted. What a read file loses is a
 /// note too: duplicate rows dropped, cars without data or without a pair, the rows each pair
 /// rejects, a first car without data, where a pair's gap and speeds disagree
-/// (checkGapKinematics), and metadata the file lacks or contradicts (OpenAccFile::metadata_problems). Throws RunReadError, naming every skip, when no group results.
+/// (checkGapKinematics; a car whose gaps ahead and behind saw-tooth in opposite phase is named
+/// once more, as the one whose position is at fault), and metadata the file lacks or contradicts (OpenAccFile::metadata_problems). Throws RunReadError, naming every skip, when no group results.
 CampaignInputs loadCampaign(const std::vector<std::string>& paths,
                             const RunPlausibilityBounds& bounds = RunPlausibilityBounds{});
 
