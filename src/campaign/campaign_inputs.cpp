@@ -281,7 +281,7 @@ const GapSawtoothSpan* oppositePhaseSpan(const PairSawtooth& ahead, const PairSa
 }
 
 /// A car whose gap ahead and gap behind saw-tooth at once, in opposite phase: the two gaps share
-/// only its position, so that position was held and extrapolated, not either range. One note per
+/// only its position, so that position was held or extrapolated, not either range. One note per
 /// such car, beside the pairs' own.
 void addSawtoothCars(const std::vector<PairSawtooth>& pairs, const std::string& path, std::vector<std::string>& notes)
 {
@@ -294,7 +294,7 @@ void addSawtoothCars(const std::vector<PairSawtooth>& pairs, const std::string& 
         notes.push_back(path + ": " + ahead.pair->follower_name + " (" + std::to_string(ahead.pair->follower_position) +
                         printfText("): its gaps ahead and behind saw-tooth from t = %.1f s in opposite phase: ",
                                    span->start_s) +
-                        "its own position was held and extrapolated there, not either gap's measurement");
+                        "its own position was held (or extrapolated) there, not either gap's measurement");
     }
 }
 

@@ -30,20 +30,51 @@ bool isSawtooth(const std::vector<double>& mismatches, double median, const GapS
          std::abs(meanOf(mismatches)) < options.max_mean_to_median * std::abs(median);
 }
 
-/// Adds a saw-tooth window [start_s, end_s] of run to the spans: it extends the last one when it
-/// follows it directly.
-void addSawtoothWindow(const std::string& run, double start_s, double end_s, double median,
-                       std::vector<GapSawtoothSpan>* spans)
+/// One saw-tooth window: where, its median step mismatch, and the rate and speed that tell a held
+/// position from an extrapolated one.
+struct SawtoothWindow
 {
-  if (!spans->empty() && spans->back().run == run && spans->back().end_s == start_s)
+  double start_s = 0.0, end_s = 0.0;
+  double median_m = 0.0;
+  double median_rate_mps = 0.0;  ///< median_m over the window's median sample period
+  double speed_mps = 0.0;        ///< the two cars' mean speed over the window
+};
+
+SawtoothWindow describeWindow(const CarFollowingRun& run, std::size_t first, std::size_t last, double median)
+{
+  std::vector<double> periods_s;
+  double speed_sum = 0.0;
+  for (std::size_t k = first + 1; k <= last; ++k)
   {
-    GapSawtoothSpan& span = spans->back();
-    span.end_s = end_s;
-    if (std::abs(median) > std::abs(span.median_step_mismatch_m))
-      span.median_step_mismatch_m = median;
-    return;
+    periods_s.push_back(run.time_s[k] - run.time_s[k - 1]);
+    speed_sum += 0.5 * (run.leader_speed_mps[k] + run.follower_speed_mps[k]);
   }
-  spans->push_back({run, start_s, end_s, median});
+  return {run.time_s[first], run.time_s[last], median, median / interpolatedQuantile(periods_s, 0.5),
+          speed_sum / static_cast<double>(last - first)};
+}
+
+/// Which car's position stood still between its updates, if the gap's extra rate is the cars' own
+/// speed (within 25 %): the follower's when the gap grows, the leader's when it shrinks; else "".
+std::string heldPosition(const SawtoothWindow& w)
+{
+  if (!(w.speed_mps > 1.0) || std::abs(std::abs(w.median_rate_mps) - w.speed_mps) > 0.25 * w.speed_mps)
+    return "";
+  return w.median_rate_mps > 0.0 ? "follower" : "leader";
+}
+
+/// Adds a saw-tooth window of run to the spans: it extends the last one when it follows it
+/// directly, and the span takes the sizes of its largest window.
+void addSawtoothWindow(const std::string& run, const SawtoothWindow& w, std::vector<GapSawtoothSpan>* spans)
+{
+  if (spans->empty() || spans->back().run != run || spans->back().end_s != w.start_s)
+    spans->push_back({run, w.start_s, w.end_s, 0.0, ""});
+  GapSawtoothSpan& span = spans->back();
+  span.end_s = w.end_s;
+  if (std::abs(w.median_m) > std::abs(span.median_step_mismatch_m))
+  {
+    span.median_step_mismatch_m = w.median_m;
+    span.held_position = heldPosition(w);
+  }
 }
 
 void checkRun(const CarFollowingRun& run, const GapSawtoothOptions& options, GapSawtooth* result)
@@ -60,7 +91,7 @@ void checkRun(const CarFollowingRun& run, const GapSawtoothOptions& options, Gap
     if (isSawtooth(mismatches, median, options))
     {
       ++result->sawtooth_windows;
-      addSawtoothWindow(run.name, run.time_s[first], run.time_s[k], median, &result->spans);
+      addSawtoothWindow(run.name, describeWindow(run, first, k, median), &result->spans);
     }
     first = k;
     mismatches.clear();
@@ -78,10 +109,13 @@ std::string describeSpans(const GapSawtooth& result, const GapSawtoothOptions& o
     text += (i > 0 ? "; " : "") + s.run +
             printfText(" from t = %.1f s to %.1f s steps %+.2f m per sample (median) beyond what the speeds say",
                        s.start_s, s.end_s, s.median_step_mismatch_m);
+    if (!s.held_position.empty())
+      text += " (the " + s.held_position + "'s position held between its updates: the gap " +
+              (s.held_position == "follower" ? "grows" : "shrinks") + " by the cars' own speed each sample)";
   }
   if (result.spans.size() > kNamed)
     text += "; and " + std::to_string(result.spans.size() - kNamed) + " more stretches";
-  return text + ", and steps back (a position or range held and extrapolated at a wrong rate, then reset: the " +
+  return text + ", and steps back (a position held, or extrapolated at a wrong rate, then reset: the " +
          "gap there is off by up to a few of its steps, the speeds are not affected); " +
          std::to_string(result.sawtooth_windows) +
          " of " + std::to_string(result.windows) + printfText(" windows of %g s", options.window_s);

@@ -381,7 +381,7 @@ TEST(CampaignInputs, WhatIsLeftOutOfAFileIsSaid)
   EXPECT_EQ(inputs.skipped_pairs, 0u);
 }
 
-// A car's position held and extrapolated (the two gaps around it saw-tooth in opposite phase) is
+// A car's position held or extrapolated (the two gaps around it saw-tooth in opposite phase) is
 // told apart from two gaps that saw-tooth in the same phase (each its own fault). Fails when the
 // campaign keeps only the pairs' own notes, or ignores the phase.
 TEST(CampaignInputs, ACarWhosePositionSawtoothsIsNamed)
@@ -412,7 +412,7 @@ TEST(CampaignInputs, ACarWhosePositionSawtoothsIsNamed)
   EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"CAR_C behind CAR_B", "the gap saw-tooths", "from t = 10.0 s to 18.0 s steps +0.7"}))
       << all;
   EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"a.csv: CAR_B (3): its gaps ahead and behind saw-tooth from t = 10.0 s "
-                                                   "in opposite phase: its own position was held and extrapolated"}))
+                                                   "in opposite phase: its own position was held (or extrapolated) there"}))
       << all;
   EXPECT_FALSE(acc_test::anyContains(inputs.notes, {"CAR_A (2): its gaps"})) << all;
 }

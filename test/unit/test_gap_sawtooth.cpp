@@ -39,25 +39,41 @@ TEST(GapSawtooth, NoiseOfAnySizeIsNotASawtooth)
   EXPECT_TRUE(s.warnings.empty());
 }
 
-TEST(GapSawtooth, AHeldAndExtrapolatedGapIsNamedWithItsStretch)
+TEST(GapSawtooth, AHeldOrExtrapolatedPositionIsNamedWithItsStretch)
 {
   acc::CarFollowingRun run = followingRun();
-  addSawtooth(&run, 0, 80, 0.82);      // 0-7.9 s, as run 26's IVS1
-  addSawtooth(&run, 400, 440, -0.75);  // 40-43.9 s, the opposite phase
+  addSawtooth(&run, 0, 80, 1.0);      // 0-7.9 s: the gap grows 10 m/s, about the cars' speed (11 m/s)
+  addSawtooth(&run, 400, 440, -0.5);  // 40-43.9 s: shrinks 5 m/s, not the cars' speed (12 m/s)
   const acc::GapSawtooth s = acc::checkGapSawtooth({run});
   EXPECT_EQ(s.sawtooth_windows, 6u);  // 0-2-4-6-8 s and 40-42-44 s
   ASSERT_EQ(s.spans.size(), 2u);
   EXPECT_EQ(s.spans[0].run, "synthetic");
   EXPECT_NEAR(s.spans[0].start_s, 0.0, 1e-9);
   EXPECT_NEAR(s.spans[0].end_s, 8.0, 1e-9);
-  EXPECT_NEAR(s.spans[0].median_step_mismatch_m, 0.82, 0.01);
+  EXPECT_NEAR(s.spans[0].median_step_mismatch_m, 1.0, 0.01);
+  EXPECT_EQ(s.spans[0].held_position, "follower");
   EXPECT_NEAR(s.spans[1].start_s, 40.0, 1e-9);
-  EXPECT_NEAR(s.spans[1].median_step_mismatch_m, -0.75, 0.01);
+  EXPECT_NEAR(s.spans[1].median_step_mismatch_m, -0.5, 0.01);
+  EXPECT_EQ(s.spans[1].held_position, "");
   ASSERT_EQ(s.warnings.size(), 1u);
-  EXPECT_NE(s.warnings[0].find("synthetic from t = 0.0 s to 8.0 s steps +0.82 m per sample (median)"),
+  EXPECT_NE(s.warnings[0].find("synthetic from t = 0.0 s to 8.0 s steps +1.00 m per sample (median) beyond what the "
+                               "speeds say (the follower's position held between its updates"),
+            std::string::npos)
+      << s.warnings[0];
+  EXPECT_NE(s.warnings[0].find("synthetic from t = 40.0 s to 44.0 s steps -0.50 m per sample (median) beyond what the "
+                               "speeds say, and steps back"),
             std::string::npos)
       << s.warnings[0];
   EXPECT_NE(s.warnings[0].find("6 of 30 windows of 2 s"), std::string::npos) << s.warnings[0];
+}
+
+TEST(GapSawtooth, AStillLeaderPositionShrinksTheGap)
+{
+  acc::CarFollowingRun run = followingRun();
+  addSawtooth(&run, 200, 260, -1.1);  // 20-25.9 s: the leader's position stands still at 11 m/s
+  const acc::GapSawtooth s = acc::checkGapSawtooth({run});
+  ASSERT_EQ(s.spans.size(), 1u);
+  EXPECT_EQ(s.spans[0].held_position, "leader");
 }
 
 TEST(GapSawtooth, ARateErrorThatDoesNotComeBackIsLeftToTheWindows)

@@ -8,10 +8,11 @@
 
 namespace acc
 {
-/// A gap that saw-tooths: a position or range held and extrapolated at a wrong rate, then reset.
-/// Seen in OpenACC ZalaZone runs (run 26's IVS1 for its first 7 s: +0.82 m every 0.1 s where the
-/// speeds say 0.004 m, and back by 2 m every fourth sample; run 16, the two gaps around one car in
-/// opposite phase, so that car's position was at fault). Its net change over seconds agrees with
+/// A gap that saw-tooths: a position held between its updates (or extrapolated at a wrong rate),
+/// then reset. Seen in OpenACC ZalaZone runs (run 26's IVS1 for its first 7 s: +0.82 m every 0.1 s
+/// where the speeds say 0.004 m, and back by 2 m every fourth sample: the BMW i3's position,
+/// whose E/N columns stand still for three samples in four while the cars drive 8.2 m/s; run 16,
+/// the two gaps around one car in opposite phase). Its net change over seconds agrees with
 /// the speeds, so the windows of gap_kinematics.h do not see it, and every value is plausible.
 /// Per sample, step_mismatch = (s_k - s_k-1) - the trapezoid integral of (leader - follower) speed
 /// over the step. A saw-tooth makes most steps the same nonzero mismatch (the extrapolation's rate
@@ -39,6 +40,10 @@ struct GapSawtoothSpan
   std::string run;
   double start_s = 0.0, end_s = 0.0;
   double median_step_mismatch_m = 0.0;  ///< the largest of its windows', signed
+  /// "follower" or "leader" when that window's extra rate is the cars' own speed (within 25 %):
+  /// that car's position stood still between its updates (the gap grows when the follower's does,
+  /// shrinks when the leader's does); "" for another rate (an extrapolation, a range).
+  std::string held_position;
 };
 
 struct GapSawtooth
