@@ -14,6 +14,16 @@ std::string number(double value, int decimals = 2)
   out << std::fixed << std::setprecision(decimals) << value;
   return out.str();
 }
+
+/// How far the receiver's speeds say it moved from `before` to `now` when its position did not
+/// change at all (the same latitude and longitude, as read); 0 when it changed or cannot say.
+double movedWhileStill(const GnssFix& before, const GnssFix& now)
+{
+  if (now.latitude_deg != before.latitude_deg || now.longitude_deg != before.longitude_deg ||
+      !before.has(GnssFix::kValidSpeed) || !now.has(GnssFix::kValidSpeed) || !(now.gnss_time_s > before.gnss_time_s))
+    return 0.0;
+  return 0.5 * (before.speed_over_ground_mps + now.speed_over_ground_mps) * (now.gnss_time_s - before.gnss_time_s);
+}
 }  // namespace
 
 const char* gapModeName(GapMode mode) { return mode == GapMode::kAlongTrack ? "along_track" : "straight_line"; }
@@ -109,6 +119,21 @@ std::string RelativeStateEstimator::jumpReason(const RelativeState& state) const
   return "";
 }
 
+std::string RelativeStateEstimator::heldPositionReason(const PairedEpoch& pair)
+{
+  const double leader_m = has_last_fixes_ ? movedWhileStill(last_leader_, pair.leader) : 0.0;
+  const double follower_m = has_last_fixes_ ? movedWhileStill(last_follower_, pair.follower) : 0.0;
+  const double since_s = (leader_m >= follower_m ? last_leader_ : last_follower_).gnss_time_s;
+  last_leader_ = pair.leader;
+  last_follower_ = pair.follower;
+  has_last_fixes_ = true;
+  if (std::max(leader_m, follower_m) <= settings_.min_held_position_move_m)
+    return "";
+  return std::string(leader_m >= follower_m ? "leader" : "follower") + " position held: the same as at " +
+         number(since_s) + " s while its speed says it moved " + number(std::max(leader_m, follower_m)) +
+         " m (a receiver that repeats its position between updates)";
+}
+
 void RelativeStateEstimator::process(const PairedEpoch& pair)
 {
   RelativeState state;
@@ -126,11 +151,17 @@ void RelativeStateEstimator::process(const PairedEpoch& pair)
   if (pair.continuity_break)
     consistency_.reset();
 
+  const std::string held = heldPositionReason(pair);
   if (!std::isfinite(state.leader_speed_mps) || !std::isfinite(state.follower_speed_mps))
   {
     ++counters_.missing_speed;
     state.invalid_reason = std::string(std::isfinite(state.leader_speed_mps) ? "follower" : "leader") +
                            " speed missing (no RMC/VTG in the epoch)";
+  }
+  else if (!held.empty())
+  {
+    ++counters_.held_positions;
+    state.invalid_reason = held;
   }
   else
     state.invalid_reason = jumpReason(state);

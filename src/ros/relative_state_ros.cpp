@@ -87,7 +87,8 @@ bool loadRelativeStateSettings(const ros::NodeHandle& p, RelativeStateSettings& 
          readParameter(p, "max_gap_rate_mps", s.max_gap_rate_mps, 0.0, true, error) &&
          readParameter(p, "max_acceleration_mps2", s.max_acceleration_mps2, 0.0, true, error) &&
          readParameter(p, "jump_reference_max_age_s", s.jump_reference_max_age_s, 0.0, false, error) &&
-         readParameter(p, "consistency_window_s", s.consistency_window_s, 0.0, true, error);
+         readParameter(p, "consistency_window_s", s.consistency_window_s, 0.0, true, error) &&
+         readParameter(p, "min_held_position_move_m", s.min_held_position_move_m, 0.0, true, error);
 }
 
 RelativeStateRos::RelativeStateRos(ros::NodeHandle node, ros::NodeHandle private_node) : updater_(node, private_node)
@@ -240,6 +241,7 @@ void RelativeStateRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& sta
   status.add("jumps_rejected", r.jumps_rejected);
   status.add("missing_speed", r.missing_speed);
   status.add("along_track_fallbacks", r.along_track_fallbacks);
+  status.add("held_positions", r.held_positions);
   status.add("times_outside_ros_time (not published)", unrepresentable_times_);
   counters_at_last_diagnostic_ = c;
   unrepresentable_times_at_last_diagnostic_ = unrepresentable_times_;

@@ -124,6 +124,49 @@ TEST(RelativeStateEstimator, ImpossibleJumpIsRejectedAndSaidSo)
   EXPECT_EQ(estimator.counters().invalid_states, 1u);
 }
 
+// OpenACC ZalaZone run 26: the follower's receiver updated its position every fourth epoch and
+// repeated it in between, so the gap grew by its speed each epoch and jumped back (2.5 m in 0.1 s,
+// under the jump bound). Fails when the repeated positions pass as measured gaps.
+TEST(RelativeStateEstimator, AHeldPositionIsInvalidAndCounted)
+{
+  acc::RelativeStateEstimator estimator(settingsWithOffset());
+  acc::GnssFix held;
+  auto states = run(estimator, straightDrive(), 3.0, [&](double t, acc::GnssFix&, acc::GnssFix& follower) {
+    const int epoch = static_cast<int>(std::lround(t / 0.1));
+    if (t > 0.95 && t < 2.05 && epoch % 4 != 0)
+      follower.latitude_deg = held.latitude_deg, follower.longitude_deg = held.longitude_deg;
+    else
+      held = follower;
+  });
+  ASSERT_EQ(states.size(), 31u);
+  std::size_t invalid = 0;
+  for (std::size_t i = 0; i < states.size(); ++i)
+  {
+    const bool held_here = i >= 10 && i <= 20 && i % 4 != 0;
+    EXPECT_EQ(states[i].valid, !held_here) << i << ": " << states[i].invalid_reason;
+    invalid += states[i].valid ? 0 : 1;
+  }
+  EXPECT_EQ(states[10].invalid_reason,
+            "follower position held: the same as at 1000.90 s while its speed says it moved 2.50 m (a receiver "
+            "that repeats its position between updates)");
+  EXPECT_EQ(estimator.counters().held_positions, invalid);
+  EXPECT_EQ(invalid, 8u);
+  EXPECT_EQ(estimator.counters().jumps_rejected, 0u);
+}
+
+// A car that stands still repeats its position too: that is no held position.
+TEST(RelativeStateEstimator, AStandingCarsRepeatedPositionIsValid)
+{
+  acc::RelativeStateEstimator estimator(settingsWithOffset());
+  Drive drive = straightDrive();
+  drive.follower_s_m = [](double) { return 0.0; };
+  drive.follower_v_mps = [](double) { return 0.0; };
+  auto states = run(estimator, drive, 1.0);
+  for (const auto& state : states)
+    EXPECT_TRUE(state.valid) << state.invalid_reason;
+  EXPECT_EQ(estimator.counters().held_positions, 0u);
+}
+
 TEST(RelativeStateEstimator, SpeedJumpIsRejectedToo)
 {
   acc::RelativeStateEstimator estimator(settingsWithOffset());

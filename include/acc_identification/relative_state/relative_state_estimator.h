@@ -39,6 +39,11 @@ struct RelativeStateSettings
   double jump_reference_max_age_s = 1.0;
   /// Gap-versus-Doppler consistency window (see GapDopplerConsistency).
   double consistency_window_s = 10.0;
+  /// A receiver whose position is the same as in its previous paired epoch while its speed says
+  /// it moved more than this holds its position between updates (OpenACC ZalaZone run 26: the
+  /// follower's position updated every fourth epoch, so the gap grew by its speed each epoch and
+  /// jumped back, steps the jump bound allows). Such a sample is invalid.
+  double min_held_position_move_m = 0.5;
 };
 
 /// Counters of the estimator itself (the pairing has its own, PairingCounters).
@@ -49,6 +54,7 @@ struct RelativeStateCounters
   std::uint64_t jumps_rejected = 0;
   std::uint64_t missing_speed = 0;
   std::uint64_t along_track_fallbacks = 0;  ///< straight line used instead (reason logged)
+  std::uint64_t held_positions = 0;         ///< samples with a held position (min_held_position_move_m)
 };
 
 /// From the two receivers' fixes to RelativeState samples: pairing by GNSS epoch, geometry,
@@ -76,6 +82,8 @@ private:
   void process(const PairedEpoch& pair);
   double gap(const PairedEpoch& pair);
   std::string jumpReason(const RelativeState& state) const;
+  /// Why the pair's positions cannot be used ("" when they can), and the fixes remembered.
+  std::string heldPositionReason(const PairedEpoch& pair);
 
   RelativeStateSettings settings_;
   EpochPairer pairer_;
@@ -85,6 +93,8 @@ private:
   std::vector<RelativeState> states_;
   std::vector<PairingEvent> events_;
   std::uint64_t leader_resets_seen_ = 0;
+  GnssFix last_leader_, last_follower_;  // of the previous pair, for the held-position check
+  bool has_last_fixes_ = false;
   bool has_reference_ = false;
   RelativeState reference_;  // last accepted state, for the jump bound
 };
