@@ -13,6 +13,7 @@
 #include "acc_identification/conversion/openacc_to_nmea.h"
 #include "acc_identification/gnss/nmea_log.h"
 #include "acc_identification/gnss/nmea_writer.h"
+#include "acc_identification/relative_state/relative_state_estimator.h"
 
 namespace fs = std::filesystem;
 
@@ -174,6 +175,38 @@ TEST(OpenAccPlatoon, FollowerByNameOrPositionAndItsLeaderIsTheCarDirectlyAhead)
   EXPECT_NE(acc::readOpenAccPairTrack(kZalaZone, acc::OpenAccPairSelector::byFollower("NO_SUCH_CAR"))
                 .error.find("in Vehicle_order"),
             std::string::npos);
+}
+
+/// Run 26's BMW i3 repeats its position between updates (22 of its 32 usable rows, two or three at
+/// a time at 8.2 m/s). Written as NMEA, read back as the driver reads it and paired, those samples
+/// are invalid and counted, and no other is: the live path does not publish their gaps.
+TEST(OpenAccPlatoon, ARepeatedPositionIsInvalidWhenReplayedLive)
+{
+  const auto file = acc::readOpenAccPairTrack(kZalaZone);
+  ASSERT_TRUE(file.error.empty()) << file.error;
+  fs::path dir = freshDirectory("openacc_held_position");
+  std::string error;
+  ASSERT_TRUE(acc::writeNmeaLog((dir / "leader.nmea").string(), acc::openAccFixes(file, 1), "GN", error)) << error;
+  ASSERT_TRUE(acc::writeNmeaLog((dir / "follower.nmea").string(), acc::openAccFixes(file, 2), "GN", error)) << error;
+  const auto leader = acc::readNmeaLog((dir / "leader.nmea").string());
+  const auto follower = acc::readNmeaLog((dir / "follower.nmea").string());
+  fs::remove_all(dir);
+  ASSERT_EQ(follower.fixes.size(), 32u);
+  acc::RelativeStateEstimator estimator;
+  for (std::size_t i = 0; i < leader.fixes.size(); ++i)
+  {
+    estimator.addLeader(leader.fixes[i]);
+    estimator.addFollower(follower.fixes[i]);
+  }
+  std::size_t invalid = 0;
+  for (const acc::RelativeState& state : estimator.takeStates())
+  {
+    if (!state.valid)
+      ++invalid;
+    EXPECT_TRUE(state.valid || state.invalid_reason.rfind("follower position held", 0) == 0) << state.invalid_reason;
+  }
+  EXPECT_EQ(estimator.counters().held_positions, 22u);
+  EXPECT_EQ(invalid, 22u);
 }
 
 /// A two-vehicle file (Casale) stays radians, checked against its E/N displacement.

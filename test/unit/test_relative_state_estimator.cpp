@@ -124,9 +124,9 @@ TEST(RelativeStateEstimator, ImpossibleJumpIsRejectedAndSaidSo)
   EXPECT_EQ(estimator.counters().invalid_states, 1u);
 }
 
-// OpenACC ZalaZone run 26: the follower's receiver updated its position every fourth epoch and
-// repeated it in between, so the gap grew by its speed each epoch and jumped back (2.5 m in 0.1 s,
-// under the jump bound). Fails when the repeated positions pass as measured gaps.
+// OpenACC ZalaZone run 26: the follower's receiver updated its position every third or fourth
+// epoch and repeated it in between, so the gap grew by its speed each epoch and jumped back (2.5 m
+// in 0.1 s, under the jump bound). Fails when the repeated positions pass as measured gaps.
 TEST(RelativeStateEstimator, AHeldPositionIsInvalidAndCounted)
 {
   acc::RelativeStateEstimator estimator(settingsWithOffset());

@@ -10,8 +10,8 @@ namespace acc
 {
 /// A gap that saw-tooths: a position held between its updates (or extrapolated at a wrong rate),
 /// then reset. Seen in OpenACC ZalaZone runs (run 26's IVS1 for its first 7 s: +0.82 m every 0.1 s
-/// where the speeds say 0.004 m, and back by 2 m every fourth sample: the BMW i3's position,
-/// whose E/N columns stand still for three samples in four while the cars drive 8.2 m/s; run 16,
+/// where the speeds say 0.004 m, and back by 2-2.5 m every third or fourth sample: the BMW i3's
+/// position, whose columns stand still between updates 0.3-0.4 s apart at 8.2 m/s; run 16,
 /// the two gaps around one car in opposite phase). Its net change over seconds agrees with
 /// the speeds, so the windows of gap_kinematics.h do not see it, and every value is plausible.
 /// Per sample, step_mismatch = (s_k - s_k-1) - the trapezoid integral of (leader - follower) speed

@@ -41,8 +41,8 @@ struct RelativeStateSettings
   double consistency_window_s = 10.0;
   /// A receiver whose position is the same as in its previous paired epoch while its speed says
   /// it moved more than this holds its position between updates (OpenACC ZalaZone run 26: the
-  /// follower's position updated every fourth epoch, so the gap grew by its speed each epoch and
-  /// jumped back, steps the jump bound allows). Such a sample is invalid.
+  /// follower's position updated every third or fourth epoch, so the gap grew by its speed each
+  /// epoch and jumped back, steps the jump bound allows). Such a sample is invalid.
   double min_held_position_move_m = 0.5;
 };
 
