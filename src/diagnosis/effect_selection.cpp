@@ -265,7 +265,8 @@ std::string describeSelectionRule(const SelectionOptions& options, std::size_t c
                 "another significant effect is indistinguishable from it when the one-sided %g%% lower bound of "
                 "their paired difference is not above 0.",
                 options.block_length_s, options.resamples, candidates, options.alpha,
-                100.0 * options.alpha / static_cast<double>(candidates), 100.0 * options.alpha, 100.0 * options.min_relative_improvement, 100.0 * (1.0 - options.alpha));
+                100.0 * options.alpha / static_cast<double>(candidates), 100.0 * options.alpha,
+                100.0 * options.min_relative_improvement, 100.0 * (1.0 - options.alpha));
   return text;
 }
 

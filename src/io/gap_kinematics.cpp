@@ -24,9 +24,7 @@ void addWindows(const CarFollowingRun& run, double window_s, std::vector<Window>
   double integral = 0.0;
   for (std::size_t k = 1; k < run.size(); ++k)
   {
-    const double relative_before = run.leader_speed_mps[k - 1] - run.follower_speed_mps[k - 1];
-    const double relative_after = run.leader_speed_mps[k] - run.follower_speed_mps[k];
-    integral += 0.5 * (relative_before + relative_after) * (run.time_s[k] - run.time_s[k - 1]);
+    integral += gapChangeBySpeedsM(run, k);
     if (run.time_s[k] - run.time_s[first] >= window_s)
     {
       windows->push_back({&run, first, k, run.space_gap_m[k] - run.space_gap_m[first], integral});
@@ -58,21 +56,10 @@ void describeJumps(const GapKinematics& k, const GapKinematicsOptions& options, 
                       " of " + std::to_string(k.windows) +
                       printfText(" windows are off by more than %g m", options.max_window_mismatch_m));
 }
-}  // namespace
 
-GapKinematics checkGapKinematics(const std::vector<CarFollowingRun>& runs, const GapKinematicsOptions& options)
+/// The windows' ratio, spread, mismatch and worst window into k, and their warnings.
+void summarizeWindows(const std::vector<Window>& windows, const GapKinematicsOptions& options, GapKinematics* k)
 {
-  std::vector<Window> windows;
-  for (const CarFollowingRun& run : runs)
-    addWindows(run, options.window_s, &windows);
-  GapKinematics k;
-  k.sawtooth = checkGapSawtooth(runs, options.sawtooth);
-  k.windows = windows.size();
-  if (windows.empty())
-  {
-    k.warnings = k.sawtooth.warnings;
-    return k;
-  }
   double gap_times_speed = 0.0, speed_squared = 0.0, speed_sum = 0.0, mismatch_squared = 0.0;
   const Window* worst = &windows.front();
   for (const Window& w : windows)
@@ -82,21 +69,34 @@ GapKinematics checkGapKinematics(const std::vector<CarFollowingRun>& runs, const
     speed_sum += w.speed_change_m;
     mismatch_squared += w.mismatch() * w.mismatch();
     if (std::abs(w.mismatch()) > options.max_window_mismatch_m)
-      ++k.jump_windows;
+      ++k->jump_windows;
     if (std::abs(w.mismatch()) > std::abs(worst->mismatch()))
       worst = &w;
   }
   const double n = static_cast<double>(windows.size());
-  k.scale = speed_squared > 0.0 ? gap_times_speed / speed_squared : GapKinematics::kNaN;
-  k.relative_motion_m = std::sqrt(std::max(0.0, speed_squared / n - (speed_sum / n) * (speed_sum / n)));
-  k.rms_mismatch_m = std::sqrt(mismatch_squared / n);
-  k.worst_run = worst->run->name;
-  k.worst_start_s = worst->run->time_s[worst->first];
-  k.worst_end_s = worst->run->time_s[worst->last];
-  k.worst_gap_change_m = worst->gap_change_m;
-  k.worst_speed_change_m = worst->speed_change_m;
-  describeScale(k, options, &k.warnings);
-  describeJumps(k, options, &k.warnings);
+  k->scale = speed_squared > 0.0 ? gap_times_speed / speed_squared : GapKinematics::kNaN;
+  k->relative_motion_m = std::sqrt(std::max(0.0, speed_squared / n - (speed_sum / n) * (speed_sum / n)));
+  k->rms_mismatch_m = std::sqrt(mismatch_squared / n);
+  k->worst_run = worst->run->name;
+  k->worst_start_s = worst->run->time_s[worst->first];
+  k->worst_end_s = worst->run->time_s[worst->last];
+  k->worst_gap_change_m = worst->gap_change_m;
+  k->worst_speed_change_m = worst->speed_change_m;
+  describeScale(*k, options, &k->warnings);
+  describeJumps(*k, options, &k->warnings);
+}
+}  // namespace
+
+GapKinematics checkGapKinematics(const std::vector<CarFollowingRun>& runs, const GapKinematicsOptions& options)
+{
+  std::vector<Window> windows;
+  for (const CarFollowingRun& run : runs)
+    addWindows(run, options.window_s, &windows);
+  GapKinematics k;
+  k.windows = windows.size();
+  if (!windows.empty())
+    summarizeWindows(windows, options, &k);
+  k.sawtooth = checkGapSawtooth(runs, options.sawtooth);
   k.warnings.insert(k.warnings.end(), k.sawtooth.warnings.begin(), k.sawtooth.warnings.end());
   return k;
 }

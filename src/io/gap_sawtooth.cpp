@@ -10,15 +10,6 @@ namespace acc
 {
 namespace
 {
-/// The gap's step from sample k - 1 to k minus the step the speeds say (trapezoid rule).
-double stepMismatch(const CarFollowingRun& run, std::size_t k)
-{
-  const double relative_before = run.leader_speed_mps[k - 1] - run.follower_speed_mps[k - 1];
-  const double relative_after = run.leader_speed_mps[k] - run.follower_speed_mps[k];
-  const double speeds_say_m = 0.5 * (relative_before + relative_after) * (run.time_s[k] - run.time_s[k - 1]);
-  return run.space_gap_m[k] - run.space_gap_m[k - 1] - speeds_say_m;
-}
-
 bool isSawtooth(const std::vector<double>& mismatches, double median, const GapSawtoothOptions& options)
 {
   if (!(std::abs(median) > options.min_median_step_mismatch_m))
@@ -83,7 +74,7 @@ void checkRun(const CarFollowingRun& run, const GapSawtoothOptions& options, Gap
   std::vector<double> mismatches;
   for (std::size_t k = 1; k < run.size(); ++k)
   {
-    mismatches.push_back(stepMismatch(run, k));
+    mismatches.push_back(run.space_gap_m[k] - run.space_gap_m[k - 1] - gapChangeBySpeedsM(run, k));
     if (run.time_s[k] - run.time_s[first] < options.window_s)
       continue;
     ++result->windows;

@@ -34,6 +34,13 @@ std::vector<double> sliceRows(const std::vector<double>& column, std::size_t fir
                              column.begin() + static_cast<std::ptrdiff_t>(end));
 }
 
+double gapChangeBySpeedsM(const CarFollowingRun& run, std::size_t k)
+{
+  const double relative_before = run.leader_speed_mps[k - 1] - run.follower_speed_mps[k - 1];
+  const double relative_after = run.leader_speed_mps[k] - run.follower_speed_mps[k];
+  return 0.5 * (relative_before + relative_after) * (run.time_s[k] - run.time_s[k - 1]);
+}
+
 CarFollowingRun CarFollowingRun::slice(std::size_t first, std::size_t end, const std::string& name_suffix) const
 {
   CarFollowingRun part;

@@ -16,7 +16,8 @@ std::string number(double value, int decimals = 2)
 }
 
 /// How far the receiver's speeds say it moved from `before` to `now` when its position did not
-/// change at all (the same latitude and longitude, as read); 0 when it changed or cannot say.
+/// change at all (the same latitude and longitude, as read); 0 when it changed or cannot say (also
+/// against the default fix before the first pair, whose NaN position equals nothing).
 double movedWhileStill(const GnssFix& before, const GnssFix& now)
 {
   if (now.latitude_deg != before.latitude_deg || now.longitude_deg != before.longitude_deg ||
@@ -121,12 +122,11 @@ std::string RelativeStateEstimator::jumpReason(const RelativeState& state) const
 
 std::string RelativeStateEstimator::heldPositionReason(const PairedEpoch& pair)
 {
-  const double leader_m = has_last_fixes_ ? movedWhileStill(last_leader_, pair.leader) : 0.0;
-  const double follower_m = has_last_fixes_ ? movedWhileStill(last_follower_, pair.follower) : 0.0;
+  const double leader_m = movedWhileStill(last_leader_, pair.leader);
+  const double follower_m = movedWhileStill(last_follower_, pair.follower);
   const double since_s = (leader_m >= follower_m ? last_leader_ : last_follower_).gnss_time_s;
   last_leader_ = pair.leader;
   last_follower_ = pair.follower;
-  has_last_fixes_ = true;
   if (std::max(leader_m, follower_m) <= settings_.min_held_position_move_m)
     return "";
   return std::string(leader_m >= follower_m ? "leader" : "follower") + " position held: the same as at " +

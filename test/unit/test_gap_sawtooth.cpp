@@ -19,7 +19,7 @@ acc::CarFollowingRun followingRun()
 }
 
 /// Rows [first, end) read as OpenACC run 26's first seconds do: the gap drifts by step_m per
-/// sample and is set back to the truth every fourth sample.
+/// sample and is set back to the truth every fourth sample (there every third or fourth).
 void addSawtooth(acc::CarFollowingRun* run, std::size_t first, std::size_t end, double step_m)
 {
   for (std::size_t k = first; k < end; ++k)

@@ -33,6 +33,10 @@ std::pair<CarFollowingRun, CarFollowingRun> splitRunInHalf(const CarFollowingRun
 /// the columns of a file read row by row. Throws std::out_of_range unless first <= end <= size.
 std::vector<double> sliceRows(const std::vector<double>& column, std::size_t first, std::size_t end);
 
+/// The change of the gap from sample k - 1 to k that the two speeds say: the trapezoid integral
+/// of (leader - follower) speed over the step [m]. 1 <= k < run.size().
+double gapChangeBySpeedsM(const CarFollowingRun& run, std::size_t k);
+
 /// Checks the run's invariants (equal column lengths, at least two samples, strictly increasing
 /// time, finite values). Returns an empty string when the run is usable, else why it is not.
 std::string describeRunProblem(const CarFollowingRun& run);

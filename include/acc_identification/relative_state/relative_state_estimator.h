@@ -93,8 +93,7 @@ private:
   std::vector<RelativeState> states_;
   std::vector<PairingEvent> events_;
   std::uint64_t leader_resets_seen_ = 0;
-  GnssFix last_leader_, last_follower_;  // of the previous pair, for the held-position check
-  bool has_last_fixes_ = false;
+  GnssFix last_leader_, last_follower_;  // of the previous pair (none yet: NaN), for the held-position check
   bool has_reference_ = false;
   RelativeState reference_;  // last accepted state, for the jump bound
 };
