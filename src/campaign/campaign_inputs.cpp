@@ -316,11 +316,13 @@ void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile
     }
     if (pair.contents.rejected_rows + pair.contents.time_holes > 0)
       rejected.push_back(describePairLosses(pair));
-    const GapKinematics kinematics = checkGapKinematics(pair.contents.runs);
-    for (const std::string& disagreement : kinematics.warnings)
+    for (const std::string& disagreement : checkGapKinematics(pair.contents.runs).warnings)
       notes.push_back(file.path + ": " + pair.pair.label() + ": " + disagreement);
-    if (!kinematics.sawtooth.spans.empty())
-      sawtooths.push_back({&pair.pair, kinematics.sawtooth.spans});
+    for (const GapSawtoothSpan& span : pair.contents.sawtooth_spans)
+      notes.push_back(file.path + ": " + pair.pair.label() + ": " + describeSawtoothSpan(span) + "; " +
+                      describeGapRebuilt(span));
+    if (!pair.contents.sawtooth_spans.empty())
+      sawtooths.push_back({&pair.pair, pair.contents.sawtooth_spans});
     const std::string& setting = file.settingOf(pair.pair.follower_name);
     CampaignGroup& group = groups[{pair.pair.follower_name, setting}];
     group.vehicle = pair.pair.follower_name;

@@ -96,8 +96,6 @@ GapKinematics checkGapKinematics(const std::vector<CarFollowingRun>& runs, const
   k.windows = windows.size();
   if (!windows.empty())
     summarizeWindows(windows, options, &k);
-  k.sawtooth = checkGapSawtooth(runs, options.sawtooth);
-  k.warnings.insert(k.warnings.end(), k.sawtooth.warnings.begin(), k.sawtooth.warnings.end());
   return k;
 }
 }  // namespace acc

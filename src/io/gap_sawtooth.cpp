@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <utility>
 
 #include "acc_identification/model/number_text.h"
 #include "acc_identification/model/sample_statistics.h"
@@ -53,14 +55,49 @@ std::string heldPosition(const SawtoothWindow& w)
   return w.median_rate_mps > 0.0 ? "follower" : "leader";
 }
 
-/// Adds a saw-tooth window of run to the spans: it extends the last one when it follows it
-/// directly, and the span takes the sizes of its largest window.
-void addSawtoothWindow(const std::string& run, const SawtoothWindow& w, std::vector<GapSawtoothSpan>* spans)
+/// The step mismatches of a run: [k] = (s_k - s_k-1) - what the speeds say, for k >= 1; [0] = 0.
+std::vector<double> stepMismatches(const CarFollowingRun& run)
 {
-  if (spans->empty() || spans->back().run != run || spans->back().end_s != w.start_s)
-    spans->push_back({run, w.start_s, w.end_s, 0.0, ""});
+  std::vector<double> mismatches(run.size(), 0.0);
+  for (std::size_t k = 1; k < run.size(); ++k)
+    mismatches[k] = run.space_gap_m[k] - run.space_gap_m[k - 1] - gapChangeBySpeedsM(run, k);
+  return mismatches;
+}
+
+/// The samples of a saw-tooth window's steps (first + 1 ... last), extended through the
+/// consecutive mismatched steps on either side.
+std::pair<std::size_t, std::size_t> extendedSamples(const std::vector<double>& mismatches, std::size_t first,
+                                                    std::size_t last, const GapSawtoothOptions& options)
+{
+  const auto mismatched = [&](std::size_t k) {
+    return std::abs(mismatches[k]) > options.min_step_mismatch_to_extend_m;
+  };
+  std::size_t begin = first + 1, end = last + 1;
+  while (begin > 1 && mismatched(begin - 1))
+    --begin;
+  while (end < mismatches.size() && mismatched(end))
+    ++end;
+  return {begin, end};
+}
+
+/// Adds a saw-tooth window of a run to the spans: it extends the last one when it reaches it, and
+/// the span takes the sizes of its largest window.
+void addSawtoothWindow(const CarFollowingRun& run, std::size_t run_index, const SawtoothWindow& w,
+                       std::pair<std::size_t, std::size_t> samples, std::vector<GapSawtoothSpan>* spans)
+{
+  if (spans->empty() || spans->back().run_index != run_index || spans->back().end_sample < samples.first)
+  {
+    GapSawtoothSpan span;
+    span.run = run.name;
+    span.run_index = run_index;
+    span.first_sample = samples.first;
+    span.end_sample = samples.second;
+    spans->push_back(span);
+  }
   GapSawtoothSpan& span = spans->back();
-  span.end_s = w.end_s;
+  span.end_sample = std::max(span.end_sample, samples.second);
+  span.start_s = run.time_s[span.first_sample];
+  span.end_s = run.time_s[span.end_sample - 1];
   if (std::abs(w.median_m) > std::abs(span.median_step_mismatch_m))
   {
     span.median_step_mismatch_m = w.median_m;
@@ -68,58 +105,82 @@ void addSawtoothWindow(const std::string& run, const SawtoothWindow& w, std::vec
   }
 }
 
-void checkRun(const CarFollowingRun& run, const GapSawtoothOptions& options, GapSawtooth* result)
+/// Whether step k goes against the span's drift: a reset to a fresh fix.
+bool isReset(double mismatch_m, double median_m, const GapSawtoothOptions& options)
 {
+  return mismatch_m * median_m < 0.0 && std::abs(mismatch_m) > options.min_step_mismatch_to_extend_m;
+}
+
+void countResets(const std::vector<double>& mismatches, const GapSawtoothOptions& options, GapSawtoothSpan* span)
+{
+  span->resets = 0;
+  for (std::size_t k = span->first_sample; k < span->end_sample; ++k)
+    span->resets += isReset(mismatches[k], span->median_step_mismatch_m, options) ? 1 : 0;
+}
+
+void checkRun(const CarFollowingRun& run, std::size_t run_index, const GapSawtoothOptions& options,
+              GapSawtooth* result)
+{
+  const std::vector<double> mismatches = stepMismatches(run);
+  const std::size_t spans_before = result->spans.size();
   std::size_t first = 0;
-  std::vector<double> mismatches;
   for (std::size_t k = 1; k < run.size(); ++k)
   {
-    mismatches.push_back(run.space_gap_m[k] - run.space_gap_m[k - 1] - gapChangeBySpeedsM(run, k));
     if (run.time_s[k] - run.time_s[first] < options.window_s)
       continue;
     ++result->windows;
-    const double median = interpolatedQuantile(mismatches, 0.5);
-    if (isSawtooth(mismatches, median, options))
+    const std::vector<double> window(mismatches.begin() + static_cast<std::ptrdiff_t>(first) + 1,
+                                     mismatches.begin() + static_cast<std::ptrdiff_t>(k) + 1);
+    const double median = interpolatedQuantile(window, 0.5);
+    if (isSawtooth(window, median, options))
     {
       ++result->sawtooth_windows;
-      addSawtoothWindow(run.name, describeWindow(run, first, k, median), &result->spans);
+      addSawtoothWindow(run, run_index, describeWindow(run, first, k, median),
+                        extendedSamples(mismatches, first, k, options), &result->spans);
     }
     first = k;
-    mismatches.clear();
   }
-}
-
-/// One warning for all spans (the first few named): what the gap does, and what it is not.
-std::string describeSpans(const GapSawtooth& result, const GapSawtoothOptions& options)
-{
-  constexpr std::size_t kNamed = 3;
-  std::string text = "the gap saw-tooths: ";
-  for (std::size_t i = 0; i < std::min(kNamed, result.spans.size()); ++i)
-  {
-    const GapSawtoothSpan& s = result.spans[i];
-    text += (i > 0 ? "; " : "") + s.run +
-            printfText(" from t = %.1f s to %.1f s steps %+.2f m per sample (median) beyond what the speeds say",
-                       s.start_s, s.end_s, s.median_step_mismatch_m);
-    if (!s.held_position.empty())
-      text += " (the " + s.held_position + "'s position held between its updates: the gap " +
-              (s.held_position == "follower" ? "grows" : "shrinks") + " by the cars' own speed each sample)";
-  }
-  if (result.spans.size() > kNamed)
-    text += "; and " + std::to_string(result.spans.size() - kNamed) + " more stretches";
-  return text + ", and steps back (a position held, or extrapolated at a wrong rate, then reset: the " +
-         "gap there is off by up to a few of its steps, the speeds are not affected); " +
-         std::to_string(result.sawtooth_windows) +
-         " of " + std::to_string(result.windows) + printfText(" windows of %g s", options.window_s);
+  for (std::size_t i = spans_before; i < result->spans.size(); ++i)
+    countResets(mismatches, options, &result->spans[i]);
 }
 }  // namespace
 
 GapSawtooth checkGapSawtooth(const std::vector<CarFollowingRun>& runs, const GapSawtoothOptions& options)
 {
   GapSawtooth result;
-  for (const CarFollowingRun& run : runs)
-    checkRun(run, options, &result);
-  if (!result.spans.empty())
-    result.warnings.push_back(describeSpans(result, options));
+  for (std::size_t i = 0; i < runs.size(); ++i)
+    checkRun(runs[i], i, options, &result);
   return result;
+}
+
+std::string describeSawtoothSpan(const GapSawtoothSpan& span)
+{
+  std::string text = printfText("the gap saw-tooths from t = %.1f s to %.1f s: it steps %+.2f m per sample (median) "
+                                "beyond what the speeds say",
+                                span.start_s, span.end_s, span.median_step_mismatch_m);
+  if (!span.held_position.empty())
+    text += " (the " + span.held_position + "'s position held between its updates: the gap " +
+            (span.held_position == "follower" ? "grows" : "shrinks") + " by the cars' own speed each sample)";
+  return text + " and steps back (a position held, or extrapolated at a wrong rate, then reset): the gap there is " +
+         "off by up to a few of its steps, the speeds are not affected";
+}
+
+void rebuildSawtoothGap(const GapSawtoothSpan& span, CarFollowingRun* run, const GapSawtoothOptions& options)
+{
+  if (span.first_sample == 0 || span.end_sample > run->size() || span.first_sample > span.end_sample)
+    throw std::out_of_range("rebuildSawtoothGap: the span is not within the run");
+  const std::vector<double> mismatches = stepMismatches(*run);  // of the gap as measured
+  for (std::size_t k = span.first_sample; k < span.end_sample; ++k)
+  {
+    if (!isReset(mismatches[k], span.median_step_mismatch_m, options))
+      run->space_gap_m[k] = run->space_gap_m[k - 1] + gapChangeBySpeedsM(*run, k);
+  }
+}
+
+std::string describeGapRebuilt(const GapSawtoothSpan& span)
+{
+  return "the gap of its " + std::to_string(span.end_sample - span.first_sample) +
+         " samples rebuilt from the fixes after its " + std::to_string(span.resets) +
+         " resets and the speeds between them";
 }
 }  // namespace acc

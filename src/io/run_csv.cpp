@@ -125,6 +125,7 @@ public:
     current_.space_gap_m.push_back(values[1]);
     current_.follower_speed_mps.push_back(values[2]);
     current_.leader_speed_mps.push_back(values[3]);
+    current_lines_.push_back(line_number);
   }
 
   /// Counts and lists a row that is not used, and splits the run there.
@@ -135,10 +136,15 @@ public:
     split(line_number);
   }
 
+  /// Closes the current run (a run when it holds two samples or more), its gap rebuilt where it
+  /// saw-tooths (each stretch counted and listed).
   void split(std::size_t line_number)
   {
     if (current_.size() >= 2)
     {
+      current_.name = name_;
+      for (const GapSawtoothSpan& span : checkGapSawtooth({current_}).spans)
+        rebuildGap(span);
       ++pieces_;
       current_.name = pieces_ == 1 ? name_ : name_ + "#" + std::to_string(pieces_);
       contents_.runs.push_back(std::move(current_));
@@ -151,9 +157,20 @@ public:
       report(line_number, why.str());
     }
     current_ = CarFollowingRun{};
+    current_lines_.clear();
   }
 
 private:
+  void rebuildGap(const GapSawtoothSpan& span)
+  {
+    rebuildSawtoothGap(span, &current_);
+    contents_.sawtooth_rows += span.end_sample - span.first_sample;
+    contents_.sawtooth_spans.push_back(span);
+    const std::size_t first_line = current_lines_[span.first_sample];
+    report(first_line, describeSawtoothSpan(span) + "; lines " + std::to_string(first_line) + "-" +
+                           std::to_string(current_lines_[span.end_sample - 1]) + ": " + describeGapRebuilt(span));
+  }
+
   bool repeatsLastSample(const std::array<double, 4>& values) const
   {
     return values[0] == current_.time_s.back() && values[1] == current_.space_gap_m.back() &&
@@ -182,6 +199,7 @@ private:
   RunPlausibilityBounds bounds_;
   RunFileContents& contents_;
   CarFollowingRun current_;
+  std::vector<std::size_t> current_lines_;  ///< the file line of each of current_'s samples
   std::size_t pieces_ = 0;
 };
 
@@ -396,6 +414,8 @@ void append(RunFileContents& all, RunFileContents&& one)
   all.duplicate_rows += one.duplicate_rows;
   all.time_holes += one.time_holes;
   all.acc_off_rows += one.acc_off_rows;
+  all.sawtooth_rows += one.sawtooth_rows;
+  all.sawtooth_spans.insert(all.sawtooth_spans.end(), one.sawtooth_spans.begin(), one.sawtooth_spans.end());
   all.problems.insert(all.problems.end(), one.problems.begin(), one.problems.end());
   all.notes.insert(all.notes.end(), one.notes.begin(), one.notes.end());
 }
@@ -455,7 +475,7 @@ AllPairRuns readAllPairRuns(const std::string& path, const RunPlausibilityBounds
 
 std::string describeRowCounts(const std::string& path, const RunFileContents& contents)
 {
-  if (contents.rejected_rows == 0 && contents.time_holes == 0)
+  if (contents.rejected_rows == 0 && contents.time_holes == 0 && contents.sawtooth_rows == 0)
   {
     return "";
   }
@@ -463,6 +483,8 @@ std::string describeRowCounts(const std::string& path, const RunFileContents& co
   counts << path << ": " << contents.rejected_rows << " of " << contents.data_rows << " rows rejected ("
          << contents.implausible_rows << " outside the plausibility bounds, " << contents.duplicate_rows
          << " duplicates), " << contents.time_holes << " holes in time split a run";
+  if (contents.sawtooth_rows > 0)
+    counts << ", the gap of " << contents.sawtooth_rows << " rows rebuilt where it saw-tooths";
   return counts.str();
 }
 

@@ -394,7 +394,7 @@ TEST(CampaignInputs, ACarWhosePositionSawtoothsIsNamed)
       return {line};
     std::vector<std::string> cells = csvCells(line);
     const auto drift = [&](std::size_t first) { return 0.8 * static_cast<double>((i - first) % 4); };
-    if (i >= 106 && i < 186)  // 10-17.9 s: CAR_B (3) runs ahead of itself, so IVS2 shrinks and IVS3 grows
+    if (i >= 106 && i < 186)  // 10.1-17.9 s, back at 18.0 s: CAR_B (3) runs ahead of itself, so IVS2 shrinks and IVS3 grows
     {
       cells[6] = std::to_string(std::stod(cells[6]) - drift(106));
       cells[7] = std::to_string(std::stod(cells[7]) + drift(106));
@@ -406,15 +406,21 @@ TEST(CampaignInputs, ACarWhosePositionSawtoothsIsNamed)
   });
   const acc::CampaignInputs inputs = acc::loadCampaign({folder.file("a.csv")});
   const std::string all = allNotes(inputs);
-  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"CAR_A behind LEAD", "the gap saw-tooths", "from t = 10.0 s to 18.0 s steps -0.7"})) << all;
-  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"CAR_B behind CAR_A", "the gap saw-tooths", "from t = 10.0 s to 18.0 s steps -0.7"}))
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"CAR_A behind LEAD", "the gap saw-tooths", "from t = 10.1 s to 18.0 s: it steps -0.7"})) << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"CAR_B behind CAR_A", "the gap saw-tooths", "from t = 10.1 s to 18.0 s: it steps -0.7"}))
       << all;
-  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"CAR_C behind CAR_B", "the gap saw-tooths", "from t = 10.0 s to 18.0 s steps +0.7"}))
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"CAR_C behind CAR_B", "the gap saw-tooths", "from t = 10.1 s to 18.0 s: it steps +0.7"}))
       << all;
-  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"a.csv: CAR_B (3): its gaps ahead and behind saw-tooth from t = 10.0 s "
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"a.csv: CAR_B (3): its gaps ahead and behind saw-tooth from t = 10.1 s "
                                                    "in opposite phase: its own position was held (or extrapolated) there"}))
       << all;
   EXPECT_FALSE(acc_test::anyContains(inputs.notes, {"CAR_A (2): its gaps"})) << all;
+  // Each pair's gap is rebuilt there (said), its run kept whole.
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"CAR_C behind CAR_B", "the gap of its 80 samples rebuilt from the "
+                                                   "fixes after its 20 resets"}))
+      << all;
+  for (const acc::CampaignGroup& group : inputs.groups)
+    EXPECT_EQ(group.runs.front().segments.size(), 1u) << group.vehicle;
 }
 
 // A file whose metadata lines contradict its columns: the campaign says so, as calibrate does.

@@ -98,9 +98,9 @@ CampaignFileList listCampaignFiles(const std::vector<std::string>& files_or_fold
 /// no listing names is a group of its own at "SL", said too. A file that cannot be read as OpenACC, or a pair without
 /// usable runs, is skipped with a note that says why, and counted. What a read file loses is a
 /// note too: duplicate rows dropped, cars without data or without a pair, the rows each pair
-/// rejects, a first car without data, where a pair's gap and speeds disagree
-/// (checkGapKinematics; a car whose gaps ahead and behind saw-tooth in opposite phase is named
-/// once more, as the one whose position is at fault), and metadata the file lacks or contradicts (OpenAccFile::metadata_problems). Throws RunReadError, naming every skip, when no group results.
+/// rejects, where its gap saw-tooths and is rebuilt (each stretch named; a car whose gaps ahead and
+/// behind saw-tooth in opposite phase is named once more, as the one whose position is at
+/// fault), a first car without data, where a pair's gap and speeds disagree (checkGapKinematics), and metadata the file lacks or contradicts (OpenAccFile::metadata_problems). Throws RunReadError, naming every skip, when no group results.
 CampaignInputs loadCampaign(const std::vector<std::string>& paths,
                             const RunPlausibilityBounds& bounds = RunPlausibilityBounds{});
 

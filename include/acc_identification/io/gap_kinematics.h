@@ -5,7 +5,6 @@
 #include <string>
 #include <vector>
 
-#include "acc_identification/io/gap_sawtooth.h"
 #include "acc_identification/model/car_following_run.h"
 
 namespace acc
@@ -27,7 +26,6 @@ struct GapKinematicsOptions
   /// windows (standard deviation): in steady following both changes are noise.
   double min_relative_motion_m = 3.0;
   double min_scale = 0.5, max_scale = 2.0;  ///< the ratio allowed
-  GapSawtoothOptions sawtooth;  ///< sample by sample, what the windows average away
 };
 
 struct GapKinematics
@@ -43,12 +41,12 @@ struct GapKinematics
   /// The window most off: its run, start and end, the gap change and what the speeds say.
   std::string worst_run;
   double worst_start_s = kNaN, worst_end_s = kNaN, worst_gap_change_m = kNaN, worst_speed_change_m = kNaN;
-  GapSawtooth sawtooth;  ///< the sample-by-sample check (gap_sawtooth.h)
-  /// Each disagreement in words, for a warning (the saw-tooth's last); empty when the gap and the
-  /// speeds agree (or too little relative motion decides the ratio: said in none).
+  /// Each disagreement in words, for a warning; empty when the gap and the speeds agree (or too
+  /// little relative motion decides the ratio: said in none). What these windows average away,
+  /// a gap that saw-tooths sample by sample, the run reader finds and rebuilds (gap_sawtooth.h).
   std::vector<std::string> warnings;
 };
 
-/// The check above over every run (windows never cross runs), and checkGapSawtooth's.
+/// The check above over every run (windows never cross runs).
 GapKinematics checkGapKinematics(const std::vector<CarFollowingRun>& runs, const GapKinematicsOptions& options = {});
 }  // namespace acc

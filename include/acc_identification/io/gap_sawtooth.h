@@ -32,13 +32,23 @@ struct GapSawtoothOptions
   /// and the mean step mismatch is less than this share of the median (the resets bring the net
   /// change back: a rate error that does not come back is a jump or a unit error, gap_kinematics.h).
   double max_mean_to_median = 0.5;
+  /// A span reaches beyond its windows through the consecutive steps next to it whose mismatch
+  /// exceeds this (metres): a window boundary cuts the saw-tooth's first and last teeth.
+  double min_step_mismatch_to_extend_m = 0.2;
 };
 
 /// A stretch of consecutive saw-tooth windows in one run.
 struct GapSawtoothSpan
 {
   std::string run;
-  double start_s = 0.0, end_s = 0.0;
+  std::size_t run_index = 0;  ///< in the runs checked
+  /// The samples [first_sample, end_sample) of that run whose gap is off: from the end of the first
+  /// mismatched step to the end of the last (the windows', extended as the options say).
+  std::size_t first_sample = 0, end_sample = 0;
+  double start_s = 0.0, end_s = 0.0;  ///< times of the first and the last of those samples
+  /// Steps inside it against the drift (mismatch of the other sign than the median, larger than
+  /// min_step_mismatch_to_extend_m): the resets, after each of which the gap is a fresh fix.
+  std::size_t resets = 0;
   double median_step_mismatch_m = 0.0;  ///< the largest of its windows', signed
   /// "follower" or "leader" when that window's extra rate is the cars' own speed (within 25 %):
   /// that car's position stood still between its updates (the gap grows when the follower's does,
@@ -51,11 +61,25 @@ struct GapSawtooth
   std::size_t windows = 0;           ///< windows judged
   std::size_t sawtooth_windows = 0;  ///< of them, saw-tooths
   std::vector<GapSawtoothSpan> spans;
-  /// The spans in words, for a warning; empty when no window saw-tooths.
-  std::vector<std::string> warnings;
 };
 
 /// The check above over every run (windows never cross runs; a run's last window shorter than
 /// window_s is not judged).
 GapSawtooth checkGapSawtooth(const std::vector<CarFollowingRun>& runs, const GapSawtoothOptions& options = {});
+
+/// One span in words, for a warning: where, by how much per sample, whose position held, and what
+/// the gap there is not.
+std::string describeSawtoothSpan(const GapSawtoothSpan& span);
+
+/// Rebuilds the gap over a span of the run it was found in. The sample before the span and the
+/// sample after each reset are fresh fixes and keep their gap; every other sample of the span
+/// takes the gap of the last fresh fix plus what the speeds say since (gapChangeBySpeedsM: the
+/// Doppler speeds are not affected, and over the 0.3-0.4 s between fixes they carry the gap to
+/// centimetres). The speeds, the time and every sample outside the span are left as they are.
+/// Throws std::out_of_range when the span is not within the run or starts at its first sample.
+void rebuildSawtoothGap(const GapSawtoothSpan& span, CarFollowingRun* run,
+                        const GapSawtoothOptions& options = {});
+
+/// "the gap of its 66 samples rebuilt from the fixes after its 16 resets and the speeds between"
+std::string describeGapRebuilt(const GapSawtoothSpan& span);
 }  // namespace acc

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "acc_identification/model/car_following_run.h"
+#include "acc_identification/io/gap_sawtooth.h"
 #include "acc_identification/io/openacc_file.h"
 #include "acc_identification/io/run_plausibility.h"
 
@@ -31,6 +32,11 @@ struct RunFileContents
   std::size_t duplicate_rows = 0;
   std::size_t time_holes = 0;         ///< steps longer than max_time_step_s (split points, no row lost)
   std::size_t acc_off_rows = 0;       ///< OpenACC rows where the follower was not on ACC (split points)
+  /// Rows whose gap saw-tooths (a position held between its updates, gap_sawtooth.h) and was
+  /// rebuilt from the fixes and the speeds (rebuildSawtoothGap); used, not in rejected_rows; each
+  /// stretch listed in problems and in sawtooth_spans (samples of the run it lies in; run_index 0).
+  std::size_t sawtooth_rows = 0;
+  std::vector<GapSawtoothSpan> sawtooth_spans;
   std::vector<std::string> problems;  ///< "path:line: why", one per rejected row, hole or short piece
   /// "path: ...", for OpenACC files: the pair(s) read and how they were chosen (also by default:
   /// never silently), the cars without data or without a pair and why, how ACC on was told, the
@@ -87,7 +93,8 @@ struct AllPairRuns
 AllPairRuns readAllPairRuns(const std::string& path, const RunPlausibilityBounds& bounds = RunPlausibilityBounds{});
 
 /// "path: 3 of 2530 rows rejected (1 outside the plausibility bounds, 0 duplicates), 2 holes in
-/// time split a run", or "" when no row is rejected and no hole splits.
+/// time split a run" (and ", the gap of 66 rows rebuilt where it saw-tooths" when there are), or
+/// "" when no row is rejected or rebuilt and no hole splits.
 std::string describeRowCounts(const std::string& path, const RunFileContents& contents);
 
 /// readRunFile() for tools: returns the runs, and writes every note and problem (and the counts of
