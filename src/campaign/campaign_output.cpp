@@ -203,28 +203,34 @@ nlohmann::json candidateJson(const PlatoonCandidate& candidate)
           {"objective", objectiveName(candidate.objective)}};
 }
 
+nlohmann::json comparisonJson(const EffectSetComparison& c)
+{
+  return {{"model", candidateJson(c.candidate)},
+          {"against", candidateJson(c.against)},
+          {"car_perturbations", c.car_perturbations},
+          {"perturbations", c.perturbations},
+          {"mean_loss", c.mean_loss},
+          {"against_loss", c.against_loss},
+          {"mean_window_mse_m2ps2", c.mean_window_mse},
+          {"against_window_mse_m2ps2", c.against_window_mse},
+          {"relative_improvement", c.relative_improvement},
+          {"p_value", c.p_value},
+          {"significant", c.significant}};
+}
+
 nlohmann::json selectionJson(const EffectSetSelection& selection)
 {
-  nlohmann::json comparisons = nlohmann::json::array();
+  nlohmann::json comparisons = nlohmann::json::array(), rivals = nlohmann::json::array();
   for (const EffectSetComparison& c : selection.comparisons)
-  {
-    comparisons.push_back({{"model", candidateJson(c.candidate)},
-                           {"against", candidateJson(c.against)},
-                           {"car_perturbations", c.car_perturbations},
-                           {"perturbations", c.perturbations},
-                           {"mean_loss", c.mean_loss},
-                           {"against_loss", c.against_loss},
-                           {"mean_window_mse_m2ps2", c.mean_window_mse},
-                           {"against_window_mse_m2ps2", c.against_window_mse},
-                           {"relative_improvement", c.relative_improvement},
-                           {"p_value", c.p_value},
-                           {"significant", c.significant}});
-  }
+    comparisons.push_back(comparisonJson(c));
+  for (const EffectSetComparison& c : selection.rivals)
+    rivals.push_back(comparisonJson(c));
   return {{"model", candidateJson(selection.model)},
           {"effects", effectNames(selection.model.effects)},
           {"objective", objectiveName(selection.model.objective)},
           {"excluded_run", selection.excluded_run},
-          {"comparisons", comparisons}};
+          {"comparisons", comparisons},
+          {"rivals", rivals}};
 }
 
 nlohmann::json summaryJson(const DipPredictionSummary& s)
@@ -726,18 +732,23 @@ nlohmann::json shapesJson(const ShapeTransferSummary& s)
   return {{"cars", toJson(s.cars)}, {"pair_base", toJson(s.pair_base)}, {"pair_diagnosed", toJson(s.pair_diagnosed)}};
 }
 
+std::string comparisonLine(const EffectSetComparison& c)
+{
+  return c.candidate.name() + " against " + c.against.name() + ": loss " + cellNumber("%.3f", c.mean_loss) + " vs " +
+         cellNumber("%.3f", c.against_loss) + " (" + cellNumber("%+.0f %%", -100.0 * c.relative_improvement) +
+         "; pair window MSE " + cellNumber("%.3f", c.mean_window_mse) + " vs " +
+         cellNumber("%.3f", c.against_window_mse) + "), p = " + cellNumber("%.4f", c.p_value) + " over " +
+         std::to_string(c.perturbations) + " perturbations";
+}
+
 std::vector<std::string> selectionLines(const EffectSetSelection& selection)
 {
   std::vector<std::string> lines;
   for (const EffectSetComparison& c : selection.comparisons)
-  {
-    lines.push_back(c.candidate.name() + " against " + c.against.name() + ": loss " + cellNumber("%.3f", c.mean_loss) +
-                    " vs " + cellNumber("%.3f", c.against_loss) + " (" + cellNumber("%+.0f %%", -100.0 * c.relative_improvement) +
-                    "; pair window MSE " + cellNumber("%.3f", c.mean_window_mse) + " vs " +
-                    cellNumber("%.3f", c.against_window_mse) + "), p = " + cellNumber("%.4f", c.p_value) +
-                    " over " + std::to_string(c.perturbations) + " perturbations" +
-                    (c.significant ? ": named" : ": not named"));
-  }
+    lines.push_back(comparisonLine(c) + (c.significant ? ": named" : ": not named"));
+  for (const EffectSetComparison& c : selection.rivals)
+    lines.push_back("choice " + comparisonLine(c) +
+                    (c.significant ? ": separated" : ": not separated, a near tie the data do not decide"));
   lines.push_back("chosen: " + selection.model.name());
   return lines;
 }
@@ -762,6 +773,55 @@ std::string choiceWithoutEachRunLine(const CampaignResult& result)
   }
   return "the choice made without each run (what that run is predicted with): the same for " + std::to_string(same) +
          " of " + std::to_string(result.run_effect_selections.size()) + " runs" + text;
+}
+
+/// Whether `model` holds every effect and objective of `other`.
+bool holdsAllOf(const PlatoonCandidate& model, const PlatoonCandidate& other)
+{
+  const std::vector<std::string> own = model.features();
+  for (const std::string& feature : other.features())
+  {
+    if (std::find(own.begin(), own.end(), feature) == own.end())
+      return false;
+  }
+  return true;
+}
+
+/// The near ties of the choices made without each run (the stage's choice and a rival the data do
+/// not separate from it), each with how many choices it occurs in, its p range, and the runs whose
+/// final model then holds the choice but not the rival: what those runs are predicted with is
+/// not the data's decision.
+std::string nearTiesWithoutEachRunLine(const CampaignResult& result)
+{
+  struct Tie
+  {
+    std::size_t choices = 0;
+    double p_low = 1.0, p_high = 0.0;
+    std::vector<std::string> rival_left_out;
+  };
+  std::map<std::string, Tie> ties;
+  for (const EffectSetSelection& selection : result.run_effect_selections)
+  {
+    for (const EffectSetComparison* rival : selection.unseparatedRivals())
+    {
+      Tie& tie = ties[rival->candidate.name() + " over " + rival->against.name()];
+      ++tie.choices;
+      tie.p_low = std::min(tie.p_low, rival->p_value);
+      tie.p_high = std::max(tie.p_high, rival->p_value);
+      if (!holdsAllOf(selection.model, rival->against))
+        tie.rival_left_out.push_back(selection.excluded_run);
+    }
+  }
+  std::vector<std::string> parts;
+  for (const auto& [name, tie] : ties)
+    parts.push_back(name + " in " + std::to_string(tie.choices) + " of " +
+                    std::to_string(result.run_effect_selections.size()) + " choices (p " +
+                    cellNumber("%.2f", tie.p_low) + "-" + cellNumber("%.2f", tie.p_high) + ")" +
+                    (tie.rival_left_out.empty() ? std::string(", the final model holding both")
+                                                : ", the final model without the rival for " +
+                                                      join(tie.rival_left_out, ", ")));
+  return "near ties (a stage's choice the data do not separate from a rival): " +
+         (parts.empty() ? std::string("none") : join(parts, "; "));
 }
 
 std::vector<std::string> platoonNotes(const CampaignResult& result)
@@ -868,6 +928,7 @@ void printCampaignTables(const CampaignResult& result, std::ostream& out)
     for (const std::string& line : selectionLines(result.effect_selection))
       out << "  " << line << "\n";
     out << "  " << choiceWithoutEachRunLine(result) << "\n";
+    out << "  " << nearTiesWithoutEachRunLine(result) << "\n";
     out << "\nHow far the gap shrinks (each run's diagnosed models chosen without that run)\n";
     printAligned(kGapHeader, gapRows(result), out);
     out << "\nHow much of the car ahead's dip shape each car passes on: its peak braking and recovery (speed slope "
@@ -957,6 +1018,7 @@ std::string campaignReportMarkdown(const CampaignResult& result, const std::vect
     for (const std::string& line : selectionLines(result.effect_selection))
       md << "- " << line << "\n";
     md << "- " << choiceWithoutEachRunLine(result) << "\n";
+    md << "- " << nearTiesWithoutEachRunLine(result) << "\n";
     md << "\n### How far the gap shrinks\n\nEach run's diagnosed models use the effect set chosen without that "
           "run, fitted on the car's other runs.\n\n";
     printMarkdownTable(kGapHeader, gapRows(result), md);

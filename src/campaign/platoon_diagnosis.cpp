@@ -159,26 +159,46 @@ std::optional<std::size_t> candidateIndex(const PlatoonCandidate& candidate)
   return static_cast<std::size_t>(found - candidates.begin()) + 1;
 }
 
+/// The stage's choice against each other candidate named at the stage (by the stage's
+/// comparisons, the last `stage_size` of selection->comparisons), one test each at alpha.
+void compareRivals(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
+                   const std::vector<std::size_t>& candidates, std::size_t chosen,
+                   const EffectSetSelectionOptions& options, EffectSetSelection* selection)
+{
+  const std::size_t first = selection->comparisons.size() - candidates.size();
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+  {
+    if (candidates[i] == chosen || !selection->comparisons[first + i].significant)
+      continue;
+    EffectSetComparison rival = compare(scores, exclude_file, chosen, candidates[i], 1, options);
+    rival.candidate = candidateAt(chosen);
+    rival.against = candidateAt(candidates[i]);
+    selection->rivals.push_back(std::move(rival));
+  }
+}
+
 /// One stage: each candidate index against `against`; returns the significant one with the lowest
-/// mean window MSE (or `against` when none is).
+/// mean loss (or `against` when none is), compared with its rivals.
 std::size_t runStage(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
                      const std::vector<std::size_t>& candidates, std::size_t against,
                      const EffectSetSelectionOptions& options, EffectSetSelection* selection)
 {
   std::size_t best = against;
-  double best_mse = std::numeric_limits<double>::infinity();
+  double best_loss = std::numeric_limits<double>::infinity();
   for (std::size_t candidate : candidates)
   {
     EffectSetComparison c = compare(scores, exclude_file, candidate, against, candidates.size(), options);
     c.candidate = candidateAt(candidate);
     c.against = candidateAt(against);
-    if (c.significant && c.mean_loss < best_mse)
+    if (c.significant && c.mean_loss < best_loss)
     {
       best = candidate;
-      best_mse = c.mean_loss;
+      best_loss = c.mean_loss;
     }
     selection->comparisons.push_back(std::move(c));
   }
+  if (best != against)
+    compareRivals(scores, exclude_file, candidates, best, options, selection);
   return best;
 }
 
@@ -218,6 +238,17 @@ bool parseObjective(const std::string& text, FitObjective* objective)
   return false;
 }
 }  // namespace
+
+std::vector<const EffectSetComparison*> EffectSetSelection::unseparatedRivals() const
+{
+  std::vector<const EffectSetComparison*> out;
+  for (const EffectSetComparison& rival : rivals)
+  {
+    if (!rival.significant)
+      out.push_back(&rival);
+  }
+  return out;
+}
 
 std::vector<std::string> PlatoonCandidate::features() const
 {

@@ -667,6 +667,31 @@ TEST(PlatoonEffectSelection, AddsWhatEachStageNamesUntilAStageNamesNothing)
   EXPECT_FALSE(two.comparisons.back().significant);
 }
 
+// A stage's choice is compared with every other candidate named at the stage: a lag exactly as
+// good as the delay is a near tie the data do not decide, a closing response far worse is not.
+// Fails when the rivals are not compared, or all are called ties.
+TEST(PlatoonEffectSelection, TheChoiceIsComparedWithEachRivalNamedAtItsStage)
+{
+  using E = acc::EffectKind;
+  using O = acc::FitObjective;
+  const acc::PlatoonCandidate delay{{E::reaction_delay}, O::speed};
+  const acc::PlatoonCandidate lag{{E::actuation_lag}, O::speed};
+  const acc::PlatoonCandidate closing{{E::quadratic_closing_response}, O::speed};
+  std::vector<double> depth(acc::platoonCandidates().size() + 1, 0.5);
+  depth[scoreIndexOf(delay)] = 0.9;
+  depth[scoreIndexOf(lag)] = 0.9;
+  depth[scoreIndexOf(closing)] = 0.65;
+  const acc::EffectSetSelection selection = acc::selectEffectSet(scoresWithChainDips(depth), 99, "", {});
+  EXPECT_EQ(selection.model, delay) << selection.model.name();  // the first of two equal losses
+  ASSERT_EQ(selection.rivals.size(), 2u);
+  for (const acc::EffectSetComparison& rival : selection.rivals)
+    EXPECT_EQ(rival.candidate, delay);
+  const std::vector<const acc::EffectSetComparison*> ties = selection.unseparatedRivals();
+  ASSERT_EQ(ties.size(), 1u);
+  EXPECT_EQ(ties[0]->against, lag);
+  EXPECT_NEAR(ties[0]->relative_improvement, 0.0, 1e-12);
+}
+
 /// A synthetic three-car platoon behind a perturbing lead car (150 s, the unstable law), read as
 /// the campaign reads a file.
 acc::CampaignFile threeCarPlatoonFile(const std::string& tag, std::uint64_t seed)

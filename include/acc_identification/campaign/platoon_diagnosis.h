@@ -152,7 +152,14 @@ struct EffectSetSelection
   std::size_t chosen = 0;
   PlatoonCandidate model;
   std::vector<EffectSetComparison> comparisons;
+  /// At each stage that names a candidate, the one chosen (candidate) against every other one
+  /// named there (against), by the same test at alpha: significant when the data separate the
+  /// choice from that rival, else the stage's choice is a near tie the data do not make.
+  std::vector<EffectSetComparison> rivals;
   std::string excluded_run;  ///< the run left out of the choice ("" when none)
+
+  /// The rivals the data do not separate from the choice made at their stage.
+  std::vector<const EffectSetComparison*> unseparatedRivals() const;
 };
 
 /// The stated rule over the pair-level scores of every file but `exclude_file` (pass a value
@@ -161,7 +168,8 @@ struct EffectSetSelection
 /// those with a significant, relevant improvement; each further stage compares each candidate that
 /// adds one thing to the last choice with it, by the same test, until none is named or none
 /// extends the choice. The bootstrap resamples whole perturbations (every car of one
-/// perturbation together, as they share its input), seeded.
+/// perturbation together, as they share its input), seeded. The stage's choice is then compared
+/// with every other candidate named at that stage (rivals), to say whether the data separate them.
 EffectSetSelection selectEffectSet(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
                                    const std::string& excluded_run, const EffectSetSelectionOptions& options);
 
