@@ -142,11 +142,10 @@ public:
   {
     if (current_.size() >= 2)
     {
-      current_.name = name_;
-      for (const GapSawtoothSpan& span : checkGapSawtooth({current_}).spans)
-        rebuildGap(span);
       ++pieces_;
       current_.name = pieces_ == 1 ? name_ : name_ + "#" + std::to_string(pieces_);
+      for (const GapSawtoothSpan& span : checkGapSawtooth({current_}).spans)
+        rebuildGap(span);
       contents_.runs.push_back(std::move(current_));
     }
     else if (current_.size() == 1)

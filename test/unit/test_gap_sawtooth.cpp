@@ -121,6 +121,7 @@ TEST(GapSawtooth, TheReaderRebuildsItAndSaysSo)
   EXPECT_EQ(contents.sawtooth_rows, 80u);  // samples 101-180 (10.1-18.0 s), file lines 103-182
   ASSERT_EQ(contents.sawtooth_spans.size(), 1u);
   EXPECT_EQ(contents.sawtooth_spans[0].resets, 20u);
+  EXPECT_EQ(contents.sawtooth_spans[0].run, "acc_sawtooth_run");
   ASSERT_EQ(contents.runs.size(), 1u);
   ASSERT_EQ(contents.runs[0].size(), truth.size());
   for (std::size_t k = 0; k < truth.size(); ++k)

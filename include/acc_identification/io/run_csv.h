@@ -34,7 +34,8 @@ struct RunFileContents
   std::size_t acc_off_rows = 0;       ///< OpenACC rows where the follower was not on ACC (split points)
   /// Rows whose gap saw-tooths (a position held between its updates, gap_sawtooth.h) and was
   /// rebuilt from the fixes and the speeds (rebuildSawtoothGap); used, not in rejected_rows; each
-  /// stretch listed in problems and in sawtooth_spans (samples of the run it lies in; run_index 0).
+  /// stretch listed in problems and in sawtooth_spans (each names its run, and its samples index
+  /// into that run; run_index is 0).
   std::size_t sawtooth_rows = 0;
   std::vector<GapSawtoothSpan> sawtooth_spans;
   std::vector<std::string> problems;  ///< "path:line: why", one per rejected row, hole or short piece
