@@ -430,7 +430,10 @@ CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& 
     result.platoons.push_back(checkPlatoonByPerturbation(
         inputs.files[f], chainsOfFile(inputs, f, tasks, fitted, base_models, diagnosed), options.platoon));
     if (diagnose)
+    {
+      addAlternativeDips(result.pair_scores, f, selections[f], &result.platoons.back());
       result.run_effect_selections.push_back(selections[f]);
+    }
   }
   addLinkRatioChains(result.platoons, kScoredMinDipMps);
   addDipChecks(result.platoons, result.groups);

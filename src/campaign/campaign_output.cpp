@@ -14,6 +14,7 @@
 #include "acc_identification/evidence/evidence_json.h"
 #include "acc_identification/model/number_text.h"
 #include "acc_identification/model/plain_text.h"
+#include "acc_identification/model/sample_statistics.h"
 #include "acc_identification/model/string_stability.h"
 
 namespace acc
@@ -131,7 +132,16 @@ nlohmann::json vehicleJson(const CampaignInputs& inputs, std::size_t index, cons
 /// A car's position, null for 0 (none).
 nlohmann::json positionOrNull(int position) { return position > 0 ? nlohmann::json(position) : nlohmann::json(); }
 
-nlohmann::json positionsJson(const std::vector<DipComparison>& positions)
+/// {model name: dip} of the run's alternative models at one position.
+nlohmann::json alternativeDipsJson(const DipComparison& row, const std::vector<std::string>& models)
+{
+  nlohmann::json j = nlohmann::json::object();
+  for (std::size_t a = 0; a < models.size() && a < row.chain_alternatives_dip_mps.size(); ++a)
+    j[models[a]] = row.chain_alternatives_dip_mps[a];
+  return j;
+}
+
+nlohmann::json positionsJson(const std::vector<DipComparison>& positions, const std::vector<std::string>& alternatives)
 {
   nlohmann::json j = nlohmann::json::array();
   for (const DipComparison& row : positions)
@@ -146,6 +156,7 @@ nlohmann::json positionsJson(const std::vector<DipComparison>& positions)
                  {"predicted_amplification", row.chain_amplification},
                  {"predicted_dip_mps_diagnosed", row.chain_diagnosed.dip_mps},
                  {"predicted_amplification_diagnosed", row.chain_amplification_diagnosed},
+                 {"predicted_dip_mps_alternatives", alternativeDipsJson(row, alternatives)},
                  {"pair_predicted_dip_mps", row.pair.dip_mps},
                  {"pair_predicted_dip_mps_diagnosed", row.pair_diagnosed.dip_mps},
                  {"predicted_dip_mps_link_ratios", row.link_ratio_chain_dip_mps},
@@ -220,17 +231,21 @@ nlohmann::json comparisonJson(const EffectSetComparison& c)
 
 nlohmann::json selectionJson(const EffectSetSelection& selection)
 {
-  nlohmann::json comparisons = nlohmann::json::array(), rivals = nlohmann::json::array();
+  nlohmann::json comparisons = nlohmann::json::array(), rivals = nlohmann::json::array(),
+                 alternatives = nlohmann::json::array();
   for (const EffectSetComparison& c : selection.comparisons)
     comparisons.push_back(comparisonJson(c));
   for (const EffectSetComparison& c : selection.rivals)
     rivals.push_back(comparisonJson(c));
+  for (const EffectSetComparison& c : selection.alternatives)
+    alternatives.push_back(comparisonJson(c));
   return {{"model", candidateJson(selection.model)},
           {"effects", effectNames(selection.model.effects)},
           {"objective", objectiveName(selection.model.objective)},
           {"excluded_run", selection.excluded_run},
           {"comparisons", comparisons},
-          {"rivals", rivals}};
+          {"rivals", rivals},
+          {"alternatives", alternatives}};
 }
 
 nlohmann::json summaryJson(const DipPredictionSummary& s)
@@ -449,7 +464,7 @@ nlohmann::json platoonJson(const PlatoonCheck& check, const EffectSetSelection* 
                              {"end_s", p.perturbation.end_s},
                              {"window_end_s", p.perturbation.window_end_s},
                              {"lead_median_mps", p.perturbation.lead_median_mps},
-                             {"positions", positionsJson(p.positions)},
+                             {"positions", positionsJson(p.positions, check.alternative_models)},
                              {"data_show_growth", p.data_show_growth},
                              {"driven_by_hand", p.driven_by_hand},
                              {"models_fitted_on_it", p.fitted_on_it},
@@ -472,7 +487,8 @@ nlohmann::json platoonJson(const PlatoonCheck& check, const EffectSetSelection* 
   const bool any = !check.perturbations.empty();
   return {{"run", check.run},
           {"setting", check.setting},
-          {"positions", any ? positionsJson(check.perturbations.front().positions) : nlohmann::json::array()},
+          {"positions", any ? positionsJson(check.perturbations.front().positions, check.alternative_models)
+                            : nlohmann::json::array()},
           {"data_show_growth", any && check.perturbations.front().data_show_growth},
           {"disagreements", disagreements},
           {"perturbations", perturbations},
@@ -824,6 +840,45 @@ std::string nearTiesWithoutEachRunLine(const CampaignResult& result)
          (parts.empty() ? std::string("none") : join(parts, "; "));
 }
 
+/// The median relative dip error of a run's chain over its scored car-perturbations, with the
+/// diagnosed models (alternative < 0) or with alternative model `alternative`; NaN without any.
+double runMedianDipError(const PlatoonCheck& check, int alternative)
+{
+  std::vector<double> errors;
+  for (const PerturbationCheck& p : check.perturbations)
+    for (const DipComparison& row : p.positions)
+    {
+      const double predicted = alternative < 0 ? row.chain_diagnosed.dip_mps
+                                               : row.chain_alternatives_dip_mps.at(static_cast<std::size_t>(alternative));
+      if (row.position >= 2 && row.measured.dip_mps > kScoredMinDipMps && std::isfinite(predicted))
+        errors.push_back(predicted / row.measured.dip_mps - 1.0);
+    }
+  return errors.empty() ? kNaN : interpolatedQuantile(errors, 0.5);
+}
+
+/// The runs whose own choice has alternatives (final models the data do not separate from it):
+/// each with what its chain's dips become under them.
+std::string alternativeModelsLine(const CampaignResult& result)
+{
+  std::vector<std::string> runs;
+  for (std::size_t i = 0; i < result.platoons.size() && i < result.run_effect_selections.size(); ++i)
+  {
+    const PlatoonCheck& check = result.platoons[i];
+    const EffectSetSelection& selection = result.run_effect_selections[i];
+    for (std::size_t a = 0; a < selection.alternatives.size(); ++a)
+    {
+      const EffectSetComparison& c = selection.alternatives[a];
+      runs.push_back(check.run + ": " + c.candidate.name() + " or " + c.against.name() + " (loss " +
+                     cellNumber("%.3f", c.mean_loss) + " vs " + cellNumber("%.3f", c.against_loss) + ", p = " +
+                     cellNumber("%.2f", c.p_value) + "), its chain's median dip error " +
+                     cellNumber("%+.0f %%", 100.0 * runMedianDipError(check, -1)) + " or " +
+                     cellNumber("%+.0f %%", 100.0 * runMedianDipError(check, static_cast<int>(a))));
+    }
+  }
+  return "runs predicted with one of final models the data do not separate (predicted_dip_mps_alternatives): " +
+         (runs.empty() ? std::string("none") : join(runs, "; "));
+}
+
 std::vector<std::string> platoonNotes(const CampaignResult& result)
 {
   std::vector<std::string> notes;
@@ -929,6 +984,7 @@ void printCampaignTables(const CampaignResult& result, std::ostream& out)
       out << "  " << line << "\n";
     out << "  " << choiceWithoutEachRunLine(result) << "\n";
     out << "  " << nearTiesWithoutEachRunLine(result) << "\n";
+    out << "  " << alternativeModelsLine(result) << "\n";
     out << "\nHow far the gap shrinks (each run's diagnosed models chosen without that run)\n";
     printAligned(kGapHeader, gapRows(result), out);
     out << "\nHow much of the car ahead's dip shape each car passes on: its peak braking and recovery (speed slope "
@@ -1019,6 +1075,7 @@ std::string campaignReportMarkdown(const CampaignResult& result, const std::vect
       md << "- " << line << "\n";
     md << "- " << choiceWithoutEachRunLine(result) << "\n";
     md << "- " << nearTiesWithoutEachRunLine(result) << "\n";
+    md << "- " << alternativeModelsLine(result) << "\n";
     md << "\n### How far the gap shrinks\n\nEach run's diagnosed models use the effect set chosen without that "
           "run, fitted on the car's other runs.\n\n";
     printMarkdownTable(kGapHeader, gapRows(result), md);

@@ -462,31 +462,88 @@ std::string criterionName(SelectionCriterion criterion)
   return criterion == SelectionCriterion::platoon_dips ? "platoon_dips" : "pair_windows";
 }
 
+namespace
+{
+/// The stages from candidate `start` on: each tries what adds one thing to the last choice, until
+/// nothing is named or no candidate extends it. Returns the last choice; the comparisons go to
+/// `record`.
+std::size_t forwardSelect(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
+                          std::size_t start, const EffectSetSelectionOptions& options, EffectSetSelection* record)
+{
+  std::size_t chosen = start;
+  for (std::vector<std::size_t> extensions = extensionsOf(start); !extensions.empty();
+       extensions = extensionsOf(chosen))
+  {
+    const std::size_t next = runStage(scores, exclude_file, extensions, chosen, options, record);
+    if (next == chosen)
+      break;
+    chosen = next;
+  }
+  return chosen;
+}
+
+/// The final models reached from each unseparated rival that the data do not separate from the
+/// choice, into selection->alternatives.
+void addAlternatives(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file, std::size_t chosen,
+                     const EffectSetSelectionOptions& options, EffectSetSelection* selection)
+{
+  for (const EffectSetComparison* rival : selection->unseparatedRivals())
+  {
+    EffectSetSelection branch;
+    const std::size_t reached = forwardSelect(scores, exclude_file, *candidateIndex(rival->against), options, &branch);
+    const auto& known = selection->alternative_indices;
+    if (reached == chosen || std::find(known.begin(), known.end(), reached) != known.end())
+      continue;
+    EffectSetComparison versus = compare(scores, exclude_file, chosen, reached, 1, options);
+    if (versus.significant)
+      continue;
+    versus.candidate = candidateAt(chosen);
+    versus.against = candidateAt(reached);
+    selection->alternatives.push_back(std::move(versus));
+    selection->alternative_indices.push_back(reached);
+  }
+}
+}  // namespace
+
 EffectSetSelection selectEffectSet(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
                                    const std::string& excluded_run, const EffectSetSelectionOptions& options)
 {
   EffectSetSelection selection;
   selection.excluded_run = excluded_run;
-  // Forward: each stage tries what adds one thing to the last choice, until nothing is named or
-  // no candidate extends it.
-  std::size_t chosen = 0;
-  for (std::vector<std::size_t> extensions = extensionsOf(0); !extensions.empty(); extensions = extensionsOf(chosen))
-  {
-    const std::size_t next = runStage(scores, exclude_file, extensions, chosen, options, &selection);
-    if (next == chosen)
-      break;
-    chosen = next;
-  }
+  std::size_t chosen = forwardSelect(scores, exclude_file, 0, options, &selection);
+  addAlternatives(scores, exclude_file, chosen, options, &selection);
   if (options.force)
   {
     const std::optional<std::size_t> forced = candidateIndex(options.forced);
     if (!forced)
       throw std::invalid_argument(options.forced.name() + " is not among the platoon diagnosis's candidates");
     chosen = *forced;
+    selection.alternatives.clear();  // they are the rule's choice's, not the forced model's
+    selection.alternative_indices.clear();
   }
   selection.chosen = chosen;
   selection.model = candidateAt(chosen);
   return selection;
+}
+
+void addAlternativeDips(const std::vector<PairPerturbationScore>& scores, std::size_t file_index,
+                        const EffectSetSelection& selection, PlatoonCheck* check)
+{
+  for (const EffectSetComparison& alternative : selection.alternatives)
+    check->alternative_models.push_back(alternative.against.name());
+  for (std::size_t p = 0; p < check->perturbations.size(); ++p)
+    for (DipComparison& row : check->perturbations[p].positions)
+    {
+      row.chain_alternatives_dip_mps.assign(selection.alternative_indices.size(), kNaN);
+      for (const PairPerturbationScore& s : scores)
+      {
+        if (s.file_index != file_index || s.perturbation != p || s.position != row.position)
+          continue;
+        for (std::size_t a = 0; a < selection.alternative_indices.size(); ++a)
+          if (selection.alternative_indices[a] < s.chain_dip_mps.size())
+            row.chain_alternatives_dip_mps[a] = s.chain_dip_mps[selection.alternative_indices[a]];
+      }
+    }
 }
 
 std::string effectSetSelectionRule(const EffectSetSelectionOptions& options)

@@ -690,6 +690,72 @@ TEST(PlatoonEffectSelection, TheChoiceIsComparedWithEachRivalNamedAtItsStage)
   ASSERT_EQ(ties.size(), 1u);
   EXPECT_EQ(ties[0]->against, lag);
   EXPECT_NEAR(ties[0]->relative_improvement, 0.0, 1e-12);
+  ASSERT_EQ(selection.alternatives.size(), 1u);  // the lag's branch ends at the lag
+  EXPECT_EQ(selection.alternatives[0].against, lag);
+}
+
+// Going on from a rival the data do not separate may end at another final model: kept as an
+// alternative when the data do not separate it from the choice either, not when the choice went
+// on to a clearly better model. Fails when the rival's branch is not followed, or every branch's
+// end is kept.
+TEST(PlatoonEffectSelection, ARivalsBranchEndsInAnAlternativeOnlyWhereTheDataDoNotSeparateThem)
+{
+  using E = acc::EffectKind;
+  using O = acc::FitObjective;
+  const acc::PlatoonCandidate delay{{E::reaction_delay}, O::speed};
+  const acc::PlatoonCandidate lag{{E::actuation_lag}, O::speed};
+  const acc::PlatoonCandidate lag_asymmetric{{E::asymmetric_response, E::actuation_lag}, O::speed};
+  const acc::PlatoonCandidate delay_anticipation{{E::leader_braking_anticipation, E::reaction_delay}, O::speed};
+  std::vector<double> depth(acc::platoonCandidates().size() + 1, 0.5);
+  depth[scoreIndexOf(delay)] = 0.9;  // stage 1: the delay and the lag tie, the delay is taken
+  depth[scoreIndexOf(lag)] = 0.9;
+  depth[scoreIndexOf(lag_asymmetric)] = 0.99;  // the lag's branch goes on to a better model
+  const acc::EffectSetSelection branch = acc::selectEffectSet(scoresWithChainDips(depth), 99, "", {});
+  EXPECT_EQ(branch.model, delay) << branch.model.name();
+  ASSERT_EQ(branch.alternatives.size(), 1u);
+  EXPECT_EQ(branch.alternatives[0].against, lag_asymmetric) << branch.alternatives[0].against.name();
+  EXPECT_EQ(branch.alternative_indices[0], scoreIndexOf(lag_asymmetric));
+
+  depth[scoreIndexOf(lag_asymmetric)] = 0.5;
+  depth[scoreIndexOf(delay_anticipation)] = 0.995;  // now the choice goes on, far past the lag
+  const acc::EffectSetSelection separated = acc::selectEffectSet(scoresWithChainDips(depth), 99, "", {});
+  EXPECT_EQ(separated.model, delay_anticipation) << separated.model.name();
+  EXPECT_FALSE(separated.unseparatedRivals().empty());
+  EXPECT_TRUE(separated.alternatives.empty()) << separated.alternatives.front().against.name();
+}
+
+// The run's alternative models reach its positions from the scores of the same file, position
+// and perturbation. Fails when another file's scores leak in or the order is lost.
+TEST(PlatoonEffectSelection, AnAlternativesDipsComeFromItsOwnRunsScores)
+{
+  acc::PlatoonCheck check;
+  check.perturbations.resize(1);
+  check.perturbations[0].positions.resize(2);
+  check.perturbations[0].positions[0].position = 2;
+  check.perturbations[0].positions[1].position = 3;
+  std::vector<acc::PairPerturbationScore> scores(3);
+  for (std::size_t i = 0; i < scores.size(); ++i)
+  {
+    scores[i].file_index = i == 2 ? 1 : 0;  // the third is another run's
+    scores[i].position = i == 1 ? 3 : 2;
+    scores[i].chain_dip_mps = {1.0, 2.0 + static_cast<double>(i), 3.0 + static_cast<double>(i)};
+  }
+  acc::EffectSetSelection selection;
+  selection.alternative_indices = {2, 1};
+  selection.alternatives.resize(2);
+  selection.alternatives[0].against = acc::platoonCandidates()[1];
+  selection.alternatives[1].against = acc::platoonCandidates()[0];
+  acc::addAlternativeDips(scores, 0, selection, &check);
+  ASSERT_EQ(check.alternative_models.size(), 2u);
+  EXPECT_EQ(check.alternative_models[0], acc::platoonCandidates()[1].name());
+  const std::vector<double>& second = check.perturbations[0].positions[0].chain_alternatives_dip_mps;
+  const std::vector<double>& third = check.perturbations[0].positions[1].chain_alternatives_dip_mps;
+  ASSERT_EQ(second.size(), 2u);
+  ASSERT_EQ(third.size(), 2u);
+  EXPECT_EQ(second[0], 3.0);
+  EXPECT_EQ(second[1], 2.0);
+  EXPECT_EQ(third[0], 4.0);
+  EXPECT_EQ(third[1], 3.0);
 }
 
 /// A synthetic three-car platoon behind a perturbing lead car (150 s, the unstable law), read as

@@ -76,6 +76,10 @@ struct DipComparison
   /// No model: the dip chained with each car's link ratio from its other runs (addLinkRatioChains;
   /// NaN until then, and where a car on the way has none).
   double link_ratio_chain_dip_mps = std::numeric_limits<double>::quiet_NaN();
+  /// The chain's dip with each of the run's alternative models (PlatoonCheck::alternative_models:
+  /// final models the data do not separate from the diagnosed one), in that order; NaN where not
+  /// predicted.
+  std::vector<double> chain_alternatives_dip_mps;
 };
 
 /// Where the model and the data disagree.
@@ -151,6 +155,9 @@ struct PlatoonCheck
   std::vector<PlatoonCarPrediction> pairs, pairs_diagnosed;
   std::vector<PerturbationCheck> perturbations;
   std::vector<std::string> notes;          ///< chain stops and other caveats
+  /// The names of the run's alternative models (EffectSetSelection::alternatives), whose dips each
+  /// DipComparison holds in chain_alternatives_dip_mps.
+  std::vector<std::string> alternative_models;
 };
 
 struct PlatoonCheckOptions

@@ -156,6 +156,12 @@ struct EffectSetSelection
   /// named there (against), by the same test at alpha: significant when the data separate the
   /// choice from that rival, else the stage's choice is a near tie the data do not make.
   std::vector<EffectSetComparison> rivals;
+  /// The final models the rule reaches when it goes on from an unseparated rival instead (the
+  /// same stages from there; one branch deep), each compared with the choice (candidate: the
+  /// choice, against: the alternative), kept when the data do not separate the two: models the
+  /// run could as well be predicted with. Indices as `chosen`, in alternative_indices.
+  std::vector<EffectSetComparison> alternatives;
+  std::vector<std::size_t> alternative_indices;
   std::string excluded_run;  ///< the run left out of the choice ("" when none)
 
   /// The rivals the data do not separate from the choice made at their stage.
@@ -172,6 +178,12 @@ struct EffectSetSelection
 /// with every other candidate named at that stage (rivals), to say whether the data separate them.
 EffectSetSelection selectEffectSet(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
                                    const std::string& excluded_run, const EffectSetSelectionOptions& options);
+
+/// The reverse of addChainDips for a run's alternative models: check (the run of file
+/// file_index) gets their names, and each of its DipComparisons the chain dips the scores hold
+/// for them (NaN where none).
+void addAlternativeDips(const std::vector<PairPerturbationScore>& scores, std::size_t file_index,
+                        const EffectSetSelection& selection, PlatoonCheck* check);
 
 /// The rule in words, for reports and JSON.
 std::string effectSetSelectionRule(const EffectSetSelectionOptions& options);
