@@ -534,7 +534,9 @@ void addAlternativeDips(const std::vector<PairPerturbationScore>& scores, std::s
   for (std::size_t p = 0; p < check->perturbations.size(); ++p)
     for (DipComparison& row : check->perturbations[p].positions)
     {
-      row.chain_alternatives_dip_mps.assign(selection.alternative_indices.size(), kNaN);
+      // The first car is the chain's input, whatever the model: its dip as the diagnosed chain's.
+      row.chain_alternatives_dip_mps.assign(selection.alternative_indices.size(),
+                                            row.position == 1 ? row.chain_diagnosed.dip_mps : kNaN);
       for (const PairPerturbationScore& s : scores)
       {
         if (s.file_index != file_index || s.perturbation != p || s.position != row.position)

@@ -730,9 +730,11 @@ TEST(PlatoonEffectSelection, AnAlternativesDipsComeFromItsOwnRunsScores)
 {
   acc::PlatoonCheck check;
   check.perturbations.resize(1);
-  check.perturbations[0].positions.resize(2);
+  check.perturbations[0].positions.resize(3);
   check.perturbations[0].positions[0].position = 2;
   check.perturbations[0].positions[1].position = 3;
+  check.perturbations[0].positions[2].position = 1;  // the input, never scored
+  check.perturbations[0].positions[2].chain_diagnosed.dip_mps = 2.5;
   std::vector<acc::PairPerturbationScore> scores(3);
   for (std::size_t i = 0; i < scores.size(); ++i)
   {
@@ -756,6 +758,7 @@ TEST(PlatoonEffectSelection, AnAlternativesDipsComeFromItsOwnRunsScores)
   EXPECT_EQ(second[1], 2.0);
   EXPECT_EQ(third[0], 4.0);
   EXPECT_EQ(third[1], 3.0);
+  EXPECT_EQ(check.perturbations[0].positions[2].chain_alternatives_dip_mps, std::vector<double>(2, 2.5));
 }
 
 /// A synthetic three-car platoon behind a perturbing lead car (150 s, the unstable law), read as

@@ -181,7 +181,7 @@ EffectSetSelection selectEffectSet(const std::vector<PairPerturbationScore>& sco
 
 /// The reverse of addChainDips for a run's alternative models: check (the run of file
 /// file_index) gets their names, and each of its DipComparisons the chain dips the scores hold
-/// for them (NaN where none).
+/// for them (the first car: its own dip, the chain's input; NaN where no score is).
 void addAlternativeDips(const std::vector<PairPerturbationScore>& scores, std::size_t file_index,
                         const EffectSetSelection& selection, PlatoonCheck* check);
 
