@@ -5,6 +5,7 @@
 #include <limits>
 #include <ostream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "acc_identification/calibration/calibration_report.h"
@@ -14,7 +15,6 @@
 #include "acc_identification/evidence/evidence_json.h"
 #include "acc_identification/model/number_text.h"
 #include "acc_identification/model/plain_text.h"
-#include "acc_identification/model/sample_statistics.h"
 #include "acc_identification/model/string_stability.h"
 
 namespace acc
@@ -791,18 +791,6 @@ std::string choiceWithoutEachRunLine(const CampaignResult& result)
          " of " + std::to_string(result.run_effect_selections.size()) + " runs" + text;
 }
 
-/// Whether `model` holds every effect and objective of `other`.
-bool holdsAllOf(const PlatoonCandidate& model, const PlatoonCandidate& other)
-{
-  const std::vector<std::string> own = model.features();
-  for (const std::string& feature : other.features())
-  {
-    if (std::find(own.begin(), own.end(), feature) == own.end())
-      return false;
-  }
-  return true;
-}
-
 /// The near ties of the choices made without each run (the stage's choice and a rival the data do
 /// not separate from it), each with how many choices it occurs in, its p range, and the runs whose
 /// final model then holds the choice but not the rival: what those runs are predicted with is
@@ -824,7 +812,7 @@ std::string nearTiesWithoutEachRunLine(const CampaignResult& result)
       ++tie.choices;
       tie.p_low = std::min(tie.p_low, rival->p_value);
       tie.p_high = std::max(tie.p_high, rival->p_value);
-      if (!holdsAllOf(selection.model, rival->against))
+      if (!selection.model.holdsAllOf(rival->against))
         tie.rival_left_out.push_back(selection.excluded_run);
     }
   }
@@ -840,20 +828,17 @@ std::string nearTiesWithoutEachRunLine(const CampaignResult& result)
          (parts.empty() ? std::string("none") : join(parts, "; "));
 }
 
-/// The median relative dip error of a run's chain over its scored car-perturbations, with the
-/// diagnosed models (alternative < 0) or with alternative model `alternative`; NaN without any.
-double runMedianDipError(const PlatoonCheck& check, int alternative)
+/// The median relative dip error of a run's diagnosed chain, scored as every chain is
+/// (summarizeDipPredictions), with its dips replaced by alternative model `a`'s when given.
+double runMedianDipError(const PlatoonCheck& check, std::optional<std::size_t> a = std::nullopt)
 {
-  std::vector<double> errors;
-  for (const PerturbationCheck& p : check.perturbations)
-    for (const DipComparison& row : p.positions)
-    {
-      const double predicted = alternative < 0 ? row.chain_diagnosed.dip_mps
-                                               : row.chain_alternatives_dip_mps.at(static_cast<std::size_t>(alternative));
-      if (row.position >= 2 && row.measured.dip_mps > kScoredMinDipMps && std::isfinite(predicted))
-        errors.push_back(predicted / row.measured.dip_mps - 1.0);
-    }
-  return errors.empty() ? kNaN : interpolatedQuantile(errors, 0.5);
+  PlatoonCheck scored;
+  scored.perturbations = check.perturbations;
+  for (PerturbationCheck& p : scored.perturbations)
+    for (DipComparison& row : p.positions)
+      if (a)
+        row.chain_diagnosed.dip_mps = row.chain_alternatives_dip_mps.at(*a);
+  return summarizeDipPredictions({scored}, DipPrediction::chain_diagnosed).median_dip_error;
 }
 
 /// The runs whose own choice has alternatives (final models the data do not separate from it):
@@ -871,8 +856,8 @@ std::string alternativeModelsLine(const CampaignResult& result)
       runs.push_back(check.run + ": " + c.candidate.name() + " or " + c.against.name() + " (loss " +
                      cellNumber("%.3f", c.mean_loss) + " vs " + cellNumber("%.3f", c.against_loss) + ", p = " +
                      cellNumber("%.2f", c.p_value) + "), its chain's median dip error " +
-                     cellNumber("%+.0f %%", 100.0 * runMedianDipError(check, -1)) + " or " +
-                     cellNumber("%+.0f %%", 100.0 * runMedianDipError(check, static_cast<int>(a))));
+                     cellNumber("%+.0f %%", 100.0 * runMedianDipError(check)) + " or " +
+                     cellNumber("%+.0f %%", 100.0 * runMedianDipError(check, a)));
     }
   }
   return "runs predicted with one of final models the data do not separate (predicted_dip_mps_alternatives): " +

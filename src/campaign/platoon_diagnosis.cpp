@@ -129,15 +129,7 @@ EffectSetComparison compare(const std::vector<PairPerturbationScore>& scores, st
 /// Whether `candidate` adds exactly one feature (an effect or an objective) to `base`.
 bool extendsByOne(const PlatoonCandidate& candidate, const PlatoonCandidate& base)
 {
-  const std::vector<std::string> own = candidate.features(), theirs = base.features();
-  if (own.size() != theirs.size() + 1)
-    return false;
-  for (const std::string& feature : theirs)
-  {
-    if (std::find(own.begin(), own.end(), feature) == own.end())
-      return false;
-  }
-  return true;
+  return candidate.features().size() == base.features().size() + 1 && candidate.holdsAllOf(base);
 }
 
 const PlatoonCandidate& candidateAt(std::size_t index)
@@ -248,6 +240,17 @@ std::vector<const EffectSetComparison*> EffectSetSelection::unseparatedRivals() 
       out.push_back(&rival);
   }
   return out;
+}
+
+bool PlatoonCandidate::holdsAllOf(const PlatoonCandidate& other) const
+{
+  const std::vector<std::string> own = features();
+  for (const std::string& feature : other.features())
+  {
+    if (std::find(own.begin(), own.end(), feature) == own.end())
+      return false;
+  }
+  return true;
 }
 
 std::vector<std::string> PlatoonCandidate::features() const
@@ -491,8 +494,10 @@ void addAlternatives(const std::vector<PairPerturbationScore>& scores, std::size
   {
     EffectSetSelection branch;
     const std::size_t reached = forwardSelect(scores, exclude_file, *candidateIndex(rival->against), options, &branch);
-    const auto& known = selection->alternative_indices;
-    if (reached == chosen || std::find(known.begin(), known.end(), reached) != known.end())
+    const auto& known = selection->alternatives;
+    if (reached == chosen || std::any_of(known.begin(), known.end(), [&](const EffectSetComparison& a) {
+          return a.against == candidateAt(reached);
+        }))
       continue;
     EffectSetComparison versus = compare(scores, exclude_file, chosen, reached, 1, options);
     if (versus.significant)
@@ -500,7 +505,6 @@ void addAlternatives(const std::vector<PairPerturbationScore>& scores, std::size
     versus.candidate = candidateAt(chosen);
     versus.against = candidateAt(reached);
     selection->alternatives.push_back(std::move(versus));
-    selection->alternative_indices.push_back(reached);
   }
 }
 }  // namespace
@@ -519,7 +523,6 @@ EffectSetSelection selectEffectSet(const std::vector<PairPerturbationScore>& sco
       throw std::invalid_argument(options.forced.name() + " is not among the platoon diagnosis's candidates");
     chosen = *forced;
     selection.alternatives.clear();  // they are the rule's choice's, not the forced model's
-    selection.alternative_indices.clear();
   }
   selection.chosen = chosen;
   selection.model = candidateAt(chosen);
@@ -529,21 +532,25 @@ EffectSetSelection selectEffectSet(const std::vector<PairPerturbationScore>& sco
 void addAlternativeDips(const std::vector<PairPerturbationScore>& scores, std::size_t file_index,
                         const EffectSetSelection& selection, PlatoonCheck* check)
 {
+  std::vector<std::size_t> indices;  // into each score's models
   for (const EffectSetComparison& alternative : selection.alternatives)
+  {
     check->alternative_models.push_back(alternative.against.name());
+    indices.push_back(*candidateIndex(alternative.against));
+  }
   for (std::size_t p = 0; p < check->perturbations.size(); ++p)
     for (DipComparison& row : check->perturbations[p].positions)
     {
       // The first car is the chain's input, whatever the model: its dip as the diagnosed chain's.
-      row.chain_alternatives_dip_mps.assign(selection.alternative_indices.size(),
+      row.chain_alternatives_dip_mps.assign(indices.size(),
                                             row.position == 1 ? row.chain_diagnosed.dip_mps : kNaN);
       for (const PairPerturbationScore& s : scores)
       {
         if (s.file_index != file_index || s.perturbation != p || s.position != row.position)
           continue;
-        for (std::size_t a = 0; a < selection.alternative_indices.size(); ++a)
-          if (selection.alternative_indices[a] < s.chain_dip_mps.size())
-            row.chain_alternatives_dip_mps[a] = s.chain_dip_mps[selection.alternative_indices[a]];
+        for (std::size_t a = 0; a < indices.size(); ++a)
+          if (indices[a] < s.chain_dip_mps.size())
+            row.chain_alternatives_dip_mps[a] = s.chain_dip_mps[indices[a]];
       }
     }
 }

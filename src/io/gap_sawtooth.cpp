@@ -55,12 +55,18 @@ std::string heldPosition(const SawtoothWindow& w)
   return w.median_rate_mps > 0.0 ? "follower" : "leader";
 }
 
-/// The step mismatches of a run: [k] = (s_k - s_k-1) - what the speeds say, for k >= 1; [0] = 0.
+/// The gap's step from sample k - 1 to k minus the step the speeds say [m]; 1 <= k < run.size().
+double stepMismatchM(const CarFollowingRun& run, std::size_t k)
+{
+  return run.space_gap_m[k] - run.space_gap_m[k - 1] - gapChangeBySpeedsM(run, k);
+}
+
+/// The step mismatches of a run: [k] = stepMismatchM(run, k) for k >= 1; [0] = 0.
 std::vector<double> stepMismatches(const CarFollowingRun& run)
 {
   std::vector<double> mismatches(run.size(), 0.0);
   for (std::size_t k = 1; k < run.size(); ++k)
-    mismatches[k] = run.space_gap_m[k] - run.space_gap_m[k - 1] - gapChangeBySpeedsM(run, k);
+    mismatches[k] = stepMismatchM(run, k);
   return mismatches;
 }
 
@@ -169,10 +175,13 @@ void rebuildSawtoothGap(const GapSawtoothSpan& span, CarFollowingRun* run, const
 {
   if (span.first_sample == 0 || span.end_sample > run->size() || span.first_sample > span.end_sample)
     throw std::out_of_range("rebuildSawtoothGap: the span is not within the run");
-  const std::vector<double> mismatches = stepMismatches(*run);  // of the gap as measured
+  // Sample k is a fresh fix when the measured step onto it is a reset: read before any is rebuilt.
+  std::vector<bool> fresh_fix;
+  for (std::size_t k = span.first_sample; k < span.end_sample; ++k)
+    fresh_fix.push_back(isReset(stepMismatchM(*run, k), span.median_step_mismatch_m, options));
   for (std::size_t k = span.first_sample; k < span.end_sample; ++k)
   {
-    if (!isReset(mismatches[k], span.median_step_mismatch_m, options))
+    if (!fresh_fix[k - span.first_sample])
       run->space_gap_m[k] = run->space_gap_m[k - 1] + gapChangeBySpeedsM(*run, k);
   }
 }

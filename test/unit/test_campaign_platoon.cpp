@@ -714,7 +714,6 @@ TEST(PlatoonEffectSelection, ARivalsBranchEndsInAnAlternativeOnlyWhereTheDataDoN
   EXPECT_EQ(branch.model, delay) << branch.model.name();
   ASSERT_EQ(branch.alternatives.size(), 1u);
   EXPECT_EQ(branch.alternatives[0].against, lag_asymmetric) << branch.alternatives[0].against.name();
-  EXPECT_EQ(branch.alternative_indices[0], scoreIndexOf(lag_asymmetric));
 
   depth[scoreIndexOf(lag_asymmetric)] = 0.5;
   depth[scoreIndexOf(delay_anticipation)] = 0.995;  // now the choice goes on, far past the lag
@@ -742,8 +741,7 @@ TEST(PlatoonEffectSelection, AnAlternativesDipsComeFromItsOwnRunsScores)
     scores[i].position = i == 1 ? 3 : 2;
     scores[i].chain_dip_mps = {1.0, 2.0 + static_cast<double>(i), 3.0 + static_cast<double>(i)};
   }
-  acc::EffectSetSelection selection;
-  selection.alternative_indices = {2, 1};
+  acc::EffectSetSelection selection;  // scores' models 2 and 1
   selection.alternatives.resize(2);
   selection.alternatives[0].against = acc::platoonCandidates()[1];
   selection.alternatives[1].against = acc::platoonCandidates()[0];

@@ -25,6 +25,8 @@ struct PlatoonCandidate
   /// What the candidate adds to the base model (its effects, and a non-speed objective): a
   /// candidate extends another when it adds exactly one thing to it.
   std::vector<std::string> features() const;
+  /// Whether this candidate holds every feature of `other` (and perhaps more).
+  bool holdsAllOf(const PlatoonCandidate& other) const;
   /// "asymmetric_response + reaction_delay", "none (speed_and_gap objective)".
   std::string name() const;
   /// The same effects (in any order: "reaction_delay,leader_braking_anticipation" is the
@@ -159,9 +161,8 @@ struct EffectSetSelection
   /// The final models the rule reaches when it goes on from an unseparated rival instead (the
   /// same stages from there; one branch deep), each compared with the choice (candidate: the
   /// choice, against: the alternative), kept when the data do not separate the two: models the
-  /// run could as well be predicted with. Indices as `chosen`, in alternative_indices.
+  /// run could as well be predicted with.
   std::vector<EffectSetComparison> alternatives;
-  std::vector<std::size_t> alternative_indices;
   std::string excluded_run;  ///< the run left out of the choice ("" when none)
 
   /// The rivals the data do not separate from the choice made at their stage.
