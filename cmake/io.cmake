@@ -20,6 +20,7 @@ acc_add_library(acc_run_io
     src/io/run_plausibility.cpp
     src/io/gap_kinematics.cpp
     src/io/gap_sawtooth.cpp
+    src/io/input_account.cpp
     src/io/installed_beside.cpp
     src/io/output_files.cpp
   LINK acc_model nlohmann_json::nlohmann_json)
@@ -27,7 +28,7 @@ acc_add_library(acc_run_io
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_run_csv test/unit/gtest_main.cpp test/unit/test_run_csv.cpp test/unit/test_openacc_file.cpp
     test/unit/test_gap_kinematics.cpp test/unit/test_gap_sawtooth.cpp
-    test/unit/test_output_files.cpp)
+    test/unit/test_output_files.cpp test/unit/test_input_account.cpp)
   target_compile_definitions(test_run_csv PRIVATE ACC_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/test/data/runs")
   target_link_libraries(test_run_csv acc_run_io)
 endif()

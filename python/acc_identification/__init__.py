@@ -24,7 +24,8 @@ def read_run(path, follower=None, all_pairs=False, max_gap_s=0.5, topic="relativ
     """A run file as the tools read it (canonical CSV, OpenACC CSV of any layout, or a bag of
     RelativeState), as one pandas.DataFrame with the canonical columns and a `segment` column (the
     reader splits a run at holes and rows it rejects). The reader's notes go to stderr, as the tools
-    print them. attrs: path, openacc_pairs (the pair(s) read), segment_names."""
+    print them. attrs: path, openacc_pairs (the pair(s) read), segment_names, input_account (the
+    reader's format and counts, which calibrate and diagnose put in their JSON's inputs_read)."""
     import pandas
 
     read = _core.read_run(str(path), follower or "", all_pairs, max_gap_s, topic)
@@ -36,8 +37,9 @@ def read_run(path, follower=None, all_pairs=False, max_gap_s=0.5, topic="relativ
         frame.insert(0, "segment", index)
         frames.append(frame)
     frame = pandas.concat(frames, ignore_index=True)
-    frame.attrs = {"path": str(path), "openacc_pairs": list(read["pairs"]),
-                   "segment_names": [run["name"] for run in read["runs"]]}
+    account = read["account"]
+    frame.attrs = {"path": str(path), "openacc_pairs": list(account["openacc_pairs"]),
+                   "segment_names": [run["name"] for run in read["runs"]], "input_account": account}
     return frame
 
 
@@ -53,9 +55,19 @@ def _inputs(frames, first_number=1):
     return [frame.attrs.get("path", "DataFrame %d" % (number + first_number)) for number, frame in enumerate(frames)]
 
 
+def _account(frame, path):
+    """What the JSON's inputs_read says of a frame: read_run's account while the frame keeps the rows
+    it read; otherwise format "dataframe" without counts (they would not be this frame's)."""
+    account = frame.attrs.get("input_account")
+    pairs = list(frame.attrs.get("openacc_pairs") or [])
+    if account and account["counts"].get("samples_used") == len(frame):
+        return {**account, "path": path}
+    return {"path": path, "format": "dataframe", "openacc_pairs": pairs, "counts": {}}
+
+
 def _segments(frames, first_number=1):
-    """The C++ side's runs: one dict per segment, and the OpenACC pairs read per file."""
-    runs, pairs_read = [], []
+    """The C++ side's runs (one dict per segment) and each frame's account."""
+    runs, inputs_read = [], []
     for frame, path in zip(frames, _inputs(frames, first_number)):
         missing = [name for name in COLUMNS if name not in frame.columns]
         if missing:
@@ -66,9 +78,8 @@ def _segments(frames, first_number=1):
             name = names[index] if index < len(names) else "%s #%d" % (path, index + 1)
             runs.append({"name": name, "path": path, **{column: part[column].to_numpy(dtype=float)
                                                           for column in COLUMNS}})
-        if frame.attrs.get("openacc_pairs"):
-            pairs_read.append({"path": path, "pairs": list(frame.attrs["openacc_pairs"])})
-    return runs, pairs_read
+        inputs_read.append(_account(frame, path))
+    return runs, inputs_read
 
 
 def calibrate(runs, split="none", starts=None, alpha=None, seed=None, stability_test=True, verdict_every_s=None,
@@ -79,8 +90,8 @@ def calibrate(runs, split="none", starts=None, alpha=None, seed=None, stability_
     if split not in ("none", "half"):
         raise ValueError("split must be 'none' or 'half', not %r" % (split,))
     defaults = _core.DEFAULTS["calibrate"]
-    segments, pairs_read = _segments(_as_frames(runs))
-    result = _core.calibrate(segments, pairs_read, split == "half", defaults["starts"] if starts is None else starts,
+    segments, inputs_read = _segments(_as_frames(runs))
+    result = _core.calibrate(segments, inputs_read, split == "half", defaults["starts"] if starts is None else starts,
                              defaults["alpha"] if alpha is None else alpha, seed, stability_test,
                              verdict_every_s or 0.0, grid or 0, second_opinion)
     return json.loads(result["json"])
@@ -95,9 +106,9 @@ def diagnose(runs, train_fraction=None, effects=None, threads=None, seed=None, f
     held_out_frames = _as_frames(held_out) if held_out is not None else []
     if held_out is not None and not held_out_frames:
         raise ValueError("held_out names no run")
-    segments, pairs_read = _segments(frames)
-    held_out_segments, held_out_pairs_read = _segments(held_out_frames, len(frames) + 1)
-    return json.loads(_core.diagnose(segments, pairs_read + held_out_pairs_read, _inputs(frames),
+    segments, inputs_read = _segments(frames)
+    held_out_segments, held_out_inputs_read = _segments(held_out_frames, len(frames) + 1)
+    return json.loads(_core.diagnose(segments, inputs_read + held_out_inputs_read, _inputs(frames),
                                      defaults["train_fraction"] if train_fraction is None else train_fraction,
                                      list(effects or []), defaults["threads"] if threads is None else threads,
                                      defaults["seed"] if seed is None else seed, forward_selection,

@@ -9,25 +9,6 @@
 
 namespace acc
 {
-void printPairsRead(const std::vector<PairsRead>& pairs_read, std::ostream& out)
-{
-  for (const PairsRead& file : pairs_read)
-  {
-    out << "OpenACC pair" << (file.pairs.size() > 1 ? "s" : "") << " read: " << file.path << ": ";
-    for (std::size_t i = 0; i < file.pairs.size(); ++i)
-      out << (i > 0 ? "; " : "") << file.pairs[i];
-    out << "\n";
-  }
-}
-
-nlohmann::json pairsReadJson(const std::vector<PairsRead>& pairs_read)
-{
-  nlohmann::json json = nlohmann::json::array();
-  for (const PairsRead& file : pairs_read)
-    json.push_back({{"path", file.path}, {"pairs", file.pairs}});
-  return json;
-}
-
 std::vector<CarFollowingRun> runsOf(const std::vector<CalibrationInput>& inputs)
 {
   std::vector<CarFollowingRun> runs;
@@ -38,10 +19,15 @@ std::vector<CarFollowingRun> runsOf(const std::vector<CalibrationInput>& inputs)
 
 namespace
 {
-void addPairsRead(const std::vector<PairsRead>& pairs_read, nlohmann::json& json)
+/// What each RUN argument gave (inputs_read) and, for OpenACC files, the pairs (openacc_pairs).
+void addInputsRead(const std::vector<InputAccount>& inputs_read, nlohmann::json& json)
 {
-  if (!pairs_read.empty())
-    json["openacc_pairs"] = pairsReadJson(pairs_read);
+  if (inputs_read.empty())
+    return;
+  json["inputs_read"] = inputAccountsJson(inputs_read);
+  const nlohmann::json pairs = openAccPairsJson(inputs_read);
+  if (!pairs.empty())
+    json["openacc_pairs"] = pairs;
 }
 
 /// One drive for the sequential verdict: the consecutive runs of one RUN argument (pieces between
@@ -113,16 +99,16 @@ void addSequentialVerdicts(const std::vector<CalibrationInput>& inputs, const Ca
 /// dips' own evidence; with --verdict-every, the verdicts the node would publish on them, as it
 /// runs on data that a batch fit refuses).
 CalibrateOutcome unfitted(const std::vector<CalibrationInput>& inputs, const std::string& reason,
-                          double steady_speed_spread_mps, const std::vector<PairsRead>& pairs_read,
+                          double steady_speed_spread_mps, const std::vector<InputAccount>& inputs_read,
                           const CalibrateSettings& settings, std::ostream& out, std::ostream& log)
 {
   const UnfittedDataSummary summary = summarizeUnfittedData(runsOf(inputs), reason, steady_speed_spread_mps);
-  printPairsRead(pairs_read, out);
+  printOpenAccPairs(inputs_read, out);
   printUnfitted(summary, out);
   CalibrateOutcome outcome;
   outcome.exit_status = kExitValidDataNoFit;
   outcome.json = unfittedToJson(summary);
-  addPairsRead(pairs_read, outcome.json);
+  addInputsRead(inputs_read, outcome.json);
   addSequentialVerdicts(inputs, settings, outcome, out, log);
   log << "no fit: " << reason << " (exit status " << kExitValidDataNoFit << ")\n";
   return outcome;
@@ -187,7 +173,7 @@ void scoreRuns(const std::vector<CalibrationInput>& inputs, const std::vector<Ca
 }
 }  // namespace
 
-CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, const std::vector<PairsRead>& pairs_read,
+CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, const std::vector<InputAccount>& inputs_read,
                                const CalibrateSettings& settings, std::ostream& out, std::ostream& log)
 {
   std::vector<CarFollowingRun> training, testing;
@@ -203,7 +189,7 @@ CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, cons
       return unfitted(inputs,
                       "run '" + item.run.name + "' has " + std::to_string(item.run.size()) +
                           " samples, too few to split in halves",
-                      IdentifiabilityCriteria{}.min_speed_std_mps, pairs_read, settings, out, log);
+                      IdentifiabilityCriteria{}.min_speed_std_mps, inputs_read, settings, out, log);
     training.push_back(std::move(train));
     testing.push_back(std::move(test));
   }
@@ -215,7 +201,7 @@ CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, cons
   const Identification identification = identifyAcc(training, options);
   if (!identification.solved || identification.calibration.diverged)
     return unfitted(inputs, identification.note.empty() ? "the fit diverged" : identification.note,
-                    options.criteria.min_speed_std_mps, pairs_read, settings, out, log);
+                    options.criteria.min_speed_std_mps, inputs_read, settings, out, log);
   CalibrationReport report;
   report.calibration = identification.calibration;
   report.training_samples = identification.samples;
@@ -240,11 +226,11 @@ CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, cons
   }
   judgeModel(training, testing, whole_runs, report);
   scoreRuns(inputs, training, testing, report);
-  printPairsRead(pairs_read, out);
+  printOpenAccPairs(inputs_read, out);
   printReport(report, out);
   CalibrateOutcome outcome;
   outcome.json = reportToJson(report);
-  addPairsRead(pairs_read, outcome.json);
+  addInputsRead(inputs_read, outcome.json);
   const bool inadequate =
       report.model_adequacy && report.model_adequacy->assessed && !report.model_adequacy->adequate;
   if (inadequate && report.stability_test && settings.second_opinion)

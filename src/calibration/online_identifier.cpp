@@ -10,14 +10,6 @@ double secondsSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
-
-std::size_t sampleCount(const std::vector<CarFollowingRun>& segments)
-{
-  std::size_t samples = 0;
-  for (const CarFollowingRun& segment : segments)
-    samples += segment.size();
-  return samples;
-}
 }  // namespace
 
 StabilityTestOptions OnlineIdentifierOptions::defaultStabilityOptions()

@@ -66,16 +66,6 @@ std::string formatTime(double time_s)
   return out.str();
 }
 
-std::size_t sampleCount(const std::vector<CarFollowingRun>& runs)
-{
-  std::size_t n = 0;
-  for (const CarFollowingRun& run : runs)
-  {
-    n += run.size();
-  }
-  return n;
-}
-
 }  // namespace
 
 MultistartOptions SequentialVerdictOptions::defaultFirstMultistart()

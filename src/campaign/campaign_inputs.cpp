@@ -358,13 +358,7 @@ const std::string& CampaignFile::settingOf(const std::string& vehicle) const
   return settingOfCar(car_settings, setting, vehicle);
 }
 
-std::size_t CampaignRun::samples() const
-{
-  std::size_t n = 0;
-  for (const CarFollowingRun& segment : segments)
-    n += segment.size();
-  return n;
-}
+std::size_t CampaignRun::samples() const { return sampleCount(segments); }
 
 std::size_t CampaignGroup::samples() const
 {
@@ -489,6 +483,8 @@ void addFile(const std::string& path, const RunPlausibilityBounds& bounds, const
   if (!file.contents.duplicate_lines.empty())
     inputs.notes.push_back(describeDuplicateRows(file.contents));
   noteCarsWithoutPair(file.contents, inputs.notes);
+  for (const PairRunContents& pair : all.pairs)
+    file.pairs_read.push_back(accountOfRunFile(path, pair.contents));
   inputs.files.push_back(std::move(file));
   addPairs(all, inputs.files.size() - 1, inputs.files.back(), groups, inputs.notes, inputs.skipped_pairs);
 }

@@ -915,6 +915,10 @@ nlohmann::json campaignToJson(const CampaignInputs& inputs, const CampaignResult
     nlohmann::json entry{{"path", file.path}, {"run", file.name}, {"setting", file.setting}};
     if (!file.car_settings.empty())
       entry["car_settings"] = file.car_settings;
+    entry["pairs_read"] = nlohmann::json::array();
+    for (const InputAccount& pair : file.pairs_read)
+      entry["pairs_read"].push_back({{"pair", pair.openacc_pairs.empty() ? "" : pair.openacc_pairs.front()},
+                                     {"counts", countsJson(pair)}});
     files.push_back(entry);
   }
   nlohmann::json vehicles = nlohmann::json::array(), platoons = nlohmann::json::array();

@@ -150,6 +150,7 @@ public:
     }
     else if (current_.size() == 1)
     {
+      ++contents_.single_sample_rows;
       std::ostringstream why;
       why << "a piece of one sample (t = " << current_.time_s[0]
           << " s) between split points is too short to simulate; not used";
@@ -413,6 +414,7 @@ void append(RunFileContents& all, RunFileContents&& one)
   all.duplicate_rows += one.duplicate_rows;
   all.time_holes += one.time_holes;
   all.acc_off_rows += one.acc_off_rows;
+  all.single_sample_rows += one.single_sample_rows;
   all.sawtooth_rows += one.sawtooth_rows;
   all.sawtooth_spans.insert(all.sawtooth_spans.end(), one.sawtooth_spans.begin(), one.sawtooth_spans.end());
   all.problems.insert(all.problems.end(), one.problems.begin(), one.problems.end());
@@ -474,7 +476,8 @@ AllPairRuns readAllPairRuns(const std::string& path, const RunPlausibilityBounds
 
 std::string describeRowCounts(const std::string& path, const RunFileContents& contents)
 {
-  if (contents.rejected_rows == 0 && contents.time_holes == 0 && contents.sawtooth_rows == 0)
+  if (contents.rejected_rows == 0 && contents.time_holes == 0 && contents.sawtooth_rows == 0 &&
+      contents.single_sample_rows == 0)
   {
     return "";
   }
@@ -482,6 +485,8 @@ std::string describeRowCounts(const std::string& path, const RunFileContents& co
   counts << path << ": " << contents.rejected_rows << " of " << contents.data_rows << " rows rejected ("
          << contents.implausible_rows << " outside the plausibility bounds, " << contents.duplicate_rows
          << " duplicates), " << contents.time_holes << " holes in time split a run";
+  if (contents.single_sample_rows > 0)
+    counts << ", " << contents.single_sample_rows << " rows alone between split points not used";
   if (contents.sawtooth_rows > 0)
     counts << ", the gap of " << contents.sawtooth_rows << " rows rebuilt where it saw-tooths";
   return counts.str();

@@ -94,4 +94,12 @@ std::string describeRunProblem(const CarFollowingRun& run)
   return "";
 }
 
+std::size_t sampleCount(const std::vector<CarFollowingRun>& runs)
+{
+  std::size_t n = 0;
+  for (const CarFollowingRun& run : runs)
+    n += run.size();
+  return n;
+}
+
 }  // namespace acc

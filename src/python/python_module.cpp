@@ -62,15 +62,38 @@ std::vector<acc::CalibrationInput> toInputs(const py::list& runs)
   return inputs;
 }
 
-std::vector<acc::PairsRead> toPairsRead(const py::list& pairs_read)
+/// An account as accountDict gives it, back from the Python side ({path, format, openacc_pairs,
+/// counts}; counts in their order).
+acc::InputAccount toInputAccount(const py::dict& entry)
 {
-  std::vector<acc::PairsRead> out;
-  for (const py::handle& item : pairs_read)
-  {
-    const py::dict entry = item.cast<py::dict>();
-    out.push_back({entry["path"].cast<std::string>(), entry["pairs"].cast<std::vector<std::string>>()});
-  }
-  return out;
+  acc::InputAccount account;
+  account.path = entry["path"].cast<std::string>();
+  account.format = entry["format"].cast<std::string>();
+  account.openacc_pairs = entry["openacc_pairs"].cast<std::vector<std::string>>();
+  for (const auto& [name, count] : entry["counts"].cast<py::dict>())
+    account.counts.emplace_back(name.cast<std::string>(), count.cast<std::size_t>());
+  return account;
+}
+
+std::vector<acc::InputAccount> toInputAccounts(const py::list& inputs_read)
+{
+  std::vector<acc::InputAccount> accounts;
+  for (const py::handle& item : inputs_read)
+    accounts.push_back(toInputAccount(item.cast<py::dict>()));
+  return accounts;
+}
+
+py::dict accountDict(const acc::InputAccount& account)
+{
+  py::dict counts;
+  for (const auto& [name, count] : account.counts)
+    counts[py::str(name)] = count;
+  py::dict entry;
+  entry["path"] = account.path;
+  entry["format"] = account.format;
+  entry["openacc_pairs"] = account.openacc_pairs;
+  entry["counts"] = counts;
+  return entry;
 }
 
 /// read_run: the tools' reader of one RUN argument (CSV of any layout, or a bag).
@@ -96,17 +119,17 @@ py::dict readRun(const std::string& path, const std::string& follower, bool all_
   }
   py::dict result;
   result["runs"] = runs;
-  result["pairs"] = argument.pairs;
+  result["account"] = accountDict(argument.account);
   result["log"] = log.str();
   return result;
 }
 
-py::dict calibrate(const py::list& runs, const py::list& pairs_read, bool split_half, std::size_t starts,
+py::dict calibrate(const py::list& runs, const py::list& inputs_read, bool split_half, std::size_t starts,
                    double alpha, const py::object& seed, bool stability_test, double verdict_every_s,
                    std::size_t grid_nodes, bool second_opinion)
 {
   const std::vector<acc::CalibrationInput> inputs = toInputs(runs);
-  const std::vector<acc::PairsRead> pairs = toPairsRead(pairs_read);
+  const std::vector<acc::InputAccount> accounts = toInputAccounts(inputs_read);
   acc::CalibrateSettings settings;
   settings.split_half = split_half;
   settings.starts = starts;
@@ -123,7 +146,7 @@ py::dict calibrate(const py::list& runs, const py::list& pairs_read, bool split_
   acc::CalibrateOutcome outcome;
   {
     py::gil_scoped_release unlocked;
-    outcome = acc::calibrateRuns(inputs, pairs, settings, text, log);
+    outcome = acc::calibrateRuns(inputs, accounts, settings, text, log);
   }
   py::dict result;
   result["json"] = outcome.json.dump();
@@ -144,7 +167,7 @@ std::vector<acc::CarFollowingRun> plainRuns(const py::list& runs)
 
 /// held_out_runs empty: each run fitted on its first part and scored on the rest; otherwise the
 /// runs fitted whole and these scored whole (diagnose --held-out).
-std::string diagnose(const py::list& runs, const py::list& pairs_read, const std::vector<std::string>& inputs,
+std::string diagnose(const py::list& runs, const py::list& inputs_read, const std::vector<std::string>& inputs,
                      double train_fraction, const std::vector<std::string>& effects, std::size_t threads,
                      const py::object& seed, bool forward_selection, const py::list& held_out_runs,
                      const std::vector<std::string>& held_out_inputs)
@@ -179,9 +202,9 @@ std::string diagnose(const py::list& runs, const py::list& pairs_read, const std
   json["inputs"] = inputs;
   if (!held_out_inputs.empty())
     json["held_out_inputs"] = held_out_inputs;
-  json["openacc_pairs"] = nlohmann::json::array();
-  for (const acc::PairsRead& file : toPairsRead(pairs_read))
-    json["openacc_pairs"].push_back({{"path", file.path}, {"pairs", file.pairs}});
+  const std::vector<acc::InputAccount> accounts = toInputAccounts(inputs_read);
+  json["openacc_pairs"] = acc::openAccPairsJson(accounts);
+  json["inputs_read"] = acc::inputAccountsJson(accounts);
   return json.dump();
 }
 
@@ -224,10 +247,10 @@ PYBIND11_MODULE(_core, module)
   module.doc() = "acc_identification's tools as functions; use the package's own module (import acc_identification)";
   module.def("read_run", &readRun, py::arg("path"), py::arg("follower"), py::arg("all_pairs"), py::arg("max_gap_s"),
              py::arg("topic"));
-  module.def("calibrate", &calibrate, py::arg("runs"), py::arg("pairs_read"), py::arg("split_half"), py::arg("starts"),
+  module.def("calibrate", &calibrate, py::arg("runs"), py::arg("inputs_read"), py::arg("split_half"), py::arg("starts"),
              py::arg("alpha"), py::arg("seed"), py::arg("stability_test"), py::arg("verdict_every_s"),
              py::arg("grid_nodes"), py::arg("second_opinion"));
-  module.def("diagnose", &diagnose, py::arg("runs"), py::arg("pairs_read"), py::arg("inputs"),
+  module.def("diagnose", &diagnose, py::arg("runs"), py::arg("inputs_read"), py::arg("inputs"),
              py::arg("train_fraction"), py::arg("effects"), py::arg("threads"), py::arg("seed"),
              py::arg("forward_selection"), py::arg("held_out_runs"), py::arg("held_out_inputs"));
   module.def("campaign", &campaign, py::arg("paths"), py::arg("starts"), py::arg("threads"), py::arg("alpha"),

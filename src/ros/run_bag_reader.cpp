@@ -225,6 +225,19 @@ BagRuns readRunsFromBag(const std::string& path, const std::string& topic, doubl
   return readRunsFromBag(path, topic, bounds);
 }
 
+InputAccount accountOfBag(const std::string& path, const BagRuns& bag)
+{
+  InputAccount account;
+  account.path = path;
+  account.format = "bag";
+  account.counts = {{"messages", bag.messages},       {"samples_used", sampleCount(bag.runs)},
+                    {"runs", bag.runs.size()},        {"invalid", bag.invalid},
+                    {"implausible", bag.implausible}, {"out_of_order", bag.out_of_order},
+                    {"time_holes", bag.time_holes},   {"time_resets", bag.time_resets},
+                    {"short_pieces", bag.short_pieces}};
+  return account;
+}
+
 RunArgument readRunArgument(const std::string& path, const std::string& topic, double max_gap_s, std::ostream& log,
                             const OpenAccPairSelector& selector)
 {
@@ -237,10 +250,7 @@ RunArgument readRunArgument(const std::string& path, const std::string& topic, d
     RunPlausibilityBounds bounds;
     bounds.max_time_step_s = max_gap_s;
     RunFileContents contents = readRunFile(path, bounds, selector);
-    for (const OpenAccPair& pair : contents.pairs)
-    {
-      argument.pairs.push_back(pair.label());
-    }
+    argument.account = accountOfRunFile(path, contents);
     argument.runs = reportAndTakeRuns(path, contents, log);
     return argument;
   }
@@ -257,6 +267,7 @@ RunArgument readRunArgument(const std::string& path, const std::string& topic, d
       << " outside the plausibility bounds, " << bag.out_of_order << " out of order, " << bag.time_holes
       << " holes in time, " << bag.time_resets << " time resets, " << bag.short_pieces << " pieces too short -> "
       << bag.runs.size() << " runs\n";
+  argument.account = accountOfBag(path, bag);
   argument.runs = std::move(bag.runs);
   return argument;
 }
@@ -274,8 +285,7 @@ RunArguments readRunArguments(const std::vector<std::string>& paths, const std::
   for (const std::string& path : paths)
   {
     RunArgument argument = readRunArgument(path, topic, max_gap_s, log, selector);
-    if (!argument.pairs.empty())
-      arguments.pairs_read.push_back({path, argument.pairs});
+    arguments.inputs_read.push_back(argument.account);
     for (CarFollowingRun& run : argument.runs)
       arguments.runs.push_back({std::move(run), path});
   }

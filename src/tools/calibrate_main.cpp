@@ -105,11 +105,10 @@ int main(int argc, char** argv)
   {
     const acc::RunArguments read = input.read(std::cerr);
     const std::vector<acc::CalibrationInput>& inputs = read.runs;
-    const std::vector<acc::PairsRead>& pairs_read = read.pairs_read;
-    const acc::CalibrateOutcome outcome = acc::calibrateRuns(inputs, pairs_read, settings, std::cout, std::cerr);
+    const acc::CalibrateOutcome outcome = acc::calibrateRuns(inputs, read.inputs_read, settings, std::cout, std::cerr);
     if (outcome.report && !sumo_vtype_path.empty() &&
         !writeSumoVType(sumo_vtype_path, sumo_id.empty() ? inputs.front().run.name : sumo_id, *outcome.report,
-                        inputs, !pairs_read.empty()))
+                        inputs, acc::anyOpenAcc(read.inputs_read)))
       return 1;
     if (!json_path.empty() && !acc::writeJsonFile(outcome.json, json_path, std::cerr))
       return 1;

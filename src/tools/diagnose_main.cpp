@@ -88,14 +88,13 @@ int diagnoseFiles(const DiagnoseRequest& r)
 {
   std::vector<acc::CarFollowingRun> runs;
   acc::DiagnosisResult result;
-  nlohmann::json pairs_read;
+  std::vector<acc::InputAccount> inputs_read;
   try
   {
     const acc::RunArguments read = r.input.read(std::cerr), held_out = r.input.readPaths(r.held_out, std::cerr);
-    std::vector<acc::PairsRead> pairs = read.pairs_read;  // the held-out files' pairs are read too
-    pairs.insert(pairs.end(), held_out.pairs_read.begin(), held_out.pairs_read.end());
-    acc::printPairsRead(pairs, std::cout);
-    pairs_read = acc::pairsReadJson(pairs);
+    inputs_read = read.inputs_read;  // the held-out files are read too
+    inputs_read.insert(inputs_read.end(), held_out.inputs_read.begin(), held_out.inputs_read.end());
+    acc::printOpenAccPairs(inputs_read, std::cout);
     runs = acc::runsOf(read.runs);
     result = r.held_out.empty() ? acc::diagnoseRuns(runs, r.options)
                                 : acc::diagnoseHeldOutRuns(runs, acc::runsOf(held_out.runs), r.options);
@@ -111,13 +110,14 @@ int diagnoseFiles(const DiagnoseRequest& r)
   acc::printDiagnosisSummary(result, stdout);
   if (!r.sumo_vtype_path.empty() &&
       !acc::saveFinalModelVType(result, runs, r.sumo_vtype_path, r.sumo_id.empty() ? runs.front().name : r.sumo_id,
-                                !pairs_read.empty(), std::cerr))
+                                acc::anyOpenAcc(inputs_read), std::cerr))
     return 1;
   nlohmann::json json = acc::diagnosisToJson(result);
   json["inputs"] = r.input.paths;
   if (!r.held_out.empty())
     json["held_out_inputs"] = r.held_out;
-  json["openacc_pairs"] = pairs_read;
+  json["openacc_pairs"] = acc::openAccPairsJson(inputs_read);
+  json["inputs_read"] = acc::inputAccountsJson(inputs_read);
   if (!r.json_path.empty() && !acc::writeJsonFile(json, r.json_path, std::cerr))
     return 1;
   return !r.report_dir.empty() && !acc::writeDiagnosisReport(result, json, r.report_dir, r.plot_script, r.no_plots,

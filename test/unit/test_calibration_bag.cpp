@@ -2,6 +2,9 @@
 
 #include <cstdio>
 #include <limits>
+#include <sstream>
+#include <utility>
+#include <vector>
 #include <string>
 
 #include <rosbag/bag.h>
@@ -55,6 +58,15 @@ TEST(RunBagReader, SplitsAtInvalidSamplesGapsAndTimeResets)
   EXPECT_EQ(runs.runs[3].size(), 5u);
   EXPECT_DOUBLE_EQ(runs.runs[3].time_s.front(), 10.0);
   EXPECT_DOUBLE_EQ(runs.runs[0].space_gap_m[1], 20.0 + 100.1);
+  // The tools' account of the same bag (their JSON's inputs_read): every message used or counted.
+  std::ostringstream log;
+  const acc::RunArgument argument =
+      acc::readRunArgument(path, "relative_state", 0.5, log, acc::OpenAccPairSelector::first());
+  EXPECT_EQ(argument.account.format, "bag");
+  using Counts = std::vector<std::pair<std::string, std::size_t>>;
+  EXPECT_EQ(argument.account.counts, (Counts{{"messages", 57}, {"samples_used", 54}, {"runs", 4}, {"invalid", 2},
+                                             {"implausible", 0}, {"out_of_order", 1}, {"time_holes", 1},
+                                             {"time_resets", 1}, {"short_pieces", 0}}));
   try
   {
     acc::readRunsFromBag(path, "missing_topic");

@@ -133,6 +133,20 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesADelayAndAnAnticipationOfBrakingT
     }
   }
   EXPECT_GE(diagnosed_cars, 60u);
+  // Every row of every pair read is used or counted in the JSON; run 26's saw-tooth (16 resets
+  // behind the target car) is rebuilt, 66 rows.
+  std::size_t rebuilt_in_run26 = 0;
+  for (const nlohmann::json& file : json["inputs"]["files"])
+    for (const nlohmann::json& pair : file["pairs_read"])
+    {
+      const nlohmann::json& c = pair["counts"];
+      EXPECT_EQ(c["data_rows"], c["rejected_rows"].get<std::size_t>() + c["acc_off_rows"].get<std::size_t>() +
+                                    c["single_sample_rows"].get<std::size_t>() + c["samples_used"].get<std::size_t>())
+          << file["run"] << " " << pair["pair"];
+      if (file["run"] == "dynamic_part26")
+        rebuilt_in_run26 += c["gap_rebuilt_rows"].get<std::size_t>();
+    }
+  EXPECT_EQ(rebuilt_in_run26, 66u);
   // Every fitted car carries its model adequacy, in the result and the JSON; the cars that follow in
   // the platoon runs got the dip check from their pair-level predictions (issue 23).
   std::size_t dip_checked = 0;

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "acc_identification/calibration/calibration_report.h"
+#include "acc_identification/io/input_account.h"
 #include "acc_identification/model/car_following_run.h"
 
 namespace acc
@@ -21,13 +22,6 @@ struct CalibrationInput
 {
   CarFollowingRun run;
   std::string path;
-};
-
-/// The OpenACC pair(s) read from one RUN argument, for the output.
-struct PairsRead
-{
-  std::string path;
-  std::vector<std::string> pairs;
 };
 
 /// What a second look at runs the fitted model does not describe gives: its JSON and its text.
@@ -79,7 +73,7 @@ struct CalibrateOutcome
 /// identifyAcc), the grid check, the fixed-sample string-stability test, the model's adequacy,
 /// the dips' evidence, each run's scores, the report on out, the sequential verdict's replay, and
 /// the JSON. Progress goes to log. Throws std::invalid_argument for a grid the objective refuses.
-CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, const std::vector<PairsRead>& pairs_read,
+CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, const std::vector<InputAccount>& inputs_read,
                                const CalibrateSettings& settings, std::ostream& out, std::ostream& log);
 
 /// calibrate --report DIR: calibration.json, fit_traces.csv (every run measured and simulated,
@@ -91,11 +85,5 @@ bool writeCalibrationReport(const std::string& dir, const CalibrateOutcome& outc
 
 /// The runs as read, whole.
 std::vector<CarFollowingRun> runsOf(const std::vector<CalibrationInput>& inputs);
-
-/// [{path, pairs: ["Hyundai behind Rexton, positions 2/1", ...]}] of each OpenACC file read.
-nlohmann::json pairsReadJson(const std::vector<PairsRead>& pairs_read);
-
-/// "OpenACC pair read: part3.csv: Hyundai behind Rexton, positions 2/1", one line per file.
-void printPairsRead(const std::vector<PairsRead>& pairs_read, std::ostream& out);
 
 }  // namespace acc

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "acc_identification/io/input_account.h"
 #include "acc_identification/io/openacc_file.h"
 #include "acc_identification/io/run_plausibility.h"
 #include "acc_identification/model/car_following_run.h"
@@ -26,6 +27,9 @@ struct CampaignFile
   /// Each car's own setting where the file's is a mixed one ("SL") that a mixed-setting listing
   /// resolves (io/mixed_setting_listing.h): by vehicle name, every car of the file; else empty.
   std::map<std::string, std::string> car_settings;
+  /// Every pair of the file as read (accountOfRunFile: the pair and the reader's counts), also the
+  /// pairs skipped for want of a usable run: the JSON's inputs.files[].pairs_read.
+  std::vector<InputAccount> pairs_read;
 
   /// The car's setting: its own from car_settings, else the file's.
   const std::string& settingOf(const std::string& vehicle) const;

@@ -32,6 +32,10 @@ struct RunFileContents
   std::size_t duplicate_rows = 0;
   std::size_t time_holes = 0;         ///< steps longer than max_time_step_s (split points, no row lost)
   std::size_t acc_off_rows = 0;       ///< OpenACC rows where the follower was not on ACC (split points)
+  /// Rows alone between split points (a piece of one sample cannot be simulated): not used, each
+  /// listed in problems. So data_rows = rejected_rows + acc_off_rows + single_sample_rows + the
+  /// runs' samples: every row is used or counted.
+  std::size_t single_sample_rows = 0;
   /// Rows whose gap saw-tooths (a position held between its updates, gap_sawtooth.h) and was
   /// rebuilt from the fixes and the speeds (rebuildSawtoothGap); used, not in rejected_rows; each
   /// stretch listed in problems and in sawtooth_spans (each names its run, and its samples index
@@ -94,8 +98,9 @@ struct AllPairRuns
 AllPairRuns readAllPairRuns(const std::string& path, const RunPlausibilityBounds& bounds = RunPlausibilityBounds{});
 
 /// "path: 3 of 2530 rows rejected (1 outside the plausibility bounds, 0 duplicates), 2 holes in
-/// time split a run" (and ", the gap of 66 rows rebuilt where it saw-tooths" when there are), or
-/// "" when no row is rejected or rebuilt and no hole splits.
+/// time split a run" (and ", 1 rows alone between split points not used", ", the gap of 66 rows
+/// rebuilt where it saw-tooths" when there are), or "" when no row is rejected, left alone or
+/// rebuilt and no hole splits.
 std::string describeRowCounts(const std::string& path, const RunFileContents& contents);
 
 /// readRunFile() for tools: returns the runs, and writes every note and problem (and the counts of

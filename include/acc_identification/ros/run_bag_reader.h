@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "acc_identification/calibration/calibrate_runs.h"
+#include "acc_identification/io/input_account.h"
 #include "acc_identification/model/car_following_run.h"
 #include "acc_identification/io/openacc_file.h"
 #include "acc_identification/io/run_plausibility.h"
@@ -41,13 +42,17 @@ BagRuns readRunsFromBag(const std::string& path, const std::string& topic, const
 BagRuns readRunsFromBag(const std::string& path, const std::string& topic = "relative_state",
                         double max_gap_s = 0.5);
 
+/// The account of a bag read by readRunsFromBag: messages, samples_used, runs, invalid,
+/// implausible, out_of_order, time_holes, time_resets, short_pieces.
+InputAccount accountOfBag(const std::string& path, const BagRuns& bag);
+
 /// What one RUN argument gave.
 struct RunArgument
 {
   std::vector<CarFollowingRun> runs;
-  /// The OpenACC pair(s) the runs are of ("BMW_I3 behind SMART_TARGET, positions 3/2"); empty for
-  /// a canonical CSV and a bag.
-  std::vector<std::string> pairs;
+  /// Its format, the OpenACC pair(s) the runs are of ("BMW_I3 behind SMART_TARGET, positions
+  /// 3/2"; none for a canonical CSV and a bag) and the reader's counts.
+  InputAccount account;
 };
 
 /// Reads one RUN argument of the command-line tools (calibrate, diagnose): a bag (path ending in
@@ -64,11 +69,11 @@ std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std:
                                              double max_gap_s, std::ostream& log);
 
 /// Every RUN argument of a tool read with readRunArgument: each run with the argument it came
-/// from, and the OpenACC pair(s) read per file. Throws as readRunArgument.
+/// from, and each argument's account. Throws as readRunArgument.
 struct RunArguments
 {
   std::vector<CalibrationInput> runs;
-  std::vector<PairsRead> pairs_read;
+  std::vector<InputAccount> inputs_read;
 };
 RunArguments readRunArguments(const std::vector<std::string>& paths, const std::string& topic, double max_gap_s,
                               std::ostream& log, const OpenAccPairSelector& selector);

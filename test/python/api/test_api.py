@@ -43,6 +43,21 @@ def test_read_run_gives_the_canonical_columns_and_what_was_read():
     assert run.attrs["openacc_pairs"] == ["Hyundai behind Rexton, positions 2/1"]
     assert run.attrs["segment_names"] == ["part5 Hyundai"]
     assert run["follower_speed_mps"].between(27.0, 40.0).all()
+    account = run.attrs["input_account"]
+    assert account["format"] == "openacc"
+    assert account["counts"]["samples_used"] == len(run)
+    assert account["counts"]["data_rows"] == (len(run) + account["counts"]["rejected_rows"] +
+                                              account["counts"]["acc_off_rows"] + account["counts"]["single_sample_rows"])
+
+
+def test_a_frame_changed_after_reading_keeps_its_pairs_but_not_the_readers_counts():
+    path = os.path.join(CASALE, "part5.csv")
+    run = acc.read_run(path)
+    whole = acc.diagnose(run, threads=2)["inputs_read"]
+    assert whole[0]["format"] == "openacc" and whole[0]["counts"]["samples_used"] == len(run)
+    cut = acc.diagnose(run.iloc[:800].copy(), threads=2)["inputs_read"]
+    assert cut == [{"path": path, "format": "dataframe", "openacc_pairs": ["Hyundai behind Rexton, positions 2/1"],
+                    "counts": {}}]
 
 
 def test_calibrate_equals_the_tool_to_the_last_digit(tmp_path):
