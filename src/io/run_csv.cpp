@@ -117,8 +117,8 @@ public:
       if (!hole.empty())
       {
         ++contents_.time_holes;
+        split();
         report(line_number, hole + "; run split");
-        split(line_number);
       }
     }
     current_.time_s.push_back(values[0]);
@@ -128,17 +128,19 @@ public:
     current_lines_.push_back(line_number);
   }
 
-  /// Counts and lists a row that is not used, and splits the run there.
+  /// Counts and lists a row that is not used, and splits the run there. The run closes first, so
+  /// that what its closing lists (a rebuilt stretch, a lone sample) comes before this row and the
+  /// problems stay in line order, where consecutive rejected rows condense into one range.
   void reject(std::size_t line_number, const std::string& why)
   {
     ++contents_.rejected_rows;
+    split();
     report(line_number, why + "; row rejected, run split here");
-    split(line_number);
   }
 
   /// Closes the current run (a run when it holds two samples or more), its gap rebuilt where it
   /// saw-tooths (each stretch counted and listed).
-  void split(std::size_t line_number)
+  void split()
   {
     if (current_.size() >= 2)
     {
@@ -154,7 +156,7 @@ public:
       std::ostringstream why;
       why << "a piece of one sample (t = " << current_.time_s[0]
           << " s) between split points is too short to simulate; not used";
-      report(line_number, why.str());
+      report(current_lines_.front(), why.str());
     }
     current_ = CarFollowingRun{};
     current_lines_.clear();
@@ -286,7 +288,7 @@ RunFileContents readCanonicalFile(const std::string& path, const RunPlausibility
       assembler.add(line_number, values);
     }
   }
-  assembler.split(line_number);
+  assembler.split();
   return contents;
 }
 
@@ -362,7 +364,7 @@ RunFileContents readPairRuns(const OpenAccFile& file, const OpenAccPair& pair, c
     else if (!acc_on)
     {
       ++contents.acc_off_rows;
-      assembler.split(file.line[i]);
+      assembler.split();
     }
     else
     {
@@ -370,7 +372,7 @@ RunFileContents readPairRuns(const OpenAccFile& file, const OpenAccPair& pair, c
                                    leader.speed_mps[i]});
     }
   }
-  assembler.split(file.line.empty() ? 0 : file.line.back());
+  assembler.split();
   contents.run_pairs.assign(contents.runs.size(), 0);
   return contents;
 }
