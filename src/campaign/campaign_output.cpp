@@ -860,7 +860,7 @@ std::string alternativeModelsLine(const CampaignResult& result)
                      cellNumber("%+.0f %%", 100.0 * runMedianDipError(check, a)));
     }
   }
-  return "runs predicted with one of final models the data do not separate (predicted_dip_mps_alternatives): " +
+  return "runs whose final model the data do not separate from another (predicted_dip_mps_alternatives): " +
          (runs.empty() ? std::string("none") : join(runs, "; "));
 }
 
