@@ -18,7 +18,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from report_headline import adequacy_words, fmt, headline, verdict_words  # noqa: E402
+from report_headline import adequacy_words, fmt, headline, inputs_read_lines, verdict_words  # noqa: E402
 
 PARTS = {"fit": ("fitted", "tab:orange"), "train": ("fitted (train)", "tab:orange"),
          "held_out": ("held out", "tab:red")}
@@ -106,6 +106,7 @@ def write_report(report_dir, fit, runs, figures):
     lines += run_lines(runs)
     for (name, _), figure in zip(runs.items(), figures):
         lines += ["", f"### {name}", "", f"![{name}]({figure})"]
+    lines += [""] + inputs_read_lines(fit.get("inputs_read"))
     if fit.get("openacc_pairs"):
         lines += ["", "## Attribution", "", "Data: JRC OpenACC database (Makridis, Mattas, Anesiadou, Ciuffo, "
                   "Transportation Research Part C 125 (2021) 103047), (c) European Union, CC BY 4.0. Changes: "

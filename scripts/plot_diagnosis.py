@@ -17,7 +17,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from report_headline import headline, verdict_words  # noqa: E402
+from report_headline import headline, inputs_read_lines, verdict_words  # noqa: E402
 
 OPENACC_ATTRIBUTION = (
     "Data: JRC OpenACC database, Casale campaign (Makridis, Mattas, Anesiadou, Ciuffo, "
@@ -349,9 +349,12 @@ def write_report(report_dir, d):
     lines += ["", "![time series](held_out_time_series.png)", "", "## String stability", ""]
     lines += stability_test_lines(d.get("stability_test"))
     lines += ["![gain](string_stability_gain.png)", ""]
+    lines += inputs_read_lines(d.get("inputs_read"))
     if d["notes"]:
         lines += ["## Data not used", ""] + [f"- {n}" for n in d["notes"]] + [""]
-    if any("openacc" in p.lower() or "casale" in p.lower() for p in d.get("inputs", [])):
+    # Read as OpenACC, or named after it (a bag or canonical CSV made from the database, as the
+    # package's own are): its attribution travels with what is made from it.
+    if d.get("openacc_pairs") or any("openacc" in p.lower() or "casale" in p.lower() for p in d.get("inputs", [])):
         lines += ["## Attribution", "", OPENACC_ATTRIBUTION, ""]
     with open(os.path.join(report_dir, "report.md"), "w") as f:
         f.write("\n".join(lines))

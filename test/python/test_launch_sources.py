@@ -160,6 +160,10 @@ class UserCommands(unittest.TestCase):
         self.assertEqual(report[0], "# ACC calibration")
         self.assertTrue(report[2].startswith("**Verdict:** "), report[2])
         self.assertIn("· **Model:** ", report[2])
+        # What the file gave, counted (the JSON's inputs_read): a canonical CSV read whole.
+        self.assertIn("## Data read", report)
+        data_row = next(line for line in report if line.startswith(f"| `{CASALE_RUN}`"))
+        self.assertIn("| csv | - | 1151 | 1151 | 1 | none |", data_row)
         with open(self.directory / "fit/fit_traces.csv") as traces:
             rows = list(csv.DictReader(traces))
         self.assertEqual({row["part"] for row in rows}, {"train", "held_out"})
