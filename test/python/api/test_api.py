@@ -88,6 +88,17 @@ def test_diagnose_equals_the_tool(tmp_path):
     assert without_timing(got) == without_timing(expected)
 
 
+def test_a_diagnosis_report_of_an_openacc_file_carries_its_attribution_whatever_its_name(tmp_path):
+    renamed = tmp_path / "run.csv"
+    renamed.write_bytes(open(os.path.join(CASALE, "part5.csv"), "rb").read())
+    completed = subprocess.run(["rosrun", "acc_identification", "diagnose", "--threads", "2", "--report",
+                                str(tmp_path / "report"), "run.csv"], cwd=tmp_path, capture_output=True, text=True)
+    assert completed.returncode == 0, completed.stderr
+    report = (tmp_path / "report" / "report.md").read_text()
+    assert "## Attribution" in report and "CC BY 4.0" in report
+    assert "| `run.csv` | openacc | Hyundai behind Rexton, positions 2/1 | 1051 | 1051 | 1 | none |" in report
+
+
 def test_diagnose_with_runs_kept_aside_equals_the_tool(tmp_path):
     fitted, kept_aside = os.path.join(CASALE, "part5.csv"), os.path.join(CASALE, "part4.csv")
     expected, status = tool_json(tmp_path, "diagnose", "--threads", "2", fitted, "--held-out", kept_aside)
