@@ -1027,8 +1027,40 @@ std::string campaignHeadline(const CampaignResult& result)
 }
 }  // namespace
 
-std::string campaignReportMarkdown(const CampaignResult& result, const std::vector<std::string>& input_paths,
-                                   bool with_figures)
+namespace
+{
+/// The "Data read" section: how many pairs were read whole, and a row for each of the others.
+void printDataRead(const CampaignInputs& inputs, std::ostream& md)
+{
+  std::size_t pairs = 0;
+  std::vector<std::vector<std::string>> rows;
+  for (const CampaignFile& file : inputs.files)
+    for (const InputAccount& pair : file.pairs_read)
+    {
+      ++pairs;
+      const std::string losses = describeLossesAndRepairs(pair);
+      if (losses.empty())
+        continue;
+      const auto count = [&pair](const std::string& name) {
+        for (const auto& [counted, n] : pair.counts)
+          if (counted == name)
+            return std::to_string(n);
+        return std::string("?");
+      };
+      rows.push_back({file.name, pair.openacc_pairs.empty() ? "" : pair.openacc_pairs.front(), count("data_rows"),
+                      count("samples_used"), count("runs"), losses});
+    }
+  md << "\n## Data read\n\n" << pairs << " pair(s) in " << inputs.files.size() << " file(s); "
+     << pairs - rows.size() << " used row for row as read"
+     << (rows.empty() ? ".\n" : "; the others below (the JSON's inputs.files[].pairs_read has every pair's "
+                                 "counts, the notes say why).\n\n");
+  if (!rows.empty())
+    printMarkdownTable({"run", "pair", "rows", "samples used", "runs", "not used or rebuilt"}, rows, md);
+}
+}  // namespace
+
+std::string campaignReportMarkdown(const CampaignInputs& inputs, const CampaignResult& result,
+                                   const std::vector<std::string>& input_paths, bool with_figures)
 {
   std::ostringstream md;
   md << "# ACC campaign: models by car and setting, and the platoons they predict\n\n" << campaignHeadline(result)
@@ -1105,6 +1137,7 @@ std::string campaignReportMarkdown(const CampaignResult& result, const std::vect
     if (!result.links.empty())
       md << "\n![Empirical and model |Gamma(jw)| by car](link_gain.png)\n";
   }
+  printDataRead(inputs, md);
   md << "\n## Attribution\n\n" << kOpenAccAttribution << "\n";
   return md.str();
 }

@@ -1,5 +1,7 @@
 #include "acc_identification/io/input_account.h"
 
+#include <string>
+
 namespace acc
 {
 InputAccount accountOfRunFile(const std::string& path, const RunFileContents& contents)
@@ -20,6 +22,18 @@ InputAccount accountOfRunFile(const std::string& path, const RunFileContents& co
                     {"time_holes", contents.time_holes},
                     {"gap_rebuilt_rows", contents.sawtooth_rows}};
   return account;
+}
+
+std::string describeLossesAndRepairs(const InputAccount& account)
+{
+  std::string text;
+  for (const auto& [name, count] : account.counts)
+  {
+    if (count == 0 || name == "data_rows" || name == "messages" || name == "samples_used" || name == "runs")
+      continue;
+    text += (text.empty() ? "" : ", ") + name + " " + std::to_string(count);
+  }
+  return text;
 }
 
 nlohmann::json countsJson(const InputAccount& account)

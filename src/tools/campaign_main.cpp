@@ -18,11 +18,12 @@
 namespace
 {
 /// report.md, campaign.json and (unless no_plots) the figures in DIR.
-bool writeReport(const std::string& dir, const nlohmann::json& json, const acc::CampaignResult& result,
-                 const std::vector<std::string>& paths, bool no_plots, const std::string& plot_script)
+bool writeReport(const std::string& dir, const nlohmann::json& json, const acc::CampaignInputs& inputs,
+                 const acc::CampaignResult& result, const std::vector<std::string>& paths, bool no_plots,
+                 const std::string& plot_script)
 {
   return acc::makeOutputFolder(dir, std::cerr) && acc::writeJsonFile(json, dir + "/campaign.json", std::cerr) &&
-         acc::writeTextFile(acc::campaignReportMarkdown(result, paths, !no_plots), dir + "/report.md", std::cerr) &&
+         acc::writeTextFile(acc::campaignReportMarkdown(inputs, result, paths, !no_plots), dir + "/report.md", std::cerr) &&
          (no_plots || acc::drawReportFigures(plot_script, dir, "tables and JSON", std::cerr));
 }
 }  // namespace
@@ -126,5 +127,5 @@ int main(int argc, char** argv)
   if (!sumo_vtype_path.empty() && !acc::saveSumoVTypes(acc::campaignSumoExports(inputs, result), sumo_vtype_path,
                                                         acc::kSumoOpenAccProvenance, std::cerr))
     return 1;
-  return report_dir.empty() || writeReport(report_dir, json, result, paths, no_plots, plot_script) ? 0 : 1;
+  return report_dir.empty() || writeReport(report_dir, json, inputs, result, paths, no_plots, plot_script) ? 0 : 1;
 }

@@ -235,8 +235,12 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesADelayAndAnAnticipationOfBrakingT
             behind_lead.pair_diagnosed.braking.upper);
   EXPECT_EQ(shapes.at("first_follower").at("cars").at("median_widening_s").get<double>(),
             behind_lead.cars.median_widening_s);
-  const std::string report = acc::campaignReportMarkdown(result, {ACC_ZALAZONE_DYNAMIC_DIR}, false);
+  const std::string report = acc::campaignReportMarkdown(inputs, result, {ACC_ZALAZONE_DYNAMIC_DIR}, false);
   expectEveryMarkdownTableRectangular(report);
+  // The pairs not used row for row are named, run 26's BMW i3 with its rejected and rebuilt rows.
+  EXPECT_NE(report.find("| dynamic_part26 | BMW_I3 behind SMART_TARGET, positions 2/1 | 699 | 607 | 2 | "
+                        "rejected_rows 92, gap_rebuilt_rows 66 |"),
+            std::string::npos);
   // The report says where the choice does not hold without a run (PLATOON_DIAGNOSIS.md, "Named").
   EXPECT_NE(report.find("the same for 7 of 9 runs; without dynamic_part18, dynamic_part25: "
                         "leader_braking_anticipation + reaction_delay"),

@@ -26,8 +26,9 @@ nlohmann::json campaignToJson(const CampaignInputs& inputs, const CampaignResult
 void printCampaignTables(const CampaignResult& result, std::ostream& out);
 
 /// report.md of a report folder: the tables above in Markdown, the figures when with_figures
-/// (drawn by scripts/plot_campaign.py), and the attribution.
-std::string campaignReportMarkdown(const CampaignResult& result, const std::vector<std::string>& input_paths,
-                                   bool with_figures);
+/// (drawn by scripts/plot_campaign.py), the pairs whose rows were not all used as read, and the
+/// attribution.
+std::string campaignReportMarkdown(const CampaignInputs& inputs, const CampaignResult& result,
+                                   const std::vector<std::string>& input_paths, bool with_figures);
 
 }  // namespace acc

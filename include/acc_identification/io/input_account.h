@@ -32,6 +32,10 @@ struct InputAccount
 /// samples_used. Take it before the runs are moved out of contents.
 InputAccount accountOfRunFile(const std::string& path, const RunFileContents& contents);
 
+/// "rejected_rows 92, gap_rebuilt_rows 66": the counts other than the totals (data_rows,
+/// messages, samples_used, runs) that are not zero, in the account's order; "" when there are none.
+std::string describeLossesAndRepairs(const InputAccount& account);
+
 /// {name: n, ...}: the account's counts.
 nlohmann::json countsJson(const InputAccount& account);
 
