@@ -6,24 +6,10 @@
 # pieces: openacc_text (fields, cells, column names), openacc_angle_unit (radians or degrees),
 # openacc_pairs (which leader-follower pairs a file holds, and the one chosen). mixed_setting_listing
 # reads the database's table of the cars at the other setting in its mixed-setting runs.
-acc_add_library(acc_run_io
-  SOURCES
-    src/io/csv_fields.cpp
-    src/io/openacc_file.cpp
-    src/io/openacc_text.cpp
-    src/io/openacc_angle_unit.cpp
-    src/io/openacc_pairs.cpp
-    src/io/distance_setting.cpp
-    src/io/mixed_setting_listing.cpp
-    src/io/problem_lines.cpp
-    src/io/run_csv.cpp
-    src/io/run_plausibility.cpp
-    src/io/gap_kinematics.cpp
-    src/io/gap_sawtooth.cpp
-    src/io/input_account.cpp
-    src/io/installed_beside.cpp
-    src/io/output_files.cpp
-  LINK acc_model nlohmann_json::nlohmann_json)
+# The sources are one list: the run fuzzer (scripts/test_hooks/fuzz_run_csv.sh) builds the same files
+# with clang's libFuzzer from cmake/run_io_sources.cmake.
+include(${CMAKE_CURRENT_LIST_DIR}/run_io_sources.cmake)
+acc_add_library(acc_run_io SOURCES ${ACC_RUN_IO_SOURCES} LINK acc_model nlohmann_json::nlohmann_json)
 
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_run_csv test/unit/gtest_main.cpp test/unit/test_run_csv.cpp test/unit/test_openacc_file.cpp
