@@ -1042,10 +1042,8 @@ void printDataRead(const CampaignInputs& inputs, std::ostream& md)
       if (losses.empty())
         continue;
       const auto count = [&pair](const std::string& name) {
-        for (const auto& [counted, n] : pair.counts)
-          if (counted == name)
-            return std::to_string(n);
-        return std::string("?");
+        const std::optional<std::size_t> n = pair.count(name);
+        return n ? std::to_string(*n) : std::string("?");
       };
       rows.push_back({file.name, pair.openacc_pairs.empty() ? "" : pair.openacc_pairs.front(), count("data_rows"),
                       count("samples_used"), count("runs"), losses});

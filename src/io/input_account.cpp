@@ -4,6 +4,14 @@
 
 namespace acc
 {
+std::optional<std::size_t> InputAccount::count(const std::string& name) const
+{
+  for (const auto& [counted, n] : counts)
+    if (counted == name)
+      return n;
+  return std::nullopt;
+}
+
 InputAccount accountOfRunFile(const std::string& path, const RunFileContents& contents)
 {
   InputAccount account;
@@ -60,7 +68,7 @@ nlohmann::json inputAccountsJson(const std::vector<InputAccount>& accounts)
 bool anyOpenAcc(const std::vector<InputAccount>& accounts)
 {
   for (const InputAccount& account : accounts)
-    if (account.format == "openacc")
+    if (!account.openacc_pairs.empty())
       return true;
   return false;
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <optional>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -18,11 +19,10 @@ const std::string kDataDir = ACC_TEST_DATA_DIR;
 
 std::size_t countOf(const acc::InputAccount& account, const std::string& name)
 {
-  for (const auto& [counted, count] : account.counts)
-    if (counted == name)
-      return count;
-  ADD_FAILURE() << "no count " << name;
-  return 0;
+  const std::optional<std::size_t> count = account.count(name);
+  if (!count)
+    ADD_FAILURE() << "no count " << name;
+  return count.value_or(0);
 }
 
 /// Every data row is a sample of a run, or rejected, or off ACC, or alone between split points.

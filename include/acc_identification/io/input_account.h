@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <utility>
@@ -24,6 +25,9 @@ struct InputAccount
   /// The reader's counters by name, in its order; only those of the format (docs/TOOLS.md lists
   /// them). Empty when the runs did not come from a reader (a DataFrame changed after read_run).
   std::vector<std::pair<std::string, std::size_t>> counts;
+
+  /// The count of that name, or none when the account has no such count.
+  std::optional<std::size_t> count(const std::string& name) const;
 };
 
 /// The account of a CSV read by readRunFile: data_rows, samples_used, runs, rejected_rows (of
@@ -42,7 +46,8 @@ nlohmann::json countsJson(const InputAccount& account);
 /// [{path, format, openacc_pairs (OpenACC only), counts: {name: n, ...}}, ...].
 nlohmann::json inputAccountsJson(const std::vector<InputAccount>& accounts);
 
-/// True when one of the accounts is of an OpenACC file (its data carry the database's attribution).
+/// True when one of the accounts names an OpenACC pair (its data carry the database's attribution),
+/// as openAccPairsJson lists them.
 bool anyOpenAcc(const std::vector<InputAccount>& accounts);
 
 /// [{path, pairs: [...]}] of each OpenACC file read (the JSON's `openacc_pairs`).
