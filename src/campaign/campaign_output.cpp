@@ -226,7 +226,9 @@ nlohmann::json comparisonJson(const EffectSetComparison& c)
           {"against_window_mse_m2ps2", c.against_window_mse},
           {"relative_improvement", c.relative_improvement},
           {"p_value", c.p_value},
-          {"significant", c.significant}};
+          {"significant", c.significant},
+          {"small_sample_p_value", c.small_sample_p_value},
+          {"small_sample_significant", c.small_sample_significant}};
 }
 
 nlohmann::json selectionJson(const EffectSetSelection& selection)
@@ -753,7 +755,8 @@ std::string comparisonLine(const EffectSetComparison& c)
   return c.candidate.name() + " against " + c.against.name() + ": loss " + cellNumber("%.3f", c.mean_loss) + " vs " +
          cellNumber("%.3f", c.against_loss) + " (" + cellNumber("%+.0f %%", -100.0 * c.relative_improvement) +
          "; pair window MSE " + cellNumber("%.3f", c.mean_window_mse) + " vs " +
-         cellNumber("%.3f", c.against_window_mse) + "), p = " + cellNumber("%.4f", c.p_value) + " over " +
+         cellNumber("%.3f", c.against_window_mse) + "), p = " + cellNumber("%.4f", c.p_value) +
+         " (wild cluster bootstrap-t " + cellNumber("%.4f", c.small_sample_p_value) + ") over " +
          std::to_string(c.perturbations) + " perturbations";
 }
 
@@ -761,7 +764,10 @@ std::vector<std::string> selectionLines(const EffectSetSelection& selection)
 {
   std::vector<std::string> lines;
   for (const EffectSetComparison& c : selection.comparisons)
-    lines.push_back(comparisonLine(c) + (c.significant ? ": named" : ": not named"));
+    lines.push_back(comparisonLine(c) + (!c.significant                ? ": not named"
+                                         : c.small_sample_significant ? ": named"
+                                                                      : ": named, but not by the wild cluster "
+                                                                        "bootstrap-t (too few perturbations)"));
   for (const EffectSetComparison& c : selection.rivals)
     lines.push_back("choice " + comparisonLine(c) +
                     (c.significant ? ": separated" : ": not separated, a near tie the data do not decide"));

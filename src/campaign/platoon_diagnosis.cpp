@@ -119,6 +119,12 @@ EffectSetComparison compare(const std::vector<PairPerturbationScore>& scores, st
   out.p_value = losses.p_value;
   out.significant = namedByRule(losses, options.alpha, stage_size, options.min_relative_improvement) &&
                     closesAGap(losses, options);
+  out.small_sample_p_value = losses.small_sample_p_value;
+  PairedLossComparison small_sample = losses;
+  small_sample.p_value = losses.small_sample_p_value;
+  out.small_sample_significant =
+      namedByRule(small_sample, options.alpha, stage_size, options.min_relative_improvement) &&
+      closesAGap(small_sample, options);
   const PairedLossComparison windows = comparePairedLosses(
       clustersOf(scores, exclude_file, against, candidate, SelectionCriterion::pair_windows), 0, options.seed);
   out.against_window_mse = windows.against_loss;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <random>
 
+#include "acc_identification/evidence/wild_cluster_bootstrap.h"
 #include "acc_identification/model/portable_uniform.h"
 
 namespace acc
@@ -83,6 +84,14 @@ PairedLossComparison comparePairedLosses(const std::vector<LossCluster>& cluster
       ++not_better;
   }
   out.p_value = static_cast<double>(1 + not_better) / static_cast<double>(replicates + 1);
+  std::vector<double> differences;
+  std::vector<std::size_t> sizes;
+  for (const LossCluster& c : clusters)
+  {
+    differences.push_back(c.against - c.candidate);
+    sizes.push_back(c.n);
+  }
+  out.small_sample_p_value = wildClusterBootstrapP(differences, sizes, replicates, seed);
   return out;
 }
 

@@ -145,6 +145,11 @@ struct EffectSetComparison
   double against_window_mse = 0.0;
   double p_value = 1.0;               ///< H0: no lower loss (cluster bootstrap over perturbations)
   bool significant = false;           ///< p <= alpha / (stage size) and the improvement is relevant
+  /// The same H0 by the wild cluster bootstrap-t, which keeps its level with the few perturbations
+  /// a campaign has (PairedLossComparison::small_sample_p_value), and whether the rule would name
+  /// the candidate with it in place of p_value. Reported, not yet the rule's (PLATOON_DIAGNOSIS.md).
+  double small_sample_p_value = 1.0;
+  bool small_sample_significant = false;
 };
 
 /// The rule's outcome: the candidate chosen (index into platoonCandidates() + 1, 0 for the base

@@ -55,13 +55,16 @@ struct PairedLossComparison
   double relative_improvement = std::numeric_limits<double>::quiet_NaN();  ///< 1 - candidate / against
   /// Share of cluster-bootstrap replicates whose mean loss difference (against - candidate) is
   /// not positive, (1 + count) / (replicates + 1): the percentile test of "no improvement". 1 with
-  /// fewer than two clusters or no replicates.
+  /// fewer than two clusters or no replicates. Too small with few clusters: see small_sample_p_value.
   double p_value = 1.0;
+  /// The same hypothesis by the wild cluster bootstrap-t (wildClusterBootstrapP, as many replicates
+  /// and the same seed), which keeps its level with few clusters; reported beside p_value.
+  double small_sample_p_value = 1.0;
 };
 
 /// Means, relative improvement and the cluster-bootstrap p-value (clusters resampled with
 /// replacement `replicates` times by uniformBelow from std::mt19937_64(seed): bit for bit the same
-/// with every standard library).
+/// with every standard library), and the wild cluster bootstrap-t's beside.
 PairedLossComparison comparePairedLosses(const std::vector<LossCluster>& clusters, std::size_t replicates,
                                          std::uint64_t seed);
 
