@@ -261,12 +261,13 @@ def perturbation_window_lines(windows):
              f"window speed RMSE {fmt(windows['base_window_rmse_speed_mps'])} m/s. Rule: {windows['rule']}.", ""]
     if windows["reason"]:
         return lines + [f"Not judged: {windows['reason']}.", ""]
-    lines += ["| model | window speed RMSE [m/s] | window MSE change [%] | p | named |", "|---|---|---|---|---|"]
+    lines += ["| model | window speed RMSE [m/s] | window MSE change [%] | p (over the effects) | p (alone) | named |",
+              "|---|---|---|---|---|---|"]
     for e in windows["effects"]:
         change = -100 * e["relative_improvement"] if e["relative_improvement"] is not None else None
         lines.append(f"| {e['effect']} | {fmt(e['window_rmse_speed_mps'])} | "
-                     f"{'-' if change is None else f'{change:+.1f}'} | {fmt(e['p_value'])} | "
-                     f"{'yes' if e['significant'] else 'no'} |")
+                     f"{'-' if change is None else f'{change:+.1f}'} | {fmt(e.get('family_p_value'))} | "
+                     f"{fmt(e['p_value'])} | {'yes' if e['significant'] else 'no'} |")
     return lines + ["", f"Named on the perturbation windows: `{windows['named']}`.", ""]
 
 

@@ -226,9 +226,8 @@ nlohmann::json comparisonJson(const EffectSetComparison& c)
           {"against_window_mse_m2ps2", c.against_window_mse},
           {"relative_improvement", c.relative_improvement},
           {"p_value", c.p_value},
-          {"significant", c.significant},
-          {"small_sample_p_value", c.small_sample_p_value},
-          {"small_sample_significant", c.small_sample_significant}};
+          {"p_value_alone", c.p_value_alone},
+          {"significant", c.significant}};
 }
 
 nlohmann::json selectionJson(const EffectSetSelection& selection)
@@ -756,18 +755,15 @@ std::string comparisonLine(const EffectSetComparison& c)
          cellNumber("%.3f", c.against_loss) + " (" + cellNumber("%+.0f %%", -100.0 * c.relative_improvement) +
          "; pair window MSE " + cellNumber("%.3f", c.mean_window_mse) + " vs " +
          cellNumber("%.3f", c.against_window_mse) + "), p = " + cellNumber("%.4f", c.p_value) +
-         " (wild cluster bootstrap-t " + cellNumber("%.4f", c.small_sample_p_value) + ") over " +
-         std::to_string(c.perturbations) + " perturbations";
+         (c.p_value_alone != c.p_value ? " (alone " + cellNumber("%.4f", c.p_value_alone) + ")" : std::string()) +
+         " over " + std::to_string(c.perturbations) + " perturbations";
 }
 
 std::vector<std::string> selectionLines(const EffectSetSelection& selection)
 {
   std::vector<std::string> lines;
   for (const EffectSetComparison& c : selection.comparisons)
-    lines.push_back(comparisonLine(c) + (!c.significant                ? ": not named"
-                                         : c.small_sample_significant ? ": named"
-                                                                      : ": named, but not by the wild cluster "
-                                                                        "bootstrap-t (too few perturbations)"));
+    lines.push_back(comparisonLine(c) + (c.significant ? ": named" : ": not named"));
   for (const EffectSetComparison& c : selection.rivals)
     lines.push_back("choice " + comparisonLine(c) +
                     (c.significant ? ": separated" : ": not separated, a near tie the data do not decide"));
@@ -859,11 +855,17 @@ std::string alternativeModelsLine(const CampaignResult& result)
     for (std::size_t a = 0; a < selection.alternatives.size(); ++a)
     {
       const EffectSetComparison& c = selection.alternatives[a];
+      const double chosen_error = runMedianDipError(check), alternative_error = runMedianDipError(check, a);
+      // A run without a scored dip (no perturbation of its first car) has its choice, but nothing
+      // for it to change.
+      const std::string errors =
+          std::isfinite(chosen_error) || std::isfinite(alternative_error)
+              ? "its chain's median dip error " + cellNumber("%+.0f %%", 100.0 * chosen_error) + " or " +
+                    cellNumber("%+.0f %%", 100.0 * alternative_error)
+              : "no dip of its own to predict";
       runs.push_back(check.run + ": " + c.candidate.name() + " or " + c.against.name() + " (loss " +
                      cellNumber("%.3f", c.mean_loss) + " vs " + cellNumber("%.3f", c.against_loss) + ", p = " +
-                     cellNumber("%.2f", c.p_value) + "), its chain's median dip error " +
-                     cellNumber("%+.0f %%", 100.0 * runMedianDipError(check)) + " or " +
-                     cellNumber("%+.0f %%", 100.0 * runMedianDipError(check, a)));
+                     cellNumber("%.2f", c.p_value) + "), " + errors);
     }
   }
   return "runs whose final model the data do not separate from another (predicted_dip_mps_alternatives): " +

@@ -69,12 +69,16 @@ double lossOf(const PairPerturbationScore& s, std::size_t m, SelectionCriterion 
   return log_ratio * log_ratio;
 }
 
+/// A perturbation of a run: (file index, perturbation index).
+using PerturbationKey = std::pair<std::size_t, std::size_t>;
+
 /// The clusters of two models' losses (a against, b candidate): one per perturbation, its cars'
 /// losses summed, since they share its input.
-std::vector<LossCluster> clustersOf(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
-                                    std::size_t a, std::size_t b, SelectionCriterion criterion)
+std::map<PerturbationKey, LossCluster> clustersOf(const std::vector<PairPerturbationScore>& scores,
+                                                  std::size_t exclude_file, std::size_t a, std::size_t b,
+                                                  SelectionCriterion criterion)
 {
-  std::map<std::pair<std::size_t, std::size_t>, LossCluster> by_perturbation;
+  std::map<PerturbationKey, LossCluster> by_perturbation;
   for (const PairPerturbationScore& s : scores)
   {
     const double loss_a = lossOf(s, a, criterion), loss_b = lossOf(s, b, criterion);
@@ -85,8 +89,13 @@ std::vector<LossCluster> clustersOf(const std::vector<PairPerturbationScore>& sc
     c.candidate += loss_b;
     ++c.n;
   }
+  return by_perturbation;
+}
+
+std::vector<LossCluster> valuesOf(const std::map<PerturbationKey, LossCluster>& clusters)
+{
   std::vector<LossCluster> out;
-  for (const auto& entry : by_perturbation)
+  for (const auto& entry : clusters)
     out.push_back(entry.second);
   return out;
 }
@@ -101,35 +110,74 @@ bool closesAGap(const PairedLossComparison& losses, const EffectSetSelectionOpti
   return std::sqrt(losses.against_loss) - std::sqrt(losses.candidate_loss) >= options.min_rms_dip_error_reduction;
 }
 
-/// Model `candidate` against model `against`: mean losses, the relative improvement, and the
-/// cluster-bootstrap p-value of "no improvement" (comparePairedLosses); the pair-window criterion's
-/// means beside.
+/// Whether the rule names a comparison at p: p at most alpha, the mean loss at least
+/// min_relative_improvement lower, and (on the platoon dips) a gain above what a dip can tell.
+bool namedAt(const PairedLossComparison& losses, double p, const EffectSetSelectionOptions& options)
+{
+  return namedByRule(losses, p, options.alpha, options.min_relative_improvement) && closesAGap(losses, options);
+}
+
+/// Model `candidate` against model `against`, alone: mean losses, the relative improvement, and
+/// the wild cluster bootstrap-t's p of "no improvement" (comparePairedLosses); the pair-window
+/// criterion's means beside. `losses` receives the comparison for a family test.
 EffectSetComparison compare(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
-                            std::size_t candidate, std::size_t against, std::size_t stage_size,
-                            const EffectSetSelectionOptions& options)
+                            std::size_t candidate, std::size_t against, const EffectSetSelectionOptions& options,
+                            PairedLossComparison* losses_out = nullptr)
 {
   EffectSetComparison out;
-  const PairedLossComparison losses = comparePairedLosses(
-      clustersOf(scores, exclude_file, against, candidate, options.criterion), options.replicates, options.seed);
+  const PairedLossComparison losses =
+      comparePairedLosses(valuesOf(clustersOf(scores, exclude_file, against, candidate, options.criterion)),
+                          options.replicates, options.seed);
   out.car_perturbations = losses.entries;
   out.perturbations = losses.clusters;
   out.against_loss = losses.against_loss;
   out.mean_loss = losses.candidate_loss;
   out.relative_improvement = losses.relative_improvement;
+  out.p_value_alone = losses.p_value;
   out.p_value = losses.p_value;
-  out.significant = namedByRule(losses, options.alpha, stage_size, options.min_relative_improvement) &&
-                    closesAGap(losses, options);
-  out.small_sample_p_value = losses.small_sample_p_value;
-  PairedLossComparison small_sample = losses;
-  small_sample.p_value = losses.small_sample_p_value;
-  out.small_sample_significant =
-      namedByRule(small_sample, options.alpha, stage_size, options.min_relative_improvement) &&
-      closesAGap(small_sample, options);
+  out.significant = namedAt(losses, losses.p_value, options);
   const PairedLossComparison windows = comparePairedLosses(
-      clustersOf(scores, exclude_file, against, candidate, SelectionCriterion::pair_windows), 0, options.seed);
+      valuesOf(clustersOf(scores, exclude_file, against, candidate, SelectionCriterion::pair_windows)), 0,
+      options.seed);
   out.against_window_mse = windows.against_loss;
   out.mean_window_mse = windows.candidate_loss;
+  if (losses_out != nullptr)
+    *losses_out = losses;
   return out;
+}
+
+/// The stage's candidates against `against` as one family: each one's clusters numbered by the
+/// perturbations any of them scored, so that one replicate weighs a perturbation alike in all.
+std::vector<ClusteredDifferences> stageFamily(const std::vector<PairPerturbationScore>& scores,
+                                              std::size_t exclude_file, const std::vector<std::size_t>& candidates,
+                                              std::size_t against, SelectionCriterion criterion,
+                                              std::size_t* family_clusters)
+{
+  std::vector<std::map<PerturbationKey, LossCluster>> members;
+  std::map<PerturbationKey, std::size_t> numbers;
+  for (std::size_t candidate : candidates)
+  {
+    members.push_back(clustersOf(scores, exclude_file, against, candidate, criterion));
+    for (const auto& entry : members.back())
+      numbers.emplace(entry.first, 0);
+  }
+  std::size_t next = 0;
+  for (auto& entry : numbers)
+    entry.second = next++;
+  std::vector<ClusteredDifferences> family;
+  for (const auto& member : members)
+  {
+    ClusteredDifferences differences;
+    for (const auto& entry : member)
+    {
+      differences.clusters.push_back(numbers.at(entry.first));
+      differences.sums.push_back(entry.second.against - entry.second.candidate);
+      differences.sizes.push_back(entry.second.n);
+    }
+    family.push_back(std::move(differences));
+  }
+  *family_clusters = numbers.size();
+  return family;
 }
 
 /// Whether `candidate` adds exactly one feature (an effect or an objective) to `base`.
@@ -168,7 +216,7 @@ void compareRivals(const std::vector<PairPerturbationScore>& scores, std::size_t
   {
     if (candidates[i] == chosen || !selection->comparisons[first + i].significant)
       continue;
-    EffectSetComparison rival = compare(scores, exclude_file, chosen, candidates[i], 1, options);
+    EffectSetComparison rival = compare(scores, exclude_file, chosen, candidates[i], options);
     rival.candidate = candidateAt(chosen);
     rival.against = candidateAt(candidates[i]);
     selection->rivals.push_back(std::move(rival));
@@ -181,16 +229,24 @@ std::size_t runStage(const std::vector<PairPerturbationScore>& scores, std::size
                      const std::vector<std::size_t>& candidates, std::size_t against,
                      const EffectSetSelectionOptions& options, EffectSetSelection* selection)
 {
+  std::size_t family_clusters = 0;
+  const std::vector<ClusteredDifferences> family =
+      stageFamily(scores, exclude_file, candidates, against, options.criterion, &family_clusters);
+  const std::vector<WildClusterTest> tests =
+      wildClusterMaxT(family, family_clusters, options.replicates, options.seed);
   std::size_t best = against;
   double best_loss = std::numeric_limits<double>::infinity();
-  for (std::size_t candidate : candidates)
+  for (std::size_t i = 0; i < candidates.size(); ++i)
   {
-    EffectSetComparison c = compare(scores, exclude_file, candidate, against, candidates.size(), options);
-    c.candidate = candidateAt(candidate);
+    PairedLossComparison losses;
+    EffectSetComparison c = compare(scores, exclude_file, candidates[i], against, options, &losses);
+    c.candidate = candidateAt(candidates[i]);
     c.against = candidateAt(against);
+    c.p_value = tests[i].family_p_value;
+    c.significant = namedAt(losses, c.p_value, options);
     if (c.significant && c.mean_loss < best_loss)
     {
-      best = candidate;
+      best = candidates[i];
       best_loss = c.mean_loss;
     }
     selection->comparisons.push_back(std::move(c));
@@ -505,7 +561,7 @@ void addAlternatives(const std::vector<PairPerturbationScore>& scores, std::size
           return a.against == candidateAt(reached);
         }))
       continue;
-    EffectSetComparison versus = compare(scores, exclude_file, chosen, reached, 1, options);
+    EffectSetComparison versus = compare(scores, exclude_file, chosen, reached, options);
     if (versus.significant)
       continue;
     versus.candidate = candidateAt(chosen);
@@ -574,15 +630,16 @@ std::string effectSetSelectionRule(const EffectSetSelectionOptions& options)
           ? ", its root at least " + printfText("%.3g", options.min_rms_dip_error_reduction) +
                 " lower (a smaller change in the RMS relative dip error is within what a measured dip can tell),"
           : "";
-  char text[1100];
+  char text[1300];
   std::snprintf(text, sizeof text,
                 "every car's models fitted on its other runs (leave-one-run-out); the loss: %s. Stage 1: each "
                 "candidate adding one effect or objective to the base model against it; each further stage: each "
                 "candidate adding one more to the last stage's choice against that, until none is named. A "
                 "candidate is named when its mean loss is at "
-                "least %.0f %% lower%s and a bootstrap over perturbations (%zu replicates, every car of a perturbation "
-                "resampled together) gives p <= %.3g divided by the stage's candidates; the lowest loss among those "
-                "named wins. A run's own diagnosed models use the choice made without that run.",
+                "least %.0f %% lower%s and the wild cluster bootstrap-t over perturbations (%zu replicates, Webb "
+                "weights, every car of a perturbation weighed together, the null imposed) gives a p <= %.3g within "
+                "the stage's candidates (the joint max-t: the family-wise level); the lowest loss among those named "
+                "wins. A run's own diagnosed models use the choice made without that run.",
                 loss.c_str(), 100.0 * options.min_relative_improvement, floor.c_str(), options.replicates,
                 options.alpha);
   return text;

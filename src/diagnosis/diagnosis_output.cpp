@@ -201,8 +201,7 @@ nlohmann::json perturbationWindowsJson(const PerturbationWindowCriterion& c)
                        {"window_rmse_speed_mps", jsonNumber(e.window_rmse_speed_mps)},
                        {"relative_improvement", jsonNumber(e.versus_base.relative_improvement)},
                        {"p_value", c.reason.empty() ? jsonNumber(e.versus_base.p_value) : nlohmann::json(nullptr)},
-                       {"small_sample_p_value",
-                        c.reason.empty() ? jsonNumber(e.versus_base.small_sample_p_value) : nlohmann::json(nullptr)},
+                       {"family_p_value", c.reason.empty() ? jsonNumber(e.family_p_value) : nlohmann::json(nullptr)},
                        {"significant", e.significant}});
   }
   return {{"perturbations", c.perturbations},

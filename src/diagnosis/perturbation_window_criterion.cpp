@@ -67,7 +67,9 @@ PerturbationWindowCriterion judgeOnPerturbationWindows(const std::vector<CarFoll
   if (out.perturbations < 2)
     out.reason = "the leaders perturb " + std::to_string(out.perturbations) +
                  " time(s) in the held-out parts: at least 2 perturbations are needed to compare models on them";
-  double best_loss = std::numeric_limits<double>::infinity();
+  // Every effect against the base model on the same perturbations: one family, its level held by
+  // the joint max-t of the wild cluster bootstrap.
+  std::vector<ClusteredDifferences> family;
   for (std::size_t e = 0; e < effects.size(); ++e)
   {
     PerturbationWindowScore score;
@@ -77,14 +79,22 @@ PerturbationWindowCriterion judgeOnPerturbationWindows(const std::vector<CarFoll
     for (std::size_t i = 0; i < out.perturbations; ++i)
       clusters.push_back({losses[0][i], losses[e + 1][i], 1});
     score.versus_base = comparePairedLosses(clusters, options.replicates, options.seed);
-    score.significant = out.perturbations >= 2 && namedByRule(score.versus_base, options.alpha, effects.size(),
+    family.push_back(differencesOf(clusters));
+    out.effects.push_back(score);
+  }
+  const std::vector<WildClusterTest> tests = wildClusterMaxT(family, out.perturbations, options.replicates, options.seed);
+  double best_loss = std::numeric_limits<double>::infinity();
+  for (std::size_t e = 0; e < out.effects.size(); ++e)
+  {
+    PerturbationWindowScore& score = out.effects[e];
+    score.family_p_value = tests[e].family_p_value;
+    score.significant = out.perturbations >= 2 && namedByRule(score.versus_base, score.family_p_value, options.alpha,
                                                                options.min_relative_improvement);
     if (score.significant && score.versus_base.candidate_loss < best_loss)
     {
       best_loss = score.versus_base.candidate_loss;
       out.named = score.effect;
     }
-    out.effects.push_back(score);
   }
   return out;
 }
@@ -95,8 +105,9 @@ std::string perturbationWindowRule(const PerturbationWindowOptions& options, std
          " s before its onset to " + significant(options.perturbation.extension_s) +
          " s after its recovery) is scored by each model's speed MSE; an effect is named when its mean window MSE is at "
          "least " + significant(100.0 * options.min_relative_improvement) +
-         " % below the base model's and a bootstrap over perturbations (" + std::to_string(options.replicates) +
-         " replicates) gives p <= " + significant(options.alpha) + " / " + std::to_string(candidates) +
+         " % below the base model's and the wild cluster bootstrap-t over perturbations (" +
+         std::to_string(options.replicates) + " replicates, Webb weights, the max-t over the " +
+         std::to_string(candidates) + " effects) gives a family-wise p <= " + significant(options.alpha) +
          "; the lowest window MSE among the named wins";
 }
 

@@ -1,10 +1,7 @@
 #include "acc_identification/evidence/perturbation_windows.h"
 
 #include <cmath>
-#include <random>
-
-#include "acc_identification/evidence/wild_cluster_bootstrap.h"
-#include "acc_identification/model/portable_uniform.h"
+#include <limits>
 
 namespace acc
 {
@@ -66,32 +63,20 @@ PairedLossComparison comparePairedLosses(const std::vector<LossCluster>& cluster
   out.candidate_loss = sum_candidate / static_cast<double>(out.entries);
   out.relative_improvement =
       out.against_loss > 0.0 ? 1.0 - out.candidate_loss / out.against_loss : std::numeric_limits<double>::quiet_NaN();
-  if (clusters.size() < 2 || replicates == 0)
-    return out;  // no spread to resample: p stays 1
-  std::mt19937_64 engine(seed);
-  std::size_t not_better = 0;
-  for (std::size_t b = 0; b < replicates; ++b)
+  const ClusteredDifferences differences = differencesOf(clusters);
+  out.p_value = wildClusterTest(differences.sums, differences.sizes, replicates, seed).p_value;
+  return out;
+}
+
+ClusteredDifferences differencesOf(const std::vector<LossCluster>& clusters)
+{
+  ClusteredDifferences out;
+  for (std::size_t g = 0; g < clusters.size(); ++g)
   {
-    double difference = 0.0;
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < clusters.size(); ++i)
-    {
-      const LossCluster& c = clusters[static_cast<std::size_t>(uniformBelow(engine, clusters.size()))];
-      difference += c.against - c.candidate;
-      n += c.n;
-    }
-    if (!(difference / static_cast<double>(n) > 0.0))
-      ++not_better;
+    out.clusters.push_back(g);
+    out.sums.push_back(clusters[g].against - clusters[g].candidate);
+    out.sizes.push_back(clusters[g].n);
   }
-  out.p_value = static_cast<double>(1 + not_better) / static_cast<double>(replicates + 1);
-  std::vector<double> differences;
-  std::vector<std::size_t> sizes;
-  for (const LossCluster& c : clusters)
-  {
-    differences.push_back(c.against - c.candidate);
-    sizes.push_back(c.n);
-  }
-  out.small_sample_p_value = wildClusterBootstrapP(differences, sizes, replicates, seed);
   return out;
 }
 

@@ -1,8 +1,10 @@
 #include "acc_identification/evidence/wild_cluster_bootstrap.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <random>
 
 #include "acc_identification/model/portable_uniform.h"
@@ -15,21 +17,33 @@ namespace
 /// two points give only 2^G (32 with five clusters, too coarse for a p-value near 0.01).
 const std::array<double, 6> kWebbWeights = {-std::sqrt(1.5), -1.0, -std::sqrt(0.5), std::sqrt(0.5), 1.0, std::sqrt(1.5)};
 
-/// The pooled mean of the sums over its CR1 standard error; +-infinity where the clusters agree
-/// exactly (no spread), NaN for a mean of 0 without spread.
-double clusterT(const std::vector<double>& sums, const std::vector<std::size_t>& sizes, double entries)
+bool testable(const ClusteredDifferences& member, std::size_t family_clusters)
 {
-  double total = 0.0;
-  for (double s : sums)
-    total += s;
+  return member.sums.size() >= 2 && member.sizes.size() == member.sums.size() &&
+         member.clusters.size() == member.sums.size() &&
+         std::all_of(member.clusters.begin(), member.clusters.end(), [&](std::size_t c) { return c < family_clusters; }) &&
+         std::accumulate(member.sizes.begin(), member.sizes.end(), std::size_t{0}) > 0;
+}
+
+/// The member's pooled mean over its CR1 standard error, each cluster sum multiplied by the weight
+/// of its family cluster; +-infinity where the clusters agree exactly (no spread), NaN for a mean
+/// of 0 without spread.
+double clusterT(const ClusteredDifferences& member, const std::vector<double>& weights)
+{
+  double total = 0.0, entries = 0.0;
+  for (std::size_t c = 0; c < member.sums.size(); ++c)
+  {
+    total += weights[member.clusters[c]] * member.sums[c];
+    entries += static_cast<double>(member.sizes[c]);
+  }
   const double mean = total / entries;
   double squares = 0.0;
-  for (std::size_t g = 0; g < sums.size(); ++g)
+  for (std::size_t c = 0; c < member.sums.size(); ++c)
   {
-    const double residual = sums[g] - static_cast<double>(sizes[g]) * mean;
+    const double residual = weights[member.clusters[c]] * member.sums[c] - static_cast<double>(member.sizes[c]) * mean;
     squares += residual * residual;
   }
-  const double clusters = static_cast<double>(sums.size());
+  const double clusters = static_cast<double>(member.sums.size());
   const double standard_error = std::sqrt(squares * clusters / (clusters - 1.0)) / entries;
   if (standard_error > 0.0)
     return mean / standard_error;
@@ -39,29 +53,61 @@ double clusterT(const std::vector<double>& sums, const std::vector<std::size_t>&
 }
 }  // namespace
 
-double wildClusterBootstrapP(const std::vector<double>& cluster_sums, const std::vector<std::size_t>& cluster_sizes,
-                             std::size_t replicates, std::uint64_t seed)
+std::vector<WildClusterTest> wildClusterMaxT(const std::vector<ClusteredDifferences>& family,
+                                             std::size_t family_clusters, std::size_t replicates, std::uint64_t seed)
 {
-  if (cluster_sums.size() < 2 || cluster_sums.size() != cluster_sizes.size() || replicates == 0)
-    return 1.0;
-  double entries = 0.0;
-  for (std::size_t n : cluster_sizes)
-    entries += static_cast<double>(n);
-  const double observed = clusterT(cluster_sums, cluster_sizes, entries);
-  if (!(entries > 0.0) || std::isnan(observed))
-    return 1.0;
+  std::vector<WildClusterTest> out(family.size());
+  std::vector<std::size_t> members;  // those tested
+  const std::vector<double> unweighted(family_clusters, 1.0);
+  for (std::size_t m = 0; m < family.size(); ++m)
+  {
+    if (!testable(family[m], family_clusters))
+      continue;
+    out[m].t = clusterT(family[m], unweighted);
+    if (!std::isnan(out[m].t) && replicates > 0)
+      members.push_back(m);
+  }
+  if (members.empty())
+    return out;
   std::mt19937_64 engine(seed);
-  std::vector<double> weighted(cluster_sums.size());
-  std::size_t at_least = 0;
+  std::vector<double> weights(family_clusters);
+  std::vector<std::size_t> alone(family.size(), 0), in_family(family.size(), 0);
   for (std::size_t b = 0; b < replicates; ++b)
   {
+    for (double& w : weights)
+      w = kWebbWeights[static_cast<std::size_t>(uniformBelow(engine, kWebbWeights.size()))];
     // The null imposed: under "mean 0" each cluster's residual is its whole sum.
-    for (std::size_t g = 0; g < cluster_sums.size(); ++g)
-      weighted[g] = kWebbWeights[static_cast<std::size_t>(uniformBelow(engine, kWebbWeights.size()))] * cluster_sums[g];
-    if (clusterT(weighted, cluster_sizes, entries) >= observed)
-      ++at_least;
+    double largest = -std::numeric_limits<double>::infinity();
+    std::vector<double> t(family.size(), -std::numeric_limits<double>::infinity());
+    for (std::size_t m : members)
+    {
+      t[m] = clusterT(family[m], weights);
+      if (t[m] > largest)
+        largest = t[m];
+    }
+    for (std::size_t m : members)
+    {
+      alone[m] += t[m] >= out[m].t;
+      in_family[m] += largest >= out[m].t;
+    }
   }
-  return static_cast<double>(1 + at_least) / static_cast<double>(replicates + 1);
+  for (std::size_t m : members)
+  {
+    out[m].p_value = static_cast<double>(1 + alone[m]) / static_cast<double>(replicates + 1);
+    out[m].family_p_value = static_cast<double>(1 + in_family[m]) / static_cast<double>(replicates + 1);
+  }
+  return out;
+}
+
+WildClusterTest wildClusterTest(const std::vector<double>& cluster_sums, const std::vector<std::size_t>& cluster_sizes,
+                                std::size_t replicates, std::uint64_t seed)
+{
+  ClusteredDifferences member;
+  member.sums = cluster_sums;
+  member.sizes = cluster_sizes;
+  member.clusters.resize(cluster_sums.size());
+  std::iota(member.clusters.begin(), member.clusters.end(), std::size_t{0});
+  return wildClusterMaxT({member}, cluster_sums.size(), replicates, seed).front();
 }
 
 }  // namespace acc

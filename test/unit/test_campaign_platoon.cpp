@@ -267,9 +267,10 @@ TEST(CampaignPlatoon, TheDiagnosisFindsWhatClosesTheDipGapOfLateReactingCars)
 }
 
 // Cars that answer a second late and add half their leader's deceleration to their command (the
-// anticipation of the leader's braking, the ZalaZone runs' choice), recorded with GNSS-size
-// noise: the rule names the delay and the anticipation on top, and every run's choice made
-// without it holds the anticipation; forced, the two are sized near the truth (the noise, read
+// anticipation of the leader's braking), recorded with GNSS-size noise, in four runs of two
+// perturbations (with three, each choice made without a run has four perturbations, and a test
+// that holds its level with so few names nothing on top of the delay): the rule names the delay
+// and the anticipation on top, and every run's choice made without it holds the anticipation; forced, the two are sized near the truth (the noise, read
 // over the 0.5 s window and rectified by the one-sided term, biases k_b up by a few percent).
 // Fails when the simulator ignores the term or the rule cannot see it in the dips. (Without the
 // delay the base law, its gains refitted, reproduces these cars' dips within 1 %: nothing to
@@ -281,7 +282,7 @@ TEST(CampaignPlatoon, TheDiagnosisFindsAnAnticipationOfTheLeadersBraking)
       "anticipation",
       threeCarsOf(brisk, acc::makeCombinedEffectSettings(
                              {acc::EffectKind::reaction_delay, acc::EffectKind::leader_braking_anticipation}, {1.0, 0.5})),
-      3, 81);
+      4, 81);
   const acc::CampaignResult result = runQuickCampaign(inputs);
   const auto names = [](const acc::EffectSetSelection& s) {
     return std::find(s.model.effects.begin(), s.model.effects.end(), acc::EffectKind::leader_braking_anticipation) !=

@@ -64,29 +64,31 @@ TEST(CampaignZalaZone, GroupsTheNineRunsAndFindsTheRav4AtSUnstable)
   EXPECT_LE(result.stability_test.p_value, 0.01);
 }
 
-// The platoon diagnosis on the real runs (docs/PLATOON_DIAGNOSIS.md): the rule names the reaction
-// delay, the anticipation of the leader's braking on top, and the quadratic closing response on
-// top of both (p = 0.016 against the corrected 0.025 when this was written: the stage sits near
-// its level); every run's choice made without that run holds the first two (without run 18 or 25
-// the third is not named), and the platoons predicted with it are closer to the measured dips
-// than with the base models (-45 % -> -15 % in the median when this was written, every
-// car-perturbation out of sample). Fails when the rule names something else, or the diagnosed
-// platoons are no better, or the anticipation on top of the delay lowers the rule's loss by less
-// than half (-76 % when this was written; the quadratic closing response there -58 %).
-TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesADelayAndAnAnticipationOfBrakingThatShrinkTheDipGap)
+// The platoon diagnosis on the real runs (docs/PLATOON_DIAGNOSIS.md): six perturbations establish a
+// timing effect and nothing on top. The rule (the wild cluster bootstrap-t, max-t over a stage)
+// names the reaction delay (p = 0.0215 within its stage when this was written) and the actuation
+// lag beside it, and chooses the delay; the anticipation of the leader's braking on top lowers the
+// loss by three quarters (-76 %) yet stays above the level (0.0525): the test that keeps its level
+// with six clusters cannot tell it from chance, where the percentile bootstrap the rule used until
+// 2026-11-29 said p = 0.0005. Every run's choice made without that run holds a timing effect. The
+// platoons predicted with the choice are closer to the measured dips than with the base models
+// (-45 % -> -26 % in the median when this was written, every car-perturbation out of sample).
+// Fails when the rule names something else, names the anticipation on six perturbations, or the
+// diagnosed platoons are no better.
+TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesATimingEffectAndNotTheBrakingTermsOnTopOfIt)
 {
   const acc::CampaignInputs inputs = acc::loadCampaign({ACC_ZALAZONE_DYNAMIC_DIR});
   acc::CampaignOptions options;
   options.threads = 2;
   const acc::CampaignResult result = acc::runCampaign(inputs, options);
   const std::string named = "leader_braking_anticipation + reaction_delay";
-  EXPECT_EQ(result.effect_selection.model.name(), "leader_braking_anticipation + quadratic_closing_response + reaction_delay");
+  EXPECT_EQ(result.effect_selection.model.name(), "reaction_delay");
   for (const acc::EffectSetSelection& selection : result.run_effect_selections)
   {
-    for (acc::EffectKind kind : {acc::EffectKind::reaction_delay, acc::EffectKind::leader_braking_anticipation})
-      EXPECT_NE(std::find(selection.model.effects.begin(), selection.model.effects.end(), kind),
-                selection.model.effects.end())
-          << "without " << selection.excluded_run << ": " << selection.model.name();
+    const std::vector<acc::EffectKind>& effects = selection.model.effects;
+    EXPECT_TRUE(std::find(effects.begin(), effects.end(), acc::EffectKind::reaction_delay) != effects.end() ||
+                std::find(effects.begin(), effects.end(), acc::EffectKind::actuation_lag) != effects.end())
+        << "without " << selection.excluded_run << ": " << selection.model.name();
   }
   const auto on_top = std::find_if(result.effect_selection.comparisons.begin(),
                                    result.effect_selection.comparisons.end(),
@@ -94,13 +96,15 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesADelayAndAnAnticipationOfBrakingT
   ASSERT_NE(on_top, result.effect_selection.comparisons.end());
   EXPECT_EQ(on_top->against.name(), "reaction_delay");
   EXPECT_GT(on_top->relative_improvement, 0.5);
+  EXPECT_FALSE(on_top->significant);
+  EXPECT_GE(on_top->p_value, on_top->p_value_alone);
   const auto base = acc::summarizeDipPredictions(result.platoons, acc::DipPrediction::chain_base);
   const auto diagnosed = acc::summarizeDipPredictions(result.platoons, acc::DipPrediction::chain_diagnosed);
   ASSERT_EQ(diagnosed.car_perturbations, base.car_perturbations);
   EXPECT_LT(diagnosed.median_abs_dip_error, base.median_abs_dip_error - 0.1);
-  // Deeper dips are not the links' direction: growth or decay right at 55 % of the links against
-  // the base chains' 80 % when this was written (70 % with the delay and the quadratic closing
-  // response the rule chose before; PLATOON_DIAGNOSIS.md says it); a guard against losing more.
+  // Deeper dips are not the links' direction: growth or decay right at 65 % of the links against
+  // the base chains' 80 % when this was written (55 % with the three effects the percentile rule
+  // chose; PLATOON_DIAGNOSIS.md says it); a guard against losing more.
   EXPECT_GE(diagnosed.share_links_growth_right, 0.5);
   // Without a model, each car's own link ratio from its other runs: unbiased (-3 % in the median
   // when this was written) but right about fewer than half of the links' direction (41 % of 17):
@@ -110,10 +114,11 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesADelayAndAnAnticipationOfBrakingT
   EXPECT_LT(std::abs(own_ratios.median_dip_error), 0.1);
   EXPECT_LT(own_ratios.share_links_growth_right, 0.5);
   // The base chains lose far less distance in a braking than the cars did (-37 % in the median
-  // when this was written); the diagnosed chains lose about as much as the cars (-3 %).
+  // when this was written); the diagnosed chains a little more (-28 %; the three effects forced,
+  // about as much as the cars).
   ASSERT_GE(base.distance_lost_scored, base.car_perturbations - 2);
   EXPECT_LT(base.median_distance_lost_error, -0.2);
-  EXPECT_LT(std::abs(diagnosed.median_distance_lost_error), 0.6 * std::abs(base.median_distance_lost_error));
+  EXPECT_LT(std::abs(diagnosed.median_distance_lost_error), std::abs(base.median_distance_lost_error));
   ASSERT_EQ(result.links.size(), result.groups.size());
   // Every car with a model, in the runs without a perturbation too (their cars get only the
   // candidate the run's choice needs, fitted once that choice is made), is predicted by its fit of
@@ -198,7 +203,7 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesADelayAndAnAnticipationOfBrakingT
             base.median_distance_lost_error);
   // Where the rest of the gap enters (docs/PLATOON_DIAGNOSIS.md): the first followers' models lose
   // far too little distance (-31 % in the median when this was written), the cars' further back
-  // about what they lost (+5 %); the two rows split the pair-level row.
+  // about what they lost (-1 %); the two rows split the pair-level row.
   const nlohmann::json& gap = json.at("platoon_diagnosis").at("how_far_the_gap_shrinks");
   const nlohmann::json& first = gap.at("pair_diagnosed_first_follower");
   const nlohmann::json& back = gap.at("pair_diagnosed_further_back");
@@ -206,13 +211,14 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesADelayAndAnAnticipationOfBrakingT
             gap.at("pair_diagnosed").at("car_perturbations").get<std::size_t>());
   EXPECT_LT(first.at("median_distance_lost_error").get<double>(), -0.15);
   EXPECT_LT(std::abs(back.at("median_distance_lost_error").get<double>()), 0.15);
-  // The first followers' diagnosed dips are narrower at half depth than the cars' (-18 % when
-  // this was written): their models stay down for less time; further back +5 %.
-  EXPECT_LT(first.at("median_dip_width_error").get<double>(), -0.1);
+  // The first followers' diagnosed dips are a little narrower at half depth than the cars' (-5 %
+  // when this was written, -18 % with the three effects the percentile rule chose): their models
+  // stay down for less time; further back +2 %.
+  EXPECT_LT(first.at("median_dip_width_error").get<double>(), 0.0);
   EXPECT_LT(std::abs(back.at("median_dip_width_error").get<double>()), 0.15);
   // What the cars pass on of the car ahead's dip shape, and what the models pass on
   // (the same leaders driving both). When this was written: behind other ACC cars the cars passed
-  // on 0.92 [0.85, 0.98] of the recovery rate, the diagnosed models 0.70 and the base 0.68; the
+  // on 0.92 [0.85, 0.98] of the recovery rate, the diagnosed models 0.73 and the base 0.67; the
   // first followers 0.65 [0.51, 0.82] of the lead car's. The JSON carries the struct's values.
   const acc::ShapeTransferSummary& behind_acc = result.shapes_further_back;
   const acc::ShapeTransferSummary& behind_lead = result.shapes_first_followers;
@@ -223,8 +229,8 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesADelayAndAnAnticipationOfBrakingT
   EXPECT_LT(behind_acc.pair_base.recovery.ratio, behind_acc.cars.recovery.lower);
   EXPECT_LT(behind_lead.cars.recovery.upper, behind_acc.cars.recovery.ratio);
   // The first followers come back later than they went down, behind the lead car: their dips
-  // widen by a median 1.5 s, their diagnosed models' by 1.1 when this was written. Further back
-  // the cars widen them by 0.5 s, the models by 1.1-1.2.
+  // widen by a median 1.5 s, their diagnosed models' by 1.3 when this was written. Further back
+  // the cars widen them by 0.5 s, the models by 0.9-1.1.
   EXPECT_GT(behind_lead.cars.median_widening_s, 1.0);
   EXPECT_LT(behind_lead.pair_diagnosed.median_widening_s, behind_lead.cars.median_widening_s);
   EXPECT_LT(behind_acc.cars.median_widening_s, behind_acc.pair_diagnosed.median_widening_s);
@@ -242,7 +248,7 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesADelayAndAnAnticipationOfBrakingT
                         "rejected_rows 92, gap_rebuilt_rows 66 |"),
             std::string::npos);
   // The report says where the choice does not hold without a run (PLATOON_DIAGNOSIS.md, "Named").
-  EXPECT_NE(report.find("the same for 7 of 9 runs; without dynamic_part18, dynamic_part25: "
-                        "leader_braking_anticipation + reaction_delay"),
+  EXPECT_NE(report.find("the same for 6 of 9 runs; without dynamic_part8, dynamic_part26: actuation_lag; "
+                        "without dynamic_part25: quadratic_closing_response + reaction_delay"),
             std::string::npos);
 }

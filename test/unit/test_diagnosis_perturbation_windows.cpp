@@ -73,7 +73,7 @@ TEST(PerturbationWindowCriterion, NamesTheModelThatIsRightWhereTheLeaderBrakes)
   EXPECT_TRUE(c.effects[1].significant);
   EXPECT_FALSE(c.effects[0].significant);
   EXPECT_EQ(c.named, EffectKind::reaction_delay);
-  EXPECT_NE(c.rule.find("bootstrap over perturbations"), std::string::npos);
+  EXPECT_NE(c.rule.find("wild cluster bootstrap-t over perturbations"), std::string::npos);
 }
 
 TEST(PerturbationWindowCriterion, SaysWhyWithFewerThanTwoPerturbations)

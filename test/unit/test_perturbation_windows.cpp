@@ -1,6 +1,6 @@
 // What the campaign's platoon diagnosis and diagnose share to judge models inside a leader's
 // perturbations (perturbation_windows.h): the window's speed MSE and the paired comparison of two
-// models over perturbations with its cluster bootstrap, and the samples inside the windows.
+// models over perturbations with its wild cluster bootstrap, and the samples inside the windows.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -57,9 +57,10 @@ TEST(InsidePerturbationWindows, MarksEachPerturbationsWindowAndNothingElse)
   EXPECT_EQ(std::count(steady.begin(), steady.end(), true), 0);
 }
 
-TEST(PairedLossComparison, MeansImprovementAndTheBootstrapOverClusters)
+TEST(PairedLossComparison, MeansImprovementAndTheWildBootstrapOverClusters)
 {
-  // Three clusters, the candidate better in each: every replicate improves, p = 1 / (R + 1).
+  // Three clusters, the candidate better in each: the means per entry, and the p of the wild
+  // cluster bootstrap-t on the clusters' differences (against - candidate), in order.
   const std::vector<LossCluster> better = {{2.0, 1.0, 1}, {4.0, 3.0, 2}, {1.0, 0.5, 1}};
   const PairedLossComparison c = comparePairedLosses(better, 999, 7);
   EXPECT_EQ(c.clusters, 3u);
@@ -67,13 +68,18 @@ TEST(PairedLossComparison, MeansImprovementAndTheBootstrapOverClusters)
   EXPECT_DOUBLE_EQ(c.against_loss, 7.0 / 4.0);
   EXPECT_DOUBLE_EQ(c.candidate_loss, 4.5 / 4.0);
   EXPECT_DOUBLE_EQ(c.relative_improvement, 1.0 - 4.5 / 7.0);
-  EXPECT_DOUBLE_EQ(c.p_value, 1.0 / 1000.0);
-  // Swapped, no replicate improves: p = 1.
+  const ClusteredDifferences d = differencesOf(better);
+  EXPECT_EQ(d.clusters, (std::vector<std::size_t>{0, 1, 2}));
+  EXPECT_EQ(d.sums, (std::vector<double>{1.0, 1.0, 0.5}));
+  EXPECT_EQ(d.sizes, (std::vector<std::size_t>{1, 2, 1}));
+  EXPECT_DOUBLE_EQ(c.p_value, wildClusterTest(d.sums, d.sizes, 999, 7).p_value);
+  EXPECT_LT(c.p_value, 0.1);  // three of three improve: 1 in 8 by chance, and the spread is small
+  // Swapped: no improvement.
   std::vector<LossCluster> worse;
   for (const LossCluster& k : better)
     worse.push_back({k.candidate, k.against, k.n});
-  EXPECT_DOUBLE_EQ(comparePairedLosses(worse, 999, 7).p_value, 1.0);
-  // One cluster has no spread to resample.
+  EXPECT_GT(comparePairedLosses(worse, 999, 7).p_value, 0.9);
+  // One cluster has no spread to weigh.
   EXPECT_DOUBLE_EQ(comparePairedLosses({better[0]}, 999, 7).p_value, 1.0);
 }
 

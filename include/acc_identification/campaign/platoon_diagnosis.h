@@ -112,7 +112,9 @@ std::string criterionName(SelectionCriterion criterion);
 struct EffectSetSelectionOptions
 {
   SelectionCriterion criterion = SelectionCriterion::platoon_dips;
-  /// Family-wise error rate of the comparisons of one stage (Bonferroni over its candidates).
+  /// Family-wise error rate of the comparisons of one stage (the joint max-t of the wild cluster
+  /// bootstrap over its candidates, wildClusterMaxT); the level of each single comparison of a
+  /// choice with a rival or an alternative.
   double alpha = 0.05;
   /// A candidate must also lower the window MSE by at least this fraction (practical relevance).
   double min_relative_improvement = 0.10;
@@ -122,7 +124,7 @@ struct EffectSetSelectionOptions
   /// no gap: a dip is the minimum of a noisy speed, and even the smoothed OpenACC speeds leave it
   /// uncertain by 1-6 % (docs/PLATOON_DIAGNOSIS.md, "noise deepening the measured dips").
   double min_rms_dip_error_reduction = 0.01;
-  std::size_t replicates = 1999;
+  std::size_t replicates = 1999;  ///< of the wild cluster bootstrap over perturbations
   std::uint64_t seed = 20191008;
   /// When set, this candidate (one of platoonCandidates(), or the base model) is taken instead of
   /// the rule's choice; the comparisons are still made and reported.
@@ -143,13 +145,12 @@ struct EffectSetComparison
   /// The other criterion on the same car-perturbations, for the report (NaN where not scored).
   double mean_window_mse = 0.0;
   double against_window_mse = 0.0;
-  double p_value = 1.0;               ///< H0: no lower loss (cluster bootstrap over perturbations)
-  bool significant = false;           ///< p <= alpha / (stage size) and the improvement is relevant
-  /// The same H0 by the wild cluster bootstrap-t, which keeps its level with the few perturbations
-  /// a campaign has (PairedLossComparison::small_sample_p_value), and whether the rule would name
-  /// the candidate with it in place of p_value. Reported, not yet the rule's (PLATOON_DIAGNOSIS.md).
-  double small_sample_p_value = 1.0;
-  bool small_sample_significant = false;
+  /// H0: no lower loss, by the wild cluster bootstrap-t over perturbations. p_value is the one the
+  /// rule uses: within the stage's family (max-t) for a stage's comparison, alone for a rival or an
+  /// alternative; p_value_alone is this comparison's own.
+  double p_value = 1.0;
+  double p_value_alone = 1.0;
+  bool significant = false;           ///< p_value <= alpha and the improvement is relevant
 };
 
 /// The rule's outcome: the candidate chosen (index into platoonCandidates() + 1, 0 for the base

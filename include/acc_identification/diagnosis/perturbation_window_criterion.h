@@ -22,9 +22,9 @@ namespace acc
 struct PerturbationWindowOptions
 {
   PerturbationCriteria perturbation;  ///< how a leader's perturbation and its window are found
-  double alpha = 0.05;                 ///< divided by the number of candidates (Bonferroni)
+  double alpha = 0.05;                 ///< family-wise, over the effects (wildClusterMaxT)
   double min_relative_improvement = 0.10;  ///< of the base model's mean window MSE
-  std::size_t replicates = 1999;       ///< bootstrap over perturbations
+  std::size_t replicates = 1999;       ///< of the wild cluster bootstrap over perturbations
   std::uint64_t seed = 20240601;
 };
 
@@ -34,7 +34,8 @@ struct PerturbationWindowScore
   EffectKind effect = EffectKind::none;
   double window_rmse_speed_mps = std::numeric_limits<double>::quiet_NaN();  ///< root of the mean window MSE
   PairedLossComparison versus_base;  ///< losses: window MSE [m^2/s^2], one cluster per perturbation
-  bool significant = false;          ///< p <= alpha / candidates and at least the minimum improvement
+  double family_p_value = 1.0;       ///< versus_base's p within the family of all effects (max-t)
+  bool significant = false;          ///< family_p_value <= alpha and at least the minimum improvement
 };
 
 struct PerturbationWindowCriterion
@@ -53,7 +54,8 @@ using HeldOutPredictions = std::pair<EffectKind, const std::vector<SimulatedFoll
 /// Finds the leader's perturbations in every held-out part (findPerturbations), scores the base
 /// model and each effect's model by their speed MSE over each window (a simulation that ran away
 /// before the window's end scores at the divergence bound, as the whole-run ranking does) and
-/// compares each with the base model paired over perturbations (comparePairedLosses).
+/// compares each with the base model paired over perturbations (comparePairedLosses), all of them
+/// as one family (wildClusterMaxT).
 PerturbationWindowCriterion judgeOnPerturbationWindows(const std::vector<CarFollowingRun>& held_out,
                                                        const std::vector<SimulatedFollower>& base,
                                                        const std::vector<HeldOutPredictions>& effects,

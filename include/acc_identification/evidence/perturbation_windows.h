@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "acc_identification/evidence/perturbation.h"
+#include "acc_identification/evidence/wild_cluster_bootstrap.h"
 
 namespace acc
 {
@@ -53,29 +54,27 @@ struct PairedLossComparison
   double against_loss = std::numeric_limits<double>::quiet_NaN();    ///< mean over the scores
   double candidate_loss = std::numeric_limits<double>::quiet_NaN();
   double relative_improvement = std::numeric_limits<double>::quiet_NaN();  ///< 1 - candidate / against
-  /// Share of cluster-bootstrap replicates whose mean loss difference (against - candidate) is
-  /// not positive, (1 + count) / (replicates + 1): the percentile test of "no improvement". 1 with
-  /// fewer than two clusters or no replicates. Too small with few clusters: see small_sample_p_value.
+  /// The wild cluster bootstrap-t's p of "no improvement" (wildClusterTest), this comparison alone;
+  /// 1 with fewer than two clusters or no replicates.
   double p_value = 1.0;
-  /// The same hypothesis by the wild cluster bootstrap-t (wildClusterBootstrapP, as many replicates
-  /// and the same seed), which keeps its level with few clusters; reported beside p_value.
-  double small_sample_p_value = 1.0;
 };
 
-/// Means, relative improvement and the cluster-bootstrap p-value (clusters resampled with
-/// replacement `replicates` times by uniformBelow from std::mt19937_64(seed): bit for bit the same
-/// with every standard library), and the wild cluster bootstrap-t's beside.
+/// Means, relative improvement and the wild cluster bootstrap-t's p (`replicates` replicates from
+/// `seed`). The clusters' differences, against - candidate, as a member of a family of tests:
+/// differencesOf.
 PairedLossComparison comparePairedLosses(const std::vector<LossCluster>& clusters, std::size_t replicates,
                                          std::uint64_t seed);
 
+/// The clusters' summed differences (against - candidate) and sizes, numbered 0..n-1 in order.
+ClusteredDifferences differencesOf(const std::vector<LossCluster>& clusters);
+
 /// The naming rule both perturbation judges state (campaign's platoon diagnosis, diagnose's window
-/// criterion): p at most alpha divided by the candidates compared (Bonferroni) and a mean loss at
-/// least min_relative_improvement below the reference's.
-inline bool namedByRule(const PairedLossComparison& comparison, double alpha, std::size_t candidates,
+/// criterion): the candidate's family-wise p (wildClusterMaxT over the candidates compared) at most
+/// alpha and a mean loss at least min_relative_improvement below the reference's.
+inline bool namedByRule(const PairedLossComparison& comparison, double family_p_value, double alpha,
                         double min_relative_improvement)
 {
-  return comparison.p_value <= alpha / static_cast<double>(candidates) &&
-         comparison.relative_improvement >= min_relative_improvement;
+  return family_p_value <= alpha && comparison.relative_improvement >= min_relative_improvement;
 }
 
 }  // namespace acc
