@@ -117,17 +117,18 @@ bool namedAt(const PairedLossComparison& losses, double p, const EffectSetSelect
   return namedByRule(losses, p, options.alpha, options.min_relative_improvement) && closesAGap(losses, options);
 }
 
-/// Model `candidate` against model `against`, alone: mean losses, the relative improvement, and
-/// the wild cluster bootstrap-t's p of "no improvement" (comparePairedLosses); the pair-window
-/// criterion's means beside. `losses` receives the comparison for a family test.
+/// Model `candidate` against model `against`: mean losses and the relative improvement, and with
+/// `replicates` > 0 the comparison's own wild cluster bootstrap-t p of "no improvement"
+/// (comparePairedLosses), which is then the rule's; the pair-window criterion's means beside. A
+/// stage member's p comes from its family instead (runStage). `losses` receives the comparison.
 EffectSetComparison compare(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
                             std::size_t candidate, std::size_t against, const EffectSetSelectionOptions& options,
-                            PairedLossComparison* losses_out = nullptr)
+                            std::size_t replicates, PairedLossComparison* losses_out = nullptr)
 {
   EffectSetComparison out;
+  const std::vector<LossCluster> clusters = valuesOf(clustersOf(scores, exclude_file, against, candidate, options.criterion));
   const PairedLossComparison losses =
-      comparePairedLosses(valuesOf(clustersOf(scores, exclude_file, against, candidate, options.criterion)),
-                          options.replicates, options.seed);
+      replicates > 0 ? comparePairedLosses(clusters, replicates, options.seed) : pairedLossMeans(clusters);
   out.car_perturbations = losses.entries;
   out.perturbations = losses.clusters;
   out.against_loss = losses.against_loss;
@@ -136,9 +137,8 @@ EffectSetComparison compare(const std::vector<PairPerturbationScore>& scores, st
   out.p_value_alone = losses.p_value;
   out.p_value = losses.p_value;
   out.significant = namedAt(losses, losses.p_value, options);
-  const PairedLossComparison windows = comparePairedLosses(
-      valuesOf(clustersOf(scores, exclude_file, against, candidate, SelectionCriterion::pair_windows)), 0,
-      options.seed);
+  const PairedLossComparison windows =
+      pairedLossMeans(valuesOf(clustersOf(scores, exclude_file, against, candidate, SelectionCriterion::pair_windows)));
   out.against_window_mse = windows.against_loss;
   out.mean_window_mse = windows.candidate_loss;
   if (losses_out != nullptr)
@@ -167,14 +167,10 @@ std::vector<ClusteredDifferences> stageFamily(const std::vector<PairPerturbation
   std::vector<ClusteredDifferences> family;
   for (const auto& member : members)
   {
-    ClusteredDifferences differences;
+    std::vector<std::size_t> member_numbers;
     for (const auto& entry : member)
-    {
-      differences.clusters.push_back(numbers.at(entry.first));
-      differences.sums.push_back(entry.second.against - entry.second.candidate);
-      differences.sizes.push_back(entry.second.n);
-    }
-    family.push_back(std::move(differences));
+      member_numbers.push_back(numbers.at(entry.first));
+    family.push_back(differencesOf(valuesOf(member), member_numbers));
   }
   *family_clusters = numbers.size();
   return family;
@@ -216,7 +212,7 @@ void compareRivals(const std::vector<PairPerturbationScore>& scores, std::size_t
   {
     if (candidates[i] == chosen || !selection->comparisons[first + i].significant)
       continue;
-    EffectSetComparison rival = compare(scores, exclude_file, chosen, candidates[i], options);
+    EffectSetComparison rival = compare(scores, exclude_file, chosen, candidates[i], options, options.replicates);
     rival.candidate = candidateAt(chosen);
     rival.against = candidateAt(candidates[i]);
     selection->rivals.push_back(std::move(rival));
@@ -239,9 +235,10 @@ std::size_t runStage(const std::vector<PairPerturbationScore>& scores, std::size
   for (std::size_t i = 0; i < candidates.size(); ++i)
   {
     PairedLossComparison losses;
-    EffectSetComparison c = compare(scores, exclude_file, candidates[i], against, options, &losses);
+    EffectSetComparison c = compare(scores, exclude_file, candidates[i], against, options, 0, &losses);
     c.candidate = candidateAt(candidates[i]);
     c.against = candidateAt(against);
+    c.p_value_alone = tests[i].p_value;
     c.p_value = tests[i].family_p_value;
     c.significant = namedAt(losses, c.p_value, options);
     if (c.significant && c.mean_loss < best_loss)
@@ -561,7 +558,7 @@ void addAlternatives(const std::vector<PairPerturbationScore>& scores, std::size
           return a.against == candidateAt(reached);
         }))
       continue;
-    EffectSetComparison versus = compare(scores, exclude_file, chosen, reached, options);
+    EffectSetComparison versus = compare(scores, exclude_file, chosen, reached, options, options.replicates);
     if (versus.significant)
       continue;
     versus.candidate = candidateAt(chosen);

@@ -78,7 +78,7 @@ PerturbationWindowCriterion judgeOnPerturbationWindows(const std::vector<CarFoll
     std::vector<LossCluster> clusters;
     for (std::size_t i = 0; i < out.perturbations; ++i)
       clusters.push_back({losses[0][i], losses[e + 1][i], 1});
-    score.versus_base = comparePairedLosses(clusters, options.replicates, options.seed);
+    score.versus_base = pairedLossMeans(clusters);
     family.push_back(differencesOf(clusters));
     out.effects.push_back(score);
   }
@@ -87,6 +87,7 @@ PerturbationWindowCriterion judgeOnPerturbationWindows(const std::vector<CarFoll
   for (std::size_t e = 0; e < out.effects.size(); ++e)
   {
     PerturbationWindowScore& score = out.effects[e];
+    score.versus_base.p_value = tests[e].p_value;
     score.family_p_value = tests[e].family_p_value;
     score.significant = out.perturbations >= 2 && namedByRule(score.versus_base, score.family_p_value, options.alpha,
                                                                options.min_relative_improvement);

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace acc
 {
@@ -45,8 +47,7 @@ double perturbationWindowMse(const std::vector<double>& time_s, const std::vecto
   return n > 0 ? sum / static_cast<double>(n) : std::numeric_limits<double>::quiet_NaN();
 }
 
-PairedLossComparison comparePairedLosses(const std::vector<LossCluster>& clusters, std::size_t replicates,
-                                         std::uint64_t seed)
+PairedLossComparison pairedLossMeans(const std::vector<LossCluster>& clusters)
 {
   PairedLossComparison out;
   out.clusters = clusters.size();
@@ -63,17 +64,29 @@ PairedLossComparison comparePairedLosses(const std::vector<LossCluster>& cluster
   out.candidate_loss = sum_candidate / static_cast<double>(out.entries);
   out.relative_improvement =
       out.against_loss > 0.0 ? 1.0 - out.candidate_loss / out.against_loss : std::numeric_limits<double>::quiet_NaN();
+  return out;
+}
+
+PairedLossComparison comparePairedLosses(const std::vector<LossCluster>& clusters, std::size_t replicates,
+                                         std::uint64_t seed)
+{
+  PairedLossComparison out = pairedLossMeans(clusters);
+  if (out.entries == 0)
+    return out;
   const ClusteredDifferences differences = differencesOf(clusters);
   out.p_value = wildClusterTest(differences.sums, differences.sizes, replicates, seed).p_value;
   return out;
 }
 
-ClusteredDifferences differencesOf(const std::vector<LossCluster>& clusters)
+ClusteredDifferences differencesOf(const std::vector<LossCluster>& clusters, const std::vector<std::size_t>& numbers)
 {
+  if (!numbers.empty() && numbers.size() != clusters.size())
+    throw std::invalid_argument("differencesOf: " + std::to_string(numbers.size()) + " cluster numbers for " +
+                                std::to_string(clusters.size()) + " clusters");
   ClusteredDifferences out;
   for (std::size_t g = 0; g < clusters.size(); ++g)
   {
-    out.clusters.push_back(g);
+    out.clusters.push_back(numbers.empty() ? g : numbers[g]);
     out.sums.push_back(clusters[g].against - clusters[g].candidate);
     out.sizes.push_back(clusters[g].n);
   }

@@ -59,14 +59,19 @@ struct PairedLossComparison
   double p_value = 1.0;
 };
 
-/// Means, relative improvement and the wild cluster bootstrap-t's p (`replicates` replicates from
-/// `seed`). The clusters' differences, against - candidate, as a member of a family of tests:
-/// differencesOf.
+/// Means and relative improvement, p_value left at 1: for a member of a family, whose p (alone and
+/// within the family) comes from wildClusterMaxT over differencesOf.
+PairedLossComparison pairedLossMeans(const std::vector<LossCluster>& clusters);
+
+/// pairedLossMeans and the wild cluster bootstrap-t's p of this comparison alone (`replicates`
+/// replicates from `seed`).
 PairedLossComparison comparePairedLosses(const std::vector<LossCluster>& clusters, std::size_t replicates,
                                          std::uint64_t seed);
 
-/// The clusters' summed differences (against - candidate) and sizes, numbered 0..n-1 in order.
-ClusteredDifferences differencesOf(const std::vector<LossCluster>& clusters);
+/// The clusters' summed differences (against - candidate) and sizes. Cluster g is numbered
+/// numbers[g] of a family's numbering, or g when numbers is empty.
+ClusteredDifferences differencesOf(const std::vector<LossCluster>& clusters,
+                                   const std::vector<std::size_t>& numbers = {});
 
 /// The naming rule both perturbation judges state (campaign's platoon diagnosis, diagnose's window
 /// criterion): the candidate's family-wise p (wildClusterMaxT over the candidates compared) at most
