@@ -627,14 +627,15 @@ std::string effectSetSelectionRule(const EffectSetSelectionOptions& options)
           ? ", its root at least " + printfText("%.3g", options.min_rms_dip_error_reduction) +
                 " lower (a smaller change in the RMS relative dip error is within what a measured dip can tell),"
           : "";
-  char text[1300];
+  char text[1600];
   std::snprintf(text, sizeof text,
                 "every car's models fitted on its other runs (leave-one-run-out); the loss: %s. Stage 1: each "
                 "candidate adding one effect or objective to the base model against it; each further stage: each "
                 "candidate adding one more to the last stage's choice against that, until none is named. A "
                 "candidate is named when its mean loss is at "
-                "least %.0f %% lower%s and the wild cluster bootstrap-t over perturbations (%zu replicates, Webb "
-                "weights, every car of a perturbation weighed together, the null imposed) gives a p <= %.3g within "
+                "least %.0f %% lower%s and the wild cluster bootstrap-t over perturbations (Webb "
+                "weights, every pattern visited with up to seven perturbations, else %zu drawn; every car of a "
+                "perturbation weighed together, the null imposed) gives a p <= %.3g within "
                 "the stage's candidates (the joint max-t: the family-wise level); the lowest loss among those named "
                 "wins. A run's own diagnosed models use the choice made without that run.",
                 loss.c_str(), 100.0 * options.min_relative_improvement, floor.c_str(), options.replicates,

@@ -106,8 +106,9 @@ std::string perturbationWindowRule(const PerturbationWindowOptions& options, std
          " s before its onset to " + significant(options.perturbation.extension_s) +
          " s after its recovery) is scored by each model's speed MSE; an effect is named when its mean window MSE is at "
          "least " + significant(100.0 * options.min_relative_improvement) +
-         " % below the base model's and the wild cluster bootstrap-t over perturbations (" +
-         std::to_string(options.replicates) + " replicates, Webb weights, the max-t over the " +
+         " % below the base model's and the wild cluster bootstrap-t over perturbations (Webb weights, every "
+         "pattern visited with up to seven perturbations, else " +
+         std::to_string(options.replicates) + " drawn; the max-t over the " +
          std::to_string(candidates) + " effects) gives a family-wise p <= " + significant(options.alpha) +
          "; the lowest window MSE among the named wins";
 }

@@ -53,6 +53,52 @@ double clusterT(const ClusteredDifferences& member, const std::vector<double>& w
 }
 }  // namespace
 
+std::size_t enumerableWeightPatterns(std::size_t family_clusters)
+{
+  std::size_t patterns = 1;
+  for (std::size_t g = 0; g < family_clusters; ++g)
+  {
+    patterns *= kWebbWeights.size();
+    if (patterns > kMaxEnumeratedWeightPatterns)
+      return 0;
+  }
+  return patterns;
+}
+
+namespace
+{
+/// Calls visit(weights) once per weight pattern: every one of the 6^G when there are at most
+/// kMaxEnumeratedWeightPatterns, else `replicates` drawn from std::mt19937_64(seed). Returns how
+/// many patterns were visited.
+template <typename Visit>
+std::size_t forEachWeightPattern(std::size_t family_clusters, std::size_t replicates, std::uint64_t seed, Visit visit)
+{
+  std::vector<double> weights(family_clusters);
+  const std::size_t patterns = enumerableWeightPatterns(family_clusters);
+  if (patterns > 0)
+  {
+    std::vector<std::size_t> digits(family_clusters, 0);  // an odometer in base 6
+    for (std::size_t k = 0; k < patterns; ++k)
+    {
+      for (std::size_t g = 0; g < family_clusters; ++g)
+        weights[g] = kWebbWeights[digits[g]];
+      visit(weights);
+      for (std::size_t g = 0; g < family_clusters && ++digits[g] == kWebbWeights.size(); ++g)
+        digits[g] = 0;
+    }
+    return patterns;
+  }
+  std::mt19937_64 engine(seed);
+  for (std::size_t b = 0; b < replicates; ++b)
+  {
+    for (double& w : weights)
+      w = kWebbWeights[static_cast<std::size_t>(uniformBelow(engine, kWebbWeights.size()))];
+    visit(weights);
+  }
+  return replicates;
+}
+}  // namespace
+
 std::vector<WildClusterTest> wildClusterMaxT(const std::vector<ClusteredDifferences>& family,
                                              std::size_t family_clusters, std::size_t replicates, std::uint64_t seed)
 {
@@ -69,32 +115,31 @@ std::vector<WildClusterTest> wildClusterMaxT(const std::vector<ClusteredDifferen
   }
   if (members.empty())
     return out;
-  std::mt19937_64 engine(seed);
-  std::vector<double> weights(family_clusters);
   std::vector<std::size_t> alone(family.size(), 0), in_family(family.size(), 0);
-  for (std::size_t b = 0; b < replicates; ++b)
-  {
-    for (double& w : weights)
-      w = kWebbWeights[static_cast<std::size_t>(uniformBelow(engine, kWebbWeights.size()))];
-    // The null imposed: under "mean 0" each cluster's residual is its whole sum.
+  std::vector<double> t(family.size());
+  // The null imposed: under "mean 0" each cluster's residual is its whole sum, so a pattern's
+  // statistic is the t of the weighted sums.
+  const std::size_t visited = forEachWeightPattern(family_clusters, replicates, seed, [&](const std::vector<double>& w) {
     double largest = -std::numeric_limits<double>::infinity();
-    std::vector<double> t(family.size(), -std::numeric_limits<double>::infinity());
     for (std::size_t m : members)
     {
-      t[m] = clusterT(family[m], weights);
-      if (t[m] > largest)
-        largest = t[m];
+      t[m] = clusterT(family[m], w);
+      largest = std::max(largest, t[m]);
     }
     for (std::size_t m : members)
     {
       alone[m] += t[m] >= out[m].t;
       in_family[m] += largest >= out[m].t;
     }
-  }
+  });
+  // Enumerated, the all-ones pattern is among those counted (its t is the member's own): the exact
+  // share. Drawn, the observed statistic is added as one more replicate.
+  const bool enumerated = enumerableWeightPatterns(family_clusters) > 0;
+  const double extra = enumerated ? 0.0 : 1.0;
   for (std::size_t m : members)
   {
-    out[m].p_value = static_cast<double>(1 + alone[m]) / static_cast<double>(replicates + 1);
-    out[m].family_p_value = static_cast<double>(1 + in_family[m]) / static_cast<double>(replicates + 1);
+    out[m].p_value = (extra + static_cast<double>(alone[m])) / (extra + static_cast<double>(visited));
+    out[m].family_p_value = (extra + static_cast<double>(in_family[m])) / (extra + static_cast<double>(visited));
   }
   return out;
 }

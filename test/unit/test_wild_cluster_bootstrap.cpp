@@ -148,6 +148,28 @@ TEST(WildClusterBootstrap, FindsAConsistentImprovementAndNotAWorsening)
   EXPECT_GT(wildClusterTest(sums, sizes, 1999, 1).p_value, 0.9);
 }
 
+// With up to seven clusters every weight pattern is visited, so the p is the wild bootstrap's
+// exact one and a decision near the level is not one of Monte-Carlo noise. Clusters that agree
+// exactly have t = infinity, which only the patterns of equal positive weights reach: 3 of 6^G.
+TEST(WildClusterBootstrap, EnumeratesEveryWeightPatternOfUpToSevenClusters)
+{
+  EXPECT_EQ(enumerableWeightPatterns(2), 36u);
+  EXPECT_EQ(enumerableWeightPatterns(7), 279936u);
+  EXPECT_EQ(enumerableWeightPatterns(8), 0u);
+  for (std::uint64_t seed : {1u, 2u})
+  {
+    EXPECT_DOUBLE_EQ(wildClusterTest({0.4, 0.4}, {1, 1}, 999, seed).p_value, 3.0 / 36.0);
+    EXPECT_DOUBLE_EQ(wildClusterTest({0.2, 0.2, 0.2}, {1, 1, 1}, 5, seed).p_value, 3.0 / 216.0);
+  }
+  std::mt19937_64 engine(3);
+  std::vector<double> sums;
+  std::vector<std::size_t> sizes;
+  drawClusters(engine, 7, 0.3, &sums, &sizes);
+  const WildClusterTest seven = wildClusterTest(sums, sizes, 99, 1);
+  EXPECT_EQ(seven.p_value, wildClusterTest(sums, sizes, 1999, 2).p_value) << "enumerated: neither seed nor count";
+  EXPECT_NEAR(seven.p_value * 279936.0, std::round(seven.p_value * 279936.0), 1e-6);
+}
+
 TEST(WildClusterBootstrap, SaysOneWhereThereIsNothingToTestAndRepeatsWithTheSeed)
 {
   EXPECT_EQ(wildClusterTest({0.3}, {2}, 999, 1).p_value, 1.0);               // one cluster

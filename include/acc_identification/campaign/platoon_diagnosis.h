@@ -124,7 +124,7 @@ struct EffectSetSelectionOptions
   /// no gap: a dip is the minimum of a noisy speed, and even the smoothed OpenACC speeds leave it
   /// uncertain by 1-6 % (docs/PLATOON_DIAGNOSIS.md, "noise deepening the measured dips").
   double min_rms_dip_error_reduction = 0.01;
-  std::size_t replicates = 1999;  ///< of the wild cluster bootstrap over perturbations
+  std::size_t replicates = 1999;  ///< wild cluster bootstrap patterns drawn beyond seven perturbations
   std::uint64_t seed = 20191008;
   /// When set, this candidate (one of platoonCandidates(), or the base model) is taken instead of
   /// the rule's choice; the comparisons are still made and reported.

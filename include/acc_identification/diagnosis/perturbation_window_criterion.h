@@ -24,7 +24,7 @@ struct PerturbationWindowOptions
   PerturbationCriteria perturbation;  ///< how a leader's perturbation and its window are found
   double alpha = 0.05;                 ///< family-wise, over the effects (wildClusterMaxT)
   double min_relative_improvement = 0.10;  ///< of the base model's mean window MSE
-  std::size_t replicates = 1999;       ///< of the wild cluster bootstrap over perturbations
+  std::size_t replicates = 1999;       ///< wild cluster bootstrap patterns drawn beyond seven perturbations
   std::uint64_t seed = 20240601;
 };
 

@@ -26,6 +26,12 @@ struct WildClusterTest
   double family_p_value = 1.0;  ///< single-step max-t: holds the family-wise level over the members
 };
 
+/// Families with at most this many weight patterns (6^G) are enumerated whole: 6^7, seven clusters.
+constexpr std::size_t kMaxEnumeratedWeightPatterns = 279936;
+
+/// 6^family_clusters when the patterns are enumerated, else 0 (they are drawn).
+std::size_t enumerableWeightPatterns(std::size_t family_clusters);
+
 /// One-sided tests of "the mean per entry is not positive" for every member of a family, which
 /// hold their level with few clusters: the wild cluster bootstrap-t with the null imposed and
 /// Webb's six-point weights (Cameron, Gelbach and Miller, REStat 2008; Webb, Canadian Journal of
@@ -33,15 +39,20 @@ struct WildClusterTest
 /// clusters on), with the family's level held by the joint max-t (Westfall and Young, 1993).
 ///
 /// A member's t is its pooled mean (sum over entries) over its cluster-robust standard error
-/// (CR1). Each replicate draws one weight per family cluster from {-sqrt(3/2), -1, -sqrt(1/2),
-/// sqrt(1/2), 1, sqrt(3/2)} by uniformBelow from std::mt19937_64(seed) (bit for bit the same with
-/// every standard library) and multiplies each member's cluster sums by them. p_value is
-/// (1 + replicates whose t reaches the member's) / (replicates + 1); family_p_value counts the
-/// replicates whose largest t over the members reaches it. Correlated members (models that answer
-/// the same brakings) share their replicates, so the family costs far less than Bonferroni's
-/// division. A member with fewer than two clusters, sizes that do not match its sums, cluster
-/// numbers not below family_clusters, or a mean of exactly 0 with no spread gets p = 1 and takes no
-/// part in the maximum; so does every member without replicates.
+/// (CR1). A weight pattern gives one weight per family cluster from {-sqrt(3/2), -1, -sqrt(1/2),
+/// sqrt(1/2), 1, sqrt(3/2)} and multiplies each member's cluster sums by them.
+///
+/// With G family clusters there are 6^G patterns. Up to kMaxEnumeratedWeightPatterns (G <= 7,
+/// which is where the bootstrap matters most) every pattern is visited: p_value is the exact share
+/// of patterns whose t reaches the member's (the all-ones pattern among them), and family_p_value
+/// the share whose largest t over the members reaches it; neither depends on the seed, so a
+/// decision near the level is never one of Monte-Carlo noise. With more clusters, `replicates`
+/// patterns are drawn by uniformBelow from std::mt19937_64(seed) (bit for bit the same with every
+/// standard library) and the shares are (1 + count) / (replicates + 1). `replicates` = 0 asks for
+/// no test: every p is 1. Correlated members (models that answer the same brakings) share their
+/// patterns, so the family costs far less than Bonferroni's division. A member with fewer than two
+/// clusters, sizes that do not match its sums, cluster numbers not below family_clusters, or a mean
+/// of exactly 0 with no spread gets p = 1 and takes no part in the maximum.
 ///
 /// Why not a percentile cluster bootstrap: resampling five clusters whole, every replicate of five
 /// improvements is an improvement, so it says p = 1 / (replicates + 1) where the chance that five
