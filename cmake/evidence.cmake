@@ -1,13 +1,15 @@
 # What the measured speeds say of string stability without any fitted model (always built, like
 # the model core): perturbations of a leader and the dips they cause, the follower/leader dip
-# ratio and a median over perturbations with their cluster-bootstrap intervals, the wild cluster
-# bootstrap-t that tests model comparisons with few perturbations, and Welch's empirical frequency response of a link. The
+# ratio with its cluster-bootstrap interval, the wild cluster bootstrap-t that tests model
+# comparisons with few perturbations and, inverted, gives the median's and a share's intervals, and
+# Welch's empirical frequency response of a link. The
 # calibrate tool states it beside the model's verdict; the campaign per car and link.
 acc_add_library(acc_evidence
   SOURCES
     src/evidence/perturbation.cpp
     src/evidence/cluster_bootstrap.cpp
     src/evidence/wild_cluster_bootstrap.cpp
+    src/evidence/wild_cluster_interval.cpp
     src/evidence/clustered_ratio.cpp
     src/evidence/clustered_median.cpp
     src/evidence/dip_shape_transfer.cpp
@@ -25,6 +27,7 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_empirical_response.cpp
     test/unit/test_pair_dip_evidence.cpp
     test/unit/test_perturbation_windows.cpp
-    test/unit/test_wild_cluster_bootstrap.cpp)
+    test/unit/test_wild_cluster_bootstrap.cpp
+    test/unit/test_wild_cluster_interval.cpp)
   target_link_libraries(test_evidence acc_evidence)
 endif()

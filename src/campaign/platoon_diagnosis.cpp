@@ -8,12 +8,14 @@
 #include <map>
 #include <optional>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/evidence/clustered_median.h"
 #include "acc_identification/evidence/clustered_ratio.h"
 #include "acc_identification/evidence/perturbation_windows.h"
+#include "acc_identification/evidence/wild_cluster_interval.h"
 #include "acc_identification/model/number_text.h"
 
 namespace acc
@@ -749,9 +751,8 @@ DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& pl
   const ClusteredMedian abs_error = clusteredMedian(abs_errors_by_perturbation, kScoreIntervalReplicates, kScoreIntervalSeed);
   out.median_abs_dip_error_lower = abs_error.lower;
   out.median_abs_dip_error_upper = abs_error.upper;
-  const ClusteredRatio links_right = clusteredRatioOfSums(links_by_perturbation, kScoreIntervalReplicates, kScoreIntervalSeed);
-  out.share_links_growth_right_lower = links_right.lower;
-  out.share_links_growth_right_upper = links_right.upper;
+  std::tie(out.share_links_growth_right_lower, out.share_links_growth_right_upper) =
+      wildClusterShareInterval(links_by_perturbation, 0.95, kScoreIntervalReplicates, kScoreIntervalSeed);
   out.car_perturbations = errors.size();
   out.median_dip_error = finiteMedian(errors);
   out.distance_lost_scored = lost_errors.size();

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <tuple>
 
-#include "acc_identification/evidence/cluster_bootstrap.h"
 #include "acc_identification/evidence/perturbation.h"
+#include "acc_identification/evidence/wild_cluster_interval.h"
 
 namespace acc
 {
@@ -26,14 +26,7 @@ ClusteredMedian clusteredMedian(const std::vector<std::vector<double>>& clusters
   }
   out.observations = all.size();
   out.median = finiteMedian(all);
-  std::vector<double> pooled;
-  const auto median_of = [&clusters, &pooled](const std::vector<std::size_t>& picks) {
-    pooled.clear();
-    for (std::size_t pick : picks)
-      pooled.insert(pooled.end(), clusters[pick].begin(), clusters[pick].end());
-    return finiteMedian(pooled);  // NaN for a resample without a value: left out
-  };
-  std::tie(out.lower, out.upper) = clusterBootstrapInterval(clusters.size(), replicates, seed, confidence, median_of);
+  std::tie(out.lower, out.upper) = wildClusterMedianInterval(clusters, confidence, replicates, seed);
   return out;
 }
 

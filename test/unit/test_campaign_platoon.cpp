@@ -459,11 +459,10 @@ acc::PerturbationCheck perturbationWithDips(const std::vector<double>& measured,
 }
 }  // namespace
 
-// The two target scores' intervals resample the perturbations that hold a scored car: they
-// bracket the scores, and a perturbation where no car was predicted (all driven by hand, say)
-// neither widens nor moves them. Fails when such a perturbation counts as a cluster of the
-// median's bootstrap, as it never did of the links'.
-TEST(DipPredictionSummary, TheIntervalsResampleOnlyPerturbationsWithAScoredCar)
+// The two target scores' intervals weigh the perturbations that hold a scored car: they bracket
+// the scores, and a perturbation where no car was predicted (all driven by hand, say) neither
+// widens nor moves them.
+TEST(DipPredictionSummary, TheIntervalsWeighOnlyPerturbationsWithAScoredCar)
 {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   acc::PlatoonCheck scored;

@@ -6,12 +6,11 @@
 
 #include "acc_identification/evidence/clustered_median.h"
 
-// The median pools every value; the interval resamples whole clusters. One cluster of nine 0.1
-// and two of one 0.5 each: a resample without the big cluster (probability (2/3)^3 = 0.30) has
-// the median 0.5, so the interval reaches 0.5. Resampling the eleven values one by one, a median
-// of 0.5 needs six of eleven draws of probability 2/11 (0.5 %): the interval would stop at 0.1.
-// Fails when single values are resampled.
-TEST(ClusteredMedian, PoolsTheValuesAndResamplesWholeClusters)
+// The median pools every value; the interval weighs whole clusters (wildClusterMedianInterval).
+// One cluster of nine 0.1 and two of one 0.5 each: three clusters cannot reject a median of 0.5,
+// so the interval reaches it. Taken as eleven independent values it would stop at 0.1
+// (test_wild_cluster_interval).
+TEST(ClusteredMedian, PoolsTheValuesAndWeighsWholeClusters)
 {
   const std::vector<std::vector<double>> clusters{std::vector<double>(9, 0.1), {0.5, NAN}, {0.5}};
   const acc::ClusteredMedian m = acc::clusteredMedian(clusters, 1999, 7);

@@ -210,10 +210,11 @@ struct DipPredictionSummary
   double share_within_30_percent = 0.0;
   std::size_t links = 0;
   double share_links_growth_right = 0.0;  ///< predicted growth (or decay) where the data show it
-  /// How sure the two scores are: 95 % percentile-bootstrap intervals that resample whole
-  /// perturbations (every car of one shares its input; clusteredMedian, clusteredRatioOfSums;
-  /// 1999 replicates, a fixed seed). NaN with fewer than two perturbations. With a handful of
-  /// perturbations such intervals are rough and tend to be too narrow.
+  /// How sure the two scores are: 95 % intervals that weigh whole perturbations (every car of one
+  /// shares its input) and hold their coverage with a handful of them, by inverting the wild
+  /// cluster bootstrap-t (clusteredMedian, wildClusterShareInterval; every weight pattern with up
+  /// to seven perturbations, else 1999 drawn from a fixed seed). NaN with fewer than two
+  /// perturbations.
   double median_abs_dip_error_lower = 0.0, median_abs_dip_error_upper = 0.0;
   double share_links_growth_right_lower = 0.0, share_links_growth_right_upper = 0.0;
   /// Median of (predicted - measured) / measured distance lost (distanceLostM) over the same
