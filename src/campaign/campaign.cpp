@@ -361,7 +361,7 @@ void addDipChecks(const std::vector<PlatoonCheck>& platoons, std::vector<GroupRe
     const DipPredictionSummary dips = summarizeDipPredictions(
         platoons, DipPrediction::pair_base, kScoredMinDipMps, kScoredMinLinkChangeMps, [&group](const PlatoonCheck& check, const DipComparison& row) {
           return row.name == group.vehicle && settingOfCar(check.car_settings, check.setting, row.name) == group.setting;
-        });
+        }, ScoreIntervals::skipped);
     addDipCheck(group.model_adequacy, dips.car_perturbations, dips.median_abs_dip_error);
   }
 }

@@ -840,7 +840,9 @@ double runMedianDipError(const PlatoonCheck& check, std::optional<std::size_t> a
     for (DipComparison& row : p.positions)
       if (a)
         row.chain_diagnosed.dip_mps = row.chain_alternatives_dip_mps.at(*a);
-  return summarizeDipPredictions({scored}, DipPrediction::chain_diagnosed).median_dip_error;
+  return summarizeDipPredictions({scored}, DipPrediction::chain_diagnosed, kScoredMinDipMps, kScoredMinLinkChangeMps, {},
+                                 ScoreIntervals::skipped)
+      .median_dip_error;
 }
 
 /// The runs whose own choice has alternatives (final models the data do not separate from it):

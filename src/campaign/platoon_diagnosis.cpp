@@ -705,7 +705,7 @@ void addRelativeError(const std::vector<DipComparison>& rows, std::size_t i, Dip
 
 DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& platoons, DipPrediction which,
                                              double min_dip_mps, double min_link_change_mps,
-                                             const DipRowFilter& include)
+                                             const DipRowFilter& include, ScoreIntervals intervals)
 {
   std::vector<double> errors, lost_errors, width_errors;
   std::size_t right = 0;
@@ -748,11 +748,16 @@ DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& pl
                                          static_cast<double>(out.links - links_before), out.links - links_before});
     }
   }
-  const ClusteredMedian abs_error = clusteredMedian(abs_errors_by_perturbation, kScoreIntervalReplicates, kScoreIntervalSeed);
-  out.median_abs_dip_error_lower = abs_error.lower;
-  out.median_abs_dip_error_upper = abs_error.upper;
-  std::tie(out.share_links_growth_right_lower, out.share_links_growth_right_upper) =
-      wildClusterShareInterval(links_by_perturbation, 0.95, kScoreIntervalReplicates, kScoreIntervalSeed);
+  out.median_abs_dip_error_lower = out.median_abs_dip_error_upper = kNaN;
+  out.share_links_growth_right_lower = out.share_links_growth_right_upper = kNaN;
+  if (intervals == ScoreIntervals::computed)
+  {
+    const ClusteredMedian abs_error = clusteredMedian(abs_errors_by_perturbation, kScoreIntervalReplicates, kScoreIntervalSeed);
+    out.median_abs_dip_error_lower = abs_error.lower;
+    out.median_abs_dip_error_upper = abs_error.upper;
+    std::tie(out.share_links_growth_right_lower, out.share_links_growth_right_upper) =
+        wildClusterShareInterval(links_by_perturbation, 0.95, kScoreIntervalReplicates, kScoreIntervalSeed);
+  }
   out.car_perturbations = errors.size();
   out.median_dip_error = finiteMedian(errors);
   out.distance_lost_scored = lost_errors.size();

@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "acc_identification/evidence/perturbation.h"
 #include "acc_identification/evidence/wild_cluster_bootstrap.h"
 
 namespace acc
@@ -28,13 +29,6 @@ bool rejectsPositive(const std::vector<double>& sums, const std::vector<std::siz
   return wildClusterTest(sums, sizes, replicates, seed).p_value <= tail;
 }
 
-std::vector<double> negated(std::vector<double> values)
-{
-  for (double& v : values)
-    v = -v;
-  return values;
-}
-
 /// The clusters' finite values, the clusters without one left out.
 std::vector<std::vector<double>> finiteClusters(const std::vector<std::vector<double>>& clusters)
 {
@@ -49,33 +43,30 @@ std::vector<std::vector<double>> finiteClusters(const std::vector<std::vector<do
   return out;
 }
 
-/// Whether median m is rejected: too small when significantly fewer than half the values lie at
-/// or below it, too large when significantly fewer than half lie at or above it.
+/// Whether median m is rejected as too small (`below`: significantly fewer than half the values lie
+/// at or below it) or as too large (significantly fewer than half lie at or above it).
 bool medianRejected(const std::vector<std::vector<double>>& clusters, const std::vector<std::size_t>& sizes, double m,
-                    double tail, std::size_t replicates, std::uint64_t seed)
+                    bool below, double tail, std::size_t replicates, std::uint64_t seed)
 {
-  std::vector<double> half_minus_below, half_minus_above;
+  std::vector<double> half_minus_count;
   for (const std::vector<double>& cluster : clusters)
   {
-    const double half = 0.5 * static_cast<double>(cluster.size());
-    half_minus_below.push_back(half - static_cast<double>(std::count_if(cluster.begin(), cluster.end(),
-                                                                        [m](double v) { return v <= m; })));
-    half_minus_above.push_back(half - static_cast<double>(std::count_if(cluster.begin(), cluster.end(),
-                                                                        [m](double v) { return v >= m; })));
+    const auto counted = std::count_if(cluster.begin(), cluster.end(),
+                                       [m, below](double v) { return below ? v <= m : v >= m; });
+    half_minus_count.push_back(0.5 * static_cast<double>(cluster.size()) - static_cast<double>(counted));
   }
-  return rejectsPositive(half_minus_below, sizes, tail, replicates, seed) ||
-         rejectsPositive(half_minus_above, sizes, tail, replicates, seed);
+  return rejectsPositive(half_minus_count, sizes, tail, replicates, seed);
 }
 
-/// Whether share s is rejected on either side.
+/// Whether share s is rejected as too small (the successes significantly above s trials) or, for
+/// `!too_small`, as too large.
 bool shareRejected(const std::vector<RatioCluster>& clusters, const std::vector<std::size_t>& sizes, double s,
-                   double tail, std::size_t replicates, std::uint64_t seed)
+                   bool too_small, double tail, std::size_t replicates, std::uint64_t seed)
 {
   std::vector<double> excess;
   for (const RatioCluster& c : clusters)
-    excess.push_back(c.numerator - s * c.denominator);
-  return rejectsPositive(excess, sizes, tail, replicates, seed) ||
-         rejectsPositive(negated(excess), sizes, tail, replicates, seed);
+    excess.push_back(too_small ? c.numerator - s * c.denominator : s * c.denominator - c.numerator);
+  return rejectsPositive(excess, sizes, tail, replicates, seed);
 }
 
 /// The end of the accepted shares between `accepted` and `bound` (bisection; `bound` itself when
@@ -109,17 +100,27 @@ std::pair<double, double> wildClusterMedianInterval(const std::vector<std::vecto
     sizes.push_back(cluster.size());
     values.insert(values.end(), cluster.begin(), cluster.end());
   }
+  const double median = finiteMedian(values);
   std::sort(values.begin(), values.end());
   values.erase(std::unique(values.begin(), values.end()), values.end());
+  // Walk out from the median to the first value rejected on each side. Below the median at least
+  // half the values lie at or above any m, so only "too small" can reject there; above, only "too
+  // large".
   const double tail = 0.5 * (1.0 - confidence);
+  const auto first_above = std::upper_bound(values.begin(), values.end(), median);
   double lower = kNaN, upper = kNaN;
-  for (double m : values)
+  for (auto it = first_above; it != values.begin();)
   {
-    if (medianRejected(finite, sizes, m, tail, replicates, seed))
-      continue;
-    if (std::isnan(lower))
-      lower = m;
-    upper = m;
+    --it;
+    if (medianRejected(finite, sizes, *it, true, tail, replicates, seed))
+      break;
+    lower = *it;
+  }
+  for (auto it = std::lower_bound(values.begin(), values.end(), median); it != values.end(); ++it)
+  {
+    if (medianRejected(finite, sizes, *it, false, tail, replicates, seed))
+      break;
+    upper = *it;
   }
   return {lower, upper};
 }
@@ -150,8 +151,10 @@ std::pair<double, double> wildClusterShareInterval(const std::vector<RatioCluste
   if (held.size() < 2 || same_share)
     return {kNaN, kNaN};
   const double tail = 0.5 * (1.0 - confidence), share = successes / trials;
-  const auto rejected = [&](double s) { return shareRejected(held, sizes, s, tail, replicates, seed); };
-  return {shareEnd(share, 0.0, rejected), shareEnd(share, 1.0, rejected)};
+  // Below the share only "too small" can reject, above it only "too large".
+  const auto too_small = [&](double s) { return shareRejected(held, sizes, s, true, tail, replicates, seed); };
+  const auto too_large = [&](double s) { return shareRejected(held, sizes, s, false, tail, replicates, seed); };
+  return {shareEnd(share, 0.0, too_small), shareEnd(share, 1.0, too_large)};
 }
 
 }  // namespace acc

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -82,7 +83,8 @@ TEST(WildClusterInterval, CoversAMedianAndAShareAsOftenAsItSaysWithFiveClusters)
     share_percentile += covers({percentile.lower, percentile.upper}, kShare);
   }
   const auto rate = [&](std::size_t n) { return static_cast<double>(n) / static_cast<double>(datasets); };
-  // Measured when written: median 0.960 against 0.865, share 0.910 against 0.825.
+  std::printf("coverage of 95 %% intervals over five clusters: median %.3f (percentile %.3f), share %.3f (%.3f)\n",
+              rate(median_wild), rate(median_percentile), rate(share_wild), rate(share_percentile));
   EXPECT_GT(rate(median_wild), 0.90);
   EXPECT_GT(rate(share_wild), 0.86);
   EXPECT_LT(rate(median_percentile), rate(median_wild) - 0.04);
@@ -102,6 +104,11 @@ TEST(WildClusterInterval, TheMedianWeighsWholeClustersAndEndsAtObservedValues)
     for (double v : cluster)
       single.push_back({v});
   EXPECT_DOUBLE_EQ(wildClusterMedianInterval(single, 0.95, 999, 1).second, 0.1);
+  // The mirror image bounds the other end.
+  std::vector<std::vector<double>> mirrored;
+  for (const auto& cluster : single)
+    mirrored.push_back({0.6 - cluster.front()});
+  EXPECT_DOUBLE_EQ(wildClusterMedianInterval(mirrored, 0.95, 999, 1).first, 0.5);
   std::mt19937_64 engine(3);
   const Draw draw = drawClusters(engine, 0);
   EXPECT_EQ(wildClusterMedianInterval(draw.values, 0.95, 99, 1), wildClusterMedianInterval(draw.values, 0.95, 999, 2))

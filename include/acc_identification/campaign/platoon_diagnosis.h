@@ -258,9 +258,18 @@ using DipRowFilter = std::function<bool(const PlatoonCheck&, const DipComparison
 inline bool isFirstFollower(const PlatoonCheck&, const DipComparison& row) { return row.position == 2; }
 inline bool isFurtherBack(const PlatoonCheck&, const DipComparison& row) { return row.position > 2; }
 
+/// Whether a summary carries the two target scores' intervals (DipPredictionSummary), which cost
+/// far more than the scores: skipped where only a score is read.
+enum class ScoreIntervals
+{
+  computed,
+  skipped  ///< the interval fields are NaN
+};
+
 DipPredictionSummary summarizeDipPredictions(const std::vector<PlatoonCheck>& platoons, DipPrediction which,
                                              double min_dip_mps = kScoredMinDipMps,
                                              double min_link_change_mps = kScoredMinLinkChangeMps,
-                                             const DipRowFilter& include = {});
+                                             const DipRowFilter& include = {},
+                                             ScoreIntervals intervals = ScoreIntervals::computed);
 
 }  // namespace acc
