@@ -67,18 +67,18 @@ std::size_t enumerableWeightPatterns(std::size_t family_clusters)
 
 namespace
 {
-/// Calls visit(weights) once per weight pattern: every one of the 6^G when there are at most
-/// kMaxEnumeratedWeightPatterns, else `replicates` drawn from std::mt19937_64(seed). Returns how
-/// many patterns were visited.
+/// Calls visit(weights) once per weight pattern: every one of the `enumerable` patterns
+/// (enumerableWeightPatterns) when there are so few, else (enumerable 0) `replicates` drawn from
+/// std::mt19937_64(seed). Returns how many patterns were visited.
 template <typename Visit>
-std::size_t forEachWeightPattern(std::size_t family_clusters, std::size_t replicates, std::uint64_t seed, Visit visit)
+std::size_t forEachWeightPattern(std::size_t family_clusters, std::size_t enumerable, std::size_t replicates,
+                                 std::uint64_t seed, Visit visit)
 {
   std::vector<double> weights(family_clusters);
-  const std::size_t patterns = enumerableWeightPatterns(family_clusters);
-  if (patterns > 0)
+  if (enumerable > 0)
   {
     std::vector<std::size_t> digits(family_clusters, 0);  // an odometer in base 6
-    for (std::size_t k = 0; k < patterns; ++k)
+    for (std::size_t k = 0; k < enumerable; ++k)
     {
       for (std::size_t g = 0; g < family_clusters; ++g)
         weights[g] = kWebbWeights[digits[g]];
@@ -86,7 +86,7 @@ std::size_t forEachWeightPattern(std::size_t family_clusters, std::size_t replic
       for (std::size_t g = 0; g < family_clusters && ++digits[g] == kWebbWeights.size(); ++g)
         digits[g] = 0;
     }
-    return patterns;
+    return enumerable;
   }
   std::mt19937_64 engine(seed);
   for (std::size_t b = 0; b < replicates; ++b)
@@ -119,7 +119,7 @@ std::vector<WildClusterTest> wildClusterMaxT(const std::vector<ClusteredDifferen
   std::vector<double> t(family.size());
   // The null imposed: under "mean 0" each cluster's residual is its whole sum, so a pattern's
   // statistic is the t of the weighted sums.
-  const std::size_t visited = forEachWeightPattern(family_clusters, replicates, seed, [&](const std::vector<double>& w) {
+  const auto count_reaching = [&](const std::vector<double>& w) {
     double largest = -std::numeric_limits<double>::infinity();
     for (std::size_t m : members)
     {
@@ -131,11 +131,12 @@ std::vector<WildClusterTest> wildClusterMaxT(const std::vector<ClusteredDifferen
       alone[m] += t[m] >= out[m].t;
       in_family[m] += largest >= out[m].t;
     }
-  });
+  };
+  const std::size_t enumerable = enumerableWeightPatterns(family_clusters);
+  const std::size_t visited = forEachWeightPattern(family_clusters, enumerable, replicates, seed, count_reaching);
   // Enumerated, the all-ones pattern is among those counted (its t is the member's own): the exact
   // share. Drawn, the observed statistic is added as one more replicate.
-  const bool enumerated = enumerableWeightPatterns(family_clusters) > 0;
-  const double extra = enumerated ? 0.0 : 1.0;
+  const double extra = enumerable > 0 ? 0.0 : 1.0;
   for (std::size_t m : members)
   {
     out[m].p_value = (extra + static_cast<double>(alone[m])) / (extra + static_cast<double>(visited));
