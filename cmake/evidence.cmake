@@ -1,13 +1,12 @@
 # What the measured speeds say of string stability without any fitted model (always built, like
 # the model core): perturbations of a leader and the dips they cause, the follower/leader dip
-# ratio with its cluster-bootstrap interval, the wild cluster bootstrap-t that tests model
-# comparisons with few perturbations and, inverted, gives the median's and a share's intervals, and
+# ratio, the wild cluster bootstrap-t that tests model comparisons with few perturbations and,
+# inverted, gives every interval over perturbations (a ratio's, a share's, a median's), and
 # Welch's empirical frequency response of a link. The
 # calibrate tool states it beside the model's verdict; the campaign per car and link.
 acc_add_library(acc_evidence
   SOURCES
     src/evidence/perturbation.cpp
-    src/evidence/cluster_bootstrap.cpp
     src/evidence/wild_cluster_bootstrap.cpp
     src/evidence/wild_cluster_interval.cpp
     src/evidence/clustered_ratio.cpp

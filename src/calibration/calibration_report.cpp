@@ -95,7 +95,7 @@ void printDipShapeLine(const DipShapeTransfer& shape, std::ostream& out)
     return;
   auto ratio = [](const ClusteredRatio& r) {
     std::string text = printfText("%.2f", r.ratio);
-    if (std::isfinite(r.lower))
+    if (!std::isnan(r.lower))
       text += printfText(" [%.2f, %.2f]", r.lower, r.upper);
     return text;
   };

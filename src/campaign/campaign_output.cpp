@@ -724,7 +724,7 @@ std::string rateSpanText() { return cellNumber("%g s", PerturbationCriteria{}.ac
 std::string ratioCell(const ClusteredRatio& r, bool with_interval)
 {
   const std::string ratio = cellNumber("%.2f", r.ratio);
-  return with_interval && std::isfinite(r.lower) ? ratio + " [" + cellNumber("%.2f", r.lower) + ", " +
+  return with_interval && !std::isnan(r.lower) ? ratio + " [" + cellNumber("%.2f", r.lower) + ", " +
                                                        cellNumber("%.2f", r.upper) + "]"
                                                  : ratio;
 }
@@ -989,11 +989,12 @@ void printCampaignTables(const CampaignResult& result, std::ostream& out)
     out << "\nHow much of the car ahead's dip shape each car passes on: its peak braking and recovery (speed slope "
            "over "
         << rateSpanText()
-        << ") over the car ahead's (95 % bootstrap CI over perturbations) and how much wider its dip is at half "
+        << ") over the car ahead's (95 % CI over perturbations, the wild cluster bootstrap-t inverted) and how much "
+           "wider its dip is at half "
            "depth (median), against the models driven by the same real leaders\n";
     printAligned(kShapeHeader, shapeRows(result), out);
     out << "\nEach car as a link, without a model and beside its models: dip over the dip of the car ahead (95 % "
-           "bootstrap CI over perturbations), where the base and diagnosed |Gamma| leave the band of the empirical "
+           "CI over perturbations; inf where they do not bound it), where the base and diagnosed |Gamma| leave the band of the empirical "
            "one (coherence >= 0.5), the diagnosed model's small-signal peak and its dip ratio over "
         << kLongPlatoonCars << " identical cars behind the real first cars\n";
     printAligned(kLinkHeader, linkRows(result), out);
@@ -1111,14 +1112,16 @@ std::string campaignReportMarkdown(const CampaignInputs& inputs, const CampaignR
     md << "\n### How much of the car ahead's dip shape each car passes on\n\nThe sum of the cars' "
           "peak braking (and recovery) rates, each the steepest least-squares slope of its speed over "
        << rateSpanText()
-       << " within the dip, over the sum of the car ahead's measured ones (95 % bootstrap interval over "
+       << " within the dip, over the sum of the car ahead's measured ones (95 % interval over "
           "perturbations), and the median of how much wider the car's dip is at half depth than the car ahead's. "
           "The models are driven by the same real leaders (pair level), so all three answer the same input. A "
           "ratio near 1 and no widening pass a braking on with its shape; a model that cuts the rates or widens "
           "the dip where the cars do not smooths what they pass on, and that compounds along a chain.\n\n";
     printMarkdownTable(kShapeHeader, shapeRows(result), md);
     md << "\n### Each car as a link: what the data show without a model\n\nDip ratio: the car's dip over the dip "
-          "of the car directly ahead, with a 95 % bootstrap interval over perturbations. Where the base and the "
+          "of the car directly ahead, with a 95 % interval over perturbations (the wild cluster bootstrap-t "
+          "inverted; an end is inf where they do not bound it, as two perturbations never do and three of unequal "
+          "depth seldom do). Where the base and the "
           "diagnosed model's |Gamma(jw)| leave the band of the empirical one (Welch, coherence >= 0.5). The "
           "diagnosed model's small-signal peak (an asymmetric law: its braking branch) and the tenth car's dip over "
           "the first in a simulated platoon of ten identical cars behind the runs' real first cars.\n\n";

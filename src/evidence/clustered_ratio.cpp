@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "acc_identification/evidence/cluster_bootstrap.h"
+#include "acc_identification/evidence/wild_cluster_interval.h"
 
 namespace acc
 {
@@ -24,17 +24,7 @@ ClusteredRatio clusteredRatioOfSums(const std::vector<RatioCluster>& clusters, s
     bottom += c.denominator;
     out.observations += c.n;
   }
-  // Every denominator is positive, so every resample's is.
-  const auto ratio_of = [&clusters](const std::vector<std::size_t>& picks) {
-    double picked_top = 0.0, picked_bottom = 0.0;
-    for (std::size_t pick : picks)
-    {
-      picked_top += clusters[pick].numerator;
-      picked_bottom += clusters[pick].denominator;
-    }
-    return picked_top / picked_bottom;
-  };
-  std::tie(out.lower, out.upper) = clusterBootstrapInterval(clusters.size(), replicates, seed, confidence, ratio_of);
+  std::tie(out.lower, out.upper) = wildClusterRatioInterval(clusters, confidence, replicates, seed);
   if (!clusters.empty())
     out.ratio = top / bottom;
   return out;

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <complex>
-#include <cstdio>
 #include <stdexcept>
 
 #include <unsupported/Eigen/FFT>
@@ -12,6 +11,7 @@
 #include "acc_identification/evidence/clustered_ratio.h"
 #include "acc_identification/evidence/perturbation.h"
 #include "acc_identification/model/angles.h"
+#include "acc_identification/model/number_text.h"
 
 namespace acc
 {
@@ -93,23 +93,17 @@ DipAmplification classify(const DipRatioEstimate& e)
 
 std::string dipReason(const DipRatioEstimate& e)
 {
-  char text[256];
   if (e.count == 0)
-  {
-    std::snprintf(text, sizeof text, "no usable perturbation (%zu skipped): insufficient", e.skipped);
-  }
-  else if (e.count == 1)
-  {
-    std::snprintf(text, sizeof text, "dip ratio %.3g from 1 perturbation (%zu skipped): no interval, insufficient",
-                  e.ratio_of_means, e.skipped);
-  }
-  else
-  {
-    std::snprintf(text, sizeof text, "dip ratio %.3g (%.0f%% CI %.3g to %.3g) over %zu perturbations (%zu skipped): %s",
-                  e.ratio_of_means, 100.0 * e.confidence, e.lower, e.upper, e.count, e.skipped,
-                  toString(e.amplifies).c_str());
-  }
-  return text;
+    return printfText("no usable perturbation (%zu skipped): insufficient", e.skipped);
+  if (e.count == 1)
+    return printfText("dip ratio %.3g from 1 perturbation (%zu skipped): no interval, insufficient", e.ratio_of_means,
+                      e.skipped);
+  if (std::isnan(e.lower))
+    return printfText("dip ratio %.3g, the same in each of %zu perturbations (%zu skipped): no spread to weigh, %s",
+                      e.ratio_of_means, e.count, e.skipped, toString(e.amplifies).c_str());
+  return printfText("dip ratio %.3g (%.0f%% CI %.3g to %.3g) over %zu perturbations (%zu skipped): %s",
+                    e.ratio_of_means, 100.0 * e.confidence, e.lower, e.upper, e.count, e.skipped,
+                    toString(e.amplifies).c_str());
 }
 
 // ---- Welch -------------------------------------------------------------------------------------

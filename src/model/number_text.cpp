@@ -11,6 +11,8 @@ std::string significant(double value, int digits)
 
 std::string cellNumber(const char* pattern, double value)
 {
+  if (std::isinf(value))
+    return value > 0.0 ? "inf" : "-inf";
   return std::isfinite(value) ? printfText(pattern, value) : "NaN";
 }
 

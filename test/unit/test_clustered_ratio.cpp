@@ -7,20 +7,33 @@
 #include "acc_identification/evidence/clustered_ratio.h"
 
 // The ratio is of sums (a cluster of many cars weighs by its sums, not as one ratio), and the
-// interval resamples whole clusters: with two clusters a replicate is AA, AB or BB, so the 95 %
-// interval runs from one cluster's ratio to the other's, however many cars each holds.
-TEST(ClusteredRatio, IsARatioOfSumsWhoseIntervalResamplesWholeClusters)
+// interval weighs whole clusters: two clusters of nine cars each bound nothing at 95 %, however
+// many cars each holds, where the same eighteen cars taken as eighteen clusters would.
+TEST(ClusteredRatio, IsARatioOfSumsWhoseIntervalWeighsWholeClusters)
 {
-  const std::vector<acc::RatioCluster> clusters{{9.0, 10.0, 9}, {1.0, 2.0, 9}};
-  const acc::ClusteredRatio r = acc::clusteredRatioOfSums(clusters, 1999, 7);
-  EXPECT_DOUBLE_EQ(r.ratio, 10.0 / 12.0);
+  std::vector<acc::RatioCluster> cars;
+  for (std::size_t i = 0; i < 9; ++i)
+  {
+    cars.push_back({1.0 + 0.01 * static_cast<double>(i), 1.1, 1});
+    cars.push_back({0.1 + 0.01 * static_cast<double>(i), 0.2, 1});
+  }
+  acc::RatioCluster first{0.0, 0.0, 9}, second{0.0, 0.0, 9};
+  for (std::size_t i = 0; i < cars.size(); ++i)
+  {
+    acc::RatioCluster& into = i % 2 == 0 ? first : second;
+    into.numerator += cars[i].numerator;
+    into.denominator += cars[i].denominator;
+  }
+  const acc::ClusteredRatio r = acc::clusteredRatioOfSums({first, second}, 1999, 7);
+  EXPECT_DOUBLE_EQ(r.ratio, (first.numerator + second.numerator) / 11.7);
   EXPECT_EQ(r.clusters, 2u);
   EXPECT_EQ(r.observations, 18u);
-  EXPECT_DOUBLE_EQ(r.lower, 0.5);
-  EXPECT_DOUBLE_EQ(r.upper, 0.9);
-  const acc::ClusteredRatio again = acc::clusteredRatioOfSums(clusters, 1999, 7);
-  EXPECT_EQ(again.lower, r.lower);
-  EXPECT_EQ(again.upper, r.upper);
+  EXPECT_EQ(r.lower, 0.0);
+  EXPECT_TRUE(std::isinf(r.upper));
+  const acc::ClusteredRatio each = acc::clusteredRatioOfSums(cars, 1999, 7);
+  EXPECT_DOUBLE_EQ(each.ratio, r.ratio);
+  EXPECT_GT(each.lower, 0.0);
+  EXPECT_LT(each.upper, 2.0);
 }
 
 TEST(ClusteredRatio, SaysNothingOfItsSpreadFromOneClusterAndRefusesANonPositiveDenominator)

@@ -15,10 +15,11 @@ TEST(NumberText, SignificantDigitsAsPercentG)
   EXPECT_EQ(acc::significant(11073.94, 6), "11073.9");
 }
 
-TEST(NumberText, CellsSayNaNForWhatIsNotANumber)
+TEST(NumberText, CellsSayNaNForWhatIsNotANumberAndInfForAnUnboundedEnd)
 {
   EXPECT_EQ(acc::cellNumber("%.3f", 0.12345), "0.123");
   EXPECT_EQ(acc::cellNumber("%.3f", std::numeric_limits<double>::quiet_NaN()), "NaN");
-  EXPECT_EQ(acc::cellNumber("%.1f", std::numeric_limits<double>::infinity()), "NaN");
+  EXPECT_EQ(acc::cellNumber("%.1f", std::numeric_limits<double>::infinity()), "inf");
+  EXPECT_EQ(acc::cellNumber("%.1f", -std::numeric_limits<double>::infinity()), "-inf");
   EXPECT_EQ(acc::printfText("%s at %.1f s", "dip", 12.25), "dip at 12.2 s");
 }

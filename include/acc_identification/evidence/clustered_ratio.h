@@ -16,26 +16,26 @@ struct RatioCluster
   std::size_t n = 1;  ///< observations summed
 };
 
-/// Sum of numerators over sum of denominators, with a percentile-bootstrap interval that resamples
-/// whole clusters (observations that share an input are not independent).
+/// Sum of numerators over sum of denominators, with an interval that weighs whole clusters
+/// (observations that share an input are not independent) and holds its coverage with a handful of
+/// them (wildClusterRatioInterval).
 struct ClusteredRatio
 {
   std::size_t clusters = 0;
   std::size_t observations = 0;
   double ratio = std::numeric_limits<double>::quiet_NaN();
-  /// The (1 - confidence) / 2 and (1 + confidence) / 2 quantiles of the replicates (linear
-  /// interpolation); NaN with fewer than two clusters.
+  /// The ends of the interval: infinite where the clusters do not bound the ratio (two never do
+  /// at 95 %), NaN with fewer than two clusters or when every cluster shows the same ratio.
   double lower = std::numeric_limits<double>::quiet_NaN();
   double upper = std::numeric_limits<double>::quiet_NaN();
   double confidence = 0.95;
-  std::size_t replicates = 0;
+  std::size_t replicates = 0;  ///< weight patterns drawn beyond seven clusters
 };
 
-/// The ratio and its interval: `replicates` resamples of the clusters with replacement
-/// (clusterBootstrapInterval: the same seed gives the same interval bit for bit with every
-/// standard library). Every denominator must be positive (a
-/// rate or a dip of the car ahead); throws std::invalid_argument otherwise, or for a confidence
-/// outside (0, 1).
+/// The ratio and its interval (wildClusterRatioInterval: every weight pattern with up to seven
+/// clusters, else `replicates` drawn from `seed`, bit for bit the same with every standard
+/// library). Every denominator must be positive (a rate or a dip of the car ahead); throws
+/// std::invalid_argument otherwise, or for a confidence outside (0, 1).
 ClusteredRatio clusteredRatioOfSums(const std::vector<RatioCluster>& clusters, std::size_t replicates,
                                     std::uint64_t seed, double confidence = 0.95);
 

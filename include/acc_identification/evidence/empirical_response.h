@@ -21,7 +21,7 @@ enum class DipAmplification
 {
   Amplifies,    ///< the confidence interval of the ratio lies above 1
   Attenuates,   ///< the confidence interval of the ratio lies below 1
-  Undecided,    ///< the confidence interval contains 1
+  Undecided,    ///< the confidence interval contains 1, or the perturbations give none
   Insufficient  ///< fewer than 2 usable perturbations: no interval
 };
 
@@ -38,7 +38,9 @@ struct DipRatioEstimate
   double ratio_of_means = std::numeric_limits<double>::quiet_NaN();
   /// The median of the per-perturbation ratios follower dip / leader dip.
   double median_ratio = std::numeric_limits<double>::quiet_NaN();
-  /// Percentile-bootstrap interval of ratio_of_means at `confidence` (NaN with fewer than 2 used).
+  /// The interval of ratio_of_means at `confidence` (clusteredRatioOfSums): an end is infinite
+  /// where the perturbations do not bound it (two never do at 95 %), both NaN with fewer than 2
+  /// used or when every one gave the same ratio.
   double lower = std::numeric_limits<double>::quiet_NaN();
   double upper = std::numeric_limits<double>::quiet_NaN();
   double confidence = 0.95;
@@ -55,13 +57,11 @@ constexpr double kMinLeaderDipMps = 0.3;
 /// are the two cars' dips in perturbation i (dipDepthMps); the vectors must have one size.
 /// A pair is skipped (and counted) when either dip is not finite or the leader's is below
 /// min_leader_dip_mps or not positive: a ratio to a dip the GNSS noise could make is noise.
-/// The interval resamples the used perturbations with replacement, `replicates` times, from a
-/// std::mt19937_64 seeded with `seed` through uniformBelow (model/portable_uniform.h): the same
-/// seed gives the same interval bit for bit with every standard library. It takes the
-/// (1 - confidence) / 2 and (1 + confidence) / 2 quantiles of the replicates (linear
-/// interpolation). With few perturbations the percentile interval is narrower than it should be
-/// (its spread is that of n - 1 degrees of freedom scaled by n): read a 2- or 3-perturbation
-/// verdict as weak evidence.
+/// Each perturbation is a cluster of one, and the interval inverts the wild cluster bootstrap-t
+/// (wildClusterRatioInterval): with up to seven perturbations every weight pattern is visited and
+/// the seed does not matter; beyond, `replicates` patterns are drawn from `seed`. It holds its
+/// coverage with a handful of perturbations, so two can never decide a link (the interval is
+/// [0, inf)), and three only when they agree.
 /// Throws std::invalid_argument for vectors of different sizes, no replicates, or a confidence
 /// outside (0, 1).
 DipRatioEstimate linkDipRatio(const std::vector<double>& follower_dips_mps, const std::vector<double>& leader_dips_mps,

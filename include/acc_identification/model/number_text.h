@@ -21,7 +21,8 @@ std::string printfText(const char* pattern, Args... args)
 /// reasons and notes.
 std::string significant(double value, int digits = 4);
 
-/// A table cell: printfText(pattern, value), or "NaN" when the value is not finite.
+/// A table cell: printfText(pattern, value), "inf" or "-inf" for an infinite value (an interval's
+/// end the data do not bound), "NaN" for a value that is not available.
 std::string cellNumber(const char* pattern, double value);
 
 }  // namespace acc
