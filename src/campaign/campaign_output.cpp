@@ -337,7 +337,7 @@ nlohmann::json linkJson(const LinkEvidence& e)
           {"note", e.note}};
 }
 
-const std::vector<std::string> kLinkHeader{"vehicle", "set", "dips", "dip ratio [CI]", "data say", "model departs [rad/s]",
+const std::vector<std::string> kLinkHeader{"vehicle", "set", "dips", "dip ratio [CI]", "each dip", "data say", "model departs [rad/s]",
                                            "diagnosed departs", "diag peak [dB]", "10-car ratio"};
 
 std::string rangesText(const std::vector<std::pair<double, double>>& ranges)
@@ -368,6 +368,8 @@ std::vector<std::vector<std::string>> linkRows(const CampaignResult& result)
     const DipRatioEstimate& d = e.dip_ratio;
     rows.push_back({e.vehicle, e.setting, std::to_string(d.count),
                     cellNumber("%.2f", d.ratio_of_means) + " [" + cellNumber("%.2f", d.lower) + ", " + cellNumber("%.2f", d.upper) + "]",
+                    d.count < 2 ? cellNumber("%.2f", d.smallest_ratio)
+                                : cellNumber("%.2f", d.smallest_ratio) + "-" + cellNumber("%.2f", d.largest_ratio),
                     toString(d.amplifies),
                     responseRead(e) ? rangesText(e.base_departs_rad_s) : "too short",
                     responseRead(e) ? rangesText(e.diagnosed_departs_rad_s) : "too short",
@@ -994,7 +996,7 @@ void printCampaignTables(const CampaignResult& result, std::ostream& out)
            "depth (median), against the models driven by the same real leaders\n";
     printAligned(kShapeHeader, shapeRows(result), out);
     out << "\nEach car as a link, without a model and beside its models: dip over the dip of the car ahead (95 % "
-           "CI over perturbations; inf where they do not bound it), where the base and diagnosed |Gamma| leave the band of the empirical "
+           "CI over perturbations; inf where they do not bound it; each dip's own, smallest to largest), where the base and diagnosed |Gamma| leave the band of the empirical "
            "one (coherence >= 0.5), the diagnosed model's small-signal peak and its dip ratio over "
         << kLongPlatoonCars << " identical cars behind the real first cars\n";
     printAligned(kLinkHeader, linkRows(result), out);
@@ -1121,7 +1123,7 @@ std::string campaignReportMarkdown(const CampaignInputs& inputs, const CampaignR
     md << "\n### Each car as a link: what the data show without a model\n\nDip ratio: the car's dip over the dip "
           "of the car directly ahead, with a 95 % interval over perturbations (the wild cluster bootstrap-t "
           "inverted; an end is inf where they do not bound it, as two perturbations never do and three of unequal "
-          "depth seldom do). Where the base and the "
+          "depth seldom do), and each dip's own ratio, the smallest to the largest. Where the base and the "
           "diagnosed model's |Gamma(jw)| leave the band of the empirical one (Welch, coherence >= 0.5). The "
           "diagnosed model's small-signal peak (an asymmetric law: its braking branch) and the tenth car's dip over "
           "the first in a simulated platoon of ten identical cars behind the runs' real first cars.\n\n";

@@ -70,14 +70,14 @@ DipPairs usableDipPairs(const std::vector<double>& follower_dips_mps, const std:
   return pairs;
 }
 
-double medianOfRatios(const DipPairs& pairs)
+std::vector<double> ratiosOf(const DipPairs& pairs)
 {
   std::vector<double> ratios;
   for (std::size_t i = 0; i < pairs.follower_mps.size(); ++i)
   {
     ratios.push_back(pairs.follower_mps[i] / pairs.leader_mps[i]);
   }
-  return finiteMedian(ratios);
+  return ratios;
 }
 
 DipAmplification classify(const DipRatioEstimate& e)
@@ -101,9 +101,10 @@ std::string dipReason(const DipRatioEstimate& e)
   if (std::isnan(e.lower))
     return printfText("dip ratio %.3g, the same in each of %zu perturbations (%zu skipped): no spread to weigh, %s",
                       e.ratio_of_means, e.count, e.skipped, toString(e.amplifies).c_str());
-  return printfText("dip ratio %.3g (%.0f%% CI %.3g to %.3g) over %zu perturbations (%zu skipped): %s",
-                    e.ratio_of_means, 100.0 * e.confidence, e.lower, e.upper, e.count, e.skipped,
-                    toString(e.amplifies).c_str());
+  return printfText("dip ratio %.3g (%.0f%% CI %.3g to %.3g) over %zu perturbations (each %.3g to %.3g; %zu skipped): "
+                    "%s",
+                    e.ratio_of_means, 100.0 * e.confidence, e.lower, e.upper, e.count, e.smallest_ratio,
+                    e.largest_ratio, e.skipped, toString(e.amplifies).c_str());
 }
 
 // ---- Welch -------------------------------------------------------------------------------------
@@ -299,7 +300,13 @@ DipRatioEstimate linkDipRatio(const std::vector<double>& follower_dips_mps, cons
   e.lower = ratio.lower;
   e.upper = ratio.upper;
   if (e.count > 0)
-    e.median_ratio = medianOfRatios(pairs);
+  {
+    const std::vector<double> ratios = ratiosOf(pairs);
+    e.median_ratio = finiteMedian(ratios);
+    const auto [smallest, largest] = std::minmax_element(ratios.begin(), ratios.end());
+    e.smallest_ratio = *smallest;
+    e.largest_ratio = *largest;
+  }
   e.amplifies = classify(e);
   e.reason = dipReason(e);
   return e;

@@ -11,6 +11,8 @@ nlohmann::json toJson(const DipRatioEstimate& d)
           {"skipped", d.skipped},
           {"ratio_of_means", jsonNumber(d.ratio_of_means)},
           {"median_ratio", jsonNumber(d.median_ratio)},
+          {"smallest_ratio", jsonNumber(d.smallest_ratio)},
+          {"largest_ratio", jsonNumber(d.largest_ratio)},
           {"lower", jsonNumber(d.lower)},
           {"upper", jsonNumber(d.upper)},
           {"confidence", d.confidence},

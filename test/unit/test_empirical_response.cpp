@@ -318,6 +318,9 @@ TEST(LinkDipRatio, MixedRatiosAreUndecided)
   EXPECT_LT(e.lower, 1.0);
   EXPECT_GT(e.upper, 1.0);
   EXPECT_EQ(e.amplifies, acc::DipAmplification::Undecided);
+  // Each perturbation's own ratio, on both sides of 1: the link grows in one braking, decays in the next.
+  EXPECT_NEAR(e.smallest_ratio, 0.6, 1e-12);
+  EXPECT_NEAR(e.largest_ratio, 1.5, 1e-12);
 }
 
 // The point estimate alone is linkDipRatio's, on the same pairs, and none without a usable pair.
@@ -358,6 +361,9 @@ TEST(LinkDipRatio, TwoPerturbationsNeverDecideALink)
   EXPECT_TRUE(std::isinf(e.upper));
   EXPECT_EQ(e.amplifies, acc::DipAmplification::Undecided);
   EXPECT_NE(e.reason.find("CI 0 to inf"), std::string::npos) << e.reason;
+  EXPECT_DOUBLE_EQ(e.smallest_ratio, 1.5);
+  EXPECT_DOUBLE_EQ(e.largest_ratio, 1.6);
+  EXPECT_NE(e.reason.find("each 1.5 to 1.6"), std::string::npos) << e.reason;
 }
 
 TEST(LinkDipRatio, OnePerturbationGivesARatioButNoInterval)

@@ -36,8 +36,12 @@ struct DipRatioEstimate
   /// sum of follower dips / sum of leader dips over the used perturbations: a leader dip near the
   /// floor weighs by its size here instead of blowing up one ratio.
   double ratio_of_means = std::numeric_limits<double>::quiet_NaN();
-  /// The median of the per-perturbation ratios follower dip / leader dip.
+  /// The median, smallest and largest of the per-perturbation ratios follower dip / leader dip:
+  /// what the perturbations show without an interval (a link that grows in one braking and decays
+  /// in the next has them on both sides of 1).
   double median_ratio = std::numeric_limits<double>::quiet_NaN();
+  double smallest_ratio = std::numeric_limits<double>::quiet_NaN();
+  double largest_ratio = std::numeric_limits<double>::quiet_NaN();
   /// The interval of ratio_of_means at `confidence` (clusteredRatioOfSums): an end is infinite
   /// where the perturbations do not bound it (two never do at 95 %), both NaN with fewer than 2
   /// used or when every one gave the same ratio.
