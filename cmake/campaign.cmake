@@ -11,6 +11,7 @@ acc_add_library(acc_campaign
     src/campaign/platoon_diagnosis.cpp
     src/campaign/link_evidence.cpp
     src/campaign/shape_transfer.cpp
+    src/campaign/gap_summary.cpp
     src/campaign/link_ratio_chain.cpp
     src/campaign/campaign.cpp
     src/campaign/campaign_output.cpp

@@ -444,6 +444,7 @@ CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& 
     const EffectSetSelectionOptions& draws = options.effect_selection;
     result.shapes_first_followers = summarizeShapeTransfer(result.platoons, isFirstFollower, draws.replicates, draws.seed);
     result.shapes_further_back = summarizeShapeTransfer(result.platoons, isFurtherBack, draws.replicates, draws.seed);
+    result.gap = summarizeGap(result.platoons);
   }
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;

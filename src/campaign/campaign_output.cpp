@@ -643,36 +643,6 @@ const std::vector<std::string> kGapHeader{"prediction", "car-perturbations", "me
                                           "growth/decay right [95 %]",
                                           "median distance-lost error", "median dip-width error"};
 
-/// One row of "how far the gap shrinks": its label in the report, its key in the JSON, and the
-/// car-perturbations it scores (all when `include` is empty).
-struct GapPrediction
-{
-  const char* label;
-  const char* key;
-  DipPrediction which;
-  DipRowFilter include;
-};
-
-const std::vector<GapPrediction>& gapPredictions()
-{
-  static const std::vector<GapPrediction> kinds{
-      {"platoon, base model", "chain_base", DipPrediction::chain_base, {}},
-      {"platoon, diagnosed", "chain_diagnosed", DipPrediction::chain_diagnosed, {}},
-      {"pair (real leader), base", "pair_base", DipPrediction::pair_base, {}},
-      {"pair (real leader), diagnosed", "pair_diagnosed", DipPrediction::pair_diagnosed, {}},
-      {"  of which first followers", "pair_diagnosed_first_follower", DipPrediction::pair_diagnosed, isFirstFollower},
-      {"  of which cars further back", "pair_diagnosed_further_back", DipPrediction::pair_diagnosed, isFurtherBack},
-      {"no model: every car dips as the first", "unchanged_dip", DipPrediction::unchanged_dip, {}},
-      {"no model: each car's link ratio, other runs", "link_ratio_chain", DipPrediction::link_ratio_chain, {}}};
-  return kinds;
-}
-
-DipPredictionSummary summarizeGapPrediction(const CampaignResult& result, const GapPrediction& prediction)
-{
-  return summarizeDipPredictions(result.platoons, prediction.which, kScoredMinDipMps, kScoredMinLinkChangeMps,
-                                 prediction.include);
-}
-
 /// "19 % [12-27]": a share in percent with its interval where it has one.
 std::string percentWithInterval(double value, double lower, double upper)
 {
@@ -685,10 +655,10 @@ std::string percentWithInterval(double value, double lower, double upper)
 std::vector<std::vector<std::string>> gapRows(const CampaignResult& result)
 {
   std::vector<std::vector<std::string>> rows;
-  for (const GapPrediction& prediction : gapPredictions())
+  for (const GapSummary& row : result.gap)
   {
-    const DipPredictionSummary s = summarizeGapPrediction(result, prediction);
-    rows.push_back({prediction.label, std::to_string(s.car_perturbations),
+    const DipPredictionSummary& s = row.summary;
+    rows.push_back({row.label, std::to_string(s.car_perturbations),
                     cellNumber("%+.0f %%", 100.0 * s.median_dip_error),
                     percentWithInterval(s.median_abs_dip_error, s.median_abs_dip_error_lower, s.median_abs_dip_error_upper),
                     cellNumber("%.0f %%", 100.0 * s.share_within_30_percent), std::to_string(s.links),
@@ -703,8 +673,8 @@ std::vector<std::vector<std::string>> gapRows(const CampaignResult& result)
 nlohmann::json gapJson(const CampaignResult& result)
 {
   nlohmann::json j = nlohmann::json::object();
-  for (const GapPrediction& prediction : gapPredictions())
-    j[prediction.key] = summaryJson(summarizeGapPrediction(result, prediction));
+  for (const GapSummary& row : result.gap)
+    j[row.key] = summaryJson(row.summary);
   return j;
 }
 

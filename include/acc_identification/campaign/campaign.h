@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "acc_identification/campaign/campaign_inputs.h"
+#include "acc_identification/campaign/gap_summary.h"
 #include "acc_identification/campaign/group_identification.h"
 #include "acc_identification/campaign/platoon_check.h"
 #include "acc_identification/campaign/link_evidence.h"
@@ -51,6 +52,9 @@ struct CampaignResult
   /// With the platoon diagnosis: how much of the car ahead's braking and recovery the cars and
   /// their pair-level models pass on (shape_transfer.h), behind the real first car and further back.
   ShapeTransferSummary shapes_first_followers, shapes_further_back;
+  /// With the platoon diagnosis: how far the gap shrinks, each kind of prediction against what the
+  /// cars did (gap_summary.h), computed once for every output.
+  std::vector<GapSummary> gap;
   std::size_t threads = 0;             ///< threads used
   double wall_time_s = 0.0;
 };

@@ -13,7 +13,7 @@ namespace acc
 /// How much of the car ahead's dip shape the cars of the platoons pass on (dipShapeTransfer), over
 /// the car-perturbations a filter accepts: the cars', the base model's and the diagnosed model's
 /// (pair level: driven by the same real leaders, so all three answer the same input), each
-/// against the measured shape of the car ahead. The ratios' intervals resample perturbations
+/// against the measured shape of the car ahead. The ratios' intervals weigh whole perturbations
 /// (every car of one perturbation together: they share its input). A model that smooths what the
 /// cars keep damps what they do not, and that compounds along a chain.
 struct ShapeTransferSummary
