@@ -94,17 +94,21 @@ void printDipShapeLine(const DipShapeTransfer& shape, std::ostream& out)
   if (shape.braking.observations == 0 && shape.recovery.observations == 0 && shape.widenings == 0)
     return;
   auto ratio = [](const ClusteredRatio& r) {
+    if (r.observations == 0)
+      return std::string("none (no rate scored)");
     std::string text = printfText("%.2f", r.ratio);
     if (!std::isnan(r.lower))
       text += printfText(" [%.2f, %.2f]", r.lower, r.upper);
     return text;
   };
+  const std::string widening = shape.widenings == 0
+                                   ? "no dip's width at half depth is known"
+                                   : printfText("its dips %+.1f s wider at half depth (median of %zu)",
+                                                shape.median_widening_s, shape.widenings);
   out << "  shape (no model): the car passes on " << ratio(shape.braking) << " of its leader's peak braking and "
       << ratio(shape.recovery) << " of its peak recovery (slopes over "
       << printfText("%g", PerturbationCriteria{}.acceleration_span_s)
-      << " s, 95 % interval over perturbations); its dips "
-      << printfText("%+.1f", shape.median_widening_s) << " s wider at half depth (median of " << shape.widenings
-      << ")\n";
+      << " s, 95 % interval over perturbations); " << widening << "\n";
 }
 
 /// "Dips of the leader's perturbations (the data's own, no model): N perturbation(s); ...".

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "acc_identification/calibration/calibrate_runs.h"
@@ -221,6 +222,17 @@ TEST(CalibrationReport, UnfittableDataGetJsonWithTheReason)
   std::ostringstream amplified_text;
   acc::printUnfitted(amplified, amplified_text);
   EXPECT_NE(amplified_text.str().find("string unstable for these inputs"), std::string::npos) << amplified_text.str();
+  // A shape measure no perturbation gave is said in words, not printed as nan.
+  acc::UnfittedDataSummary braking_only = summary;
+  braking_only.dip_evidence->shape.braking = {2, 2, 1.3, 0.0, std::numeric_limits<double>::infinity(), 0.95, 999};
+  std::ostringstream braking_text;
+  acc::printUnfitted(braking_only, braking_text);
+  EXPECT_NE(braking_text.str().find("passes on 1.30 [0.00, inf] of its leader's peak braking and none (no rate "
+                                    "scored) of its peak recovery"),
+            std::string::npos)
+      << braking_text.str();
+  EXPECT_NE(braking_text.str().find("no dip's width at half depth is known"), std::string::npos) << braking_text.str();
+  EXPECT_EQ(braking_text.str().find("nan"), std::string::npos) << braking_text.str();
 }
 
 // Data a batch fit refuses still get the verdicts the identifier node would publish on them
