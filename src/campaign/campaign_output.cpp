@@ -679,7 +679,8 @@ nlohmann::json gapJson(const CampaignResult& result)
 }
 
 const std::vector<std::string> kShapeHeader{
-    "car ahead",       "car-perturbations", "braking passed on: cars", "base model",     "diagnosed model",
+    "car ahead",       "car-perturbations", "dip passed on: cars", "base model",     "diagnosed model",
+    "braking passed on: cars", "base model",     "diagnosed model",
     "recovery passed on: cars", "base model", "diagnosed model",       "dip widened: cars", "base model",
     "diagnosed model"};
 
@@ -706,7 +707,9 @@ std::vector<std::vector<std::string>> shapeRows(const CampaignResult& result)
   std::vector<std::vector<std::string>> rows;
   for (const auto& [label, s] : shapePlaces(result))
   {
-    rows.push_back({label, std::to_string(s->cars.recovery.observations), ratioCell(s->cars.braking, true),
+    rows.push_back({label, std::to_string(s->cars.recovery.observations), ratioCell(s->dip_cars, true),
+                    ratioCell(s->dip_pair_base, false), ratioCell(s->dip_pair_diagnosed, false),
+                    ratioCell(s->cars.braking, true),
                     ratioCell(s->pair_base.braking, false), ratioCell(s->pair_diagnosed.braking, false),
                     ratioCell(s->cars.recovery, true), ratioCell(s->pair_base.recovery, false),
                     ratioCell(s->pair_diagnosed.recovery, false), cellNumber("%+.1f s", s->cars.median_widening_s),
@@ -718,7 +721,11 @@ std::vector<std::vector<std::string>> shapeRows(const CampaignResult& result)
 
 nlohmann::json shapesJson(const ShapeTransferSummary& s)
 {
-  return {{"cars", toJson(s.cars)}, {"pair_base", toJson(s.pair_base)}, {"pair_diagnosed", toJson(s.pair_diagnosed)}};
+  return {{"cars", toJson(s.cars)},
+          {"pair_base", toJson(s.pair_base)},
+          {"pair_diagnosed", toJson(s.pair_diagnosed)},
+          {"dip", {{"cars", toJson(s.dip_cars)}, {"pair_base", toJson(s.dip_pair_base)},
+                   {"pair_diagnosed", toJson(s.dip_pair_diagnosed)}}}};
 }
 
 std::string comparisonLine(const EffectSetComparison& c)
@@ -958,8 +965,8 @@ void printCampaignTables(const CampaignResult& result, std::ostream& out)
     out << "  " << alternativeModelsLine(result) << "\n";
     out << "\nHow far the gap shrinks (each run's diagnosed models chosen without that run)\n";
     printAligned(kGapHeader, gapRows(result), out);
-    out << "\nHow much of the car ahead's dip shape each car passes on: its peak braking and recovery (speed slope "
-           "over "
+    out << "\nHow much of the car ahead's dip shape each car passes on: its dip, its peak braking and recovery (speed "
+           "slope over "
         << rateSpanText()
         << ") over the car ahead's (95 % CI over perturbations, the wild cluster bootstrap-t inverted) and how much "
            "wider its dip is at half "
@@ -1081,7 +1088,10 @@ std::string campaignReportMarkdown(const CampaignInputs& inputs, const CampaignR
     md << "\n### How far the gap shrinks\n\nEach run's diagnosed models use the effect set chosen without that "
           "run, fitted on the car's other runs.\n\n";
     printMarkdownTable(kGapHeader, gapRows(result), md);
-    md << "\n### How much of the car ahead's dip shape each car passes on\n\nThe sum of the cars' "
+    md << "\n### How much of the car ahead's dip shape each car passes on\n\nThe sum of the cars' dips over "
+          "the sum of the car ahead's measured dips (each car ahead's above "
+       << cellNumber("%g", kMinLeaderDipMps)
+       << " m/s): under 1 the place damps a braking, over 1 it amplifies it. The sum of the cars' "
           "peak braking (and recovery) rates, each the steepest least-squares slope of its speed over "
        << rateSpanText()
        << " within the dip, over the sum of the car ahead's measured ones (95 % interval over "

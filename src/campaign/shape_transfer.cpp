@@ -1,5 +1,9 @@
 #include "acc_identification/campaign/shape_transfer.h"
 
+#include <cmath>
+
+#include "acc_identification/evidence/empirical_response.h"
+
 namespace acc
 {
 namespace
@@ -10,6 +14,44 @@ using ShapeOf = const DipShape& (*)(const DipComparison&);
 const DipShape& measuredShape(const DipComparison& row) { return row.measured.shape; }
 const DipShape& pairBaseShape(const DipComparison& row) { return row.pair.shape; }
 const DipShape& pairDiagnosedShape(const DipComparison& row) { return row.pair_diagnosed.shape; }
+
+/// The dip a prediction (or the measurement) gives a row.
+using DipOf = const DipMeasures& (*)(const DipComparison&);
+
+const DipMeasures& measuredDip(const DipComparison& row) { return row.measured; }
+const DipMeasures& pairBaseDip(const DipComparison& row) { return row.pair; }
+const DipMeasures& pairDiagnosedDip(const DipComparison& row) { return row.pair_diagnosed; }
+
+/// The judged dips over the measured dips of the cars ahead, summed by perturbation, over the rows
+/// with a measured dip above min_dip_mps behind a car ahead that dipped more than kMinLeaderDipMps
+/// (a ratio to a dip the GNSS noise could make is noise, as in linkDipRatio).
+ClusteredRatio dipRatioOf(const std::vector<PlatoonCheck>& platoons, const DipRowFilter& include, double min_dip_mps,
+                          DipOf judged, std::size_t replicates, std::uint64_t seed)
+{
+  std::vector<RatioCluster> clusters;
+  for (const PlatoonCheck& check : platoons)
+  {
+    for (const PerturbationCheck& perturbation : check.perturbations)
+    {
+      const auto& rows = perturbation.positions;
+      RatioCluster cluster{0.0, 0.0, 0};
+      for (std::size_t i = 1; i < rows.size(); ++i)
+      {
+        const double ahead = rows[i - 1].measured.dip_mps, dip = judged(rows[i]).dip_mps;
+        if (rows[i].measured.dip_mps > min_dip_mps && ahead > kMinLeaderDipMps && std::isfinite(dip) &&
+            (!include || include(check, rows[i])))
+        {
+          cluster.numerator += dip;
+          cluster.denominator += ahead;
+          ++cluster.n;
+        }
+      }
+      if (cluster.n > 0)
+        clusters.push_back(cluster);
+    }
+  }
+  return clusteredRatioOfSums(clusters, replicates, seed);
+}
 
 DipShapeTransfer transferOf(const std::vector<PlatoonCheck>& platoons, const DipRowFilter& include, double min_dip_mps,
                             ShapeOf judged, std::size_t replicates, std::uint64_t seed)
@@ -38,7 +80,10 @@ ShapeTransferSummary summarizeShapeTransfer(const std::vector<PlatoonCheck>& pla
 {
   return {transferOf(platoons, include, min_dip_mps, measuredShape, replicates, seed),
           transferOf(platoons, include, min_dip_mps, pairBaseShape, replicates, seed),
-          transferOf(platoons, include, min_dip_mps, pairDiagnosedShape, replicates, seed)};
+          transferOf(platoons, include, min_dip_mps, pairDiagnosedShape, replicates, seed),
+          dipRatioOf(platoons, include, min_dip_mps, measuredDip, replicates, seed),
+          dipRatioOf(platoons, include, min_dip_mps, pairBaseDip, replicates, seed),
+          dipRatioOf(platoons, include, min_dip_mps, pairDiagnosedDip, replicates, seed)};
 }
 
 }  // namespace acc

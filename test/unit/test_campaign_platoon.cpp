@@ -490,7 +490,7 @@ TEST(DipPredictionSummary, TheIntervalsWeighOnlyPerturbationsWithAScoredCar)
   EXPECT_EQ(b.share_links_growth_right_upper, a.share_links_growth_right_upper);
 }
 
-TEST(ShapeTransfer, SumsTheRatesAndTakesTheWideningsOverTheScoredCarsWithOneClusterPerPerturbation)
+TEST(ShapeTransfer, SumsTheDipsAndRatesAndTakesTheWideningsOverTheScoredCarsWithOneClusterPerPerturbation)
 {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto row = [](int position, double dip_mps, double braking, double recovery, double model_recovery) {
@@ -516,6 +516,7 @@ TEST(ShapeTransfer, SumsTheRatesAndTakesTheWideningsOverTheScoredCarsWithOneClus
     two.positions[k].measured.shape.width_s = widths[1][k];
     two.positions[k].pair.shape.width_s = model_widths[1][k];
   }
+  two.positions[3].pair.dip_mps = 0.5;
   acc::PlatoonCheck check;
   check.perturbations = {one, two};
   const acc::ShapeTransferSummary back = acc::summarizeShapeTransfer({check}, acc::isFurtherBack, 999, 3);
@@ -538,6 +539,16 @@ TEST(ShapeTransfer, SumsTheRatesAndTakesTheWideningsOverTheScoredCarsWithOneClus
   EXPECT_EQ(back.cars.widenings, 1u);
   EXPECT_DOUBLE_EQ(back.cars.median_widening_s, 0.5);
   EXPECT_DOUBLE_EQ(back.pair_base.median_widening_s, 1.5);
+  // The dips themselves, summed per perturbation over the dips of the cars ahead: car 3 of one
+  // (2.0 behind 2.5), cars 3 and 4 of two (2.0 and 1.0 behind 2.0 each); car 4 of one is below the
+  // scored dip. The base model predicted only car 4 of two's.
+  EXPECT_EQ(back.dip_cars.observations, 3u);
+  EXPECT_EQ(back.dip_cars.clusters, 2u);
+  EXPECT_DOUBLE_EQ(back.dip_cars.ratio, 5.0 / 6.5);
+  EXPECT_EQ(back.dip_pair_base.observations, 1u);
+  EXPECT_DOUBLE_EQ(back.dip_pair_base.ratio, 0.25);
+  EXPECT_DOUBLE_EQ(first.dip_cars.ratio, 4.5 / 6.0);
+  EXPECT_EQ(first.dip_pair_diagnosed.observations, 0u);
   // The first followers: 1.5 and 1.0 s; the model predicted the first perturbation only.
   EXPECT_EQ(first.cars.widenings, 2u);
   EXPECT_DOUBLE_EQ(first.cars.median_widening_s, 1.25);

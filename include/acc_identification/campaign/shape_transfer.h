@@ -21,6 +21,11 @@ struct ShapeTransferSummary
   DipShapeTransfer cars;
   DipShapeTransfer pair_base;
   DipShapeTransfer pair_diagnosed;  ///< NaN without diagnosed models
+  /// The dips themselves: the summed dips over the summed measured dips of the cars ahead (each
+  /// above kMinLeaderDipMps), with the same interval. Under 1 the place damps a braking as it passes
+  /// it on, over 1 it amplifies it: for the cars, what the platoons did without any model; for the
+  /// models, what they predict driven by the same real leaders.
+  ClusteredRatio dip_cars, dip_pair_base, dip_pair_diagnosed;
 };
 
 /// Scored: positions 2 on with a measured dip above min_dip_mps (dipShapeTransfer says which
