@@ -180,8 +180,9 @@ struct EffectSetSelection
 /// base model with it, paired over car-perturbations, and keeps the lowest mean loss among
 /// those with a significant, relevant improvement; each further stage compares each candidate that
 /// adds one thing to the last choice with it, by the same test, until none is named or none
-/// extends the choice. The bootstrap resamples whole perturbations (every car of one
-/// perturbation together, as they share its input), seeded. The stage's choice is then compared
+/// extends the choice. The test, the wild cluster bootstrap-t (wild_cluster_bootstrap.h), weighs
+/// whole perturbations (every car of one perturbation together, as they share its input). The
+/// stage's choice is then compared
 /// with every other candidate named at that stage (rivals), to say whether the data separate them.
 EffectSetSelection selectEffectSet(const std::vector<PairPerturbationScore>& scores, std::size_t exclude_file,
                                    const std::string& excluded_run, const EffectSetSelectionOptions& options);

@@ -39,8 +39,9 @@ struct DipShapeTransfer
 };
 
 /// Each measure over the observations where the leader's and the car's measured value and the
-/// judged one are known (a leader's rate must be positive); the ratios' intervals resample clusters
-/// (`replicates` draws seeded with `seed`, clusteredRatioOfSums).
+/// judged one are known (a leader's rate must be positive); the ratios' intervals weigh whole
+/// clusters (clusteredRatioOfSums: every weight pattern up to seven clusters, else `replicates`
+/// drawn from `seed`).
 DipShapeTransfer dipShapeTransfer(const std::vector<DipShapeObservation>& observations, std::size_t replicates,
                                   std::uint64_t seed);
 
