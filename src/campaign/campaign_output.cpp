@@ -719,13 +719,31 @@ std::vector<std::vector<std::string>> shapeRows(const CampaignResult& result)
   return rows;
 }
 
+/// "Paired over perturbations, ...": how much less of each dip the models pass on than the cars,
+/// in each place, with the interval.
+std::string dipShortfallLine(const CampaignResult& result)
+{
+  std::string line = "Paired over perturbations, the models' dips less the cars' over the dips of the cars ahead "
+                     "(95 % CI; below 0 a model passes on less of each dip than the car did):";
+  const char* separator = " ";
+  for (const auto& [label, s] : shapePlaces(result))
+  {
+    line += separator + std::string("behind ") + label + ", base " + ratioCell(s->dip_pair_base_less_cars, true) +
+            ", diagnosed " + ratioCell(s->dip_pair_diagnosed_less_cars, true);
+    separator = "; ";
+  }
+  return line + ".";
+}
+
 nlohmann::json shapesJson(const ShapeTransferSummary& s)
 {
   return {{"cars", toJson(s.cars)},
           {"pair_base", toJson(s.pair_base)},
           {"pair_diagnosed", toJson(s.pair_diagnosed)},
           {"dip", {{"cars", toJson(s.dip_cars)}, {"pair_base", toJson(s.dip_pair_base)},
-                   {"pair_diagnosed", toJson(s.dip_pair_diagnosed)}}}};
+                   {"pair_diagnosed", toJson(s.dip_pair_diagnosed)},
+                   {"pair_base_less_cars", toJson(s.dip_pair_base_less_cars)},
+                   {"pair_diagnosed_less_cars", toJson(s.dip_pair_diagnosed_less_cars)}}}};
 }
 
 std::string comparisonLine(const EffectSetComparison& c)
@@ -972,6 +990,7 @@ void printCampaignTables(const CampaignResult& result, std::ostream& out)
            "wider its dip is at half "
            "depth (median), against the models driven by the same real leaders\n";
     printAligned(kShapeHeader, shapeRows(result), out);
+    out << dipShortfallLine(result) << "\n";
     out << "\nEach car as a link, without a model and beside its models: dip over the dip of the car ahead (95 % "
            "CI over perturbations; inf where they do not bound it; each dip's own, smallest to largest), where the base and diagnosed |Gamma| leave the band of the empirical "
            "one (coherence >= 0.5), the diagnosed model's small-signal peak and its dip ratio over "
@@ -1100,6 +1119,7 @@ std::string campaignReportMarkdown(const CampaignInputs& inputs, const CampaignR
           "ratio near 1 and no widening pass a braking on with its shape; a model that cuts the rates or widens "
           "the dip where the cars do not smooths what they pass on, and that compounds along a chain.\n\n";
     printMarkdownTable(kShapeHeader, shapeRows(result), md);
+    md << "\n" << dipShortfallLine(result) << "\n";
     md << "\n### Each car as a link: what the data show without a model\n\nDip ratio: the car's dip over the dip "
           "of the car directly ahead, with a 95 % interval over perturbations (the wild cluster bootstrap-t "
           "inverted; an end is inf where they do not bound it, as two perturbations never do and three of unequal "

@@ -9,7 +9,7 @@
 namespace acc
 {
 ClusteredRatio clusteredRatioOfSums(const std::vector<RatioCluster>& clusters, std::size_t replicates,
-                                    std::uint64_t seed, double confidence)
+                                    std::uint64_t seed, double confidence, RatioNumerators numerators)
 {
   ClusteredRatio out;
   out.clusters = clusters.size();
@@ -24,7 +24,7 @@ ClusteredRatio clusteredRatioOfSums(const std::vector<RatioCluster>& clusters, s
     bottom += c.denominator;
     out.observations += c.n;
   }
-  std::tie(out.lower, out.upper) = wildClusterRatioInterval(clusters, confidence, replicates, seed);
+  std::tie(out.lower, out.upper) = wildClusterRatioInterval(clusters, confidence, replicates, seed, numerators);
   if (!clusters.empty())
     out.ratio = top / bottom;
   return out;

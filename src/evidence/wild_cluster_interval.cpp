@@ -213,9 +213,10 @@ std::pair<double, double> wildClusterShareInterval(const std::vector<RatioCluste
 }
 
 std::pair<double, double> wildClusterRatioInterval(const std::vector<RatioCluster>& clusters, double confidence,
-                                                   std::size_t replicates, std::uint64_t seed)
+                                                   std::size_t replicates, std::uint64_t seed,
+                                                   RatioNumerators numerators)
 {
-  bool nonnegative = true;
+  bool nonnegative = numerators == RatioNumerators::amounts;
   for (const RatioCluster& c : clusters)
   {
     if (!(c.denominator > 0.0) || !std::isfinite(c.numerator))

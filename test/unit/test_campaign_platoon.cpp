@@ -547,6 +547,9 @@ TEST(ShapeTransfer, SumsTheDipsAndRatesAndTakesTheWideningsOverTheScoredCarsWith
   EXPECT_DOUBLE_EQ(back.dip_cars.ratio, 5.0 / 6.5);
   EXPECT_EQ(back.dip_pair_base.observations, 1u);
   EXPECT_DOUBLE_EQ(back.dip_pair_base.ratio, 0.25);
+  // Paired: the model's dip less the car's, over the dip ahead (0.5 - 1.0) / 2.0.
+  EXPECT_EQ(back.dip_pair_base_less_cars.observations, 1u);
+  EXPECT_DOUBLE_EQ(back.dip_pair_base_less_cars.ratio, -0.25);
   EXPECT_DOUBLE_EQ(first.dip_cars.ratio, 4.5 / 6.0);
   EXPECT_EQ(first.dip_pair_diagnosed.observations, 0u);
   // The first followers: 1.5 and 1.0 s; the model predicted the first perturbation only.

@@ -206,6 +206,11 @@ TEST(WildClusterInterval, TheRatioIsBoundedOnlyWhereTheClustersBoundIt)
   const auto signed_two = wildClusterRatioInterval({{3.0, 2.0, 1}, {-0.5, 1.5, 1}}, 0.95, 999, 1);
   EXPECT_TRUE(std::isinf(signed_two.first) && signed_two.first < 0.0);
   EXPECT_TRUE(std::isinf(signed_two.second) && signed_two.second > 0.0);
+  // Differences (a model's dip less the car's) may be negative whatever the data show: the same
+  // two clusters of positive numerators are not held above 0 then.
+  const auto differences =
+      wildClusterRatioInterval({{3.0, 2.0, 1}, {1.8, 1.5, 1}}, 0.95, 999, 1, RatioNumerators::differences);
+  EXPECT_TRUE(std::isinf(differences.first) && differences.first < 0.0);
   const std::vector<RatioCluster> six{{3.0, 2.0, 1}, {5.4, 3.5, 1}, {1.9, 1.2, 1},
                                       {5.6, 4.0, 1}, {4.0, 2.6, 1}, {4.5, 3.1, 1}};
   const auto bounded = wildClusterRatioInterval(six, 0.95, 999, 1);

@@ -26,6 +26,10 @@ struct ShapeTransferSummary
   /// it on, over 1 it amplifies it: for the cars, what the platoons did without any model; for the
   /// models, what they predict driven by the same real leaders.
   ClusteredRatio dip_cars, dip_pair_base, dip_pair_diagnosed;
+  /// The models against the cars, paired perturbation by perturbation: the summed model dip less
+  /// the car's over the summed dips of the cars ahead (where the model predicted the car), with the
+  /// same interval, of either sign. Below 0 the model passes on less of each dip than the car did.
+  ClusteredRatio dip_pair_base_less_cars, dip_pair_diagnosed_less_cars;
 };
 
 /// Scored: positions 2 on with a measured dip above min_dip_mps (dipShapeTransfer says which

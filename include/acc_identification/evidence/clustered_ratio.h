@@ -16,6 +16,14 @@ struct RatioCluster
   std::size_t n = 1;  ///< observations summed
 };
 
+/// What a ratio's numerators are: amounts (dips, rates), whose ratio is at least 0 where every
+/// numerator is, or differences (a model's dip less the car's), of either sign by construction.
+enum class RatioNumerators
+{
+  amounts,
+  differences
+};
+
 /// Sum of numerators over sum of denominators, with an interval that weighs whole clusters
 /// (observations that share an input are not independent) and holds its coverage with a handful of
 /// them (wildClusterRatioInterval).
@@ -37,6 +45,7 @@ struct ClusteredRatio
 /// library). Every denominator must be positive (a rate or a dip of the car ahead); throws
 /// std::invalid_argument otherwise, or for a confidence outside (0, 1).
 ClusteredRatio clusteredRatioOfSums(const std::vector<RatioCluster>& clusters, std::size_t replicates,
-                                    std::uint64_t seed, double confidence = 0.95);
+                                    std::uint64_t seed, double confidence = 0.95,
+                                    RatioNumerators numerators = RatioNumerators::amounts);
 
 }  // namespace acc

@@ -32,16 +32,18 @@ std::pair<double, double> wildClusterMedianInterval(const std::vector<std::vecto
 
 /// A ratio of sums, the summed numerators over the summed (positive) denominators: the ratios r
 /// at which "numerators - r denominators has mean 0" is not rejected, Fieller's way of bounding a
-/// ratio with the test above, each end found by bisection to 1e-4 of the ratio. When every
-/// numerator is at least 0 (dips, braking rates) so is the ratio, and the lower end is searched
-/// down to 0 only. An end is infinite where the data do not bound it: far from the estimate the
+/// ratio with the test above, each end found by bisection to 1e-4 of the ratio. When the numerators
+/// are amounts and every one is at least 0 (dips, braking rates) so is the ratio, and the lower end
+/// is searched down to 0 only; differences (a model's dip less the car's) may be of either sign
+/// whatever the data show, and their lower end is searched to -inf. An end is infinite where the data do not bound it: far from the estimate the
 /// test is that of the denominators alone, and when their sum is not shown positive at the tail
 /// (two clusters never are at 95 %: their smallest p is 3/36), no ratio that far out is rejected.
 /// NaN bounds also when every cluster shows the same ratio: without spread between the clusters
 /// the test would call every other ratio certainly false. Throws std::invalid_argument for a
 /// denominator that is not positive or a numerator that is not finite.
 std::pair<double, double> wildClusterRatioInterval(const std::vector<RatioCluster>& clusters, double confidence,
-                                                   std::size_t replicates, std::uint64_t seed);
+                                                   std::size_t replicates, std::uint64_t seed,
+                                                   RatioNumerators numerators = RatioNumerators::amounts);
 
 /// A share, the summed successes (numerators) over the summed trials (denominators, each cluster's
 /// n its trials): wildClusterRatioInterval within [0, 1] (each end 0 or 1 where that is not
