@@ -94,12 +94,7 @@ void printDipShapeLine(const DipShapeTransfer& shape, std::ostream& out)
   if (shape.braking.observations == 0 && shape.recovery.observations == 0 && shape.widenings == 0)
     return;
   auto ratio = [](const ClusteredRatio& r) {
-    if (r.observations == 0)
-      return std::string("none (no rate scored)");
-    std::string text = printfText("%.2f", r.ratio);
-    if (!std::isnan(r.lower))
-      text += printfText(" [%.2f, %.2f]", r.lower, r.upper);
-    return text;
+    return r.observations == 0 ? std::string("none (no rate scored)") : ratioWithIntervalText(r);
   };
   const std::string widening = shape.widenings == 0
                                    ? "no dip's width at half depth is known"

@@ -696,10 +696,7 @@ std::string rateSpanText() { return cellNumber("%g s", PerturbationCriteria{}.ac
 
 std::string ratioCell(const ClusteredRatio& r, bool with_interval)
 {
-  const std::string ratio = cellNumber("%.2f", r.ratio);
-  return with_interval && !std::isnan(r.lower) ? ratio + " [" + cellNumber("%.2f", r.lower) + ", " +
-                                                       cellNumber("%.2f", r.upper) + "]"
-                                                 : ratio;
+  return with_interval ? ratioWithIntervalText(r) : cellNumber("%.2f", r.ratio);
 }
 
 std::vector<std::vector<std::string>> shapeRows(const CampaignResult& result)

@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "acc_identification/evidence/wild_cluster_interval.h"
+#include "acc_identification/model/number_text.h"
 
 namespace acc
 {
@@ -28,6 +29,14 @@ ClusteredRatio clusteredRatioOfSums(const std::vector<RatioCluster>& clusters, s
   if (!clusters.empty())
     out.ratio = top / bottom;
   return out;
+}
+
+std::string ratioWithIntervalText(const ClusteredRatio& ratio)
+{
+  const std::string text = cellNumber("%.2f", ratio.ratio);
+  if (std::isnan(ratio.lower))
+    return text;
+  return text + " [" + cellNumber("%.2f", ratio.lower) + ", " + cellNumber("%.2f", ratio.upper) + "]";
 }
 
 }  // namespace acc

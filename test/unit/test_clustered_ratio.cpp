@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -45,4 +46,19 @@ TEST(ClusteredRatio, SaysNothingOfItsSpreadFromOneClusterAndRefusesANonPositiveD
   EXPECT_TRUE(std::isnan(acc::clusteredRatioOfSums({}, 999, 1).ratio));
   EXPECT_THROW(acc::clusteredRatioOfSums({{1.0, 0.0, 1}, {1.0, 1.0, 1}}, 999, 1), std::invalid_argument);
   EXPECT_THROW(acc::clusteredRatioOfSums({{1.0, 1.0, 1}}, 999, 1, 1.0), std::invalid_argument);
+}
+
+// The reports' one text of a ratio: its interval where it has one, an unbounded end as inf.
+TEST(ClusteredRatio, IsWrittenWithItsIntervalWhereItHasOne)
+{
+  acc::ClusteredRatio r;
+  EXPECT_EQ(acc::ratioWithIntervalText(r), "NaN");
+  r.ratio = 0.8812;
+  EXPECT_EQ(acc::ratioWithIntervalText(r), "0.88");
+  r.lower = 0.0;
+  r.upper = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(acc::ratioWithIntervalText(r), "0.88 [0.00, inf]");
+  r.lower = 0.7801;
+  r.upper = 0.9799;
+  EXPECT_EQ(acc::ratioWithIntervalText(r), "0.88 [0.78, 0.98]");
 }

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace acc
@@ -47,5 +48,10 @@ struct ClusteredRatio
 ClusteredRatio clusteredRatioOfSums(const std::vector<RatioCluster>& clusters, std::size_t replicates,
                                     std::uint64_t seed, double confidence = 0.95,
                                     RatioNumerators numerators = RatioNumerators::amounts);
+
+/// "0.88 [0.78, 0.98]": the ratio with its interval ("inf" for an end the clusters do not bound),
+/// the ratio alone where it has no interval, "NaN" for a ratio not available. The one way the
+/// reports write a ClusteredRatio.
+std::string ratioWithIntervalText(const ClusteredRatio& ratio);
 
 }  // namespace acc
