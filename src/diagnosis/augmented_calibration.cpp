@@ -50,7 +50,8 @@ std::vector<double> AugmentedParameterBox::unit(const std::vector<double>& x) co
   std::vector<double> u(x.size());
   for (std::size_t i = 0; i < x.size(); ++i)
   {
-    u[i] = std::clamp((x[i] - lower[i]) / (upper[i] - lower[i]), 0.0, 1.0);
+    // A held coordinate (lower == upper) has one value: unit 0.
+    u[i] = upper[i] > lower[i] ? std::clamp((x[i] - lower[i]) / (upper[i] - lower[i]), 0.0, 1.0) : 0.0;
   }
   return u;
 }
@@ -737,8 +738,10 @@ std::vector<std::vector<double>> coldStarts(const std::vector<EffectKind>& effec
 }
 }  // namespace
 
-AugmentedFit calibrateAugmentedSet(const std::vector<EffectKind>& effects, const std::vector<CarFollowingRun>& segments,
-                                   const AugmentedCalibrationOptions& options, const AugmentedFit* warm_start)
+namespace
+{
+void checkSegmentsAndObjective(const std::vector<EffectKind>& effects, const std::vector<CarFollowingRun>& segments,
+                               const AugmentedCalibrationOptions& options)
 {
   for (const CarFollowingRun& run : segments)
   {
@@ -753,6 +756,50 @@ AugmentedFit calibrateAugmentedSet(const std::vector<EffectKind>& effects, const
   {
     throw std::invalid_argument("a clock offset can only be fitted with a speed objective");
   }
+}
+
+/// The fit the tracker's best point makes; its standard errors are taken in `error_box` (the
+/// search box, or the unheld box of a fit with an effect held).
+AugmentedFit fitAtBest(ObjectiveTracker* tracker, const AugmentedParameterBox& error_box,
+                       const std::vector<CarFollowingRun>& segments, const AugmentedCalibrationOptions& options)
+{
+  const AugmentedParameterBox& box = *tracker->box;
+  AugmentedFit fit;
+  fit.locally_stable = !tracker->best_x.empty() || tracker->best_unstable_x.empty();
+  if (!fit.locally_stable)
+  {
+    tracker->best_x = tracker->best_unstable_x;
+    tracker->best_value = tracker->best_unstable_value;
+  }
+  fit.effect = box.effect;
+  fit.effects = box.effects;
+  fit.evaluations = tracker->evaluations;
+  fit.objective = options.objective;
+  fit.train_objective = tracker->best_value;
+  fit.train_mse_speed = tracker->best_value;
+  fit.diverged = !(tracker->best_value < kDivergedObjective);
+  if (tracker->best_x.empty())
+  {
+    fit.diverged = true;
+    return fit;
+  }
+  fit.base = baseOf(tracker->best_x);
+  fit.effect_values = effectPart(tracker->best_x);
+  fit.settings = box.settingsOf(tracker->best_x);
+  if (options.objective != FitObjective::speed)
+  {
+    fit.train_mse_speed = augmentedSpeedMse(fit.base, fit.settings, segments);
+  }
+  fit.standard_errors = fit.diverged ? std::vector<double>(box.dimension(), std::numeric_limits<double>::quiet_NaN())
+                                     : standardErrors(tracker->best_x, error_box, segments);
+  return fit;
+}
+}  // namespace
+
+AugmentedFit calibrateAugmentedSet(const std::vector<EffectKind>& effects, const std::vector<CarFollowingRun>& segments,
+                                   const AugmentedCalibrationOptions& options, const AugmentedFit* warm_start)
+{
+  checkSegmentsAndObjective(effects, segments, options);
   const AugmentedParameterBox box(effects, options);
   ObjectiveTracker tracker{&box, &segments, residualWeights(options.objective, segments), loopCheckSpeedsMps(segments)};
   const std::vector<std::vector<double>> starts = warm_start != nullptr && !effects.empty()
@@ -762,35 +809,33 @@ AugmentedFit calibrateAugmentedSet(const std::vector<EffectKind>& effects, const
   {
     localSolve(&tracker, start, options);
   }
-  AugmentedFit fit;
-  fit.locally_stable = !tracker.best_x.empty() || tracker.best_unstable_x.empty();
-  if (!fit.locally_stable)
+  return fitAtBest(&tracker, box, segments, options);
+}
+
+AugmentedFit calibrateWithEffectHeld(EffectKind effect, const std::vector<double>& held_values,
+                                     const std::vector<CarFollowingRun>& segments,
+                                     const AugmentedCalibrationOptions& options, const AugmentedFit* warm_start)
+{
+  checkSegmentsAndObjective({effect}, segments, options);
+  const AugmentedParameterBox box(effect, options);
+  if (effect == EffectKind::none || held_values.size() != box.dimension() - AugmentedParameterBox::kBaseDimension)
   {
-    tracker.best_x = tracker.best_unstable_x;
-    tracker.best_value = tracker.best_unstable_value;
+    throw std::invalid_argument("calibrateWithEffectHeld: " + std::to_string(held_values.size()) +
+                                " values for effect " + combinedEffectName({effect}));
   }
-  fit.effect = box.effect;
-  fit.effects = effects;
-  fit.evaluations = tracker.evaluations;
-  fit.objective = options.objective;
-  fit.train_objective = tracker.best_value;
-  fit.train_mse_speed = tracker.best_value;
-  fit.diverged = !(tracker.best_value < kDivergedObjective);
-  if (tracker.best_x.empty())
+  AugmentedParameterBox held = box;
+  for (std::size_t i = 0; i < held_values.size(); ++i)
   {
-    fit.diverged = true;
-    return fit;
+    const std::size_t j = AugmentedParameterBox::kBaseDimension + i;
+    held.lower[j] = held.upper[j] = std::clamp(held_values[i], box.lower[j], box.upper[j]);
   }
-  fit.base = baseOf(tracker.best_x);
-  fit.effect_values = effectPart(tracker.best_x);
-  fit.settings = box.settingsOf(tracker.best_x);
-  if (options.objective != FitObjective::speed)
+  ObjectiveTracker tracker{&held, &segments, residualWeights(options.objective, segments), loopCheckSpeedsMps(segments)};
+  // The held coordinates have zero width, so the unit-scaled normal equations never move them.
+  for (const std::vector<double>& start : coldStarts({effect}, segments, options, warm_start))
   {
-    fit.train_mse_speed = augmentedSpeedMse(fit.base, fit.settings, segments);
+    localSolve(&tracker, start, options);
   }
-  fit.standard_errors = fit.diverged ? std::vector<double>(box.dimension(), std::numeric_limits<double>::quiet_NaN())
-                                     : standardErrors(tracker.best_x, box, segments);
-  return fit;
+  return fitAtBest(&tracker, box, segments, options);
 }
 
 std::string objectiveName(FitObjective objective)

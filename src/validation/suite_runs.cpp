@@ -53,6 +53,7 @@ nlohmann::json semiRealJson(const SemiRealOutcome& o)
           {"expected_magnitude", jsonNumber(o.expected_magnitude)},
           {"baseline_estimate", o.baseline_estimate},
           {"baseline_standard_error", jsonNumber(o.baseline_standard_error)},
+          {"standard_error_at_expected_size", o.standard_error_at_expected_size},
           {"detection_z", o.detection_z},
           {"detectable", o.detectable()},
           {"found_magnitude", jsonNumber(o.foundMagnitude())},

@@ -619,6 +619,14 @@ const DeterminedEffect* determinedOf(const DiagnosisResult& result, EffectKind k
   return found == result.determined.end() ? nullptr : &*found;
 }
 
+/// The standard error of a single-effect fit's (first) effect parameter: NaN without a fit.
+double effectStandardError(const AugmentedFit* fit)
+{
+  return fit != nullptr && fit->standard_errors.size() > AugmentedParameterBox::kBaseDimension
+             ? fit->standard_errors[AugmentedParameterBox::kBaseDimension]
+             : std::numeric_limits<double>::quiet_NaN();
+}
+
 double baselineEstimate(const DiagnosisResult& baseline, EffectKind kind)
 {
   if (const std::optional<double> named = selectedMagnitude(baseline, kind))
@@ -656,10 +664,14 @@ SemiRealOutcome runSemiRealCase(const SemiRealSet& set, const SemiRealCase& c, c
   {
     outcome.expected_magnitude = expectedMagnitude(c, baseline);
     outcome.baseline_estimate = baselineEstimate(baseline, c.injected);
-    const AugmentedFit* untouched = singleFit(baseline, c.injected);
-    outcome.baseline_standard_error = untouched && untouched->standard_errors.size() > AugmentedParameterBox::kBaseDimension
-                                          ? untouched->standard_errors[AugmentedParameterBox::kBaseDimension]
-                                          : nan;
+    outcome.baseline_standard_error = effectStandardError(singleFit(baseline, c.injected));
+    if (!std::isfinite(outcome.baseline_standard_error) && !baseline.train.empty())
+    {
+      const AugmentedFit held = calibrateWithEffectHeld(c.injected, {outcome.expectedNet()}, baseline.train,
+                                                        options.calibration, &baseline.baseline.fit);
+      outcome.baseline_standard_error = effectStandardError(&held);
+      outcome.standard_error_at_expected_size = std::isfinite(outcome.baseline_standard_error);
+    }
     outcome.detection_z = determinedThreshold(options.selection.alpha, options.candidates);
   }
   return outcome;
@@ -786,7 +798,10 @@ std::string formatSemiRealTables(const std::vector<SemiRealOutcome>& outcomes)
     auto number = [](double x) { return std::isfinite(x) ? formatDouble("%.3f", x) : std::string("-"); };
     out << "| " << o.set_name << " | " << effectName(o.input.injected) << " | " << formatDouble("%.2f", o.input.magnitude)
         << " | " << (check ? number(o.expected_magnitude) : "-") << " | "
-        << (check ? number(o.baseline_estimate) + " +- " + number(o.baseline_standard_error) : "-") << " | "
+        << (check ? number(o.baseline_estimate) + " +- " + number(o.baseline_standard_error) +
+                        (o.standard_error_at_expected_size ? " (at the expected size)" : "")
+                  : "-")
+        << " | "
         << (check ? formatDouble("%.1f", std::abs(o.expectedNet()) / o.baseline_standard_error) : "-") << " | "
         << effectName(o.dominant) << " | " << chainText(o.chain) << " | " << (check ? (o.determined ? "yes" : "no") : "-")
         << " | " << number(o.fitted_magnitude) << " | " << number(o.recoveredMagnitude()) << " | "

@@ -204,6 +204,56 @@ TEST(AugmentedCalibration, NeverEndsWorseThanTheBaseFitItStartsFrom)
   }
 }
 
+// Held at the free fit's own lag, the held fit is the free fit: the same base parameters and the
+// same standard errors. Fails when the held coordinate moves, or when its standard errors are
+// taken in the held box (a zero-width coordinate has no derivative: NaN).
+TEST(AugmentedCalibration, HeldAtTheFreeOptimumItIsTheFreeFit)
+{
+  acc::WithheldCase c;
+  c.truth = acc::EffectKind::actuation_lag;
+  c.truth_values = {0.8};
+  c.duration_s = 300.0;
+  const acc::CarFollowingRun run = acc::synthesizeWithheldRun(c);
+  const acc::AugmentedCalibrationOptions options;
+  const acc::AugmentedFit base = acc::calibrateAugmented(acc::EffectKind::none, {run}, options);
+  const acc::AugmentedFit free = acc::calibrateAugmented(acc::EffectKind::actuation_lag, {run}, options, &base);
+  ASSERT_NEAR(free.effect_values[0], 0.8, 0.1);
+  const acc::AugmentedFit held = acc::calibrateWithEffectHeld(acc::EffectKind::actuation_lag, free.effect_values,
+                                                              {run}, options, &base);
+  EXPECT_EQ(held.effect_values, free.effect_values);
+  EXPECT_NEAR(held.train_mse_speed, free.train_mse_speed, 1e-6 * free.train_mse_speed);
+  EXPECT_NEAR(held.base.tau_e_s, free.base.tau_e_s, 1e-3);
+  EXPECT_NEAR(held.base.k2_per_s, free.base.k2_per_s, 1e-3);
+  ASSERT_EQ(held.standard_errors.size(), 5u);
+  for (std::size_t i = 0; i < 5; ++i)
+  {
+    EXPECT_NEAR(held.standard_errors[i], free.standard_errors[i], 0.02 * free.standard_errors[i]) << i;
+  }
+}
+
+// A car without a lag: the lag's own fit sits at 0, where exp(-dt / T) is flat and no standard
+// error exists; held at 0.5 s the lag has one, and it is small on a clean drive (such a lag is
+// measurable there). Fails when the held fit moves the lag or drops its column.
+TEST(AugmentedCalibration, HeldAboveNoneALagHasTheStandardErrorItsOwnFitLacks)
+{
+  acc::WithheldCase c;
+  c.duration_s = 300.0;
+  const acc::CarFollowingRun run = acc::synthesizeWithheldRun(c);
+  const acc::AugmentedCalibrationOptions options;
+  const acc::AugmentedFit base = acc::calibrateAugmented(acc::EffectKind::none, {run}, options);
+  const acc::AugmentedFit free = acc::calibrateAugmented(acc::EffectKind::actuation_lag, {run}, options, &base);
+  ASSERT_LT(free.effect_values[0], 0.01);
+  EXPECT_TRUE(std::isnan(free.standard_errors[4]));
+  const acc::AugmentedFit held = acc::calibrateWithEffectHeld(acc::EffectKind::actuation_lag, {0.5}, {run}, options, &base);
+  EXPECT_EQ(held.effect_values, std::vector<double>{0.5});
+  EXPECT_GT(held.train_mse_speed, free.train_mse_speed);
+  ASSERT_EQ(held.standard_errors.size(), 5u);
+  EXPECT_GT(held.standard_errors[4], 0.0);
+  EXPECT_LT(held.standard_errors[4], 0.5 / 2.64);
+  EXPECT_THROW(acc::calibrateWithEffectHeld(acc::EffectKind::actuation_lag, {0.5, 1.0}, {run}, options),
+               std::invalid_argument);
+}
+
 TEST(AugmentedCalibration, RejectsInvalidSegmentsWithAMessage)
 {
   acc::CarFollowingRun bad;

@@ -161,6 +161,18 @@ AugmentedFit calibrateAugmentedSet(const std::vector<EffectKind>& effects, const
                                    const AugmentedCalibrationOptions& options,
                                    const AugmentedFit* warm_start = nullptr);
 
+/// The base parameters refitted with one effect held at held_values (its catalogue values, clamped
+/// into its range): the starts are calibrateAugmented's cold ones (warm_start's base first). Its
+/// standard errors are those of the full model at that point, the effect's included: how
+/// precisely these data would measure the effect were it that large. Where the effect's own fit
+/// sits at a none value that carries no information (a lag of 0: exp(-dt / T) is flat there),
+/// this is the only standard error there is. Throws std::invalid_argument for invalid segments or
+/// a wrong number of values.
+AugmentedFit calibrateWithEffectHeld(EffectKind effect, const std::vector<double>& held_values,
+                                     const std::vector<CarFollowingRun>& segments,
+                                     const AugmentedCalibrationOptions& options,
+                                     const AugmentedFit* warm_start = nullptr);
+
 /// The effects of a fit: fit.effects, or {fit.effect} for a fit made before combinations existed.
 std::vector<EffectKind> effectsOf(const AugmentedFit& fit);
 

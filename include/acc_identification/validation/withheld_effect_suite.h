@@ -187,9 +187,13 @@ struct SemiRealOutcome
   /// The untouched runs' own estimate of the effect: its value in their final model (the chain's
   /// last), else its single fit's where determined, else none (0).
   double baseline_estimate = 0.0;
-  /// Standard error of the injected effect's single fit on the untouched runs: how precisely these
-  /// data measure it at all (NaN when they do not).
+  /// Standard error of the injected effect on the untouched runs: how precisely these data
+  /// measure it at all. Its single fit's, where that is finite; where the fit sits at a none value
+  /// that carries no information (a lag of 0), the one at the expected net size
+  /// (calibrateWithEffectHeld there): how precisely the data would measure the effect were it
+  /// that large (at_expected_size true). NaN when neither is finite.
   double baseline_standard_error = 0.0;
+  bool standard_error_at_expected_size = false;
   /// The z the determined rule asks for (determinedThreshold at the diagnosis's alpha).
   double detection_z = 0.0;
 
@@ -198,7 +202,8 @@ struct SemiRealOutcome
   /// Decided before the injected runs are diagnosed: the net effect stands detection_z standard
   /// errors (of the untouched runs) away from none. Below that the data cannot be asked to find
   /// it (an injection of -0.5 s on runs that have +0.5 s leaves nothing), and a check there asks
-  /// only that nothing wrong is named. True where the standard error is not finite.
+  /// only that nothing wrong is named. True where no standard error is finite (no limit is
+  /// stated, so the case must be found).
   bool detectable() const;
 
   /// fitted minus baseline: what the diagnosis attributes to the injection (NaN when not selected).
