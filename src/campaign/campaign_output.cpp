@@ -350,14 +350,47 @@ std::string rangesText(const std::vector<std::pair<double, double>>& ranges)
   return text;
 }
 
+/// Where a model's |Gamma| leaves the empirical band: "too short" without an empirical response,
+/// "no model" without the model (its gains are NaN, and no departure would read as "nowhere").
+std::string departsCell(const LinkEvidence& e, bool model_available,
+                        const std::vector<std::pair<double, double>>& departs_rad_s)
+{
+  if (!responseRead(e))
+    return "too short";
+  return model_available ? rangesText(departs_rad_s) : "no model";
+}
+
 /// The ten-car ratio, and where a simulation ran away, at which car (a NaN alone would hide it).
 std::string longPlatoonText(const LinkEvidence& e)
 {
+  if (!e.diagnosed_available)
+    return "no model";  // the note says why
+  if (e.long_platoon_perturbations == 0 && e.long_platoon_ran_away_at_car == 0)
+    return "no dip";  // no run's first car at this setting braked
   const std::string ratio = cellNumber("%.2f", e.long_platoon_dip_ratio);
   if (e.long_platoon_ran_away_at_car == 0)
     return ratio;
   const std::string ran_away = "ran away at car " + std::to_string(e.long_platoon_ran_away_at_car);
   return std::isfinite(e.long_platoon_dip_ratio) ? ratio + " (" + ran_away + " in a run)" : ran_away;
+}
+
+/// The link's dip ratio with its interval where there is one; "no dip" without a perturbation
+/// (a link whose leader never braked in these runs has no ratio to print).
+std::string dipRatioCell(const DipRatioEstimate& d)
+{
+  if (d.count == 0)
+    return "no dip";
+  const std::string ratio = cellNumber("%.2f", d.ratio_of_means);
+  return std::isnan(d.lower) ? ratio : ratio + " [" + cellNumber("%.2f", d.lower) + ", " + cellNumber("%.2f", d.upper) + "]";
+}
+
+/// Each dip's own ratio, smallest to largest ("-" without a dip).
+std::string eachDipCell(const DipRatioEstimate& d)
+{
+  if (d.count == 0)
+    return "-";
+  return d.count < 2 ? cellNumber("%.2f", d.smallest_ratio)
+                     : cellNumber("%.2f", d.smallest_ratio) + "-" + cellNumber("%.2f", d.largest_ratio);
 }
 
 std::vector<std::vector<std::string>> linkRows(const CampaignResult& result)
@@ -366,14 +399,11 @@ std::vector<std::vector<std::string>> linkRows(const CampaignResult& result)
   for (const LinkEvidence& e : result.links)
   {
     const DipRatioEstimate& d = e.dip_ratio;
-    rows.push_back({e.vehicle, e.setting, std::to_string(d.count),
-                    cellNumber("%.2f", d.ratio_of_means) + " [" + cellNumber("%.2f", d.lower) + ", " + cellNumber("%.2f", d.upper) + "]",
-                    d.count < 2 ? cellNumber("%.2f", d.smallest_ratio)
-                                : cellNumber("%.2f", d.smallest_ratio) + "-" + cellNumber("%.2f", d.largest_ratio),
+    rows.push_back({e.vehicle, e.setting, std::to_string(d.count), dipRatioCell(d), eachDipCell(d),
                     toString(d.amplifies),
-                    responseRead(e) ? rangesText(e.base_departs_rad_s) : "too short",
-                    responseRead(e) ? rangesText(e.diagnosed_departs_rad_s) : "too short",
-                    cellNumber("%.2f", e.diagnosed_available ? e.diagnosed_small_signal.peak_gain_db : kNaN),
+                    departsCell(e, e.base_available, e.base_departs_rad_s),
+                    departsCell(e, e.diagnosed_available, e.diagnosed_departs_rad_s),
+                    e.diagnosed_available ? cellNumber("%.2f", e.diagnosed_small_signal.peak_gain_db) : "no model",
                     longPlatoonText(e)});
   }
   return rows;

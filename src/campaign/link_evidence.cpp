@@ -130,6 +130,7 @@ LinkEvidence evidenceOf(const CampaignInputs& inputs, const CampaignGroup& group
     welch.segment_samples = kLinkWelchSegmentSamples;
     evidence.response = empiricalResponse(leader, follower, step_s, welch);
   }
+  evidence.base_available = result.fitted();
   fitDiagnosed(group, result, diagnosed, &evidence);
   for (double w : evidence.response.frequency_rad_s)
   {

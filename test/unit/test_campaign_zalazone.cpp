@@ -261,4 +261,13 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesATimingEffectAndNotTheBrakingTerm
   EXPECT_NE(report.find("the same for 7 of 9 runs; without dynamic_part8, dynamic_part26: actuation_lag"),
             std::string::npos);
   EXPECT_EQ(report.find("without dynamic_part25: "), std::string::npos);
+  // A car without a base fit (the Tesla Model X at S drives at a steady speed) has no |Gamma| that
+  // could leave the data's band: "no model", not "nowhere"; a link without a dip says so. No link
+  // row prints a NaN.
+  EXPECT_NE(report.find("| TESLA_MODELX | S | 0 | no dip | - | insufficient | no model | no model | no model | no model |"),
+            std::string::npos);
+  const std::size_t links = report.find("| vehicle | set | dips | dip ratio [CI] |");
+  ASSERT_NE(links, std::string::npos);
+  const std::string link_table = report.substr(links, report.find("\n\n", links) - links);
+  EXPECT_EQ(link_table.find("NaN"), std::string::npos) << link_table;
 }

@@ -45,6 +45,7 @@ struct LinkEvidence
   /// values, settings and standard errors), and its small-signal stability (for an asymmetric law,
   /// of its braking branch: augmented_stability.h).
   PlatoonCandidate diagnosed;
+  bool base_available = false;  ///< the group has a base fit (its |Gamma| is then known)
   bool diagnosed_available = false;
   AugmentedFit diagnosed_fit;
   AugmentedStability diagnosed_small_signal;
