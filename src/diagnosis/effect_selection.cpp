@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <random>
 #include <stdexcept>
 
-#include "acc_identification/model/portable_uniform.h"
+#include "acc_identification/model/block_bootstrap.h"
 #include "acc_identification/model/sample_statistics.h"
 
 namespace acc
@@ -33,77 +32,30 @@ SquaredErrorsByRun difference(const SquaredErrorsByRun& a, const SquaredErrorsBy
 }
 
 
-/// The sum of every circular block of `block` samples of one run, by its start: computed once,
-/// so that a resample adds one number per drawn block instead of `block` numbers.
-std::vector<double> circularBlockSums(const std::vector<double>& run, std::size_t block)
-{
-  const std::size_t n = run.size();
-  std::vector<double> sums(n, 0.0);
-  for (std::size_t s = 0; s < n; ++s)
-  {
-    for (std::size_t i = 0; i < block; ++i)
-    {
-      sums[s] += run[(s + i) % n];
-    }
-  }
-  return sums;
-}
-
-/// Moving-block bootstrap of the means of several paired series at once (same resampled blocks
-/// for all). Returns [resample][series]. Blocks wrap around each run's end (circular), so every
-/// sample is equally likely to be drawn.
+/// Moving-block bootstrap of the means of several paired series at once (the same resampled
+/// blocks for all). Returns [resample][series]. Blocks wrap around each run's end (circular), so
+/// every sample is equally likely to be drawn.
 std::vector<std::vector<double>> bootstrapMeans(const std::vector<SquaredErrorsByRun>& series, std::size_t block,
                                                 const SelectionOptions& options)
 {
-  std::mt19937_64 rng(options.seed);
-  std::vector<std::vector<double>> means(options.resamples, std::vector<double>(series.size(), 0.0));
-  std::size_t total = 0;
-  for (const auto& run : series.front())
+  std::vector<std::size_t> run_lengths;
+  for (const std::vector<double>& run : series.front())
   {
-    total += run.size();
+    run_lengths.push_back(run.size());
   }
-  // [series][run][start]: only whole blocks use them; a run's last, shorter block is summed as drawn.
-  std::vector<std::vector<std::vector<double>>> block_sums(series.size());
+  const MovingBlockBootstrap plan(run_lengths, block, options.resamples, options.seed, BlockPlacement::circular);
+  std::vector<std::vector<double>> means(options.resamples, std::vector<double>(series.size(), 0.0));
   for (std::size_t k = 0; k < series.size(); ++k)
   {
+    std::vector<double> concatenated;
     for (const std::vector<double>& run : series[k])
     {
-      block_sums[k].push_back(circularBlockSums(run, std::min(block, run.size())));
+      concatenated.insert(concatenated.end(), run.begin(), run.end());
     }
-  }
-  for (std::size_t b = 0; b < options.resamples; ++b)
-  {
-    std::vector<double> sums(series.size(), 0.0);
-    for (std::size_t r = 0; r < series.front().size(); ++r)
+    const std::vector<double> replicates = plan.replicateMeans(concatenated);
+    for (std::size_t b = 0; b < replicates.size(); ++b)
     {
-      const std::size_t n = series.front()[r].size();
-      if (n == 0)
-      {
-        continue;
-      }
-      for (std::size_t drawn = 0; drawn < n;)
-      {
-        // Portable: the same block starts with every standard library (portable_uniform.h).
-        const auto s = static_cast<std::size_t>(uniformBelow(rng, n));
-        const std::size_t length = std::min(block, n - drawn);
-        for (std::size_t k = 0; k < series.size(); ++k)
-        {
-          if (length == std::min(block, n))
-          {
-            sums[k] += block_sums[k][r][s];
-            continue;
-          }
-          for (std::size_t i = 0; i < length; ++i)
-          {
-            sums[k] += series[k][r][(s + i) % n];
-          }
-        }
-        drawn += length;
-      }
-    }
-    for (std::size_t k = 0; k < series.size(); ++k)
-    {
-      means[b][k] = total > 0 ? sums[k] / static_cast<double>(total) : 0.0;
+      means[b][k] = replicates[b];
     }
   }
   return means;

@@ -24,8 +24,8 @@ std::vector<double> prefixSums(const std::vector<double>& x, std::size_t offset,
 }  // namespace
 
 MovingBlockBootstrap::MovingBlockBootstrap(std::vector<std::size_t> segment_lengths, std::size_t block_length_samples,
-                                           std::size_t replicates, std::uint64_t seed)
-  : replicates_(replicates)
+                                           std::size_t replicates, std::uint64_t seed, BlockPlacement placement)
+  : replicates_(replicates), placement_(placement)
 {
   if (block_length_samples == 0)
   {
@@ -54,15 +54,48 @@ MovingBlockBootstrap::MovingBlockBootstrap(std::vector<std::size_t> segment_leng
     for (const Segment& segment : segments_)
     {
       const std::size_t blocks = segment.full_blocks + (segment.last_block > 0 ? 1 : 0);
+      const std::size_t positions =
+          placement_ == BlockPlacement::circular ? segment.length : segment.length - segment.block + 1;
       for (std::size_t j = 0; j < blocks; ++j)
       {
-        starts_.push_back(static_cast<std::uint32_t>(uniformBelow(engine, segment.length - segment.block + 1)));
+        starts_.push_back(static_cast<std::uint32_t>(uniformBelow(engine, positions)));
       }
     }
   }
 }
 
-std::vector<double> MovingBlockBootstrap::centredReplicates(const std::vector<double>& x) const
+namespace
+{
+/// A segment's block sums: every full block's by its start (computed once, so that a replicate
+/// adds one number per drawn block), and the prefix sums a cut block within the segment reads.
+struct SegmentSums
+{
+  std::vector<double> full_by_start;
+  std::vector<double> prefix;
+};
+
+SegmentSums segmentSums(const std::vector<double>& x, std::size_t offset, std::size_t length, std::size_t block,
+                        BlockPlacement placement)
+{
+  SegmentSums sums;
+  if (placement == BlockPlacement::within_segment)
+  {
+    sums.prefix = prefixSums(x, offset, length);
+    for (std::size_t s = 0; s + block <= length; ++s)
+      sums.full_by_start.push_back(sums.prefix[s + block] - sums.prefix[s]);
+    return sums;
+  }
+  sums.full_by_start.assign(length, 0.0);
+  for (std::size_t s = 0; s < length; ++s)
+  {
+    for (std::size_t i = 0; i < block; ++i)
+      sums.full_by_start[s] += x[offset + (s + i) % length];
+  }
+  return sums;
+}
+}  // namespace
+
+std::vector<double> MovingBlockBootstrap::replicateMeans(const std::vector<double>& x) const
 {
   if (x.size() != samples_)
   {
@@ -73,12 +106,49 @@ std::vector<double> MovingBlockBootstrap::centredReplicates(const std::vector<do
   {
     return result;
   }
-  std::vector<std::vector<double>> prefixes;
+  std::vector<SegmentSums> sums;
+  for (const Segment& segment : segments_)
+  {
+    sums.push_back(segmentSums(x, segment.offset, segment.length, segment.block, placement_));
+  }
+  const double n = static_cast<double>(samples_);
+  std::size_t k = 0;
+  for (std::size_t b = 0; b < replicates_; ++b)
+  {
+    double total = 0.0;
+    for (std::size_t s = 0; s < segments_.size(); ++s)
+    {
+      const Segment& segment = segments_[s];
+      for (std::size_t j = 0; j < segment.full_blocks; ++j)
+      {
+        total += sums[s].full_by_start[starts_[k++]];
+      }
+      if (segment.last_block == 0)
+        continue;
+      const std::uint32_t start = starts_[k++];
+      if (placement_ == BlockPlacement::within_segment)
+      {
+        total += sums[s].prefix[start + segment.last_block] - sums[s].prefix[start];
+        continue;
+      }
+      for (std::size_t i = 0; i < segment.last_block; ++i)
+        total += x[segment.offset + (start + i) % segment.length];
+    }
+    result[b] = total / n;
+  }
+  return result;
+}
+
+double MovingBlockBootstrap::expectedMean(const std::vector<double>& x) const
+{
+  if (placement_ == BlockPlacement::circular)
+  {
+    return meanOf(x);  // every sample is drawn equally often
+  }
   double expected_total = 0.0;
   for (const Segment& segment : segments_)
   {
-    prefixes.push_back(prefixSums(x, segment.offset, segment.length));
-    const std::vector<double>& prefix = prefixes.back();
+    const std::vector<double> prefix = prefixSums(x, segment.offset, segment.length);
     // E* of a block's sum: the mean over all admissible starts, for the full and the cut block.
     const std::size_t positions = segment.length - segment.block + 1;
     double full = 0.0, cut = 0.0;
@@ -89,32 +159,23 @@ std::vector<double> MovingBlockBootstrap::centredReplicates(const std::vector<do
     }
     expected_total += (static_cast<double>(segment.full_blocks) * full + cut) / static_cast<double>(positions);
   }
-  const double n = static_cast<double>(samples_);
-  const double expected_mean = expected_total / n;
-  std::size_t k = 0;
-  for (std::size_t b = 0; b < replicates_; ++b)
+  return expected_total / static_cast<double>(samples_);
+}
+
+std::vector<double> MovingBlockBootstrap::centredReplicates(const std::vector<double>& x) const
+{
+  std::vector<double> result = replicateMeans(x);
+  if (samples_ == 0)
   {
-    double total = 0.0;
-    for (std::size_t s = 0; s < segments_.size(); ++s)
-    {
-      const Segment& segment = segments_[s];
-      const std::vector<double>& prefix = prefixes[s];
-      for (std::size_t j = 0; j < segment.full_blocks; ++j)
-      {
-        const std::uint32_t start = starts_[k++];
-        total += prefix[start + segment.block] - prefix[start];
-      }
-      if (segment.last_block > 0)
-      {
-        const std::uint32_t start = starts_[k++];
-        total += prefix[start + segment.last_block] - prefix[start];
-      }
-    }
-    result[b] = total / n - expected_mean;
+    return result;
+  }
+  const double expected_mean = expectedMean(x);
+  for (double& mean : result)
+  {
+    mean -= expected_mean;
   }
   return result;
 }
-
 
 double MovingBlockBootstrap::pValueMeanPositive(const std::vector<double>& x) const
 {

@@ -5,7 +5,7 @@
 // same numbers with every standard library).
 //
 // The leader (own profile, seeded): holds of 20-40 s at speeds drawn in [14, 28] m/s, changed by
-// ramps at +1.5 / -2.0 m/s^2 (the paper's "rapid" ramps of profiles D-I), 500 s in all.
+// front_oness at +1.5 / -2.0 m/s^2 (the paper's "rapid" front_oness of profiles D-I), 500 s in all.
 //
 // Fits use fewer starts than the defaults (fastOptions) to keep the whole binary near ten seconds
 // on one core: 20 Halton starts for the unconstrained fit (default 100), 10 with at most 3 local
@@ -15,6 +15,7 @@
 
 #include <sstream>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -68,7 +69,7 @@ Leader seededLeader(std::uint64_t seed, double duration_s, double low = 14.0, do
     leader.time_s.push_back(t);
     leader.speed_mps.push_back(v);
     const double next = low + (high - low) * random.uniformOpenClosed();
-    t += std::abs(next - v) / (next > v ? 1.5 : 2.0);  // ramp
+    t += std::abs(next - v) / (next > v ? 1.5 : 2.0);  // front_ones
     v = next;
     leader.time_s.push_back(t);
     leader.speed_mps.push_back(v);
@@ -385,6 +386,47 @@ TEST(StabilityTest, BlockBootstrapIsCentredSeededAndPaired)
     minus[i] = -x[i];
   }
   EXPECT_DOUBLE_EQ(bootstrap.pValueMeanPositive(minus), bootstrap.pValueMeanNegative(x));
+}
+
+// Circular blocks (the diagnosis's selection rule): every sample is drawn equally often, so the
+// replicates' mean is the series' mean and centring subtracts exactly that; a block wraps round its
+// segment's end and never into the next segment. Fails when the starts stop short of the end (the
+// within-segment placement), or when a wrapped block reads the next segment.
+TEST(StabilityTest, CircularBlocksDrawEverySampleEquallyAndWrapWithinTheirSegment)
+{
+  // Ones in the first 10 of 120 samples: within the segment those are drawn seldom (sample i by
+  // i + 1 of 81 starts: E*[mean*] = 3 x 55 / 81 / 120 = 0.017), circularly as often as any.
+  std::vector<double> front_ones(120, 0.0);
+  std::fill(front_ones.begin(), front_ones.begin() + 10, 1.0);
+  const double mean = 10.0 / 120.0;
+  const acc::MovingBlockBootstrap circular({120}, 40, 20000, 7, acc::BlockPlacement::circular);
+  const acc::MovingBlockBootstrap within({120}, 40, 20000, 7);
+  auto average = [](const std::vector<double>& v) {
+    double sum = 0.0;
+    for (double x : v)
+      sum += x;
+    return sum / static_cast<double>(v.size());
+  };
+  EXPECT_NEAR(average(circular.replicateMeans(front_ones)), mean, 0.005);
+  EXPECT_NEAR(average(within.replicateMeans(front_ones)), 3.0 * 55.0 / 81.0 / 120.0, 0.005);
+  const std::vector<double> centred = circular.centredReplicates(front_ones);
+  const std::vector<double> raw = circular.replicateMeans(front_ones);
+  EXPECT_DOUBLE_EQ(centred[3], raw[3] - mean);
+  // Two segments of 5, blocks of 3 (one full and one cut block each): a segment of ones and one of
+  // zeros. A block never mixes them, so every replicate keeps 5 ones among 10 samples.
+  const acc::MovingBlockBootstrap two({5, 5}, 3, 500, 11, acc::BlockPlacement::circular);
+  const std::vector<double> halves{1, 1, 1, 1, 1, 0, 0, 0, 0, 0};
+  for (double m : two.replicateMeans(halves))
+    ASSERT_DOUBLE_EQ(m, 0.5);
+  // And its blocks wrap: with the first segment's two end samples marked, only a block that wraps
+  // ([3, 4, 0] or [4, 0, 1]) holds both, so only then can a replicate hold three or four marks
+  // (within the segment at most two: 0.2).
+  std::vector<double> marked(10, 0.0);
+  marked[0] = marked[4] = 1.0;
+  const std::vector<double> marked_means = two.replicateMeans(marked);
+  EXPECT_GT(*std::max_element(marked_means.begin(), marked_means.end()), 0.25);
+  const std::vector<double> within_means = acc::MovingBlockBootstrap({5, 5}, 3, 500, 11).replicateMeans(marked);
+  EXPECT_LE(*std::max_element(within_means.begin(), within_means.end()), 0.2 + 1e-12);
 }
 
 // Size: on the string-stable truth of Fig. 2 (k1 = k2 = 0.5, eta = 8, tau_e = 3.2 s, m = 6.32),
