@@ -1,7 +1,6 @@
 #include "acc_identification/campaign/shape_transfer.h"
 
 #include <cmath>
-#include <map>
 
 #include "acc_identification/evidence/empirical_response.h"
 
@@ -62,20 +61,13 @@ constexpr DipTerm kJudgedLessMeasured{judgedLessMeasured, RatioNumerators::diffe
 ClusteredRatio dipRatioOf(const std::vector<PlatoonCheck>& platoons, const DipRowFilter& include, double min_dip_mps,
                           MeasuresOf judged, DipTerm term, std::size_t replicates, std::uint64_t seed)
 {
-  std::map<std::size_t, RatioCluster> by_perturbation;
+  ClusterSums by_perturbation;
   forEachScoredRow(platoons, include, min_dip_mps, [&](std::size_t cluster, const auto& rows, std::size_t i) {
     const double ahead = rows[i - 1].measured.dip_mps, value = term.value(rows[i], judged);
-    if (!(ahead > kMinLeaderDipMps) || !std::isfinite(value))
-      return;
-    RatioCluster& c = by_perturbation.try_emplace(cluster, RatioCluster{0.0, 0.0, 0}).first->second;
-    c.numerator += value;
-    c.denominator += ahead;
-    ++c.n;
+    if (ahead > kMinLeaderDipMps && std::isfinite(value))
+      by_perturbation.add(cluster, value, ahead);
   });
-  std::vector<RatioCluster> clusters;
-  for (const auto& entry : by_perturbation)
-    clusters.push_back(entry.second);
-  return clusteredRatioOfSums(clusters, replicates, seed, 0.95, term.numerators);
+  return clusteredRatioOfSums(by_perturbation.clusters(), replicates, seed, 0.95, term.numerators);
 }
 
 DipShapeTransfer transferOf(const std::vector<PlatoonCheck>& platoons, const DipRowFilter& include, double min_dip_mps,

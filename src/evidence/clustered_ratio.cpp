@@ -9,6 +9,22 @@
 
 namespace acc
 {
+void ClusterSums::add(std::size_t cluster, double numerator, double denominator)
+{
+  RatioCluster& c = by_id_.try_emplace(cluster, RatioCluster{0.0, 0.0, 0}).first->second;
+  c.numerator += numerator;
+  c.denominator += denominator;
+  ++c.n;
+}
+
+std::vector<RatioCluster> ClusterSums::clusters() const
+{
+  std::vector<RatioCluster> list;
+  for (const auto& entry : by_id_)
+    list.push_back(entry.second);
+  return list;
+}
+
 ClusteredRatio clusteredRatioOfSums(const std::vector<RatioCluster>& clusters, std::size_t replicates,
                                     std::uint64_t seed, double confidence, RatioNumerators numerators)
 {

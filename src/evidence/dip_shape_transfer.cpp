@@ -1,7 +1,6 @@
 #include "acc_identification/evidence/dip_shape_transfer.h"
 
 #include <cmath>
-#include <map>
 
 namespace acc
 {
@@ -22,20 +21,13 @@ bool scored(const DipShapeObservation& o, Measure measure)
 ClusteredRatio rateRatio(const std::vector<DipShapeObservation>& observations, Measure rate, std::size_t replicates,
                          std::uint64_t seed)
 {
-  std::map<std::size_t, RatioCluster> clusters;
+  ClusterSums sums;
   for (const DipShapeObservation& o : observations)
   {
-    if (!scored(o, rate) || !(rate(o.leader) > 0.0))
-      continue;
-    RatioCluster& c = clusters.try_emplace(o.cluster, RatioCluster{0.0, 0.0, 0}).first->second;
-    c.numerator += rate(o.judged);
-    c.denominator += rate(o.leader);
-    ++c.n;
+    if (scored(o, rate) && rate(o.leader) > 0.0)
+      sums.add(o.cluster, rate(o.judged), rate(o.leader));
   }
-  std::vector<RatioCluster> list;
-  for (const auto& entry : clusters)
-    list.push_back(entry.second);
-  return clusteredRatioOfSums(list, replicates, seed);
+  return clusteredRatioOfSums(sums.clusters(), replicates, seed);
 }
 }  // namespace
 

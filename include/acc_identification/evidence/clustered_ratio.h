@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,19 @@ struct RatioCluster
   double numerator = 0.0;
   double denominator = 0.0;
   std::size_t n = 1;  ///< observations summed
+};
+
+/// Observations summed into their clusters by a cluster id (e.g. the perturbation's index): the
+/// one way the callers build the clusters of a ratio of sums.
+class ClusterSums
+{
+public:
+  void add(std::size_t cluster, double numerator, double denominator);
+  /// The clusters in the order of their ids.
+  std::vector<RatioCluster> clusters() const;
+
+private:
+  std::map<std::size_t, RatioCluster> by_id_;
 };
 
 /// What a ratio's numerators are: amounts (dips, rates), whose ratio is at least 0 where every
