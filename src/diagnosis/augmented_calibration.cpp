@@ -318,6 +318,14 @@ GaussNewtonPass objectivePass(const AugmentedParameterBox& box, const std::vecto
 /// unstable one, kept only for a fit that never reaches a stable model.
 struct ObjectiveTracker
 {
+  /// The tracker of one fit: the objective's weights and the loop-check speeds of the segments.
+  ObjectiveTracker(const AugmentedParameterBox* search_box, const std::vector<CarFollowingRun>* fitted,
+                   FitObjective objective)
+    : box(search_box), segments(fitted), weights(residualWeights(objective, *fitted)),
+      loop_speeds_mps(loopCheckSpeedsMps(*fitted))
+  {
+  }
+
   const AugmentedParameterBox* box;
   const std::vector<CarFollowingRun>* segments;
   ResidualWeights weights;
@@ -801,7 +809,7 @@ AugmentedFit calibrateAugmentedSet(const std::vector<EffectKind>& effects, const
 {
   checkSegmentsAndObjective(effects, segments, options);
   const AugmentedParameterBox box(effects, options);
-  ObjectiveTracker tracker{&box, &segments, residualWeights(options.objective, segments), loopCheckSpeedsMps(segments)};
+  ObjectiveTracker tracker(&box, &segments, options.objective);
   const std::vector<std::vector<double>> starts = warm_start != nullptr && !effects.empty()
                                                       ? effectStarts(effects, *warm_start, options)
                                                       : coldStarts(effects, segments, options, warm_start);
@@ -829,7 +837,7 @@ AugmentedFit calibrateWithEffectHeld(EffectKind effect, const std::vector<double
     const std::size_t j = AugmentedParameterBox::kBaseDimension + i;
     held.lower[j] = held.upper[j] = std::clamp(held_values[i], box.lower[j], box.upper[j]);
   }
-  ObjectiveTracker tracker{&held, &segments, residualWeights(options.objective, segments), loopCheckSpeedsMps(segments)};
+  ObjectiveTracker tracker(&held, &segments, options.objective);
   // The held coordinates have zero width, so the unit-scaled normal equations never move them.
   for (const std::vector<double>& start : coldStarts({effect}, segments, options, warm_start))
   {
