@@ -1061,6 +1061,29 @@ std::string campaignHeadline(const CampaignResult& result)
        << " car-runs, " << result.platoons.size() << " platoon(s)";
   return line.str();
 }
+
+/// The campaign's answer to the paper's question, beside the per-car verdicts: how far the base
+/// and the diagnosed models miss what the platoons did ("" without a platoon diagnosis or a scored
+/// dip). The intervals are in "How far the gap shrinks".
+std::string platoonHeadline(const CampaignResult& result)
+{
+  const auto find = [&](const std::string& key) {
+    return std::find_if(result.gap.begin(), result.gap.end(), [&](const GapSummary& g) { return g.key == key; });
+  };
+  const auto base = find("chain_base"), diagnosed = find("chain_diagnosed");
+  if (base == result.gap.end() || diagnosed == result.gap.end() || base->summary.car_perturbations == 0)
+    return "";
+  const DipPredictionSummary &b = base->summary, &d = diagnosed->summary;
+  std::ostringstream line;
+  line << "**Platoons:** over " << b.car_perturbations << " car-perturbations the base models' median dip error is "
+       << cellNumber("%+.0f %%", 100.0 * b.median_dip_error) << ", the diagnosed models' "
+       << cellNumber("%+.0f %%", 100.0 * d.median_dip_error)
+       << " (each run predicted with the effects chosen without it; over all runs the platoon rule names "
+       << result.effect_selection.model.name() << "); growth or decay right at "
+       << cellNumber("%.0f %%", 100.0 * b.share_links_growth_right) << " and "
+       << cellNumber("%.0f %%", 100.0 * d.share_links_growth_right) << " of " << b.links << " links";
+  return line.str();
+}
 }  // namespace
 
 namespace
@@ -1099,6 +1122,9 @@ std::string campaignReportMarkdown(const CampaignInputs& inputs, const CampaignR
   std::ostringstream md;
   md << "# ACC campaign: models by car and setting, and the platoons they predict\n\n" << campaignHeadline(result)
      << "\n\n";
+  const std::string platoons = platoonHeadline(result);
+  if (!platoons.empty())
+    md << platoons << "\n\n";
   md << "Inputs:";
   for (const std::string& path : input_paths)
     md << " `" << path << "`";

@@ -3,6 +3,7 @@
 // with `calibrate --follower TOYOTA_RAV4 dynamic_part5/6/12/14.csv` (unstable, p 0.001).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <string>
 
@@ -251,6 +252,18 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesATimingEffectAndNotTheBrakingTerm
             behind_lead.cars.median_widening_s);
   const std::string report = acc::campaignReportMarkdown(inputs, result, {ACC_ZALAZONE_DYNAMIC_DIR}, false);
   expectEveryMarkdownTableRectangular(report);
+  // The answer first: the platoon line under the headline holds the gap table's two chain rows.
+  const auto gap_row = [&](const std::string& key) {
+    return std::find_if(result.gap.begin(), result.gap.end(), [&](const acc::GapSummary& g) { return g.key == key; })
+        ->summary;
+  };
+  char platoon_line[256];
+  std::snprintf(platoon_line, sizeof platoon_line,
+                "**Platoons:** over %zu car-perturbations the base models' median dip error is %+.0f %%, the "
+                "diagnosed models' %+.0f %%",
+                gap_row("chain_base").car_perturbations, 100.0 * gap_row("chain_base").median_dip_error,
+                100.0 * gap_row("chain_diagnosed").median_dip_error);
+  EXPECT_LT(report.find(platoon_line), report.find("## Models by vehicle")) << platoon_line;
   // The pairs not used row for row are named, run 26's BMW i3 with its rejected and rebuilt rows.
   EXPECT_NE(report.find("| dynamic_part26 | BMW_I3 behind SMART_TARGET, positions 2/1 | 699 | 607 | 2 | "
                         "rejected_rows 92, gap_rebuilt_rows 66 |"),
