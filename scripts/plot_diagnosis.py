@@ -324,6 +324,7 @@ def write_report(report_dir, d):
                      f"{parameter_text(e)} |")
     lines += ["", "![improvements](effect_improvements.png)", ""]
     lines += perturbation_window_lines(d.get("perturbation_windows"))
+    lines += determined_lines(d)
     lines += combination_lines(d)
     lines += ["## Where the residual lies (base model, held out)", ""]
     for key, title in [("regimes", "Driving regime"), ("speed_bands", "Speed band")]:
@@ -359,6 +360,23 @@ def write_report(report_dir, d):
         lines += ["## Attribution", "", OPENACC_ATTRIBUTION, ""]
     with open(os.path.join(report_dir, "report.md"), "w") as f:
         f.write("\n".join(lines))
+
+
+def determined_lines(d):
+    """What the training data pin away from none, named by the held-out rule or not, and the effects
+    they cannot see at all (a lag whose fit sits at 0, asked at a typical size)."""
+    lines = ["## What the training data determine", ""]
+    for e in d.get("determined_effects", []):
+        lines.append(f"- `{e['effect']}` {fmt(e['value'])} ± {fmt(e['standard_error'])} "
+                     f"({e['z']:.1f} standard errors from none)")
+    if not d.get("determined_effects"):
+        lines.append("- no effect's size is pinned away from none")
+    for e in d.get("unmeasured_effects", []):
+        seen = "would be determined" if e["would_be_determined"] else "would not be seen"
+        lines.append(f"- `{e['effect']}`: its fit sits at none, where it carries no information; held at "
+                     f"{fmt(e['held_value'])} these data pin it to ± {fmt(e['standard_error'])} "
+                     f"({fmt(e['z'], 1)} standard errors from none): an effect that size {seen}")
+    return lines + [""]
 
 
 def main():

@@ -118,4 +118,52 @@ std::string describeDeterminedEffect(const DeterminedEffect& e)
   return text;
 }
 
+namespace
+{
+/// A single-effect fit at its none value that gives no standard error there.
+bool atNoneWithoutInformation(const AugmentedFit& fit)
+{
+  if (fit.diverged || fit.effect == EffectKind::none || fit.effect_values.size() != 1)
+    return false;
+  const EffectParameterSpec& spec = candidateEffect(fit.effect).parameters.front();
+  const double neutral = neutralValue(fit.effect);
+  return std::isfinite(neutral) && std::abs(fit.effect_values.front() - neutral) <= 1e-3 * (spec.upper - spec.lower) &&
+         !std::isfinite(effectSizeIn(fit, fit.effect, 0.0).standard_error);
+}
+}  // namespace
+
+std::vector<UnmeasuredEffect> unmeasuredEffects(const AugmentedFit& base_fit, const std::vector<AugmentedFit>& effect_fits,
+                                                const std::vector<CarFollowingRun>& train,
+                                                const AugmentedCalibrationOptions& options, double threshold)
+{
+  std::vector<UnmeasuredEffect> out;
+  for (const AugmentedFit& fit : effect_fits)
+  {
+    if (!atNoneWithoutInformation(fit))
+      continue;
+    const EffectParameterSpec& spec = candidateEffect(fit.effect).parameters.front();
+    UnmeasuredEffect e;
+    e.effect = fit.effect;
+    e.held_value = 0.5 * (spec.start_lower + spec.start_upper);
+    const EffectSize size =
+        effectSizeIn(calibrateWithEffectHeld(fit.effect, {e.held_value}, train, options, &base_fit), fit.effect, threshold);
+    e.standard_error = size.standard_error;
+    e.z = size.z;
+    e.would_be_determined = size.determined;
+    out.push_back(e);
+  }
+  return out;
+}
+
+std::string describeUnmeasuredEffect(const UnmeasuredEffect& e)
+{
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "%s: its fit sits at none, where it carries no information; held at %.3g these data pin it to +- "
+                "%.2g (%.1f standard errors from none): an effect that size would %s",
+                effectName(e.effect).c_str(), e.held_value, e.standard_error, e.z,
+                e.would_be_determined ? "be determined" : "not be seen");
+  return text;
+}
+
 }  // namespace acc

@@ -352,6 +352,8 @@ DiagnosisResult diagnoseParts(DiagnosisResult result, const DiagnosisOptions& op
     effect_fits.push_back(model.fit);
   }
   result.determined = determinedEffects(base_fit, effect_fits, result.sample_period_s, options.selection.alpha);
+  result.unmeasured = unmeasuredEffects(base_fit, effect_fits, result.train, options.calibration,
+                                        determinedThreshold(options.selection.alpha, options.candidates));
   for (std::size_t k = 0; k < result.effects.size(); ++k)
   {
     result.effects[k].improvement = result.selection.versus_base[k];

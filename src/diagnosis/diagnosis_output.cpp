@@ -284,6 +284,15 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
                                        {"base_with_effect", base(e.base_with)},
                                        {"base_without_effect", base(e.base_without)}});
   }
+  j["unmeasured_effects"] = nlohmann::json::array();
+  for (const UnmeasuredEffect& e : r.unmeasured)
+  {
+    j["unmeasured_effects"].push_back({{"effect", effectName(e.effect)},
+                                       {"held_value", jsonNumber(e.held_value)},
+                                       {"standard_error", jsonNumber(e.standard_error)},
+                                       {"z", jsonNumber(e.z)},
+                                       {"would_be_determined", e.would_be_determined}});
+  }
   j["selected_effects"] = nlohmann::json::array();
   for (const ForwardSelectionStep& step : r.selected_effects)
   {

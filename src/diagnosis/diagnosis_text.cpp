@@ -139,6 +139,10 @@ void printDiagnosisSummary(const DiagnosisResult& r, std::FILE* out)
   {
     std::fprintf(out, "  %s\n", describeDeterminedEffect(e).c_str());
   }
+  for (const UnmeasuredEffect& e : r.unmeasured)
+  {
+    std::fprintf(out, "  not measurable here: %s\n", describeUnmeasuredEffect(e).c_str());
+  }
   if (r.stability_test)
   {
     const AugmentedStabilityTestResult& t = *r.stability_test;

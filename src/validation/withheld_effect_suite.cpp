@@ -622,9 +622,7 @@ const DeterminedEffect* determinedOf(const DiagnosisResult& result, EffectKind k
 /// The standard error of a single-effect fit's (first) effect parameter: NaN without a fit.
 double effectStandardError(const AugmentedFit* fit)
 {
-  return fit != nullptr && fit->standard_errors.size() > AugmentedParameterBox::kBaseDimension
-             ? fit->standard_errors[AugmentedParameterBox::kBaseDimension]
-             : std::numeric_limits<double>::quiet_NaN();
+  return fit != nullptr ? effectSizeIn(*fit, fit->effect, 0.0).standard_error : std::numeric_limits<double>::quiet_NaN();
 }
 
 double baselineEstimate(const DiagnosisResult& baseline, EffectKind kind)

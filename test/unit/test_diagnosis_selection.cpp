@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "acc_identification/diagnosis/augmented_calibration.h"
+#include "acc_identification/diagnosis/determined_effects.h"
 #include "acc_identification/diagnosis/effect_selection.h"
 #include "acc_identification/evidence/perturbation_windows.h"
 #include "acc_identification/model/follower_simulation.h"
@@ -252,6 +253,43 @@ TEST(AugmentedCalibration, HeldAboveNoneALagHasTheStandardErrorItsOwnFitLacks)
   EXPECT_LT(held.standard_errors[4], 0.5 / 2.64);
   EXPECT_THROW(acc::calibrateWithEffectHeld(acc::EffectKind::actuation_lag, {0.5, 1.0}, {run}, options),
                std::invalid_argument);
+}
+
+// A lag-free drive: the lag's fit sits at 0 without a standard error, so the diagnosis asks it at
+// its typical size (0.8 s) instead, where a clean drive pins it (would be determined). A drive
+// with a 0.8 s lag has a measured lag, and nothing is asked. Fails when the question is asked of a
+// fit away from none, or not asked where the fit has no information.
+TEST(DeterminedEffects, ALagFitAtNoneIsAskedAtItsTypicalSize)
+{
+  const acc::AugmentedCalibrationOptions options;
+  const auto askFor = [&](const acc::WithheldCase& c) {
+    const acc::CarFollowingRun run = acc::synthesizeWithheldRun(c);
+    const acc::AugmentedFit base = acc::calibrateAugmented(acc::EffectKind::none, {run}, options);
+    const acc::AugmentedFit lag = acc::calibrateAugmented(acc::EffectKind::actuation_lag, {run}, options, &base);
+    return acc::unmeasuredEffects(base, {lag}, {run}, options, 2.64);
+  };
+  acc::WithheldCase lag_free;
+  lag_free.duration_s = 300.0;
+  const std::vector<acc::UnmeasuredEffect> asked = askFor(lag_free);
+  ASSERT_EQ(asked.size(), 1u);
+  EXPECT_EQ(asked[0].effect, acc::EffectKind::actuation_lag);
+  EXPECT_DOUBLE_EQ(asked[0].held_value, 0.8);
+  EXPECT_GT(asked[0].standard_error, 0.0);
+  EXPECT_TRUE(asked[0].would_be_determined);
+  EXPECT_NE(acc::describeUnmeasuredEffect(asked[0]).find("would be determined"), std::string::npos);
+  acc::WithheldCase lagged = lag_free;
+  lagged.truth = acc::EffectKind::actuation_lag;
+  lagged.truth_values = {0.8};
+  EXPECT_TRUE(askFor(lagged).empty());
+  // Only a fit at none without a standard error is asked: not one away from none that lacks one,
+  // nor one at none that has one.
+  const acc::CarFollowingRun run = acc::synthesizeWithheldRun(lag_free);
+  const acc::AugmentedFit base = acc::calibrateAugmented(acc::EffectKind::none, {run}, options);
+  acc::AugmentedFit away = acc::calibrateAugmented(acc::EffectKind::actuation_lag, {run}, options, &base);
+  acc::AugmentedFit informed = away;
+  away.effect_values = {1.2};
+  informed.standard_errors.back() = 0.1;
+  EXPECT_TRUE(acc::unmeasuredEffects(base, {away, informed}, {run}, options, 2.64).empty());
 }
 
 TEST(AugmentedCalibration, RejectsInvalidSegmentsWithAMessage)

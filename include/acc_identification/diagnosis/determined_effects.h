@@ -67,4 +67,31 @@ std::vector<DeterminedEffect> determinedEffects(const AugmentedFit& base_fit, co
 /// One line per determined effect, for the summary and the report.
 std::string describeDeterminedEffect(const DeterminedEffect& effect);
 
+/// An effect whose own fit sits at its none value where the model carries no information about it
+/// (a lag of 0: the realised acceleration moves by exp(-dt / T), flat to every order at T = 0), so
+/// its fit has no standard error and "not determined" would say nothing about how well these data
+/// could measure it. Held at a typical size (the middle of its start range) with the base model
+/// refitted around it (calibrateWithEffectHeld): its standard error there, and whether an effect
+/// of that size would be determined. Where it would not, these data cannot tell whether the car
+/// has it.
+struct UnmeasuredEffect
+{
+  EffectKind effect = EffectKind::none;
+  double held_value = 0.0;      ///< the size asked about
+  double standard_error = 0.0;  ///< the effect's sandwich standard error at that size
+  double z = 0.0;               ///< |held_value - neutral| / standard_error
+  bool would_be_determined = false;  ///< z above the determined threshold
+};
+
+/// Every one-parameter single-effect fit that sits at its none value with no finite standard
+/// error, asked at its typical size on the training data. threshold: determinedThreshold over
+/// the candidates.
+std::vector<UnmeasuredEffect> unmeasuredEffects(const AugmentedFit& base_fit, const std::vector<AugmentedFit>& effect_fits,
+                                                const std::vector<CarFollowingRun>& train,
+                                                const AugmentedCalibrationOptions& options, double threshold);
+
+/// "actuation_lag: its fit sits at none, where it carries no information; held at 0.8 these data
+/// pin it to +- 1.5 (z 0.5): an effect that size would not be seen".
+std::string describeUnmeasuredEffect(const UnmeasuredEffect& effect);
+
 }  // namespace acc

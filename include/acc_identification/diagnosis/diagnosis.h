@@ -115,6 +115,9 @@ struct DiagnosisResult
   /// Effects whose size the training data pin away from none (determined_effects.h), whether or
   /// not the held-out rule names them: what a timing effect absorbed by tau_e leaves to see.
   std::vector<DeterminedEffect> determined;
+  /// Effects whose fit sits at none where it carries no information (a lag of 0), asked at a
+  /// typical size instead: what these data could not see (determined_effects.h).
+  std::vector<UnmeasuredEffect> unmeasured;
   /// Does the base model, and the model the diagnosis ends with (finalModel), describe the
   /// training and the held-out parts (model_adequacy.h, with the diagnosis's own parameter box).
   ModelAdequacy baseline_adequacy;
