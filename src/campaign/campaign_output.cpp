@@ -380,8 +380,7 @@ std::string dipRatioCell(const DipRatioEstimate& d)
 {
   if (d.count == 0)
     return "no dip";
-  const std::string ratio = cellNumber("%.2f", d.ratio_of_means);
-  return std::isnan(d.lower) ? ratio : ratio + " [" + cellNumber("%.2f", d.lower) + ", " + cellNumber("%.2f", d.upper) + "]";
+  return ratioWithIntervalText(d.ratio_of_means, d.lower, d.upper);
 }
 
 /// Each dip's own ratio, smallest to largest ("-" without a dip).

@@ -49,10 +49,15 @@ ClusteredRatio clusteredRatioOfSums(const std::vector<RatioCluster>& clusters, s
 
 std::string ratioWithIntervalText(const ClusteredRatio& ratio)
 {
-  const std::string text = cellNumber("%.2f", ratio.ratio);
-  if (std::isnan(ratio.lower))
+  return ratioWithIntervalText(ratio.ratio, ratio.lower, ratio.upper);
+}
+
+std::string ratioWithIntervalText(double ratio, double lower, double upper)
+{
+  const std::string text = cellNumber("%.2f", ratio);
+  if (std::isnan(lower))
     return text;
-  return text + " [" + cellNumber("%.2f", ratio.lower) + ", " + cellNumber("%.2f", ratio.upper) + "]";
+  return text + " [" + cellNumber("%.2f", lower) + ", " + cellNumber("%.2f", upper) + "]";
 }
 
 }  // namespace acc

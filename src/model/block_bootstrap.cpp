@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <random>
 #include <stdexcept>
+#include <utility>
 
 #include "acc_identification/model/portable_uniform.h"
 
@@ -25,7 +26,7 @@ std::vector<double> prefixSums(const std::vector<double>& x, std::size_t offset,
 
 MovingBlockBootstrap::MovingBlockBootstrap(std::vector<std::size_t> segment_lengths, std::size_t block_length_samples,
                                            std::size_t replicates, std::uint64_t seed, BlockPlacement placement)
-  : replicates_(replicates), placement_(placement)
+  : placement_(placement), replicates_(replicates)
 {
   if (block_length_samples == 0)
   {
@@ -64,52 +65,51 @@ MovingBlockBootstrap::MovingBlockBootstrap(std::vector<std::size_t> segment_leng
   }
 }
 
-namespace
-{
 /// A segment's block sums: every full block's by its start (computed once, so that a replicate
 /// adds one number per drawn block), and the prefix sums a cut block within the segment reads.
-struct SegmentSums
+struct MovingBlockBootstrap::SegmentSums
 {
   std::vector<double> full_by_start;
   std::vector<double> prefix;
 };
 
-SegmentSums segmentSums(const std::vector<double>& x, std::size_t offset, std::size_t length, std::size_t block,
-                        BlockPlacement placement)
-{
-  SegmentSums sums;
-  if (placement == BlockPlacement::within_segment)
-  {
-    sums.prefix = prefixSums(x, offset, length);
-    for (std::size_t s = 0; s + block <= length; ++s)
-      sums.full_by_start.push_back(sums.prefix[s + block] - sums.prefix[s]);
-    return sums;
-  }
-  sums.full_by_start.assign(length, 0.0);
-  for (std::size_t s = 0; s < length; ++s)
-  {
-    for (std::size_t i = 0; i < block; ++i)
-      sums.full_by_start[s] += x[offset + (s + i) % length];
-  }
-  return sums;
-}
-}  // namespace
-
-std::vector<double> MovingBlockBootstrap::replicateMeans(const std::vector<double>& x) const
+std::vector<MovingBlockBootstrap::SegmentSums> MovingBlockBootstrap::sumsOf(const std::vector<double>& x) const
 {
   if (x.size() != samples_)
   {
     throw std::invalid_argument("moving-block bootstrap: series length differs from the plan's");
   }
+  std::vector<SegmentSums> all;
+  for (const Segment& segment : segments_)
+  {
+    SegmentSums sums;
+    if (placement_ == BlockPlacement::within_segment)
+    {
+      sums.prefix = prefixSums(x, segment.offset, segment.length);
+      for (std::size_t s = 0; s + segment.block <= segment.length; ++s)
+        sums.full_by_start.push_back(sums.prefix[s + segment.block] - sums.prefix[s]);
+    }
+    else
+    {
+      sums.full_by_start.assign(segment.length, 0.0);
+      for (std::size_t s = 0; s < segment.length; ++s)
+      {
+        for (std::size_t i = 0; i < segment.block; ++i)
+          sums.full_by_start[s] += x[segment.offset + (s + i) % segment.length];
+      }
+    }
+    all.push_back(std::move(sums));
+  }
+  return all;
+}
+
+std::vector<double> MovingBlockBootstrap::meansFrom(const std::vector<double>& x,
+                                                    const std::vector<SegmentSums>& sums) const
+{
   std::vector<double> result(replicates_, 0.0);
   if (samples_ == 0)
   {
     return result;
-  }
-  std::vector<SegmentSums> sums;
-  for (const Segment& segment : segments_)
-  {
-    sums.push_back(segmentSums(x, segment.offset, segment.length, segment.block, placement_));
   }
   const double n = static_cast<double>(samples_);
   std::size_t k = 0;
@@ -139,22 +139,28 @@ std::vector<double> MovingBlockBootstrap::replicateMeans(const std::vector<doubl
   return result;
 }
 
-double MovingBlockBootstrap::expectedMean(const std::vector<double>& x) const
+std::vector<double> MovingBlockBootstrap::replicateMeans(const std::vector<double>& x) const
+{
+  return meansFrom(x, sumsOf(x));
+}
+
+double MovingBlockBootstrap::expectedMean(const std::vector<double>& x, const std::vector<SegmentSums>& sums) const
 {
   if (placement_ == BlockPlacement::circular)
   {
     return meanOf(x);  // every sample is drawn equally often
   }
   double expected_total = 0.0;
-  for (const Segment& segment : segments_)
+  for (std::size_t k = 0; k < segments_.size(); ++k)
   {
-    const std::vector<double> prefix = prefixSums(x, segment.offset, segment.length);
+    const Segment& segment = segments_[k];
+    const std::vector<double>& prefix = sums[k].prefix;
     // E* of a block's sum: the mean over all admissible starts, for the full and the cut block.
     const std::size_t positions = segment.length - segment.block + 1;
     double full = 0.0, cut = 0.0;
     for (std::size_t s = 0; s < positions; ++s)
     {
-      full += prefix[s + segment.block] - prefix[s];
+      full += sums[k].full_by_start[s];
       cut += prefix[s + segment.last_block] - prefix[s];
     }
     expected_total += (static_cast<double>(segment.full_blocks) * full + cut) / static_cast<double>(positions);
@@ -164,12 +170,13 @@ double MovingBlockBootstrap::expectedMean(const std::vector<double>& x) const
 
 std::vector<double> MovingBlockBootstrap::centredReplicates(const std::vector<double>& x) const
 {
-  std::vector<double> result = replicateMeans(x);
+  const std::vector<SegmentSums> sums = sumsOf(x);
+  std::vector<double> result = meansFrom(x, sums);
   if (samples_ == 0)
   {
     return result;
   }
-  const double expected_mean = expectedMean(x);
+  const double expected_mean = expectedMean(x, sums);
   for (double& mean : result)
   {
     mean -= expected_mean;

@@ -67,5 +67,7 @@ ClusteredRatio clusteredRatioOfSums(const std::vector<RatioCluster>& clusters, s
 /// the ratio alone where it has no interval, "NaN" for a ratio not available. The one way the
 /// reports write a ClusteredRatio.
 std::string ratioWithIntervalText(const ClusteredRatio& ratio);
+/// The same for a ratio and interval held elsewhere (a link's DipRatioEstimate).
+std::string ratioWithIntervalText(double ratio, double lower, double upper);
 
 }  // namespace acc

@@ -62,8 +62,14 @@ private:
     std::size_t full_blocks = 0; ///< blocks of full length per replicate
     std::size_t last_block = 0;  ///< length of the cut last block (0: none)
   };
-  /// E*[mean*] of x under this plan's placement.
-  double expectedMean(const std::vector<double>& x) const;
+  /// A segment's block sums, computed once per series (block_bootstrap.cpp).
+  struct SegmentSums;
+  /// Every segment's sums of x, after checking x's length against the plan.
+  std::vector<SegmentSums> sumsOf(const std::vector<double>& x) const;
+  /// The replicates' means from those sums.
+  std::vector<double> meansFrom(const std::vector<double>& x, const std::vector<SegmentSums>& sums) const;
+  /// E*[mean*] of x under this plan's placement, from the same sums.
+  double expectedMean(const std::vector<double>& x, const std::vector<SegmentSums>& sums) const;
 
   BlockPlacement placement_;
   std::vector<Segment> segments_;
