@@ -984,54 +984,6 @@ nlohmann::json campaignToJson(const CampaignInputs& inputs, const CampaignResult
                      : nlohmann::json(nullptr)}};
 }
 
-void printCampaignTables(const CampaignResult& result, std::ostream& out)
-{
-  out << "ACC models by vehicle and distance setting (value+-SE where the data determine it, NaN where not)\n";
-  printAligned(kGroupHeader, groupRows(result), out);
-  for (const std::string& note : groupNotes(result))
-    out << "  note: " << note << "\n";
-  if (result.platoons.empty())
-    return;
-  out << "\nPlatoons predicted from the real first car (leave-one-run-out models; a car with no other run at its "
-         "setting: fitted on its run outside the perturbation predicted): speed dips [m/s] and amplification "
-         "dip(k)/dip(k-1)\n";
-  printAligned(kPlatoonHeader, platoonRows(result), out);
-  for (const std::string& note : platoonNotes(result))
-    out << "  " << note << "\n";
-  if (!result.run_effect_selections.empty())
-  {
-    out << "\nPlatoon diagnosis: which unmodelled effect closes the gap (criterion: "
-        << criterionName(result.effect_selection_criterion) << ")\n";
-    for (const std::string& line : selectionLines(result.effect_selection))
-      out << "  " << line << "\n";
-    out << "  " << choiceWithoutEachRunLine(result) << "\n";
-    out << "  " << nearTiesWithoutEachRunLine(result) << "\n";
-    out << "  " << alternativeModelsLine(result) << "\n";
-    out << "\nHow far the gap shrinks (each run's diagnosed models chosen without that run)\n";
-    printAligned(kGapHeader, gapRows(result), out);
-    out << "\nHow much of the car ahead's dip shape each car passes on: its dip, its peak braking and recovery (speed "
-           "slope over "
-        << rateSpanText()
-        << ") over the car ahead's (95 % CI over perturbations, the wild cluster bootstrap-t inverted) and how much "
-           "wider its dip is at half "
-           "depth (median), against the models driven by the same real leaders\n";
-    printAligned(kShapeHeader, shapeRows(result), out);
-    out << dipShortfallLine(result) << "\n";
-    out << "\nEach car as a link, without a model and beside its models: dip over the dip of the car ahead (95 % "
-           "CI over perturbations; inf where they do not bound it; each dip's own, smallest to largest), where the base and diagnosed |Gamma| leave the band of the empirical "
-           "one (coherence >= 0.5), the diagnosed model's small-signal peak and its dip ratio over "
-        << kLongPlatoonCars << " identical cars behind the real first cars\n";
-    printAligned(kLinkHeader, linkRows(result), out);
-    out << "\nThe diagnosed models fitted on all of each group's runs, and how precisely the runs pin each effect's "
-           "size (z standard errors from none; determined: above the Bonferroni quantile over the model's effects)\n";
-    printAligned(kDiagnosedModelHeader, diagnosedModelRows(result), out);
-  }
-  const auto disagreements = disagreementRows(result);
-  out << "\nWhere model and data disagree: " << disagreements.size() << "\n";
-  if (!disagreements.empty())
-    printAligned({"run", "dip", "pos", "car", "what"}, disagreements, out);
-}
-
 namespace
 {
 /// The headline every report.md of the package has (scripts/report_headline.py): the verdicts,
@@ -1083,7 +1035,69 @@ std::string platoonHeadline(const CampaignResult& result)
        << cellNumber("%.0f %%", 100.0 * d.share_links_growth_right) << " of " << b.links << " links";
   return line.str();
 }
+
+/// The report's headlines as plain text, for a terminal.
+std::string withoutMarkdownBold(std::string text)
+{
+  for (std::size_t at = text.find("**"); at != std::string::npos; at = text.find("**", at))
+    text.erase(at, 2);
+  return text;
+}
 }  // namespace
+
+void printCampaignTables(const CampaignResult& result, std::ostream& out)
+{
+  out << "ACC models by vehicle and distance setting (value+-SE where the data determine it, NaN where not)\n";
+  printAligned(kGroupHeader, groupRows(result), out);
+  for (const std::string& note : groupNotes(result))
+    out << "  note: " << note << "\n";
+  if (result.platoons.empty())
+    return;
+  out << "\nPlatoons predicted from the real first car (leave-one-run-out models; a car with no other run at its "
+         "setting: fitted on its run outside the perturbation predicted): speed dips [m/s] and amplification "
+         "dip(k)/dip(k-1)\n";
+  printAligned(kPlatoonHeader, platoonRows(result), out);
+  for (const std::string& note : platoonNotes(result))
+    out << "  " << note << "\n";
+  if (!result.run_effect_selections.empty())
+  {
+    out << "\nPlatoon diagnosis: which unmodelled effect closes the gap (criterion: "
+        << criterionName(result.effect_selection_criterion) << ")\n";
+    for (const std::string& line : selectionLines(result.effect_selection))
+      out << "  " << line << "\n";
+    out << "  " << choiceWithoutEachRunLine(result) << "\n";
+    out << "  " << nearTiesWithoutEachRunLine(result) << "\n";
+    out << "  " << alternativeModelsLine(result) << "\n";
+    out << "\nHow far the gap shrinks (each run's diagnosed models chosen without that run)\n";
+    printAligned(kGapHeader, gapRows(result), out);
+    out << "\nHow much of the car ahead's dip shape each car passes on: its dip, its peak braking and recovery (speed "
+           "slope over "
+        << rateSpanText()
+        << ") over the car ahead's (95 % CI over perturbations, the wild cluster bootstrap-t inverted) and how much "
+           "wider its dip is at half "
+           "depth (median), against the models driven by the same real leaders\n";
+    printAligned(kShapeHeader, shapeRows(result), out);
+    out << dipShortfallLine(result) << "\n";
+    out << "\nEach car as a link, without a model and beside its models: dip over the dip of the car ahead (95 % "
+           "CI over perturbations; inf where they do not bound it; each dip's own, smallest to largest), where the base and diagnosed |Gamma| leave the band of the empirical "
+           "one (coherence >= 0.5), the diagnosed model's small-signal peak and its dip ratio over "
+        << kLongPlatoonCars << " identical cars behind the real first cars\n";
+    printAligned(kLinkHeader, linkRows(result), out);
+    out << "\nThe diagnosed models fitted on all of each group's runs, and how precisely the runs pin each effect's "
+           "size (z standard errors from none; determined: above the Bonferroni quantile over the model's effects)\n";
+    printAligned(kDiagnosedModelHeader, diagnosedModelRows(result), out);
+  }
+  const auto disagreements = disagreementRows(result);
+  out << "\nWhere model and data disagree: " << disagreements.size() << "\n";
+  if (!disagreements.empty())
+    printAligned({"run", "dip", "pos", "car", "what"}, disagreements, out);
+  // The answer last, where a terminal leaves the reader: the report's headlines.
+  out << "\n" << withoutMarkdownBold(campaignHeadline(result)) << "\n";
+  const std::string platoons = platoonHeadline(result);
+  if (!platoons.empty())
+    out << withoutMarkdownBold(platoons) << "\n";
+}
+
 
 namespace
 {

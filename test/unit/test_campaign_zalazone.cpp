@@ -264,6 +264,14 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesATimingEffectAndNotTheBrakingTerm
                 gap_row("chain_base").car_perturbations, 100.0 * gap_row("chain_base").median_dip_error,
                 100.0 * gap_row("chain_diagnosed").median_dip_error);
   EXPECT_LT(report.find(platoon_line), report.find("## Models by vehicle")) << platoon_line;
+  // A terminal's last lines are the same answer, in plain text.
+  std::ostringstream terminal;
+  acc::printCampaignTables(result, terminal);
+  const std::string printed = terminal.str();
+  const std::string plain_line = std::string(platoon_line).substr(std::string("**Platoons:**").size());
+  EXPECT_NE(printed.rfind("\nPlatoons:" + plain_line), std::string::npos);
+  EXPECT_GT(printed.rfind("\nVerdict: "), printed.rfind("Where model and data disagree"));
+  EXPECT_EQ(printed.find("**"), std::string::npos);
   // The pairs not used row for row are named, run 26's BMW i3 with its rejected and rebuilt rows.
   EXPECT_NE(report.find("| dynamic_part26 | BMW_I3 behind SMART_TARGET, positions 2/1 | 699 | 607 | 2 | "
                         "rejected_rows 92, gap_rebuilt_rows 66 |"),

@@ -155,9 +155,13 @@ TEST(LogPacer, LinesAreDueAtTheirLogTimeOverTheRate)
   {
     const bool has_time = due.line.rfind("$GNRMC", 0) == 0 || due.line.rfind("$GNGGA", 0) == 0;
     if (has_time)
+    {
       ASSERT_TRUE(due.offset_s.has_value()) << due.line;
+    }
     if (due.line.rfind("$GNVTG", 0) == 0 || due.line.rfind("$GNGSA", 0) == 0)
+    {
       EXPECT_FALSE(due.offset_s.has_value()) << due.line;  // untimed: due with the line before
+    }
     if (!due.offset_s)
       continue;
     ++timed;
@@ -165,7 +169,9 @@ TEST(LogPacer, LinesAreDueAtTheirLogTimeOverTheRate)
     previous_s = *due.offset_s;
     // The log's own time over the rate: 10:15:35.00 is 5 s after the first line.
     if (due.line.find(",101535.00,") != std::string::npos)
+    {
       EXPECT_NEAR(*due.offset_s, 5.0 / 20.0, 1e-9) << due.line;
+    }
   }
   EXPECT_GE(timed, 200u);
   EXPECT_DOUBLE_EQ(*lines.front().offset_s, 0.0);
