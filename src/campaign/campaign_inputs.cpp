@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "acc_identification/io/csv_fields.h"
 #include "acc_identification/io/distance_setting.h"
 #include "acc_identification/io/gap_kinematics.h"
 #include "acc_identification/io/mixed_setting_listing.h"
@@ -51,6 +52,15 @@ bool naturalLess(const std::string& a, const std::string& b)
   return a.size() - i < b.size() - j;
 }
 
+/// The notes, each on an indented line of its own (for an error that lists them).
+std::string joinNotes(const std::vector<std::string>& notes)
+{
+  std::string text;
+  for (const std::string& note : notes)
+    text += "\n  " + note;
+  return text;
+}
+
 /// The folder's *.csv files in natural order: the OpenACC ones to read, the others skipped.
 CampaignFileList openAccFilesIn(const std::string& folder)
 {
@@ -70,12 +80,12 @@ CampaignFileList openAccFilesIn(const std::string& folder)
       list.listings.push_back(path);
     else
       list.skipped.push_back(path + ": not an OpenACC file (its first line is neither a Date line nor a header with "
-                                    "Time and a car's Speedk), skipped");
+                                    "Time and a car's Speedk)" +
+                             semicolonSeparatorHint(path) + ", skipped");
   }
   if (list.files.empty())
     throw std::invalid_argument(folder + ": no OpenACC *.csv file in this folder" +
-                                (csv.empty() ? std::string("") : " (" + std::to_string(csv.size()) +
-                                                                     " other *.csv: not OpenACC)"));
+                                (csv.empty() ? std::string("") : ":" + joinNotes(list.skipped)));
   return list;
 }
 
@@ -487,14 +497,6 @@ void addFile(const std::string& path, const RunPlausibilityBounds& bounds, const
     file.pairs_read.push_back(accountOfRunFile(path, pair.contents));
   inputs.files.push_back(std::move(file));
   addPairs(all, inputs.files.size() - 1, inputs.files.back(), groups, inputs.notes, inputs.skipped_pairs);
-}
-
-std::string joinNotes(const std::vector<std::string>& notes)
-{
-  std::string text;
-  for (const std::string& note : notes)
-    text += "\n  " + note;
-  return text;
 }
 }  // namespace
 

@@ -300,6 +300,34 @@ TEST(CampaignInputs, EverySkippedFileIsNamedWithItsReasonAndCounted)
   EXPECT_EQ(inputs.describeSkipped(), "skipped 2 file(s) and 0 pair(s) (each in a note above)");
 }
 
+// A folder with no OpenACC file says why of each CSV in it: an OpenACC file a spreadsheet saved
+// with ';' between fields is named with that reason, not only counted. Fails if the error drops
+// the files' reasons or the separator hint.
+TEST(CampaignInputs, AFolderWithoutOpenAccFilesSaysWhyOfEachCsv)
+{
+  TempFolder folder("acc_campaign_semicolons");
+  std::ofstream(folder.file("run1.csv")) << "Date;8;10;2019\nVehicle_order;LEAD;ACC1\nNumber_of_vehicles;2\n"
+                                            "ACC;1\nDistance_setting;S\nTime;Speed1;Speed2;IVS1\n0,0;10,0;10,0;20,0\n";
+  std::ofstream(folder.file("specifications.csv")) << "Make,Model,Length\nToyota,RAV4,4.6\n";
+  try
+  {
+    acc::loadCampaign({folder.path()});
+    FAIL() << "a folder without an OpenACC file was read";
+  }
+  catch (const std::invalid_argument& error)
+  {
+    const std::string what = error.what();
+    EXPECT_NE(what.find("no OpenACC *.csv file in this folder:\n  "), std::string::npos) << what;
+    EXPECT_NE(what.find("run1.csv: not an OpenACC file"), std::string::npos) << what;
+    EXPECT_NE(what.find("separated by ';'"), std::string::npos) << what;
+    EXPECT_NE(what.find("specifications.csv: not an OpenACC file"), std::string::npos) << what;
+    EXPECT_EQ(what.find("specifications.csv: not an OpenACC file (its first line is neither a Date line nor a header "
+                        "with Time and a car's Speedk) (its fields"),
+              std::string::npos)
+        << what;
+  }
+}
+
 /// Every note of the inputs, a line each (for a failure's message).
 std::string allNotes(const acc::CampaignInputs& inputs)
 {
