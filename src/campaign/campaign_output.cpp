@@ -45,12 +45,18 @@ std::pair<double, double> determined(const GroupResult& group, const std::string
   return {q->value, q->standard_error};
 }
 
+/// "0.210+-0.016" where the data determine the quantity; "(0.171+-1.497)" where it was fitted and
+/// they do not (the reason is among the notes): the fit's value is shown, not hidden, and not
+/// mistaken for a result; "-" where nothing was fitted.
 std::string valuePlusMinus(const GroupResult& group, const std::string& name, const char* pattern)
 {
-  const auto [value, error] = determined(group, name);
-  if (!std::isfinite(value))
-    return "NaN";
-  return cellNumber(pattern, value) + "+-" + cellNumber(pattern, error);
+  if (!group.fitted() || !group.identification.quantities)
+    return "-";
+  const QuantityEstimate* q = group.identification.quantities->find(name);
+  if (q == nullptr)
+    return "-";
+  const std::string cell = cellNumber(pattern, q->value) + "+-" + cellNumber(pattern, q->standard_error);
+  return q->determined ? cell : "(" + cell + ")";
 }
 
 double parameterOf(const AccParameters& p, int i)
@@ -556,8 +562,9 @@ std::vector<std::string> groupCells(const GroupResult& g)
               ? cellNumber("%.3f", g.stability_test.p_value) + " (H0 " + pValueHypothesis(g.stability_test) + ")"
               : "- (not run)",
           adequacyCell(g.model_adequacy),
-          cellNumber("%.3f", g.dynamicsDetermined() ? id.stability.amplified_band_upper_rad_s : kNaN),
-          cellNumber("%.2f", g.dynamicsDetermined() ? id.stability.peak_gain_db : kNaN)};
+          // Of the fit's k1, k2 and tau_e: "-" unless the data determine all three.
+          g.dynamicsDetermined() ? cellNumber("%.3f", id.stability.amplified_band_upper_rad_s) : "-",
+          g.dynamicsDetermined() ? cellNumber("%.2f", id.stability.peak_gain_db) : "-"};
 }
 
 const std::vector<std::string> kGroupHeader{"vehicle", "set", "runs", "samples", "k1 [1/s2]", "k2 [1/s]", "tau_e [s]",
@@ -1047,7 +1054,8 @@ std::string withoutMarkdownBold(std::string text)
 
 void printCampaignTables(const CampaignResult& result, std::ostream& out)
 {
-  out << "ACC models by vehicle and distance setting (value+-SE where the data determine it, NaN where not)\n";
+  out << "ACC models by vehicle and distance setting (value+-SE where the data determine it, (value+-SE) in "
+         "parentheses where they do not, a note says why)\n";
   printAligned(kGroupHeader, groupRows(result), out);
   for (const std::string& note : groupNotes(result))
     out << "  note: " << note << "\n";
@@ -1142,12 +1150,12 @@ std::string campaignReportMarkdown(const CampaignInputs& inputs, const CampaignR
   for (const std::string& path : input_paths)
     md << " `" << path << "`";
   md << "\n\n## Models by vehicle and distance setting\n\n"
-     << "identifyAcc on all of a group's runs (value +- standard error where the data determine it, NaN "
-        "where not); margin m = k1 tau_e^2 + 2 k2 tau_e - 2; verdict of the string-stability test on "
+     << "identifyAcc on all of a group's runs (value +- standard error where the data determine it; in "
+        "parentheses where they do not, with the reason in the notes); margin m = k1 tau_e^2 + 2 k2 tau_e - 2; verdict of the string-stability test on "
         "held-out halves and its p-value with the null hypothesis it tests (H0 stable: small p says unstable); "
         "whether the fit describes the car's runs (model_adequacy: gap and speed RMSE against their spread, "
         "parameters at a bound, residual correlation, pair-level dips; reasons in the notes); amplified band and "
-        "peak gain of the fit. The notes say why a verdict is undecided.\n\n";
+        "peak gain of the fit (- unless the data determine k1, k2 and tau_e). The notes say why a verdict is undecided.\n\n";
   printMarkdownTable(kGroupHeader, groupRows(result), md);
   for (const std::string& note : groupNotes(result))
     md << "\n- " << note;

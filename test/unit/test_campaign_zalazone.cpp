@@ -272,6 +272,32 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesATimingEffectAndNotTheBrakingTerm
   EXPECT_NE(printed.rfind("\nPlatoons:" + plain_line), std::string::npos);
   EXPECT_GT(printed.rfind("\nVerdict: "), printed.rfind("Where model and data disagree"));
   EXPECT_EQ(printed.find("**"), std::string::npos);
+  // A quantity the data do not determine shows its fit in parentheses, a group without a fit "-"
+  // (the Mercedes GLE450 at M and the Tesla Model X at S and M drive at a steady speed); no NaN.
+  std::size_t undetermined = 0, unfitted = 0;
+  for (const acc::GroupResult& g : result.groups)
+  {
+    const std::size_t at = report.find("| " + g.vehicle + " | " + g.setting + " | ");
+    ASSERT_NE(at, std::string::npos) << g.vehicle << "/" << g.setting;
+    const std::string row = report.substr(at, report.find('\n', at) - at);
+    EXPECT_EQ(row.find("NaN"), std::string::npos) << row;
+    if (!g.fitted() || !g.identification.quantities)
+    {
+      ++unfitted;
+      EXPECT_NE(row.find("| - | - | - | - | - |"), std::string::npos) << row;
+      continue;
+    }
+    const acc::QuantityEstimate* tau = g.identification.quantities->find("tau_e");
+    ASSERT_NE(tau, nullptr);
+    char cell[64];
+    std::snprintf(cell, sizeof cell, "%.2f+-%.2f", tau->value, tau->standard_error);
+    undetermined += !tau->determined;
+    EXPECT_NE(row.find(tau->determined ? "| " + std::string(cell) + " |" : "| (" + std::string(cell) + ") |"),
+              std::string::npos)
+        << row;
+  }
+  EXPECT_GE(undetermined, 5u);
+  EXPECT_EQ(unfitted, 3u);
   // The pairs not used row for row are named, run 26's BMW i3 with its rejected and rebuilt rows.
   EXPECT_NE(report.find("| dynamic_part26 | BMW_I3 behind SMART_TARGET, positions 2/1 | 699 | 607 | 2 | "
                         "rejected_rows 92, gap_rebuilt_rows 66 |"),
