@@ -668,6 +668,10 @@ std::vector<std::string> groupNotes(const CampaignResult& result)
     if (g.model_adequacy.assessed && !g.model_adequacy.adequate)
       notes.push_back(name + "model " + describeAdequacy(g.model_adequacy) +
                       ": its verdict compares two versions of a model that misses these data");
+    else if (!g.model_adequacy.assessed && g.stability_test.tested &&
+             g.stability_test.verdict != StabilityVerdict::Undecided)
+      notes.push_back(name + "model adequacy not assessed (no fit of all its runs): its verdict compares two "
+                             "models fitted on halves, and nothing checked that they describe these data");
     if (g.stability_test.verdict == StabilityVerdict::Undecided)
       notes.push_back(name + "undecided: " + g.stability_test.reason);
   }

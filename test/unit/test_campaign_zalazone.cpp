@@ -298,6 +298,9 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesATimingEffectAndNotTheBrakingTerm
   }
   EXPECT_GE(undetermined, 5u);
   EXPECT_EQ(unfitted, 3u);
+  // A verdict on a car no model was checked for says so (the Tesla Model X at S: unstable).
+  EXPECT_NE(report.find("- TESLA_MODELX/S: model adequacy not assessed"), std::string::npos);
+  EXPECT_EQ(report.find("- MERCEDES_GLE450/M: model adequacy not assessed"), std::string::npos) << "undecided";
   // The pairs not used row for row are named, run 26's BMW i3 with its rejected and rebuilt rows.
   EXPECT_NE(report.find("| dynamic_part26 | BMW_I3 behind SMART_TARGET, positions 2/1 | 699 | 607 | 2 | "
                         "rejected_rows 92, gap_rebuilt_rows 66 |"),
