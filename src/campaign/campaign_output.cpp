@@ -571,6 +571,13 @@ const std::vector<std::string> kGroupHeader{"vehicle", "set", "runs", "samples",
                                             "eta [m]", "margin", "verdict", "p (H0)", "model adequate",
                                             "band [rad/s]", "peak [dB]"};
 
+/// A number's cell, "-" where there is none (NaN: no car ahead, no data, no model); an infinite
+/// value stays "inf", which says something.
+std::string cellOrDash(const char* pattern, double value)
+{
+  return std::isnan(value) ? "-" : cellNumber(pattern, value);
+}
+
 const std::vector<std::string> kPlatoonHeader{"run",      "dip",      "pos",       "car",      "meas dip",
                                               "pred dip", "diag dip", "meas amp",  "pred amp", "diag amp",
                                               "pair dip", "pair diag", "meas lost", "diag lost", "pair diag lost"};
@@ -588,14 +595,14 @@ std::vector<std::vector<std::string>> platoonRows(const CampaignResult& result)
         const bool saw_dip = std::find(in_sample.begin(), in_sample.end(), row.position) != in_sample.end();
         rows.push_back({check.run + "/" + check.setting, std::to_string(i + 1), std::to_string(row.position),
                         row.name + (saw_dip ? " *" : ""),
-                        cellNumber("%.2f", row.measured.dip_mps), cellNumber("%.2f", row.chain.dip_mps),
-                        cellNumber("%.2f", row.chain_diagnosed.dip_mps), cellNumber("%.2f", row.measured_amplification),
-                        cellNumber("%.2f", row.chain_amplification),
-                        cellNumber("%.2f", row.chain_amplification_diagnosed), cellNumber("%.2f", row.pair.dip_mps),
-                        cellNumber("%.2f", row.pair_diagnosed.dip_mps),
-                        cellNumber("%.1f", row.measured.distance_lost_m),
-                        cellNumber("%.1f", row.chain_diagnosed.distance_lost_m),
-                        cellNumber("%.1f", row.pair_diagnosed.distance_lost_m)});
+                        cellOrDash("%.2f", row.measured.dip_mps), cellOrDash("%.2f", row.chain.dip_mps),
+                        cellOrDash("%.2f", row.chain_diagnosed.dip_mps), cellOrDash("%.2f", row.measured_amplification),
+                        cellOrDash("%.2f", row.chain_amplification),
+                        cellOrDash("%.2f", row.chain_amplification_diagnosed), cellOrDash("%.2f", row.pair.dip_mps),
+                        cellOrDash("%.2f", row.pair_diagnosed.dip_mps),
+                        cellOrDash("%.1f", row.measured.distance_lost_m),
+                        cellOrDash("%.1f", row.chain_diagnosed.distance_lost_m),
+                        cellOrDash("%.1f", row.pair_diagnosed.distance_lost_m)});
       }
     }
   }
@@ -683,10 +690,17 @@ const std::vector<std::string> kGapHeader{"prediction", "car-perturbations", "me
                                           "growth/decay right [95 %]",
                                           "median distance-lost error", "median dip-width error"};
 
+/// A fraction as a percent cell; "-" where the prediction has none (a model-free row has no
+/// distance lost of its own).
+std::string percentCell(const char* pattern, double fraction)
+{
+  return cellOrDash(pattern, 100.0 * fraction);
+}
+
 /// "19 % [12-27]": a share in percent with its interval where it has one.
 std::string percentWithInterval(double value, double lower, double upper)
 {
-  const std::string cell = cellNumber("%.0f %%", 100.0 * value);
+  const std::string cell = percentCell("%.0f %%", value);
   return std::isfinite(lower) ? cell + " [" + cellNumber("%.0f", 100.0 * lower) + "-" + cellNumber("%.0f", 100.0 * upper) + "]"
                               : cell;
 }
@@ -699,13 +713,13 @@ std::vector<std::vector<std::string>> gapRows(const CampaignResult& result)
   {
     const DipPredictionSummary& s = row.summary;
     rows.push_back({row.label, std::to_string(s.car_perturbations),
-                    cellNumber("%+.0f %%", 100.0 * s.median_dip_error),
+                    percentCell("%+.0f %%", s.median_dip_error),
                     percentWithInterval(s.median_abs_dip_error, s.median_abs_dip_error_lower, s.median_abs_dip_error_upper),
-                    cellNumber("%.0f %%", 100.0 * s.share_within_30_percent), std::to_string(s.links),
+                    percentCell("%.0f %%", s.share_within_30_percent), std::to_string(s.links),
                     percentWithInterval(s.share_links_growth_right, s.share_links_growth_right_lower,
                                         s.share_links_growth_right_upper),
-                    cellNumber("%+.0f %%", 100.0 * s.median_distance_lost_error),
-                    cellNumber("%+.0f %%", 100.0 * s.median_dip_width_error)});
+                    percentCell("%+.0f %%", s.median_distance_lost_error),
+                    percentCell("%+.0f %%", s.median_dip_width_error)});
   }
   return rows;
 }
@@ -1067,7 +1081,7 @@ void printCampaignTables(const CampaignResult& result, std::ostream& out)
     return;
   out << "\nPlatoons predicted from the real first car (leave-one-run-out models; a car with no other run at its "
          "setting: fitted on its run outside the perturbation predicted): speed dips [m/s] and amplification "
-         "dip(k)/dip(k-1)\n";
+         "dip(k)/dip(k-1) (- where there is none)\n";
   printAligned(kPlatoonHeader, platoonRows(result), out);
   for (const std::string& note : platoonNotes(result))
     out << "  " << note << "\n";
@@ -1169,7 +1183,8 @@ std::string campaignReportMarkdown(const CampaignInputs& inputs, const CampaignR
         "car's fit on its other runs failed, on the first half of each of its segments of this run, and * where "
         "such a half holds the dip, which its model has then seen), from its measured gap and speed, "
         "driven by the predicted speed of the car ahead. Dip = pre-perturbation speed minus the minimum within "
-        "the perturbation (+30 s); amplification = dip(k) / dip(k-1).\n\n";
+        "the perturbation (+30 s); amplification = dip(k) / dip(k-1); - where there is none (the first car has no "
+        "car ahead; a car without data or model, said in the notes).\n\n";
   printMarkdownTable(kPlatoonHeader, platoonRows(result), md);
   md << "\n";
   for (const std::string& note : platoonNotes(result))
