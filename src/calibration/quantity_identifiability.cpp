@@ -202,8 +202,18 @@ void printQuantities(const IdentifiableQuantities& quantities, std::ostream& out
       std::snprintf(line, sizeof line, "  %-44s %10.4g +- %-9.3g %-6s determined\n", name.c_str(), q.value,
                     q.standard_error, q.unit.c_str());
     else
-      std::snprintf(line, sizeof line, "  %-44s %10s    %-9s %-6s NOT determined: %s\n", name.c_str(), "nan", "",
+    {
+      // The fit's value in parentheses, so that it is seen and not taken for a result; "-" for an
+      // error the covariance cannot give (singular).
+      char value[32], error[32];
+      std::snprintf(value, sizeof value, "(%.4g", q.value);
+      if (std::isfinite(q.standard_error))
+        std::snprintf(error, sizeof error, "%.3g)", q.standard_error);
+      else
+        std::snprintf(error, sizeof error, "-)");
+      std::snprintf(line, sizeof line, "  %-44s %10s +- %-9s %-6s NOT determined: %s\n", name.c_str(), value, error,
                     q.unit.c_str(), q.reason.c_str());
+    }
     out << line;
   }
 }

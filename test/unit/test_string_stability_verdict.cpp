@@ -693,4 +693,18 @@ TEST(StabilityTest, QuantitiesSayWhatIsDeterminedOneByOne)
   EXPECT_NEAR(partly.find("equilibrium_gap_at_mean_speed")->standard_error, 0.0, 1e-6);
   EXPECT_TRUE(partly.find("k1")->determined);
   EXPECT_FALSE(partly.find("stability_margin")->determined) << partly.find("stability_margin")->reason;
+
+  // Printed: an undetermined quantity keeps its fit's value in parentheses beside the reason, a
+  // singular covariance's error is "-"; never "nan".
+  std::ostringstream printed;
+  acc::printQuantities(partly, printed);
+  char tau_cell[64];
+  std::snprintf(tau_cell, sizeof tau_cell, "(%.4g +- %.3g)", partly.find("tau_e")->value,
+                partly.find("tau_e")->standard_error);
+  EXPECT_NE(printed.str().find(tau_cell), std::string::npos) << printed.str();
+  EXPECT_EQ(printed.str().find("nan"), std::string::npos) << printed.str();
+  std::ostringstream singular;
+  acc::printQuantities(nothing, singular);
+  EXPECT_NE(singular.str().find(" +- -)"), std::string::npos) << singular.str();
+  EXPECT_EQ(singular.str().find("nan"), std::string::npos) << singular.str();
 }

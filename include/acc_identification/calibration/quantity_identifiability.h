@@ -72,7 +72,8 @@ IdentifiableQuantities assessQuantities(const AccParameters& fit, const Paramete
 /// reason (with the threshold applied)[, speed_mps]}}}; NaN as null.
 nlohmann::json toJson(const IdentifiableQuantities& quantities);
 
-/// One line per quantity: value +- standard error where determined, NaN and the reason where not.
+/// One line per quantity: value +- standard error where determined; where not, the fit's value and
+/// error in parentheses and the reason.
 void printQuantities(const IdentifiableQuantities& quantities, std::ostream& out);
 
 }  // namespace acc
