@@ -96,7 +96,8 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/gtest_main.cpp
     test/unit/test_calibration_bag.cpp
     test/unit/test_identifier_message.cpp
-    test/unit/test_identifier_health.cpp)
+    test/unit/test_identifier_health.cpp
+    test/unit/test_number_checks.cpp)
   target_link_libraries(test_calibration_ros acc_calibration_ros acc_identifier_ros acc_synthetic_runs)
 
   # relative_state in, acc_parameters out, on simulated time.

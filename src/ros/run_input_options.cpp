@@ -1,5 +1,7 @@
 #include "acc_identification/ros/run_input_options.h"
 
+#include "acc_identification/tools/number_checks.h"
+
 namespace acc
 {
 void RunInputOptions::declare(CLI::App& app, const std::string& all_pairs_means, bool required)
@@ -12,7 +14,7 @@ void RunInputOptions::declare(CLI::App& app, const std::string& all_pairs_means,
     run_option->required();
   app.add_option("--topic", topic, "RelativeState topic in bags")->capture_default_str();
   app.add_option("--max-gap", max_gap_s, "split runs at holes longer than this [s]")
-      ->check(CLI::PositiveNumber)
+      ->check(acc::positiveNumber())
       ->capture_default_str();
   auto* follower_option =
       app.add_option("--follower", follower,

@@ -15,6 +15,7 @@
 #include "acc_identification/io/output_files.h"
 #include "acc_identification/ros/run_input_options.h"
 #include "acc_identification/sumo/sumo_vtype.h"
+#include "acc_identification/tools/number_checks.h"
 
 namespace
 {
@@ -69,13 +70,13 @@ int main(int argc, char** argv)
                  "multistart optimum is the global one")
       ->check(CLI::Range(std::size_t{2}, std::size_t{1000}));
   app.add_option("--alpha", settings.alpha, "level of the string-stability test")
-      ->check(CLI::Range(1e-9, 1.0 - 1e-9))
+      ->check(acc::openInterval(0.0, 1.0))
       ->capture_default_str();
   auto* seed_option = app.add_option("--seed", seed, "seed of the test's bootstrap (default: the library's fixed seed)");
   app.add_option("--verdict-every", settings.verdict_every_s,
                  "also replay each drive look by look every SECONDS of data time and report the sequential "
                  "(anytime-valid) verdicts the identifier node would publish, by the node's own code")
-      ->check(CLI::PositiveNumber);
+      ->check(acc::positiveNumber());
   app.add_option("--report", report_dir,
                  "write calibration.json, fit_traces.csv (each run measured and simulated), a figure per run and "
                  "report.md into DIR");

@@ -14,6 +14,7 @@
 #include "acc_identification/io/installed_beside.h"
 #include "acc_identification/io/output_files.h"
 #include "acc_identification/io/run_csv.h"
+#include "acc_identification/tools/number_checks.h"
 
 namespace
 {
@@ -46,7 +47,7 @@ int main(int argc, char** argv)
       ->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads (0: every core)")->capture_default_str();
   app.add_option("--alpha", options.group.alpha, "level of the string-stability test")
-      ->check(CLI::Range(1e-9, 1.0 - 1e-9))
+      ->check(acc::openInterval(0.0, 1.0))
       ->capture_default_str();
   app.add_option("--seed", options.group.seed, "campaign seed (each group's bootstrap draws from its own stream)")
       ->capture_default_str();

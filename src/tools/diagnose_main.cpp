@@ -1,6 +1,5 @@
 // diagnose: where a calibrated ACC model misses the real car, which physical effect it lacks and
 // what adding that effect buys (issue 6). Also runs the withheld-effect suite.
-#include <cstdio>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -14,6 +13,7 @@
 #include "acc_identification/io/output_files.h"
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/ros/run_input_options.h"
+#include "acc_identification/tools/number_checks.h"
 #include "acc_identification/validation/suite_runs.h"
 
 
@@ -43,17 +43,17 @@ void addDiagnosisOptions(CLI::App& app, DiagnoseRequest& r)
                  "asymmetric_response and speed_dependent_gains; leader_acceleration_feedforward, "
                  "quadratic_closing_response and leader_braking_anticipation are tested only when named here)");
   app.add_option("--block-length-s", r.options.selection.block_length_s, "bootstrap block length [s]")
-      ->check(CLI::PositiveNumber)
+      ->check(acc::positiveNumber())
       ->capture_default_str();
   app.add_option("--resamples", r.options.selection.resamples, "bootstrap resamples")
       ->check(CLI::Range(std::size_t{100}, std::size_t{1000000}))
       ->capture_default_str();
   app.add_option("--alpha", r.options.selection.alpha, "level of the selection rule")
-      ->check(CLI::Range(1e-9, 0.5))
+      ->check(acc::openInterval(0.0, 0.5))
       ->capture_default_str();
   app.add_option("--min-relative-improvement", r.options.selection.min_relative_improvement,
                  "smallest held-out MSE reduction worth naming")
-      ->check(CLI::NonNegativeNumber)
+      ->check(acc::nonNegativeNumber())
       ->capture_default_str();
   app.add_option("--seed", r.seed, "bootstrap seed")->capture_default_str();
   app.add_flag("--no-forward-selection", r.no_forward_selection,

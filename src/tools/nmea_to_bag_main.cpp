@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "acc_identification/ros/sentence_bag_writer.h"
+#include "acc_identification/tools/number_checks.h"
 
 int main(int argc, char** argv)
 {
@@ -21,10 +22,10 @@ int main(int argc, char** argv)
       ->check(CLI::IsMember({"lz4", "bz2", "none"}))
       ->capture_default_str();
   app.add_option("--latency", timing.first_sentence_latency_s, "receive time after the epoch's GNSS time [s]")
-      ->check(CLI::NonNegativeNumber)
+      ->check(acc::nonNegativeNumber())
       ->capture_default_str();
   app.add_option("--sentence-spacing", timing.sentence_spacing_s, "between sentences of one epoch [s]")
-      ->check(CLI::NonNegativeNumber)
+      ->check(acc::nonNegativeNumber())
       ->capture_default_str();
   app.add_option("--leader-topic", streams[0].topic)->capture_default_str();
   app.add_option("--follower-topic", streams[1].topic)->capture_default_str();

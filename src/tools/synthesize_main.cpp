@@ -16,6 +16,7 @@
 #include "acc_identification/ros/sentence_bag_writer.h"
 #include "acc_identification/synthesis/synthesis.h"
 #include "acc_identification/synthesis/synthesis_output.h"
+#include "acc_identification/tools/number_checks.h"
 
 namespace
 {
@@ -86,7 +87,7 @@ int main(int argc, char** argv)
                  "set_speed_cruise=v_set,gain");
   app.add_option("--seed", options.seed, "noise seed")->capture_default_str();
   app.add_option("--duration", options.duration_s, "keep the first S seconds of the profile (0: all of it)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(acc::nonNegativeNumber());
   app.add_option("--leader-log", out.files.leader_log, "leader's NMEA log to write")->required();
   app.add_option("--follower-log", out.files.follower_log, "follower's NMEA log to write")->required();
   app.add_option("--truth-csv", out.files.truth_csv, "truth as time_s,space_gap_m,follower_speed_mps,leader_speed_mps");
@@ -103,13 +104,13 @@ int main(int argc, char** argv)
   app.add_option("--start-alt", options.start_altitude_m, "[m]")->capture_default_str();
   auto* heading_option = app.add_option("--start-heading-deg", heading_deg, "[deg]")->capture_default_str();
   app.add_option("--position-sigma", options.errors.horizontal_sigma_m, "GNSS position error [m]")
-      ->check(CLI::NonNegativeNumber)
+      ->check(acc::nonNegativeNumber())
       ->capture_default_str();
   app.add_option("--speed-sigma", options.errors.speed_sigma_mps, "GNSS speed error [m/s]")
-      ->check(CLI::NonNegativeNumber)
+      ->check(acc::nonNegativeNumber())
       ->capture_default_str();
   app.add_option("--correlation-time", options.errors.position_correlation_time_s, "of the position error [s]")
-      ->check(CLI::NonNegativeNumber)
+      ->check(acc::nonNegativeNumber())
       ->capture_default_str();
   app.add_option("--leader-antenna-to-rear-bumper", options.geometry.leader_antenna_to_rear_bumper_m, "[m]")
       ->capture_default_str();

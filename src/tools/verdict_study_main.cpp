@@ -10,6 +10,7 @@
 
 #include "acc_identification/io/output_files.h"
 #include "acc_identification/synthesis/verdict_study.h"
+#include "acc_identification/tools/number_checks.h"
 
 int main(int argc, char** argv)
 {
@@ -18,15 +19,15 @@ int main(int argc, char** argv)
   acc::VerdictStudyOptions options;
   std::string json_path;
   app.add_option("--drives", options.drives, "seeded drives per truth class")
-      ->check(CLI::PositiveNumber)
+      ->check(acc::positiveNumber())
       ->capture_default_str();
   app.add_option("--duration", options.duration_s, "length of each drive [s]")
-      ->check(CLI::PositiveNumber)
+      ->check(acc::positiveNumber())
       ->capture_default_str();
   app.add_option("--every", options.look_every_s, "data time between looks [s]")
-      ->check(CLI::PositiveNumber)
+      ->check(acc::positiveNumber())
       ->capture_default_str();
-  app.add_option("--alpha", options.alpha, "level")->check(CLI::Range(1e-9, 1.0 - 1e-9))->capture_default_str();
+  app.add_option("--alpha", options.alpha, "level")->check(acc::openInterval(0.0, 1.0))->capture_default_str();
   app.add_option("--margins", options.margins, "true margins, one class each")->capture_default_str();
   app.add_option("--checkpoints", options.checkpoints_s, "drive lengths at which power is read [s]")
       ->capture_default_str();

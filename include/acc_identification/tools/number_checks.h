@@ -1,0 +1,59 @@
+#pragma once
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace acc
+{
+/// Checks of the tools' number options whose error a user can read. CLI11 2.1's PositiveNumber and
+/// NonNegativeNumber are ranges whose error prints the range's ends in full ("not in range
+/// 0.000000 to 179769313486231570814527423731704356798..."), and its Range prints six decimals, so
+/// (1e-9, 1 - 1e-9) read "0 not in range 0.000000 to 1.000000".
+namespace number_checks
+{
+/// A bound as a user wrote it: 0.5, 1, 1e-06.
+inline std::string text(double value)
+{
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+/// Finite numbers for which accepts(value) holds; the error says "must be <asks>, not <text>".
+template <typename Accepts>
+CLI::Validator finiteNumber(Accepts accepts, const std::string& asks, const std::string& name)
+{
+  return CLI::Validator(
+      [accepts, asks](std::string& written) {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(written, value) || !std::isfinite(value))
+          return "not a finite number: " + written;
+        return accepts(value) ? std::string() : "must be " + asks + ", not " + written;
+      },
+      name);
+}
+}  // namespace number_checks
+
+/// A number above 0.
+inline CLI::Validator positiveNumber()
+{
+  return number_checks::finiteNumber([](double value) { return value > 0.0; }, "above 0", "POSITIVE");
+}
+
+/// A number of 0 or more.
+inline CLI::Validator nonNegativeNumber()
+{
+  return number_checks::finiteNumber([](double value) { return value >= 0.0; }, "0 or more", "NONNEGATIVE");
+}
+
+/// A number strictly between lower and upper (a level alpha: between 0 and 1).
+inline CLI::Validator openInterval(double lower, double upper)
+{
+  return number_checks::finiteNumber([lower, upper](double value) { return value > lower && value < upper; },
+                                     "above " + number_checks::text(lower) + " and below " + number_checks::text(upper),
+                                     "(" + number_checks::text(lower) + ", " + number_checks::text(upper) + ")");
+}
+}  // namespace acc

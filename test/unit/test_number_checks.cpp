@@ -1,0 +1,46 @@
+// The tools' number options say what they ask, in words. CLI11 2.1's own PositiveNumber and
+// NonNegativeNumber printed their range's ends in full (0.000000 to 1797693134862315...).
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include <CLI/CLI.hpp>
+
+#include "acc_identification/tools/number_checks.h"
+
+namespace
+{
+/// The error CLI11 gives for `arguments` ("" when they parse).
+std::string parseError(const std::string& arguments)
+{
+  CLI::App app;
+  double positive = 1.0, non_negative = 1.0, alpha = 0.05;
+  app.add_option("--positive", positive)->check(acc::positiveNumber());
+  app.add_option("--non-negative", non_negative)->check(acc::nonNegativeNumber());
+  app.add_option("--alpha", alpha)->check(acc::openInterval(0.0, 1.0));
+  try
+  {
+    app.parse(arguments, false);
+  }
+  catch (const CLI::ParseError& error)
+  {
+    return error.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(NumberChecks, SayWhatTheyAskInWords)
+{
+  EXPECT_EQ(parseError("--positive 2.5 --non-negative 0"), "");
+  EXPECT_NE(parseError("--positive 0").find("must be above 0, not 0"), std::string::npos) << parseError("--positive 0");
+  EXPECT_NE(parseError("--non-negative -5").find("must be 0 or more, not -5"), std::string::npos);
+  EXPECT_NE(parseError("--positive inf").find("not a finite number: inf"), std::string::npos);
+  EXPECT_NE(parseError("--non-negative nan").find("not a finite number: nan"), std::string::npos);
+  EXPECT_NE(parseError("--positive abc").find("not a finite number: abc"), std::string::npos);
+  EXPECT_EQ(parseError("--non-negative -5").find("1797693"), std::string::npos);
+  EXPECT_EQ(parseError("--alpha 0.05"), "");
+  EXPECT_NE(parseError("--alpha 0").find("must be above 0 and below 1, not 0"), std::string::npos)
+      << parseError("--alpha 0");
+  EXPECT_NE(parseError("--alpha 1").find("must be above 0 and below 1, not 1"), std::string::npos);
+}
