@@ -59,7 +59,7 @@ replay_drive() {
   name=$(basename "$bag" .bag)
   [ -f "$bag" ] || { echo "demo: no bag $bag" >&2; exit 1; }
   echo "   (window ${window_s} s, an update every ${period_s} s of bag time; each line: the window's"
-  echo "    parameters, NaN where the data do not determine them; the drive so far; the verdict)"
+  echo "    parameters, - where the data do not determine them; the drive so far; the verdict)"
   mkdir -p "$work/$name"
   local out=$work/$name
   python3 "$here/demo_listener.py" live &

@@ -14,19 +14,27 @@ import sys
 
 
 def fmt(x, spec="7.4f"):
+    """x in its column; "-" where the message holds NaN (the data do not determine it)."""
     width = spec.split(".")[0].lstrip("+")
-    return ("{:" + spec + "}").format(x) if x == x else "nan".rjust(int(width) if width else 0)
+    return ("{:" + spec + "}").format(x) if x == x else "-".rjust(int(width) if width else 0)
 
 
 def pm(value, error, spec="+.2f"):
-    """value +- error, or nan when the data do not determine it."""
+    """value +- error, or "-" when the data do not determine it."""
     if value != value:
-        return "nan"
+        return "-"
     return ("{:" + spec + "}+-{:.2f}").format(value, error)
 
 
+def gap(m):
+    """The equilibrium gap at the drive's typical speed, "gap 21.7m@15.8m/s"; "gap -" without one."""
+    if m.equilibrium_gap_m != m.equilibrium_gap_m:
+        return "gap {:>15}".format("-")
+    return "gap {:5.1f}m@{:4.1f}m/s".format(m.equilibrium_gap_m, m.equilibrium_speed_mps)
+
+
 def line(m):
-    """One update: the window (each quantity nan where not determined), the drive so far, the verdict."""
+    """One update: the window (each quantity "-" where not determined), the drive so far, the verdict."""
     utc = datetime.datetime.utcfromtimestamp(m.header.stamp.to_sec()).strftime("%H:%M:%S")
     span = (m.window_end - m.window_start).to_sec()
     drive_s = (m.window_end - m.drive_start).to_sec() if m.drive_start.to_sec() > 0 else 0.0
@@ -36,11 +44,10 @@ def line(m):
         verdict += " p={:.3f} E_unstable {:.3g} E_stable {:.3g} ({} samples)".format(
             m.stability_p_value, m.stability_e_value_unstable, m.stability_e_value_stable, m.stability_samples)
     note = "all determined" if m.identifiable else "not determined: " + (m.identifiability_note[:90] or "-")
-    return ("{} win {:5.0f}s n={:5d} k1 {} k2 {} tau_e {} eta {} gap@{}m/s {} margin {} | "
+    return ("{} win {:5.0f}s n={:5d} k1 {} k2 {} tau_e {} eta {} {} margin {} | "
             "drive {:6.0f}s margin {} | verdict {} | {}".format(
                 utc, span, m.samples, fmt(m.k1_per_s2, "6.4f"), fmt(m.k2_per_s, "6.4f"), fmt(m.tau_e_s, "5.3f"),
-                fmt(m.eta_m, "5.2f"), fmt(m.equilibrium_speed_mps, "4.1f").strip(), fmt(m.equilibrium_gap_m, "5.1f"),
-                pm(m.stability_margin, m.stability_margin_std_error), drive_s,
+                fmt(m.eta_m, "5.2f"), gap(m), pm(m.stability_margin, m.stability_margin_std_error), drive_s,
                 pm(m.drive_stability_margin, m.drive_stability_margin_std_error), verdict, note))
 
 
@@ -145,7 +152,7 @@ def compare(online_path, batch_path):
         print("no update carried a decided verdict: the data do not decide string stability (undecided, not hidden)")
     if online["identifiable_messages"] == 0:
         print("No window of this drive determined all four parameters (on real drives tau_e and eta often "
-              "trade off); each one is NaN where not determined, the others are published.")
+              "trade off); each one is NaN in the message (- above) where not determined, the others are published.")
     if not online["identifiable"]:
         print("What the last window does not determine: " + online["identifiability_note"])
         print("batch calibrate: " + str(batch.get("identifiability_note")))

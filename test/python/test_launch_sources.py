@@ -10,6 +10,7 @@
   report.md opening with the package's headline.
 - `--starts 0` is refused by calibrate and campaign (not "every start diverged"), and diagnose
   refuses a report folder it cannot create before it reads the runs.
+- `make demo`'s live line shows "-" where the identifier publishes NaN (not determined).
 
 Each roslaunch gets a master of its own on a free port, in its own process group, ended by its id.
 Usage: test_launch_sources.py [--junit FILE]   (with the workspace's devel/setup.bash sourced)
@@ -23,6 +24,7 @@ import socket
 import subprocess
 import sys
 import tempfile
+import types
 import unittest
 
 import junit_main
@@ -171,6 +173,31 @@ class UserCommands(unittest.TestCase):
         self.assertAlmostEqual(float(rows[5]["speed_residual_mps"]), residual, places=9)
         self.assertTrue((self.directory / "fit/fit_1.png").stat().st_size > 10000)
         self.assertTrue((self.directory / "fit/calibration.json").exists())
+
+    def test_demo_line_says_dash_where_the_message_holds_nan(self):
+        # make demo's live line: a quantity the data do not determine is NaN in AccParameters and
+        # "-" on the screen; a determined one keeps its number.
+        sys.path.insert(0, str(REPOSITORY / "scripts"))
+        import demo_listener
+
+        class Stamp(float):
+            def to_sec(self):
+                return float(self)
+
+            def __sub__(self, other):
+                return Stamp(float(self) - float(other))
+
+        nan = float("nan")
+        message = types.SimpleNamespace(
+            header=types.SimpleNamespace(stamp=Stamp(1000.0)), window_start=Stamp(900.0), window_end=Stamp(930.0),
+            drive_start=Stamp(880.0), samples=301, k1_per_s2=nan, k2_per_s=0.2547, tau_e_s=nan, eta_m=nan,
+            equilibrium_speed_mps=15.8, equilibrium_gap_m=nan, stability_margin=nan, stability_margin_std_error=nan,
+            drive_stability_margin=-1.57, drive_stability_margin_std_error=0.32, stability_verdict="undecided",
+            stability_p_value=nan, identifiable=False, identifiability_note="k1 = 0.0094 +- 0.024")
+        line = demo_listener.line(message)
+        self.assertNotIn("nan", line.lower().replace("not determined", ""), line)
+        self.assertIn("k1      - k2 0.2547 tau_e     - eta     - gap               - margin - |", line)
+        self.assertIn("drive     50s margin -1.57+-0.32", line)
 
 
 def main():
