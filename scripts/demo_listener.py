@@ -114,6 +114,18 @@ def batch_value(batch, key):
     return section.get(key)
 
 
+def number(value):
+    """A JSON number as a float, NaN for null."""
+    return float("nan") if value is None else float(value)
+
+
+def compared(label, online, batch):
+    """One row of the online/batch table; "-" where a side has no value (not determined)."""
+    difference = online - batch
+    return "{:12s} {:>10s} {:>10s} {:>10s}".format(label, fmt(online, "10.4f"), fmt(batch, "10.4f"),
+                                                  fmt(difference, "+10.4f"))
+
+
 def compare(online_path, batch_path):
     online = json.load(open(online_path))
     batch = json.load(open(batch_path))
@@ -122,19 +134,13 @@ def compare(online_path, batch_path):
     print("{:12s} {:>10s} {:>10s} {:>10s}".format("", "online", "batch", "difference"))
     worst = 0.0
     for label, key in rows:
-        o = online.get(key)
-        o = float("nan") if o is None else float(o)
-        b = batch_value(batch, key)
-        b = float("nan") if b is None else float(b)
-        print("{:12s} {:10.4f} {:10.4f} {:+10.4f}".format(label, o, b, o - b))
+        o, b = number(online.get(key)), number(batch_value(batch, key))
+        print(compared(label, o, b))
         if key != "lambda2" and o == o and b == b:
             worst = max(worst, abs(o - b) / max(abs(b), 1e-9))
     train = batch.get("summary", {}).get("train", {})
     for label, key in (("rmse v [m/s]", "rmse_speed_mps"), ("rmse s [m]", "rmse_gap_m")):
-        o, b = online.get(key), train.get(key)
-        o = float("nan") if o is None else float(o)
-        b = float("nan") if b is None else float(b)
-        print("{:12s} {:10.4f} {:10.4f} {:+10.4f}".format(label, o, b, o - b))
+        print(compared(label, number(online.get(key)), number(train.get(key))))
     print("samples: online {}, batch {}  window {:.1f}-{:.1f} s (UTC {})".format(
         online["samples"], train.get("samples"), 0.0, online["window_end_s"] - online["window_start_s"],
         datetime.datetime.utcfromtimestamp(online["window_start_s"]).strftime("%Y-%m-%d %H:%M:%S")))
@@ -143,8 +149,9 @@ def compare(online_path, batch_path):
     test = batch.get("stability_test") or {}
     print("string stability, live sequential verdict (anytime-valid, {} samples looked at): {} p={}; batch "
           "calibrate's fixed-sample test (one look, {} held-out samples): {} p={}".format(
-              online.get("stability_samples"), online.get("stability_verdict"), online.get("stability_p_value"),
-              test.get("held_out_samples"), test.get("verdict"), test.get("p_value")))
+              online.get("stability_samples"), online.get("stability_verdict"),
+              fmt(number(online.get("stability_p_value")), ".3f"), test.get("held_out_samples"), test.get("verdict"),
+              fmt(number(test.get("p_value")), ".3f")))
     if online.get("first_decided_after_s") is not None:
         print("the live verdict was decided {:.0f} s into the drive; {} of {} updates carried a decided verdict".format(
             online["first_decided_after_s"], online["decided_messages"], online["messages"]))

@@ -198,6 +198,8 @@ class UserCommands(unittest.TestCase):
         self.assertNotIn("nan", line.lower().replace("not determined", ""), line)
         self.assertIn("k1      - k2 0.2547 tau_e     - eta     - gap               - margin - |", line)
         self.assertIn("drive     50s margin -1.57+-0.32", line)
+        # The summary's online/batch table: "-" where a side has no value, and no difference then.
+        self.assertEqual(demo_listener.compared("tau_e [s]", nan, 0.0).split(), ["tau_e", "[s]", "-", "0.0000", "-"])
 
 
 def main():
