@@ -16,6 +16,7 @@ Each roslaunch gets a master of its own on a free port, in its own process group
 Usage: test_launch_sources.py [--junit FILE]   (with the workspace's devel/setup.bash sourced)
 """
 import csv
+import importlib.util
 import os
 import pathlib
 import shutil
@@ -177,8 +178,10 @@ class UserCommands(unittest.TestCase):
     def test_demo_line_says_dash_where_the_message_holds_nan(self):
         # make demo's live line: a quantity the data do not determine is NaN in AccParameters and
         # "-" on the screen; a determined one keeps its number.
-        sys.path.insert(0, str(REPOSITORY / "scripts"))
-        import demo_listener
+        # Loaded from its file: a script of the package, not a module on the path.
+        spec = importlib.util.spec_from_file_location("demo_listener", REPOSITORY / "scripts/demo_listener.py")
+        demo_listener = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(demo_listener)
 
         class Stamp(float):
             def to_sec(self):
