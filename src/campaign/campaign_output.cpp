@@ -1124,7 +1124,6 @@ void printCampaignTables(const CampaignResult& result, std::ostream& out)
     out << withoutMarkdownBold(platoons) << "\n";
 }
 
-
 namespace
 {
 /// The "Data read" section: how many pairs were read whole, and a row for each of the others.
