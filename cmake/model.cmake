@@ -31,6 +31,7 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_follower_simulation.cpp
     test/unit/test_platoon_simulation.cpp
     test/unit/test_normal_source.cpp
-    test/unit/test_number_text.cpp)
+    test/unit/test_number_text.cpp
+    test/unit/test_sample_statistics.cpp)
   target_link_libraries(test_model acc_model)
 endif()

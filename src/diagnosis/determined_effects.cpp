@@ -1,4 +1,5 @@
 #include "acc_identification/diagnosis/determined_effects.h"
+#include "acc_identification/model/sample_statistics.h"
 
 #include <algorithm>
 #include <cmath>
@@ -26,15 +27,7 @@ double neutralValue(EffectKind kind)
 
 double determinedThreshold(double alpha, std::size_t count)
 {
-  // Inverse of the two-sided normal tail by bisection on erfc: no statistics library needed.
-  const double tail = alpha / static_cast<double>(std::max<std::size_t>(1, count));
-  double low = 0.0, high = 40.0;
-  for (int i = 0; i < 200; ++i)
-  {
-    const double mid = 0.5 * (low + high);
-    (std::erfc(mid / std::sqrt(2.0)) > tail ? low : high) = mid;
-  }
-  return 0.5 * (low + high);
+  return twoSidedNormalQuantile(alpha / static_cast<double>(std::max<std::size_t>(1, count)));
 }
 
 double determinedThreshold(double alpha, const std::vector<EffectKind>& candidates)

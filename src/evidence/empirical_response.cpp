@@ -12,6 +12,7 @@
 #include "acc_identification/evidence/perturbation.h"
 #include "acc_identification/model/angles.h"
 #include "acc_identification/model/number_text.h"
+#include "acc_identification/model/sample_statistics.h"
 
 namespace acc
 {
@@ -25,20 +26,6 @@ void requireConfidence(double confidence, const char* what)
   {
     throw std::invalid_argument(std::string(what) + ": the confidence must lie in (0, 1)");
   }
-}
-
-/// The two-sided normal quantile z with P(|Z| > z) = 1 - confidence, by bisection on erfc (as
-/// diagnosis/determined_effects.cpp does): no statistics library needed.
-double twoSidedNormalQuantile(double confidence)
-{
-  const double tail = 1.0 - confidence;
-  double low = 0.0, high = 40.0;
-  for (int i = 0; i < 200; ++i)
-  {
-    const double mid = 0.5 * (low + high);
-    (std::erfc(mid / std::sqrt(2.0)) > tail ? low : high) = mid;
-  }
-  return 0.5 * (low + high);
 }
 
 // ---- dip ratio ---------------------------------------------------------------------------------
@@ -341,7 +328,7 @@ EmpiricalResponse empiricalResponse(const std::vector<double>& leader_speed_mps,
   const std::vector<double> window = hannWindow(length);
   const std::size_t shift = segmentShift(options);
   EmpiricalResponse out = emptyResponse(length, sample_period_s);
-  out.z = twoSidedNormalQuantile(options.confidence);
+  out.z = twoSidedNormalQuantile(1.0 - options.confidence);
   const SpectralSums sums = accumulateSegments(leader_speed_mps, follower_speed_mps, window, shift);
   out.segments_used = sums.used;
   out.segments_skipped = sums.skipped;

@@ -32,4 +32,15 @@ double interpolatedQuantile(std::vector<double> values, double q)
   return a + (position - static_cast<double>(lo)) * (b - a);
 }
 
+double twoSidedNormalQuantile(double tail)
+{
+  double low = 0.0, high = 40.0;
+  for (int i = 0; i < 200; ++i)
+  {
+    const double mid = 0.5 * (low + high);
+    (std::erfc(mid / std::sqrt(2.0)) > tail ? low : high) = mid;
+  }
+  return 0.5 * (low + high);
+}
+
 }  // namespace acc

@@ -14,4 +14,9 @@ double rootMeanOf(const std::vector<double>& squared_errors);
 /// without samples.
 double interpolatedQuantile(std::vector<double> values, double q);
 
+/// The standard normal z with P(|Z| > z) = tail (tail in (0, 1)): 1.96 for 0.05; a one-sided 95 %
+/// limit is twoSidedNormalQuantile(0.10) = 1.645. Bisection on erfc to full precision: no
+/// statistics library needed.
+double twoSidedNormalQuantile(double tail);
+
 }  // namespace acc

@@ -1,0 +1,27 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "acc_identification/model/sample_statistics.h"
+
+TEST(SampleStatistics, NormalQuantilesMatchTheTablesTwoAndOneSided)
+{
+  // Abramowitz & Stegun 26.2: P(|Z| > 1.959964) = 0.05, P(Z > 1.644854) = 0.05, P(|Z| > 2.575829) = 0.01.
+  EXPECT_NEAR(acc::twoSidedNormalQuantile(0.05), 1.959964, 1e-6);
+  EXPECT_NEAR(acc::twoSidedNormalQuantile(0.10), 1.644854, 1e-6);
+  EXPECT_NEAR(acc::twoSidedNormalQuantile(0.01), 2.575829, 1e-6);
+  // Its own inverse: the tail beyond the quantile is the tail asked for.
+  for (double tail : {1e-6, 0.0125, 0.3, 0.9})
+    EXPECT_NEAR(std::erfc(acc::twoSidedNormalQuantile(tail) / std::sqrt(2.0)), tail, 1e-9 * tail) << tail;
+}
+
+TEST(SampleStatistics, InterpolatedQuantileInterpolatesBetweenOrderStatistics)
+{
+  const std::vector<double> values{4.0, 1.0, 3.0, 2.0};
+  EXPECT_DOUBLE_EQ(acc::interpolatedQuantile(values, 0.0), 1.0);
+  EXPECT_DOUBLE_EQ(acc::interpolatedQuantile(values, 0.5), 2.5);
+  EXPECT_DOUBLE_EQ(acc::interpolatedQuantile(values, 1.0), 4.0);
+  EXPECT_DOUBLE_EQ(acc::interpolatedQuantile(values, 2.0), 4.0);  // clamped
+  EXPECT_DOUBLE_EQ(acc::interpolatedQuantile({}, 0.5), 0.0);
+}
