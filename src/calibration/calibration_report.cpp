@@ -155,6 +155,21 @@ void printDipEvidence(const CalibrationReport& report, std::ostream& out)
     out << "  CONTRADICTION: " << report.verdict_contradiction << "\n";
 }
 
+/// "  at a bound of the fit, so +- is no interval there; one-sided 95 %: tau_e in [0, 1.267] s\n"
+/// for the parameters held at a bound; "" when none is.
+std::string boundIntervalsLine(const std::optional<IdentifiableQuantities>& quantities)
+{
+  std::string cells;
+  for (const char* name : {"k1", "k2", "tau_e", "eta"})
+  {
+    const QuantityEstimate* q = quantities ? quantities->find(name) : nullptr;
+    if (q == nullptr || q->held_by_bound.empty() || !std::isfinite(q->one_sided_limit))
+      continue;
+    const auto [low, high] = q->boundInterval();
+    cells += printfText("%s%s in [%.4g, %.4g] %s", cells.empty() ? "" : ", ", name, low, high, q->unit.c_str());
+  }
+  return cells.empty() ? "" : "  at a bound of the fit, so +- is no interval there; one-sided 95 %: " + cells + "\n";
+}
 }  // namespace
 
 nlohmann::json reportToJson(const CalibrationReport& report)
@@ -263,7 +278,7 @@ void printReport(const CalibrationReport& report, std::ostream& out)
   std::snprintf(line, sizeof line,
                 "  k1 = %.4f +- %.4f 1/s^2   k2 = %.4f +- %.4f 1/s   tau_e = %.4f +- %.4f s   eta = %.3f +- %.3f m\n",
                 p.k1_per_s2, se.k1_per_s2, p.k2_per_s, se.k2_per_s, p.tau_e_s, se.tau_e_s, p.eta_m, se.eta_m);
-  out << line;
+  out << line << boundIntervalsLine(report.quantities);
   std::snprintf(line, sizeof line,
                 "  (sandwich errors over %zu blocks of %.1f s; residual lag-1 autocorrelation %.4f; reciprocal condition %.3g)\n",
                 report.uncertainty.blocks, report.uncertainty.block_length_s,

@@ -87,7 +87,7 @@ Identification identifyAcc(const std::vector<CarFollowingRun>& segments, const I
   result.fit = evaluateFit(p, segments);
   result.uncertainty = estimateUncertainty(p, segments);
   result.stability = analyzeStringStability(p);
-  result.quantities = assessQuantities(p, result.uncertainty, segments, options.criteria.quantities);
+  result.quantities = assessQuantities(p, result.uncertainty, segments, options.bounds, options.criteria.quantities);
   result.note = describeUndeterminedParameters(*result.quantities);
   result.identifiable = result.note.empty();
   return result;

@@ -1,9 +1,11 @@
 #include "acc_identification/calibration/quantity_identifiability.h"
 #include "acc_identification/model/json_number.h"
+#include "acc_identification/model/sample_statistics.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <ostream>
 #include <limits>
 #include <sstream>
@@ -62,7 +64,102 @@ QuantityEstimate judge(const std::string& name, const std::string& unit, double 
   q.reason = why.str();
   return q;
 }
+
+const char* const kParameterNames[4] = {"k1", "k2", "tau_e", "eta"};
+const char* const kParameterUnits[4] = {"1/s^2", "1/s", "s", "m"};
+
+/// A quantity of the four parameters (k1, k2, tau_e, eta): its function and its exact gradient at the fit.
+struct QuantityDefinition
+{
+  const char* name;
+  const char* unit;
+  std::function<double(const Eigen::Vector4d&)> value;
+  Eigen::Vector4d gradient;
+};
+
+/// What every quantity of one fit is assessed against.
+struct QuantityContext
+{
+  const Eigen::Vector4d& theta;
+  const ParameterUncertainty& uncertainty;
+  const ParameterBounds& bounds;
+  const QuantityCriteria& criteria;
+};
+
+/// Where each parameter sits: +1 at its lower bound (the range lies above), -1 at its upper, 0 inside.
+Eigen::Vector4d boundSides(const QuantityContext& c)
+{
+  const Eigen::Vector4d lower(c.bounds.lower.k1_per_s2, c.bounds.lower.k2_per_s, c.bounds.lower.tau_e_s,
+                              c.bounds.lower.eta_m);
+  const Eigen::Vector4d upper(c.bounds.upper.k1_per_s2, c.bounds.upper.k2_per_s, c.bounds.upper.tau_e_s,
+                              c.bounds.upper.eta_m);
+  Eigen::Vector4d sides = Eigen::Vector4d::Zero();
+  for (int i = 0; i < 4; ++i)
+  {
+    const double tolerance = c.criteria.bound_fraction * (upper[i] - lower[i]);
+    sides[i] = c.theta[i] <= lower[i] + tolerance ? 1.0 : (c.theta[i] >= upper[i] - tolerance ? -1.0 : 0.0);
+  }
+  return sides;
+}
+
+/// Sets q.held_by_bound and q.one_sided_limit when every parameter q moves with sits at a bound
+/// (the free ones carry at most 1 % of its delta-method variance; without a covariance: their
+/// gradient is 0), and says so in the reason.
+void assessBoundHold(const QuantityContext& c, const QuantityDefinition& d, QuantityEstimate& q)
+{
+  const Eigen::Vector4d sides = boundSides(c);
+  Eigen::Vector4d held = d.gradient, free = d.gradient;
+  for (int i = 0; i < 4; ++i)
+    (sides[i] != 0.0 ? free : held)[i] = 0.0;
+  if (held.isZero(0.0) || !std::isfinite(q.value))
+    return;
+  const Eigen::Matrix4d& covariance = c.uncertainty.covariance;
+  const bool usable = covarianceUsable(c.uncertainty);
+  if (usable ? free.dot(covariance * free) > 0.01 * d.gradient.dot(covariance * d.gradient) : !free.isZero(0.0))
+    return;
+  // One-sided 95 %: P(Z > z) = 0.05.
+  static const double z = twoSidedNormalQuantile(0.10);
+  const double lower[4] = {c.bounds.lower.k1_per_s2, c.bounds.lower.k2_per_s, c.bounds.lower.tau_e_s,
+                           c.bounds.lower.eta_m};
+  const double upper[4] = {c.bounds.upper.k1_per_s2, c.bounds.upper.k2_per_s, c.bounds.upper.tau_e_s,
+                           c.bounds.upper.eta_m};
+  Eigen::Vector4d moved = c.theta;
+  std::ostringstream which;
+  for (int i = 0; i < 4; ++i)
+  {
+    if (held[i] == 0.0)
+      continue;
+    which << (which.tellp() > 0 ? " and " : "") << kParameterNames[i] << " at its "
+          << (sides[i] > 0.0 ? "lower bound " : "upper bound ") << (sides[i] > 0.0 ? lower[i] : upper[i]);
+    moved[i] = std::clamp(c.theta[i] + sides[i] * z * std::sqrt(covariance(i, i)), lower[i], upper[i]);
+  }
+  q.held_by_bound = which.str();
+  q.one_sided_limit = usable ? d.value(moved) : kNaN;
+  std::ostringstream why;
+  why << "; " << q.held_by_bound << ", so the interval is one-sided";
+  if (usable)
+  {
+    const auto [low, high] = q.boundInterval();
+    why << ": 95 % [" << low << ", " << high << "]" << (q.unit.empty() ? "" : " " + q.unit);
+  }
+  q.reason += why.str();
+}
+
+/// The quantity's value, standard error (delta method), determination and bound.
+QuantityEstimate assess(const QuantityContext& c, const QuantityDefinition& d, double scale, double max_error,
+                        const std::string& threshold)
+{
+  QuantityEstimate q = judge(d.name, d.unit, d.value(c.theta), deltaMethodError(d.gradient, c.uncertainty), scale,
+                             max_error, c.uncertainty, threshold);
+  assessBoundHold(c, d, q);
+  return q;
+}
 }  // namespace
+
+std::pair<double, double> QuantityEstimate::boundInterval() const
+{
+  return std::minmax(value, one_sided_limit);
+}
 
 const QuantityEstimate* IdentifiableQuantities::find(const std::string& name) const
 {
@@ -88,25 +185,25 @@ bool allDetermined(const IdentifiableQuantities& quantities, std::initializer_li
 }
 
 IdentifiableQuantities assessQuantities(const AccParameters& fit, const ParameterUncertainty& uncertainty,
-                                        const std::vector<CarFollowingRun>& runs, const QuantityCriteria& criteria)
+                                        const std::vector<CarFollowingRun>& runs, const ParameterBounds& bounds,
+                                        const QuantityCriteria& criteria)
 {
   IdentifiableQuantities result;
   result.reciprocal_condition = uncertainty.reciprocal_condition;
   result.basis = "Gauss-Newton sandwich covariance (batch means) at the fit, delta method for derived quantities";
-  const double theta[4] = {fit.k1_per_s2, fit.k2_per_s, fit.tau_e_s, fit.eta_m};
+  const Eigen::Vector4d theta(fit.k1_per_s2, fit.k2_per_s, fit.tau_e_s, fit.eta_m);
+  const QuantityContext context{theta, uncertainty, bounds, criteria};
   const double floors[4] = {criteria.parameter_scale_floor.k1_per_s2, criteria.parameter_scale_floor.k2_per_s,
                             criteria.parameter_scale_floor.tau_e_s, criteria.parameter_scale_floor.eta_m};
-  const char* names[4] = {"k1", "k2", "tau_e", "eta"};
-  const char* units[4] = {"1/s^2", "1/s", "s", "m"};
   std::ostringstream fraction;
   fraction << criteria.max_relative_error_parameter << " of max(|value|, floor)";
   for (int i = 0; i < 4; ++i)
   {
-    Eigen::Vector4d gradient = Eigen::Vector4d::Zero();
-    gradient(i) = 1.0;
     const double scale = std::max(std::abs(theta[i]), floors[i]);
-    result.quantities.push_back(judge(names[i], units[i], theta[i], deltaMethodError(gradient, uncertainty), scale,
-                                      criteria.max_relative_error_parameter * scale, uncertainty, fraction.str()));
+    result.quantities.push_back(assess(context, {kParameterNames[i], kParameterUnits[i],
+                                                 [i](const Eigen::Vector4d& t) { return t[i]; },
+                                                 Eigen::Vector4d::Unit(i)},
+                                       scale, criteria.max_relative_error_parameter * scale, fraction.str()));
   }
 
   // Equilibrium gaps at the speeds driven.
@@ -137,28 +234,27 @@ IdentifiableQuantities assessQuantities(const AccParameters& fit, const Paramete
       {"equilibrium_gap_at_max_speed", highest}};
   for (const auto& [name, v] : speeds)
   {
-    const double value = fit.eta_m + fit.tau_e_s * v;
-    const Eigen::Vector4d gradient(0.0, 0.0, v, 1.0);
-    const double scale = std::max(std::abs(value), criteria.gap_scale_floor_m);
-    const double error = std::isfinite(v) ? deltaMethodError(gradient, uncertainty) : kNaN;
-    QuantityEstimate q = judge(name, "m", value, error, scale, criteria.max_relative_error_gap * scale, uncertainty,
-                               gap_fraction.str());
+    const double speed = std::isfinite(v) ? v : 0.0;
+    const QuantityDefinition gap{name, "m", [speed](const Eigen::Vector4d& t) { return t[3] + t[2] * speed; },
+                                 Eigen::Vector4d(0.0, 0.0, speed, 1.0)};
+    const double scale = std::max(std::abs(gap.value(theta)), criteria.gap_scale_floor_m);
+    QuantityEstimate q = assess(context, gap, scale, criteria.max_relative_error_gap * scale, gap_fraction.str());
     q.speed_mps = v;
     if (!std::isfinite(v))
     {
-      q.determined = false;
+      q = judge(name, "m", q.value, kNaN, scale, 0.0, uncertainty, "");
       q.reason = "no follower speed in the data";
     }
     result.quantities.push_back(q);
   }
 
   const double k1 = fit.k1_per_s2, k2 = fit.k2_per_s, tau = fit.tau_e_s;
-  const double margin = k1 * tau * tau + 2.0 * k2 * tau - 2.0;
-  const Eigen::Vector4d margin_gradient(tau * tau, 2.0 * tau, 2.0 * k1 * tau + 2.0 * k2, 0.0);
+  const QuantityDefinition margin{
+      "stability_margin", "", [](const Eigen::Vector4d& t) { return t[0] * t[2] * t[2] + 2.0 * t[1] * t[2] - 2.0; },
+      Eigen::Vector4d(tau * tau, 2.0 * tau, 2.0 * k1 * tau + 2.0 * k2, 0.0)};
   std::ostringstream margin_threshold;
   margin_threshold << "a fixed " << criteria.max_error_margin << " against the margin's scale 2";
-  result.quantities.push_back(judge("stability_margin", "", margin, deltaMethodError(margin_gradient, uncertainty), 2.0,
-                                    criteria.max_error_margin, uncertainty, margin_threshold.str()));
+  result.quantities.push_back(assess(context, margin, 2.0, criteria.max_error_margin, margin_threshold.str()));
   return result;
 }
 
@@ -179,6 +275,12 @@ nlohmann::json toJson(const IdentifiableQuantities& quantities)
     {
       item["speed_mps"] = q.speed_mps;
     }
+    if (!q.held_by_bound.empty())
+    {
+      const auto [low, high] = q.boundInterval();
+      item["held_by_bound"] = q.held_by_bound;
+      item["interval_95"] = std::isfinite(q.one_sided_limit) ? nlohmann::json{low, high} : nlohmann::json();
+    }
     items[q.name] = item;
   }
   json["quantities"] = items;
@@ -188,7 +290,7 @@ nlohmann::json toJson(const IdentifiableQuantities& quantities)
 void printQuantities(const IdentifiableQuantities& quantities, std::ostream& out)
 {
   out << "What the data determine (" << quantities.basis << "):\n";
-  char line[400];
+  char line[640];
   for (const QuantityEstimate& q : quantities.quantities)
   {
     std::string name = q.name;
@@ -198,22 +300,22 @@ void printQuantities(const IdentifiableQuantities& quantities, std::ostream& out
       std::snprintf(at, sizeof at, " (v = %.1f m/s)", q.speed_mps);
       name += at;
     }
-    if (q.determined)
-      std::snprintf(line, sizeof line, "  %-44s %10.4g +- %-9.3g %-6s determined\n", name.c_str(), q.value,
-                    q.standard_error, q.unit.c_str());
+    // value +- error, or "low to high" at a bound; in parentheses where not determined, so that the
+    // fit's value is seen and not taken for a result; "-" for an error the covariance cannot give.
+    char value[32], error[32];
+    const char* open = q.determined ? "" : "(";
+    const char* close = q.determined ? "" : ")";
+    const bool interval = !q.held_by_bound.empty() && std::isfinite(q.one_sided_limit);
+    const auto [low, high] = interval ? q.boundInterval() : std::pair<double, double>{q.value, q.standard_error};
+    std::snprintf(value, sizeof value, "%s%.4g", open, low);
+    if (interval || std::isfinite(high))
+      std::snprintf(error, sizeof error, interval ? "%.4g%s" : "%.3g%s", high, close);
     else
-    {
-      // The fit's value in parentheses, so that it is seen and not taken for a result; "-" for an
-      // error the covariance cannot give (singular).
-      char value[32], error[32];
-      std::snprintf(value, sizeof value, "(%.4g", q.value);
-      if (std::isfinite(q.standard_error))
-        std::snprintf(error, sizeof error, "%.3g)", q.standard_error);
-      else
-        std::snprintf(error, sizeof error, "-)");
-      std::snprintf(line, sizeof line, "  %-44s %10s +- %-9s %-6s NOT determined: %s\n", name.c_str(), value, error,
-                    q.unit.c_str(), q.reason.c_str());
-    }
+      std::snprintf(error, sizeof error, "-%s", close);
+    const std::string verdict = q.determined ? "determined" : "NOT determined: " + q.reason;
+    const std::string bound = q.determined && !q.held_by_bound.empty() ? " (" + q.held_by_bound + ": one-sided)" : "";
+    std::snprintf(line, sizeof line, "  %-44s %10s %s %-9s %-6s %s%s\n", name.c_str(), value, interval ? "to" : "+-",
+                  error, q.unit.c_str(), verdict.c_str(), bound.c_str());
     out << line;
   }
 }

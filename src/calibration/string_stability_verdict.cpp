@@ -254,7 +254,7 @@ private:
     if (options_.with_quantities)
     {
       const ParameterUncertainty uncertainty = estimateUncertainty(u_, training_);
-      result_.quantities = assessQuantities(u_, uncertainty, training_, options_.quantity_criteria);
+      result_.quantities = assessQuantities(u_, uncertainty, training_, options_.bounds, options_.quantity_criteria);
       result_.quantities->basis = "training data's unconstrained fit; " + result_.quantities->basis;
     }
     return "";

@@ -47,7 +47,8 @@ std::pair<double, double> determined(const GroupResult& group, const std::string
 
 /// "0.210+-0.016" where the data determine the quantity; "(0.171+-1.497)" where it was fitted and
 /// they do not (the reason is among the notes): the fit's value is shown, not hidden, and not
-/// mistaken for a result; "-" where nothing was fitted.
+/// mistaken for a result; "-2.00 to -1.37" for a quantity held at a bound of the fit (its
+/// one-sided 95 % interval: +- would reach beyond the bound); "-" where nothing was fitted.
 std::string valuePlusMinus(const GroupResult& group, const std::string& name, const char* pattern)
 {
   if (!group.fitted() || !group.identification.quantities)
@@ -55,7 +56,10 @@ std::string valuePlusMinus(const GroupResult& group, const std::string& name, co
   const QuantityEstimate* q = group.identification.quantities->find(name);
   if (q == nullptr)
     return "-";
-  const std::string cell = cellNumber(pattern, q->value) + "+-" + cellNumber(pattern, q->standard_error);
+  const auto [low, high] = q->boundInterval();
+  const std::string cell = !q->held_by_bound.empty() && std::isfinite(q->one_sided_limit)
+                               ? cellNumber(pattern, low) + " to " + cellNumber(pattern, high)
+                               : cellNumber(pattern, q->value) + "+-" + cellNumber(pattern, q->standard_error);
   return q->determined ? cell : "(" + cell + ")";
 }
 
@@ -1073,7 +1077,8 @@ std::string withoutMarkdownBold(std::string text)
 void printCampaignTables(const CampaignResult& result, std::ostream& out)
 {
   out << "ACC models by vehicle and distance setting (value+-SE where the data determine it, (value+-SE) in "
-         "parentheses where they do not, a note says why)\n";
+         "parentheses where they do not, a note says why; \"low to high\": the one-sided 95 % interval of a "
+         "quantity held at a bound of the fit, e.g. the margin at tau_e = 0)\n";
   printAligned(kGroupHeader, groupRows(result), out);
   for (const std::string& note : groupNotes(result))
     out << "  note: " << note << "\n";
@@ -1168,7 +1173,9 @@ std::string campaignReportMarkdown(const CampaignInputs& inputs, const CampaignR
     md << " `" << path << "`";
   md << "\n\n## Models by vehicle and distance setting\n\n"
      << "identifyAcc on all of a group's runs (value +- standard error where the data determine it; in "
-        "parentheses where they do not, with the reason in the notes); margin m = k1 tau_e^2 + 2 k2 tau_e - 2; verdict of the string-stability test on "
+        "parentheses where they do not, with the reason in the notes; \"low to high\" where a quantity is held "
+        "at a bound of the fit, e.g. tau_e at 0 and the margin there at -2, its least: the one-sided 95 % "
+        "interval, as +- would reach beyond the bound); margin m = k1 tau_e^2 + 2 k2 tau_e - 2; verdict of the string-stability test on "
         "held-out halves and its p-value with the null hypothesis it tests (H0 stable: small p says unstable); "
         "whether the fit describes the car's runs (model_adequacy: gap and speed RMSE against their spread, "
         "parameters at a bound, residual correlation, pair-level dips; reasons in the notes); amplified band and "

@@ -53,14 +53,15 @@ void setQuantity(const std::optional<IdentifiableQuantities>& quantities, const 
   standard_error = determined ? q->standard_error : kNaN;
 }
 
-/// The reasons of the published quantities that the data do not determine, "; "-separated.
-std::string undeterminedNote(const std::optional<IdentifiableQuantities>& quantities)
+/// The reasons of the published quantities that the data do not determine, and of those held at a
+/// bound (whose +- std_error is no interval: the reason gives the one-sided one), "; "-separated.
+std::string quantitiesNote(const std::optional<IdentifiableQuantities>& quantities)
 {
   std::string note;
   for (const char* name : {"k1", "k2", "tau_e", "eta", "equilibrium_gap_at_mean_speed", "stability_margin"})
   {
     const QuantityEstimate* q = quantities ? quantities->find(name) : nullptr;
-    if (q != nullptr && !q->determined)
+    if (q != nullptr && (!q->determined || !q->held_by_bound.empty()))
       note += (note.empty() ? "" : "; ") + q->reason;
   }
   return note;
@@ -97,7 +98,7 @@ void fillWindow(const OnlineUpdate& update, acc_identification::AccParameters& m
   m.solve_time_s = result.calibration.solve_time_s;
   m.optimizer_status = result.solved ? result.calibration.status : "NOT_SOLVED";
   m.identifiable = all;
-  m.identifiability_note = !result.solved ? result.note : undeterminedNote(q);
+  m.identifiability_note = !result.solved ? result.note : quantitiesNote(q);
 }
 
 void fillDrive(const OnlineUpdate& update, double drive_start_s, acc_identification::AccParameters& m)
@@ -111,7 +112,7 @@ void fillDrive(const OnlineUpdate& update, double drive_start_s, acc_identificat
   setQuantity(q, "eta", m.drive_eta_m, m.drive_eta_std_error);
   setQuantity(q, "stability_margin", m.drive_stability_margin, m.drive_stability_margin_std_error);
   m.drive_rmse_speed_mps = update.drive.solved ? update.drive.fit.rmse_speed_mps : kNaN;
-  m.drive_note = !update.drive.solved ? update.drive.note : undeterminedNote(q);
+  m.drive_note = !update.drive.solved ? update.drive.note : quantitiesNote(q);
 }
 
 /// The sequential verdict's fields (the node's published verdict).
@@ -267,17 +268,8 @@ acc_identification::AccParameters toMessage(const Identification& identification
 {
   OnlineUpdate update;
   update.window = identification;
-  if (identification.solved && !identification.calibration.diverged)
-  {
-    // Without the segments the equilibrium speeds are unknown: the parameters and the margin only.
-    IdentifiableQuantities quantities =
-        assessQuantities(identification.calibration.parameters, identification.uncertainty, {});
-    auto& list = quantities.quantities;
-    list.erase(std::remove_if(list.begin(), list.end(),
-                              [](const QuantityEstimate& q) { return q.name.rfind("equilibrium_gap", 0) == 0; }),
-               list.end());
-    update.window_quantities = std::move(quantities);
-  }
+  // The window's own assessment (identifyAcc's, within its bounds), as the online identifier passes it on.
+  update.window_quantities = identification.quantities;
   return toMessage(update, window_start_s, window_end_s, 0.0);
 }
 

@@ -95,7 +95,7 @@ TEST(CalibrationReport, StabilityTestAndQuantitiesAreInTheJsonAndTheTable)
   report.calibration.parameters = acc::paperMinimumSetting();
   report.uncertainty = acc::estimateUncertainty(report.calibration.parameters, {run});
   report.stability = acc::analyzeStringStability(report.calibration.parameters);
-  report.quantities = acc::assessQuantities(report.calibration.parameters, report.uncertainty, {run});
+  report.quantities = acc::assessQuantities(report.calibration.parameters, report.uncertainty, {run}, acc::ParameterBounds{});
   acc::StabilityTestOptions options;
   options.multistart.starts = 10;
   report.stability_test = acc::testStringStability({run}, options);

@@ -274,7 +274,7 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesATimingEffectAndNotTheBrakingTerm
   EXPECT_EQ(printed.find("**"), std::string::npos);
   // A quantity the data do not determine shows its fit in parentheses, a group without a fit "-"
   // (the Mercedes GLE450 at M and the Tesla Model X at S and M drive at a steady speed); no NaN.
-  std::size_t undetermined = 0, unfitted = 0;
+  std::size_t undetermined = 0, unfitted = 0, held = 0;
   for (const acc::GroupResult& g : result.groups)
   {
     const std::size_t at = report.find("| " + g.vehicle + " | " + g.setting + " | ");
@@ -289,14 +289,20 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesATimingEffectAndNotTheBrakingTerm
     }
     const acc::QuantityEstimate* tau = g.identification.quantities->find("tau_e");
     ASSERT_NE(tau, nullptr);
+    // tau_e held at its bound 0 (the short settings' one speed band) shows its one-sided interval.
     char cell[64];
-    std::snprintf(cell, sizeof cell, "%.2f+-%.2f", tau->value, tau->standard_error);
+    if (tau->held_by_bound.empty())
+      std::snprintf(cell, sizeof cell, "%.2f+-%.2f", tau->value, tau->standard_error);
+    else
+      std::snprintf(cell, sizeof cell, "%.2f to %.2f", tau->boundInterval().first, tau->boundInterval().second);
+    held += !tau->held_by_bound.empty();
     undetermined += !tau->determined;
     EXPECT_NE(row.find(tau->determined ? "| " + std::string(cell) + " |" : "| (" + std::string(cell) + ") |"),
               std::string::npos)
         << row;
   }
   EXPECT_GE(undetermined, 5u);
+  EXPECT_GE(held, 5u);
   EXPECT_EQ(unfitted, 3u);
   // A verdict on a car no model was checked for says so (the Tesla Model X at S: unstable).
   EXPECT_NE(report.find("- TESLA_MODELX/S: model adequacy not assessed"), std::string::npos);

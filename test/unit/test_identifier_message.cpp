@@ -84,7 +84,7 @@ acc::OnlineUpdate windowWithout(const std::string& quantity, const std::string& 
   acc::OnlineUpdate update;
   update.window = acc::identifyAcc({*run}, options);
   update.window_quantities =
-      acc::assessQuantities(update.window.calibration.parameters, update.window.uncertainty, {*run});
+      acc::assessQuantities(update.window.calibration.parameters, update.window.uncertainty, {*run}, acc::ParameterBounds{});
   for (auto& q : update.window_quantities->quantities)
   {
     if (q.name == quantity)

@@ -646,7 +646,7 @@ TEST(StabilityTest, QuantitiesSayWhatIsDeterminedOneByOne)
   multistart.starts = 20;
   const auto fit = acc::calibrateMultistart(objective, multistart);
   const auto uncertainty = acc::estimateUncertainty(fit.parameters, {drive});
-  const auto all = acc::assessQuantities(fit.parameters, uncertainty, {drive});
+  const auto all = acc::assessQuantities(fit.parameters, uncertainty, {drive}, acc::ParameterBounds{});
   ASSERT_EQ(all.quantities.size(), 8u);
   for (const auto& q : all.quantities)
   {
@@ -664,7 +664,7 @@ TEST(StabilityTest, QuantitiesSayWhatIsDeterminedOneByOne)
   // A singular covariance (no information): nothing is determined, each with its reason, and the
   // values stay the fit's.
   acc::ParameterUncertainty none;
-  const auto nothing = acc::assessQuantities(fit.parameters, none, {drive});
+  const auto nothing = acc::assessQuantities(fit.parameters, none, {drive}, acc::ParameterBounds{});
   for (const auto& q : nothing.quantities)
   {
     EXPECT_FALSE(q.determined) << q.name;
@@ -685,7 +685,7 @@ TEST(StabilityTest, QuantitiesSayWhatIsDeterminedOneByOne)
   traded.covariance(2, 3) = traded.covariance(3, 2) = -v * s_tau * s_tau;
   acc::AccParameters p = fit.parameters;
   p.tau_e_s = 0.0;
-  const auto partly = acc::assessQuantities(p, traded, {drive});
+  const auto partly = acc::assessQuantities(p, traded, {drive}, acc::ParameterBounds{});
   EXPECT_FALSE(partly.find("tau_e")->determined) << partly.find("tau_e")->reason;
   EXPECT_FALSE(partly.find("eta")->determined) << partly.find("eta")->reason;
   EXPECT_TRUE(partly.find("equilibrium_gap_at_mean_speed")->determined)
@@ -694,17 +694,82 @@ TEST(StabilityTest, QuantitiesSayWhatIsDeterminedOneByOne)
   EXPECT_TRUE(partly.find("k1")->determined);
   EXPECT_FALSE(partly.find("stability_margin")->determined) << partly.find("stability_margin")->reason;
 
-  // Printed: an undetermined quantity keeps its fit's value in parentheses beside the reason, a
-  // singular covariance's error is "-"; never "nan".
+  // Printed: an undetermined quantity keeps its fit's value in parentheses beside the reason (tau_e,
+  // at its bound 0 here, as its one-sided interval), a singular covariance's error is "-"; never "nan".
   std::ostringstream printed;
   acc::printQuantities(partly, printed);
-  char tau_cell[64];
-  std::snprintf(tau_cell, sizeof tau_cell, "(%.4g +- %.3g)", partly.find("tau_e")->value,
-                partly.find("tau_e")->standard_error);
+  char tau_cell[64], eta_cell[64];
+  std::snprintf(tau_cell, sizeof tau_cell, "(0 to %.4g)", 1.6448536 * s_tau);
+  std::snprintf(eta_cell, sizeof eta_cell, "(%.4g +- %.3g)", partly.find("eta")->value,
+                partly.find("eta")->standard_error);
   EXPECT_NE(printed.str().find(tau_cell), std::string::npos) << printed.str();
+  EXPECT_NE(printed.str().find(eta_cell), std::string::npos) << printed.str();
   EXPECT_EQ(printed.str().find("nan"), std::string::npos) << printed.str();
   std::ostringstream singular;
   acc::printQuantities(nothing, singular);
   EXPECT_NE(singular.str().find(" +- -)"), std::string::npos) << singular.str();
   EXPECT_EQ(singular.str().find("nan"), std::string::npos) << singular.str();
+}
+
+TEST(StabilityTest, QuantitiesHeldAtABoundGetTheirOneSidedInterval)
+{
+  // ZalaZone's short setting: tau_e fitted at its bound 0 (one speed band, where tau_e and eta
+  // trade off), so the margin is -2, the least there is: -2 +- 0.39 would be no interval.
+  const auto drive = syntheticDrive(acc::paperMinimumSetting(), 31);
+  acc::ParameterUncertainty u;
+  u.covariance.setZero();
+  const double se[4] = {0.017, 0.037, 0.54, 4.2};
+  for (int i = 0; i < 4; ++i)
+    u.covariance(i, i) = se[i] * se[i];
+  u.covariance(2, 3) = u.covariance(3, 2) = -0.9 * se[2] * se[3];
+  const acc::AccParameters p{0.069, 0.356, 0.0, 12.7};
+  const auto q = acc::assessQuantities(p, u, {drive}, acc::ParameterBounds{});
+
+  const double z = 1.6448536269514722, tau_limit = z * se[2];
+  const auto* margin = q.find("stability_margin");
+  EXPECT_EQ(margin->held_by_bound, "tau_e at its lower bound 0");
+  EXPECT_TRUE(margin->determined) << margin->reason;  // 2 k2 se(tau_e) = 0.38 <= 0.5, as before
+  EXPECT_DOUBLE_EQ(margin->boundInterval().first, -2.0);
+  EXPECT_NEAR(margin->boundInterval().second, p.k1_per_s2 * tau_limit * tau_limit + 2.0 * p.k2_per_s * tau_limit - 2.0,
+              1e-9);
+  EXPECT_NE(margin->reason.find("one-sided: 95 % [-2, -1.3"), std::string::npos) << margin->reason;
+  const auto* tau = q.find("tau_e");
+  EXPECT_EQ(tau->held_by_bound, "tau_e at its lower bound 0");
+  EXPECT_NEAR(tau->one_sided_limit, tau_limit, 1e-9);
+  // k1, k2, eta and the gaps move with free parameters: two-sided as ever.
+  for (const char* name : {"k1", "k2", "eta", "equilibrium_gap_at_mean_speed"})
+  {
+    EXPECT_TRUE(q.find(name)->held_by_bound.empty()) << name << ": " << q.find(name)->held_by_bound;
+    EXPECT_TRUE(std::isnan(q.find(name)->one_sided_limit)) << name;
+  }
+  std::ostringstream printed;
+  acc::printQuantities(q, printed);
+  EXPECT_NE(printed.str().find("-2 to -1.3"), std::string::npos) << printed.str();
+  EXPECT_NE(printed.str().find("determined (tau_e at its lower bound 0: one-sided)"), std::string::npos)
+      << printed.str();
+  const auto json = acc::toJson(q)["quantities"]["stability_margin"];
+  EXPECT_EQ(json["held_by_bound"], "tau_e at its lower bound 0");
+  EXPECT_DOUBLE_EQ(json["interval_95"][0].get<double>(), -2.0);
+
+  // Inside the range nothing is held, even close to a bound.
+  acc::AccParameters inside = p;
+  inside.tau_e_s = 0.1;
+  for (const auto& estimate : acc::assessQuantities(inside, u, {drive}, acc::ParameterBounds{}).quantities)
+    EXPECT_TRUE(estimate.held_by_bound.empty()) << estimate.name << ": " << estimate.held_by_bound;
+
+  // At an upper bound the interval reaches down into the range: eta at 50 m.
+  acc::AccParameters far = p;
+  far.tau_e_s = 1.2;
+  far.eta_m = 50.0;
+  const auto at_upper = acc::assessQuantities(far, u, {drive}, acc::ParameterBounds{});
+  const auto* eta = at_upper.find("eta");
+  EXPECT_EQ(eta->held_by_bound, "eta at its upper bound 50");
+  EXPECT_NEAR(eta->boundInterval().first, 50.0 - z * se[3], 1e-9);
+  EXPECT_DOUBLE_EQ(eta->boundInterval().second, 50.0);
+
+  // Without a covariance the bound is still named, with no interval to give.
+  const auto no_covariance = acc::assessQuantities(p, acc::ParameterUncertainty{}, {drive}, acc::ParameterBounds{});
+  const auto* singular = no_covariance.find("stability_margin");
+  EXPECT_EQ(singular->held_by_bound, "tau_e at its lower bound 0");
+  EXPECT_TRUE(std::isnan(singular->one_sided_limit));
 }

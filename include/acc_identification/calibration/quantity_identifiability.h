@@ -2,11 +2,14 @@
 
 #include <initializer_list>
 #include <iosfwd>
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "acc_identification/calibration/calibration_objective.h"
 #include "acc_identification/calibration/fit_statistics.h"
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/car_following_run.h"
@@ -29,6 +32,9 @@ struct QuantityCriteria
   /// The stability margin m = k1 tau_e^2 + 2 k2 tau_e - 2: its scale is 2 (m runs from -2 for
   /// tau_e = 0 upwards); determined when its standard error is at most a quarter of that.
   double max_error_margin = 0.5;
+  /// A parameter within this fraction of its range from a bound of the fit sits at that bound (an
+  /// optimiser stops on an active bound, not near it; as ModelAdequacyOptions::bound_fraction).
+  double bound_fraction = 0.001;
 };
 
 /// One derived quantity of a fit.
@@ -41,6 +47,21 @@ struct QuantityEstimate
   double speed_mps = 0.0;       ///< for the equilibrium gaps: the follower speed it is taken at; else NaN
   bool determined = false;
   std::string reason;    ///< why determined or not, with the threshold
+  /// Held at a bound of the fit's range: "tau_e at its lower bound 0" when every parameter the
+  /// quantity moves with (beyond 1 % of its delta-method variance) sits at a bound; empty when it
+  /// is free. The estimate then never falls beyond the bound, so value +- standard_error is no
+  /// interval (tau_e = 0 +- 0.54 s, margin -2 +- 0.38 where -2 is the least margin there is).
+  std::string held_by_bound;
+  /// With held_by_bound: the 95 % interval's other end, on the range's side of the value. A
+  /// parameter fitted at its bound b with standard error se is at b with probability >= 5 % for
+  /// true values up to b + 1.645 se (the fit is the bound whenever the unconstrained one falls
+  /// beyond it: Self & Liang 1987, a one-sided test at the boundary), so the quantity is
+  /// evaluated with each held parameter moved 1.645 se into the range (clamped to it). NaN
+  /// without a standard error.
+  double one_sided_limit = std::numeric_limits<double>::quiet_NaN();
+
+  /// [low, high] of the 95 % interval at a bound: the value and the one-sided limit, ordered.
+  std::pair<double, double> boundInterval() const;
 };
 
 /// What the data determine, quantity by quantity.
@@ -62,18 +83,21 @@ bool allDetermined(const IdentifiableQuantities& quantities, std::initializer_li
 /// Value, standard error (delta method with the covariance of estimateUncertainty()), determined
 /// and reason for k1, k2, tau_e, eta, the equilibrium gap eta + tau_e v at the lowest, the mean
 /// and the highest follower speed in `runs` (the data the fit saw), and the margin
-/// m = k1 tau_e^2 + 2 k2 tau_e - 2 (gradient (tau^2, 2 tau, 2 k1 tau + 2 k2, 0)).
-/// Typical use: assessQuantities(id.calibration.parameters, id.uncertainty, segments).
+/// m = k1 tau_e^2 + 2 k2 tau_e - 2 (gradient (tau^2, 2 tau, 2 k1 tau + 2 k2, 0)). A quantity
+/// held at a bound of `bounds` (the fit's) gets its one-sided interval (held_by_bound); whether
+/// it is determined is still its standard error against the threshold.
+/// Typical use: assessQuantities(id.calibration.parameters, id.uncertainty, segments, options.bounds).
 IdentifiableQuantities assessQuantities(const AccParameters& fit, const ParameterUncertainty& uncertainty,
-                                        const std::vector<CarFollowingRun>& runs,
+                                        const std::vector<CarFollowingRun>& runs, const ParameterBounds& bounds,
                                         const QuantityCriteria& criteria = {});
 
 /// {"basis", "reciprocal_condition", "quantities": {name: {value, standard_error, unit, determined,
-/// reason (with the threshold applied)[, speed_mps]}}}; NaN as null.
+/// reason (with the threshold applied)[, speed_mps][, held_by_bound, interval_95: [low, high]]}}};
+/// NaN as null.
 nlohmann::json toJson(const IdentifiableQuantities& quantities);
 
-/// One line per quantity: value +- standard error where determined; where not, the fit's value and
-/// error in parentheses and the reason.
+/// One line per quantity: value +- standard error where determined ("low to high" and the bound
+/// where held at one); where not, the same in parentheses and the reason.
 void printQuantities(const IdentifiableQuantities& quantities, std::ostream& out);
 
 }  // namespace acc
