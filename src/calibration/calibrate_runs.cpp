@@ -209,6 +209,10 @@ CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, cons
   report.stability = identification.stability;
   report.identifiability_note = identification.note;
   report.quantities = identification.quantities;
+  if (!settings.quiet)
+    log << "Euler step check...\n";
+  report.euler_step_bias =
+      estimateEulerStepBias(report.calibration.parameters, report.uncertainty, training, options);
   if (settings.grid_nodes > 0)
     checkOnGrid(training, options, settings, report, log);
   const std::vector<CarFollowingRun> whole_runs = runsOf(inputs);

@@ -1,4 +1,5 @@
 #include "acc_identification/calibration/calibration_report.h"
+#include "acc_identification/model/acc_parameters_json.h"
 #include "acc_identification/model/json_number.h"
 
 #include "acc_identification/evidence/evidence_json.h"
@@ -16,15 +17,6 @@ namespace acc
 {
 namespace
 {
-/// JSON has no NaN: a value that does not exist is null.
-nlohmann::json parametersJson(const AccParameters& p)
-{
-  return {{"k1_per_s2", jsonNumber(p.k1_per_s2)},
-          {"k2_per_s", jsonNumber(p.k2_per_s)},
-          {"tau_e_s", jsonNumber(p.tau_e_s)},
-          {"eta_m", jsonNumber(p.eta_m)}};
-}
-
 nlohmann::json fitJson(const FitQuality& fit)
 {
   return {{"samples", fit.samples},
@@ -244,6 +236,8 @@ nlohmann::json reportToJson(const CalibrationReport& report)
   }
   if (report.dip_evidence)
     json["dip_evidence"] = dipEvidenceJson(report);
+  if (report.euler_step_bias)
+    json["euler_step_bias"] = toJson(*report.euler_step_bias);
   return json;
 }
 
@@ -320,6 +314,8 @@ void printReport(const CalibrationReport& report, std::ostream& out)
     out << "\n";
     printQuantities(*report.quantities, out);
   }
+  if (report.euler_step_bias)
+    out << "\n" << describeEulerStepBias(*report.euler_step_bias);
   if (report.model_adequacy)
   {
     out << "\n" << adequacyLine(*report.model_adequacy, report.model_adequacy_data, report.stability_test.has_value());

@@ -13,6 +13,7 @@
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/augmented_fit_json.h"
 #include "acc_identification/evidence/evidence_json.h"
+#include "acc_identification/model/acc_parameters_json.h"
 #include "acc_identification/model/number_text.h"
 #include "acc_identification/model/plain_text.h"
 #include "acc_identification/model/string_stability.h"
@@ -210,11 +211,6 @@ nlohmann::json effectsJson(const PlatoonCarModel& model)
     errors[names[i]] = se < model.standard_errors.size() ? model.standard_errors[se] : kNaN;
   }
   return {{"effects", effectNames(model.effects)}, {"values", values}, {"standard_errors", errors}};
-}
-
-nlohmann::json parametersJson(const AccParameters& p)
-{
-  return {{"k1_per_s2", p.k1_per_s2}, {"k2_per_s", p.k2_per_s}, {"tau_e_s", p.tau_e_s}, {"eta_m", p.eta_m}};
 }
 
 nlohmann::json candidateJson(const PlatoonCandidate& candidate)

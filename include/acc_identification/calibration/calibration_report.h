@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "acc_identification/calibration/euler_step_bias.h"
 #include "acc_identification/calibration/fit_statistics.h"
 #include "acc_identification/calibration/grid_search.h"
 #include "acc_identification/calibration/model_adequacy.h"
@@ -43,6 +44,8 @@ struct CalibrationReport
   std::optional<MultistartResult> grid_polished;  ///< local solve from the grid's best node
   /// What the data determine quantity by quantity (of the fit above, on its training data).
   std::optional<IdentifiableQuantities> quantities;
+  /// How far the Euler step at the data's rate moves the fit from the continuous law's parameters.
+  std::optional<EulerStepBias> euler_step_bias;
   /// Is the ACC string stable, decided on held-out halves even where the parameters are not pinned.
   std::optional<StabilityTestResult> stability_test;
   /// Does the fitted model describe its training data well enough for that verdict to mean anything.
