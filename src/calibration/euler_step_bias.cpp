@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
+#include "acc_identification/calibration/calibration_objective.h"
 #include "acc_identification/calibration/margin_constrained_fit.h"
+#include "acc_identification/calibration/multistart_calibrator.h"
 #include "acc_identification/model/acc_parameters_json.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/json_number.h"
@@ -46,6 +49,15 @@ AccParameters difference(const AccParameters& a, const AccParameters& b)
   return {a.k1_per_s2 - b.k1_per_s2, a.k2_per_s - b.k2_per_s, a.tau_e_s - b.tau_e_s, a.eta_m - b.eta_m};
 }
 
+/// p within the bounds: a correction that would carry a parameter held at its bound beyond it
+/// (k2 = 0 corrected to -0.02) leaves it at the bound.
+AccParameters withinBounds(const AccParameters& p, const ParameterBounds& b)
+{
+  return {std::clamp(p.k1_per_s2, b.lower.k1_per_s2, b.upper.k1_per_s2),
+          std::clamp(p.k2_per_s, b.lower.k2_per_s, b.upper.k2_per_s),
+          std::clamp(p.tau_e_s, b.lower.tau_e_s, b.upper.tau_e_s), std::clamp(p.eta_m, b.lower.eta_m, b.upper.eta_m)};
+}
+
 /// "k1 -26 % (4.1 standard errors)" for each bias above half its standard error, "; "-separated.
 std::string materialBiases(const EulerStepBias& check, const ParameterUncertainty& uncertainty, double margin_error)
 {
@@ -59,7 +71,8 @@ std::string materialBiases(const EulerStepBias& check, const ParameterUncertaint
   std::string out;
   for (int i = 0; i < 5; ++i)
   {
-    if (!(std::abs(bias[i]) > 0.5 * error[i]))  // NaN errors: nothing to compare with
+    // An error that is NaN (singular covariance) or 0 (none given) is nothing to compare with.
+    if (!(error[i] > 0.0) || !(std::abs(bias[i]) > 0.5 * error[i]))
       continue;
     const std::string size = i < 4 && std::abs(value[i]) > 0.0 ? printfText("%+.1f %%", 100.0 * bias[i] / value[i])
                                                                 : printfText("%+.3g", bias[i]);
@@ -111,20 +124,31 @@ EulerStepBias estimateEulerStepBias(const AccParameters& fit, const ParameterUnc
       return check;
     }
   }
-  IdentificationOptions refit_options = options;
-  refit_options.multistart.progress = nullptr;
-  const Identification refit = identifyAcc(responses, refit_options, {fit});
-  if (!refit.solved || refit.calibration.diverged)
+  // The calibration identifyAcc runs, without its excitation gate: the data passed it, and the
+  // model's own response is smoother than what the car did (a steady drive can fall below it).
+  MultistartOptions multistart = options.multistart;
+  multistart.progress = nullptr;
+  MultistartResult refit;
+  try
   {
-    check.reason = "the refit of the continuous-law response failed: " + refit.note;
+    refit = calibrateMultistart(CalibrationObjective(responses, options.bounds), multistart, {fit});
+  }
+  catch (const std::invalid_argument& error)
+  {
+    check.reason = std::string("the continuous-law response cannot be calibrated: ") + error.what();
+    return check;
+  }
+  if (refit.diverged)
+  {
+    check.reason = "every start of the refit diverged";
     return check;
   }
   check.assessed = true;
-  check.refit = refit.calibration.parameters;
+  check.refit = refit.parameters;
   check.bias = difference(check.refit, fit);
-  check.corrected = difference(fit, check.bias);
+  check.corrected = withinBounds(difference(fit, check.bias), options.bounds);
   check.margin_bias = stabilityMargin(check.refit) - stabilityMargin(fit);
-  check.corrected_margin = stabilityMargin(fit) - check.margin_bias;
+  check.corrected_margin = stabilityMargin(check.corrected);
   const Eigen::Vector4d gradient(fit.tau_e_s * fit.tau_e_s, 2.0 * fit.tau_e_s,
                                  2.0 * fit.k1_per_s2 * fit.tau_e_s + 2.0 * fit.k2_per_s, 0.0);
   const double margin_error = uncertainty.covariance.allFinite()

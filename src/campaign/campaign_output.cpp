@@ -132,6 +132,7 @@ nlohmann::json vehicleJson(const CampaignInputs& inputs, std::size_t index, cons
             {"peak_gain_db", dynamics ? id.stability.peak_gain_db : kNaN}}},
           {"stability_test", stabilityTestJson(group.stability_test)},
           {"model_adequacy", toJson(group.model_adequacy)},
+          {"euler_step_bias", group.euler_step_bias ? toJson(*group.euler_step_bias) : nlohmann::json()},
           {"fitted", fitted},
           // Valid data without a fit (steady speed, too short) still say what they decide, as calibrate's JSON.
           {"unfitted_data", fitted ? nlohmann::json() : unfittedToJson(summarizeUnfittedData(
@@ -663,6 +664,16 @@ std::vector<std::vector<std::string>> groupRows(const CampaignResult& result)
   return rows;
 }
 
+/// "the Euler step at the data's rate (0.5 s) moves k1 -15.4 % (...): corrected (fit - bias) k1 ..."
+std::string eulerStepNote(const EulerStepBias& check)
+{
+  const AccParameters& c = check.corrected;
+  return printfText("the Euler step at the data's rate (median %.3g s) moves %s; corrected (fit - bias): k1 %.4f "
+                    "k2 %.4f tau_e %.4f eta %.3f margin %+.3f",
+                    check.median_step_s, check.material_because.c_str(), c.k1_per_s2, c.k2_per_s, c.tau_e_s, c.eta_m,
+                    check.corrected_margin);
+}
+
 std::vector<std::string> groupNotes(const CampaignResult& result)
 {
   std::vector<std::string> notes;
@@ -681,6 +692,8 @@ std::vector<std::string> groupNotes(const CampaignResult& result)
                              "models fitted on halves, and nothing checked that they describe these data");
     if (g.stability_test.verdict == StabilityVerdict::Undecided)
       notes.push_back(name + "undecided: " + g.stability_test.reason);
+    if (g.euler_step_bias && g.euler_step_bias->material)
+      notes.push_back(name + eulerStepNote(*g.euler_step_bias));
   }
   return notes;
 }

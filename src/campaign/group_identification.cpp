@@ -64,8 +64,12 @@ GroupResult identifyGroup(const CampaignGroup& group, const GroupIdentificationO
     else if (result.identification.calibration.diverged)
       result.reason = "every start of the fit diverged";
     if (result.fitted())
+    {
       result.model_adequacy = assessModelAdequacy(result.identification.calibration.parameters, segments, {},
                                                   result.identification.uncertainty.standard_error);
+      result.euler_step_bias = estimateEulerStepBias(result.identification.calibration.parameters,
+                                                     result.identification.uncertainty, segments, identification);
+    }
     else
       result.model_adequacy.reasons = {"not assessed: no fit (" + result.reason + ")"};
     StabilityTestOptions test = testOptions(options, result.seed);

@@ -274,7 +274,7 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesATimingEffectAndNotTheBrakingTerm
   EXPECT_EQ(printed.find("**"), std::string::npos);
   // A quantity the data do not determine shows its fit in parentheses, a group without a fit "-"
   // (the Mercedes GLE450 at M and the Tesla Model X at S and M drive at a steady speed); no NaN.
-  std::size_t undetermined = 0, unfitted = 0, held = 0;
+  std::size_t undetermined = 0, unfitted = 0, held = 0, material = 0;
   for (const acc::GroupResult& g : result.groups)
   {
     const std::size_t at = report.find("| " + g.vehicle + " | " + g.setting + " | ");
@@ -297,12 +297,20 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesATimingEffectAndNotTheBrakingTerm
       std::snprintf(cell, sizeof cell, "%.2f to %.2f", tau->boundInterval().first, tau->boundInterval().second);
     held += !tau->held_by_bound.empty();
     undetermined += !tau->determined;
+    // Every fit gets the Euler step check; where the step moves it by half a standard error, a note.
+    ASSERT_TRUE(g.euler_step_bias && g.euler_step_bias->assessed) << g.vehicle << "/" << g.setting;
+    EXPECT_NEAR(g.euler_step_bias->median_step_s, 0.1, 1e-6);
+    material += g.euler_step_bias->material;
+    EXPECT_EQ(report.find("- " + g.vehicle + "/" + g.setting + ": the Euler step") != std::string::npos,
+              g.euler_step_bias->material)
+        << g.vehicle << "/" << g.setting;
     EXPECT_NE(row.find(tau->determined ? "| " + std::string(cell) + " |" : "| (" + std::string(cell) + ") |"),
               std::string::npos)
         << row;
   }
   EXPECT_GE(undetermined, 5u);
   EXPECT_GE(held, 5u);
+  EXPECT_GE(material, 1u);  // MAZDA_3 at L: its margin moves by one standard error at 10 Hz
   EXPECT_EQ(unfitted, 3u);
   // A verdict on a car no model was checked for says so (the Tesla Model X at S: unstable).
   EXPECT_NE(report.find("- TESLA_MODELX/S: model adequacy not assessed"), std::string::npos);

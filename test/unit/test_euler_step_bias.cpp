@@ -79,6 +79,21 @@ TEST(EulerStepBias, AtTwoHertzTheCheckFindsTheBiasTheTruthShows)
   EXPECT_GT(std::abs(fast_check.margin_bias), 0.0);
 }
 
+TEST(EulerStepBias, TheCorrectionKeepsAParameterHeldAtItsBoundThere)
+{
+  // k2 fitted at its bound 0 (MAZDA_3 at L on ZalaZone): the step's bias is upwards, so fit - bias
+  // would be a negative gain; the corrected fit stays at the bound, and its margin is its own.
+  const acc::AccParameters at_bound{0.25, 0.0, 2.0, 5.0};
+  const auto run = acc::synthesizeRun(at_bound, 600.0, 1.0, 15.0, 7);
+  const acc::EulerStepBias check =
+      acc::estimateEulerStepBias(at_bound, acc::ParameterUncertainty{}, {run}, acc::IdentificationOptions{});
+  ASSERT_TRUE(check.assessed) << check.reason;
+  EXPECT_GT(check.bias.k2_per_s, 0.0);
+  EXPECT_DOUBLE_EQ(check.corrected.k2_per_s, 0.0);
+  EXPECT_DOUBLE_EQ(check.corrected_margin, acc::stabilityMargin(check.corrected));
+  EXPECT_FALSE(check.material);  // no standard errors to hold it against
+}
+
 TEST(EulerStepBias, WithoutDataItSaysWhyNothingWasAssessed)
 {
   const acc::EulerStepBias check =

@@ -24,7 +24,8 @@ namespace acc
 /// under the continuous law (Euler at a step `substeps` times finer, the leader's speed linear
 /// between samples), sampled at the data's times and calibrated as the data were. Without noise
 /// the refit differs from the fit only by what the Euler step adds: bias = refit - fit (a
-/// parametric bootstrap of the discretisation), and fit - bias is the first-order corrected fit.
+/// parametric bootstrap of the discretisation), and fit - bias (within the bounds) is the
+/// first-order corrected fit.
 struct EulerStepBias
 {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -36,9 +37,9 @@ struct EulerStepBias
   AccParameters fit;            ///< the fit checked
   AccParameters refit;          ///< the calibration of the fit's own continuous-law response
   AccParameters bias;           ///< refit - fit, per parameter
-  AccParameters corrected;      ///< fit - bias
+  AccParameters corrected;      ///< fit - bias, within the fit's bounds (a parameter held at one stays)
   double margin_bias = kNaN;    ///< margin(refit) - margin(fit)
-  double corrected_margin = kNaN;
+  double corrected_margin = kNaN;  ///< margin(corrected)
   /// Some bias (k1, k2, tau_e, eta or the margin) above half its standard error at the fit: the
   /// step moves the answer by a visible part of what the data pin.
   bool material = false;
@@ -46,8 +47,9 @@ struct EulerStepBias
 };
 
 /// The check above for `fit` (identifyAcc's on `runs`, with its standard errors), refitted with
-/// the same options (its bounds and starts; the fit as a warm start). Not assessed when the
-/// continuous-law response diverges or the refit fails; the reason says so.
+/// the same options (its bounds and starts; the fit as a warm start; not its excitation gate,
+/// which the data passed). Not assessed when the continuous-law response diverges or the refit
+/// fails (no data); the reason says so.
 EulerStepBias estimateEulerStepBias(const AccParameters& fit, const ParameterUncertainty& uncertainty,
                                     const std::vector<CarFollowingRun>& runs, const IdentificationOptions& options,
                                     std::size_t substeps = 10);

@@ -2,8 +2,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 
+#include "acc_identification/calibration/euler_step_bias.h"
 #include "acc_identification/calibration/identification.h"
 #include "acc_identification/calibration/model_adequacy.h"
 #include "acc_identification/calibration/string_stability_verdict.h"
@@ -34,6 +36,8 @@ struct GroupResult
   /// Does the fit describe the group's runs (checks a-c of model_adequacy.h on all its runs); the
   /// campaign adds the dip check (d) from the platoon check's pair-level predictions.
   ModelAdequacy model_adequacy;
+  /// What the Euler step at the data's rate does to the fit (calibrate's check); with a fit only.
+  std::optional<EulerStepBias> euler_step_bias;
 
   /// A fit exists (solved, not diverged): the parameters that are determined are meaningful.
   bool fitted() const;
