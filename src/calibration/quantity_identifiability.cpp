@@ -86,13 +86,15 @@ struct QuantityContext
   const QuantityCriteria& criteria;
 };
 
+Eigen::Vector4d asVector(const AccParameters& p)
+{
+  return {p.k1_per_s2, p.k2_per_s, p.tau_e_s, p.eta_m};
+}
+
 /// Where each parameter sits: +1 at its lower bound (the range lies above), -1 at its upper, 0 inside.
 Eigen::Vector4d boundSides(const QuantityContext& c)
 {
-  const Eigen::Vector4d lower(c.bounds.lower.k1_per_s2, c.bounds.lower.k2_per_s, c.bounds.lower.tau_e_s,
-                              c.bounds.lower.eta_m);
-  const Eigen::Vector4d upper(c.bounds.upper.k1_per_s2, c.bounds.upper.k2_per_s, c.bounds.upper.tau_e_s,
-                              c.bounds.upper.eta_m);
+  const Eigen::Vector4d lower = asVector(c.bounds.lower), upper = asVector(c.bounds.upper);
   Eigen::Vector4d sides = Eigen::Vector4d::Zero();
   for (int i = 0; i < 4; ++i)
   {
@@ -119,10 +121,7 @@ void assessBoundHold(const QuantityContext& c, const QuantityDefinition& d, Quan
     return;
   // One-sided 95 %: P(Z > z) = 0.05.
   static const double z = twoSidedNormalQuantile(0.10);
-  const double lower[4] = {c.bounds.lower.k1_per_s2, c.bounds.lower.k2_per_s, c.bounds.lower.tau_e_s,
-                           c.bounds.lower.eta_m};
-  const double upper[4] = {c.bounds.upper.k1_per_s2, c.bounds.upper.k2_per_s, c.bounds.upper.tau_e_s,
-                           c.bounds.upper.eta_m};
+  const Eigen::Vector4d lower = asVector(c.bounds.lower), upper = asVector(c.bounds.upper);
   Eigen::Vector4d moved = c.theta;
   std::ostringstream which;
   for (int i = 0; i < 4; ++i)
@@ -191,7 +190,7 @@ IdentifiableQuantities assessQuantities(const AccParameters& fit, const Paramete
   IdentifiableQuantities result;
   result.reciprocal_condition = uncertainty.reciprocal_condition;
   result.basis = "Gauss-Newton sandwich covariance (batch means) at the fit, delta method for derived quantities";
-  const Eigen::Vector4d theta(fit.k1_per_s2, fit.k2_per_s, fit.tau_e_s, fit.eta_m);
+  const Eigen::Vector4d theta = asVector(fit);
   const QuantityContext context{theta, uncertainty, bounds, criteria};
   const double floors[4] = {criteria.parameter_scale_floor.k1_per_s2, criteria.parameter_scale_floor.k2_per_s,
                             criteria.parameter_scale_floor.tau_e_s, criteria.parameter_scale_floor.eta_m};
