@@ -19,7 +19,7 @@ acc_add_library(acc_model
     src/model/follower_effects.cpp
     src/model/batch_means.cpp
     src/model/parallel_tasks.cpp
-  LINK Eigen3::Eigen m Threads::Threads)
+  LINK Eigen3::Eigen Boost::headers m Threads::Threads)
 
 acc_add_tool(stability_report LINK acc_model)
 

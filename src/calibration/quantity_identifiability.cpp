@@ -119,8 +119,10 @@ void assessBoundHold(const QuantityContext& c, const QuantityDefinition& d, Quan
   const bool usable = covarianceUsable(c.uncertainty);
   if (usable ? free.dot(covariance * free) > 0.01 * d.gradient.dot(covariance * d.gradient) : !free.isZero(0.0))
     return;
-  // One-sided 95 %: P(Z > z) = 0.05.
-  static const double z = twoSidedNormalQuantile(0.10);
+  // One-sided 95 %: Student's t with the sandwich's blocks - 1 degrees of freedom (batch means have
+  // that many), the normal's 1.645 when the blocks are not known.
+  const double dof = static_cast<double>(c.uncertainty.blocks) - 1.0;
+  const double z = dof >= 1.0 ? studentTUpperQuantile(0.05, dof) : twoSidedNormalQuantile(0.10);
   const Eigen::Vector4d lower = asVector(c.bounds.lower), upper = asVector(c.bounds.upper);
   Eigen::Vector4d moved = c.theta;
   std::ostringstream which;
@@ -140,6 +142,8 @@ void assessBoundHold(const QuantityContext& c, const QuantityDefinition& d, Quan
   {
     const auto [low, high] = q.boundInterval();
     why << ": 95 % [" << low << ", " << high << "]" << (q.unit.empty() ? "" : " " + q.unit);
+    if (dof >= 1.0)
+      why << " (Student's t, " << dof << " degrees of freedom)";
   }
   q.reason += why.str();
 }

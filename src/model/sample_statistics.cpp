@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include <boost/math/distributions/students_t.hpp>
 
 namespace acc
 {
@@ -41,6 +44,14 @@ double twoSidedNormalQuantile(double tail)
     (std::erfc(mid / std::sqrt(2.0)) > tail ? low : high) = mid;
   }
   return 0.5 * (low + high);
+}
+
+double studentTUpperQuantile(double upper_tail, double degrees_of_freedom)
+{
+  if (!(upper_tail > 0.0 && upper_tail < 1.0 && degrees_of_freedom > 0.0 && std::isfinite(degrees_of_freedom)))
+    return std::numeric_limits<double>::quiet_NaN();
+  const boost::math::students_t distribution(degrees_of_freedom);
+  return boost::math::quantile(boost::math::complement(distribution, upper_tail));
 }
 
 }  // namespace acc

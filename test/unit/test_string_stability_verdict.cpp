@@ -31,6 +31,7 @@
 #include "acc_identification/calibration/quantity_identifiability.h"
 #include "acc_identification/calibration/string_stability_verdict.h"
 #include "acc_identification/model/paper_settings.h"
+#include "acc_identification/model/sample_statistics.h"
 
 namespace
 {
@@ -699,7 +700,8 @@ TEST(StabilityTest, QuantitiesSayWhatIsDeterminedOneByOne)
   std::ostringstream printed;
   acc::printQuantities(partly, printed);
   char tau_cell[64], eta_cell[64];
-  std::snprintf(tau_cell, sizeof tau_cell, "(0 to %.4g)", 1.6448536 * s_tau);
+  const double t = acc::studentTUpperQuantile(0.05, static_cast<double>(traded.blocks) - 1.0);
+  std::snprintf(tau_cell, sizeof tau_cell, "(0 to %.4g)", t * s_tau);
   std::snprintf(eta_cell, sizeof eta_cell, "(%.4g +- %.3g)", partly.find("eta")->value,
                 partly.find("eta")->standard_error);
   EXPECT_NE(printed.str().find(tau_cell), std::string::npos) << printed.str();
@@ -750,6 +752,15 @@ TEST(StabilityTest, QuantitiesHeldAtABoundGetTheirOneSidedInterval)
   const auto json = acc::toJson(q)["quantities"]["stability_margin"];
   EXPECT_EQ(json["held_by_bound"], "tau_e at its lower bound 0");
   EXPECT_DOUBLE_EQ(json["interval_95"][0].get<double>(), -2.0);
+
+  // With the sandwich's blocks known, Student's t with blocks - 1 degrees of freedom (the batch
+  // means' own): 8 blocks, 1.895 standard errors instead of 1.645.
+  acc::ParameterUncertainty eight_blocks = u;
+  eight_blocks.blocks = 8;
+  const auto with_blocks = acc::assessQuantities(p, eight_blocks, {drive}, acc::ParameterBounds{});
+  EXPECT_NEAR(with_blocks.find("tau_e")->one_sided_limit, 1.894579 * se[2], 1e-5);
+  EXPECT_NE(with_blocks.find("tau_e")->reason.find("(Student's t, 7 degrees of freedom)"), std::string::npos)
+      << with_blocks.find("tau_e")->reason;
 
   // Inside the range nothing is held, even close to a bound.
   acc::AccParameters inside = p;

@@ -54,10 +54,11 @@ struct QuantityEstimate
   std::string held_by_bound;
   /// With held_by_bound: the 95 % interval's other end, on the range's side of the value. A
   /// parameter fitted at its bound b with standard error se is at b with probability >= 5 % for
-  /// true values up to b + 1.645 se (the fit is the bound whenever the unconstrained one falls
-  /// beyond it: Self & Liang 1987, a one-sided test at the boundary), so the quantity is
-  /// evaluated with each held parameter moved 1.645 se into the range (clamped to it). NaN
-  /// without a standard error.
+  /// true values up to b + t se (the fit is the bound whenever the unconstrained one falls beyond
+  /// it: Self & Liang 1987, a one-sided test at the boundary), so the quantity is evaluated with
+  /// each held parameter moved t se into the range (clamped to it); t is Student's one-sided 95 %
+  /// quantile with the sandwich's blocks - 1 degrees of freedom (1.895 for 8 blocks), the normal
+  /// 1.645 when the blocks are not known. NaN without a standard error.
   double one_sided_limit = std::numeric_limits<double>::quiet_NaN();
 
   /// [low, high] of the 95 % interval at a bound: the value and the one-sided limit, ordered.

@@ -19,4 +19,8 @@ double interpolatedQuantile(std::vector<double> values, double q);
 /// statistics library needed.
 double twoSidedNormalQuantile(double tail);
 
+/// Student's t with P(T > t) = upper_tail at `degrees_of_freedom` (Boost.Math): 1.895 for 0.05 at
+/// 7, towards 1.645 as they grow. NaN unless upper_tail is in (0, 1) and the degrees are above 0.
+double studentTUpperQuantile(double upper_tail, double degrees_of_freedom);
+
 }  // namespace acc
