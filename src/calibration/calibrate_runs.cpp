@@ -211,8 +211,7 @@ CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, cons
   report.quantities = identification.quantities;
   if (!settings.quiet)
     log << "Euler step check...\n";
-  report.euler_step_bias =
-      estimateEulerStepBias(report.calibration.parameters, report.uncertainty, training, options);
+  report.euler_step_bias = estimateEulerStepBias(identification, training, options);
   if (settings.grid_nodes > 0)
     checkOnGrid(training, options, settings, report, log);
   const std::vector<CarFollowingRun> whole_runs = runsOf(inputs);

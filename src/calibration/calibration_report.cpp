@@ -155,7 +155,7 @@ std::string boundIntervalsLine(const std::optional<IdentifiableQuantities>& quan
   for (const char* name : {"k1", "k2", "tau_e", "eta"})
   {
     const QuantityEstimate* q = quantities ? quantities->find(name) : nullptr;
-    if (q == nullptr || q->held_by_bound.empty() || !std::isfinite(q->one_sided_limit))
+    if (q == nullptr || !q->hasBoundInterval())
       continue;
     const auto [low, high] = q->boundInterval();
     cells += printfText("%s%s in [%.4g, %.4g] %s", cells.empty() ? "" : ", ", name, low, high, q->unit.c_str());

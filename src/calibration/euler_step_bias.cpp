@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -58,26 +59,28 @@ AccParameters withinBounds(const AccParameters& p, const ParameterBounds& b)
           std::clamp(p.tau_e_s, b.lower.tau_e_s, b.upper.tau_e_s), std::clamp(p.eta_m, b.lower.eta_m, b.upper.eta_m)};
 }
 
-/// "k1 -26 % (4.1 standard errors)" for each bias above half its standard error, "; "-separated.
-std::string materialBiases(const EulerStepBias& check, const ParameterUncertainty& uncertainty, double margin_error)
+/// "k1 -26 % (4.1 standard errors)" for each bias above half its standard error (the fit's
+/// quantities'), "; "-separated.
+std::string materialBiases(const EulerStepBias& check, const std::optional<IdentifiableQuantities>& quantities)
 {
   const char* names[5] = {"k1", "k2", "tau_e", "eta", "margin"};
+  const char* quantity_names[5] = {"k1", "k2", "tau_e", "eta", "stability_margin"};
   const double bias[5] = {check.bias.k1_per_s2, check.bias.k2_per_s, check.bias.tau_e_s, check.bias.eta_m,
                           check.margin_bias};
   const double value[5] = {check.fit.k1_per_s2, check.fit.k2_per_s, check.fit.tau_e_s, check.fit.eta_m,
                            stabilityMargin(check.fit)};
-  const AccParameters& se = uncertainty.standard_error;
-  const double error[5] = {se.k1_per_s2, se.k2_per_s, se.tau_e_s, se.eta_m, margin_error};
   std::string out;
   for (int i = 0; i < 5; ++i)
   {
-    // An error that is NaN (singular covariance) or 0 (none given) is nothing to compare with.
-    if (!(error[i] > 0.0) || !(std::abs(bias[i]) > 0.5 * error[i]))
+    const QuantityEstimate* q = quantities ? quantities->find(quantity_names[i]) : nullptr;
+    const double error = q != nullptr ? q->standard_error : EulerStepBias::kNaN;
+    // An error that is NaN (singular covariance, no quantities) or 0 is nothing to compare with.
+    if (!(error > 0.0) || !(std::abs(bias[i]) > 0.5 * error))
       continue;
     const std::string size = i < 4 && std::abs(value[i]) > 0.0 ? printfText("%+.1f %%", 100.0 * bias[i] / value[i])
                                                                 : printfText("%+.3g", bias[i]);
     out += printfText("%s%s %s (%.1f standard errors)", out.empty() ? "" : "; ", names[i], size.c_str(),
-                      std::abs(bias[i]) / error[i]);
+                      std::abs(bias[i]) / error);
   }
   return out;
 }
@@ -107,10 +110,10 @@ CarFollowingRun refineRun(const CarFollowingRun& run, std::size_t substeps)
   return fine;
 }
 
-EulerStepBias estimateEulerStepBias(const AccParameters& fit, const ParameterUncertainty& uncertainty,
-                                    const std::vector<CarFollowingRun>& runs, const IdentificationOptions& options,
-                                    std::size_t substeps)
+EulerStepBias estimateEulerStepBias(const Identification& fitted, const std::vector<CarFollowingRun>& runs,
+                                    const IdentificationOptions& options, std::size_t substeps)
 {
+  const AccParameters& fit = fitted.calibration.parameters;
   EulerStepBias check;
   check.fit = fit;
   check.substeps = std::max<std::size_t>(2, substeps);
@@ -149,12 +152,7 @@ EulerStepBias estimateEulerStepBias(const AccParameters& fit, const ParameterUnc
   check.corrected = withinBounds(difference(fit, check.bias), options.bounds);
   check.margin_bias = stabilityMargin(check.refit) - stabilityMargin(fit);
   check.corrected_margin = stabilityMargin(check.corrected);
-  const Eigen::Vector4d gradient(fit.tau_e_s * fit.tau_e_s, 2.0 * fit.tau_e_s,
-                                 2.0 * fit.k1_per_s2 * fit.tau_e_s + 2.0 * fit.k2_per_s, 0.0);
-  const double margin_error = uncertainty.covariance.allFinite()
-                                  ? std::sqrt(std::max(0.0, gradient.dot(uncertainty.covariance * gradient)))
-                                  : EulerStepBias::kNaN;
-  check.material_because = materialBiases(check, uncertainty, margin_error);
+  check.material_because = materialBiases(check, fitted.quantities);
   check.material = !check.material_because.empty();
   return check;
 }
@@ -193,12 +191,16 @@ std::string describeEulerStepBias(const EulerStepBias& check)
     out << "under half of every standard error, immaterial\n";
     return out.str();
   }
-  const AccParameters& c = check.corrected;
-  out << "MATERIAL: " << check.material_because << "\n"
-      << printfText("  corrected (fit - bias): k1 %.4f k2 %.4f tau_e %.4f eta %.3f margin %+.3f; a higher "
-                    "recording rate shrinks the bias in proportion to the step\n",
-                    c.k1_per_s2, c.k2_per_s, c.tau_e_s, c.eta_m, check.corrected_margin);
+  out << "MATERIAL: " << check.material_because << "\n  " << correctedFitText(check)
+      << "; a higher recording rate shrinks the bias in proportion to the step\n";
   return out.str();
+}
+
+std::string correctedFitText(const EulerStepBias& check)
+{
+  const AccParameters& c = check.corrected;
+  return printfText("corrected (fit - bias): k1 %.4f k2 %.4f tau_e %.4f eta %.3f margin %+.3f", c.k1_per_s2,
+                    c.k2_per_s, c.tau_e_s, c.eta_m, check.corrected_margin);
 }
 
 }  // namespace acc

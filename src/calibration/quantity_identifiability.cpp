@@ -159,6 +159,11 @@ QuantityEstimate assess(const QuantityContext& c, const QuantityDefinition& d, d
 }
 }  // namespace
 
+bool QuantityEstimate::hasBoundInterval() const
+{
+  return !held_by_bound.empty() && std::isfinite(one_sided_limit);
+}
+
 std::pair<double, double> QuantityEstimate::boundInterval() const
 {
   return std::minmax(value, one_sided_limit);
@@ -241,13 +246,15 @@ IdentifiableQuantities assessQuantities(const AccParameters& fit, const Paramete
     const QuantityDefinition gap{name, "m", [speed](const Eigen::Vector4d& t) { return t[3] + t[2] * speed; },
                                  Eigen::Vector4d(0.0, 0.0, speed, 1.0)};
     const double scale = std::max(std::abs(gap.value(theta)), criteria.gap_scale_floor_m);
-    QuantityEstimate q = assess(context, gap, scale, criteria.max_relative_error_gap * scale, gap_fraction.str());
-    q.speed_mps = v;
-    if (!std::isfinite(v))
+    QuantityEstimate q;
+    if (std::isfinite(v))
+      q = assess(context, gap, scale, criteria.max_relative_error_gap * scale, gap_fraction.str());
+    else
     {
-      q = judge(name, "m", q.value, kNaN, scale, 0.0, uncertainty, "");
+      q = judge(name, "m", gap.value(theta), kNaN, scale, 0.0, uncertainty, "");
       q.reason = "no follower speed in the data";
     }
+    q.speed_mps = v;
     result.quantities.push_back(q);
   }
 
@@ -282,7 +289,7 @@ nlohmann::json toJson(const IdentifiableQuantities& quantities)
     {
       const auto [low, high] = q.boundInterval();
       item["held_by_bound"] = q.held_by_bound;
-      item["interval_95"] = std::isfinite(q.one_sided_limit) ? nlohmann::json{low, high} : nlohmann::json();
+      item["interval_95"] = q.hasBoundInterval() ? nlohmann::json{low, high} : nlohmann::json();
     }
     items[q.name] = item;
   }
@@ -308,11 +315,13 @@ void printQuantities(const IdentifiableQuantities& quantities, std::ostream& out
     char value[32], error[32];
     const char* open = q.determined ? "" : "(";
     const char* close = q.determined ? "" : ")";
-    const bool interval = !q.held_by_bound.empty() && std::isfinite(q.one_sided_limit);
-    const auto [low, high] = interval ? q.boundInterval() : std::pair<double, double>{q.value, q.standard_error};
-    std::snprintf(value, sizeof value, "%s%.4g", open, low);
-    if (interval || std::isfinite(high))
-      std::snprintf(error, sizeof error, interval ? "%.4g%s" : "%.3g%s", high, close);
+    const bool interval = q.hasBoundInterval();
+    const auto [low, high] = q.boundInterval();
+    std::snprintf(value, sizeof value, "%s%.4g", open, interval ? low : q.value);
+    if (interval)
+      std::snprintf(error, sizeof error, "%.4g%s", high, close);
+    else if (std::isfinite(q.standard_error))
+      std::snprintf(error, sizeof error, "%.3g%s", q.standard_error, close);
     else
       std::snprintf(error, sizeof error, "-%s", close);
     const std::string verdict = q.determined ? "determined" : "NOT determined: " + q.reason;

@@ -58,7 +58,7 @@ std::string valuePlusMinus(const GroupResult& group, const std::string& name, co
   if (q == nullptr)
     return "-";
   const auto [low, high] = q->boundInterval();
-  const std::string cell = !q->held_by_bound.empty() && std::isfinite(q->one_sided_limit)
+  const std::string cell = q->hasBoundInterval()
                                ? cellNumber(pattern, low) + " to " + cellNumber(pattern, high)
                                : cellNumber(pattern, q->value) + "+-" + cellNumber(pattern, q->standard_error);
   return q->determined ? cell : "(" + cell + ")";
@@ -664,14 +664,12 @@ std::vector<std::vector<std::string>> groupRows(const CampaignResult& result)
   return rows;
 }
 
-/// "the Euler step at the data's rate (0.5 s) moves k1 -15.4 % (...): corrected (fit - bias) k1 ..."
+/// "the Euler step at the data's rate (median 0.5 s) moves k1 -15.4 % (...); corrected (fit - bias): k1 ..."
 std::string eulerStepNote(const EulerStepBias& check)
 {
-  const AccParameters& c = check.corrected;
-  return printfText("the Euler step at the data's rate (median %.3g s) moves %s; corrected (fit - bias): k1 %.4f "
-                    "k2 %.4f tau_e %.4f eta %.3f margin %+.3f",
-                    check.median_step_s, check.material_because.c_str(), c.k1_per_s2, c.k2_per_s, c.tau_e_s, c.eta_m,
-                    check.corrected_margin);
+  return printfText("the Euler step at the data's rate (median %.3g s) moves %s; ", check.median_step_s,
+                    check.material_because.c_str()) +
+         correctedFitText(check);
 }
 
 std::vector<std::string> groupNotes(const CampaignResult& result)

@@ -67,8 +67,7 @@ GroupResult identifyGroup(const CampaignGroup& group, const GroupIdentificationO
     {
       result.model_adequacy = assessModelAdequacy(result.identification.calibration.parameters, segments, {},
                                                   result.identification.uncertainty.standard_error);
-      result.euler_step_bias = estimateEulerStepBias(result.identification.calibration.parameters,
-                                                     result.identification.uncertainty, segments, identification);
+      result.euler_step_bias = estimateEulerStepBias(result.identification, segments, identification);
     }
     else
       result.model_adequacy.reasons = {"not assessed: no fit (" + result.reason + ")"};

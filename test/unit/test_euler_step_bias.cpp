@@ -23,6 +23,15 @@ acc::CarFollowingRun drive(double step_s)
   return acc::synthesizeRun(kTruth, 600.0, step_s, 15.0, 41, noise);
 }
 
+/// A fit given by hand: its parameters, no standard errors.
+acc::Identification fitOnly(const acc::AccParameters& p)
+{
+  acc::Identification id;
+  id.solved = true;
+  id.calibration.parameters = p;
+  return id;
+}
+
 TEST(EulerStepBias, RefinedRunKeepsTheSamplesAndInterpolatesBetweenThem)
 {
   acc::CarFollowingRun run;
@@ -53,7 +62,7 @@ TEST(EulerStepBias, AtTwoHertzTheCheckFindsTheBiasTheTruthShows)
   const acc::Identification id = acc::identifyAcc({run}, options);
   ASSERT_TRUE(id.solved);
   const acc::AccParameters& fit = id.calibration.parameters;
-  const acc::EulerStepBias check = acc::estimateEulerStepBias(fit, id.uncertainty, {run}, options);
+  const acc::EulerStepBias check = acc::estimateEulerStepBias(id, {run}, options);
   ASSERT_TRUE(check.assessed) << check.reason;
   EXPECT_NEAR(check.median_step_s, 0.5, 1e-9);
   const double actual_k1 = fit.k1_per_s2 - kTruth.k1_per_s2, actual_k2 = fit.k2_per_s - kTruth.k2_per_s;
@@ -73,7 +82,7 @@ TEST(EulerStepBias, AtTwoHertzTheCheckFindsTheBiasTheTruthShows)
   const acc::CarFollowingRun fast = drive(0.1);
   const acc::Identification fast_id = acc::identifyAcc({fast}, options);
   const acc::EulerStepBias fast_check =
-      acc::estimateEulerStepBias(fast_id.calibration.parameters, fast_id.uncertainty, {fast}, options);
+      acc::estimateEulerStepBias(fast_id, {fast}, options);
   ASSERT_TRUE(fast_check.assessed) << fast_check.reason;
   EXPECT_LT(std::abs(fast_check.margin_bias), 0.35 * std::abs(check.margin_bias));
   EXPECT_GT(std::abs(fast_check.margin_bias), 0.0);
@@ -85,8 +94,7 @@ TEST(EulerStepBias, TheCorrectionKeepsAParameterHeldAtItsBoundThere)
   // would be a negative gain; the corrected fit stays at the bound, and its margin is its own.
   const acc::AccParameters at_bound{0.25, 0.0, 2.0, 5.0};
   const auto run = acc::synthesizeRun(at_bound, 600.0, 1.0, 15.0, 7);
-  const acc::EulerStepBias check =
-      acc::estimateEulerStepBias(at_bound, acc::ParameterUncertainty{}, {run}, acc::IdentificationOptions{});
+  const acc::EulerStepBias check = acc::estimateEulerStepBias(fitOnly(at_bound), {run}, acc::IdentificationOptions{});
   ASSERT_TRUE(check.assessed) << check.reason;
   EXPECT_GT(check.bias.k2_per_s, 0.0);
   EXPECT_DOUBLE_EQ(check.corrected.k2_per_s, 0.0);
@@ -96,8 +104,7 @@ TEST(EulerStepBias, TheCorrectionKeepsAParameterHeldAtItsBoundThere)
 
 TEST(EulerStepBias, WithoutDataItSaysWhyNothingWasAssessed)
 {
-  const acc::EulerStepBias check =
-      acc::estimateEulerStepBias(kTruth, acc::ParameterUncertainty{}, {}, acc::IdentificationOptions{});
+  const acc::EulerStepBias check = acc::estimateEulerStepBias(fitOnly(kTruth), {}, acc::IdentificationOptions{});
   EXPECT_FALSE(check.assessed);
   EXPECT_FALSE(check.reason.empty());
   EXPECT_NE(acc::describeEulerStepBias(check).find("not assessed: "), std::string::npos);
@@ -126,7 +133,7 @@ TEST(EulerStepBias, GrowsWithTheRecordingStepAsTheTableInResultsSays)
       const acc::Identification id = acc::identifyAcc({run}, options);
       ASSERT_TRUE(id.solved);
       const acc::AccParameters& fit = id.calibration.parameters;
-      const acc::EulerStepBias check = acc::estimateEulerStepBias(fit, id.uncertainty, {run}, options);
+      const acc::EulerStepBias check = acc::estimateEulerStepBias(id, {run}, options);
       ASSERT_TRUE(check.assessed) << check.reason;
       truth[0] += (fit.k1_per_s2 / kTruth.k1_per_s2 - 1.0) / 3.0;
       truth[1] += (fit.k2_per_s / kTruth.k2_per_s - 1.0) / 3.0;

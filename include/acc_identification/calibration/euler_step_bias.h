@@ -7,7 +7,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "acc_identification/calibration/fit_statistics.h"
 #include "acc_identification/calibration/identification.h"
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/car_following_run.h"
@@ -46,13 +45,13 @@ struct EulerStepBias
   std::string material_because;  ///< which, "k1 -26 % (4.1 standard errors)"; empty when immaterial
 };
 
-/// The check above for `fit` (identifyAcc's on `runs`, with its standard errors), refitted with
-/// the same options (its bounds and starts; the fit as a warm start; not its excitation gate,
-/// which the data passed). Not assessed when the continuous-law response diverges or the refit
-/// fails (no data); the reason says so.
-EulerStepBias estimateEulerStepBias(const AccParameters& fit, const ParameterUncertainty& uncertainty,
-                                    const std::vector<CarFollowingRun>& runs, const IdentificationOptions& options,
-                                    std::size_t substeps = 10);
+/// The check above for identifyAcc's fit on `runs` (its parameters; its quantities' standard
+/// errors, where it has them, say what is material), refitted with the same options (its bounds
+/// and starts; the fit as a warm start; not its excitation gate, which the data passed). Not
+/// assessed when the continuous-law response diverges or the refit fails (no data); the reason
+/// says so.
+EulerStepBias estimateEulerStepBias(const Identification& fitted, const std::vector<CarFollowingRun>& runs,
+                                    const IdentificationOptions& options, std::size_t substeps = 10);
 
 /// The run with every step cut into `substeps` equal steps: the leader's speed (and the other
 /// columns) linear between the samples, the samples themselves kept at index k * substeps.
@@ -64,5 +63,9 @@ nlohmann::json toJson(const EulerStepBias& check);
 
 /// The report's lines: what the step moves, and whether that matters against the standard errors.
 std::string describeEulerStepBias(const EulerStepBias& check);
+
+/// "corrected (fit - bias): k1 0.0741 k2 0.5669 tau_e 1.0239 eta 5.676 margin -0.761", as the
+/// report and the campaign's notes say it.
+std::string correctedFitText(const EulerStepBias& check);
 
 }  // namespace acc

@@ -61,6 +61,8 @@ struct QuantityEstimate
   /// 1.645 when the blocks are not known. NaN without a standard error.
   double one_sided_limit = std::numeric_limits<double>::quiet_NaN();
 
+  /// Held at a bound with a one-sided limit to show (not without a standard error).
+  bool hasBoundInterval() const;
   /// [low, high] of the 95 % interval at a bound: the value and the one-sided limit, ordered.
   std::pair<double, double> boundInterval() const;
 };
