@@ -76,7 +76,8 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_synthetic_runs.cpp
     test/unit/test_model_adequacy.cpp
     test/unit/test_model_dip_check.cpp
-    test/unit/test_euler_step_bias.cpp)
+    test/unit/test_euler_step_bias.cpp
+    test/unit/test_standard_error_coverage.cpp)
   target_compile_definitions(test_calibration PRIVATE ACC_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/test/data/runs")
   target_link_libraries(test_calibration acc_calibration acc_run_io acc_synthetic_runs)
 

@@ -16,6 +16,33 @@ namespace
 {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+/// The covariance of the estimate that the runs' measured start gaps carry (fit_statistics.h):
+/// sum over runs of sigma_i^2 d_i d_i^T, d_i = bread J_i^T J_i,eta. Sets the result's
+/// start_gap_noise_m (RMS of the sigma_i the term uses).
+Eigen::Matrix4d startGapCovariance(const std::vector<SensitivityRows>& rows, const std::vector<CarFollowingRun>& runs,
+                                   const Eigen::Matrix4d& bread, ParameterUncertainty* result)
+{
+  Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
+  double noise_sq = 0.0;
+  std::size_t noisy_runs = 0;
+  for (std::size_t i = 0; i < runs.size(); ++i)
+  {
+    const double sigma = gapSampleNoiseM(runs[i]);
+    if (!std::isfinite(sigma))
+      continue;
+    Eigen::Vector4d score = Eigen::Vector4d::Zero();  // J_i^T J_i,eta: a start-gap error acts as -eta
+    for (const Eigen::Vector4d& row : rows[i].row)
+      score += row * row(3);
+    const Eigen::Vector4d move = bread * score;
+    covariance += sigma * sigma * move * move.transpose();
+    noise_sq += sigma * sigma;
+    ++noisy_runs;
+  }
+  if (noisy_runs > 0)
+    result->start_gap_noise_m = std::sqrt(noise_sq / static_cast<double>(noisy_runs));
+  return covariance;
+}
+
 }  // namespace
 
 FitQuality evaluateFit(const AccParameters& p, const std::vector<CarFollowingRun>& runs)
@@ -123,7 +150,9 @@ ParameterUncertainty estimateUncertainty(const AccParameters& p, const std::vect
       unit.asDiagonal();
   // n / (n - 4): the usual small-sample correction for four fitted parameters.
   const double correction = static_cast<double>(samples) / static_cast<double>(samples - 4);
-  result.covariance = correction * bread * meat * bread;
+  const Eigen::Matrix4d start_gaps = startGapCovariance(all, runs, bread, &result);
+  result.eta_start_gap_error_m = std::sqrt(std::max(0.0, start_gaps(3, 3)));
+  result.covariance = correction * bread * meat * bread + start_gaps;
   const Eigen::Vector4d se = result.covariance.diagonal().cwiseSqrt();
   result.standard_error = AccParameters{se(0), se(1), se(2), se(3)};
   return result;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <iomanip>
 #include <ostream>
 #include <limits>
 #include <sstream>
@@ -198,7 +199,13 @@ IdentifiableQuantities assessQuantities(const AccParameters& fit, const Paramete
 {
   IdentifiableQuantities result;
   result.reciprocal_condition = uncertainty.reciprocal_condition;
-  result.basis = "Gauss-Newton sandwich covariance (batch means) at the fit, delta method for derived quantities";
+  std::ostringstream basis;
+  basis << "Gauss-Newton sandwich covariance (batch means) at the fit";
+  if (std::isfinite(uncertainty.start_gap_noise_m))
+    basis << ", plus the measured start gaps' noise (" << std::setprecision(2) << uncertainty.start_gap_noise_m
+          << " m, eta +- " << uncertainty.eta_start_gap_error_m << " m from it alone)";
+  basis << ", delta method for derived quantities";
+  result.basis = basis.str();
   const Eigen::Vector4d theta = asVector(fit);
   const QuantityContext context{theta, uncertainty, bounds, criteria};
   const double floors[4] = {criteria.parameter_scale_floor.k1_per_s2, criteria.parameter_scale_floor.k2_per_s,

@@ -1,6 +1,8 @@
 #include "acc_identification/model/car_following_run.h"
+#include "acc_identification/model/sample_statistics.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -39,6 +41,20 @@ double gapChangeBySpeedsM(const CarFollowingRun& run, std::size_t k)
   const double relative_before = run.leader_speed_mps[k - 1] - run.follower_speed_mps[k - 1];
   const double relative_after = run.leader_speed_mps[k] - run.follower_speed_mps[k];
   return 0.5 * (relative_before + relative_after) * (run.time_s[k] - run.time_s[k - 1]);
+}
+
+double gapSampleNoiseM(const CarFollowingRun& run)
+{
+  if (run.size() < 11)
+    return std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> mismatches;
+  for (std::size_t k = 1; k < run.size(); ++k)
+    mismatches.push_back(run.space_gap_m[k] - run.space_gap_m[k - 1] - gapChangeBySpeedsM(run, k));
+  const double median = interpolatedQuantile(mismatches, 0.5);
+  for (double& m : mismatches)
+    m = std::abs(m - median);
+  constexpr double kMadToStandardDeviation = 1.4826;  // for normal noise
+  return kMadToStandardDeviation * interpolatedQuantile(mismatches, 0.5) / std::sqrt(2.0);
 }
 
 CarFollowingRun CarFollowingRun::slice(std::size_t first, std::size_t end, const std::string& name_suffix) const

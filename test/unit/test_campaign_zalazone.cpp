@@ -336,8 +336,12 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesATimingEffectAndNotTheBrakingTerm
   // cars without data, a model-free prediction's distance lost), with the reason beside the table.
   std::istringstream report_lines(report);
   for (std::string line; std::getline(report_lines, line);)
+  {
     if (line.rfind("|", 0) == 0)
+    {
       EXPECT_EQ(line.find("NaN"), std::string::npos) << line;
+    }
+  }
   EXPECT_NE(report.find("| dynamic_part26/S | 1 | 1 | SMART_TARGET | 2.33 | 2.33 | 2.33 | - |"), std::string::npos);
   EXPECT_EQ(printed.find("NaN"), std::string::npos);
 }

@@ -40,6 +40,15 @@ std::vector<double> sliceRows(const std::vector<double>& column, std::size_t fir
 /// of (leader - follower) speed over the step [m]. 1 <= k < run.size().
 double gapChangeBySpeedsM(const CarFollowingRun& run, std::size_t k);
 
+/// The sample-to-sample part of the gap's measurement error [m]: the standard deviation of white
+/// noise on the gap that would make the steps' mismatch (s_k - s_k-1) - gapChangeBySpeedsM(run, k)
+/// as spread as it is: 1.4826 MAD of the mismatches over sqrt(2) (white gap noise of standard
+/// deviation sigma puts 2 sigma^2 into each step; the speeds' own noise adds h^2 of theirs, which
+/// at 10 Hz is nothing). Robust to the odd jump. What it cannot see is an error that stays over
+/// many samples (an antenna offset, slow multipath): to the data that is the gap. NaN with fewer
+/// than 10 steps.
+double gapSampleNoiseM(const CarFollowingRun& run);
+
 /// Checks the run's invariants (equal column lengths, at least two samples, strictly increasing
 /// time, finite values). Returns an empty string when the run is usable, else why it is not.
 std::string describeRunProblem(const CarFollowingRun& run);

@@ -1,0 +1,108 @@
+// Whether the standard errors of the fit mean what they say: over seeded synthetic drives, how
+// often the fit lies within 1.96 standard errors of the noise-free fit of the same drive (the
+// estimate the noise moves; the discretisation bias, which the standard errors do not describe,
+// is test_euler_step_bias's); and the gap noise the start-gap term takes (gapSampleNoiseM).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "acc_identification/calibration/identification.h"
+#include "acc_identification/model/paper_settings.h"
+#include "acc_identification/model/sample_statistics.h"
+#include "acc_identification/synthesis/synthetic_runs.h"
+
+namespace
+{
+constexpr const char* kQuantities[] = {"k1", "k2", "tau_e", "eta", "stability_margin"};
+constexpr std::size_t kCount = sizeof kQuantities / sizeof kQuantities[0];
+
+struct Coverage
+{
+  std::size_t drives = 0;
+  double covered[kCount] = {};
+  double covered_t[kCount] = {};  ///< within Student's t (blocks - 1 degrees of freedom) standard errors
+  double blocks = 0.0;
+  double squared_error[kCount] = {};
+  double standard_error[kCount] = {};
+};
+
+/// `drives` seeded drives of `duration_s` behind the paper's minimum setting, with `noise`.
+Coverage measureCoverage(double duration_s, std::uint32_t drives, const acc::MeasurementNoise& noise)
+{
+  Coverage c;
+  for (std::uint32_t seed = 1; seed <= drives; ++seed)
+  {
+    const acc::AccParameters truth = acc::paperMinimumSetting();
+    const auto noisy = acc::identifyAcc({acc::synthesizeRun(truth, duration_s, 0.1, 20.0, seed, noise)}, {});
+    const auto clean = acc::identifyAcc({acc::synthesizeRun(truth, duration_s, 0.1, 20.0, seed, {0.0, 0.0})}, {});
+    EXPECT_TRUE(noisy.quantities && clean.quantities) << "seed " << seed << ": " << noisy.note << clean.note;
+    if (!noisy.quantities || !clean.quantities)
+      continue;
+    ++c.drives;
+    const double blocks = static_cast<double>(noisy.uncertainty.blocks);
+    const double t = acc::studentTUpperQuantile(0.025, blocks - 1.0);
+    c.blocks += blocks;
+    for (std::size_t i = 0; i < kCount; ++i)
+    {
+      const acc::QuantityEstimate* estimate = noisy.quantities->find(kQuantities[i]);
+      const double error = estimate->value - clean.quantities->find(kQuantities[i])->value;
+      c.covered[i] += std::abs(error) <= 1.96 * estimate->standard_error;
+      c.covered_t[i] += std::abs(error) <= t * estimate->standard_error;
+      c.squared_error[i] += error * error;
+      c.standard_error[i] += estimate->standard_error;
+    }
+  }
+  std::printf("  %.0f s drives (%zu, %.0f blocks), speed noise %.2f m/s, gap noise %.2f m:\n", duration_s, c.drives,
+              c.blocks / c.drives, noise.speed_std_mps, noise.gap_std_m);
+  for (std::size_t i = 0; i < kCount; ++i)
+    std::printf("    %-16s within 1.96 se %3.0f %%, within t se %3.0f %%   RMS error %.4g   mean se %.4g\n",
+                kQuantities[i], 100.0 * c.covered[i] / c.drives, 100.0 * c.covered_t[i] / c.drives,
+                std::sqrt(c.squared_error[i] / c.drives), c.standard_error[i] / c.drives);
+  return c;
+}
+
+// Each simulation starts from one measured gap, and eta takes its error whole: without the
+// start-gap term, eta's 95 % intervals covered 62 % of the 120 s drives, its standard error half
+// of its RMS error. The other quantities are printed for RESULTS.md (short drives run short).
+TEST(StandardErrorCoverage, EtaCoversTheMeasuredStartGapsError)
+{
+  constexpr std::size_t eta = 3;
+  for (double duration_s : {60.0, 120.0, 300.0})
+  {
+    const Coverage c = measureCoverage(duration_s, 40, {});
+    if (duration_s < 100.0)
+      continue;  // 9 blocks: every standard error runs short (RESULTS.md)
+    EXPECT_GE(c.covered[eta] / c.drives, 0.85) << duration_s << " s";
+    EXPECT_GT(c.standard_error[eta] / c.drives, 0.75 * std::sqrt(c.squared_error[eta] / c.drives)) << duration_s;
+  }
+}
+
+// Gap noise alone moves eta and nothing else, by the noise whatever the drive's length.
+TEST(StandardErrorCoverage, GapNoiseAloneMovesEtaByItsSizeAtAnyLength)
+{
+  for (double duration_s : {60.0, 300.0})
+  {
+    const Coverage c = measureCoverage(duration_s, 20, {0.0, 0.4});
+    constexpr std::size_t eta = 3;
+    const double mean_se = c.standard_error[eta] / c.drives;
+    EXPECT_GT(mean_se, 0.35) << duration_s << " s";
+    EXPECT_LT(mean_se, 0.45) << duration_s << " s";
+    EXPECT_GE(c.covered[eta] / c.drives, 0.85) << duration_s << " s";
+  }
+}
+TEST(GapSampleNoise, RecoversWhiteGapNoiseAndIgnoresAJump)
+{
+  const acc::AccParameters truth = acc::paperMinimumSetting();
+  acc::CarFollowingRun noisy = acc::synthesizeRun(truth, 120.0, 0.1, 20.0, 5, {0.06, 0.4});
+  EXPECT_NEAR(acc::gapSampleNoiseM(noisy), 0.4, 0.04);
+  for (std::size_t k = 600; k < noisy.size(); ++k)
+    noisy.space_gap_m[k] += 10.0;  // a lost target's jump: one step of the 1200
+  EXPECT_NEAR(acc::gapSampleNoiseM(noisy), 0.4, 0.04);
+  // Speed noise alone integrates into no step mismatch worth a centimetre at 10 Hz.
+  EXPECT_LT(acc::gapSampleNoiseM(acc::synthesizeRun(truth, 120.0, 0.1, 20.0, 5, {0.06, 0.0})), 0.01);
+  EXPECT_TRUE(std::isnan(acc::gapSampleNoiseM(acc::synthesizeRun(truth, 0.9, 0.1, 20.0, 5))));
+}
+
+}  // namespace
