@@ -109,6 +109,13 @@ if(CATKIN_ENABLE_TESTING)
   target_link_libraries(test_identifier_rostest acc_calibration acc_synthetic_runs ${catkin_LIBRARIES})
   add_dependencies(test_identifier_rostest ${PROJECT_NAME}_generate_messages_cpp identifier_node)
 
+  # A 1 Hz stream: the Euler step checked live, and a ~max_gap_s below the step said to be one.
+  add_rostest_gtest(test_identifier_coarse_rostest test/rostest/identifier_coarse.test
+    test/rostest/identifier_coarse_check.cpp)
+  target_include_directories(test_identifier_coarse_rostest PRIVATE include ${catkin_INCLUDE_DIRS})
+  target_link_libraries(test_identifier_coarse_rostest acc_synthetic_runs ${catkin_LIBRARIES})
+  add_dependencies(test_identifier_coarse_rostest ${PROJECT_NAME}_generate_messages_cpp identifier_node)
+
   # The node's wrapper in the test process with an injected solve: input faults, throwing solves.
   add_rostest_gtest(test_identifier_faults_rostest test/rostest/identifier_faults.test
     test/rostest/identifier_faults_check.cpp)

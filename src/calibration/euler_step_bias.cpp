@@ -19,15 +19,6 @@ namespace acc
 {
 namespace
 {
-double medianStepS(const std::vector<CarFollowingRun>& runs)
-{
-  std::vector<double> steps;
-  for (const CarFollowingRun& run : runs)
-    for (std::size_t k = 1; k < run.size(); ++k)
-      steps.push_back(run.time_s[k] - run.time_s[k - 1]);
-  return steps.empty() ? EulerStepBias::kNaN : interpolatedQuantile(steps, 0.5);
-}
-
 /// The fit's response to the run's leader under the continuous law (Euler on the refined run),
 /// at the run's own times: the data a noise-free car obeying the fit would have recorded.
 bool continuousResponse(const AccParameters& fit, const CarFollowingRun& run, std::size_t substeps,
@@ -85,6 +76,15 @@ std::string materialBiases(const EulerStepBias& check, const std::optional<Ident
   return out;
 }
 }  // namespace
+
+double medianStepS(const std::vector<CarFollowingRun>& runs)
+{
+  std::vector<double> steps;
+  for (const CarFollowingRun& run : runs)
+    for (std::size_t k = 1; k < run.size(); ++k)
+      steps.push_back(run.time_s[k] - run.time_s[k - 1]);
+  return steps.empty() ? EulerStepBias::kNaN : interpolatedQuantile(steps, 0.5);
+}
 
 CarFollowingRun refineRun(const CarFollowingRun& run, std::size_t substeps)
 {

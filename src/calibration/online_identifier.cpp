@@ -28,6 +28,7 @@ void OnlineIdentifier::resetDrive()
   drive_warm_start_.reset();
   last_stability_.reset();
   last_stability_samples_ = 0;
+  last_euler_step_.reset();
 }
 
 Identification OnlineIdentifier::solveDrive(const std::vector<CarFollowingRun>& drive_segments,
@@ -56,6 +57,16 @@ StabilityTestResult OnlineIdentifier::testDrive(const std::vector<CarFollowingRu
   StabilityTestOptions test_options = options_.stability;
   test_options.warm_starts = {drive_fit};
   return testStringStability(drive_segments, test_options);
+}
+
+std::optional<EulerStepBias> OnlineIdentifier::checkEulerStep(const std::vector<CarFollowingRun>& drive_segments,
+                                                             const Identification& drive) const
+{
+  if (!drive.solved || drive.calibration.diverged || !(medianStepS(drive_segments) >= options_.euler_check_min_step_s))
+    return std::nullopt;
+  IdentificationOptions options = options_.window;
+  options.multistart.progress = nullptr;
+  return estimateEulerStepBias(drive, drive_segments, options);
 }
 
 OnlineUpdate OnlineIdentifier::update(const std::vector<CarFollowingRun>& window_segments,
@@ -92,11 +103,13 @@ OnlineUpdate OnlineIdentifier::update(const std::vector<CarFollowingRun>& window
     start = std::chrono::steady_clock::now();
     last_stability_ = testDrive(drive_segments, result.drive.calibration.parameters);
     last_stability_samples_ = result.drive_samples;
+    last_euler_step_ = checkEulerStep(drive_segments, result.drive);
     result.stability_ran_now = true;
     result.stability_cpu_s = secondsSince(start);
   }
   result.stability = last_stability_;
   result.stability_drive_samples = last_stability_samples_;
+  result.euler_step = last_euler_step_;
   return result;
 }
 

@@ -1,7 +1,9 @@
 #include "acc_identification/calibration/sliding_window.h"
+#include "acc_identification/model/sample_statistics.h"
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace acc
 {
@@ -131,6 +133,23 @@ std::vector<CarFollowingRun> SlidingWindow::segments(std::size_t* short_pieces) 
     *short_pieces = short_count;
   }
   return result;
+}
+
+std::string SlidingWindow::describeShortPieces(std::size_t short_pieces) const
+{
+  if (short_pieces == 0)
+    return "";
+  std::vector<double> steps;
+  for (std::size_t k = 1; k < samples_.size(); ++k)
+    steps.push_back(samples_[k].time_s - samples_[k - 1].time_s);
+  const double median_step_s = interpolatedQuantile(steps, 0.5);
+  std::ostringstream out;
+  out << short_pieces << (short_pieces == 1 ? " piece" : " pieces") << " of fewer than " << min_segment_samples_
+      << " samples between holes longer than " << max_gap_s_ << " s or invalid samples not simulated";
+  if (median_step_s > max_gap_s_)
+    out << ": the samples' median step, " << median_step_s << " s, is itself such a hole (a receiver at "
+        << 1.0 / median_step_s << " Hz); max_gap_s must exceed the step";
+  return out.str();
 }
 
 std::size_t SlidingWindow::letGo(std::size_t first, std::size_t count)

@@ -113,6 +113,15 @@ void fillDrive(const OnlineUpdate& update, double drive_start_s, acc_identificat
   setQuantity(q, "stability_margin", m.drive_stability_margin, m.drive_stability_margin_std_error);
   m.drive_rmse_speed_mps = update.drive.solved ? update.drive.fit.rmse_speed_mps : kNaN;
   m.drive_note = !update.drive.solved ? update.drive.note : quantitiesNote(q);
+  if (update.euler_step)
+  {
+    // One line, as every note: the check's report without its line breaks.
+    std::string check = describeEulerStepBias(*update.euler_step);
+    std::replace(check.begin(), check.end(), '\n', ' ');
+    while (!check.empty() && check.back() == ' ')
+      check.pop_back();
+    m.drive_note += (m.drive_note.empty() ? "" : "; ") + check;
+  }
 }
 
 /// The sequential verdict's fields (the node's published verdict).
@@ -229,6 +238,12 @@ bool loadIdentifierSettings(const ros::NodeHandle& p, IdentifierSettings& s, std
             "in [0, 0.5)";
     return false;
   }
+  p.param("euler_check_min_step_s", s.euler_check_min_step_s, s.euler_check_min_step_s);
+  if (!(s.euler_check_min_step_s >= 0.0))
+  {
+    error = "parameter ~euler_check_min_step_s must be 0 or more (a large value: never)";
+    return false;
+  }
   p.param("min_speed_std_mps", c.min_speed_std_mps, c.min_speed_std_mps);
   if (s.starts < 0 || c.min_speed_std_mps < 0.0)
   {
@@ -302,6 +317,7 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node,
   options.drive_max_evaluations_per_start = settings_.drive_max_evaluations;
   options.stability_every_updates = 0;  // on the stability thread instead
   options.stability.alpha = settings_.alpha;
+  options.euler_check_min_step_s = settings_.euler_check_min_step_s;
   identifier_.emplace(options);
   SequentialVerdictOptions verdict_options;
   verdict_options.alpha = settings_.alpha;
@@ -422,7 +438,9 @@ void IdentifierRos::onPeriod(const ros::TimerEvent& event)
     {
       return;
     }
-    job.segments = window_.segments();
+    std::size_t short_pieces = 0;
+    job.segments = window_.segments(&short_pieces);
+    job.short_pieces_note = window_.describeShortPieces(short_pieces);
     job.drive_segments = drive_.segments();
     job.window_start_s = window_.startTimeS();
     job.window_end_s = window_.endTimeS();
@@ -502,6 +520,7 @@ void IdentifierRos::runJob(Job& job)
     ++drive_resets_;
     std::lock_guard<std::mutex> lock(stability_mutex_);
     stability_result_.reset();
+    euler_step_result_.reset();
     ++drive_generation_;
   }
   OnlineUpdate update = solve_(*identifier_, job.segments, job.drive_segments);
@@ -520,12 +539,19 @@ void IdentifierRos::runJob(Job& job)
   {
     std::lock_guard<std::mutex> lock(stability_mutex_);
     update.sequential = stability_result_;
+    update.euler_step = euler_step_result_;
   }
   if (job.test_stability)
   {
     offerStabilityJob(job, update);
   }
   acc_identification::AccParameters message = toMessage(update, job.window_start_s, job.window_end_s, job.drive_start_s);
+  if (!job.short_pieces_note.empty())
+  {
+    // Samples the window holds but cannot simulate: said, never dropped silently.
+    message.identifiability_note += (message.identifiability_note.empty() ? "" : "; ") + job.short_pieces_note;
+    ROS_WARN_THROTTLE(10.0, "identifier: %s", job.short_pieces_note.c_str());
+  }
   message.drive_samples_let_go = static_cast<std::uint32_t>(job.drive_samples_let_go);
   // The drive fit judged on the drive so far: one simulation and one autocorrelation scan (a few
   // milliseconds on a 3-hour drive), so every message says whether its verdict rests on a model
@@ -546,7 +572,7 @@ void IdentifierRos::noteFailure(const char* what, const std::string& failure)
   last_failure_ = std::string(what) + ": " + failure;
 }
 
-void IdentifierRos::offerStabilityJob(const Job& job, const OnlineUpdate&)
+void IdentifierRos::offerStabilityJob(const Job& job, const OnlineUpdate& update)
 {
   std::lock_guard<std::mutex> lock(stability_mutex_);
   if (stability_busy_)
@@ -554,7 +580,7 @@ void IdentifierRos::offerStabilityJob(const Job& job, const OnlineUpdate&)
     stability_request_dropped_ = true;  // still on an earlier look: the timer asks again
     return;
   }
-  stability_job_ = StabilityJob{job.drive_segments, job.data_stopped, drive_generation_};
+  stability_job_ = StabilityJob{job.drive_segments, job.data_stopped, drive_generation_, update.drive};
   stability_busy_ = true;
   stability_ready_.notify_one();
 }
@@ -587,12 +613,25 @@ void IdentifierRos::stabilityLoop()
       looks.clear();
       noteFailure("sequential string-stability verdict", failure);
     }
+    // The drive fit's Euler step check, where the data's step is coarse enough for it to matter.
+    std::optional<EulerStepBias> euler_step;
+    if (!runCatchingEverything([&] { euler_step = identifier_->checkEulerStep(job.drive_segments, job.drive); },
+                               failure))
+      noteFailure("Euler step check", failure);
     last_stability_time_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::lock_guard<std::mutex> lock(stability_mutex_);
-    if (!looks.empty() && job.drive_generation == drive_generation_)
+    if (job.drive_generation == drive_generation_)
     {
-      stability_tests_ += looks.size();
-      stability_result_ = looks.back();
+      if (!looks.empty())
+      {
+        stability_tests_ += looks.size();
+        stability_result_ = looks.back();
+      }
+      if (euler_step)
+      {
+        ++euler_step_checks_;
+        euler_step_result_ = std::move(euler_step);
+      }
     }
     stability_busy_ = false;
   }
@@ -718,6 +757,10 @@ void IdentifierRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status
   status.add("failed solves or tests", c.failures);
   status.add("last failure", last_failure.empty() ? std::string("none") : last_failure);
   status.add("looks of the sequential string-stability verdict", c.stability_tests);
+  {
+    std::lock_guard<std::mutex> lock(stability_mutex_);
+    status.add("Euler step checks of the drive fit (median step >= ~euler_check_min_step_s)", euler_step_checks_);
+  }
   status.add("last window solve [s]", last_solve_time_s_.load());
   status.add("last drive solve [s]", last_drive_time_s_.load());
   status.add("last sequential-verdict update [s]", last_stability_time_s_.load());

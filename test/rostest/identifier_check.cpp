@@ -11,6 +11,7 @@
 
 #include "acc_identification/synthesis/synthetic_runs.h"
 #include "acc_identification/model/paper_settings.h"
+#include "ros_test_support.h"
 
 #include <acc_identification/AccParameters.h>
 #include <acc_identification/RelativeState.h>
@@ -18,15 +19,6 @@
 
 namespace
 {
-std::mutex received_mutex;
-std::vector<acc_identification::AccParameters> received;
-
-void onParameters(const acc_identification::AccParameters::ConstPtr& message)
-{
-  std::lock_guard<std::mutex> lock(received_mutex);
-  received.push_back(*message);
-}
-
 TEST(Identifier, SyntheticRelativeStateGivesTheTrueParameters)
 {
   ros::NodeHandle node;
@@ -34,14 +26,11 @@ TEST(Identifier, SyntheticRelativeStateGivesTheTrueParameters)
   spinner.start();
   auto clock = node.advertise<rosgraph_msgs::Clock>("/clock", 10);
   auto states = node.advertise<acc_identification::RelativeState>("relative_state", 1000);
-  auto parameters = node.subscribe("acc_parameters", 100, onParameters);
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(30.0);
-  while ((states.getNumSubscribers() == 0 || parameters.getNumPublishers() == 0 || clock.getNumSubscribers() == 0) &&
-         ros::WallTime::now() < deadline)
-  {
-    ros::WallDuration(0.05).sleep();
-  }
-  ASSERT_GT(states.getNumSubscribers(), 0u) << "identifier_node did not subscribe";
+  acc_test::MessageLog<acc_identification::AccParameters> log;
+  auto parameters = node.subscribe("acc_parameters", 100, &acc_test::MessageLog<acc_identification::AccParameters>::on, &log);
+  ASSERT_TRUE(acc_test::waitForConnections([&] {
+    return states.getNumSubscribers() > 0 && parameters.getNumPublishers() > 0 && clock.getNumSubscribers() > 0;
+  })) << "identifier_node did not subscribe";
 
   const acc::AccParameters truth = acc::paperMinimumSetting();
   // 150 s from GNSS time 1000 s, with a 2 s hole (a dropout) after 50 s and one invalid sample at 70 s.
@@ -78,7 +67,8 @@ TEST(Identifier, SyntheticRelativeStateGivesTheTrueParameters)
     clock.publish(now);
     ros::WallDuration(0.05).sleep();
   }
-  std::lock_guard<std::mutex> lock(received_mutex);
+  std::lock_guard<std::mutex> lock(log.mutex);
+  const std::vector<acc_identification::AccParameters>& received = log.messages;
   ASSERT_FALSE(received.empty()) << "no acc_parameters published";
   // Early windows (under 30 s of data) are reported, not fitted.
   EXPECT_FALSE(received.front().identifiable);

@@ -3,10 +3,13 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <map>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <utility>
+#include <vector>
 
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <ros/ros.h>
@@ -22,6 +25,29 @@ inline void spinFor(double seconds, std::chrono::milliseconds step = std::chrono
     ros::spinOnce();
     std::this_thread::sleep_for(step);
   }
+}
+
+/// Every message of one subscription, in order, for a test to read once the node has run.
+template <typename Message>
+struct MessageLog
+{
+  std::mutex mutex;
+  std::vector<Message> messages;
+  void on(const typename Message::ConstPtr& message)
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    messages.push_back(*message);
+  }
+};
+
+/// Waits (wall time, at most `seconds`) until `connected` holds, e.g. until the node under test has
+/// subscribed to what the test publishes; returns whether it does.
+inline bool waitForConnections(const std::function<bool()>& connected, double seconds = 30.0)
+{
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(seconds);
+  while (!connected() && ros::WallTime::now() < deadline)
+    ros::WallDuration(0.05).sleep();
+  return connected();
 }
 
 /// The latest values and message of the diagnostic status whose name contains `name`.

@@ -131,6 +131,19 @@ TEST(IdentifierMessage, QuantitiesOneByOneTheDriveAndTheVerdict)
   EXPECT_DOUBLE_EQ(m.stability_p_value, 0.004);
   EXPECT_DOUBLE_EQ(m.stability_margin_high, -0.9);
   EXPECT_EQ(m.stability_samples, run.size());
+  EXPECT_EQ(m.drive_note.find("Euler step"), std::string::npos) << "no check ran";
+
+  // The drive fit's Euler step check, when one ran, ends the drive's note on one line.
+  acc::EulerStepBias check;
+  check.median_step_s = 1.0;
+  check.reason = "every start of the refit diverged";
+  update.euler_step = check;
+  const auto checked = acc::toMessage(update, 1000.0, 1300.0, 900.0);
+  EXPECT_NE(checked.drive_note.find("Euler step (the paper's calibration simulates at the data's own step, median 1 s): "
+                                    "not assessed: every start of the refit diverged"),
+            std::string::npos)
+      << checked.drive_note;
+  EXPECT_EQ(checked.drive_note.find('\n'), std::string::npos);
 }
 
 TEST(IdentifierMessage, NoVerdictYetIsUndecidedWithNaNAndTimesOutOfRangeNeverThrow)

@@ -48,6 +48,24 @@ TEST(SlidingWindow, GapsAndInvalidSamplesSplitIntoSegments)
   EXPECT_NEAR(segments[1].time_s.front(), 3.0, 1e-9);
   EXPECT_EQ(segments[2].size(), 9u);
   EXPECT_EQ(short_pieces, 1u);
+  EXPECT_EQ(window.describeShortPieces(0), "");
+  EXPECT_EQ(window.describeShortPieces(short_pieces),
+            "1 piece of fewer than 5 samples between holes longer than 0.5 s or invalid samples not simulated");
+}
+
+// A 1 Hz receiver against max_gap_s 0.5: every step is a hole and nothing is simulated; the note
+// says why and what to set, where the identification alone would only say "too little data".
+TEST(SlidingWindow, AStreamSlowerThanMaxGapIsSaidToBeOne)
+{
+  acc::SlidingWindow window(100.0, 0.5, 5);
+  for (int k = 0; k < 60; ++k)
+    window.add(sampleAt(1.0 * k));
+  std::size_t short_pieces = 0;
+  EXPECT_TRUE(window.segments(&short_pieces).empty());
+  EXPECT_EQ(short_pieces, 60u);
+  EXPECT_EQ(window.describeShortPieces(short_pieces),
+            "60 pieces of fewer than 5 samples between holes longer than 0.5 s or invalid samples not simulated: the "
+            "samples' median step, 1 s, is itself such a hole (a receiver at 1 Hz); max_gap_s must exceed the step");
 }
 
 TEST(SlidingWindow, RejectsOutOfOrderAndRestartsWhenConsistentSamplesConfirmATimeReset)

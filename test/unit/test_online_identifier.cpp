@@ -22,10 +22,11 @@ struct Replay
 };
 
 /// Feeds a run sample by sample into a window and a drive, as the node does, and updates every
-/// period_s of data time.
-Replay replay(const acc::CarFollowingRun& run, double window_s, double period_s, acc::OnlineIdentifier& identifier)
+/// period_s of data time; a hole longer than max_gap_s splits them (the node's ~max_gap_s).
+Replay replay(const acc::CarFollowingRun& run, double window_s, double period_s, acc::OnlineIdentifier& identifier,
+              double max_gap_s = 0.5)
 {
-  acc::SlidingWindow window(window_s, 0.5, 20), drive(1.0e9, 0.5, 20);
+  acc::SlidingWindow window(window_s, max_gap_s, 20), drive(1.0e9, max_gap_s, 20);
   Replay result;
   double next_update_s = run.time_s.front() + period_s;
   for (std::size_t k = 0; k < run.size(); ++k)
@@ -177,4 +178,37 @@ TEST(OnlineIdentifier, ABoundedDriveDeterminesWhatTheWholeDriveDoes)
   acc::StabilityTestOptions test = acc::OnlineIdentifierOptions::defaultStabilityOptions();
   test.warm_starts = {p};
   EXPECT_EQ(acc::testStringStability(bounded.segments(), test).verdict, acc::StabilityVerdict::Unstable);
+}
+
+// At 1 Hz the Euler step moves the fit by a quarter of k1 and the margin towards "stable": the
+// drive's check runs with its test, and the same drive at 10 Hz skips it (3 % of k1).
+TEST(OnlineIdentifier, ChecksTheEulerStepOfTheDriveWhereTheDataAreCoarse)
+{
+  const acc::AccParameters truth{0.1, 0.5, 1.0, 6.0};
+  acc::OnlineIdentifierOptions options;
+  options.window.multistart.starts = 8;
+  options.stability_every_updates = 3;
+  const acc::CarFollowingRun coarse = acc::synthesizeRun(truth, 600.0, 1.0, 15.0, 7, {0.02, 0.05});
+  acc::OnlineIdentifier identifier(options);
+  const Replay live = replay(coarse, 300.0, 60.0, identifier, 2.5);  // ~max_gap_s above the 1 s step
+  ASSERT_TRUE(live.last.drive.solved);
+  ASSERT_TRUE(live.last.euler_step.has_value());
+  const acc::EulerStepBias& check = *live.last.euler_step;
+  ASSERT_TRUE(check.assessed) << check.reason;
+  std::printf("  1 Hz drive: k1 bias %+.4f, margin bias %+.4f, material: %s\n", check.bias.k1_per_s2,
+              check.margin_bias, check.material_because.c_str());
+  EXPECT_NEAR(check.median_step_s, 1.0, 1e-9);
+  EXPECT_LT(check.bias.k1_per_s2, -0.15 * check.fit.k1_per_s2);  // a quarter low at 1 Hz
+  EXPECT_GT(check.margin_bias, 0.05);
+  EXPECT_TRUE(check.material);
+
+  // The same check on demand agrees, and a 10 Hz drive skips it.
+  const acc::CarFollowingRun fine = acc::synthesizeRun(truth, 300.0, 0.1, 15.0, 7, {0.02, 0.05});
+  const acc::Identification fine_fit = acc::identifyAcc({fine}, options.window);
+  EXPECT_FALSE(identifier.checkEulerStep({fine}, fine_fit).has_value());
+  acc::OnlineIdentifierOptions always = options;
+  always.euler_check_min_step_s = 0.0;
+  EXPECT_TRUE(acc::OnlineIdentifier(always).checkEulerStep({fine}, fine_fit).has_value());
+  identifier.resetDrive();
+  EXPECT_FALSE(identifier.update({coarse}, {coarse}).euler_step.has_value()) << "the check of the previous drive is forgotten";
 }

@@ -68,6 +68,10 @@ public:
   /// Usable segments, oldest first; pieces shorter than min_segment_samples are left out (they
   /// carry no dynamics) and counted in short_pieces.
   std::vector<CarFollowingRun> segments(std::size_t* short_pieces = nullptr) const;
+  /// What short_pieces of segments() mean, for a note: "" for none; else how many pieces were not
+  /// simulated and, when the samples' median step exceeds max_gap_s (a 1 Hz receiver against the
+  /// default 0.5 s), that every step is a hole and max_gap_s must exceed the step.
+  std::string describeShortPieces(std::size_t short_pieces) const;
 
   std::size_t size() const { return samples_.size(); }
   /// Samples that jumped in time and were dropped because the old time base went on.

@@ -45,6 +45,9 @@ struct IdentifierSettings
   DriveBound drive_bound;
   double stability_period_s = 10.0;   ///< at most one string-stability test of the drive per this (ROS time)
   double alpha = 0.05;                ///< level of the string-stability test
+  /// The drive fit's Euler step check runs with each look when the data's median step is at least
+  /// this (OnlineIdentifierOptions::euler_check_min_step_s) [s].
+  double euler_check_min_step_s = 0.15;
   IdentifiabilityCriteria criteria;
   /// The drive fit's model adequacy (~adequacy_* parameters; the dip check needs perturbations
   /// of a platoon and is the campaign's).
@@ -154,6 +157,7 @@ private:
     bool drive_reset = false;  ///< time went back: the drive starts anew
     bool test_stability = false;  ///< hand the drive to the stability thread after this solve
     bool data_stopped = false;    ///< the drive did not grow this period: look at its last sample too
+    std::string short_pieces_note;  ///< the window's pieces too short to simulate (SlidingWindow::describeShortPieces)
   };
   /// What the worker hands to the stability thread.
   struct StabilityJob
@@ -161,6 +165,7 @@ private:
     std::vector<CarFollowingRun> drive_segments;
     bool data_stopped = false;
     std::uint64_t drive_generation = 0;  ///< which drive: a newer one resets the sequential verdict
+    Identification drive;                ///< the drive's fit this period, for the Euler step check
   };
 
   void onRelativeState(const acc_identification::RelativeState::ConstPtr& message);
@@ -201,6 +206,8 @@ private:
   bool stability_busy_ = false;
   bool stopping_stability_ = false;
   std::optional<SequentialLook> stability_result_;  ///< the latest look, under stability_mutex_
+  std::optional<EulerStepBias> euler_step_result_;  ///< the drive fit's latest check, under stability_mutex_
+  std::uint64_t euler_step_checks_ = 0;             ///< under stability_mutex_
   std::uint64_t drive_generation_ = 0;              ///< drive resets so far, under stability_mutex_
   /// The drive's sequential verdict: stability thread only (with the generation it belongs to).
   std::optional<SequentialVerdict> sequential_;
