@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
 
 namespace acc
@@ -37,13 +38,9 @@ double interpolatedQuantile(std::vector<double> values, double q)
 
 double twoSidedNormalQuantile(double tail)
 {
-  double low = 0.0, high = 40.0;
-  for (int i = 0; i < 200; ++i)
-  {
-    const double mid = 0.5 * (low + high);
-    (std::erfc(mid / std::sqrt(2.0)) > tail ? low : high) = mid;
-  }
-  return 0.5 * (low + high);
+  if (!(tail > 0.0 && tail < 1.0))
+    return std::numeric_limits<double>::quiet_NaN();
+  return boost::math::quantile(boost::math::complement(boost::math::normal(), 0.5 * tail));
 }
 
 double studentTUpperQuantile(double upper_tail, double degrees_of_freedom)

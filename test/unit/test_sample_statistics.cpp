@@ -14,6 +14,8 @@ TEST(SampleStatistics, NormalQuantilesMatchTheTablesTwoAndOneSided)
   // Its own inverse: the tail beyond the quantile is the tail asked for.
   for (double tail : {1e-6, 0.0125, 0.3, 0.9})
     EXPECT_NEAR(std::erfc(acc::twoSidedNormalQuantile(tail) / std::sqrt(2.0)), tail, 1e-9 * tail) << tail;
+  for (double bad : {0.0, 1.0, -0.1, std::nan("")})
+    EXPECT_TRUE(std::isnan(acc::twoSidedNormalQuantile(bad))) << bad;
 }
 
 TEST(SampleStatistics, StudentTQuantilesMatchTheTables)

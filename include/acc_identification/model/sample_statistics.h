@@ -14,9 +14,8 @@ double rootMeanOf(const std::vector<double>& squared_errors);
 /// without samples.
 double interpolatedQuantile(std::vector<double> values, double q);
 
-/// The standard normal z with P(|Z| > z) = tail (tail in (0, 1)): 1.96 for 0.05; a one-sided 95 %
-/// limit is twoSidedNormalQuantile(0.10) = 1.645. Bisection on erfc to full precision: no
-/// statistics library needed.
+/// The standard normal z with P(|Z| > z) = tail: 1.96 for 0.05; a one-sided 95 % limit is
+/// twoSidedNormalQuantile(0.10) = 1.645 (Boost.Math). NaN unless tail is in (0, 1).
 double twoSidedNormalQuantile(double tail);
 
 /// Student's t with P(T > t) = upper_tail at `degrees_of_freedom` (Boost.Math): 1.895 for 0.05 at
