@@ -10,6 +10,7 @@
 #include <ostream>
 #include <limits>
 #include <sstream>
+#include <tuple>
 
 #include <Eigen/Core>
 
@@ -149,13 +150,30 @@ void assessBoundHold(const QuantityContext& c, const QuantityDefinition& d, Quan
   q.reason += why.str();
 }
 
-/// The quantity's value, standard error (delta method), determination and bound.
+/// The 95 % interval: the one-sided one at a bound, else value +- t(blocks - 1) standard errors.
+void setInterval(const ParameterUncertainty& u, QuantityEstimate& q)
+{
+  if (q.hasBoundInterval())
+  {
+    std::tie(q.interval_95_low, q.interval_95_high) = q.boundInterval();
+    return;
+  }
+  if (!q.held_by_bound.empty() || !std::isfinite(q.standard_error) || !std::isfinite(q.value))
+    return;
+  const double dof = static_cast<double>(u.blocks) - 1.0;
+  const double t = dof >= 1.0 ? studentTUpperQuantile(0.025, dof) : twoSidedNormalQuantile(0.05);
+  q.interval_95_low = q.value - t * q.standard_error;
+  q.interval_95_high = q.value + t * q.standard_error;
+}
+
+/// The quantity's value, standard error (delta method), determination, bound and interval.
 QuantityEstimate assess(const QuantityContext& c, const QuantityDefinition& d, double scale, double max_error,
                         const std::string& threshold)
 {
   QuantityEstimate q = judge(d.name, d.unit, d.value(c.theta), deltaMethodError(d.gradient, c.uncertainty), scale,
                              max_error, c.uncertainty, threshold);
   assessBoundHold(c, d, q);
+  setInterval(c.uncertainty, q);
   return q;
 }
 }  // namespace
@@ -199,6 +217,8 @@ IdentifiableQuantities assessQuantities(const AccParameters& fit, const Paramete
 {
   IdentifiableQuantities result;
   result.reciprocal_condition = uncertainty.reciprocal_condition;
+  result.start_gap_noise_m = uncertainty.start_gap_noise_m;
+  result.eta_start_gap_error_m = uncertainty.eta_start_gap_error_m;
   std::ostringstream basis;
   basis << "Gauss-Newton sandwich covariance (batch means) at the fit";
   if (std::isfinite(uncertainty.start_gap_noise_m))
@@ -280,6 +300,8 @@ nlohmann::json toJson(const IdentifiableQuantities& quantities)
   nlohmann::json json;
   json["basis"] = quantities.basis;
   json["reciprocal_condition"] = jsonNumber(quantities.reciprocal_condition);
+  json["start_gap_noise_m"] = jsonNumber(quantities.start_gap_noise_m);
+  json["eta_start_gap_error_m"] = jsonNumber(quantities.eta_start_gap_error_m);
   nlohmann::json items = nlohmann::json::object();
   for (const QuantityEstimate& q : quantities.quantities)
   {
@@ -288,16 +310,14 @@ nlohmann::json toJson(const IdentifiableQuantities& quantities)
                         {"unit", q.unit},
                         {"determined", q.determined},
                         {"reason", q.reason}};
+    item["interval_95"] = std::isfinite(q.interval_95_low) ? nlohmann::json{q.interval_95_low, q.interval_95_high}
+                                                            : nlohmann::json();
     if (std::isfinite(q.speed_mps))
     {
       item["speed_mps"] = q.speed_mps;
     }
     if (!q.held_by_bound.empty())
-    {
-      const auto [low, high] = q.boundInterval();
       item["held_by_bound"] = q.held_by_bound;
-      item["interval_95"] = q.hasBoundInterval() ? nlohmann::json{low, high} : nlohmann::json();
-    }
     items[q.name] = item;
   }
   json["quantities"] = items;
@@ -331,7 +351,10 @@ void printQuantities(const IdentifiableQuantities& quantities, std::ostream& out
       std::snprintf(error, sizeof error, "%.3g%s", q.standard_error, close);
     else
       std::snprintf(error, sizeof error, "-%s", close);
-    const std::string verdict = q.determined ? "determined" : "NOT determined: " + q.reason;
+    char interval_text[96] = "";
+    if (q.determined && !interval && std::isfinite(q.interval_95_low))
+      std::snprintf(interval_text, sizeof interval_text, ", 95 %% [%.4g, %.4g]", q.interval_95_low, q.interval_95_high);
+    const std::string verdict = q.determined ? "determined" + std::string(interval_text) : "NOT determined: " + q.reason;
     const std::string bound = q.determined && !q.held_by_bound.empty() ? " (" + q.held_by_bound + ": one-sided)" : "";
     std::snprintf(line, sizeof line, "  %-44s %10s %s %-9s %-6s %s%s\n", name.c_str(), value, interval ? "to" : "+-",
                   error, q.unit.c_str(), verdict.c_str(), bound.c_str());

@@ -92,6 +92,22 @@ TEST(StandardErrorCoverage, GapNoiseAloneMovesEtaByItsSizeAtAnyLength)
     EXPECT_GE(c.covered[eta] / c.drives, 0.85) << duration_s << " s";
   }
 }
+// One run: a metre of start-gap error is a metre of eta (d = the unit vector of eta), so eta's
+// share is the gap noise itself; the JSON and the table's heading say both.
+TEST(StandardErrorCoverage, TheStartGapTermIsReported)
+{
+  const acc::CarFollowingRun run = acc::synthesizeRun(acc::paperMinimumSetting(), 120.0, 0.1, 20.0, 3, {0.06, 0.4});
+  const acc::Identification fit = acc::identifyAcc({run}, {});
+  ASSERT_TRUE(fit.quantities.has_value()) << fit.note;
+  const acc::IdentifiableQuantities& q = *fit.quantities;
+  EXPECT_NEAR(q.start_gap_noise_m, 0.4, 0.04);
+  EXPECT_NEAR(q.eta_start_gap_error_m, q.start_gap_noise_m, 1e-6 * q.start_gap_noise_m);
+  EXPECT_GE(q.find("eta")->standard_error, q.eta_start_gap_error_m);
+  const nlohmann::json json = acc::toJson(q);
+  EXPECT_DOUBLE_EQ(json["start_gap_noise_m"].get<double>(), q.start_gap_noise_m);
+  EXPECT_NE(q.basis.find("plus the measured start gaps' noise (0.4"), std::string::npos) << q.basis;
+}
+
 TEST(GapSampleNoise, RecoversWhiteGapNoiseAndIgnoresAJump)
 {
   const acc::AccParameters truth = acc::paperMinimumSetting();

@@ -783,4 +783,39 @@ TEST(StabilityTest, QuantitiesHeldAtABoundGetTheirOneSidedInterval)
   const auto* singular = no_covariance.find("stability_margin");
   EXPECT_EQ(singular->held_by_bound, "tau_e at its lower bound 0");
   EXPECT_TRUE(std::isnan(singular->one_sided_limit));
+  EXPECT_TRUE(std::isnan(singular->interval_95_low));
+  EXPECT_TRUE(acc::toJson(no_covariance)["quantities"]["k1"]["interval_95"].is_null());
+}
+
+TEST(StabilityTest, FreeQuantitiesGetStudentsTwoSidedInterval)
+{
+  // Batch means over 11 blocks carry 10 degrees of freedom: 95 % is +- 2.228 standard errors, not 1.96.
+  const auto drive = syntheticDrive(acc::paperMinimumSetting(), 31);
+  acc::ParameterUncertainty u;
+  u.covariance.setZero();
+  const double se[4] = {0.005, 0.047, 0.33, 2.0};
+  for (int i = 0; i < 4; ++i)
+    u.covariance(i, i) = se[i] * se[i];
+  u.blocks = 11;
+  const acc::AccParameters p{0.024, 0.165, 1.26, 5.0};
+  const auto q = acc::assessQuantities(p, u, {drive}, acc::ParameterBounds{});
+  const double t = 2.2281388519649385;
+  const auto* k1 = q.find("k1");
+  EXPECT_NEAR(k1->interval_95_low, p.k1_per_s2 - t * se[0], 1e-12);
+  EXPECT_NEAR(k1->interval_95_high, p.k1_per_s2 + t * se[0], 1e-12);
+  const auto* margin = q.find("stability_margin");
+  EXPECT_NEAR(margin->interval_95_high - margin->value, t * margin->standard_error, 1e-9);
+  const auto json = acc::toJson(q)["quantities"]["k1"];
+  EXPECT_NEAR(json["interval_95"][1].get<double>(), k1->interval_95_high, 1e-15);
+  std::ostringstream printed;
+  acc::printQuantities(q, printed);
+  char k1_interval[64];
+  std::snprintf(k1_interval, sizeof k1_interval, "determined, 95 %% [%.4g, %.4g]", k1->interval_95_low,
+                k1->interval_95_high);
+  EXPECT_NE(printed.str().find(k1_interval), std::string::npos) << printed.str();
+
+  // Blocks unknown: the normal's 1.96.
+  u.blocks = 0;
+  const auto unknown = acc::assessQuantities(p, u, {drive}, acc::ParameterBounds{});
+  EXPECT_NEAR(unknown.find("k1")->interval_95_high - p.k1_per_s2, 1.959963984540054 * se[0], 1e-12);
 }

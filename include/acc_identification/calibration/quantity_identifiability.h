@@ -60,6 +60,13 @@ struct QuantityEstimate
   /// quantile with the sandwich's blocks - 1 degrees of freedom (1.895 for 8 blocks), the normal
   /// 1.645 when the blocks are not known. NaN without a standard error.
   double one_sided_limit = std::numeric_limits<double>::quiet_NaN();
+  /// The 95 % interval [low, high]: boundInterval() where held at a bound; elsewhere value +- t
+  /// standard errors, t Student's two-sided 95 % quantile with the sandwich's blocks - 1 degrees of
+  /// freedom (2.228 for 11 blocks; 1.96 when the blocks are not known): batch means over B blocks
+  /// carry B - 1 of them. NaN without a standard error. On short drives even these run short
+  /// (docs/RESULTS.md, "What the standard errors cover").
+  double interval_95_low = std::numeric_limits<double>::quiet_NaN();
+  double interval_95_high = std::numeric_limits<double>::quiet_NaN();
 
   /// Held at a bound with a one-sided limit to show (not without a standard error).
   bool hasBoundInterval() const;
@@ -73,6 +80,10 @@ struct IdentifiableQuantities
   std::vector<QuantityEstimate> quantities;  ///< in the order of the names above
   double reciprocal_condition = 0.0;         ///< of J^T J (fit_statistics), for the report
   std::string basis;                         ///< which fit and data the standard errors come from
+  /// The gap's sample-to-sample noise the covariance's start-gap term took (fit_statistics.h) [m],
+  /// and eta's standard error from that term alone [m]; NaN and 0 when it was left out.
+  double start_gap_noise_m = std::numeric_limits<double>::quiet_NaN();
+  double eta_start_gap_error_m = 0.0;
 
   /// The quantity of this name, or nullptr.
   const QuantityEstimate* find(const std::string& name) const;
@@ -94,13 +105,13 @@ IdentifiableQuantities assessQuantities(const AccParameters& fit, const Paramete
                                         const std::vector<CarFollowingRun>& runs, const ParameterBounds& bounds,
                                         const QuantityCriteria& criteria = {});
 
-/// {"basis", "reciprocal_condition", "quantities": {name: {value, standard_error, unit, determined,
-/// reason (with the threshold applied)[, speed_mps][, held_by_bound, interval_95: [low, high]]}}};
-/// NaN as null.
+/// {"basis", "reciprocal_condition", "start_gap_noise_m", "eta_start_gap_error_m", "quantities": {name: {value, standard_error, unit, determined,
+/// reason (with the threshold applied), interval_95: [low, high] (null without a standard
+/// error)[, speed_mps][, held_by_bound]}}}; NaN as null.
 nlohmann::json toJson(const IdentifiableQuantities& quantities);
 
-/// One line per quantity: value +- standard error where determined ("low to high" and the bound
-/// where held at one); where not, the same in parentheses and the reason.
+/// One line per quantity: value +- standard error and its 95 % interval where determined ("low to
+/// high" and the bound where held at one); where not, the same in parentheses and the reason.
 void printQuantities(const IdentifiableQuantities& quantities, std::ostream& out);
 
 }  // namespace acc
