@@ -99,7 +99,7 @@ std::string whyNoUsableRun(const RunFileContents& contents)
                     " not on ACC: no stretch of two samples or more";
   if (!contents.problems.empty())
     why += " (first problem: " + contents.problems.front() + ")";
-  return why;
+  return why + describeCoarseSteps(contents);
 }
 
 /// The file's Distance_setting as the campaign spells it: "?" when unknown. A setting met before

@@ -113,6 +113,7 @@ public:
         reject(line_number, not_increasing);
         return;
       }
+      ++contents_.time_steps;
       const std::string hole = describeTimeHole(current_.time_s.back(), values[0], bounds_);
       if (!hole.empty())
       {
@@ -491,7 +492,23 @@ std::string describeRowCounts(const std::string& path, const RunFileContents& co
     counts << ", " << contents.single_sample_rows << " rows alone between split points not used";
   if (contents.sawtooth_rows > 0)
     counts << ", the gap of " << contents.sawtooth_rows << " rows rebuilt where it saw-tooths";
+  counts << describeCoarseSteps(contents);
   return counts.str();
+}
+
+std::string describeCoarseSteps(const RunFileContents& contents)
+{
+  return describeCoarseSteps(contents.time_holes, contents.time_steps);
+}
+
+std::string describeCoarseSteps(std::size_t time_holes, std::size_t time_steps)
+{
+  if (time_steps == 0 || 2 * time_holes <= time_steps)
+    return "";
+  return "; " + std::to_string(time_holes) + " of its " + std::to_string(time_steps) +
+         " steps are such holes: the data are recorded more coarsely than the largest step a run may hold "
+         "(a receiver at 1 Hz against the default 0.5 s); set it above their step (the tools' --max-gap, "
+         "Python's max_gap_s, the identifier's ~max_gap_s)";
 }
 
 std::vector<CarFollowingRun> readRuns(const std::string& path, const RunPlausibilityBounds& bounds)
@@ -531,7 +548,7 @@ std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileC
                        std::to_string(contents.rejected_rows) + " rejected of which " +
                        std::to_string(contents.implausible_rows) + " implausible, " +
                        std::to_string(contents.time_holes) + " holes in time, " +
-                       std::to_string(contents.acc_off_rows) + " with ACC off)");
+                       std::to_string(contents.acc_off_rows) + " with ACC off)" + describeCoarseSteps(contents));
   }
   return std::move(contents.runs);
 }

@@ -1,4 +1,5 @@
 #include "acc_identification/ros/run_bag_reader.h"
+#include "acc_identification/io/run_csv.h"
 
 #include <cmath>
 #include <iomanip>
@@ -266,7 +267,8 @@ RunArgument readRunArgument(const std::string& path, const std::string& topic, d
   log << path << ": " << bag.messages << " messages, " << bag.invalid << " invalid, " << bag.implausible
       << " outside the plausibility bounds, " << bag.out_of_order << " out of order, " << bag.time_holes
       << " holes in time, " << bag.time_resets << " time resets, " << bag.short_pieces << " pieces too short -> "
-      << bag.runs.size() << " runs\n";
+      << bag.runs.size() << " runs" << describeCoarseSteps(bag.time_holes, bag.messages > 0 ? bag.messages - 1 : 0)
+      << "\n";
   argument.account = accountOfBag(path, bag);
   argument.runs = std::move(bag.runs);
   return argument;

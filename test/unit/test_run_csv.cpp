@@ -389,3 +389,40 @@ TEST(ProblemLines, AStretchOfBadRowsIsOneWarningOnTheLog)
   std::remove(path.c_str());
 }
 }  // namespace
+
+// A 1 Hz file against the default 0.5 s max gap: every step is a hole, every row alone. The counts
+// and the error say that the data are coarser than a run may step, and what to set.
+TEST(RunCsvPlausibility, AFileCoarserThanTheMaxGapIsSaidToBeSo)
+{
+  std::string text = "time_s,space_gap_m,follower_speed_mps,leader_speed_mps\n";
+  for (int k = 0; k < 40; ++k)
+    text += std::to_string(k) + ",20.0,10.0,10.0\n";
+  const std::string path = writeTemporary("run_csv_1hz.csv", text);
+  const auto contents = acc::readRunFile(path);
+  EXPECT_EQ(contents.time_steps, 39u);
+  EXPECT_EQ(contents.time_holes, 39u);
+  EXPECT_TRUE(contents.runs.empty());
+  const std::string hint = "; 39 of its 39 steps are such holes: the data are recorded more coarsely than the largest "
+                           "step a run may hold (a receiver at 1 Hz against the default 0.5 s); set it above their "
+                           "step (the tools' --max-gap, Python's max_gap_s, the identifier's ~max_gap_s)";
+  EXPECT_EQ(acc::describeCoarseSteps(contents), hint);
+  EXPECT_TRUE(contains(acc::describeRowCounts(path, contents), hint));
+  testing::internal::CaptureStderr();
+  try
+  {
+    acc::readRuns(path);
+    ADD_FAILURE() << "no run is usable, so readRuns must throw";
+  }
+  catch (const acc::RunReadError& error)
+  {
+    EXPECT_TRUE(contains(error.what(), "no usable run (40 data rows")) << error.what();
+    EXPECT_TRUE(contains(error.what(), hint)) << error.what();
+  }
+  testing::internal::GetCapturedStderr();
+  // Raised above the step, the same file is one run; and a file with one hole in many steps gets no hint.
+  acc::RunPlausibilityBounds wide;
+  wide.max_time_step_s = 2.5;
+  EXPECT_EQ(acc::readRunFile(path, wide).runs.size(), 1u);
+  EXPECT_EQ(acc::describeCoarseSteps(acc::readRunFile(kDataDir + "/canonical_time_hole.csv")), "");
+  std::remove(path.c_str());
+}

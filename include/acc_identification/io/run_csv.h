@@ -31,6 +31,9 @@ struct RunFileContents
   /// sample of their own and so do not split the run.
   std::size_t duplicate_rows = 0;
   std::size_t time_holes = 0;         ///< steps longer than max_time_step_s (split points, no row lost)
+  /// Steps between consecutive rows that were looked at for a hole (time_holes of them were one):
+  /// when most are, the data are recorded more coarsely than a run may step (describeCoarseSteps).
+  std::size_t time_steps = 0;
   std::size_t acc_off_rows = 0;       ///< OpenACC rows where the follower was not on ACC (split points)
   /// Rows alone between split points (a piece of one sample cannot be simulated): not used, each
   /// listed in problems. So data_rows = rejected_rows + acc_off_rows + single_sample_rows + the
@@ -102,6 +105,13 @@ AllPairRuns readAllPairRuns(const std::string& path, const RunPlausibilityBounds
 /// rebuilt where it saw-tooths" when there are), or "" when no row is rejected, left alone or
 /// rebuilt and no hole splits.
 std::string describeRowCounts(const std::string& path, const RunFileContents& contents);
+
+/// "" unless most of the steps are holes (a 1 Hz receiver against a max gap of 0.5 s: every row
+/// alone, nothing to simulate); then what that means and what to set, for the row counts and for
+/// the error that no run is usable.
+std::string describeCoarseSteps(const RunFileContents& contents);
+/// The same from the counts (a bag's holes against its steps between messages).
+std::string describeCoarseSteps(std::size_t time_holes, std::size_t time_steps);
 
 /// readRunFile() for tools: returns the runs, and writes every note and problem (and the counts of
 /// rejected rows and holes) to stderr, so nothing is dropped silently. Throws as readRunFile, and
