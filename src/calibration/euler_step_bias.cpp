@@ -13,7 +13,6 @@
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/json_number.h"
 #include "acc_identification/model/number_text.h"
-#include "acc_identification/model/sample_statistics.h"
 
 namespace acc
 {
@@ -76,15 +75,6 @@ std::string materialBiases(const EulerStepBias& check, const std::optional<Ident
   return out;
 }
 }  // namespace
-
-double medianStepS(const std::vector<CarFollowingRun>& runs)
-{
-  std::vector<double> steps;
-  for (const CarFollowingRun& run : runs)
-    for (std::size_t k = 1; k < run.size(); ++k)
-      steps.push_back(run.time_s[k] - run.time_s[k - 1]);
-  return steps.empty() ? EulerStepBias::kNaN : interpolatedQuantile(steps, 0.5);
-}
 
 CarFollowingRun refineRun(const CarFollowingRun& run, std::size_t substeps)
 {

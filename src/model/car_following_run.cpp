@@ -57,6 +57,15 @@ double gapSampleNoiseM(const CarFollowingRun& run)
   return kMadToStandardDeviation * interpolatedQuantile(mismatches, 0.5) / std::sqrt(2.0);
 }
 
+double medianStepS(const std::vector<CarFollowingRun>& runs)
+{
+  std::vector<double> steps;
+  for (const CarFollowingRun& run : runs)
+    for (std::size_t k = 1; k < run.size(); ++k)
+      steps.push_back(run.time_s[k] - run.time_s[k - 1]);
+  return steps.empty() ? std::numeric_limits<double>::quiet_NaN() : interpolatedQuantile(steps, 0.5);
+}
+
 CarFollowingRun CarFollowingRun::slice(std::size_t first, std::size_t end, const std::string& name_suffix) const
 {
   CarFollowingRun part;

@@ -53,9 +53,6 @@ struct EulerStepBias
 EulerStepBias estimateEulerStepBias(const Identification& fitted, const std::vector<CarFollowingRun>& runs,
                                     const IdentificationOptions& options, std::size_t substeps = 10);
 
-/// The median step between consecutive samples over the runs [s]; NaN without a step.
-double medianStepS(const std::vector<CarFollowingRun>& runs);
-
 /// The run with every step cut into `substeps` equal steps: the leader's speed (and the other
 /// columns) linear between the samples, the samples themselves kept at index k * substeps.
 CarFollowingRun refineRun(const CarFollowingRun& run, std::size_t substeps);

@@ -49,6 +49,10 @@ double gapChangeBySpeedsM(const CarFollowingRun& run, std::size_t k);
 /// than 10 steps.
 double gapSampleNoiseM(const CarFollowingRun& run);
 
+/// The median step between consecutive samples over the runs [s] (the middle two averaged); NaN
+/// without a step.
+double medianStepS(const std::vector<CarFollowingRun>& runs);
+
 /// Checks the run's invariants (equal column lengths, at least two samples, strictly increasing
 /// time, finite values). Returns an empty string when the run is usable, else why it is not.
 std::string describeRunProblem(const CarFollowingRun& run);
