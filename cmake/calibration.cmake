@@ -58,7 +58,8 @@ install(PROGRAMS scripts/plot_calibration.py scripts/report_headline.py
 acc_add_tool(verdict_study LINK acc_calibration acc_synthetic_runs)
 
 # identifier_node: the sliding-window identifier (ROS wrapper and its ten-line main).
-acc_add_ros_library(acc_identifier_ros SOURCES src/ros/identifier_ros.cpp LINK acc_calibration acc_run_io)
+acc_add_ros_library(acc_identifier_ros SOURCES src/ros/identifier_ros.cpp LINK acc_calibration acc_run_io
+  acc_ros_parameters)
 acc_add_node(identifier_node WRAPPER acc_identifier_ros)
 
 acc_add_benchmark(bench_calibration LINK acc_calibration acc_synthetic_runs)

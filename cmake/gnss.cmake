@@ -14,7 +14,7 @@ acc_add_library(acc_gnss
     src/gnss/reconnecting_source.cpp
     src/gnss/live_sources.cpp)
 
-acc_add_ros_library(acc_gnss_ros SOURCES src/ros/gps_driver_ros.cpp LINK acc_gnss)
+acc_add_ros_library(acc_gnss_ros SOURCES src/ros/gps_driver_ros.cpp LINK acc_gnss acc_ros_parameters)
 acc_add_node(gps_driver_node WRAPPER acc_gnss_ros)
 
 # Any receiver's NMEA log into a bag of raw sentences stamped with their receive times (rosbag

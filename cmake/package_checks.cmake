@@ -4,7 +4,7 @@
 # (test/python/test_launch_sources.py); and every `bash tested` command of README.md and docs/*.md
 # run as written on the bundled data (test/python/test_doc_commands.py); and the house rules of
 # the code (test/python/test_code_shape.py: short functions, thin mains, headers mirroring
-# sources, no production file named like a test). Debian's python3 on
+# sources, no production file named like a test); and every node's parameters (a rostest). Debian's python3 on
 # purpose: a python3 from another installation earlier on PATH lacks ROS's modules.
 if(CATKIN_ENABLE_TESTING)
   set(_acc_results ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
@@ -31,4 +31,12 @@ if(CATKIN_ENABLE_TESTING)
     COMMAND "/usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/python/test_doc_commands.py --devel ${CATKIN_DEVEL_PREFIX} --junit ${_acc_results}/python-doc_commands.xml"
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
     DEPENDENCIES ${_acc_user_dependencies})
+endif()
+
+# Every node's parameters read with their types checked, and the shipped config files read whole
+# (test/rostest/node_parameters_check.cpp): needs the three nodes' ROS libraries.
+if(CATKIN_ENABLE_TESTING AND TARGET acc_identifier_ros AND TARGET acc_relative_state_ros)
+  add_rostest_gtest(test_node_parameters_rostest test/rostest/node_parameters.test
+    test/rostest/node_parameters_check.cpp)
+  target_link_libraries(test_node_parameters_rostest acc_identifier_ros acc_relative_state_ros)
 endif()

@@ -48,7 +48,7 @@ endif()
 # (fromMessage in acc_gnss_ros), so it needs that component's ROS library.
 if(TARGET acc_gnss_ros AND TARGET acc_conversion)
   acc_add_ros_library(acc_relative_state_ros SOURCES src/ros/relative_state_ros.cpp
-    LINK acc_relative_state acc_gnss_ros)
+    LINK acc_relative_state acc_gnss_ros acc_ros_parameters)
   acc_add_node(relative_state_node WRAPPER acc_relative_state_ros)
 
   if(CATKIN_ENABLE_TESTING)

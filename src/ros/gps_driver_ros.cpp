@@ -188,30 +188,18 @@ GpsDriverRos::GpsDriverRos(ros::NodeHandle node, ros::NodeHandle private_node)
              [this](const GnssFix& fix) { publishFix(fix); })
   , updater_(node, private_node)
 {
-  private_node.param<std::string>("source", source_uri_, "serial:///dev/ttyACM0?baud=115200");
-  private_node.param<std::string>("frame_id", frame_id_, "gps");
-  private_node.param<std::string>("vel_frame_id", vel_frame_id_, "enu");
-  // nmea_navsat_driver's parameter and default: the source is the receiver, named by its frame.
-  private_node.param<std::string>("time_ref_source", time_ref_source_, "");
-  if (time_ref_source_.empty())
-    time_ref_source_ = frame_id_;
-  private_node.param("epoch_idle_s", epoch_idle_s_, epoch_idle_s_);
-  private_node.param("epoch_idle_wall_s", epoch_idle_wall_s_, epoch_idle_wall_s_);
-  private_node.param("end_of_file_wait_s", end_of_file_wait_s_, end_of_file_wait_s_);
-  double epoch_reorder_wait_s = 0.0;
-  private_node.param("epoch_reorder_wait_s", epoch_reorder_wait_s, epoch_reorder_wait_s);
-  decoder_.setReorderWait(std::max(0.0, epoch_reorder_wait_s));
-  private_node.param("hdop_uere_m", hdop_uere_m_, hdop_uere_m_);
-  private_node.param("use_gnss_time", use_gnss_time_, use_gnss_time_);
-  private_node.param("expected_rate_hz", expected_rate_hz_, expected_rate_hz_);
-  private_node.param("fix_timeout_s", fix_timeout_s_, fix_timeout_s_);
-  private_node.param("wait_for_subscribers", wait_for_subscribers_, wait_for_subscribers_);
-  private_node.param("wait_for_topics", wait_for_topics_, wait_for_topics_);
-  private_node.param("wait_for_subscribers_timeout_s", wait_for_subscribers_timeout_s_, wait_for_subscribers_timeout_s_);
-  private_node.param("diagnostic_period_s", diagnostic_period_s_, diagnostic_period_s_);
   int queue_size = 1000;  // a fast replay (rate 0) bursts; a short queue would drop messages
-  private_node.param("queue_size", queue_size, queue_size);
-
+  ParameterReader reader(private_node);
+  reader.readElsewhere("diagnostic_period");  // diagnostic_updater's
+  settings_ok_ = readParameters(reader, queue_size);
+  if (!settings_ok_)
+  {
+    ROS_FATAL("gps_driver: %s: the driver exits", reader.error().c_str());
+    return;
+  }
+  unread_parameters_ = reader.unreadNote();
+  if (!unread_parameters_.empty())
+    ROS_WARN("gps_driver: %s", unread_parameters_.c_str());
   topic_source_ = source_uri_ == "topic";
   // A replayed bag already holds the sentences: republishing them would duplicate the topic.
   if (!topic_source_)
@@ -239,8 +227,31 @@ GpsDriverRos::GpsDriverRos(ros::NodeHandle node, ros::NodeHandle private_node)
   last_bytes_ = last_fix_ = last_diagnostic_ = SteadyClock::now();
 }
 
+bool GpsDriverRos::readParameters(ParameterReader& r, int& queue_size)
+{
+  double epoch_reorder_wait_s = 0.0;
+  const bool ok =
+      r.read("source", source_uri_) && r.read("frame_id", frame_id_) && r.read("vel_frame_id", vel_frame_id_) &&
+      r.read("time_ref_source", time_ref_source_) && r.readAbove("epoch_idle_s", epoch_idle_s_, 0.0) &&
+      r.readAbove("epoch_idle_wall_s", epoch_idle_wall_s_, 0.0) &&
+      r.readAtLeast("end_of_file_wait_s", end_of_file_wait_s_, 0.0) &&
+      r.readAtLeast("epoch_reorder_wait_s", epoch_reorder_wait_s, 0.0) && r.readAbove("hdop_uere_m", hdop_uere_m_, 0.0) &&
+      r.read("use_gnss_time", use_gnss_time_) && r.readAbove("expected_rate_hz", expected_rate_hz_, 0.0) &&
+      r.readAbove("fix_timeout_s", fix_timeout_s_, 0.0) &&
+      r.readAtLeast("wait_for_subscribers", wait_for_subscribers_, 0) && r.read("wait_for_topics", wait_for_topics_) &&
+      r.readAtLeast("wait_for_subscribers_timeout_s", wait_for_subscribers_timeout_s_, 0.0) &&
+      r.readAbove("diagnostic_period_s", diagnostic_period_s_, 0.0) && r.readAtLeast("queue_size", queue_size, 1);
+  // nmea_navsat_driver's parameter and default: the source is the receiver, named by its frame.
+  if (time_ref_source_.empty())
+    time_ref_source_ = frame_id_;
+  decoder_.setReorderWait(epoch_reorder_wait_s);
+  return ok;
+}
+
 int GpsDriverRos::run()
 {
+  if (!settings_ok_)
+    return 1;
   if (topic_source_)
     return runTopic();
   if (!source_)

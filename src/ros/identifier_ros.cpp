@@ -15,19 +15,6 @@ namespace
 {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-template <typename T>
-bool readPositive(const ros::NodeHandle& node, const std::string& name, T& value, std::string& error)
-{
-  node.param(name, value, value);
-  // Finite too: ros::Duration(inf) throws, as ros::Time(inf) does.
-  if (!(value > 0) || !std::isfinite(static_cast<double>(value)))
-  {
-    error = "parameter ~" + name + " must be positive and finite";
-    return false;
-  }
-  return true;
-}
-
 /// "3 out-of-order, 1 time outlier" from (count, what) pairs, leaving out the zeros.
 std::string listNonZero(std::initializer_list<std::pair<std::uint64_t, const char*>> items)
 {
@@ -174,83 +161,59 @@ void fillVerdict(const OnlineUpdate& update, acc_identification::AccParameters& 
 
 }  // namespace
 
-bool loadIdentifierSettings(const ros::NodeHandle& p, IdentifierSettings& s, std::string& error)
+namespace
+{
+/// The sliding window and the identifiability criteria.
+bool readWindowSettings(ParameterReader& r, IdentifierSettings& s)
 {
   IdentifiabilityCriteria& c = s.criteria;
   int min_samples = static_cast<int>(c.min_samples);
-  const bool ok = readPositive(p, "window_s", s.window_s, error) && readPositive(p, "period_s", s.period_s, error) &&
-                  readPositive(p, "max_gap_s", s.max_gap_s, error) &&
-                  readPositive(p, "min_segment_samples", s.min_segment_samples, error) &&
-                  readPositive(p, "queue_size", s.queue_size, error) &&
-                  readPositive(p, "min_duration_s", c.min_duration_s, error) &&
-                  readPositive(p, "min_samples", min_samples, error) &&
-                  readPositive(p, "max_relative_standard_error", c.quantities.max_relative_error_parameter, error);
-  if (!ok)
-  {
-    return false;
-  }
+  const bool ok = r.readAbove("window_s", s.window_s, 0.0) && r.readAbove("period_s", s.period_s, 0.0) &&
+                  r.readAbove("max_gap_s", s.max_gap_s, 0.0) && r.readAtLeast("min_segment_samples", s.min_segment_samples, 1) &&
+                  r.readAtLeast("queue_size", s.queue_size, 1) && r.readAbove("min_duration_s", c.min_duration_s, 0.0) &&
+                  r.readAtLeast("min_samples", min_samples, 1) &&
+                  r.readAbove("max_relative_standard_error", c.quantities.max_relative_error_parameter, 0.0) &&
+                  r.readAbove("max_forward_jump_s", s.max_forward_jump_s, 0.0) &&
+                  // One stamp must not move the window.
+                  r.readAtLeast("jump_confirm_samples", s.jump_confirm_samples, 2) && r.readAtLeast("starts", s.starts, 0) &&
+                  r.readAtLeast("min_speed_std_mps", c.min_speed_std_mps, 0.0);
   c.min_samples = static_cast<std::size_t>(min_samples);
-  if (!readPositive(p, "max_forward_jump_s", s.max_forward_jump_s, error))
-  {
-    return false;
-  }
-  p.param("jump_confirm_samples", s.jump_confirm_samples, s.jump_confirm_samples);
-  if (s.jump_confirm_samples < 2)
-  {
-    error = "parameter ~jump_confirm_samples must be at least 2 (one stamp must not move the window)";
-    return false;
-  }
-  p.param("starts", s.starts, s.starts);
-  p.param("drive_max_evaluations", s.drive_max_evaluations, s.drive_max_evaluations);
+  return ok;
+}
+
+/// The drive so far, its string-stability test and its Euler step check.
+bool readDriveSettings(ParameterReader& r, IdentifierSettings& s)
+{
   int drive_max_samples = static_cast<int>(s.drive_bound.max_samples);
-  p.param("drive_max_samples", drive_max_samples, drive_max_samples);
-  p.param("drive_block_s", s.drive_bound.block_s, s.drive_bound.block_s);
-  p.param("drive_speed_band_mps", s.drive_bound.speed_band_mps, s.drive_bound.speed_band_mps);
-  if (drive_max_samples < 0 || !(s.drive_bound.block_s > 0.0) || !(s.drive_bound.speed_band_mps > 0.0))
-  {
-    error = "parameters ~drive_max_samples must be >= 0 (0: unbounded), ~drive_block_s and ~drive_speed_band_mps > 0";
-    return false;
-  }
-  s.drive_bound.max_samples = static_cast<std::size_t>(drive_max_samples);
-  p.param("stability_period_s", s.stability_period_s, s.stability_period_s);
-  p.param("alpha", s.alpha, s.alpha);
-  if (s.drive_max_evaluations < 1 || !(s.stability_period_s > 0.0) || !(s.alpha > 0.0 && s.alpha < 1.0))
-  {
-    error = "parameters ~drive_max_evaluations must be >= 1, ~stability_period_s > 0, ~alpha in (0, 1)";
-    return false;
-  }
-  ModelAdequacyOptions& a = s.adequacy;
-  p.param("adequacy_max_gap_rmse_over_spread", a.max_gap_rmse_over_spread, a.max_gap_rmse_over_spread);
-  p.param("adequacy_gap_rmse_floor_m", a.gap_rmse_floor_m, a.gap_rmse_floor_m);
-  p.param("adequacy_max_speed_rmse_over_spread", a.max_speed_rmse_over_spread, a.max_speed_rmse_over_spread);
-  p.param("adequacy_speed_rmse_floor_mps", a.speed_rmse_floor_mps, a.speed_rmse_floor_mps);
-  p.param("adequacy_bound_fraction", a.bound_fraction, a.bound_fraction);
-  p.param("adequacy_max_standard_error_at_bound_fraction", a.max_standard_error_at_bound_fraction,
-          a.max_standard_error_at_bound_fraction);
-  p.param("adequacy_max_correlation_over_response_time", a.max_correlation_over_response_time,
-          a.max_correlation_over_response_time);
-  if (!(a.max_gap_rmse_over_spread > 0.0) || !(a.gap_rmse_floor_m >= 0.0) || !(a.max_speed_rmse_over_spread > 0.0) ||
-      !(a.speed_rmse_floor_mps >= 0.0) || !(a.bound_fraction >= 0.0 && a.bound_fraction < 0.5) ||
-      !(a.max_standard_error_at_bound_fraction >= 0.0) ||
-      !(a.max_correlation_over_response_time > 0.0))
-  {
-    error = "parameters ~adequacy_*: the ratios must be positive, the floors not negative, ~adequacy_bound_fraction "
-            "in [0, 0.5)";
-    return false;
-  }
-  p.param("euler_check_min_step_s", s.euler_check_min_step_s, s.euler_check_min_step_s);
-  if (!(s.euler_check_min_step_s >= 0.0))
-  {
-    error = "parameter ~euler_check_min_step_s must be 0 or more (a large value: never)";
-    return false;
-  }
-  p.param("min_speed_std_mps", c.min_speed_std_mps, c.min_speed_std_mps);
-  if (s.starts < 0 || c.min_speed_std_mps < 0.0)
-  {
-    error = "parameters ~starts and ~min_speed_std_mps must not be negative";
-    return false;
-  }
-  return true;
+  const bool ok = r.readAtLeast("drive_max_evaluations", s.drive_max_evaluations, 1) &&
+                  r.readAtLeast("drive_max_samples", drive_max_samples, 0) &&  // 0: unbounded
+                  r.readAbove("drive_block_s", s.drive_bound.block_s, 0.0) &&
+                  r.readAbove("drive_speed_band_mps", s.drive_bound.speed_band_mps, 0.0) &&
+                  r.readAbove("stability_period_s", s.stability_period_s, 0.0) && r.read("alpha", s.alpha) &&
+                  r.require(s.alpha > 0.0 && s.alpha < 1.0, "parameter ~alpha must be in (0, 1)") &&
+                  // A large value: never.
+                  r.readAtLeast("euler_check_min_step_s", s.euler_check_min_step_s, 0.0);
+  s.drive_bound.max_samples = static_cast<std::size_t>(std::max(0, drive_max_samples));
+  return ok;
+}
+
+/// The drive fit's model adequacy: the ratios positive, the floors not negative.
+bool readAdequacySettings(ParameterReader& r, ModelAdequacyOptions& a)
+{
+  return r.readAbove("adequacy_max_gap_rmse_over_spread", a.max_gap_rmse_over_spread, 0.0) &&
+         r.readAtLeast("adequacy_gap_rmse_floor_m", a.gap_rmse_floor_m, 0.0) &&
+         r.readAbove("adequacy_max_speed_rmse_over_spread", a.max_speed_rmse_over_spread, 0.0) &&
+         r.readAtLeast("adequacy_speed_rmse_floor_mps", a.speed_rmse_floor_mps, 0.0) &&
+         r.readAtLeast("adequacy_bound_fraction", a.bound_fraction, 0.0) &&
+         r.require(a.bound_fraction < 0.5, "parameter ~adequacy_bound_fraction must be below 0.5") &&
+         r.readAtLeast("adequacy_max_standard_error_at_bound_fraction", a.max_standard_error_at_bound_fraction, 0.0) &&
+         r.readAbove("adequacy_max_correlation_over_response_time", a.max_correlation_over_response_time, 0.0);
+}
+}  // namespace
+
+bool loadIdentifierSettings(ParameterReader& reader, IdentifierSettings& s)
+{
+  return readWindowSettings(reader, s) && readDriveSettings(reader, s) && readAdequacySettings(reader, s.adequacy);
 }
 
 acc_identification::AccParameters toMessage(const OnlineUpdate& update, double window_start_s, double window_end_s,
@@ -298,12 +261,15 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node,
       return identifier.update(window_segments, drive_segments);
     };
   }
-  std::string error;
-  if (!loadIdentifierSettings(private_node, settings_, error))
+  ParameterReader reader(private_node);
+  reader.readElsewhere("diagnostic_period");  // diagnostic_updater's
+  if (!loadIdentifierSettings(reader, settings_))
   {
-    ROS_FATAL("identifier: %s", error.c_str());
+    ROS_FATAL("identifier: %s", reader.error().c_str());
     return;
   }
+  if (const std::string unread = reader.unreadNote(); !unread.empty())
+    ROS_WARN("identifier: %s", unread.c_str());
   const auto min_segment = static_cast<std::size_t>(settings_.min_segment_samples);
   const auto confirm = static_cast<std::size_t>(settings_.jump_confirm_samples);
   window_ = SlidingWindow(settings_.window_s, settings_.max_gap_s, min_segment, settings_.max_forward_jump_s, confirm);

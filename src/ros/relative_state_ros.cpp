@@ -9,21 +9,6 @@ namespace acc
 namespace
 {
 
-/// Reads ~name into value (keeping the default when absent); false when below minimum.
-bool readParameter(const ros::NodeHandle& node, const std::string& name, double& value, double minimum, bool strict,
-                   std::string& error)
-{
-  node.param(name, value, value);
-  bool fine = std::isfinite(value) && (strict ? value > minimum : value >= minimum);
-  if (!fine)
-  {
-    std::ostringstream out;
-    out << "~" << name << " = " << value << " must be " << (strict ? "> " : ">= ") << minimum;
-    error = out.str();
-  }
-  return fine;
-}
-
 std::uint64_t since(std::uint64_t now, std::uint64_t before) { return now - before; }
 }  // namespace
 
@@ -45,71 +30,80 @@ acc_identification::RelativeState toMessage(const RelativeState& state, const st
   return m;
 }
 
-bool loadRelativeStateSettings(const ros::NodeHandle& p, RelativeStateSettings& s, std::string& error)
+namespace
 {
-  VehicleGeometry& g = s.geometry;
-  bool fine = readParameter(p, "leader_antenna_to_rear_bumper_m", g.leader_antenna_to_rear_bumper_m, -1e3, false, error) &&
-              readParameter(p, "follower_antenna_to_front_bumper_m", g.follower_antenna_to_front_bumper_m, -1e3, false,
-                            error);
-  if (fine && p.hasParam("antenna_offset_m"))
-  {
-    // One combined offset (what OpenACC gives) instead of the two.
-    if (p.hasParam("leader_antenna_to_rear_bumper_m") || p.hasParam("follower_antenna_to_front_bumper_m"))
-    {
-      error = "give either ~antenna_offset_m or the two antenna-to-bumper offsets, not both";
-      return false;
-    }
-    double combined_m = 0.0;
-    fine = readParameter(p, "antenna_offset_m", combined_m, -1e3, false, error);
-    g.leader_antenna_to_rear_bumper_m = combined_m;
-  }
-  std::string mode = gapModeName(s.gap_mode);
-  p.param<std::string>("gap_mode", mode, mode);
-  if (fine && !parseGapMode(mode, s.gap_mode))
-  {
-    error = "~gap_mode '" + mode + "' is neither straight_line nor along_track";
+/// Where the antennas sit on the cars: the two offsets, or one combined offset (what OpenACC gives).
+bool readGeometry(ParameterReader& r, VehicleGeometry& g)
+{
+  if (!r.readAtLeast("leader_antenna_to_rear_bumper_m", g.leader_antenna_to_rear_bumper_m, -1e3) ||
+      !r.readAtLeast("follower_antenna_to_front_bumper_m", g.follower_antenna_to_front_bumper_m, -1e3))
     return false;
-  }
-  PairingSettings& q = s.pairing;
+  if (!r.has("antenna_offset_m"))
+    return true;
+  if (!r.require(!r.has("leader_antenna_to_rear_bumper_m") && !r.has("follower_antenna_to_front_bumper_m"),
+                 "give either ~antenna_offset_m or the two antenna-to-bumper offsets, not both"))
+    return false;
+  double combined_m = 0.0;
+  const bool ok = r.readAtLeast("antenna_offset_m", combined_m, -1e3);
+  g.leader_antenna_to_rear_bumper_m = combined_m;
+  return ok;
+}
+
+bool readPairing(ParameterReader& r, PairingSettings& q)
+{
   int max_buffered = static_cast<int>(q.max_buffered_fixes);
-  p.param("max_buffered_fixes", max_buffered, max_buffered);
+  const bool ok = r.readAtLeast("max_buffered_fixes", max_buffered, 1) &&
+                  r.readAtLeast("exact_match_tolerance_s", q.exact_match_tolerance_s, 0.0) &&
+                  r.readAtLeast("max_interpolation_skew_s", q.max_interpolation_skew_s, 0.0) &&
+                  r.readAtLeast("exact_wait_s", q.exact_wait_s, 0.0) && r.readAbove("timeout_s", q.timeout_s, 0.0) &&
+                  r.readAbove("dropout_gap_s", q.dropout_gap_s, 0.0) && r.readAbove("time_reset_s", q.time_reset_s, 0.0);
   q.max_buffered_fixes = static_cast<std::size_t>(std::max(1, max_buffered));
-  return fine && readParameter(p, "exact_match_tolerance_s", q.exact_match_tolerance_s, 0.0, false, error) &&
-         readParameter(p, "max_interpolation_skew_s", q.max_interpolation_skew_s, 0.0, false, error) &&
-         readParameter(p, "exact_wait_s", q.exact_wait_s, 0.0, false, error) &&
-         readParameter(p, "timeout_s", q.timeout_s, 0.0, true, error) &&
-         readParameter(p, "dropout_gap_s", q.dropout_gap_s, 0.0, true, error) &&
-         readParameter(p, "time_reset_s", q.time_reset_s, 0.0, true, error) &&
-         readParameter(p, "track_min_spacing_m", s.track_min_spacing_m, 0.0, true, error) &&
-         readParameter(p, "track_max_length_m", s.track_max_length_m, 0.0, true, error) &&
-         readParameter(p, "track_max_lateral_offset_m", s.track_max_lateral_offset_m, 0.0, true, error) &&
-         readParameter(p, "min_speed_for_time_gap_mps", s.min_speed_for_time_gap_mps, 0.0, false, error) &&
-         readParameter(p, "max_gap_rate_mps", s.max_gap_rate_mps, 0.0, true, error) &&
-         readParameter(p, "max_acceleration_mps2", s.max_acceleration_mps2, 0.0, true, error) &&
-         readParameter(p, "jump_reference_max_age_s", s.jump_reference_max_age_s, 0.0, false, error) &&
-         readParameter(p, "consistency_window_s", s.consistency_window_s, 0.0, true, error) &&
-         readParameter(p, "min_held_position_move_m", s.min_held_position_move_m, 0.0, true, error);
+  return ok;
+}
+
+/// The along-track gap and the plausibility and consistency checks.
+bool readChecks(ParameterReader& r, RelativeStateSettings& s)
+{
+  return r.readAbove("track_min_spacing_m", s.track_min_spacing_m, 0.0) &&
+         r.readAbove("track_max_length_m", s.track_max_length_m, 0.0) &&
+         r.readAbove("track_max_lateral_offset_m", s.track_max_lateral_offset_m, 0.0) &&
+         r.readAtLeast("min_speed_for_time_gap_mps", s.min_speed_for_time_gap_mps, 0.0) &&
+         r.readAbove("max_gap_rate_mps", s.max_gap_rate_mps, 0.0) &&
+         r.readAbove("max_acceleration_mps2", s.max_acceleration_mps2, 0.0) &&
+         r.readAtLeast("jump_reference_max_age_s", s.jump_reference_max_age_s, 0.0) &&
+         r.readAbove("consistency_window_s", s.consistency_window_s, 0.0) &&
+         r.readAbove("min_held_position_move_m", s.min_held_position_move_m, 0.0);
+}
+}  // namespace
+
+bool loadRelativeStateSettings(ParameterReader& reader, RelativeStateSettings& s)
+{
+  std::string mode = gapModeName(s.gap_mode);
+  return readGeometry(reader, s.geometry) && reader.read("gap_mode", mode) &&
+         reader.require(parseGapMode(mode, s.gap_mode),
+                        "parameter ~gap_mode '" + mode + "' is neither straight_line nor along_track") &&
+         readPairing(reader, s.pairing) && readChecks(reader, s);
 }
 
 RelativeStateRos::RelativeStateRos(ros::NodeHandle node, ros::NodeHandle private_node) : updater_(node, private_node)
 {
-  std::string error;
-  ok_ = loadRelativeStateSettings(private_node, settings_, error) &&
-        readParameter(private_node, "stale_after_s", stale_after_s_, 0.0, true, error) &&
-        readParameter(private_node, "consistency_warn_m", consistency_warn_m_, 0.0, true, error) &&
-        readParameter(private_node, "diagnostic_period_s", diagnostic_period_s_, 0.0, true, error);
-  if (!ok_)
-  {
-    ROS_FATAL("relative_state: %s", error.c_str());
-    return;
-  }
-  estimator_ = RelativeStateEstimator(settings_);
-  private_node.param("publish_invalid", publish_invalid_, publish_invalid_);
-
   // Bursts of late leader fixes come together: queues deep enough for several seconds at 10 Hz.
   int queue_size = 200;
-  private_node.param("queue_size", queue_size, queue_size);
-  queue_size = std::max(1, queue_size);
+  ParameterReader reader(private_node);
+  reader.readElsewhere("diagnostic_period");  // diagnostic_updater's
+  ok_ = loadRelativeStateSettings(reader, settings_) && reader.readAbove("stale_after_s", stale_after_s_, 0.0) &&
+        reader.readAbove("consistency_warn_m", consistency_warn_m_, 0.0) &&
+        reader.readAbove("diagnostic_period_s", diagnostic_period_s_, 0.0) &&
+        reader.read("publish_invalid", publish_invalid_) && reader.readAtLeast("queue_size", queue_size, 1);
+  if (!ok_)
+  {
+    ROS_FATAL("relative_state: %s", reader.error().c_str());
+    return;
+  }
+  unread_parameters_ = reader.unreadNote();
+  if (!unread_parameters_.empty())
+    ROS_WARN("relative_state: %s", unread_parameters_.c_str());
+  estimator_ = RelativeStateEstimator(settings_);
   leader_subscriber_ = node.subscribe("leader/fix", queue_size, &RelativeStateRos::onLeader, this);
   follower_subscriber_ = node.subscribe("follower/fix", queue_size, &RelativeStateRos::onFollower, this);
   // ROS drops the oldest messages of a full publisher queue, silently. Each sample is a follower

@@ -13,6 +13,7 @@
 #include "acc_identification/gnss/byte_source.h"
 #include "acc_identification/gnss/gnss_fix.h"
 #include "acc_identification/gnss/nmea_decoder.h"
+#include "acc_identification/ros/parameter_reader.h"
 
 #include <geometry_msgs/TwistStamped.h>
 #include <sensor_msgs/NavSatFix.h>
@@ -84,6 +85,10 @@ class GpsDriverRos
 {
 public:
   GpsDriverRos(ros::NodeHandle node, ros::NodeHandle private_node);
+  /// False when a parameter was refused (logged FATAL): run() then returns 1 at once.
+  bool ok() const { return settings_ok_; }
+  /// ParameterReader::unreadNote() of the node's parameters (warned at start): empty when all were read.
+  const std::string& unreadParameters() const { return unread_parameters_; }
   /// Runs until shutdown, or until the end of a replayed file. Returns the exit code.
   int run();
 
@@ -97,6 +102,9 @@ private:
   /// replay's next sentence may still be in transit), or after epoch_idle_wall_s of the host's
   /// clock alone (the bag ended, so /clock stopped; a pause longer than this splits the epoch).
   void flushIdleTopicEpoch();
+  /// The private parameters into the members (queue_size: the publishers'); false and
+  /// reader.error() on a parameter of the wrong type or out of range.
+  bool readParameters(ParameterReader& reader, int& queue_size);
   int runTopic();
   std::string sourceDescription() const;
   void publishLine(std::string_view line);
@@ -107,9 +115,11 @@ private:
   void finishReplay();
 
   ros::NodeHandle node_;
-  std::string source_uri_;
-  std::string frame_id_;
-  std::string vel_frame_id_;
+  bool settings_ok_ = false;  ///< the parameters read; false: run() returns 1 at once
+  std::string unread_parameters_;
+  std::string source_uri_ = "serial:///dev/ttyACM0?baud=115200";
+  std::string frame_id_ = "gps";
+  std::string vel_frame_id_ = "enu";
   std::string time_ref_source_;  ///< TimeReference.source: ~time_ref_source, or frame_id_ when empty
   double epoch_idle_s_ = 0.05;
   double epoch_idle_wall_s_ = 1.0;

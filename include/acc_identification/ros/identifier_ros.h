@@ -19,6 +19,7 @@
 #include "acc_identification/calibration/online_identifier.h"
 #include "acc_identification/calibration/drive_record.h"
 #include "acc_identification/calibration/sliding_window.h"
+#include "acc_identification/ros/parameter_reader.h"
 
 #include <acc_identification/AccParameters.h>
 #include <acc_identification/RelativeState.h>
@@ -54,8 +55,8 @@ struct IdentifierSettings
   ModelAdequacyOptions adequacy;
 };
 
-/// Reads the private parameters; false and a message on a bad value.
-bool loadIdentifierSettings(const ros::NodeHandle& private_node, IdentifierSettings& settings, std::string& error);
+/// Reads the private parameters; false and reader.error() on a bad value (type or range).
+bool loadIdentifierSettings(ParameterReader& reader, IdentifierSettings& settings);
 
 /// The message for one update: the window's solve (times from its first and last sample, GNSS
 /// time), each quantity NaN only where the window does not determine it; the drive so far; the

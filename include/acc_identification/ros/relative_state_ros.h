@@ -12,6 +12,7 @@
 #include <ros/ros.h>
 
 #include "acc_identification/relative_state/relative_state_estimator.h"
+#include "acc_identification/ros/parameter_reader.h"
 
 // Same clash for RelativeState: the message is acc_identification::RelativeState here.
 #include <acc_identification/RelativeState.h>
@@ -21,9 +22,9 @@ namespace acc
 /// The library state as a message. header.stamp: the pair's GNSS time (as the driver's fixes).
 acc_identification::RelativeState toMessage(const RelativeState& state, const std::string& frame_id);
 
-/// Reads the node's private parameters into settings; false and a message on a bad value.
-bool loadRelativeStateSettings(const ros::NodeHandle& private_node, RelativeStateSettings& settings,
-                               std::string& error);
+/// Reads the node's private parameters into settings; false and reader.error() on a bad value
+/// (type or range).
+bool loadRelativeStateSettings(ParameterReader& reader, RelativeStateSettings& settings);
 
 /// relative_state_node: subscribes to leader/fix and follower/fix (acc_identification/GnssFix),
 /// pairs them by GNSS epoch and publishes relative_state (acc_identification/RelativeState);
@@ -34,6 +35,8 @@ class RelativeStateRos
 public:
   RelativeStateRos(ros::NodeHandle node, ros::NodeHandle private_node);
   bool ok() const { return ok_; }
+  /// ParameterReader::unreadNote() of the node's parameters (warned at start): empty when all were read.
+  const std::string& unreadParameters() const { return unread_parameters_; }
 
 private:
   void onLeader(const acc_identification::GnssFix::ConstPtr& message);
@@ -42,6 +45,7 @@ private:
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   bool ok_ = false;
+  std::string unread_parameters_;
   RelativeStateSettings settings_;
   RelativeStateEstimator estimator_;
   bool publish_invalid_ = true;
