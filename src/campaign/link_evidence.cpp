@@ -1,4 +1,5 @@
 #include "acc_identification/campaign/link_evidence.h"
+#include "acc_identification/model/car_following_run.h"
 
 #include <algorithm>
 #include <cmath>
@@ -45,8 +46,9 @@ constexpr std::size_t kDipRatioReplicates = 1999;
 void concatenateSegments(const CampaignGroup& group, std::vector<double>* leader, std::vector<double>* follower,
                          double* step_s, double* median_speed_mps)
 {
-  std::vector<double> steps, speeds;
-  for (const CarFollowingRun& segment : group.segments())
+  std::vector<double> speeds;
+  const std::vector<CarFollowingRun> segments = group.segments();
+  for (const CarFollowingRun& segment : segments)
   {
     if (!leader->empty())
     {
@@ -56,10 +58,8 @@ void concatenateSegments(const CampaignGroup& group, std::vector<double>* leader
     leader->insert(leader->end(), segment.leader_speed_mps.begin(), segment.leader_speed_mps.end());
     follower->insert(follower->end(), segment.follower_speed_mps.begin(), segment.follower_speed_mps.end());
     speeds.insert(speeds.end(), segment.follower_speed_mps.begin(), segment.follower_speed_mps.end());
-    for (std::size_t k = 1; k < segment.size(); ++k)
-      steps.push_back(segment.time_s[k] - segment.time_s[k - 1]);
   }
-  *step_s = finiteMedian(steps);
+  *step_s = medianStepS(segments);
   *median_speed_mps = finiteMedian(speeds);
 }
 

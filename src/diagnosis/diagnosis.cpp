@@ -1,4 +1,5 @@
 #include "acc_identification/diagnosis/diagnosis.h"
+#include "acc_identification/model/car_following_run.h"
 
 #include <algorithm>
 #include <cmath>
@@ -297,17 +298,12 @@ namespace
 DiagnosisResult diagnoseParts(DiagnosisResult result, const DiagnosisOptions& options)
 {
   std::vector<double> speeds;
-  std::vector<double> steps;
   for (const CarFollowingRun& run : result.train)
   {
     speeds.insert(speeds.end(), run.follower_speed_mps.begin(), run.follower_speed_mps.end());
-    for (std::size_t k = 0; k + 1 < run.size(); ++k)
-    {
-      steps.push_back(run.time_s[k + 1] - run.time_s[k]);
-    }
   }
   result.operating_speed_mps = median(speeds);
-  result.sample_period_s = median(steps);
+  result.sample_period_s = medianStepS(result.train);
 
   SquaredErrorsByRun base_errors;
   const AugmentedFit base_fit = calibrateAugmented(EffectKind::none, result.train, options.calibration);

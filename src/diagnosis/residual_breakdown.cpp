@@ -1,4 +1,5 @@
 #include "acc_identification/diagnosis/residual_breakdown.h"
+#include "acc_identification/model/car_following_run.h"
 
 #include <algorithm>
 #include <cmath>
@@ -83,17 +84,6 @@ std::vector<double> centralDifference(const std::vector<double>& time_s, const s
   return rate;
 }
 
-double medianStep(const CarFollowingRun& run)
-{
-  std::vector<double> steps;
-  for (std::size_t k = 0; k + 1 < run.size(); ++k)
-  {
-    steps.push_back(run.time_s[k + 1] - run.time_s[k]);
-  }
-  std::nth_element(steps.begin(), steps.begin() + static_cast<long>(steps.size() / 2), steps.end());
-  return steps[steps.size() / 2];
-}
-
 /// Two-sided |DFT|^2 / n folded onto the non-negative frequencies, so that the bins sum to the
 /// sum of squares of the signal (Parseval) and band shares are shares of the squared error.
 std::vector<double> foldedPower(const std::vector<double>& signal)
@@ -134,7 +124,7 @@ void addSpectrum(const CarFollowingRun& run, std::size_t n, const SimulatedFollo
   }
   const std::vector<double> pb = foldedPower(rb);
   const std::vector<double> pa = foldedPower(ra);
-  const double step = medianStep(run);
+  const double step = medianStepS({run});
   const auto& edges = options.frequency_band_edges_hz;
   for (std::size_t k = 0; k < pb.size(); ++k)
   {
