@@ -86,6 +86,13 @@ int main(int argc, char** argv)
                  "acceleration_limits=a_max,b_max, sensor_time_offset=delta_s, speed_dependent_time_gap=c_s2_per_m, "
                  "set_speed_cruise=v_set,gain");
   app.add_option("--seed", options.seed, "noise seed")->capture_default_str();
+  double rate_hz = 1.0 / options.epoch_step_s;
+  auto* rate_option =
+      app.add_option("--rate-hz", rate_hz,
+                     "the receivers' output rate, GGA + RMC epochs per second (1: many receivers' default; the truth is "
+                     "simulated ten times finer; calibrate such data with --max-gap above the step)")
+          ->check(CLI::Range(0.2, 50.0))
+          ->capture_default_str();
   app.add_option("--duration", options.duration_s, "keep the first S seconds of the profile (0: all of it)")
       ->check(acc::nonNegativeNumber());
   app.add_option("--leader-log", out.files.leader_log, "leader's NMEA log to write")->required();
@@ -129,6 +136,8 @@ int main(int argc, char** argv)
     return 2;
   }
   options.profile = static_cast<char>(std::toupper(static_cast<unsigned char>(profile[0])));
+  if (rate_option->count() > 0)
+    options.epoch_step_s = 1.0 / rate_hz;  // the default stays exactly the library's 0.1 s
   if (heading_option->count() > 0)
     options.start_heading_rad = heading_deg * acc::kDegToRad;  // the default stays exactly as the library has it
   for (const std::string& effect : effects)
