@@ -160,8 +160,7 @@ void setInterval(const ParameterUncertainty& u, QuantityEstimate& q)
   }
   if (!q.held_by_bound.empty() || !std::isfinite(q.standard_error) || !std::isfinite(q.value))
     return;
-  const double dof = static_cast<double>(u.blocks) - 1.0;
-  const double t = dof >= 1.0 ? studentTUpperQuantile(0.025, dof) : twoSidedNormalQuantile(0.05);
+  const double t = intervalFactor95(u.blocks);
   q.interval_95_low = q.value - t * q.standard_error;
   q.interval_95_high = q.value + t * q.standard_error;
 }
@@ -209,6 +208,12 @@ bool allDetermined(const IdentifiableQuantities& quantities, std::initializer_li
       return false;
   }
   return true;
+}
+
+double intervalFactor95(std::size_t blocks)
+{
+  const double dof = static_cast<double>(blocks) - 1.0;
+  return dof >= 1.0 ? studentTUpperQuantile(0.025, dof) : twoSidedNormalQuantile(0.05);
 }
 
 IdentifiableQuantities assessQuantities(const AccParameters& fit, const ParameterUncertainty& uncertainty,

@@ -68,6 +68,7 @@ void fillWindow(const OnlineUpdate& update, acc_identification::AccParameters& m
   const QuantityEstimate* gap = q ? q->find("equilibrium_gap_at_mean_speed") : nullptr;
   m.equilibrium_speed_mps = gap != nullptr ? gap->speed_mps : kNaN;
   setQuantity(q, "stability_margin", m.stability_margin, m.stability_margin_std_error);
+  m.std_error_t95 = q ? intervalFactor95(result.uncertainty.blocks) : kNaN;
   m.rmse_speed_mps = result.solved ? result.fit.rmse_speed_mps : kNaN;
   m.rmse_gap_m = result.solved ? result.fit.rmse_gap_m : kNaN;
   // lambda2, the band and the peak need k1, k2 and tau_e (not eta: the linearised dynamics do not
@@ -98,6 +99,7 @@ void fillDrive(const OnlineUpdate& update, double drive_start_s, acc_identificat
   setQuantity(q, "tau_e", m.drive_tau_e_s, m.drive_tau_e_std_error);
   setQuantity(q, "eta", m.drive_eta_m, m.drive_eta_std_error);
   setQuantity(q, "stability_margin", m.drive_stability_margin, m.drive_stability_margin_std_error);
+  m.drive_std_error_t95 = q ? intervalFactor95(update.drive.uncertainty.blocks) : kNaN;
   m.drive_rmse_speed_mps = update.drive.solved ? update.drive.fit.rmse_speed_mps : kNaN;
   m.drive_note = !update.drive.solved ? update.drive.note : quantitiesNote(q);
   if (update.euler_step)

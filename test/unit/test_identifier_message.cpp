@@ -24,6 +24,14 @@ TEST(IdentifierMessage, IdentifiableWindowCarriesEverything)
   EXPECT_EQ(m.segments, 1u);
   EXPECT_DOUBLE_EQ(m.k1_per_s2, result.calibration.parameters.k1_per_s2);
   EXPECT_DOUBLE_EQ(m.eta_std_error, result.uncertainty.standard_error.eta_m);
+  // The factor of the 95 % intervals: Student's t of the window's blocks, wider than the normal's
+  // 1.96, and the one calibrate's interval uses.
+  ASSERT_GE(result.uncertainty.blocks, 2u);
+  EXPECT_GT(m.std_error_t95, 1.96);
+  EXPECT_DOUBLE_EQ(m.std_error_t95, acc::intervalFactor95(result.uncertainty.blocks));
+  const acc::QuantityEstimate* margin = result.quantities->find("stability_margin");
+  ASSERT_TRUE(margin != nullptr && margin->held_by_bound.empty());
+  EXPECT_NEAR(m.stability_margin + m.std_error_t95 * m.stability_margin_std_error, margin->interval_95_high, 1e-12);
   EXPECT_DOUBLE_EQ(m.lambda2, result.stability.lambda2);
   EXPECT_EQ(m.string_stable, result.stability.string_stable ? acc_identification::AccParameters::STRING_STABLE
                                                              : acc_identification::AccParameters::STRING_UNSTABLE);
@@ -45,6 +53,7 @@ TEST(IdentifierMessage, UnidentifiableWindowSaysSoInsteadOfPublishingNoise)
   EXPECT_EQ(m.optimizer_status, "NOT_SOLVED");
   EXPECT_TRUE(std::isnan(m.k1_per_s2));
   EXPECT_TRUE(std::isnan(m.tau_e_std_error));
+  EXPECT_TRUE(std::isnan(m.std_error_t95));
   EXPECT_TRUE(std::isnan(m.lambda2));
   // lambda2 NaN: unknown, not "unstable".
   EXPECT_EQ(m.string_stable, acc_identification::AccParameters::STRING_STABILITY_UNKNOWN);
@@ -127,6 +136,7 @@ TEST(IdentifierMessage, QuantitiesOneByOneTheDriveAndTheVerdict)
   EXPECT_EQ(m.drive_samples, run.size());
   EXPECT_DOUBLE_EQ(m.drive_start.toSec(), 900.0);
   EXPECT_TRUE(std::isnan(m.drive_tau_e_s));
+  EXPECT_DOUBLE_EQ(m.drive_std_error_t95, acc::intervalFactor95(update.drive.uncertainty.blocks));
   EXPECT_EQ(m.stability_verdict, "unstable");
   EXPECT_DOUBLE_EQ(m.stability_p_value, 0.004);
   EXPECT_DOUBLE_EQ(m.stability_margin_high, -0.9);

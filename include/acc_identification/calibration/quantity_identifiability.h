@@ -89,6 +89,11 @@ struct IdentifiableQuantities
   const QuantityEstimate* find(const std::string& name) const;
 };
 
+/// The factor of a standard error from batch means over `blocks` blocks that makes a two-sided
+/// 95 % interval, value +- factor x standard error: Student's t with blocks - 1 degrees of freedom
+/// (2.228 for 11 blocks, 2.365 for 8), the normal 1.96 when fewer than two blocks are known.
+double intervalFactor95(std::size_t blocks);
+
 /// Whether every named quantity is assessed and determined. lambda2, the amplified band and the
 /// peak need {"k1", "k2", "tau_e"} (eta does not enter the linearised dynamics); "identifiable"
 /// needs those and "eta".
