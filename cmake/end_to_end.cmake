@@ -24,4 +24,34 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/rostest/end_to_end_rate.test DEPENDENCIES ${ACC_END_TO_END_TARGETS})
   # A 5 s leader dropout: no parameters from the gap, recovery after it.
   add_rostest(test/rostest/end_to_end_dropout.test DEPENDENCIES ${ACC_END_TO_END_TARGETS})
+  # A receiver at 1 Hz: a drive synthesize makes at build time (seeded), replayed with max_gap_s
+  # 2.5. As relative_state.cmake does, a small launch file in the build tree passes the bag's path
+  # on, so that the target's name holds no absolute path.
+  if(TARGET synthesize)
+    set(_acc_coarse_dir ${PROJECT_BINARY_DIR}/rostest/coarse_1hz)
+    set(_acc_coarse_bag ${_acc_coarse_dir}/synthetic_min_F_1hz.bag)
+    add_custom_command(
+      OUTPUT ${_acc_coarse_bag}
+      COMMAND ${CMAKE_COMMAND} -E make_directory ${_acc_coarse_dir}
+      COMMAND synthesize --profile F --setting min --seed 1 --rate-hz 1 --leader-log ${_acc_coarse_dir}/leader.nmea
+              --follower-log ${_acc_coarse_dir}/follower.nmea --parameters-json ${_acc_coarse_dir}/parameters.json
+              --bag ${_acc_coarse_bag}
+      DEPENDS synthesize
+      COMMENT "a 1 Hz synthetic drive for end_to_end_coarse"
+      VERBATIM)
+    add_custom_target(end_to_end_coarse_bag DEPENDS ${_acc_coarse_bag})
+    add_dependencies(tests end_to_end_coarse_bag)
+    set(_acc_launch ${PROJECT_BINARY_DIR}/rostest/end_to_end_coarse_1hz.test)
+    file(CONFIGURE OUTPUT ${_acc_launch} @ONLY CONTENT [=[
+<!-- Made by cmake/end_to_end.cmake: the 1 Hz synthetic drive. -->
+<launch>
+  <include file="$(find acc_identification)/test/rostest/end_to_end_coarse.test">
+    <arg name="bag" value="@_acc_coarse_bag@"/>
+  </include>
+</launch>
+]=])
+    add_rostest(${_acc_launch} DEPENDENCIES ${ACC_END_TO_END_TARGETS} end_to_end_coarse_bag)
+  else()
+    message(WARNING "end_to_end: synthesize is not built (ACC_COMPONENTS): no 1 Hz end-to-end rostest")
+  endif()
 endif()

@@ -13,7 +13,8 @@
 # Environment: DEMO_BAG (replay this bag alone instead of the two above), DEMO_ANTENNA_OFFSET_M
 # (for DEMO_BAG; default the relative_state default), DEMO_RATE (default 20), DEMO_WINDOW_S
 # (default 300; the ZalaZone session uses 900, its whole length), DEMO_PERIOD_S (default 10),
-# DEMO_PORT (ROS master port, default 11430).
+# DEMO_PORT (ROS master port, default 11430), DEMO_MAX_GAP_S (for DEMO_BAG: the longest step that is
+# not a hole, chain.launch's max_gap_s and calibrate's --max-gap; e.g. 2.5 for a 1 Hz recording).
 set -eo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 package=$(cd "$here/.." && pwd)
@@ -71,7 +72,8 @@ replay_drive() {
   local recorder_pid=$!
   pids+=($recorder_pid)
   roslaunch acc_identification replay.launch bag:="$bag" rate:="$rate" window_s:="$window_s" \
-    period_s:="$period_s" antenna_offset_m:="$antenna_offset_m" > "$out/launch.log" 2>&1 &
+    period_s:="$period_s" antenna_offset_m:="$antenna_offset_m" max_gap_s:="${DEMO_MAX_GAP_S:-}" \
+    > "$out/launch.log" 2>&1 &
   local launch_pid=$!
   pids+=($launch_pid)
 
@@ -103,7 +105,8 @@ replay_drive() {
   read -r start end <<< "$window"
   rosbag filter "$out/out.bag" "$out/window.bag" \
     "topic == '/relative_state' and $start - 1e-6 <= m.header.stamp.to_sec() <= $end + 1e-6" > /dev/null
-  rosrun acc_identification calibrate --quiet --json "$out/batch.json" "$out/window.bag" 2>&1 | sed 's/^/   calibrate: /'
+  rosrun acc_identification calibrate --quiet ${DEMO_MAX_GAP_S:+--max-gap "$DEMO_MAX_GAP_S"} --json "$out/batch.json" \
+    "$out/window.bag" 2>&1 | sed 's/^/   calibrate: /'
   python3 "$here/demo_listener.py" compare "$out/online.json" "$out/batch.json"
 }
 

@@ -15,6 +15,22 @@ namespace
 {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+/// A report's lines on one line, each trimmed, "; "-separated (a note is one line).
+std::string joinLines(const std::string& text)
+{
+  std::istringstream lines(text);
+  std::string line, joined;
+  while (std::getline(lines, line))
+  {
+    const std::size_t first = line.find_first_not_of(' ');
+    if (first == std::string::npos)
+      continue;
+    const std::size_t last = line.find_last_not_of(' ');
+    joined += (joined.empty() ? "" : "; ") + line.substr(first, last - first + 1);
+  }
+  return joined;
+}
+
 /// "3 out-of-order, 1 time outlier" from (count, what) pairs, leaving out the zeros.
 std::string listNonZero(std::initializer_list<std::pair<std::uint64_t, const char*>> items)
 {
@@ -104,12 +120,8 @@ void fillDrive(const OnlineUpdate& update, double drive_start_s, acc_identificat
   m.drive_note = !update.drive.solved ? update.drive.note : quantitiesNote(q);
   if (update.euler_step)
   {
-    // One line, as every note: the check's report without its line breaks.
-    std::string check = describeEulerStepBias(*update.euler_step);
-    std::replace(check.begin(), check.end(), '\n', ' ');
-    while (!check.empty() && check.back() == ' ')
-      check.pop_back();
-    m.drive_note += (m.drive_note.empty() ? "" : "; ") + check;
+    // One line, as every note.
+    m.drive_note += (m.drive_note.empty() ? "" : "; ") + joinLines(describeEulerStepBias(*update.euler_step));
   }
 }
 

@@ -20,7 +20,6 @@
 
 namespace
 {
-
 /// What the command line asks for, beyond SynthesisOptions.
 struct Outputs
 {
@@ -87,12 +86,9 @@ int main(int argc, char** argv)
                  "set_speed_cruise=v_set,gain");
   app.add_option("--seed", options.seed, "noise seed")->capture_default_str();
   double rate_hz = 1.0 / options.epoch_step_s;
-  auto* rate_option =
-      app.add_option("--rate-hz", rate_hz,
-                     "the receivers' output rate, GGA + RMC epochs per second (1: many receivers' default; the truth is "
-                     "simulated ten times finer; calibrate such data with --max-gap above the step)")
-          ->check(CLI::Range(0.2, 50.0))
-          ->capture_default_str();
+  auto* rate_option = app.add_option("--rate-hz", rate_hz, "the receivers' output rate, GGA + RMC epochs per second (1: "
+                                     "many receivers' default; the truth is simulated ten times finer; calibrate such "
+                                     "data with --max-gap above the step)")->check(CLI::Range(0.2, 50.0))->capture_default_str();
   app.add_option("--duration", options.duration_s, "keep the first S seconds of the profile (0: all of it)")
       ->check(acc::nonNegativeNumber());
   app.add_option("--leader-log", out.files.leader_log, "leader's NMEA log to write")->required();

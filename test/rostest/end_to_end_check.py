@@ -13,6 +13,10 @@ identifier. Listens until the replay has ended (no relative_state for ~idle_s of
                  ~expect_verdict, the last sequential verdict equals calibrate --verdict-every's on the
                  samples its test saw, and with ~expect_decided a decided verdict comes before the
                  end of the drive.
+  ~mode coarse:  a receiver at 1 Hz replayed with the chain's max_gap_s above its step (~max_gap_s,
+                 passed to calibrate as --max-gap): no step counted as a dropout, the window agrees
+                 with calibrate as in batch mode, and drive_note carries the Euler step check, which
+                 at 1 Hz must find the bias MATERIAL.
   ~mode dropout: no acc_parameters window ends inside the gap of the leader's sentences; the
                  relative_state stream stops during the gap and resumes after it; acc_parameters
                  after the gap again come from new samples.
@@ -154,7 +158,8 @@ class EndToEnd(unittest.TestCase):
 
     def test_mode(self):
         """The check of ~mode only: no skipped tests that a summary would count as passed."""
-        checks = {"truth": self.check_truth, "batch": self.check_batch, "dropout": self.check_dropout}
+        checks = {"truth": self.check_truth, "batch": self.check_batch, "dropout": self.check_dropout,
+                  "coarse": self.check_coarse}
         self.assertIn(self.mode, checks, "unknown ~mode")
         checks[self.mode]()
 
@@ -190,8 +195,8 @@ class EndToEnd(unittest.TestCase):
                 if start - 1e-6 <= s.header.stamp.to_sec() <= end + 1e-6:
                     bag.write("relative_state", s, s.header.stamp)
         out = os.path.join(directory, "batch.json")
-        subprocess.run(["rosrun", PKG, "calibrate", "--quiet", "--starts", "30", "--json", out, window_bag],
-                       check=True, stdout=subprocess.DEVNULL)
+        subprocess.run(["rosrun", PKG, "calibrate", "--quiet", "--starts", "30", "--json", out, window_bag]
+                       + self.max_gap_option(), check=True, stdout=subprocess.DEVNULL)
         batch = json.load(open(out))
         self.assertEqual(bool(last.identifiable), bool(batch["identifiable"]),
                          "online: %s / batch: %s" % (last.identifiability_note, batch["identifiability_note"]))
@@ -207,6 +212,22 @@ class EndToEnd(unittest.TestCase):
             self.assertAlmostEqual(last.lambda2, batch["stability"]["lambda2"], delta=0.05)
         if rospy.get_param("~expect_verdict", False):
             self.check_verdict(directory)
+
+    @staticmethod
+    def max_gap_option():
+        """calibrate's --max-gap as the chain's (~max_gap_s), or nothing for its default."""
+        max_gap_s = rospy.get_param("~max_gap_s", "")
+        return ["--max-gap", str(max_gap_s)] if max_gap_s != "" else []
+
+    def check_coarse(self):
+        for key in ("leader_dropouts", "follower_dropouts"):
+            self.assertEqual(int(self.diagnostic("Relative state", key)), 0, key + ": a 1 s step is no dropout here")
+        self.check_batch()
+        last = self.last_params()
+        print("drive_note: %s" % last.drive_note, file=sys.stderr)
+        self.assertIn("Euler step (the paper's calibration simulates at the data's own step, median 1 s)",
+                      last.drive_note)
+        self.assertIn("MATERIAL", last.drive_note)
 
     def check_verdict(self, directory):
         """The issue's rostest: a decided verdict before the end of the drive, never withdrawn once
@@ -237,7 +258,7 @@ class EndToEnd(unittest.TestCase):
         out = os.path.join(directory, "tested.json")
         every = str(rospy.get_param("~stability_period_s", 10.0))
         subprocess.run(["rosrun", PKG, "calibrate", "--quiet", "--no-stability-test", "--verdict-every", every,
-                        "--json", out, tested_bag], check=True, stdout=subprocess.DEVNULL)
+                        "--json", out, tested_bag] + self.max_gap_option(), check=True, stdout=subprocess.DEVNULL)
         batch = json.load(open(out))["sequential_verdicts"][0]["sequential_verdict"]
         print("sequential verdict: live %s (p %.4f, %d samples; %d messages decided, of %d drive samples); "
               "calibrate --verdict-every %s (p %.4f)" % (

@@ -154,6 +154,20 @@ TEST(IdentifierMessage, QuantitiesOneByOneTheDriveAndTheVerdict)
             std::string::npos)
       << checked.drive_note;
   EXPECT_EQ(checked.drive_note.find('\n'), std::string::npos);
+  // A report of two lines: joined by "; ", the second's indent gone.
+  check.assessed = true;
+  check.reason.clear();
+  check.substeps = 10;
+  check.bias.k1_per_s2 = -0.012;
+  check.corrected.k1_per_s2 = 0.072;
+  check.material = true;
+  check.material_because = "k1 -20 % (4.1 standard errors)";
+  update.euler_step = check;
+  const std::string note = acc::toMessage(update, 1000.0, 1300.0, 900.0).drive_note;
+  EXPECT_NE(note.find("MATERIAL: k1 -20 % (4.1 standard errors); corrected (fit - bias): k1 0.0720"), std::string::npos)
+      << note;
+  EXPECT_EQ(note.find('\n'), std::string::npos) << note;
+  EXPECT_EQ(note.find("  "), std::string::npos) << note;
 }
 
 TEST(IdentifierMessage, NoVerdictYetIsUndecidedWithNaNAndTimesOutOfRangeNeverThrow)
