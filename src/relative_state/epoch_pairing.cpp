@@ -135,15 +135,44 @@ bool EpochPairer::acceptStream(const GnssFix& fix, bool leader)
     noteTimeBases(!leader);
     return true;
   }
-  if (std::isfinite(newest) && t > newest + settings_.dropout_gap_s)
+  const bool dropout = std::isfinite(newest) && t > newest + settings_.dropout_gap_s;
+  if (dropout)
   {
     ++(leader ? counters_.leader_dropouts : counters_.follower_dropouts);
-    event(std::string(name) + " dropout: no epoch from " + seconds(newest) + " s to " + seconds(t) + " s", false);
+    noteDropout(name, newest, t, leader ? leader_dropouts_in_a_row_ : follower_dropouts_in_a_row_);
+  }
+  else if (std::isfinite(newest) && t > newest)
+  {
+    (leader ? leader_dropouts_in_a_row_ : follower_dropouts_in_a_row_) = 0;
   }
   arrived_out_of_order_ = std::isfinite(newest) && t < newest - settings_.exact_match_tolerance_s;
   newest = std::isfinite(newest) ? std::max(newest, t) : t;
   noteTimeBases(false);
   return true;
+}
+
+// A stream whose every step is a dropout is recorded more coarsely than dropout_gap_s (a receiver
+// at 1 Hz against the default 0.5 s): after a few in a row that is said once, with what to do, and
+// its further dropouts are reported throttled (still each counted).
+void EpochPairer::noteDropout(const char* name, double from_s, double to_s, std::size_t& in_a_row)
+{
+  constexpr std::size_t kInARowForCoarse = 3;
+  ++in_a_row;
+  const std::string what = std::string(name) + " dropout: no epoch from " + seconds(from_s) + " s to " + seconds(to_s) + " s";
+  if (in_a_row < kInARowForCoarse)
+  {
+    event(what, false);
+    return;
+  }
+  if (in_a_row == kInARowForCoarse)
+  {
+    event(std::string(name) + ": " + std::to_string(kInARowForCoarse) + " dropouts in a row, the last " +
+              seconds(to_s - from_s) + " s: the stream is recorded more coarsely than dropout_gap_s (" +
+              seconds(settings_.dropout_gap_s) + " s), a receiver at 1 Hz? Raise dropout_gap_s above its step "
+              "(the launch files' max_gap_s, e.g. 2.5 at 1 Hz, raises the identifier's too)",
+          false);
+  }
+  event(what, true);
 }
 
 // After a time reset of the follower (a looping bag, a receiver reset) the leader, still on the

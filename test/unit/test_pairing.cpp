@@ -179,6 +179,46 @@ TEST(Pairing, LeaderDropoutGivesNoSamplesACountAndABreak)
                           }));
 }
 
+// Receivers at 1 Hz against the default dropout_gap_s 0.5 s: every step is a dropout, each one
+// counted; the pairer says once per stream what that means and what to do, and reports the rest
+// throttled (per epoch) instead of two warnings a second. An isolated dropout stays one warning.
+TEST(Pairing, AStreamWhoseEveryStepIsADropoutIsSaidOnceAndThrottled)
+{
+  acc::EpochPairer pairer;
+  for (double t : epochs(0.0, 10.0, 1.0))
+  {
+    pairer.addLeader(fixAt(t));
+    pairer.addFollower(fixAt(t, -0.001));
+  }
+  EXPECT_EQ(pairer.counters().leader_dropouts, 10u);
+  EXPECT_EQ(pairer.counters().follower_dropouts, 10u);
+  const auto events = pairer.takeEvents();
+  const auto said = [&](const std::string& part, bool per_epoch) {
+    return std::count_if(events.begin(), events.end(), [&](const acc::PairingEvent& e) {
+      return e.per_epoch == per_epoch && e.text.find(part) != std::string::npos;
+    });
+  };
+  EXPECT_EQ(said("leader: 3 dropouts in a row, the last 1.00 s: the stream is recorded more coarsely than "
+                 "dropout_gap_s (0.50 s), a receiver at 1 Hz? Raise dropout_gap_s above its step",
+                 false),
+            1);
+  EXPECT_EQ(said("follower: 3 dropouts in a row", false), 1);
+  EXPECT_EQ(said("leader dropout", false), 2);  // the first two, before the stream is known coarse
+  EXPECT_EQ(said("leader dropout", true), 8);
+
+  // With the gap above the step, nothing is a dropout.
+  acc::PairingSettings settings;
+  settings.dropout_gap_s = 2.5;
+  acc::EpochPairer coarse(settings);
+  for (double t : epochs(0.0, 10.0, 1.0))
+  {
+    coarse.addLeader(fixAt(t));
+    coarse.addFollower(fixAt(t, -0.001));
+  }
+  EXPECT_EQ(coarse.counters().leader_dropouts, 0u);
+  EXPECT_EQ(coarse.takePairs().size(), 11u);
+}
+
 TEST(Pairing, FollowerWaitsForTheLeaderOnlyUntilTheTimeout)
 {
   acc::PairingSettings settings;

@@ -115,6 +115,7 @@ private:
 
   bool acceptStream(const GnssFix& fix, bool leader);
   void noteTimeBases(bool follower_reset);
+  void noteDropout(const char* name, double from_s, double to_s, std::size_t& in_a_row);
   void insertLeader(const GnssFix& fix);
   void insertFollower(const GnssFix& fix);
   void resolvePending();
@@ -137,6 +138,8 @@ private:
   bool break_before_next_ = true;
   bool arrived_out_of_order_ = false;  // of the fix being added, counted once it is kept
   bool leader_reset_awaited_ = false;  // the follower's time went back, the leader's not yet
+  std::size_t leader_dropouts_in_a_row_ = 0;  // consecutive steps of the stream that were dropouts
+  std::size_t follower_dropouts_in_a_row_ = 0;
 };
 
 /// The fix between a and b at time_s, linear in every field (course by the shorter turn).
