@@ -1,5 +1,6 @@
 #include <acc_identification/relative_state/relative_state_estimator.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -105,7 +106,9 @@ std::string RelativeStateEstimator::jumpReason(const RelativeState& state) const
   if (!has_reference_)
     return "";
   double dt = state.time_s - reference_.time_s;
-  if (dt <= 0.0 || dt > settings_.jump_reference_max_age_s)
+  // At least one step of the stream back: a receiver at 1 Hz or slower (dropout_gap_s raised
+  // above its step) is checked against its previous epoch too.
+  if (dt <= 0.0 || dt > std::max(settings_.jump_reference_max_age_s, settings_.pairing.dropout_gap_s))
     return "";
   double gap_rate = std::abs(state.space_gap_m - reference_.space_gap_m) / dt;
   if (gap_rate > settings_.max_gap_rate_mps)

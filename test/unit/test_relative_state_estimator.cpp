@@ -53,12 +53,13 @@ Drive straightDrive()
 }
 
 std::vector<acc::RelativeState> run(acc::RelativeStateEstimator& estimator, const Drive& drive, double duration_s,
-                                   std::function<void(double, acc::GnssFix&, acc::GnssFix&)> tamper = nullptr)
+                                   std::function<void(double, acc::GnssFix&, acc::GnssFix&)> tamper = nullptr,
+                                   double step_s = 0.1)
 {
-  for (int i = 0; i * 0.1 <= duration_s + 1e-9; ++i)
+  for (int i = 0; i * step_s <= duration_s + 1e-9; ++i)
   {
-    double t = 1000.0 + i * 0.1;
-    double tr = i * 0.1;
+    double t = 1000.0 + i * step_s;
+    double tr = i * step_s;
     auto leader = fixOf(drive, t, drive.leader_s_m(tr) + drive.leader_position_error_m(tr), drive.leader_v_mps(tr));
     auto follower = fixOf(drive, t, drive.follower_s_m(tr), drive.follower_v_mps(tr));
     if (tamper)
@@ -250,4 +251,29 @@ TEST(RelativeStateEstimator, GapModeNamesRoundTrip)
   EXPECT_EQ(mode, acc::GapMode::kAlongTrack);
   EXPECT_STREQ(acc::gapModeName(mode), "along_track");
   EXPECT_FALSE(acc::parseGapMode("chord", mode));
+}
+
+// Receivers at 1 Hz and 0.5 Hz, with dropout_gap_s above their step: the jump check looks back one
+// step of the stream, however far that is beyond jump_reference_max_age_s (1 s). Fails when a
+// 2 s step leaves every sample unchecked.
+TEST(RelativeStateEstimator, ASlowStreamIsJumpCheckedAcrossItsOwnStep)
+{
+  for (const double step_s : {1.0, 2.0})
+  {
+    acc::RelativeStateSettings settings = settingsWithOffset();
+    settings.pairing.dropout_gap_s = 2.5 * step_s;
+    acc::RelativeStateEstimator estimator(settings);
+    auto states = run(
+        estimator, straightDrive(), 20.0,
+        [step_s](double t, acc::GnssFix& leader, acc::GnssFix&) {
+          if (std::abs(t - 5.0 * step_s) < 1e-6)
+            leader.latitude_deg += 1e-3;  // 111 m north for one epoch
+        },
+        step_s);
+    ASSERT_GT(states.size(), 6u);
+    EXPECT_FALSE(states[5].valid) << step_s << " s";
+    EXPECT_NE(states[5].invalid_reason.find("max_gap_rate"), std::string::npos) << states[5].invalid_reason;
+    EXPECT_TRUE(states[6].valid) << step_s << " s";
+    EXPECT_EQ(estimator.counters().jumps_rejected, 1u) << step_s << " s";
+  }
 }

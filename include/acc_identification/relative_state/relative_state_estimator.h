@@ -33,7 +33,8 @@ struct RelativeStateSettings
   /// Physically impossible jumps between successive pairs: the gap cannot change faster than
   /// this (it changes at the relative speed), nor either car's speed faster than the
   /// acceleration bound. Checked against the last accepted pair when it is at most
-  /// jump_reference_max_age_s old, so that a real step (e.g. RTK fixing) costs that long at most.
+  /// jump_reference_max_age_s old, so that a real step (e.g. RTK fixing) costs that long at most,
+  /// or one step of the stream (pairing.dropout_gap_s, for receivers at 1 Hz or slower).
   double max_gap_rate_mps = 30.0;
   double max_acceleration_mps2 = 15.0;
   double jump_reference_max_age_s = 1.0;
