@@ -43,7 +43,8 @@ std::string describe(XmlRpc::XmlRpcValue& value)
   return out.str();
 }
 
-/// True for text that is a whole number (" 1e6" too): the likely slip of a YAML 1.1 exponent.
+/// True when the whole text reads as a number ("1e6"): the likely slip of an exponent YAML 1.1 and
+/// roslaunch take for text.
 bool looksNumeric(const std::string& text)
 {
   if (text.empty())
