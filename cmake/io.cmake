@@ -14,7 +14,7 @@ acc_add_library(acc_run_io SOURCES ${ACC_RUN_IO_SOURCES} LINK acc_model nlohmann
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_run_csv test/unit/gtest_main.cpp test/unit/test_run_csv.cpp test/unit/test_openacc_file.cpp
     test/unit/test_gap_kinematics.cpp test/unit/test_gap_sawtooth.cpp
-    test/unit/test_output_files.cpp test/unit/test_input_account.cpp)
+    test/unit/test_output_files.cpp test/unit/test_input_account.cpp test/unit/test_acc_engagement.cpp)
   target_compile_definitions(test_run_csv PRIVATE ACC_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/test/data/runs")
   target_link_libraries(test_run_csv acc_run_io)
 endif()

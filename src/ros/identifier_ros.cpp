@@ -223,11 +223,20 @@ bool readAdequacySettings(ParameterReader& r, ModelAdequacyOptions& a)
          r.readAtLeast("adequacy_max_standard_error_at_bound_fraction", a.max_standard_error_at_bound_fraction, 0.0) &&
          r.readAbove("adequacy_max_correlation_over_response_time", a.max_correlation_over_response_time, 0.0);
 }
+
+/// The ACC's engagement reports.
+bool readEngagementSettings(ParameterReader& r, AccEngagementSettings& e)
+{
+  return r.read("require_acc_engaged", e.required) && r.readAtLeast("acc_engaged_timeout_s", e.timeout_s, 0.0) &&
+         r.require(std::isfinite(e.timeout_s), "parameter ~acc_engaged_timeout_s must be finite (0: a report holds "
+                                               "until the next)");
+}
 }  // namespace
 
 bool loadIdentifierSettings(ParameterReader& reader, IdentifierSettings& s)
 {
-  return readWindowSettings(reader, s) && readDriveSettings(reader, s) && readAdequacySettings(reader, s.adequacy);
+  return readWindowSettings(reader, s) && readDriveSettings(reader, s) && readAdequacySettings(reader, s.adequacy) &&
+         readEngagementSettings(reader, s.engagement);
 }
 
 acc_identification::AccParameters toMessage(const OnlineUpdate& update, double window_start_s, double window_end_s,
@@ -303,9 +312,11 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node,
   verdict_options.alpha = settings_.alpha;
   verdict_options.look_period_s = settings_.stability_period_s;
   sequential_.emplace(verdict_options);
+  engagement_ = AccEngagement(settings_.engagement);
   publisher_ = node.advertise<acc_identification::AccParameters>("acc_parameters", 10);
   subscriber_ = node.subscribe("relative_state", static_cast<std::uint32_t>(settings_.queue_size),
                                &IdentifierRos::onRelativeState, this);
+  engagement_subscriber_ = node.subscribe("acc_engaged", 10, &IdentifierRos::onAccEngaged, this);
   worker_ = std::thread(&IdentifierRos::workerLoop, this);
   stability_worker_ = std::thread(&IdentifierRos::stabilityLoop, this);
   period_timer_ = node.createTimer(ros::Duration(settings_.period_s), &IdentifierRos::onPeriod, this);
@@ -364,8 +375,10 @@ void IdentifierRos::onRelativeState(const acc_identification::RelativeState::Con
 {
   ++received_;
   std::string implausible;
-  const WindowSample sample = toWindowSample(*message, implausible);
-  if (!implausible.empty())
+  WindowSample sample = toWindowSample(*message, implausible);
+  const bool acc_drove = accDrove(sample.time_s);
+  sample.valid = sample.valid && acc_drove;  // a split point, counted by accDrove
+  if (!implausible.empty() && acc_drove)
   {
     ++implausible_;
     ROS_WARN_THROTTLE(1.0, "identifier: relative_state at %.3f s: %s; used as a split point (counted)",
@@ -393,7 +406,9 @@ void IdentifierRos::onRelativeState(const acc_identification::RelativeState::Con
   switch (result)
   {
     case SlidingWindow::AddResult::kAdded: return;
-    case SlidingWindow::AddResult::kInvalid: ++invalid_; return;  // the pairing already said why
+    case SlidingWindow::AddResult::kInvalid:
+      invalid_ += acc_drove && implausible.empty() ? 1 : 0;  // the pairing already said why
+      return;
     case SlidingWindow::AddResult::kHeld: break;  // counted once confirmed or dropped
     case SlidingWindow::AddResult::kNonFinite:
       if (std::isfinite(sample.time_s))
@@ -407,6 +422,38 @@ void IdentifierRos::onRelativeState(const acc_identification::RelativeState::Con
   }
   ROS_WARN_THROTTLE(1.0, "identifier: relative_state at %.3f s: %s (counted in diagnostics)", sample.time_s,
                     SlidingWindow::describe(result).c_str());
+}
+
+void IdentifierRos::onAccEngaged(const std_msgs::Bool::ConstPtr& message)
+{
+  std::string previous;
+  {
+    std::lock_guard<std::mutex> lock(engagement_mutex_);
+    previous = engagement_.latestReport();
+    engagement_.report(ros::Time::now().toSec(), message->data);
+  }
+  if (previous != (message->data ? "engaged" : "off"))
+  {
+    ROS_INFO("identifier: acc_engaged says the ACC is %s: relative_state samples %s", message->data ? "engaged" : "off",
+             message->data ? "are used" : "are split points, not used, until it is engaged again (counted)");
+  }
+}
+
+bool IdentifierRos::accDrove(double sample_time_s)
+{
+  AccEngagement::Judgement judgement;
+  std::string why;
+  {
+    std::lock_guard<std::mutex> lock(engagement_mutex_);
+    judgement = engagement_.judge(ros::Time::now().toSec());
+    why = engagement_.describe(judgement.use);
+  }
+  if (judgement.use == AccEngagement::Use::kStateUnknown && judgement.starts_stretch)
+  {
+    ROS_WARN("identifier: relative_state at %.3f s: %s (~require_acc_engaged): samples are split points, not used, "
+             "until a report says engaged (counted)", sample_time_s, why.c_str());
+  }
+  return judgement.use == AccEngagement::Use::kUsed;
 }
 
 void IdentifierRos::onPeriod(const ros::TimerEvent& event)
@@ -623,6 +670,13 @@ IdentifierCounters IdentifierRos::counters()
   c.received = received_;
   c.invalid = invalid_;
   c.implausible = implausible_;
+  {
+    std::lock_guard<std::mutex> lock(engagement_mutex_);
+    c.acc_off = engagement_.samplesOff();
+    c.acc_state_unknown = engagement_.samplesUnknown();
+    c.engagement_reports = engagement_.reports();
+    c.disengagements = engagement_.disengagements();
+  }
   c.drive_resets = drive_resets_;
   c.solves = solves_;
   c.skipped_periods = skipped_periods_;
@@ -657,7 +711,9 @@ IdentifierHealth identifierHealth(const IdentifierCounters& now, const Identifie
       {since(now.implausible, previous.implausible), "implausible (split points)"},
       {since(now.restarts, previous.restarts), "time jumps back (window cleared)"},
       {since(now.jumps_ahead, previous.jumps_ahead), "time jumps ahead"},
+      {since(now.acc_state_unknown, previous.acc_state_unknown), "with the ACC's state unknown (not used)"},
   });
+  const std::uint64_t acc_off = since(now.acc_off, previous.acc_off);
   if (failures > 0)
   {
     health.level = diagnostic_msgs::DiagnosticStatus::ERROR;
@@ -682,7 +738,9 @@ IdentifierHealth identifierHealth(const IdentifierCounters& now, const Identifie
   else
   {
     health.level = diagnostic_msgs::DiagnosticStatus::OK;
-    health.message = "identifying";
+    health.message = acc_off > 0 ? "ACC off (acc_engaged): " + std::to_string(acc_off) +
+                                       " relative_state sample(s) since last report not used"
+                                 : "identifying";
   }
   return health;
 }
@@ -722,6 +780,14 @@ void IdentifierRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status
   status.add("invalid samples (split points)", c.invalid);
   status.add("non-finite samples", c.non_finite);
   status.add("implausible samples (split points)", c.implausible);
+  status.add("samples with the ACC off (split points, not used)", c.acc_off);
+  status.add("samples with the ACC's state unknown (split points, not used)", c.acc_state_unknown);
+  status.add("acc_engaged reports", c.engagement_reports);
+  status.add("ACC disengagements reported", c.disengagements);
+  {
+    std::lock_guard<std::mutex> lock(engagement_mutex_);
+    status.add("ACC engagement (latest report)", engagement_.latestReport());
+  }
   status.add("out-of-order samples (rejected)", c.out_of_order);
   status.add("time outliers (dropped)", c.time_outliers);
   status.add("time jumps back (window cleared)", c.restarts);

@@ -12,6 +12,8 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 
+#include <std_msgs/Bool.h>
+
 #include "acc_identification/RelativeState.h"
 #include "acc_identification/calibration/sliding_window.h"
 #include "acc_identification/io/run_csv.h"
@@ -51,9 +53,11 @@ std::string describeImplausibleSample(const WindowSample& sample, const RunPlaus
 class BagSegmenter
 {
 public:
-  BagSegmenter(std::string path, const RunPlausibilityBounds& bounds, BagRuns& result)
+  BagSegmenter(std::string path, const RunPlausibilityBounds& bounds, const AccEngagementSettings& engagement,
+               BagRuns& result)
     : path_(std::move(path))
     , bounds_(bounds)
+    , engagement_(engagement)
     // A batch reader: time resets are handled below, before the window sees them, and a jump
     // ahead is a hole like any other (no confirmation to wait for: nothing leaves this window).
     , window_(std::numeric_limits<double>::infinity(), bounds.max_time_step_s, 2,
@@ -62,7 +66,15 @@ public:
   {
   }
 
-  void add(WindowSample sample)
+  /// An engagement report recorded at record_time_s (the bag's clock).
+  void reportEngagement(double record_time_s, bool engaged)
+  {
+    ++result_.engagement_reports;
+    engagement_.report(record_time_s, engaged);
+  }
+
+  /// A sample recorded at record_time_s (the bag's clock), stamped sample.time_s (GNSS time).
+  void add(WindowSample sample, double record_time_s)
   {
     ++result_.messages;
     if (!window_.empty() && sample.time_s < window_.endTimeS() - bounds_.max_time_step_s)
@@ -73,10 +85,17 @@ public:
       window_.clear();
       segment_open_ = false;
     }
+    const AccEngagement::Judgement engagement = engagement_.judge(record_time_s);
     const std::string implausible = describeImplausibleSample(sample, bounds_);
-    if (!implausible.empty())
+    if (!implausible.empty() || engagement.use != AccEngagement::Use::kUsed)
     {
       sample.valid = false;  // a split point for the window, never used: as a rejected CSV row
+    }
+    if (engagement.use != AccEngagement::Use::kUsed)
+    {
+      noteNotEngaged(sample.time_s, engagement);
+      window_.add(sample);  // a split point, whatever else is wrong with it
+      return;
     }
     switch (window_.add(sample))
     {
@@ -94,6 +113,18 @@ public:
   void finish() { moveSegments(); }
 
 private:
+  /// Counted by kind; said once for each stretch of samples the ACC did not drive.
+  void noteNotEngaged(double time_s, const AccEngagement::Judgement& engagement)
+  {
+    segment_open_ = false;
+    ++(engagement.use == AccEngagement::Use::kAccOff ? result_.acc_off : result_.acc_state_unknown);
+    if (engagement.starts_stretch)
+    {
+      report(time_s, engagement_.describe(engagement.use) + "; messages not used from here until the ACC is "
+                                                            "reported engaged, run split");
+    }
+  }
+
   void noteSplitPoint(double time_s, const std::string& implausible)
   {
     segment_open_ = false;
@@ -137,6 +168,7 @@ private:
 
   std::string path_;
   RunPlausibilityBounds bounds_;
+  AccEngagement engagement_;
   SlidingWindow window_;
   BagRuns& result_;
   bool segment_open_ = false;   ///< whether the window's newest segment has a valid sample
@@ -173,9 +205,21 @@ std::string describeBagTopics(const rosbag::Bag& bag)
   }
   return listed.empty() ? "none (empty bag)" : listed;
 }
+
+/// The topic's names as a bag may hold them: as given and with a leading '/' (or without it).
+std::vector<std::string> topicSpellings(const std::string& topic)
+{
+  const std::string bare = topic.empty() || topic[0] != '/' ? topic : topic.substr(1);
+  return {bare, "/" + bare};
+}
+
+bool isTopic(const std::string& topic, const std::vector<std::string>& spellings)
+{
+  return topic == spellings[0] || topic == spellings[1];
+}
 }  // namespace
 
-BagRuns readRunsFromBag(const std::string& path, const std::string& topic, const RunPlausibilityBounds& bounds)
+BagRuns readRunsFromBag(const std::string& path, const BagTopics& topics, const RunPlausibilityBounds& bounds)
 {
   const std::string bounds_problem = describeBoundsProblem(bounds);
   if (!bounds_problem.empty())
@@ -191,24 +235,44 @@ BagRuns readRunsFromBag(const std::string& path, const std::string& topic, const
   {
     throw std::runtime_error("cannot read bag '" + path + "': " + error.what());
   }
-  const std::string bare = topic.empty() || topic[0] != '/' ? topic : topic.substr(1);
-  rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{bare, "/" + bare}));
-  if (view.size() == 0)
+  const std::vector<std::string> samples_topic = topicSpellings(topics.relative_state);
+  if (rosbag::View(bag, rosbag::TopicQuery(samples_topic)).size() == 0)
   {
-    throw std::runtime_error("bag '" + path + "' has no messages on topic '" + topic +
+    throw std::runtime_error("bag '" + path + "' has no messages on topic '" + topics.relative_state +
                              "'; its topics: " + describeBagTopics(bag) + " (choose one with --topic)");
   }
-  BagRuns result;
-  BagSegmenter segmenter(path, bounds, result);
-  for (const rosbag::MessageInstance& instance : view)
+  std::vector<std::string> read_topics = samples_topic;
+  const std::vector<std::string> engagement_topic = topicSpellings(topics.acc_engaged);
+  if (!topics.acc_engaged.empty())
   {
+    read_topics.insert(read_topics.end(), engagement_topic.begin(), engagement_topic.end());
+  }
+  BagRuns result;
+  BagSegmenter segmenter(path, bounds, topics.engagement, result);
+  // One view of both topics, in record order: the order the node received them in.
+  for (const rosbag::MessageInstance& instance : rosbag::View(bag, rosbag::TopicQuery(read_topics)))
+  {
+    if (!topics.acc_engaged.empty() && isTopic(instance.getTopic(), engagement_topic))
+    {
+      const auto report = instance.instantiate<std_msgs::Bool>();
+      if (!report)
+      {
+        throw std::runtime_error("bag '" + path + "': topic '" + topics.acc_engaged + "' is " +
+                                 instance.getDataType() + ", not std_msgs/Bool (choose the ACC's engagement "
+                                 "topic with --acc-engaged-topic, or none with --acc-engaged-topic '')");
+      }
+      segmenter.reportEngagement(instance.getTime().toSec(), report->data);
+      continue;
+    }
     const auto message = instance.instantiate<acc_identification::RelativeState>();
     if (!message)
     {
-      throw std::runtime_error("bag '" + path + "': topic '" + topic + "' is not acc_identification/RelativeState");
+      throw std::runtime_error("bag '" + path + "': topic '" + topics.relative_state +
+                               "' is not acc_identification/RelativeState");
     }
     segmenter.add({message->header.stamp.toSec(), message->space_gap_m, message->follower_speed_mps,
-                   message->leader_speed_mps, static_cast<bool>(message->valid)});
+                   message->leader_speed_mps, static_cast<bool>(message->valid)},
+                  instance.getTime().toSec());
   }
   segmenter.finish();
   const std::string name = bagName(path);
@@ -223,7 +287,9 @@ BagRuns readRunsFromBag(const std::string& path, const std::string& topic, doubl
 {
   RunPlausibilityBounds bounds;
   bounds.max_time_step_s = max_gap_s;
-  return readRunsFromBag(path, topic, bounds);
+  BagTopics topics;
+  topics.relative_state = topic;
+  return readRunsFromBag(path, topics, bounds);
 }
 
 InputAccount accountOfBag(const std::string& path, const BagRuns& bag)
@@ -235,11 +301,27 @@ InputAccount accountOfBag(const std::string& path, const BagRuns& bag)
                     {"runs", bag.runs.size()},        {"invalid", bag.invalid},
                     {"implausible", bag.implausible}, {"out_of_order", bag.out_of_order},
                     {"time_holes", bag.time_holes},   {"time_resets", bag.time_resets},
-                    {"short_pieces", bag.short_pieces}};
+                    {"short_pieces", bag.short_pieces}, {"acc_off", bag.acc_off},
+                    {"acc_state_unknown", bag.acc_state_unknown}, {"engagement_reports", bag.engagement_reports}};
   return account;
 }
 
-RunArgument readRunArgument(const std::string& path, const std::string& topic, double max_gap_s, std::ostream& log,
+namespace
+{
+/// ", N recorded with the ACC off, M with its state unknown (K engagement reports)" where the bag
+/// has an engagement source or a sample was not used for want of one; "" otherwise.
+std::string describeEngagementCounts(const BagRuns& bag)
+{
+  if (bag.engagement_reports == 0 && bag.acc_state_unknown == 0)
+  {
+    return "";
+  }
+  return ", " + std::to_string(bag.acc_off) + " recorded with the ACC off, " + std::to_string(bag.acc_state_unknown) +
+         " with its state unknown (" + std::to_string(bag.engagement_reports) + " engagement reports)";
+}
+}  // namespace
+
+RunArgument readRunArgument(const std::string& path, const BagTopics& topics, double max_gap_s, std::ostream& log,
                             const OpenAccPairSelector& selector)
 {
   const std::string bag_suffix = ".bag";
@@ -259,16 +341,18 @@ RunArgument readRunArgument(const std::string& path, const std::string& topic, d
   {
     throw std::runtime_error(path + ": " + selector.describe() + " chosen, but a bag of RelativeState holds one pair");
   }
-  BagRuns bag = readRunsFromBag(path, topic, max_gap_s);
+  RunPlausibilityBounds bounds;
+  bounds.max_time_step_s = max_gap_s;
+  BagRuns bag = readRunsFromBag(path, topics, bounds);
   for (const std::string& problem : bag.problems)
   {
     log << "warning: " << problem << "\n";
   }
   log << path << ": " << bag.messages << " messages, " << bag.invalid << " invalid, " << bag.implausible
       << " outside the plausibility bounds, " << bag.out_of_order << " out of order, " << bag.time_holes
-      << " holes in time, " << bag.time_resets << " time resets, " << bag.short_pieces << " pieces too short -> "
-      << bag.runs.size() << " runs" << describeCoarseSteps(bag.time_holes, bag.messages > 0 ? bag.messages - 1 : 0)
-      << "\n";
+      << " holes in time, " << bag.time_resets << " time resets, " << bag.short_pieces << " pieces too short"
+      << describeEngagementCounts(bag) << " -> " << bag.runs.size() << " runs"
+      << describeCoarseSteps(bag.time_holes, bag.messages > 0 ? bag.messages - 1 : 0) << "\n";
   argument.account = accountOfBag(path, bag);
   argument.runs = std::move(bag.runs);
   return argument;
@@ -277,16 +361,18 @@ RunArgument readRunArgument(const std::string& path, const std::string& topic, d
 std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std::string& topic, double max_gap_s,
                                              std::ostream& log)
 {
-  return readRunArgument(path, topic, max_gap_s, log, OpenAccPairSelector::first()).runs;
+  BagTopics topics;
+  topics.relative_state = topic;
+  return readRunArgument(path, topics, max_gap_s, log, OpenAccPairSelector::first()).runs;
 }
 
-RunArguments readRunArguments(const std::vector<std::string>& paths, const std::string& topic, double max_gap_s,
+RunArguments readRunArguments(const std::vector<std::string>& paths, const BagTopics& topics, double max_gap_s,
                               std::ostream& log, const OpenAccPairSelector& selector)
 {
   RunArguments arguments;
   for (const std::string& path : paths)
   {
-    RunArgument argument = readRunArgument(path, topic, max_gap_s, log, selector);
+    RunArgument argument = readRunArgument(path, topics, max_gap_s, log, selector);
     arguments.inputs_read.push_back(argument.account);
     for (CarFollowingRun& run : argument.runs)
       arguments.runs.push_back({std::move(run), path});

@@ -57,8 +57,10 @@ int main(int argc, char** argv)
     }
     else
     {
+      acc::BagTopics topics;  // the ACC's engagement reports read as calibrate reads them by default
+      topics.relative_state = topic;
       const acc::RunArgument argument =
-          acc::readRunArgument(path, topic, max_gap_s, std::cerr, acc::pairSelectorFromOptions(follower, false));
+          acc::readRunArgument(path, topics, max_gap_s, std::cerr, acc::pairSelectorFromOptions(follower, false));
       json = acc::replayRunInSumo(argument.runs, vtype_file, ids, options, std::cout);
     }
     if (!json_path.empty() && !(std::ofstream(json_path) << json.dump(2) << "\n"))

@@ -1,7 +1,8 @@
 // identifier_node's wrapper (acc::IdentifierRos) in this process, its solve replaced by one the test
 // controls, fed relative_state with the input faults of a real drive: a late sample, a stamp a day
 // in the future, one in the past, a sustained time reset, an implausible speed; then solves that
-// throw a std::exception and something that is not one. Checks the window (what the solve is
+// throw a std::exception and something that is not one; and a safety driver's take-over reported on
+// acc_engaged. Checks the window (what the solve is
 // given), the diagnostics (level since the last report, totals, what was thrown) and that the node
 // goes on publishing.
 #include <gtest/gtest.h>
@@ -19,6 +20,7 @@
 
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <ros/ros.h>
+#include <std_msgs/Bool.h>
 
 #include "acc_identification/ros/identifier_ros.h"
 
@@ -262,6 +264,50 @@ TEST(IdentifierFaults, AnImplausibleSampleIsASplitPointCountedAndReported)
   EXPECT_NE(report.message.find("1 implausible"), std::string::npos) << describe(report);
   EXPECT_EQ(report.count("implausible samples (split points)"), 1u) << describe(report);
   ASSERT_TRUE(waitForReport(before, [](const Report& r) { return isOk(r); }, report)) << lastReport();
+}
+
+/// Reports on acc_engaged, waiting until the node has the one sent (its diagnostics say it).
+void reportEngagement(ros::Publisher& engagement, bool engaged)
+{
+  std_msgs::Bool report;
+  report.data = engaged;
+  engagement.publish(report);
+  Report found;
+  const std::string latest = engaged ? "engaged" : "off";
+  ASSERT_TRUE(waitForReport(reportCount(), [&](const Report& r) { return r.values.count("ACC engagement (latest report)") &&
+                                                                        r.values.at("ACC engagement (latest report)") == latest; },
+                            found))
+      << lastReport();
+}
+
+/// A take-over by the safety driver: the samples while the ACC reports itself off are split points,
+/// in no segment, counted, and said in an OK report (the driver's choice is no fault).
+TEST(IdentifierFaults, SamplesWhileTheAccIsOffAreSplitPointsCountedAndNotUsed)
+{
+  ros::NodeHandle node;
+  ros::Publisher engagement = node.advertise<std_msgs::Bool>("acc_engaged", 10);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (engagement.getNumSubscribers() == 0 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_GT(engagement.getNumSubscribers(), 0u);
+  ASSERT_TRUE(windowHolds(20)) << window_samples;  // 500.3 - 502.0 from the test before
+  const std::size_t before = reportCount();
+  reportEngagement(engagement, false);
+  feed->publishRun(502.1, 10);  // 502.1 - 503.0, ACC off
+  reportEngagement(engagement, true);
+  feed->publishRun(503.1, 10);  // 503.1 - 504.0
+  ASSERT_TRUE(windowHolds(30)) << "the window holds " << window_samples << ", not the 20 + 10 samples the ACC drove";
+  Report report;
+  ASSERT_TRUE(waitForReport(before, [](const Report& r) { return r.count("samples with the ACC off (split points, not used)") == 10; },
+                            report))
+      << lastReport();
+  EXPECT_EQ(report.count("ACC disengagements reported"), 1u) << describe(report);
+  EXPECT_EQ(report.count("acc_engaged reports"), 2u) << describe(report);
+  EXPECT_EQ(report.count("invalid samples (split points)"), 0u) << describe(report);
+  ASSERT_TRUE(waitForReport(before, [](const Report& r) { return r.message.find("ACC off (acc_engaged)") != std::string::npos; },
+                            report))
+      << lastReport();
+  EXPECT_EQ(report.level, DiagnosticStatus::OK) << describe(report);
 }
 
 /// Whatever the solve throws, the worker catches it, counts it, says what it was (ERROR), and the

@@ -137,6 +137,15 @@ TEST(NodeParameters, TheIdentifierRefusesAStringWindow)
   EXPECT_TRUE(contains(reader.error(), "parameter ~window_s is the string \"3e2\"")) << reader.error();
 }
 
+/// 1 for true, as a launch file's value="1" gives: an int, which the node will not read as a bool.
+TEST(NodeParameters, TheIdentifierRefusesAnIntegerForRequireAccEngaged)
+{
+  acc::ParameterReader reader(ros::NodeHandle("~identifier_engagement_slip"));
+  acc::IdentifierSettings settings;
+  EXPECT_FALSE(acc::loadIdentifierSettings(reader, settings));
+  EXPECT_TRUE(contains(reader.error(), "~require_acc_engaged")) << reader.error();
+}
+
 TEST(NodeParameters, RelativeStateRefusesAStringTimeoutAndAnEmptyQueue)
 {
   acc::ParameterReader reader(ros::NodeHandle("~relative_state_slip"));

@@ -1,15 +1,24 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <utility>
 #include <vector>
 #include <string>
 
 #include <rosbag/bag.h>
+#include <std_msgs/Bool.h>
 
+#include "acc_identification/calibration/calibration_objective.h"
+#include "acc_identification/calibration/margin_constrained_fit.h"
+#include "acc_identification/calibration/multistart_calibrator.h"
+#include "acc_identification/model/paper_settings.h"
 #include "acc_identification/ros/run_bag_reader.h"
+#include "acc_identification/synthesis/synthetic_runs.h"
 
 #include <acc_identification/RelativeState.h>
 
@@ -61,12 +70,14 @@ TEST(RunBagReader, SplitsAtInvalidSamplesGapsAndTimeResets)
   // The tools' account of the same bag (their JSON's inputs_read): every message used or counted.
   std::ostringstream log;
   const acc::RunArgument argument =
-      acc::readRunArgument(path, "relative_state", 0.5, log, acc::OpenAccPairSelector::first());
+      acc::readRunArgument(path, acc::BagTopics{}, 0.5, log, acc::OpenAccPairSelector::first());
   EXPECT_EQ(argument.account.format, "bag");
   using Counts = std::vector<std::pair<std::string, std::size_t>>;
   EXPECT_EQ(argument.account.counts, (Counts{{"messages", 57}, {"samples_used", 54}, {"runs", 4}, {"invalid", 2},
                                              {"implausible", 0}, {"out_of_order", 1}, {"time_holes", 1},
-                                             {"time_resets", 1}, {"short_pieces", 0}}));
+                                             {"time_resets", 1}, {"short_pieces", 0}, {"acc_off", 0},
+                                             {"acc_state_unknown", 0}, {"engagement_reports", 0}}));
+  EXPECT_EQ(log.str().find("engagement"), std::string::npos) << "a bag without a source is read as before";
   try
   {
     acc::readRunsFromBag(path, "missing_topic");
@@ -84,5 +95,145 @@ TEST(RunBagReader, SplitsAtInvalidSamplesGapsAndTimeResets)
   }
   std::remove(path.c_str());
   EXPECT_THROW(acc::readRunsFromBag(path), std::runtime_error);
+}
+
+std_msgs::Bool engaged(bool value)
+{
+  std_msgs::Bool report;
+  report.data = value;
+  return report;
+}
+
+/// A drive whose safety driver took over for 2 s, recorded as drive.launch records it: samples
+/// and engagement reports on the ROS clock, in the order the node received them.
+std::string writeDriveWithATakeOver(const std::string& name)
+{
+  const std::string path = testing::TempDir() + "/" + name + ".bag";
+  rosbag::Bag bag(path, rosbag::bagmode::Write);
+  for (int k = 0; k < 100; ++k)  // 10 s at 10 Hz, record time = GNSS time + 0.15 s of pairing
+  {
+    const double t = 200.0 + 0.1 * k;
+    if (k == 5)
+      bag.write("/acc_engaged", ros::Time(t + 0.1), engaged(true));
+    if (k == 40)
+      bag.write("/acc_engaged", ros::Time(t + 0.1), engaged(false));  // samples 40-59 while off
+    if (k == 60)
+      bag.write("/acc_engaged", ros::Time(t + 0.1), engaged(true));
+    bag.write("/relative_state", ros::Time(t + 0.15), stateAt(t));
+  }
+  return path;
+}
+
+TEST(RunBagReader, SamplesRecordedWhileTheAccWasOffSplitTheRunAndAreCounted)
+{
+  const std::string path = writeDriveWithATakeOver("take_over");
+  const acc::BagRuns runs = acc::readRunsFromBag(path, "relative_state", 0.5);
+  EXPECT_EQ(runs.messages, 100u);
+  EXPECT_EQ(runs.engagement_reports, 3u);
+  EXPECT_EQ(runs.acc_off, 20u);
+  EXPECT_EQ(runs.acc_state_unknown, 0u);  // before the first report: used, engagement not required
+  ASSERT_EQ(runs.runs.size(), 2u);
+  EXPECT_EQ(runs.runs[0].size(), 40u);
+  EXPECT_EQ(runs.runs[1].size(), 40u);
+  EXPECT_DOUBLE_EQ(runs.runs[1].time_s.front(), 206.0);
+  ASSERT_EQ(runs.problems.size(), 1u);  // one line for the stretch, not one per sample
+  EXPECT_NE(runs.problems[0].find("t = 204.000 s): ACC off"), std::string::npos) << runs.problems[0];
+
+  acc::BagTopics required;
+  required.engagement.required = true;
+  std::ostringstream log;
+  const acc::RunArgument argument = acc::readRunArgument(path, required, 0.5, log, acc::OpenAccPairSelector::first());
+  // Samples 0-4 came before the first report: unknown, a piece too short to simulate on its own.
+  EXPECT_EQ(argument.account.count("acc_state_unknown"), std::optional<std::size_t>(5));
+  EXPECT_EQ(argument.account.count("acc_off"), std::optional<std::size_t>(20));
+  EXPECT_EQ(argument.account.count("samples_used"), std::optional<std::size_t>(75));
+  EXPECT_NE(log.str().find(", 20 recorded with the ACC off, 5 with its state unknown (3 engagement reports) -> 2 runs"),
+            std::string::npos)
+      << log.str();
+
+  acc::BagTopics no_source;
+  no_source.acc_engaged = "";
+  EXPECT_EQ(acc::readRunsFromBag(path, no_source, acc::RunPlausibilityBounds{}).runs.size(), 1u);
+  std::remove(path.c_str());
+}
+
+acc::AccParameters fitted(const std::vector<acc::CarFollowingRun>& runs)
+{
+  const acc::CalibrationObjective objective(runs);
+  acc::MultistartOptions options;
+  options.starts = 12;
+  return acc::calibrateMultistart(objective, options).parameters;
+}
+
+/// Why the reports matter: 300 s of the paper's minimum setting, then the safety driver takes over
+/// and brakes (2 m/s^2 for 5 s, then holds 10 m/s) while the leader drives on. Fitted with it, the
+/// take-over is fitted as the ACC's; recorded as a take-over, it stays out.
+TEST(RunBagReader, ATakeOverReportedOnAccEngagedStaysOutOfTheFit)
+{
+  const acc::AccParameters truth = acc::paperMinimumSetting();
+  acc::CarFollowingRun drive = acc::synthesizeRun(truth, 300.0, 0.1, 20.0, 7);
+  const double leader_mps = drive.leader_speed_mps.back();
+  for (int k = 1; k <= 200; ++k)  // 20 s of manual driving
+  {
+    const double follower_mps = std::max(10.0, drive.follower_speed_mps.back() - 2.0 * 0.1);
+    drive.space_gap_m.push_back(drive.space_gap_m.back() + 0.1 * (leader_mps - follower_mps));
+    drive.follower_speed_mps.push_back(follower_mps);
+    drive.leader_speed_mps.push_back(leader_mps);
+    drive.time_s.push_back(drive.time_s.back() + 0.1);
+  }
+  const std::string path = testing::TempDir() + "/take_over_fit.bag";
+  {
+    rosbag::Bag bag(path, rosbag::bagmode::Write);
+    bag.write("/acc_engaged", ros::Time(1000.0), engaged(true));
+    for (std::size_t i = 0; i < drive.size(); ++i)
+    {
+      const double t = 1000.0 + drive.time_s[i];
+      if (i == 3001)
+        bag.write("/acc_engaged", ros::Time(t + 0.05), engaged(false));
+      acc_identification::RelativeState state = stateAt(t);
+      state.space_gap_m = drive.space_gap_m[i];
+      state.follower_speed_mps = drive.follower_speed_mps[i];
+      state.leader_speed_mps = drive.leader_speed_mps[i];
+      bag.write("/relative_state", ros::Time(t + 0.15), state);
+    }
+  }
+  acc::BagTopics ignoring;
+  ignoring.acc_engaged = "";
+  const acc::BagRuns with_take_over = acc::readRunsFromBag(path, ignoring, acc::RunPlausibilityBounds{});
+  const acc::BagRuns without = acc::readRunsFromBag(path, acc::BagTopics{}, acc::RunPlausibilityBounds{});
+  EXPECT_EQ(without.acc_off, 200u);  // every sample of the take-over
+  ASSERT_EQ(without.runs.size(), 1u);
+  const double truth_margin = acc::stabilityMargin(truth);
+  const double error_with = std::abs(acc::stabilityMargin(fitted(with_take_over.runs)) - truth_margin);
+  const double error_without = std::abs(acc::stabilityMargin(fitted(without.runs)) - truth_margin);
+  std::printf("take-over: margin error %.3f fitted with it, %.3f without (truth %.3f)\n", error_with, error_without,
+              truth_margin);
+  EXPECT_LT(error_without, 0.1);
+  EXPECT_GT(error_with, 5.0 * error_without);
+  std::remove(path.c_str());
+}
+
+TEST(RunBagReader, AnEngagementTopicOfAnotherTypeIsRefusedWithTheWayOut)
+{
+  const std::string path = testing::TempDir() + "/engagement_type.bag";
+  {
+    rosbag::Bag bag(path, rosbag::bagmode::Write);
+    bag.write("/relative_state", ros::Time(1.0), stateAt(1.0));
+    bag.write("/acc_engaged", ros::Time(1.0), stateAt(1.0));
+  }
+  try
+  {
+    acc::readRunsFromBag(path);
+    ADD_FAILURE() << "no error for an engagement topic that is not std_msgs/Bool";
+  }
+  catch (const std::runtime_error& error)
+  {
+    EXPECT_NE(std::string(error.what()).find("topic 'acc_engaged' is acc_identification/RelativeState, not "
+                                             "std_msgs/Bool (choose the ACC's engagement topic with "
+                                             "--acc-engaged-topic"),
+              std::string::npos)
+        << error.what();
+  }
+  std::remove(path.c_str());
 }
 }  // namespace

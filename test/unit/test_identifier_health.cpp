@@ -39,6 +39,24 @@ TEST(IdentifierHealth, OneBadSampleWarnsInTheNextReportOnly)
   EXPECT_EQ(acc::identifierHealth(after, after, "").level, DiagnosticStatus::OK);
 }
 
+/// A take-over by the driver is said (OK: the driver's choice); samples whose ACC state is unknown
+/// while engagement is required are a fault of the source (WARN).
+TEST(IdentifierHealth, AccOffIsSaidAndAnUnknownAccStateWarns)
+{
+  const acc::IdentifierCounters before = running();
+  acc::IdentifierCounters off = before;
+  off.acc_off = 12;
+  const acc::IdentifierHealth said = acc::identifierHealth(off, before, "");
+  EXPECT_EQ(said.level, DiagnosticStatus::OK);
+  EXPECT_EQ(said.message, "ACC off (acc_engaged): 12 relative_state sample(s) since last report not used");
+  EXPECT_EQ(acc::identifierHealth(off, off, "").message, "identifying");
+  acc::IdentifierCounters unknown = before;
+  unknown.acc_state_unknown = 3;
+  const acc::IdentifierHealth warn = acc::identifierHealth(unknown, before, "");
+  EXPECT_EQ(warn.level, DiagnosticStatus::WARN);
+  EXPECT_NE(warn.message.find("3 with the ACC's state unknown (not used)"), std::string::npos) << warn.message;
+}
+
 TEST(IdentifierHealth, EveryKindOfBadSampleAndJumpIsReportedSinceTheLastReport)
 {
   const acc::IdentifierCounters before = running();

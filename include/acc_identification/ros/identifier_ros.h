@@ -19,10 +19,12 @@
 #include "acc_identification/calibration/online_identifier.h"
 #include "acc_identification/calibration/drive_record.h"
 #include "acc_identification/calibration/sliding_window.h"
+#include "acc_identification/io/acc_engagement.h"
 #include "acc_identification/ros/parameter_reader.h"
 
 #include <acc_identification/AccParameters.h>
 #include <acc_identification/RelativeState.h>
+#include <std_msgs/Bool.h>
 
 namespace acc
 {
@@ -50,6 +52,9 @@ struct IdentifierSettings
   /// this (OnlineIdentifierOptions::euler_check_min_step_s) [s].
   double euler_check_min_step_s = 0.15;
   IdentifiabilityCriteria criteria;
+  /// How the ACC's engagement reports on acc_engaged are read (~require_acc_engaged,
+  /// ~acc_engaged_timeout_s): a sample while the ACC is off is a split point, not used.
+  AccEngagementSettings engagement;
   /// The drive fit's model adequacy (~adequacy_* parameters; the dip check needs perturbations
   /// of a platoon and is the campaign's).
   ModelAdequacyOptions adequacy;
@@ -81,6 +86,10 @@ struct IdentifierCounters
   std::uint64_t invalid = 0;           ///< marked invalid by the pairing: split points
   std::uint64_t non_finite = 0;        ///< a NaN or infinite value or time
   std::uint64_t implausible = 0;       ///< outside acc::RunPlausibilityBounds: split points
+  std::uint64_t acc_off = 0;           ///< while the ACC reported itself off: split points, not used
+  std::uint64_t acc_state_unknown = 0; ///< engagement required but not known: split points, not used
+  std::uint64_t engagement_reports = 0;
+  std::uint64_t disengagements = 0;
   std::uint64_t out_of_order = 0;      ///< late or duplicate: rejected
   std::uint64_t time_outliers = 0;     ///< a jump in time the old time base contradicted: dropped
   std::uint64_t restarts = 0;          ///< confirmed jumps back: window cleared, drive restarted
@@ -106,9 +115,10 @@ struct IdentifierHealth
 
 /// What happened between two reports, as relative_state_node reports it: ERROR when a solve or a
 /// test threw since the previous report (with last_failure, what it threw), WARN when a period was
-/// skipped or samples were rejected, dropped, implausible or a jump in time was confirmed since
-/// then, WARN before the first sample, else OK. One bad sample an hour ago is no reason to stay
-/// WARN: the totals are the key-values.
+/// skipped or samples were rejected, dropped, implausible, of an unknown ACC state (engagement
+/// required) or a jump in time was confirmed since then, WARN before the first sample, else OK
+/// ("ACC off: ..." while samples come with the ACC off: the driver's choice, not a fault). One
+/// bad sample an hour ago is no reason to stay WARN: the totals are the key-values.
 IdentifierHealth identifierHealth(const IdentifierCounters& now, const IdentifierCounters& previous,
                                   const std::string& last_failure);
 
@@ -128,7 +138,8 @@ bool runCatchingEverything(const std::function<void()>& work, std::string& failu
 /// and reported (ERROR with what it threw): the node goes on with the next period.
 ///
 /// Samples are checked as the batch readers check them (acc::RunPlausibilityBounds: implausible
-/// values are split points), and jumps in time need ~jump_confirm_samples consistent samples
+/// values are split points; samples while the ACC's engagement reports on acc_engaged say it is
+/// off are split points, acc::AccEngagement), and jumps in time need ~jump_confirm_samples consistent samples
 /// before they clear or move the window (acc::SlidingWindow). Diagnostics report what changed
 /// since the last report, with every total as a key-value.
 class IdentifierRos
@@ -170,6 +181,10 @@ private:
   };
 
   void onRelativeState(const acc_identification::RelativeState::ConstPtr& message);
+  void onAccEngaged(const std_msgs::Bool::ConstPtr& message);
+  /// Whether the ACC drove when the sample arrived (now, on the ROS clock): false when it did not,
+  /// counted and said once per stretch.
+  bool accDrove(double sample_time_s);
   void onPeriod(const ros::TimerEvent& event);
   void workerLoop();
   void stabilityLoop();
@@ -215,7 +230,11 @@ private:
   std::uint64_t sequential_generation_ = 0;
   std::thread stability_worker_;
 
+  std::mutex engagement_mutex_;
+  AccEngagement engagement_;  ///< under engagement_mutex_
+
   ros::Subscriber subscriber_;
+  ros::Subscriber engagement_subscriber_;
   ros::Publisher publisher_;
   ros::Timer period_timer_;
   diagnostic_updater::Updater updater_;

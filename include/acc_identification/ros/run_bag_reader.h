@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "acc_identification/calibration/calibrate_runs.h"
+#include "acc_identification/io/acc_engagement.h"
 #include "acc_identification/io/input_account.h"
 #include "acc_identification/model/car_following_run.h"
 #include "acc_identification/io/openacc_file.h"
@@ -24,26 +25,42 @@ struct BagRuns
   std::size_t time_holes = 0;    ///< steps longer than the largest time step: split points, no message lost
   std::size_t short_pieces = 0;  ///< pieces between split points too short to simulate
   std::size_t time_resets = 0;   ///< stamps jumping back (a restarted replay): split points
+  std::size_t acc_off = 0;            ///< recorded while the ACC reported itself off: split points, not used
+  std::size_t acc_state_unknown = 0;  ///< engagement required but not known: split points, not used
+  std::size_t engagement_reports = 0; ///< messages of the engagement topic
   /// "path: message N (t = T s): why", one per implausible message and per hole, worded as the
   /// CSV reader words the same values (the same checks make both).
   std::vector<std::string> problems;
 };
 
-/// Reads acc_identification/RelativeState messages of topic (with or without a leading '/')
-/// from a bag recorded from the nodes, timed by their header stamps (GNSS time), and splits them
-/// into runs at invalid samples, at samples outside the plausibility bounds (the CSV reader's
-/// check) and at holes longer than bounds.max_time_step_s. Segmenting is the identifier's sliding
-/// window, so a batch calibration of a bag sees the segments the identifier node sees. Runs are
-/// named "<bag name>#<n>". Throws std::runtime_error when the bag cannot be read or has no such
-/// topic, std::invalid_argument when the bounds are unusable.
-BagRuns readRunsFromBag(const std::string& path, const std::string& topic, const RunPlausibilityBounds& bounds);
+/// What a tool reads from a bag: the samples' topic, and the ACC's engagement reports with the
+/// identifier node's rule (io/acc_engagement.h). Topics with or without a leading '/'.
+struct BagTopics
+{
+  std::string relative_state = "relative_state";  ///< acc_identification/RelativeState
+  std::string acc_engaged = "acc_engaged";        ///< std_msgs/Bool; a bag without it has no source
+  AccEngagementSettings engagement;
+};
 
-/// readRunsFromBag() with the default plausibility bounds and holes longer than max_gap_s.
+/// Reads acc_identification/RelativeState messages of topics.relative_state from a bag recorded
+/// from the nodes, timed by their header stamps (GNSS time), and splits them into runs at invalid
+/// samples, at samples outside the plausibility bounds (the CSV reader's check), at holes longer
+/// than bounds.max_time_step_s, and at samples recorded while the ACC was off (the bag's
+/// topics.acc_engaged reports, judged by record time as the node judges them by arrival).
+/// Segmenting is the identifier's sliding window, so a batch calibration of a bag sees the
+/// segments the identifier node sees. Runs are named "<bag name>#<n>". Throws std::runtime_error
+/// when the bag cannot be read, has no such topic or a topic of another type,
+/// std::invalid_argument when the bounds or the engagement settings are unusable.
+BagRuns readRunsFromBag(const std::string& path, const BagTopics& topics, const RunPlausibilityBounds& bounds);
+
+/// readRunsFromBag() with the default plausibility bounds, engagement settings and engagement
+/// topic, and holes longer than max_gap_s.
 BagRuns readRunsFromBag(const std::string& path, const std::string& topic = "relative_state",
                         double max_gap_s = 0.5);
 
 /// The account of a bag read by readRunsFromBag: messages, samples_used, runs, invalid,
-/// implausible, out_of_order, time_holes, time_resets, short_pieces.
+/// implausible, out_of_order, time_holes, time_resets, short_pieces, acc_off,
+/// acc_state_unknown, engagement_reports.
 InputAccount accountOfBag(const std::string& path, const BagRuns& bag);
 
 /// What one RUN argument gave.
@@ -61,7 +78,7 @@ struct RunArgument
 /// at holes longer than max_gap_s. selector chooses the pair(s) of an OpenACC file (--follower,
 /// --all-pairs); a bag or a canonical CSV holds one pair, so choosing a follower there is an
 /// error. Throws std::runtime_error with the reason.
-RunArgument readRunArgument(const std::string& path, const std::string& topic, double max_gap_s, std::ostream& log,
+RunArgument readRunArgument(const std::string& path, const BagTopics& topics, double max_gap_s, std::ostream& log,
                             const OpenAccPairSelector& selector);
 
 /// readRunArgument() with the first pair of an OpenACC file; the runs only.
@@ -75,7 +92,7 @@ struct RunArguments
   std::vector<CalibrationInput> runs;
   std::vector<InputAccount> inputs_read;
 };
-RunArguments readRunArguments(const std::vector<std::string>& paths, const std::string& topic, double max_gap_s,
+RunArguments readRunArguments(const std::vector<std::string>& paths, const BagTopics& topics, double max_gap_s,
                               std::ostream& log, const OpenAccPairSelector& selector);
 
 /// The selector of the tools' --follower NAME|POSITION and --all-pairs options (mutually

@@ -11,17 +11,21 @@
 namespace acc
 {
 /// The run inputs calibrate and diagnose take alike: RUN files (canonical CSV, OpenACC CSV, bags
-/// of RelativeState), the bag topic, the hole that splits a run, and which OpenACC pair(s) to read.
+/// of RelativeState), the bags' topics and engagement rule, the hole that splits a run, and which
+/// OpenACC pair(s) to read.
 /// One declaration, so that the tools' options and their help cannot drift apart.
 struct RunInputOptions
 {
   std::vector<std::string> paths;
   std::string topic = "relative_state";
+  std::string acc_engaged_topic = "acc_engaged";
+  AccEngagementSettings engagement;
   double max_gap_s = 0.5;
   std::string follower;
   bool all_pairs = false;
 
-  /// Declares RUN..., --topic, --max-gap, --follower and --all-pairs (mutually exclusive);
+  /// Declares RUN..., --topic, --acc-engaged-topic, --require-acc-engaged, --acc-engaged-timeout,
+  /// --max-gap, --follower and --all-pairs (mutually exclusive);
   /// all_pairs_means says what reading every pair does in this tool. required: RUN must be given.
   void declare(CLI::App& app, const std::string& all_pairs_means, bool required);
 
@@ -29,6 +33,8 @@ struct RunInputOptions
   RunArguments read(std::ostream& log) const;
   /// Other files read with the same options (diagnose --held-out).
   RunArguments readPaths(const std::vector<std::string>& other_paths, std::ostream& log) const;
+  /// What the options read from a bag.
+  BagTopics bagTopics() const;
 };
 
 }  // namespace acc
