@@ -79,11 +79,12 @@ CarFollowingRun synthesizeRun(const AccParameters& truth, double duration_s, dou
   const std::size_t n = static_cast<std::size_t>(std::floor(duration_s / time_step_s)) + 1;
   CarFollowingRun run = fineTruth(truth, n, time_step_s, cruise_speed_mps, phases);
   run.name = "synthetic-" + std::to_string(seed);
+  const double leader_speed_std_mps = noise.leader_speed_std_mps.value_or(noise.speed_std_mps);
   for (std::size_t k = 0; k < n; ++k)
   {
     run.follower_speed_mps[k] += noise.speed_std_mps * random.standardNormal();
     run.space_gap_m[k] += noise.gap_std_m * random.standardNormal();
-    run.leader_speed_mps[k] += noise.speed_std_mps * random.standardNormal();
+    run.leader_speed_mps[k] += leader_speed_std_mps * random.standardNormal();
   }
   return run;
 }

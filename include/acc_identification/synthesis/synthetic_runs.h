@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "acc_identification/model/acc_parameters.h"
@@ -15,6 +16,9 @@ struct MeasurementNoise
 {
   double speed_std_mps = 0.06;
   double gap_std_m = 0.4;
+  /// The leader's speed noise, an input of the simulation (errors in variables), where it differs
+  /// from the follower's (speed_std_mps, the output's); unset: the same.
+  std::optional<double> leader_speed_std_mps;
 };
 
 /// Explicit-Euler steps of the truth per data step in synthesizeRun.
