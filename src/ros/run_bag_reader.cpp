@@ -1,6 +1,7 @@
 #include "acc_identification/ros/run_bag_reader.h"
 #include "acc_identification/io/run_csv.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -213,9 +214,34 @@ std::vector<std::string> topicSpellings(const std::string& topic)
   return {bare, "/" + bare};
 }
 
-bool isTopic(const std::string& topic, const std::vector<std::string>& spellings)
+struct EngagementReport
 {
-  return topic == spellings[0] || topic == spellings[1];
+  double record_time_s = 0.0;
+  bool engaged = false;
+};
+
+/// The ACC's engagement reports of the bag (none when topic is empty or absent), by record time.
+std::vector<EngagementReport> readEngagementReports(rosbag::Bag& bag, const std::string& path, const std::string& topic)
+{
+  std::vector<EngagementReport> reports;
+  if (topic.empty())
+  {
+    return reports;
+  }
+  for (const rosbag::MessageInstance& instance : rosbag::View(bag, rosbag::TopicQuery(topicSpellings(topic))))
+  {
+    const auto report = instance.instantiate<std_msgs::Bool>();
+    if (!report)
+    {
+      throw std::runtime_error("bag '" + path + "': topic '" + topic + "' is " + instance.getDataType() +
+                               ", not std_msgs/Bool (choose the ACC's engagement topic with --acc-engaged-topic, "
+                               "or none with --acc-engaged-topic '')");
+    }
+    reports.push_back({instance.getTime().toSec(), static_cast<bool>(report->data)});
+  }
+  std::stable_sort(reports.begin(), reports.end(),
+                   [](const EngagementReport& a, const EngagementReport& b) { return a.record_time_s < b.record_time_s; });
+  return reports;
 }
 }  // namespace
 
@@ -241,38 +267,32 @@ BagRuns readRunsFromBag(const std::string& path, const BagTopics& topics, const 
     throw std::runtime_error("bag '" + path + "' has no messages on topic '" + topics.relative_state +
                              "'; its topics: " + describeBagTopics(bag) + " (choose one with --topic)");
   }
-  std::vector<std::string> read_topics = samples_topic;
-  const std::vector<std::string> engagement_topic = topicSpellings(topics.acc_engaged);
-  if (!topics.acc_engaged.empty())
-  {
-    read_topics.insert(read_topics.end(), engagement_topic.begin(), engagement_topic.end());
-  }
   BagRuns result;
   BagSegmenter segmenter(path, bounds, topics.engagement, result);
-  // One view of both topics, in record order: the order the node received them in.
-  for (const rosbag::MessageInstance& instance : rosbag::View(bag, rosbag::TopicQuery(read_topics)))
+  const std::vector<EngagementReport> reports = readEngagementReports(bag, path, topics.acc_engaged);
+  auto next_report = reports.begin();
+  for (const rosbag::MessageInstance& instance : rosbag::View(bag, rosbag::TopicQuery(samples_topic)))
   {
-    if (!topics.acc_engaged.empty() && isTopic(instance.getTopic(), engagement_topic))
-    {
-      const auto report = instance.instantiate<std_msgs::Bool>();
-      if (!report)
-      {
-        throw std::runtime_error("bag '" + path + "': topic '" + topics.acc_engaged + "' is " +
-                                 instance.getDataType() + ", not std_msgs/Bool (choose the ACC's engagement "
-                                 "topic with --acc-engaged-topic, or none with --acc-engaged-topic '')");
-      }
-      segmenter.reportEngagement(instance.getTime().toSec(), report->data);
-      continue;
-    }
     const auto message = instance.instantiate<acc_identification::RelativeState>();
     if (!message)
     {
       throw std::runtime_error("bag '" + path + "': topic '" + topics.relative_state +
                                "' is not acc_identification/RelativeState");
     }
+    // The latest report recorded at or before the sample: as the node received them, and on a
+    // tie (one tick of a simulated clock) the report first, whichever the bag lists first.
+    const double record_time_s = instance.getTime().toSec();
+    for (; next_report != reports.end() && next_report->record_time_s <= record_time_s; ++next_report)
+    {
+      segmenter.reportEngagement(next_report->record_time_s, next_report->engaged);
+    }
     segmenter.add({message->header.stamp.toSec(), message->space_gap_m, message->follower_speed_mps,
                    message->leader_speed_mps, static_cast<bool>(message->valid)},
-                  instance.getTime().toSec());
+                  record_time_s);
+  }
+  for (; next_report != reports.end(); ++next_report)
+  {
+    segmenter.reportEngagement(next_report->record_time_s, next_report->engaged);  // counted
   }
   segmenter.finish();
   const std::string name = bagName(path);

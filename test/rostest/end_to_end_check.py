@@ -17,6 +17,11 @@ identifier. Listens until the replay has ended (no relative_state for ~idle_s of
                  passed to calibrate as --max-gap): no step counted as a dropout, the window agrees
                  with calibrate as in batch mode, and drive_note carries the Euler step check, which
                  at 1 Hz must find the bias MATERIAL.
+  ~mode take_over: a bag with the ACC's engagement reports (/acc_engaged) replayed: the identifier
+                 left out as many relative_state samples as arrived here while the latest report
+                 said off (within a sample at each switch, which two subscribers may see in
+                 either order), and its last window agrees with calibrate on a bag of the samples
+                 and the reports as they arrived here, on the ROS clock, as rosbag record stores them.
   ~mode dropout: no acc_parameters window ends inside the gap of the leader's sentences; the
                  relative_state stream stops during the gap and resumes after it; acc_parameters
                  after the gap again come from new samples.
@@ -35,6 +40,7 @@ import rospy
 import rostest
 from acc_identification.msg import AccParameters, GnssFix, RelativeState
 from diagnostic_msgs.msg import DiagnosticArray
+from std_msgs.msg import Bool
 
 PKG = "acc_identification"
 
@@ -62,10 +68,13 @@ class EndToEnd(unittest.TestCase):
         cls.timeout_s = rospy.get_param("~timeout_s", 150.0)
         cls.fixes = {"leader": 0, "follower": 0}
         cls.states, cls.params, cls.diagnostics = [], [], {}
+        cls.arrivals = []  # (ROS time of arrival, topic, message): relative_state and acc_engaged
         # The fixes last: the drivers start (and with them the bag) once this node listens to them
         # (replay.launch fix_subscribers:=2), so the downstream topics are connected by then.
         rospy.Subscriber("/diagnostics", DiagnosticArray, cls._diagnostics, queue_size=100)
         rospy.Subscriber("/acc_parameters", AccParameters, cls.params.append, queue_size=1000)
+        rospy.Subscriber("/acc_engaged", Bool, lambda m: cls.arrivals.append((rospy.Time.now(), "acc_engaged", m)),
+                         queue_size=100)
         rospy.Subscriber("/relative_state", RelativeState, cls._state, queue_size=10000)
         cls.wait_for_subscriber("/relative_state", "/identifier")
         rospy.Subscriber("/leader/fix", GnssFix, lambda m: cls._count("leader"), queue_size=10000)
@@ -112,6 +121,7 @@ class EndToEnd(unittest.TestCase):
     @classmethod
     def _state(cls, m):
         cls.states.append(m)
+        cls.arrivals.append((rospy.Time.now(), "relative_state", m))
         cls.last_message_wall = time.time()
 
     @classmethod
@@ -149,7 +159,8 @@ class EndToEnd(unittest.TestCase):
         self.assertEqual(received, len(self.states), "relative_state out vs identifier in")
         last = self.last_params()
         start, end = last.window_start.to_sec(), last.window_end.to_sec()
-        valid = [s for s in self.states if s.valid and start - 1e-6 <= s.header.stamp.to_sec() <= end + 1e-6]
+        valid = [s for s in self.states_while_engaged()
+                 if s.valid and start - 1e-6 <= s.header.stamp.to_sec() <= end + 1e-6]
         self.assertGreater(len(valid), 0)
         # Samples of segments too short to use are the only ones the identifier may leave out.
         self.assertLessEqual(last.samples, len(valid))
@@ -159,7 +170,7 @@ class EndToEnd(unittest.TestCase):
     def test_mode(self):
         """The check of ~mode only: no skipped tests that a summary would count as passed."""
         checks = {"truth": self.check_truth, "batch": self.check_batch, "dropout": self.check_dropout,
-                  "coarse": self.check_coarse}
+                  "coarse": self.check_coarse, "take_over": self.check_take_over}
         self.assertIn(self.mode, checks, "unknown ~mode")
         checks[self.mode]()
 
@@ -228,6 +239,47 @@ class EndToEnd(unittest.TestCase):
         self.assertIn("Euler step (the paper's calibration simulates at the data's own step, median 1 s)",
                       last.drive_note)
         self.assertIn("MATERIAL", last.drive_note)
+
+    def states_while_engaged(self):
+        """relative_state that arrived here while the latest /acc_engaged report (if any) said engaged."""
+        engaged, states = True, []
+        for _, topic, m in self.arrivals:
+            if topic == "acc_engaged":
+                engaged = m.data
+            elif engaged:
+                states.append(m)
+        return states
+
+    def check_take_over(self):
+        reports = [m.data for _, topic, m in self.arrivals if topic == "acc_engaged"]
+        self.assertEqual(reports, [True, False, True], "the bag's engagement reports, as played")
+        off_here = len(self.states) - len(self.states_while_engaged())
+        off_node = int(self.diagnostic("ACC identification", "samples with the ACC off (split points, not used)"))
+        print("relative_state while the ACC was off: %d at the identifier, %d here" % (off_node, off_here),
+              file=sys.stderr)
+        self.assertGreater(off_here, 250, "30 s at 10 Hz")
+        self.assertLessEqual(abs(off_node - off_here), 2)
+        self.assertEqual(int(self.diagnostic("ACC identification", "ACC disengagements reported")), 1)
+        last = self.last_params()
+        self.assertGreaterEqual(last.segments, 2, "the window must be split at the take-over")
+        directory = tempfile.mkdtemp(prefix="e2e_")
+        recorded = os.path.join(directory, "recorded.bag")
+        start, end = last.window_start.to_sec(), last.window_end.to_sec()
+        with rosbag.Bag(recorded, "w") as bag:
+            for arrival, topic, m in self.arrivals:  # the last window's samples, every report
+                if topic == "acc_engaged" or start - 1e-6 <= m.header.stamp.to_sec() <= end + 1e-6:
+                    bag.write(topic, m, arrival)
+        out = os.path.join(directory, "batch.json")
+        subprocess.run(["rosrun", PKG, "calibrate", "--quiet", "--starts", "30", "--json", out, recorded],
+                       check=True, stdout=subprocess.DEVNULL)
+        batch = json.load(open(out))
+        counts = batch["inputs_read"][0]["counts"]
+        print("... %d in calibrate of the recorded bag" % counts["acc_off"], file=sys.stderr)
+        self.assertLessEqual(abs(counts["acc_off"] - off_here), 2, "calibrate reads the recorded bag by the same rule")
+        train = batch["summary"]["train"]
+        self.assertLessEqual(abs(last.samples - train["samples"]), 2, "samples online vs batch")
+        self.check_close("rmse_speed_mps", last.rmse_speed_mps, train["rmse_speed_mps"],
+                         rospy.get_param("~tolerance", 0.05))
 
     def check_verdict(self, directory):
         """The issue's rostest: a decided verdict before the end of the drive, never withdrawn once

@@ -189,7 +189,7 @@ TEST(RunBagReader, ATakeOverReportedOnAccEngagedStaysOutOfTheFit)
     {
       const double t = 1000.0 + drive.time_s[i];
       if (i == 3001)
-        bag.write("/acc_engaged", ros::Time(t + 0.05), engaged(false));
+        bag.write("/acc_engaged", ros::Time(t + 0.1), engaged(false));
       acc_identification::RelativeState state = stateAt(t);
       state.space_gap_m = drive.space_gap_m[i];
       state.follower_speed_mps = drive.follower_speed_mps[i];

@@ -45,8 +45,9 @@ struct BagTopics
 /// Reads acc_identification/RelativeState messages of topics.relative_state from a bag recorded
 /// from the nodes, timed by their header stamps (GNSS time), and splits them into runs at invalid
 /// samples, at samples outside the plausibility bounds (the CSV reader's check), at holes longer
-/// than bounds.max_time_step_s, and at samples recorded while the ACC was off (the bag's
-/// topics.acc_engaged reports, judged by record time as the node judges them by arrival).
+/// than bounds.max_time_step_s, and at samples recorded while the ACC was off (the latest of the
+/// bag's topics.acc_engaged reports recorded at or before the sample, as the node judges by
+/// arrival; on a tie, one tick of a simulated clock, the report counts as first).
 /// Segmenting is the identifier's sliding window, so a batch calibration of a bag sees the
 /// segments the identifier node sees. Runs are named "<bag name>#<n>". Throws std::runtime_error
 /// when the bag cannot be read, has no such topic or a topic of another type,
