@@ -21,18 +21,20 @@ __all__ = ["COLUMNS", "read_run", "calibrate", "diagnose", "campaign"]
 
 
 def read_run(path, follower=None, all_pairs=False, max_gap_s=0.5, topic="relative_state",
-             acc_engaged_topic="acc_engaged", require_acc_engaged=False, acc_engaged_timeout_s=0.0):
+             acc_engaged_topic="acc_engaged", require_acc_engaged=False, acc_engaged_timeout_s=0.0,
+             acc_setting=None):
     """A run file as the tools read it (canonical CSV, OpenACC CSV of any layout, or a bag of
     RelativeState), as one pandas.DataFrame with the canonical columns and a `segment` column (the
     reader splits a run at holes, at rows it rejects, and in a bag where the ACC's engagement
     reports say it was off: calibrate's --acc-engaged-topic, --require-acc-engaged and
-    --acc-engaged-timeout). The reader's notes go to stderr, as the tools
+    --acc-engaged-timeout; and where the ACC's setting changes: acc_setting keeps one setting's
+    samples, as --acc-setting). The reader's notes go to stderr, as the tools
     print them. attrs: path, openacc_pairs (the pair(s) read), segment_names, input_account (the
     reader's format and counts, which calibrate and diagnose put in their JSON's inputs_read)."""
     import pandas
 
     read = _core.read_run(str(path), follower or "", all_pairs, max_gap_s, topic, acc_engaged_topic,
-                          require_acc_engaged, acc_engaged_timeout_s)
+                          require_acc_engaged, acc_engaged_timeout_s, acc_setting or "")
     if read["log"]:
         sys.stderr.write(read["log"])
     frames = []

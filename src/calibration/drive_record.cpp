@@ -122,6 +122,13 @@ SlidingWindow::AddResult DriveRecord::add(const WindowSample& sample)
   return result;
 }
 
+void DriveRecord::restart()
+{
+  samples_.clear();
+  taken_ = 0;
+  let_go_this_drive_ = 0;
+}
+
 void DriveRecord::keepWithinBound()
 {
   if (bound_.max_samples == 0)

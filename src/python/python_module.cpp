@@ -99,7 +99,7 @@ py::dict accountDict(const acc::InputAccount& account)
 /// read_run: the tools' reader of one RUN argument (CSV of any layout, or a bag).
 py::dict readRun(const std::string& path, const std::string& follower, bool all_pairs, double max_gap_s,
                  const std::string& topic, const std::string& acc_engaged_topic, bool require_acc_engaged,
-                 double acc_engaged_timeout_s)
+                 double acc_engaged_timeout_s, const std::string& acc_setting)
 {
   std::ostringstream log;
   acc::RunArgument argument;
@@ -108,6 +108,7 @@ py::dict readRun(const std::string& path, const std::string& follower, bool all_
   topics.acc_engaged = acc_engaged_topic;
   topics.engagement.required = require_acc_engaged;
   topics.engagement.timeout_s = acc_engaged_timeout_s;
+  topics.only_setting = acc_setting;
   {
     py::gil_scoped_release unlocked;
     argument = acc::readRunArgument(path, topics, max_gap_s, log, acc::pairSelectorFromOptions(follower, all_pairs));
@@ -253,7 +254,7 @@ PYBIND11_MODULE(_core, module)
   module.doc() = "acc_identification's tools as functions; use the package's own module (import acc_identification)";
   module.def("read_run", &readRun, py::arg("path"), py::arg("follower"), py::arg("all_pairs"), py::arg("max_gap_s"),
              py::arg("topic"), py::arg("acc_engaged_topic"), py::arg("require_acc_engaged"),
-             py::arg("acc_engaged_timeout_s"));
+             py::arg("acc_engaged_timeout_s"), py::arg("acc_setting"));
   module.def("calibrate", &calibrate, py::arg("runs"), py::arg("inputs_read"), py::arg("split_half"), py::arg("starts"),
              py::arg("alpha"), py::arg("seed"), py::arg("stability_test"), py::arg("verdict_every_s"),
              py::arg("grid_nodes"), py::arg("second_opinion"));

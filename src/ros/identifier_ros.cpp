@@ -317,6 +317,7 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node,
   subscriber_ = node.subscribe("relative_state", static_cast<std::uint32_t>(settings_.queue_size),
                                &IdentifierRos::onRelativeState, this);
   engagement_subscriber_ = node.subscribe("acc_engaged", 10, &IdentifierRos::onAccEngaged, this);
+  setting_subscriber_ = node.subscribe("acc_setting", 10, &IdentifierRos::onAccSetting, this);
   worker_ = std::thread(&IdentifierRos::workerLoop, this);
   stability_worker_ = std::thread(&IdentifierRos::stabilityLoop, this);
   period_timer_ = node.createTimer(ros::Duration(settings_.period_s), &IdentifierRos::onPeriod, this);
@@ -439,6 +440,34 @@ void IdentifierRos::onAccEngaged(const std_msgs::Bool::ConstPtr& message)
   }
 }
 
+void IdentifierRos::onAccSetting(const std_msgs::String::ConstPtr& message)
+{
+  std::string previous;
+  bool restarted = false;
+  {
+    std::lock_guard<std::mutex> lock(window_mutex_);
+    if (message->data == acc_setting_)
+    {
+      return;  // a source that repeats itself
+    }
+    previous = acc_setting_;
+    acc_setting_ = message->data;
+    // The samples so far were driven at another setting (or one not reported): they are not this
+    // setting's, so neither the window nor the drive may mix them with what comes.
+    restarted = !window_.empty() || drive_.size() > 0;
+    if (restarted)
+    {
+      window_.clear();
+      drive_.restart();
+      drive_reset_pending_ = true;
+    }
+  }
+  ++setting_changes_;
+  const std::string was = previous.empty() ? "not reported" : "'" + previous + "'";
+  ROS_INFO("identifier: acc_setting says the ACC's setting is '%s' (was %s)%s", message->data.c_str(), was.c_str(),
+           restarted ? ": a new drive starts, the window is cleared" : "");
+}
+
 bool IdentifierRos::accDrove(double sample_time_s)
 {
   AccEngagement::Judgement judgement;
@@ -475,6 +504,7 @@ void IdentifierRos::onPeriod(const ros::TimerEvent& event)
     job.drive_samples_taken = drive_.samplesTaken();
     job.drive_samples_let_go = drive_.samplesLetGoThisDrive();
     job.drive_reset = drive_reset_pending_;
+    job.acc_setting = acc_setting_;
     drive_reset_pending_ = false;
   }
   // Test the drive when it has grown since the last test, at most once per stability_period_s,
@@ -580,6 +610,7 @@ void IdentifierRos::runJob(Job& job)
     ROS_WARN_THROTTLE(10.0, "identifier: %s", job.short_pieces_note.c_str());
   }
   message.drive_samples_let_go = static_cast<std::uint32_t>(job.drive_samples_let_go);
+  message.acc_setting = job.acc_setting;
   // The drive fit judged on the drive so far: one simulation and one autocorrelation scan (a few
   // milliseconds on a 3-hour drive), so every message says whether its verdict rests on a model
   // that fits.
@@ -677,6 +708,7 @@ IdentifierCounters IdentifierRos::counters()
     c.engagement_reports = engagement_.reports();
     c.disengagements = engagement_.disengagements();
   }
+  c.setting_changes = setting_changes_;
   c.drive_resets = drive_resets_;
   c.solves = solves_;
   c.skipped_periods = skipped_periods_;
@@ -794,6 +826,11 @@ void IdentifierRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status
   status.add("time jumps ahead (confirmed)", c.jumps_ahead);
   status.add("samples held (jump awaiting confirmation)", c.held);
   status.add("drive resets", c.drive_resets);
+  status.add("ACC setting changes reported", c.setting_changes);
+  {
+    std::lock_guard<std::mutex> lock(window_mutex_);
+    status.add("ACC setting (latest report)", acc_setting_.empty() ? std::string("none reported") : acc_setting_);
+  }
   status.add("drive samples let go (bound)", c.drive_samples_let_go);
   status.add("drive blocks let go (bound)", c.drive_blocks_let_go);
   status.add("solves", c.solves);

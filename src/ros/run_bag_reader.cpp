@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -14,6 +15,7 @@
 #include <rosbag/view.h>
 
 #include <std_msgs/Bool.h>
+#include <std_msgs/String.h>
 
 #include "acc_identification/RelativeState.h"
 #include "acc_identification/calibration/sliding_window.h"
@@ -54,11 +56,11 @@ std::string describeImplausibleSample(const WindowSample& sample, const RunPlaus
 class BagSegmenter
 {
 public:
-  BagSegmenter(std::string path, const RunPlausibilityBounds& bounds, const AccEngagementSettings& engagement,
-               BagRuns& result)
+  BagSegmenter(std::string path, const RunPlausibilityBounds& bounds, const BagTopics& topics, BagRuns& result)
     : path_(std::move(path))
     , bounds_(bounds)
-    , engagement_(engagement)
+    , engagement_(topics.engagement)
+    , only_setting_(topics.only_setting)
     // A batch reader: time resets are handled below, before the window sees them, and a jump
     // ahead is a hole like any other (no confirmation to wait for: nothing leaves this window).
     , window_(std::numeric_limits<double>::infinity(), bounds.max_time_step_s, 2,
@@ -72,6 +74,21 @@ public:
   {
     ++result_.engagement_reports;
     engagement_.report(record_time_s, engaged);
+  }
+
+  /// A report of the ACC's setting: a new one ends the runs so far, which were another setting's.
+  void reportSetting(const std::string& setting)
+  {
+    ++result_.setting_reports;
+    if (setting == setting_)
+    {
+      return;
+    }
+    ++result_.setting_changes;
+    moveSegments();
+    window_.clear();
+    segment_open_ = false;
+    setting_ = setting;
   }
 
   /// A sample recorded at record_time_s (the bag's clock), stamped sample.time_s (GNSS time).
@@ -96,6 +113,14 @@ public:
     {
       noteNotEngaged(sample.time_s, engagement);
       window_.add(sample);  // a split point, whatever else is wrong with it
+      return;
+    }
+    if (!only_setting_.empty() && setting_ != only_setting_)
+    {
+      ++result_.other_setting;  // not the setting asked for: not used
+      sample.valid = false;
+      window_.add(sample);
+      segment_open_ = false;
       return;
     }
     switch (window_.add(sample))
@@ -163,6 +188,7 @@ private:
     for (CarFollowingRun& run : window_.segments(&short_pieces))
     {
       result_.runs.push_back(std::move(run));
+      result_.run_settings.push_back(setting_);
     }
     result_.short_pieces += short_pieces;
   }
@@ -170,6 +196,8 @@ private:
   std::string path_;
   RunPlausibilityBounds bounds_;
   AccEngagement engagement_;
+  std::string only_setting_;  ///< the setting whose samples are used ("": every setting's)
+  std::string setting_;       ///< the latest reported setting ("": none yet)
   SlidingWindow window_;
   BagRuns& result_;
   bool segment_open_ = false;   ///< whether the window's newest segment has a valid sample
@@ -214,35 +242,70 @@ std::vector<std::string> topicSpellings(const std::string& topic)
   return {bare, "/" + bare};
 }
 
-struct EngagementReport
+/// A report of topic recorded at record_time_s (the bag's clock).
+template <typename Value>
+struct BagReport
 {
   double record_time_s = 0.0;
-  bool engaged = false;
+  Value value{};
 };
 
-/// The ACC's engagement reports of the bag (none when topic is empty or absent), by record time.
-std::vector<EngagementReport> readEngagementReports(rosbag::Bag& bag, const std::string& path, const std::string& topic)
+/// The reports of the bag on topic (none when topic is empty or absent), by record time; a topic
+/// of another type than Message is an error that names the option choosing it.
+template <typename Message, typename Value = decltype(Message::data)>
+std::vector<BagReport<Value>> readReports(rosbag::Bag& bag, const std::string& path, const std::string& topic,
+                                       const std::string& type_name, const std::string& option)
 {
-  std::vector<EngagementReport> reports;
+  std::vector<BagReport<Value>> reports;
   if (topic.empty())
   {
     return reports;
   }
   for (const rosbag::MessageInstance& instance : rosbag::View(bag, rosbag::TopicQuery(topicSpellings(topic))))
   {
-    const auto report = instance.instantiate<std_msgs::Bool>();
+    const auto report = instance.instantiate<Message>();
     if (!report)
     {
-      throw std::runtime_error("bag '" + path + "': topic '" + topic + "' is " + instance.getDataType() +
-                               ", not std_msgs/Bool (choose the ACC's engagement topic with --acc-engaged-topic, "
-                               "or none with --acc-engaged-topic '')");
+      throw std::runtime_error("bag '" + path + "': topic '" + topic + "' is " + instance.getDataType() + ", not " +
+                               type_name + " (choose the topic with " + option + ", or none with " + option + " '')");
     }
-    reports.push_back({instance.getTime().toSec(), static_cast<bool>(report->data)});
+    reports.push_back({instance.getTime().toSec(), report->data});
   }
   std::stable_sort(reports.begin(), reports.end(),
-                   [](const EngagementReport& a, const EngagementReport& b) { return a.record_time_s < b.record_time_s; });
+                   [](const BagReport<Value>& a, const BagReport<Value>& b) { return a.record_time_s < b.record_time_s; });
   return reports;
 }
+
+/// The reports the bag holds, applied to a segmenter in record order up to a time.
+class ReportsInOrder
+{
+public:
+  ReportsInOrder(rosbag::Bag& bag, const std::string& path, const BagTopics& topics)
+    : engagement_(readReports<std_msgs::Bool>(bag, path, topics.acc_engaged, "std_msgs/Bool", "--acc-engaged-topic"))
+    , setting_(readReports<std_msgs::String>(bag, path, topics.acc_setting, "std_msgs/String", "--acc-setting-topic"))
+  {
+  }
+
+  /// Applies every report recorded at or before record_time_s not applied yet.
+  void applyUntil(double record_time_s, BagSegmenter& segmenter)
+  {
+    for (; next_engagement_ < engagement_.size() && engagement_[next_engagement_].record_time_s <= record_time_s;
+         ++next_engagement_)
+    {
+      segmenter.reportEngagement(engagement_[next_engagement_].record_time_s, engagement_[next_engagement_].value);
+    }
+    for (; next_setting_ < setting_.size() && setting_[next_setting_].record_time_s <= record_time_s; ++next_setting_)
+    {
+      segmenter.reportSetting(setting_[next_setting_].value);
+    }
+  }
+
+private:
+  std::vector<BagReport<std::uint8_t>> engagement_;
+  std::vector<BagReport<std::string>> setting_;
+  std::size_t next_engagement_ = 0;
+  std::size_t next_setting_ = 0;
+};
 }  // namespace
 
 BagRuns readRunsFromBag(const std::string& path, const BagTopics& topics, const RunPlausibilityBounds& bounds)
@@ -268,9 +331,8 @@ BagRuns readRunsFromBag(const std::string& path, const BagTopics& topics, const 
                              "'; its topics: " + describeBagTopics(bag) + " (choose one with --topic)");
   }
   BagRuns result;
-  BagSegmenter segmenter(path, bounds, topics.engagement, result);
-  const std::vector<EngagementReport> reports = readEngagementReports(bag, path, topics.acc_engaged);
-  auto next_report = reports.begin();
+  BagSegmenter segmenter(path, bounds, topics, result);
+  ReportsInOrder reports(bag, path, topics);
   for (const rosbag::MessageInstance& instance : rosbag::View(bag, rosbag::TopicQuery(samples_topic)))
   {
     const auto message = instance.instantiate<acc_identification::RelativeState>();
@@ -282,23 +344,28 @@ BagRuns readRunsFromBag(const std::string& path, const BagTopics& topics, const 
     // The latest report recorded at or before the sample: as the node received them, and on a
     // tie (one tick of a simulated clock) the report first, whichever the bag lists first.
     const double record_time_s = instance.getTime().toSec();
-    for (; next_report != reports.end() && next_report->record_time_s <= record_time_s; ++next_report)
-    {
-      segmenter.reportEngagement(next_report->record_time_s, next_report->engaged);
-    }
+    reports.applyUntil(record_time_s, segmenter);
     segmenter.add({message->header.stamp.toSec(), message->space_gap_m, message->follower_speed_mps,
                    message->leader_speed_mps, static_cast<bool>(message->valid)},
                   record_time_s);
   }
-  for (; next_report != reports.end(); ++next_report)
-  {
-    segmenter.reportEngagement(next_report->record_time_s, next_report->engaged);  // counted
-  }
+  reports.applyUntil(std::numeric_limits<double>::infinity(), segmenter);  // counted
   segmenter.finish();
   const std::string name = bagName(path);
+  std::set<std::string> settings;
   for (std::size_t i = 0; i < result.runs.size(); ++i)
   {
-    result.runs[i].name = name + "#" + std::to_string(i + 1);
+    const std::string& setting = result.run_settings[i];
+    result.runs[i].name = name + "#" + std::to_string(i + 1) + (setting.empty() ? "" : " (setting " + setting + ")");
+    settings.insert(setting.empty() ? "not reported" : setting);
+  }
+  if (settings.size() > 1)
+  {
+    std::string listed;
+    for (const std::string& setting : settings)
+      listed += (listed.empty() ? "" : ", ") + setting;
+    result.problems.push_back(path + ": runs at " + std::to_string(settings.size()) + " ACC settings (" + listed +
+                              "): one model fitted across them mixes them; choose one with --acc-setting");
   }
   return result;
 }
@@ -322,7 +389,8 @@ InputAccount accountOfBag(const std::string& path, const BagRuns& bag)
                     {"implausible", bag.implausible}, {"out_of_order", bag.out_of_order},
                     {"time_holes", bag.time_holes},   {"time_resets", bag.time_resets},
                     {"short_pieces", bag.short_pieces}, {"acc_off", bag.acc_off},
-                    {"acc_state_unknown", bag.acc_state_unknown}, {"engagement_reports", bag.engagement_reports}};
+                    {"acc_state_unknown", bag.acc_state_unknown}, {"engagement_reports", bag.engagement_reports},
+                    {"other_setting", bag.other_setting}, {"setting_changes", bag.setting_changes}};
   return account;
 }
 
@@ -338,6 +406,17 @@ std::string describeEngagementCounts(const BagRuns& bag)
   }
   return ", " + std::to_string(bag.acc_off) + " recorded with the ACC off, " + std::to_string(bag.acc_state_unknown) +
          " with its state unknown (" + std::to_string(bag.engagement_reports) + " engagement reports)";
+}
+
+/// ", N at another ACC setting (K setting changes)" where the bag reports its settings; "" otherwise.
+std::string describeSettingCounts(const BagRuns& bag)
+{
+  if (bag.setting_reports == 0)
+  {
+    return "";
+  }
+  return ", " + std::to_string(bag.other_setting) + " at another ACC setting (" + std::to_string(bag.setting_changes) +
+         " setting changes)";
 }
 }  // namespace
 
@@ -371,7 +450,7 @@ RunArgument readRunArgument(const std::string& path, const BagTopics& topics, do
   log << path << ": " << bag.messages << " messages, " << bag.invalid << " invalid, " << bag.implausible
       << " outside the plausibility bounds, " << bag.out_of_order << " out of order, " << bag.time_holes
       << " holes in time, " << bag.time_resets << " time resets, " << bag.short_pieces << " pieces too short"
-      << describeEngagementCounts(bag) << " -> " << bag.runs.size() << " runs"
+      << describeEngagementCounts(bag) << describeSettingCounts(bag) << " -> " << bag.runs.size() << " runs"
       << describeCoarseSteps(bag.time_holes, bag.messages > 0 ? bag.messages - 1 : 0) << "\n";
   argument.account = accountOfBag(path, bag);
   argument.runs = std::move(bag.runs);

@@ -25,6 +25,12 @@ void RunInputOptions::declare(CLI::App& app, const std::string& all_pairs_means,
                  "0: it holds until the next) [s]")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  app.add_option("--acc-setting-topic", acc_setting_topic,
+                 "bags: the ACC's distance setting (std_msgs/String), as identifier_node reads it: runs end where it "
+                 "changes ('': none)")
+      ->capture_default_str();
+  app.add_option("--acc-setting", acc_setting,
+                 "bags: use only the samples recorded at this ACC setting, as the setting topic names it");
   app.add_option("--max-gap", max_gap_s, "split runs at holes longer than this [s]")
       ->check(acc::positiveNumber())
       ->capture_default_str();
@@ -51,6 +57,8 @@ BagTopics RunInputOptions::bagTopics() const
   topics.relative_state = topic;
   topics.acc_engaged = acc_engaged_topic;
   topics.engagement = engagement;
+  topics.acc_setting = acc_setting_topic;
+  topics.only_setting = acc_setting;
   return topics;
 }
 

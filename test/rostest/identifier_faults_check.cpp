@@ -21,6 +21,7 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <ros/ros.h>
 #include <std_msgs/Bool.h>
+#include <std_msgs/String.h>
 
 #include "acc_identification/ros/identifier_ros.h"
 
@@ -93,7 +94,16 @@ void onDiagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& array)
   }
 }
 
-void onParameters(const acc_identification::AccParameters::ConstPtr&) { ++parameters_received; }
+std::string last_setting;  ///< acc_setting of the last acc_parameters, under mutex
+
+void onParameters(const acc_identification::AccParameters::ConstPtr& message)
+{
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    last_setting = message->acc_setting;
+  }
+  ++parameters_received;
+}
 
 std::size_t reportCount()
 {
@@ -266,6 +276,15 @@ TEST(IdentifierFaults, AnImplausibleSampleIsASplitPointCountedAndReported)
   ASSERT_TRUE(waitForReport(before, [](const Report& r) { return isOk(r); }, report)) << lastReport();
 }
 
+/// Whether the node subscribes to the publisher's topic within 20 s.
+bool subscribed(const ros::Publisher& publisher)
+{
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (publisher.getNumSubscribers() == 0 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  return publisher.getNumSubscribers() > 0;
+}
+
 /// Reports on acc_engaged, waiting until the node has the one sent (its diagnostics say it).
 void reportEngagement(ros::Publisher& engagement, bool engaged)
 {
@@ -286,10 +305,7 @@ TEST(IdentifierFaults, SamplesWhileTheAccIsOffAreSplitPointsCountedAndNotUsed)
 {
   ros::NodeHandle node;
   ros::Publisher engagement = node.advertise<std_msgs::Bool>("acc_engaged", 10);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-  while (engagement.getNumSubscribers() == 0 && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  ASSERT_GT(engagement.getNumSubscribers(), 0u);
+  ASSERT_TRUE(subscribed(engagement));
   ASSERT_TRUE(windowHolds(20)) << window_samples;  // 500.3 - 502.0 from the test before
   const std::size_t before = reportCount();
   reportEngagement(engagement, false);
@@ -308,6 +324,44 @@ TEST(IdentifierFaults, SamplesWhileTheAccIsOffAreSplitPointsCountedAndNotUsed)
                             report))
       << lastReport();
   EXPECT_EQ(report.level, DiagnosticStatus::OK) << describe(report);
+}
+
+/// The driver changes the ACC's distance setting: what came before is another setting's, so the
+/// window is cleared and a new drive starts; the messages say which setting they are of.
+TEST(IdentifierFaults, ANewAccSettingStartsANewDrive)
+{
+  ros::NodeHandle node;
+  ros::Publisher setting = node.advertise<std_msgs::String>("acc_setting", 10);
+  ASSERT_TRUE(subscribed(setting));
+  ASSERT_TRUE(windowHolds(30)) << window_samples;  // from the test before
+  Report report;
+  ASSERT_TRUE(waitForReport(reportCount(), [](const Report&) { return true; }, report)) << lastReport();
+  const std::uint64_t resets_before = report.count("drive resets");
+  std_msgs::String max;
+  max.data = "max";
+  setting.publish(max);
+  ASSERT_TRUE(waitForReport(reportCount(), [](const Report& r) { return r.values.count("ACC setting (latest report)") &&
+                                                                        r.values.at("ACC setting (latest report)") == "max"; },
+                            report))
+      << lastReport();
+  EXPECT_EQ(report.count("ACC setting changes reported"), 1u) << describe(report);
+  feed->publishRun(504.1, 10);
+  ASSERT_TRUE(windowHolds(10)) << "the window holds " << window_samples << ", not the new setting's 10 samples";
+  ASSERT_TRUE(waitForReport(reportCount(), [&](const Report& r) { return r.count("drive resets") == resets_before + 1; },
+                            report))
+      << lastReport();
+  const auto published_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  std::string setting_seen;
+  while (setting_seen != "max" && std::chrono::steady_clock::now() < published_deadline)
+  {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    std::lock_guard<std::mutex> lock(mutex);
+    setting_seen = last_setting;
+  }
+  EXPECT_EQ(setting_seen, "max");
+  setting.publish(max);  // repeated: no change, no new drive
+  feed->publishRun(505.1, 5);
+  EXPECT_TRUE(windowHolds(15)) << window_samples;
 }
 
 /// Whatever the solve throws, the worker catches it, counts it, says what it was (ERROR), and the

@@ -12,6 +12,7 @@
 
 #include <rosbag/bag.h>
 #include <std_msgs/Bool.h>
+#include <std_msgs/String.h>
 
 #include "acc_identification/calibration/calibration_objective.h"
 #include "acc_identification/calibration/margin_constrained_fit.h"
@@ -76,7 +77,8 @@ TEST(RunBagReader, SplitsAtInvalidSamplesGapsAndTimeResets)
   EXPECT_EQ(argument.account.counts, (Counts{{"messages", 57}, {"samples_used", 54}, {"runs", 4}, {"invalid", 2},
                                              {"implausible", 0}, {"out_of_order", 1}, {"time_holes", 1},
                                              {"time_resets", 1}, {"short_pieces", 0}, {"acc_off", 0},
-                                             {"acc_state_unknown", 0}, {"engagement_reports", 0}}));
+                                             {"acc_state_unknown", 0}, {"engagement_reports", 0},
+                                             {"other_setting", 0}, {"setting_changes", 0}}));
   EXPECT_EQ(log.str().find("engagement"), std::string::npos) << "a bag without a source is read as before";
   try
   {
@@ -213,6 +215,56 @@ TEST(RunBagReader, ATakeOverReportedOnAccEngagedStaysOutOfTheFit)
   std::remove(path.c_str());
 }
 
+std_msgs::String setting(const std::string& name)
+{
+  std_msgs::String report;
+  report.data = name;
+  return report;
+}
+
+/// The driver switches the ACC from its shortest to its longest gap between two test profiles:
+/// the runs end there, carry their setting in their name, and one setting can be asked for.
+TEST(RunBagReader, AChangeOfTheAccSettingEndsTheRunsAndOneSettingCanBeChosen)
+{
+  const std::string path = testing::TempDir() + "/settings.bag";
+  {
+    rosbag::Bag bag(path, rosbag::bagmode::Write);
+    bag.write("/acc_setting", ros::Time(99.0), setting("min"));
+    for (int k = 0; k < 100; ++k)
+    {
+      const double t = 100.0 + 0.1 * k;
+      if (k == 60)
+        bag.write("/acc_setting", ros::Time(t + 0.1), setting("max"));
+      if (k == 80)
+        bag.write("/acc_setting", ros::Time(t + 0.1), setting("max"));  // repeated: no change
+      bag.write("/relative_state", ros::Time(t + 0.15), stateAt(t));
+    }
+  }
+  const acc::BagRuns all = acc::readRunsFromBag(path, "relative_state", 0.5);
+  ASSERT_EQ(all.runs.size(), 2u);
+  EXPECT_EQ(all.runs[0].size(), 60u);
+  EXPECT_EQ(all.runs[1].size(), 40u);  // no sample lost at the change: it is a cut, not a split point
+  EXPECT_EQ(all.runs[0].name, "settings#1 (setting min)");
+  EXPECT_EQ(all.runs[1].name, "settings#2 (setting max)");
+  EXPECT_EQ(all.setting_changes, 2u);  // none -> min, min -> max
+  ASSERT_FALSE(all.problems.empty());
+  EXPECT_NE(all.problems.back().find("runs at 2 ACC settings (max, min): one model fitted across them mixes them; "
+                                     "choose one with --acc-setting"),
+            std::string::npos)
+      << all.problems.back();
+
+  acc::BagTopics max_only;
+  max_only.only_setting = "max";
+  std::ostringstream log;
+  const acc::RunArgument argument = acc::readRunArgument(path, max_only, 0.5, log, acc::OpenAccPairSelector::first());
+  ASSERT_EQ(argument.runs.size(), 1u);
+  EXPECT_EQ(argument.runs[0].size(), 40u);
+  EXPECT_EQ(argument.account.count("other_setting"), std::optional<std::size_t>(60));
+  EXPECT_NE(log.str().find(", 60 at another ACC setting (2 setting changes) -> 1 runs"), std::string::npos) << log.str();
+  EXPECT_EQ(log.str().find("one model fitted across them"), std::string::npos) << log.str();
+  std::remove(path.c_str());
+}
+
 TEST(RunBagReader, AnEngagementTopicOfAnotherTypeIsRefusedWithTheWayOut)
 {
   const std::string path = testing::TempDir() + "/engagement_type.bag";
@@ -229,8 +281,8 @@ TEST(RunBagReader, AnEngagementTopicOfAnotherTypeIsRefusedWithTheWayOut)
   catch (const std::runtime_error& error)
   {
     EXPECT_NE(std::string(error.what()).find("topic 'acc_engaged' is acc_identification/RelativeState, not "
-                                             "std_msgs/Bool (choose the ACC's engagement topic with "
-                                             "--acc-engaged-topic"),
+                                             "std_msgs/Bool (choose the topic with --acc-engaged-topic, or none "
+                                             "with --acc-engaged-topic '')"),
               std::string::npos)
         << error.what();
   }

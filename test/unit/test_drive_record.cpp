@@ -137,6 +137,22 @@ TEST(DriveRecord, ATimeResetStartsANewDriveAndItsCounts)
   EXPECT_EQ(drive.samplesLetGo(), let_go_before);  // the total stays
 }
 
+TEST(DriveRecord, ARestartForANewSettingStartsANewDriveAndKeepsTheTotals)
+{
+  acc::DriveRecord drive = record(1200);
+  for (long k = 0; k < 6000; ++k) drive.add(driving(k * kStepS, 20.0, 0.5));
+  const std::uint64_t let_go_before = drive.samplesLetGo();
+  ASSERT_GT(let_go_before, 0u);
+  drive.restart();
+  EXPECT_EQ(drive.size(), 0u);
+  EXPECT_EQ(drive.samplesTaken(), 0u);
+  EXPECT_EQ(drive.samplesLetGoThisDrive(), 0u);
+  for (long k = 6000; k < 6010; ++k) drive.add(driving(k * kStepS, 20.0, 0.5));  // time goes on
+  EXPECT_EQ(drive.samplesTaken(), 10u);
+  EXPECT_DOUBLE_EQ(drive.startTimeS(), 600.0);
+  EXPECT_EQ(drive.samplesLetGo(), let_go_before);
+}
+
 TEST(SlidingWindowLetGo, AShortCutLeavesASplitPointSoNoStepCrossesIt)
 {
   acc::SlidingWindow window(1.0e9, 0.5, 5);

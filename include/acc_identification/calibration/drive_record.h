@@ -58,6 +58,10 @@ public:
   /// Adds a sample as SlidingWindow::add does, then lets go of blocks while over the bound.
   SlidingWindow::AddResult add(const WindowSample& sample);
 
+  /// Starts a new drive with the next sample (the ACC's setting changed): the kept samples go,
+  /// the totals over every drive stay.
+  void restart();
+
   std::vector<CarFollowingRun> segments() const { return samples_.segments(); }
   std::size_t size() const { return samples_.size(); }
   double startTimeS() const { return samples_.startTimeS(); }

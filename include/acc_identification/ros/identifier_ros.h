@@ -25,6 +25,7 @@
 #include <acc_identification/AccParameters.h>
 #include <acc_identification/RelativeState.h>
 #include <std_msgs/Bool.h>
+#include <std_msgs/String.h>
 
 namespace acc
 {
@@ -90,6 +91,7 @@ struct IdentifierCounters
   std::uint64_t acc_state_unknown = 0; ///< engagement required but not known: split points, not used
   std::uint64_t engagement_reports = 0;
   std::uint64_t disengagements = 0;
+  std::uint64_t setting_changes = 0;   ///< acc_setting reports of a new setting (with samples before: a new drive)
   std::uint64_t out_of_order = 0;      ///< late or duplicate: rejected
   std::uint64_t time_outliers = 0;     ///< a jump in time the old time base contradicted: dropped
   std::uint64_t restarts = 0;          ///< confirmed jumps back: window cleared, drive restarted
@@ -170,6 +172,7 @@ private:
     bool test_stability = false;  ///< hand the drive to the stability thread after this solve
     bool data_stopped = false;    ///< the drive did not grow this period: look at its last sample too
     std::string short_pieces_note;  ///< the window's pieces too short to simulate (SlidingWindow::describeShortPieces)
+    std::string acc_setting;        ///< the ACC's setting the window and the drive are of ("": none reported)
   };
   /// What the worker hands to the stability thread.
   struct StabilityJob
@@ -182,6 +185,8 @@ private:
 
   void onRelativeState(const acc_identification::RelativeState::ConstPtr& message);
   void onAccEngaged(const std_msgs::Bool::ConstPtr& message);
+  /// A new setting starts a new drive: the window is cleared and the drive restarted.
+  void onAccSetting(const std_msgs::String::ConstPtr& message);
   /// Whether the ACC drove when the sample arrived (now, on the ROS clock): false when it did not,
   /// counted and said once per stretch.
   bool accDrove(double sample_time_s);
@@ -204,6 +209,7 @@ private:
   SlidingWindow window_;
   DriveRecord drive_;
   bool drive_reset_pending_ = false;     ///< under window_mutex_
+  std::string acc_setting_;              ///< the latest reported setting, under window_mutex_
   double last_stability_request_s_ = -1.0e300;  ///< ROS time, timer thread only
   std::uint64_t last_stability_request_samples_ = 0;  ///< drive samples taken then, timer thread only
   std::uint64_t previous_period_drive_samples_ = 0;   ///< timer thread only
@@ -235,6 +241,7 @@ private:
 
   ros::Subscriber subscriber_;
   ros::Subscriber engagement_subscriber_;
+  ros::Subscriber setting_subscriber_;
   ros::Publisher publisher_;
   ros::Timer period_timer_;
   diagnostic_updater::Updater updater_;
@@ -244,7 +251,7 @@ private:
   // window rejected, dropped or confirmed is in window_.counts(), under window_mutex_.
   std::atomic<std::uint64_t> received_{0}, invalid_{0}, non_finite_values_{0}, implausible_{0};
   std::atomic<std::uint64_t> solves_{0}, skipped_periods_{0}, not_identifiable_{0}, published_{0};
-  std::atomic<std::uint64_t> stability_tests_{0}, drive_resets_{0}, failures_{0};
+  std::atomic<std::uint64_t> stability_tests_{0}, drive_resets_{0}, failures_{0}, setting_changes_{0};
   std::mutex failure_mutex_;
   std::string last_failure_;  ///< what the last failed solve or test threw, under failure_mutex_
   /// Counters at the last diagnostics report (diagnostics thread only): the level reports changes.

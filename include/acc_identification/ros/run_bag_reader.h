@@ -28,6 +28,11 @@ struct BagRuns
   std::size_t acc_off = 0;            ///< recorded while the ACC reported itself off: split points, not used
   std::size_t acc_state_unknown = 0;  ///< engagement required but not known: split points, not used
   std::size_t engagement_reports = 0; ///< messages of the engagement topic
+  std::size_t other_setting = 0;      ///< recorded at another ACC setting than the one asked for: not used
+  std::size_t setting_reports = 0;    ///< messages of the setting topic
+  std::size_t setting_changes = 0;    ///< reports of a new setting: each ends the runs before it
+  /// The ACC setting each run was recorded at, as runs ("": none reported).
+  std::vector<std::string> run_settings;
   /// "path: message N (t = T s): why", one per implausible message and per hole, worded as the
   /// CSV reader words the same values (the same checks make both).
   std::vector<std::string> problems;
@@ -40,6 +45,9 @@ struct BagTopics
   std::string relative_state = "relative_state";  ///< acc_identification/RelativeState
   std::string acc_engaged = "acc_engaged";        ///< std_msgs/Bool; a bag without it has no source
   AccEngagementSettings engagement;
+  /// std_msgs/String: the ACC's distance setting, as identifier_node reads it; runs end at a change.
+  std::string acc_setting = "acc_setting";
+  std::string only_setting;  ///< use only the samples recorded at this setting ("": every setting's)
 };
 
 /// Reads acc_identification/RelativeState messages of topics.relative_state from a bag recorded
@@ -47,7 +55,10 @@ struct BagTopics
 /// samples, at samples outside the plausibility bounds (the CSV reader's check), at holes longer
 /// than bounds.max_time_step_s, and at samples recorded while the ACC was off (the latest of the
 /// bag's topics.acc_engaged reports recorded at or before the sample, as the node judges by
-/// arrival; on a tie, one tick of a simulated clock, the report counts as first).
+/// arrival; on a tie, one tick of a simulated clock, the report counts as first). Runs end where
+/// topics.acc_setting reports a new setting (the latest report at or before each sample is its
+/// setting, in the run's name: "#2 (setting max)"); with topics.only_setting, the samples at other
+/// settings are not used; runs at several settings without it are said in problems.
 /// Segmenting is the identifier's sliding window, so a batch calibration of a bag sees the
 /// segments the identifier node sees. Runs are named "<bag name>#<n>". Throws std::runtime_error
 /// when the bag cannot be read, has no such topic or a topic of another type,
@@ -61,7 +72,7 @@ BagRuns readRunsFromBag(const std::string& path, const std::string& topic = "rel
 
 /// The account of a bag read by readRunsFromBag: messages, samples_used, runs, invalid,
 /// implausible, out_of_order, time_holes, time_resets, short_pieces, acc_off,
-/// acc_state_unknown, engagement_reports.
+/// acc_state_unknown, engagement_reports, other_setting, setting_changes.
 InputAccount accountOfBag(const std::string& path, const BagRuns& bag);
 
 /// What one RUN argument gave.

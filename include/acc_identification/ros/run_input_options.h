@@ -20,12 +20,14 @@ struct RunInputOptions
   std::string topic = "relative_state";
   std::string acc_engaged_topic = "acc_engaged";
   AccEngagementSettings engagement;
+  std::string acc_setting_topic = "acc_setting";
+  std::string acc_setting;  ///< only the samples at this ACC setting ("": every setting's)
   double max_gap_s = 0.5;
   std::string follower;
   bool all_pairs = false;
 
   /// Declares RUN..., --topic, --acc-engaged-topic, --require-acc-engaged, --acc-engaged-timeout,
-  /// --max-gap, --follower and --all-pairs (mutually exclusive);
+  /// --acc-setting-topic, --acc-setting, --max-gap, --follower and --all-pairs (mutually exclusive);
   /// all_pairs_means says what reading every pair does in this tool. required: RUN must be given.
   void declare(CLI::App& app, const std::string& all_pairs_means, bool required);
 
