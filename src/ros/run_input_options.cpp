@@ -12,24 +12,24 @@ void RunInputOptions::declare(CLI::App& app, const std::string& all_pairs_means,
                          ->check(CLI::ExistingFile);
   if (required)
     run_option->required();
-  app.add_option("--topic", topic, "RelativeState topic in bags")->capture_default_str();
-  app.add_option("--acc-engaged-topic", acc_engaged_topic,
+  app.add_option("--topic", bag.relative_state, "RelativeState topic in bags")->capture_default_str();
+  app.add_option("--acc-engaged-topic", bag.acc_engaged,
                  "bags: the ACC's engagement reports (std_msgs/Bool); samples recorded while the latest says false "
                  "are not used, as identifier_node does not use them ('': none)")
       ->capture_default_str();
-  app.add_flag("--require-acc-engaged", engagement.required,
+  app.add_flag("--require-acc-engaged", bag.engagement.required,
                "bags: use a sample only while the latest engagement report says engaged (identifier_node's "
                "~require_acc_engaged)");
-  app.add_option("--acc-engaged-timeout", engagement.timeout_s,
+  app.add_option("--acc-engaged-timeout", bag.engagement.timeout_s,
                  "bags: an engagement report older than this says nothing (identifier_node's ~acc_engaged_timeout_s; "
                  "0: it holds until the next) [s]")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  app.add_option("--acc-setting-topic", acc_setting_topic,
+  app.add_option("--acc-setting-topic", bag.acc_setting,
                  "bags: the ACC's distance setting (std_msgs/String), as identifier_node reads it: runs end where it "
                  "changes ('': none)")
       ->capture_default_str();
-  app.add_option("--acc-setting", acc_setting,
+  app.add_option("--acc-setting", bag.only_setting,
                  "bags: use only the samples recorded at this ACC setting, as the setting topic names it");
   app.add_option("--max-gap", max_gap_s, "split runs at holes longer than this [s]")
       ->check(acc::positiveNumber())
@@ -48,18 +48,7 @@ RunArguments RunInputOptions::read(std::ostream& log) const { return readPaths(p
 
 RunArguments RunInputOptions::readPaths(const std::vector<std::string>& other_paths, std::ostream& log) const
 {
-  return readRunArguments(other_paths, bagTopics(), max_gap_s, log, pairSelectorFromOptions(follower, all_pairs));
-}
-
-BagTopics RunInputOptions::bagTopics() const
-{
-  BagTopics topics;
-  topics.relative_state = topic;
-  topics.acc_engaged = acc_engaged_topic;
-  topics.engagement = engagement;
-  topics.acc_setting = acc_setting_topic;
-  topics.only_setting = acc_setting;
-  return topics;
+  return readRunArguments(other_paths, bag, max_gap_s, log, pairSelectorFromOptions(follower, all_pairs));
 }
 
 }  // namespace acc

@@ -17,11 +17,7 @@ namespace acc
 struct RunInputOptions
 {
   std::vector<std::string> paths;
-  std::string topic = "relative_state";
-  std::string acc_engaged_topic = "acc_engaged";
-  AccEngagementSettings engagement;
-  std::string acc_setting_topic = "acc_setting";
-  std::string acc_setting;  ///< only the samples at this ACC setting ("": every setting's)
+  BagTopics bag;  ///< what is read from a bag: the options bind its fields
   double max_gap_s = 0.5;
   std::string follower;
   bool all_pairs = false;
@@ -35,8 +31,6 @@ struct RunInputOptions
   RunArguments read(std::ostream& log) const;
   /// Other files read with the same options (diagnose --held-out).
   RunArguments readPaths(const std::vector<std::string>& other_paths, std::ostream& log) const;
-  /// What the options read from a bag.
-  BagTopics bagTopics() const;
 };
 
 }  // namespace acc
