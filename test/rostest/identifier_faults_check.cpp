@@ -151,18 +151,21 @@ std::string lastReport()
 
 bool isOk(const Report& report) { return report.level == DiagnosticStatus::OK; }
 
+/// Whether the node subscribes to the publisher's topic within 20 s.
+bool subscribed(const ros::Publisher& publisher)
+{
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (publisher.getNumSubscribers() == 0 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  return publisher.getNumSubscribers() > 0;
+}
+
 class Feed
 {
 public:
   explicit Feed(ros::NodeHandle& node) : publisher_(node.advertise<acc_identification::RelativeState>("relative_state", 1000)) {}
 
-  bool connected()
-  {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-    while (publisher_.getNumSubscribers() == 0 && std::chrono::steady_clock::now() < deadline)
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    return publisher_.getNumSubscribers() > 0;
-  }
+  bool connected() { return subscribed(publisher_); }
 
   void publish(double time_s, double follower_speed_mps = 20.0)
   {
@@ -274,15 +277,6 @@ TEST(IdentifierFaults, AnImplausibleSampleIsASplitPointCountedAndReported)
   EXPECT_NE(report.message.find("1 implausible"), std::string::npos) << describe(report);
   EXPECT_EQ(report.count("implausible samples (split points)"), 1u) << describe(report);
   ASSERT_TRUE(waitForReport(before, [](const Report& r) { return isOk(r); }, report)) << lastReport();
-}
-
-/// Whether the node subscribes to the publisher's topic within 20 s.
-bool subscribed(const ros::Publisher& publisher)
-{
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-  while (publisher.getNumSubscribers() == 0 && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  return publisher.getNumSubscribers() > 0;
 }
 
 /// Reports on acc_engaged, waiting until the node has the one sent (its diagnostics say it).
