@@ -4,6 +4,8 @@
 //  - Live: one recalibration of a 120 s window, warm-started from the previous window's fit, as
 //    the identifier node does every second. Target: under 5 ms.
 //  - One objective pass with gradient over the batch data, the unit everything else is made of.
+//  - The refitting bootstrap calibrate makes on short data (199 replicates, one thread) of a 60 s,
+//    a 120 s and a 300 s drive.
 #include <benchmark/benchmark.h>
 
 #include "batch_calibration_benchmark.h"
@@ -11,6 +13,7 @@
 #include <vector>
 
 #include "acc_identification/calibration/identification.h"
+#include "acc_identification/calibration/refit_bootstrap.h"
 #include "acc_identification/synthesis/synthetic_runs.h"
 #include "acc_identification/model/paper_settings.h"
 
@@ -48,5 +51,22 @@ void BM_ObjectivePassWithGradient(benchmark::State& state)
 }
 BENCHMARK(BM_ObjectivePassWithGradient)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 }  // namespace
+
+void BM_RefitBootstrap(benchmark::State& state)
+{
+  const auto run = acc::synthesizeRun(acc::paperMinimumSetting(), static_cast<double>(state.range(0)), 0.1, 20.0, 1);
+  const acc::AccParameters fit = acc::identifyAcc({run}, {}).calibration.parameters;
+  acc::RefitBootstrapOptions options;
+  options.threads = 1;
+  acc::RefitBootstrap result;
+  for (auto _ : state)
+  {
+    result = acc::bootstrapRefits(fit, {run}, options);
+    benchmark::DoNotOptimize(result);
+  }
+  state.counters["refitted"] = static_cast<double>(result.refitted);
+}
+// Arg: the drive's length [s].
+BENCHMARK(BM_RefitBootstrap)->Arg(60)->Arg(120)->Arg(300)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

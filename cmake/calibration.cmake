@@ -27,6 +27,7 @@ acc_add_library(acc_calibration
     src/calibration/calibrate_runs.cpp
     src/calibration/fit_traces.cpp
     src/calibration/euler_step_bias.cpp
+    src/calibration/refit_bootstrap.cpp
   LINK acc_evidence acc_run_io acc_model ${ACC_NLOPT_TARGET} nlohmann_json::nlohmann_json)
 
 # Car-following runs made from known parameters (synthesis/synthetic_runs.h): the seeded truths
@@ -78,7 +79,8 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_model_adequacy.cpp
     test/unit/test_model_dip_check.cpp
     test/unit/test_euler_step_bias.cpp
-    test/unit/test_standard_error_coverage.cpp)
+    test/unit/test_standard_error_coverage.cpp
+    test/unit/test_refit_bootstrap.cpp)
   target_compile_definitions(test_calibration PRIVATE ACC_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/test/data/runs")
   target_link_libraries(test_calibration acc_calibration acc_run_io acc_synthetic_runs)
 

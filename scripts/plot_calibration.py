@@ -67,11 +67,32 @@ def rms(values):
     return math.sqrt(sum(v * v for v in finite) / len(finite)) if finite else float("nan")
 
 
+QUANTITY_OF = {"k1_per_s2": "k1", "k2_per_s": "k2", "tau_e_s": "tau_e", "eta_m": "eta"}
+
+
+def interval_words(entry):
+    """An interval_95 of the JSON ([low, high] or null) in words."""
+    interval = (entry or {}).get("interval_95")
+    return f"[{fmt(interval[0], 4)}, {fmt(interval[1], 4)}]" if interval else "none"
+
+
 def parameter_lines(fit):
+    """The parameters with their standard errors and 95 % intervals; on short data also the refitting
+    bootstrap's, which hold where value +- t se runs short (docs/RESULTS.md)."""
     p, se = fit["parameters"], fit.get("standard_errors") or {}
-    lines = ["| parameter | value | standard error |", "|---|---|---|"]
-    for key in ("k1_per_s2", "k2_per_s", "tau_e_s", "eta_m"):
-        lines.append(f"| {key} | {fmt(p.get(key), 4)} | {fmt(se.get(key), 2)} |")
+    quantities = (fit.get("identifiable_quantities") or {}).get("quantities") or {}
+    bootstrap = (fit.get("refit_bootstrap") or {}).get("quantities")
+    header = "| parameter | value | standard error | 95 % interval |" + (" 95 % interval, refitting bootstrap |"
+                                                                          if bootstrap else "")
+    lines = [header, "|---|---|---|---|" + ("---|" if bootstrap else "")]
+    for key, name in QUANTITY_OF.items():
+        row = f"| {key} | {fmt(p.get(key), 4)} | {fmt(se.get(key), 2)} | {interval_words(quantities.get(name))} |"
+        if bootstrap:
+            row += f" {interval_words(bootstrap.get(name))} |"
+        lines.append(row)
+    caution = (fit.get("refit_bootstrap") or {}).get("caution")
+    if caution:
+        lines += ["", f"Refitting bootstrap: {caution}."]
     return lines
 
 

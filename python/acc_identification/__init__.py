@@ -89,17 +89,20 @@ def _segments(frames, first_number=1):
 
 
 def calibrate(runs, split="none", starts=None, alpha=None, seed=None, stability_test=True, verdict_every_s=None,
-              grid=None, second_opinion=True):
+              grid=None, second_opinion=True, bootstrap=None, bootstrap_below_s=None):
     """`calibrate` on runs (DataFrames from read_run, or paths): the dict `calibrate --json` writes.
     split "half": train on the first half of each run, test on the second (the paper).
-    second_opinion=False: as --no-second-opinion, no diagnosis when the model misses the data."""
+    second_opinion=False: as --no-second-opinion, no diagnosis when the model misses the data.
+    bootstrap, bootstrap_below_s: as --bootstrap and --bootstrap-below (0 replicates: none)."""
     if split not in ("none", "half"):
         raise ValueError("split must be 'none' or 'half', not %r" % (split,))
     defaults = _core.DEFAULTS["calibrate"]
     segments, inputs_read = _segments(_as_frames(runs))
     result = _core.calibrate(segments, inputs_read, split == "half", defaults["starts"] if starts is None else starts,
                              defaults["alpha"] if alpha is None else alpha, seed, stability_test,
-                             verdict_every_s or 0.0, grid or 0, second_opinion)
+                             verdict_every_s or 0.0, grid or 0, second_opinion,
+                             defaults["bootstrap"] if bootstrap is None else bootstrap,
+                             defaults["bootstrap_below_s"] if bootstrap_below_s is None else bootstrap_below_s)
     return json.loads(result["json"])
 
 

@@ -151,6 +151,24 @@ void judgeModel(const std::vector<CarFollowingRun>& training, const std::vector<
     report.verdict_contradiction = verdictContradiction(toString(report.stability_test->verdict), *report.dip_evidence);
 }
 
+/// The refitting bootstrap of the fit, on short data (CalibrateSettings).
+void bootstrapShortData(const std::vector<CarFollowingRun>& training, const CalibrateSettings& settings,
+                        CalibrationReport& report, std::ostream& log)
+{
+  double duration_s = 0.0;
+  for (const CarFollowingRun& run : training)
+    duration_s += run.durationS();
+  if (settings.bootstrap_replicates == 0 || !(duration_s < settings.bootstrap_below_s))
+    return;
+  RefitBootstrapOptions options;
+  options.replicates = settings.bootstrap_replicates;
+  if (settings.seed)
+    options.seed = *settings.seed;
+  if (!settings.quiet)
+    log << "refitting bootstrap: " << options.replicates << " replicates of " << duration_s << " s of data...\n";
+  report.refit_bootstrap = bootstrapRefits(report.calibration.parameters, training, options);
+}
+
 void scoreRuns(const std::vector<CalibrationInput>& inputs, const std::vector<CarFollowingRun>& training,
                const std::vector<CarFollowingRun>& testing, CalibrationReport& report)
 {
@@ -212,6 +230,7 @@ CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, cons
   if (!settings.quiet)
     log << "Euler step check...\n";
   report.euler_step_bias = estimateEulerStepBias(identification, training, options);
+  bootstrapShortData(training, settings, report, log);
   if (settings.grid_nodes > 0)
     checkOnGrid(training, options, settings, report, log);
   const std::vector<CarFollowingRun> whole_runs = runsOf(inputs);

@@ -225,6 +225,8 @@ nlohmann::json reportToJson(const CalibrationReport& report)
   {
     json["identifiable_quantities"] = toJson(*report.quantities);
   }
+  if (report.refit_bootstrap)
+    json["refit_bootstrap"] = toJson(*report.refit_bootstrap);
   if (report.stability_test)
   {
     json["stability_test"] = toJson(*report.stability_test);
@@ -313,6 +315,11 @@ void printReport(const CalibrationReport& report, std::ostream& out)
   {
     out << "\n";
     printQuantities(*report.quantities, out);
+  }
+  if (report.refit_bootstrap)
+  {
+    out << "\n";
+    printRefitBootstrap(*report.refit_bootstrap, out);
   }
   if (report.euler_step_bias)
     out << "\n" << describeEulerStepBias(*report.euler_step_bias);

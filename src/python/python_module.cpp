@@ -133,7 +133,8 @@ py::dict readRun(const std::string& path, const std::string& follower, bool all_
 
 py::dict calibrate(const py::list& runs, const py::list& inputs_read, bool split_half, std::size_t starts,
                    double alpha, const py::object& seed, bool stability_test, double verdict_every_s,
-                   std::size_t grid_nodes, bool second_opinion)
+                   std::size_t grid_nodes, bool second_opinion, std::size_t bootstrap_replicates,
+                   double bootstrap_below_s)
 {
   const std::vector<acc::CalibrationInput> inputs = toInputs(runs);
   const std::vector<acc::InputAccount> accounts = toInputAccounts(inputs_read);
@@ -146,6 +147,8 @@ py::dict calibrate(const py::list& runs, const py::list& inputs_read, bool split
   settings.stability_test = stability_test;
   settings.verdict_every_s = verdict_every_s;
   settings.grid_nodes = grid_nodes;
+  settings.bootstrap_replicates = bootstrap_replicates;
+  settings.bootstrap_below_s = bootstrap_below_s;
   settings.quiet = true;
   if (second_opinion)
     settings.second_opinion = acc::diagnosisSecondOpinion();  // as the calibrate tool
@@ -240,7 +243,9 @@ py::dict defaults()
   const acc::DiagnosisOptions diagnose;
   const acc::CampaignOptions campaign;
   py::dict all;
-  all["calibrate"] = py::dict(py::arg("starts") = calibrate.starts, py::arg("alpha") = calibrate.alpha);
+  all["calibrate"] = py::dict(py::arg("starts") = calibrate.starts, py::arg("alpha") = calibrate.alpha,
+                              py::arg("bootstrap") = calibrate.bootstrap_replicates,
+                              py::arg("bootstrap_below_s") = calibrate.bootstrap_below_s);
   all["diagnose"] = py::dict(py::arg("train_fraction") = diagnose.train_fraction,
                              py::arg("seed") = diagnose.selection.seed, py::arg("threads") = diagnose.threads);
   all["campaign"] = py::dict(py::arg("starts") = campaign.group.starts, py::arg("alpha") = campaign.group.alpha,
@@ -257,7 +262,8 @@ PYBIND11_MODULE(_core, module)
              py::arg("acc_engaged_timeout_s"), py::arg("acc_setting"));
   module.def("calibrate", &calibrate, py::arg("runs"), py::arg("inputs_read"), py::arg("split_half"), py::arg("starts"),
              py::arg("alpha"), py::arg("seed"), py::arg("stability_test"), py::arg("verdict_every_s"),
-             py::arg("grid_nodes"), py::arg("second_opinion"));
+             py::arg("grid_nodes"), py::arg("second_opinion"), py::arg("bootstrap_replicates"),
+             py::arg("bootstrap_below_s"));
   module.def("diagnose", &diagnose, py::arg("runs"), py::arg("inputs_read"), py::arg("inputs"),
              py::arg("train_fraction"), py::arg("effects"), py::arg("threads"), py::arg("seed"),
              py::arg("forward_selection"), py::arg("held_out_runs"), py::arg("held_out_inputs"));

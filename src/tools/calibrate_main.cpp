@@ -72,7 +72,16 @@ int main(int argc, char** argv)
   app.add_option("--alpha", settings.alpha, "level of the string-stability test")
       ->check(acc::openInterval(0.0, 1.0))
       ->capture_default_str();
-  auto* seed_option = app.add_option("--seed", seed, "seed of the test's bootstrap (default: the library's fixed seed)");
+  auto* seed_option =
+      app.add_option("--seed", seed, "seed of the stability test's and the refitting bootstrap's draws (default: fixed seeds)");
+  app.add_option("--bootstrap", settings.bootstrap_replicates,
+                 "replicates of the refitting bootstrap (95 % intervals that hold on short data; 0: none)")
+      ->capture_default_str();
+  app.add_option("--bootstrap-below", settings.bootstrap_below_s,
+                 "make the refitting bootstrap when the fitted data span less than SECONDS (longer data: value +- t se "
+                 "covers)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   app.add_option("--verdict-every", settings.verdict_every_s,
                  "also replay each drive look by look every SECONDS of data time and report the sequential "
                  "(anytime-valid) verdicts the identifier node would publish, by the node's own code")

@@ -41,7 +41,12 @@ struct CalibrateSettings
   std::size_t starts = 100;        ///< Halton starts of every multistart
   std::size_t grid_nodes = 0;      ///< --grid N (0: no grid check)
   double alpha = 0.05;             ///< level of the string-stability tests
-  std::optional<std::uint64_t> seed;  ///< the fixed-sample test's bootstrap seed (default: the library's)
+  std::optional<std::uint64_t> seed;  ///< the bootstraps' seed (default: each one's own fixed seed)
+  /// The refitting bootstrap's replicates (refit_bootstrap.h; 0: none), made when the data the
+  /// model is fitted on span less than bootstrap_below_s: on a minute of data value +- t se covers
+  /// 72-88 %, the bootstrap 82-93 % (docs/RESULTS.md); from 300 s on value +- t se covers 90-98 %.
+  std::size_t bootstrap_replicates = 199;
+  double bootstrap_below_s = 300.0;
   bool stability_test = true;
   double verdict_every_s = 0.0;    ///< > 0: replay the sequential verdict look by look
   /// Called after each multistart start (done, total); may be empty.

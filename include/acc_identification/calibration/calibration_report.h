@@ -14,6 +14,7 @@
 #include "acc_identification/calibration/model_dip_check.h"
 #include "acc_identification/calibration/multistart_calibrator.h"
 #include "acc_identification/calibration/quantity_identifiability.h"
+#include "acc_identification/calibration/refit_bootstrap.h"
 #include "acc_identification/calibration/string_stability_verdict.h"
 #include "acc_identification/model/car_following_run.h"
 #include "acc_identification/model/string_stability.h"
@@ -44,6 +45,8 @@ struct CalibrationReport
   std::optional<MultistartResult> grid_polished;  ///< local solve from the grid's best node
   /// What the data determine quantity by quantity (of the fit above, on its training data).
   std::optional<IdentifiableQuantities> quantities;
+  /// Resampling intervals of the same quantities, made on short data (CalibrateSettings).
+  std::optional<RefitBootstrap> refit_bootstrap;
   /// How far the Euler step at the data's rate moves the fit from the continuous law's parameters.
   std::optional<EulerStepBias> euler_step_bias;
   /// Is the ACC string stable, decided on held-out halves even where the parameters are not pinned.
@@ -93,7 +96,7 @@ void printUnfitted(const UnfittedDataSummary& summary, std::ostream& out);
 
 /// The --json document. Keys "parameters" (k1_per_s2, k2_per_s, tau_e_s, eta_m),
 /// "standard_errors", "stability", "objective", "runs", "summary" are read by other tools;
-/// "identifiable_quantities" and "stability_test" (string_stability_verdict.h) when they were computed;
+/// "identifiable_quantities", "refit_bootstrap" (refit_bootstrap.h) and "stability_test" (string_stability_verdict.h) when they were computed;
 /// "fitted": true; "model_adequacy" (model_adequacy.h) when assessed. stability.string_stable is
 /// null where lambda2 is NaN.
 nlohmann::json reportToJson(const CalibrationReport& report);

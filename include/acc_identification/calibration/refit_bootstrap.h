@@ -1,0 +1,90 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <iosfwd>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "acc_identification/calibration/calibration_objective.h"
+#include "acc_identification/calibration/quantity_identifiability.h"
+#include "acc_identification/model/acc_parameters.h"
+#include "acc_identification/model/car_following_run.h"
+
+namespace acc
+{
+/// How the refitting bootstrap runs.
+struct RefitBootstrapOptions
+{
+  std::size_t replicates = 199;
+  std::uint64_t seed = 20261202;
+  /// Halton starts of each refit beside the warm start at the fit: a replicate whose best fit lies
+  /// in another basin must be able to reach it, or the spread is understated.
+  std::size_t starts = 20;
+  ParameterBounds bounds;
+  std::size_t threads = 0;  ///< 0: hardware_concurrency
+};
+
+/// One quantity's bootstrap interval.
+struct BootstrapQuantity
+{
+  std::string name;      ///< "k1", "k2", "tau_e", "eta", "stability_margin"
+  double value = 0.0;    ///< the fit's
+  /// The spread of the refits: their standard deviation, and their mean less the fit's value (the
+  /// estimator's bias on data like these, which the delta method cannot see).
+  double standard_error = std::numeric_limits<double>::quiet_NaN();
+  double bias = std::numeric_limits<double>::quiet_NaN();
+  /// The 95 % interval, bootstrap-t: value - t*_0.975 se, value - t*_0.025 se, with se the fit's
+  /// sandwich standard error and t*_q the q-quantile of (refit - value) / (refit's own sandwich
+  /// standard error). NaN where held at a bound of the fit (the bootstrap is not valid there:
+  /// Andrews 2000) or where fewer than half the refits have a standard error.
+  double interval_95_low = std::numeric_limits<double>::quiet_NaN();
+  double interval_95_high = std::numeric_limits<double>::quiet_NaN();
+  std::string note;      ///< why there is no interval; empty with one
+};
+
+struct RefitBootstrap
+{
+  std::size_t replicates = 0;         ///< asked for
+  std::size_t refitted = 0;           ///< replicates whose refit did not diverge (the rest are left out, counted)
+  double block_length_s = 0.0;        ///< of the resampled residuals (the fit's batch-means block)
+  std::vector<BootstrapQuantity> quantities;
+  std::string note;                   ///< why no bootstrap was made; empty when one was
+  /// Set when a parameter of the fit sits at a bound: its refits pile up there, and the bootstrap's
+  /// intervals of the others are then approximate (Andrews 2000).
+  std::string caution;
+  double wall_time_s = 0.0;               ///< wall time
+  /// The quantity of this name, or nullptr.
+  const BootstrapQuantity* find(const std::string& name) const;
+};
+
+/// A resampling interval for the fit `fit` of `runs` (the calibration's multistart optimum), for
+/// drives too short for the sandwich standard errors (a minute of data fits nonlinearly in its
+/// noise: docs/RESULTS.md, "What the standard errors cover").
+///
+/// Each replicate is a drive the fitted model could have given: per run, the fit's own simulation
+/// (simulateFollower from the measured start, driven by the measured leader) plus the run's speed
+/// residuals, centred and resampled in circular blocks (the fit's batch-means block length, so
+/// that their correlation in time is kept), the start speed included; the run's gap is shifted by
+/// a normal draw of its sample noise (gapSampleNoiseM), the error the start gap puts on eta. Each
+/// replicate is refitted exactly as the data were (calibrateMultistart from the fit and `starts`
+/// Halton points), and its sandwich standard errors are computed, so that the interval is the
+/// studentised (bootstrap-t) one: second-order accurate where value +- t se is first-order, and it
+/// carries the estimator's bias and skew. Seeded: the same seed gives the same intervals on every
+/// platform and with any number of threads. Cost: replicates x (one multistart calibration of
+/// `starts` points); bench/bench_calibration.cpp (BM_RefitBootstrap).
+RefitBootstrap bootstrapRefits(const AccParameters& fit, const std::vector<CarFollowingRun>& runs,
+                               const RefitBootstrapOptions& options = {});
+
+/// One line per quantity: the fit's value, the bootstrap-t 95 % interval, the refits' spread and
+/// bias; or why there is none.
+void printRefitBootstrap(const RefitBootstrap& bootstrap, std::ostream& out);
+
+/// {"replicates", "refitted", "block_length_s", "wall_time_s", "note", "caution", "quantities": {name: {value,
+/// standard_error, bias, interval_95: [low, high] or null, note}}}; NaN as null.
+nlohmann::json toJson(const RefitBootstrap& bootstrap);
+
+}  // namespace acc

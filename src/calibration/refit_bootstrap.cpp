@@ -1,0 +1,266 @@
+#include "acc_identification/calibration/refit_bootstrap.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <random>
+
+#include "acc_identification/calibration/fit_statistics.h"
+#include "acc_identification/calibration/multistart_calibrator.h"
+#include "acc_identification/model/follower_simulation.h"
+#include "acc_identification/model/json_number.h"
+#include "acc_identification/model/normal_source.h"
+#include "acc_identification/model/parallel_tasks.h"
+#include "acc_identification/model/portable_uniform.h"
+#include "acc_identification/model/sample_statistics.h"
+
+namespace acc
+{
+namespace
+{
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr const char* kQuantityNames[] = {"k1", "k2", "tau_e", "eta", "stability_margin"};
+constexpr std::size_t kQuantityCount = sizeof kQuantityNames / sizeof kQuantityNames[0];
+
+/// What a replicate is built from, per run: the fit's simulated speeds, the centred speed
+/// residuals after the measured start, and the gap's sample noise.
+struct RunModel
+{
+  std::vector<double> simulated_speed_mps;
+  std::vector<double> residual_mps;
+  double gap_noise_m = 0.0;
+};
+
+/// The runs' models, or the reason there are none.
+std::vector<RunModel> modelRuns(const AccParameters& fit, const std::vector<CarFollowingRun>& runs, std::string* why)
+{
+  std::vector<RunModel> models;
+  for (const CarFollowingRun& run : runs)
+  {
+    const SimulatedFollower sim = simulateFollower(fit, EffectSettings{}, run);
+    if (sim.diverged)
+    {
+      *why = "the fit's simulation of " + run.name + " diverges";
+      return {};
+    }
+    RunModel model;
+    model.simulated_speed_mps = sim.speed_mps;
+    double sum = 0.0;
+    for (std::size_t k = 1; k < run.size(); ++k)  // the first residual is 0 by construction
+    {
+      model.residual_mps.push_back(run.follower_speed_mps[k] - sim.speed_mps[k]);
+      sum += model.residual_mps.back();
+    }
+    for (double& e : model.residual_mps)
+      e -= sum / static_cast<double>(model.residual_mps.size());
+    const double gap_noise = gapSampleNoiseM(run);
+    model.gap_noise_m = std::isfinite(gap_noise) ? gap_noise : 0.0;
+    models.push_back(std::move(model));
+  }
+  return models;
+}
+
+/// One replicate drive of a run: the simulation plus circular blocks of residuals, the gap shifted.
+CarFollowingRun replicateRun(const CarFollowingRun& run, const RunModel& model, std::size_t block_samples,
+                             std::mt19937_64& engine, NormalSource& normal)
+{
+  CarFollowingRun replicate = run;
+  const std::size_t n = model.residual_mps.size();
+  const std::size_t length = std::max<std::size_t>(1, std::min(block_samples, n));
+  std::size_t k = 0;
+  while (k < run.size())
+  {
+    const std::size_t start = static_cast<std::size_t>(uniformBelow(engine, n));
+    for (std::size_t j = 0; j < length && k < run.size(); ++j, ++k)
+      replicate.follower_speed_mps[k] = model.simulated_speed_mps[k] + model.residual_mps[(start + j) % n];
+  }
+  const double gap_shift_m = model.gap_noise_m * normal.standardNormal();
+  for (double& s : replicate.space_gap_m)
+    s += gap_shift_m;
+  return replicate;
+}
+
+/// The five quantities of one fit, with their sandwich standard errors (NaN where held at a bound).
+struct QuantityDraw
+{
+  double value[kQuantityCount] = {};
+  double standard_error[kQuantityCount] = {};
+  std::string held_by_bound[kQuantityCount];  ///< QuantityEstimate::held_by_bound
+};
+
+QuantityDraw drawOf(const IdentifiableQuantities& quantities)
+{
+  QuantityDraw draw;
+  for (std::size_t i = 0; i < kQuantityCount; ++i)
+  {
+    const QuantityEstimate* q = quantities.find(kQuantityNames[i]);
+    draw.value[i] = q ? q->value : kNaN;
+    draw.held_by_bound[i] = q ? q->held_by_bound : "";
+    draw.standard_error[i] = q && q->held_by_bound.empty() ? q->standard_error : kNaN;
+  }
+  return draw;
+}
+
+/// Which parameter of the fit sits at a bound ("tau_e at its lower bound 0"), or "".
+std::string parameterAtBound(const QuantityDraw& at_fit)
+{
+  for (std::size_t i = 0; i < 4; ++i)  // k1, k2, tau_e, eta
+    if (!at_fit.held_by_bound[i].empty())
+      return at_fit.held_by_bound[i];
+  return "";
+}
+
+/// Refits replicate `index` (its own random stream, so that threads do not change the draws).
+/// diverged: no fit within the bounds.
+struct Refit
+{
+  QuantityDraw draw;
+  bool diverged = false;
+};
+
+Refit refitReplicate(std::size_t index, const AccParameters& fit, const std::vector<CarFollowingRun>& runs,
+                     const std::vector<RunModel>& models, std::size_t block_samples, const RefitBootstrapOptions& options)
+{
+  std::mt19937_64 engine(streamSeed(options.seed, 2 * index));
+  NormalSource normal(streamSeed(options.seed, 2 * index + 1));
+  std::vector<CarFollowingRun> replicate;
+  for (std::size_t r = 0; r < runs.size(); ++r)
+    replicate.push_back(replicateRun(runs[r], models[r], block_samples, engine, normal));
+  MultistartOptions multistart;
+  multistart.starts = options.starts;
+  const MultistartResult refit = calibrateMultistart(CalibrationObjective(replicate, options.bounds), multistart, {fit});
+  Refit result;
+  result.diverged = refit.diverged;
+  if (!refit.diverged)
+    result.draw = drawOf(assessQuantities(refit.parameters, estimateUncertainty(refit.parameters, replicate),
+                                          replicate, options.bounds));
+  return result;
+}
+
+/// The interval and spread of quantity i from the refits.
+BootstrapQuantity summarise(std::size_t i, const QuantityDraw& at_fit, const std::vector<Refit>& refits)
+{
+  BootstrapQuantity q;
+  q.name = kQuantityNames[i];
+  q.value = at_fit.value[i];
+  std::vector<double> values, studentised;
+  for (const Refit& refit : refits)
+  {
+    if (refit.diverged)
+      continue;
+    values.push_back(refit.draw.value[i]);
+    const double se = refit.draw.standard_error[i];
+    if (std::isfinite(se) && se > 0.0)
+      studentised.push_back((refit.draw.value[i] - q.value) / se);
+  }
+  if (values.size() >= 2)
+  {
+    const double mean = meanOf(values);
+    std::vector<double> squared_deviations;
+    for (double v : values)
+      squared_deviations.push_back((v - mean) * (v - mean));
+    q.standard_error = std::sqrt(meanOf(squared_deviations) * values.size() / (values.size() - 1.0));
+    q.bias = mean - q.value;
+  }
+  const double se = at_fit.standard_error[i];
+  if (!at_fit.held_by_bound[i].empty())
+    q.note = at_fit.held_by_bound[i] + ": the bootstrap does not hold at a bound (the one-sided interval above does)";
+  else if (!std::isfinite(se))
+    q.note = "no standard error at the fit";
+  else if (2 * studentised.size() < refits.size())
+    q.note = "fewer than half the refits have a standard error";
+  else
+  {
+    q.interval_95_low = q.value - interpolatedQuantile(studentised, 0.975) * se;
+    q.interval_95_high = q.value - interpolatedQuantile(studentised, 0.025) * se;
+  }
+  return q;
+}
+
+}  // namespace
+
+const BootstrapQuantity* RefitBootstrap::find(const std::string& name) const
+{
+  for (const BootstrapQuantity& q : quantities)
+    if (q.name == name)
+      return &q;
+  return nullptr;
+}
+
+RefitBootstrap bootstrapRefits(const AccParameters& fit, const std::vector<CarFollowingRun>& runs,
+                               const RefitBootstrapOptions& options)
+{
+  const auto started = std::chrono::steady_clock::now();
+  RefitBootstrap result;
+  result.replicates = options.replicates;
+  const std::vector<RunModel> models = modelRuns(fit, runs, &result.note);
+  if (!result.note.empty())
+    return result;
+  const ParameterUncertainty uncertainty = estimateUncertainty(fit, runs);
+  const QuantityDraw at_fit = drawOf(assessQuantities(fit, uncertainty, runs, options.bounds));
+  result.block_length_s = uncertainty.block_length_s;
+  const std::string at_bound = parameterAtBound(at_fit);
+  if (!at_bound.empty())
+    result.caution = at_bound + ": the other intervals are approximate (a bootstrap does not hold at a bound)";
+  const double step_s = medianStepS(runs);
+  const std::size_t block_samples =
+      std::isfinite(step_s) && step_s > 0.0 ? static_cast<std::size_t>(std::lround(result.block_length_s / step_s)) : 1;
+  std::vector<Refit> refits(options.replicates);
+  runTasksInParallel(options.replicates, effectiveThreadCount(options.threads, options.replicates), [&](std::size_t b) {
+    refits[b] = refitReplicate(b, fit, runs, models, block_samples, options);
+  });
+  result.refitted = static_cast<std::size_t>(
+      std::count_if(refits.begin(), refits.end(), [](const Refit& r) { return !r.diverged; }));
+  for (std::size_t i = 0; i < kQuantityCount; ++i)
+    result.quantities.push_back(summarise(i, at_fit, refits));
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return result;
+}
+
+void printRefitBootstrap(const RefitBootstrap& bootstrap, std::ostream& out)
+{
+  if (!bootstrap.note.empty())
+  {
+    out << "Refitting bootstrap: not made: " << bootstrap.note << "\n";
+    return;
+  }
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "Refitting bootstrap (%zu drives the fit could have given, %zu refitted; residual blocks of %.1f s; "
+                "%.1f s): 95 %% intervals (bootstrap-t) for short data, where value +- t se runs short\n",
+                bootstrap.replicates, bootstrap.refitted, bootstrap.block_length_s, bootstrap.wall_time_s);
+  out << line;
+  if (!bootstrap.caution.empty())
+    out << "  caution: " << bootstrap.caution << "\n";
+  for (const BootstrapQuantity& q : bootstrap.quantities)
+  {
+    if (std::isfinite(q.interval_95_low))
+      std::snprintf(line, sizeof line, "  %-17s %-11.5g 95 %% [%.5g, %.5g]   refits' spread %.3g, bias %+.3g\n",
+                    q.name.c_str(), q.value, q.interval_95_low, q.interval_95_high, q.standard_error, q.bias);
+    else
+      std::snprintf(line, sizeof line, "  %-17s %-11.5g no interval: %s\n", q.name.c_str(), q.value, q.note.c_str());
+    out << line;
+  }
+}
+
+nlohmann::json toJson(const RefitBootstrap& bootstrap)
+{
+  nlohmann::json quantities = nlohmann::json::object();
+  for (const BootstrapQuantity& q : bootstrap.quantities)
+  {
+    quantities[q.name] = {{"value", jsonNumber(q.value)},
+                          {"standard_error", jsonNumber(q.standard_error)},
+                          {"bias", jsonNumber(q.bias)},
+                          {"interval_95", std::isfinite(q.interval_95_low)
+                                              ? nlohmann::json{q.interval_95_low, q.interval_95_high}
+                                              : nlohmann::json(nullptr)},
+                          {"note", q.note}};
+  }
+  return {{"replicates", bootstrap.replicates}, {"refitted", bootstrap.refitted},
+          {"block_length_s", jsonNumber(bootstrap.block_length_s)}, {"wall_time_s", jsonNumber(bootstrap.wall_time_s)},
+          {"note", bootstrap.note}, {"caution", bootstrap.caution}, {"quantities", quantities}};
+}
+
+}  // namespace acc
