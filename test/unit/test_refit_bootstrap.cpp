@@ -95,6 +95,25 @@ TEST(RefitBootstrap, TheSeedAloneDecidesTheDraws)
   }
 }
 
+// Several runs (segments between holes, or several files): each is resampled from its own
+// residuals and simulated from its own start, and the intervals come out of them together.
+TEST(RefitBootstrap, ResamplesSeveralRunsEachOnItsOwn)
+{
+  const acc::CarFollowingRun first = minuteDrive(4);
+  const acc::CarFollowingRun second = minuteDrive(5).slice(0, 400, " (40 s)");
+  const acc::AccParameters fit = acc::identifyAcc({first, second}, {}).calibration.parameters;
+  acc::RefitBootstrapOptions options;
+  options.replicates = 40;
+  const acc::RefitBootstrap refits = acc::bootstrapRefits(fit, {first, second}, options);
+  ASSERT_TRUE(refits.note.empty()) << refits.note;
+  EXPECT_EQ(refits.refitted, 40u);
+  for (const char* name : kQuantities)
+  {
+    const acc::BootstrapQuantity& q = *refits.find(name);
+    EXPECT_TRUE(q.interval_95_low < q.value && q.value < q.interval_95_high) << name << ": " << q.note;
+  }
+}
+
 // calibrate makes it on short data only, and says so in the JSON and the text.
 TEST(RefitBootstrap, CalibrateMakesItOnShortData)
 {
