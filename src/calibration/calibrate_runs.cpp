@@ -155,9 +155,7 @@ void judgeModel(const std::vector<CarFollowingRun>& training, const std::vector<
 void bootstrapShortData(const std::vector<CarFollowingRun>& training, const CalibrateSettings& settings,
                         CalibrationReport& report, std::ostream& log)
 {
-  double duration_s = 0.0;
-  for (const CarFollowingRun& run : training)
-    duration_s += run.durationS();
+  const double duration_s = totalDurationS(training);
   if (settings.bootstrap_replicates == 0 || !(duration_s < settings.bootstrap_below_s))
     return;
   RefitBootstrapOptions options;

@@ -345,8 +345,7 @@ UnfittedDataSummary summarizeUnfittedData(const std::vector<CarFollowingRun>& ru
   out.reason = reason;
   out.runs = runs.size();
   out.steady_speed_spread_mps = steady_speed_spread_mps;
-  for (const CarFollowingRun& run : runs)
-    out.duration_s += run.durationS();
+  out.duration_s = totalDurationS(runs);
   const PooledMoments speed = pooledMoments(runs, &CarFollowingRun::follower_speed_mps);
   const PooledMoments gap = pooledMoments(runs, &CarFollowingRun::space_gap_m);
   out.samples = speed.samples;

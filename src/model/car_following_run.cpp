@@ -127,4 +127,12 @@ std::size_t sampleCount(const std::vector<CarFollowingRun>& runs)
   return n;
 }
 
+double totalDurationS(const std::vector<CarFollowingRun>& runs)
+{
+  double duration_s = 0.0;
+  for (const CarFollowingRun& run : runs)
+    duration_s += run.durationS();
+  return duration_s;
+}
+
 }  // namespace acc

@@ -95,9 +95,9 @@ TEST(RefitBootstrap, TheSeedAloneDecidesTheDraws)
   }
 }
 
-// Several runs (segments between holes, or several files): each is resampled from its own
-// residuals and simulated from its own start, and the intervals come out of them together.
-TEST(RefitBootstrap, ResamplesSeveralRunsEachOnItsOwn)
+// Several runs (segments between holes, or several files) of different lengths: every replicate
+// of both is refitted, and each interval holds the fit's value.
+TEST(RefitBootstrap, RefitsSeveralRunsOfDifferentLengthsTogether)
 {
   const acc::CarFollowingRun first = minuteDrive(4);
   const acc::CarFollowingRun second = minuteDrive(5).slice(0, 400, " (40 s)");

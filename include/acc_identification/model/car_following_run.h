@@ -27,6 +27,9 @@ struct CarFollowingRun
 /// The samples of all runs, summed.
 std::size_t sampleCount(const std::vector<CarFollowingRun>& runs);
 
+/// The runs' durations, summed [s] (the holes between runs are not in it).
+double totalDurationS(const std::vector<CarFollowingRun>& runs);
+
 /// The first half of a run (samples [0, n/2), named "... (train)") for training and the second
 /// ([n/2, n), "... (test)"), simulated from its own measured start, for testing: the paper's
 /// protocol (Section V-B). The columns must be of equal length (describeRunProblem).
