@@ -7,6 +7,16 @@
 
 namespace acc
 {
+namespace
+{
+/// The samples among `samples` that no one has counted yet.
+std::size_t uncounted(const std::vector<WindowSample>& samples)
+{
+  return static_cast<std::size_t>(
+      std::count_if(samples.begin(), samples.end(), [](const WindowSample& s) { return !s.counted; }));
+}
+}  // namespace
+
 SlidingWindow::SlidingWindow(double length_s, double max_gap_s, std::size_t min_segment_samples,
                              double max_forward_jump_s, std::size_t confirm_samples)
   : length_s_(length_s),
@@ -45,7 +55,7 @@ SlidingWindow::AddResult SlidingWindow::hold(const WindowSample& sample)
                               sample.time_s - held_.back().time_s <= max_gap_s_;
   if (!held_.empty() && !continues_held)
   {
-    counts_.time_outliers += held_.size();  // neither base: the earlier jump was an outlier too
+    counts_.time_outliers += uncounted(held_);  // neither base: the earlier jump was an outlier too
     held_.clear();
   }
   held_.push_back(sample);
@@ -71,7 +81,7 @@ SlidingWindow::AddResult SlidingWindow::add(const WindowSample& sample)
 {
   if (!std::isfinite(sample.time_s))
   {
-    ++counts_.non_finite_times;
+    counts_.non_finite_times += sample.counted ? 0 : 1;
     return AddResult::kNonFinite;  // cannot even order it in time
   }
   if (samples_.empty())
@@ -82,13 +92,13 @@ SlidingWindow::AddResult SlidingWindow::add(const WindowSample& sample)
   if (sample.time_s > last_s && sample.time_s - last_s <= max_forward_jump_s_)
   {
     // The time base goes on: anything held was an outlier.
-    counts_.time_outliers += held_.size();
+    counts_.time_outliers += uncounted(held_);
     held_.clear();
     return append(sample);
   }
   if (sample.time_s <= last_s && sample.time_s >= last_s - max_gap_s_)
   {
-    ++counts_.out_of_order;
+    counts_.out_of_order += sample.counted ? 0 : 1;
     return AddResult::kOutOfOrder;  // late or duplicate, within the data's own jitter
   }
   return hold(sample);

@@ -377,14 +377,22 @@ void IdentifierRos::onRelativeState(const acc_identification::RelativeState::Con
   ++received_;
   std::string implausible;
   WindowSample sample = toWindowSample(*message, implausible);
+  // Each sample not used is counted once, for its first reason: the ACC's state (counted by
+  // accDrove), an implausible value, the pairing's mark; the window then counts only what is
+  // wrong with the others' time (late, a jump, not finite).
   const bool acc_drove = accDrove(sample.time_s);
-  sample.valid = sample.valid && acc_drove;  // a split point, counted by accDrove
-  if (!implausible.empty() && acc_drove)
+  if (acc_drove && !implausible.empty())
   {
     ++implausible_;
     ROS_WARN_THROTTLE(1.0, "identifier: relative_state at %.3f s: %s; used as a split point (counted)",
                       sample.time_s, implausible.c_str());
   }
+  else if (acc_drove && !message->valid)
+  {
+    ++invalid_;  // the pairing already said why
+  }
+  sample.valid = sample.valid && acc_drove;
+  sample.counted = !sample.valid;
   SlidingWindow::AddResult result;
   std::size_t dropped_before = 0, dropped_after = 0;
   {
@@ -407,10 +415,8 @@ void IdentifierRos::onRelativeState(const acc_identification::RelativeState::Con
   switch (result)
   {
     case SlidingWindow::AddResult::kAdded: return;
-    case SlidingWindow::AddResult::kInvalid:
-      invalid_ += acc_drove && implausible.empty() ? 1 : 0;  // the pairing already said why
-      return;
-    case SlidingWindow::AddResult::kHeld: break;  // counted once confirmed or dropped
+    case SlidingWindow::AddResult::kInvalid: return;  // counted above
+    case SlidingWindow::AddResult::kHeld: break;  // used once confirmed; counted by the window if dropped
     case SlidingWindow::AddResult::kNonFinite:
       if (std::isfinite(sample.time_s))
       {

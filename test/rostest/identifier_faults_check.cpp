@@ -277,6 +277,12 @@ TEST(IdentifierFaults, AnImplausibleSampleIsASplitPointCountedAndReported)
   EXPECT_NE(report.message.find("1 implausible"), std::string::npos) << describe(report);
   EXPECT_EQ(report.count("implausible samples (split points)"), 1u) << describe(report);
   ASSERT_TRUE(waitForReport(before, [](const Report& r) { return isOk(r); }, report)) << lastReport();
+  // Implausible and late: counted once, for its first reason (it used to be out-of-order too).
+  feed->publish(501.95, 1.0e9);
+  ASSERT_TRUE(waitForReport(before, [](const Report& r) { return r.count("implausible samples (split points)") == 2; },
+                            report))
+      << lastReport();
+  EXPECT_EQ(report.count("out-of-order samples (rejected)"), 1u) << describe(report);
 }
 
 /// Reports on acc_engaged, waiting until the node has the one sent (its diagnostics say it).
@@ -304,13 +310,15 @@ TEST(IdentifierFaults, SamplesWhileTheAccIsOffAreSplitPointsCountedAndNotUsed)
   const std::size_t before = reportCount();
   reportEngagement(engagement, false);
   feed->publishRun(502.1, 10);  // 502.1 - 503.0, ACC off
+  feed->publish(502.95);        // late while the ACC is off: counted once, as ACC off
   reportEngagement(engagement, true);
   feed->publishRun(503.1, 10);  // 503.1 - 504.0
   ASSERT_TRUE(windowHolds(30)) << "the window holds " << window_samples << ", not the 20 + 10 samples the ACC drove";
   Report report;
-  ASSERT_TRUE(waitForReport(before, [](const Report& r) { return r.count("samples with the ACC off (split points, not used)") == 10; },
+  ASSERT_TRUE(waitForReport(before, [](const Report& r) { return r.count("samples with the ACC off (split points, not used)") == 11; },
                             report))
       << lastReport();
+  EXPECT_EQ(report.count("out-of-order samples (rejected)"), 1u) << describe(report);
   EXPECT_EQ(report.count("ACC disengagements reported"), 1u) << describe(report);
   EXPECT_EQ(report.count("acc_engaged reports"), 2u) << describe(report);
   EXPECT_EQ(report.count("invalid samples (split points)"), 0u) << describe(report);

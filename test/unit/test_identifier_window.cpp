@@ -152,6 +152,32 @@ TEST(SlidingWindow, CountsEveryDroppedSampleAndEveryReset)
   EXPECT_NEAR(window.startTimeS(), 1.0, 1e-12);
 }
 
+/// A sample its caller counted already (the ACC was off, a value implausible) is placed, held or
+/// rejected as any other, and never counted again: every sample is counted once.
+TEST(SlidingWindow, ASampleTheCallerCountedIsNotCountedAgain)
+{
+  auto counted = [](double t) {
+    acc::WindowSample s = sampleAt(t, false);
+    s.counted = true;
+    return s;
+  };
+  acc::SlidingWindow window(120.0, 0.5, 2, 30.0, 3);
+  for (int k = 0; k < 100; ++k) window.add(sampleAt(0.1 * k));  // 0-9.9 s
+  EXPECT_EQ(window.add(counted(9.9)), acc::SlidingWindow::AddResult::kOutOfOrder);
+  EXPECT_EQ(window.add(counted(std::nan(""))), acc::SlidingWindow::AddResult::kNonFinite);
+  EXPECT_EQ(window.add(counted(1e6)), acc::SlidingWindow::AddResult::kHeld);
+  EXPECT_EQ(window.add(sampleAt(5.0)), acc::SlidingWindow::AddResult::kHeld);  // drops the counted one
+  EXPECT_EQ(window.add(sampleAt(10.0)), acc::SlidingWindow::AddResult::kAdded);  // drops the uncounted one
+  acc::SlidingWindow::Counts c = window.counts();
+  EXPECT_EQ(c.out_of_order, 0u);
+  EXPECT_EQ(c.non_finite_times, 0u);
+  EXPECT_EQ(c.time_outliers, 1u);
+  // A counted sample in order is a split point, as an invalid one.
+  EXPECT_EQ(window.add(counted(10.1)), acc::SlidingWindow::AddResult::kInvalid);
+  for (int k = 2; k < 10; ++k) window.add(sampleAt(10.0 + 0.1 * k));
+  EXPECT_EQ(window.segments().size(), 2u);
+}
+
 /// How many consistent samples confirm a jump is a setting (identifier_node: ~jump_confirm_samples).
 TEST(SlidingWindow, TheConfirmationCountIsASetting)
 {

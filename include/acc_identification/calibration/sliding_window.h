@@ -17,6 +17,9 @@ struct WindowSample
   double follower_speed_mps = 0.0;
   double leader_speed_mps = 0.0;
   bool valid = true;  ///< false: the pairing marked it invalid; it splits the window, never used
+  /// Not used, and already counted by the caller for why (the ACC was off, a value implausible): the
+  /// window counts no rejection of it, so that every sample is counted once, for its first reason.
+  bool counted = false;
 };
 
 /// The identifier's sliding window: the last length_s seconds of samples, split into segments
@@ -33,7 +36,8 @@ struct WindowSample
 class SlidingWindow
 {
 public:
-  /// Every sample the window did not take, and every jump it confirmed, since construction.
+  /// Every sample the window did not take (but those the caller had counted), and every jump it
+  /// confirmed, since construction.
   struct Counts
   {
     std::size_t out_of_order = 0;      ///< at most max_gap_s back (late or duplicate): rejected
