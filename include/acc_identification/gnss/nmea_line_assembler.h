@@ -42,6 +42,10 @@ public:
   void finish(OnLine&& on_line);
 
 private:
+  /// A line end, or the end of the input: hands out the line, counts a stray one, starts afresh.
+  template <typename OnLine>
+  void endLine(OnLine& on_line);
+
   std::array<char, kMaxLineLength> buffer_{};
   std::size_t length_ = 0;
   bool in_line_ = false;
@@ -77,14 +81,7 @@ void NmeaLineAssembler::feed(const char* data, std::size_t size, OnLine&& on_lin
     }
     else if (c == '\n' || c == '\r')
     {
-      if (in_line_ && !discarding_)
-        on_line(std::string_view(buffer_.data(), length_));
-      if (stray_line_)
-        ++stray_lines_;
-      in_line_ = false;
-      discarding_ = false;
-      stray_line_ = false;
-      length_ = 0;
+      endLine(on_line);
     }
     else if (!in_line_)
     {
@@ -110,8 +107,14 @@ void NmeaLineAssembler::feed(const char* data, std::size_t size, OnLine&& on_lin
 template <typename OnLine>
 void NmeaLineAssembler::finish(OnLine&& on_line)
 {
-  if (in_line_ && !discarding_ && length_ > 0)
-    on_line(std::string_view(buffer_.data(), length_));
+  endLine(on_line);
+}
+
+template <typename OnLine>
+void NmeaLineAssembler::endLine(OnLine& on_line)
+{
+  if (in_line_ && !discarding_)
+    on_line(std::string_view(buffer_.data(), length_));  // at least its start character
   if (stray_line_)
     ++stray_lines_;
   in_line_ = false;
