@@ -54,6 +54,16 @@ def panel_grid(count, max_columns, panel_size):
     return plt.subplots(rows, columns, figsize=(panel_size[0] * columns, panel_size[1] * rows), squeeze=False)
 
 
+def save_panel_grid(fig, axes, used, path, attribution):
+    """Blanks the grid's panels past the first `used`, adds the attribution and saves the figure."""
+    for ax in list(axes.flat)[used:]:
+        ax.axis("off")
+    fig.tight_layout(rect=(0, 0.04, 1, 1))
+    footer(fig, attribution)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
 def plot_parameters(vehicles, path, attribution):
     labels = [f"{v['name']}/{v['setting']}" for v in vehicles]
     fig, axes = plt.subplots(len(PARAMETERS), 1, figsize=(max(8, 0.45 * len(labels) + 2), 11), sharex=True)
@@ -151,12 +161,7 @@ def plot_dips(platoons, path, attribution):
         ax.set_xticks(positions)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=6)
-    for ax in list(axes.flat)[len(panels):]:
-        ax.axis("off")
-    fig.tight_layout(rect=(0, 0.04, 1, 1))
-    footer(fig, attribution)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    save_panel_grid(fig, axes, len(panels), path, attribution)
 
 
 def plot_link_gains(links, path, attribution):
@@ -189,12 +194,7 @@ def plot_link_gains(links, path, attribution):
         ax.set_ylabel("|Gamma(jw)|", fontsize=7)
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=5)
-    for ax in list(axes.flat)[len(panels):]:
-        ax.axis("off")
-    fig.tight_layout(rect=(0, 0.04, 1, 1))
-    footer(fig, attribution)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    save_panel_grid(fig, axes, len(panels), path, attribution)
 
 
 def main():
