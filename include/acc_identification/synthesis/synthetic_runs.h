@@ -18,7 +18,7 @@ struct MeasurementNoise
   double gap_std_m = 0.4;
   /// The leader's speed noise, an input of the simulation (errors in variables), where it differs
   /// from the follower's (speed_std_mps, the output's); unset: the same.
-  std::optional<double> leader_speed_std_mps;
+  std::optional<double> leader_speed_std_mps{};
 };
 
 /// Explicit-Euler steps of the truth per data step in synthesizeRun.
