@@ -261,7 +261,7 @@ void EpochPairer::resolvePending()
     double t = follower.gnss_time_s;
     PairedEpoch pair;
     Resolution resolution = tryPair(follower, pair);
-    bool timed_out = newest_follower_s_ - t > settings_.timeout_s;
+    bool timed_out = finishing_ || newest_follower_s_ - t > settings_.timeout_s;
     if (resolution == Resolution::kWaiting && !timed_out)
       break;
     if (resolution == Resolution::kInterpolable && !leaderIsPast(t) && !timed_out)
@@ -282,13 +282,20 @@ void EpochPairer::resolvePending()
   trimLeader();
 }
 
+void EpochPairer::finish()
+{
+  finishing_ = true;
+  resolvePending();
+  finishing_ = false;
+}
+
 void EpochPairer::giveUp(double time_s, Resolution resolution)
 {
   ++counters_.follower_unpaired;
   break_before_next_ = true;
-  std::string why = resolution == Resolution::kUnpairable
-                        ? "the leader's stream is past it (at " + seconds(newest_leader_s_) + " s)"
-                        : "after waiting " + seconds(settings_.timeout_s) + " s";
+  std::string why = resolution == Resolution::kUnpairable ? "the leader's stream is past it (at " + seconds(newest_leader_s_) + " s)"
+                    : finishing_                          ? "and the streams ended"
+                                                          : "after waiting " + seconds(settings_.timeout_s) + " s";
   event("follower epoch " + seconds(time_s) + " s unpaired: no leader epoch within " +
         seconds(settings_.max_interpolation_skew_s) + " s, " + why);
 }

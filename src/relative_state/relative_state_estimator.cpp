@@ -71,6 +71,13 @@ void RelativeStateEstimator::addFollower(const GnssFix& fix)
     process(pair);
 }
 
+void RelativeStateEstimator::finish()
+{
+  pairer_.finish();
+  for (const PairedEpoch& pair : pairer_.takePairs())
+    process(pair);
+}
+
 std::vector<RelativeState> RelativeStateEstimator::takeStates()
 {
   std::vector<RelativeState> states;

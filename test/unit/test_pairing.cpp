@@ -530,3 +530,32 @@ TEST(Pairing, NoCallCompletesMorePairsThanMostPairsAtOnce)
   EXPECT_LE(largest, pairer.mostPairsAtOnce());
   EXPECT_EQ(total + pairer.counters().follower_unpaired, 301u);
 }
+
+// Two logs read in batch end with follower epochs still waiting for leader data that could have
+// come live: finish() pairs what it can (an epoch the leader's own epoch was awaited for is
+// interpolated) and counts the rest unpaired, so that every follower epoch is paired or counted.
+TEST(Pairing, FinishPairsOrCountsEveryEpochStillWaitingAtTheEndOfTheStreams)
+{
+  acc::EpochPairer pairer;
+  std::size_t paired = 0;
+  for (double t : epochs(0.0, 6.0))
+  {
+    pairer.addFollower(fixAt(t, -0.001));
+    if (t <= 5.0 + 1e-9 && std::abs(t - 4.9) > 1e-6)  // the leader's log ends at 5.0 and lacks 4.9
+      pairer.addLeader(fixAt(t));
+    paired += pairer.takePairs().size();
+  }
+  EXPECT_EQ(paired, 49u);  // 0.0-4.8: 4.9 awaits the leader's own epoch, 5.0 waits behind it
+  pairer.finish();
+  const std::vector<acc::PairedEpoch> last = pairer.takePairs();
+  ASSERT_EQ(last.size(), 2u);
+  EXPECT_TRUE(last[0].interpolated);
+  EXPECT_NEAR(last[0].time_s, 4.9, 1e-9);
+  EXPECT_FALSE(last[1].interpolated);
+  EXPECT_EQ(pairer.counters().follower_unpaired, 10u);  // 5.1-6.0: no leader data after 5.0
+  EXPECT_EQ(paired + last.size() + pairer.counters().follower_unpaired, 61u);
+  bool said = false;
+  for (const acc::PairingEvent& event : pairer.takeEvents())
+    said = said || event.text.find("the streams ended") != std::string::npos;
+  EXPECT_TRUE(said);
+}

@@ -98,6 +98,11 @@ public:
   void addLeader(const GnssFix& fix);
   void addFollower(const GnssFix& fix);
 
+  /// The end of both streams (the end of two logs read in batch): nothing more can arrive, so
+  /// every follower epoch still waiting is paired with the leader data there are, or counted as
+  /// unpaired. Fixes added after it are paired as before.
+  void finish();
+
   /// Pairs completed since the last call, in increasing GNSS time.
   std::vector<PairedEpoch> takePairs();
   /// Human-readable reports of dropouts, resets, late fixes since the last call (for the log).
@@ -138,6 +143,7 @@ private:
   bool break_before_next_ = true;
   bool arrived_out_of_order_ = false;  // of the fix being added, counted once it is kept
   bool leader_reset_awaited_ = false;  // the follower's time went back, the leader's not yet
+  bool finishing_ = false;             // inside finish(): no fix can still arrive
   std::size_t leader_dropouts_in_a_row_ = 0;  // consecutive steps of the stream that were dropouts
   std::size_t follower_dropouts_in_a_row_ = 0;
 };

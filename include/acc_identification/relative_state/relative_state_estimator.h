@@ -68,6 +68,10 @@ public:
   void addLeader(const GnssFix& fix);
   void addFollower(const GnssFix& fix);
 
+  /// The end of both streams (EpochPairer::finish): the epochs still waiting become states or
+  /// are counted as unpaired.
+  void finish();
+
   /// States completed since the last call, in increasing GNSS time (valid or not, with reason).
   std::vector<RelativeState> takeStates();
   /// Reports of dropouts, resets, rejected jumps since the last call, for the log.
