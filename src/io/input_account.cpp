@@ -24,6 +24,7 @@ InputAccount accountOfRunFile(const std::string& path, const RunFileContents& co
                     {"runs", contents.runs.size()},
                     {"rejected_rows", contents.rejected_rows},
                     {"implausible_rows", contents.implausible_rows},
+                    {"marked_invalid_rows", contents.marked_invalid_rows},
                     {"duplicate_rows", contents.duplicate_rows},
                     {"acc_off_rows", contents.acc_off_rows},
                     {"single_sample_rows", contents.single_sample_rows},

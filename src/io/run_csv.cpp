@@ -3,6 +3,7 @@
 #include "acc_identification/io/gap_kinematics.h"
 #include "acc_identification/io/problem_lines.h"
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cmath>
@@ -25,6 +26,8 @@ struct ColumnMap
 {
   std::array<std::size_t, 4> index{};  ///< time, gap, follower speed, leader speed
   std::size_t field_count = 0;
+  std::optional<std::size_t> valid;           ///< the optional valid column (nmea_to_csv writes it)
+  std::optional<std::size_t> invalid_reason;  ///< and why a row is not
 };
 
 std::optional<std::size_t> findColumn(const std::vector<std::string>& header, const std::string& name)
@@ -55,6 +58,8 @@ std::optional<ColumnMap> mapColumns(const std::vector<std::string>& header)
     map.index[q] = *found;
   }
   map.field_count = header.size();
+  map.valid = findColumn(header, "valid");
+  map.invalid_reason = findColumn(header, "invalid_reason");
   return map;
 }
 
@@ -207,6 +212,31 @@ private:
 };
 
 /// Parses one data row into the four canonical values, or returns why not.
+/// The valid column's text in lower case ("" without the column or with a wrong field count).
+std::string validFlag(const std::vector<std::string>& fields, const ColumnMap& map)
+{
+  if (!map.valid || fields.size() != map.field_count)
+  {
+    return "";
+  }
+  std::string flag = fields[*map.valid];
+  std::transform(flag.begin(), flag.end(), flag.begin(), [](unsigned char c) { return std::tolower(c); });
+  return flag;
+}
+
+/// Why a row whose valid column says 0 (or false) is not used: the reason the file gives; nullopt
+/// for every other row (valid, no valid column, or a flag parseRow calls malformed).
+std::optional<std::string> markedInvalid(const std::vector<std::string>& fields, const ColumnMap& map)
+{
+  const std::string flag = validFlag(fields, map);
+  if (flag != "0" && flag != "false")
+  {
+    return std::nullopt;
+  }
+  const std::string reason = map.invalid_reason ? fields[*map.invalid_reason] : "";
+  return "marked invalid" + (reason.empty() ? std::string() : ": " + reason);
+}
+
 std::string parseRow(const std::vector<std::string>& fields, const ColumnMap& map,
                      std::array<double, 4>& values)
 {
@@ -226,6 +256,11 @@ std::string parseRow(const std::vector<std::string>& fields, const ColumnMap& ma
       return std::string(kQuantity[q]) + " is not a finite number: '" + text + "'";
     }
     values[q] = *value;
+  }
+  const std::string flag = validFlag(fields, map);
+  if (map.valid && flag != "1" && flag != "true")
+  {
+    return "valid is neither 0 nor 1: '" + fields[*map.valid] + "'";
   }
   return "";
 }
@@ -279,7 +314,11 @@ RunFileContents readCanonicalFile(const std::string& path, const RunPlausibility
     }
     ++contents.data_rows;
     std::array<double, 4> values{};
-    const std::string malformed = parseRow(splitCsvFields(line), *map, values);
+    const std::vector<std::string> fields = splitCsvFields(line);
+    // A row the file marks invalid is a split point whatever its values (they may be NaN).
+    const std::optional<std::string> invalid = markedInvalid(fields, *map);
+    const std::string malformed = invalid ? *invalid : parseRow(fields, *map, values);
+    contents.marked_invalid_rows += invalid ? 1 : 0;
     if (!malformed.empty())
     {
       assembler.reject(line_number, malformed);
@@ -414,6 +453,7 @@ void append(RunFileContents& all, RunFileContents&& one)
   all.data_rows += one.data_rows;
   all.rejected_rows += one.rejected_rows;
   all.implausible_rows += one.implausible_rows;
+  all.marked_invalid_rows += one.marked_invalid_rows;
   all.duplicate_rows += one.duplicate_rows;
   all.time_holes += one.time_holes;
   all.acc_off_rows += one.acc_off_rows;

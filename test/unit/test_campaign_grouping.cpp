@@ -413,7 +413,8 @@ TEST(CampaignInputs, WhatIsLeftOutOfAFileIsSaid)
   EXPECT_EQ(pair.openacc_pairs, std::vector<std::string>{"CAR_A behind LEAD, positions 2/1"});
   using Counts = std::vector<std::pair<std::string, std::size_t>>;
   EXPECT_EQ(pair.counts, (Counts{{"data_rows", 601}, {"samples_used", 600}, {"runs", 2}, {"rejected_rows", 1},
-                                 {"implausible_rows", 0}, {"duplicate_rows", 0}, {"acc_off_rows", 0},
+                                 {"implausible_rows", 0}, {"marked_invalid_rows", 0}, {"duplicate_rows", 0},
+                                 {"acc_off_rows", 0},
                                  {"single_sample_rows", 0}, {"time_holes", 0}, {"gap_rebuilt_rows", 0}}));
 }
 

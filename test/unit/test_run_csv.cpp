@@ -388,6 +388,40 @@ TEST(ProblemLines, AStretchOfBadRowsIsOneWarningOnTheLog)
   EXPECT_FALSE(contains(log.str(), path + ":8:")) << log.str();
   std::remove(path.c_str());
 }
+
+// The optional valid column (nmea_to_csv writes the pairing's verdict in it): a row marked 0 is a
+// split point whatever its values, counted with the reason beside it; a flag that is neither 0
+// nor 1 is a malformed row. Fails when the column is ignored (the NaN row would be rejected as
+// not a number, the 50 m row used).
+TEST(RunCsv, ARowTheValidColumnMarksZeroSplitsTheRunWithItsReason)
+{
+  const std::string path = (std::filesystem::temp_directory_path() / "acc_valid_column.csv").string();
+  {
+    std::ofstream file(path);
+    file << "time_s,space_gap_m,follower_speed_mps,leader_speed_mps,valid,invalid_reason\n";
+    for (int i = 0; i < 12; ++i)
+    {
+      const bool jump = i == 4, unknown = i == 5, bad_flag = i == 9;
+      file << 0.1 * i << "," << (jump ? "50" : unknown ? "" : "20") << ",10,10,"
+           << (jump || unknown ? "0" : bad_flag ? "maybe" : i == 2 ? "TRUE" : "1") << ","
+           << (jump ? "\"gap jump of 30 m, too fast\"" : "\"\"") << "\n";
+    }
+  }
+  const acc::RunFileContents contents = acc::readRunFile(path);
+  std::remove(path.c_str());
+  EXPECT_EQ(contents.data_rows, 12u);
+  EXPECT_EQ(contents.marked_invalid_rows, 2u);
+  EXPECT_EQ(contents.rejected_rows, 3u);
+  ASSERT_EQ(contents.problems.size(), 3u);
+  EXPECT_TRUE(contains(contents.problems[0], ":6: marked invalid: gap jump of 30 m, too fast; row rejected"))
+      << contents.problems[0];
+  EXPECT_TRUE(contains(contents.problems[1], ":7: marked invalid; row rejected")) << contents.problems[1];
+  EXPECT_TRUE(contains(contents.problems[2], ":11: valid is neither 0 nor 1: 'maybe'")) << contents.problems[2];
+  ASSERT_EQ(contents.runs.size(), 3u);  // 0.0-0.3, 0.6-0.8, 1.0-1.1
+  EXPECT_EQ(contents.runs[0].size(), 4u);
+  EXPECT_EQ(contents.runs[1].size(), 3u);
+  EXPECT_EQ(contents.runs[2].size(), 2u);
+}
 }  // namespace
 
 // A 1 Hz file against the default 0.5 s max gap: every step is a hole, every row alone. The counts

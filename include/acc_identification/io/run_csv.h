@@ -27,6 +27,9 @@ struct RunFileContents
   std::size_t data_rows = 0;          ///< rows after the header
   std::size_t rejected_rows = 0;      ///< rows not used (each one listed in problems)
   std::size_t implausible_rows = 0;   ///< of rejected_rows: values outside the plausibility bounds
+  /// Of rejected_rows: rows a canonical CSV's optional valid column marks 0 (the pairing's
+  /// verdict, as nmea_to_csv writes it): split points, as an invalid RelativeState in a bag.
+  std::size_t marked_invalid_rows = 0;
   /// Of rejected_rows: exact repeats of the row before (the same time and values), which carry no
   /// sample of their own and so do not split the run.
   std::size_t duplicate_rows = 0;
@@ -57,7 +60,8 @@ struct RunFileContents
 };
 
 /// Reads a canonical run CSV (header time_s,space_gap_m,follower_speed_mps,leader_speed_mps, in
-/// any column order) or an OpenACC file of any layout (two vehicles or a platoon; read by
+/// any column order; an optional valid column, 0 or 1, with invalid_reason beside it, as
+/// nmea_to_csv writes them: a row marked 0 is a split point, rejected with its reason) or an OpenACC file of any layout (two vehicles or a platoon; read by
 /// readOpenAccFile, openacc_file.h) as the runs of one leader-follower pair: by default the first
 /// pair the file holds, said in notes. A bad row (wrong field count, not a number, not finite, a
 /// value outside the plausibility bounds, time not increasing) is rejected, listed with its line
