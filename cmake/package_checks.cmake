@@ -15,7 +15,7 @@ if(CATKIN_ENABLE_TESTING)
     COMMAND "/usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/python/test_code_shape.py --junit ${_acc_results}/python-code_shape.xml"
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   # Both run the package's nodes and tools: built first.
-  set(_acc_user_targets gps_driver_node relative_state_node identifier_node openacc_to_nmea platoon
+  set(_acc_user_targets gps_driver_node relative_state_node identifier_node openacc_to_nmea nmea_to_csv platoon
       calibrate diagnose stability_report campaign synthesize nmea_to_bag sumo_replay)
   set(_acc_user_dependencies)
   foreach(_target ${_acc_user_targets})

@@ -26,16 +26,19 @@ if(TARGET acc_gnss)
   acc_add_library(acc_conversion
     SOURCES
       src/conversion/openacc_to_nmea.cpp
-    LINK acc_gnss acc_run_io ${GeographicLib_LIBRARIES})
+      src/conversion/nmea_logs_to_csv.cpp
+    LINK acc_gnss acc_relative_state acc_run_io ${GeographicLib_LIBRARIES} nlohmann_json::nlohmann_json)
   target_include_directories(acc_conversion PUBLIC ${GeographicLib_INCLUDE_DIRS})
   acc_add_tool(openacc_to_nmea LINK acc_conversion)
+  acc_add_tool(nmea_to_csv LINK acc_conversion)
 
   if(CATKIN_ENABLE_TESTING)
     # The real data: the Casale runs shipped in data/openacc, unpacked by cmake/data.cmake.
     catkin_add_gtest(test_openacc
       test/unit/gtest_main.cpp
       test/unit/test_openacc_conversion.cpp
-      test/unit/test_openacc_real_data.cpp)
+      test/unit/test_openacc_real_data.cpp
+      test/unit/test_nmea_logs_to_csv.cpp)
     target_link_libraries(test_openacc acc_conversion acc_relative_state)
     target_compile_definitions(test_openacc PRIVATE
       ACC_RELSTATE_TEST_DATA="${PROJECT_SOURCE_DIR}/test/data/relative_state"

@@ -1,6 +1,6 @@
 // Real data: the four JRC OpenACC Casale runs (Hyundai Nexo on ACC behind a SsangYong Rexton,
-// u-blox at 10 Hz; (c) European Union, CC BY 4.0) converted to NMEA, read back through the gnss
-// library's log reader, paired and turned into gaps by the relative-state library, and checked
+// u-blox at 10 Hz; (c) European Union, CC BY 4.0) converted to NMEA, read back and paired as
+// nmea_to_csv does (pairNmeaLogs: the gnss library's log reader, the relative-state library), and checked
 // against an independent geodesic computation on the file's own Lat/Lon, against the file's
 // Doppler speeds, and for consistency of the gap with the Doppler speeds against IVS1.
 #include <gtest/gtest.h>
@@ -16,10 +16,9 @@
 
 #include <unistd.h>
 
+#include "acc_identification/conversion/nmea_logs_to_csv.h"
 #include "acc_identification/conversion/openacc_to_nmea.h"
-#include "acc_identification/gnss/nmea_log.h"
 #include "acc_identification/relative_state/gap_doppler_consistency.h"
-#include "acc_identification/relative_state/relative_state_estimator.h"
 
 namespace fs = std::filesystem;
 
@@ -46,28 +45,19 @@ std::vector<acc::RelativeState> throughLogsAndPairing(const acc::OpenAccPairTrac
   const std::string leader_log = (dir / "leader.nmea").string(), follower_log = (dir / "follower.nmea").string();
   EXPECT_TRUE(acc::writeNmeaLog(leader_log, acc::openAccFixes(file, 1), "GN", error)) << error;
   EXPECT_TRUE(acc::writeNmeaLog(follower_log, acc::openAccFixes(file, 2), "GN", error)) << error;
-  auto leader = acc::readNmeaLog(leader_log);
-  auto follower = acc::readNmeaLog(follower_log);
-  EXPECT_EQ(leader.statistics.rejected(), 0u);
-  EXPECT_EQ(follower.statistics.rejected(), 0u);
-  EXPECT_EQ(leader.fixes.size(), file.rows.size());
-  EXPECT_EQ(follower.fixes.size(), file.rows.size());
-
   acc::RelativeStateSettings settings;
   settings.geometry.leader_antenna_to_rear_bumper_m = kCasaleOffset_m;
   settings.gap_mode = mode;
-  acc::RelativeStateEstimator estimator(settings);
-  for (std::size_t i = 0; i < std::max(leader.fixes.size(), follower.fixes.size()); ++i)
-  {
-    if (i < leader.fixes.size())
-      estimator.addLeader(leader.fixes[i]);
-    if (i < follower.fixes.size())
-      estimator.addFollower(follower.fixes[i]);
-  }
-  for (const acc::PairingEvent& event : estimator.takeEvents())
+  acc::RelativeStateLogs logs = acc::pairNmeaLogs(leader_log, follower_log, settings);
+  EXPECT_EQ(logs.error, "");
+  EXPECT_EQ(logs.leader_log.rejected(), 0u);
+  EXPECT_EQ(logs.follower_log.rejected(), 0u);
+  EXPECT_EQ(logs.leader_log.fixes, file.rows.size());
+  EXPECT_EQ(logs.follower_log.fixes, file.rows.size());
+  for (const std::string& event : logs.stream_events)
     if (mode == acc::GapMode::kStraightLine)
-      std::printf("  event: %s\n", event.text.c_str());
-  return estimator.takeStates();
+      std::printf("  event: %s\n", event.c_str());
+  return logs.states;
 }
 
 RunCheck check(const acc::OpenAccPairTrack& file, const std::vector<acc::RelativeState>& states)

@@ -1,0 +1,168 @@
+#include "acc_identification/conversion/nmea_logs_to_csv.h"
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "acc_identification/gnss/nmea_log.h"
+
+namespace acc
+{
+namespace
+{
+/// The value with `decimals` decimals, or an empty cell when it is not known.
+std::string cell(double value, int decimals)
+{
+  if (!std::isfinite(value))
+    return "";
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(decimals) << value;
+  return out.str();
+}
+
+/// A CSV text field: quoted, its quotes doubled.
+std::string quoted(const std::string& text)
+{
+  std::string out = "\"";
+  for (char c : text)
+    out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+/// Feeds both logs' fixes in GNSS-time order, the leader's first at equal times.
+void feedInTimeOrder(const std::vector<GnssFix>& leader, const std::vector<GnssFix>& follower,
+                     RelativeStateEstimator& estimator, RelativeStateLogs& logs)
+{
+  std::size_t l = 0, f = 0;
+  while (l < leader.size() || f < follower.size())
+  {
+    // A fix without a finite time goes in where it stands in its log: the pairing counts it.
+    const bool take_leader = f == follower.size() ||
+                             (l < leader.size() && !(follower[f].gnss_time_s < leader[l].gnss_time_s));
+    if (take_leader)
+      estimator.addLeader(leader[l++]);
+    else
+      estimator.addFollower(follower[f++]);
+    for (RelativeState& state : estimator.takeStates())
+      logs.states.push_back(std::move(state));
+  }
+}
+
+nlohmann::json statisticsJson(const NmeaStatistics& s)
+{
+  return {{"lines", s.lines},
+          {"sentences_ok", s.sentences_ok},
+          {"bad_checksum", s.bad_checksum},
+          {"malformed", s.malformed},
+          {"unsupported", s.unsupported},
+          {"stray_bytes", s.stray_bytes},
+          {"stray_lines", s.stray_lines},
+          {"cut_lines", s.cut_lines},
+          {"overlong_lines", s.overlong_lines},
+          {"fixes", s.fixes},
+          {"epochs_without_time", s.epochs_without_time},
+          {"date_lag_corrections", s.date_lag_corrections},
+          {"late_sentences_merged", s.late_sentences_merged},
+          {"late_sentences_after_fix", s.late_sentences_after_fix}};
+}
+
+nlohmann::json pairingJson(const PairingCounters& c)
+{
+  return {{"leader_fixes", c.leader_fixes},
+          {"follower_fixes", c.follower_fixes},
+          {"exact_pairs", c.exact_pairs},
+          {"interpolated_pairs", c.interpolated_pairs},
+          {"leader_invalid_fixes", c.leader_invalid_fixes},
+          {"follower_invalid_fixes", c.follower_invalid_fixes},
+          {"leader_duplicates", c.leader_duplicates},
+          {"follower_duplicates", c.follower_duplicates},
+          {"leader_out_of_order", c.leader_out_of_order},
+          {"follower_out_of_order", c.follower_out_of_order},
+          {"leader_too_late", c.leader_too_late},
+          {"follower_too_late", c.follower_too_late},
+          {"follower_unpaired", c.follower_unpaired},
+          {"leader_dropouts", c.leader_dropouts},
+          {"follower_dropouts", c.follower_dropouts},
+          {"leader_time_resets", c.leader_time_resets},
+          {"follower_time_resets", c.follower_time_resets},
+          {"buffer_overflows", c.buffer_overflows}};
+}
+}  // namespace
+
+RelativeStateLogs pairNmeaLogs(const std::string& leader_path, const std::string& follower_path,
+                               const RelativeStateSettings& settings)
+{
+  RelativeStateLogs logs;
+  const NmeaLogResult leader = readNmeaLog(leader_path);
+  const NmeaLogResult follower = readNmeaLog(follower_path);
+  logs.error = !leader.error.empty() ? leader.error : follower.error;
+  if (!logs.error.empty())
+    return logs;
+  logs.leader_log = leader.statistics;
+  logs.follower_log = follower.statistics;
+  RelativeStateEstimator estimator(settings);
+  feedInTimeOrder(leader.fixes, follower.fixes, estimator, logs);
+  estimator.finish();
+  for (RelativeState& state : estimator.takeStates())
+    logs.states.push_back(std::move(state));
+  for (const PairingEvent& event : estimator.takeEvents())
+  {
+    if (event.per_epoch)
+      ++logs.epoch_events;
+    else
+      logs.stream_events.push_back(event.text);
+  }
+  logs.pairing = estimator.pairingCounters();
+  logs.estimator = estimator.counters();
+  return logs;
+}
+
+bool writeRelativeStateCsv(const std::string& path, const std::vector<RelativeState>& states, std::string& error)
+{
+  std::ofstream file(path);
+  if (!file)
+  {
+    error = "cannot write " + path;
+    return false;
+  }
+  file << "time_s,space_gap_m,follower_speed_mps,leader_speed_mps,relative_speed_mps,space_gap_sigma_m,"
+          "epoch_skew_s,gap_doppler_residual_m,valid,invalid_reason\n";
+  for (const RelativeState& s : states)
+  {
+    file << cell(s.time_s, 3) << ',' << cell(s.space_gap_m, 3) << ',' << cell(s.follower_speed_mps, 4) << ','
+         << cell(s.leader_speed_mps, 4) << ',' << cell(s.relative_speed_mps, 4) << ',' << cell(s.space_gap_sigma_m, 3)
+         << ',' << cell(s.epoch_skew_s, 3) << ',' << cell(s.gap_doppler_residual_m, 3) << ',' << (s.valid ? 1 : 0)
+         << ',' << quoted(s.invalid_reason) << '\n';
+  }
+  if (!file)
+  {
+    error = "error while writing " + path;
+    return false;
+  }
+  return true;
+}
+
+nlohmann::json relativeStateLogsJson(const RelativeStateLogs& logs)
+{
+  std::size_t valid = 0;
+  for (const RelativeState& s : logs.states)
+    valid += s.valid ? 1 : 0;
+  const RelativeStateCounters& e = logs.estimator;
+  return {{"leader_log", statisticsJson(logs.leader_log)},
+          {"follower_log", statisticsJson(logs.follower_log)},
+          {"pairing", pairingJson(logs.pairing)},
+          {"estimator",
+           {{"states", e.states},
+            {"invalid_states", e.invalid_states},
+            {"jumps_rejected", e.jumps_rejected},
+            {"missing_speed", e.missing_speed},
+            {"held_positions", e.held_positions},
+            {"along_track_fallbacks", e.along_track_fallbacks}}},
+          {"states", logs.states.size()},
+          {"valid_states", valid},
+          {"stream_events", logs.stream_events},
+          {"epoch_events", logs.epoch_events}};
+}
+
+}  // namespace acc

@@ -1,0 +1,97 @@
+// nmea_to_csv: the two receivers' NMEA logs paired by GNSS time, as relative_state_node pairs them
+// live, into a run CSV that calibrate, diagnose and the Python API read: for receivers that logged
+// to files on their own.
+#include <cmath>
+#include <iostream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "acc_identification/conversion/nmea_logs_to_csv.h"
+#include "acc_identification/io/output_files.h"
+#include "acc_identification/tools/number_checks.h"
+
+namespace
+{
+CLI::Validator metres()
+{
+  return acc::number_checks::finiteNumber([](double v) { return std::abs(v) <= 1e3; }, "between -1000 and 1000",
+                                          "METRES");
+}
+
+/// What the logs gave, on stdout; the stream events on stderr. false when no state was made.
+bool report(const acc::RelativeStateLogs& logs, const std::string& out_path)
+{
+  for (const std::string& event : logs.stream_events)
+    std::cerr << "note: " << event << "\n";
+  const acc::PairingCounters& p = logs.pairing;
+  const acc::RelativeStateCounters& e = logs.estimator;
+  std::cout << "nmea_to_csv: leader log: " << logs.leader_log.summary() << "\n"
+            << "nmea_to_csv: follower log: " << logs.follower_log.summary() << "\n"
+            << "nmea_to_csv: " << p.follower_fixes << " follower and " << p.leader_fixes << " leader fixes: "
+            << p.exact_pairs << " paired exactly, " << p.interpolated_pairs << " interpolated, " << p.follower_unpaired
+            << " follower epochs unpaired; " << e.invalid_states << " of " << e.states << " states invalid ("
+            << e.jumps_rejected << " jumps, " << e.held_positions << " held positions, " << e.missing_speed
+            << " without a speed: the reason in each row, split points for the readers) -> " << out_path << "\n";
+  if (e.states > 0)
+    return true;
+  std::cerr << "error: no follower epoch could be paired with the leader: do the two logs overlap in time, and do "
+               "both carry the date (RMC) or neither?\n";
+  return false;
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  CLI::App app{"Pairs a leader's and a follower's NMEA logs by GNSS time with relative_state_node's own code "
+               "(config/relative_state.yaml documents each setting) and writes every paired epoch, valid or not, "
+               "as a run CSV: time_s, space_gap_m, follower_speed_mps, leader_speed_mps, ..., valid, invalid_reason."};
+  acc::RelativeStateSettings settings;
+  double antenna_offset_m = NAN;
+  std::string gap_mode = "straight_line", leader_path, follower_path, out_path, json_path;
+  auto* combined = app.add_option("--antenna-offset-m", antenna_offset_m,
+                                  "antenna to antenna minus bumper to bumper on a straight road [m]")
+                       ->check(metres());
+  auto* leader_offset = app.add_option("--leader-antenna-to-rear-bumper-m",
+                                       settings.geometry.leader_antenna_to_rear_bumper_m)
+                            ->check(metres());
+  auto* follower_offset = app.add_option("--follower-antenna-to-front-bumper-m",
+                                         settings.geometry.follower_antenna_to_front_bumper_m)
+                              ->check(metres());
+  combined->excludes(leader_offset)->excludes(follower_offset);
+  leader_offset->needs(follower_offset);
+  follower_offset->needs(leader_offset);
+  app.add_option("--gap-mode", gap_mode)->check(CLI::IsMember({"straight_line", "along_track"}))->capture_default_str();
+  app.add_option("--dropout-gap-s", settings.pairing.dropout_gap_s,
+                 "a longer step is a dropout; above the receivers' step (1 Hz: 2.5) [s]")
+      ->check(acc::positiveNumber())
+      ->capture_default_str();
+  app.add_option("--json", json_path, "the counts: what each log gave, the pairing, why states are invalid");
+  app.add_option("LEADER", leader_path, "leader's NMEA log")->required()->check(CLI::ExistingFile);
+  app.add_option("FOLLOWER", follower_path, "follower's NMEA log")->required()->check(CLI::ExistingFile);
+  app.add_option("OUT", out_path, "run CSV to write")->required();
+  CLI11_PARSE(app, argc, argv);
+  if (!*combined && !*leader_offset)
+  {
+    std::cerr << "error: say where the antennas are: --antenna-offset-m, or the two antenna-to-bumper offsets "
+                 "(the gap, and so eta, moves by any error in them)\n";
+    return 2;
+  }
+  if (*combined)
+    settings.geometry = {antenna_offset_m, 0.0};
+  acc::parseGapMode(gap_mode, settings.gap_mode);
+
+  const acc::RelativeStateLogs logs = acc::pairNmeaLogs(leader_path, follower_path, settings);
+  std::string error = logs.error;
+  if (error.empty() && !acc::writeRelativeStateCsv(out_path, logs.states, error))
+    error = error.empty() ? "cannot write " + out_path : error;
+  if (!error.empty())
+  {
+    std::cerr << "error: " << error << "\n";
+    return 1;
+  }
+  const bool paired = report(logs, out_path);
+  if (!json_path.empty() && !acc::writeJsonFile(acc::relativeStateLogsJson(logs), json_path, std::cerr))
+    return 1;
+  return paired ? 0 : 2;
+}
