@@ -17,6 +17,7 @@ Usage: test_launch_sources.py [--junit FILE]   (with the workspace's devel/setup
 """
 import csv
 import importlib.util
+import json
 import os
 import pathlib
 import shutil
@@ -154,6 +155,28 @@ class UserCommands(unittest.TestCase):
         self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
         self.assertIn("cannot create /proc/no_such_report_folder", result.stderr)
         self.assertNotIn("pair read", result.stdout + result.stderr)  # stopped before reading the runs
+
+    def test_nmea_to_csv_needs_the_antennas_and_says_when_nothing_pairs(self):
+        self.make_logs()
+        tool = ["rosrun", "acc_identification", "nmea_to_csv"]
+        unplaced = self.run_command(tool + ["L.nmea", "F.nmea", "run.csv"])
+        self.assertEqual(unplaced.returncode, 2, unplaced.stdout + unplaced.stderr)
+        self.assertIn("say where the antennas are", unplaced.stderr)
+        self.assertFalse((self.directory / "run.csv").exists())
+        paired = self.run_command(tool + ["--antenna-offset-m", "4.5", "--json", "pairs.json", "L.nmea", "F.nmea",
+                                          "run.csv"])
+        self.assertEqual(paired.returncode, 0, paired.stdout + paired.stderr)
+        with open(self.directory / "run.csv", newline="") as rows:
+            read = list(csv.DictReader(rows))
+        self.assertEqual(len(read), json.loads((self.directory / "pairs.json").read_text())["states"])
+        self.assertTrue(read and all(row["valid"] in ("0", "1") for row in read))
+        # The follower's log an hour later than the leader's: no epoch pairs, and it is said.
+        shifted = self.run_command(["rosrun", "acc_identification", "openacc_to_nmea", "--time-shift-s", "3600",
+                                    str(OPENACC_EXCERPT), "L_late.nmea", "F_late.nmea"])
+        self.assertEqual(shifted.returncode, 0, shifted.stdout + shifted.stderr)
+        apart = self.run_command(tool + ["--antenna-offset-m", "4.5", "L.nmea", "F_late.nmea", "apart.csv"])
+        self.assertEqual(apart.returncode, 2, apart.stdout + apart.stderr)
+        self.assertIn("no follower epoch could be paired", apart.stderr)
 
     def test_calibrate_report_has_the_headline_traces_and_a_figure_per_run(self):
         result = self.run_command(["rosrun", "acc_identification", "calibrate", "--quiet", "--split", "half",
