@@ -4,6 +4,7 @@ docs/PYTHON.md).
 
     import acc_identification as acc
     run = acc.read_run("part9.csv")              # pandas.DataFrame, canonical columns
+    run = acc.pair_nmea_logs("L.nmea", "F.nmea", "pairs.csv", antenna_offset_m=5.6)  # two receivers' logs
     fit = acc.calibrate([run], split="half")     # dict: what `calibrate --json` writes
     diag = acc.diagnose([run]); camp = acc.campaign(["dir/"])
 
@@ -17,7 +18,7 @@ import sys
 from acc_identification import _core
 
 COLUMNS = ("time_s", "space_gap_m", "follower_speed_mps", "leader_speed_mps")
-__all__ = ["COLUMNS", "read_run", "calibrate", "diagnose", "campaign"]
+__all__ = ["COLUMNS", "read_run", "pair_nmea_logs", "calibrate", "diagnose", "campaign"]
 
 
 def read_run(path, follower=None, all_pairs=False, max_gap_s=0.5, topic="relative_state",
@@ -47,6 +48,27 @@ def read_run(path, follower=None, all_pairs=False, max_gap_s=0.5, topic="relativ
     frame.attrs = {"path": str(path), "openacc_pairs": list(account["openacc_pairs"]),
                    "segment_names": [run["name"] for run in read["runs"]], "input_account": account}
     return frame
+
+
+def pair_nmea_logs(leader_log, follower_log, out_csv, antenna_offset_m=None, leader_antenna_to_rear_bumper_m=None,
+                   follower_antenna_to_front_bumper_m=None, gap_mode="straight_line", dropout_gap_s=None):
+    """nmea_to_csv: the two receivers' NMEA logs paired by GNSS time with relative_state_node's own
+    code, every paired epoch (valid or not, with its reason) written to out_csv, which is then read
+    as read_run reads it (invalid rows are split points). The antennas' place is required: the
+    combined offset, or the two antenna-to-bumper offsets [m]. attrs["pairing"]: the counts
+    `nmea_to_csv --json` writes. The stream events (dropouts, time resets) go to stderr, as the
+    tool prints them; logs that pair no epoch raise ValueError with the tool's message."""
+    nan = float("nan")
+    paired = _core.pair_nmea_logs(
+        str(leader_log), str(follower_log), str(out_csv), nan if antenna_offset_m is None else antenna_offset_m,
+        nan if leader_antenna_to_rear_bumper_m is None else leader_antenna_to_rear_bumper_m,
+        nan if follower_antenna_to_front_bumper_m is None else follower_antenna_to_front_bumper_m, gap_mode,
+        _core.DEFAULTS["pair_nmea_logs"]["dropout_gap_s"] if dropout_gap_s is None else dropout_gap_s)
+    if paired["log"]:
+        sys.stderr.write(paired["log"])
+    run = read_run(out_csv)
+    run.attrs["pairing"] = json.loads(paired["json"])
+    return run
 
 
 def _as_frames(runs):

@@ -1,5 +1,6 @@
 #include "acc_identification/conversion/nmea_logs_to_csv.h"
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -116,6 +117,46 @@ RelativeStateLogs pairNmeaLogs(const std::string& leader_path, const std::string
   logs.pairing = estimator.pairingCounters();
   logs.estimator = estimator.counters();
   return logs;
+}
+
+std::string geometryFromOffsets(double antenna_offset_m, double leader_antenna_to_rear_bumper_m,
+                                double follower_antenna_to_front_bumper_m, VehicleGeometry& geometry)
+{
+  const bool combined = !std::isnan(antenna_offset_m);
+  const bool leader = !std::isnan(leader_antenna_to_rear_bumper_m);
+  const bool follower = !std::isnan(follower_antenna_to_front_bumper_m);
+  if (combined && (leader || follower))
+    return "give the antennas' place once: the combined antenna offset or the two antenna-to-bumper offsets, not both";
+  if (!combined && !(leader && follower))
+    return leader || follower ? "the two antenna-to-bumper offsets go together: give both, or the combined offset"
+                              : "say where the antennas are: the combined antenna offset, or the two antenna-to-bumper "
+                                "offsets (the gap, and so eta, moves by any error in them)";
+  const std::array<double, 3> given{antenna_offset_m, leader_antenna_to_rear_bumper_m,
+                                    follower_antenna_to_front_bumper_m};
+  for (double offset_m : given)
+    if (!std::isnan(offset_m) && !(std::abs(offset_m) <= kMaxAntennaOffsetM))
+      return "an antenna offset of " + std::to_string(offset_m) + " m is not between -1000 and 1000 m";
+  geometry = combined ? VehicleGeometry{antenna_offset_m, 0.0}
+                      : VehicleGeometry{leader_antenna_to_rear_bumper_m, follower_antenna_to_front_bumper_m};
+  return "";
+}
+
+RelativeStateLogs pairNmeaLogsToCsv(const std::string& leader_path, const std::string& follower_path,
+                                    const std::string& out_path, const RelativeStateSettings& settings)
+{
+  RelativeStateLogs logs = pairNmeaLogs(leader_path, follower_path, settings);
+  if (logs.error.empty() && !writeRelativeStateCsv(out_path, logs.states, logs.error) && logs.error.empty())
+    logs.error = "cannot write " + out_path;
+  return logs;
+}
+
+std::string noStateReason(const RelativeStateLogs& logs)
+{
+  if (!logs.states.empty())
+    return "";
+  return "no follower epoch could be paired with the leader (" + std::to_string(logs.pairing.follower_fixes) +
+         " follower and " + std::to_string(logs.pairing.leader_fixes) +
+         " leader fixes): do the two logs overlap in time, and do both carry the date (RMC) or neither?";
 }
 
 bool writeRelativeStateCsv(const std::string& path, const std::vector<RelativeState>& states, std::string& error)

@@ -3,6 +3,7 @@
 // command-line tool, so that a notebook and `calibrate --json` give the same numbers; the
 // DataFrames and dicts are made in python/acc_identification/__init__.py. Errors raise the
 // tools' messages as Python exceptions; the GIL is released while the C++ solves.
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -13,6 +14,7 @@
 #include "acc_identification/calibration/calibrate_runs.h"
 #include "acc_identification/campaign/campaign.h"
 #include "acc_identification/campaign/campaign_output.h"
+#include "acc_identification/conversion/nmea_logs_to_csv.h"
 #include "acc_identification/diagnosis/calibration_second_opinion.h"
 #include "acc_identification/diagnosis/diagnosis.h"
 #include "acc_identification/diagnosis/diagnosis_output.h"
@@ -166,6 +168,40 @@ py::dict calibrate(const py::list& runs, const py::list& inputs_read, bool split
   return result;
 }
 
+/// nmea_to_csv's job: the counts its --json writes (JSON text) and its notes (the stream events).
+py::dict pairNmeaLogs(const std::string& leader_path, const std::string& follower_path, const std::string& out_path,
+                      double antenna_offset_m, double leader_antenna_to_rear_bumper_m,
+                      double follower_antenna_to_front_bumper_m, const std::string& gap_mode, double dropout_gap_s)
+{
+  acc::RelativeStateSettings settings;
+  const std::string unplaced = acc::geometryFromOffsets(antenna_offset_m, leader_antenna_to_rear_bumper_m,
+                                                        follower_antenna_to_front_bumper_m, settings.geometry);
+  if (!unplaced.empty())
+    throw std::invalid_argument(unplaced);
+  if (!acc::parseGapMode(gap_mode, settings.gap_mode))
+    throw std::invalid_argument("gap_mode '" + gap_mode + "' is neither straight_line nor along_track");
+  if (!(dropout_gap_s > 0.0 && std::isfinite(dropout_gap_s)))
+    throw std::invalid_argument("dropout_gap_s must be a positive number of seconds");
+  settings.pairing.dropout_gap_s = dropout_gap_s;
+  acc::RelativeStateLogs logs;
+  {
+    py::gil_scoped_release unlocked;
+    logs = acc::pairNmeaLogsToCsv(leader_path, follower_path, out_path, settings);
+  }
+  if (!logs.error.empty())
+    throw std::runtime_error(logs.error);
+  const std::string no_state = acc::noStateReason(logs);
+  if (!no_state.empty())
+    throw std::invalid_argument(no_state);
+  std::string notes;
+  for (const std::string& event : logs.stream_events)
+    notes += "note: " + event + "\n";
+  py::dict result;
+  result["json"] = acc::relativeStateLogsJson(logs).dump();
+  result["log"] = notes;
+  return result;
+}
+
 /// The runs alone, without the files they came from.
 std::vector<acc::CarFollowingRun> plainRuns(const py::list& runs)
 {
@@ -246,6 +282,7 @@ py::dict defaults()
   all["calibrate"] = py::dict(py::arg("starts") = calibrate.starts, py::arg("alpha") = calibrate.alpha,
                               py::arg("bootstrap") = calibrate.bootstrap_replicates,
                               py::arg("bootstrap_below_s") = calibrate.bootstrap_below_s);
+  all["pair_nmea_logs"] = py::dict(py::arg("dropout_gap_s") = acc::RelativeStateSettings{}.pairing.dropout_gap_s);
   all["diagnose"] = py::dict(py::arg("train_fraction") = diagnose.train_fraction,
                              py::arg("seed") = diagnose.selection.seed, py::arg("threads") = diagnose.threads);
   all["campaign"] = py::dict(py::arg("starts") = campaign.group.starts, py::arg("alpha") = campaign.group.alpha,
@@ -260,6 +297,9 @@ PYBIND11_MODULE(_core, module)
   module.def("read_run", &readRun, py::arg("path"), py::arg("follower"), py::arg("all_pairs"), py::arg("max_gap_s"),
              py::arg("topic"), py::arg("acc_engaged_topic"), py::arg("require_acc_engaged"),
              py::arg("acc_engaged_timeout_s"), py::arg("acc_setting"));
+  module.def("pair_nmea_logs", &pairNmeaLogs, py::arg("leader_path"), py::arg("follower_path"), py::arg("out_path"),
+             py::arg("antenna_offset_m"), py::arg("leader_antenna_to_rear_bumper_m"),
+             py::arg("follower_antenna_to_front_bumper_m"), py::arg("gap_mode"), py::arg("dropout_gap_s"));
   module.def("calibrate", &calibrate, py::arg("runs"), py::arg("inputs_read"), py::arg("split_half"), py::arg("starts"),
              py::arg("alpha"), py::arg("seed"), py::arg("stability_test"), py::arg("verdict_every_s"),
              py::arg("grid_nodes"), py::arg("second_opinion"), py::arg("bootstrap_replicates"),

@@ -15,7 +15,7 @@ namespace
 {
 CLI::Validator metres()
 {
-  return acc::number_checks::finiteNumber([](double v) { return std::abs(v) <= 1e3; }, "between -1000 and 1000",
+  return acc::number_checks::finiteNumber([](double v) { return std::abs(v) <= acc::kMaxAntennaOffsetM; }, "between -1000 and 1000",
                                           "METRES");
 }
 
@@ -33,11 +33,10 @@ bool report(const acc::RelativeStateLogs& logs, const std::string& out_path)
             << " follower epochs unpaired; " << e.invalid_states << " of " << e.states << " states invalid ("
             << e.jumps_rejected << " jumps, " << e.held_positions << " held positions, " << e.missing_speed
             << " without a speed: the reason in each row, split points for the readers) -> " << out_path << "\n";
-  if (e.states > 0)
-    return true;
-  std::cerr << "error: no follower epoch could be paired with the leader: do the two logs overlap in time, and do "
-               "both carry the date (RMC) or neither?\n";
-  return false;
+  const std::string no_state = acc::noStateReason(logs);
+  if (!no_state.empty())
+    std::cerr << "error: " << no_state << "\n";
+  return no_state.empty();
 }
 }  // namespace
 
@@ -47,17 +46,13 @@ int main(int argc, char** argv)
                "(config/relative_state.yaml documents each setting) and writes every paired epoch, valid or not, "
                "as a run CSV: time_s, space_gap_m, follower_speed_mps, leader_speed_mps, ..., valid, invalid_reason."};
   acc::RelativeStateSettings settings;
-  double antenna_offset_m = NAN;
+  double antenna_offset_m = NAN, leader_offset_m = NAN, follower_offset_m = NAN;
   std::string gap_mode = "straight_line", leader_path, follower_path, out_path, json_path;
   auto* combined = app.add_option("--antenna-offset-m", antenna_offset_m,
                                   "antenna to antenna minus bumper to bumper on a straight road [m]")
                        ->check(metres());
-  auto* leader_offset = app.add_option("--leader-antenna-to-rear-bumper-m",
-                                       settings.geometry.leader_antenna_to_rear_bumper_m)
-                            ->check(metres());
-  auto* follower_offset = app.add_option("--follower-antenna-to-front-bumper-m",
-                                         settings.geometry.follower_antenna_to_front_bumper_m)
-                              ->check(metres());
+  auto* leader_offset = app.add_option("--leader-antenna-to-rear-bumper-m", leader_offset_m)->check(metres());
+  auto* follower_offset = app.add_option("--follower-antenna-to-front-bumper-m", follower_offset_m)->check(metres());
   combined->excludes(leader_offset)->excludes(follower_offset);
   leader_offset->needs(follower_offset);
   follower_offset->needs(leader_offset);
@@ -71,23 +66,20 @@ int main(int argc, char** argv)
   app.add_option("FOLLOWER", follower_path, "follower's NMEA log")->required()->check(CLI::ExistingFile);
   app.add_option("OUT", out_path, "run CSV to write")->required();
   CLI11_PARSE(app, argc, argv);
-  if (!*combined && !*leader_offset)
+  const std::string unplaced =
+      acc::geometryFromOffsets(antenna_offset_m, leader_offset_m, follower_offset_m, settings.geometry);
+  if (!unplaced.empty())
   {
-    std::cerr << "error: say where the antennas are: --antenna-offset-m, or the two antenna-to-bumper offsets "
-                 "(the gap, and so eta, moves by any error in them)\n";
+    std::cerr << "error: " << unplaced << "; the options: --antenna-offset-m M, or --leader-antenna-to-rear-bumper-m A "
+                 "with --follower-antenna-to-front-bumper-m B\n";
     return 2;
   }
-  if (*combined)
-    settings.geometry = {antenna_offset_m, 0.0};
   acc::parseGapMode(gap_mode, settings.gap_mode);
 
-  const acc::RelativeStateLogs logs = acc::pairNmeaLogs(leader_path, follower_path, settings);
-  std::string error = logs.error;
-  if (error.empty() && !acc::writeRelativeStateCsv(out_path, logs.states, error))
-    error = error.empty() ? "cannot write " + out_path : error;
-  if (!error.empty())
+  const acc::RelativeStateLogs logs = acc::pairNmeaLogsToCsv(leader_path, follower_path, out_path, settings);
+  if (!logs.error.empty())
   {
-    std::cerr << "error: " << error << "\n";
+    std::cerr << "error: " << logs.error << "\n";
     return 1;
   }
   const bool paired = report(logs, out_path);

@@ -115,3 +115,48 @@ TEST(NmeaLogsToCsv, AMissingLogIsAnError)
   EXPECT_NE(logs.error.find("/nonexistent/L.nmea"), std::string::npos) << logs.error;
   EXPECT_TRUE(logs.states.empty());
 }
+
+// The antennas' place is the user's to say, once: no default, no mix of the two forms, no offset
+// beyond any car (the gap, and so eta, moves by any error in it).
+TEST(NmeaLogsToCsv, TheAntennasPlaceIsSaidOnceAndWithinBounds)
+{
+  acc::VehicleGeometry geometry{-7.0, -7.0};
+  EXPECT_NE(acc::geometryFromOffsets(NAN, NAN, NAN, geometry).find("say where the antennas are"), std::string::npos);
+  EXPECT_NE(acc::geometryFromOffsets(5.6, 2.0, NAN, geometry).find("not both"), std::string::npos);
+  EXPECT_NE(acc::geometryFromOffsets(NAN, NAN, 3.6, geometry).find("go together"), std::string::npos);
+  EXPECT_NE(acc::geometryFromOffsets(NAN, 2.0, INFINITY, geometry).find("not between"), std::string::npos);
+  EXPECT_NE(acc::geometryFromOffsets(1001.0, NAN, NAN, geometry).find("not between"), std::string::npos);
+  EXPECT_EQ(geometry.leader_antenna_to_rear_bumper_m, -7.0) << "a refused place must leave the geometry alone";
+  EXPECT_EQ(acc::geometryFromOffsets(5.6, NAN, NAN, geometry), "");
+  EXPECT_EQ(geometry.combinedOffset(), 5.6);
+  EXPECT_EQ(acc::geometryFromOffsets(NAN, 2.0, 3.5, geometry), "");
+  EXPECT_EQ(geometry.leader_antenna_to_rear_bumper_m, 2.0);
+  EXPECT_EQ(geometry.follower_antenna_to_front_bumper_m, 3.5);
+}
+
+// Logs an hour apart pair nothing: that is said with the fixes each gave, and the CSV written
+// holds its header alone; a CSV that cannot be written is an error.
+TEST(NmeaLogsToCsv, LogsThatNeverMeetAreSaidToAndAnUnwritableCsvIsAnError)
+{
+  const acc::OpenAccPairTrack track = acc::readOpenAccPairTrack(std::string(ACC_OPENACC_DATA_DIR) + "/part3.csv");
+  ASSERT_EQ(track.error, "");
+  std::vector<acc::GnssFix> leader = acc::openAccFixes(track, 1);
+  for (acc::GnssFix& fix : leader)
+    fix.gnss_time_s += 3600.0;
+  TemporaryFolder folder("nmea_logs_to_csv_apart");
+  std::string error;
+  ASSERT_TRUE(acc::writeNmeaLog(folder.file("L.nmea"), leader, "GN", error)) << error;
+  ASSERT_TRUE(acc::writeNmeaLog(folder.file("F.nmea"), acc::openAccFixes(track, 2), "GN", error)) << error;
+  const acc::RelativeStateLogs apart =
+      acc::pairNmeaLogsToCsv(folder.file("L.nmea"), folder.file("F.nmea"), folder.file("out.csv"), casaleSettings());
+  EXPECT_EQ(apart.error, "");
+  EXPECT_TRUE(apart.states.empty());
+  const std::string reason = acc::noStateReason(apart);
+  EXPECT_NE(reason.find("no follower epoch could be paired"), std::string::npos) << reason;
+  EXPECT_NE(reason.find(std::to_string(track.rows.size()) + " follower"), std::string::npos) << reason;
+  EXPECT_EQ(acc::readRunFile(folder.file("out.csv")).runs.size(), 0u);
+
+  const acc::RelativeStateLogs unwritable = acc::pairNmeaLogsToCsv(
+      folder.file("F.nmea"), folder.file("F.nmea"), "/nonexistent/out.csv", casaleSettings());
+  EXPECT_NE(unwritable.error.find("/nonexistent/out.csv"), std::string::npos) << unwritable.error;
+}

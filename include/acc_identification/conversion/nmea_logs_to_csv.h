@@ -34,6 +34,24 @@ struct RelativeStateLogs
 RelativeStateLogs pairNmeaLogs(const std::string& leader_path, const std::string& follower_path,
                                const RelativeStateSettings& settings);
 
+/// An antenna offset beyond this is no car's [m] (relative_state_node bounds its parameters alike).
+constexpr double kMaxAntennaOffsetM = 1e3;
+
+/// The antennas' place as a user gives it: the combined offset (antenna to antenna minus bumper to
+/// bumper), or the two antenna-to-bumper offsets; NaN is "not given". Empty when geometry is set;
+/// otherwise what is missing, given twice or out of bounds (the gap, and so eta, moves by any error in them, so
+/// there is no default to fall back on).
+std::string geometryFromOffsets(double antenna_offset_m, double leader_antenna_to_rear_bumper_m,
+                                double follower_antenna_to_front_bumper_m, VehicleGeometry& geometry);
+
+/// nmea_to_csv's job: pairNmeaLogs, then every state written to out_path (writeRelativeStateCsv).
+/// error set when a log cannot be read or the CSV cannot be written.
+RelativeStateLogs pairNmeaLogsToCsv(const std::string& leader_path, const std::string& follower_path,
+                                    const std::string& out_path, const RelativeStateSettings& settings);
+
+/// Empty when the logs gave a state; otherwise why none could be made, for the user.
+std::string noStateReason(const RelativeStateLogs& logs);
+
 /// The states as a canonical run CSV that keeps the pairing's verdict: time_s, space_gap_m,
 /// follower_speed_mps, leader_speed_mps, relative_speed_mps, space_gap_sigma_m, epoch_skew_s,
 /// gap_doppler_residual_m, valid (1 or 0), invalid_reason (quoted). Time to the millisecond,

@@ -116,6 +116,52 @@ def test_campaign_equals_the_tool(tmp_path):
     assert without_timing(got) == without_timing(expected)
 
 
+def nmea_logs(tmp_path, name, *arguments):
+    """Casale part 5 as the two receivers would have logged it (openacc_to_nmea)."""
+    leader, follower = tmp_path / (name + "_leader.nmea"), tmp_path / (name + "_follower.nmea")
+    subprocess.run(["rosrun", "acc_identification", "openacc_to_nmea", *arguments, os.path.join(CASALE, "part5.csv"),
+                    str(leader), str(follower)], check=True, capture_output=True)
+    return leader, follower
+
+
+def test_pair_nmea_logs_writes_and_reads_what_the_tool_writes(tmp_path):
+    leader, follower = nmea_logs(tmp_path, "part5")
+    tool_csv = tmp_path / "tool.csv"
+    expected, status = tool_json(tmp_path, "nmea_to_csv", "--antenna-offset-m", "5.60", str(leader), str(follower),
+                                 str(tool_csv))
+    assert status == 0
+    run = acc.pair_nmea_logs(leader, follower, tmp_path / "api.csv", antenna_offset_m=5.60)
+    assert (tmp_path / "api.csv").read_bytes() == tool_csv.read_bytes()
+    assert run.attrs["pairing"] == expected
+    assert expected["pairing"]["exact_pairs"] == expected["states"] > 1000
+    assert run.attrs["input_account"]["counts"]["samples_used"] == len(run) == expected["valid_states"]
+    calibrated, status = tool_json(tmp_path, "calibrate", "--quiet", str(tmp_path / "api.csv"))
+    assert status == 0
+    assert without_timing(acc.calibrate(run)) == without_timing(calibrated)
+    # The two offsets place the same antennas: the same gaps.
+    split = acc.pair_nmea_logs(leader, follower, tmp_path / "split.csv", leader_antenna_to_rear_bumper_m=2.0,
+                               follower_antenna_to_front_bumper_m=3.6)
+    assert split["space_gap_m"].sub(run["space_gap_m"]).abs().max() <= 0.0011  # written to the millimetre
+
+
+def test_pair_nmea_logs_refuses_to_guess_and_says_when_nothing_pairs(tmp_path):
+    leader, follower = nmea_logs(tmp_path, "part5")
+    out = tmp_path / "pairs.csv"
+    with pytest.raises(ValueError, match="say where the antennas are"):
+        acc.pair_nmea_logs(leader, follower, out)
+    with pytest.raises(ValueError, match="not both"):
+        acc.pair_nmea_logs(leader, follower, out, antenna_offset_m=5.6, leader_antenna_to_rear_bumper_m=2.0)
+    with pytest.raises(ValueError, match="go together"):
+        acc.pair_nmea_logs(leader, follower, out, leader_antenna_to_rear_bumper_m=2.0)
+    with pytest.raises(ValueError, match="gap_mode 'chord'"):
+        acc.pair_nmea_logs(leader, follower, out, antenna_offset_m=5.6, gap_mode="chord")
+    with pytest.raises(RuntimeError, match="nope.nmea"):
+        acc.pair_nmea_logs(tmp_path / "nope.nmea", follower, out, antenna_offset_m=5.6)
+    later_leader, _ = nmea_logs(tmp_path, "an_hour_later", "--time-shift-s", "3600")
+    with pytest.raises(ValueError, match="no follower epoch could be paired"):
+        acc.pair_nmea_logs(later_leader, follower, out, antenna_offset_m=5.6)
+
+
 def test_bad_input_raises_the_tools_messages():
     with pytest.raises(Exception, match="nope.csv"):
         acc.read_run("/nonexistent/nope.csv")
