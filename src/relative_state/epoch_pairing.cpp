@@ -39,8 +39,8 @@ bool earlier(const GnssFix& fix, double time_s) { return fix.gnss_time_s < time_
 
 bool hasUsablePosition(const GnssFix& fix)
 {
-  return fix.fix_quality > 0 && fix.has(GnssFix::kValidPosition) && std::isfinite(fix.latitude_deg) &&
-         std::isfinite(fix.longitude_deg) && std::isfinite(fix.gnss_time_s);
+  return fix.fix_quality > 0 && fix.has(GnssFix::kValidPosition) && std::abs(fix.latitude_deg) <= 90.0 &&
+         std::abs(fix.longitude_deg) <= 180.0 && std::isfinite(fix.gnss_time_s);
 }
 
 GnssFix interpolateFix(const GnssFix& a, const GnssFix& b, double time_s)

@@ -305,6 +305,35 @@ TEST(Pairing, FixesWithoutAPositionAreCountedAndNotUsed)
   EXPECT_NEAR(pairs[0].epoch_skew_s, 0.1, 1e-9);
 }
 
+// A position off the Earth (a fix from another driver, a corrupted link) has no geodesic: it
+// would give a NaN gap marked valid. It is counted as a fix without a usable position (found by
+// test/fuzz/fuzz_relative_state.cpp).
+TEST(Pairing, APositionOffTheEarthIsCountedAndNotUsed)
+{
+  acc::EpochPairer pairer;
+  auto beyond_the_pole = fixAt(0.1);
+  beyond_the_pole.latitude_deg = 145.0;
+  auto beyond_the_date_line = fixAt(0.2, -0.001);
+  beyond_the_date_line.longitude_deg = 188.0;
+  pairer.addLeader(fixAt(0.0));
+  pairer.addLeader(beyond_the_pole);
+  pairer.addLeader(fixAt(0.2));
+  pairer.addFollower(fixAt(0.1, -0.001));
+  pairer.addFollower(beyond_the_date_line);
+  EXPECT_EQ(pairer.counters().leader_invalid_fixes, 1u);
+  EXPECT_EQ(pairer.counters().follower_invalid_fixes, 1u);
+  const auto pairs = pairer.takePairs();
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_TRUE(pairs[0].interpolated);  // from 0.0 and 0.2, not from the fix beyond the pole
+
+  auto at_the_pole = fixAt(0.3);
+  at_the_pole.latitude_deg = -90.0;
+  at_the_pole.longitude_deg = 180.0;
+  EXPECT_TRUE(acc::hasUsablePosition(at_the_pole));  // the bounds themselves are on the Earth
+  at_the_pole.latitude_deg = std::nextafter(-90.0, -91.0);
+  EXPECT_FALSE(acc::hasUsablePosition(at_the_pole));
+}
+
 TEST(Pairing, InterpolationFollowsTheShorterTurnAndTheDateLine)
 {
   auto a = fixAt(0.0), b = fixAt(1.0);

@@ -48,7 +48,7 @@ struct PairingCounters
   std::uint64_t follower_fixes = 0;
   std::uint64_t exact_pairs = 0;
   std::uint64_t interpolated_pairs = 0;
-  std::uint64_t leader_invalid_fixes = 0;    ///< no position (quality 0 or no GGA): not used
+  std::uint64_t leader_invalid_fixes = 0;    ///< no usable position (quality 0, no GGA, off the Earth) or no time: not used
   std::uint64_t follower_invalid_fixes = 0;
   std::uint64_t leader_duplicates = 0;       ///< same epoch received twice: the second ignored
   std::uint64_t follower_duplicates = 0;
@@ -151,7 +151,9 @@ private:
 /// The fix between a and b at time_s, linear in every field (course by the shorter turn).
 GnssFix interpolateFix(const GnssFix& a, const GnssFix& b, double time_s);
 
-/// True when the fix carries a usable position (fix quality above 0 and a position).
+/// True when the fix carries a usable position: fix quality above 0, a position on the Earth
+/// (latitude within +-90 deg, longitude within +-180 deg; a fix from another driver or a corrupted
+/// link may hold anything, and a latitude beyond the pole has no geodesic) and a GNSS time.
 bool hasUsablePosition(const GnssFix& fix);
 
 }  // namespace acc
