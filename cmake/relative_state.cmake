@@ -1,12 +1,12 @@
 # Relative state (issue 8): the two vehicles' fixes paired by GNSS epoch, the bumper-to-bumper
 # gap (geodesic, WGS84), the jump bound and the gap-versus-Doppler consistency; the OpenACC to
 # NMEA converter; relative_state_node. Needs the gnss component (NMEA writer and log reader).
+# The sources are one list: the relative-state fuzzer (scripts/test_hooks/fuzz_relative_state.sh)
+# builds the same files with clang's libFuzzer from cmake/relative_state_sources.cmake.
+include(${CMAKE_CURRENT_LIST_DIR}/relative_state_sources.cmake)
 acc_add_library(acc_relative_state
   SOURCES
-    src/relative_state/epoch_pairing.cpp
-    src/relative_state/vehicle_geometry.cpp
-    src/relative_state/gap_doppler_consistency.cpp
-    src/relative_state/relative_state_estimator.cpp
+    ${ACC_RELATIVE_STATE_SOURCES}
   LINK ${GeographicLib_LIBRARIES})
 target_include_directories(acc_relative_state PUBLIC ${GeographicLib_INCLUDE_DIRS})
 
