@@ -33,7 +33,7 @@ APT_PACKAGES := build-essential cmake clang libclang-rt-14-dev \
   python3-roslaunch python3-rostopic python3-rosnode python3-rosparam python3-rosmaster \
   rosout rosbash \
   libnlopt-cxx-dev libeigen3-dev libboost-dev libgeographiclib-dev libgtest-dev libbenchmark-dev \
-  nlohmann-json3-dev libcli11-dev libtinyxml2-dev sumo sumo-tools pybind11-dev python3-dev python3-pandas python3-pytest iproute2 python3-matplotlib python3-numpy python3-pil python3-yaml
+  nlohmann-json3-dev libcli11-dev libtinyxml2-dev libyaml-cpp-dev sumo sumo-tools pybind11-dev python3-dev python3-pandas python3-pytest iproute2 python3-matplotlib python3-numpy python3-pil python3-yaml
 
 .PHONY: deps build demo test unit-tests bench clean print-apt-packages
 

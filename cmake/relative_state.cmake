@@ -7,7 +7,8 @@ include(${CMAKE_CURRENT_LIST_DIR}/relative_state_sources.cmake)
 acc_add_library(acc_relative_state
   SOURCES
     ${ACC_RELATIVE_STATE_SOURCES}
-  LINK ${GeographicLib_LIBRARIES})
+    src/relative_state/relative_state_parameters.cpp
+  LINK acc_parameters ${GeographicLib_LIBRARIES})
 target_include_directories(acc_relative_state PUBLIC ${GeographicLib_INCLUDE_DIRS})
 
 if(CATKIN_ENABLE_TESTING)
@@ -43,7 +44,8 @@ if(TARGET acc_gnss)
     target_compile_definitions(test_openacc PRIVATE
       ACC_RELSTATE_TEST_DATA="${PROJECT_SOURCE_DIR}/test/data/relative_state"
       ACC_OPENACC_TEST_DATA="${PROJECT_SOURCE_DIR}/test/data/openacc"
-      ACC_OPENACC_DATA_DIR="${ACC_DATA_CASALE_DIR}")
+      ACC_OPENACC_DATA_DIR="${ACC_DATA_CASALE_DIR}"
+      ACC_CONFIG_DIR="${PROJECT_SOURCE_DIR}/config")
   endif()
 endif()
 

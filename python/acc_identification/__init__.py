@@ -51,19 +51,20 @@ def read_run(path, follower=None, all_pairs=False, max_gap_s=0.5, topic="relativ
 
 
 def pair_nmea_logs(leader_log, follower_log, out_csv, antenna_offset_m=None, leader_antenna_to_rear_bumper_m=None,
-                   follower_antenna_to_front_bumper_m=None, gap_mode="straight_line", dropout_gap_s=None):
+                   follower_antenna_to_front_bumper_m=None, gap_mode=None, dropout_gap_s=None, params=None):
     """nmea_to_csv: the two receivers' NMEA logs paired by GNSS time with relative_state_node's own
     code, every paired epoch (valid or not, with its reason) written to out_csv, which is then read
-    as read_run reads it (invalid rows are split points). The antennas' place is required: the
-    combined offset, or the two antenna-to-bumper offsets [m]. attrs["pairing"]: the counts
-    `nmea_to_csv --json` writes. The stream events (dropouts, time resets) go to stderr, as the
-    tool prints them; logs that pair no epoch raise ValueError with the tool's message."""
-    nan = float("nan")
+    as read_run reads it (invalid rows are split points). Settings: the node's defaults, then
+    params (the node's parameter file, as nmea_to_csv --params), then these arguments. The
+    antennas' place is required, here or in params: the combined offset, or the two
+    antenna-to-bumper offsets [m]. attrs["pairing"]: the counts `nmea_to_csv --json` writes. The
+    file's unread keys and the stream events (dropouts, time resets) go to stderr, as the tool
+    prints them; logs that pair no epoch raise ValueError with the tool's message."""
+    given = lambda value: float("nan") if value is None else value
     paired = _core.pair_nmea_logs(
-        str(leader_log), str(follower_log), str(out_csv), nan if antenna_offset_m is None else antenna_offset_m,
-        nan if leader_antenna_to_rear_bumper_m is None else leader_antenna_to_rear_bumper_m,
-        nan if follower_antenna_to_front_bumper_m is None else follower_antenna_to_front_bumper_m, gap_mode,
-        _core.DEFAULTS["pair_nmea_logs"]["dropout_gap_s"] if dropout_gap_s is None else dropout_gap_s)
+        str(leader_log), str(follower_log), str(out_csv), "" if params is None else str(params), given(antenna_offset_m),
+        given(leader_antenna_to_rear_bumper_m), given(follower_antenna_to_front_bumper_m), gap_mode or "",
+        given(dropout_gap_s))
     if paired["log"]:
         sys.stderr.write(paired["log"])
     run = read_run(out_csv)

@@ -129,8 +129,8 @@ std::string geometryFromOffsets(double antenna_offset_m, double leader_antenna_t
     return "give the antennas' place once: the combined antenna offset or the two antenna-to-bumper offsets, not both";
   if (!combined && !(leader && follower))
     return leader || follower ? "the two antenna-to-bumper offsets go together: give both, or the combined offset"
-                              : "say where the antennas are: the combined antenna offset, or the two antenna-to-bumper "
-                                "offsets (the gap, and so eta, moves by any error in them)";
+                              : "say where the antennas are, as the combined antenna offset or the two antenna-to-bumper "
+                                "offsets: the gap, and so eta, moves by any error in them";
   const std::array<double, 3> given{antenna_offset_m, leader_antenna_to_rear_bumper_m,
                                     follower_antenna_to_front_bumper_m};
   for (double offset_m : given)
@@ -138,6 +138,39 @@ std::string geometryFromOffsets(double antenna_offset_m, double leader_antenna_t
       return "an antenna offset of " + std::to_string(offset_m) + " m is not between -1000 and 1000 m";
   geometry = combined ? VehicleGeometry{antenna_offset_m, 0.0}
                       : VehicleGeometry{leader_antenna_to_rear_bumper_m, follower_antenna_to_front_bumper_m};
+  return "";
+}
+
+std::string pairingSettingsFrom(const NmeaPairingOptions& options, RelativeStateSettings& settings,
+                                std::string& unread_note)
+{
+  bool file_places_antennas = false;
+  if (!options.params_path.empty())
+  {
+    const std::string error =
+        loadRelativeStateParameterFile(options.params_path, settings, unread_note, file_places_antennas);
+    if (!error.empty())
+      return error;
+  }
+  const bool options_place_antennas = !std::isnan(options.antenna_offset_m) ||
+                                      !std::isnan(options.leader_antenna_to_rear_bumper_m) ||
+                                      !std::isnan(options.follower_antenna_to_front_bumper_m);
+  if (options_place_antennas || !file_places_antennas)
+  {
+    const std::string unplaced =
+        geometryFromOffsets(options.antenna_offset_m, options.leader_antenna_to_rear_bumper_m,
+                            options.follower_antenna_to_front_bumper_m, settings.geometry);
+    if (!unplaced.empty())
+      return unplaced + (options.params_path.empty() ? "" : "; the parameter file does not say it");
+  }
+  if (!options.gap_mode.empty() && !parseGapMode(options.gap_mode, settings.gap_mode))
+    return "gap mode '" + options.gap_mode + "' is neither straight_line nor along_track";
+  if (!std::isnan(options.dropout_gap_s))
+  {
+    if (!(options.dropout_gap_s > 0.0 && std::isfinite(options.dropout_gap_s)))
+      return "the dropout gap must be a positive number of seconds";
+    settings.pairing.dropout_gap_s = options.dropout_gap_s;
+  }
   return "";
 }
 

@@ -168,21 +168,21 @@ py::dict calibrate(const py::list& runs, const py::list& inputs_read, bool split
   return result;
 }
 
-/// nmea_to_csv's job: the counts its --json writes (JSON text) and its notes (the stream events).
+/// nmea_to_csv's job: the counts its --json writes (JSON text) and its notes (the parameter file's
+/// unread keys, the stream events). An option not given is NaN or "".
 py::dict pairNmeaLogs(const std::string& leader_path, const std::string& follower_path, const std::string& out_path,
-                      double antenna_offset_m, double leader_antenna_to_rear_bumper_m,
+                      const std::string& params_path, double antenna_offset_m, double leader_antenna_to_rear_bumper_m,
                       double follower_antenna_to_front_bumper_m, const std::string& gap_mode, double dropout_gap_s)
 {
+  const acc::NmeaPairingOptions options{params_path,        antenna_offset_m, leader_antenna_to_rear_bumper_m,
+                                        follower_antenna_to_front_bumper_m, gap_mode, dropout_gap_s};
   acc::RelativeStateSettings settings;
-  const std::string unplaced = acc::geometryFromOffsets(antenna_offset_m, leader_antenna_to_rear_bumper_m,
-                                                        follower_antenna_to_front_bumper_m, settings.geometry);
-  if (!unplaced.empty())
-    throw std::invalid_argument(unplaced);
-  if (!acc::parseGapMode(gap_mode, settings.gap_mode))
-    throw std::invalid_argument("gap_mode '" + gap_mode + "' is neither straight_line nor along_track");
-  if (!(dropout_gap_s > 0.0 && std::isfinite(dropout_gap_s)))
-    throw std::invalid_argument("dropout_gap_s must be a positive number of seconds");
-  settings.pairing.dropout_gap_s = dropout_gap_s;
+  std::string notes;
+  const std::string refused = acc::pairingSettingsFrom(options, settings, notes);
+  if (!refused.empty())
+    throw std::invalid_argument(refused);
+  if (!notes.empty())
+    notes = "warning: " + params_path + ": " + notes + "\n";
   acc::RelativeStateLogs logs;
   {
     py::gil_scoped_release unlocked;
@@ -193,7 +193,6 @@ py::dict pairNmeaLogs(const std::string& leader_path, const std::string& followe
   const std::string no_state = acc::noStateReason(logs);
   if (!no_state.empty())
     throw std::invalid_argument(no_state);
-  std::string notes;
   for (const std::string& event : logs.stream_events)
     notes += "note: " + event + "\n";
   py::dict result;
@@ -282,7 +281,6 @@ py::dict defaults()
   all["calibrate"] = py::dict(py::arg("starts") = calibrate.starts, py::arg("alpha") = calibrate.alpha,
                               py::arg("bootstrap") = calibrate.bootstrap_replicates,
                               py::arg("bootstrap_below_s") = calibrate.bootstrap_below_s);
-  all["pair_nmea_logs"] = py::dict(py::arg("dropout_gap_s") = acc::RelativeStateSettings{}.pairing.dropout_gap_s);
   all["diagnose"] = py::dict(py::arg("train_fraction") = diagnose.train_fraction,
                              py::arg("seed") = diagnose.selection.seed, py::arg("threads") = diagnose.threads);
   all["campaign"] = py::dict(py::arg("starts") = campaign.group.starts, py::arg("alpha") = campaign.group.alpha,
@@ -297,8 +295,8 @@ PYBIND11_MODULE(_core, module)
   module.def("read_run", &readRun, py::arg("path"), py::arg("follower"), py::arg("all_pairs"), py::arg("max_gap_s"),
              py::arg("topic"), py::arg("acc_engaged_topic"), py::arg("require_acc_engaged"),
              py::arg("acc_engaged_timeout_s"), py::arg("acc_setting"));
-  module.def("pair_nmea_logs", &pairNmeaLogs, py::arg("leader_path"), py::arg("follower_path"), py::arg("out_path"),
-             py::arg("antenna_offset_m"), py::arg("leader_antenna_to_rear_bumper_m"),
+  module.def("pair_nmea_logs", &pairNmeaLogs, py::arg("leader_path"), py::arg("follower_path"),
+             py::arg("out_path"), py::arg("params_path"), py::arg("antenna_offset_m"), py::arg("leader_antenna_to_rear_bumper_m"),
              py::arg("follower_antenna_to_front_bumper_m"), py::arg("gap_mode"), py::arg("dropout_gap_s"));
   module.def("calibrate", &calibrate, py::arg("runs"), py::arg("inputs_read"), py::arg("split_half"), py::arg("starts"),
              py::arg("alpha"), py::arg("seed"), py::arg("stability_test"), py::arg("verdict_every_s"),

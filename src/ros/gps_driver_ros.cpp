@@ -1,4 +1,5 @@
 #include "acc_identification/ros/gps_driver_ros.h"
+#include "acc_identification/ros/ros_parameter_source.h"
 #include "acc_identification/ros/ros_time.h"
 
 #include <algorithm>
@@ -189,7 +190,8 @@ GpsDriverRos::GpsDriverRos(ros::NodeHandle node, ros::NodeHandle private_node)
   , updater_(node, private_node)
 {
   int queue_size = 1000;  // a fast replay (rate 0) bursts; a short queue would drop messages
-  ParameterReader reader(private_node);
+  const RosParameterSource parameters(private_node);
+  ParameterReader reader(parameters);
   reader.readElsewhere("diagnostic_period");  // diagnostic_updater's
   settings_ok_ = readParameters(reader, queue_size);
   if (!settings_ok_)

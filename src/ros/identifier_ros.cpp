@@ -1,4 +1,5 @@
 #include "acc_identification/ros/identifier_ros.h"
+#include "acc_identification/ros/ros_parameter_source.h"
 #include "acc_identification/io/run_plausibility.h"
 #include "acc_identification/ros/ros_time.h"
 
@@ -284,7 +285,8 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node,
       return identifier.update(window_segments, drive_segments);
     };
   }
-  ParameterReader reader(private_node);
+  const RosParameterSource parameters(private_node);
+  ParameterReader reader(parameters);
   reader.readElsewhere("diagnostic_period");  // diagnostic_updater's
   if (!loadIdentifierSettings(reader, settings_))
   {

@@ -43,38 +43,51 @@ bool report(const acc::RelativeStateLogs& logs, const std::string& out_path)
 int main(int argc, char** argv)
 {
   CLI::App app{"Pairs a leader's and a follower's NMEA logs by GNSS time with relative_state_node's own code "
-               "(config/relative_state.yaml documents each setting) and writes every paired epoch, valid or not, "
-               "as a run CSV: time_s, space_gap_m, follower_speed_mps, leader_speed_mps, ..., valid, invalid_reason."};
-  acc::RelativeStateSettings settings;
-  double antenna_offset_m = NAN, leader_offset_m = NAN, follower_offset_m = NAN;
-  std::string gap_mode = "straight_line", leader_path, follower_path, out_path, json_path;
-  auto* combined = app.add_option("--antenna-offset-m", antenna_offset_m,
+               "and writes every paired epoch, valid or not, as a run CSV: time_s, space_gap_m, follower_speed_mps, "
+               "leader_speed_mps, ..., valid, invalid_reason. Settings: the node's defaults, its parameter file "
+               "(--params, config/relative_state.yaml documents each key), then these options."};
+  acc::NmeaPairingOptions options;
+  std::string leader_path, follower_path, out_path, json_path;
+  app.add_option("--params", options.params_path,
+                 "relative_state_node's parameter file (its keys, as config/relative_state.yaml): pair as the node "
+                 "would with it")
+      ->check(CLI::ExistingFile);
+  auto* combined = app.add_option("--antenna-offset-m", options.antenna_offset_m,
                                   "antenna to antenna minus bumper to bumper on a straight road [m]")
                        ->check(metres());
-  auto* leader_offset = app.add_option("--leader-antenna-to-rear-bumper-m", leader_offset_m)->check(metres());
-  auto* follower_offset = app.add_option("--follower-antenna-to-front-bumper-m", follower_offset_m)->check(metres());
+  auto* leader_offset =
+      app.add_option("--leader-antenna-to-rear-bumper-m", options.leader_antenna_to_rear_bumper_m)->check(metres());
+  auto* follower_offset =
+      app.add_option("--follower-antenna-to-front-bumper-m", options.follower_antenna_to_front_bumper_m)
+          ->check(metres());
   combined->excludes(leader_offset)->excludes(follower_offset);
   leader_offset->needs(follower_offset);
   follower_offset->needs(leader_offset);
-  app.add_option("--gap-mode", gap_mode)->check(CLI::IsMember({"straight_line", "along_track"}))->capture_default_str();
-  app.add_option("--dropout-gap-s", settings.pairing.dropout_gap_s,
-                 "a longer step is a dropout; above the receivers' step (1 Hz: 2.5) [s]")
-      ->check(acc::positiveNumber())
-      ->capture_default_str();
+  app.add_option("--gap-mode", options.gap_mode, "straight_line or along_track (default: the file's, else straight_line)")
+      ->check(CLI::IsMember({"straight_line", "along_track"}));
+  app.add_option("--dropout-gap-s", options.dropout_gap_s,
+                 "a longer step is a dropout; above the receivers' step (1 Hz: 2.5) [s] (default: the file's, else "
+                 "0.5)")
+      ->check(acc::positiveNumber());
   app.add_option("--json", json_path, "the counts: what each log gave, the pairing, why states are invalid");
   app.add_option("LEADER", leader_path, "leader's NMEA log")->required()->check(CLI::ExistingFile);
   app.add_option("FOLLOWER", follower_path, "follower's NMEA log")->required()->check(CLI::ExistingFile);
   app.add_option("OUT", out_path, "run CSV to write")->required();
   CLI11_PARSE(app, argc, argv);
-  const std::string unplaced =
-      acc::geometryFromOffsets(antenna_offset_m, leader_offset_m, follower_offset_m, settings.geometry);
-  if (!unplaced.empty())
+  acc::RelativeStateSettings settings;
+  std::string unread_note;
+  const std::string refused = acc::pairingSettingsFrom(options, settings, unread_note);
+  if (!refused.empty())
   {
-    std::cerr << "error: " << unplaced << "; the options: --antenna-offset-m M, or --leader-antenna-to-rear-bumper-m A "
-                 "with --follower-antenna-to-front-bumper-m B\n";
+    std::cerr << "error: " << refused;
+    if (refused.find("antenna") != std::string::npos)  // where to say it, in this tool's words
+      std::cerr << "; the options: --antenna-offset-m M, or --leader-antenna-to-rear-bumper-m A with "
+                   "--follower-antenna-to-front-bumper-m B, or a --params file that places them";
+    std::cerr << "\n";
     return 2;
   }
-  acc::parseGapMode(gap_mode, settings.gap_mode);
+  if (!unread_note.empty())
+    std::cerr << "warning: " << options.params_path << ": " << unread_note << "\n";
 
   const acc::RelativeStateLogs logs = acc::pairNmeaLogsToCsv(leader_path, follower_path, out_path, settings);
   if (!logs.error.empty())

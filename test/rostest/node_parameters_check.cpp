@@ -12,14 +12,25 @@
 #include "acc_identification/ros/gps_driver_ros.h"
 #include "acc_identification/ros/identifier_ros.h"
 #include "acc_identification/ros/relative_state_ros.h"
+#include "acc_identification/ros/ros_parameter_source.h"
+#include "../unit/parameter_refusals.h"
 
 namespace
 {
+/// A reader of the parameters in one namespace, with the source it reads.
+struct NodeParameters
+{
+  explicit NodeParameters(const std::string& ns) : source(ros::NodeHandle(ns)) {}
+  acc::RosParameterSource source;
+  acc::ParameterReader reader{source};
+};
+
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 TEST(ParameterReader, NumbersOfEitherYamlTypeAreRead)
 {
-  acc::ParameterReader reader(ros::NodeHandle("~"));
+  NodeParameters reader_parameters("~");
+  acc::ParameterReader& reader = reader_parameters.reader;
   double signed_exponent = 0.0, integer = 0.0, launch_exponent = 0.0;
   int whole = 0;
   EXPECT_TRUE(reader.read("signed_exponent", signed_exponent));
@@ -35,7 +46,8 @@ TEST(ParameterReader, NumbersOfEitherYamlTypeAreRead)
 
 TEST(ParameterReader, AnUnsetParameterKeepsTheDefault)
 {
-  acc::ParameterReader reader(ros::NodeHandle("~"));
+  NodeParameters reader_parameters("~");
+  acc::ParameterReader& reader = reader_parameters.reader;
   double value = 0.25;
   std::string word = "kept";
   EXPECT_TRUE(reader.read("nowhere", value));
@@ -46,14 +58,16 @@ TEST(ParameterReader, AnUnsetParameterKeepsTheDefault)
 
 TEST(ParameterReader, AYamlExponentWithoutDotAndSignIsAStringNamedWithTheFix)
 {
-  acc::ParameterReader reader(ros::NodeHandle("~"));
+  NodeParameters reader_parameters("~");
+  acc::ParameterReader& reader = reader_parameters.reader;
   double value = 2.0;
   EXPECT_FALSE(reader.read("yaml_exponent", value));
   EXPECT_EQ(value, 2.0);
   EXPECT_TRUE(contains(reader.error(), "parameter ~yaml_exponent is the string \"1e6\", not a number")) << reader.error();
   EXPECT_TRUE(contains(reader.error(), "write 1000000 or 1.0e+6")) << reader.error();
   // roslaunch's <param value="1e6"> (and arg:=1e6) is text too: it wants a dot.
-  acc::ParameterReader launch_reader(ros::NodeHandle("~"));
+  NodeParameters launch_reader_parameters("~");
+  acc::ParameterReader& launch_reader = launch_reader_parameters.reader;
   EXPECT_FALSE(launch_reader.read("launch_exponent", value));
   EXPECT_TRUE(contains(launch_reader.error(), "~launch_exponent is the string \"1e6\"")) << launch_reader.error();
 }
@@ -62,7 +76,8 @@ TEST(ParameterReader, AYamlExponentWithoutDotAndSignIsAStringNamedWithTheFix)
 template <typename T>
 std::string refusal(const std::string& name, T value)
 {
-  acc::ParameterReader reader(ros::NodeHandle("~"));
+  NodeParameters reader_parameters("~");
+  acc::ParameterReader& reader = reader_parameters.reader;
   const T before = value;
   EXPECT_FALSE(reader.read(name, value)) << name;
   EXPECT_EQ(value, before) << name;
@@ -71,22 +86,13 @@ std::string refusal(const std::string& name, T value)
 
 TEST(ParameterReader, EveryWrongTypeIsRefusedByName)
 {
-  EXPECT_EQ(refusal("half", 3), "parameter ~half is the number 2.5, not an integer");
-  EXPECT_EQ(refusal("integer", false), "parameter ~integer is the integer 7, not true or false");
-  EXPECT_EQ(refusal("integer", std::string("x")), "parameter ~integer is the integer 7, not a string");
-  EXPECT_EQ(refusal("flag", 1.0), "parameter ~flag is the bool true, not a number");
-  // Quoted on purpose in the YAML: a string, without the exponent's hint.
-  EXPECT_EQ(refusal("word", 1.0), "parameter ~word is the string \"along_track\", not a number");
-  EXPECT_TRUE(contains(refusal("quoted_number", 1.0), "the string \"12\", not a number"));
-  EXPECT_EQ(refusal("mixed_list", std::vector<std::string>{"a"}),
-            "parameter ~mixed_list is a list of 2 values, not a list of strings");
-  EXPECT_EQ(refusal("word", std::vector<std::string>{"a"}),
-            "parameter ~word is the string \"along_track\", not a list of strings");
+  expectEveryWrongTypeRefusedByName([](const std::string& name, auto value) { return refusal(name, value); });
 }
 
 TEST(ParameterReader, ListsOfStringsAreRead)
 {
-  acc::ParameterReader reader(ros::NodeHandle("~"));
+  NodeParameters reader_parameters("~");
+  acc::ParameterReader& reader = reader_parameters.reader;
   std::vector<std::string> topics;
   EXPECT_TRUE(reader.read("topics", topics));
   EXPECT_EQ(topics, (std::vector<std::string>{"fix", "vel"}));
@@ -94,14 +100,17 @@ TEST(ParameterReader, ListsOfStringsAreRead)
 
 TEST(ParameterReader, RangesAreCheckedAndNanIsRefused)
 {
-  acc::ParameterReader above(ros::NodeHandle("~"));
+  NodeParameters above_parameters("~");
+  acc::ParameterReader& above = above_parameters.reader;
   double value = 1.0;
   EXPECT_FALSE(above.readAbove("negative", value, 0.0));
   EXPECT_EQ(above.error(), "parameter ~negative = -1 must be finite and > 0");
-  acc::ParameterReader at_least(ros::NodeHandle("~"));
+  NodeParameters at_least_parameters("~");
+  acc::ParameterReader& at_least = at_least_parameters.reader;
   EXPECT_FALSE(at_least.readAtLeast("not_a_number", value, 0.0));
   EXPECT_TRUE(contains(at_least.error(), "must be finite and >= 0")) << at_least.error();
-  acc::ParameterReader integers(ros::NodeHandle("~"));
+  NodeParameters integers_parameters("~");
+  acc::ParameterReader& integers = integers_parameters.reader;
   int count = 1;
   EXPECT_FALSE(integers.readAtLeast("integer", count, 8));
   EXPECT_EQ(integers.error(), "parameter ~integer = 7 must be >= 8");
@@ -109,7 +118,8 @@ TEST(ParameterReader, RangesAreCheckedAndNanIsRefused)
 
 TEST(ParameterReader, TheFirstErrorStaysAndLaterReadsAreSkipped)
 {
-  acc::ParameterReader reader(ros::NodeHandle("~"));
+  NodeParameters reader_parameters("~");
+  acc::ParameterReader& reader = reader_parameters.reader;
   double first = 0.0, later = 0.0;
   EXPECT_FALSE(reader.read("yaml_exponent", first));
   EXPECT_FALSE(reader.read("signed_exponent", later));
@@ -120,10 +130,11 @@ TEST(ParameterReader, TheFirstErrorStaysAndLaterReadsAreSkipped)
 
 TEST(ParameterReader, ParametersNeverReadAreNamed)
 {
-  acc::ParameterReader reader(ros::NodeHandle("~identifier_slip"));
+  NodeParameters reader_parameters("~identifier_slip");
+  acc::ParameterReader& reader = reader_parameters.reader;
   double max_gap_s = 0.0;
   EXPECT_TRUE(reader.read("max_gap_s", max_gap_s));
-  EXPECT_EQ(reader.unreadNote(), "parameter ~window_s is set but not read by this node (misspelt?): ignored");
+  EXPECT_EQ(reader.unreadNote(), "parameter ~window_s is set but never read (misspelt?): ignored");
   double window_s = 0.0;
   reader.read("window_s", window_s);
   EXPECT_EQ(reader.unreadNote(), "");
@@ -131,7 +142,8 @@ TEST(ParameterReader, ParametersNeverReadAreNamed)
 
 TEST(NodeParameters, TheIdentifierRefusesAStringWindow)
 {
-  acc::ParameterReader reader(ros::NodeHandle("~identifier_slip"));
+  NodeParameters reader_parameters("~identifier_slip");
+  acc::ParameterReader& reader = reader_parameters.reader;
   acc::IdentifierSettings settings;
   EXPECT_FALSE(acc::loadIdentifierSettings(reader, settings));
   EXPECT_TRUE(contains(reader.error(), "parameter ~window_s is the string \"3e2\"")) << reader.error();
@@ -140,7 +152,8 @@ TEST(NodeParameters, TheIdentifierRefusesAStringWindow)
 /// 1 for true, as a launch file's value="1" gives: an int, which the node will not read as a bool.
 TEST(NodeParameters, TheIdentifierRefusesAnIntegerForRequireAccEngaged)
 {
-  acc::ParameterReader reader(ros::NodeHandle("~identifier_engagement_slip"));
+  NodeParameters reader_parameters("~identifier_engagement_slip");
+  acc::ParameterReader& reader = reader_parameters.reader;
   acc::IdentifierSettings settings;
   EXPECT_FALSE(acc::loadIdentifierSettings(reader, settings));
   EXPECT_TRUE(contains(reader.error(), "~require_acc_engaged")) << reader.error();
@@ -148,7 +161,8 @@ TEST(NodeParameters, TheIdentifierRefusesAnIntegerForRequireAccEngaged)
 
 TEST(NodeParameters, RelativeStateRefusesAStringTimeoutAndAnEmptyQueue)
 {
-  acc::ParameterReader reader(ros::NodeHandle("~relative_state_slip"));
+  NodeParameters reader_parameters("~relative_state_slip");
+  acc::ParameterReader& reader = reader_parameters.reader;
   acc::RelativeStateSettings settings;
   EXPECT_FALSE(acc::loadRelativeStateSettings(reader, settings));
   EXPECT_TRUE(contains(reader.error(), "parameter ~timeout_s is the string \"1e6\"")) << reader.error();
@@ -164,14 +178,16 @@ TEST(NodeParameters, TheDriverRefusesAnIntegerForABoolAndExits)
 
 TEST(NodeParameters, TheShippedConfigsReadWholeAndWithoutError)
 {
-  acc::ParameterReader identifier_reader(ros::NodeHandle("~identifier_config"));
+  NodeParameters identifier_reader_parameters("~identifier_config");
+  acc::ParameterReader& identifier_reader = identifier_reader_parameters.reader;
   acc::IdentifierSettings identifier;
   identifier.window_s = -1.0;  // to see that the file's value is read
   EXPECT_TRUE(acc::loadIdentifierSettings(identifier_reader, identifier)) << identifier_reader.error();
   EXPECT_GT(identifier.window_s, 0.0);
   EXPECT_EQ(identifier_reader.unreadNote(), "");
 
-  acc::ParameterReader relative_reader(ros::NodeHandle("~relative_state_config"));
+  NodeParameters relative_reader_parameters("~relative_state_config");
+  acc::ParameterReader& relative_reader = relative_reader_parameters.reader;
   acc::RelativeStateSettings relative;
   EXPECT_TRUE(acc::loadRelativeStateSettings(relative_reader, relative)) << relative_reader.error();
   // The node reads the rest (its own stale_after_s, queue_size, ...): built whole, nothing is left unread.

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -159,4 +160,71 @@ TEST(NmeaLogsToCsv, LogsThatNeverMeetAreSaidToAndAnUnwritableCsvIsAnError)
   const acc::RelativeStateLogs unwritable = acc::pairNmeaLogsToCsv(
       folder.file("F.nmea"), folder.file("F.nmea"), "/nonexistent/out.csv", casaleSettings());
   EXPECT_NE(unwritable.error.find("/nonexistent/out.csv"), std::string::npos) << unwritable.error;
+}
+
+namespace
+{
+/// A parameter file with the given text, in a folder of its own (name: the file's and the folder's).
+struct ParameterFile
+{
+  ParameterFile(const std::string& name, const std::string& text) : folder("nmea_logs_to_csv_" + name), name(name)
+  {
+    std::ofstream(path()) << text;
+  }
+  std::string path() const { return folder.file(name + ".yaml"); }
+  TemporaryFolder folder;
+  std::string name;
+};
+}  // namespace
+
+// The node's own parameter file gives the settings the node would pair with, its geometry
+// included; the options override it, and its keys are read whole (the node's own too).
+TEST(NmeaLogsToCsv, TheNodesParameterFileSetsThePairingAndTheOptionsOverrideIt)
+{
+  acc::NmeaPairingOptions options;
+  options.params_path = std::string(ACC_CONFIG_DIR) + "/relative_state.yaml";
+  acc::RelativeStateSettings settings;
+  settings.geometry = {-7.0, -7.0};
+  std::string note = "not yet";
+  ASSERT_EQ(acc::pairingSettingsFrom(options, settings, note), "");
+  EXPECT_EQ(note, "") << "every key of the shipped file is the node's";
+  EXPECT_NEAR(settings.geometry.combinedOffset(), 5.60, 1e-12);  // the file places the antennas
+
+  const ParameterFile one_hertz("one_hertz", "antenna_offset_m: 4.0\ndropout_gap_s: 2.5\nmax_interpolation_skew_s: 1.2\n"
+                                "gap_mode: along_track\nmax_gap: 3.0\n");
+  options.params_path = one_hertz.path();
+  options.leader_antenna_to_rear_bumper_m = 1.0;
+  options.follower_antenna_to_front_bumper_m = 2.5;
+  options.gap_mode = "straight_line";
+  settings = acc::RelativeStateSettings{};
+  ASSERT_EQ(acc::pairingSettingsFrom(options, settings, note), "");
+  EXPECT_EQ(settings.pairing.dropout_gap_s, 2.5);
+  EXPECT_EQ(settings.pairing.max_interpolation_skew_s, 1.2);
+  EXPECT_EQ(settings.gap_mode, acc::GapMode::kStraightLine) << "the option overrides the file";
+  EXPECT_EQ(settings.geometry.leader_antenna_to_rear_bumper_m, 1.0);
+  EXPECT_EQ(settings.geometry.follower_antenna_to_front_bumper_m, 2.5);
+  EXPECT_NE(note.find("~max_gap is set but never read"), std::string::npos) << note;
+}
+
+// A file that does not place the antennas needs the options to; a value the node would refuse
+// is refused with the node's words and the file's name.
+TEST(NmeaLogsToCsv, AParameterFileIsReadAsTheNodeReadsIt)
+{
+  const ParameterFile unplaced("unplaced", "dropout_gap_s: 2.5\n");
+  acc::NmeaPairingOptions options;
+  options.params_path = unplaced.path();
+  acc::RelativeStateSettings settings;
+  std::string note;
+  const std::string missing = acc::pairingSettingsFrom(options, settings, note);
+  EXPECT_NE(missing.find("say where the antennas are"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("the parameter file does not say it"), std::string::npos) << missing;
+
+  const ParameterFile slip("slip", "antenna_offset_m: 5.6\ntimeout_s: 1e6\n");
+  options.params_path = slip.path();
+  const std::string refused = acc::pairingSettingsFrom(options, settings, note);
+  EXPECT_NE(refused.find(slip.path() + ": parameter ~timeout_s is the string \"1e6\", not a number"), std::string::npos)
+      << refused;
+  const ParameterFile both("both", "antenna_offset_m: 5.6\nleader_antenna_to_rear_bumper_m: 2.0\n");
+  options.params_path = both.path();
+  EXPECT_NE(acc::pairingSettingsFrom(options, settings, note).find("not both"), std::string::npos);
 }

@@ -12,6 +12,9 @@ namespace acc
 /// Where the GNSS antennas sit on the two cars, for the bumper-to-bumper gap [m].
 /// Either the two offsets, or one combined offset in leader_antenna_to_rear_bumper_m with the
 /// other 0 (the OpenACC Casale cars: 5.60 m combined).
+/// An antenna offset beyond this is no car's [m]: the bound of every reader of the geometry.
+constexpr double kMaxAntennaOffsetM = 1e3;
+
 struct VehicleGeometry
 {
   double leader_antenna_to_rear_bumper_m = 0.0;

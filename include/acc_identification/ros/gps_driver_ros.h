@@ -13,7 +13,7 @@
 #include "acc_identification/gnss/byte_source.h"
 #include "acc_identification/gnss/gnss_fix.h"
 #include "acc_identification/gnss/nmea_decoder.h"
-#include "acc_identification/ros/parameter_reader.h"
+#include "acc_identification/parameters/parameter_reader.h"
 
 #include <geometry_msgs/TwistStamped.h>
 #include <sensor_msgs/NavSatFix.h>

@@ -20,7 +20,7 @@
 #include "acc_identification/calibration/drive_record.h"
 #include "acc_identification/calibration/sliding_window.h"
 #include "acc_identification/io/acc_engagement.h"
-#include "acc_identification/ros/parameter_reader.h"
+#include "acc_identification/parameters/parameter_reader.h"
 
 #include <acc_identification/AccParameters.h>
 #include <acc_identification/RelativeState.h>

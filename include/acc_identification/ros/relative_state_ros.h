@@ -12,7 +12,7 @@
 #include <ros/ros.h>
 
 #include "acc_identification/relative_state/relative_state_estimator.h"
-#include "acc_identification/ros/parameter_reader.h"
+#include "acc_identification/relative_state/relative_state_parameters.h"
 
 // Same clash for RelativeState: the message is acc_identification::RelativeState here.
 #include <acc_identification/RelativeState.h>
@@ -21,10 +21,6 @@ namespace acc
 {
 /// The library state as a message. header.stamp: the pair's GNSS time (as the driver's fixes).
 acc_identification::RelativeState toMessage(const RelativeState& state, const std::string& frame_id);
-
-/// Reads the node's private parameters into settings; false and reader.error() on a bad value
-/// (type or range).
-bool loadRelativeStateSettings(ParameterReader& reader, RelativeStateSettings& settings);
 
 /// relative_state_node: subscribes to leader/fix and follower/fix (acc_identification/GnssFix),
 /// pairs them by GNSS epoch and publishes relative_state (acc_identification/RelativeState);
@@ -48,10 +44,7 @@ private:
   std::string unread_parameters_;
   RelativeStateSettings settings_;
   RelativeStateEstimator estimator_;
-  bool publish_invalid_ = true;
-  double stale_after_s_ = 2.0;
-  double consistency_warn_m_ = 1.0;
-  double diagnostic_period_s_ = 1.0;
+  RelativeStateNodeSettings node_settings_;
   std::string follower_frame_id_ = "follower_gps";
 
   ros::Subscriber leader_subscriber_, follower_subscriber_;

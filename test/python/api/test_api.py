@@ -138,6 +138,10 @@ def test_pair_nmea_logs_writes_and_reads_what_the_tool_writes(tmp_path):
     calibrated, status = tool_json(tmp_path, "calibrate", "--quiet", str(tmp_path / "api.csv"))
     assert status == 0
     assert without_timing(acc.calibrate(run)) == without_timing(calibrated)
+    # relative_state_node's own parameter file places the Casale antennas: the same pairs.
+    config = os.path.join(os.path.dirname(__file__), "..", "..", "..", "config", "relative_state.yaml")
+    acc.pair_nmea_logs(leader, follower, tmp_path / "params.csv", params=config)
+    assert (tmp_path / "params.csv").read_bytes() == tool_csv.read_bytes()
     # The two offsets place the same antennas: the same gaps.
     split = acc.pair_nmea_logs(leader, follower, tmp_path / "split.csv", leader_antenna_to_rear_bumper_m=2.0,
                                follower_antenna_to_front_bumper_m=3.6)
@@ -153,7 +157,7 @@ def test_pair_nmea_logs_refuses_to_guess_and_says_when_nothing_pairs(tmp_path):
         acc.pair_nmea_logs(leader, follower, out, antenna_offset_m=5.6, leader_antenna_to_rear_bumper_m=2.0)
     with pytest.raises(ValueError, match="go together"):
         acc.pair_nmea_logs(leader, follower, out, leader_antenna_to_rear_bumper_m=2.0)
-    with pytest.raises(ValueError, match="gap_mode 'chord'"):
+    with pytest.raises(ValueError, match="'chord' is neither"):
         acc.pair_nmea_logs(leader, follower, out, antenna_offset_m=5.6, gap_mode="chord")
     with pytest.raises(RuntimeError, match="nope.nmea"):
         acc.pair_nmea_logs(tmp_path / "nope.nmea", follower, out, antenna_offset_m=5.6)

@@ -1,48 +1,17 @@
-#include "acc_identification/ros/parameter_reader.h"
+#include "acc_identification/parameters/parameter_reader.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <optional>
+#include <utility>
 #include <sstream>
-
-#include <ros/param.h>
-
 
 namespace acc
 {
 namespace
 {
-/// "the string \"1e6\"", "the number 2.5", "a list of 3 values": what a parameter holds, for an error.
-std::string describe(XmlRpc::XmlRpcValue& value)
-{
-  std::ostringstream out;
-  switch (value.getType())
-  {
-    case XmlRpc::XmlRpcValue::TypeString:
-      out << "the string \"" << static_cast<std::string&>(value) << "\"";
-      break;
-    case XmlRpc::XmlRpcValue::TypeInt:
-      out << "the integer " << static_cast<int>(value);
-      break;
-    case XmlRpc::XmlRpcValue::TypeDouble:
-      out << "the number " << static_cast<double>(value);
-      break;
-    case XmlRpc::XmlRpcValue::TypeBoolean:
-      out << "the bool " << (static_cast<bool>(value) ? "true" : "false");
-      break;
-    case XmlRpc::XmlRpcValue::TypeArray:
-      out << "a list of " << value.size() << " values";
-      break;
-    case XmlRpc::XmlRpcValue::TypeStruct:
-      out << "a dictionary";
-      break;
-    default:
-      out << "a value of XML-RPC type " << static_cast<int>(value.getType());
-  }
-  return out.str();
-}
-
 /// True when the whole text reads as a number ("1e6"): the likely slip of an exponent YAML 1.1 and
 /// roslaunch take for text.
 bool looksNumeric(const std::string& text)
@@ -55,31 +24,32 @@ bool looksNumeric(const std::string& text)
 }
 }  // namespace
 
-bool ParameterReader::fetch(const std::string& name, XmlRpc::XmlRpcValue& raw)
+bool ParameterReader::fetch(const std::string& name, ParameterValue& raw)
 {
   read_.insert(name);
-  return ok() && node_.getParam(name, raw);
+  if (!ok())
+    return false;
+  std::optional<ParameterValue> value = source_.get(name);
+  if (!value)
+    return false;
+  raw = std::move(*value);
+  return true;
 }
 
 std::string ParameterReader::unreadNote() const
 {
-  std::vector<std::string> names;
-  if (!ros::param::getParamNames(names))
-    return "";
-  const std::string prefix = node_.getNamespace() + "/";
   std::string unread;
   int count = 0;
-  std::sort(names.begin(), names.end());
-  for (const std::string& name : names)
+  for (const std::string& name : source_.names())
   {
-    if (name.compare(0, prefix.size(), prefix) != 0 || read_.count(name.substr(prefix.size())) > 0)
+    if (read_.count(name) > 0)
       continue;
-    unread += (count++ > 0 ? ", ~" : "~") + name.substr(prefix.size());
+    unread += (count++ > 0 ? ", ~" : "~") + name;
   }
   if (count == 0)
     return "";
   return (count == 1 ? "parameter " + unread + " is" : "parameters " + unread + " are") +
-         " set but not read by this node (misspelt?): ignored";
+         " set but never read (misspelt?): ignored";
 }
 
 bool ParameterReader::fail(const std::string& message)
@@ -96,21 +66,21 @@ bool ParameterReader::require(bool condition, const std::string& message)
 
 bool ParameterReader::read(const std::string& name, double& value)
 {
-  XmlRpc::XmlRpcValue raw;
+  ParameterValue raw;
   if (!fetch(name, raw))
     return ok();
-  if (raw.getType() == XmlRpc::XmlRpcValue::TypeDouble)
+  if (raw.type == ParameterValue::Type::kDouble)
   {
-    value = static_cast<double>(raw);
+    value = raw.number;
     return true;
   }
-  if (raw.getType() == XmlRpc::XmlRpcValue::TypeInt)
+  if (raw.type == ParameterValue::Type::kInt)
   {
-    value = static_cast<int>(raw);
+    value = raw.integer;
     return true;
   }
-  std::string message = "parameter ~" + name + " is " + describe(raw) + ", not a number";
-  if (raw.getType() == XmlRpc::XmlRpcValue::TypeString && looksNumeric(static_cast<std::string&>(raw)))
+  std::string message = "parameter ~" + name + " is " + raw.describe() + ", not a number";
+  if (raw.type == ParameterValue::Type::kString && looksNumeric(raw.text))
   {
     // YAML 1.1 (rosparam, <rosparam>) reads an exponent as a number only with a dot and a sign, and
     // roslaunch's <param value> or arg:= only with a dot: 1e6 is text to both, 1.0e+6 a number to both.
@@ -121,17 +91,17 @@ bool ParameterReader::read(const std::string& name, double& value)
 
 bool ParameterReader::read(const std::string& name, int& value)
 {
-  XmlRpc::XmlRpcValue raw;
+  ParameterValue raw;
   if (!fetch(name, raw))
     return ok();
-  if (raw.getType() == XmlRpc::XmlRpcValue::TypeInt)
+  if (raw.type == ParameterValue::Type::kInt)
   {
-    value = static_cast<int>(raw);
+    value = raw.integer;
     return true;
   }
-  if (raw.getType() == XmlRpc::XmlRpcValue::TypeDouble)
+  if (raw.type == ParameterValue::Type::kDouble)
   {
-    const double number = static_cast<double>(raw);
+    const double number = raw.number;
     if (number == std::floor(number) && number >= std::numeric_limits<int>::min() &&
         number <= std::numeric_limits<int>::max())
     {
@@ -139,44 +109,44 @@ bool ParameterReader::read(const std::string& name, int& value)
       return true;
     }
   }
-  return fail("parameter ~" + name + " is " + describe(raw) + ", not an integer");
+  return fail("parameter ~" + name + " is " + raw.describe() + ", not an integer");
 }
 
 bool ParameterReader::read(const std::string& name, bool& value)
 {
-  XmlRpc::XmlRpcValue raw;
+  ParameterValue raw;
   if (!fetch(name, raw))
     return ok();
-  if (raw.getType() != XmlRpc::XmlRpcValue::TypeBoolean)
-    return fail("parameter ~" + name + " is " + describe(raw) + ", not true or false");
-  value = static_cast<bool>(raw);
+  if (raw.type != ParameterValue::Type::kBool)
+    return fail("parameter ~" + name + " is " + raw.describe() + ", not true or false");
+  value = raw.boolean;
   return true;
 }
 
 bool ParameterReader::read(const std::string& name, std::string& value)
 {
-  XmlRpc::XmlRpcValue raw;
+  ParameterValue raw;
   if (!fetch(name, raw))
     return ok();
-  if (raw.getType() != XmlRpc::XmlRpcValue::TypeString)
-    return fail("parameter ~" + name + " is " + describe(raw) + ", not a string");
-  value = static_cast<std::string&>(raw);
+  if (raw.type != ParameterValue::Type::kString)
+    return fail("parameter ~" + name + " is " + raw.describe() + ", not a string");
+  value = raw.text;
   return true;
 }
 
 bool ParameterReader::read(const std::string& name, std::vector<std::string>& value)
 {
-  XmlRpc::XmlRpcValue raw;
+  ParameterValue raw;
   if (!fetch(name, raw))
     return ok();
-  bool all_strings = raw.getType() == XmlRpc::XmlRpcValue::TypeArray;
-  for (int i = 0; all_strings && i < raw.size(); ++i)
-    all_strings = raw[i].getType() == XmlRpc::XmlRpcValue::TypeString;
+  bool all_strings = raw.type == ParameterValue::Type::kList;
+  for (const ParameterValue& item : raw.items)
+    all_strings = all_strings && item.type == ParameterValue::Type::kString;
   if (!all_strings)
-    return fail("parameter ~" + name + " is " + describe(raw) + ", not a list of strings");
+    return fail("parameter ~" + name + " is " + raw.describe() + ", not a list of strings");
   std::vector<std::string> strings;
-  for (int i = 0; i < raw.size(); ++i)
-    strings.push_back(static_cast<std::string&>(raw[i]));
+  for (const ParameterValue& item : raw.items)
+    strings.push_back(item.text);
   value = std::move(strings);
   return true;
 }

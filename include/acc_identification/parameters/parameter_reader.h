@@ -4,12 +4,12 @@
 #include <string>
 #include <vector>
 
-#include <ros/node_handle.h>
-#include <xmlrpcpp/XmlRpcValue.h>
+#include "acc_identification/parameters/parameter_source.h"
 
 namespace acc
 {
-/// Reads a node's parameters with their types checked, for every node of the package.
+/// Reads a node's parameters with their types checked, for every node of the package, and a
+/// tool's from a YAML file of the same keys (nmea_to_csv --params): one reader, one set of checks.
 ///
 /// ros::NodeHandle::param keeps the default, and says nothing, when a parameter is set with a type
 /// it cannot read: `timeout_s: 1e6` in a YAML file is the string "1e6" (YAML 1.1 wants a dot and a
@@ -26,7 +26,8 @@ namespace acc
 class ParameterReader
 {
 public:
-  explicit ParameterReader(const ros::NodeHandle& node) : node_(node) {}
+  /// source must outlive the reader.
+  explicit ParameterReader(const ParameterSource& source) : source_(source) {}
 
   /// ~name into value when set. False, with error(), when it holds another type.
   bool read(const std::string& name, double& value);
@@ -46,20 +47,20 @@ public:
   bool ok() const { return error_.empty(); }
   /// The first problem, "parameter ~name ...": empty while ok().
   const std::string& error() const { return error_; }
-  bool has(const std::string& name) const { return node_.hasParam(name); }
+  bool has(const std::string& name) const { return source_.get(name).has_value(); }
 
   /// Marks ~name as read by someone else (diagnostic_updater reads ~diagnostic_period).
   void readElsewhere(const std::string& name) { read_.insert(name); }
-  /// "parameters ~a, ~b are set but not read by this node (misspelt?): ignored", or empty when
+  /// "parameters ~a, ~b are set but never read (misspelt?): ignored", or empty when
   /// every parameter in the node's namespace was read (or asked for while unset).
   std::string unreadNote() const;
 
 private:
   /// ~name's value, remembering the name: false after an error or when it is unset.
-  bool fetch(const std::string& name, XmlRpc::XmlRpcValue& raw);
+  bool fetch(const std::string& name, ParameterValue& raw);
   bool fail(const std::string& message);
 
-  ros::NodeHandle node_;
+  const ParameterSource& source_;
   std::string error_;
   std::set<std::string> read_;  ///< every name asked for, set or not
 };

@@ -1,0 +1,40 @@
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "acc_identification/parameters/parameter_source.h"
+
+namespace acc
+{
+/// A YAML file of a node's parameters (config/*.yaml) as a tool reads it: the same keys, and
+/// each value typed as rosparam types it (YAML 1.1, PyYAML's resolver), so that a file the node
+/// refuses is refused here with the same message: 1e6 and 1.0e6 are text (a float wants a dot and
+/// a signed exponent, 1.0e+6), yes/on/true are bools, a quoted "12" is a string. The top level
+/// must be a mapping of names to values.
+class YamlParameterSource : public ParameterSource
+{
+public:
+  /// Reads path; error() says why when it cannot (no such file, not YAML, not a mapping).
+  static YamlParameterSource fromFile(const std::string& path);
+  /// The same from YAML text (name: where it came from, for the error).
+  static YamlParameterSource fromText(const std::string& text, const std::string& name);
+
+  std::optional<ParameterValue> get(const std::string& name) const override;
+  std::vector<std::string> names() const override;
+
+  bool ok() const { return error_.empty(); }
+  const std::string& error() const { return error_; }
+
+private:
+  std::map<std::string, ParameterValue> values_;
+  std::string error_;
+};
+
+/// A plain scalar's type as YAML 1.1 (PyYAML, rosparam) resolves it: bool, int, float or null,
+/// else a string. Sexagesimal numbers (1:30) are read as strings, where PyYAML reads numbers.
+ParameterValue resolveYamlScalar(const std::string& text);
+
+}  // namespace acc

@@ -1,0 +1,89 @@
+#include "acc_identification/relative_state/relative_state_parameters.h"
+#include "acc_identification/parameters/yaml_parameter_source.h"
+
+#include <algorithm>
+#include <string>
+
+namespace acc
+{
+namespace
+{
+/// Where the antennas sit on the cars: the two offsets, or one combined offset (what OpenACC gives).
+bool readGeometry(ParameterReader& r, VehicleGeometry& g)
+{
+  if (!r.readAtLeast("leader_antenna_to_rear_bumper_m", g.leader_antenna_to_rear_bumper_m, -kMaxAntennaOffsetM) ||
+      !r.readAtLeast("follower_antenna_to_front_bumper_m", g.follower_antenna_to_front_bumper_m, -kMaxAntennaOffsetM))
+    return false;
+  if (!r.has("antenna_offset_m"))
+    return true;
+  if (!r.require(!r.has("leader_antenna_to_rear_bumper_m") && !r.has("follower_antenna_to_front_bumper_m"),
+                 "give either ~antenna_offset_m or the two antenna-to-bumper offsets, not both"))
+    return false;
+  double combined_m = 0.0;
+  if (!r.readAtLeast("antenna_offset_m", combined_m, -kMaxAntennaOffsetM))
+    return false;
+  g = {combined_m, 0.0};  // the whole offset on one side: only the sum enters the gap
+  return true;
+}
+
+bool readPairing(ParameterReader& r, PairingSettings& q)
+{
+  int max_buffered = static_cast<int>(q.max_buffered_fixes);
+  const bool ok = r.readAtLeast("max_buffered_fixes", max_buffered, 1) &&
+                  r.readAtLeast("exact_match_tolerance_s", q.exact_match_tolerance_s, 0.0) &&
+                  r.readAtLeast("max_interpolation_skew_s", q.max_interpolation_skew_s, 0.0) &&
+                  r.readAtLeast("exact_wait_s", q.exact_wait_s, 0.0) && r.readAbove("timeout_s", q.timeout_s, 0.0) &&
+                  r.readAbove("dropout_gap_s", q.dropout_gap_s, 0.0) && r.readAbove("time_reset_s", q.time_reset_s, 0.0);
+  q.max_buffered_fixes = static_cast<std::size_t>(std::max(1, max_buffered));
+  return ok;
+}
+
+/// The along-track gap and the plausibility and consistency checks.
+bool readChecks(ParameterReader& r, RelativeStateSettings& s)
+{
+  return r.readAbove("track_min_spacing_m", s.track_min_spacing_m, 0.0) &&
+         r.readAbove("track_max_length_m", s.track_max_length_m, 0.0) &&
+         r.readAbove("track_max_lateral_offset_m", s.track_max_lateral_offset_m, 0.0) &&
+         r.readAtLeast("min_speed_for_time_gap_mps", s.min_speed_for_time_gap_mps, 0.0) &&
+         r.readAbove("max_gap_rate_mps", s.max_gap_rate_mps, 0.0) &&
+         r.readAbove("max_acceleration_mps2", s.max_acceleration_mps2, 0.0) &&
+         r.readAtLeast("jump_reference_max_age_s", s.jump_reference_max_age_s, 0.0) &&
+         r.readAbove("consistency_window_s", s.consistency_window_s, 0.0) &&
+         r.readAbove("min_held_position_move_m", s.min_held_position_move_m, 0.0);
+}
+}  // namespace
+
+bool loadRelativeStateSettings(ParameterReader& reader, RelativeStateSettings& s)
+{
+  std::string mode = gapModeName(s.gap_mode);
+  return readGeometry(reader, s.geometry) && reader.read("gap_mode", mode) &&
+         reader.require(parseGapMode(mode, s.gap_mode),
+                        "parameter ~gap_mode '" + mode + "' is neither straight_line nor along_track") &&
+         readPairing(reader, s.pairing) && readChecks(reader, s);
+}
+
+bool loadRelativeStateNodeSettings(ParameterReader& reader, RelativeStateNodeSettings& s)
+{
+  return reader.readAbove("stale_after_s", s.stale_after_s, 0.0) &&
+         reader.readAbove("consistency_warn_m", s.consistency_warn_m, 0.0) &&
+         reader.readAbove("diagnostic_period_s", s.diagnostic_period_s, 0.0) &&
+         reader.read("publish_invalid", s.publish_invalid) && reader.readAtLeast("queue_size", s.queue_size, 1);
+}
+
+std::string loadRelativeStateParameterFile(const std::string& path, RelativeStateSettings& settings,
+                                           std::string& unread_note, bool& places_antennas)
+{
+  const YamlParameterSource source = YamlParameterSource::fromFile(path);
+  if (!source.ok())
+    return source.error();
+  ParameterReader reader(source);
+  RelativeStateNodeSettings node_only;
+  if (!loadRelativeStateSettings(reader, settings) || !loadRelativeStateNodeSettings(reader, node_only))
+    return path + ": " + reader.error();
+  unread_note = reader.unreadNote();
+  places_antennas = reader.has("antenna_offset_m") || reader.has("leader_antenna_to_rear_bumper_m") ||
+                    reader.has("follower_antenna_to_front_bumper_m");
+  return "";
+}
+
+}  // namespace acc
