@@ -118,6 +118,21 @@ class DocumentCommands(unittest.TestCase):
         self.assertGreater(checked, 20)  # the pattern still finds the documents' paths
         self.assertTrue(named.search("see `include/acc_identification/model/acc_model.h`"))
 
+    def test_same_results_forgives_the_last_printed_digit_and_a_bound_and_nothing_more(self):
+        # The check that keeps docs/diagnosis/casale current: a build moves a fit's last digits,
+        # never its words or a number beyond 1e-4 (or beyond the last digit a sentence prints it with).
+        sys.path.insert(0, str(REPOSITORY / "scripts"))
+        import same_results
+        same = lambda e, a: not list(same_results.differences(e, a, "", 1e-4, set()))
+        self.assertTrue(same({"r": "difference 0.09912 m^2/s^2"}, {"r": "difference 0.09911 m^2/s^2"}))
+        self.assertTrue(same({"eta": 2.5e-15, "r": "index 6.346e-12"}, {"eta": 1.5e-10, "r": "index 2.539e-11"}))
+        self.assertTrue(same({"k1": 0.0240001}, {"k1": 0.0240}))
+        self.assertFalse(same({"r": "difference 0.0991 m^2/s^2"}, {"r": "difference 0.0993 m^2/s^2"}))
+        self.assertFalse(same({"r": "p = 0.062: UNDECIDED"}, {"r": "p = 0.062: UNSTABLE"}))
+        self.assertFalse(same({"k1": 0.0240}, {"k1": 0.0241}))
+        self.assertFalse(same({"eta": 0.0}, {"eta": 1e-6}))
+        self.assertFalse(same({"r": "3 runs"}, {"r": "4 runs"}))
+
     def test_a_failed_launch_is_recognised(self):
         self.assertTrue(LAUNCH_FAILURE.search("[FATAL] [1.2]: gps_driver: cannot open /x.nmea"))
         self.assertTrue(LAUNCH_FAILURE.search("process has died [pid 20955, exit code 1, cmd /x]"))
