@@ -18,6 +18,7 @@ drive on serial ports, make test itself) are plain `bash` blocks and are not run
 Usage: test_doc_commands.py [--devel DEVEL_SPACE] [--junit FILE]
        (DEVEL_SPACE defaults to the first .../devel on CMAKE_PREFIX_PATH, as a sourced workspace sets)
 """
+import json
 import os
 import pathlib
 import re
@@ -120,10 +121,17 @@ class DocumentCommands(unittest.TestCase):
 
     def test_same_results_forgives_the_last_printed_digit_and_a_bound_and_nothing_more(self):
         # The check that keeps docs/diagnosis/casale current: a build moves a fit's last digits,
-        # never its words or a number beyond 1e-4 (or beyond the last digit a sentence prints it with).
-        sys.path.insert(0, str(REPOSITORY / "scripts"))
-        import same_results
-        same = lambda e, a: not list(same_results.differences(e, a, "", 1e-4, set()))
+        # never its words or a number beyond 1e-4 (or beyond the last decimal a sentence prints).
+        def same(expected, actual):
+            with tempfile.TemporaryDirectory() as folder:
+                paths = [os.path.join(folder, name) for name in ("expected.json", "actual.json")]
+                for path, value in zip(paths, (expected, actual)):
+                    with open(path, "w") as stream:
+                        json.dump(value, stream)
+                checked = subprocess.run([sys.executable, str(REPOSITORY / "scripts/same_results.py"), *paths],
+                                         capture_output=True, text=True)
+                self.assertIn(checked.returncode, (0, 1), checked.stderr)
+                return checked.returncode == 0
         self.assertTrue(same({"r": "difference 0.09912 m^2/s^2"}, {"r": "difference 0.09911 m^2/s^2"}))
         self.assertTrue(same({"eta": 2.5e-15, "r": "index 6.346e-12"}, {"eta": 1.5e-10, "r": "index 2.539e-11"}))
         self.assertTrue(same({"k1": 0.0240001}, {"k1": 0.0240}))
