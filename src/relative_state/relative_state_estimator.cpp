@@ -168,6 +168,11 @@ void RelativeStateEstimator::process(const PairedEpoch& pair)
     state.invalid_reason = std::string(std::isfinite(state.leader_speed_mps) ? "follower" : "leader") +
                            " speed missing (no RMC/VTG in the epoch)";
   }
+  else if (!std::isfinite(state.space_gap_m) || !std::isfinite(state.relative_speed_mps))
+  {
+    // Speeds that are numbers but no car's (a corrupted field, 1e308) overflow their difference.
+    state.invalid_reason = "gap or relative speed not a finite number (a fix's position or speed is no car's)";
+  }
   else if (!held.empty())
   {
     ++counters_.held_positions;

@@ -194,6 +194,25 @@ TEST(RelativeStateEstimator, MissingSpeedAndStandstillAreInvalidOrNaNNotInvented
   EXPECT_EQ(estimator.counters().missing_speed, 1u);
 }
 
+// Speeds that are numbers but no car's overflow their difference: never a valid state that is not
+// a number (found by test/fuzz/fuzz_relative_state.cpp).
+TEST(RelativeStateEstimator, SpeedsNoCarHasGiveAnInvalidStateNotAnInfiniteOne)
+{
+  acc::RelativeStateEstimator estimator(settingsWithOffset());
+  const auto states = run(estimator, straightDrive(), 0.3, [](double t, acc::GnssFix& leader, acc::GnssFix& follower) {
+    if (std::abs(t - 0.2) < 1e-6)
+    {
+      leader.speed_over_ground_mps = 1.7e308;
+      follower.speed_over_ground_mps = -1.7e308;
+    }
+  });
+  ASSERT_EQ(states.size(), 4u);
+  EXPECT_TRUE(states[1].valid);
+  EXPECT_FALSE(states[2].valid);
+  EXPECT_NE(states[2].invalid_reason.find("not a finite number"), std::string::npos) << states[2].invalid_reason;
+  EXPECT_EQ(estimator.counters().invalid_states, 1u);
+}
+
 TEST(RelativeStateEstimator, DropoutRestartsTheConsistencyWindowAndLeavesNoSamples)
 {
   acc::RelativeStateEstimator estimator(settingsWithOffset());
