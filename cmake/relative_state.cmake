@@ -16,6 +16,7 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/gtest_main.cpp
     test/unit/test_pairing.cpp
     test/unit/test_relative_state_geometry.cpp
+    test/unit/test_relative_state_parameters.cpp
     test/unit/test_relative_state_estimator.cpp)
   target_link_libraries(test_relative_state acc_relative_state acc_model)
 endif()

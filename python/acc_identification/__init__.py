@@ -13,6 +13,7 @@ release the GIL, so threads can run several at once. The generated ROS messages 
 puts them: acc_identification.msg.
 """
 import json
+import math
 import sys
 
 from acc_identification import _core
@@ -60,7 +61,10 @@ def pair_nmea_logs(leader_log, follower_log, out_csv, antenna_offset_m=None, lea
     antenna-to-bumper offsets [m]. attrs["pairing"]: the counts `nmea_to_csv --json` writes. The
     file's unread keys and the stream events (dropouts, time resets) go to stderr, as the tool
     prints them; logs that pair no epoch raise ValueError with the tool's message."""
-    given = lambda value: float("nan") if value is None else value
+    def given(value):  # None is "not given", NaN to the library; a NaN given would read as None
+        if value is not None and math.isnan(value):
+            raise ValueError("pair_nmea_logs: a setting is NaN; leave it out (None) to not give it")
+        return float("nan") if value is None else value
     paired = _core.pair_nmea_logs(
         str(leader_log), str(follower_log), str(out_csv), "" if params is None else str(params), given(antenna_offset_m),
         given(leader_antenna_to_rear_bumper_m), given(follower_antenna_to_front_bumper_m), gap_mode or "",

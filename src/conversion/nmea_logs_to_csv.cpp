@@ -119,49 +119,24 @@ RelativeStateLogs pairNmeaLogs(const std::string& leader_path, const std::string
   return logs;
 }
 
-std::string geometryFromOffsets(double antenna_offset_m, double leader_antenna_to_rear_bumper_m,
-                                double follower_antenna_to_front_bumper_m, VehicleGeometry& geometry)
-{
-  const bool combined = !std::isnan(antenna_offset_m);
-  const bool leader = !std::isnan(leader_antenna_to_rear_bumper_m);
-  const bool follower = !std::isnan(follower_antenna_to_front_bumper_m);
-  if (combined && (leader || follower))
-    return "give the antennas' place once: the combined antenna offset or the two antenna-to-bumper offsets, not both";
-  if (!combined && !(leader && follower))
-    return leader || follower ? "the two antenna-to-bumper offsets go together: give both, or the combined offset"
-                              : "say where the antennas are, as the combined antenna offset or the two antenna-to-bumper "
-                                "offsets: the gap, and so eta, moves by any error in them";
-  const std::array<double, 3> given{antenna_offset_m, leader_antenna_to_rear_bumper_m,
-                                    follower_antenna_to_front_bumper_m};
-  for (double offset_m : given)
-    if (!std::isnan(offset_m) && !(std::abs(offset_m) <= kMaxAntennaOffsetM))
-      return "an antenna offset of " + std::to_string(offset_m) + " m is not between -1000 and 1000 m";
-  geometry = combined ? VehicleGeometry{antenna_offset_m, 0.0}
-                      : VehicleGeometry{leader_antenna_to_rear_bumper_m, follower_antenna_to_front_bumper_m};
-  return "";
-}
-
 std::string pairingSettingsFrom(const NmeaPairingOptions& options, RelativeStateSettings& settings,
                                 std::string& unread_note)
 {
-  bool file_places_antennas = false;
+  AntennaOffsets file_antennas;
   if (!options.params_path.empty())
   {
-    const std::string error =
-        loadRelativeStateParameterFile(options.params_path, settings, unread_note, file_places_antennas);
+    const std::string error = loadRelativeStateParameterFile(options.params_path, settings, unread_note, file_antennas);
     if (!error.empty())
       return error;
   }
-  const bool options_place_antennas = !std::isnan(options.antenna_offset_m) ||
-                                      !std::isnan(options.leader_antenna_to_rear_bumper_m) ||
-                                      !std::isnan(options.follower_antenna_to_front_bumper_m);
-  if (options_place_antennas || !file_places_antennas)
+  // Options that place the antennas replace the file's place whole: one form, never a mix.
+  const bool file_places = !options.antennas.anyGiven() && file_antennas.anyGiven();
+  const std::string unplaced = geometryFromOffsets(file_places ? file_antennas : options.antennas, settings.geometry);
+  if (!unplaced.empty())
   {
-    const std::string unplaced =
-        geometryFromOffsets(options.antenna_offset_m, options.leader_antenna_to_rear_bumper_m,
-                            options.follower_antenna_to_front_bumper_m, settings.geometry);
-    if (!unplaced.empty())
-      return unplaced + (options.params_path.empty() ? "" : "; the parameter file does not say it");
+    if (file_places)
+      return options.params_path + ": " + unplaced;
+    return unplaced + (options.params_path.empty() || options.antennas.anyGiven() ? "" : "; the parameter file does not say it");
   }
   if (!options.gap_mode.empty() && !parseGapMode(options.gap_mode, settings.gap_mode))
     return "gap mode '" + options.gap_mode + "' is neither straight_line nor along_track";

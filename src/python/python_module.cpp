@@ -174,8 +174,10 @@ py::dict pairNmeaLogs(const std::string& leader_path, const std::string& followe
                       const std::string& params_path, double antenna_offset_m, double leader_antenna_to_rear_bumper_m,
                       double follower_antenna_to_front_bumper_m, const std::string& gap_mode, double dropout_gap_s)
 {
-  const acc::NmeaPairingOptions options{params_path,        antenna_offset_m, leader_antenna_to_rear_bumper_m,
-                                        follower_antenna_to_front_bumper_m, gap_mode, dropout_gap_s};
+  const acc::NmeaPairingOptions options{
+      params_path,
+      acc::AntennaOffsets{antenna_offset_m, leader_antenna_to_rear_bumper_m, follower_antenna_to_front_bumper_m},
+      gap_mode, dropout_gap_s};
   acc::RelativeStateSettings settings;
   std::string notes;
   const std::string refused = acc::pairingSettingsFrom(options, settings, notes);

@@ -2,28 +2,32 @@
 #include "acc_identification/parameters/yaml_parameter_source.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace acc
 {
 namespace
 {
-/// Where the antennas sit on the cars: the two offsets, or one combined offset (what OpenACC gives).
-bool readGeometry(ParameterReader& r, VehicleGeometry& g)
+/// One offset, NaN when unset; a NaN set on purpose (.nan) is refused, not taken for "unset".
+bool readOffset(ParameterReader& r, const std::string& name, double& offset_m)
 {
-  if (!r.readAtLeast("leader_antenna_to_rear_bumper_m", g.leader_antenna_to_rear_bumper_m, -kMaxAntennaOffsetM) ||
-      !r.readAtLeast("follower_antenna_to_front_bumper_m", g.follower_antenna_to_front_bumper_m, -kMaxAntennaOffsetM))
-    return false;
-  if (!r.has("antenna_offset_m"))
-    return true;
-  if (!r.require(!r.has("leader_antenna_to_rear_bumper_m") && !r.has("follower_antenna_to_front_bumper_m"),
-                 "give either ~antenna_offset_m or the two antenna-to-bumper offsets, not both"))
-    return false;
-  double combined_m = 0.0;
-  if (!r.readAtLeast("antenna_offset_m", combined_m, -kMaxAntennaOffsetM))
-    return false;
-  g = {combined_m, 0.0};  // the whole offset on one side: only the sum enters the gap
-  return true;
+  return r.read(name, offset_m) && r.require(!r.has(name) || !std::isnan(offset_m), "parameter ~" + name + " is NaN");
+}
+
+/// The antennas' place as the parameters give it, their types checked; geometryFromOffsets judges it.
+bool readAntennaOffsets(ParameterReader& r, AntennaOffsets& offsets)
+{
+  return readOffset(r, "antenna_offset_m", offsets.combined_m) &&
+         readOffset(r, "leader_antenna_to_rear_bumper_m", offsets.leader_antenna_to_rear_bumper_m) &&
+         readOffset(r, "follower_antenna_to_front_bumper_m", offsets.follower_antenna_to_front_bumper_m);
+}
+
+bool placeAntennas(ParameterReader& r, const AntennaOffsets& offsets, VehicleGeometry& geometry)
+{
+  const std::string unplaced = geometryFromOffsets(offsets, geometry);
+  return r.require(unplaced.empty(), "parameters ~antenna_offset_m or ~leader_antenna_to_rear_bumper_m with "
+                                     "~follower_antenna_to_front_bumper_m: " + unplaced);
 }
 
 bool readPairing(ParameterReader& r, PairingSettings& q)
@@ -51,15 +55,22 @@ bool readChecks(ParameterReader& r, RelativeStateSettings& s)
          r.readAbove("consistency_window_s", s.consistency_window_s, 0.0) &&
          r.readAbove("min_held_position_move_m", s.min_held_position_move_m, 0.0);
 }
+/// Everything but the antennas' place.
+bool loadPairingAndGapSettings(ParameterReader& reader, RelativeStateSettings& s)
+{
+  std::string mode = gapModeName(s.gap_mode);
+  return reader.read("gap_mode", mode) &&
+         reader.require(parseGapMode(mode, s.gap_mode),
+                        "parameter ~gap_mode '" + mode + "' is neither straight_line nor along_track") &&
+         readPairing(reader, s.pairing) && readChecks(reader, s);
+}
 }  // namespace
 
 bool loadRelativeStateSettings(ParameterReader& reader, RelativeStateSettings& s)
 {
-  std::string mode = gapModeName(s.gap_mode);
-  return readGeometry(reader, s.geometry) && reader.read("gap_mode", mode) &&
-         reader.require(parseGapMode(mode, s.gap_mode),
-                        "parameter ~gap_mode '" + mode + "' is neither straight_line nor along_track") &&
-         readPairing(reader, s.pairing) && readChecks(reader, s);
+  AntennaOffsets offsets;
+  return readAntennaOffsets(reader, offsets) && loadPairingAndGapSettings(reader, s) &&
+         placeAntennas(reader, offsets, s.geometry);
 }
 
 bool loadRelativeStateNodeSettings(ParameterReader& reader, RelativeStateNodeSettings& s)
@@ -71,18 +82,17 @@ bool loadRelativeStateNodeSettings(ParameterReader& reader, RelativeStateNodeSet
 }
 
 std::string loadRelativeStateParameterFile(const std::string& path, RelativeStateSettings& settings,
-                                           std::string& unread_note, bool& places_antennas)
+                                           std::string& unread_note, AntennaOffsets& antennas)
 {
   const YamlParameterSource source = YamlParameterSource::fromFile(path);
   if (!source.ok())
     return source.error();
   ParameterReader reader(source);
   RelativeStateNodeSettings node_only;
-  if (!loadRelativeStateSettings(reader, settings) || !loadRelativeStateNodeSettings(reader, node_only))
+  if (!readAntennaOffsets(reader, antennas) || !loadPairingAndGapSettings(reader, settings) ||
+      !loadRelativeStateNodeSettings(reader, node_only))
     return path + ": " + reader.error();
   unread_note = reader.unreadNote();
-  places_antennas = reader.has("antenna_offset_m") || reader.has("leader_antenna_to_rear_bumper_m") ||
-                    reader.has("follower_antenna_to_front_bumper_m");
   return "";
 }
 

@@ -4,8 +4,11 @@
 #include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/LocalCartesian.hpp>
 
+#include <array>
 #include <cmath>
 #include <limits>
+#include <sstream>
+#include <string>
 #include <vector>
 
 namespace acc
@@ -21,6 +24,32 @@ struct PlanePoint
 
 double planeDistance(const PlanePoint& a, const PlanePoint& b) { return std::hypot(b.east_m - a.east_m, b.north_m - a.north_m); }
 }  // namespace
+
+std::string geometryFromOffsets(const AntennaOffsets& offsets, VehicleGeometry& geometry)
+{
+  const bool combined = !std::isnan(offsets.combined_m);
+  const bool leader = !std::isnan(offsets.leader_antenna_to_rear_bumper_m);
+  const bool follower = !std::isnan(offsets.follower_antenna_to_front_bumper_m);
+  if (combined && (leader || follower))
+    return "give the antennas' place once: the combined antenna offset or the two antenna-to-bumper offsets, not both";
+  if (!combined && !(leader && follower))
+    return leader || follower ? "the two antenna-to-bumper offsets go together: give both, or the combined offset"
+                              : "say where the antennas are, as the combined antenna offset or the two antenna-to-bumper "
+                                "offsets: the gap, and so eta, moves by any error in them";
+  const std::array<double, 3> given{offsets.combined_m, offsets.leader_antenna_to_rear_bumper_m,
+                                    offsets.follower_antenna_to_front_bumper_m};
+  for (double offset_m : given)
+    if (!std::isnan(offset_m) && !(std::abs(offset_m) <= kMaxAntennaOffsetM))
+    {
+      std::ostringstream refusal;
+      refusal << "an antenna offset of " << offset_m << " m is not between -1000 and 1000 m";
+      return refusal.str();
+    }
+  // The combined offset all on one side: only the sum enters the gap.
+  geometry = combined ? VehicleGeometry{offsets.combined_m, 0.0}
+                      : VehicleGeometry{offsets.leader_antenna_to_rear_bumper_m, offsets.follower_antenna_to_front_bumper_m};
+  return "";
+}
 
 double geodesicDistance(double latitude1_deg, double longitude1_deg, double latitude2_deg, double longitude2_deg)
 {

@@ -13,12 +13,6 @@
 
 namespace
 {
-CLI::Validator metres()
-{
-  return acc::number_checks::finiteNumber([](double v) { return std::abs(v) <= acc::kMaxAntennaOffsetM; }, "between -1000 and 1000",
-                                          "METRES");
-}
-
 /// What the logs gave, on stdout; the stream events on stderr. false when no state was made.
 bool report(const acc::RelativeStateLogs& logs, const std::string& out_path)
 {
@@ -52,23 +46,21 @@ int main(int argc, char** argv)
                  "relative_state_node's parameter file (its keys, as config/relative_state.yaml): pair as the node "
                  "would with it")
       ->check(CLI::ExistingFile);
-  auto* combined = app.add_option("--antenna-offset-m", options.antenna_offset_m,
-                                  "antenna to antenna minus bumper to bumper on a straight road [m]")
-                       ->check(metres());
-  auto* leader_offset =
-      app.add_option("--leader-antenna-to-rear-bumper-m", options.leader_antenna_to_rear_bumper_m)->check(metres());
-  auto* follower_offset =
-      app.add_option("--follower-antenna-to-front-bumper-m", options.follower_antenna_to_front_bumper_m)
-          ->check(metres());
-  combined->excludes(leader_offset)->excludes(follower_offset);
-  leader_offset->needs(follower_offset);
-  follower_offset->needs(leader_offset);
+  // The antennas' place and the dropout gap are judged by the library's rule (pairingSettingsFrom),
+  // the same for this tool, Python and the node; NaN, its "not given", is refused here.
+  app.add_option("--antenna-offset-m", options.antennas.combined_m,
+                 "antenna to antenna minus bumper to bumper on a straight road [m]")
+      ->check(acc::finiteNumber("METRES"));
+  app.add_option("--leader-antenna-to-rear-bumper-m", options.antennas.leader_antenna_to_rear_bumper_m, "[m]")
+      ->check(acc::finiteNumber("METRES"));
+  app.add_option("--follower-antenna-to-front-bumper-m", options.antennas.follower_antenna_to_front_bumper_m, "[m]")
+      ->check(acc::finiteNumber("METRES"));
   app.add_option("--gap-mode", options.gap_mode, "straight_line or along_track (default: the file's, else straight_line)")
       ->check(CLI::IsMember({"straight_line", "along_track"}));
   app.add_option("--dropout-gap-s", options.dropout_gap_s,
                  "a longer step is a dropout; above the receivers' step (1 Hz: 2.5) [s] (default: the file's, else "
                  "0.5)")
-      ->check(acc::positiveNumber());
+      ->check(acc::finiteNumber("SECONDS"));
   app.add_option("--json", json_path, "the counts: what each log gave, the pairing, why states are invalid");
   app.add_option("LEADER", leader_path, "leader's NMEA log")->required()->check(CLI::ExistingFile);
   app.add_option("FOLLOWER", follower_path, "follower's NMEA log")->required()->check(CLI::ExistingFile);

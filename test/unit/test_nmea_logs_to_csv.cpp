@@ -117,24 +117,6 @@ TEST(NmeaLogsToCsv, AMissingLogIsAnError)
   EXPECT_TRUE(logs.states.empty());
 }
 
-// The antennas' place is the user's to say, once: no default, no mix of the two forms, no offset
-// beyond any car (the gap, and so eta, moves by any error in it).
-TEST(NmeaLogsToCsv, TheAntennasPlaceIsSaidOnceAndWithinBounds)
-{
-  acc::VehicleGeometry geometry{-7.0, -7.0};
-  EXPECT_NE(acc::geometryFromOffsets(NAN, NAN, NAN, geometry).find("say where the antennas are"), std::string::npos);
-  EXPECT_NE(acc::geometryFromOffsets(5.6, 2.0, NAN, geometry).find("not both"), std::string::npos);
-  EXPECT_NE(acc::geometryFromOffsets(NAN, NAN, 3.6, geometry).find("go together"), std::string::npos);
-  EXPECT_NE(acc::geometryFromOffsets(NAN, 2.0, INFINITY, geometry).find("not between"), std::string::npos);
-  EXPECT_NE(acc::geometryFromOffsets(1001.0, NAN, NAN, geometry).find("not between"), std::string::npos);
-  EXPECT_EQ(geometry.leader_antenna_to_rear_bumper_m, -7.0) << "a refused place must leave the geometry alone";
-  EXPECT_EQ(acc::geometryFromOffsets(5.6, NAN, NAN, geometry), "");
-  EXPECT_EQ(geometry.combinedOffset(), 5.6);
-  EXPECT_EQ(acc::geometryFromOffsets(NAN, 2.0, 3.5, geometry), "");
-  EXPECT_EQ(geometry.leader_antenna_to_rear_bumper_m, 2.0);
-  EXPECT_EQ(geometry.follower_antenna_to_front_bumper_m, 3.5);
-}
-
 // Logs an hour apart pair nothing: that is said with the fixes each gave, and the CSV written
 // holds its header alone; a CSV that cannot be written is an error.
 TEST(NmeaLogsToCsv, LogsThatNeverMeetAreSaidToAndAnUnwritableCsvIsAnError)
@@ -193,8 +175,8 @@ TEST(NmeaLogsToCsv, TheNodesParameterFileSetsThePairingAndTheOptionsOverrideIt)
   const ParameterFile one_hertz("one_hertz", "antenna_offset_m: 4.0\ndropout_gap_s: 2.5\nmax_interpolation_skew_s: 1.2\n"
                                 "gap_mode: along_track\nmax_gap: 3.0\n");
   options.params_path = one_hertz.path();
-  options.leader_antenna_to_rear_bumper_m = 1.0;
-  options.follower_antenna_to_front_bumper_m = 2.5;
+  options.antennas.leader_antenna_to_rear_bumper_m = 1.0;
+  options.antennas.follower_antenna_to_front_bumper_m = 2.5;
   options.gap_mode = "straight_line";
   settings = acc::RelativeStateSettings{};
   ASSERT_EQ(acc::pairingSettingsFrom(options, settings, note), "");

@@ -112,3 +112,25 @@ TEST(Geometry, AlongTrackRefusesWhenThePathDoesNotReachTheFollowerOrIsFarOff)
   EXPECT_NE(why.find("off the leader's path"), std::string::npos);
   EXPECT_TRUE(track.alongTrackDistance(fixAtPlane(60, 0, 52.0), fixAtPlane(60, 1.0, 20.0), &why).has_value());
 }
+
+// The antennas' place is the user's to say, once: no default, no mix of the two forms, no offset
+// beyond any car (the gap, and so eta, moves by any error in it). One rule for the node's
+// parameters, nmea_to_csv's options and Python's.
+TEST(VehicleGeometry, TheAntennasPlaceIsSaidOnceAndWithinBounds)
+{
+  const auto place = [](double combined_m, double leader_m, double follower_m, acc::VehicleGeometry& geometry) {
+    return acc::geometryFromOffsets(acc::AntennaOffsets{combined_m, leader_m, follower_m}, geometry);
+  };
+  acc::VehicleGeometry geometry{-7.0, -7.0};
+  EXPECT_NE(place(NAN, NAN, NAN, geometry).find("say where the antennas are"), std::string::npos);
+  EXPECT_NE(place(5.6, 2.0, NAN, geometry).find("not both"), std::string::npos);
+  EXPECT_NE(place(NAN, NAN, 3.6, geometry).find("go together"), std::string::npos);
+  EXPECT_NE(place(NAN, 2.0, INFINITY, geometry).find("not between"), std::string::npos);
+  EXPECT_NE(place(1001.0, NAN, NAN, geometry).find("not between"), std::string::npos);
+  EXPECT_EQ(geometry.leader_antenna_to_rear_bumper_m, -7.0) << "a refused place must leave the geometry alone";
+  EXPECT_EQ(place(5.6, NAN, NAN, geometry), "");
+  EXPECT_EQ(geometry.combinedOffset(), 5.6);
+  EXPECT_EQ(place(NAN, 2.0, 3.5, geometry), "");
+  EXPECT_EQ(geometry.leader_antenna_to_rear_bumper_m, 2.0);
+  EXPECT_EQ(geometry.follower_antenna_to_front_bumper_m, 3.5);
+}

@@ -35,28 +35,19 @@ struct RelativeStateLogs
 RelativeStateLogs pairNmeaLogs(const std::string& leader_path, const std::string& follower_path,
                                const RelativeStateSettings& settings);
 
-/// The antennas' place as a user gives it: the combined offset (antenna to antenna minus bumper to
-/// bumper), or the two antenna-to-bumper offsets; NaN is "not given". Empty when geometry is set;
-/// otherwise what is missing, given twice or out of bounds (the gap, and so eta, moves by any error in them, so
-/// there is no default to fall back on).
-std::string geometryFromOffsets(double antenna_offset_m, double leader_antenna_to_rear_bumper_m,
-                                double follower_antenna_to_front_bumper_m, VehicleGeometry& geometry);
-
 /// What a user gives nmea_to_csv (or Python's pair_nmea_logs): relative_state_node's parameter
 /// file, and options that override it; NaN or empty is "not given".
 struct NmeaPairingOptions
 {
   std::string params_path;
-  double antenna_offset_m = RelativeState::kNaN;
-  double leader_antenna_to_rear_bumper_m = RelativeState::kNaN;
-  double follower_antenna_to_front_bumper_m = RelativeState::kNaN;
+  AntennaOffsets antennas;
   std::string gap_mode;
   double dropout_gap_s = RelativeState::kNaN;
 };
 
 /// The pairing's settings: the node's defaults, then the parameter file's values, then the
-/// options'. The antennas' place must come from one of the two (geometryFromOffsets' rule, which
-/// options that place them follow whatever the file says). "" when set, else the error;
+/// options'. The antennas' place must come from one of the two by geometryFromOffsets' rule, the
+/// options' whole when they give any (the file's is then not read). "" when set, else the error;
 /// unread_note: the file's keys never read (misspelt?).
 std::string pairingSettingsFrom(const NmeaPairingOptions& options, RelativeStateSettings& settings,
                                 std::string& unread_note);

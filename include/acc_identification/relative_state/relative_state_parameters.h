@@ -8,8 +8,9 @@
 namespace acc
 {
 /// The pairing's and the gap's parameters (config/relative_state.yaml documents each) into
-/// settings: false and reader.error() on a bad value (type or range). One loader for
-/// relative_state_node and for nmea_to_csv --params, so that batch and live pair alike.
+/// settings: false and reader.error() on a bad value (type or range) or on antennas not placed by
+/// geometryFromOffsets' rule. One loader for relative_state_node and for nmea_to_csv --params, so
+/// that batch and live pair alike.
 bool loadRelativeStateSettings(ParameterReader& reader, RelativeStateSettings& settings);
 
 /// The parameters only the live node uses: its health report and its queues.
@@ -30,8 +31,9 @@ bool loadRelativeStateNodeSettings(ParameterReader& reader, RelativeStateNodeSet
 /// relative_state_node's parameter file (config/relative_state.yaml's keys) read onto settings as
 /// the node reads it (its own keys read too, and unused): "" when read, else why not (the file, or
 /// a value's type or range, named as the node names it). unread_note: the keys set and never read
-/// (misspelt?), for a warning; places_antennas: whether the file says where the antennas are.
+/// (misspelt?), for a warning; antennas: the antennas' place as the file gives it, for the caller
+/// to judge with geometryFromOffsets once options that override it are known.
 std::string loadRelativeStateParameterFile(const std::string& path, RelativeStateSettings& settings,
-                                           std::string& unread_note, bool& places_antennas);
+                                           std::string& unread_note, AntennaOffsets& antennas);
 
 }  // namespace acc

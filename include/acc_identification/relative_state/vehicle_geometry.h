@@ -2,6 +2,7 @@
 
 #include <acc_identification/gnss/gnss_fix.h>
 
+#include <cmath>
 #include <cstddef>
 #include <deque>
 #include <optional>
@@ -22,6 +23,28 @@ struct VehicleGeometry
 
   double combinedOffset() const { return leader_antenna_to_rear_bumper_m + follower_antenna_to_front_bumper_m; }
 };
+
+/// The antennas' place as a user gives it (a node's parameters, a tool's options): the combined
+/// offset (antenna to antenna minus bumper to bumper), or the two antenna-to-bumper offsets [m].
+/// NaN is "not given".
+struct AntennaOffsets
+{
+  double combined_m = NAN;
+  double leader_antenna_to_rear_bumper_m = NAN;
+  double follower_antenna_to_front_bumper_m = NAN;
+
+  bool anyGiven() const
+  {
+    return !std::isnan(combined_m) || !std::isnan(leader_antenna_to_rear_bumper_m) ||
+           !std::isnan(follower_antenna_to_front_bumper_m);
+  }
+};
+
+/// The one rule for the antennas' place, for every reader of it: the combined offset alone, or the
+/// two antenna-to-bumper offsets together, each within kMaxAntennaOffsetM. Empty when geometry is
+/// set; otherwise what is missing, given twice or out of bounds. The gap, and so eta, moves by any
+/// error in them, so there is no default to fall back on.
+std::string geometryFromOffsets(const AntennaOffsets& offsets, VehicleGeometry& geometry);
 
 /// Geodesic distance on WGS84 between two points [deg] (GeographicLib, accurate to nanometres).
 double geodesicDistance(double latitude1_deg, double longitude1_deg, double latitude2_deg, double longitude2_deg);

@@ -37,6 +37,13 @@ CLI::Validator finiteNumber(Accepts accepts, const std::string& asks, const std:
 }
 }  // namespace number_checks
 
+/// Any finite number, for an option whose range a library rule judges: NaN, which a caller would
+/// take for "not given", is refused here.
+inline CLI::Validator finiteNumber(const std::string& name)
+{
+  return number_checks::finiteNumber([](double) { return true; }, "", name);
+}
+
 /// A number above 0.
 inline CLI::Validator positiveNumber()
 {

@@ -159,6 +159,10 @@ def test_pair_nmea_logs_refuses_to_guess_and_says_when_nothing_pairs(tmp_path):
         acc.pair_nmea_logs(leader, follower, out, leader_antenna_to_rear_bumper_m=2.0)
     with pytest.raises(ValueError, match="'chord' is neither"):
         acc.pair_nmea_logs(leader, follower, out, antenna_offset_m=5.6, gap_mode="chord")
+    with pytest.raises(ValueError, match="a setting is NaN"):  # NaN would be taken for "not given"
+        acc.pair_nmea_logs(leader, follower, out, antenna_offset_m=5.6, dropout_gap_s=float("nan"))
+    with pytest.raises(ValueError, match="not between -1000 and 1000"):
+        acc.pair_nmea_logs(leader, follower, out, antenna_offset_m=5600.0)
     with pytest.raises(RuntimeError, match="nope.nmea"):
         acc.pair_nmea_logs(tmp_path / "nope.nmea", follower, out, antenna_offset_m=5.6)
     later_leader, _ = nmea_logs(tmp_path, "an_hour_later", "--time-shift-s", "3600")
