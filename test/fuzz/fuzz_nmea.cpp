@@ -14,17 +14,11 @@
 #include "acc_identification/gnss/nmea_parser.h"
 #include "acc_identification/gnss/nmea_writer.h"
 
+#include "fuzz_support.h"
 
 namespace
 {
-void check(bool condition, const char* what)
-{
-  if (!condition)
-  {
-    std::fprintf(stderr, "invariant violated: %s\n", what);
-    std::abort();
-  }
-}
+using fuzz_support::check;
 
 void checkFix(const acc::GnssFix& fix)
 {

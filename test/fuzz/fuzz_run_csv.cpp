@@ -14,17 +14,11 @@
 
 #include "acc_identification/io/input_account.h"
 #include "acc_identification/io/run_csv.h"
+#include "fuzz_support.h"
 
 namespace
 {
-void check(bool condition, const char* what)
-{
-  if (!condition)
-  {
-    std::fprintf(stderr, "invariant violated: %s\n", what);
-    std::abort();
-  }
-}
+using fuzz_support::check;
 
 /// One file per fuzzing process, rewritten for every input and removed when the process ends.
 const std::string& inputPath()

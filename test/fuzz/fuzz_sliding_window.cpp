@@ -16,33 +16,12 @@
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include "acc_identification/calibration/sliding_window.h"
+#include "fuzz_support.h"
 
 namespace
 {
-void check(bool condition, const char* what)
-{
-  if (!condition)
-  {
-    std::fprintf(stderr, "invariant violated: %s\n", what);
-    std::abort();
-  }
-}
-
-/// A number as a sender may send it: usually in range, sometimes anything a double can hold.
-double field(FuzzedDataProvider& input, double low, double high)
-{
-  switch (input.ConsumeIntegralInRange<int>(0, 15))
-  {
-    case 0:
-      return std::numeric_limits<double>::quiet_NaN();
-    case 1:
-      return input.ConsumeBool() ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
-    case 2:
-      return input.ConsumeFloatingPoint<double>();
-    default:
-      return input.ConsumeFloatingPointInRange<double>(low, high);
-  }
-}
+using fuzz_support::check;
+using fuzz_support::field;
 
 /// The next sample's time: mostly 10 Hz steps, sometimes late, repeated, jumping or not a time.
 double nextTime(FuzzedDataProvider& input, double& clock_s)
