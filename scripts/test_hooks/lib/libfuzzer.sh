@@ -4,6 +4,9 @@
 # seed folders (only read; new inputs go to a work corpus) with the extra libFuzzer FLAGS, and
 # writes RESULTS_DIR/NAME.xml (JUnit, one test case; a failure with the crash report on any crash,
 # sanitizer finding, invariant violation or build error). Returns non-zero on a failure.
+# The seed is fixed (FUZZ_SEED, default 1): make test on a user's machine tries the inputs CI tried
+# (as many as its speed allows in SECONDS), so a latent bug fails CI first, not a user's build.
+# FUZZ_SEED=0 draws a seed (libFuzzer's own rule), to explore beyond them.
 source "$(dirname "${BASH_SOURCE[0]}")/junit.sh"
 
 run_libfuzzer_hook() {
@@ -25,7 +28,7 @@ run_libfuzzer_hook() {
     return 1
   fi
   # shellcheck disable=SC2086  # FLAGS are words for libFuzzer
-  "$work/$name" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 $flags \
+  "$work/$name" -seed="${FUZZ_SEED:-1}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 $flags \
     -artifact_prefix="$work/" "$work/corpus" "$@" >> "$log" 2>&1
   status=$?
   elapsed=$(( $(date +%s) - start ))
