@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -162,9 +163,40 @@ std::string noStateReason(const RelativeStateLogs& logs)
 {
   if (!logs.states.empty())
     return "";
-  return "no follower epoch could be paired with the leader (" + std::to_string(logs.pairing.follower_fixes) +
-         " follower and " + std::to_string(logs.pairing.leader_fixes) +
+  const PairingCounters& p = logs.pairing;
+  // A log whose every fix is unusable pairs nothing however the two overlap: say that, not overlap.
+  const auto unusable = [](const std::string& car, std::uint64_t fixes, std::uint64_t invalid) -> std::string {
+    if (fixes == 0)
+      return "the " + car + "'s log gave no fix: does it hold GGA or RMC sentences with a time?";
+    if (invalid == fixes)
+      return "none of the " + car + "'s " + std::to_string(fixes) +
+             " fixes has a usable position and time (no fix: GGA quality 0 or RMC status V, as a receiver without "
+             "satellites or in simulation mode reports; or a position off the Earth)";
+    return "";
+  };
+  for (const std::string& reason : {unusable("leader", p.leader_fixes, p.leader_invalid_fixes),
+                                    unusable("follower", p.follower_fixes, p.follower_invalid_fixes)})
+    if (!reason.empty())
+      return reason;
+  return "no follower epoch could be paired with the leader (" + std::to_string(p.follower_fixes) + " follower and " +
+         std::to_string(p.leader_fixes) +
          " leader fixes): do the two logs overlap in time, and do both carry the date (RMC) or neither?";
+}
+
+std::string fixAccount(const PairingCounters& p)
+{
+  std::ostringstream account;
+  account << p.follower_fixes << " follower and " << p.leader_fixes << " leader fixes: " << p.exact_pairs
+          << " paired exactly, " << p.interpolated_pairs << " interpolated, " << p.follower_unpaired
+          << " follower epochs unpaired, " << p.follower_invalid_fixes << " follower and " << p.leader_invalid_fixes
+          << " leader fixes without a usable position or time";
+  if (p.follower_duplicates + p.leader_duplicates > 0)
+    account << ", " << p.follower_duplicates << " follower and " << p.leader_duplicates << " leader duplicates";
+  if (p.follower_too_late + p.leader_too_late > 0)
+    account << ", " << p.follower_too_late << " follower and " << p.leader_too_late << " leader fixes too late";
+  if (p.buffer_overflows > 0)
+    account << ", " << p.buffer_overflows << " fixes discarded from full buffers";
+  return account.str();
 }
 
 bool writeRelativeStateCsv(const std::string& path, const std::vector<RelativeState>& states, std::string& error)

@@ -18,13 +18,10 @@ bool report(const acc::RelativeStateLogs& logs, const std::string& out_path)
 {
   for (const std::string& event : logs.stream_events)
     std::cerr << "note: " << event << "\n";
-  const acc::PairingCounters& p = logs.pairing;
   const acc::RelativeStateCounters& e = logs.estimator;
   std::cout << "nmea_to_csv: leader log: " << logs.leader_log.summary() << "\n"
             << "nmea_to_csv: follower log: " << logs.follower_log.summary() << "\n"
-            << "nmea_to_csv: " << p.follower_fixes << " follower and " << p.leader_fixes << " leader fixes: "
-            << p.exact_pairs << " paired exactly, " << p.interpolated_pairs << " interpolated, " << p.follower_unpaired
-            << " follower epochs unpaired; " << e.invalid_states << " of " << e.states << " states invalid ("
+            << "nmea_to_csv: " << acc::fixAccount(logs.pairing) << "; " << e.invalid_states << " of " << e.states << " states invalid ("
             << e.jumps_rejected << " jumps, " << e.held_positions << " held positions, " << e.missing_speed
             << " without a speed: the reason in each row, split points for the readers) -> " << out_path << "\n";
   const std::string no_state = acc::noStateReason(logs);

@@ -144,6 +144,33 @@ TEST(NmeaLogsToCsv, LogsThatNeverMeetAreSaidToAndAnUnwritableCsvIsAnError)
   EXPECT_NE(unwritable.error.find("/nonexistent/out.csv"), std::string::npos) << unwritable.error;
 }
 
+// A receiver without satellites (or in simulation mode, as a Garmin GPSmap 76S logs) writes
+// fixes with no usable position: the logs meet in time, and the reason nothing pairs is that, not
+// the overlap. Every follower fix is in the one-line account.
+TEST(NmeaLogsToCsv, AFollowerWithoutAFixIsSaidToAndEveryFixIsAccounted)
+{
+  const acc::OpenAccPairTrack track = acc::readOpenAccPairTrack(std::string(ACC_OPENACC_DATA_DIR) + "/part3.csv");
+  ASSERT_EQ(track.error, "");
+  std::vector<acc::GnssFix> follower = acc::openAccFixes(track, 2);
+  for (acc::GnssFix& fix : follower)
+    fix.valid_fields &= ~acc::GnssFix::kValidPosition;
+  TemporaryFolder folder("nmea_logs_to_csv_no_fix");
+  std::string error;
+  ASSERT_TRUE(acc::writeNmeaLog(folder.file("L.nmea"), acc::openAccFixes(track, 1), "GN", error)) << error;
+  ASSERT_TRUE(acc::writeNmeaLog(folder.file("F.nmea"), follower, "GN", error)) << error;
+  const acc::RelativeStateLogs logs =
+      acc::pairNmeaLogsToCsv(folder.file("L.nmea"), folder.file("F.nmea"), folder.file("out.csv"), casaleSettings());
+  ASSERT_EQ(logs.error, "");
+  const std::string reason = acc::noStateReason(logs);
+  EXPECT_NE(reason.find("none of the follower's " + std::to_string(track.rows.size()) + " fixes has a usable position"),
+            std::string::npos)
+      << reason;
+  const std::string account = acc::fixAccount(logs.pairing);
+  EXPECT_NE(account.find(std::to_string(track.rows.size()) + " follower and 0 leader fixes without a usable position"),
+            std::string::npos)
+      << account;
+}
+
 namespace
 {
 /// A parameter file with the given text, in a folder of its own (name: the file's and the folder's).

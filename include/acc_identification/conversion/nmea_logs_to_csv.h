@@ -57,8 +57,13 @@ std::string pairingSettingsFrom(const NmeaPairingOptions& options, RelativeState
 RelativeStateLogs pairNmeaLogsToCsv(const std::string& leader_path, const std::string& follower_path,
                                     const std::string& out_path, const RelativeStateSettings& settings);
 
-/// Empty when the logs gave a state; otherwise why none could be made, for the user.
+/// Empty when the logs gave a state; otherwise why none could be made, for the user: a log without
+/// a fix, a log whose every fix is unusable, or logs that do not meet in time.
 std::string noStateReason(const RelativeStateLogs& logs);
+
+/// Where every fix went, in one line: paired, unpaired, unusable, and (when any) duplicated, too
+/// late or discarded from a full buffer; the follower's add up to its fixes.
+std::string fixAccount(const PairingCounters& pairing);
 
 /// The states as a canonical run CSV that keeps the pairing's verdict: time_s, space_gap_m,
 /// follower_speed_mps, leader_speed_mps, relative_speed_mps, space_gap_sigma_m, epoch_skew_s,
