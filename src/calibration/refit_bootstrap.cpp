@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <ostream>
 #include <random>
 
@@ -22,7 +23,6 @@ namespace
 {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr const char* kQuantityNames[] = {"k1", "k2", "tau_e", "eta", "stability_margin"};
-constexpr std::size_t kQuantityCount = sizeof kQuantityNames / sizeof kQuantityNames[0];
 
 /// What a replicate is built from, per run: the fit's simulated speeds, the centred speed
 /// residuals after the measured start, and the gap's sample noise.
@@ -33,24 +33,20 @@ struct RunModel
   double gap_noise_m = 0.0;
 };
 
-/// The runs' models, or the reason there are none.
-std::vector<RunModel> modelRuns(const AccParameters& fit, const std::vector<CarFollowingRun>& runs, std::string* why)
+/// The runs' models from the fit's simulation of each.
+std::vector<RunModel> modelRuns(const std::vector<std::vector<double>>& simulated_speed_mps,
+                                const std::vector<CarFollowingRun>& runs)
 {
   std::vector<RunModel> models;
-  for (const CarFollowingRun& run : runs)
+  for (std::size_t r = 0; r < runs.size(); ++r)
   {
-    const SimulatedFollower sim = simulateFollower(fit, EffectSettings{}, run);
-    if (sim.diverged)
-    {
-      *why = "the fit's simulation of " + run.name + " diverges";
-      return {};
-    }
+    const CarFollowingRun& run = runs[r];
     RunModel model;
-    model.simulated_speed_mps = sim.speed_mps;
+    model.simulated_speed_mps = simulated_speed_mps[r];
     double sum = 0.0;
     for (std::size_t k = 1; k < run.size(); ++k)  // the first residual is 0 by construction
     {
-      model.residual_mps.push_back(run.follower_speed_mps[k] - sim.speed_mps[k]);
+      model.residual_mps.push_back(run.follower_speed_mps[k] - model.simulated_speed_mps[k]);
       sum += model.residual_mps.back();
     }
     for (double& e : model.residual_mps)
@@ -82,78 +78,62 @@ CarFollowingRun replicateRun(const CarFollowingRun& run, const RunModel& model, 
   return replicate;
 }
 
-/// The five quantities of one fit, with their sandwich standard errors (NaN where held at a bound).
-struct QuantityDraw
+/// The base model's five quantities of one fit, with their sandwich standard errors (NaN where
+/// held at a bound).
+BootstrapDraw drawOf(const IdentifiableQuantities& quantities)
 {
-  double value[kQuantityCount] = {};
-  double standard_error[kQuantityCount] = {};
-  std::string held_by_bound[kQuantityCount];  ///< QuantityEstimate::held_by_bound
-};
-
-QuantityDraw drawOf(const IdentifiableQuantities& quantities)
-{
-  QuantityDraw draw;
-  for (std::size_t i = 0; i < kQuantityCount; ++i)
+  BootstrapDraw draw;
+  for (const char* name : kQuantityNames)
   {
-    const QuantityEstimate* q = quantities.find(kQuantityNames[i]);
-    draw.value[i] = q ? q->value : kNaN;
-    draw.held_by_bound[i] = q ? q->held_by_bound : "";
-    draw.standard_error[i] = q && q->held_by_bound.empty() ? q->standard_error : kNaN;
+    const QuantityEstimate* q = quantities.find(name);
+    draw.value.push_back(q ? q->value : kNaN);
+    draw.held_by_bound.push_back(q ? q->held_by_bound : "");
+    draw.standard_error.push_back(q && q->held_by_bound.empty() ? q->standard_error : kNaN);
   }
   return draw;
 }
 
 /// Which parameter of the fit sits at a bound ("tau_e at its lower bound 0"), or "".
-std::string parameterAtBound(const QuantityDraw& at_fit)
+std::string parameterAtBound(const BootstrapDraw& at_fit, std::size_t parameter_count)
 {
-  for (std::size_t i = 0; i < 4; ++i)  // k1, k2, tau_e, eta
+  for (std::size_t i = 0; i < parameter_count && i < at_fit.held_by_bound.size(); ++i)
     if (!at_fit.held_by_bound[i].empty())
       return at_fit.held_by_bound[i];
   return "";
 }
 
-/// Refits replicate `index` (its own random stream, so that threads do not change the draws).
-/// diverged: no fit within the bounds.
-struct Refit
-{
-  QuantityDraw draw;
-  bool diverged = false;
-};
+/// One replicate's refit: nullopt when it diverged.
+using Refit = std::optional<BootstrapDraw>;
 
-Refit refitReplicate(std::size_t index, const AccParameters& fit, const std::vector<CarFollowingRun>& runs,
-                     const std::vector<RunModel>& models, std::size_t block_samples, const RefitBootstrapOptions& options)
+/// Builds replicate `index` (its own random stream, so that threads do not change the draws) and
+/// refits it.
+Refit refitReplicate(std::size_t index, const std::vector<CarFollowingRun>& runs, const std::vector<RunModel>& models,
+                     std::size_t block_samples, const ReplicateRefit& refit, std::uint64_t seed)
 {
-  std::mt19937_64 engine(streamSeed(options.seed, 2 * index));
-  NormalSource normal(streamSeed(options.seed, 2 * index + 1));
+  std::mt19937_64 engine(streamSeed(seed, 2 * index));
+  NormalSource normal(streamSeed(seed, 2 * index + 1));
   std::vector<CarFollowingRun> replicate;
   for (std::size_t r = 0; r < runs.size(); ++r)
     replicate.push_back(replicateRun(runs[r], models[r], block_samples, engine, normal));
-  MultistartOptions multistart;
-  multistart.starts = options.starts;
-  const MultistartResult refit = calibrateMultistart(CalibrationObjective(replicate, options.bounds), multistart, {fit});
-  Refit result;
-  result.diverged = refit.diverged;
-  if (!refit.diverged)
-    result.draw = drawOf(assessQuantities(refit.parameters, estimateUncertainty(refit.parameters, replicate),
-                                          replicate, options.bounds));
-  return result;
+  return refit(replicate);
 }
 
 /// The interval and spread of quantity i from the refits.
-BootstrapQuantity summarise(std::size_t i, const QuantityDraw& at_fit, const std::vector<Refit>& refits)
+BootstrapQuantity summarise(std::size_t i, const FittedDrives& fitted, const std::vector<Refit>& refits)
 {
+  const BootstrapDraw& at_fit = fitted.at_fit;
   BootstrapQuantity q;
-  q.name = kQuantityNames[i];
+  q.name = fitted.quantity_names[i];
   q.value = at_fit.value[i];
   std::vector<double> values, studentised;
   for (const Refit& refit : refits)
   {
-    if (refit.diverged)
+    if (!refit || i >= refit->value.size())
       continue;
-    values.push_back(refit.draw.value[i]);
-    const double se = refit.draw.standard_error[i];
+    values.push_back(refit->value[i]);
+    const double se = refit->standard_error[i];
     if (std::isfinite(se) && se > 0.0)
-      studentised.push_back((refit.draw.value[i] - q.value) / se);
+      studentised.push_back((refit->value[i] - q.value) / se);
   }
   if (values.size() >= 2)
   {
@@ -189,19 +169,15 @@ const BootstrapQuantity* RefitBootstrap::find(const std::string& name) const
   return nullptr;
 }
 
-RefitBootstrap bootstrapRefits(const AccParameters& fit, const std::vector<CarFollowingRun>& runs,
-                               const RefitBootstrapOptions& options)
+RefitBootstrap bootstrapFittedDrives(const FittedDrives& fitted, const std::vector<CarFollowingRun>& runs,
+                                     const ReplicateRefit& refit, const RefitBootstrapOptions& options)
 {
   const auto started = std::chrono::steady_clock::now();
   RefitBootstrap result;
   result.replicates = options.replicates;
-  const std::vector<RunModel> models = modelRuns(fit, runs, &result.note);
-  if (!result.note.empty())
-    return result;
-  const ParameterUncertainty uncertainty = estimateUncertainty(fit, runs);
-  const QuantityDraw at_fit = drawOf(assessQuantities(fit, uncertainty, runs, options.bounds));
-  result.block_length_s = uncertainty.block_length_s;
-  const std::string at_bound = parameterAtBound(at_fit);
+  result.block_length_s = fitted.block_length_s;
+  const std::vector<RunModel> models = modelRuns(fitted.simulated_speed_mps, runs);
+  const std::string at_bound = parameterAtBound(fitted.at_fit, fitted.parameter_count);
   if (!at_bound.empty())
     result.caution = at_bound + ": the other intervals are approximate (a bootstrap does not hold at a bound)";
   const double step_s = medianStepS(runs);
@@ -209,14 +185,49 @@ RefitBootstrap bootstrapRefits(const AccParameters& fit, const std::vector<CarFo
       std::isfinite(step_s) && step_s > 0.0 ? static_cast<std::size_t>(std::lround(result.block_length_s / step_s)) : 1;
   std::vector<Refit> refits(options.replicates);
   runTasksInParallel(options.replicates, effectiveThreadCount(options.threads, options.replicates), [&](std::size_t b) {
-    refits[b] = refitReplicate(b, fit, runs, models, block_samples, options);
+    refits[b] = refitReplicate(b, runs, models, block_samples, refit, options.seed);
   });
   result.refitted = static_cast<std::size_t>(
-      std::count_if(refits.begin(), refits.end(), [](const Refit& r) { return !r.diverged; }));
-  for (std::size_t i = 0; i < kQuantityCount; ++i)
-    result.quantities.push_back(summarise(i, at_fit, refits));
+      std::count_if(refits.begin(), refits.end(), [](const Refit& r) { return r.has_value(); }));
+  for (std::size_t i = 0; i < fitted.quantity_names.size(); ++i)
+    result.quantities.push_back(summarise(i, fitted, refits));
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;
+}
+
+RefitBootstrap bootstrapRefits(const AccParameters& fit, const std::vector<CarFollowingRun>& runs,
+                               const RefitBootstrapOptions& options)
+{
+  FittedDrives fitted;
+  fitted.quantity_names.assign(std::begin(kQuantityNames), std::end(kQuantityNames));
+  fitted.parameter_count = 4;  // k1, k2, tau_e, eta; the margin follows from them
+  for (const CarFollowingRun& run : runs)
+  {
+    const SimulatedFollower sim = simulateFollower(fit, EffectSettings{}, run);
+    if (sim.diverged)
+    {
+      RefitBootstrap none;
+      none.replicates = options.replicates;
+      none.note = "the fit's simulation of " + run.name + " diverges";
+      return none;
+    }
+    fitted.simulated_speed_mps.push_back(sim.speed_mps);
+  }
+  const ParameterUncertainty uncertainty = estimateUncertainty(fit, runs);
+  fitted.at_fit = drawOf(assessQuantities(fit, uncertainty, runs, options.bounds));
+  fitted.block_length_s = uncertainty.block_length_s;
+  // Each replicate is refitted exactly as the data were: multistart from the fit and Halton points.
+  const ReplicateRefit refit = [&](const std::vector<CarFollowingRun>& replicate) -> std::optional<BootstrapDraw> {
+    MultistartOptions multistart;
+    multistart.starts = options.starts;
+    const MultistartResult result =
+        calibrateMultistart(CalibrationObjective(replicate, options.bounds), multistart, {fit});
+    if (result.diverged)
+      return std::nullopt;
+    return drawOf(assessQuantities(result.parameters, estimateUncertainty(result.parameters, replicate), replicate,
+                                   options.bounds));
+  };
+  return bootstrapFittedDrives(fitted, runs, refit, options);
 }
 
 void printRefitBootstrap(const RefitBootstrap& bootstrap, std::ostream& out)

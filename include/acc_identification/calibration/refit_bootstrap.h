@@ -2,8 +2,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,14 +26,14 @@ struct RefitBootstrapOptions
   /// Halton starts of each refit beside the warm start at the fit: a replicate whose best fit lies
   /// in another basin must be able to reach it, or the spread is understated.
   std::size_t starts = 20;
-  ParameterBounds bounds;
+  ParameterBounds bounds;  ///< of the base model's refits (bootstrapRefits)
   std::size_t threads = 0;  ///< 0: hardware_concurrency
 };
 
 /// One quantity's bootstrap interval.
 struct BootstrapQuantity
 {
-  std::string name;      ///< "k1", "k2", "tau_e", "eta", "stability_margin"
+  std::string name;      ///< "k1", "k2", "tau_e", "eta", "stability_margin"; a diagnosed model's parameter names
   double value = 0.0;    ///< the fit's
   /// The spread of the refits: their standard deviation, and their mean less the fit's value (the
   /// estimator's bias on data like these, which the delta method cannot see).
@@ -60,6 +62,38 @@ struct RefitBootstrap
   /// The quantity of this name, or nullptr.
   const BootstrapQuantity* find(const std::string& name) const;
 };
+
+/// One fit as the bootstrap sees it, quantity by quantity: its value, its sandwich standard error
+/// (NaN: none) and, when the fit holds it at a bound, why ("" otherwise).
+struct BootstrapDraw
+{
+  std::vector<double> value;
+  std::vector<double> standard_error;
+  std::vector<std::string> held_by_bound;
+};
+
+/// A fitted follower model on its runs, as the residual bootstrap needs it; any model the package
+/// fits (the base law, or the diagnosis's final model with its effects).
+struct FittedDrives
+{
+  std::vector<std::string> quantity_names;
+  /// The first parameter_count quantities are the fit's parameters (one at a bound makes every
+  /// interval approximate); the rest follow from them (the stability margin).
+  std::size_t parameter_count = 0;
+  BootstrapDraw at_fit;
+  /// Per run, the fit's simulation from the measured start, driven by the measured leader.
+  std::vector<std::vector<double>> simulated_speed_mps;
+  double block_length_s = 0.0;  ///< of the resampled residuals: the fit's batch-means block
+};
+
+/// The refit of one replicate's runs, exactly as the data were fitted; nullopt when it diverged.
+using ReplicateRefit = std::function<std::optional<BootstrapDraw>(const std::vector<CarFollowingRun>& replicate)>;
+
+/// The residual bootstrap of any fitted model (bootstrapRefits below for the method): replicate
+/// drives from `fitted`'s simulations and resampled residuals, each refitted by `refit` (called
+/// from options.threads threads at once). options.starts and options.bounds are not used here.
+RefitBootstrap bootstrapFittedDrives(const FittedDrives& fitted, const std::vector<CarFollowingRun>& runs,
+                                     const ReplicateRefit& refit, const RefitBootstrapOptions& options);
 
 /// A resampling interval for the fit `fit` of `runs` (the calibration's multistart optimum), for
 /// drives too short for the sandwich standard errors (a minute of data fits nonlinearly in its
