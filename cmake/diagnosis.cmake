@@ -13,6 +13,7 @@ acc_add_library(acc_diagnosis
     src/diagnosis/diagnosis.cpp
     src/diagnosis/determined_effects.cpp
     src/diagnosis/augmented_fit_json.cpp
+    src/diagnosis/final_model_bootstrap.cpp
     src/diagnosis/diagnosis_output.cpp
     src/diagnosis/diagnosis_text.cpp
     src/diagnosis/calibration_second_opinion.cpp
@@ -50,7 +51,8 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_diagnosis_injected.cpp
     test/unit/test_diagnosis_combined.cpp
     test/unit/test_diagnosis_determined.cpp
-    test/unit/test_diagnosis_adequacy.cpp)
+    test/unit/test_diagnosis_adequacy.cpp
+    test/unit/test_diagnosis_bootstrap.cpp)
   # The semi-real test reads a bundled real run (acc_run_io, cmake/data.cmake).
   target_link_libraries(test_diagnosis acc_validation acc_diagnosis acc_run_io)
   target_compile_definitions(test_diagnosis PRIVATE ACC_CASALE_DIR="${ACC_DATA_CASALE_DIR}"

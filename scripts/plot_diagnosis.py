@@ -228,6 +228,35 @@ def combination_lines(d):
     return lines
 
 
+def final_model_lines(d):
+    """The model the diagnosis ends with: each parameter with its standard error and, on short training
+    data, the refitting bootstrap's 95 % interval (which holds where value +- 1.96 se runs short)."""
+    final = d.get("final_model")
+    if not final:
+        return []
+    effects = " + ".join(final["effects"]) or "base model"
+    bootstrap = final.get("refit_bootstrap") or {}
+    quantities = bootstrap.get("quantities") or {}
+    lines = [f"## The final model ({effects})", "",
+             "| parameter | value | standard error |" + (" 95 % interval, refitting bootstrap |" if quantities else ""),
+             "|---|---|---|" + ("---|" if quantities else "")]
+    for name, value in final["parameters"].items():
+        row = f"| {name} | {fmt(value, 4)} | {significant(final['standard_errors'].get(name))} |"
+        if quantities:
+            entry = quantities.get(name) or {}
+            interval = entry.get("interval_95")
+            row += (f" [{fmt(interval[0], 4)}, {fmt(interval[1], 4)}] |" if interval
+                    else f" none: {entry.get('note', '')} |")
+        lines.append(row)
+    if quantities:
+        lines += ["", f"Refitting bootstrap: {bootstrap['refitted']} of {bootstrap['replicates']} drives the model "
+                  f"could have given refitted as the diagnosis fitted it (residual blocks of "
+                  f"{fmt(bootstrap['block_length_s'], 3)} s)." + (f" Caution: {bootstrap['caution']}." if bootstrap.get("caution") else "")]
+    elif bootstrap.get("note"):
+        lines += ["", f"Refitting bootstrap not made: {bootstrap['note']}."]
+    return lines + [""]
+
+
 def added_size_text(step):
     """Whether the training data pin the added effect's size (z from none at the determined rule's threshold)."""
     size = step.get("added_effect_size")
@@ -326,6 +355,7 @@ def write_report(report_dir, d):
     lines += perturbation_window_lines(d.get("perturbation_windows"))
     lines += determined_lines(d)
     lines += combination_lines(d)
+    lines += final_model_lines(d)
     lines += ["## Where the residual lies (base model, held out)", ""]
     for key, title in [("regimes", "Driving regime"), ("speed_bands", "Speed band")]:
         lines.append(f"| {title} | share of time | share of squared speed error | speed RMSE before → after [m/s] | "

@@ -134,9 +134,10 @@ def calibrate(runs, split="none", starts=None, alpha=None, seed=None, stability_
 
 
 def diagnose(runs, train_fraction=None, effects=None, threads=None, seed=None, forward_selection=True,
-             held_out=None):
+             held_out=None, bootstrap=None, bootstrap_below_s=None):
     """`diagnose` on runs (DataFrames from read_run, or paths): the dict `diagnose --json` writes.
-    held_out (runs as `runs`): as --held-out, the runs are fitted whole and these scored whole."""
+    held_out (runs as `runs`): as --held-out, the runs are fitted whole and these scored whole.
+    bootstrap, bootstrap_below_s: as --bootstrap and --bootstrap-below (0 replicates: none)."""
     defaults = _core.DEFAULTS["diagnose"]
     frames = _as_frames(runs)
     held_out_frames = _as_frames(held_out) if held_out is not None else []
@@ -148,7 +149,9 @@ def diagnose(runs, train_fraction=None, effects=None, threads=None, seed=None, f
                                      defaults["train_fraction"] if train_fraction is None else train_fraction,
                                      list(effects or []), defaults["threads"] if threads is None else threads,
                                      defaults["seed"] if seed is None else seed, forward_selection,
-                                     held_out_segments, _inputs(held_out_frames, len(frames) + 1)))
+                                     held_out_segments, _inputs(held_out_frames, len(frames) + 1),
+                                     defaults["bootstrap"] if bootstrap is None else bootstrap,
+                                     defaults["bootstrap_below_s"] if bootstrap_below_s is None else bootstrap_below_s))
 
 
 def campaign(paths, starts=None, threads=None, alpha=None, seed=None, platoon_check=True, platoon_diagnosis=True):

@@ -22,6 +22,7 @@ namespace acc
 namespace
 {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr const char* kQuantityNames[] = {"k1", "k2", "tau_e", "eta", "stability_margin"};
 
 /// What a replicate is built from, per run: the fit's simulated speeds, the centred speed
@@ -118,6 +119,12 @@ Refit refitReplicate(std::size_t index, const std::vector<CarFollowingRun>& runs
   return refit(replicate);
 }
 
+/// Quantity i's entry in a list of bounds, or `none` where the list has none (short, or NaN).
+double boundOf(const std::vector<double>& bounds, std::size_t i, double none)
+{
+  return i < bounds.size() && !std::isnan(bounds[i]) ? bounds[i] : none;
+}
+
 /// The interval and spread of quantity i from the refits.
 BootstrapQuantity summarise(std::size_t i, const FittedDrives& fitted, const std::vector<Refit>& refits)
 {
@@ -146,15 +153,18 @@ BootstrapQuantity summarise(std::size_t i, const FittedDrives& fitted, const std
   }
   const double se = at_fit.standard_error[i];
   if (!at_fit.held_by_bound[i].empty())
-    q.note = at_fit.held_by_bound[i] + ": the bootstrap does not hold at a bound (the one-sided interval above does)";
+    q.note = at_fit.held_by_bound[i] + ": the bootstrap does not hold at a bound" + fitted.at_bound_hint;
   else if (!std::isfinite(se))
     q.note = "no standard error at the fit";
   else if (2 * studentised.size() < refits.size())
     q.note = "fewer than half the refits have a standard error";
   else
   {
-    q.interval_95_low = q.value - interpolatedQuantile(studentised, 0.975) * se;
-    q.interval_95_high = q.value - interpolatedQuantile(studentised, 0.025) * se;
+    // A refit whose own standard error came out small gives a large t: the interval can reach
+    // past what the parameter can be, and there it is cut at the fit's range.
+    q.interval_95_low = std::max(q.value - interpolatedQuantile(studentised, 0.975) * se, boundOf(fitted.lower_bound, i, -kInfinity));
+    q.interval_95_high =
+        std::min(q.value - interpolatedQuantile(studentised, 0.025) * se, boundOf(fitted.upper_bound, i, kInfinity));
   }
   return q;
 }
@@ -201,6 +211,10 @@ RefitBootstrap bootstrapRefits(const AccParameters& fit, const std::vector<CarFo
   FittedDrives fitted;
   fitted.quantity_names.assign(std::begin(kQuantityNames), std::end(kQuantityNames));
   fitted.parameter_count = 4;  // k1, k2, tau_e, eta; the margin follows from them
+  const ParameterBounds& b = options.bounds;
+  fitted.lower_bound = {b.lower.k1_per_s2, b.lower.k2_per_s, b.lower.tau_e_s, b.lower.eta_m};
+  fitted.upper_bound = {b.upper.k1_per_s2, b.upper.k2_per_s, b.upper.tau_e_s, b.upper.eta_m};
+  fitted.at_bound_hint = " (the one-sided interval above does)";  // calibrate's quantity table
   for (const CarFollowingRun& run : runs)
   {
     const SimulatedFollower sim = simulateFollower(fit, EffectSettings{}, run);
@@ -245,13 +259,17 @@ void printRefitBootstrap(const RefitBootstrap& bootstrap, std::ostream& out)
   out << line;
   if (!bootstrap.caution.empty())
     out << "  caution: " << bootstrap.caution << "\n";
+  int width = 17;  // the base model's names; a diagnosed model's effect parameters are longer
+  for (const BootstrapQuantity& q : bootstrap.quantities)
+    width = std::max(width, static_cast<int>(q.name.size()));
   for (const BootstrapQuantity& q : bootstrap.quantities)
   {
     if (std::isfinite(q.interval_95_low))
-      std::snprintf(line, sizeof line, "  %-17s %-11.5g 95 %% [%.5g, %.5g]   refits' spread %.3g, bias %+.3g\n",
+      std::snprintf(line, sizeof line, "  %-*s %-11.5g 95 %% [%.5g, %.5g]   refits' spread %.3g, bias %+.3g\n", width,
                     q.name.c_str(), q.value, q.interval_95_low, q.interval_95_high, q.standard_error, q.bias);
     else
-      std::snprintf(line, sizeof line, "  %-17s %-11.5g no interval: %s\n", q.name.c_str(), q.value, q.note.c_str());
+      std::snprintf(line, sizeof line, "  %-*s %-11.5g no interval: %s\n", width, q.name.c_str(), q.value,
+                    q.note.c_str());
     out << line;
   }
 }

@@ -51,15 +51,6 @@ PlatoonCarModel modelOf(const AugmentedFit& fit, const std::string& source)
   return model;
 }
 
-/// Whether fit a is to be kept over fit b: a usable fit (not diverged, locally stable) over one
-/// that is not, and between two of a kind the lower training objective.
-bool betterFit(const AugmentedFit& a, const AugmentedFit& b)
-{
-  if (a.usable() != b.usable())
-    return a.usable();
-  return !a.diverged && (b.diverged || a.train_objective < b.train_objective);
-}
-
 /// The criterion's loss of model m for one score; NaN where the model was not scored.
 double lossOf(const PairPerturbationScore& s, std::size_t m, SelectionCriterion criterion)
 {

@@ -871,6 +871,13 @@ std::vector<double> nestedStart(const std::vector<EffectKind>& effects, const Au
   return x;
 }
 
+bool betterFit(const AugmentedFit& a, const AugmentedFit& b)
+{
+  if (a.usable() != b.usable())
+    return a.usable();
+  return !a.diverged && (b.diverged || a.train_objective < b.train_objective);
+}
+
 std::vector<EffectKind> effectsOf(const AugmentedFit& fit)
 {
   if (!fit.effects.empty() || fit.effect == EffectKind::none)

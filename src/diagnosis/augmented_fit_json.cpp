@@ -6,13 +6,19 @@
 
 namespace acc
 {
-nlohmann::json standardErrorsJson(const std::vector<EffectKind>& effects, const std::vector<double>& standard_errors)
+std::vector<std::string> augmentedParameterNames(const std::vector<EffectKind>& effects)
 {
   std::vector<std::string> names = {"k1_per_s2", "k2_per_s", "tau_e_s", "eta_m"};
   for (const std::string& name : effectParameterNames(effects))
   {
     names.push_back(name);
   }
+  return names;
+}
+
+nlohmann::json standardErrorsJson(const std::vector<EffectKind>& effects, const std::vector<double>& standard_errors)
+{
+  const std::vector<std::string> names = augmentedParameterNames(effects);
   nlohmann::json e = nlohmann::json::object();
   for (std::size_t i = 0; i < names.size() && i < standard_errors.size(); ++i)
   {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "acc_identification/diagnosis/final_model_bootstrap.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/parallel_tasks.h"
 
@@ -290,6 +291,18 @@ void assessAdequacy(const DiagnosisOptions& options, DiagnosisResult* result)
   result->final_adequacy =
       assessModelAdequacy(final_fit.base, final_fit.settings, parts, adequacy, baseStandardErrors(final_fit));
 }
+
+/// The final model's refitting bootstrap when the training data are short (DiagnosisOptions).
+void bootstrapShortTraining(const DiagnosisOptions& options, DiagnosisResult* result)
+{
+  if (options.bootstrap_replicates == 0 || !(totalDurationS(result->train) < options.bootstrap_below_s))
+    return;
+  RefitBootstrapOptions bootstrap = options.bootstrap;
+  bootstrap.replicates = options.bootstrap_replicates;
+  if (bootstrap.threads == 0)
+    bootstrap.threads = options.threads;
+  result->final_bootstrap = bootstrapDiagnosedModel(finalModel(*result).fit, result->train, options.calibration, bootstrap);
+}
 }  // namespace
 
 namespace
@@ -365,6 +378,7 @@ DiagnosisResult diagnoseParts(DiagnosisResult result, const DiagnosisOptions& op
   }
   forwardSelect(options, candidate_errors, &result);
   assessAdequacy(options, &result);
+  bootstrapShortTraining(options, &result);
   return result;
 }
 }  // namespace

@@ -311,6 +311,8 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
                         {"test_rmse_speed", jsonNumber(final_model.test_rmse_speed_mps)},
                         {"test_rmse_gap", jsonNumber(final_model.test_rmse_gap_m)},
                         {"model_adequacy", toJson(r.final_adequacy)}};
+    if (r.final_bootstrap)
+      j["final_model"]["refit_bootstrap"] = toJson(*r.final_bootstrap);
   }
   j["baseline"]["model_adequacy"] = toJson(r.baseline_adequacy);
   j["verdict"] = verdictJson(r);
@@ -342,6 +344,19 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
   j["runs"] = runsJson(r);
   j["notes"] = r.notes;
   return j;
+}
+
+nlohmann::json diagnosisToJson(const DiagnosisResult& result, const std::vector<std::string>& inputs,
+                               const std::vector<std::string>& held_out_inputs,
+                               const std::vector<InputAccount>& inputs_read)
+{
+  nlohmann::json json = diagnosisToJson(result);
+  json["inputs"] = inputs;
+  if (!held_out_inputs.empty())
+    json["held_out_inputs"] = held_out_inputs;
+  json["openacc_pairs"] = openAccPairsJson(inputs_read);
+  json["inputs_read"] = inputAccountsJson(inputs_read);
+  return json;
 }
 
 void writeDiagnosisTables(const DiagnosisResult& r, const std::string& dir)

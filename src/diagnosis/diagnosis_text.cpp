@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 
 #include "acc_identification/diagnosis/determined_effects.h"
 
@@ -150,6 +151,13 @@ void printDiagnosisSummary(const DiagnosisResult& r, std::FILE* out)
                 effectName(t.effect).c_str(), testVerdictText(t).c_str(), t.reason.c_str());
   }
   printChain(r, out);
+  if (r.final_bootstrap)
+  {
+    std::ostringstream text;
+    printRefitBootstrap(*r.final_bootstrap, text);
+    std::fprintf(out, "final model (%s):\n%s", combinedEffectName(effectsOf(finalModel(r).fit)).c_str(),
+                 text.str().c_str());
+  }
   printVerdict(r, out);
 }
 

@@ -217,7 +217,8 @@ std::vector<acc::CarFollowingRun> plainRuns(const py::list& runs)
 std::string diagnose(const py::list& runs, const py::list& inputs_read, const std::vector<std::string>& inputs,
                      double train_fraction, const std::vector<std::string>& effects, std::size_t threads,
                      const py::object& seed, bool forward_selection, const py::list& held_out_runs,
-                     const std::vector<std::string>& held_out_inputs)
+                     const std::vector<std::string>& held_out_inputs, std::size_t bootstrap_replicates,
+                     double bootstrap_below_s)
 {
   const std::vector<acc::CarFollowingRun> plain = plainRuns(runs);
   const std::vector<acc::CarFollowingRun> held_out =
@@ -226,8 +227,13 @@ std::string diagnose(const py::list& runs, const py::list& inputs_read, const st
   options.train_fraction = train_fraction;
   options.threads = threads;
   options.forward_selection = forward_selection;
+  options.bootstrap_replicates = bootstrap_replicates;
+  options.bootstrap_below_s = bootstrap_below_s;
   if (!seed.is_none())
+  {
     options.selection.seed = seed.cast<std::uint32_t>();
+    options.bootstrap.seed = options.selection.seed;  // as diagnose --seed
+  }
   if (!effects.empty())
   {
     options.candidates.clear();
@@ -245,14 +251,7 @@ std::string diagnose(const py::list& runs, const py::list& inputs_read, const st
     result = held_out_inputs.empty() ? acc::diagnoseRuns(plain, options)
                                      : acc::diagnoseHeldOutRuns(plain, held_out, options);
   }
-  nlohmann::json json = acc::diagnosisToJson(result);
-  json["inputs"] = inputs;
-  if (!held_out_inputs.empty())
-    json["held_out_inputs"] = held_out_inputs;
-  const std::vector<acc::InputAccount> accounts = toInputAccounts(inputs_read);
-  json["openacc_pairs"] = acc::openAccPairsJson(accounts);
-  json["inputs_read"] = acc::inputAccountsJson(accounts);
-  return json.dump();
+  return acc::diagnosisToJson(result, inputs, held_out_inputs, toInputAccounts(inputs_read)).dump();
 }
 
 std::string campaign(const std::vector<std::string>& paths, std::size_t starts, std::size_t threads, double alpha,
@@ -284,7 +283,9 @@ py::dict defaults()
                               py::arg("bootstrap") = calibrate.bootstrap_replicates,
                               py::arg("bootstrap_below_s") = calibrate.bootstrap_below_s);
   all["diagnose"] = py::dict(py::arg("train_fraction") = diagnose.train_fraction,
-                             py::arg("seed") = diagnose.selection.seed, py::arg("threads") = diagnose.threads);
+                             py::arg("seed") = diagnose.selection.seed, py::arg("threads") = diagnose.threads,
+                             py::arg("bootstrap") = acc::RefitBootstrapOptions{}.replicates,  // as the tool's
+                             py::arg("bootstrap_below_s") = diagnose.bootstrap_below_s);
   all["campaign"] = py::dict(py::arg("starts") = campaign.group.starts, py::arg("alpha") = campaign.group.alpha,
                              py::arg("seed") = campaign.group.seed, py::arg("threads") = campaign.threads);
   return all;
@@ -306,7 +307,8 @@ PYBIND11_MODULE(_core, module)
              py::arg("bootstrap_below_s"));
   module.def("diagnose", &diagnose, py::arg("runs"), py::arg("inputs_read"), py::arg("inputs"),
              py::arg("train_fraction"), py::arg("effects"), py::arg("threads"), py::arg("seed"),
-             py::arg("forward_selection"), py::arg("held_out_runs"), py::arg("held_out_inputs"));
+             py::arg("forward_selection"), py::arg("held_out_runs"), py::arg("held_out_inputs"),
+             py::arg("bootstrap_replicates"), py::arg("bootstrap_below_s"));
   module.def("campaign", &campaign, py::arg("paths"), py::arg("starts"), py::arg("threads"), py::arg("alpha"),
              py::arg("seed"), py::arg("platoon_check"), py::arg("platoon_diagnosis"));
 }

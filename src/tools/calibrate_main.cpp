@@ -15,6 +15,7 @@
 #include "acc_identification/io/output_files.h"
 #include "acc_identification/ros/run_input_options.h"
 #include "acc_identification/sumo/sumo_vtype.h"
+#include "acc_identification/tools/bootstrap_options.h"
 #include "acc_identification/tools/number_checks.h"
 
 namespace
@@ -74,14 +75,7 @@ int main(int argc, char** argv)
       ->capture_default_str();
   auto* seed_option =
       app.add_option("--seed", seed, "seed of the stability test's and the refitting bootstrap's draws (default: fixed seeds)");
-  app.add_option("--bootstrap", settings.bootstrap_replicates,
-                 "replicates of the refitting bootstrap (95 % intervals that hold on short data; 0: none)")
-      ->capture_default_str();
-  app.add_option("--bootstrap-below", settings.bootstrap_below_s,
-                 "make the refitting bootstrap when the fitted data span less than SECONDS (longer data: value +- t se "
-                 "covers)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  acc::addRefitBootstrapOptions(app, settings.bootstrap_replicates, settings.bootstrap_below_s, "the fit");
   app.add_option("--verdict-every", settings.verdict_every_s,
                  "also replay each drive look by look every SECONDS of data time and report the sequential "
                  "(anytime-valid) verdicts the identifier node would publish, by the node's own code")

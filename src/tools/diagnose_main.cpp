@@ -13,9 +13,9 @@
 #include "acc_identification/io/output_files.h"
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/ros/run_input_options.h"
+#include "acc_identification/tools/bootstrap_options.h"
 #include "acc_identification/tools/number_checks.h"
 #include "acc_identification/validation/suite_runs.h"
-
 
 namespace
 {
@@ -61,6 +61,9 @@ void addDiagnosisOptions(CLI::App& app, DiagnoseRequest& r)
   app.add_option("--max-chain-length", r.options.max_chain_length, "most effects the forward selection adds")
       ->check(CLI::Range(1, 8))
       ->capture_default_str();
+  // What calibrate makes; the library's default is none (its suites and second opinion do without).
+  r.options.bootstrap_replicates = acc::RefitBootstrapOptions{}.replicates;
+  acc::addRefitBootstrapOptions(app, r.options.bootstrap_replicates, r.options.bootstrap_below_s, "the final model");
   app.add_option("--threads", r.options.threads,
                  "threads for the independent effect fits (0: every core); the result does not depend on it")
       ->capture_default_str();
@@ -112,18 +115,12 @@ int diagnoseFiles(const DiagnoseRequest& r)
       !acc::saveFinalModelVType(result, runs, r.sumo_vtype_path, r.sumo_id.empty() ? runs.front().name : r.sumo_id,
                                 acc::anyOpenAcc(inputs_read), std::cerr))
     return 1;
-  nlohmann::json json = acc::diagnosisToJson(result);
-  json["inputs"] = r.input.paths;
-  if (!r.held_out.empty())
-    json["held_out_inputs"] = r.held_out;
-  json["openacc_pairs"] = acc::openAccPairsJson(inputs_read);
-  json["inputs_read"] = acc::inputAccountsJson(inputs_read);
+  const nlohmann::json json = acc::diagnosisToJson(result, r.input.paths, r.held_out, inputs_read);
   if (!r.json_path.empty() && !acc::writeJsonFile(json, r.json_path, std::cerr))
     return 1;
-  return !r.report_dir.empty() && !acc::writeDiagnosisReport(result, json, r.report_dir, r.plot_script, r.no_plots,
-                                                             std::cerr)
-             ? 1
-             : 0;
+  const bool report_failed = !r.report_dir.empty() &&
+                             !acc::writeDiagnosisReport(result, json, r.report_dir, r.plot_script, r.no_plots, std::cerr);
+  return report_failed ? 1 : 0;
 }
 }  // namespace
 
@@ -137,6 +134,7 @@ int main(int argc, char** argv)
   addDiagnosisOptions(app, request);
   CLI11_PARSE(app, argc, argv);
   request.options.selection.seed = request.seed;
+  request.options.bootstrap.seed = request.seed;
   request.options.forward_selection = !request.no_forward_selection;
   std::string unknown;
   if (!request.effects.empty() && !acc::parseEffectNames(request.effects, &request.options.candidates, &unknown))
@@ -145,9 +143,11 @@ int main(int argc, char** argv)
     return 2;
   }
   if (!request.suite.empty())
-    // The semi-real suite's real runs are the bundled ones, unpacked at build time.
+  {
+    request.options.bootstrap_replicates = 0;  // the suites judge which effect is named, not its size
     return acc::runSuiteCommand(request.suite, request.options, ACC_CASALE_DIR, ACC_ZALAZONE_TOYOTA_DIR,
                                 request.json_path, std::cout, std::cerr);
+  }
   if (request.input.paths.empty())
   {
     std::cerr << "error: no run given (see --help)\n";

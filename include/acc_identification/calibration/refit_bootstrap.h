@@ -41,8 +41,9 @@ struct BootstrapQuantity
   double bias = std::numeric_limits<double>::quiet_NaN();
   /// The 95 % interval, bootstrap-t: value - t*_0.975 se, value - t*_0.025 se, with se the fit's
   /// sandwich standard error and t*_q the q-quantile of (refit - value) / (refit's own sandwich
-  /// standard error). NaN where held at a bound of the fit (the bootstrap is not valid there:
-  /// Andrews 2000) or where fewer than half the refits have a standard error.
+  /// standard error), cut at the range the fit searched. NaN where held at a bound of the fit
+  /// (the bootstrap is not valid there: Andrews 2000) or where fewer than half the refits have a
+  /// standard error.
   double interval_95_low = std::numeric_limits<double>::quiet_NaN();
   double interval_95_high = std::numeric_limits<double>::quiet_NaN();
   std::string note;      ///< why there is no interval; empty with one
@@ -84,6 +85,12 @@ struct FittedDrives
   /// Per run, the fit's simulation from the measured start, driven by the measured leader.
   std::vector<std::vector<double>> simulated_speed_mps;
   double block_length_s = 0.0;  ///< of the resampled residuals: the fit's batch-means block
+  /// The range of each quantity the fit searched (shorter lists or NaN: unbounded): an interval is
+  /// cut there.
+  std::vector<double> lower_bound;
+  std::vector<double> upper_bound;
+  /// Appended to the note of a quantity held at a bound: where else to look.
+  std::string at_bound_hint;
 };
 
 /// The refit of one replicate's runs, exactly as the data were fitted; nullopt when it diverged.

@@ -173,6 +173,10 @@ AugmentedFit calibrateWithEffectHeld(EffectKind effect, const std::vector<double
                                      const AugmentedCalibrationOptions& options,
                                      const AugmentedFit* warm_start = nullptr);
 
+/// Whether a is the better of two fits of the same data: a usable one first, then the lower
+/// training objective.
+bool betterFit(const AugmentedFit& a, const AugmentedFit& b);
+
 /// The effects of a fit: fit.effects, or {fit.effect} for a fit made before combinations existed.
 std::vector<EffectKind> effectsOf(const AugmentedFit& fit);
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "acc_identification/calibration/model_adequacy.h"
+#include "acc_identification/calibration/refit_bootstrap.h"
 #include "acc_identification/model/car_following_run.h"
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/augmented_stability.h"
@@ -53,6 +54,13 @@ struct DiagnosisOptions
   /// Threads for the independent fits (the six effects, then each forward round's candidates);
   /// 0: every core. The result does not depend on it (each fit is stored by its index).
   std::size_t threads = 0;
+  /// The refitting bootstrap of the final model (bootstrapDiagnosedModel) when its training data
+  /// span less than bootstrap_below_s: intervals for its sizes that hold on short data. 0
+  /// replicates (here): none; diagnose asks for 199, as calibrate does. bootstrap.threads 0 takes
+  /// `threads`.
+  std::size_t bootstrap_replicates = 0;
+  double bootstrap_below_s = 300.0;
+  RefitBootstrapOptions bootstrap;
 };
 
 /// One model (base or augmented) fitted on the training halves and scored on the held-out halves.
@@ -122,6 +130,8 @@ struct DiagnosisResult
   /// training and the held-out parts (model_adequacy.h, with the diagnosis's own parameter box).
   ModelAdequacy baseline_adequacy;
   ModelAdequacy final_adequacy;
+  /// The final model's refitting bootstrap (options.bootstrap_replicates, on short training data).
+  std::optional<RefitBootstrap> final_bootstrap;
 };
 
 /// Splits every run, fits the base model and each candidate effect on the first parts, scores

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "acc_identification/diagnosis/diagnosis.h"
+#include "acc_identification/io/input_account.h"
 
 namespace acc
 {
@@ -26,6 +27,13 @@ nlohmann::json verdictJson(const DiagnosisResult& r);
 /// stability}], selection {rule, ...}, where {regimes, speed_bands, segments, frequency_bands},
 /// runs, notes. Non-finite numbers are written as null (JSON has no NaN).
 nlohmann::json diagnosisToJson(const DiagnosisResult& result);
+
+/// diagnose --json (and Python's diagnose): diagnosisToJson with what was read: inputs (the RUN
+/// paths), held_out_inputs (--held-out; none when empty), openacc_pairs and inputs_read (each
+/// file's account).
+nlohmann::json diagnosisToJson(const DiagnosisResult& result, const std::vector<std::string>& inputs,
+                               const std::vector<std::string>& held_out_inputs,
+                               const std::vector<InputAccount>& inputs_read);
 
 /// Writes the tables the report's figures are drawn from into dir (which must exist):
 ///   residuals.csv  run,time_s,regime,speed_mps,gap_m,base_speed_mps,base_gap_m,effect_speed_mps,effect_gap_m

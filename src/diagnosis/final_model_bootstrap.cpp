@@ -1,0 +1,123 @@
+#include "acc_identification/diagnosis/final_model_bootstrap.h"
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "acc_identification/calibration/model_adequacy.h"
+#include "acc_identification/diagnosis/augmented_fit_json.h"
+#include "acc_identification/model/batch_means.h"
+#include "acc_identification/model/follower_simulation.h"
+#include "acc_identification/model/number_text.h"
+
+namespace acc
+{
+namespace
+{
+/// The parameters of a fit in its box's x order.
+std::vector<double> pointOf(const AugmentedFit& fit)
+{
+  std::vector<double> x{fit.base.k1_per_s2, fit.base.k2_per_s, fit.base.tau_e_s, fit.base.eta_m};
+  x.insert(x.end(), fit.effect_values.begin(), fit.effect_values.end());
+  return x;
+}
+
+/// A fit's quantities as the bootstrap sees them: a parameter within the model adequacy's bound
+/// fraction of its box's edge is held there, and its standard error is not used.
+BootstrapDraw drawOf(const AugmentedFit& fit, const AugmentedParameterBox& box)
+{
+  BootstrapDraw draw;
+  draw.value = pointOf(fit);
+  const std::vector<std::string> names = augmentedParameterNames(box.effects);
+  const double fraction = ModelAdequacyOptions{}.bound_fraction;
+  for (std::size_t i = 0; i < draw.value.size(); ++i)
+  {
+    const double x = draw.value[i], tolerance = fraction * (box.upper[i] - box.lower[i]);
+    const bool at_lower = x <= box.lower[i] + tolerance, at_upper = x >= box.upper[i] - tolerance;
+    draw.held_by_bound.push_back(at_lower || at_upper
+                                     ? printfText("%s = %.4g at its %s bound %g", names[i].c_str(), x,
+                                                  at_lower ? "lower" : "upper", at_lower ? box.lower[i] : box.upper[i])
+                                     : "");
+    const double se = i < fit.standard_errors.size() ? fit.standard_errors[i] : std::nan("");
+    draw.standard_error.push_back(draw.held_by_bound.back().empty() ? se : std::nan(""));
+  }
+  return draw;
+}
+
+/// The diagnosis's own way to the model on a replicate: the base from cold starts, then the effects
+/// one at a time, each warm-started from the last.
+AugmentedFit refitAsDiagnosed(const std::vector<EffectKind>& effects, const std::vector<CarFollowingRun>& replicate,
+                              const AugmentedCalibrationOptions& calibration)
+{
+  AugmentedFit fit = calibrateAugmentedSet({}, replicate, calibration);
+  for (std::size_t k = 1; k <= effects.size() && !fit.diverged; ++k)
+  {
+    const AugmentedFit warm = fit;
+    fit = calibrateAugmentedSet(std::vector<EffectKind>(effects.begin(), effects.begin() + k), replicate, calibration,
+                                &warm);
+  }
+  return fit;
+}
+
+/// The batch-means block length of the fit's speed residuals, as its sandwich takes it.
+double residualBlockLengthS(const std::vector<CarFollowingRun>& training,
+                            const std::vector<std::vector<double>>& simulated_speed_mps)
+{
+  std::vector<std::vector<double>> times;
+  std::vector<double> residuals;
+  for (std::size_t r = 0; r < training.size(); ++r)
+  {
+    times.push_back(training[r].time_s);
+    for (std::size_t k = 0; k < training[r].size(); ++k)
+      residuals.push_back(training[r].follower_speed_mps[k] - simulated_speed_mps[r][k]);
+  }
+  const Eigen::VectorXd residual_vector =
+      Eigen::Map<const Eigen::VectorXd>(residuals.data(), static_cast<Eigen::Index>(residuals.size()));
+  return batchMeansBlockLength(times, residual_vector, 10.0).block_length_s;
+}
+}  // namespace
+
+RefitBootstrap bootstrapDiagnosedModel(const AugmentedFit& fit, const std::vector<CarFollowingRun>& training,
+                                       const AugmentedCalibrationOptions& calibration,
+                                       const RefitBootstrapOptions& options)
+{
+  const std::vector<EffectKind> effects = effectsOf(fit);
+  const AugmentedParameterBox box(effects, calibration);
+  FittedDrives fitted;
+  fitted.quantity_names = augmentedParameterNames(effects);
+  fitted.parameter_count = fitted.quantity_names.size();
+  fitted.at_fit = drawOf(fit, box);
+  fitted.lower_bound = box.lower;
+  fitted.upper_bound = box.upper;
+  for (const CarFollowingRun& run : training)
+  {
+    const SimulatedFollower sim = simulateFollower(fit.base, fit.settings, run);
+    if (sim.diverged || fit.diverged)
+    {
+      RefitBootstrap none;
+      none.replicates = options.replicates;
+      none.note = "the model's simulation of " + run.name + " diverges";
+      return none;
+    }
+    fitted.simulated_speed_mps.push_back(sim.speed_mps);
+  }
+  fitted.block_length_s = residualBlockLengthS(training, fitted.simulated_speed_mps);
+  const ReplicateRefit refit = [&](const std::vector<CarFollowingRun>& replicate) -> std::optional<BootstrapDraw> {
+    AugmentedFit best = refitAsDiagnosed(effects, replicate, calibration);
+    if (!effects.empty())
+    {
+      const AugmentedFit from_fit = calibrateAugmentedSet(effects, replicate, calibration, &fit);
+      if (betterFit(from_fit, best))
+        best = from_fit;
+    }
+    if (best.diverged)
+      return std::nullopt;
+    return drawOf(best, box);
+  };
+  return bootstrapFittedDrives(fitted, training, refit, options);
+}
+
+}  // namespace acc

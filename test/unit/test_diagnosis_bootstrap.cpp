@@ -1,0 +1,174 @@
+// The refitting bootstrap of a diagnosed model (final_model_bootstrap.h): on two minutes of data
+// with a hidden lag, an interval for the lag's size that holds it, the draws the seed's alone; and
+// diagnose makes it for its final model on short training data only.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "acc_identification/diagnosis/diagnosis.h"
+#include "acc_identification/diagnosis/diagnosis_output.h"
+#include "acc_identification/diagnosis/final_model_bootstrap.h"
+#include "acc_identification/validation/withheld_effect_suite.h"
+
+namespace
+{
+constexpr double kTrueLagS = 0.8;
+
+/// Two minutes behind a stepping leader, the follower with a 0.8 s actuation lag.
+acc::CarFollowingRun laggedDrive(std::uint32_t seed)
+{
+  acc::WithheldCase c;
+  c.truth = acc::EffectKind::actuation_lag;
+  c.truth_values = {kTrueLagS};
+  c.duration_s = 120.0;
+  c.seed = seed;
+  return acc::synthesizeWithheldRun(c);
+}
+
+const acc::BootstrapQuantity& quantity(const acc::RefitBootstrap& bootstrap, const std::string& name)
+{
+  const acc::BootstrapQuantity* q = bootstrap.find(name);
+  EXPECT_NE(q, nullptr) << name;
+  static const acc::BootstrapQuantity none;
+  return q ? *q : none;
+}
+}  // namespace
+
+TEST(DiagnosedModelBootstrap, AHiddenLagsIntervalHoldsItAndTheSeedAloneDecidesTheDraws)
+{
+  const acc::CarFollowingRun run = laggedDrive(7);
+  const acc::AugmentedCalibrationOptions calibration;
+  const acc::AugmentedFit fit = acc::calibrateAugmentedSet({acc::EffectKind::actuation_lag}, {run}, calibration);
+  ASSERT_TRUE(fit.usable());
+  acc::RefitBootstrapOptions options;
+  options.replicates = 40;
+  options.threads = 1;
+  const acc::RefitBootstrap one_thread = acc::bootstrapDiagnosedModel(fit, {run}, calibration, options);
+  ASSERT_EQ(one_thread.note, "");
+  EXPECT_EQ(one_thread.refitted, 40u);
+  ASSERT_EQ(one_thread.quantities.size(), 5u);  // k1, k2, tau_e, eta and the lag, by their JSON names
+  EXPECT_EQ(one_thread.quantities.front().name, "k1_per_s2");
+  const acc::BootstrapQuantity& lag = quantity(one_thread, "lag_time_constant_s");
+  EXPECT_EQ(lag.value, fit.effect_values.front());
+  EXPECT_LT(lag.interval_95_low, kTrueLagS) << lag.note;
+  EXPECT_GT(lag.interval_95_high, kTrueLagS) << lag.note;
+  EXPECT_LT(lag.interval_95_low, lag.value);
+  EXPECT_GT(lag.interval_95_high, lag.value);
+  EXPECT_GT(lag.standard_error, 0.0);
+
+  options.threads = 2;
+  const acc::RefitBootstrap two_threads = acc::bootstrapDiagnosedModel(fit, {run}, calibration, options);
+  options.seed += 1;
+  const acc::RefitBootstrap other_seed = acc::bootstrapDiagnosedModel(fit, {run}, calibration, options);
+  EXPECT_EQ(quantity(two_threads, "lag_time_constant_s").interval_95_low, lag.interval_95_low);
+  EXPECT_EQ(quantity(two_threads, "k2_per_s").standard_error, quantity(one_thread, "k2_per_s").standard_error);
+  EXPECT_NE(quantity(other_seed, "lag_time_constant_s").standard_error, lag.standard_error);
+}
+
+// A parameter held at a bound of the diagnosis's box gets no interval, and cautions the others;
+// an interval never reaches past the box.
+TEST(DiagnosedModelBootstrap, NoIntervalAtABoundAndNoneBeyondTheBox)
+{
+  const acc::CarFollowingRun run = laggedDrive(8);
+  const acc::AugmentedCalibrationOptions calibration;
+  acc::AugmentedFit fit = acc::calibrateAugmentedSet({acc::EffectKind::actuation_lag}, {run}, calibration);
+  fit.base.tau_e_s = calibration.lower.tau_e_s;
+  acc::RefitBootstrapOptions options;
+  options.replicates = 20;
+  const acc::RefitBootstrap refits = acc::bootstrapDiagnosedModel(fit, {run}, calibration, options);
+  ASSERT_EQ(refits.note, "");
+  EXPECT_TRUE(std::isnan(quantity(refits, "tau_e_s").interval_95_low));
+  EXPECT_NE(quantity(refits, "tau_e_s").note.find("at its lower bound"), std::string::npos);
+  EXPECT_NE(refits.caution.find("tau_e_s"), std::string::npos) << refits.caution;
+  const acc::AugmentedParameterBox box({acc::EffectKind::actuation_lag}, calibration);
+  for (std::size_t i = 0; i < refits.quantities.size(); ++i)
+  {
+    const acc::BootstrapQuantity& q = refits.quantities[i];
+    if (std::isfinite(q.interval_95_low))
+      EXPECT_TRUE(box.lower[i] <= q.interval_95_low && q.interval_95_high <= box.upper[i]) << q.name;
+  }
+}
+
+// diagnose's final model gets it when the training data are short, in its JSON; not on longer data.
+TEST(DiagnosedModelBootstrap, TheDiagnosisMakesItOnShortTrainingDataOnly)
+{
+  acc::DiagnosisOptions options;
+  options.with_stability_test = false;
+  options.candidates = {acc::EffectKind::actuation_lag};
+  options.bootstrap_replicates = 20;
+  options.threads = 2;
+  const acc::DiagnosisResult short_data = acc::diagnoseRuns({laggedDrive(9)}, options);  // 60 s of training
+  ASSERT_TRUE(short_data.final_bootstrap.has_value());
+  EXPECT_EQ(short_data.final_bootstrap->replicates, 20u);
+  const nlohmann::json json = acc::diagnosisToJson(short_data);
+  ASSERT_TRUE(json["final_model"].contains("refit_bootstrap")) << json["final_model"].dump(1);
+  const nlohmann::json& quantities = json["final_model"]["refit_bootstrap"]["quantities"];
+  for (const auto& [name, value] : json["final_model"]["parameters"].items())
+    EXPECT_TRUE(quantities.contains(name)) << name;  // one name for a parameter, its error and its interval
+
+  options.bootstrap_below_s = 30.0;
+  EXPECT_FALSE(acc::diagnoseRuns({laggedDrive(9)}, options).final_bootstrap.has_value());
+}
+
+// Seeded two-minute drives with the lag hidden, each against the fit of the same drive without
+// noise (the Euler model's own answer, as the calibration's coverage test takes it): how often
+// the bootstrap-t interval and value +- 1.96 se hold the lag and the base parameters. Printed for
+// docs/DIAGNOSIS.md ("The final model's intervals").
+TEST(DiagnosedModelBootstrap, CoversTwoMinutesWithAHiddenLag)
+{
+  constexpr std::uint32_t kDrives = 30;
+  const char* const names[] = {"k1_per_s2", "k2_per_s", "tau_e_s", "eta_m", "lag_time_constant_s"};
+  constexpr std::size_t kCount = sizeof names / sizeof names[0];
+  const acc::AugmentedCalibrationOptions calibration;
+  const std::vector<acc::EffectKind> lag = {acc::EffectKind::actuation_lag};
+  double bootstrap[kCount] = {}, sandwich[kCount] = {};
+  std::size_t drives = 0;
+  double seconds = 0.0;
+  for (std::uint32_t seed = 100; seed < 100 + kDrives; ++seed)
+  {
+    const acc::CarFollowingRun run = laggedDrive(seed);
+    acc::WithheldCase clean_case;
+    clean_case.truth = acc::EffectKind::actuation_lag;
+    clean_case.truth_values = {kTrueLagS};
+    clean_case.duration_s = 120.0;
+    clean_case.seed = seed;
+    clean_case.speed_noise_std_mps = 0.0;
+    clean_case.gap_noise_std_m = 0.0;
+    const acc::AugmentedFit fit = acc::calibrateAugmentedSet(lag, {run}, calibration);
+    const acc::AugmentedFit clean = acc::calibrateAugmentedSet(lag, {acc::synthesizeWithheldRun(clean_case)}, calibration);
+    if (!fit.usable() || !clean.usable())
+      continue;
+    acc::RefitBootstrapOptions options;
+    options.replicates = 99;
+    options.threads = 2;
+    const acc::RefitBootstrap refits = acc::bootstrapDiagnosedModel(fit, {run}, calibration, options);
+    ASSERT_EQ(refits.note, "");
+    seconds += refits.wall_time_s;
+    ++drives;
+    const std::vector<double> reference = {clean.base.k1_per_s2, clean.base.k2_per_s, clean.base.tau_e_s,
+                                           clean.base.eta_m, clean.effect_values.front()};
+    for (std::size_t i = 0; i < kCount; ++i)
+    {
+      const acc::BootstrapQuantity& q = quantity(refits, names[i]);
+      bootstrap[i] += q.interval_95_low <= reference[i] && reference[i] <= q.interval_95_high;
+      const double value = i < 4 ? q.value : fit.effect_values.front(), se = fit.standard_errors[i];
+      sandwich[i] += std::abs(value - reference[i]) <= 1.96 * se;
+    }
+  }
+  ASSERT_GE(drives, kDrives - 2);
+  std::printf("%zu drives of 120 s with a %.1f s lag, %.2f s per bootstrap of 99 replicates:\n", drives, kTrueLagS,
+              seconds / drives);
+  double bootstrap_mean = 0.0, sandwich_mean = 0.0;
+  for (std::size_t i = 0; i < kCount; ++i)
+  {
+    std::printf("  %-20s bootstrap-t covers %3.0f %%; value +- 1.96 se %3.0f %%\n", names[i],
+                100.0 * bootstrap[i] / drives, 100.0 * sandwich[i] / drives);
+    bootstrap_mean += bootstrap[i] / drives / kCount;
+    sandwich_mean += sandwich[i] / drives / kCount;
+  }
+  EXPECT_GE(bootstrap[4] / drives, 0.85);  // the lag, the size a user asks of the diagnosis
+  EXPECT_GE(bootstrap_mean, sandwich_mean);
+}
