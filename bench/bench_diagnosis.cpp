@@ -6,7 +6,7 @@
 // string-stability test of the chosen model (side fit, 999 bootstrap replicates) and the forward
 // selection, with the diagnose tool's defaults. Target (issue 15): at least 5x faster than the
 // derivative-free fits before it (5.8 s wall on this machine). Threads: Arg(1) is one core, Arg(0)
-// every core; the result is the same.
+// every core; the result is the same. And the final model's refitting bootstrap on short data.
 #include <benchmark/benchmark.h>
 
 #include <stdexcept>
@@ -14,7 +14,9 @@
 #include <vector>
 
 #include "acc_identification/diagnosis/diagnosis.h"
+#include "acc_identification/diagnosis/final_model_bootstrap.h"
 #include "acc_identification/io/run_csv.h"
+#include "acc_identification/validation/withheld_effect_suite.h"
 
 namespace
 {
@@ -45,6 +47,30 @@ void BM_DiagnoseOneTwentyFiveMinuteRun(benchmark::State& state)
   state.SetLabel("dominant " + acc::effectName(result.selection.dominant));
 }
 BENCHMARK(BM_DiagnoseOneTwentyFiveMinuteRun)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// The final model's refitting bootstrap on short training data (199 replicates, each refitted as
+/// the diagnosis fits: base cold, the effect warm, and a start at the model), for a model with an
+/// actuation lag on a synthetic drive with a 0.8 s lag hidden. Arg: the drive's length [s].
+void BM_DiagnosedModelBootstrap(benchmark::State& state)
+{
+  acc::WithheldCase c;
+  c.truth = acc::EffectKind::actuation_lag;
+  c.truth_values = {0.8};
+  c.duration_s = static_cast<double>(state.range(0));
+  const acc::CarFollowingRun run = acc::synthesizeWithheldRun(c);
+  const acc::AugmentedCalibrationOptions calibration;
+  const acc::AugmentedFit fit = acc::calibrateAugmentedSet({acc::EffectKind::actuation_lag}, {run}, calibration);
+  acc::RefitBootstrapOptions options;
+  options.threads = 1;
+  acc::RefitBootstrap result;
+  for (auto _ : state)
+  {
+    result = acc::bootstrapDiagnosedModel(fit, {run}, calibration, options);
+    benchmark::DoNotOptimize(result);
+  }
+  state.counters["refitted"] = static_cast<double>(result.refitted);
+}
+BENCHMARK(BM_DiagnosedModelBootstrap)->Arg(60)->Arg(120)->Arg(300)->Unit(benchmark::kMillisecond);
 }  // namespace
 
 BENCHMARK_MAIN();

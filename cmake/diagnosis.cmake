@@ -60,7 +60,7 @@ if(CATKIN_ENABLE_TESTING)
 endif()
 
 # One whole diagnose of the bundled 25-minute Casale part6 run (cmake/data.cmake).
-acc_add_benchmark(bench_diagnosis LINK acc_diagnosis acc_run_io)
+acc_add_benchmark(bench_diagnosis LINK acc_diagnosis acc_validation acc_run_io)
 if(TARGET bench_diagnosis)
   target_compile_definitions(bench_diagnosis PRIVATE ACC_CASALE_DIR="${ACC_DATA_CASALE_DIR}")
 endif()
