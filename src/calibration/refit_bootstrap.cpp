@@ -13,6 +13,7 @@
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/json_number.h"
 #include "acc_identification/model/normal_source.h"
+#include "acc_identification/model/number_text.h"
 #include "acc_identification/model/parallel_tasks.h"
 #include "acc_identification/model/portable_uniform.h"
 #include "acc_identification/model/sample_statistics.h"
@@ -94,12 +95,37 @@ BootstrapDraw drawOf(const IdentifiableQuantities& quantities)
   return draw;
 }
 
-/// Which parameter of the fit sits at a bound ("tau_e at its lower bound 0"), or "".
-std::string parameterAtBound(const BootstrapDraw& at_fit, std::size_t parameter_count)
+/// Quantity i's entry in a list of bounds, or `none` where the list has none (short, or NaN).
+double boundOf(const std::vector<double>& bounds, std::size_t i, double none)
 {
-  for (std::size_t i = 0; i < parameter_count && i < at_fit.held_by_bound.size(); ++i)
+  return i < bounds.size() && !std::isnan(bounds[i]) ? bounds[i] : none;
+}
+
+/// Why quantity i is near a bound of the fit's range, or "": within 1.96 of its standard errors,
+/// where value +- 1.96 se would cross it. There the refits pile up against the bound and their
+/// own standard errors say little, so that the studentised interval can come out far narrower
+/// than their spread (Andrews 2000: a parameter near the boundary, not only on it).
+std::string nearBound(const FittedDrives& fitted, std::size_t i)
+{
+  const double value = fitted.at_fit.value[i], reach = 1.96 * fitted.at_fit.standard_error[i];
+  const double lower = boundOf(fitted.lower_bound, i, -kInfinity), upper = boundOf(fitted.upper_bound, i, kInfinity);
+  if (!std::isfinite(reach) || (value - reach > lower && value + reach < upper))
+    return "";
+  const bool low = value - lower <= upper - value;
+  return printfText("%s = %.4g within 1.96 standard errors (%.3g) of its %s bound %g", fitted.quantity_names[i].c_str(),
+                    value, reach / 1.96, low ? "lower" : "upper", low ? lower : upper);
+}
+
+/// Which parameter of the fit sits at or near a bound ("tau_e at its lower bound 0"), or "".
+std::string parameterAtBound(const FittedDrives& fitted)
+{
+  const BootstrapDraw& at_fit = fitted.at_fit;
+  for (std::size_t i = 0; i < fitted.parameter_count && i < at_fit.held_by_bound.size(); ++i)
     if (!at_fit.held_by_bound[i].empty())
       return at_fit.held_by_bound[i];
+  for (std::size_t i = 0; i < fitted.parameter_count && i < at_fit.value.size(); ++i)
+    if (!nearBound(fitted, i).empty())
+      return nearBound(fitted, i);
   return "";
 }
 
@@ -117,12 +143,6 @@ Refit refitReplicate(std::size_t index, const std::vector<CarFollowingRun>& runs
   for (std::size_t r = 0; r < runs.size(); ++r)
     replicate.push_back(replicateRun(runs[r], models[r], block_samples, engine, normal));
   return refit(replicate);
-}
-
-/// Quantity i's entry in a list of bounds, or `none` where the list has none (short, or NaN).
-double boundOf(const std::vector<double>& bounds, std::size_t i, double none)
-{
-  return i < bounds.size() && !std::isnan(bounds[i]) ? bounds[i] : none;
 }
 
 /// The interval and spread of quantity i from the refits.
@@ -156,6 +176,8 @@ BootstrapQuantity summarise(std::size_t i, const FittedDrives& fitted, const std
     q.note = at_fit.held_by_bound[i] + ": the bootstrap does not hold at a bound" + fitted.at_bound_hint;
   else if (!std::isfinite(se))
     q.note = "no standard error at the fit";
+  else if (!nearBound(fitted, i).empty())
+    q.note = nearBound(fitted, i) + ": the bootstrap does not hold near a bound";
   else if (2 * studentised.size() < refits.size())
     q.note = "fewer than half the refits have a standard error";
   else
@@ -187,9 +209,9 @@ RefitBootstrap bootstrapFittedDrives(const FittedDrives& fitted, const std::vect
   result.replicates = options.replicates;
   result.block_length_s = fitted.block_length_s;
   const std::vector<RunModel> models = modelRuns(fitted.simulated_speed_mps, runs);
-  const std::string at_bound = parameterAtBound(fitted.at_fit, fitted.parameter_count);
+  const std::string at_bound = parameterAtBound(fitted);
   if (!at_bound.empty())
-    result.caution = at_bound + ": the other intervals are approximate (a bootstrap does not hold at a bound)";
+    result.caution = at_bound + ": the other intervals are approximate (a bootstrap does not hold at or near a bound)";
   const double step_s = medianStepS(runs);
   const std::size_t block_samples =
       std::isfinite(step_s) && step_s > 0.0 ? static_cast<std::size_t>(std::lround(result.block_length_s / step_s)) : 1;

@@ -68,8 +68,8 @@ TEST(DiagnosedModelBootstrap, AHiddenLagsIntervalHoldsItAndTheSeedAloneDecidesTh
   EXPECT_NE(quantity(other_seed, "lag_time_constant_s").standard_error, lag.standard_error);
 }
 
-// A parameter held at a bound of the diagnosis's box gets no interval, and cautions the others;
-// an interval never reaches past the box.
+// A parameter held at a bound of the diagnosis's box, or within 1.96 standard errors of one, gets
+// no interval, and cautions the others; an interval never reaches past the box.
 TEST(DiagnosedModelBootstrap, NoIntervalAtABoundAndNoneBeyondTheBox)
 {
   const acc::CarFollowingRun run = laggedDrive(8);
@@ -83,6 +83,16 @@ TEST(DiagnosedModelBootstrap, NoIntervalAtABoundAndNoneBeyondTheBox)
   EXPECT_TRUE(std::isnan(quantity(refits, "tau_e_s").interval_95_low));
   EXPECT_NE(quantity(refits, "tau_e_s").note.find("at its lower bound"), std::string::npos);
   EXPECT_NE(refits.caution.find("tau_e_s"), std::string::npos) << refits.caution;
+  // k2 one standard error from 0: the refits pile up against the bound, and the studentised
+  // interval would come out narrower than their spread (run 25's BMW i3 gave [0, 0.013] for a k2
+  // of 0.003 +- 0.53).
+  acc::AugmentedFit near = acc::calibrateAugmentedSet({acc::EffectKind::actuation_lag}, {run}, calibration);
+  near.base.k2_per_s = near.standard_errors[1];
+  const acc::RefitBootstrap near_refits = acc::bootstrapDiagnosedModel(near, {run}, calibration, options);
+  EXPECT_TRUE(std::isnan(quantity(near_refits, "k2_per_s").interval_95_low));
+  EXPECT_NE(quantity(near_refits, "k2_per_s").note.find("within 1.96 standard errors"), std::string::npos)
+      << quantity(near_refits, "k2_per_s").note;
+  EXPECT_NE(near_refits.caution.find("k2_per_s"), std::string::npos) << near_refits.caution;
   const acc::AugmentedParameterBox box({acc::EffectKind::actuation_lag}, calibration);
   for (std::size_t i = 0; i < refits.quantities.size(); ++i)
   {

@@ -41,9 +41,10 @@ struct BootstrapQuantity
   double bias = std::numeric_limits<double>::quiet_NaN();
   /// The 95 % interval, bootstrap-t: value - t*_0.975 se, value - t*_0.025 se, with se the fit's
   /// sandwich standard error and t*_q the q-quantile of (refit - value) / (refit's own sandwich
-  /// standard error), cut at the range the fit searched. NaN where held at a bound of the fit
-  /// (the bootstrap is not valid there: Andrews 2000) or where fewer than half the refits have a
-  /// standard error.
+  /// standard error), cut at the range the fit searched. NaN where held at a bound of the fit or
+  /// within 1.96 standard errors of one (the bootstrap is not valid there: Andrews 2000; near a
+  /// bound the refits' own standard errors say little, and the interval came out narrower than
+  /// their spread), or where fewer than half the refits have a standard error.
   double interval_95_low = std::numeric_limits<double>::quiet_NaN();
   double interval_95_high = std::numeric_limits<double>::quiet_NaN();
   std::string note;      ///< why there is no interval; empty with one
@@ -56,8 +57,8 @@ struct RefitBootstrap
   double block_length_s = 0.0;        ///< of the resampled residuals (the fit's batch-means block)
   std::vector<BootstrapQuantity> quantities;
   std::string note;                   ///< why no bootstrap was made; empty when one was
-  /// Set when a parameter of the fit sits at a bound: its refits pile up there, and the bootstrap's
-  /// intervals of the others are then approximate (Andrews 2000).
+  /// Set when a parameter of the fit sits at or near a bound: its refits pile up there, and the
+  /// bootstrap's intervals of the others are then approximate (Andrews 2000).
   std::string caution;
   double wall_time_s = 0.0;               ///< wall time
   /// The quantity of this name, or nullptr.

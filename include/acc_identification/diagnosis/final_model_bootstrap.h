@@ -21,7 +21,8 @@ namespace acc
 /// the two on the replicate kept (a usable fit first, then the lower objective). The selection of
 /// the effects is not repeated: the intervals are those of the sizes given the effects named.
 /// Quantities: the parameters by their JSON names (augmentedParameterNames). A parameter at a
-/// bound of the diagnosis's box gets no interval and makes the others approximate (Andrews 2000).
+/// bound of the diagnosis's box, or within 1.96 standard errors of one, gets no interval and makes
+/// the others approximate (Andrews 2000).
 /// options.starts and options.bounds are the base calibration's and not used.
 RefitBootstrap bootstrapDiagnosedModel(const AugmentedFit& fit, const std::vector<CarFollowingRun>& training,
                                        const AugmentedCalibrationOptions& calibration,
