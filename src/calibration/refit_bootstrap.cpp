@@ -124,8 +124,11 @@ std::string parameterAtBound(const FittedDrives& fitted)
     if (!at_fit.held_by_bound[i].empty())
       return at_fit.held_by_bound[i];
   for (std::size_t i = 0; i < fitted.parameter_count && i < at_fit.value.size(); ++i)
-    if (!nearBound(fitted, i).empty())
-      return nearBound(fitted, i);
+  {
+    const std::string near = nearBound(fitted, i);
+    if (!near.empty())
+      return near;
+  }
   return "";
 }
 
@@ -172,12 +175,13 @@ BootstrapQuantity summarise(std::size_t i, const FittedDrives& fitted, const std
     q.bias = mean - q.value;
   }
   const double se = at_fit.standard_error[i];
+  const std::string near = nearBound(fitted, i);
   if (!at_fit.held_by_bound[i].empty())
     q.note = at_fit.held_by_bound[i] + ": the bootstrap does not hold at a bound" + fitted.at_bound_hint;
   else if (!std::isfinite(se))
     q.note = "no standard error at the fit";
-  else if (!nearBound(fitted, i).empty())
-    q.note = nearBound(fitted, i) + ": the bootstrap does not hold near a bound";
+  else if (!near.empty())
+    q.note = near + ": the bootstrap does not hold near a bound";
   else if (2 * studentised.size() < refits.size())
     q.note = "fewer than half the refits have a standard error";
   else
@@ -199,6 +203,28 @@ const BootstrapQuantity* RefitBootstrap::find(const std::string& name) const
     if (q.name == name)
       return &q;
   return nullptr;
+}
+
+RefitBootstrap RefitBootstrap::notMade(std::size_t replicates, const std::string& why)
+{
+  RefitBootstrap none;
+  none.replicates = replicates;
+  none.note = why;
+  return none;
+}
+
+std::string simulateFittedDrives(const AccParameters& parameters, const EffectSettings& effects,
+                                 const std::vector<CarFollowingRun>& runs, FittedDrives& fitted)
+{
+  fitted.simulated_speed_mps.clear();
+  for (const CarFollowingRun& run : runs)
+  {
+    const SimulatedFollower sim = simulateFollower(parameters, effects, run);
+    if (sim.diverged)
+      return "the fit's simulation of " + run.name + " diverges";
+    fitted.simulated_speed_mps.push_back(sim.speed_mps);
+  }
+  return "";
 }
 
 RefitBootstrap bootstrapFittedDrives(const FittedDrives& fitted, const std::vector<CarFollowingRun>& runs,
@@ -237,18 +263,9 @@ RefitBootstrap bootstrapRefits(const AccParameters& fit, const std::vector<CarFo
   fitted.lower_bound = {b.lower.k1_per_s2, b.lower.k2_per_s, b.lower.tau_e_s, b.lower.eta_m};
   fitted.upper_bound = {b.upper.k1_per_s2, b.upper.k2_per_s, b.upper.tau_e_s, b.upper.eta_m};
   fitted.at_bound_hint = " (the one-sided interval above does)";  // calibrate's quantity table
-  for (const CarFollowingRun& run : runs)
-  {
-    const SimulatedFollower sim = simulateFollower(fit, EffectSettings{}, run);
-    if (sim.diverged)
-    {
-      RefitBootstrap none;
-      none.replicates = options.replicates;
-      none.note = "the fit's simulation of " + run.name + " diverges";
-      return none;
-    }
-    fitted.simulated_speed_mps.push_back(sim.speed_mps);
-  }
+  const std::string not_made = simulateFittedDrives(fit, EffectSettings{}, runs, fitted);
+  if (!not_made.empty())
+    return RefitBootstrap::notMade(options.replicates, not_made);
   const ParameterUncertainty uncertainty = estimateUncertainty(fit, runs);
   fitted.at_fit = drawOf(assessQuantities(fit, uncertainty, runs, options.bounds));
   fitted.block_length_s = uncertainty.block_length_s;

@@ -1,6 +1,5 @@
 #include "acc_identification/conversion/nmea_logs_to_csv.h"
 
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <fstream>

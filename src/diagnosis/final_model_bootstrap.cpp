@@ -92,18 +92,10 @@ RefitBootstrap bootstrapDiagnosedModel(const AugmentedFit& fit, const std::vecto
   fitted.at_fit = drawOf(fit, box);
   fitted.lower_bound = box.lower;
   fitted.upper_bound = box.upper;
-  for (const CarFollowingRun& run : training)
-  {
-    const SimulatedFollower sim = simulateFollower(fit.base, fit.settings, run);
-    if (sim.diverged || fit.diverged)
-    {
-      RefitBootstrap none;
-      none.replicates = options.replicates;
-      none.note = "the model's simulation of " + run.name + " diverges";
-      return none;
-    }
-    fitted.simulated_speed_mps.push_back(sim.speed_mps);
-  }
+  const std::string not_made = fit.diverged ? "the fit diverged"
+                                             : simulateFittedDrives(fit.base, fit.settings, training, fitted);
+  if (!not_made.empty())
+    return RefitBootstrap::notMade(options.replicates, not_made);
   fitted.block_length_s = residualBlockLengthS(training, fitted.simulated_speed_mps);
   const ReplicateRefit refit = [&](const std::vector<CarFollowingRun>& replicate) -> std::optional<BootstrapDraw> {
     AugmentedFit best = refitAsDiagnosed(effects, replicate, calibration);

@@ -15,6 +15,7 @@
 #include "acc_identification/calibration/quantity_identifiability.h"
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/car_following_run.h"
+#include "acc_identification/model/follower_effects.h"
 
 namespace acc
 {
@@ -63,6 +64,8 @@ struct RefitBootstrap
   double wall_time_s = 0.0;               ///< wall time
   /// The quantity of this name, or nullptr.
   const BootstrapQuantity* find(const std::string& name) const;
+  /// A bootstrap of `replicates` not made, and why (RefitBootstrap::note).
+  static RefitBootstrap notMade(std::size_t replicates, const std::string& why);
 };
 
 /// One fit as the bootstrap sees it, quantity by quantity: its value, its sandwich standard error
@@ -93,6 +96,12 @@ struct FittedDrives
   /// Appended to the note of a quantity held at a bound: where else to look.
   std::string at_bound_hint;
 };
+
+/// The fitted model's simulation of each run (from the measured start, driven by the measured
+/// leader) into fitted.simulated_speed_mps: "" when made, else why not (a run whose simulation
+/// diverges), for RefitBootstrap::note.
+std::string simulateFittedDrives(const AccParameters& parameters, const EffectSettings& effects,
+                                 const std::vector<CarFollowingRun>& runs, FittedDrives& fitted);
 
 /// The refit of one replicate's runs, exactly as the data were fitted; nullopt when it diverged.
 using ReplicateRefit = std::function<std::optional<BootstrapDraw>(const std::vector<CarFollowingRun>& replicate)>;
