@@ -47,12 +47,10 @@ void checkBounds(const AccParameters& p, const std::optional<AccParameters>& sta
                               {"eta_m", p.eta_m, b.lower.eta_m, b.upper.eta_m, se.eta_m}};
   for (const Named& q : parameters)
   {
-    const double range = q.upper - q.lower, tolerance = options.bound_fraction * range;
-    const bool at_lower = q.value <= q.lower + tolerance, at_upper = q.value >= q.upper - tolerance;
-    if (!at_lower && !at_upper)
+    const double range = q.upper - q.lower;
+    const std::string text = atBoundText(q.name, q.value, q.lower, q.upper, options.bound_fraction);
+    if (text.empty())
       continue;
-    const std::string text = printfText("%s = %.4g at its %s bound %g", q.name, q.value, at_lower ? "lower" : "upper",
-                                    at_lower ? q.lower : q.upper);
     out.checks.parameters_at_bound.push_back(text);
     // NaN (unknown) fails this comparison too: such a parameter is listed, not held against the model.
     const std::string error = standard_errors ? printfText(" +- %.3g", q.standard_error) : "";
@@ -254,6 +252,16 @@ std::string describeAdequacy(const ModelAdequacy& adequacy)
   if (!adequacy.assessed)
     return "not assessed (" + reasons + ")";
   return adequacy.adequate ? "ADEQUATE" : "NOT ADEQUATE (" + reasons + ")";
+}
+
+std::string atBoundText(const std::string& name, double value, double lower, double upper, double bound_fraction)
+{
+  const double tolerance = bound_fraction * (upper - lower);
+  const bool at_lower = value <= lower + tolerance, at_upper = value >= upper - tolerance;
+  if (!at_lower && !at_upper)
+    return "";
+  return printfText("%s = %.4g at its %s bound %g", name.c_str(), value, at_lower ? "lower" : "upper",
+                    at_lower ? lower : upper);
 }
 
 }  // namespace acc

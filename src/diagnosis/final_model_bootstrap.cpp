@@ -11,7 +11,6 @@
 #include "acc_identification/diagnosis/augmented_fit_json.h"
 #include "acc_identification/model/batch_means.h"
 #include "acc_identification/model/follower_simulation.h"
-#include "acc_identification/model/number_text.h"
 
 namespace acc
 {
@@ -35,12 +34,7 @@ BootstrapDraw drawOf(const AugmentedFit& fit, const AugmentedParameterBox& box)
   const double fraction = ModelAdequacyOptions{}.bound_fraction;
   for (std::size_t i = 0; i < draw.value.size(); ++i)
   {
-    const double x = draw.value[i], tolerance = fraction * (box.upper[i] - box.lower[i]);
-    const bool at_lower = x <= box.lower[i] + tolerance, at_upper = x >= box.upper[i] - tolerance;
-    draw.held_by_bound.push_back(at_lower || at_upper
-                                     ? printfText("%s = %.4g at its %s bound %g", names[i].c_str(), x,
-                                                  at_lower ? "lower" : "upper", at_lower ? box.lower[i] : box.upper[i])
-                                     : "");
+    draw.held_by_bound.push_back(atBoundText(names[i], draw.value[i], box.lower[i], box.upper[i], fraction));
     const double se = i < fit.standard_errors.size() ? fit.standard_errors[i] : std::nan("");
     draw.standard_error.push_back(draw.held_by_bound.back().empty() ? se : std::nan(""));
   }

@@ -86,6 +86,11 @@ struct ModelAdequacy
   AdequacyChecks checks;
 };
 
+/// "name = value at its lower bound L" (or upper) when value lies within bound_fraction of the range
+/// [lower, upper] from one of its ends, else "": a parameter held by the bound of a fit, in one
+/// rule and one wording for the adequacy checks and the bootstraps of diagnosed models.
+std::string atBoundText(const std::string& name, double value, double lower, double upper, double bound_fraction);
+
 /// Checks (a)-(c) of the model p on the runs: each run simulated from its measured start
 /// (evaluateFit), gap and speed spreads pooled over the runs, the residual correlation time over
 /// all runs. Never throws: runs that cannot be simulated give "not assessed" with the reason.
