@@ -599,6 +599,17 @@ std::vector<double> simulatedSpeeds(const std::vector<double>& x, const Augmente
   return speeds;
 }
 
+/// Each segment's sample times, for the batch means (whose blocks do not straddle segments).
+std::vector<std::vector<double>> segmentTimes(const std::vector<CarFollowingRun>& segments)
+{
+  std::vector<std::vector<double>> times;
+  for (const CarFollowingRun& run : segments)
+  {
+    times.push_back(run.time_s);
+  }
+  return times;
+}
+
 std::vector<double> standardErrors(const std::vector<double>& x, const AugmentedParameterBox& box,
                                    const std::vector<CarFollowingRun>& segments)
 {
@@ -655,13 +666,9 @@ std::vector<double> standardErrors(const std::vector<double>& x, const Augmented
   Eigen::FullPivLU<Eigen::MatrixXd> lu(information);
   // Sandwich with the batch-means covariance of the scores J_k r_k: honest when the residuals are
   // correlated over seconds, as model errors are. Blocks do not straddle segments.
-  std::vector<std::vector<double>> times;
-  for (const CarFollowingRun& run : segments)
-  {
-    times.push_back(run.time_s);
-  }
+  const std::vector<std::vector<double>> times = segmentTimes(segments);
   const Eigen::VectorXd residual_vector = Eigen::Map<const Eigen::VectorXd>(residuals.data(), static_cast<Eigen::Index>(n));
-  const double block_s = batchMeansBlockLength(times, residual_vector, 10.0).block_length_s;
+  const double block_s = speedResidualBlockLengthS(segments, residuals);
   std::size_t blocks = 0;
   const Eigen::MatrixXd scores_covariance = batchMeansScoreCovariance(times, reduced, residual_vector, block_s, &blocks);
   if (!lu.isInvertible() || blocks < 4)
@@ -678,6 +685,13 @@ std::vector<double> standardErrors(const std::vector<double>& x, const Augmented
   return nan;
 }
 }  // namespace
+
+double speedResidualBlockLengthS(const std::vector<CarFollowingRun>& segments, const std::vector<double>& residuals)
+{
+  const Eigen::VectorXd residual_vector =
+      Eigen::Map<const Eigen::VectorXd>(residuals.data(), static_cast<Eigen::Index>(residuals.size()));
+  return batchMeansBlockLength(segmentTimes(segments), residual_vector, 10.0).block_length_s;
+}
 
 double augmentedSpeedMse(const AccParameters& p, const EffectSettings& effects,
                          const std::vector<CarFollowingRun>& segments)

@@ -5,12 +5,8 @@
 #include <optional>
 #include <string>
 
-#include <Eigen/Dense>
-
 #include "acc_identification/calibration/model_adequacy.h"
 #include "acc_identification/diagnosis/augmented_fit_json.h"
-#include "acc_identification/model/batch_means.h"
-#include "acc_identification/model/follower_simulation.h"
 
 namespace acc
 {
@@ -56,21 +52,15 @@ AugmentedFit refitAsDiagnosed(const std::vector<EffectKind>& effects, const std:
   return fit;
 }
 
-/// The batch-means block length of the fit's speed residuals, as its sandwich takes it.
-double residualBlockLengthS(const std::vector<CarFollowingRun>& training,
-                            const std::vector<std::vector<double>>& simulated_speed_mps)
+/// The fit's speed residuals, run after run.
+std::vector<double> speedResiduals(const std::vector<CarFollowingRun>& training,
+                                   const std::vector<std::vector<double>>& simulated_speed_mps)
 {
-  std::vector<std::vector<double>> times;
   std::vector<double> residuals;
   for (std::size_t r = 0; r < training.size(); ++r)
-  {
-    times.push_back(training[r].time_s);
     for (std::size_t k = 0; k < training[r].size(); ++k)
       residuals.push_back(training[r].follower_speed_mps[k] - simulated_speed_mps[r][k]);
-  }
-  const Eigen::VectorXd residual_vector =
-      Eigen::Map<const Eigen::VectorXd>(residuals.data(), static_cast<Eigen::Index>(residuals.size()));
-  return batchMeansBlockLength(times, residual_vector, 10.0).block_length_s;
+  return residuals;
 }
 }  // namespace
 
@@ -90,7 +80,7 @@ RefitBootstrap bootstrapDiagnosedModel(const AugmentedFit& fit, const std::vecto
                                              : simulateFittedDrives(fit.base, fit.settings, training, fitted);
   if (!not_made.empty())
     return RefitBootstrap::notMade(options.replicates, not_made);
-  fitted.block_length_s = residualBlockLengthS(training, fitted.simulated_speed_mps);
+  fitted.block_length_s = speedResidualBlockLengthS(training, speedResiduals(training, fitted.simulated_speed_mps));
   const ReplicateRefit refit = [&](const std::vector<CarFollowingRun>& replicate) -> std::optional<BootstrapDraw> {
     AugmentedFit best = refitAsDiagnosed(effects, replicate, calibration);
     if (!effects.empty())

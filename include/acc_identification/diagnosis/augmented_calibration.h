@@ -120,6 +120,11 @@ struct AugmentedFit
   std::vector<double> standard_errors;
 };
 
+/// The batch-means block length [s] of a fit's speed residuals (measured less simulated speed,
+/// segment after segment) as the fits' standard errors take it: five residual correlation times,
+/// at least 10 s (batch_means.h). What the diagnosed model's bootstrap resamples its residuals in.
+double speedResidualBlockLengthS(const std::vector<CarFollowingRun>& segments, const std::vector<double>& residuals);
+
 /// Mean squared speed error of a model over segments, each simulated from its own start; the
 /// value is kDivergedObjective when a simulation diverges. Segments must be valid runs.
 double augmentedSpeedMse(const AccParameters& p, const EffectSettings& effects,
