@@ -18,15 +18,17 @@ namespace
 constexpr double kTrueLagS = 0.8;
 
 /// Two minutes behind a stepping leader, the follower with a 0.8 s actuation lag.
-acc::CarFollowingRun laggedDrive(std::uint32_t seed)
+acc::WithheldCase laggedCase(std::uint32_t seed)
 {
   acc::WithheldCase c;
   c.truth = acc::EffectKind::actuation_lag;
   c.truth_values = {kTrueLagS};
   c.duration_s = 120.0;
   c.seed = seed;
-  return acc::synthesizeWithheldRun(c);
+  return c;
 }
+
+acc::CarFollowingRun laggedDrive(std::uint32_t seed) { return acc::synthesizeWithheldRun(laggedCase(seed)); }
 
 const acc::BootstrapQuantity& quantity(const acc::RefitBootstrap& bootstrap, const std::string& name)
 {
@@ -140,11 +142,7 @@ TEST(DiagnosedModelBootstrap, CoversTwoMinutesWithAHiddenLag)
   for (std::uint32_t seed = 100; seed < 100 + kDrives; ++seed)
   {
     const acc::CarFollowingRun run = laggedDrive(seed);
-    acc::WithheldCase clean_case;
-    clean_case.truth = acc::EffectKind::actuation_lag;
-    clean_case.truth_values = {kTrueLagS};
-    clean_case.duration_s = 120.0;
-    clean_case.seed = seed;
+    acc::WithheldCase clean_case = laggedCase(seed);
     clean_case.speed_noise_std_mps = 0.0;
     clean_case.gap_noise_std_m = 0.0;
     const acc::AugmentedFit fit = acc::calibrateAugmentedSet(lag, {run}, calibration);
