@@ -18,6 +18,7 @@ acc_add_library(acc_model
     src/model/normal_source.cpp
     src/model/follower_effects.cpp
     src/model/batch_means.cpp
+    src/model/start_gap_covariance.cpp
     src/model/parallel_tasks.cpp
   LINK Eigen3::Eigen Boost::headers m Threads::Threads)
 

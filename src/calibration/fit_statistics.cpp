@@ -9,6 +9,7 @@
 #include "acc_identification/calibration/calibration_objective.h"
 #include "acc_identification/model/batch_means.h"
 #include "acc_identification/model/follower_simulation.h"
+#include "acc_identification/model/start_gap_covariance.h"
 
 namespace acc
 {
@@ -16,31 +17,20 @@ namespace
 {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// The covariance of the estimate that the runs' measured start gaps carry (fit_statistics.h):
-/// sum over runs of sigma_i^2 d_i d_i^T, d_i = bread J_i^T J_i,eta. Sets the result's
-/// start_gap_noise_m (RMS of the sigma_i the term uses).
-Eigen::Matrix4d startGapCovariance(const std::vector<SensitivityRows>& rows, const std::vector<CarFollowingRun>& runs,
-                                   const Eigen::Matrix4d& bread, ParameterUncertainty* result)
+/// What each run's measured start gap puts on the estimate (start_gap_covariance.h): a start-gap
+/// error acts as -eta, so J_i^T g_i = -J_i^T J_i,eta (the sign drops out of the covariance).
+std::vector<StartGapScore> startGapScores(const std::vector<SensitivityRows>& rows,
+                                          const std::vector<CarFollowingRun>& runs)
 {
-  Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
-  double noise_sq = 0.0;
-  std::size_t noisy_runs = 0;
+  std::vector<StartGapScore> scores;
   for (std::size_t i = 0; i < runs.size(); ++i)
   {
-    const double sigma = gapSampleNoiseM(runs[i]);
-    if (!std::isfinite(sigma))
-      continue;
-    Eigen::Vector4d score = Eigen::Vector4d::Zero();  // J_i^T J_i,eta: a start-gap error acts as -eta
+    Eigen::Vector4d score = Eigen::Vector4d::Zero();
     for (const Eigen::Vector4d& row : rows[i].row)
       score += row * row(3);
-    const Eigen::Vector4d move = bread * score;
-    covariance += sigma * sigma * move * move.transpose();
-    noise_sq += sigma * sigma;
-    ++noisy_runs;
+    scores.push_back({gapSampleNoiseM(runs[i]), score});
   }
-  if (noisy_runs > 0)
-    result->start_gap_noise_m = std::sqrt(noise_sq / static_cast<double>(noisy_runs));
-  return covariance;
+  return scores;
 }
 
 }  // namespace
@@ -150,7 +140,7 @@ ParameterUncertainty estimateUncertainty(const AccParameters& p, const std::vect
       unit.asDiagonal();
   // n / (n - 4): the usual small-sample correction for four fitted parameters.
   const double correction = static_cast<double>(samples) / static_cast<double>(samples - 4);
-  const Eigen::Matrix4d start_gaps = startGapCovariance(all, runs, bread, &result);
+  const Eigen::Matrix4d start_gaps = startGapCovariance(bread, startGapScores(all, runs), &result.start_gap_noise_m);
   result.eta_start_gap_error_m = std::sqrt(std::max(0.0, start_gaps(3, 3)));
   result.covariance = correction * bread * meat * bread + start_gaps;
   const Eigen::Vector4d se = result.covariance.diagonal().cwiseSqrt();

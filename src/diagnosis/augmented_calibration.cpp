@@ -11,6 +11,7 @@
 #include "acc_identification/model/batch_means.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/sample_statistics.h"
+#include "acc_identification/model/start_gap_covariance.h"
 
 namespace acc
 {
@@ -610,6 +611,34 @@ std::vector<std::vector<double>> segmentTimes(const std::vector<CarFollowingRun>
   return times;
 }
 
+/// What each segment's measured start gap puts on the estimate (start_gap_covariance.h): J_i^T g_i
+/// with g_i the simulated speeds' central difference in the segment's start gap, since an effect
+/// (a braking ratio of the gap, a sensor offset) may use the gap otherwise than through s - eta.
+std::vector<StartGapScore> startGapScores(const std::vector<double>& x, const AugmentedParameterBox& box,
+                                          const std::vector<CarFollowingRun>& segments, const Eigen::MatrixXd& jacobian)
+{
+  constexpr double kStartGapStepM = 0.01;
+  const AccParameters base = baseOf(x);
+  const EffectSettings settings = box.settingsOf(x);
+  std::vector<StartGapScore> scores;
+  Eigen::Index first_row = 0;
+  for (const CarFollowingRun& run : segments)
+  {
+    const Eigen::Index rows = static_cast<Eigen::Index>(run.size());
+    CarFollowingRun farther = run, nearer = run;
+    farther.space_gap_m[0] += kStartGapStepM;
+    nearer.space_gap_m[0] -= kStartGapStepM;
+    const std::vector<double> up = simulateFollower(base, settings, farther).speed_mps;
+    const std::vector<double> down = simulateFollower(base, settings, nearer).speed_mps;
+    Eigen::VectorXd per_metre(rows);
+    for (Eigen::Index k = 0; k < rows; ++k)
+      per_metre(k) = (up[static_cast<std::size_t>(k)] - down[static_cast<std::size_t>(k)]) / (2.0 * kStartGapStepM);
+    scores.push_back({gapSampleNoiseM(run), jacobian.middleRows(first_row, rows).transpose() * per_metre});
+    first_row += rows;
+  }
+  return scores;
+}
+
 std::vector<double> standardErrors(const std::vector<double>& x, const AugmentedParameterBox& box,
                                    const std::vector<CarFollowingRun>& segments)
 {
@@ -676,7 +705,10 @@ std::vector<double> standardErrors(const std::vector<double>& x, const Augmented
     return nan;
   }
   const Eigen::MatrixXd inverse = lu.inverse();
-  const Eigen::MatrixXd covariance = inverse * scores_covariance * inverse;
+  // n / (n - p): the usual small-sample correction, as calibrate's sandwich (fit_statistics.h).
+  const double correction = static_cast<double>(n) / static_cast<double>(n - active.size());
+  const Eigen::MatrixXd covariance = correction * inverse * scores_covariance * inverse +
+                                     startGapCovariance(inverse, startGapScores(x, box, segments, reduced));
   for (std::size_t a = 0; a < active.size(); ++a)
   {
     const double variance = covariance(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(a));

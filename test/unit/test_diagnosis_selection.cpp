@@ -6,6 +6,7 @@
 #include <limits>
 #include <utility>
 
+#include "acc_identification/calibration/fit_statistics.h"
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/determined_effects.h"
 #include "acc_identification/diagnosis/effect_selection.h"
@@ -106,6 +107,25 @@ TEST(AugmentedCalibration, RecoversTheBaseParametersFromCleanData)
   EXPECT_NEAR(fit.base.k2_per_s, c.base.k2_per_s, 0.02);
   EXPECT_NEAR(fit.base.tau_e_s, c.base.tau_e_s, 0.05);
   ASSERT_EQ(fit.standard_errors.size(), 4u);
+}
+
+// One sandwich for one model: the base model's standard errors from the diagnosis's fit (central
+// differences) are calibrate's (exact sensitivities), start gap's noise and n / (n - p) included.
+// On two noisy minutes the start gap is most of eta's error, so leaving it out fails the check.
+TEST(AugmentedCalibration, TheBaseModelsStandardErrorsAreCalibratesStartGapIncluded)
+{
+  acc::WithheldCase c;
+  c.duration_s = 120.0;
+  c.gap_noise_std_m = 1.0;
+  const acc::CarFollowingRun run = acc::synthesizeWithheldRun(c);
+  const acc::AugmentedFit fit = acc::calibrateAugmented(acc::EffectKind::none, {run}, acc::AugmentedCalibrationOptions{});
+  const acc::ParameterUncertainty calibrate = acc::estimateUncertainty(fit.base, {run}, 10.0);
+  ASSERT_EQ(fit.standard_errors.size(), 4u);
+  ASSERT_GT(calibrate.eta_start_gap_error_m, 0.5 * calibrate.standard_error.eta_m) << "the check could not fail";
+  const double expected[4] = {calibrate.standard_error.k1_per_s2, calibrate.standard_error.k2_per_s,
+                              calibrate.standard_error.tau_e_s, calibrate.standard_error.eta_m};
+  for (std::size_t i = 0; i < 4; ++i)
+    EXPECT_NEAR(fit.standard_errors[i], expected[i], 0.03 * expected[i]) << "parameter " << i;
 }
 
 namespace

@@ -47,7 +47,7 @@ FitQuality poolFits(const std::vector<FitQuality>& fits);
 /// whatever the drive's length, which the residuals never show (synthetic drives with 0.4 m of gap
 /// noise: eta off by 0.39 m RMS at 60, 120 and 300 s, the sandwich's error 0.07 to 0.02 m). So
 /// the covariance adds sum over runs i of sigma_i^2 d_i d_i^T, d_i = (J^T J)^-1 J_i^T J_i,eta the
-/// estimate's move per metre of run i's start gap, sigma_i = gapSampleNoiseM(run i).
+/// estimate's move per metre of run i's start gap, sigma_i = gapSampleNoiseM(run i) (start_gap_covariance.h).
 struct ParameterUncertainty
 {
   AccParameters standard_error;       ///< NaN when J^T J is singular

@@ -112,7 +112,9 @@ struct AugmentedFit
   /// Standard errors of (k1, k2, tau_e, eta, effect values...): the Gauss-Newton sandwich
   /// (J^T J)^-1 M (J^T J)^-1 with a finite-difference Jacobian J of the simulated speeds and M the
   /// batch-means covariance of the scores J_k r_k (blocks of five residual correlation times, at
-  /// least 10 s, within segments), as the calibration component's fit statistics. NaN when the
+  /// least 10 s, within segments), times n / (n - p), plus the covariance the segments' measured
+  /// start gaps carry (their sample noise, gapSampleNoiseM, through each segment's simulation), as
+  /// the calibration component's fit statistics. NaN when the
   /// data do not constrain a parameter (e.g. an acceleration limit that the commands never reach)
   /// or there are fewer than four blocks. For a gap objective they are the speed objective's
   /// sandwich at the fitted point: a measure of what the speeds determine there, not of the fit's
