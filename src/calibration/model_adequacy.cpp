@@ -254,12 +254,18 @@ std::string describeAdequacy(const ModelAdequacy& adequacy)
   return adequacy.adequate ? "ADEQUATE" : "NOT ADEQUATE (" + reasons + ")";
 }
 
-std::string atBoundText(const std::string& name, double value, double lower, double upper, double bound_fraction)
+BoundSide boundSide(double value, double lower, double upper, double bound_fraction)
 {
   const double tolerance = bound_fraction * (upper - lower);
-  const bool at_lower = value <= lower + tolerance, at_upper = value >= upper - tolerance;
-  if (!at_lower && !at_upper)
+  return value <= lower + tolerance ? BoundSide::lower : value >= upper - tolerance ? BoundSide::upper : BoundSide::inside;
+}
+
+std::string atBoundText(const std::string& name, double value, double lower, double upper, double bound_fraction)
+{
+  const BoundSide side = boundSide(value, lower, upper, bound_fraction);
+  if (side == BoundSide::inside)
     return "";
+  const bool at_lower = side == BoundSide::lower;
   return printfText("%s = %.4g at its %s bound %g", name.c_str(), value, at_lower ? "lower" : "upper",
                     at_lower ? lower : upper);
 }

@@ -1,4 +1,5 @@
 #include "acc_identification/calibration/quantity_identifiability.h"
+#include "acc_identification/calibration/model_adequacy.h"
 #include "acc_identification/model/json_number.h"
 #include "acc_identification/model/sample_statistics.h"
 
@@ -100,8 +101,8 @@ Eigen::Vector4d boundSides(const QuantityContext& c)
   Eigen::Vector4d sides = Eigen::Vector4d::Zero();
   for (int i = 0; i < 4; ++i)
   {
-    const double tolerance = c.criteria.bound_fraction * (upper[i] - lower[i]);
-    sides[i] = c.theta[i] <= lower[i] + tolerance ? 1.0 : (c.theta[i] >= upper[i] - tolerance ? -1.0 : 0.0);
+    const BoundSide side = boundSide(c.theta[i], lower[i], upper[i], c.criteria.bound_fraction);
+    sides[i] = side == BoundSide::lower ? 1.0 : side == BoundSide::upper ? -1.0 : 0.0;
   }
   return sides;
 }

@@ -1,4 +1,5 @@
 #include "acc_identification/diagnosis/determined_effects.h"
+#include "acc_identification/calibration/model_adequacy.h"
 #include "acc_identification/model/sample_statistics.h"
 
 #include <algorithm>
@@ -41,8 +42,7 @@ namespace
 {
 bool atBound(const EffectParameterSpec& spec, double value)
 {
-  const double margin = 1e-3 * (spec.upper - spec.lower);
-  return value <= spec.lower + margin || value >= spec.upper - margin;
+  return boundSide(value, spec.lower, spec.upper, ModelAdequacyOptions{}.bound_fraction) != BoundSide::inside;
 }
 }  // namespace
 

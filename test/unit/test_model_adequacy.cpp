@@ -93,6 +93,17 @@ TEST(ModelAdequacy, ParameterAtABoundIsNamed)
   EXPECT_FALSE(pinned.adequate);
 }
 
+// Within a thousandth of the range of an end is held by it; a step further in is not.
+TEST(ModelAdequacy, ABoundHoldsAValueWithinItsFractionOfTheRange)
+{
+  EXPECT_EQ(acc::boundSide(0.0099, 0.0, 10.0, 0.001), acc::BoundSide::lower);
+  EXPECT_EQ(acc::boundSide(0.0101, 0.0, 10.0, 0.001), acc::BoundSide::inside);
+  EXPECT_EQ(acc::boundSide(9.9901, 0.0, 10.0, 0.001), acc::BoundSide::upper);
+  EXPECT_EQ(acc::boundSide(-1.0, 0.0, 10.0, 0.001), acc::BoundSide::lower);  // beyond it too
+  EXPECT_EQ(acc::atBoundText("lag_s", 9.995, 0.0, 10.0, 0.001), "lag_s = 9.995 at its upper bound 10");
+  EXPECT_EQ(acc::atBoundText("lag_s", 5.0, 0.0, 10.0, 0.001), "");
+}
+
 // Complex roots decay at (k2 + k1 tau_e) / 2; real ones at the slower root; k1 = 0 at k2.
 TEST(ModelAdequacy, ResponseTimeIsTheSlowestDecay)
 {

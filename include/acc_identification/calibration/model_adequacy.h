@@ -86,6 +86,17 @@ struct ModelAdequacy
   AdequacyChecks checks;
 };
 
+/// Which bound of the range [lower, upper] a fitted value is held by: within bound_fraction of the
+/// range from that end (an optimiser stops on an active bound, not exactly at it). One rule for the
+/// adequacy checks, the quantities' one-sided limits, the bootstraps and the determined effects.
+enum class BoundSide
+{
+  inside,
+  lower,
+  upper
+};
+BoundSide boundSide(double value, double lower, double upper, double bound_fraction);
+
 /// "name = value at its lower bound L" (or upper) when value lies within bound_fraction of the range
 /// [lower, upper] from one of its ends, else "": a parameter held by the bound of a fit, in one
 /// rule and one wording for the adequacy checks and the bootstraps of diagnosed models.
