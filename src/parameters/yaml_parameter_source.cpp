@@ -15,8 +15,10 @@ namespace
 {
 // PyYAML's implicit resolvers (yaml/resolver.py), which rosparam uses.
 const std::regex kBool("yes|Yes|YES|no|No|NO|true|True|TRUE|false|False|FALSE|on|On|ON|off|Off|OFF");
-const std::regex kInt("[-+]?0b[0-1_]+|[-+]?0[0-7_]+|[-+]?(?:0|[1-9][0-9_]*)|[-+]?0x[0-9a-fA-F_]+");
+const std::regex kInt("[-+]?0b[0-1_]+|[-+]?0[0-7_]+|[-+]?(?:0|[1-9][0-9_]*)|[-+]?0x[0-9a-fA-F_]+|"
+                      "[-+]?[1-9][0-9_]*(?::[0-5]?[0-9])+");
 const std::regex kFloat("[-+]?(?:[0-9][0-9_]*)\\.[0-9_]*(?:[eE][-+][0-9]+)?|\\.[0-9_]+(?:[eE][-+][0-9]+)?|"
+                        "[-+]?[0-9][0-9_]*(?::[0-5]?[0-9])+\\.[0-9_]*|"
                         "[-+]?\\.(?:inf|Inf|INF)|\\.(?:nan|NaN|NAN)");
 const std::regex kNull("~|null|Null|NULL|");
 
@@ -29,7 +31,19 @@ std::string withoutUnderscores(const std::string& text)
   return digits;
 }
 
-/// An int as PyYAML reads it (0b binary, 0 octal, 0x hex, else decimal); beyond an int: a double.
+/// A base-60 number as PyYAML reads it (1:30 is 90, 1:30.5 is 90.5): the parts from the last, each
+/// worth 60 times the one after it. digits: unsigned, without underscores.
+double sexagesimal(const std::string& digits)
+{
+  double number = 0.0;
+  std::istringstream parts(digits);
+  for (std::string part; std::getline(parts, part, ':');)
+    number = 60.0 * number + std::strtod(part.c_str(), nullptr);
+  return number;
+}
+
+/// An int as PyYAML reads it (0b binary, 0 octal, 0x hex, base 60 with colons, else decimal);
+/// beyond an int: a double.
 ParameterValue integerValue(const std::string& text)
 {
   std::string digits = withoutUnderscores(text);
@@ -37,13 +51,16 @@ ParameterValue integerValue(const std::string& text)
   if (!digits.empty() && (digits[0] == '-' || digits[0] == '+'))
     digits.erase(0, 1);
   int base = 10;
-  if (digits.rfind("0b", 0) == 0)
+  if (digits.find(':') != std::string::npos)
+    base = 60;
+  else if (digits.rfind("0b", 0) == 0)
     base = 2, digits.erase(0, 2);
   else if (digits.rfind("0x", 0) == 0)
     base = 16, digits.erase(0, 2);
   else if (digits.size() > 1 && digits[0] == '0')
     base = 8;
-  const double magnitude = static_cast<double>(std::strtoull(digits.c_str(), nullptr, base));
+  const double magnitude =
+      base == 60 ? sexagesimal(digits) : static_cast<double>(std::strtoull(digits.c_str(), nullptr, base));
   const double number = negative ? -magnitude : magnitude;
   ParameterValue value;
   if (std::abs(number) <= std::numeric_limits<int>::max())
@@ -70,6 +87,9 @@ ParameterValue floatValue(const std::string& text)
   else if (digits.find("inf") != std::string::npos || digits.find("Inf") != std::string::npos ||
            digits.find("INF") != std::string::npos)
     value.number = digits[0] == '-' ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+  else if (digits.find(':') != std::string::npos)
+    value.number = digits[0] == '-' ? -sexagesimal(digits.substr(1))
+                                    : sexagesimal(digits[0] == '+' ? digits.substr(1) : digits);
   else
     value.number = std::strtod(digits.c_str(), nullptr);
   return value;

@@ -111,6 +111,26 @@ TEST(YamlParameters, PlainScalarsResolveAsYaml11)
   EXPECT_EQ(acc::resolveYamlScalar("-.inf").number, -INFINITY);
 }
 
+// Base 60, as PyYAML 6 reads it (yaml.safe_load("a: 1:30") is {'a': 90}): a node given 1:30 s gets
+// 90, so a tool reading the same file must too.
+TEST(YamlParameters, BaseSixtyNumbersAreNumbersAsRosparamReadsThem)
+{
+  using Type = acc::ParameterValue::Type;
+  EXPECT_EQ(acc::resolveYamlScalar("1:30").type, Type::kInt);
+  EXPECT_EQ(acc::resolveYamlScalar("1:30").integer, 90);
+  EXPECT_EQ(acc::resolveYamlScalar("190:20:30").integer, 685230);
+  EXPECT_EQ(acc::resolveYamlScalar("1_0:30").integer, 630);
+  EXPECT_EQ(acc::resolveYamlScalar("-1:30").integer, -90);
+  EXPECT_EQ(acc::resolveYamlScalar("-1:30.5").type, Type::kDouble);
+  EXPECT_EQ(acc::resolveYamlScalar("-1:30.5").number, -90.5);
+  EXPECT_EQ(acc::resolveYamlScalar("+1:00.25").number, 60.25);
+  for (const char* text : {"01:30", "1:60", "1::30"})
+    EXPECT_EQ(acc::resolveYamlScalar(text).type, Type::kString) << text;
+  const acc::YamlParameterSource file = acc::YamlParameterSource::fromText("window_s: 2:00\n", "w.yaml");
+  ASSERT_TRUE(file.get("window_s").has_value());
+  EXPECT_EQ(file.get("window_s")->integer, 120);
+}
+
 TEST(YamlParameters, AFileThatIsNoMappingOrNoYamlIsRefusedWithItsName)
 {
   EXPECT_TRUE(contains(acc::YamlParameterSource::fromFile("/nonexistent/p.yaml").error(), "/nonexistent/p.yaml"));

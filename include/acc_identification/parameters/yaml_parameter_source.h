@@ -34,7 +34,8 @@ private:
 };
 
 /// A plain scalar's type as YAML 1.1 (PyYAML, rosparam) resolves it: bool, int, float or null,
-/// else a string. Sexagesimal numbers (1:30) are read as strings, where PyYAML reads numbers.
+/// else a string. Base-60 numbers are numbers, as PyYAML reads them: 1:30 is the int 90, -1:30.5
+/// the float -90.5 (01:30 and 1:60 are strings).
 ParameterValue resolveYamlScalar(const std::string& text);
 
 }  // namespace acc
