@@ -5,6 +5,7 @@
 acc_add_library(acc_diagnosis
   SOURCES
     src/diagnosis/augmented_calibration.cpp
+    src/diagnosis/augmented_standard_errors.cpp
     src/diagnosis/residual_breakdown.cpp
     src/diagnosis/effect_selection.cpp
     src/diagnosis/perturbation_window_criterion.cpp

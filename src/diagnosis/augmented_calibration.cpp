@@ -7,11 +7,10 @@
 #include <Eigen/Dense>
 
 #include "acc_identification/diagnosis/augmented_stability.h"
+#include "acc_identification/diagnosis/augmented_standard_errors.h"
 #include "acc_identification/evidence/perturbation_windows.h"
-#include "acc_identification/model/batch_means.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/sample_statistics.h"
-#include "acc_identification/model/start_gap_covariance.h"
 
 namespace acc
 {
@@ -585,145 +584,7 @@ std::vector<std::vector<double>> effectStarts(const std::vector<EffectKind>& eff
   starts.push_back(near_off);
   return starts;
 }
-
-
-std::vector<double> simulatedSpeeds(const std::vector<double>& x, const AugmentedParameterBox& box,
-                                    const std::vector<CarFollowingRun>& segments)
-{
-  std::vector<double> speeds;
-  const EffectSettings settings = box.settingsOf(x);
-  for (const CarFollowingRun& run : segments)
-  {
-    const SimulatedFollower sim = simulateFollower(baseOf(x), settings, run);
-    speeds.insert(speeds.end(), sim.speed_mps.begin(), sim.speed_mps.end());
-  }
-  return speeds;
-}
-
-/// Each segment's sample times, for the batch means (whose blocks do not straddle segments).
-std::vector<std::vector<double>> segmentTimes(const std::vector<CarFollowingRun>& segments)
-{
-  std::vector<std::vector<double>> times;
-  for (const CarFollowingRun& run : segments)
-  {
-    times.push_back(run.time_s);
-  }
-  return times;
-}
-
-/// What each segment's measured start gap puts on the estimate (start_gap_covariance.h): J_i^T g_i
-/// with g_i the simulated speeds' central difference in the segment's start gap, since an effect
-/// (a braking ratio of the gap, a sensor offset) may use the gap otherwise than through s - eta.
-std::vector<StartGapScore> startGapScores(const std::vector<double>& x, const AugmentedParameterBox& box,
-                                          const std::vector<CarFollowingRun>& segments, const Eigen::MatrixXd& jacobian)
-{
-  constexpr double kStartGapStepM = 0.01;
-  const AccParameters base = baseOf(x);
-  const EffectSettings settings = box.settingsOf(x);
-  std::vector<StartGapScore> scores;
-  Eigen::Index first_row = 0;
-  for (const CarFollowingRun& run : segments)
-  {
-    const Eigen::Index rows = static_cast<Eigen::Index>(run.size());
-    CarFollowingRun farther = run, nearer = run;
-    farther.space_gap_m[0] += kStartGapStepM;
-    nearer.space_gap_m[0] -= kStartGapStepM;
-    const std::vector<double> up = simulateFollower(base, settings, farther).speed_mps;
-    const std::vector<double> down = simulateFollower(base, settings, nearer).speed_mps;
-    Eigen::VectorXd per_metre(rows);
-    for (Eigen::Index k = 0; k < rows; ++k)
-      per_metre(k) = (up[static_cast<std::size_t>(k)] - down[static_cast<std::size_t>(k)]) / (2.0 * kStartGapStepM);
-    scores.push_back({gapSampleNoiseM(run), jacobian.middleRows(first_row, rows).transpose() * per_metre});
-    first_row += rows;
-  }
-  return scores;
-}
-
-std::vector<double> standardErrors(const std::vector<double>& x, const AugmentedParameterBox& box,
-                                   const std::vector<CarFollowingRun>& segments)
-{
-  const std::size_t p = x.size();
-  std::vector<double> measured;
-  for (const CarFollowingRun& run : segments)
-  {
-    measured.insert(measured.end(), run.follower_speed_mps.begin(), run.follower_speed_mps.end());
-  }
-  const std::vector<double> fitted = simulatedSpeeds(x, box, segments);
-  const std::size_t n = measured.size();
-  std::vector<double> nan(p, std::numeric_limits<double>::quiet_NaN());
-  if (n <= p)
-  {
-    return nan;
-  }
-  Eigen::MatrixXd jacobian(n, p);
-  for (std::size_t j = 0; j < p; ++j)
-  {
-    // Central differences of 1e-4 of the box width, one-sided at a bound.
-    const double step = 1e-4 * (box.upper[j] - box.lower[j]);
-    std::vector<double> plus = x;
-    std::vector<double> minus = x;
-    plus[j] = std::min(x[j] + step, box.upper[j]);
-    minus[j] = std::max(x[j] - step, box.lower[j]);
-    const std::vector<double> up = simulatedSpeeds(plus, box, segments);
-    const std::vector<double> down = simulatedSpeeds(minus, box, segments);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      jacobian(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = (up[i] - down[i]) / (plus[j] - minus[j]);
-    }
-  }
-  std::vector<double> residuals(n);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    residuals[i] = measured[i] - fitted[i];
-  }
-  // A column that does not move the speed (e.g. a limit never reached) is not determined: its
-  // error is NaN, and the others are computed without it.
-  std::vector<Eigen::Index> active;
-  for (std::size_t j = 0; j < p; ++j)
-  {
-    if (jacobian.col(static_cast<Eigen::Index>(j)).norm() > 1e-9 * std::sqrt(static_cast<double>(n)))
-    {
-      active.push_back(static_cast<Eigen::Index>(j));
-    }
-  }
-  Eigen::MatrixXd reduced(n, active.size());
-  for (std::size_t a = 0; a < active.size(); ++a)
-  {
-    reduced.col(static_cast<Eigen::Index>(a)) = jacobian.col(active[a]);
-  }
-  const Eigen::MatrixXd information = reduced.transpose() * reduced;
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(information);
-  // Sandwich with the batch-means covariance of the scores J_k r_k: honest when the residuals are
-  // correlated over seconds, as model errors are. Blocks do not straddle segments.
-  const std::vector<std::vector<double>> times = segmentTimes(segments);
-  const Eigen::VectorXd residual_vector = Eigen::Map<const Eigen::VectorXd>(residuals.data(), static_cast<Eigen::Index>(n));
-  const double block_s = speedResidualBlockLengthS(segments, residuals);
-  std::size_t blocks = 0;
-  const Eigen::MatrixXd scores_covariance = batchMeansScoreCovariance(times, reduced, residual_vector, block_s, &blocks);
-  if (!lu.isInvertible() || blocks < 4)
-  {
-    return nan;
-  }
-  const Eigen::MatrixXd inverse = lu.inverse();
-  // n / (n - p): the usual small-sample correction, as calibrate's sandwich (fit_statistics.h).
-  const double correction = static_cast<double>(n) / static_cast<double>(n - active.size());
-  const Eigen::MatrixXd covariance = correction * inverse * scores_covariance * inverse +
-                                     startGapCovariance(inverse, startGapScores(x, box, segments, reduced));
-  for (std::size_t a = 0; a < active.size(); ++a)
-  {
-    const double variance = covariance(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(a));
-    nan[static_cast<std::size_t>(active[a])] = variance >= 0.0 ? std::sqrt(variance) : nan[0];
-  }
-  return nan;
-}
 }  // namespace
-
-double speedResidualBlockLengthS(const std::vector<CarFollowingRun>& segments, const std::vector<double>& residuals)
-{
-  const Eigen::VectorXd residual_vector =
-      Eigen::Map<const Eigen::VectorXd>(residuals.data(), static_cast<Eigen::Index>(residuals.size()));
-  return batchMeansBlockLength(segmentTimes(segments), residual_vector, 10.0).block_length_s;
-}
 
 double augmentedSpeedMse(const AccParameters& p, const EffectSettings& effects,
                          const std::vector<CarFollowingRun>& segments)
@@ -845,7 +706,7 @@ AugmentedFit fitAtBest(ObjectiveTracker* tracker, const AugmentedParameterBox& e
     fit.train_mse_speed = augmentedSpeedMse(fit.base, fit.settings, segments);
   }
   fit.standard_errors = fit.diverged ? std::vector<double>(box.dimension(), std::numeric_limits<double>::quiet_NaN())
-                                     : standardErrors(tracker->best_x, error_box, segments);
+                                     : augmentedStandardErrors(tracker->best_x, error_box, segments);
   return fit;
 }
 }  // namespace

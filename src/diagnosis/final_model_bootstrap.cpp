@@ -7,6 +7,7 @@
 
 #include "acc_identification/calibration/model_adequacy.h"
 #include "acc_identification/diagnosis/augmented_fit_json.h"
+#include "acc_identification/diagnosis/augmented_standard_errors.h"
 
 namespace acc
 {

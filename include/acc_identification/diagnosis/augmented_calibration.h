@@ -109,23 +109,12 @@ struct AugmentedFit
   /// A fit the platoon and the link evidence may use: it neither diverged nor left the stable set.
   bool usable() const { return !diverged && locally_stable; }
   std::size_t evaluations = 0;
-  /// Standard errors of (k1, k2, tau_e, eta, effect values...): the Gauss-Newton sandwich
-  /// (J^T J)^-1 M (J^T J)^-1 with a finite-difference Jacobian J of the simulated speeds and M the
-  /// batch-means covariance of the scores J_k r_k (blocks of five residual correlation times, at
-  /// least 10 s, within segments), times n / (n - p), plus the covariance the segments' measured
-  /// start gaps carry (their sample noise, gapSampleNoiseM, through each segment's simulation), as
-  /// the calibration component's fit statistics. NaN when the
-  /// data do not constrain a parameter (e.g. an acceleration limit that the commands never reach)
-  /// or there are fewer than four blocks. For a gap objective they are the speed objective's
-  /// sandwich at the fitted point: a measure of what the speeds determine there, not of the fit's
-  /// own spread.
+  /// Standard errors of (k1, k2, tau_e, eta, effect values...): the speed fit's sandwich, start
+  /// gaps included (augmentedStandardErrors, augmented_standard_errors.h); NaN where the data do
+  /// not constrain a parameter. For a gap objective they are the speed objective's sandwich at the
+  /// fitted point: a measure of what the speeds determine there, not of the fit's own spread.
   std::vector<double> standard_errors;
 };
-
-/// The batch-means block length [s] of a fit's speed residuals (measured less simulated speed,
-/// segment after segment) as the fits' standard errors take it: five residual correlation times,
-/// at least 10 s (batch_means.h). What the diagnosed model's bootstrap resamples its residuals in.
-double speedResidualBlockLengthS(const std::vector<CarFollowingRun>& segments, const std::vector<double>& residuals);
 
 /// Mean squared speed error of a model over segments, each simulated from its own start; the
 /// value is kDivergedObjective when a simulation diverges. Segments must be valid runs.
