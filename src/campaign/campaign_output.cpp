@@ -290,7 +290,7 @@ nlohmann::json effectSizesJson(const LinkEvidence& e)
   return sizes;
 }
 
-nlohmann::json linkJson(const LinkEvidence& e)
+nlohmann::json linkEvidenceJson(const LinkEvidence& e)
 {
   const EmpiricalResponse& r = e.response;
   nlohmann::json informative = nlohmann::json::array();
@@ -342,6 +342,14 @@ nlohmann::json linkJson(const LinkEvidence& e)
               {"ran_away_at_car", e.long_platoon_ran_away_at_car > 0 ? nlohmann::json(e.long_platoon_ran_away_at_car)
                                                                       : nlohmann::json(nullptr)}}}}},
           {"note", e.note}};
+}
+
+nlohmann::json linkJson(const LinkEvidence& e)
+{
+  nlohmann::json j = linkEvidenceJson(e);
+  if (e.diagnosed_bootstrap)
+    j["diagnosed_model"]["refit_bootstrap"] = toJson(*e.diagnosed_bootstrap);
+  return j;
 }
 
 const std::vector<std::string> kLinkHeader{"vehicle", "set", "dips", "dip ratio [CI]", "each dip", "data say", "model departs [rad/s]",
@@ -416,11 +424,22 @@ std::vector<std::vector<std::string>> linkRows(const CampaignResult& result)
 }
 
 const std::vector<std::string> kDiagnosedModelHeader{"vehicle", "set", "diagnosed model",
-                                                     "effect parameters +- SE (size: z from none)"};
+                                                     "effect parameters +- SE, 95 % (bootstrap, short runs) (size: z from none)"};
+
+/// " 95 % [low, high]" of the quantity's bootstrap-t interval where the bootstrap gives one ("" else).
+std::string bootstrapIntervalText(const RefitBootstrap* bootstrap, const std::string& name)
+{
+  const BootstrapQuantity* q = bootstrap != nullptr ? bootstrap->find(name) : nullptr;
+  if (q == nullptr || !std::isfinite(q->interval_95_low) || !std::isfinite(q->interval_95_high))
+    return "";
+  return " 95 % [" + cellNumber("%.3g", q->interval_95_low) + ", " + cellNumber("%.3g", q->interval_95_high) + "]";
+}
 
 /// One effect's parameters in fit with their standard errors (its first at *parameter among the
-/// fit's effect values, advanced past them), and whether the runs pin its size.
-std::string effectSizeText(const AugmentedFit& fit, EffectKind kind, const EffectSize& size, std::size_t* parameter)
+/// fit's effect values, advanced past them) and bootstrap intervals where made, and whether the
+/// runs pin its size.
+std::string effectSizeText(const AugmentedFit& fit, EffectKind kind, const EffectSize& size, std::size_t* parameter,
+                           const RefitBootstrap* bootstrap)
 {
   std::string text;
   for (const EffectParameterSpec& spec : candidateEffect(kind).parameters)
@@ -429,7 +448,8 @@ std::string effectSizeText(const AugmentedFit& fit, EffectKind kind, const Effec
     const std::size_t se = AugmentedParameterBox::kBaseDimension + i;
     const double value = i < fit.effect_values.size() ? fit.effect_values[i] : kNaN;
     const double error = se < fit.standard_errors.size() ? fit.standard_errors[se] : kNaN;
-    text += (text.empty() ? "" : ", ") + spec.name + " " + cellNumber("%.3g", value) + "+-" + cellNumber("%.2g", error);
+    text += (text.empty() ? "" : ", ") + spec.name + " " + cellNumber("%.3g", value) + "+-" + cellNumber("%.2g", error) +
+            bootstrapIntervalText(bootstrap, spec.name);
   }
   if (std::isfinite(size.z))
     text += " (z " + cellNumber("%.1f", size.z) + (size.determined ? ", determined)" : ", not determined)");
@@ -446,7 +466,12 @@ std::vector<std::vector<std::string>> diagnosedModelRows(const CampaignResult& r
     const std::vector<EffectSize> sizes = diagnosedEffectSizes(e);
     std::size_t parameter = 0;
     for (std::size_t k = 0; e.diagnosed_available && k < e.diagnosed.effects.size(); ++k)
-      effects += (effects.empty() ? "" : "; ") + effectSizeText(e.diagnosed_fit, e.diagnosed.effects[k], sizes[k], &parameter);
+      effects += (effects.empty() ? "" : "; ") + effectSizeText(e.diagnosed_fit, e.diagnosed.effects[k], sizes[k], &parameter,
+                                                                 e.diagnosed_bootstrap ? &*e.diagnosed_bootstrap : nullptr);
+    if (e.diagnosed_bootstrap && !e.diagnosed_bootstrap->note.empty())
+      effects += "; no bootstrap: " + e.diagnosed_bootstrap->note;
+    else if (e.diagnosed_bootstrap && !e.diagnosed_bootstrap->caution.empty())
+      effects += "; 95 % approximate: " + e.diagnosed_bootstrap->caution.substr(0, e.diagnosed_bootstrap->caution.find(": the other"));
     rows.push_back({e.vehicle, e.setting, e.diagnosed.name(), effects.empty() ? "-" : effects});
   }
   return rows;

@@ -7,6 +7,7 @@
 
 #include "acc_identification/evidence/perturbation.h"
 #include "acc_identification/diagnosis/augmented_calibration.h"
+#include "acc_identification/diagnosis/final_model_bootstrap.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/parallel_tasks.h"
 
@@ -90,6 +91,30 @@ std::vector<std::pair<double, double>> departures(const EmpiricalResponse& respo
   return ranges;
 }
 
+/// How a candidate is fitted: with its objective (the diagnosis's defaults otherwise).
+AugmentedCalibrationOptions candidateOptions(const PlatoonCandidate& candidate)
+{
+  AugmentedCalibrationOptions options;
+  options.objective = candidate.objective;
+  return options;
+}
+
+/// The diagnosed model's refitting bootstrap when the group's runs are short (LinkBootstrapOptions).
+void bootstrapShortLink(const CampaignGroup& group, const GroupResult& result, const LinkBootstrapOptions& options,
+                        LinkEvidence* evidence)
+{
+  const std::vector<CarFollowingRun> runs = group.segments();
+  if (options.replicates == 0 || !evidence->diagnosed_available || evidence->diagnosed.effects.empty() ||
+      !(totalDurationS(runs) < options.below_s))
+    return;
+  RefitBootstrapOptions bootstrap;
+  bootstrap.replicates = options.replicates;
+  bootstrap.threads = 1;  // the links themselves run in parallel
+  bootstrap.seed = result.seed;
+  evidence->diagnosed_bootstrap =
+      bootstrapDiagnosedModel(evidence->diagnosed_fit, runs, candidateOptions(evidence->diagnosed), bootstrap);
+}
+
 /// The chosen candidate fitted on all the group's runs, warm-started from the group's base fit.
 void fitDiagnosed(const CampaignGroup& group, const GroupResult& result, const PlatoonCandidate& candidate,
                   LinkEvidence* evidence)
@@ -111,7 +136,7 @@ void fitDiagnosed(const CampaignGroup& group, const GroupResult& result, const P
 
 LinkEvidence evidenceOf(const CampaignInputs& inputs, const CampaignGroup& group, const GroupResult& result,
                         const std::vector<PlatoonCheck>& platoons, const PlatoonCandidate& diagnosed,
-                        const PlatoonCheckOptions& platoon_options)
+                        const PlatoonCheckOptions& platoon_options, const LinkBootstrapOptions& bootstrap)
 {
   LinkEvidence evidence;
   evidence.vehicle = group.vehicle;
@@ -132,6 +157,7 @@ LinkEvidence evidenceOf(const CampaignInputs& inputs, const CampaignGroup& group
   }
   evidence.base_available = result.fitted();
   fitDiagnosed(group, result, diagnosed, &evidence);
+  bootstrapShortLink(group, result, bootstrap, &evidence);
   for (double w : evidence.response.frequency_rad_s)
   {
     evidence.model_gain_base.push_back(result.fitted() ? transferGain(result.identification.calibration.parameters, w)
@@ -172,9 +198,7 @@ AugmentedFit fitOnAllRuns(const PlatoonCandidate& candidate, const CampaignGroup
   warm.base = result.identification.calibration.parameters;
   if (candidate == PlatoonCandidate{})
     return warm;
-  AugmentedCalibrationOptions options;
-  options.objective = candidate.objective;
-  return calibrateAugmentedSet(candidate.effects, group.segments(), options, &warm);
+  return fitCandidate(candidate, group.segments(), warm);
 }
 
 void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& setting,
@@ -223,11 +247,12 @@ void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& settin
 std::vector<LinkEvidence> gatherLinkEvidence(const CampaignInputs& inputs, const std::vector<GroupResult>& groups,
                                              const std::vector<PlatoonCheck>& platoons,
                                              const PlatoonCandidate& diagnosed, std::size_t threads,
-                                             const PlatoonCheckOptions& platoon_options)
+                                             const PlatoonCheckOptions& platoon_options,
+                                             const LinkBootstrapOptions& bootstrap)
 {
   std::vector<LinkEvidence> out(inputs.groups.size());
   runTasksInParallel(out.size(), threads, [&](std::size_t i) {
-    out[i] = evidenceOf(inputs, inputs.groups[i], groups[i], platoons, diagnosed, platoon_options);
+    out[i] = evidenceOf(inputs, inputs.groups[i], groups[i], platoons, diagnosed, platoon_options, bootstrap);
   });
   return out;
 }

@@ -404,6 +404,27 @@ std::vector<bool> candidatesToFit(const std::optional<std::vector<std::size_t>>&
 }
 }  // namespace
 
+AugmentedFit fitCandidate(const PlatoonCandidate& candidate, const std::vector<CarFollowingRun>& training,
+                          const AugmentedFit& warm)
+{
+  AugmentedCalibrationOptions options;
+  options.objective = candidate.objective;
+  options.effect_starts = kEffectStarts;
+  AugmentedFit fit = calibrateAugmentedSet(candidate.effects, training, options, &warm);
+  // Timing effects trade off with tau_e and k2 and have two valleys: from the base model's
+  // parameters a 1 s delay was fitted as 0.35 s on synthetic platoons, from cold starts at its
+  // size. For them the better of both on the training data is kept.
+  if (hasTimingEffect(candidate))
+  {
+    AugmentedCalibrationOptions cold_options = options;
+    cold_options.base_starts = kColdStarts;
+    const AugmentedFit cold = calibrateAugmentedSet(candidate.effects, training, cold_options, nullptr);
+    if (betterFit(cold, fit))
+      fit = cold;
+  }
+  return fit;
+}
+
 std::vector<PlatoonCarModel> fitCandidateModels(const std::vector<CarFollowingRun>& training,
                                                 const PlatoonCarModel& base,
                                                 const std::optional<std::vector<std::size_t>>& wanted)
@@ -431,21 +452,7 @@ std::vector<PlatoonCarModel> fitCandidateModels(const std::vector<CarFollowingRu
       if (extendsByOne(candidates[i], candidates[j]) && fits[j].usable())
         start = &fits[j];
     }
-    AugmentedCalibrationOptions options;
-    options.objective = candidates[i].objective;
-    options.effect_starts = kEffectStarts;
-    fits[i] = calibrateAugmentedSet(candidates[i].effects, training, options, start);
-    // Timing effects trade off with tau_e and k2 and have two valleys: from the base model's
-    // parameters a 1 s delay was fitted as 0.35 s on synthetic platoons, from cold starts at its
-    // size. For them the better of both on the training data is kept.
-    if (hasTimingEffect(candidates[i]))
-    {
-      AugmentedCalibrationOptions cold_options = options;
-      cold_options.base_starts = kColdStarts;
-      const AugmentedFit cold = calibrateAugmentedSet(candidates[i].effects, training, cold_options, nullptr);
-      if (betterFit(cold, fits[i]))
-        fits[i] = cold;
-    }
+    fits[i] = fitCandidate(candidates[i], training, *start);
     models[i] = modelOf(fits[i], base.source);
     models[i].fitted_on_this_run_s = base.fitted_on_this_run_s;  // the same training data
   }

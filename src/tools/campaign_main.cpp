@@ -14,6 +14,7 @@
 #include "acc_identification/io/installed_beside.h"
 #include "acc_identification/io/output_files.h"
 #include "acc_identification/io/run_csv.h"
+#include "acc_identification/tools/bootstrap_options.h"
 #include "acc_identification/tools/number_checks.h"
 
 namespace
@@ -68,6 +69,9 @@ int main(int argc, char** argv)
                  "use this candidate for the diagnosed platoon (e.g. asymmetric_response,reaction_delay or "
                  "reaction_delay@speed_and_gap; none: the base model) instead of the rule's choice; the comparisons "
                  "are still reported");
+  options.diagnosed_bootstrap.replicates = acc::RefitBootstrapOptions{}.replicates;
+  acc::addRefitBootstrapOptions(app, options.diagnosed_bootstrap.replicates, options.diagnosed_bootstrap.below_s,
+                                "each car's diagnosed model");
   CLI11_PARSE(app, argc, argv);
   options.platoon_check = !no_platoon_check;
   if (!quiet)

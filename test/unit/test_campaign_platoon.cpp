@@ -266,6 +266,49 @@ TEST(CampaignPlatoon, TheDiagnosisFindsWhatClosesTheDipGapOfLateReactingCars)
   }
 }
 
+// A car whose runs are short gets its diagnosed model's refitting bootstrap: the delay's 95 %
+// interval holds the truth, the JSON and the table carry it; a car whose runs are long enough gets
+// none, and the library asks for none by default. The car's model on all its runs is fitted as its
+// leave-one-run-out models are: from the base model alone two of the three cars' 1 s delays were
+// read as 0.33 s (k2 at 0), the other valley of the timing trade-off.
+TEST(CampaignPlatoon, ADiagnosedModelOnShortRunsGetsItsBootstrapInterval)
+{
+  const acc::AccParameters brisk{0.10, 0.60, 1.2, 4.0};
+  acc::EffectSettings late;
+  late.reaction_delay_s = 1.0;
+  const acc::CampaignInputs inputs = rotatedPlatoons("delay_bootstrap", threeCarsOf(brisk, late), 3, 51);
+  acc::CampaignOptions options;
+  options.effect_selection.force = true;
+  options.effect_selection.forced = {{acc::EffectKind::reaction_delay}, acc::FitObjective::speed};
+  acc::CampaignResult result = runQuickCampaign(inputs, options);
+  for (const acc::LinkEvidence& link : result.links)
+    EXPECT_FALSE(link.diagnosed_bootstrap.has_value()) << link.vehicle;
+  const auto links = [&](std::size_t replicates, double below_s) {
+    return acc::gatherLinkEvidence(inputs, result.groups, result.platoons, result.effect_selection.model, 2,
+                                   options.platoon, acc::LinkBootstrapOptions{replicates, below_s});
+  };
+  result.links = links(49, 1e9);
+  ASSERT_FALSE(result.links.empty());
+  for (const acc::LinkEvidence& link : result.links)
+  {
+    ASSERT_TRUE(link.diagnosed_bootstrap.has_value()) << link.vehicle;
+    EXPECT_EQ(link.diagnosed_bootstrap->note, "") << link.vehicle;
+    const acc::BootstrapQuantity* delay = link.diagnosed_bootstrap->find("dead_time_s");
+    ASSERT_NE(delay, nullptr);
+    // The truth as the fitted Euler model at 10 Hz reads it: half a step short (DIAGNOSIS.md).
+    EXPECT_LT(delay->interval_95_low, 0.95) << link.vehicle;
+    EXPECT_GT(delay->interval_95_high, 0.95) << link.vehicle;
+  }
+  const nlohmann::json json = acc::campaignToJson(inputs, result, {"synthetic"}, options);
+  EXPECT_TRUE(json["links"][0]["diagnosed_model"].contains("refit_bootstrap"));
+  std::ostringstream tables;
+  acc::printCampaignTables(result, tables);
+  EXPECT_NE(tables.str().find("dead_time_s 0.95"), std::string::npos) << tables.str();
+  EXPECT_NE(tables.str().find(" 95 % ["), std::string::npos) << tables.str();
+  for (const acc::LinkEvidence& link : links(49, 1.0))  // every car's runs are longer
+    EXPECT_FALSE(link.diagnosed_bootstrap.has_value()) << link.vehicle;
+}
+
 // Cars that answer a second late and add half their leader's deceleration to their command (the
 // anticipation of the leader's braking), recorded with GNSS-size noise, in four runs of two
 // perturbations (with three, each choice made without a run has four perturbations, and a test

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/augmented_stability.h"
 #include "acc_identification/diagnosis/determined_effects.h"
+#include "acc_identification/calibration/refit_bootstrap.h"
 
 namespace acc
 {
@@ -49,6 +51,10 @@ struct LinkEvidence
   bool diagnosed_available = false;
   AugmentedFit diagnosed_fit;
   AugmentedStability diagnosed_small_signal;
+  /// The refitting bootstrap of the diagnosed model (bootstrapDiagnosedModel) when the group's
+  /// runs span less than LinkBootstrapOptions::below_s: intervals for its sizes that hold on
+  /// short data, where the sandwich's standard errors run short. None otherwise.
+  std::optional<RefitBootstrap> diagnosed_bootstrap;
   /// Simulated propagation: ten identical cars with the diagnosed model behind each platoon run's
   /// real first car, from equilibrium; the tenth car's dip over the first car's, median over the
   /// perturbations (NaN without one). Above 1: the model amplifies these real perturbations.
@@ -94,8 +100,9 @@ inline bool responseRead(const LinkEvidence& evidence)
 /// Number of identical cars in the simulated long platoon.
 constexpr int kLongPlatoonCars = 10;
 
-/// candidate fitted on all the group's runs, warm-started from the group's base fit (result must
-/// be fitted): the diagnosed model, and the part of it SUMO carries (campaign_sumo_export.h).
+/// candidate fitted on all the group's runs as fitCandidate fits every candidate (warm-started from
+/// the group's base fit; a timing effect also from cold starts), result must be fitted: the
+/// diagnosed model, and the part of it SUMO carries (campaign_sumo_export.h).
 AugmentedFit fitOnAllRuns(const PlatoonCandidate& candidate, const CampaignGroup& group, const GroupResult& result);
 
 /// Ten identical cars with evidence's diagnosed model behind the real first car of each platoon
@@ -105,11 +112,21 @@ AugmentedFit fitOnAllRuns(const PlatoonCandidate& candidate, const CampaignGroup
 void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& setting,
                          const PlatoonCheckOptions& platoon_options, LinkEvidence* evidence);
 
+/// Which diagnosed models get a refitting bootstrap: those whose group's runs span less than
+/// below_s [s] (as diagnose's final model, DiagnosisOptions), with `replicates` replicates (0: none;
+/// the campaign tool asks for 199). Each draws from its group's seed (groupSeed).
+struct LinkBootstrapOptions
+{
+  std::size_t replicates = 0;
+  double below_s = 300.0;
+};
+
 /// The evidence of every group (same order as result.groups), after the platoon check and its
 /// diagnosis (result.platoons, result.effect_selection). Groups run on options.threads.
 std::vector<LinkEvidence> gatherLinkEvidence(const CampaignInputs& inputs, const std::vector<GroupResult>& groups,
                                              const std::vector<PlatoonCheck>& platoons,
                                              const PlatoonCandidate& diagnosed, std::size_t threads,
-                                             const PlatoonCheckOptions& platoon_options);
+                                             const PlatoonCheckOptions& platoon_options,
+                                             const LinkBootstrapOptions& bootstrap = {});
 
 }  // namespace acc

@@ -56,6 +56,13 @@ std::string platoonCandidateText(const PlatoonCandidate& candidate);
 /// Whether candidate is the base model or one of platoonCandidates(): what may be forced.
 bool isPlatoonCandidate(const PlatoonCandidate& candidate);
 
+/// candidate fitted on training as every candidate model of a car is (calibrateAugmentedSet with
+/// its objective, warm-started from `warm`, the base model or a candidate it extends; with a timing
+/// effect, also from cold starts, the better of the two on training kept): one rule for the
+/// leave-one-run-out models and a car's model on all its runs (fitOnAllRuns).
+AugmentedFit fitCandidate(const PlatoonCandidate& candidate, const std::vector<CarFollowingRun>& training,
+                          const AugmentedFit& warm);
+
 /// Each candidate's model of one car, fitted (calibrateAugmentedSet with the candidate's
 /// objective) on the same training segments as its base model, warm-started from it; a candidate
 /// that extends another is warm-started from that one's fit. One entry per platoonCandidates();
