@@ -154,8 +154,10 @@ def diagnose(runs, train_fraction=None, effects=None, threads=None, seed=None, f
                                      defaults["bootstrap_below_s"] if bootstrap_below_s is None else bootstrap_below_s))
 
 
-def campaign(paths, starts=None, threads=None, alpha=None, seed=None, platoon_check=True, platoon_diagnosis=True):
-    """`campaign` on OpenACC files or folders: the dict `campaign --json` writes."""
+def campaign(paths, starts=None, threads=None, alpha=None, seed=None, platoon_check=True, platoon_diagnosis=True,
+             bootstrap=None, bootstrap_below_s=None):
+    """`campaign` on OpenACC files or folders: the dict `campaign --json` writes.
+    bootstrap, bootstrap_below_s: as --bootstrap and --bootstrap-below (0 replicates: none)."""
     defaults = _core.DEFAULTS["campaign"]
     if isinstance(paths, str):
         paths = [paths]
@@ -163,4 +165,6 @@ def campaign(paths, starts=None, threads=None, alpha=None, seed=None, platoon_ch
                                      defaults["starts"] if starts is None else starts,
                                      defaults["threads"] if threads is None else threads,
                                      defaults["alpha"] if alpha is None else alpha,
-                                     defaults["seed"] if seed is None else seed, platoon_check, platoon_diagnosis))
+                                     defaults["seed"] if seed is None else seed, platoon_check, platoon_diagnosis,
+                                     defaults["bootstrap"] if bootstrap is None else bootstrap,
+                                     defaults["bootstrap_below_s"] if bootstrap_below_s is None else bootstrap_below_s))

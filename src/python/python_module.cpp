@@ -255,9 +255,11 @@ std::string diagnose(const py::list& runs, const py::list& inputs_read, const st
 }
 
 std::string campaign(const std::vector<std::string>& paths, std::size_t starts, std::size_t threads, double alpha,
-                     std::uint64_t seed, bool platoon_check, bool platoon_diagnosis)
+                     std::uint64_t seed, bool platoon_check, bool platoon_diagnosis, std::size_t bootstrap_replicates,
+                     double bootstrap_below_s)
 {
   acc::CampaignOptions options;
+  options.diagnosed_bootstrap = acc::LinkBootstrapOptions{bootstrap_replicates, bootstrap_below_s};
   options.group.starts = starts;
   options.group.alpha = alpha;
   options.group.seed = seed;
@@ -287,7 +289,9 @@ py::dict defaults()
                              py::arg("bootstrap") = acc::RefitBootstrapOptions{}.replicates,  // as the tool's
                              py::arg("bootstrap_below_s") = diagnose.bootstrap_below_s);
   all["campaign"] = py::dict(py::arg("starts") = campaign.group.starts, py::arg("alpha") = campaign.group.alpha,
-                             py::arg("seed") = campaign.group.seed, py::arg("threads") = campaign.threads);
+                             py::arg("seed") = campaign.group.seed, py::arg("threads") = campaign.threads,
+                             py::arg("bootstrap") = acc::RefitBootstrapOptions{}.replicates,  // as the tool's
+                             py::arg("bootstrap_below_s") = campaign.diagnosed_bootstrap.below_s);
   return all;
 }
 
@@ -310,5 +314,6 @@ PYBIND11_MODULE(_core, module)
              py::arg("forward_selection"), py::arg("held_out_runs"), py::arg("held_out_inputs"),
              py::arg("bootstrap_replicates"), py::arg("bootstrap_below_s"));
   module.def("campaign", &campaign, py::arg("paths"), py::arg("starts"), py::arg("threads"), py::arg("alpha"),
-             py::arg("seed"), py::arg("platoon_check"), py::arg("platoon_diagnosis"));
+             py::arg("seed"), py::arg("platoon_check"), py::arg("platoon_diagnosis"), py::arg("bootstrap_replicates"),
+             py::arg("bootstrap_below_s"));
 }
