@@ -1263,7 +1263,9 @@ std::string campaignReportMarkdown(const CampaignInputs& inputs, const CampaignR
           "group's runs (the model the link table, the ten-car platoon and the SUMO export use), every effect "
           "parameter with its standard error, and for each effect how far its size stands from none in standard "
           "errors: determined when above the Bonferroni normal quantile over the model's effects at alpha 0.05 "
-          "and not at a bound of its range. A size not determined is a fit the runs allow, not a measurement.\n\n";
+          "and not at a bound of its range. A size not determined is a fit the runs allow, not a measurement. "
+          "Where a car's runs are short (--bootstrap-below), its refitting bootstrap's 95 % interval follows each "
+          "value: on short runs standard errors run short, so read \"determined\" there with its interval.\n\n";
     printMarkdownTable(kDiagnosedModelHeader, diagnosedModelRows(result), md);
   }
   md << "\n### Where model and data disagree\n\n";
