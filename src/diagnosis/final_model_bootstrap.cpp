@@ -77,8 +77,14 @@ RefitBootstrap bootstrapDiagnosedModel(const AugmentedFit& fit, const std::vecto
   fitted.at_fit = drawOf(fit, box);
   fitted.lower_bound = box.lower;
   fitted.upper_bound = box.upper;
-  const std::string not_made = fit.diverged ? "the fit diverged"
-                                             : simulateFittedDrives(fit.base, fit.settings, training, fitted);
+  // The replicates resample speed residuals over the measured gaps: a fit that weighs the gap's
+  // own error would refit gaps the replicates do not redraw.
+  const bool weighs_gap = calibration.objective == FitObjective::gap || calibration.objective == FitObjective::speed_and_gap;
+  const std::string not_made =
+      fit.diverged  ? "the fit diverged"
+      : weighs_gap ? "the bootstrap redraws speeds only, and the " + objectiveName(calibration.objective) +
+                          " objective weighs the gap's error"
+                    : simulateFittedDrives(fit.base, fit.settings, training, fitted);
   if (!not_made.empty())
     return RefitBootstrap::notMade(options.replicates, not_made);
   fitted.block_length_s = speedResidualBlockLengthS(training, speedResiduals(training, fitted.simulated_speed_mps));

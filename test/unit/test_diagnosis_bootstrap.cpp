@@ -70,6 +70,28 @@ TEST(DiagnosedModelBootstrap, AHiddenLagsIntervalHoldsItAndTheSeedAloneDecidesTh
   EXPECT_NE(quantity(other_seed, "lag_time_constant_s").standard_error, lag.standard_error);
 }
 
+// The replicates redraw speeds only: a fit that weighs the gap gets no bootstrap, and says why;
+// one that weighs the brakings' speeds gets one.
+TEST(DiagnosedModelBootstrap, NoneForAFitThatWeighsTheGap)
+{
+  const acc::CarFollowingRun run = laggedDrive(9);
+  acc::RefitBootstrapOptions options;
+  options.replicates = 10;
+  for (acc::FitObjective objective : {acc::FitObjective::gap, acc::FitObjective::speed_and_gap})
+  {
+    acc::AugmentedCalibrationOptions calibration;
+    calibration.objective = objective;
+    const acc::AugmentedFit fit = acc::calibrateAugmentedSet({acc::EffectKind::actuation_lag}, {run}, calibration);
+    const acc::RefitBootstrap refits = acc::bootstrapDiagnosedModel(fit, {run}, calibration, options);
+    EXPECT_NE(refits.note.find("weighs the gap"), std::string::npos) << refits.note;
+    EXPECT_EQ(refits.refitted, 0u);
+  }
+  acc::AugmentedCalibrationOptions windows;
+  windows.objective = acc::FitObjective::speed_and_windows;
+  const acc::AugmentedFit fit = acc::calibrateAugmentedSet({acc::EffectKind::actuation_lag}, {run}, windows);
+  EXPECT_EQ(acc::bootstrapDiagnosedModel(fit, {run}, windows, options).note, "");
+}
+
 // A parameter held at a bound of the diagnosis's box, or within 1.96 standard errors of one, gets
 // no interval, and cautions the others; an interval never reaches past the box.
 TEST(DiagnosedModelBootstrap, NoIntervalAtABoundAndNoneBeyondTheBox)

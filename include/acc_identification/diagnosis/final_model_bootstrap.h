@@ -23,7 +23,9 @@ namespace acc
 /// Quantities: the parameters by their JSON names (augmentedParameterNames). A parameter at a
 /// bound of the diagnosis's box, or within 1.96 standard errors of one, gets no interval and makes
 /// the others approximate (Andrews 2000).
-/// options.starts and options.bounds are the base calibration's and not used.
+/// Not made (RefitBootstrap::note says why) for a fit of the gap or the speed-and-gap objective:
+/// the replicates redraw speeds only. options.starts and options.bounds are the base
+/// calibration's and not used.
 RefitBootstrap bootstrapDiagnosedModel(const AugmentedFit& fit, const std::vector<CarFollowingRun>& training,
                                        const AugmentedCalibrationOptions& calibration,
                                        const RefitBootstrapOptions& options);
