@@ -440,7 +440,7 @@ CampaignResult runCampaign(const CampaignInputs& inputs, const CampaignOptions& 
   if (diagnose)
   {
     result.links = gatherLinkEvidence(inputs, result.groups, result.platoons, result.effect_selection.model,
-                                      options.threads, options.platoon, options.diagnosed_bootstrap);
+                                      options.threads, options.platoon, options.group.bootstrap);
     const EffectSetSelectionOptions& draws = options.effect_selection;
     result.shapes_first_followers = summarizeShapeTransfer(result.platoons, isFirstFollower, draws.replicates, draws.seed);
     result.shapes_further_back = summarizeShapeTransfer(result.platoons, isFurtherBack, draws.replicates, draws.seed);

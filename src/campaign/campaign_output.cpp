@@ -112,7 +112,7 @@ nlohmann::json vehicleJson(const CampaignInputs& inputs, std::size_t index, cons
   const auto margin = determined(group, "stability_margin");
   const bool fitted = group.fitted();
   const bool dynamics = group.dynamicsDetermined();
-  return {{"name", group.vehicle},
+  nlohmann::json j = {{"name", group.vehicle},
           {"setting", group.setting},
           {"runs", group.runs},
           {"run_files", run_files},
@@ -139,6 +139,9 @@ nlohmann::json vehicleJson(const CampaignInputs& inputs, std::size_t index, cons
                                                              inputs.groups[index].segments(), group.reason,
                                                              IdentifiabilityCriteria{}.min_speed_std_mps))["data"]},
           {"seed", group.seed}};
+  if (group.refit_bootstrap)
+    j["refit_bootstrap"] = toJson(*group.refit_bootstrap);
+  return j;
 }
 
 /// A car's position, null for 0 (none).
@@ -697,6 +700,22 @@ std::string eulerStepNote(const EulerStepBias& check)
          correctedFitText(check);
 }
 
+/// A short group's refitting bootstrap in one line: each quantity's 95 % interval, or why none.
+std::string bootstrapNote(const RefitBootstrap& bootstrap)
+{
+  if (!bootstrap.note.empty())
+    return "no refitting bootstrap: " + bootstrap.note;
+  std::string text = "short runs, refitting bootstrap (" + std::to_string(bootstrap.refitted) + " of " +
+                     std::to_string(bootstrap.replicates) + " replicates refitted), 95 %:";
+  for (const BootstrapQuantity& q : bootstrap.quantities)
+    text += " " + q.name +
+            (std::isfinite(q.interval_95_low) && std::isfinite(q.interval_95_high)
+                 ? " [" + cellNumber("%.3g", q.interval_95_low) + ", " + cellNumber("%.3g", q.interval_95_high) + "];"
+                 : " none;");
+  text.pop_back();
+  return text + (bootstrap.caution.empty() ? "" : " (approximate: " + bootstrap.caution.substr(0, bootstrap.caution.find(": the other")) + ")");
+}
+
 std::vector<std::string> groupNotes(const CampaignResult& result)
 {
   std::vector<std::string> notes;
@@ -717,6 +736,8 @@ std::vector<std::string> groupNotes(const CampaignResult& result)
       notes.push_back(name + "undecided: " + g.stability_test.reason);
     if (g.euler_step_bias && g.euler_step_bias->material)
       notes.push_back(name + eulerStepNote(*g.euler_step_bias));
+    if (g.refit_bootstrap)
+      notes.push_back(name + bootstrapNote(*g.refit_bootstrap));
   }
   return notes;
 }

@@ -40,6 +40,11 @@ bool GroupResult::dynamicsDetermined() const
   return fitted() && identification.quantities && allDetermined(*identification.quantities, {"k1", "k2", "tau_e"});
 }
 
+bool wantsShortRunsBootstrap(const std::vector<CarFollowingRun>& runs, const ShortRunsBootstrapOptions& options)
+{
+  return options.replicates > 0 && totalDurationS(runs) < options.below_s;
+}
+
 std::uint64_t groupSeed(std::uint64_t seed, const std::string& vehicle, const std::string& setting)
 {
   return streamSeed(seed, stableHash(vehicle + "/" + setting));
@@ -68,6 +73,14 @@ GroupResult identifyGroup(const CampaignGroup& group, const GroupIdentificationO
       result.model_adequacy = assessModelAdequacy(result.identification.calibration.parameters, segments, {},
                                                   result.identification.uncertainty.standard_error);
       result.euler_step_bias = estimateEulerStepBias(result.identification, segments, identification);
+      if (wantsShortRunsBootstrap(segments, options.bootstrap))
+      {
+        RefitBootstrapOptions bootstrap;
+        bootstrap.replicates = options.bootstrap.replicates;
+        bootstrap.threads = 1;  // the groups themselves run in parallel
+        bootstrap.seed = result.seed;
+        result.refit_bootstrap = bootstrapRefits(result.identification.calibration.parameters, segments, bootstrap);
+      }
     }
     else
       result.model_adequacy.reasons = {"not assessed: no fit (" + result.reason + ")"};

@@ -99,13 +99,12 @@ AugmentedCalibrationOptions candidateOptions(const PlatoonCandidate& candidate)
   return options;
 }
 
-/// The diagnosed model's refitting bootstrap when the group's runs are short (LinkBootstrapOptions).
-void bootstrapShortLink(const CampaignGroup& group, const GroupResult& result, const LinkBootstrapOptions& options,
+/// The diagnosed model's refitting bootstrap when the group's runs are short (ShortRunsBootstrapOptions).
+void bootstrapShortLink(const CampaignGroup& group, const GroupResult& result, const ShortRunsBootstrapOptions& options,
                         LinkEvidence* evidence)
 {
   const std::vector<CarFollowingRun> runs = group.segments();
-  if (options.replicates == 0 || !evidence->diagnosed_available || evidence->diagnosed.effects.empty() ||
-      !(totalDurationS(runs) < options.below_s))
+  if (!evidence->diagnosed_available || evidence->diagnosed.effects.empty() || !wantsShortRunsBootstrap(runs, options))
     return;
   RefitBootstrapOptions bootstrap;
   bootstrap.replicates = options.replicates;
@@ -136,7 +135,7 @@ void fitDiagnosed(const CampaignGroup& group, const GroupResult& result, const P
 
 LinkEvidence evidenceOf(const CampaignInputs& inputs, const CampaignGroup& group, const GroupResult& result,
                         const std::vector<PlatoonCheck>& platoons, const PlatoonCandidate& diagnosed,
-                        const PlatoonCheckOptions& platoon_options, const LinkBootstrapOptions& bootstrap)
+                        const PlatoonCheckOptions& platoon_options, const ShortRunsBootstrapOptions& bootstrap)
 {
   LinkEvidence evidence;
   evidence.vehicle = group.vehicle;
@@ -248,7 +247,7 @@ std::vector<LinkEvidence> gatherLinkEvidence(const CampaignInputs& inputs, const
                                              const std::vector<PlatoonCheck>& platoons,
                                              const PlatoonCandidate& diagnosed, std::size_t threads,
                                              const PlatoonCheckOptions& platoon_options,
-                                             const LinkBootstrapOptions& bootstrap)
+                                             const ShortRunsBootstrapOptions& bootstrap)
 {
   std::vector<LinkEvidence> out(inputs.groups.size());
   runTasksInParallel(out.size(), threads, [&](std::size_t i) {

@@ -259,7 +259,7 @@ std::string campaign(const std::vector<std::string>& paths, std::size_t starts, 
                      double bootstrap_below_s)
 {
   acc::CampaignOptions options;
-  options.diagnosed_bootstrap = acc::LinkBootstrapOptions{bootstrap_replicates, bootstrap_below_s};
+  options.group.bootstrap = acc::ShortRunsBootstrapOptions{bootstrap_replicates, bootstrap_below_s};
   options.group.starts = starts;
   options.group.alpha = alpha;
   options.group.seed = seed;
@@ -291,7 +291,7 @@ py::dict defaults()
   all["campaign"] = py::dict(py::arg("starts") = campaign.group.starts, py::arg("alpha") = campaign.group.alpha,
                              py::arg("seed") = campaign.group.seed, py::arg("threads") = campaign.threads,
                              py::arg("bootstrap") = acc::RefitBootstrapOptions{}.replicates,  // as the tool's
-                             py::arg("bootstrap_below_s") = campaign.diagnosed_bootstrap.below_s);
+                             py::arg("bootstrap_below_s") = campaign.group.bootstrap.below_s);
   return all;
 }
 

@@ -69,9 +69,9 @@ int main(int argc, char** argv)
                  "use this candidate for the diagnosed platoon (e.g. asymmetric_response,reaction_delay or "
                  "reaction_delay@speed_and_gap; none: the base model) instead of the rule's choice; the comparisons "
                  "are still reported");
-  options.diagnosed_bootstrap.replicates = acc::RefitBootstrapOptions{}.replicates;
-  acc::addRefitBootstrapOptions(app, options.diagnosed_bootstrap.replicates, options.diagnosed_bootstrap.below_s,
-                                "each car's diagnosed model");
+  options.group.bootstrap.replicates = acc::RefitBootstrapOptions{}.replicates;
+  acc::addRefitBootstrapOptions(app, options.group.bootstrap.replicates, options.group.bootstrap.below_s,
+                                "each car's fit and diagnosed model");
   CLI11_PARSE(app, argc, argv);
   options.platoon_check = !no_platoon_check;
   if (!quiet)

@@ -285,7 +285,7 @@ TEST(CampaignPlatoon, ADiagnosedModelOnShortRunsGetsItsBootstrapInterval)
     EXPECT_FALSE(link.diagnosed_bootstrap.has_value()) << link.vehicle;
   const auto links = [&](std::size_t replicates, double below_s) {
     return acc::gatherLinkEvidence(inputs, result.groups, result.platoons, result.effect_selection.model, 2,
-                                   options.platoon, acc::LinkBootstrapOptions{replicates, below_s});
+                                   options.platoon, acc::ShortRunsBootstrapOptions{replicates, below_s});
   };
   result.links = links(49, 1e9);
   ASSERT_FALSE(result.links.empty());

@@ -65,6 +65,28 @@ TEST(CampaignZalaZone, GroupsTheNineRunsAndFindsTheRav4AtSUnstable)
   EXPECT_LE(result.stability_test.p_value, 0.01);
 }
 
+// A group whose runs are short (the Audi A4 at L: one run, 139 s) gets calibrate's refitting
+// bootstrap of its fit; the Toyota RAV4 at S (four runs, over 600 s) does not, nor any group when
+// no replicates are asked for.
+TEST(CampaignZalaZone, AShortGroupsFitGetsItsRefittingBootstrap)
+{
+  const acc::CampaignInputs inputs = acc::loadCampaign({ACC_ZALAZONE_DYNAMIC_DIR});
+  const acc::CampaignGroup* audi = inputs.findGroup("AUDI_A4", "L");
+  const acc::CampaignGroup* rav4 = inputs.findGroup("TOYOTA_RAV4", "S");
+  ASSERT_TRUE(audi != nullptr && rav4 != nullptr);
+  acc::GroupIdentificationOptions options;
+  options.starts = 20;
+  EXPECT_FALSE(acc::identifyGroup(*audi, options).refit_bootstrap.has_value());
+  options.bootstrap.replicates = 49;
+  const acc::GroupResult short_group = acc::identifyGroup(*audi, options);
+  ASSERT_TRUE(short_group.fitted()) << short_group.reason;
+  ASSERT_TRUE(short_group.refit_bootstrap.has_value());
+  EXPECT_EQ(short_group.refit_bootstrap->note, "");
+  EXPECT_GE(short_group.refit_bootstrap->refitted, 45u);
+  EXPECT_NE(short_group.refit_bootstrap->find("stability_margin"), nullptr);
+  EXPECT_FALSE(acc::identifyGroup(*rav4, options).refit_bootstrap.has_value());
+}
+
 // The platoon diagnosis on the real runs (docs/PLATOON_DIAGNOSIS.md): six perturbations establish a
 // timing effect and nothing on top. The rule (the wild cluster bootstrap-t, max-t over a stage)
 // names the reaction delay (p = 0.0215 within its stage when this was written) and the actuation

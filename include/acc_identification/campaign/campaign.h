@@ -30,9 +30,6 @@ struct CampaignOptions
   /// the stated rule (for each run without that run), and the platoon predicted again with it.
   bool platoon_diagnosis = true;
   EffectSetSelectionOptions effect_selection;
-  /// The refitting bootstrap of each car's diagnosed model (links[]) whose runs at its setting span
-  /// less than diagnosed_bootstrap.below_s; 0 replicates (here): none, the campaign tool asks 199.
-  LinkBootstrapOptions diagnosed_bootstrap;
   /// Called with (stage, done, total) after each task: stage "groups" then "platoon fits"; may
   /// be empty. Calls never overlap.
   std::function<void(const std::string&, std::size_t, std::size_t)> progress;

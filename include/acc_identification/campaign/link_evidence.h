@@ -52,7 +52,7 @@ struct LinkEvidence
   AugmentedFit diagnosed_fit;
   AugmentedStability diagnosed_small_signal;
   /// The refitting bootstrap of the diagnosed model (bootstrapDiagnosedModel) when the group's
-  /// runs span less than LinkBootstrapOptions::below_s: intervals for its sizes that hold on
+  /// runs are short (ShortRunsBootstrapOptions): intervals for its sizes that hold on
   /// short data, where the sandwich's standard errors run short. None otherwise.
   std::optional<RefitBootstrap> diagnosed_bootstrap;
   /// Simulated propagation: ten identical cars with the diagnosed model behind each platoon run's
@@ -112,21 +112,12 @@ AugmentedFit fitOnAllRuns(const PlatoonCandidate& candidate, const CampaignGroup
 void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& setting,
                          const PlatoonCheckOptions& platoon_options, LinkEvidence* evidence);
 
-/// Which diagnosed models get a refitting bootstrap: those whose group's runs span less than
-/// below_s [s] (as diagnose's final model, DiagnosisOptions), with `replicates` replicates (0: none;
-/// the campaign tool asks for 199). Each draws from its group's seed (groupSeed).
-struct LinkBootstrapOptions
-{
-  std::size_t replicates = 0;
-  double below_s = 300.0;
-};
-
 /// The evidence of every group (same order as result.groups), after the platoon check and its
 /// diagnosis (result.platoons, result.effect_selection). Groups run on options.threads.
 std::vector<LinkEvidence> gatherLinkEvidence(const CampaignInputs& inputs, const std::vector<GroupResult>& groups,
                                              const std::vector<PlatoonCheck>& platoons,
                                              const PlatoonCandidate& diagnosed, std::size_t threads,
                                              const PlatoonCheckOptions& platoon_options,
-                                             const LinkBootstrapOptions& bootstrap = {});
+                                             const ShortRunsBootstrapOptions& bootstrap = {});
 
 }  // namespace acc
