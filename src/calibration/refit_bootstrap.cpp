@@ -205,6 +205,13 @@ const BootstrapQuantity* RefitBootstrap::find(const std::string& name) const
   return nullptr;
 }
 
+std::string RefitBootstrap::caution() const
+{
+  return held_near_bound.empty()
+             ? ""
+             : held_near_bound + ": the other intervals are approximate (a bootstrap does not hold at or near a bound)";
+}
+
 RefitBootstrap RefitBootstrap::notMade(std::size_t replicates, const std::string& why)
 {
   RefitBootstrap none;
@@ -235,9 +242,7 @@ RefitBootstrap bootstrapFittedDrives(const FittedDrives& fitted, const std::vect
   result.replicates = options.replicates;
   result.block_length_s = fitted.block_length_s;
   const std::vector<RunModel> models = modelRuns(fitted.simulated_speed_mps, runs);
-  const std::string at_bound = parameterAtBound(fitted);
-  if (!at_bound.empty())
-    result.caution = at_bound + ": the other intervals are approximate (a bootstrap does not hold at or near a bound)";
+  result.held_near_bound = parameterAtBound(fitted);
   const double step_s = medianStepS(runs);
   const std::size_t block_samples =
       std::isfinite(step_s) && step_s > 0.0 ? static_cast<std::size_t>(std::lround(result.block_length_s / step_s)) : 1;
@@ -296,8 +301,8 @@ void printRefitBootstrap(const RefitBootstrap& bootstrap, std::ostream& out)
                 "%.1f s): 95 %% intervals (bootstrap-t) for short data, where value +- t se runs short\n",
                 bootstrap.replicates, bootstrap.refitted, bootstrap.block_length_s, bootstrap.wall_time_s);
   out << line;
-  if (!bootstrap.caution.empty())
-    out << "  caution: " << bootstrap.caution << "\n";
+  if (!bootstrap.held_near_bound.empty())
+    out << "  caution: " << bootstrap.caution() << "\n";
   int width = 17;  // the base model's names; a diagnosed model's effect parameters are longer
   for (const BootstrapQuantity& q : bootstrap.quantities)
     width = std::max(width, static_cast<int>(q.name.size()));
@@ -328,7 +333,7 @@ nlohmann::json toJson(const RefitBootstrap& bootstrap)
   }
   return {{"replicates", bootstrap.replicates}, {"refitted", bootstrap.refitted},
           {"block_length_s", jsonNumber(bootstrap.block_length_s)}, {"wall_time_s", jsonNumber(bootstrap.wall_time_s)},
-          {"note", bootstrap.note}, {"caution", bootstrap.caution}, {"quantities", quantities}};
+          {"note", bootstrap.note}, {"caution", bootstrap.caution()}, {"quantities", quantities}};
 }
 
 }  // namespace acc

@@ -293,7 +293,7 @@ nlohmann::json effectSizesJson(const LinkEvidence& e)
   return sizes;
 }
 
-nlohmann::json linkEvidenceJson(const LinkEvidence& e)
+nlohmann::json linkJson(const LinkEvidence& e)
 {
   const EmpiricalResponse& r = e.response;
   nlohmann::json informative = nlohmann::json::array();
@@ -303,7 +303,7 @@ nlohmann::json linkEvidenceJson(const LinkEvidence& e)
   const std::vector<std::string> names = effectParameterNames(e.diagnosed.effects);
   for (std::size_t i = 0; i < names.size() && i < e.diagnosed_fit.effect_values.size(); ++i)
     values[names[i]] = e.diagnosed_fit.effect_values[i];
-  return {{"vehicle", e.vehicle},
+  nlohmann::json j = {{"vehicle", e.vehicle},
           {"setting", e.setting},
           {"dip_ratio", toJson(e.dip_ratio)},
           {"frequency_response",
@@ -345,11 +345,6 @@ nlohmann::json linkEvidenceJson(const LinkEvidence& e)
               {"ran_away_at_car", e.long_platoon_ran_away_at_car > 0 ? nlohmann::json(e.long_platoon_ran_away_at_car)
                                                                       : nlohmann::json(nullptr)}}}}},
           {"note", e.note}};
-}
-
-nlohmann::json linkJson(const LinkEvidence& e)
-{
-  nlohmann::json j = linkEvidenceJson(e);
   if (e.diagnosed_bootstrap)
     j["diagnosed_model"]["refit_bootstrap"] = toJson(*e.diagnosed_bootstrap);
   return j;
@@ -429,13 +424,20 @@ std::vector<std::vector<std::string>> linkRows(const CampaignResult& result)
 const std::vector<std::string> kDiagnosedModelHeader{"vehicle", "set", "diagnosed model",
                                                      "effect parameters +- SE, 95 % (bootstrap, short runs) (size: z from none)"};
 
-/// " 95 % [low, high]" of the quantity's bootstrap-t interval where the bootstrap gives one ("" else).
+/// "[low, high]" of a quantity's bootstrap-t 95 % interval, "" where the bootstrap gives none.
+std::string bootstrapInterval(const BootstrapQuantity& q)
+{
+  if (!std::isfinite(q.interval_95_low) || !std::isfinite(q.interval_95_high))
+    return "";
+  return "[" + cellNumber("%.3g", q.interval_95_low) + ", " + cellNumber("%.3g", q.interval_95_high) + "]";
+}
+
+/// " 95 % [low, high]" of the named quantity where the bootstrap gives an interval ("" else).
 std::string bootstrapIntervalText(const RefitBootstrap* bootstrap, const std::string& name)
 {
   const BootstrapQuantity* q = bootstrap != nullptr ? bootstrap->find(name) : nullptr;
-  if (q == nullptr || !std::isfinite(q->interval_95_low) || !std::isfinite(q->interval_95_high))
-    return "";
-  return " 95 % [" + cellNumber("%.3g", q->interval_95_low) + ", " + cellNumber("%.3g", q->interval_95_high) + "]";
+  const std::string interval = q != nullptr ? bootstrapInterval(*q) : "";
+  return interval.empty() ? "" : " 95 % " + interval;
 }
 
 /// One effect's parameters in fit with their standard errors (its first at *parameter among the
@@ -473,8 +475,8 @@ std::vector<std::vector<std::string>> diagnosedModelRows(const CampaignResult& r
                                                                  e.diagnosed_bootstrap ? &*e.diagnosed_bootstrap : nullptr);
     if (e.diagnosed_bootstrap && !e.diagnosed_bootstrap->note.empty())
       effects += "; no bootstrap: " + e.diagnosed_bootstrap->note;
-    else if (e.diagnosed_bootstrap && !e.diagnosed_bootstrap->caution.empty())
-      effects += "; 95 % approximate: " + e.diagnosed_bootstrap->caution.substr(0, e.diagnosed_bootstrap->caution.find(": the other"));
+    else if (e.diagnosed_bootstrap && !e.diagnosed_bootstrap->held_near_bound.empty())
+      effects += "; 95 % approximate: " + e.diagnosed_bootstrap->held_near_bound;
     rows.push_back({e.vehicle, e.setting, e.diagnosed.name(), effects.empty() ? "-" : effects});
   }
   return rows;
@@ -708,12 +710,12 @@ std::string bootstrapNote(const RefitBootstrap& bootstrap)
   std::string text = "short runs, refitting bootstrap (" + std::to_string(bootstrap.refitted) + " of " +
                      std::to_string(bootstrap.replicates) + " replicates refitted), 95 %:";
   for (const BootstrapQuantity& q : bootstrap.quantities)
-    text += " " + q.name +
-            (std::isfinite(q.interval_95_low) && std::isfinite(q.interval_95_high)
-                 ? " [" + cellNumber("%.3g", q.interval_95_low) + ", " + cellNumber("%.3g", q.interval_95_high) + "];"
-                 : " none;");
+  {
+    const std::string interval = bootstrapInterval(q);
+    text += " " + q.name + " " + (interval.empty() ? "none" : interval) + ";";
+  }
   text.pop_back();
-  return text + (bootstrap.caution.empty() ? "" : " (approximate: " + bootstrap.caution.substr(0, bootstrap.caution.find(": the other")) + ")");
+  return text + (bootstrap.held_near_bound.empty() ? "" : " (approximate: " + bootstrap.held_near_bound + ")");
 }
 
 std::vector<std::string> groupNotes(const CampaignResult& result)

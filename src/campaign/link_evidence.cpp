@@ -103,8 +103,10 @@ AugmentedCalibrationOptions candidateOptions(const PlatoonCandidate& candidate)
 void bootstrapShortLink(const CampaignGroup& group, const GroupResult& result, const ShortRunsBootstrapOptions& options,
                         LinkEvidence* evidence)
 {
+  if (options.replicates == 0 || !evidence->diagnosed_available || evidence->diagnosed.effects.empty())
+    return;  // before the runs are copied: the library's default asks for no bootstrap
   const std::vector<CarFollowingRun> runs = group.segments();
-  if (!evidence->diagnosed_available || evidence->diagnosed.effects.empty() || !wantsShortRunsBootstrap(runs, options))
+  if (!wantsShortRunsBootstrap(runs, options))
     return;
   RefitBootstrapOptions bootstrap;
   bootstrap.replicates = options.replicates;

@@ -16,6 +16,12 @@ namespace
 {
 constexpr double kMinBlockS = 10.0;
 
+/// The block length rule of speedResidualBlockLengthS, on the segments' times.
+double blockLengthS(const std::vector<std::vector<double>>& times, const Eigen::VectorXd& residuals)
+{
+  return batchMeansBlockLength(times, residuals, kMinBlockS).block_length_s;
+}
+
 std::vector<double> simulatedSpeeds(const std::vector<double>& x, const AugmentedParameterBox& box,
                                     const std::vector<CarFollowingRun>& segments)
 {
@@ -125,9 +131,9 @@ std::vector<double> augmentedStandardErrors(const std::vector<double>& x, const 
   const Eigen::MatrixXd reduced = jacobian(Eigen::all, moving);
   const Eigen::FullPivLU<Eigen::MatrixXd> lu(reduced.transpose() * reduced);
   std::size_t blocks = 0;
-  const double block_s = batchMeansBlockLength(segmentTimes(segments), residuals, kMinBlockS).block_length_s;
+  const std::vector<std::vector<double>> times = segmentTimes(segments);
   const Eigen::MatrixXd scores_covariance =
-      batchMeansScoreCovariance(segmentTimes(segments), reduced, residuals, block_s, &blocks);
+      batchMeansScoreCovariance(times, reduced, residuals, blockLengthS(times, residuals), &blocks);
   if (!lu.isInvertible() || blocks < 4)
     return errors;
   const Eigen::MatrixXd bread = lu.inverse();
@@ -148,7 +154,7 @@ double speedResidualBlockLengthS(const std::vector<CarFollowingRun>& segments, c
 {
   const Eigen::VectorXd residual_vector =
       Eigen::Map<const Eigen::VectorXd>(residuals.data(), static_cast<Eigen::Index>(residuals.size()));
-  return batchMeansBlockLength(segmentTimes(segments), residual_vector, kMinBlockS).block_length_s;
+  return blockLengthS(segmentTimes(segments), residual_vector);
 }
 
 }  // namespace acc

@@ -145,6 +145,6 @@ TEST(RefitBootstrap, NoIntervalAtABound)
   ASSERT_TRUE(refits.note.empty()) << refits.note;
   EXPECT_TRUE(std::isnan(refits.find("tau_e")->interval_95_low));
   EXPECT_NE(refits.find("tau_e")->note.find("bound"), std::string::npos);
-  EXPECT_NE(refits.caution.find("tau_e"), std::string::npos) << refits.caution;
+  EXPECT_NE(refits.caution().find("tau_e"), std::string::npos) << refits.caution();
   EXPECT_TRUE(std::isfinite(refits.find("k2")->interval_95_low));
 }

@@ -58,10 +58,13 @@ struct RefitBootstrap
   double block_length_s = 0.0;        ///< of the resampled residuals (the fit's batch-means block)
   std::vector<BootstrapQuantity> quantities;
   std::string note;                   ///< why no bootstrap was made; empty when one was
-  /// Set when a parameter of the fit sits at or near a bound: its refits pile up there, and the
-  /// bootstrap's intervals of the others are then approximate (Andrews 2000).
-  std::string caution;
+  /// The parameter of the fit that sits at or near a bound ("name = value at its lower bound L",
+  /// or "... within 1.96 standard errors ... of ..."), "" when none: its refits pile up there, and
+  /// the bootstrap's intervals of the others are then approximate (Andrews 2000).
+  std::string held_near_bound;
   double wall_time_s = 0.0;               ///< wall time
+  /// What held_near_bound means for the intervals, in a sentence; "" when nothing is.
+  std::string caution() const;
   /// The quantity of this name, or nullptr.
   const BootstrapQuantity* find(const std::string& name) const;
   /// A bootstrap of `replicates` not made, and why (RefitBootstrap::note).
