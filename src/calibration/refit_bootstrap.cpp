@@ -9,7 +9,6 @@
 #include <random>
 
 #include "acc_identification/calibration/fit_statistics.h"
-#include "acc_identification/calibration/multistart_calibrator.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/json_number.h"
 #include "acc_identification/model/normal_source.h"
@@ -258,6 +257,14 @@ RefitBootstrap bootstrapFittedDrives(const FittedDrives& fitted, const std::vect
   return result;
 }
 
+MultistartResult refitBaseModel(const AccParameters& fit, const std::vector<CarFollowingRun>& replicate,
+                                const RefitBootstrapOptions& options)
+{
+  MultistartOptions multistart;
+  multistart.starts = options.starts;
+  return calibrateMultistart(CalibrationObjective(replicate, options.bounds), multistart, {fit});
+}
+
 RefitBootstrap bootstrapRefits(const AccParameters& fit, const std::vector<CarFollowingRun>& runs,
                                const RefitBootstrapOptions& options)
 {
@@ -276,10 +283,7 @@ RefitBootstrap bootstrapRefits(const AccParameters& fit, const std::vector<CarFo
   fitted.block_length_s = uncertainty.block_length_s;
   // Each replicate is refitted exactly as the data were: multistart from the fit and Halton points.
   const ReplicateRefit refit = [&](const std::vector<CarFollowingRun>& replicate) -> std::optional<BootstrapDraw> {
-    MultistartOptions multistart;
-    multistart.starts = options.starts;
-    const MultistartResult result =
-        calibrateMultistart(CalibrationObjective(replicate, options.bounds), multistart, {fit});
+    const MultistartResult result = refitBaseModel(fit, replicate, options);
     if (result.diverged)
       return std::nullopt;
     return drawOf(assessQuantities(result.parameters, estimateUncertainty(result.parameters, replicate), replicate,

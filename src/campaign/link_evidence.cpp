@@ -92,13 +92,6 @@ std::vector<std::pair<double, double>> departures(const EmpiricalResponse& respo
 }
 
 /// How a candidate is fitted: with its objective (the diagnosis's defaults otherwise).
-AugmentedCalibrationOptions candidateOptions(const PlatoonCandidate& candidate)
-{
-  AugmentedCalibrationOptions options;
-  options.objective = candidate.objective;
-  return options;
-}
-
 /// The diagnosed model's refitting bootstrap when the group's runs are short (ShortRunsBootstrapOptions).
 void bootstrapShortLink(const CampaignGroup& group, const GroupResult& result, const ShortRunsBootstrapOptions& options,
                         LinkEvidence* evidence)
@@ -112,8 +105,18 @@ void bootstrapShortLink(const CampaignGroup& group, const GroupResult& result, c
   bootstrap.replicates = options.replicates;
   bootstrap.threads = 1;  // the links themselves run in parallel
   bootstrap.seed = result.seed;
-  evidence->diagnosed_bootstrap =
-      bootstrapDiagnosedModel(evidence->diagnosed_fit, runs, candidateOptions(evidence->diagnosed), bootstrap);
+  // Each replicate is fitted as the campaign fitted the data: the base model (from the group's base
+  // fit and Halton points), then the candidate by fitCandidate from it and from the model itself.
+  const AccParameters& base_fit = result.identification.calibration.parameters;
+  const AugmentedFit& diagnosed_fit = evidence->diagnosed_fit;
+  const PlatoonCandidate& candidate = evidence->diagnosed;
+  const AugmentedRefit refit = [&](const std::vector<CarFollowingRun>& replicate) {
+    AugmentedFit replicate_base;
+    replicate_base.base = refitBaseModel(base_fit, replicate, bootstrap).parameters;
+    return fitCandidate(candidate, replicate, {replicate_base, diagnosed_fit});
+  };
+  evidence->diagnosed_bootstrap = bootstrapDiagnosedModel(diagnosed_fit, runs, candidateCalibrationOptions(candidate),
+                                                          bootstrap, refit);
 }
 
 /// The chosen candidate fitted on all the group's runs, warm-started from the group's base fit.

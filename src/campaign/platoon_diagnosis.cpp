@@ -404,13 +404,31 @@ std::vector<bool> candidatesToFit(const std::optional<std::vector<std::size_t>>&
 }
 }  // namespace
 
-AugmentedFit fitCandidate(const PlatoonCandidate& candidate, const std::vector<CarFollowingRun>& training,
-                          const AugmentedFit& warm)
+AugmentedCalibrationOptions candidateCalibrationOptions(const PlatoonCandidate& candidate)
 {
   AugmentedCalibrationOptions options;
   options.objective = candidate.objective;
   options.effect_starts = kEffectStarts;
-  AugmentedFit fit = calibrateAugmentedSet(candidate.effects, training, options, &warm);
+  return options;
+}
+
+AugmentedFit fitCandidate(const PlatoonCandidate& candidate, const std::vector<CarFollowingRun>& training,
+                          const AugmentedFit& warm)
+{
+  return fitCandidate(candidate, training, std::vector<AugmentedFit>{warm});
+}
+
+AugmentedFit fitCandidate(const PlatoonCandidate& candidate, const std::vector<CarFollowingRun>& training,
+                          const std::vector<AugmentedFit>& warm_starts)
+{
+  const AugmentedCalibrationOptions options = candidateCalibrationOptions(candidate);
+  AugmentedFit fit = calibrateAugmentedSet(candidate.effects, training, options, &warm_starts.at(0));
+  for (std::size_t i = 1; i < warm_starts.size(); ++i)
+  {
+    const AugmentedFit other = calibrateAugmentedSet(candidate.effects, training, options, &warm_starts[i]);
+    if (betterFit(other, fit))
+      fit = other;
+  }
   // Timing effects trade off with tau_e and k2 and have two valleys: from the base model's
   // parameters a 1 s delay was fitted as 0.35 s on synthetic platoons, from cold starts at its
   // size. For them the better of both on the training data is kept.

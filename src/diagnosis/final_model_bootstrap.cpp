@@ -38,9 +38,9 @@ BootstrapDraw drawOf(const AugmentedFit& fit, const AugmentedParameterBox& box)
   return draw;
 }
 
-/// The diagnosis's own way to the model on a replicate: the base from cold starts, then the effects
-/// one at a time, each warm-started from the last.
-AugmentedFit refitAsDiagnosed(const std::vector<EffectKind>& effects, const std::vector<CarFollowingRun>& replicate,
+/// The diagnosis's chain on a replicate: the base from cold starts, then the effects one at a
+/// time, each warm-started from the last.
+AugmentedFit chainAsDiagnosed(const std::vector<EffectKind>& effects, const std::vector<CarFollowingRun>& replicate,
                               const AugmentedCalibrationOptions& calibration)
 {
   AugmentedFit fit = calibrateAugmentedSet({}, replicate, calibration);
@@ -65,9 +65,24 @@ std::vector<double> speedResiduals(const std::vector<CarFollowingRun>& training,
 }
 }  // namespace
 
+AugmentedRefit refitAsDiagnosed(const AugmentedFit& fit, const AugmentedCalibrationOptions& calibration)
+{
+  return [fit, calibration](const std::vector<CarFollowingRun>& replicate) {
+    const std::vector<EffectKind> effects = effectsOf(fit);
+    AugmentedFit best = chainAsDiagnosed(effects, replicate, calibration);
+    if (!effects.empty())
+    {
+      const AugmentedFit from_fit = calibrateAugmentedSet(effects, replicate, calibration, &fit);
+      if (betterFit(from_fit, best))
+        best = from_fit;
+    }
+    return best;
+  };
+}
+
 RefitBootstrap bootstrapDiagnosedModel(const AugmentedFit& fit, const std::vector<CarFollowingRun>& training,
                                        const AugmentedCalibrationOptions& calibration,
-                                       const RefitBootstrapOptions& options)
+                                       const RefitBootstrapOptions& options, const AugmentedRefit& refit)
 {
   const std::vector<EffectKind> effects = effectsOf(fit);
   const AugmentedParameterBox box(effects, calibration);
@@ -88,19 +103,14 @@ RefitBootstrap bootstrapDiagnosedModel(const AugmentedFit& fit, const std::vecto
   if (!not_made.empty())
     return RefitBootstrap::notMade(options.replicates, not_made);
   fitted.block_length_s = speedResidualBlockLengthS(training, speedResiduals(training, fitted.simulated_speed_mps));
-  const ReplicateRefit refit = [&](const std::vector<CarFollowingRun>& replicate) -> std::optional<BootstrapDraw> {
-    AugmentedFit best = refitAsDiagnosed(effects, replicate, calibration);
-    if (!effects.empty())
-    {
-      const AugmentedFit from_fit = calibrateAugmentedSet(effects, replicate, calibration, &fit);
-      if (betterFit(from_fit, best))
-        best = from_fit;
-    }
-    if (best.diverged)
+  const AugmentedRefit refit_replicate = refit ? refit : refitAsDiagnosed(fit, calibration);
+  const ReplicateRefit draw_of_refit = [&](const std::vector<CarFollowingRun>& replicate) -> std::optional<BootstrapDraw> {
+    const AugmentedFit refitted = refit_replicate(replicate);
+    if (refitted.diverged)
       return std::nullopt;
-    return drawOf(best, box);
+    return drawOf(refitted, box);
   };
-  return bootstrapFittedDrives(fitted, training, refit, options);
+  return bootstrapFittedDrives(fitted, training, draw_of_refit, options);
 }
 
 }  // namespace acc

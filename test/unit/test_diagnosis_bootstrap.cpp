@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "acc_identification/diagnosis/diagnosis.h"
 #include "acc_identification/diagnosis/diagnosis_output.h"
@@ -68,6 +70,41 @@ TEST(DiagnosedModelBootstrap, AHiddenLagsIntervalHoldsItAndTheSeedAloneDecidesTh
   EXPECT_EQ(quantity(two_threads, "lag_time_constant_s").interval_95_low, lag.interval_95_low);
   EXPECT_EQ(quantity(two_threads, "k2_per_s").standard_error, quantity(one_thread, "k2_per_s").standard_error);
   EXPECT_NE(quantity(other_seed, "lag_time_constant_s").standard_error, lag.standard_error);
+}
+
+// Each replicate is refitted by the procedure given (the campaign's differs from diagnose's): one
+// that always answers the fit with its lag 0.1 s longer makes every refit that, a bias of +0.1 s
+// and no spread; one that diverges on every replicate leaves them all out, counted.
+TEST(DiagnosedModelBootstrap, EachReplicateIsRefittedByTheProcedureGiven)
+{
+  const acc::CarFollowingRun run = laggedDrive(7);
+  const acc::AugmentedCalibrationOptions calibration;
+  const acc::AugmentedFit fit = acc::calibrateAugmentedSet({acc::EffectKind::actuation_lag}, {run}, calibration);
+  ASSERT_TRUE(fit.usable());
+  acc::RefitBootstrapOptions options;
+  options.replicates = 12;
+  std::atomic<std::size_t> calls{0};
+  const acc::AugmentedRefit longer = [&](const std::vector<acc::CarFollowingRun>& replicate) {
+    EXPECT_EQ(replicate.size(), 1u);
+    ++calls;
+    acc::AugmentedFit refit = fit;
+    refit.effect_values.front() += 0.1;
+    return refit;
+  };
+  const acc::RefitBootstrap refits = acc::bootstrapDiagnosedModel(fit, {run}, calibration, options, longer);
+  ASSERT_EQ(refits.note, "");
+  EXPECT_EQ(calls.load(), 12u);
+  EXPECT_EQ(refits.refitted, 12u);
+  EXPECT_NEAR(quantity(refits, "lag_time_constant_s").bias, 0.1, 1e-12);
+  EXPECT_NEAR(quantity(refits, "lag_time_constant_s").standard_error, 0.0, 1e-12);
+  EXPECT_NEAR(quantity(refits, "k1_per_s2").bias, 0.0, 1e-12);
+
+  const acc::AugmentedRefit diverging = [&](const std::vector<acc::CarFollowingRun>&) {
+    acc::AugmentedFit refit = fit;
+    refit.diverged = true;
+    return refit;
+  };
+  EXPECT_EQ(acc::bootstrapDiagnosedModel(fit, {run}, calibration, options, diverging).refitted, 0u);
 }
 
 // The replicates redraw speeds only: a fit that weighs the gap gets no bootstrap, and says why;

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "acc_identification/calibration/calibration_objective.h"
+#include "acc_identification/calibration/multistart_calibrator.h"
 #include "acc_identification/calibration/quantity_identifiability.h"
 #include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/model/car_following_run.h"
@@ -132,6 +133,11 @@ RefitBootstrap bootstrapFittedDrives(const FittedDrives& fitted, const std::vect
 /// `starts` points); bench/bench_calibration.cpp (BM_RefitBootstrap).
 RefitBootstrap bootstrapRefits(const AccParameters& fit, const std::vector<CarFollowingRun>& runs,
                                const RefitBootstrapOptions& options = {});
+
+/// A replicate's base model refitted as bootstrapRefits refits it: multistart from the fit and
+/// options.starts Halton points in options.bounds.
+MultistartResult refitBaseModel(const AccParameters& fit, const std::vector<CarFollowingRun>& replicate,
+                                const RefitBootstrapOptions& options);
 
 /// One line per quantity: the fit's value, the bootstrap-t 95 % interval, the refits' spread and
 /// bias; or why there is none.

@@ -56,12 +56,22 @@ std::string platoonCandidateText(const PlatoonCandidate& candidate);
 /// Whether candidate is the base model or one of platoonCandidates(): what may be forced.
 bool isPlatoonCandidate(const PlatoonCandidate& candidate);
 
+/// The options every candidate model of a car is fitted with (calibrateAugmentedSet): the
+/// candidate's objective and the platoon diagnosis's number of effect starts.
+AugmentedCalibrationOptions candidateCalibrationOptions(const PlatoonCandidate& candidate);
+
 /// candidate fitted on training as every candidate model of a car is (calibrateAugmentedSet with
-/// its objective, warm-started from `warm`, the base model or a candidate it extends; with a timing
-/// effect, also from cold starts, the better of the two on training kept): one rule for the
-/// leave-one-run-out models and a car's model on all its runs (fitOnAllRuns).
+/// candidateCalibrationOptions, warm-started from `warm`, the base model or a candidate it extends;
+/// with a timing effect, also from cold starts, the better of the two on training kept): one rule
+/// for the leave-one-run-out models, a car's model on all its runs (fitOnAllRuns) and that model's
+/// bootstrap refits.
 AugmentedFit fitCandidate(const PlatoonCandidate& candidate, const std::vector<CarFollowingRun>& training,
                           const AugmentedFit& warm);
+
+/// fitCandidate from each of several warm starts (the cold starts of a timing effect made once),
+/// the best on training kept (betterFit). warm_starts must not be empty.
+AugmentedFit fitCandidate(const PlatoonCandidate& candidate, const std::vector<CarFollowingRun>& training,
+                          const std::vector<AugmentedFit>& warm_starts);
 
 /// Each candidate's model of one car, fitted (calibrateAugmentedSet with the candidate's
 /// objective) on the same training segments as its base model, warm-started from it; a candidate
