@@ -183,6 +183,9 @@ BootstrapQuantity summarise(std::size_t i, const FittedDrives& fitted, const std
     q.note = near + ": the bootstrap does not hold near a bound";
   else if (2 * studentised.size() < refits.size())
     q.note = "fewer than half the refits have a standard error";
+  else if (studentised.size() < kMinRefitsFor95Interval)
+    q.note = std::to_string(studentised.size()) + " refits with a standard error: a 95 % interval needs at least " +
+             std::to_string(kMinRefitsFor95Interval);
   else
   {
     // A refit whose own standard error came out small gives a large t: the interval can reach

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "acc_identification/tools/bootstrap_options.h"
 #include "acc_identification/tools/number_checks.h"
 
 namespace
@@ -14,7 +15,9 @@ namespace
 std::string parseError(const std::string& arguments)
 {
   CLI::App app;
-  double positive = 1.0, non_negative = 1.0, alpha = 0.05;
+  double positive = 1.0, non_negative = 1.0, alpha = 0.05, below_s = 300.0;
+  std::size_t replicates = 199;
+  acc::addRefitBootstrapOptions(app, replicates, below_s, "the fit");
   app.add_option("--positive", positive)->check(acc::positiveNumber());
   app.add_option("--non-negative", non_negative)->check(acc::nonNegativeNumber());
   app.add_option("--alpha", alpha)->check(acc::openInterval(0.0, 1.0));
@@ -43,4 +46,18 @@ TEST(NumberChecks, SayWhatTheyAskInWords)
   EXPECT_NE(parseError("--alpha 0").find("must be above 0 and below 1, not 0"), std::string::npos)
       << parseError("--alpha 0");
   EXPECT_NE(parseError("--alpha 1").find("must be above 0 and below 1, not 1"), std::string::npos);
+}
+
+// A negative replicate count wrapped to a huge unsigned one, whose allocation failed every short
+// group's fit ("3 NOT TESTED" where 1 was); fewer than 39 give no 95 % interval.
+TEST(NumberChecks, BootstrapReplicatesAreNoneOrEnoughForAnInterval)
+{
+  EXPECT_EQ(parseError("--bootstrap 0"), "");
+  EXPECT_EQ(parseError("--bootstrap 39"), "");
+  EXPECT_EQ(parseError("--bootstrap 199"), "");
+  for (const char* refused : {"-1", "1", "38", "2.5", "100001"})
+    EXPECT_NE(parseError(std::string("--bootstrap ") + refused).find("must be 0 (none) or a whole number from 39 to 100000"),
+              std::string::npos)
+        << refused << ": " << parseError(std::string("--bootstrap ") + refused);
+  EXPECT_NE(parseError("--bootstrap nan").find("not a finite number"), std::string::npos);
 }

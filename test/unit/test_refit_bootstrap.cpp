@@ -80,7 +80,7 @@ TEST(RefitBootstrap, TheSeedAloneDecidesTheDraws)
   const acc::CarFollowingRun run = minuteDrive(3);
   const acc::AccParameters fit = acc::identifyAcc({run}, {}).calibration.parameters;
   acc::RefitBootstrapOptions options;
-  options.replicates = 20;
+  options.replicates = 40;
   options.threads = 1;
   const acc::RefitBootstrap one_thread = acc::bootstrapRefits(fit, {run}, options);
   options.threads = 2;
@@ -121,11 +121,11 @@ TEST(RefitBootstrap, CalibrateMakesItOnShortData)
   settings.quiet = true;
   settings.starts = 20;
   settings.stability_test = false;
-  settings.bootstrap_replicates = 30;
+  settings.bootstrap_replicates = 40;
   std::ostringstream text, log;
   const acc::CalibrateOutcome minute = acc::calibrateRuns({{minuteDrive(1), "minute.csv"}}, {}, settings, text, log);
   ASSERT_TRUE(minute.json.contains("refit_bootstrap")) << minute.json.dump(1);
-  EXPECT_EQ(minute.json["refit_bootstrap"]["replicates"], 30);
+  EXPECT_EQ(minute.json["refit_bootstrap"]["replicates"], 40);
   EXPECT_TRUE(minute.json["refit_bootstrap"]["quantities"]["k1"]["interval_95"].is_array());
   EXPECT_NE(text.str().find("Refitting bootstrap"), std::string::npos) << text.str();
   settings.bootstrap_below_s = 50.0;
@@ -140,11 +140,33 @@ TEST(RefitBootstrap, NoIntervalAtABound)
   acc::AccParameters fit = acc::identifyAcc({run}, {}).calibration.parameters;
   fit.tau_e_s = 0.0;  // on the lower bound: the quantities it moves are held there
   acc::RefitBootstrapOptions options;
-  options.replicates = 10;
+  options.replicates = 40;
   const acc::RefitBootstrap refits = acc::bootstrapRefits(fit, {run}, options);
   ASSERT_TRUE(refits.note.empty()) << refits.note;
   EXPECT_TRUE(std::isnan(refits.find("tau_e")->interval_95_low));
   EXPECT_NE(refits.find("tau_e")->note.find("bound"), std::string::npos);
   EXPECT_NE(refits.caution().find("tau_e"), std::string::npos) << refits.caution();
   EXPECT_TRUE(std::isfinite(refits.find("k2")->interval_95_low));
+}
+
+// Fewer refits than a 95 % interval needs (one in each 2.5 % tail: 39) give the refits' spread and
+// bias but no interval, and say why: with one refit the "interval" was a point.
+TEST(RefitBootstrap, NoIntervalFromTooFewRefits)
+{
+  const acc::CarFollowingRun run = minuteDrive(6);
+  const acc::AccParameters fit = acc::identifyAcc({run}, {}).calibration.parameters;
+  acc::RefitBootstrapOptions options;
+  options.replicates = acc::kMinRefitsFor95Interval - 1;
+  const acc::RefitBootstrap few = acc::bootstrapRefits(fit, {run}, options);
+  ASSERT_TRUE(few.note.empty()) << few.note;
+  for (const char* name : kQuantities)
+  {
+    const acc::BootstrapQuantity& q = *few.find(name);
+    EXPECT_TRUE(std::isnan(q.interval_95_low) && std::isnan(q.interval_95_high)) << name;
+    EXPECT_NE(q.note.find("needs at least 39"), std::string::npos) << name << ": " << q.note;
+    EXPECT_TRUE(std::isfinite(q.standard_error)) << name;
+  }
+  options.replicates = acc::kMinRefitsFor95Interval;
+  const acc::RefitBootstrap enough = acc::bootstrapRefits(fit, {run}, options);
+  EXPECT_TRUE(std::isfinite(enough.find("k2")->interval_95_low)) << enough.find("k2")->note;
 }

@@ -20,6 +20,11 @@
 
 namespace acc
 {
+/// The fewest refits with a standard error that give a 95 % interval: 39, the fewest whose 2.5 %
+/// tails each hold a refit ((39 + 1) x 0.025 = 1). With fewer the tails are extrapolated from the
+/// extreme refits (with one refit the "interval" is a point).
+constexpr std::size_t kMinRefitsFor95Interval = 39;
+
 /// How the refitting bootstrap runs.
 struct RefitBootstrapOptions
 {
@@ -46,7 +51,8 @@ struct BootstrapQuantity
   /// standard error), cut at the range the fit searched. NaN where held at a bound of the fit or
   /// within 1.96 standard errors of one (the bootstrap is not valid there: Andrews 2000; near a
   /// bound the refits' own standard errors say little, and the interval came out narrower than
-  /// their spread), or where fewer than half the refits have a standard error.
+  /// their spread), or where fewer than half the refits, or fewer than kMinRefitsFor95Interval,
+  /// have a standard error.
   double interval_95_low = std::numeric_limits<double>::quiet_NaN();
   double interval_95_high = std::numeric_limits<double>::quiet_NaN();
   std::string note;      ///< why there is no interval; empty with one
