@@ -74,7 +74,8 @@ int main(int argc, char** argv)
       ->check(acc::openInterval(0.0, 1.0))
       ->capture_default_str();
   auto* seed_option =
-      app.add_option("--seed", seed, "seed of the stability test's and the refitting bootstrap's draws (default: fixed seeds)");
+      app.add_option("--seed", seed, "seed of the stability test's and the refitting bootstrap's draws (default: fixed seeds)")
+          ->check(acc::nonNegativeWholeNumber());
   acc::addRefitBootstrapOptions(app, settings.bootstrap_replicates, settings.bootstrap_below_s, "the fit");
   app.add_option("--verdict-every", settings.verdict_every_s,
                  "also replay each drive look by look every SECONDS of data time and report the sequential "

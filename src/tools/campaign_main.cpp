@@ -46,11 +46,14 @@ int main(int argc, char** argv)
   app.add_option("--starts", options.group.starts, "Halton starts of every multistart fit (at least one)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000}))
       ->capture_default_str();
-  app.add_option("--threads", options.threads, "worker threads (0: every core)")->capture_default_str();
+  app.add_option("--threads", options.threads, "worker threads (0: every core)")
+      ->check(acc::nonNegativeWholeNumber())
+      ->capture_default_str();
   app.add_option("--alpha", options.group.alpha, "level of the string-stability test")
       ->check(acc::openInterval(0.0, 1.0))
       ->capture_default_str();
   app.add_option("--seed", options.group.seed, "campaign seed (each group's bootstrap draws from its own stream)")
+      ->check(acc::nonNegativeWholeNumber())
       ->capture_default_str();
   app.add_option("--json", json_path, "write vehicles, platoons, inputs and attribution as JSON");
   app.add_option("--report", report_dir, "write report.md, campaign.json and PNG figures into DIR");

@@ -55,7 +55,7 @@ void addDiagnosisOptions(CLI::App& app, DiagnoseRequest& r)
                  "smallest held-out MSE reduction worth naming")
       ->check(acc::nonNegativeNumber())
       ->capture_default_str();
-  app.add_option("--seed", r.seed, "bootstrap seed")->capture_default_str();
+  app.add_option("--seed", r.seed, "bootstrap seed")->check(acc::nonNegativeWholeNumber())->capture_default_str();
   app.add_flag("--no-forward-selection", r.no_forward_selection,
                "name the dominant effect only; do not try effects in combination");
   app.add_option("--max-chain-length", r.options.max_chain_length, "most effects the forward selection adds")
@@ -66,7 +66,7 @@ void addDiagnosisOptions(CLI::App& app, DiagnoseRequest& r)
   acc::addRefitBootstrapOptions(app, r.options.bootstrap_replicates, r.options.bootstrap_below_s, "the final model");
   app.add_option("--threads", r.options.threads,
                  "threads for the independent effect fits (0: every core); the result does not depend on it")
-      ->capture_default_str();
+      ->check(acc::nonNegativeWholeNumber())->capture_default_str();
   app.add_option("--withheld-suite", r.suite,
                  "synthetic runs with a hidden effect (small, large), or the bundled real runs with an offset or "
                  "lag injected (semi-real), or every pair of effects withheld at once (combined); prints the "

@@ -84,7 +84,7 @@ int main(int argc, char** argv)
                  "unmodelled effect NAME=V[,V] (repeatable): actuation_lag=T_s, reaction_delay=d_s, "
                  "acceleration_limits=a_max,b_max, sensor_time_offset=delta_s, speed_dependent_time_gap=c_s2_per_m, "
                  "set_speed_cruise=v_set,gain");
-  app.add_option("--seed", options.seed, "noise seed")->capture_default_str();
+  app.add_option("--seed", options.seed, "noise seed")->check(acc::nonNegativeWholeNumber())->capture_default_str();
   double rate_hz = 1.0 / options.epoch_step_s;
   auto* rate_option = app.add_option("--rate-hz", rate_hz, "the receivers' output rate, GGA + RMC epochs per second (1: "
                                      "many receivers' default; the truth is simulated ten times finer; calibrate such "

@@ -16,7 +16,8 @@ std::string parseError(const std::string& arguments)
 {
   CLI::App app;
   double positive = 1.0, non_negative = 1.0, alpha = 0.05, below_s = 300.0;
-  std::size_t replicates = 199;
+  std::size_t replicates = 199, threads = 0;
+  app.add_option("--threads", threads)->check(acc::nonNegativeWholeNumber());
   acc::addRefitBootstrapOptions(app, replicates, below_s, "the fit");
   app.add_option("--positive", positive)->check(acc::positiveNumber());
   app.add_option("--non-negative", non_negative)->check(acc::nonNegativeNumber());
@@ -46,6 +47,12 @@ TEST(NumberChecks, SayWhatTheyAskInWords)
   EXPECT_NE(parseError("--alpha 0").find("must be above 0 and below 1, not 0"), std::string::npos)
       << parseError("--alpha 0");
   EXPECT_NE(parseError("--alpha 1").find("must be above 0 and below 1, not 1"), std::string::npos);
+  // A count or seed held unsigned: -1 would wrap to the largest one.
+  EXPECT_EQ(parseError("--threads 0"), "");
+  EXPECT_EQ(parseError("--threads 2"), "");
+  EXPECT_NE(parseError("--threads -1").find("must be a whole number 0 or more, not -1"), std::string::npos)
+      << parseError("--threads -1");
+  EXPECT_NE(parseError("--threads 1.5").find("must be a whole number 0 or more, not 1.5"), std::string::npos);
 }
 
 // A negative replicate count wrapped to a huge unsigned one, whose allocation failed every short

@@ -56,6 +56,14 @@ inline CLI::Validator nonNegativeNumber()
   return number_checks::finiteNumber([](double value) { return value >= 0.0; }, "0 or more", "NONNEGATIVE");
 }
 
+/// A whole number of 0 or more, for counts and seeds held unsigned: CLI11 would wrap -1 to the
+/// largest unsigned value.
+inline CLI::Validator nonNegativeWholeNumber()
+{
+  return number_checks::finiteNumber([](double value) { return value >= 0.0 && value == std::floor(value); },
+                                     "a whole number 0 or more", "WHOLE");
+}
+
 /// A number strictly between lower and upper (a level alpha: between 0 and 1).
 inline CLI::Validator openInterval(double lower, double upper)
 {
