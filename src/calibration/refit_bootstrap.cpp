@@ -154,7 +154,7 @@ BootstrapQuantity summarise(std::size_t i, const FittedDrives& fitted, const std
   BootstrapQuantity q;
   q.name = fitted.quantity_names[i];
   q.value = at_fit.value[i];
-  std::vector<double> values, studentised;
+  std::vector<double> values, studentised, refit_errors;
   for (const Refit& refit : refits)
   {
     if (!refit || i >= refit->value.size())
@@ -162,8 +162,14 @@ BootstrapQuantity summarise(std::size_t i, const FittedDrives& fitted, const std
     values.push_back(refit->value[i]);
     const double se = refit->standard_error[i];
     if (std::isfinite(se) && se > 0.0)
+    {
       studentised.push_back((refit->value[i] - q.value) / se);
+      refit_errors.push_back(se);
+    }
   }
+  q.fit_standard_error = at_fit.standard_error[i];
+  if (!refit_errors.empty())
+    q.refits_standard_error_median = interpolatedQuantile(refit_errors, 0.5);
   if (values.size() >= 2)
   {
     const double mean = meanOf(values);
@@ -302,7 +308,7 @@ void printRefitBootstrap(const RefitBootstrap& bootstrap, std::ostream& out)
     out << "Refitting bootstrap: not made: " << bootstrap.note << "\n";
     return;
   }
-  char line[256];
+  char line[384];
   std::snprintf(line, sizeof line,
                 "Refitting bootstrap (%zu drives the fit could have given, %zu refitted; residual blocks of %.1f s; "
                 "%.1f s): 95 %% intervals (bootstrap-t) for short data, where value +- t se runs short\n",
@@ -316,8 +322,11 @@ void printRefitBootstrap(const RefitBootstrap& bootstrap, std::ostream& out)
   for (const BootstrapQuantity& q : bootstrap.quantities)
   {
     if (std::isfinite(q.interval_95_low))
-      std::snprintf(line, sizeof line, "  %-*s %-11.5g 95 %% [%.5g, %.5g]   refits' spread %.3g, bias %+.3g\n", width,
-                    q.name.c_str(), q.value, q.interval_95_low, q.interval_95_high, q.standard_error, q.bias);
+      std::snprintf(line, sizeof line,
+                    "  %-*s %-11.5g 95 %% [%.5g, %.5g]   refits' spread %.3g, bias %+.3g; standard error at the fit "
+                    "%.3g, the refits' own %.3g (median)\n",
+                    width, q.name.c_str(), q.value, q.interval_95_low, q.interval_95_high, q.standard_error, q.bias,
+                    q.fit_standard_error, q.refits_standard_error_median);
     else
       std::snprintf(line, sizeof line, "  %-*s %-11.5g no interval: %s\n", width, q.name.c_str(), q.value,
                     q.note.c_str());
@@ -333,6 +342,8 @@ nlohmann::json toJson(const RefitBootstrap& bootstrap)
     quantities[q.name] = {{"value", jsonNumber(q.value)},
                           {"standard_error", jsonNumber(q.standard_error)},
                           {"bias", jsonNumber(q.bias)},
+                          {"fit_standard_error", jsonNumber(q.fit_standard_error)},
+                          {"refits_standard_error_median", jsonNumber(q.refits_standard_error_median)},
                           {"interval_95", std::isfinite(q.interval_95_low)
                                               ? nlohmann::json{q.interval_95_low, q.interval_95_high}
                                               : nlohmann::json(nullptr)},

@@ -98,6 +98,9 @@ TEST(DiagnosedModelBootstrap, EachReplicateIsRefittedByTheProcedureGiven)
   EXPECT_NEAR(quantity(refits, "lag_time_constant_s").bias, 0.1, 1e-12);
   EXPECT_NEAR(quantity(refits, "lag_time_constant_s").standard_error, 0.0, 1e-12);
   EXPECT_NEAR(quantity(refits, "k1_per_s2").bias, 0.0, 1e-12);
+  // Each refit carries the fit's standard errors: their median is the fit's.
+  EXPECT_EQ(quantity(refits, "lag_time_constant_s").fit_standard_error, fit.standard_errors[4]);
+  EXPECT_NEAR(quantity(refits, "lag_time_constant_s").refits_standard_error_median, fit.standard_errors[4], 1e-12);
 
   const acc::AugmentedRefit diverging = [&](const std::vector<acc::CarFollowingRun>&) {
     acc::AugmentedFit refit = fit;

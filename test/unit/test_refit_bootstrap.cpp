@@ -126,7 +126,12 @@ TEST(RefitBootstrap, CalibrateMakesItOnShortData)
   const acc::CalibrateOutcome minute = acc::calibrateRuns({{minuteDrive(1), "minute.csv"}}, {}, settings, text, log);
   ASSERT_TRUE(minute.json.contains("refit_bootstrap")) << minute.json.dump(1);
   EXPECT_EQ(minute.json["refit_bootstrap"]["replicates"], 40);
-  EXPECT_TRUE(minute.json["refit_bootstrap"]["quantities"]["k1"]["interval_95"].is_array());
+  const nlohmann::json& k1 = minute.json["refit_bootstrap"]["quantities"]["k1"];
+  EXPECT_TRUE(k1["interval_95"].is_array());
+  // The standard error that scales the interval, and the refits' own beside it.
+  EXPECT_GT(k1["fit_standard_error"].get<double>(), 0.0) << k1.dump();
+  EXPECT_GT(k1["refits_standard_error_median"].get<double>(), 0.0) << k1.dump();
+  EXPECT_NE(text.str().find("the refits' own"), std::string::npos) << text.str();
   EXPECT_NE(text.str().find("Refitting bootstrap"), std::string::npos) << text.str();
   settings.bootstrap_below_s = 50.0;
   EXPECT_FALSE(acc::calibrateRuns({{minuteDrive(1), "minute.csv"}}, {}, settings, text, log).json.contains(
