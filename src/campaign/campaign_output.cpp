@@ -457,7 +457,8 @@ std::string effectSizeText(const AugmentedFit& fit, EffectKind kind, const Effec
             bootstrapIntervalText(bootstrap, spec.name);
   }
   if (std::isfinite(size.z))
-    text += " (z " + cellNumber("%.1f", size.z) + (size.determined ? ", determined)" : ", not determined)");
+    text += " (z " + cellNumber("%.1f", size.z) + (size.determined ? ", determined" : ", not determined") +
+            bootstrapVerdictText(size) + ")";
   return text;
 }
 

@@ -192,7 +192,11 @@ std::vector<EffectSize> diagnosedEffectSizes(const LinkEvidence& evidence)
     return sizes;  // not fitted: the group has no base fit
   const double threshold = determinedThreshold(kDiagnosedSizeAlpha, evidence.diagnosed.effects);
   for (EffectKind kind : evidence.diagnosed.effects)
+  {
     sizes.push_back(effectSizeIn(evidence.diagnosed_fit, kind, threshold));
+    if (evidence.diagnosed_bootstrap)
+      judgeByBootstrap(kind, *evidence.diagnosed_bootstrap, &sizes.back());
+  }
   return sizes;
 }
 

@@ -33,7 +33,10 @@ nlohmann::json effectSizeJson(const EffectSize& size)
           {"standard_error", jsonNumber(size.standard_error)},
           {"z", jsonNumber(size.z)},
           {"at_bound", size.at_bound},
-          {"determined", size.determined}};
+          {"determined", size.determined},
+          {"bootstrap_interval_holds_none", size.bootstrap_interval_holds_none
+                                                ? nlohmann::json(*size.bootstrap_interval_holds_none)
+                                                : nlohmann::json(nullptr)}};
 }
 
 }  // namespace acc

@@ -78,6 +78,20 @@ EffectSize effectSizeIn(const AugmentedFit& fit, EffectKind kind, double thresho
   return size;
 }
 
+void judgeByBootstrap(EffectKind kind, const RefitBootstrap& bootstrap, EffectSize* size)
+{
+  const double neutral = neutralValue(kind);
+  const BootstrapQuantity* q = bootstrap.find(candidateEffect(kind).parameters.front().name);
+  if (q == nullptr || !std::isfinite(neutral) || !std::isfinite(q->interval_95_low) || !std::isfinite(q->interval_95_high))
+    return;
+  size->bootstrap_interval_holds_none = q->interval_95_low <= neutral && neutral <= q->interval_95_high;
+}
+
+std::string bootstrapVerdictText(const EffectSize& size)
+{
+  return size.bootstrap_interval_holds_none.value_or(false) ? "; its bootstrap interval holds none" : "";
+}
+
 std::vector<DeterminedEffect> determinedEffects(const AugmentedFit& base_fit, const std::vector<AugmentedFit>& effect_fits,
                                                 double sample_period_s, double alpha)
 {

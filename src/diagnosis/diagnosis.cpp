@@ -302,6 +302,11 @@ void bootstrapShortTraining(const DiagnosisOptions& options, DiagnosisResult* re
   if (bootstrap.threads == 0)
     bootstrap.threads = options.threads;
   result->final_bootstrap = bootstrapDiagnosedModel(finalModel(*result).fit, result->train, options.calibration, bootstrap);
+  if (!result->selected_effects.empty())  // the last step's size is taken in the final model
+  {
+    ForwardSelectionStep& last = result->selected_effects.back();
+    judgeByBootstrap(last.added, *result->final_bootstrap, &last.added_size);
+  }
 }
 }  // namespace
 

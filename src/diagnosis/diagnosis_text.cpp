@@ -43,9 +43,10 @@ std::string describeAddedSize(const ForwardSelectionStep& step)
   }
   else
   {
-    std::snprintf(text, sizeof text, "size of %s: %s (%.1f standard errors from none%s)", effectName(step.added).c_str(),
+    std::snprintf(text, sizeof text, "size of %s: %s (%.1f standard errors from none%s)%s", effectName(step.added).c_str(),
                   size.determined ? "determined by the training data" : "NOT determined by the training data", size.z,
-                  size.at_bound ? ", at a bound of its range" : "");
+                  size.at_bound ? ", at a bound of its range" : "",
+                  bootstrapVerdictText(size).c_str());
   }
   return text;
 }

@@ -301,6 +301,9 @@ TEST(CampaignPlatoon, ADiagnosedModelOnShortRunsGetsItsBootstrapInterval)
   }
   const nlohmann::json json = acc::campaignToJson(inputs, result, {"synthetic"}, options);
   EXPECT_TRUE(json["links"][0]["diagnosed_model"].contains("refit_bootstrap"));
+  // The delay's size is read against its interval too (a boolean where the bootstrap gave one).
+  const nlohmann::json& delay_size = json["links"][0]["diagnosed_model"]["effect_sizes"]["reaction_delay"];
+  EXPECT_TRUE(delay_size["bootstrap_interval_holds_none"].is_boolean()) << delay_size.dump();
   std::ostringstream tables;
   acc::printCampaignTables(result, tables);
   EXPECT_NE(tables.str().find("dead_time_s 0.95"), std::string::npos) << tables.str();

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -176,11 +177,14 @@ TEST(DiagnosedModelBootstrap, TheDiagnosisMakesItOnShortTrainingDataOnly)
   acc::DiagnosisOptions options;
   options.with_stability_test = false;
   options.candidates = {acc::EffectKind::actuation_lag};
-  options.bootstrap_replicates = 20;
+  options.bootstrap_replicates = 40;
   options.threads = 2;
   const acc::DiagnosisResult short_data = acc::diagnoseRuns({laggedDrive(9)}, options);  // 60 s of training
   ASSERT_TRUE(short_data.final_bootstrap.has_value());
-  EXPECT_EQ(short_data.final_bootstrap->replicates, 20u);
+  EXPECT_EQ(short_data.final_bootstrap->replicates, 40u);
+  // The last step's size is taken in the final model, and read against its interval too.
+  ASSERT_FALSE(short_data.selected_effects.empty());
+  EXPECT_EQ(short_data.selected_effects.back().added_size.bootstrap_interval_holds_none, std::optional<bool>(false));
   const nlohmann::json json = acc::diagnosisToJson(short_data);
   ASSERT_TRUE(json["final_model"].contains("refit_bootstrap")) << json["final_model"].dump(1);
   const nlohmann::json& quantities = json["final_model"]["refit_bootstrap"]["quantities"];

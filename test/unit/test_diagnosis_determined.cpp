@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
+#include <string>
 
 #include "acc_identification/diagnosis/determined_effects.h"
 #include "acc_identification/diagnosis/diagnosis.h"
@@ -103,3 +105,40 @@ TEST(DeterminedEffects, AnEffectsSizeIsFoundAfterTheEffectsBeforeIt)
   EXPECT_FALSE(at_bound.determined);
 }
 }  // namespace
+
+// On short data a size is also read against its refitting bootstrap: an interval that holds the
+// none value says so (the TOYOTA_RAV4 at L's delay: z 2.4, interval [0, 3] s), one that does not
+// says nothing more, and no interval (or no none value) leaves it unset.
+TEST(DeterminedEffects, AShortFitsSizeIsReadAgainstItsBootstrapInterval)
+{
+  const auto bootstrapWith = [](const std::string& name, double low, double high) {
+    acc::RefitBootstrap bootstrap;
+    acc::BootstrapQuantity q;
+    q.name = name;
+    q.interval_95_low = low;
+    q.interval_95_high = high;
+    bootstrap.quantities.push_back(q);
+    return bootstrap;
+  };
+  const acc::EffectKind delay = acc::EffectKind::reaction_delay;
+  const std::string delay_name = acc::candidateEffect(delay).parameters.front().name;
+  acc::EffectSize size;
+  size.z = 2.4;
+  size.determined = true;
+  acc::judgeByBootstrap(delay, bootstrapWith(delay_name, 0.0, 3.0), &size);
+  EXPECT_EQ(size.bootstrap_interval_holds_none, std::optional<bool>(true));
+  EXPECT_EQ(acc::bootstrapVerdictText(size), "; its bootstrap interval holds none");
+  EXPECT_TRUE(size.determined);  // the standard error's decision stays
+
+  acc::EffectSize pinned;
+  acc::judgeByBootstrap(delay, bootstrapWith(delay_name, 0.40, 0.91), &pinned);
+  EXPECT_EQ(pinned.bootstrap_interval_holds_none, std::optional<bool>(false));
+  EXPECT_EQ(acc::bootstrapVerdictText(pinned), "");
+
+  acc::EffectSize none;
+  acc::judgeByBootstrap(delay, bootstrapWith(delay_name, std::nan(""), std::nan("")), &none);
+  acc::judgeByBootstrap(delay, bootstrapWith("k2_per_s", 0.0, 3.0), &none);
+  const acc::EffectKind limits = acc::EffectKind::acceleration_limits;  // vanishes only at infinity
+  acc::judgeByBootstrap(limits, bootstrapWith(acc::candidateEffect(limits).parameters.front().name, 0.0, 1e9), &none);
+  EXPECT_FALSE(none.bootstrap_interval_holds_none.has_value());
+}

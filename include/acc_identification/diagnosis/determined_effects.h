@@ -2,9 +2,11 @@
 
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "acc_identification/calibration/refit_bootstrap.h"
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/model/follower_effects.h"
 
@@ -52,10 +54,24 @@ struct EffectSize
   double z = std::numeric_limits<double>::quiet_NaN();
   bool at_bound = false;    ///< at a bound of its range: the search's limit, not the data's answer
   bool determined = false;  ///< z above the threshold and not at a bound
+  /// On short data, where the fit's refitting bootstrap gave the first parameter a 95 % interval:
+  /// whether that interval holds the none value (unset without one). "determined" stays the
+  /// standard error's decision; where the two disagree (TOYOTA_RAV4 at L: z 2.4, interval [0, 3] s)
+  /// the data's own standard error is large against the refits', and the size is not pinned
+  /// (docs/PLATOON_DIAGNOSIS.md, "How sure each car's sizes are").
+  std::optional<bool> bootstrap_interval_holds_none;
 };
 
 /// kind's size in fit (kind among effectsOf(fit); otherwise every field NaN and not determined).
 EffectSize effectSizeIn(const AugmentedFit& fit, EffectKind kind, double threshold);
+
+/// Sets size->bootstrap_interval_holds_none from bootstrap, the refitting bootstrap of the fit
+/// size was taken from (final_model_bootstrap.h), where it gives kind's first parameter an interval
+/// and kind has a none value.
+void judgeByBootstrap(EffectKind kind, const RefitBootstrap& bootstrap, EffectSize* size);
+
+/// "; its bootstrap interval holds none" where that is set, else "": printed after a size's verdict.
+std::string bootstrapVerdictText(const EffectSize& size);
 
 /// Every single-effect fit whose first parameter is determined: finite standard error, resolvable
 /// (timing effects at least sample_period_s), not at a bound of its range (a value at a bound is
