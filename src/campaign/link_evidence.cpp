@@ -91,7 +91,6 @@ std::vector<std::pair<double, double>> departures(const EmpiricalResponse& respo
   return ranges;
 }
 
-/// How a candidate is fitted: with its objective (the diagnosis's defaults otherwise).
 /// The diagnosed model's refitting bootstrap when the group's runs are short (ShortRunsBootstrapOptions).
 void bootstrapShortLink(const CampaignGroup& group, const GroupResult& result, const ShortRunsBootstrapOptions& options,
                         LinkEvidence* evidence)

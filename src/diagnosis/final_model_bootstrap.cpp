@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "acc_identification/calibration/model_adequacy.h"
@@ -108,6 +109,9 @@ RefitBootstrap bootstrapDiagnosedModel(const AugmentedFit& fit, const std::vecto
     const AugmentedFit refitted = refit_replicate(replicate);
     if (refitted.diverged)
       return std::nullopt;
+    if (effectsOf(refitted) != effects)  // a caller's procedure that fits another model
+      throw std::logic_error("bootstrapDiagnosedModel: a refit has effects " + combinedEffectName(effectsOf(refitted)) +
+                             ", the model " + combinedEffectName(effects));
     return drawOf(refitted, box);
   };
   return bootstrapFittedDrives(fitted, training, draw_of_refit, options);

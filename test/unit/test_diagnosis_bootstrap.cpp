@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -109,6 +110,14 @@ TEST(DiagnosedModelBootstrap, EachReplicateIsRefittedByTheProcedureGiven)
     return refit;
   };
   EXPECT_EQ(acc::bootstrapDiagnosedModel(fit, {run}, calibration, options, diverging).refitted, 0u);
+
+  // A procedure that fits another model is the caller's error, not a replicate left out.
+  const acc::AugmentedRefit other_model = [&](const std::vector<acc::CarFollowingRun>&) {
+    acc::AugmentedFit refit;
+    refit.base = fit.base;
+    return refit;
+  };
+  EXPECT_THROW(acc::bootstrapDiagnosedModel(fit, {run}, calibration, options, other_model), std::logic_error);
 }
 
 // The replicates redraw speeds only: a fit that weighs the gap gets no bootstrap, and says why;

@@ -19,8 +19,9 @@ using AugmentedRefit = std::function<AugmentedFit(const std::vector<CarFollowing
 ///
 /// The replicates are drives the model `fit` could have given on `training` (its own simulation,
 /// with its effects, plus the residuals resampled in blocks of its batch-means length, the start
-/// gap moved by its noise). Each is refitted by `refit`, which must fit it as the data were fitted;
-/// when empty, as the diagnosis fits them (refitAsDiagnosed). The selection of the effects is not
+/// gap moved by its noise). Each is refitted by `refit`, which must fit it as the data were fitted,
+/// with `fit`'s effects (std::logic_error otherwise); when empty, as the diagnosis fits them
+/// (refitAsDiagnosed). The selection of the effects is not
 /// repeated: the intervals are those of the sizes given the effects named.
 /// Quantities: the parameters by their JSON names (augmentedParameterNames). A parameter at a
 /// bound of the diagnosis's box, or within 1.96 standard errors of one, gets no interval and makes
