@@ -321,7 +321,7 @@ void printRefitBootstrap(const RefitBootstrap& bootstrap, std::ostream& out)
     width = std::max(width, static_cast<int>(q.name.size()));
   for (const BootstrapQuantity& q : bootstrap.quantities)
   {
-    if (std::isfinite(q.interval_95_low))
+    if (q.hasInterval())
       std::snprintf(line, sizeof line,
                     "  %-*s %-11.5g 95 %% [%.5g, %.5g]   refits' spread %.3g, bias %+.3g; standard error at the fit "
                     "%.3g, the refits' own %.3g (median)\n",
@@ -344,7 +344,7 @@ nlohmann::json toJson(const RefitBootstrap& bootstrap)
                           {"bias", jsonNumber(q.bias)},
                           {"fit_standard_error", jsonNumber(q.fit_standard_error)},
                           {"refits_standard_error_median", jsonNumber(q.refits_standard_error_median)},
-                          {"interval_95", std::isfinite(q.interval_95_low)
+                          {"interval_95", q.hasInterval()
                                               ? nlohmann::json{q.interval_95_low, q.interval_95_high}
                                               : nlohmann::json(nullptr)},
                           {"note", q.note}};

@@ -427,7 +427,7 @@ const std::vector<std::string> kDiagnosedModelHeader{"vehicle", "set", "diagnose
 /// "[low, high]" of a quantity's bootstrap-t 95 % interval, "" where the bootstrap gives none.
 std::string bootstrapInterval(const BootstrapQuantity& q)
 {
-  if (!std::isfinite(q.interval_95_low) || !std::isfinite(q.interval_95_high))
+  if (!q.hasInterval())
     return "";
   return "[" + cellNumber("%.3g", q.interval_95_low) + ", " + cellNumber("%.3g", q.interval_95_high) + "]";
 }

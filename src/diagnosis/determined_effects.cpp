@@ -82,7 +82,7 @@ void judgeByBootstrap(EffectKind kind, const RefitBootstrap& bootstrap, EffectSi
 {
   const double neutral = neutralValue(kind);
   const BootstrapQuantity* q = bootstrap.find(candidateEffect(kind).parameters.front().name);
-  if (q == nullptr || !std::isfinite(neutral) || !std::isfinite(q->interval_95_low) || !std::isfinite(q->interval_95_high))
+  if (q == nullptr || !std::isfinite(neutral) || !q->hasInterval())
     return;
   size->bootstrap_interval_holds_none = q->interval_95_low <= neutral && neutral <= q->interval_95_high;
 }

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -62,6 +63,7 @@ struct BootstrapQuantity
   double interval_95_low = std::numeric_limits<double>::quiet_NaN();
   double interval_95_high = std::numeric_limits<double>::quiet_NaN();
   std::string note;      ///< why there is no interval; empty with one
+  bool hasInterval() const { return std::isfinite(interval_95_low) && std::isfinite(interval_95_high); }
 };
 
 struct RefitBootstrap
