@@ -37,6 +37,17 @@ void collectLinkDips(const std::vector<PlatoonCheck>& platoons, const std::strin
   }
 }
 
+AugmentedRefit refitAsCampaignFitted(const PlatoonCandidate& candidate, const AccParameters& base_fit,
+                                     const AugmentedFit& diagnosed_fit, const RefitBootstrapOptions& options)
+{
+  // Copies: the procedure outlives the caller's frame when a bootstrap runs it on other threads.
+  return [candidate, base_fit, diagnosed_fit, options](const std::vector<CarFollowingRun>& replicate) {
+    AugmentedFit replicate_base;
+    replicate_base.base = refitBaseModel(base_fit, replicate, options).parameters;
+    return fitCandidate(candidate, replicate, {replicate_base, diagnosed_fit});
+  };
+}
+
 namespace
 {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -104,18 +115,10 @@ void bootstrapShortLink(const CampaignGroup& group, const GroupResult& result, c
   bootstrap.replicates = options.replicates;
   bootstrap.threads = 1;  // the links themselves run in parallel
   bootstrap.seed = result.seed;
-  // Each replicate is fitted as the campaign fitted the data: the base model (from the group's base
-  // fit and Halton points), then the candidate by fitCandidate from it and from the model itself.
-  const AccParameters& base_fit = result.identification.calibration.parameters;
-  const AugmentedFit& diagnosed_fit = evidence->diagnosed_fit;
-  const PlatoonCandidate& candidate = evidence->diagnosed;
-  const AugmentedRefit refit = [&](const std::vector<CarFollowingRun>& replicate) {
-    AugmentedFit replicate_base;
-    replicate_base.base = refitBaseModel(base_fit, replicate, bootstrap).parameters;
-    return fitCandidate(candidate, replicate, {replicate_base, diagnosed_fit});
-  };
-  evidence->diagnosed_bootstrap = bootstrapDiagnosedModel(diagnosed_fit, runs, candidateCalibrationOptions(candidate),
-                                                          bootstrap, refit);
+  const AugmentedRefit refit = refitAsCampaignFitted(evidence->diagnosed, result.identification.calibration.parameters,
+                                                     evidence->diagnosed_fit, bootstrap);
+  evidence->diagnosed_bootstrap = bootstrapDiagnosedModel(
+      evidence->diagnosed_fit, runs, candidateCalibrationOptions(evidence->diagnosed), bootstrap, refit);
 }
 
 /// The chosen candidate fitted on all the group's runs, warm-started from the group's base fit.

@@ -271,6 +271,30 @@ TEST(CampaignPlatoon, TheDiagnosisFindsWhatClosesTheDipGapOfLateReactingCars)
 // none, and the library asks for none by default. The car's model on all its runs is fitted as its
 // leave-one-run-out models are: from the base model alone two of the three cars' 1 s delays were
 // read as 0.33 s (k2 at 0), the other valley of the timing trade-off.
+// The link's bootstrap (replicates, the group's seed) is the one whose replicates are refitted as
+// the campaign fitted the car (refitAsCampaignFitted), not by diagnose's chain (refitAsDiagnosed):
+// the two differ, so a rewiring shows.
+void expectRefittedAsTheCampaignFitted(const acc::CampaignInputs& inputs, const acc::CampaignResult& result,
+                                       std::size_t group, std::size_t replicates)
+{
+  const acc::LinkEvidence& link = result.links[group];
+  ASSERT_TRUE(link.diagnosed_bootstrap.has_value());
+  acc::RefitBootstrapOptions options;
+  options.replicates = replicates;
+  options.threads = 2;
+  options.seed = result.groups[group].seed;
+  const std::vector<acc::CarFollowingRun> runs = inputs.groups[group].segments();
+  const acc::AugmentedCalibrationOptions calibration = acc::candidateCalibrationOptions(link.diagnosed);
+  const auto delay_bias = [&](const acc::AugmentedRefit& refit) {
+    const acc::RefitBootstrap b = acc::bootstrapDiagnosedModel(link.diagnosed_fit, runs, calibration, options, refit);
+    return b.find("dead_time_s")->bias;
+  };
+  const double as_campaign = delay_bias(acc::refitAsCampaignFitted(
+      link.diagnosed, result.groups[group].identification.calibration.parameters, link.diagnosed_fit, options));
+  EXPECT_EQ(link.diagnosed_bootstrap->find("dead_time_s")->bias, as_campaign);
+  EXPECT_NE(delay_bias(acc::refitAsDiagnosed(link.diagnosed_fit, calibration)), as_campaign);
+}
+
 TEST(CampaignPlatoon, ADiagnosedModelOnShortRunsGetsItsBootstrapInterval)
 {
   const acc::AccParameters brisk{0.10, 0.60, 1.2, 4.0};
@@ -310,6 +334,7 @@ TEST(CampaignPlatoon, ADiagnosedModelOnShortRunsGetsItsBootstrapInterval)
   EXPECT_NE(tables.str().find(" 95 % ["), std::string::npos) << tables.str();
   for (const acc::LinkEvidence& link : links(49, 1.0))  // every car's runs are longer
     EXPECT_FALSE(link.diagnosed_bootstrap.has_value()) << link.vehicle;
+  expectRefittedAsTheCampaignFitted(inputs, result, 0, 49);
 }
 
 // Cars that answer a second late and add half their leader's deceleration to their command (the

@@ -15,6 +15,7 @@
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/augmented_stability.h"
 #include "acc_identification/diagnosis/determined_effects.h"
+#include "acc_identification/diagnosis/final_model_bootstrap.h"
 #include "acc_identification/calibration/refit_bootstrap.h"
 
 namespace acc
@@ -99,6 +100,13 @@ inline bool responseRead(const LinkEvidence& evidence)
 
 /// Number of identical cars in the simulated long platoon.
 constexpr int kLongPlatoonCars = 10;
+
+/// How the campaign refits a bootstrap replicate of a car's diagnosed model: as it fitted the car.
+/// The base model as calibrate's bootstrap refits it (refitBaseModel from base_fit, the group's
+/// base fit, with options' starts), then the candidate by fitCandidate from that base and from
+/// diagnosed_fit. Not diagnose's chain (refitAsDiagnosed), whose starts differ.
+AugmentedRefit refitAsCampaignFitted(const PlatoonCandidate& candidate, const AccParameters& base_fit,
+                                     const AugmentedFit& diagnosed_fit, const RefitBootstrapOptions& options);
 
 /// candidate fitted on all the group's runs as fitCandidate fits every candidate (warm-started from
 /// the group's base fit; a timing effect also from cold starts), result must be fitted: the
