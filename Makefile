@@ -35,13 +35,22 @@ APT_PACKAGES := build-essential cmake clang libclang-rt-14-dev \
   libnlopt-cxx-dev libeigen3-dev libboost-dev libgeographiclib-dev libgtest-dev libbenchmark-dev \
   nlohmann-json3-dev libcli11-dev libtinyxml2-dev libyaml-cpp-dev sumo sumo-tools pybind11-dev python3-dev python3-pandas python3-pytest iproute2 python3-matplotlib python3-numpy python3-pil python3-yaml
 
-.PHONY: deps build demo test unit-tests bench clean print-apt-packages
+.PHONY: check-path deps build demo test unit-tests bench clean print-apt-packages
+
+# catkin runs the tests it builds through a shell with their paths unquoted (its run_tests.py), and
+# roslaunch splits node arguments at spaces: from a folder whose path holds whitespace the build
+# succeeds, then almost every test and the demo fail far from the cause. Say so before anything is
+# installed or built.
+check-path:
+	$(if $(filter-out 1,$(words $(CURDIR))),$(error the path of this clone holds whitespace ($(CURDIR)): \
+	  catkin's test runner and roslaunch split paths at spaces. Clone or move the repository to a path \
+	  without any (e.g. ~/acc_identification) and run make there))
 
 # The list above, one package a line (read by test/python/test_dependencies.py).
 print-apt-packages:
 	@printf '%s\n' $(APT_PACKAGES)
 
-deps:
+deps: check-path
 	@missing=$$(for p in $(APT_PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
 	if [ -n "$$missing" ]; then \
 	  echo "Installing missing packages: $$missing"; \
@@ -49,27 +58,27 @@ deps:
 	fi
 
 build: deps
-	@mkdir -p $(WS)/src $(ROS_LOG_DIR)
-	@touch $(CURDIR)/build/CATKIN_IGNORE
+	@mkdir -p "$(WS)/src" "$(ROS_LOG_DIR)"
+	@touch "$(CURDIR)/build/CATKIN_IGNORE"
 	@# The package in the workspace is a folder of links to the repository's entries, all but
 	@# build/ itself: linking the whole repository would make a loop that rosrun's find trips on.
-	@pkg=$(WS)/src/acc_identification; [ -L $$pkg ] && rm -f $$pkg; mkdir -p $$pkg; \
-	  find $$pkg -maxdepth 1 -type l ! -exec test -e {} \; -delete; \
-	  for entry in $(CURDIR)/* $(CURDIR)/.ci; do \
-	    [ "$$(basename $$entry)" = build ] || ln -sfn $$entry $$pkg/; \
+	@pkg="$(WS)/src/acc_identification"; [ -L "$$pkg" ] && rm -f "$$pkg"; mkdir -p "$$pkg"; \
+	  find "$$pkg" -maxdepth 1 -type l ! -exec test -e {} \; -delete; \
+	  for entry in "$(CURDIR)"/* "$(CURDIR)/.ci"; do \
+	    [ "$$(basename "$$entry")" = build ] || ln -sfn "$$entry" "$$pkg/"; \
 	  done
-	cd $(WS) && catkin_make -j$(JOBS) -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON '-DACC_COMPONENTS=$(or $(COMPONENTS),all)' $(CMAKE_ARGS) > $(WS)/catkin_make.log 2>&1 \
-	  || { tail -n 60 $(WS)/catkin_make.log; exit 1; }
+	cd "$(WS)" && catkin_make -j$(JOBS) -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON '-DACC_COMPONENTS=$(or $(COMPONENTS),all)' $(CMAKE_ARGS) > "$(WS)/catkin_make.log" 2>&1 \
+	  || { tail -n 60 "$(WS)/catkin_make.log"; exit 1; }
 	@echo "built in $(WS) (log: $(WS)/catkin_make.log)"
 
 demo: build
-	@source $(DEV) && bash scripts/demo.sh
+	@source "$(DEV)" && bash scripts/demo.sh
 
 test: build
-	@source $(DEV) && JOBS=$(JOBS) bash scripts/run_tests.sh $(WS)
+	@source "$(DEV)" && JOBS=$(JOBS) bash scripts/run_tests.sh "$(WS)"
 
 bench: build
-	@source $(DEV) && bash scripts/run_benchmarks.sh $(WS)
+	@source "$(DEV)" && bash scripts/run_benchmarks.sh "$(WS)"
 
 clean:
 	rm -rf build

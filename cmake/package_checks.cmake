@@ -1,6 +1,7 @@
 # Checks of the package as a whole rather than of one component: its declared dependencies
 # against rosdep.yaml, the Makefile's apt list and what dpkg says each Debian package provides
-# (test/python/test_dependencies.py); the launch files and tools as a newcomer types them
+# (test/python/test_dependencies.py); what make refuses before it installs anything
+# (test/python/test_makefile.py); the launch files and tools as a newcomer types them
 # (test/python/test_launch_sources.py); and every `bash tested` command of README.md and docs/*.md
 # run as written on the bundled data (test/python/test_doc_commands.py); and the house rules of
 # the code (test/python/test_code_shape.py: short functions, thin mains, headers mirroring
@@ -10,6 +11,9 @@ if(CATKIN_ENABLE_TESTING)
   set(_acc_results ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
   catkin_run_tests_target("python" "dependencies" "python-dependencies.xml"
     COMMAND "/usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/python/test_dependencies.py --junit ${_acc_results}/python-dependencies.xml"
+    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  catkin_run_tests_target("python" "makefile" "python-makefile.xml"
+    COMMAND "/usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/python/test_makefile.py --junit ${_acc_results}/python-makefile.xml"
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   catkin_run_tests_target("python" "code_shape" "python-code_shape.xml"
     COMMAND "/usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/python/test_code_shape.py --junit ${_acc_results}/python-code_shape.xml"

@@ -1,0 +1,60 @@
+#!/usr/bin/env python3
+"""What `make` does before it installs or builds anything.
+
+A clone whose path holds whitespace builds, but catkin's test runner and roslaunch split paths at
+spaces, so that almost every test and the demo would fail far from the cause: the Makefile stops
+first and says why. Checked on copies of the Makefile alone, dry-run (`make -n`), so that nothing
+is installed or built.
+
+Usage: test_makefile.py [--junit FILE]   (from the repository or its catkin link folder)
+"""
+import os
+import pathlib
+import shutil
+import subprocess
+import tempfile
+import unittest
+
+import junit_main
+
+REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
+
+
+def dry_run(folder, target):
+    """`make -n target` on a copy of the Makefile in folder: (exit status, stdout + stderr)."""
+    shutil.copy(REPOSITORY / "Makefile", folder / "Makefile")
+    # Run from `make test`, the outer make's flags would leak into this one: a clean make environment.
+    environment = {name: value for name, value in os.environ.items()
+                   if name not in ("MAKEFLAGS", "MFLAGS", "MAKELEVEL", "MAKEOVERRIDES")}
+    done = subprocess.run(["make", "-n", "--no-print-directory", "-C", str(folder), target],
+                          capture_output=True, text=True, env=environment)
+    return done.returncode, done.stdout + done.stderr
+
+
+class Makefile(unittest.TestCase):
+    def setUp(self):
+        self.scratch = pathlib.Path(tempfile.mkdtemp(prefix="acc_makefile_"))
+
+    def tearDown(self):
+        shutil.rmtree(self.scratch)
+
+    def test_a_path_with_whitespace_stops_before_anything_is_installed(self):
+        for target in ("deps", "build", "test", "demo"):
+            folder = self.scratch / "field data" / "acc_identification"
+            folder.mkdir(parents=True, exist_ok=True)
+            status, output = dry_run(folder, target)
+            self.assertEqual(status, 2, output)
+            self.assertIn("holds whitespace", output)
+            self.assertNotIn("apt-get", output)
+
+    def test_a_path_without_whitespace_goes_on_to_install_and_build(self):
+        folder = self.scratch / "acc_identification"
+        folder.mkdir()
+        status, output = dry_run(folder, "build")
+        self.assertEqual(status, 0, output)
+        self.assertIn("apt-get", output)
+        self.assertIn("catkin_make", output)
+
+
+if __name__ == "__main__":
+    junit_main.run(Makefile)
