@@ -3,7 +3,8 @@
 
 - replay_nmea.launch and replay.launch take log and bag paths relative to the directory roslaunch
   was started in (the nodes themselves run in ROS_HOME), and end on their own: replay_nmea.launch
-  after its logs, both at once when a source is missing, with the reason on the screen.
+  after its logs, both at once when a source is missing, with the reason on the screen; a path
+  with spaces (a user's "field day" folder) reaches its node whole.
 - `platoon` takes the paper's figure numbers (fig1 ... fig8) as well as the figures' names, and
   an unknown figure gets a message that lists them.
 - `calibrate --report DIR` gives the fit as a picture: a figure per run, the traces as CSV, and
@@ -39,6 +40,11 @@ CASALE_RUN = REPOSITORY / "test/data/runs/casale_part4.csv"
 # A bag of raw sentences of both receivers (made by test/data/end_to_end/make_dropout_bag.sh).
 SENTENCE_BAG = REPOSITORY / "test/data/end_to_end/leader_dropout_5s.bag"
 LAUNCH_TIMEOUT_S = 90
+
+
+# A folder of the user's with a space in its name: launch files pass paths to their nodes as
+# argument lists, which roslaunch splits at spaces unless the launch file quotes them.
+USER_FOLDER = "field day"
 
 
 def free_port():
@@ -86,30 +92,35 @@ class UserCommands(unittest.TestCase):
             return False, output
 
     def make_logs(self):
+        """Two logs in a folder whose name holds a space, as a user's folders may."""
+        (self.directory / USER_FOLDER).mkdir(exist_ok=True)
         converted = self.run_command(["rosrun", "acc_identification", "openacc_to_nmea", str(OPENACC_EXCERPT),
-                                      "L.nmea", "F.nmea"])
+                                      USER_FOLDER + "/L.nmea", USER_FOLDER + "/F.nmea"])
         self.assertEqual(converted.returncode, 0, converted.stdout + converted.stderr)
-        self.assertTrue((self.directory / "L.nmea").stat().st_size > 0)
+        self.assertTrue((self.directory / USER_FOLDER / "L.nmea").stat().st_size > 0)
 
     def test_replay_nmea_takes_relative_logs_and_ends_after_them(self):
         self.make_logs()
-        ended, output = self.roslaunch(["replay_nmea.launch", "leader_log:=L.nmea", "follower_log:=F.nmea",
-                                        "rate:=10", "end_wait_s:=2"])
+        ended, output = self.roslaunch(["replay_nmea.launch", "leader_log:=%s/L.nmea" % USER_FOLDER,
+                                        "follower_log:=%s/F.nmea" % USER_FOLDER, "rate:=10", "end_wait_s:=2"])
         self.assertTrue(ended, "replay_nmea.launch did not end after its logs:\n" + output[-3000:])
         self.assertNotIn("FATAL", output, output[-3000:])
         for log in ("L.nmea", "F.nmea"):
-            self.assertIn("gps_driver: end of file://%s/%s" % (self.directory, log), output, output[-3000:])
+            self.assertIn("gps_driver: end of file://%s/%s/%s" % (self.directory, USER_FOLDER, log), output,
+                          output[-3000:])
 
     def test_replay_nmea_ends_when_a_log_is_missing(self):
         self.make_logs()
-        ended, output = self.roslaunch(["replay_nmea.launch", "leader_log:=L.nmea", "follower_log:=missing.nmea",
-                                        "rate:=10"])
+        ended, output = self.roslaunch(["replay_nmea.launch", "leader_log:=%s/L.nmea" % USER_FOLDER,
+                                        "follower_log:=missing.nmea", "rate:=10"])
         self.assertTrue(ended, "replay_nmea.launch stayed up without its follower log:\n" + output[-3000:])
         self.assertIn("cannot open %s/missing.nmea" % self.directory, output, output[-3000:])
 
-    def test_replay_takes_a_relative_bag(self):
-        shutil.copy(SENTENCE_BAG, self.directory / "drive.bag")
-        ended, output = self.roslaunch(["replay.launch", "bag:=drive.bag", "rate:=20", "required:=true"])
+    def test_replay_takes_a_relative_bag_whose_path_holds_spaces(self):
+        (self.directory / USER_FOLDER).mkdir()
+        shutil.copy(SENTENCE_BAG, self.directory / USER_FOLDER / "drive 1.bag")
+        ended, output = self.roslaunch(["replay.launch", "bag:=%s/drive 1.bag" % USER_FOLDER, "rate:=20",
+                                        "required:=true"])
         self.assertTrue(ended, "replay.launch did not end after its bag:\n" + output[-3000:])
         self.assertNotIn("rosbag play failed", output, output[-3000:])
         self.assertNotIn("[FATAL]", output, output[-3000:])
@@ -118,9 +129,10 @@ class UserCommands(unittest.TestCase):
         self.assertRegex(output, r"identifier: window [0-9.]+-[0-9.]+ s", output[-3000:])
 
     def test_replay_ends_when_the_bag_is_missing(self):
-        ended, output = self.roslaunch(["replay.launch", "bag:=missing.bag", "rate:=20"])
+        ended, output = self.roslaunch(["replay.launch", "bag:=%s/missing.bag" % USER_FOLDER, "rate:=20"])
         self.assertTrue(ended, "replay.launch stayed up without its bag:\n" + output[-3000:])
-        self.assertIn("rosbag play failed on %s/missing.bag" % self.directory, output, output[-3000:])
+        self.assertIn("rosbag play failed on %s/%s/missing.bag" % (self.directory, USER_FOLDER), output,
+                      output[-3000:])
 
     def test_platoon_takes_the_papers_figure_numbers(self):
         for figure in ("fig6", "fig7"):
