@@ -34,6 +34,18 @@ bool makeOutputFolder(const std::string& dir, std::ostream& errors)
   return !error;
 }
 
+namespace
+{
+/// text as one word of a POSIX shell, whatever it holds (spaces, quotes: "Bob's drives").
+std::string shellWord(const std::string& text)
+{
+  std::string word = "'";
+  for (char c : text)
+    word += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return word + "'";
+}
+}  // namespace
+
 bool drawReportFigures(const std::string& script, const std::string& dir, const std::string& kept,
                        std::ostream& errors)
 {
@@ -43,7 +55,7 @@ bool drawReportFigures(const std::string& script, const std::string& dir, const 
            << dir << "\n";
     return false;
   }
-  const std::string command = "/usr/bin/python3 '" + script + "' '" + dir + "'";
+  const std::string command = "/usr/bin/python3 " + shellWord(script) + " " + shellWord(dir);
   if (std::system(command.c_str()) != 0)
   {
     errors << "error: the report figures failed (" << command << "); " << kept << " are in " << dir << "\n";

@@ -62,3 +62,14 @@ TEST(OutputFiles, AMissingFigureScriptIsNamedAndWhatWasWrittenToo)
   EXPECT_NE(errors.str().find("report: " + dir + "/report.md"), std::string::npos);
   std::filesystem::remove_all(dir);
 }
+
+TEST(OutputFiles, AReportFolderWithSpacesAndQuotesGetsItsFigures)
+{
+  const std::string dir = scratchDir("quotes") + "/Bob's \"field\" day $HOME";
+  std::ostringstream errors;
+  ASSERT_TRUE(acc::makeOutputFolder(dir, errors));
+  std::ofstream(dir + "/works.py") << "import sys\nopen(sys.argv[1] + '/report.md', 'w').write('# r\\n')\n";
+  EXPECT_TRUE(acc::drawReportFigures(dir + "/works.py", dir, "tables and JSON", errors)) << errors.str();
+  EXPECT_TRUE(std::filesystem::exists(dir + "/report.md"));
+  std::filesystem::remove_all(std::filesystem::path(dir).parent_path());
+}
