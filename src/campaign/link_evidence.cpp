@@ -40,7 +40,7 @@ void collectLinkDips(const std::vector<PlatoonCheck>& platoons, const std::strin
 AugmentedRefit refitAsCampaignFitted(const PlatoonCandidate& candidate, const AccParameters& base_fit,
                                      const AugmentedFit& diagnosed_fit, const RefitBootstrapOptions& options)
 {
-  // Copies: the procedure outlives the caller's frame when a bootstrap runs it on other threads.
+  // By value: the procedure outlives this call and the references it was given.
   return [candidate, base_fit, diagnosed_fit, options](const std::vector<CarFollowingRun>& replicate) {
     AugmentedFit replicate_base;
     replicate_base.base = refitBaseModel(base_fit, replicate, options).parameters;
