@@ -98,21 +98,21 @@ class UserCommands(unittest.TestCase):
                                       USER_FOLDER + "/L.nmea", USER_FOLDER + "/F.nmea"])
         self.assertEqual(converted.returncode, 0, converted.stdout + converted.stderr)
         self.assertTrue((self.directory / USER_FOLDER / "L.nmea").stat().st_size > 0)
+        return USER_FOLDER + "/L.nmea", USER_FOLDER + "/F.nmea"
 
     def test_replay_nmea_takes_relative_logs_and_ends_after_them(self):
-        self.make_logs()
-        ended, output = self.roslaunch(["replay_nmea.launch", "leader_log:=%s/L.nmea" % USER_FOLDER,
-                                        "follower_log:=%s/F.nmea" % USER_FOLDER, "rate:=10", "end_wait_s:=2"])
+        logs = self.make_logs()
+        ended, output = self.roslaunch(["replay_nmea.launch", "leader_log:=" + logs[0], "follower_log:=" + logs[1],
+                                        "rate:=10", "end_wait_s:=2"])
         self.assertTrue(ended, "replay_nmea.launch did not end after its logs:\n" + output[-3000:])
         self.assertNotIn("FATAL", output, output[-3000:])
-        for log in ("L.nmea", "F.nmea"):
-            self.assertIn("gps_driver: end of file://%s/%s/%s" % (self.directory, USER_FOLDER, log), output,
-                          output[-3000:])
+        for log in logs:
+            self.assertIn("gps_driver: end of file://%s/%s" % (self.directory, log), output, output[-3000:])
 
     def test_replay_nmea_ends_when_a_log_is_missing(self):
-        self.make_logs()
-        ended, output = self.roslaunch(["replay_nmea.launch", "leader_log:=%s/L.nmea" % USER_FOLDER,
-                                        "follower_log:=missing.nmea", "rate:=10"])
+        leader, _ = self.make_logs()
+        ended, output = self.roslaunch(["replay_nmea.launch", "leader_log:=" + leader, "follower_log:=missing.nmea",
+                                        "rate:=10"])
         self.assertTrue(ended, "replay_nmea.launch stayed up without its follower log:\n" + output[-3000:])
         self.assertIn("cannot open %s/missing.nmea" % self.directory, output, output[-3000:])
 
@@ -169,13 +169,13 @@ class UserCommands(unittest.TestCase):
         self.assertNotIn("pair read", result.stdout + result.stderr)  # stopped before reading the runs
 
     def test_nmea_to_csv_needs_the_antennas_and_says_when_nothing_pairs(self):
-        self.make_logs()
+        leader, follower = self.make_logs()
         tool = ["rosrun", "acc_identification", "nmea_to_csv"]
-        unplaced = self.run_command(tool + ["L.nmea", "F.nmea", "run.csv"])
+        unplaced = self.run_command(tool + [leader, follower, "run.csv"])
         self.assertEqual(unplaced.returncode, 2, unplaced.stdout + unplaced.stderr)
         self.assertIn("say where the antennas are", unplaced.stderr)
         self.assertFalse((self.directory / "run.csv").exists())
-        paired = self.run_command(tool + ["--antenna-offset-m", "4.5", "--json", "pairs.json", "L.nmea", "F.nmea",
+        paired = self.run_command(tool + ["--antenna-offset-m", "4.5", "--json", "pairs.json", leader, follower,
                                           "run.csv"])
         self.assertEqual(paired.returncode, 0, paired.stdout + paired.stderr)
         with open(self.directory / "run.csv", newline="") as rows:
@@ -186,7 +186,7 @@ class UserCommands(unittest.TestCase):
         shifted = self.run_command(["rosrun", "acc_identification", "openacc_to_nmea", "--time-shift-s", "3600",
                                     str(OPENACC_EXCERPT), "L_late.nmea", "F_late.nmea"])
         self.assertEqual(shifted.returncode, 0, shifted.stdout + shifted.stderr)
-        apart = self.run_command(tool + ["--antenna-offset-m", "4.5", "L.nmea", "F_late.nmea", "apart.csv"])
+        apart = self.run_command(tool + ["--antenna-offset-m", "4.5", leader, "F_late.nmea", "apart.csv"])
         self.assertEqual(apart.returncode, 2, apart.stdout + apart.stderr)
         self.assertIn("no follower epoch could be paired", apart.stderr)
 
