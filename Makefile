@@ -39,12 +39,14 @@ APT_PACKAGES := build-essential cmake clang libclang-rt-14-dev \
 
 # catkin runs the tests it builds through a shell with their paths unquoted (its run_tests.py), and
 # roslaunch splits node arguments at spaces: from a folder whose path holds whitespace the build
-# succeeds, then almost every test and the demo fail far from the cause. Say so before anything is
-# installed or built.
+# succeeds, then almost every test and the demo fail far from the cause. A colon ends the build in
+# the Makefiles CMake writes ("target pattern contains no '%'"), and splits ROS's path lists
+# (CMAKE_PREFIX_PATH, ROS_PACKAGE_PATH). Say so before anything is installed or built.
 check-path:
-	$(if $(filter-out 1,$(words $(CURDIR))),$(error the path of this clone holds whitespace ($(CURDIR)): \
-	  catkin's test runner and roslaunch split paths at spaces. Clone or move the repository to a path \
-	  without any (e.g. ~/acc_identification) and run make there))
+	$(if $(or $(filter-out 1,$(words $(CURDIR))),$(findstring :,$(CURDIR))),$(error the path of this clone \
+	  ($(CURDIR)) holds whitespace or a colon: catkin's test runner and roslaunch split paths at spaces, \
+	  make and ROS's path lists at colons. Clone or move the repository to a path without either \
+	  (e.g. ~/acc_identification) and run make there))
 
 # The list above, one package a line (read by test/python/test_dependencies.py).
 print-apt-packages:
