@@ -18,4 +18,5 @@ set(ACC_RUN_IO_SOURCES
   src/io/gap_sawtooth.cpp
   src/io/input_account.cpp
   src/io/installed_beside.cpp
-  src/io/output_files.cpp)
+  src/io/output_files.cpp
+  src/io/run_program.cpp)

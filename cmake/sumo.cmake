@@ -10,7 +10,7 @@ acc_add_library(acc_sumo
     src/sumo/sumo_acc_simulation.cpp
     src/sumo/sumo_replay.cpp
     src/sumo/sumo_replay_report.cpp
-  LINK acc_evidence acc_model nlohmann_json::nlohmann_json tinyxml2::tinyxml2)
+  LINK acc_evidence acc_run_io acc_model nlohmann_json::nlohmann_json tinyxml2::tinyxml2)
 
 # The TraCI driver beside the executables (devel and install space), where sumo_replay finds it.
 configure_file(scripts/sumo_traci_replay.py

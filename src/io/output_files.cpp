@@ -1,9 +1,9 @@
 #include "acc_identification/io/output_files.h"
+#include "acc_identification/io/run_program.h"
 
 #include <unistd.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <ostream>
@@ -34,18 +34,6 @@ bool makeOutputFolder(const std::string& dir, std::ostream& errors)
   return !error;
 }
 
-namespace
-{
-/// text as one word of a POSIX shell, whatever it holds (spaces, quotes: "Bob's drives").
-std::string shellWord(const std::string& text)
-{
-  std::string word = "'";
-  for (char c : text)
-    word += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return word + "'";
-}
-}  // namespace
-
 bool drawReportFigures(const std::string& script, const std::string& dir, const std::string& kept,
                        std::ostream& errors)
 {
@@ -55,10 +43,10 @@ bool drawReportFigures(const std::string& script, const std::string& dir, const 
            << dir << "\n";
     return false;
   }
-  const std::string command = "/usr/bin/python3 " + shellWord(script) + " " + shellWord(dir);
-  if (std::system(command.c_str()) != 0)
+  if (runProgram({"/usr/bin/python3", script, dir}) != 0)
   {
-    errors << "error: the report figures failed (" << command << "); " << kept << " are in " << dir << "\n";
+    errors << "error: the report figures failed (/usr/bin/python3 " << script << " " << dir << "); " << kept
+           << " are in " << dir << "\n";
     return false;
   }
   errors << "report: " << dir << "/report.md\n";
