@@ -4,7 +4,9 @@
 - replay_nmea.launch and replay.launch take log and bag paths relative to the directory roslaunch
   was started in (the nodes themselves run in ROS_HOME), and end on their own: replay_nmea.launch
   after its logs, both at once when a source is missing, with the reason on the screen; a path
-  with spaces (a user's "field day" folder) reaches its node whole.
+  with spaces, apostrophes and quotes (a user's folder) reaches its node whole.
+- drive.launch records under a relative bag_prefix in such a folder, and ends at once, with the
+  reason, when it cannot record there (rosbag record alone only logs an error and exits).
 - `platoon` takes the paper's figure numbers (fig1 ... fig8) as well as the figures' names, and
   an unknown figure gets a message that lists them.
 - `calibrate --report DIR` gives the fit as a picture: a figure per run, the traces as CSV, and
@@ -31,6 +33,7 @@ import types
 import unittest
 
 import junit_main
+import rosbag
 
 REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
 # An OpenACC excerpt shipped in the repository (JRC OpenACC, CC BY 4.0: see its ATTRIBUTION.md).
@@ -42,9 +45,10 @@ SENTENCE_BAG = REPOSITORY / "test/data/end_to_end/leader_dropout_5s.bag"
 LAUNCH_TIMEOUT_S = 90
 
 
-# A folder of the user's with a space in its name: launch files pass paths to their nodes as
-# argument lists, which roslaunch splits at spaces unless the launch file quotes them.
-USER_FOLDER = "field day"
+# A folder of the user's whose name holds a space, an apostrophe and quotes: roslaunch splits a
+# node's arguments and launch prefix as a shell would, so a launch file must not pass a user's
+# path through them unquoted, nor quoted (a quote in the path ends the quoting).
+USER_FOLDER = "O'Brien's \"field day\""
 
 
 def free_port():
@@ -116,7 +120,7 @@ class UserCommands(unittest.TestCase):
         self.assertTrue(ended, "replay_nmea.launch stayed up without its follower log:\n" + output[-3000:])
         self.assertIn("cannot open %s/missing.nmea" % self.directory, output, output[-3000:])
 
-    def test_replay_takes_a_relative_bag_whose_path_holds_spaces(self):
+    def test_replay_takes_a_relative_bag_whose_path_holds_spaces_and_quotes(self):
         (self.directory / USER_FOLDER).mkdir()
         shutil.copy(SENTENCE_BAG, self.directory / USER_FOLDER / "drive 1.bag")
         ended, output = self.roslaunch(["replay.launch", "bag:=%s/drive 1.bag" % USER_FOLDER, "rate:=20",
@@ -132,6 +136,29 @@ class UserCommands(unittest.TestCase):
         ended, output = self.roslaunch(["replay.launch", "bag:=%s/missing.bag" % USER_FOLDER, "rate:=20"])
         self.assertTrue(ended, "replay.launch stayed up without its bag:\n" + output[-3000:])
         self.assertIn("rosbag play failed on %s/%s/missing.bag" % (self.directory, USER_FOLDER), output,
+                      output[-3000:])
+
+    def test_drive_records_under_a_relative_prefix_whose_path_holds_quotes(self):
+        leader, follower = self.make_logs()
+        ended, output = self.roslaunch(["drive.launch", "leader_source:=file://%s/%s?rate=4" % (self.directory, leader),
+                                        "follower_source:=file://%s/%s?rate=4" % (self.directory, follower),
+                                        "bag_prefix:=%s/drive" % USER_FOLDER])
+        self.assertTrue(ended, "drive.launch did not end after its logs:\n" + output[-3000:])
+        self.assertNotIn("cannot record", output, output[-3000:])
+        bags = sorted((self.directory / USER_FOLDER).glob("drive_*.bag*"))
+        self.assertEqual(len(bags), 1, "%s\n%s" % (bags, output[-3000:]))
+        with rosbag.Bag(str(bags[0])) as bag:
+            topics = bag.get_type_and_topic_info().topics
+        self.assertGreater(topics["/leader/nmea_sentence"].message_count, 0, sorted(topics))
+        self.assertGreater(topics["/follower/nmea_sentence"].message_count, 0, sorted(topics))
+
+    def test_drive_ends_when_it_cannot_record(self):
+        # Receivers that never end (nothing sends to these ports): only the recorder can end it.
+        ended, output = self.roslaunch(["drive.launch", "leader_source:=udp://:%d" % free_port(),
+                                        "follower_source:=udp://:%d" % free_port(),
+                                        "bag_prefix:=%s/missing/drive" % USER_FOLDER])
+        self.assertTrue(ended, "drive.launch went on unrecorded:\n" + output[-3000:])
+        self.assertIn("drive.launch: cannot record in %s/%s/missing" % (self.directory, USER_FOLDER), output,
                       output[-3000:])
 
     def test_platoon_takes_the_papers_figure_numbers(self):
