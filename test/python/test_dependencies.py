@@ -17,6 +17,7 @@ import sys
 import unittest
 
 import junit_main
+from make_environment import clean_make_environment
 import xml.etree.ElementTree as ElementTree
 
 import yaml
@@ -47,13 +48,9 @@ def rosdep_map():
 
 
 def apt_packages():
-    # Run from `make test`, the outer make's flags (MAKEFLAGS: -w, -j...) would make this one print
-    # "Entering directory" lines among the names: ask it with a clean make environment.
-    environment = {name: value for name, value in os.environ.items()
-                   if name not in ("MAKEFLAGS", "MFLAGS", "MAKELEVEL", "MAKEOVERRIDES")}
     output = subprocess.run(["make", "-s", "--no-print-directory", "-C", str(REPOSITORY),
                              "print-apt-packages"], check=True, capture_output=True, text=True,
-                            env=environment)
+                            env=clean_make_environment())
     return set(output.stdout.split())
 
 

@@ -9,7 +9,6 @@ is installed or built.
 
 Usage: test_makefile.py [--junit FILE]   (from the repository or its catkin link folder)
 """
-import os
 import pathlib
 import shutil
 import subprocess
@@ -17,6 +16,7 @@ import tempfile
 import unittest
 
 import junit_main
+from make_environment import clean_make_environment
 
 REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
 
@@ -24,11 +24,8 @@ REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
 def dry_run(folder, target):
     """`make -n target` on a copy of the Makefile in folder: (exit status, stdout + stderr)."""
     shutil.copy(REPOSITORY / "Makefile", folder / "Makefile")
-    # Run from `make test`, the outer make's flags would leak into this one: a clean make environment.
-    environment = {name: value for name, value in os.environ.items()
-                   if name not in ("MAKEFLAGS", "MFLAGS", "MAKELEVEL", "MAKEOVERRIDES")}
     done = subprocess.run(["make", "-n", "--no-print-directory", "-C", str(folder), target],
-                          capture_output=True, text=True, env=environment)
+                          capture_output=True, text=True, env=clean_make_environment())
     return done.returncode, done.stdout + done.stderr
 
 
