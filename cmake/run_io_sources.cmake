@@ -19,4 +19,5 @@ set(ACC_RUN_IO_SOURCES
   src/io/input_account.cpp
   src/io/installed_beside.cpp
   src/io/output_files.cpp
-  src/io/run_program.cpp)
+  src/io/run_program.cpp
+  src/io/repeated_recording.cpp)

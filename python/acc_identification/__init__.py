@@ -99,9 +99,9 @@ def _account(frame, path):
 
 
 def _segments(frames, first_number=1):
-    """The C++ side's runs (one dict per segment) and each frame's account."""
+    """The C++ side's runs (one dict per segment, "input" the frame's number) and each frame's account."""
     runs, inputs_read = [], []
-    for frame, path in zip(frames, _inputs(frames, first_number)):
+    for number, (frame, path) in enumerate(zip(frames, _inputs(frames, first_number)), start=first_number):
         missing = [name for name in COLUMNS if name not in frame.columns]
         if missing:
             raise ValueError("a run needs the columns %s; missing: %s" % (", ".join(COLUMNS), ", ".join(missing)))
@@ -109,8 +109,8 @@ def _segments(frames, first_number=1):
         groups = frame.groupby("segment", sort=True) if "segment" in frame.columns else [(0, frame)]
         for index, (_, part) in enumerate(groups):
             name = names[index] if index < len(names) else "%s #%d" % (path, index + 1)
-            runs.append({"name": name, "path": path, **{column: part[column].to_numpy(dtype=float)
-                                                          for column in COLUMNS}})
+            columns = {column: part[column].to_numpy(dtype=float) for column in COLUMNS}
+            runs.append({"name": name, "path": path, "input": number, **columns})
         inputs_read.append(_account(frame, path))
     return runs, inputs_read
 

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <utility>
@@ -12,6 +13,7 @@
 #include "acc_identification/io/distance_setting.h"
 #include "acc_identification/io/gap_kinematics.h"
 #include "acc_identification/io/mixed_setting_listing.h"
+#include "acc_identification/io/repeated_recording.h"
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/model/number_text.h"
 #include "acc_identification/model/plain_text.h"
@@ -455,10 +457,39 @@ CampaignFileList listCampaignFiles(const std::vector<std::string>& files_or_fold
 
 namespace
 {
+/// The cars' speeds of a file: the series of its recording (repeated_recording.h), in the order
+/// of file.vehicles.
+Recording speedsOf(const OpenAccFile& file)
+{
+  Recording speeds;
+  for (const OpenAccVehicle& car : file.vehicles)
+    speeds.push_back(car.speed_mps);
+  return speeds;
+}
+
+/// Why the file is a recording read before (every car of it whose speeds vary repeats a car of an
+/// earlier file, sample for sample: repeated_recording.h), or "". The index's ids are into `files`.
+std::string whyRepeatsEarlierFile(const OpenAccFile& file, const RepeatedRecordingIndex& read,
+                                  const std::vector<CampaignFile>& files)
+{
+  const std::optional<RepeatedRecording> repeat = read.find(speedsOf(file));
+  if (!repeat)
+    return "";
+  const OpenAccFile& earlier = files[repeat->id].contents;
+  return file.vehicles[repeat->series].label() + "'s speeds from " +
+         describeSampleTime(file.time_s[repeat->later_row]) + " repeat " + earlier.path + "'s " +
+         earlier.vehicles[repeat->earlier_series].label() + " from " +
+         describeSampleTime(earlier.time_s[repeat->earlier_row]) + " sample for sample (" +
+         std::to_string(kRepeatedRecordingMinSamples) +
+         " samples or more, to the last digit), and so do its other cars: the same recording (a copy, an "
+         "excerpt or an export of the same drive), skipped, so that no run is predicted by a model fitted on "
+         "itself; give each recording once";
+}
+
 /// One file into the inputs: its pairs into the groups, or a note saying why it is skipped.
 void addFile(const std::string& path, const RunPlausibilityBounds& bounds, const ListedRuns& listed_runs,
              CampaignInputs& inputs, std::map<std::pair<std::string, std::string>, CampaignGroup>& groups,
-             std::map<std::string, std::string>& setting_spellings)
+             std::map<std::string, std::string>& setting_spellings, RepeatedRecordingIndex& read)
 {
   CampaignFile file;
   file.path = path;
@@ -466,6 +497,12 @@ void addFile(const std::string& path, const RunPlausibilityBounds& bounds, const
   if (!file.contents.error.empty())
   {
     inputs.notes.push_back(path + ": not read as an OpenACC file (" + file.contents.error + "), skipped");
+    ++inputs.skipped_files;
+    return;
+  }
+  if (const std::string why = whyRepeatsEarlierFile(file.contents, read, inputs.files); !why.empty())
+  {
+    inputs.notes.push_back(path + ": " + why);
     ++inputs.skipped_files;
     return;
   }
@@ -495,6 +532,7 @@ void addFile(const std::string& path, const RunPlausibilityBounds& bounds, const
   noteCarsWithoutPair(file.contents, inputs.notes);
   for (const PairRunContents& pair : all.pairs)
     file.pairs_read.push_back(accountOfRunFile(path, pair.contents));
+  read.add(speedsOf(file.contents), inputs.files.size());
   inputs.files.push_back(std::move(file));
   addPairs(all, inputs.files.size() - 1, inputs.files.back(), groups, inputs.notes, inputs.skipped_pairs);
 }
@@ -509,8 +547,9 @@ CampaignInputs loadCampaign(const std::vector<std::string>& paths, const RunPlau
   std::map<std::pair<std::string, std::string>, CampaignGroup> groups;
   std::map<std::string, std::string> setting_spellings;  // by the setting in upper case
   const ListedRuns listed_runs = readListings(list.listings, inputs.notes);
+  RepeatedRecordingIndex read;  // the files read so far
   for (const std::string& path : list.files)
-    addFile(path, bounds, listed_runs, inputs, groups, setting_spellings);
+    addFile(path, bounds, listed_runs, inputs, groups, setting_spellings, read);
   for (auto& entry : groups)
     inputs.groups.push_back(std::move(entry.second));
   std::sort(inputs.groups.begin(), inputs.groups.end(), groupLess);

@@ -18,6 +18,7 @@
 #include "acc_identification/diagnosis/calibration_second_opinion.h"
 #include "acc_identification/diagnosis/diagnosis.h"
 #include "acc_identification/diagnosis/diagnosis_output.h"
+#include "acc_identification/io/repeated_recording.h"
 #include "acc_identification/ros/run_bag_reader.h"
 
 namespace py = pybind11;
@@ -62,6 +63,28 @@ std::vector<acc::CalibrationInput> toInputs(const py::list& runs)
   if (inputs.empty())
     throw std::invalid_argument("no run given");
   return inputs;
+}
+
+/// Refuses runs of which one repeats a run of an earlier input (io/repeated_recording.h: the same
+/// recording given twice), as the tools' readers do; each run's "input" numbers the frame it came
+/// from, the held-out frames after the fitted ones.
+void refuseRepeatedRuns(const py::list& runs, const py::list& held_out_runs)
+{
+  std::vector<acc::CarFollowingRun> all;
+  std::vector<std::size_t> input_of;
+  std::vector<std::string> path_of_run;
+  for (const py::list* list : {&runs, &held_out_runs})
+    for (const py::handle& handle : *list)
+    {
+      const py::dict run = handle.cast<py::dict>();
+      acc::CalibrationInput input = toInput(run);
+      all.push_back(std::move(input.run));
+      input_of.push_back(run["input"].cast<std::size_t>());
+      path_of_run.push_back(input.path);
+    }
+  if (const std::string repeat = acc::describeRepeatedRun(all, input_of, path_of_run); !repeat.empty())
+    throw std::invalid_argument(repeat + ": give each recording once (a fit would count it twice, and a held-out "
+                                         "run that repeats a fitted one is not held out)");
 }
 
 /// An account as accountDict gives it, back from the Python side ({path, format, openacc_pairs,
@@ -139,6 +162,7 @@ py::dict calibrate(const py::list& runs, const py::list& inputs_read, bool split
                    double bootstrap_below_s)
 {
   const std::vector<acc::CalibrationInput> inputs = toInputs(runs);
+  refuseRepeatedRuns(runs, py::list());
   const std::vector<acc::InputAccount> accounts = toInputAccounts(inputs_read);
   acc::CalibrateSettings settings;
   settings.split_half = split_half;
@@ -223,6 +247,7 @@ std::string diagnose(const py::list& runs, const py::list& inputs_read, const st
   const std::vector<acc::CarFollowingRun> plain = plainRuns(runs);
   const std::vector<acc::CarFollowingRun> held_out =
       held_out_inputs.empty() ? std::vector<acc::CarFollowingRun>{} : plainRuns(held_out_runs);
+  refuseRepeatedRuns(runs, held_out_inputs.empty() ? py::list() : held_out_runs);
   acc::DiagnosisOptions options;
   options.train_fraction = train_fraction;
   options.threads = threads;

@@ -19,6 +19,7 @@
 
 #include "acc_identification/RelativeState.h"
 #include "acc_identification/calibration/sliding_window.h"
+#include "acc_identification/io/repeated_recording.h"
 #include "acc_identification/io/run_csv.h"
 
 namespace acc
@@ -465,18 +466,52 @@ std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std:
   return readRunArgument(path, topics, max_gap_s, log, OpenAccPairSelector::first()).runs;
 }
 
+namespace
+{
+/// describeRepeatedRun over these runs: by their arguments, or with `held_out` given, the fitted
+/// runs as one input and the held-out ones as another.
+std::string describeRepeat(const RunArguments& runs, const RunArguments* held_out = nullptr)
+{
+  std::vector<CarFollowingRun> all;
+  std::vector<std::size_t> input_of;
+  std::vector<std::string> path_of_run;
+  for (const RunArguments* arguments : {&runs, held_out})
+  {
+    for (std::size_t k = 0; arguments != nullptr && k < arguments->runs.size(); ++k)
+    {
+      all.push_back(arguments->runs[k].run);
+      input_of.push_back(held_out == nullptr ? arguments->argument_of_run[k] : (arguments == held_out ? 1 : 0));
+      path_of_run.push_back(arguments->runs[k].path);
+    }
+  }
+  return describeRepeatedRun(all, input_of, path_of_run);
+}
+}  // namespace
+
 RunArguments readRunArguments(const std::vector<std::string>& paths, const BagTopics& topics, double max_gap_s,
                               std::ostream& log, const OpenAccPairSelector& selector)
 {
   RunArguments arguments;
-  for (const std::string& path : paths)
+  for (std::size_t number = 0; number < paths.size(); ++number)
   {
-    RunArgument argument = readRunArgument(path, topics, max_gap_s, log, selector);
+    RunArgument argument = readRunArgument(paths[number], topics, max_gap_s, log, selector);
     arguments.inputs_read.push_back(argument.account);
     for (CarFollowingRun& run : argument.runs)
-      arguments.runs.push_back({std::move(run), path});
+    {
+      arguments.runs.push_back({std::move(run), paths[number]});
+      arguments.argument_of_run.push_back(number);
+    }
   }
+  if (const std::string repeat = describeRepeat(arguments); !repeat.empty())
+    throw std::runtime_error(repeat + ": give each recording once (a fit would count it twice)");
   return arguments;
+}
+
+void refuseHeldOutRepeats(const RunArguments& fitted, const RunArguments& held_out)
+{
+  if (const std::string repeat = describeRepeat(fitted, &held_out); !repeat.empty())
+    throw std::runtime_error("a held-out run repeats a fitted one: " + repeat +
+                             ": a model scored on the recording it was fitted on is not held out");
 }
 
 OpenAccPairSelector pairSelectorFromOptions(const std::string& follower, bool all_pairs)

@@ -51,4 +51,12 @@ RunArguments RunInputOptions::readPaths(const std::vector<std::string>& other_pa
   return readRunArguments(other_paths, bag, max_gap_s, log, pairSelectorFromOptions(follower, all_pairs));
 }
 
+std::pair<RunArguments, RunArguments> RunInputOptions::readWithHeldOut(const std::vector<std::string>& held_out_paths,
+                                                                       std::ostream& log) const
+{
+  std::pair<RunArguments, RunArguments> read{this->read(log), readPaths(held_out_paths, log)};
+  refuseHeldOutRepeats(read.first, read.second);
+  return read;
+}
+
 }  // namespace acc

@@ -94,7 +94,7 @@ int diagnoseFiles(const DiagnoseRequest& r)
   std::vector<acc::InputAccount> inputs_read;
   try
   {
-    const acc::RunArguments read = r.input.read(std::cerr), held_out = r.input.readPaths(r.held_out, std::cerr);
+    const auto [read, held_out] = r.input.readWithHeldOut(r.held_out, std::cerr);
     inputs_read = read.inputs_read;  // the held-out files are read too
     inputs_read.insert(inputs_read.end(), held_out.inputs_read.begin(), held_out.inputs_read.end());
     acc::printOpenAccPairs(inputs_read, std::cout);

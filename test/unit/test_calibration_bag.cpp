@@ -19,6 +19,7 @@
 #include "acc_identification/calibration/multistart_calibrator.h"
 #include "acc_identification/model/paper_settings.h"
 #include "acc_identification/ros/run_bag_reader.h"
+#include "acc_identification/io/run_csv.h"
 #include "acc_identification/synthesis/synthetic_runs.h"
 
 #include <acc_identification/RelativeState.h>
@@ -287,5 +288,68 @@ TEST(RunBagReader, AnEngagementTopicOfAnotherTypeIsRefusedWithTheWayOut)
         << error.what();
   }
   std::remove(path.c_str());
+}
+
+/// The message of the std::runtime_error f throws, or "" when it throws none.
+template <typename F>
+std::string errorOf(F&& f)
+{
+  try
+  {
+    f();
+  }
+  catch (const std::runtime_error& error)
+  {
+    return error.what();
+  }
+  return "";
+}
+
+// The same drive given twice (io/repeated_recording.h): a copy among a tool's RUN files would be
+// counted twice, an excerpt of a fitted run given as held out would score a model on its own data.
+// Both are refused, naming the two files; different drives are read. Fails if readRunArguments or
+// refuseHeldOutRepeats let a repeat through, or refuse different drives.
+TEST(RunArguments, TheSameRecordingGivenTwiceIsRefusedWithBothFilesNamed)
+{
+  const std::string folder = testing::TempDir();
+  const acc::CarFollowingRun drive = acc::synthesizeRun(acc::truthWithMargin(1.0), 120.0, 0.1, 20.0, 3);
+  acc::writeRunCsv(folder + "/drive.csv", drive);
+  acc::writeRunCsv(folder + "/copy.csv", drive);
+  acc::writeRunCsv(folder + "/other.csv", acc::synthesizeRun(acc::truthWithMargin(1.0), 120.0, 0.1, 20.0, 4));
+  acc::CarFollowingRun excerpt;
+  for (std::size_t k = 300; k < 900; ++k)
+  {
+    excerpt.time_s.push_back(drive.time_s[k]);
+    excerpt.space_gap_m.push_back(drive.space_gap_m[k]);
+    excerpt.follower_speed_mps.push_back(drive.follower_speed_mps[k]);
+    excerpt.leader_speed_mps.push_back(drive.leader_speed_mps[k]);
+  }
+  acc::writeRunCsv(folder + "/excerpt.csv", excerpt);
+  std::ostringstream log;
+  const auto read = [&](const std::vector<std::string>& names) {
+    std::vector<std::string> paths;
+    for (const std::string& name : names)
+      paths.push_back(folder + "/" + name);
+    return acc::readRunArguments(paths, acc::BagTopics{}, 0.5, log, acc::OpenAccPairSelector::first());
+  };
+  const std::string copied = errorOf([&] { read({"drive.csv", "other.csv", "copy.csv"}); });
+  EXPECT_NE(copied.find(folder + "/copy.csv: its run copy (from t = 0.0 s) repeats " + folder +
+                        "/drive.csv's run drive (from t = 0.0 s) sample for sample"),
+            std::string::npos)
+      << copied;
+  EXPECT_NE(copied.find("give each recording once"), std::string::npos) << copied;
+  const acc::RunArguments fitted = read({"drive.csv", "other.csv"});
+  EXPECT_EQ(fitted.runs.size(), 2u);
+  EXPECT_EQ(fitted.argument_of_run, (std::vector<std::size_t>{0, 1}));
+  const std::string held_out = errorOf([&] { acc::refuseHeldOutRepeats(fitted, read({"excerpt.csv"})); });
+  EXPECT_NE(held_out.find("a held-out run repeats a fitted one: " + folder +
+                          "/excerpt.csv: its run excerpt (from t = 30.0 s) repeats " + folder +
+                          "/drive.csv's run drive (from t = 30.0 s)"),
+            std::string::npos)
+      << held_out;
+  EXPECT_NE(held_out.find("is not held out"), std::string::npos) << held_out;
+  EXPECT_EQ(errorOf([&] { acc::refuseHeldOutRepeats(read({"drive.csv"}), read({"other.csv"})); }), "");
+  for (const char* name : {"drive.csv", "copy.csv", "other.csv", "excerpt.csv"})
+    std::remove((folder + "/" + name).c_str());
 }
 }  // namespace

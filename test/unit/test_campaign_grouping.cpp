@@ -300,6 +300,49 @@ TEST(CampaignInputs, EverySkippedFileIsNamedWithItsReasonAndCounted)
   EXPECT_EQ(inputs.describeSkipped(), "skipped 2 file(s) and 0 pair(s) (each in a note above)");
 }
 
+// A copy of a run, and an excerpt cut from it, are the same recording: skipped and counted, so that
+// no run is predicted by a model fitted on itself (leave-one-run-out). Noise-free platoons that
+// share their lead car's profile are different drives: both kept. Fails if the campaign reads a
+// copy as a run of its own, or takes a shared leader for a repeat.
+TEST(CampaignInputs, ACopyOrAnExcerptOfARunIsTheSameRecordingAndSkipped)
+{
+  TempFolder folder("acc_campaign_repeated");
+  acc_test::writeSyntheticPlatoon(folder.file("run1.csv"), "S", {kAS, kBS}, 45, 120.0);
+  acc_test::writeSyntheticPlatoon(folder.file("run2.csv"), "S", {kBS, kAS}, 46, 120.0);
+  std::filesystem::copy_file(folder.file("run1.csv"), folder.file("run3.csv"));
+  {
+    // run4: the metadata, header and rows 400-699 of run2.
+    std::ifstream whole(folder.file("run2.csv"));
+    std::ofstream excerpt(folder.file("run4.csv"));
+    std::string line;
+    for (int k = 0; std::getline(whole, line); ++k)
+      if (k < 6 || (k >= 406 && k < 706))
+        excerpt << line << "\n";
+  }
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.path()});
+  ASSERT_EQ(inputs.files.size(), 2u);
+  EXPECT_EQ(inputs.skipped_files, 2u);
+  ASSERT_EQ(inputs.notes.size(), 2u);
+  EXPECT_NE(inputs.notes[0].find("run3.csv: LEAD (1)'s speeds from t = 0.0 s repeat " + folder.file("run1.csv") +
+                                 "'s LEAD (1) from t = 0.0 s sample for sample"),
+            std::string::npos)
+      << inputs.notes[0];
+  EXPECT_NE(inputs.notes[1].find("run4.csv: LEAD (1)'s speeds from t = 40.0 s repeat " + folder.file("run2.csv") +
+                                 "'s LEAD (1) from t = 40.0 s"),
+            std::string::npos)
+      << inputs.notes[1];
+  EXPECT_NE(inputs.notes[1].find("skipped, so that no run is predicted by a model fitted on itself"), std::string::npos);
+  for (const acc::CampaignGroup& group : inputs.groups)
+    EXPECT_EQ(group.runs.size(), 2u) << group.label();
+
+  TempFolder clean("acc_campaign_repeated_clean");
+  acc_test::writeSyntheticPlatoon(clean.file("run1.csv"), "S", {kAS, kBS}, 45, 120.0, 0.0, 0.0);
+  acc_test::writeSyntheticPlatoon(clean.file("run2.csv"), "S", {kBS, kAS}, 46, 120.0, 0.0, 0.0);
+  const acc::CampaignInputs simulated = acc::loadCampaign({clean.path()});
+  EXPECT_EQ(simulated.files.size(), 2u);
+  EXPECT_EQ(simulated.skipped_files, 0u);
+}
+
 // A folder with no OpenACC file says why of each CSV in it: an OpenACC file a spreadsheet saved
 // with ';' between fields is named with that reason, not only counted. Fails if the error drops
 // the files' reasons or the separator hint.

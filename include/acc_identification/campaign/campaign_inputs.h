@@ -100,7 +100,9 @@ CampaignFileList listCampaignFiles(const std::vector<std::string>& files_or_fold
 /// than an earlier file's, "Min" or "S" after "min", takes the earlier spelling: distanceSettingLetter). In a mixed-setting run ("SL") that a listing among the paths
 /// names, each car is grouped at its own setting (CampaignFile::car_settings), said in a note; one
 /// no listing names is a group of its own at "SL", said too. A file that cannot be read as OpenACC, or a pair without
-/// usable runs, is skipped with a note that says why, and counted. What a read file loses is a
+/// usable runs, is skipped with a note that says why, and counted; so is a file whose cars' speeds
+/// repeat an earlier file's sample for sample (io/repeated_recording.h: a copy, an excerpt, the same
+/// drive exported twice), which leave-one-run-out would otherwise fit on itself. What a read file loses is a
 /// note too: duplicate rows dropped, cars without data or without a pair, the rows each pair
 /// rejects, where its gap saw-tooths and is rebuilt (each stretch named; a car whose gaps ahead and
 /// behind saw-tooth in opposite phase is named once more, as the one whose position is at

@@ -98,14 +98,21 @@ std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std:
                                              double max_gap_s, std::ostream& log);
 
 /// Every RUN argument of a tool read with readRunArgument: each run with the argument it came
-/// from, and each argument's account. Throws as readRunArgument.
+/// from, and each argument's account. Throws as readRunArgument, and std::runtime_error when a
+/// run of one argument repeats a run of an earlier one (io/repeated_recording.h: the same
+/// recording given twice, which a calibration would count twice).
 struct RunArguments
 {
   std::vector<CalibrationInput> runs;
   std::vector<InputAccount> inputs_read;
+  std::vector<std::size_t> argument_of_run;  ///< the number of the argument each run came from
 };
 RunArguments readRunArguments(const std::vector<std::string>& paths, const BagTopics& topics, double max_gap_s,
                               std::ostream& log, const OpenAccPairSelector& selector);
+
+/// Throws std::runtime_error, naming both, when a held-out run repeats a fitted one (diagnose
+/// --held-out): a model scored on the recording it was fitted on is not held out.
+void refuseHeldOutRepeats(const RunArguments& fitted, const RunArguments& held_out);
 
 /// The selector of the tools' --follower NAME|POSITION and --all-pairs options (mutually
 /// exclusive): all pairs, one follower, or by default the first pair.

@@ -2,6 +2,7 @@
 
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -29,8 +30,12 @@ struct RunInputOptions
 
   /// readRunArguments of the options; the readers' notes on log. Throws as it does.
   RunArguments read(std::ostream& log) const;
-  /// Other files read with the same options (diagnose --held-out).
+  /// Other files read with the same options.
   RunArguments readPaths(const std::vector<std::string>& other_paths, std::ostream& log) const;
+  /// read(), and the files kept aside (diagnose --held-out) read with the same options; throws as
+  /// they do, and as refuseHeldOutRepeats when a held-out run repeats a fitted one.
+  std::pair<RunArguments, RunArguments> readWithHeldOut(const std::vector<std::string>& held_out_paths,
+                                                        std::ostream& log) const;
 };
 
 }  // namespace acc

@@ -5,6 +5,7 @@ workspace sourced; ACC_DATA_CASALE_DIR and ACC_DATA_TOYOTA_DIR name the unpacked
 import json
 import math
 import os
+import re
 import subprocess
 import threading
 import time
@@ -186,6 +187,20 @@ def test_bad_input_raises_the_tools_messages():
         acc.diagnose(run, held_out=[])
     with pytest.raises(ValueError, match="split"):
         acc.calibrate(run, split="thirds")
+
+
+def test_the_same_recording_given_twice_is_refused_as_the_tools_refuse_it():
+    path = os.path.join(CASALE, "part5.csv")
+    run = acc.read_run(path)
+    with pytest.raises(ValueError, match="repeats " + re.escape(path) + "'s run part5 Hyundai .* give each recording"):
+        acc.calibrate([run, acc.read_run(path)])
+    # An excerpt kept aside from the run it is cut from is not held out.
+    with pytest.raises(ValueError, match=re.escape(path) + r": its run part5 Hyundai \(from t = 56277.0 s\) repeats"):
+        acc.diagnose(run, held_out=[run.iloc[200:900]])
+    # A copy whose speeds were changed is another drive as far as the data can tell.
+    other = run.copy()
+    other["follower_speed_mps"] += 1e-9
+    assert acc.calibrate([run, other], stability_test=False, second_opinion=False)["parameters"]
 
 
 def test_the_solves_release_the_gil():
