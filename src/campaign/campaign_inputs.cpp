@@ -483,7 +483,9 @@ std::string whyRepeatsEarlierFile(const OpenAccFile& file, const RepeatedRecordi
          std::to_string(kRepeatedRecordingMinSamples) +
          " samples or more, to the last digit), and so do its other cars: the same recording (a copy, an "
          "excerpt or an export of the same drive), skipped, so that no run is predicted by a model fitted on "
-         "itself; give each recording once";
+         "itself; the file read first is kept (" +
+         std::to_string(earlier.rows()) + " rows; this one " + std::to_string(file.rows()) +
+         "): give each recording once";
 }
 
 /// One file into the inputs: its pairs into the groups, or a note saying why it is skipped.

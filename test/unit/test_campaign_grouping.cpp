@@ -331,7 +331,10 @@ TEST(CampaignInputs, ACopyOrAnExcerptOfARunIsTheSameRecordingAndSkipped)
                                  "'s LEAD (1) from t = 40.0 s"),
             std::string::npos)
       << inputs.notes[1];
-  EXPECT_NE(inputs.notes[1].find("skipped, so that no run is predicted by a model fitted on itself"), std::string::npos);
+  EXPECT_NE(inputs.notes[1].find("skipped, so that no run is predicted by a model fitted on itself; the file read "
+                                 "first is kept (1201 rows; this one 300)"),
+            std::string::npos)
+      << inputs.notes[1];
   for (const acc::CampaignGroup& group : inputs.groups)
     EXPECT_EQ(group.runs.size(), 2u) << group.label();
 
