@@ -1,5 +1,6 @@
 #include "acc_identification/io/repeated_recording.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <set>
@@ -123,7 +124,9 @@ void RepeatedRecordingIndex::add(Recording recording, std::size_t id)
 bool RepeatedRecordingIndex::repeatsAtShift(const Recording& later, std::size_t earlier, long long shift,
                                             std::size_t matched_row) const
 {
-  const std::size_t rows = recordings_[earlier].empty() ? 0 : recordings_[earlier].front().size();
+  std::size_t rows = 0;  // the earlier recording's (a car without speeds has an empty series)
+  for (const std::vector<double>& series : recordings_[earlier])
+    rows = std::max(rows, series.size());
   for (const std::vector<double>& series : later)
   {
     // Compared where the match was found, else where it varies within the overlap.

@@ -144,6 +144,15 @@ TEST(RepeatedRecording, ARecordingRepeatsOnlyWhenEveryVaryingSeriesDoesAtOneShif
   // A series that does not vary where the two overlap (a car at standstill) is not asked to.
   std::vector<double> parked(300, 0.0);
   EXPECT_TRUE(index.find({rows(drive, 100, 400), parked}));
+  // An earlier recording whose first series is empty (a car without speeds) still has its rows: a
+  // series that stands still where the match is found is compared where it moves.
+  std::vector<double> stood = measuredSpeeds(1000, 31), unrelated = measuredSpeeds(1000, 32);
+  std::fill(stood.begin() + 100, stood.begin() + 250, 5.0);
+  std::fill(unrelated.begin() + 100, unrelated.begin() + 250, 5.0);
+  acc::RepeatedRecordingIndex with_empty;
+  with_empty.add({{}, drive, stood}, 0);
+  EXPECT_TRUE(with_empty.find({rows(drive, 100, 400), rows(stood, 100, 400)}));
+  EXPECT_FALSE(with_empty.find({rows(drive, 100, 400), rows(unrelated, 100, 400)}));
 }
 
 TEST(RepeatedRecording, APartialOverlapIsFoundFromEitherSide)
