@@ -27,7 +27,8 @@ namespace acc
 /// earlier's at the same shift of rows: simulated drives without noise share their leader's
 /// profile, and differ in their followers. Exact equality also means that a drive converted
 /// through another format (printed with fewer digits) is not recognised: only copies of the same
-/// numbers are.
+/// numbers are. Every tenth stretch of a recording is indexed, so a repeat of
+/// kRepeatedRecordingMinSamples + 9 samples is found whatever its alignment, a shorter one may be.
 constexpr std::size_t kRepeatedRecordingMinSamples = 100;  ///< 10 s at 10 Hz
 constexpr std::size_t kRepeatedRecordingMinChanges = 20;
 
