@@ -6,6 +6,7 @@
 #include "acc_identification/calibration/sequential_verdict.h"
 #include "acc_identification/calibration/string_stability_verdict.h"
 #include "acc_identification/io/output_files.h"
+#include "acc_identification/io/repeated_recording.h"
 
 namespace acc
 {
@@ -15,6 +16,14 @@ std::vector<CarFollowingRun> runsOf(const std::vector<CalibrationInput>& inputs)
   for (const CalibrationInput& item : inputs)
     runs.push_back(item.run);
   return runs;
+}
+
+std::string describeRepeatedInput(const std::vector<CalibrationInput>& inputs, const std::vector<std::size_t>& input_of)
+{
+  std::vector<std::string> path_of_run;
+  for (const CalibrationInput& item : inputs)
+    path_of_run.push_back(item.path);
+  return describeRepeatedRun(runsOf(inputs), input_of, path_of_run);
 }
 
 namespace

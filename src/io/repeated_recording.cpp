@@ -26,6 +26,12 @@ std::uint64_t bitsOf(double value)
   return bits;
 }
 
+/// Whether a stretch with these counts can decide a repeat: finite, and varying.
+bool decides(std::size_t not_finite, std::size_t changes)
+{
+  return not_finite == 0 && changes >= kRepeatedRecordingMinChanges;
+}
+
 /// Every stretch of kRepeatedRecordingMinSamples values of a series that can decide a repeat
 /// (finite and varying), with its polynomial hash: visit(first_row, hash) in order, until visit
 /// returns true.
@@ -53,7 +59,7 @@ void forEachVaryingStretch(const std::vector<double>& series, Visit&& visit)
     not_finite += std::isfinite(series[k]) ? 0 : 1;
     if (k > 0)
       changes += series[k] != series[k - 1] ? 1 : 0;
-    if (k + 1 >= m && not_finite == 0 && changes >= kRepeatedRecordingMinChanges && visit(k + 1 - m, hash))
+    if (k + 1 >= m && decides(not_finite, changes) && visit(k + 1 - m, hash))
       return;
   }
 }
@@ -74,20 +80,19 @@ std::optional<std::size_t> firstVaryingStretchWithin(const std::vector<double>& 
   return first;
 }
 
-/// Whether series[row, row + m) can decide a repeat: finite and varying, as forEachVaryingStretch
-/// asks (m = kRepeatedRecordingMinSamples).
+/// Whether series[row, row + m) can decide a repeat, as forEachVaryingStretch asks
+/// (m = kRepeatedRecordingMinSamples).
 bool varyingAt(const std::vector<double>& series, std::size_t row)
 {
   if (row + kRepeatedRecordingMinSamples > series.size())
     return false;
-  std::size_t changes = 0;
+  std::size_t not_finite = 0, changes = 0;
   for (std::size_t k = row; k < row + kRepeatedRecordingMinSamples; ++k)
   {
-    if (!std::isfinite(series[k]))
-      return false;
+    not_finite += std::isfinite(series[k]) ? 0 : 1;
     changes += k > row && series[k] != series[k - 1] ? 1 : 0;
   }
-  return changes >= kRepeatedRecordingMinChanges;
+  return decides(not_finite, changes);
 }
 
 /// Whether a[i, i + m) equals b[j, j + m) value for value (m = kRepeatedRecordingMinSamples; out

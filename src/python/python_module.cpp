@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -18,7 +19,6 @@
 #include "acc_identification/diagnosis/calibration_second_opinion.h"
 #include "acc_identification/diagnosis/diagnosis.h"
 #include "acc_identification/diagnosis/diagnosis_output.h"
-#include "acc_identification/io/repeated_recording.h"
 #include "acc_identification/ros/run_bag_reader.h"
 
 namespace py = pybind11;
@@ -65,24 +65,20 @@ std::vector<acc::CalibrationInput> toInputs(const py::list& runs)
   return inputs;
 }
 
-/// Refuses runs of which one repeats a run of an earlier input (io/repeated_recording.h: the same
-/// recording given twice), as the tools' readers do; each run's "input" numbers the frame it came
-/// from, the held-out frames after the fitted ones.
-void refuseRepeatedRuns(const py::list& runs, const py::list& held_out_runs)
+/// The number of the frame each run came from ("input": the held-out frames after the fitted ones).
+std::vector<std::size_t> inputNumbers(const py::list& runs)
 {
-  std::vector<acc::CarFollowingRun> all;
-  std::vector<std::size_t> input_of;
-  std::vector<std::string> path_of_run;
-  for (const py::list* list : {&runs, &held_out_runs})
-    for (const py::handle& handle : *list)
-    {
-      const py::dict run = handle.cast<py::dict>();
-      acc::CalibrationInput input = toInput(run);
-      all.push_back(std::move(input.run));
-      input_of.push_back(run["input"].cast<std::size_t>());
-      path_of_run.push_back(input.path);
-    }
-  if (const std::string repeat = acc::describeRepeatedRun(all, input_of, path_of_run); !repeat.empty())
+  std::vector<std::size_t> numbers;
+  for (const py::handle& run : runs)
+    numbers.push_back(run.cast<py::dict>()["input"].cast<std::size_t>());
+  return numbers;
+}
+
+/// Refuses runs of which one repeats a run of an earlier frame (io/repeated_recording.h: the same
+/// recording given twice), as the tools' readers do.
+void refuseRepeatedRuns(const std::vector<acc::CalibrationInput>& inputs, const std::vector<std::size_t>& input_of)
+{
+  if (const std::string repeat = acc::describeRepeatedInput(inputs, input_of); !repeat.empty())
     throw std::invalid_argument(repeat + ": give each recording once (a fit would count it twice, and a held-out "
                                          "run that repeats a fitted one is not held out)");
 }
@@ -162,7 +158,7 @@ py::dict calibrate(const py::list& runs, const py::list& inputs_read, bool split
                    double bootstrap_below_s)
 {
   const std::vector<acc::CalibrationInput> inputs = toInputs(runs);
-  refuseRepeatedRuns(runs, py::list());
+  refuseRepeatedRuns(inputs, inputNumbers(runs));
   const std::vector<acc::InputAccount> accounts = toInputAccounts(inputs_read);
   acc::CalibrateSettings settings;
   settings.split_half = split_half;
@@ -227,13 +223,26 @@ py::dict pairNmeaLogs(const std::string& leader_path, const std::string& followe
   return result;
 }
 
-/// The runs alone, without the files they came from.
-std::vector<acc::CarFollowingRun> plainRuns(const py::list& runs)
+/// The runs to fit and those kept aside, each list converted once; refused as the tools refuse
+/// them when one repeats a run of an earlier frame.
+std::pair<std::vector<acc::CarFollowingRun>, std::vector<acc::CarFollowingRun>> fittedAndHeldOut(
+    const py::list& runs, const py::list& held_out_runs)
 {
-  std::vector<acc::CarFollowingRun> plain;
-  for (const acc::CalibrationInput& input : toInputs(runs))
-    plain.push_back(input.run);
-  return plain;
+  std::vector<acc::CalibrationInput> all = toInputs(runs);
+  const std::size_t fitted = all.size();
+  std::vector<std::size_t> input_of = inputNumbers(runs);
+  if (!held_out_runs.empty())
+  {
+    const std::vector<acc::CalibrationInput> kept = toInputs(held_out_runs);
+    all.insert(all.end(), kept.begin(), kept.end());
+    const std::vector<std::size_t> kept_numbers = inputNumbers(held_out_runs);
+    input_of.insert(input_of.end(), kept_numbers.begin(), kept_numbers.end());
+  }
+  refuseRepeatedRuns(all, input_of);
+  std::vector<acc::CarFollowingRun> every = acc::runsOf(all);
+  std::vector<acc::CarFollowingRun> held_out(every.begin() + static_cast<long>(fitted), every.end());
+  every.resize(fitted);
+  return {std::move(every), std::move(held_out)};
 }
 
 /// held_out_runs empty: each run fitted on its first part and scored on the rest; otherwise the
@@ -244,10 +253,7 @@ std::string diagnose(const py::list& runs, const py::list& inputs_read, const st
                      const std::vector<std::string>& held_out_inputs, std::size_t bootstrap_replicates,
                      double bootstrap_below_s)
 {
-  const std::vector<acc::CarFollowingRun> plain = plainRuns(runs);
-  const std::vector<acc::CarFollowingRun> held_out =
-      held_out_inputs.empty() ? std::vector<acc::CarFollowingRun>{} : plainRuns(held_out_runs);
-  refuseRepeatedRuns(runs, held_out_inputs.empty() ? py::list() : held_out_runs);
+  const auto [plain, held_out] = fittedAndHeldOut(runs, held_out_inputs.empty() ? py::list() : held_out_runs);
   acc::DiagnosisOptions options;
   options.train_fraction = train_fraction;
   options.threads = threads;

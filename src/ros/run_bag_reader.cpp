@@ -19,7 +19,6 @@
 
 #include "acc_identification/RelativeState.h"
 #include "acc_identification/calibration/sliding_window.h"
-#include "acc_identification/io/repeated_recording.h"
 #include "acc_identification/io/run_csv.h"
 
 namespace acc
@@ -468,23 +467,17 @@ std::vector<CarFollowingRun> readRunArgument(const std::string& path, const std:
 
 namespace
 {
-/// describeRepeatedRun over these runs: by their arguments, or with `held_out` given, the fitted
+/// describeRepeatedInput over these runs: by their arguments, or with `held_out` given, the fitted
 /// runs as one input and the held-out ones as another.
 std::string describeRepeat(const RunArguments& runs, const RunArguments* held_out = nullptr)
 {
-  std::vector<CarFollowingRun> all;
-  std::vector<std::size_t> input_of;
-  std::vector<std::string> path_of_run;
-  for (const RunArguments* arguments : {&runs, held_out})
-  {
-    for (std::size_t k = 0; arguments != nullptr && k < arguments->runs.size(); ++k)
-    {
-      all.push_back(arguments->runs[k].run);
-      input_of.push_back(held_out == nullptr ? arguments->argument_of_run[k] : (arguments == held_out ? 1 : 0));
-      path_of_run.push_back(arguments->runs[k].path);
-    }
-  }
-  return describeRepeatedRun(all, input_of, path_of_run);
+  if (held_out == nullptr)
+    return describeRepeatedInput(runs.runs, runs.argument_of_run);
+  std::vector<CalibrationInput> all = runs.runs;
+  all.insert(all.end(), held_out->runs.begin(), held_out->runs.end());
+  std::vector<std::size_t> input_of(runs.runs.size(), 0);
+  input_of.resize(all.size(), 1);
+  return describeRepeatedInput(all, input_of);
 }
 }  // namespace
 
