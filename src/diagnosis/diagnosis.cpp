@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "acc_identification/calibration/identification.h"
 #include "acc_identification/diagnosis/final_model_bootstrap.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/parallel_tasks.h"
@@ -386,6 +387,17 @@ DiagnosisResult diagnoseParts(DiagnosisResult result, const DiagnosisOptions& op
   bootstrapShortTraining(options, &result);
   return result;
 }
+
+/// Refuses fitting parts that together hold less than calibrate fits on (its samples and seconds):
+/// a model fitted on seconds of driving is no base for naming an effect or a verdict.
+void requireEnoughToFit(const std::vector<CarFollowingRun>& train, const std::string& remedy)
+{
+  IdentifiabilityCriteria amount;
+  amount.min_speed_std_mps = 0.0;  // the amount only: a steady drive's fits say what they leave open
+  const std::string shortage = describeInsufficientExcitation(train, amount);
+  if (!shortage.empty())
+    throw std::invalid_argument("the parts to fit on hold " + shortage + ": " + remedy);
+}
 }  // namespace
 
 DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const DiagnosisOptions& options)
@@ -396,6 +408,7 @@ DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const Dia
   {
     throw std::invalid_argument("no run is long enough to fit on one part and score on the other");
   }
+  requireEnoughToFit(result.train, "longer runs, or a larger share to fit on (--train-fraction)");
   return diagnoseParts(std::move(result), options);
 }
 
@@ -409,6 +422,7 @@ DiagnosisResult diagnoseHeldOutRuns(const std::vector<CarFollowingRun>& fitted,
   if (result.train.empty() || result.test.empty())
     throw std::invalid_argument(std::string("no usable ") + (result.train.empty() ? "run to fit" : "held-out run") +
                                 " (each needs " + std::to_string(options.min_samples_per_half) + " samples)");
+  requireEnoughToFit(result.train, "more or longer runs to fit");
   return diagnoseParts(std::move(result), options);
 }
 

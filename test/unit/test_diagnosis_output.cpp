@@ -106,3 +106,32 @@ TEST(DiagnosisOutput, RunsKeptAsideAreScoredWholeAndListedOnTheirOwn)
   EXPECT_NE(j["notes"][0].get<std::string>().find("20 samples, fewer than 50"), std::string::npos) << j["notes"][0];
   EXPECT_THROW(acc::diagnoseHeldOutRuns(fitted, {too_short}, options), std::invalid_argument);
 }
+
+// Seconds of driving to fit on are refused as calibrate refuses them, with how much there is and
+// what would do, rather than naming effects and a string-stability verdict from them.
+TEST(DiagnosisOutput, FittingPartsShorterThanCalibrateFitsOnAreRefused)
+{
+  acc::WithheldCase c;
+  c.truth = acc::EffectKind::actuation_lag;
+  c.truth_values = {0.8};
+  c.duration_s = 300.0;
+  const acc::CarFollowingRun run = acc::synthesizeWithheldRun(c);
+  ASSERT_GT(run.durationS(), 200.0);
+  acc::DiagnosisOptions options;
+  options.with_stability_test = false;
+  options.train_fraction = 0.05;  // 5 % of the run: above 50 samples, below 30 s
+  try
+  {
+    acc::diagnoseRuns({run}, options);
+    ADD_FAILURE() << "a fit on " << 0.05 * run.durationS() << " s was not refused";
+  }
+  catch (const std::invalid_argument& error)
+  {
+    const std::string said = error.what();
+    EXPECT_NE(said.find("the parts to fit on hold too little data"), std::string::npos) << said;
+    EXPECT_NE(said.find("need 100 samples and 30 s"), std::string::npos) << said;
+    EXPECT_NE(said.find("--train-fraction"), std::string::npos) << said;
+  }
+  // Kept aside whole: the runs to fit must hold as much.
+  EXPECT_THROW(acc::diagnoseHeldOutRuns({run.slice(0, 200, "20 s")}, {run}, options), std::invalid_argument);
+}

@@ -136,14 +136,16 @@ struct DiagnosisResult
 
 /// Splits every run, fits the base model and each candidate effect on the first parts, scores
 /// them on the held-out parts, applies the selection rule and breaks the residual down.
-/// Throws std::invalid_argument when no run leaves enough samples on both sides of the split.
+/// Throws std::invalid_argument when no run leaves enough samples on both sides of the split, or
+/// when the first parts together hold less than calibrate fits on (IdentifiabilityCriteria's
+/// samples and seconds).
 DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const DiagnosisOptions& options);
 
 /// As diagnoseRuns, with runs kept aside instead of each run's later part: every model is fitted
 /// on `fitted` whole and scored on `held_out` whole (a run the fits never saw, as the campaign's
 /// leave-one-run-out; the way to judge a run too short to halve). A run with fewer samples than
 /// min_samples_per_half is not used, said in the notes. Throws std::invalid_argument when either
-/// side is left without a run.
+/// side is left without a run, or the fitted runs hold less than calibrate fits on.
 DiagnosisResult diagnoseHeldOutRuns(const std::vector<CarFollowingRun>& fitted,
                                     const std::vector<CarFollowingRun>& held_out, const DiagnosisOptions& options);
 
