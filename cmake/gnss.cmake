@@ -20,7 +20,7 @@ acc_add_node(gps_driver_node WRAPPER acc_gnss_ros)
 # Any receiver's NMEA log into a bag of raw sentences stamped with their receive times (rosbag
 # API, no ROS master needed): what the drivers replay. The synthesize tool writes its bags with it.
 acc_add_ros_library(acc_sentence_bag SOURCES src/ros/sentence_bag_writer.cpp LINK acc_gnss)
-acc_add_tool(nmea_to_bag LINK acc_sentence_bag)
+acc_add_tool(nmea_to_bag LINK acc_sentence_bag acc_run_io)
 
 # Parser throughput (issue 3 target: 2 million GGA + RMC sentences per second on one core).
 acc_add_benchmark(bench_nmea LINK acc_gnss)

@@ -10,6 +10,52 @@
 
 namespace acc
 {
+namespace
+{
+/// Whether two paths name one file: the same file for the file system when both exist, the same
+/// absolute path with links and dots resolved otherwise.
+bool sameFile(const std::string& a, const std::string& b)
+{
+  std::error_code error;
+  if (std::filesystem::exists(a, error) && std::filesystem::exists(b, error))
+    return std::filesystem::equivalent(a, b, error) && !error;
+  const std::filesystem::path resolved_a = std::filesystem::weakly_canonical(std::filesystem::absolute(a), error);
+  if (error)
+    return false;
+  const std::filesystem::path resolved_b = std::filesystem::weakly_canonical(std::filesystem::absolute(b), error);
+  return !error && resolved_a == resolved_b;
+}
+}  // namespace
+
+bool outputsLeaveInputsAlone(const std::vector<std::string>& inputs, const std::vector<std::string>& outputs,
+                             std::ostream& errors)
+{
+  for (std::size_t i = 0; i < outputs.size(); ++i)
+  {
+    if (outputs[i].empty())
+      continue;
+    for (const std::string& input : inputs)
+    {
+      if (!input.empty() && sameFile(outputs[i], input))
+      {
+        errors << "error: " << outputs[i] << " would overwrite the input " << input
+               << ": give the output another path (nothing was written)\n";
+        return false;
+      }
+    }
+    for (std::size_t j = i + 1; j < outputs.size(); ++j)
+    {
+      if (!outputs[j].empty() && sameFile(outputs[i], outputs[j]))
+      {
+        errors << "error: two outputs name the same file, " << outputs[i] << " and " << outputs[j]
+               << ": one would overwrite the other (nothing was written)\n";
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
 bool writeTextFile(const std::string& text, const std::string& path, std::ostream& errors)
 {
   std::ofstream out(path);

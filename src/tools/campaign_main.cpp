@@ -76,6 +76,8 @@ int main(int argc, char** argv)
   acc::addRefitBootstrapOptions(app, options.group.bootstrap.replicates, options.group.bootstrap.below_s,
                                 "each car's fit and diagnosed model");
   CLI11_PARSE(app, argc, argv);
+  if (!acc::outputsLeaveInputsAlone(paths, {json_path, sumo_vtype_path}, std::cerr))
+    return 2;
   options.platoon_check = !no_platoon_check;
   if (!quiet)
     options.progress = acc::showProgress;

@@ -43,14 +43,11 @@ void addDiagnosisOptions(CLI::App& app, DiagnoseRequest& r)
                  "asymmetric_response and speed_dependent_gains; leader_acceleration_feedforward, "
                  "quadratic_closing_response and leader_braking_anticipation are tested only when named here)");
   app.add_option("--block-length-s", r.options.selection.block_length_s, "bootstrap block length [s]")
-      ->check(acc::positiveNumber())
-      ->capture_default_str();
+      ->check(acc::positiveNumber())->capture_default_str();
   app.add_option("--resamples", r.options.selection.resamples, "bootstrap resamples")
-      ->check(CLI::Range(std::size_t{100}, std::size_t{1000000}))
-      ->capture_default_str();
+      ->check(CLI::Range(std::size_t{100}, std::size_t{1000000}))->capture_default_str();
   app.add_option("--alpha", r.options.selection.alpha, "level of the selection rule")
-      ->check(acc::openInterval(0.0, 0.5))
-      ->capture_default_str();
+      ->check(acc::openInterval(0.0, 0.5))->capture_default_str();
   app.add_option("--min-relative-improvement", r.options.selection.min_relative_improvement,
                  "smallest held-out MSE reduction worth naming")
       ->check(acc::nonNegativeNumber())
@@ -59,8 +56,7 @@ void addDiagnosisOptions(CLI::App& app, DiagnoseRequest& r)
   app.add_flag("--no-forward-selection", r.no_forward_selection,
                "name the dominant effect only; do not try effects in combination");
   app.add_option("--max-chain-length", r.options.max_chain_length, "most effects the forward selection adds")
-      ->check(CLI::Range(1, 8))
-      ->capture_default_str();
+      ->check(CLI::Range(1, 8))->capture_default_str();
   // What calibrate makes; the library's default is none (its suites and second opinion do without).
   r.options.bootstrap_replicates = acc::RefitBootstrapOptions{}.replicates;
   acc::addRefitBootstrapOptions(app, r.options.bootstrap_replicates, r.options.bootstrap_below_s, "the final model");
@@ -153,6 +149,9 @@ int main(int argc, char** argv)
     std::cerr << "error: no run given (see --help)\n";
     return 2;
   }
+  for (const std::vector<std::string>* inputs : {&request.input.paths, &request.held_out})
+    if (!acc::outputsLeaveInputsAlone(*inputs, {request.json_path, request.sumo_vtype_path}, std::cerr))
+      return 2;
   // The report's folder before the work: a diagnosis should not end in "cannot create" after it.
   if (!request.report_dir.empty() && !acc::makeOutputFolder(request.report_dir, std::cerr))
     return 1;

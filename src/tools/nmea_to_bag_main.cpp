@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "acc_identification/io/output_files.h"
 #include "acc_identification/ros/sentence_bag_writer.h"
 #include "acc_identification/tools/number_checks.h"
 
@@ -35,6 +36,8 @@ int main(int argc, char** argv)
   app.add_option("FOLLOWER", follower_path, "follower's NMEA log")->required()->check(CLI::ExistingFile);
   app.add_option("OUT", bag_path, "bag to write")->required();
   CLI11_PARSE(app, argc, argv);
+  if (!acc::outputsLeaveInputsAlone({leader_path, follower_path}, {bag_path}, std::cerr))
+    return 2;
 
   const std::string error = acc::loadSentenceStreams({leader_path, follower_path}, timing, streams, std::cerr);
   if (!error.empty())

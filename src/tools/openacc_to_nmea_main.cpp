@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "acc_identification/conversion/openacc_to_nmea.h"
+#include "acc_identification/io/output_files.h"
 
 namespace
 {
@@ -101,6 +102,8 @@ int main(int argc, char** argv)
   auto* follower_log_option =
       app.add_option("FOLLOWER", follower_path, "follower's NMEA log to write")->excludes(all_pairs_option);
   CLI11_PARSE(app, argc, argv);
+  if (!acc::outputsLeaveInputsAlone({input_path}, {leader_path, follower_path}, std::cerr))
+    return 2;
 
   int status = 0;
   if (!all_pairs_dir.empty())

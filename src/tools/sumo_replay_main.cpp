@@ -8,6 +8,7 @@
 
 #include "acc_identification/campaign/campaign_sumo_platoon.h"
 #include "acc_identification/io/installed_beside.h"
+#include "acc_identification/io/output_files.h"
 #include "acc_identification/ros/run_bag_reader.h"
 #include "acc_identification/sumo/sumo_replay_report.h"
 
@@ -47,6 +48,10 @@ int main(int argc, char** argv)
   app.add_option("--keep", options.work_dir, "keep SUMO's scenario, trace and log in this folder");
   app.add_option("--sumo", options.sumo, "the SUMO binary")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  std::vector<std::string> inputs = listings;
+  inputs.insert(inputs.end(), {path, vtype_file});
+  if (!acc::outputsLeaveInputsAlone(inputs, {json_path}, std::cerr))
+    return 2;
   options.driver_script = acc::installedBeside("sumo_traci_replay.py");
   try
   {

@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "acc_identification/conversion/openacc_to_nmea.h"
+#include "acc_identification/io/output_files.h"
 #include "acc_identification/model/angles.h"
 #include "acc_identification/model/paper_settings.h"
 #include "acc_identification/reproduction/lead_profiles.h"
@@ -79,7 +80,8 @@ int main(int argc, char** argv)
   const char* names[4] = {"--k1", "--k2", "--tau-e", "--eta"};
   CLI::Option* override_options[4];
   for (int i = 0; i < 4; ++i)
-    override_options[i] = app.add_option(names[i], overrides[i], "overrides one value of --setting (or give all four)");
+    override_options[i] = app.add_option(names[i], overrides[i], "overrides one value of --setting (or give all four)")
+                              ->check(acc::finiteNumber("NUMBER"));
   app.add_option("--effect", effects,
                  "unmodelled effect NAME=V[,V] (repeatable): actuation_lag=T_s, reaction_delay=d_s, "
                  "acceleration_limits=a_max,b_max, sensor_time_offset=delta_s, speed_dependent_time_gap=c_s2_per_m, "
@@ -97,36 +99,45 @@ int main(int argc, char** argv)
   app.add_option("--parameters-json", out.files.parameters_json, "parameters, effects and settings used");
   app.add_option("--bag", out.bag, "also a bag of acc_identification/Sentence on /leader and /follower/nmea_sentence");
   app.add_option("--compression", out.compression, "of the bag")
-      ->check(CLI::IsMember({"lz4", "bz2", "none"}))
-      ->capture_default_str();
+      ->check(CLI::IsMember({"lz4", "bz2", "none"}))->capture_default_str();
   app.add_option("--start-time", start_time, "GNSS time of the first epoch, YYYY-MM-DDThh:mm:ss[Z] (UTC)");
   app.add_option("--start-lat", options.start_latitude_deg, "where the road starts [deg]")
-      ->check(CLI::Range(-89.0, 89.0))
-      ->capture_default_str();
+      ->check(CLI::Range(-89.0, 89.0))->capture_default_str();
   app.add_option("--start-lon", options.start_longitude_deg, "[deg]")->check(CLI::Range(-180.0, 180.0))->capture_default_str();
-  app.add_option("--start-alt", options.start_altitude_m, "[m]")->capture_default_str();
-  auto* heading_option = app.add_option("--start-heading-deg", heading_deg, "[deg]")->capture_default_str();
+  app.add_option("--start-alt", options.start_altitude_m, "[m]")->check(acc::finiteNumber("METRES"))->capture_default_str();
+  auto* heading_option =
+      app.add_option("--start-heading-deg", heading_deg, "[deg]")->check(acc::finiteNumber("DEGREES"))->capture_default_str();
   app.add_option("--position-sigma", options.errors.horizontal_sigma_m, "GNSS position error [m]")
-      ->check(acc::nonNegativeNumber())
-      ->capture_default_str();
+      ->check(acc::nonNegativeNumber())->capture_default_str();
   app.add_option("--speed-sigma", options.errors.speed_sigma_mps, "GNSS speed error [m/s]")
-      ->check(acc::nonNegativeNumber())
-      ->capture_default_str();
+      ->check(acc::nonNegativeNumber())->capture_default_str();
   app.add_option("--correlation-time", options.errors.position_correlation_time_s, "of the position error [s]")
-      ->check(acc::nonNegativeNumber())
-      ->capture_default_str();
-  app.add_option("--leader-antenna-to-rear-bumper", options.geometry.leader_antenna_to_rear_bumper_m, "[m]")
-      ->capture_default_str();
-  app.add_option("--follower-antenna-to-front-bumper", options.geometry.follower_antenna_to_front_bumper_m, "[m]")
-      ->capture_default_str();
+      ->check(acc::nonNegativeNumber())->capture_default_str();
+  acc::AntennaOffsets antennas{NAN, options.geometry.leader_antenna_to_rear_bumper_m,
+                               options.geometry.follower_antenna_to_front_bumper_m};
+  app.add_option("--leader-antenna-to-rear-bumper", antennas.leader_antenna_to_rear_bumper_m, "[m]")
+      ->check(acc::finiteNumber("METRES"))->capture_default_str();
+  app.add_option("--follower-antenna-to-front-bumper", antennas.follower_antenna_to_front_bumper_m, "[m]")
+      ->check(acc::finiteNumber("METRES"))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  if (!acc::outputsLeaveInputsAlone(
+          {}, {out.files.leader_log, out.files.follower_log, out.files.truth_csv, out.files.parameters_json, out.bag},
+          std::cerr))
+    return 2;
 
   std::array<std::optional<double>, 4> given;
   for (int i = 0; i < 4; ++i)
     if (override_options[i]->count() > 0)
       given[i] = overrides[i];
-  std::string setting_name, error;
-  if (!acc::chooseParameters(setting, given, &options.parameters, &setting_name, &error))
+  std::string setting_name, error = acc::geometryFromOffsets(antennas, options.geometry);
+  if (error.empty())
+    acc::chooseParameters(setting, given, &options.parameters, &setting_name, &error);
+  for (const std::string& effect : effects)
+    if (error.empty())
+      acc::addEffectOption(effect, &options.effects, &error);
+  if (error.empty() && !start_time.empty() && !acc::parseUtcTime(start_time, &options.start_time_unix_s))
+    error = "--start-time '" + start_time + "' is not YYYY-MM-DDThh:mm:ss[Z] (UTC)";
+  if (!error.empty())
   {
     std::cerr << "error: " << error << "\n";
     return 2;
@@ -136,17 +147,6 @@ int main(int argc, char** argv)
     options.epoch_step_s = 1.0 / rate_hz;  // the default stays exactly the library's 0.1 s
   if (heading_option->count() > 0)
     options.start_heading_rad = heading_deg * acc::kDegToRad;  // the default stays exactly as the library has it
-  for (const std::string& effect : effects)
-    if (!acc::addEffectOption(effect, &options.effects, &error))
-    {
-      std::cerr << "error: " << error << "\n";
-      return 2;
-    }
-  if (!start_time.empty() && !acc::parseUtcTime(start_time, &options.start_time_unix_s))
-  {
-    std::cerr << "error: --start-time '" << start_time << "' is not YYYY-MM-DDThh:mm:ss[Z] (UTC)\n";
-    return 2;
-  }
   try
   {
     return run(options, setting_name, out);

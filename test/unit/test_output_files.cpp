@@ -73,3 +73,35 @@ TEST(OutputFiles, AReportFolderWithSpacesAndQuotesGetsItsFigures)
   EXPECT_TRUE(std::filesystem::exists(dir + "/report.md"));
   std::filesystem::remove_all(std::filesystem::path(dir).parent_path());
 }
+
+TEST(OutputFiles, AnOutputOverAnInputOrAnotherOutputIsRefusedBeforeAnythingIsWritten)
+{
+  const std::string dir = scratchDir("over_input");
+  std::ostringstream errors;
+  ASSERT_TRUE(acc::makeOutputFolder(dir + "/sub", errors));
+  std::ofstream(dir + "/run.csv") << "time_s\n";
+  // The same file however it is spelled, and through a link.
+  std::filesystem::create_symlink(dir + "/run.csv", dir + "/link.csv");
+  for (const std::string& spelled : {dir + "/run.csv", dir + "/sub/../run.csv", dir + "/./run.csv", dir + "/link.csv"})
+  {
+    errors.str("");
+    EXPECT_FALSE(acc::outputsLeaveInputsAlone({dir + "/other.csv", dir + "/run.csv"}, {"", spelled}, errors)) << spelled;
+    EXPECT_NE(errors.str().find("error: " + spelled + " would overwrite the input " + dir + "/run.csv"),
+              std::string::npos)
+        << errors.str();
+  }
+  // Two outputs that are one file, whether it exists yet or not.
+  errors.str("");
+  EXPECT_FALSE(acc::outputsLeaveInputsAlone({}, {dir + "/new.nmea", dir + "/sub/../new.nmea"}, errors));
+  EXPECT_NE(errors.str().find("two outputs name the same file"), std::string::npos) << errors.str();
+  EXPECT_FALSE(std::filesystem::exists(dir + "/new.nmea"));
+  // Different files, outputs not asked for (empty), and an output in the inputs' folder are fine.
+  errors.str("");
+  EXPECT_TRUE(acc::outputsLeaveInputsAlone({dir + "/run.csv", dir}, {dir + "/fit.json", "", "", dir + "/sub/x.json"},
+                                           errors))
+      << errors.str();
+  EXPECT_TRUE(errors.str().empty());
+  std::ifstream kept(dir + "/run.csv");
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(kept)), std::istreambuf_iterator<char>()), "time_s\n");
+  std::filesystem::remove_all(dir);
+}

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -10,6 +11,15 @@ namespace acc
 {
 /// What every tool does with the files it is asked to write. Each returns false after saying on
 /// `errors` what failed ("error: cannot write PATH"), so a tool can end with status 1.
+
+/// Whether the outputs leave the inputs alone: false, after saying which on `errors`, when an
+/// output names the same file as an input ("error: OUT would overwrite the input IN") or as another
+/// output. Tools call it before any work, since one slip in the order of the arguments would
+/// otherwise overwrite a recording. The same file is found through links and spellings (a/../b, ./b);
+/// empty paths (outputs not asked for) are skipped. Report folders are not outputs here: files are
+/// written into them, and a folder that holds the inputs is a fine place for a report.
+bool outputsLeaveInputsAlone(const std::vector<std::string>& inputs, const std::vector<std::string>& outputs,
+                             std::ostream& errors);
 
 /// The text, as it is.
 bool writeTextFile(const std::string& text, const std::string& path, std::ostream& errors);
