@@ -196,28 +196,55 @@ void scoreRuns(const std::vector<CalibrationInput>& inputs, const std::vector<Ca
   if (!test_fits.empty())
     report.summary_test = poolFits(test_fits);
 }
-}  // namespace
-
-CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, const std::vector<InputAccount>& inputs_read,
-                               const CalibrateSettings& settings, std::ostream& out, std::ostream& log)
+/// The runs the model is fitted on and, with --split half, judged on: each run halved. A piece
+/// too short to halve (a few rows between two rows a pair cannot use) is left out and said, not a
+/// reason to refuse the rest.
+struct FittedRuns
 {
+  std::vector<CalibrationInput> used;
   std::vector<CarFollowingRun> training, testing;
+  std::vector<std::string> left_out;  ///< why each piece left out is
+};
+
+FittedRuns fittedRuns(const std::vector<CalibrationInput>& inputs, bool split_half)
+{
+  FittedRuns runs;
   for (const CalibrationInput& item : inputs)
   {
-    if (!settings.split_half)
+    if (!split_half)
     {
-      training.push_back(item.run);
+      runs.used.push_back(item);
+      runs.training.push_back(item.run);
       continue;
     }
     auto [train, test] = splitRunInHalf(item.run);
     if (train.size() < 2 || test.size() < 2)
-      return unfitted(inputs,
-                      "run '" + item.run.name + "' has " + std::to_string(item.run.size()) +
-                          " samples, too few to split in halves",
-                      IdentifiabilityCriteria{}.min_speed_std_mps, inputs_read, settings, out, log);
-    training.push_back(std::move(train));
-    testing.push_back(std::move(test));
+    {
+      runs.left_out.push_back("run '" + item.run.name + "' has " + std::to_string(item.run.size()) +
+                              " samples, too few to split in halves");
+      continue;
+    }
+    runs.used.push_back(item);
+    runs.training.push_back(std::move(train));
+    runs.testing.push_back(std::move(test));
   }
+  return runs;
+}
+}  // namespace
+
+CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& all_inputs,
+                               const std::vector<InputAccount>& inputs_read, const CalibrateSettings& settings,
+                               std::ostream& out, std::ostream& log)
+{
+  FittedRuns fitted = fittedRuns(all_inputs, settings.split_half);
+  for (const std::string& why : fitted.left_out)
+    log << "note: " << why << ": left out of the fit and its scores\n";
+  if (fitted.used.empty())
+    return unfitted(all_inputs, fitted.left_out.empty() ? "no run" : fitted.left_out.front(), IdentifiabilityCriteria{}.min_speed_std_mps, inputs_read,
+                    settings, out, log);
+  const std::vector<CalibrationInput>& inputs = fitted.used;
+  std::vector<CarFollowingRun>& training = fitted.training;
+  std::vector<CarFollowingRun>& testing = fitted.testing;
   IdentificationOptions options;
   options.multistart.starts = settings.starts;
   options.multistart.progress = settings.progress;
@@ -240,7 +267,7 @@ CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, cons
   bootstrapShortData(training, settings, report, log);
   if (settings.grid_nodes > 0)
     checkOnGrid(training, options, settings, report, log);
-  const std::vector<CarFollowingRun> whole_runs = runsOf(inputs);
+  const std::vector<CarFollowingRun> whole_runs = runsOf(all_inputs);
   if (settings.stability_test)
   {
     StabilityTestOptions test_options;
@@ -270,16 +297,19 @@ CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, cons
     out << opinion.text;
     outcome.json["diagnosed_verdict"] = opinion.json;
   }
-  addSequentialVerdicts(inputs, settings, outcome, out, log);
+  if (!fitted.left_out.empty())
+    outcome.json["runs_left_out"] = fitted.left_out;
+  addSequentialVerdicts(all_inputs, settings, outcome, out, log);
   outcome.exit_status = report.calibration.diverged ? 1 : 0;
   outcome.report = std::move(report);
   outcome.training = std::move(training);
   outcome.testing = std::move(testing);
+  for (const CalibrationInput& input : inputs)
+    outcome.run_names.push_back(input.run.name);
   return outcome;
 }
 
-bool writeCalibrationReport(const std::string& dir, const CalibrateOutcome& outcome,
-                            const std::vector<std::string>& run_names, const std::string& plot_script,
+bool writeCalibrationReport(const std::string& dir, const CalibrateOutcome& outcome, const std::string& plot_script,
                             std::ostream& log)
 {
   if (!writeJsonFile(outcome.json, dir + "/calibration.json", log))
@@ -287,7 +317,7 @@ bool writeCalibrationReport(const std::string& dir, const CalibrateOutcome& outc
   try
   {
     if (outcome.report)
-      writeFitTracesCsv(fitTraces(outcome.report->calibration.parameters, run_names, outcome.training, outcome.testing),
+      writeFitTracesCsv(fitTraces(outcome.report->calibration.parameters, outcome.run_names, outcome.training, outcome.testing),
                         dir + "/fit_traces.csv");
   }
   catch (const std::exception& error)

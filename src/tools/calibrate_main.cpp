@@ -33,14 +33,6 @@ bool writeSumoVType(const std::string& path, const std::string& id, const acc::C
   return acc::saveFittedModelVType(path, id, report.calibration.parameters, {}, {}, runs, caveat, from_openacc,
                                    std::cerr);
 }
-
-std::vector<std::string> runNames(const std::vector<acc::CalibrationInput>& inputs)
-{
-  std::vector<std::string> names;
-  for (const acc::CalibrationInput& input : inputs)
-    names.push_back(input.run.name);
-  return names;
-}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -79,8 +71,9 @@ int main(int argc, char** argv)
   acc::addRefitBootstrapOptions(app, settings.bootstrap_replicates, settings.bootstrap_below_s, "the fit");
   app.add_option("--verdict-every", settings.verdict_every_s,
                  "also replay each drive look by look every SECONDS of data time and report the sequential "
-                 "(anytime-valid) verdicts the identifier node would publish, by the node's own code")
-      ->check(acc::positiveNumber());
+                 "(anytime-valid) verdicts the identifier node would publish, by the node's own code (1 s or more: "
+                 "each look refits the drive so far)")
+      ->check(acc::atLeast(1.0, "SECONDS"));
   app.add_option("--report", report_dir,
                  "write calibration.json, fit_traces.csv (each run measured and simulated), a figure per run and "
                  "report.md into DIR");
@@ -92,6 +85,8 @@ int main(int argc, char** argv)
                "do not diagnose the runs when the model does not describe them (saves the diagnosis's time)");
   app.add_flag("--quiet", settings.quiet, "no progress display");
   CLI11_PARSE(app, argc, argv);
+  if (!acc::outputsLeaveInputsAlone(input.paths, {json_path, sumo_vtype_path}, std::cerr))
+    return 2;
   settings.split_half = split == "half";
   settings.starts = static_cast<std::size_t>(starts);
   settings.stability_test = !no_stability_test;
@@ -117,7 +112,7 @@ int main(int argc, char** argv)
       return 1;
     if (!json_path.empty() && !acc::writeJsonFile(outcome.json, json_path, std::cerr))
       return 1;
-    if (!report_dir.empty() && !acc::writeCalibrationReport(report_dir, outcome, runNames(inputs),
+    if (!report_dir.empty() && !acc::writeCalibrationReport(report_dir, outcome,
                                                             acc::installedBeside("plot_calibration.py"), std::cerr))
       return 1;
     return outcome.exit_status;

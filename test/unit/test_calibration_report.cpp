@@ -322,4 +322,28 @@ TEST(CalibrateRuns, AModelThatMissesGetsTheSecondOpinionInJsonAndText)
   EXPECT_EQ(outcome.json["diagnosed_verdict"]["runs"], 1);  // the whole runs, not the halves
   EXPECT_NE(text.str().find("SECOND OPINION"), std::string::npos);
 }
+
+// --split half with a piece of three rows between two split points (empty cells four rows apart):
+// the piece is left out, said in the JSON, and the rest is fitted and scored, each score under its
+// own run's name. Fails when the piece refuses the whole input, as it once did, or when the names
+// of the runs scored slip against them.
+TEST(CalibrateRuns, APieceTooShortToHalveIsLeftOutAndSaidNotAReasonToRefuseTheRest)
+{
+  CountingOpinion opinion;
+  std::ostringstream text;
+  acc::CarFollowingRun whole = acc::synthesizeRun(acc::paperMinimumSetting(), 300.0, 0.1, 20.0, 5);
+  whole.name = "drive";
+  const acc::CarFollowingRun first = whole.slice(0, 1000, "#1");
+  const acc::CarFollowingRun piece = whole.slice(1002, 1005, "#2");
+  const acc::CarFollowingRun last = whole.slice(1007, whole.size(), "#3");
+  const acc::CalibrateOutcome outcome = calibrateWith({first, piece, last}, opinion, text);
+  ASSERT_EQ(outcome.exit_status, 0) << outcome.json.dump();
+  ASSERT_EQ(outcome.json["runs_left_out"].size(), 1u);
+  EXPECT_EQ(outcome.json["runs_left_out"][0], "run '" + piece.name + "' has 3 samples, too few to split in halves");
+  EXPECT_EQ(outcome.run_names, (std::vector<std::string>{first.name, last.name}));
+  ASSERT_EQ(outcome.training.size(), 2u);
+  EXPECT_EQ(outcome.training[1].time_s.front(), last.time_s.front());
+  EXPECT_NE(text.str().find(last.name), std::string::npos);
+  EXPECT_EQ(text.str().find(piece.name + " "), std::string::npos) << text.str();
+}
 }  // namespace

@@ -70,22 +70,26 @@ struct CalibrateOutcome
   int exit_status = 0;
   std::optional<CalibrationReport> report;  ///< empty when there is no fit
   nlohmann::json json;                      ///< exactly what `calibrate --json` writes
-  /// What the model was fitted on, and judged on with --split half (empty otherwise).
+  /// What the model was fitted on, and judged on with --split half (empty otherwise), and the
+  /// names of their runs in the same order: with --split half a run too short to halve is left
+  /// out of them (said on the log and in the JSON's runs_left_out).
   std::vector<CarFollowingRun> training, testing;
+  std::vector<std::string> run_names;
 };
 
 /// The whole of `calibrate` after its inputs are read: the fit (the identifier node's
 /// identifyAcc), the grid check, the fixed-sample string-stability test, the model's adequacy,
 /// the dips' evidence, each run's scores, the report on out, the sequential verdict's replay, and
-/// the JSON. Progress goes to log. Throws std::invalid_argument for a grid the objective refuses.
+/// the JSON. Progress goes to log. With split_half a run too short to halve is left out, said on
+/// log and in the JSON (no fit when none is left). Throws std::invalid_argument for a grid the
+/// objective refuses.
 CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, const std::vector<InputAccount>& inputs_read,
                                const CalibrateSettings& settings, std::ostream& out, std::ostream& log);
 
 /// calibrate --report DIR: calibration.json, fit_traces.csv (every run measured and simulated,
-/// run_names naming them) and, drawn by plot_script (plot_calibration.py), a figure per run and
+/// each by its name) and, drawn by plot_script (plot_calibration.py), a figure per run and
 /// report.md. False after saying on log what failed.
-bool writeCalibrationReport(const std::string& dir, const CalibrateOutcome& outcome,
-                            const std::vector<std::string>& run_names, const std::string& plot_script,
+bool writeCalibrationReport(const std::string& dir, const CalibrateOutcome& outcome, const std::string& plot_script,
                             std::ostream& log);
 
 /// The runs as read, whole.

@@ -64,6 +64,13 @@ inline CLI::Validator nonNegativeWholeNumber()
                                      "a whole number 0 or more", "WHOLE");
 }
 
+/// A number of lower or more.
+inline CLI::Validator atLeast(double lower, const std::string& name)
+{
+  return number_checks::finiteNumber([lower](double value) { return value >= lower; },
+                                     number_checks::text(lower) + " or more", name);
+}
+
 /// A number strictly between lower and upper (a level alpha: between 0 and 1).
 inline CLI::Validator openInterval(double lower, double upper)
 {
