@@ -316,6 +316,7 @@ void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile
               std::size_t& skipped_pairs)
 {
   std::vector<std::string> rejected;  // "TESLA_MODEL3 59": the pairs that lose rows, in one note
+  std::vector<std::string> acc_off;   // "BMW_I3 120": the pairs whose follower was driven by hand
   std::vector<PairSawtooth> sawtooths;
   for (const PairRunContents& pair : all.pairs)
   {
@@ -328,6 +329,8 @@ void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile
     }
     if (pair.contents.rejected_rows + pair.contents.time_holes > 0)
       rejected.push_back(describePairLosses(pair));
+    if (pair.contents.acc_off_rows > 0)
+      acc_off.push_back(pair.pair.follower_name + " " + std::to_string(pair.contents.acc_off_rows));
     for (const std::string& disagreement : checkGapKinematics(pair.contents.runs).warnings)
       notes.push_back(file.path + ": " + pair.pair.label() + ": " + disagreement);
     for (const GapSawtoothSpan& span : pair.contents.sawtooth_spans)
@@ -346,6 +349,10 @@ void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile
     notes.push_back(file.path + ": rows a pair cannot use (a bad or implausible cell of its own, its time not "
                     "increasing) split its runs there, each listed by calibrate --all-pairs; rejected of " +
                     std::to_string(file.contents.rows()) + " rows: " + join(rejected, ", "));
+  if (!acc_off.empty())
+    notes.push_back(file.path + ": rows with the follower's ACC off (driven by hand) are not used and split its runs "
+                    "there, each stretch listed by calibrate --all-pairs; of " +
+                    std::to_string(file.contents.rows()) + " rows: " + join(acc_off, ", "));
 }
 
 bool groupLess(const CampaignGroup& a, const CampaignGroup& b)

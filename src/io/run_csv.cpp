@@ -2,6 +2,7 @@
 #include "acc_identification/io/csv_fields.h"
 #include "acc_identification/io/gap_kinematics.h"
 #include "acc_identification/io/problem_lines.h"
+#include "acc_identification/model/number_text.h"
 
 #include <algorithm>
 #include <array>
@@ -380,6 +381,50 @@ std::string pairRowProblem(const OpenAccFile& file, const OpenAccPair& pair, std
                              "Speed" + std::to_string(pair.leader_position)});
 }
 
+/// The stretches of rows where the follower's ACC was off, as a note that names their lines and
+/// times (the first few): rows not used are said, not dropped silently.
+class AccOffStretches
+{
+public:
+  void add(std::size_t line, double time_s, bool acc_off)
+  {
+    if (!acc_off)
+    {
+      open_ = false;
+      return;
+    }
+    if (!open_)
+      stretches_.push_back({line, line, time_s, time_s});
+    stretches_.back().last_line = line;
+    stretches_.back().last_time_s = time_s;
+    open_ = true;
+  }
+  std::string note(std::size_t rows, const std::string& path, const std::string& about) const
+  {
+    constexpr std::size_t kNamed = 5;
+    std::string text = path + ": " + about + std::to_string(rows) +
+                       " rows with the follower's ACC off (driven by hand) not used, each stretch splitting a run: ";
+    for (std::size_t i = 0; i < stretches_.size() && i < kNamed; ++i)
+    {
+      const Stretch& s = stretches_[i];
+      text += (i > 0 ? ", " : "") + printfText("lines %zu-%zu (t = %.1f to %.1f s)", s.first_line, s.last_line,
+                                              s.first_time_s, s.last_time_s);
+    }
+    if (stretches_.size() > kNamed)
+      text += " and " + std::to_string(stretches_.size() - kNamed) + " more stretches";
+    return text;
+  }
+
+private:
+  struct Stretch
+  {
+    std::size_t first_line, last_line;
+    double first_time_s, last_time_s;
+  };
+  std::vector<Stretch> stretches_;
+  bool open_ = false;
+};
+
 /// One pair's runs: the four values of each row, through the same checks as a canonical CSV.
 RunFileContents readPairRuns(const OpenAccFile& file, const OpenAccPair& pair, const RunPlausibilityBounds& bounds,
                              bool name_pair_in_problems)
@@ -392,11 +437,13 @@ RunFileContents readPairRuns(const OpenAccFile& file, const OpenAccPair& pair, c
   contents.notes.push_back(describeAccSource(file, pair, source));
   const std::string about = name_pair_in_problems ? pair.follower_name + " behind " + pair.leader_name + ": " : "";
   RunAssembler assembler(file.path, file.name + " " + pair.follower_name, about, bounds, contents);
+  AccOffStretches acc_off;
   for (std::size_t i = 0; i < file.rows(); ++i)
   {
     ++contents.data_rows;
     const std::string problem = pairRowProblem(file, pair, i);
     const bool acc_on = isOnAccAt(file, follower, i);
+    acc_off.add(file.line[i], file.time_s[i], problem.empty() && !acc_on);
     if (!problem.empty())
     {
       assembler.reject(file.line[i], problem);
@@ -413,6 +460,8 @@ RunFileContents readPairRuns(const OpenAccFile& file, const OpenAccPair& pair, c
     }
   }
   assembler.split();
+  if (contents.acc_off_rows > 0)
+    contents.notes.push_back(acc_off.note(contents.acc_off_rows, file.path, about));
   contents.run_pairs.assign(contents.runs.size(), 0);
   return contents;
 }

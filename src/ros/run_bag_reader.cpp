@@ -452,6 +452,10 @@ RunArgument readRunArgument(const std::string& path, const BagTopics& topics, do
       << " holes in time, " << bag.time_resets << " time resets, " << bag.short_pieces << " pieces too short"
       << describeEngagementCounts(bag) << describeSettingCounts(bag) << " -> " << bag.runs.size() << " runs"
       << describeCoarseSteps(bag.time_holes, bag.messages > 0 ? bag.messages - 1 : 0) << "\n";
+  // As a CSV with no usable row: bad input, not valid data that cannot be fitted.
+  if (bag.runs.empty())
+    throw RunReadError(path + ": no usable run (" + std::to_string(bag.messages) + " messages; each one not used is " +
+                       "named above)");
   argument.account = accountOfBag(path, bag);
   argument.runs = std::move(bag.runs);
   return argument;

@@ -353,3 +353,32 @@ TEST(RunArguments, TheSameRecordingGivenTwiceIsRefusedWithBothFilesNamed)
     std::remove((folder + "/" + name).c_str());
 }
 }  // namespace
+
+// A bag whose every message is unusable is bad input, as a CSV without a usable row is: the reader
+// refuses it with the count (RunReadError, the tools' exit 1) rather than handing the fit no run,
+// which once ended in "valid data, no fit" with a mean speed of nan. Fails if it returns no runs.
+TEST(RunArguments, ABagWithoutAUsableMessageIsRefusedAsACsvWithoutAUsableRowIs)
+{
+  const std::string path = testing::TempDir() + "/no_usable_message.bag";
+  {
+    rosbag::Bag bag(path, rosbag::bagmode::Write);
+    for (int k = 0; k < 40; ++k)
+    {
+      acc_identification::RelativeState state = stateAt(100.0 + 0.1 * k);
+      state.follower_speed_mps = 400.0;  // km/h read as m/s, and then some: outside the bounds
+      bag.write("/relative_state", ros::Time(1.0), state);
+    }
+  }
+  std::ostringstream log;
+  try
+  {
+    acc::readRunArgument(path, acc::BagTopics{}, 0.5, log, acc::OpenAccPairSelector::first());
+    ADD_FAILURE() << "a bag without a usable message gave runs";
+  }
+  catch (const acc::RunReadError& error)
+  {
+    EXPECT_NE(std::string(error.what()).find(path + ": no usable run (40 messages"), std::string::npos) << error.what();
+  }
+  EXPECT_NE(log.str().find("40 outside the plausibility bounds"), std::string::npos) << log.str();
+  std::remove(path.c_str());
+}

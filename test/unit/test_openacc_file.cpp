@@ -325,6 +325,24 @@ TEST_F(OpenAccFileTest, MetadataDistanceSettingAndTwoVehicleLayout)
   EXPECT_TRUE(anyContains(contents.notes, {"ACC on where Driver2 is ACC"})) << joined(contents.notes);
 }
 
+// Rows where the follower was driven by hand are not used, and said: how many and where (file lines
+// and times of each stretch), as every row not used is. Fails if they are only counted.
+TEST_F(OpenAccFileTest, RowsWithTheAccOffAreNamedByTheirLinesAndTimes)
+{
+  std::string text = kTwoVehicleFile;
+  for (int k = 2; k < 12; ++k)
+  {
+    const double t = 100.0 + 0.1 * k;
+    const bool by_hand = (k >= 4 && k < 7) || k == 9;
+    text += std::to_string(t) + ",30,0,0,0,0,29,0,0,0,0,0,0,40," + (by_hand ? "Human" : "ACC") + "\n";
+  }
+  const acc::RunFileContents contents = acc::readRunFile(write("by_hand.csv", text));
+  EXPECT_EQ(contents.acc_off_rows, 4u);
+  EXPECT_TRUE(anyContains(contents.notes, {"4 rows with the follower's ACC off (driven by hand) not used",
+                                           "lines 11-13 (t = 100.4 to 100.6 s), lines 16-16 (t = 100.9 to 100.9 s)"}))
+      << joined(contents.notes);
+}
+
 TEST_F(OpenAccFileTest, ASpreadsheetExportReadsAsTheDatabasesFile)
 {
   // The same two-vehicle file as a spreadsheet writes it back: a byte-order mark, Windows line

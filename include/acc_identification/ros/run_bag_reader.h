@@ -89,7 +89,8 @@ struct RunArgument
 /// a canonical / OpenACC CSV (readRunFile, its notes and problems written to log). Both are split
 /// at holes longer than max_gap_s. selector chooses the pair(s) of an OpenACC file (--follower,
 /// --all-pairs); a bag or a canonical CSV holds one pair, so choosing a follower there is an
-/// error. Throws std::runtime_error with the reason.
+/// error. Throws std::runtime_error with the reason; RunReadError when the file holds no usable
+/// run (a bag as a CSV).
 RunArgument readRunArgument(const std::string& path, const BagTopics& topics, double max_gap_s, std::ostream& log,
                             const OpenAccPairSelector& selector);
 
