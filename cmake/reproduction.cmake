@@ -20,7 +20,7 @@ acc_add_library(acc_reproduction
   LINK acc_model acc_run_io)
 target_link_libraries(acc_reproduction PRIVATE nlohmann_json::nlohmann_json)
 
-acc_add_tool(platoon LINK acc_reproduction nlohmann_json::nlohmann_json)
+acc_add_tool(platoon LINK acc_reproduction acc_run_io nlohmann_json::nlohmann_json)
 install(PROGRAMS scripts/plot_figures.py scripts/reproduce_figures.sh scripts/bundled_data.sh
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 
@@ -32,6 +32,7 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_reproduction_frequency_response.cpp
     test/unit/test_reproduction_platoon.cpp
     test/unit/test_reproduction_runs.cpp
-    test/unit/test_reproduction_equilibrium.cpp)
+    test/unit/test_reproduction_equilibrium.cpp
+    test/unit/test_reproduction_figure_options.cpp)
   target_link_libraries(test_reproduction acc_reproduction)
 endif()

@@ -48,6 +48,18 @@ double FigureOptions::positive(const std::string& name, double fallback) const
   return value;
 }
 
+double FigureOptions::between(const std::string& name, double fallback, double lower, double upper) const
+{
+  const double value = number(name, fallback);
+  if (!(value >= lower && value <= upper))
+  {
+    std::ostringstream bounds;
+    bounds << "--" << name << " must be from " << lower << " to " << upper << ", not " << value;
+    throw FigureUsageError(bounds.str());
+  }
+  return value;
+}
+
 std::size_t FigureOptions::count(const std::string& name, std::size_t fallback, std::size_t minimum) const
 {
   const double value = number(name, static_cast<double>(fallback));

@@ -28,7 +28,7 @@ const char* kFigures = R"(FIGURE: a name or the paper's figure number (fig1 to f
 settings (repeatable, in order; default min and max of Table II):
   --setting min|max|fig2-unstable|fig2-stable   --params CALIBRATE.json
   --k1 K1 --k2 K2 --tau-e TAU [--eta ETA]       (one custom set, named "custom")
-common: --time-step 0.1 (Euler step of every simulation, s)
+common: --time-step 0.1 (Euler step of every simulation, 0.001 to 1 s)
 RUN.csv: canonical (time_s,space_gap_m,follower_speed_mps,leader_speed_mps) or OpenACC two-vehicle CSV.
 )";
 
@@ -62,7 +62,7 @@ std::vector<std::string> acceptedFigures()
 nlohmann::json runPaperFigure(const std::string& figure, const FigureOptions& options, const std::string& csv_path,
                               const FigureStreams& streams)
 {
-  const FigureRequest request{options, csv_path, options.positive("time-step", 0.1), streams};
+  const FigureRequest request{options, csv_path, options.between("time-step", 0.1, 1e-3, 1.0), streams};
   const auto alias = kFigureNumbers.find(figure);
   const auto found = kFigureMakers.find(alias == kFigureNumbers.end() ? figure : alias->second);
   if (found == kFigureMakers.end())

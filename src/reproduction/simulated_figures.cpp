@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "acc_identification/model/number_text.h"
 #include "acc_identification/model/platoon_simulation.h"
 #include "acc_identification/reproduction/figure_csv.h"
 #include "acc_identification/reproduction/figure_summary.h"
@@ -20,6 +21,27 @@ namespace acc
 {
 using nlohmann::json;
 
+namespace
+{
+/// Cars times samples of a simulated platoon at most this: its speeds and gaps then take under a
+/// gigabyte.
+constexpr double kMaxPlatoonSamples = 6e7;
+
+/// Refuses a platoon too large to simulate and hold, saying which options make it so, before any
+/// of it is allocated.
+void requireSimulable(std::size_t followers, double duration_s, double time_step_s)
+{
+  const double samples = static_cast<double>(followers + 1) * (duration_s / time_step_s + 1.0);
+  if (samples > kMaxPlatoonSamples)
+  {
+    throw FigureUsageError(printfText("%zu cars over %g s at a %g s step are %.3g samples, above the %.3g this tool "
+                                      "simulates: fewer --vehicles, a shorter --duration or --tail, or a coarser "
+                                      "--time-step",
+                                      followers + 1, duration_s, time_step_s, samples, kMaxPlatoonSamples));
+  }
+}
+}  // namespace
+
 json lambda2MapFigure(const FigureRequest& request)
 {
   const FigureOptions& options = request.options;
@@ -32,6 +54,8 @@ json lambda2MapFigure(const FigureRequest& request)
   grid.k2_max_per_s = options.positive("k2-max", grid.k2_max_per_s);
   grid.k1_min_per_s2 = std::min(grid.k1_min_per_s2, grid.k1_max_per_s2 / 100.0);
   grid.k1_points = grid.k2_points = options.count("grid", 100, 2);
+  if (grid.k1_points > 2000)
+    throw FigureUsageError("--grid must be at most 2000 (points per axis of the map, for each tau_e)");
   const auto map = acc::lambda2Map(grid);
   CsvWriter csv(request.csv_path, "tau_e_s,k1_per_s2,k2_per_s,lambda2,string_stable");
   for (const acc::Lambda2MapSample& s : map)
@@ -63,6 +87,7 @@ json stepFigure(const FigureRequest& request)
   const auto settings = resolveSettings(options, {"fig2-unstable", "fig2-stable"});
   const std::size_t vehicles = options.count("vehicles", 9, 1);
   const double speed = options.positive("speed", 25.0), step = options.positive("step", 5.0);
+  requireSimulable(vehicles, options.positive("duration", 200.0), h);
   const auto lead =
       acc::stepDownUpLeadProfile(speed, step, options.number("step-down-at", 20.0), options.number("step-up-at", 60.0),
                                  options.positive("duration", 200.0), h);
@@ -126,6 +151,7 @@ json sinusoidFigure(const FigureRequest& request)
   const std::size_t vehicles = options.count("vehicles", 10, 1);
   const double w = options.positive("frequency", 0.204);
   const double duration = options.positive("duration", 620.0);
+  requireSimulable(vehicles, duration, h);
   const double fit_s = options.positive("fit-periods", 5.0) * 2.0 * M_PI / w;
   if (fit_s >= duration - options.number("lead-in", 20.0))
   {
@@ -174,12 +200,15 @@ json leadProfileFigure(const FigureRequest& request)
     throw FigureUsageError("--profile must be one of " + acc::leadProfileIds());
   }
   acc::LeadProfileSpec spec = acc::leadProfileSpec(id[0]);
-  spec.ramp.acceleration_mps2 = options.positive("lead-accel", spec.ramp.acceleration_mps2);
-  spec.ramp.deceleration_mps2 = options.positive("lead-decel", spec.ramp.deceleration_mps2);
+  // A gentler ramp than 0.01 m/s^2 would make a profile of hours out of one speed change.
+  spec.ramp.acceleration_mps2 = options.between("lead-accel", spec.ramp.acceleration_mps2, 0.01, 20.0);
+  spec.ramp.deceleration_mps2 = options.between("lead-decel", spec.ramp.deceleration_mps2, 0.01, 20.0);
   const std::size_t vehicles = options.count("vehicles", 60, 1);
   const std::size_t short_platoon = std::min(vehicles, options.count("short-platoon", 15, 1));
   const auto profile = acc::sampleLeadProfile(spec, h);
-  const auto lead = acc::withFinalHold(profile, options.number("tail", 600.0), h);
+  const double tail_s = options.number("tail", 600.0);
+  requireSimulable(vehicles, static_cast<double>(profile.size()) * h + std::max(0.0, tail_s), h);
+  const auto lead = acc::withFinalHold(profile, tail_s, h);
   const std::string description = spec.description + "; " + acc::describeLeadRamp(spec.ramp);
   json summary = {{"figure", "lead-profile"}, {"profile", description}, {"vehicles", vehicles},
                   {"short_platoon", short_platoon}, {"profile_duration_s", static_cast<double>(profile.size() - 1) * h},

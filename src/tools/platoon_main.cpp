@@ -13,6 +13,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "acc_identification/io/output_files.h"
 #include "acc_identification/reproduction/paper_figures.h"
 
 namespace
@@ -53,6 +54,8 @@ int main(int argc, char** argv)
     app.add_option("--" + name, given[name], "see the figures below")->expected(1)->allow_extra_args(false)->take_all();
   }
   CLI11_PARSE(app, argc, argv);
+  if (!acc::outputsLeaveInputsAlone(given["params"], {csv_path, summary_path}, std::cerr))
+    return 2;
   try
   {
     writeSummary(acc::runPaperFigure(figure, acc::FigureOptions(given), csv_path), csv_path, summary_path);

@@ -31,6 +31,9 @@ public:
   /// The last value of --name as a finite number, or fallback when it is not given.
   double number(const std::string& name, double fallback) const;
   double positive(const std::string& name, double fallback) const;
+  /// A number from lower to upper: the figures' sizes (a step, a duration) kept to what a machine
+  /// simulates and holds, rather than ending in an allocation failure.
+  double between(const std::string& name, double fallback, double lower, double upper) const;
   /// A whole number >= minimum (and <= 1e6).
   std::size_t count(const std::string& name, std::size_t fallback, std::size_t minimum) const;
   std::string text(const std::string& name, const std::string& fallback) const;
