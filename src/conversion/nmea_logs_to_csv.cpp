@@ -4,9 +4,12 @@
 #include <cstdint>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include "acc_identification/gnss/nmea_log.h"
+#include "acc_identification/model/number_text.h"
+#include "acc_identification/relative_state/gap_doppler_consistency.h"
 
 namespace acc
 {
@@ -89,6 +92,34 @@ nlohmann::json pairingJson(const PairingCounters& c)
           {"follower_time_resets", c.follower_time_resets},
           {"buffer_overflows", c.buffer_overflows}};
 }
+
+/// Refuses logs given the wrong way round. The gap is a distance, the same either way, while the
+/// relative speed (leader's Doppler minus follower's) changes its sign: with the logs swapped
+/// the gap grows where it says the cars close in. So the gap's change over each consistency window
+/// against the relative speed's integral has a slope near -1 instead of 1. Decided only where the
+/// relative speed moved the gap by a metre or more (RMS over the windows) in ten windows or more.
+std::string describeSwappedLogs(const std::vector<RelativeState>& states, const RelativeStateSettings& settings)
+{
+  constexpr std::size_t kMinWindows = 10;
+  constexpr double kMinDopplerIntegralRmsM = 1.0;
+  constexpr double kSwappedSlopeBelow = -0.5;
+  std::vector<double> time_s, gap_m, relative_speed_mps;
+  for (const RelativeState& s : states)
+  {
+    time_s.push_back(s.time_s);
+    gap_m.push_back(s.valid ? s.space_gap_m : std::numeric_limits<double>::quiet_NaN());
+    relative_speed_mps.push_back(s.relative_speed_mps);
+  }
+  const ConsistencySummary summary = gapDopplerConsistency(time_s, gap_m, relative_speed_mps,
+                                                           settings.consistency_window_s, settings.pairing.dropout_gap_s);
+  if (summary.windows < kMinWindows || !(summary.doppler_integral_rms_m >= kMinDopplerIntegralRmsM) ||
+      !(summary.gap_per_doppler_slope < kSwappedSlopeBelow))
+    return "";
+  return printfText("the gap grows where the speeds say the cars close in (its change against the relative speed's "
+                    "integral over %zu windows of %g s: slope %.2f, where a leader ahead gives 1): the LEADER log is "
+                    "of the car behind. Are the two logs swapped? Give the car ahead's log first",
+                    summary.windows, settings.consistency_window_s, summary.gap_per_doppler_slope);
+}
 }  // namespace
 
 RelativeStateLogs pairNmeaLogs(const std::string& leader_path, const std::string& follower_path,
@@ -116,6 +147,7 @@ RelativeStateLogs pairNmeaLogs(const std::string& leader_path, const std::string
   }
   logs.pairing = estimator.pairingCounters();
   logs.estimator = estimator.counters();
+  logs.error = describeSwappedLogs(logs.states, settings);
   return logs;
 }
 

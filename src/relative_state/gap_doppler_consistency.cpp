@@ -23,6 +23,7 @@ void GapDopplerConsistency::reset()
   history_.clear();
   recent_.clear();
   recent_sum_squares_ = 0.0;
+  last_gap_change_m_ = last_doppler_integral_m_ = kNaN;
 }
 
 double GapDopplerConsistency::add(double time_s, double gap_m, double relative_speed_mps)
@@ -53,7 +54,9 @@ double GapDopplerConsistency::add(double time_s, double gap_m, double relative_s
   double span_s = time_s - start.time_s;
   if (span_s < window_s_ - kTimeTolerance_s || span_s > window_s_ + max_spacing_s_)
     return kNaN;
-  double residual_m = (gap_m - start.gap_m) - (sample.integral_m - start.integral_m);
+  last_gap_change_m_ = gap_m - start.gap_m;
+  last_doppler_integral_m_ = sample.integral_m - start.integral_m;
+  double residual_m = last_gap_change_m_ - last_doppler_integral_m_;
   recent_.push_back({time_s, residual_m});
   recent_sum_squares_ += residual_m * residual_m;
   return residual_m;
@@ -71,7 +74,7 @@ ConsistencySummary gapDopplerConsistency(const std::vector<double>& time_s, cons
                                          double max_spacing_s)
 {
   GapDopplerConsistency check(window_s, max_spacing_s);
-  double sum_squares = 0.0;
+  double sum_squares = 0.0, sum_cross = 0.0, sum_integral_squares = 0.0;
   std::size_t windows = 0;
   std::size_t n = std::min(time_s.size(), std::min(gap_m.size(), relative_speed_mps.size()));
   for (std::size_t i = 0; i < n; ++i)
@@ -80,10 +83,18 @@ ConsistencySummary gapDopplerConsistency(const std::vector<double>& time_s, cons
     if (std::isfinite(residual_m))
     {
       sum_squares += residual_m * residual_m;
+      sum_cross += check.lastGapChangeM() * check.lastDopplerIntegralM();
+      sum_integral_squares += check.lastDopplerIntegralM() * check.lastDopplerIntegralM();
       ++windows;
     }
   }
-  return {windows > 0 ? std::sqrt(sum_squares / static_cast<double>(windows)) : kNaN, windows};
+  ConsistencySummary summary{windows > 0 ? std::sqrt(sum_squares / static_cast<double>(windows)) : kNaN, windows};
+  if (windows > 0)
+  {
+    summary.doppler_integral_rms_m = std::sqrt(sum_integral_squares / static_cast<double>(windows));
+    summary.gap_per_doppler_slope = sum_integral_squares > 0.0 ? sum_cross / sum_integral_squares : kNaN;
+  }
+  return summary;
 }
 
 }  // namespace acc

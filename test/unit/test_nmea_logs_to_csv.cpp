@@ -91,6 +91,27 @@ TEST(NmeaLogsToCsv, ARealDriveRoundTripsThroughTheRunReaderWithItsInvalidStateAs
   EXPECT_NEAR(first.time_s[10], logs.states[10].time_s, 0.0006);
 }
 
+// The two logs of a real drive given the wrong way round pair as well as the right way (the gap is
+// a distance, the same either way), but the gap then grows where the Doppler speeds say the cars
+// close in: refused with the slope that shows it, and nothing written; the right order passes.
+// Fails if swapped logs give a run, which would hold the two cars' speeds exchanged.
+TEST(NmeaLogsToCsv, LogsGivenTheWrongWayRoundAreRefusedAndNothingIsWritten)
+{
+  const acc::OpenAccPairTrack track = acc::readOpenAccPairTrack(std::string(ACC_OPENACC_DATA_DIR) + "/part3.csv");
+  ASSERT_EQ(track.error, "");
+  TemporaryFolder folder("nmea_logs_swapped");
+  std::string error;
+  ASSERT_TRUE(acc::writeNmeaLog(folder.file("L.nmea"), acc::openAccFixes(track, 1), "GN", error)) << error;
+  ASSERT_TRUE(acc::writeNmeaLog(folder.file("F.nmea"), acc::openAccFixes(track, 2), "GN", error)) << error;
+  EXPECT_EQ(acc::pairNmeaLogs(folder.file("L.nmea"), folder.file("F.nmea"), casaleSettings()).error, "");
+  const acc::RelativeStateLogs swapped =
+      acc::pairNmeaLogsToCsv(folder.file("F.nmea"), folder.file("L.nmea"), folder.file("run.csv"), casaleSettings());
+  EXPECT_NE(swapped.error.find("the LEADER log is of the car behind. Are the two logs swapped?"), std::string::npos)
+      << swapped.error;
+  EXPECT_NE(swapped.error.find("slope -"), std::string::npos) << swapped.error;
+  EXPECT_FALSE(fs::exists(folder.file("run.csv")));
+}
+
 // The leader's log stops 2 s before the follower's: the follower's last epochs, which live would
 // wait for leader data, are counted unpaired at the end of the logs, never left out unsaid.
 TEST(NmeaLogsToCsv, FollowerEpochsAfterTheLeadersLogEndsAreCountedUnpaired)

@@ -31,7 +31,9 @@ struct RelativeStateLogs
 /// Reads both logs with the driver's decoder (readNmeaLog) and pairs their fixes with the node's
 /// estimator (RelativeStateEstimator, the same settings as ~relative_state_node), fed in GNSS-time
 /// order as they were on the air (at one time the leader's first); at the end of the logs the
-/// epochs still waiting for leader data are paired or counted unpaired (finish()).
+/// epochs still waiting for leader data are paired or counted unpaired (finish()). Logs given the
+/// wrong way round (the leader's log of the car behind, told by the gap growing where the Doppler
+/// speeds say the cars close in) set error with the states kept, so that nothing is written.
 RelativeStateLogs pairNmeaLogs(const std::string& leader_path, const std::string& follower_path,
                                const RelativeStateSettings& settings);
 

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <deque>
+#include <limits>
 #include <vector>
 
 namespace acc
@@ -23,6 +24,10 @@ public:
   double add(double time_s, double gap_m, double relative_speed_mps);
   /// RMS of the residuals of the windows that ended in the last W seconds; NaN when none.
   double recentRms() const;
+  /// The last full window's two sides: the gap's change and the relative speed's integral [m]
+  /// (NaN before the first full window).
+  double lastGapChangeM() const { return last_gap_change_m_; }
+  double lastDopplerIntegralM() const { return last_doppler_integral_m_; }
   void reset();
 
 private:
@@ -44,6 +49,8 @@ private:
   std::deque<Sample> history_;
   std::deque<Residual> recent_;
   double recent_sum_squares_ = 0.0;
+  double last_gap_change_m_ = std::numeric_limits<double>::quiet_NaN();
+  double last_doppler_integral_m_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The consistency of a whole series, same windows as GapDopplerConsistency.
@@ -51,6 +58,12 @@ struct ConsistencySummary
 {
   double rms_m;          ///< RMS of all residuals; NaN when no full window
   std::size_t windows;   ///< residuals computed
+  /// The gap's change per metre of the relative speed's integral over the windows (least squares
+  /// through 0): 1 for a gap behind the leader as the Doppler speeds say, -1 when the two cars are
+  /// the other way round (the gap is unsigned, the relative speed is not). NaN when no window.
+  double gap_per_doppler_slope = std::numeric_limits<double>::quiet_NaN();
+  /// RMS of the windows' relative-speed integrals [m]: how much the slope has to go on.
+  double doppler_integral_rms_m = std::numeric_limits<double>::quiet_NaN();
 };
 ConsistencySummary gapDopplerConsistency(const std::vector<double>& time_s, const std::vector<double>& gap_m,
                                          const std::vector<double>& relative_speed_mps, double window_s = 10.0,
