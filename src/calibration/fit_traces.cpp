@@ -3,6 +3,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "acc_identification/io/csv_fields.h"
 #include "acc_identification/model/follower_simulation.h"
 
 namespace acc
@@ -41,8 +42,7 @@ void writeFitTracesCsv(const std::vector<FitTrace>& traces, const std::string& p
   {
     for (std::size_t k = 0; k < t.time_s.size(); ++k)
     {
-      // Run names come from file names and Vehicle_order: quoted, as they may hold commas.
-      out << '"' << t.run << "\"," << t.part << ',' << t.time_s[k] << ',' << t.measured_speed_mps[k] << ','
+      out << csvQuoted(t.run) << ',' << t.part << ',' << t.time_s[k] << ',' << t.measured_speed_mps[k] << ','
           << t.simulated_speed_mps[k] << ',' << t.measured_speed_mps[k] - t.simulated_speed_mps[k] << ','
           << t.measured_gap_m[k] << ',' << t.simulated_gap_m[k] << ',' << t.measured_gap_m[k] - t.simulated_gap_m[k]
           << '\n';

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "acc_identification/gnss/nmea_log.h"
+#include "acc_identification/io/csv_fields.h"
 #include "acc_identification/model/number_text.h"
 #include "acc_identification/relative_state/gap_doppler_consistency.h"
 
@@ -23,15 +24,6 @@ std::string cell(double value, int decimals)
   std::ostringstream out;
   out << std::fixed << std::setprecision(decimals) << value;
   return out.str();
-}
-
-/// A CSV text field: quoted, its quotes doubled.
-std::string quoted(const std::string& text)
-{
-  std::string out = "\"";
-  for (char c : text)
-    out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
 }
 
 /// Feeds both logs' fixes in GNSS-time order, the leader's first at equal times.
@@ -245,7 +237,7 @@ bool writeRelativeStateCsv(const std::string& path, const std::vector<RelativeSt
     file << cell(s.time_s, 3) << ',' << cell(s.space_gap_m, 3) << ',' << cell(s.follower_speed_mps, 4) << ','
          << cell(s.leader_speed_mps, 4) << ',' << cell(s.relative_speed_mps, 4) << ',' << cell(s.space_gap_sigma_m, 3)
          << ',' << cell(s.epoch_skew_s, 3) << ',' << cell(s.gap_doppler_residual_m, 3) << ',' << (s.valid ? 1 : 0)
-         << ',' << quoted(s.invalid_reason) << '\n';
+         << ',' << csvQuoted(s.invalid_reason) << '\n';
   }
   if (!file)
   {

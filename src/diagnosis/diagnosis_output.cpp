@@ -8,6 +8,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "acc_identification/io/csv_fields.h"
 #include "acc_identification/model/follower_simulation.h"
 
 namespace acc
@@ -373,7 +374,7 @@ void writeDiagnosisTables(const DiagnosisResult& r, const std::string& dir)
       const SimulatedFollower& a = after.test_simulations[i];
       for (std::size_t k = 0; k < run.size(); ++k)
       {
-        out << run.name << ',' << run.time_s[k] << ',' << regimeName(regimes[k]) << ',' << run.follower_speed_mps[k]
+        out << csvQuoted(run.name) << ',' << run.time_s[k] << ',' << regimeName(regimes[k]) << ',' << run.follower_speed_mps[k]
             << ',' << run.space_gap_m[k] << ',' << b.speed_mps[k] << ',' << b.space_gap_m[k] << ',' << a.speed_mps[k]
             << ',' << a.space_gap_m[k] << '\n';
       }
@@ -388,7 +389,7 @@ void writeDiagnosisTables(const DiagnosisResult& r, const std::string& dir)
       const SimulatedFollower a = simulateFollower(after.fit.base, after.fit.settings, run);
       for (std::size_t k = 0; k < run.size(); ++k)
       {
-        out << run.name << ',' << run.time_s[k] << ',' << run.follower_speed_mps[k] << ',' << b.speed_mps[k] << ','
+        out << csvQuoted(run.name) << ',' << run.time_s[k] << ',' << run.follower_speed_mps[k] << ',' << b.speed_mps[k] << ','
             << a.speed_mps[k] << '\n';
       }
     }
@@ -398,7 +399,7 @@ void writeDiagnosisTables(const DiagnosisResult& r, const std::string& dir)
     out << "run,frequency_hz,power_before,power_after\n";
     for (const SpectrumPoint& p : r.where.spectrum)
     {
-      out << p.run << ',' << p.frequency_hz << ',' << p.power_before << ',' << p.power_after << '\n';
+      out << csvQuoted(p.run) << ',' << p.frequency_hz << ',' << p.power_before << ',' << p.power_after << '\n';
     }
   }
   {

@@ -94,4 +94,12 @@ std::string semicolonSeparatorHint(const std::string& path)
   return " (its fields are separated by ';', as a spreadsheet set to a decimal comma writes them: save it with "
          "',' between fields and '.' in numbers)";
 }
+std::string csvQuoted(const std::string& text)
+{
+  std::string out = "\"";
+  for (const char c : text)
+    out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
 }  // namespace acc

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "acc_identification/io/csv_fields.h"
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/reproduction/equilibrium_regression.h"
@@ -111,7 +112,7 @@ json equilibriumFigure(const FigureRequest& request)
     }
     for (std::size_t k = 0; k < run.size(); ++k)
     {
-      csv.row() << run.name << ',' << run.time_s[k] << ',' << run.follower_speed_mps[k] << ',' << run.space_gap_m[k]
+      csv.row() << csvQuoted(run.name) << ',' << run.time_s[k] << ',' << run.follower_speed_mps[k] << ',' << run.space_gap_m[k]
                 << ',' << (is_steady[k] ? 1 : 0) << '\n';
     }
     const auto [slowest, fastest] = std::minmax_element(run.follower_speed_mps.begin(), run.follower_speed_mps.end());

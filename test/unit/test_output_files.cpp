@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "acc_identification/io/csv_fields.h"
 #include "acc_identification/io/output_files.h"
 
 namespace
@@ -104,4 +105,20 @@ TEST(OutputFiles, AnOutputOverAnInputOrAnotherOutputIsRefusedBeforeAnythingIsWri
   std::ifstream kept(dir + "/run.csv");
   EXPECT_EQ(std::string((std::istreambuf_iterator<char>(kept)), std::istreambuf_iterator<char>()), "time_s\n");
   std::filesystem::remove_all(dir);
+}
+
+// A run name as the tools write it into their CSVs (fit_traces, residuals, train_fit, spectrum,
+// the equilibrium figure) reads back whole, commas and quotes in it included, as spreadsheet and
+// Python's csv read it. Fails if a quote is not doubled or a comma splits the name.
+TEST(OutputFiles, ARunNameWrittenIntoACsvReadsBackWhole)
+{
+  for (const std::string& name : {std::string("part3 Hyundai"), std::string("com,ma"), std::string("end\""),
+                                   std::string("\"quoted\", and more"), std::string("")})
+  {
+    const std::vector<std::string> fields = acc::splitCsvFields(acc::csvQuoted(name) + ",train,1.5");
+    ASSERT_EQ(fields.size(), 3u) << name;
+    EXPECT_EQ(fields[0], name);
+    EXPECT_EQ(fields[1], "train");
+  }
+  EXPECT_EQ(acc::csvQuoted("end\""), "\"end\"\"\"");
 }

@@ -13,6 +13,11 @@ namespace acc
 /// line's end.
 std::vector<std::string> splitCsvFields(const std::string& line);
 
+/// A text field as a CSV writer writes it, for splitCsvFields and Python's csv to read back whole:
+/// quoted, its quotes doubled. Run names come from file names and Vehicle_order, which may hold
+/// commas and quotes.
+std::string csvQuoted(const std::string& text);
+
 /// Nothing but white space and commas (a spreadsheet's empty row).
 bool isBlankCsvLine(const std::string& line);
 
