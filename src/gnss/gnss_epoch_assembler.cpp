@@ -201,7 +201,8 @@ void GnssEpochAssembler::complete(Epoch& epoch, std::vector<GnssFix>& out)
   fix.receive_time_s = epoch.last_receive_time_s;
   const std::optional<std::int64_t> day = dates_.dayOf(epoch.time_of_day_s, epoch.sentence_day);
   fix.has_date = day.has_value();
-  fix.gnss_time_s = day ? static_cast<double>(*day) * kSecondsPerDay + epoch.time_of_day_s : epoch.time_of_day_s;
+  fix.gnss_time_s = day ? static_cast<double>(*day) * kSecondsPerDay + epoch.time_of_day_s
+                        : dates_.undatedTimeS(epoch.time_of_day_s);
   if (fix.has_date)
     fix.valid_fields |= GnssFix::kValidDate;
   recent_groups_.push_back(epoch.fix.valid_fields & kGroups);

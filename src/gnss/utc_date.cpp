@@ -49,4 +49,18 @@ std::optional<std::int64_t> UtcDateTracker::dayOf(double time_of_day_s, std::opt
   return day;
 }
 
+double UtcDateTracker::undatedTimeS(double time_of_day_s)
+{
+  constexpr double kHalfDay = kSecondsPerDay / 2.0;
+  if (undated_time_of_day_s_)
+  {
+    if (time_of_day_s < *undated_time_of_day_s_ - kHalfDay)
+      ++undated_days_;
+    else if (time_of_day_s > *undated_time_of_day_s_ + kHalfDay)
+      --undated_days_;  // a late sentence of the day before
+  }
+  undated_time_of_day_s_ = time_of_day_s;
+  return static_cast<double>(undated_days_) * kSecondsPerDay + time_of_day_s;
+}
+
 }  // namespace acc

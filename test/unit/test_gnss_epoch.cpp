@@ -140,6 +140,29 @@ TEST(GnssEpoch, MidnightRolloverWithoutDateSentence)
   EXPECT_NEAR(d.fixes[2].gnss_time_s, at(2021, 1, 1, 0.1), 1e-6);
 }
 
+// A log that never carries a date (GGA and VTG only) across midnight: its times go on above a day
+// instead of jumping back 86,400 s, which the pairing took for a receiver reset (leaving the
+// epoch before midnight unpaired and the run split there). Undated, still: has_date false.
+TEST(GnssEpoch, MidnightWithoutAnyDateKeepsTimeIncreasing)
+{
+  const auto d = decode({joinLines({
+      "$GNGGA,235959.80,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*47",
+      "$GNGGA,235959.90,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*46",
+      "$GNGGA,000000.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*4E",
+      "$GNGGA,000000.10,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*4F",
+  })});
+  ASSERT_EQ(d.fixes.size(), 4u);
+  EXPECT_NEAR(d.fixes[0].gnss_time_s, 86399.8, 1e-6);
+  EXPECT_NEAR(d.fixes[2].gnss_time_s, 86400.0, 1e-6);
+  EXPECT_NEAR(d.fixes[3].gnss_time_s, 86400.1, 1e-6);
+  EXPECT_FALSE(d.fixes[3].has_date);
+  // A late sentence of the day before, after midnight, keeps its own day.
+  acc::UtcDateTracker tracker;
+  EXPECT_DOUBLE_EQ(tracker.undatedTimeS(86399.9), 86399.9);
+  EXPECT_DOUBLE_EQ(tracker.undatedTimeS(0.1), 86400.1);
+  EXPECT_DOUBLE_EQ(tracker.undatedTimeS(86399.95), 86399.95);
+}
+
 TEST(GnssEpoch, DateLaggingTheRolloverIsCorrected)
 {
   // The RMC of 00:00:00.00 still says 31 Dec (a receiver's date one sentence late).

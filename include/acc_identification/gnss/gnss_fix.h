@@ -12,7 +12,8 @@ struct GnssFix
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
   /// GNSS (UTC) time of the epoch [s]: seconds since the Unix epoch when has_date, else seconds
-  /// since the UTC midnight of an unknown day.
+  /// since the UTC midnight of an unknown day (the day of the stream's first undated epoch: past
+  /// a midnight it goes on above 86400 s, UtcDateTracker::undatedTimeS).
   double gnss_time_s = kNaN;
   bool has_date = false;
   double receive_time_s = kNaN;  ///< host clock when the epoch was completed [s]

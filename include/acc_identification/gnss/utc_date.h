@@ -26,11 +26,18 @@ public:
   /// The day of an epoch at time_of_day_s; sentence_day is the date the epoch itself carried.
   std::optional<std::int64_t> dayOf(double time_of_day_s, std::optional<std::int64_t> sentence_day);
   std::uint64_t lagCorrections() const { return lag_corrections_; }
+  /// The time of an epoch that has no day (no date known yet): its time of day plus a day for each
+  /// midnight passed since the first such epoch, by the same half-day rule, so that the time of a
+  /// log without dates (GGA and VTG only) keeps increasing over midnight instead of jumping back
+  /// a day, which the pairing would take for a receiver reset.
+  double undatedTimeS(double time_of_day_s);
 
 private:
   std::optional<std::int64_t> known_day_;
   double known_time_of_day_s_ = 0.0;
   std::uint64_t lag_corrections_ = 0;
+  std::optional<double> undated_time_of_day_s_;  ///< the last undated epoch's
+  std::int64_t undated_days_ = 0;                ///< midnights passed since the first undated epoch
 };
 
 }  // namespace acc
