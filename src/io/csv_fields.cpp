@@ -84,16 +84,21 @@ std::string withoutByteOrderMark(const std::string& line)
   static const std::string kUtf8Mark = "\xEF\xBB\xBF";
   return line.compare(0, kUtf8Mark.size(), kUtf8Mark) == 0 ? line.substr(kUtf8Mark.size()) : line;
 }
-std::string semicolonSeparatorHint(const std::string& path)
+std::string separatorHint(const std::string& path)
 {
   std::ifstream file(path);
   std::string first_line;
   std::getline(file, first_line);
-  if (first_line.find(';') == std::string::npos || first_line.find(',') != std::string::npos)
+  if (first_line.find(',') != std::string::npos)
     return "";
-  return " (its fields are separated by ';', as a spreadsheet set to a decimal comma writes them: save it with "
-         "',' between fields and '.' in numbers)";
+  if (first_line.find(';') != std::string::npos)
+    return " (its fields are separated by ';', as a spreadsheet set to a decimal comma writes them: save it with "
+           "',' between fields and '.' in numbers)";
+  if (first_line.find('\t') != std::string::npos)
+    return " (its fields are separated by tabs: save it with ',' between fields)";
+  return "";
 }
+
 std::string csvQuoted(const std::string& text)
 {
   std::string out = "\"";
@@ -101,5 +106,7 @@ std::string csvQuoted(const std::string& text)
     out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";
 }
+
+bool writtenInHexadecimal(const std::string& cell) { return cell.find_first_of("xX") != std::string::npos; }
 
 }  // namespace acc

@@ -198,7 +198,7 @@ std::string noHeaderError(const OpenAccFile& file, std::size_t line_number)
   return file.path + ": no header line with a Time column" +
          (line_number >= kMaxLinesBeforeHeader ? " in the first " + std::to_string(kMaxLinesBeforeHeader) + " lines"
                                                : "") +
-         " (not an OpenACC file?)" + semicolonSeparatorHint(file.path);
+         " (not an OpenACC file?)" + separatorHint(file.path);
 }
 
 /// Without Date and Vehicle_order the file is not read; the other lines missing are a note.

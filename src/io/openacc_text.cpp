@@ -1,4 +1,5 @@
 #include "openacc_text.h"
+#include "acc_identification/io/csv_fields.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -54,7 +55,7 @@ CellKind parseCell(const std::string& text, double& value)
   char* end = nullptr;
   errno = 0;
   const double parsed = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size())
+  if (end != text.c_str() + text.size() || writtenInHexadecimal(text))
   {
     return CellKind::kNotANumber;
   }

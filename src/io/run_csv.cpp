@@ -66,7 +66,7 @@ std::optional<ColumnMap> mapColumns(const std::vector<std::string>& header)
 
 std::optional<double> parseNumber(const std::string& text)
 {
-  if (text.empty())
+  if (text.empty() || writtenInHexadecimal(text))
   {
     return std::nullopt;
   }
@@ -299,11 +299,21 @@ RunFileContents readCanonicalFile(const std::string& path, const RunPlausibility
       break;
     }
   }
-  if (!map)
+  if (map)
+  {
+    // A column named twice would be read from its first place alone, the other silently not.
+    const std::vector<std::string> header = splitCsvFields(line_number == 1 ? withoutByteOrderMark(line) : line);
+    for (std::size_t i = 0; i < header.size(); ++i)
+      if (!header[i].empty() && std::find(header.begin(), header.begin() + static_cast<long>(i), header[i]) !=
+                                    header.begin() + static_cast<long>(i))
+        throw RunReadError(path + ":" + std::to_string(line_number) + ": the header names column '" + header[i] +
+                           "' twice: which one holds the data is not said");
+  }
+  else
   {
     throw RunReadError(path + ": no header with time_s,space_gap_m,follower_speed_mps,leader_speed_mps in the "
                               "first 20 lines, and no OpenACC Date line or Time,Speed1,... header first" +
-                       semicolonSeparatorHint(path));
+                       separatorHint(path));
   }
   RunAssembler assembler(path, std::filesystem::path(path).stem().string(), "", bounds, contents);
   while (std::getline(file, line))

@@ -329,6 +329,47 @@ TEST(RunCsv, AnExactDuplicateRowIsRejectedAndCountedWithoutSplittingTheRun)
   std::remove(path.c_str());
 }
 
+// Cells and headers a reader could take the wrong way, each said rather than read silently: a
+// column named twice (which one holds the data?), a hexadecimal cell (strtod reads 0x25 as 37),
+// and a tab-separated export (named as a ';' one is).
+TEST(RunCsv, AColumnNamedTwiceAHexadecimalCellAndTabsAreSaid)
+{
+  const std::string twice = writeTemporary("run_csv_twice.csv",
+                                           "time_s,space_gap_m,follower_speed_mps,leader_speed_mps,space_gap_m\n"
+                                           "0.0,20.0,10.0,10.5,25.0\n0.1,20.0,10.0,10.5,25.0\n");
+  try
+  {
+    acc::readRunFile(twice);
+    ADD_FAILURE() << "a column named twice was read";
+  }
+  catch (const acc::RunReadError& error)
+  {
+    EXPECT_TRUE(contains(error.what(), ":1: the header names column 'space_gap_m' twice")) << error.what();
+  }
+  const std::string hexadecimal = writeTemporary("run_csv_hex.csv",
+                                                 "time_s,space_gap_m,follower_speed_mps,leader_speed_mps\n"
+                                                 "0.0,20.0,10.0,10.5\n0.1,0x25,10.0,10.5\n0.2,20.0,10.0,10.5\n");
+  const auto contents = acc::readRunFile(hexadecimal);
+  EXPECT_EQ(contents.rejected_rows, 1u);  // line 3, not a gap of 37 m
+  bool said = false;
+  for (const std::string& problem : contents.problems)
+    said = said || contains(problem, "run_csv_hex.csv:3: space gap is not a finite number: '0x25'");
+  EXPECT_TRUE(said);
+  const std::string tabs = writeTemporary("run_csv_tabs.csv",
+                                          "time_s\tspace_gap_m\tfollower_speed_mps\tleader_speed_mps\n0.0\t20\t10\t10\n");
+  try
+  {
+    acc::readRunFile(tabs);
+    ADD_FAILURE() << "a tab-separated file was read";
+  }
+  catch (const acc::RunReadError& error)
+  {
+    EXPECT_TRUE(contains(error.what(), "its fields are separated by tabs")) << error.what();
+  }
+  for (const std::string& path : {twice, hexadecimal, tabs})
+    std::remove(path.c_str());
+}
+
 TEST(RunCsv, SpreadsheetExportsReadAsThePlainFile)
 {
   // A byte-order mark before the header, quoted fields (one with a comma inside a quoted note

@@ -13,6 +13,10 @@ namespace acc
 /// line's end.
 std::vector<std::string> splitCsvFields(const std::string& line);
 
+/// Whether a cell is written in hexadecimal ("0x25"): strtod reads it (as 37), no recorder writes
+/// it, so the readers take it for what it is, not a number.
+bool writtenInHexadecimal(const std::string& cell);
+
 /// A text field as a CSV writer writes it, for splitCsvFields and Python's csv to read back whole:
 /// quoted, its quotes doubled. Run names come from file names and Vehicle_order, which may hold
 /// commas and quotes.
@@ -29,6 +33,7 @@ std::vector<std::string> firstLineFields(const std::string& path);
 std::string withoutByteOrderMark(const std::string& line);
 
 /// For a reader's error: " (its fields are separated by ';' ...)" when the file's first line has
-/// semicolons and no comma, as a spreadsheet set to a decimal comma writes it; "" otherwise.
-std::string semicolonSeparatorHint(const std::string& path);
+/// semicolons and no comma, as a spreadsheet set to a decimal comma writes it, the same for tabs
+/// (a tab-separated export); "" otherwise.
+std::string separatorHint(const std::string& path);
 }  // namespace acc
