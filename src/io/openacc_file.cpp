@@ -103,14 +103,16 @@ std::vector<std::string> namesAfterKey(const std::vector<std::string>& fields)
   return names;
 }
 
-/// A number line (Number_of_vehicles, ACC): its value, or -1 with a note when it is not a number.
+/// A number line (Number_of_vehicles, ACC): its value, or -1 with a note when it is not a whole
+/// number from 0 to a million (-1 is "unknown" to the readers, so a written -1 is said too).
 int readNumberLine(const std::vector<std::string>& fields, const std::string& line, const std::string& what,
                    const std::string& where, OpenAccFile& file)
 {
   const auto value = integerField(fields, 1);
-  if (!value)
+  if (!value || *value < 0 || *value > 1000000)
   {
-    noteMetadataProblem(file, where + what + " is not a number: '" + trim(line) + "'");
+    noteMetadataProblem(file, where + what + (value ? " is not a count" : " is not a number") + ": '" + trim(line) +
+                                  "'");
     return -1;
   }
   return static_cast<int>(*value);

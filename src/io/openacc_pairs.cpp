@@ -194,9 +194,12 @@ OpenAccPairChoice followerPair(const OpenAccFile& file, const std::vector<OpenAc
       return choice;
     }
   }
+  // A number too large to be a position (-1) is named as written, not as the 0 it is not.
+  const std::string why = position >= 0 ? describePairlessFollower(file, position)
+                                         : "no car at position " + wanted + " (Vehicle_order names " +
+                                               std::to_string(file.metadata.vehicle_order.size()) + " cars)";
   choice.error = file.path + ": no pair with follower '" + wanted + "'" +
-                 (position >= 1 ? " (position " + std::to_string(position) + ")" : "") + ": " +
-                 describePairlessFollower(file, std::max(position, 0)) + "; " + listed;
+                 (position >= 1 ? " (position " + std::to_string(position) + ")" : "") + ": " + why + "; " + listed;
   return choice;
 }
 }  // namespace

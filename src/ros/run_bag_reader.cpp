@@ -427,6 +427,10 @@ RunArgument readRunArgument(const std::string& path, const BagTopics& topics, do
   const bool is_bag = path.size() >= bag_suffix.size() &&
                       path.compare(path.size() - bag_suffix.size(), bag_suffix.size(), bag_suffix) == 0;
   RunArgument argument;
+  if (!is_bag && !topics.only_setting.empty())
+    throw std::runtime_error(path + ": --acc-setting chooses among the settings a bag's setting topic reports; a CSV "
+                                    "is read whole (an OpenACC file holds one setting, its Distance_setting line): "
+                                    "give --acc-setting with bags only");
   if (!is_bag)
   {
     RunPlausibilityBounds bounds;

@@ -382,3 +382,18 @@ TEST(RunArguments, ABagWithoutAUsableMessageIsRefusedAsACsvWithoutAUsableRowIs)
   EXPECT_NE(log.str().find("40 outside the plausibility bounds"), std::string::npos) << log.str();
   std::remove(path.c_str());
 }
+
+// --acc-setting chooses among a bag's settings; given with a CSV it was silently ignored (a file
+// at min fitted when max was asked). It is refused, saying why.
+TEST(RunArguments, AnAccSettingAskedOfACsvIsRefused)
+{
+  const std::string path = testing::TempDir() + "/acc_setting_of_a_csv.csv";
+  acc::writeRunCsv(path, acc::synthesizeRun(acc::truthWithMargin(1.0), 60.0, 0.1, 20.0, 3));
+  acc::BagTopics topics;
+  topics.only_setting = "max";
+  std::ostringstream log;
+  const std::string refused =
+      errorOf([&] { acc::readRunArgument(path, topics, 0.5, log, acc::OpenAccPairSelector::first()); });
+  EXPECT_NE(refused.find("give --acc-setting with bags only"), std::string::npos) << refused;
+  std::remove(path.c_str());
+}

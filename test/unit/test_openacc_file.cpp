@@ -265,6 +265,18 @@ TEST_F(OpenAccFileTest, FollowerByNameOrPositionAndUnknownFollowerListsThePairs)
               std::string::npos)
         << error.what();
   }
+  // A number too large to be a position is named as written, not as position 0.
+  try
+  {
+    acc::readRunFile(path, acc::RunPlausibilityBounds{},
+                     acc::OpenAccPairSelector::byFollower("99999999999999999999"));
+    FAIL() << "expected RunReadError";
+  }
+  catch (const acc::RunReadError& error)
+  {
+    EXPECT_NE(std::string(error.what()).find("no car at position 99999999999999999999"), std::string::npos)
+        << error.what();
+  }
 }
 
 TEST_F(OpenAccFileTest, AllPairsReadsEveryPairAndNamesItsRuns)
@@ -341,6 +353,16 @@ TEST_F(OpenAccFileTest, RowsWithTheAccOffAreNamedByTheirLinesAndTimes)
   EXPECT_TRUE(anyContains(contents.notes, {"4 rows with the follower's ACC off (driven by hand) not used",
                                            "lines 11-13 (t = 100.4 to 100.6 s), lines 16-16 (t = 100.9 to 100.9 s)"}))
       << joined(contents.notes);
+}
+
+// A Number_of_vehicles of -1 is no count (and -1 is what the reader keeps for "unknown"): said.
+TEST_F(OpenAccFileTest, ANegativeNumberOfVehiclesIsSaid)
+{
+  std::string text = kTwoVehicleFile;
+  text.replace(text.find("Number_of_vehicles,2"), 20, "Number_of_vehicles,-1");
+  const acc::OpenAccFile file = acc::readOpenAccFile(write("negative_count.csv", text));
+  EXPECT_TRUE(anyContains(file.notes, {"Number_of_vehicles is not a count: 'Number_of_vehicles,-1'"}))
+      << joined(file.notes);
 }
 
 TEST_F(OpenAccFileTest, ASpreadsheetExportReadsAsTheDatabasesFile)
