@@ -85,16 +85,10 @@ nlohmann::json pairingJson(const PairingCounters& c)
           {"buffer_overflows", c.buffer_overflows}};
 }
 
-/// Refuses logs given the wrong way round. The gap is a distance, the same either way, while the
-/// relative speed (leader's Doppler minus follower's) changes its sign: with the logs swapped
-/// the gap grows where it says the cars close in. So the gap's change over each consistency window
-/// against the relative speed's integral has a slope near -1 instead of 1. Decided only where the
-/// relative speed moved the gap by a metre or more (RMS over the windows) in ten windows or more.
+/// Refuses logs given the wrong way round (receiversLookSwapped over the whole drive): with the
+/// logs swapped the gap grows where the relative speed says the cars close in.
 std::string describeSwappedLogs(const std::vector<RelativeState>& states, const RelativeStateSettings& settings)
 {
-  constexpr std::size_t kMinWindows = 10;
-  constexpr double kMinDopplerIntegralRmsM = 1.0;
-  constexpr double kSwappedSlopeBelow = -0.5;
   std::vector<double> time_s, gap_m, relative_speed_mps;
   for (const RelativeState& s : states)
   {
@@ -104,8 +98,7 @@ std::string describeSwappedLogs(const std::vector<RelativeState>& states, const 
   }
   const ConsistencySummary summary = gapDopplerConsistency(time_s, gap_m, relative_speed_mps,
                                                            settings.consistency_window_s, settings.pairing.dropout_gap_s);
-  if (summary.windows < kMinWindows || !(summary.doppler_integral_rms_m >= kMinDopplerIntegralRmsM) ||
-      !(summary.gap_per_doppler_slope < kSwappedSlopeBelow))
+  if (!receiversLookSwapped(summary.gap_per_doppler_slope, summary.doppler_integral_rms_m, summary.windows))
     return "";
   return printfText("the gap grows where the speeds say the cars close in (its change against the relative speed's "
                     "integral over %zu windows of %g s: slope %.2f, where a leader ahead gives 1): the LEADER log is "

@@ -22,7 +22,7 @@ void GapDopplerConsistency::reset()
 {
   history_.clear();
   recent_.clear();
-  recent_sum_squares_ = 0.0;
+  recent_sum_squares_ = recent_sum_cross_ = recent_sum_integral_squares_ = 0.0;
   last_gap_change_m_ = last_doppler_integral_m_ = kNaN;
 }
 
@@ -47,7 +47,10 @@ double GapDopplerConsistency::add(double time_s, double gap_m, double relative_s
 
   while (!recent_.empty() && recent_.front().time_s <= time_s - window_s_)
   {
-    recent_sum_squares_ -= recent_.front().residual_m * recent_.front().residual_m;
+    const Residual& old = recent_.front();
+    recent_sum_squares_ -= old.residual_m * old.residual_m;
+    recent_sum_cross_ -= old.gap_change_m * old.doppler_integral_m;
+    recent_sum_integral_squares_ -= old.doppler_integral_m * old.doppler_integral_m;
     recent_.pop_front();
   }
   const Sample& start = history_.front();
@@ -57,8 +60,10 @@ double GapDopplerConsistency::add(double time_s, double gap_m, double relative_s
   last_gap_change_m_ = gap_m - start.gap_m;
   last_doppler_integral_m_ = sample.integral_m - start.integral_m;
   double residual_m = last_gap_change_m_ - last_doppler_integral_m_;
-  recent_.push_back({time_s, residual_m});
+  recent_.push_back({time_s, residual_m, last_gap_change_m_, last_doppler_integral_m_});
   recent_sum_squares_ += residual_m * residual_m;
+  recent_sum_cross_ += last_gap_change_m_ * last_doppler_integral_m_;
+  recent_sum_integral_squares_ += last_doppler_integral_m_ * last_doppler_integral_m_;
   return residual_m;
 }
 
@@ -67,6 +72,30 @@ double GapDopplerConsistency::recentRms() const
   if (recent_.empty())
     return kNaN;
   return std::sqrt(std::max(0.0, recent_sum_squares_) / static_cast<double>(recent_.size()));
+}
+
+double GapDopplerConsistency::recentGapPerDopplerSlope() const
+{
+  // The running sums lose a little to round-off as windows come and go: 0 or less is none.
+  if (recent_.empty() || !(recent_sum_integral_squares_ > 0.0))
+    return kNaN;
+  return recent_sum_cross_ / recent_sum_integral_squares_;
+}
+
+double GapDopplerConsistency::recentDopplerIntegralRms() const
+{
+  if (recent_.empty())
+    return kNaN;
+  return std::sqrt(std::max(0.0, recent_sum_integral_squares_) / static_cast<double>(recent_.size()));
+}
+
+bool receiversLookSwapped(double gap_per_doppler_slope, double doppler_integral_rms_m, std::size_t windows)
+{
+  constexpr std::size_t kMinWindows = 10;
+  constexpr double kMinDopplerIntegralRmsM = 1.0;
+  constexpr double kSwappedSlopeBelow = -0.5;
+  return windows >= kMinWindows && doppler_integral_rms_m >= kMinDopplerIntegralRmsM &&
+         gap_per_doppler_slope < kSwappedSlopeBelow;
 }
 
 ConsistencySummary gapDopplerConsistency(const std::vector<double>& time_s, const std::vector<double>& gap_m,

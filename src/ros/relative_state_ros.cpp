@@ -142,6 +142,12 @@ void RelativeStateRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& sta
                     "since last report: %lu unpaired epochs, %lu dropouts, %lu time resets, %lu invalid samples",
                     static_cast<unsigned long>(new_unpaired), static_cast<unsigned long>(new_dropouts),
                     static_cast<unsigned long>(new_resets), static_cast<unsigned long>(new_invalid));
+  else if (const GapDopplerConsistency& check = estimator_.consistency();
+           receiversLookSwapped(check.recentGapPerDopplerSlope(), check.recentDopplerIntegralRms(), check.recentWindows()))
+    status.summaryf(diagnostic_msgs::DiagnosticStatus::ERROR,
+                    "the gap grows where the Doppler speeds say the cars close in (slope %.2f over the last %zu "
+                    "windows, 1 for a leader ahead): are the leader and follower receivers swapped?",
+                    check.recentGapPerDopplerSlope(), check.recentWindows());
   else if (std::isfinite(last_state_.gap_doppler_residual_m) && last_state_.gap_doppler_residual_m > node_settings_.consistency_warn_m)
     status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN, "gap disagrees with Doppler speeds: %.2f m RMS",
                     last_state_.gap_doppler_residual_m);

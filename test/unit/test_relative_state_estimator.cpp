@@ -108,6 +108,32 @@ TEST(RelativeStateEstimator, ConsistencyFigureSeesAPositionErrorTheDopplerDoesNo
   EXPECT_GT(states.back().gap_doppler_residual_m, 0.3);
 }
 
+// Receivers given the other way round (the follower's fixes as the leader's): the gap is the same
+// distance, the relative speed changes its sign, so over the recent windows the gap's change
+// follows the relative speed's integral with a slope of -1, and the one rule (batch and the node's
+// diagnostics) says swapped; the right way round it says 1, not swapped. Fails if the slope or
+// the rule does not tell the two apart.
+TEST(RelativeStateEstimator, ReceiversTheOtherWayRoundAreToldByTheGapAgainstTheDoppler)
+{
+  for (const bool swapped : {false, true})
+  {
+    acc::RelativeStateEstimator estimator(settingsWithOffset());
+    run(estimator, straightDrive(), 30.0, [swapped](double, acc::GnssFix& leader, acc::GnssFix& follower) {
+      if (swapped)
+        std::swap(leader, follower);
+    });
+    const acc::GapDopplerConsistency& check = estimator.consistency();
+    EXPECT_NEAR(check.recentGapPerDopplerSlope(), swapped ? -1.0 : 1.0, 0.05) << swapped;
+    EXPECT_GT(check.recentDopplerIntegralRms(), 1.0);
+    EXPECT_EQ(acc::receiversLookSwapped(check.recentGapPerDopplerSlope(), check.recentDopplerIntegralRms(),
+                                        check.recentWindows()),
+              swapped);
+  }
+  // Too little relative motion decides nothing, whatever the slope.
+  EXPECT_FALSE(acc::receiversLookSwapped(-1.0, 0.5, 100));
+  EXPECT_FALSE(acc::receiversLookSwapped(-1.0, 5.0, 9));
+}
+
 TEST(RelativeStateEstimator, ImpossibleJumpIsRejectedAndSaidSo)
 {
   acc::RelativeStateEstimator estimator(settingsWithOffset());

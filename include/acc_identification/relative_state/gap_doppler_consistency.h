@@ -24,6 +24,12 @@ public:
   double add(double time_s, double gap_m, double relative_speed_mps);
   /// RMS of the residuals of the windows that ended in the last W seconds; NaN when none.
   double recentRms() const;
+  /// Over the same recent windows: the gap's change per metre of the relative speed's integral
+  /// (least squares through 0; 1 for a leader ahead, -1 for receivers the other way round) and
+  /// the integrals' RMS [m], how much the slope has to go on. NaN when none.
+  double recentGapPerDopplerSlope() const;
+  double recentDopplerIntegralRms() const;
+  std::size_t recentWindows() const { return recent_.size(); }
   /// The last full window's two sides: the gap's change and the relative speed's integral [m]
   /// (NaN before the first full window).
   double lastGapChangeM() const { return last_gap_change_m_; }
@@ -42,6 +48,8 @@ private:
   {
     double time_s;
     double residual_m;
+    double gap_change_m;
+    double doppler_integral_m;
   };
 
   double window_s_;
@@ -49,6 +57,8 @@ private:
   std::deque<Sample> history_;
   std::deque<Residual> recent_;
   double recent_sum_squares_ = 0.0;
+  double recent_sum_cross_ = 0.0;           ///< gap change times Doppler integral
+  double recent_sum_integral_squares_ = 0.0;
   double last_gap_change_m_ = std::numeric_limits<double>::quiet_NaN();
   double last_doppler_integral_m_ = std::numeric_limits<double>::quiet_NaN();
 };
@@ -65,6 +75,13 @@ struct ConsistencySummary
   /// RMS of the windows' relative-speed integrals [m]: how much the slope has to go on.
   double doppler_integral_rms_m = std::numeric_limits<double>::quiet_NaN();
 };
+/// The one rule, batch (nmea_to_csv) and live (relative_state_node's diagnostics), for receivers
+/// given the other way round: the gap is a distance, the same either way, while the relative
+/// speed changes its sign, so the gap's change follows the relative speed's integral with a slope
+/// near -1 instead of 1. Decided only where the relative speed moved the gap by a metre or more
+/// (RMS) over ten windows or more, at a slope below -0.5.
+bool receiversLookSwapped(double gap_per_doppler_slope, double doppler_integral_rms_m, std::size_t windows);
+
 ConsistencySummary gapDopplerConsistency(const std::vector<double>& time_s, const std::vector<double>& gap_m,
                                          const std::vector<double>& relative_speed_mps, double window_s = 10.0,
                                          double max_spacing_s = 0.5);

@@ -81,6 +81,8 @@ public:
   /// The most states one addLeader or addFollower can complete (one per pair).
   std::size_t mostStatesAtOnce() const { return pairer_.mostPairsAtOnce(); }
   const RelativeStateCounters& counters() const { return counters_; }
+  /// The gap-versus-Doppler check of the recent valid states (for the diagnostics).
+  const GapDopplerConsistency& consistency() const { return consistency_; }
   const RelativeStateSettings& settings() const { return settings_; }
 
 private:
