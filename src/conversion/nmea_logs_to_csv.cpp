@@ -51,6 +51,7 @@ nlohmann::json statisticsJson(const NmeaStatistics& s)
           {"sentences_ok", s.sentences_ok},
           {"bad_checksum", s.bad_checksum},
           {"malformed", s.malformed},
+          {"without_checksum", s.without_checksum},
           {"unsupported", s.unsupported},
           {"stray_bytes", s.stray_bytes},
           {"stray_lines", s.stray_lines},
@@ -181,17 +182,22 @@ std::string noStateReason(const RelativeStateLogs& logs)
     return "";
   const PairingCounters& p = logs.pairing;
   // A log whose every fix is unusable pairs nothing however the two overlap: say that, not overlap.
-  const auto unusable = [](const std::string& car, std::uint64_t fixes, std::uint64_t invalid) -> std::string {
+  const auto unusable = [](const std::string& car, std::uint64_t fixes, std::uint64_t invalid,
+                           const NmeaStatistics& log) -> std::string {
     if (fixes == 0)
-      return "the " + car + "'s log gave no fix: does it hold GGA or RMC sentences with a time?";
+      return "the " + car + "'s log gave no fix: does it hold GGA or RMC sentences with a time?" +
+             (log.without_checksum > 0 ? " " + std::to_string(log.without_checksum) + " of its " +
+                                             std::to_string(log.lines) +
+                                             " lines have no checksum *hh, which every sentence needs here"
+                                       : std::string());
     if (invalid == fixes)
       return "none of the " + car + "'s " + std::to_string(fixes) +
              " fixes has a usable position and time (no fix: GGA quality 0 or RMC status V, as a receiver without "
              "satellites or in simulation mode reports; or a position off the Earth)";
     return "";
   };
-  for (const std::string& reason : {unusable("leader", p.leader_fixes, p.leader_invalid_fixes),
-                                    unusable("follower", p.follower_fixes, p.follower_invalid_fixes)})
+  for (const std::string& reason : {unusable("leader", p.leader_fixes, p.leader_invalid_fixes, logs.leader_log),
+                                    unusable("follower", p.follower_fixes, p.follower_invalid_fixes, logs.follower_log)})
     if (!reason.empty())
       return reason;
   return "no follower epoch could be paired with the leader (" + std::to_string(p.follower_fixes) + " follower and " +

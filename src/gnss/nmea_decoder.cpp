@@ -19,6 +19,8 @@ void NmeaDecoder::handleLine(std::string_view line, double receive_time_s)
   NmeaSentence sentence;
   const NmeaParseOutcome outcome = parseNmeaSentence(line, sentence);
   counts_.count(outcome);
+  if (outcome == NmeaParseOutcome::kMalformed && lacksChecksumField(line))
+    ++counts_.without_checksum;
   if (on_line_)
     on_line_(line, outcome);
   if (outcome == NmeaParseOutcome::kOk)

@@ -52,12 +52,14 @@ TimedNmeaLog readTimedNmeaLog(const std::string& path, const NmeaLineTiming& tim
   }
   std::vector<RawLine> raw;
   std::optional<std::size_t> first_dated;
+  std::size_t without_checksum = 0;
   for (std::string text; std::getline(in, text);)
   {
     while (!text.empty() && (text.back() == '\r' || text.back() == '\n'))
       text.pop_back();
     if (text.empty())
       continue;
+    without_checksum += lacksChecksumField(text) ? 1 : 0;
     RawLine line{text, std::nullopt, std::nullopt};
     double time_of_day_s = 0.0;
     if (nmeaLineTimeOfDay(text, time_of_day_s))
@@ -72,6 +74,9 @@ TimedNmeaLog readTimedNmeaLog(const std::string& path, const NmeaLineTiming& tim
   if (!first_dated)
   {
     log.error = path + ": no line carries a date (RMC or ZDA), so the lines cannot be given UTC times";
+    if (without_checksum > 0)
+      log.error += " (" + std::to_string(without_checksum) + " of its " + std::to_string(raw.size()) +
+                   " lines have no checksum *hh, which every sentence needs here)";
     return log;
   }
 

@@ -447,4 +447,9 @@ bool nmeaLineTimeOfDay(std::string_view line, double& time_of_day_s)
   return readTimeOfDay(time_field, time_of_day_s) == FieldStatus::kOk;
 }
 
+bool lacksChecksumField(std::string_view line)
+{
+  return !line.empty() && (line.front() == '$' || line.front() == '!') && line.find('*') == std::string_view::npos;
+}
+
 }  // namespace acc

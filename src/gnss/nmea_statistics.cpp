@@ -20,7 +20,10 @@ std::string NmeaStatistics::summary() const
 {
   std::ostringstream out;
   out << lines << " lines: " << sentences_ok << " ok, " << bad_checksum << " bad checksum, " << malformed
-      << " malformed, " << unsupported << " unsupported; " << stray_bytes << " stray bytes, " << stray_lines
+      << " malformed";
+  if (without_checksum > 0)
+    out << " (" << without_checksum << " without a checksum *hh, which every sentence needs here)";
+  out << ", " << unsupported << " unsupported; " << stray_bytes << " stray bytes, " << stray_lines
       << " stray lines, " << cut_lines << " cut lines, " << overlong_lines << " overlong lines; " << fixes
       << " fixes, " << epochs_without_time << " epochs without time, " << date_lag_corrections
       << " date lag corrections";

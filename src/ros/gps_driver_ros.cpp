@@ -487,6 +487,7 @@ void GpsDriverRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("sentences ok", s.sentences_ok);
   status.add("bad checksum", s.bad_checksum);
   status.add("malformed", s.malformed);
+  status.add("malformed without a checksum", s.without_checksum);
   status.add("unsupported", s.unsupported);
   status.add("stray bytes", s.stray_bytes);
   status.add("overlong lines", s.overlong_lines);

@@ -470,3 +470,24 @@ TEST(GnssEpochReorder, AStreamWithoutSpeedIsNotHeldBack)
     EXPECT_EQ(link.fixes.size(), static_cast<std::size_t>(k + 1)) << "epoch " << k << " waited";
   }
 }
+
+// A sentence without its checksum field is malformed (the parser requires "*hh"), and counted
+// apart, so that a whole log written without checksums is explained rather than called malformed
+// line by line. Fails if such lines are not counted, or lines with a bad checksum are.
+TEST(GnssEpoch, SentencesWithoutAChecksumAreCountedApart)
+{
+  const auto d = decode({joinLines({
+      "$GNGGA,000000.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,",
+      "$GNGGA,000000.10,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*00",
+      "$GNGGA,000000.20,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*4C",
+  })});
+  EXPECT_EQ(d.statistics.malformed, 1u);
+  EXPECT_EQ(d.statistics.without_checksum, 1u);
+  EXPECT_EQ(d.statistics.bad_checksum, 1u);
+  EXPECT_EQ(d.fixes.size(), 1u);
+  EXPECT_NE(d.statistics.summary().find("1 malformed (1 without a checksum *hh"), std::string::npos)
+      << d.statistics.summary();
+  EXPECT_TRUE(acc::lacksChecksumField("$GPVTG,77.52,T,,M,0.004,N,0.008,K,A"));
+  EXPECT_FALSE(acc::lacksChecksumField("$GPVTG,77.52,T,,M,0.004,N,0.008,K,A*06"));
+  EXPECT_FALSE(acc::lacksChecksumField("binary noise"));
+}

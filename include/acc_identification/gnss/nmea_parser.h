@@ -29,6 +29,11 @@ const char* toString(NmeaParseOutcome outcome);
 /// content is unspecified.
 NmeaParseOutcome parseNmeaSentence(std::string_view line, NmeaSentence& sentence);
 
+/// Whether a line that starts as a sentence ('$' or '!') has no checksum field at all ("*hh"):
+/// what a malformed line most often lacks in logs written by hand or by tools that drop it, said
+/// apart so that a whole log of them is explained.
+bool lacksChecksumField(std::string_view line);
+
 /// The UTC time of day a line carries, if it is one of the timed types and its time field is
 /// readable (no checksum check): used to pace the replay of logs.
 bool nmeaLineTimeOfDay(std::string_view line, double& time_of_day_s);

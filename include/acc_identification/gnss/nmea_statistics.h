@@ -14,6 +14,7 @@ struct NmeaStatistics
   std::uint64_t sentences_ok = 0;
   std::uint64_t bad_checksum = 0;
   std::uint64_t malformed = 0;
+  std::uint64_t without_checksum = 0;  ///< of the malformed: sentences with no "*hh" at all
   std::uint64_t unsupported = 0;
   std::uint64_t stray_bytes = 0;    ///< bytes outside any '$' line (noise, binary UBX, ...)
   std::uint64_t stray_lines = 0;    ///< input lines of stray bytes only, dropped
