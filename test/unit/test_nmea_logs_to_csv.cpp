@@ -109,6 +109,7 @@ TEST(NmeaLogsToCsv, LogsGivenTheWrongWayRoundAreRefusedAndNothingIsWritten)
   EXPECT_NE(swapped.error.find("the LEADER log is of the car behind. Are the two logs swapped?"), std::string::npos)
       << swapped.error;
   EXPECT_NE(swapped.error.find("slope -"), std::string::npos) << swapped.error;
+  EXPECT_NE(swapped.error.find("Give the car ahead's log first"), std::string::npos) << swapped.error;  // whole
   EXPECT_FALSE(fs::exists(folder.file("run.csv")));
 }
 

@@ -7,13 +7,17 @@ namespace acc
 {
 /// Numbers in the package's texts (reasons, notes, tables), written one way everywhere.
 
-/// printf into a std::string: every reason is a short sentence with its numbers (at most 255
-/// characters).
+/// printf into a std::string: a reason or note, a sentence with its numbers, whole whatever its
+/// length (it was cut at 255 characters, mid-word, without a sign).
 template <typename... Args>
 std::string printfText(const char* pattern, Args... args)
 {
-  char text[256];
-  std::snprintf(text, sizeof text, pattern, args...);
+  const int length = std::snprintf(nullptr, 0, pattern, args...);
+  if (length <= 0)
+    return "";
+  std::string text(static_cast<std::size_t>(length) + 1, '\0');
+  std::snprintf(text.data(), text.size(), pattern, args...);
+  text.resize(static_cast<std::size_t>(length));
   return text;
 }
 
