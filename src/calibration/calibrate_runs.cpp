@@ -18,7 +18,8 @@ std::vector<CarFollowingRun> runsOf(const std::vector<CalibrationInput>& inputs)
   return runs;
 }
 
-std::string describeRepeatedInput(const std::vector<CalibrationInput>& inputs, const std::vector<std::size_t>& input_of)
+std::string describeRepeatedInput(const std::vector<CalibrationInput>& inputs,
+                                  const std::vector<std::size_t>& input_of)
 {
   std::vector<std::string> path_of_run;
   for (const CalibrationInput& item : inputs)
@@ -240,8 +241,8 @@ CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& all_inputs,
   for (const std::string& why : fitted.left_out)
     log << "note: " << why << ": left out of the fit and its scores\n";
   if (fitted.used.empty())
-    return unfitted(all_inputs, fitted.left_out.empty() ? "no run" : fitted.left_out.front(), IdentifiabilityCriteria{}.min_speed_std_mps, inputs_read,
-                    settings, out, log);
+    return unfitted(all_inputs, fitted.left_out.empty() ? "no run" : fitted.left_out.front(),
+                    IdentifiabilityCriteria{}.min_speed_std_mps, inputs_read, settings, out, log);
   const std::vector<CalibrationInput>& inputs = fitted.used;
   std::vector<CarFollowingRun>& training = fitted.training;
   std::vector<CarFollowingRun>& testing = fitted.testing;
@@ -317,8 +318,9 @@ bool writeCalibrationReport(const std::string& dir, const CalibrateOutcome& outc
   try
   {
     if (outcome.report)
-      writeFitTracesCsv(fitTraces(outcome.report->calibration.parameters, outcome.run_names, outcome.training, outcome.testing),
-                        dir + "/fit_traces.csv");
+      writeFitTracesCsv(
+          fitTraces(outcome.report->calibration.parameters, outcome.run_names, outcome.training, outcome.testing),
+          dir + "/fit_traces.csv");
   }
   catch (const std::exception& error)
   {

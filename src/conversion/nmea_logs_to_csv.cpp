@@ -97,8 +97,8 @@ std::string describeSwappedLogs(const std::vector<RelativeState>& states, const 
     gap_m.push_back(s.valid ? s.space_gap_m : std::numeric_limits<double>::quiet_NaN());
     relative_speed_mps.push_back(s.relative_speed_mps);
   }
-  const ConsistencySummary summary = gapDopplerConsistency(time_s, gap_m, relative_speed_mps,
-                                                           settings.consistency_window_s, settings.pairing.dropout_gap_s);
+  const ConsistencySummary summary = gapDopplerConsistency(
+      time_s, gap_m, relative_speed_mps, settings.consistency_window_s, settings.pairing.dropout_gap_s);
   if (!receiversLookSwapped(summary.gap_per_doppler_slope, summary.doppler_integral_rms_m, summary.windows))
     return "";
   return printfText("the gap grows where the speeds say the cars close in (its change against the relative speed's "
@@ -196,8 +196,9 @@ std::string noStateReason(const RelativeStateLogs& logs)
              "satellites or in simulation mode reports; or a position off the Earth)";
     return "";
   };
-  for (const std::string& reason : {unusable("leader", p.leader_fixes, p.leader_invalid_fixes, logs.leader_log),
-                                    unusable("follower", p.follower_fixes, p.follower_invalid_fixes, logs.follower_log)})
+  for (const std::string& reason :
+       {unusable("leader", p.leader_fixes, p.leader_invalid_fixes, logs.leader_log),
+        unusable("follower", p.follower_fixes, p.follower_invalid_fixes, logs.follower_log)})
     if (!reason.empty())
       return reason;
   return "no follower epoch could be paired with the leader (" + std::to_string(p.follower_fixes) + " follower and " +

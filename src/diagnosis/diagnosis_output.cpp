@@ -374,9 +374,9 @@ void writeDiagnosisTables(const DiagnosisResult& r, const std::string& dir)
       const SimulatedFollower& a = after.test_simulations[i];
       for (std::size_t k = 0; k < run.size(); ++k)
       {
-        out << csvQuoted(run.name) << ',' << run.time_s[k] << ',' << regimeName(regimes[k]) << ',' << run.follower_speed_mps[k]
-            << ',' << run.space_gap_m[k] << ',' << b.speed_mps[k] << ',' << b.space_gap_m[k] << ',' << a.speed_mps[k]
-            << ',' << a.space_gap_m[k] << '\n';
+        out << csvQuoted(run.name) << ',' << run.time_s[k] << ',' << regimeName(regimes[k]) << ','
+            << run.follower_speed_mps[k] << ',' << run.space_gap_m[k] << ',' << b.speed_mps[k] << ','
+            << b.space_gap_m[k] << ',' << a.speed_mps[k] << ',' << a.space_gap_m[k] << '\n';
       }
     }
   }
@@ -389,8 +389,8 @@ void writeDiagnosisTables(const DiagnosisResult& r, const std::string& dir)
       const SimulatedFollower a = simulateFollower(after.fit.base, after.fit.settings, run);
       for (std::size_t k = 0; k < run.size(); ++k)
       {
-        out << csvQuoted(run.name) << ',' << run.time_s[k] << ',' << run.follower_speed_mps[k] << ',' << b.speed_mps[k] << ','
-            << a.speed_mps[k] << '\n';
+        out << csvQuoted(run.name) << ',' << run.time_s[k] << ',' << run.follower_speed_mps[k] << ','
+            << b.speed_mps[k] << ',' << a.speed_mps[k] << '\n';
       }
     }
   }

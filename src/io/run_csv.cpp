@@ -64,6 +64,16 @@ std::optional<ColumnMap> mapColumns(const std::vector<std::string>& header)
   return map;
 }
 
+/// The first name the header gives two columns: such a column would be read from its first place
+/// alone, the other silently not.
+std::optional<std::string> columnNamedTwice(const std::vector<std::string>& header)
+{
+  for (auto name = header.begin(); name != header.end(); ++name)
+    if (!name->empty() && std::find(header.begin(), name, *name) != name)
+      return *name;
+  return std::nullopt;
+}
+
 std::optional<double> parseNumber(const std::string& text)
 {
   if (text.empty() || writtenInHexadecimal(text))
@@ -289,31 +299,28 @@ RunFileContents readCanonicalFile(const std::string& path, const RunPlausibility
   std::string line;
   std::size_t line_number = 0;
   std::optional<ColumnMap> map;
+  std::vector<std::string> header;
   // The header is the first line that names the four columns.
   while (!map && std::getline(file, line))
   {
     ++line_number;
-    map = mapColumns(splitCsvFields(line_number == 1 ? withoutByteOrderMark(line) : line));
+    header = splitCsvFields(line_number == 1 ? withoutByteOrderMark(line) : line);
+    map = mapColumns(header);
     if (line_number > 20 && !map)
     {
       break;
     }
   }
-  if (map)
-  {
-    // A column named twice would be read from its first place alone, the other silently not.
-    const std::vector<std::string> header = splitCsvFields(line_number == 1 ? withoutByteOrderMark(line) : line);
-    for (std::size_t i = 0; i < header.size(); ++i)
-      if (!header[i].empty() && std::find(header.begin(), header.begin() + static_cast<long>(i), header[i]) !=
-                                    header.begin() + static_cast<long>(i))
-        throw RunReadError(path + ":" + std::to_string(line_number) + ": the header names column '" + header[i] +
-                           "' twice: which one holds the data is not said");
-  }
-  else
+  if (!map)
   {
     throw RunReadError(path + ": no header with time_s,space_gap_m,follower_speed_mps,leader_speed_mps in the "
                               "first 20 lines, and no OpenACC Date line or Time,Speed1,... header first" +
                        separatorHint(path));
+  }
+  if (const std::optional<std::string> twice = columnNamedTwice(header))
+  {
+    throw RunReadError(path + ":" + std::to_string(line_number) + ": the header names column '" + *twice +
+                       "' twice: which one holds the data is not said");
   }
   RunAssembler assembler(path, std::filesystem::path(path).stem().string(), "", bounds, contents);
   while (std::getline(file, line))

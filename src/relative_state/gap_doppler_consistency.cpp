@@ -23,7 +23,6 @@ void GapDopplerConsistency::reset()
   history_.clear();
   recent_.clear();
   recent_sum_squares_ = recent_sum_cross_ = recent_sum_integral_squares_ = 0.0;
-  last_gap_change_m_ = last_doppler_integral_m_ = kNaN;
 }
 
 double GapDopplerConsistency::add(double time_s, double gap_m, double relative_speed_mps)
@@ -48,7 +47,7 @@ double GapDopplerConsistency::add(double time_s, double gap_m, double relative_s
   while (!recent_.empty() && recent_.front().time_s <= time_s - window_s_)
   {
     const Residual& old = recent_.front();
-    recent_sum_squares_ -= old.residual_m * old.residual_m;
+    recent_sum_squares_ -= old.residual_m() * old.residual_m();
     recent_sum_cross_ -= old.gap_change_m * old.doppler_integral_m;
     recent_sum_integral_squares_ -= old.doppler_integral_m * old.doppler_integral_m;
     recent_.pop_front();
@@ -57,13 +56,12 @@ double GapDopplerConsistency::add(double time_s, double gap_m, double relative_s
   double span_s = time_s - start.time_s;
   if (span_s < window_s_ - kTimeTolerance_s || span_s > window_s_ + max_spacing_s_)
     return kNaN;
-  last_gap_change_m_ = gap_m - start.gap_m;
-  last_doppler_integral_m_ = sample.integral_m - start.integral_m;
-  double residual_m = last_gap_change_m_ - last_doppler_integral_m_;
-  recent_.push_back({time_s, residual_m, last_gap_change_m_, last_doppler_integral_m_});
+  const Residual window{time_s, gap_m - start.gap_m, sample.integral_m - start.integral_m};
+  const double residual_m = window.residual_m();
+  recent_.push_back(window);
   recent_sum_squares_ += residual_m * residual_m;
-  recent_sum_cross_ += last_gap_change_m_ * last_doppler_integral_m_;
-  recent_sum_integral_squares_ += last_doppler_integral_m_ * last_doppler_integral_m_;
+  recent_sum_cross_ += window.gap_change_m * window.doppler_integral_m;
+  recent_sum_integral_squares_ += window.doppler_integral_m * window.doppler_integral_m;
   return residual_m;
 }
 

@@ -112,8 +112,8 @@ json equilibriumFigure(const FigureRequest& request)
     }
     for (std::size_t k = 0; k < run.size(); ++k)
     {
-      csv.row() << csvQuoted(run.name) << ',' << run.time_s[k] << ',' << run.follower_speed_mps[k] << ',' << run.space_gap_m[k]
-                << ',' << (is_steady[k] ? 1 : 0) << '\n';
+      csv.row() << csvQuoted(run.name) << ',' << run.time_s[k] << ',' << run.follower_speed_mps[k] << ','
+                << run.space_gap_m[k] << ',' << (is_steady[k] ? 1 : 0) << '\n';
     }
     const auto [slowest, fastest] = std::minmax_element(run.follower_speed_mps.begin(), run.follower_speed_mps.end());
     json entry = {{"run", run.name}, {"samples", run.size()}, {"steady_samples", regression.steady.size()},

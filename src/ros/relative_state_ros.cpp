@@ -143,7 +143,8 @@ void RelativeStateRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& sta
                     static_cast<unsigned long>(new_unpaired), static_cast<unsigned long>(new_dropouts),
                     static_cast<unsigned long>(new_resets), static_cast<unsigned long>(new_invalid));
   else if (const GapDopplerConsistency& check = estimator_.consistency();
-           receiversLookSwapped(check.recentGapPerDopplerSlope(), check.recentDopplerIntegralRms(), check.recentWindows()))
+           receiversLookSwapped(check.recentGapPerDopplerSlope(), check.recentDopplerIntegralRms(),
+                                check.recentWindows()))
     status.summaryf(diagnostic_msgs::DiagnosticStatus::ERROR,
                     "the gap grows where the Doppler speeds say the cars close in (slope %.2f over the last %zu "
                     "windows, 1 for a leader ahead): are the leader and follower receivers swapped?",

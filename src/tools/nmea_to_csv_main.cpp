@@ -63,7 +63,8 @@ int main(int argc, char** argv)
   app.add_option("FOLLOWER", follower_path, "follower's NMEA log")->required()->check(CLI::ExistingFile);
   app.add_option("OUT", out_path, "run CSV to write")->required();
   CLI11_PARSE(app, argc, argv);
-  if (!acc::outputsLeaveInputsAlone({leader_path, follower_path, options.params_path}, {out_path, json_path}, std::cerr))
+  if (!acc::outputsLeaveInputsAlone({leader_path, follower_path, options.params_path}, {out_path, json_path},
+                                    std::cerr))
     return 2;
   acc::RelativeStateSettings settings;
   std::string unread_note;

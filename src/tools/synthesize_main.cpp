@@ -104,9 +104,10 @@ int main(int argc, char** argv)
   app.add_option("--start-lat", options.start_latitude_deg, "where the road starts [deg]")
       ->check(CLI::Range(-89.0, 89.0))->capture_default_str();
   app.add_option("--start-lon", options.start_longitude_deg, "[deg]")->check(CLI::Range(-180.0, 180.0))->capture_default_str();
-  app.add_option("--start-alt", options.start_altitude_m, "[m]")->check(acc::finiteNumber("METRES"))->capture_default_str();
-  auto* heading_option =
-      app.add_option("--start-heading-deg", heading_deg, "[deg]")->check(acc::finiteNumber("DEGREES"))->capture_default_str();
+  app.add_option("--start-alt", options.start_altitude_m, "[m]")
+      ->check(acc::finiteNumber("METRES"))->capture_default_str();
+  auto* heading_option = app.add_option("--start-heading-deg", heading_deg, "[deg]")
+                             ->check(acc::finiteNumber("DEGREES"))->capture_default_str();
   app.add_option("--position-sigma", options.errors.horizontal_sigma_m, "GNSS position error [m]")
       ->check(acc::nonNegativeNumber())->capture_default_str();
   app.add_option("--speed-sigma", options.errors.speed_sigma_mps, "GNSS speed error [m/s]")

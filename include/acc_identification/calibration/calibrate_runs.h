@@ -97,6 +97,7 @@ std::vector<CarFollowingRun> runsOf(const std::vector<CalibrationInput>& inputs)
 
 /// describeRepeatedRun (io/repeated_recording.h) of these runs, each named by its file,
 /// `input_of[k]` numbering the input run k came from: "" when no run repeats one of an earlier input.
-std::string describeRepeatedInput(const std::vector<CalibrationInput>& inputs, const std::vector<std::size_t>& input_of);
+std::string describeRepeatedInput(const std::vector<CalibrationInput>& inputs,
+                                  const std::vector<std::size_t>& input_of);
 
 }  // namespace acc

@@ -30,10 +30,10 @@ public:
   double recentGapPerDopplerSlope() const;
   double recentDopplerIntegralRms() const;
   std::size_t recentWindows() const { return recent_.size(); }
-  /// The last full window's two sides: the gap's change and the relative speed's integral [m]
-  /// (NaN before the first full window).
-  double lastGapChangeM() const { return last_gap_change_m_; }
-  double lastDopplerIntegralM() const { return last_doppler_integral_m_; }
+  /// The latest recent full window's two sides: the gap's change and the relative speed's integral
+  /// [m] (NaN when no recent window; right after add() returned a residual, that window's).
+  double lastGapChangeM() const { return recent_.empty() ? kNoWindow : recent_.back().gap_change_m; }
+  double lastDopplerIntegralM() const { return recent_.empty() ? kNoWindow : recent_.back().doppler_integral_m; }
   void reset();
 
 private:
@@ -44,12 +44,13 @@ private:
     double relative_speed_mps;
     double integral_m;  // of the relative speed since the first sample
   };
+  /// One full window ending at time_s: its two sides, whose difference is its residual.
   struct Residual
   {
     double time_s;
-    double residual_m;
     double gap_change_m;
     double doppler_integral_m;
+    double residual_m() const { return gap_change_m - doppler_integral_m; }
   };
 
   double window_s_;
@@ -59,8 +60,7 @@ private:
   double recent_sum_squares_ = 0.0;
   double recent_sum_cross_ = 0.0;           ///< gap change times Doppler integral
   double recent_sum_integral_squares_ = 0.0;
-  double last_gap_change_m_ = std::numeric_limits<double>::quiet_NaN();
-  double last_doppler_integral_m_ = std::numeric_limits<double>::quiet_NaN();
+  static constexpr double kNoWindow = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The consistency of a whole series, same windows as GapDopplerConsistency.
