@@ -12,8 +12,10 @@ Errors raise the tools' messages (ValueError for bad input, RuntimeError otherwi
 release the GIL, so threads can run several at once. The generated ROS messages stay where catkin
 puts them: acc_identification.msg.
 """
+import hashlib
 import json
 import math
+import os
 import sys
 
 from acc_identification import _core
@@ -32,11 +34,17 @@ def read_run(path, follower=None, all_pairs=False, max_gap_s=0.5, topic="relativ
     --acc-engaged-timeout; and where the ACC's setting changes: acc_setting keeps one setting's
     samples, as --acc-setting). The reader's notes go to stderr, as the tools
     print them. attrs: path, openacc_pairs (the pair(s) read), segment_names, input_account (the
-    reader's format and counts, which calibrate and diagnose put in their JSON's inputs_read)."""
+    reader's format and counts, which calibrate and diagnose put in their JSON's inputs_read), and
+    what tells whether the rows are still those read (a frame changed after reading is judged row
+    by row again, with this max_gap_s)."""
     import pandas
 
-    read = _core.read_run(str(path), follower or "", all_pairs, max_gap_s, topic, acc_engaged_topic,
-                          require_acc_engaged, acc_engaged_timeout_s, acc_setting or "")
+    _check("max_gap_s", max_gap_s)
+    _check("acc_engaged_timeout_s", acc_engaged_timeout_s)
+    if os.path.isdir(str(path)):
+        raise ValueError("%s is a folder: read_run reads one run file (campaign takes folders)" % (path,))
+    read = _core.read_run(str(path), "" if follower is None else str(follower), all_pairs, max_gap_s, topic,
+                          acc_engaged_topic, require_acc_engaged, acc_engaged_timeout_s, acc_setting or "")
     if read["log"]:
         sys.stderr.write(read["log"])
     frames = []
@@ -47,8 +55,24 @@ def read_run(path, follower=None, all_pairs=False, max_gap_s=0.5, topic="relativ
     frame = pandas.concat(frames, ignore_index=True)
     account = read["account"]
     frame.attrs = {"path": str(path), "openacc_pairs": list(account["openacc_pairs"]),
-                   "segment_names": [run["name"] for run in read["runs"]], "input_account": account}
+                   "segment_names": [run["name"] for run in read["runs"]], "input_account": account,
+                   "max_gap_s": max_gap_s, "rows_as_read": _fingerprint(frame)}
     return frame
+
+
+def _check(name, value):
+    """A keyword argument checked by the tool's own rule for the same option (None: not given)."""
+    if value is not None:
+        if isinstance(value, bool):
+            raise ValueError("%s: a number, not %r" % (name.split()[-1], value))
+        _core.check_option(name, repr(value) if isinstance(value, float) else str(value))
+    return value
+
+
+def _fingerprint(frame):
+    """What tells the rows read_run returned from rows changed after (cut, filtered, edited)."""
+    columns = [name for name in ("segment",) + COLUMNS if name in frame.columns]
+    return hashlib.sha1(frame[columns].to_numpy(dtype=float, na_value=math.nan).tobytes()).hexdigest()
 
 
 def pair_nmea_logs(leader_log, follower_log, out_csv, antenna_offset_m=None, leader_antenna_to_rear_bumper_m=None,
@@ -88,70 +112,136 @@ def _inputs(frames, first_number=1):
     return [frame.attrs.get("path", "DataFrame %d" % (number + first_number)) for number, frame in enumerate(frames)]
 
 
+def _as_read(frame):
+    """Whether a frame holds exactly the rows read_run returned (no row cut, added or changed)."""
+    return bool(frame.attrs.get("input_account")) and frame.attrs.get("rows_as_read") == _fingerprint(frame)
+
+
 def _account(frame, path):
     """What the JSON's inputs_read says of a frame: read_run's account while the frame keeps the rows
     it read; otherwise format "dataframe" without counts (they would not be this frame's)."""
-    account = frame.attrs.get("input_account")
+    if _as_read(frame):
+        return {**frame.attrs["input_account"], "path": path}
     pairs = list(frame.attrs.get("openacc_pairs") or [])
-    if account and account["counts"].get("samples_used") == len(frame):
-        return {**account, "path": path}
     return {"path": path, "format": "dataframe", "openacc_pairs": pairs, "counts": {}}
 
 
-def _segments(frames, first_number=1):
-    """The C++ side's runs (one dict per segment, "input" the frame's number) and each frame's account."""
+def _column(part, name, where):
+    """One column as floats; a missing value (NaN, pandas' NA) stays NaN for the readers' rules."""
+    try:
+        return part[name].to_numpy(dtype=float, na_value=math.nan)
+    except (TypeError, ValueError) as error:
+        raise ValueError("%s: column %s is not numeric: %s" % (where, name, error)) from None
+
+
+def _segments(frames, first_number=1, max_gap_s=None):
+    """The C++ side's runs (one dict per segment, "input" the frame's number, "check" whether its
+    rows are judged again by the readers' rules, at max_gap_s or read_run's) and each frame's account."""
     runs, inputs_read = [], []
     for number, (frame, path) in enumerate(zip(frames, _inputs(frames, first_number)), start=first_number):
         missing = [name for name in COLUMNS if name not in frame.columns]
         if missing:
             raise ValueError("a run needs the columns %s; missing: %s" % (", ".join(COLUMNS), ", ".join(missing)))
-        names = frame.attrs.get("segment_names", [])
-        groups = frame.groupby("segment", sort=True) if "segment" in frame.columns else [(0, frame)]
-        for index, (_, part) in enumerate(groups):
-            name = names[index] if index < len(names) else "%s #%d" % (path, index + 1)
-            columns = {column: part[column].to_numpy(dtype=float) for column in COLUMNS}
-            runs.append({"name": name, "path": path, "input": number, **columns})
+        twice = sorted({name for name in frame.columns[frame.columns.duplicated()] if name in COLUMNS + ("segment",)})
+        if twice:
+            raise ValueError("%s: column(s) %s named twice: which one holds the data is not said" % (path, ", ".join(twice)))
+        as_read = _as_read(frame)
+        where = path if path.startswith("DataFrame") else "%s (DataFrame row)" % path
+        for label, part in _segment_parts(frame.reset_index(drop=True), path):  # index: the row's place
+            name = _segment_name(frame, path, label)
+            columns = {column: _column(part, column, path) for column in COLUMNS}
+            runs.append({"name": name, "path": path, "input": number, "check": not as_read, "where": where,
+                         "max_gap_s": max_gap_s or frame.attrs.get("max_gap_s", 0.5), "rows": part.index.tolist(),
+                         **columns})
         inputs_read.append(_account(frame, path))
     return runs, inputs_read
 
 
+def _segment_parts(frame, path):
+    """(label, rows) of each segment in label order; a frame without the column is one segment. A
+    row without a segment belongs to none: refused rather than dropped, as groupby would."""
+    if "segment" not in frame.columns:
+        return [(None, frame)]
+    unlabelled = int(frame["segment"].isna().sum())
+    if unlabelled:
+        raise ValueError("%s: %d row(s) have no segment (NaN): give every row one, or drop the column to make "
+                         "the frame one segment" % (path, unlabelled))
+    return list(frame.groupby("segment", sort=True, observed=True))
+
+
+def _segment_name(frame, path, label):
+    """A segment's name: read_run's name of that segment (by its label, which is its number there),
+    else the frame's path and the label."""
+    names = frame.attrs.get("segment_names", [])
+    if label is None:
+        return names[0] if names else "%s #1" % path
+    if isinstance(label, (int, float)) and float(label).is_integer() and 0 <= int(label) < len(names):
+        return names[int(label)]
+    return "%s #%s" % (path, label)
+
+
+def _given(name, value, default):
+    """A keyword argument checked by the tool's rule, or the tool's default when not given."""
+    return default if _check(name, value) is None else value
+
+
+def _log(result):
+    """The notes the tool would print, to stderr, as the tool prints them."""
+    if result.get("log"):
+        sys.stderr.write(result["log"])
+
+
 def calibrate(runs, split="none", starts=None, alpha=None, seed=None, stability_test=True, verdict_every_s=None,
-              grid=None, second_opinion=True, bootstrap=None, bootstrap_below_s=None):
+              grid=None, second_opinion=True, bootstrap=None, bootstrap_below_s=None, max_gap_s=None):
     """`calibrate` on runs (DataFrames from read_run, or paths): the dict `calibrate --json` writes.
     split "half": train on the first half of each run, test on the second (the paper).
     second_opinion=False: as --no-second-opinion, no diagnosis when the model misses the data.
-    bootstrap, bootstrap_below_s: as --bootstrap and --bootstrap-below (0 replicates: none)."""
+    bootstrap, bootstrap_below_s: as --bootstrap and --bootstrap-below (0 replicates: none).
+    max_gap_s: the hole that splits a DataFrame judged row by row (your own, or one changed after
+    read_run; default: read_run's max_gap_s for the frame, else 0.5 s as the tools)."""
     if split not in ("none", "half"):
         raise ValueError("split must be 'none' or 'half', not %r" % (split,))
     defaults = _core.DEFAULTS["calibrate"]
-    segments, inputs_read = _segments(_as_frames(runs))
-    result = _core.calibrate(segments, inputs_read, split == "half", defaults["starts"] if starts is None else starts,
-                             defaults["alpha"] if alpha is None else alpha, seed, stability_test,
-                             verdict_every_s or 0.0, grid or 0, second_opinion,
-                             defaults["bootstrap"] if bootstrap is None else bootstrap,
-                             defaults["bootstrap_below_s"] if bootstrap_below_s is None else bootstrap_below_s)
+    segments, inputs_read = _segments(_as_frames(runs), max_gap_s=_check("max_gap_s", max_gap_s))
+    result = _core.calibrate(segments, inputs_read, split == "half", int(_given("starts", starts, defaults["starts"])),
+                             _given("alpha", alpha, defaults["alpha"]), _whole(_check("seed", seed)), stability_test,
+                             _given("verdict_every_s", verdict_every_s, 0.0), int(_given("grid", grid, 0)),
+                             second_opinion, int(_given("bootstrap", bootstrap, defaults["bootstrap"])),
+                             _given("bootstrap_below_s", bootstrap_below_s, defaults["bootstrap_below_s"]))
+    _log(result)
     return json.loads(result["json"])
 
 
+def _whole(value):
+    """A whole number checked by its rule (5.0 included) as the int the C++ side takes."""
+    return None if value is None else int(value)
+
+
 def diagnose(runs, train_fraction=None, effects=None, threads=None, seed=None, forward_selection=True,
-             held_out=None, bootstrap=None, bootstrap_below_s=None):
+             held_out=None, bootstrap=None, bootstrap_below_s=None, max_gap_s=None):
     """`diagnose` on runs (DataFrames from read_run, or paths): the dict `diagnose --json` writes.
     held_out (runs as `runs`): as --held-out, the runs are fitted whole and these scored whole.
-    bootstrap, bootstrap_below_s: as --bootstrap and --bootstrap-below (0 replicates: none)."""
+    bootstrap, bootstrap_below_s: as --bootstrap and --bootstrap-below (0 replicates: none).
+    max_gap_s: as calibrate's."""
     defaults = _core.DEFAULTS["diagnose"]
+    if isinstance(effects, str):
+        effects = [effects]
     frames = _as_frames(runs)
     held_out_frames = _as_frames(held_out) if held_out is not None else []
     if held_out is not None and not held_out_frames:
         raise ValueError("held_out names no run")
-    segments, inputs_read = _segments(frames)
-    held_out_segments, held_out_inputs_read = _segments(held_out_frames, len(frames) + 1)
-    return json.loads(_core.diagnose(segments, inputs_read + held_out_inputs_read, _inputs(frames),
-                                     defaults["train_fraction"] if train_fraction is None else train_fraction,
-                                     list(effects or []), defaults["threads"] if threads is None else threads,
-                                     defaults["seed"] if seed is None else seed, forward_selection,
-                                     held_out_segments, _inputs(held_out_frames, len(frames) + 1),
-                                     defaults["bootstrap"] if bootstrap is None else bootstrap,
-                                     defaults["bootstrap_below_s"] if bootstrap_below_s is None else bootstrap_below_s))
+    max_gap_s = _check("max_gap_s", max_gap_s)
+    segments, inputs_read = _segments(frames, max_gap_s=max_gap_s)
+    held_out_segments, held_out_inputs_read = _segments(held_out_frames, len(frames) + 1, max_gap_s)
+    result = _core.diagnose(segments, inputs_read + held_out_inputs_read, _inputs(frames),
+                            _given("train_fraction", train_fraction, defaults["train_fraction"]),
+                            list(effects or []), int(_given("threads", threads, defaults["threads"])),
+                            int(_given("diagnose seed", seed, defaults["seed"])), forward_selection,
+                            held_out_segments, _inputs(held_out_frames, len(frames) + 1),
+                            int(_given("bootstrap", bootstrap, defaults["bootstrap"])),
+                            _given("bootstrap_below_s", bootstrap_below_s, defaults["bootstrap_below_s"]))
+    _log(result)
+    return json.loads(result["json"])
 
 
 def campaign(paths, starts=None, threads=None, alpha=None, seed=None, platoon_check=True, platoon_diagnosis=True,
@@ -159,12 +249,15 @@ def campaign(paths, starts=None, threads=None, alpha=None, seed=None, platoon_ch
     """`campaign` on OpenACC files or folders: the dict `campaign --json` writes.
     bootstrap, bootstrap_below_s: as --bootstrap and --bootstrap-below (0 replicates: none)."""
     defaults = _core.DEFAULTS["campaign"]
-    if isinstance(paths, str):
+    if isinstance(paths, (str, os.PathLike)):
         paths = [paths]
-    return json.loads(_core.campaign([str(path) for path in paths],
-                                     defaults["starts"] if starts is None else starts,
-                                     defaults["threads"] if threads is None else threads,
-                                     defaults["alpha"] if alpha is None else alpha,
-                                     defaults["seed"] if seed is None else seed, platoon_check, platoon_diagnosis,
-                                     defaults["bootstrap"] if bootstrap is None else bootstrap,
-                                     defaults["bootstrap_below_s"] if bootstrap_below_s is None else bootstrap_below_s))
+    paths = [os.fspath(path) for path in paths]
+    if not paths:
+        raise ValueError("campaign: no file or folder given")
+    result = _core.campaign(paths, int(_given("starts", starts, defaults["starts"])),
+                            int(_given("threads", threads, defaults["threads"])),
+                            _given("alpha", alpha, defaults["alpha"]), int(_given("seed", seed, defaults["seed"])),
+                            platoon_check, platoon_diagnosis, int(_given("bootstrap", bootstrap, defaults["bootstrap"])),
+                            _given("bootstrap_below_s", bootstrap_below_s, defaults["bootstrap_below_s"]))
+    _log(result)
+    return json.loads(result["json"])

@@ -248,11 +248,26 @@ std::optional<std::string> markedInvalid(const std::vector<std::string>& fields,
   return "marked invalid" + (reason.empty() ? std::string() : ": " + reason);
 }
 
+const std::array<const char*, 4> kQuantity{"time", "space gap", "follower speed", "leader speed"};
+
+/// Why a row's values are not all finite numbers ("" when they are), naming the first as parseRow does.
+std::string describeNotFinite(const std::array<double, 4>& values)
+{
+  for (std::size_t q = 0; q < 4; ++q)
+  {
+    if (!std::isfinite(values[q]))
+    {
+      std::ostringstream why;
+      why << kQuantity[q] << " is not a finite number: '" << values[q] << "'";
+      return why.str();
+    }
+  }
+  return "";
+}
+
 std::string parseRow(const std::vector<std::string>& fields, const ColumnMap& map,
                      std::array<double, 4>& values)
 {
-  static const std::array<const char*, 4> kQuantity{"time", "space gap", "follower speed",
-                                                    "leader speed"};
   if (fields.size() != map.field_count)
   {
     return "expected " + std::to_string(map.field_count) + " fields, found " +
@@ -543,6 +558,33 @@ RunFileContents readOpenAccRuns(const std::string& path, const RunPlausibilityBo
   return contents;
 }
 }  // namespace
+
+RunFileContents assembleRunColumns(const std::string& label, const std::string& name, const CarFollowingRun& columns,
+                                   const std::vector<std::size_t>& rows, const RunPlausibilityBounds& bounds)
+{
+  checkBounds(bounds);
+  const std::size_t count = columns.time_s.size();
+  if (columns.space_gap_m.size() != count || columns.follower_speed_mps.size() != count ||
+      columns.leader_speed_mps.size() != count || rows.size() != count)
+  {
+    throw std::invalid_argument(label + ": the columns of a run have different lengths");
+  }
+  RunFileContents contents;
+  RunAssembler assembler(label, name, "", bounds, contents);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    ++contents.data_rows;
+    const std::array<double, 4> values{columns.time_s[i], columns.space_gap_m[i], columns.follower_speed_mps[i],
+                                       columns.leader_speed_mps[i]};
+    const std::string not_finite = describeNotFinite(values);
+    if (!not_finite.empty())
+      assembler.reject(rows[i], not_finite);
+    else
+      assembler.add(rows[i], values);
+  }
+  assembler.split();
+  return contents;
+}
 
 RunFileContents readRunFile(const std::string& path, const RunPlausibilityBounds& bounds)
 {

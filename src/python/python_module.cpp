@@ -4,6 +4,7 @@
 // DataFrames and dicts are made in python/acc_identification/__init__.py. Errors raise the
 // tools' messages as Python exceptions; the GIL is released while the C++ solves.
 #include <cmath>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -19,7 +20,11 @@
 #include "acc_identification/diagnosis/calibration_second_opinion.h"
 #include "acc_identification/diagnosis/diagnosis.h"
 #include "acc_identification/diagnosis/diagnosis_output.h"
+#include "acc_identification/io/output_files.h"
+#include "acc_identification/io/run_csv.h"
 #include "acc_identification/ros/run_bag_reader.h"
+#include "acc_identification/tools/bootstrap_options.h"
+#include "acc_identification/tools/option_rules.h"
 
 namespace py = pybind11;
 
@@ -38,40 +43,66 @@ std::vector<double> column(const py::dict& run, const char* name)
   return std::vector<double>(array.data(), array.data() + array.size());
 }
 
-/// A run as the Python side hands it: {name, path, time_s, space_gap_m, follower_speed_mps,
-/// leader_speed_mps}; checked as the readers check a file's runs.
-acc::CalibrationInput toInput(const py::dict& run)
-{
-  acc::CalibrationInput input;
-  input.run.name = run["name"].cast<std::string>();
-  input.path = run["path"].cast<std::string>();
-  input.run.time_s = column(run, "time_s");
-  input.run.space_gap_m = column(run, "space_gap_m");
-  input.run.follower_speed_mps = column(run, "follower_speed_mps");
-  input.run.leader_speed_mps = column(run, "leader_speed_mps");
-  const std::string problem = acc::describeRunProblem(input.run);
-  if (!problem.empty())
-    throw std::invalid_argument("run '" + input.run.name + "': " + problem);
-  return input;
-}
-
-std::vector<acc::CalibrationInput> toInputs(const py::list& runs)
+/// A run as the Python side hands it: {name, path, input, time_s, space_gap_m, follower_speed_mps,
+/// leader_speed_mps}, and `check` true when the rows are not read_run's rows as read (a DataFrame
+/// of the user's own, or one changed after reading): those are judged row by row by the readers'
+/// own rules (assembleRunColumns, with the frame's `max_gap_s` and each row's number `rows` as the
+/// problems name it under `where`) and may become several runs; what the rules did goes to log,
+/// as the tools print a file's problems. Rows as read are checked as the library checks a run.
+struct PythonRuns
 {
   std::vector<acc::CalibrationInput> inputs;
-  for (const py::handle& run : runs)
-    inputs.push_back(toInput(run.cast<py::dict>()));
-  if (inputs.empty())
-    throw std::invalid_argument("no run given");
-  return inputs;
+  std::vector<std::size_t> input_of;  ///< the number of the frame each run came from
+};
+
+void appendRun(const py::dict& run, PythonRuns& runs, std::ostream& log)
+{
+  acc::CarFollowingRun columns;
+  columns.name = run["name"].cast<std::string>();
+  columns.time_s = column(run, "time_s");
+  columns.space_gap_m = column(run, "space_gap_m");
+  columns.follower_speed_mps = column(run, "follower_speed_mps");
+  columns.leader_speed_mps = column(run, "leader_speed_mps");
+  const std::string path = run["path"].cast<std::string>();
+  const std::size_t input = run["input"].cast<std::size_t>();
+  if (!run["check"].cast<bool>())
+  {
+    const std::string problem = acc::describeRunProblem(columns);
+    if (!problem.empty())
+      throw std::invalid_argument("run '" + columns.name + "': " + problem);
+    runs.inputs.push_back({std::move(columns), path});
+    runs.input_of.push_back(input);
+    return;
+  }
+  acc::RunPlausibilityBounds bounds;
+  bounds.max_time_step_s = run["max_gap_s"].cast<double>();
+  const std::string where = run["where"].cast<std::string>();
+  acc::RunFileContents contents = acc::assembleRunColumns(where, columns.name, columns,
+                                                          run["rows"].cast<std::vector<std::size_t>>(), bounds);
+  std::vector<acc::CarFollowingRun> assembled;
+  try
+  {
+    assembled = acc::reportAndTakeRuns(where, contents, log);
+  }
+  catch (const acc::RunReadError& error)
+  {
+    throw std::invalid_argument(error.what());  // rows handed over, not a file: bad input
+  }
+  for (acc::CarFollowingRun& piece : assembled)
+  {
+    runs.inputs.push_back({std::move(piece), path});
+    runs.input_of.push_back(input);
+  }
 }
 
-/// The number of the frame each run came from ("input": the held-out frames after the fitted ones).
-std::vector<std::size_t> inputNumbers(const py::list& runs)
+PythonRuns toInputs(const py::list& list, std::ostream& log)
 {
-  std::vector<std::size_t> numbers;
-  for (const py::handle& run : runs)
-    numbers.push_back(run.cast<py::dict>()["input"].cast<std::size_t>());
-  return numbers;
+  PythonRuns runs;
+  for (const py::handle& run : list)
+    appendRun(run.cast<py::dict>(), runs, log);
+  if (runs.inputs.empty())
+    throw std::invalid_argument("no run given");
+  return runs;
 }
 
 /// Refuses runs of which one repeats a run of an earlier frame (io/repeated_recording.h: the same
@@ -122,6 +153,9 @@ py::dict readRun(const std::string& path, const std::string& follower, bool all_
                  const std::string& topic, const std::string& acc_engaged_topic, bool require_acc_engaged,
                  double acc_engaged_timeout_s, const std::string& acc_setting)
 {
+  if (!follower.empty() && all_pairs)
+    throw std::invalid_argument("follower and all_pairs exclude each other (as --follower and --all-pairs): "
+                                "all_pairs reads every pair of an OpenACC file, follower one");
   std::ostringstream log;
   acc::RunArgument argument;
   acc::BagTopics topics;
@@ -157,8 +191,10 @@ py::dict calibrate(const py::list& runs, const py::list& inputs_read, bool split
                    std::size_t grid_nodes, bool second_opinion, std::size_t bootstrap_replicates,
                    double bootstrap_below_s)
 {
-  const std::vector<acc::CalibrationInput> inputs = toInputs(runs);
-  refuseRepeatedRuns(inputs, inputNumbers(runs));
+  std::ostringstream text, log;
+  const PythonRuns given = toInputs(runs, log);
+  const std::vector<acc::CalibrationInput>& inputs = given.inputs;
+  refuseRepeatedRuns(inputs, given.input_of);
   const std::vector<acc::InputAccount> accounts = toInputAccounts(inputs_read);
   acc::CalibrateSettings settings;
   settings.split_half = split_half;
@@ -174,7 +210,6 @@ py::dict calibrate(const py::list& runs, const py::list& inputs_read, bool split
   settings.quiet = true;
   if (second_opinion)
     settings.second_opinion = acc::diagnosisSecondOpinion();  // as the calibrate tool
-  std::ostringstream text, log;
   acc::CalibrateOutcome outcome;
   {
     py::gil_scoped_release unlocked;
@@ -198,6 +233,12 @@ py::dict pairNmeaLogs(const std::string& leader_path, const std::string& followe
       params_path,
       acc::AntennaOffsets{antenna_offset_m, leader_antenna_to_rear_bumper_m, follower_antenna_to_front_bumper_m},
       gap_mode, dropout_gap_s};
+  std::ostringstream overwrite;
+  std::vector<std::string> inputs{leader_path, follower_path};
+  if (!params_path.empty())
+    inputs.push_back(params_path);
+  if (!acc::outputsLeaveInputsAlone(inputs, {out_path}, overwrite))
+    throw std::invalid_argument(overwrite.str().substr(0, overwrite.str().find_last_not_of('\n') + 1));
   acc::RelativeStateSettings settings;
   std::string notes;
   const std::string refused = acc::pairingSettingsFrom(options, settings, notes);
@@ -223,37 +264,37 @@ py::dict pairNmeaLogs(const std::string& leader_path, const std::string& followe
   return result;
 }
 
-/// The runs to fit and those kept aside, each list converted once; refused as the tools refuse
-/// them when one repeats a run of an earlier frame.
+/// The runs to fit and those kept aside, each list converted once (the readers' notes on log);
+/// refused as the tools refuse them when one repeats a run of an earlier frame.
 std::pair<std::vector<acc::CarFollowingRun>, std::vector<acc::CarFollowingRun>> fittedAndHeldOut(
-    const py::list& runs, const py::list& held_out_runs)
+    const py::list& runs, const py::list& held_out_runs, std::ostream& log)
 {
-  std::vector<acc::CalibrationInput> all = toInputs(runs);
-  const std::size_t fitted = all.size();
-  std::vector<std::size_t> input_of = inputNumbers(runs);
+  PythonRuns all = toInputs(runs, log);
+  const std::size_t fitted = all.inputs.size();
   if (!held_out_runs.empty())
   {
-    const std::vector<acc::CalibrationInput> kept = toInputs(held_out_runs);
-    all.insert(all.end(), kept.begin(), kept.end());
-    const std::vector<std::size_t> kept_numbers = inputNumbers(held_out_runs);
-    input_of.insert(input_of.end(), kept_numbers.begin(), kept_numbers.end());
+    PythonRuns kept = toInputs(held_out_runs, log);
+    all.inputs.insert(all.inputs.end(), kept.inputs.begin(), kept.inputs.end());
+    all.input_of.insert(all.input_of.end(), kept.input_of.begin(), kept.input_of.end());
   }
-  refuseRepeatedRuns(all, input_of);
-  std::vector<acc::CarFollowingRun> every = acc::runsOf(all);
+  refuseRepeatedRuns(all.inputs, all.input_of);
+  std::vector<acc::CarFollowingRun> every = acc::runsOf(all.inputs);
   std::vector<acc::CarFollowingRun> held_out(every.begin() + static_cast<long>(fitted), every.end());
   every.resize(fitted);
   return {std::move(every), std::move(held_out)};
 }
 
 /// held_out_runs empty: each run fitted on its first part and scored on the rest; otherwise the
-/// runs fitted whole and these scored whole (diagnose --held-out).
-std::string diagnose(const py::list& runs, const py::list& inputs_read, const std::vector<std::string>& inputs,
+/// runs fitted whole and these scored whole (diagnose --held-out). {json, log}: log the readers'
+/// notes and the runs or parts not used, as the tool prints them.
+py::dict diagnose(const py::list& runs, const py::list& inputs_read, const std::vector<std::string>& inputs,
                      double train_fraction, const std::vector<std::string>& effects, std::size_t threads,
                      const py::object& seed, bool forward_selection, const py::list& held_out_runs,
                      const std::vector<std::string>& held_out_inputs, std::size_t bootstrap_replicates,
                      double bootstrap_below_s)
 {
-  const auto [plain, held_out] = fittedAndHeldOut(runs, held_out_inputs.empty() ? py::list() : held_out_runs);
+  std::ostringstream log;
+  const auto [plain, held_out] = fittedAndHeldOut(runs, held_out_inputs.empty() ? py::list() : held_out_runs, log);
   acc::DiagnosisOptions options;
   options.train_fraction = train_fraction;
   options.threads = threads;
@@ -282,10 +323,18 @@ std::string diagnose(const py::list& runs, const py::list& inputs_read, const st
     result = held_out_inputs.empty() ? acc::diagnoseRuns(plain, options)
                                      : acc::diagnoseHeldOutRuns(plain, held_out, options);
   }
-  return acc::diagnosisToJson(result, inputs, held_out_inputs, toInputAccounts(inputs_read)).dump();
+  for (const std::string& note : result.notes)
+    log << "note: " << note << "\n";
+  if (!result.notes.empty())
+    log << result.notes.size() << " run(s) or part(s) not used\n";
+  py::dict out;
+  out["json"] = acc::diagnosisToJson(result, inputs, held_out_inputs, toInputAccounts(inputs_read)).dump();
+  out["log"] = log.str();
+  return out;
 }
 
-std::string campaign(const std::vector<std::string>& paths, std::size_t starts, std::size_t threads, double alpha,
+/// {json, log}: log the inputs' notes and what was skipped, as the tool prints them.
+py::dict campaign(const std::vector<std::string>& paths, std::size_t starts, std::size_t threads, double alpha,
                      std::uint64_t seed, bool platoon_check, bool platoon_diagnosis, std::size_t bootstrap_replicates,
                      double bootstrap_below_s)
 {
@@ -297,10 +346,49 @@ std::string campaign(const std::vector<std::string>& paths, std::size_t starts, 
   options.threads = threads;
   options.platoon_check = platoon_check;
   options.platoon_diagnosis = platoon_diagnosis;
-  py::gil_scoped_release unlocked;
-  const acc::CampaignInputs inputs = acc::loadCampaign(paths);
-  const acc::CampaignResult result = acc::runCampaign(inputs, options);
-  return acc::campaignToJson(inputs, result, paths, options).dump();
+  acc::CampaignInputs inputs;
+  acc::CampaignResult result;
+  {
+    py::gil_scoped_release unlocked;
+    inputs = acc::loadCampaign(paths);
+    result = acc::runCampaign(inputs, options);
+  }
+  std::ostringstream log;
+  for (const std::string& note : inputs.notes)
+    log << "note: " << note << "\n";
+  if (inputs.skipped_files + inputs.skipped_pairs > 0)
+    log << inputs.describeSkipped() << "\n";
+  py::dict out;
+  out["json"] = acc::campaignToJson(inputs, result, paths, options).dump();
+  out["log"] = log.str();
+  return out;
+}
+
+/// Checks a keyword argument of the Python functions by the tools' own rule for the same option
+/// (tools/option_rules.h, tools/number_checks.h): ValueError "name: must be ..., not text".
+void checkOption(const std::string& name, const std::string& value_text)
+{
+  static const std::map<std::string, CLI::Validator (*)()> rules{
+      {"starts", acc::multistartStarts},
+      {"alpha", acc::testLevel},
+      {"grid", acc::gridNodesPerAxis},
+      {"seed", [] { return acc::nonNegativeWholeNumber(); }},
+      {"diagnose seed", acc::seed32},
+      {"verdict_every_s", acc::verdictEverySeconds},
+      {"train_fraction", acc::trainFraction},
+      {"threads", [] { return acc::nonNegativeWholeNumber(); }},
+      {"bootstrap", acc::bootstrapReplicates},
+      {"bootstrap_below_s", [] { return acc::nonNegativeNumber(); }},
+      {"max_gap_s", [] { return acc::positiveNumber(); }},
+      {"acc_engaged_timeout_s", [] { return acc::nonNegativeNumber(); }},
+  };
+  const auto rule = rules.find(name);
+  if (rule == rules.end())
+    throw std::logic_error("check_option: no rule for '" + name + "'");
+  std::string text = value_text;
+  const std::string why = rule->second()(text);
+  if (!why.empty())
+    throw std::invalid_argument(name.substr(name.find(' ') + 1) + ": " + why);
 }
 }  // namespace
 
@@ -344,6 +432,7 @@ PYBIND11_MODULE(_core, module)
              py::arg("train_fraction"), py::arg("effects"), py::arg("threads"), py::arg("seed"),
              py::arg("forward_selection"), py::arg("held_out_runs"), py::arg("held_out_inputs"),
              py::arg("bootstrap_replicates"), py::arg("bootstrap_below_s"));
+  module.def("check_option", &checkOption, py::arg("name"), py::arg("value_text"));
   module.def("campaign", &campaign, py::arg("paths"), py::arg("starts"), py::arg("threads"), py::arg("alpha"),
              py::arg("seed"), py::arg("platoon_check"), py::arg("platoon_diagnosis"), py::arg("bootstrap_replicates"),
              py::arg("bootstrap_below_s"));

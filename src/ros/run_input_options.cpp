@@ -23,7 +23,7 @@ void RunInputOptions::declare(CLI::App& app, const std::string& all_pairs_means,
   app.add_option("--acc-engaged-timeout", bag.engagement.timeout_s,
                  "bags: an engagement report older than this says nothing (identifier_node's ~acc_engaged_timeout_s; "
                  "0: it holds until the next) [s]")
-      ->check(CLI::NonNegativeNumber)
+      ->check(acc::nonNegativeNumber())
       ->capture_default_str();
   app.add_option("--acc-setting-topic", bag.acc_setting,
                  "bags: the ACC's distance setting (std_msgs/String), as identifier_node reads it: runs end where it "

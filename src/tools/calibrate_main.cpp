@@ -17,6 +17,7 @@
 #include "acc_identification/sumo/sumo_vtype.h"
 #include "acc_identification/tools/bootstrap_options.h"
 #include "acc_identification/tools/number_checks.h"
+#include "acc_identification/tools/option_rules.h"
 
 namespace
 {
@@ -53,17 +54,16 @@ int main(int argc, char** argv)
   app.add_option("--split", split, "half: train on the first half of each run, test on the second (the paper)")
       ->check(CLI::IsMember({"none", "half"}))
       ->capture_default_str();
-  // At least one: with none nothing is tried, and "every start diverged" would be a false reason.
   app.add_option("--starts", starts, "starting points of the multistart search")
-      ->check(CLI::Range(1, 100000))
+      ->check(acc::multistartStarts())
       ->capture_default_str();
   app.add_option("--json", json_path, "write parameters, standard errors, stability, the stability test, per-run RMSEs");
   app.add_option("--grid", settings.grid_nodes,
                  "also search a dense grid of N nodes per axis (k1 0-0.5, k2 0-1.5, tau_e 0-3) and check that the "
                  "multistart optimum is the global one")
-      ->check(CLI::Range(std::size_t{2}, std::size_t{1000}));
+      ->check(acc::gridNodesPerAxis());
   app.add_option("--alpha", settings.alpha, "level of the string-stability test")
-      ->check(acc::openInterval(0.0, 1.0))
+      ->check(acc::testLevel())
       ->capture_default_str();
   auto* seed_option =
       app.add_option("--seed", seed, "seed of the stability test's and the refitting bootstrap's draws (default: fixed seeds)")
@@ -73,7 +73,7 @@ int main(int argc, char** argv)
                  "also replay each drive look by look every SECONDS of data time and report the sequential "
                  "(anytime-valid) verdicts the identifier node would publish, by the node's own code (1 s or more: "
                  "each look refits the drive so far)")
-      ->check(acc::atLeast(1.0, "SECONDS"));
+      ->check(acc::verdictEverySeconds());
   app.add_option("--report", report_dir,
                  "write calibration.json, fit_traces.csv (each run measured and simulated), a figure per run and "
                  "report.md into DIR");

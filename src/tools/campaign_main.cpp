@@ -16,6 +16,7 @@
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/tools/bootstrap_options.h"
 #include "acc_identification/tools/number_checks.h"
+#include "acc_identification/tools/option_rules.h"
 
 namespace
 {
@@ -44,13 +45,13 @@ int main(int argc, char** argv)
       ->required()
       ->check(CLI::ExistingPath);
   app.add_option("--starts", options.group.starts, "Halton starts of every multistart fit (at least one)")
-      ->check(CLI::Range(std::size_t{1}, std::size_t{100000}))
+      ->check(acc::multistartStarts())
       ->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads (0: every core)")
       ->check(acc::nonNegativeWholeNumber())
       ->capture_default_str();
   app.add_option("--alpha", options.group.alpha, "level of the string-stability test")
-      ->check(acc::openInterval(0.0, 1.0))
+      ->check(acc::testLevel())
       ->capture_default_str();
   app.add_option("--seed", options.group.seed, "campaign seed (each group's bootstrap draws from its own stream)")
       ->check(acc::nonNegativeWholeNumber())

@@ -15,6 +15,7 @@
 #include "acc_identification/ros/run_input_options.h"
 #include "acc_identification/tools/bootstrap_options.h"
 #include "acc_identification/tools/number_checks.h"
+#include "acc_identification/tools/option_rules.h"
 #include "acc_identification/validation/suite_runs.h"
 
 namespace
@@ -35,7 +36,7 @@ struct DiagnoseRequest
 void addDiagnosisOptions(CLI::App& app, DiagnoseRequest& r)
 {
   app.add_option("--train-fraction", r.options.train_fraction, "share of each run used for fitting")
-      ->check(CLI::Range(0.05, 0.95))
+      ->check(acc::trainFraction())
       ->capture_default_str();
   app.add_option("--held-out", r.held_out, "runs kept aside (read as RUN, same --follower): the RUNs are fitted whole "
                  "and these scored whole, not each run's first part and the rest")->check(CLI::ExistingFile);
@@ -52,7 +53,7 @@ void addDiagnosisOptions(CLI::App& app, DiagnoseRequest& r)
                  "smallest held-out MSE reduction worth naming")
       ->check(acc::nonNegativeNumber())
       ->capture_default_str();
-  app.add_option("--seed", r.seed, "bootstrap seed")->check(acc::nonNegativeWholeNumber())->capture_default_str();
+  app.add_option("--seed", r.seed, "bootstrap seed")->check(acc::seed32())->capture_default_str();
   app.add_flag("--no-forward-selection", r.no_forward_selection,
                "name the dominant effect only; do not try effects in combination");
   app.add_option("--max-chain-length", r.options.max_chain_length, "most effects the forward selection adds")

@@ -50,6 +50,41 @@ TEST(RunCsv, CanonicalBadRowsAreRejectedWithLineNumbersAndSplitTheRun)
   }
 }
 
+TEST(RunCsv, ColumnsHandedOverAreJudgedByTheReadersRules)
+{
+  // Ten samples at 10 Hz as a DataFrame hands them over: a NaN at row 2, an implausible gap at
+  // row 5, a hole of 2 s before row 8; rows are named by the numbers given (the frame's places).
+  acc::CarFollowingRun columns;
+  for (int i = 0; i < 10; ++i)
+  {
+    columns.time_s.push_back(0.1 * i + (i >= 8 ? 2.0 : 0.0));
+    columns.space_gap_m.push_back(i == 5 ? 5000.0 : 20.0);
+    columns.follower_speed_mps.push_back(i == 2 ? std::numeric_limits<double>::quiet_NaN() : 10.0);
+    columns.leader_speed_mps.push_back(10.0);
+  }
+  const std::vector<std::size_t> rows{100, 101, 102, 103, 104, 105, 106, 107, 108, 109};
+  const acc::RunFileContents contents =
+      acc::assembleRunColumns("DataFrame 1", "mine", columns, rows, acc::RunPlausibilityBounds{});
+  EXPECT_EQ(contents.data_rows, 10u);
+  EXPECT_EQ(contents.rejected_rows, 2u);
+  EXPECT_EQ(contents.implausible_rows, 1u);
+  EXPECT_EQ(contents.time_holes, 1u);
+  ASSERT_EQ(contents.problems.size(), 3u);
+  EXPECT_NE(contents.problems[0].find("DataFrame 1:102: follower speed is not a finite number"), std::string::npos)
+      << contents.problems[0];
+  EXPECT_NE(contents.problems[1].find("DataFrame 1:105: space_gap_m 5000 outside"), std::string::npos)
+      << contents.problems[1];
+  EXPECT_NE(contents.problems[2].find("DataFrame 1:108: hole of"), std::string::npos) << contents.problems[2];
+  // Pieces: rows 100-101, 103-104, 106-107, 108-109.
+  ASSERT_EQ(contents.runs.size(), 4u);
+  EXPECT_EQ(contents.runs[0].name, "mine");
+  EXPECT_EQ(contents.runs[3].name, "mine#4");
+  EXPECT_DOUBLE_EQ(contents.runs[3].time_s[0], 2.8);
+  columns.leader_speed_mps.pop_back();
+  EXPECT_THROW(acc::assembleRunColumns("DataFrame 1", "mine", columns, rows, acc::RunPlausibilityBounds{}),
+               std::invalid_argument);
+}
+
 TEST(RunCsv, OpenAccColumnsAreMappedByNameAndAccOffSplits)
 {
   const auto contents = acc::readRunFile(kDataDir + "/openacc_excerpt.csv");

@@ -86,6 +86,15 @@ RunFileContents readRunFile(const std::string& path, const RunPlausibilityBounds
 RunFileContents readRunFile(const std::string& path, const RunPlausibilityBounds& bounds,
                             const OpenAccPairSelector& selector);
 
+/// Samples handed over as columns rather than read from a file (the Python API's DataFrames),
+/// judged row by row by the readers' own rules: a value that is not finite or not plausible, or a
+/// time that does not increase, rejects its row and splits the run; a hole longer than
+/// bounds.max_time_step_s splits it; an exact repeat is dropped; a saw-toothing gap is rebuilt.
+/// Every problem reads "label:row: why", row taken from rows (one per sample); the runs are named
+/// name, name#2, ... The columns of `columns` must have equal lengths, and rows as many entries.
+RunFileContents assembleRunColumns(const std::string& label, const std::string& name, const CarFollowingRun& columns,
+                                   const std::vector<std::size_t>& rows, const RunPlausibilityBounds& bounds);
+
 /// One OpenACC pair's runs, with their own counts and problems.
 struct PairRunContents
 {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <string>
 
@@ -14,11 +15,11 @@ namespace acc
 /// (1e-9, 1 - 1e-9) read "0 not in range 0.000000 to 1.000000".
 namespace number_checks
 {
-/// A bound as a user wrote it: 0.5, 1, 1e-06.
+/// A bound as a user wrote it: 0.5, 1, 1e-06, 4294967295.
 inline std::string text(double value)
 {
   std::ostringstream out;
-  out << value;
+  out << std::setprecision(15) << value;
   return out.str();
 }
 

@@ -10,6 +10,7 @@ import subprocess
 import threading
 import time
 
+import pandas
 import pytest
 
 import acc_identification as acc
@@ -177,10 +178,6 @@ def test_bad_input_raises_the_tools_messages():
     run = acc.read_run(os.path.join(CASALE, "part5.csv"))
     with pytest.raises(ValueError, match="missing: space_gap_m"):
         acc.calibrate(run.drop(columns=["space_gap_m"]))
-    broken = run.copy()
-    broken.loc[10, "leader_speed_mps"] = math.nan
-    with pytest.raises(ValueError, match="part5 Hyundai"):
-        acc.calibrate(broken)
     with pytest.raises(ValueError, match="unknown effect 'teleportation'"):
         acc.diagnose(run, effects=["teleportation"])
     with pytest.raises(ValueError, match="held_out names no run"):
@@ -221,3 +218,103 @@ def test_the_solves_release_the_gil():
     assert done and done[0]["fitted"] is True
     assert duration > 0.1, "the solve was too short to tell"
     assert longest_stall < 0.5 * duration, (longest_stall, duration)
+
+
+def test_a_frame_of_your_own_is_judged_row_by_row_as_the_tool_judges_the_same_file(tmp_path, capsys):
+    # A NaN, a gap glitch, a negative speed and a hole of 10 s: the tool rejects those rows and
+    # splits the run there; the same rows as a DataFrame must give the same runs and numbers.
+    run = acc.read_run(os.path.join(CASALE, "part5.csv"))[list(acc.COLUMNS)]
+    run.loc[100, "leader_speed_mps"] = math.nan
+    run.loc[300, "space_gap_m"] = 1500.0
+    run.loc[500, "follower_speed_mps"] = -30.0
+    run = run.drop(index=range(700, 800))
+    path = tmp_path / "glitches.csv"
+    run.to_csv(path, index=False, float_format="%.17g")
+    expected, _ = tool_json(tmp_path, "calibrate", "--quiet", "--no-stability-test", "--no-second-opinion", str(path))
+    capsys.readouterr()
+    got = acc.calibrate(pandas.read_csv(path, float_precision="round_trip"), stability_test=False,
+                        second_opinion=False)
+    assert len(got["runs"]) == len(expected["runs"]) == 5
+    assert got["parameters"] == expected["parameters"]
+    err = capsys.readouterr().err
+    assert "DataFrame 1:100: leader speed is not a finite number" in err
+    assert "space_gap_m 1500 outside" in err and "hole of" in err
+
+
+def test_frames_put_together_are_split_where_their_times_part(capsys):
+    four, five = (acc.read_run(os.path.join(CASALE, name)) for name in ("part4.csv", "part5.csv"))
+    apart = acc.calibrate([four, five], stability_test=False, second_opinion=False)
+    together = acc.calibrate(pandas.concat([four, five], ignore_index=True), stability_test=False,
+                             second_opinion=False)
+    assert together["parameters"] == apart["parameters"]
+    assert "hole of" in capsys.readouterr().err
+
+
+def test_segments_keep_their_names_and_a_row_without_one_is_refused():
+    run = acc.read_run(os.path.join(CASALE, "part5.csv"))
+    two = run.copy()
+    two.loc[600:, "segment"] = 1
+    two.attrs["segment_names"] = ["first half", "second half"]
+    kept = two[two["segment"] == 1]
+    assert [r["name"] for r in acc.calibrate(kept, stability_test=False, second_opinion=False)["runs"]] == \
+        ["second half"]
+    unlabelled = two.copy()
+    unlabelled["segment"] = unlabelled["segment"].astype(float)
+    unlabelled.loc[10:20, "segment"] = math.nan
+    with pytest.raises(ValueError, match="11 row\\(s\\) have no segment"):
+        acc.calibrate(unlabelled)
+
+
+def test_options_are_checked_by_the_tools_rules():
+    run = acc.read_run(os.path.join(CASALE, "part5.csv"))
+    refused = [(acc.calibrate, {"alpha": 1.5}, "alpha: must be above 0 and below 1, not 1.5"),
+               (acc.calibrate, {"alpha": math.nan}, "alpha: not a finite number"),
+               (acc.calibrate, {"starts": 0}, "starts: must be a whole number from 1 to 100000, not 0"),
+               (acc.calibrate, {"grid": 1}, "grid: must be a whole number from 2 to 1000"),
+               (acc.calibrate, {"bootstrap": 5}, "bootstrap: must be 0 \\(none\\) or a whole number"),
+               (acc.calibrate, {"verdict_every_s": 0.001}, "verdict_every_s: must be 1 or more"),
+               (acc.calibrate, {"seed": -1}, "seed: must be a whole number 0 or more"),
+               (acc.calibrate, {"bootstrap_below_s": -1.0}, "bootstrap_below_s: must be 0 or more"),
+               (acc.calibrate, {"max_gap_s": 0}, "max_gap_s: must be above 0"),
+               (acc.diagnose, {"seed": 2 ** 32}, "seed: must be a whole number from 0 to 4294967295"),
+               (acc.diagnose, {"train_fraction": 0.99}, "train_fraction: must be from 0.05 to 0.95"),
+               (acc.diagnose, {"threads": -1}, "threads: must be a whole number 0 or more"),
+               (acc.campaign, {"alpha": math.nan}, "alpha: not a finite number")]
+    for function, arguments, message in refused:
+        with pytest.raises(ValueError, match=message):
+            function(run if function is not acc.campaign else [CASALE], **arguments)
+    with pytest.raises(ValueError, match="follower and all_pairs exclude each other"):
+        acc.read_run(os.path.join(CASALE, "part5.csv"), follower="Hyundai", all_pairs=True)
+    with pytest.raises(ValueError, match="acc_engaged_timeout_s: must be 0 or more"):
+        acc.read_run(os.path.join(CASALE, "part5.csv"), acc_engaged_timeout_s=-1)
+    with pytest.raises(ValueError, match="is a folder"):
+        acc.read_run(CASALE)
+    with pytest.raises(ValueError, match="no file or folder given"):
+        acc.campaign([])
+    # A whole number written as a float is the number, as the tools read "5.0".
+    assert acc.calibrate(run, seed=7.0, starts=5.0, stability_test=False, second_opinion=False)["fitted"]
+
+
+def test_pair_nmea_logs_never_writes_over_its_inputs(tmp_path):
+    leader, follower = str(tmp_path / "L.nmea"), str(tmp_path / "F.nmea")
+    subprocess.run(["rosrun", "acc_identification", "openacc_to_nmea", os.path.join(CASALE, "part5.csv"), leader,
+                    follower], check=True, capture_output=True)
+    before = open(leader).read()
+    with pytest.raises(ValueError, match="overwrite"):
+        acc.pair_nmea_logs(leader, follower, leader, antenna_offset_m=5.6)
+    assert open(leader).read() == before
+
+
+def test_the_tools_notes_reach_stderr(tmp_path, capsys):
+    run = acc.read_run(os.path.join(CASALE, "part5.csv"))
+    short = pandas.concat([run, run.iloc[:3].assign(segment=1, time_s=run["time_s"].iloc[-1] + [10.0, 10.1, 10.2])],
+                          ignore_index=True)
+    capsys.readouterr()
+    acc.calibrate(short, split="half", stability_test=False, second_opinion=False)
+    assert "too few to split" in capsys.readouterr().err
+    folder = tmp_path / "runs"
+    folder.mkdir()
+    (folder / "notes.csv").write_text("not,an,openacc,file\n")
+    os.symlink(os.path.join(TOYOTA, "dynamic_part5.csv"), folder / "dynamic_part5.csv")
+    acc.campaign(folder, platoon_check=False)
+    assert "notes.csv: not an OpenACC file" in capsys.readouterr().err
