@@ -95,8 +95,9 @@ protected:
       error = systemError("socket");
       return -1;
     }
-    const int yes = 1;
-    ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+    // No SO_REUSEADDR: with it a second driver binds the same port and takes every datagram from
+    // the first, which then reads nothing without an error. Without it the second bind fails
+    // (EADDRINUSE), and that driver says so.
     sockaddr_in address{};
     address.sin_family = AF_INET;
     address.sin_port = htons(static_cast<std::uint16_t>(port_));

@@ -1,3 +1,5 @@
+#include <arpa/inet.h>
+
 #include <cstdlib>
 
 #include "acc_identification/gnss/byte_source.h"
@@ -30,6 +32,32 @@ void parseQuery(const std::string& text, std::map<std::string, std::string>& que
     start = end + 1;
   }
 }
+/// The query keys a scheme reads ("" when none): a key it does not read (a typo such as Rate=0,
+/// baud on a UDP source) would otherwise be ignored and its default taken without a word.
+std::string queryKeysOf(const std::string& scheme)
+{
+  if (scheme == "serial")
+    return "baud";
+  if (scheme == "file")
+    return "rate";
+  return "";
+}
+
+bool checkQueryKeys(const std::string& text, const SourceUri& uri, std::string& error)
+{
+  const std::string known = queryKeysOf(uri.scheme);
+  for (const auto& [key, value] : uri.query)
+  {
+    if (key != known)
+    {
+      error = "source '" + text + "': " + uri.scheme + " takes " +
+              (known.empty() ? std::string("no query parameter") : "only ?" + known + "=...") + ", not '" + key +
+              "' (names are case-sensitive)";
+      return false;
+    }
+  }
+  return true;
+}
 }  // namespace
 
 bool parseSourceUri(const std::string& text, SourceUri& uri, std::string& error)
@@ -50,6 +78,9 @@ bool parseSourceUri(const std::string& text, SourceUri& uri, std::string& error)
     parseQuery(rest.substr(question + 1), uri.query);
     rest = rest.substr(0, question);
   }
+  if ((uri.scheme == "serial" || uri.scheme == "file" || uri.scheme == "udp" || uri.scheme == "tcp") &&
+      !checkQueryKeys(text, uri, error))
+    return false;
   if (uri.scheme == "serial" || uri.scheme == "file")
   {
     uri.path = rest;
@@ -72,6 +103,15 @@ bool parseSourceUri(const std::string& text, SourceUri& uri, std::string& error)
     if (uri.scheme == "tcp" && uri.host.empty())
     {
       error = "source '" + text + "' needs a host (tcp://host:port)";
+      return false;
+    }
+    in_addr address{};
+    if (uri.scheme == "udp" && !uri.host.empty() && ::inet_pton(AF_INET, uri.host.c_str(), &address) != 1)
+    {
+      // Found here rather than when the socket opens, where it would only be retried for ever.
+      error = "source '" + text + "': the address to listen on must be an IPv4 address (udp://127.0.0.1:" +
+              std::to_string(uri.port) + "), or nothing for every interface (udp://:" + std::to_string(uri.port) +
+              "), not '" + uri.host + "'";
       return false;
     }
     return true;

@@ -260,11 +260,15 @@ int GpsDriverRos::run()
     return 1;
   waitForSubscribers();
   ROS_INFO("gps_driver: reading %s as frame '%s'", source_->description().c_str(), frame_id_.c_str());
-  char buffer[4096];
+  // Room for the largest UDP datagram (65,507 bytes of payload): a read returns one datagram and
+  // discards whatever of it does not fit, so a smaller buffer would lose the tail of a large one
+  // (socat sends blocks of 8192 bytes) without a trace.
+  std::vector<char> buffer(65536);
   while (ros::ok())
   {
-    const ReadResult result = source_->read(buffer, sizeof buffer, 0.02);
+    const ReadResult result = source_->read(buffer.data(), buffer.size(), 0.02);
     const SteadyClock::time_point now = SteadyClock::now();
+    reportSourceState();
     if (result.status == ReadStatus::kEnd)
     {
       finishReplay();
@@ -273,8 +277,9 @@ int GpsDriverRos::run()
     if (result.status == ReadStatus::kData)
     {
       receive_time_ = ros::Time::now();
+      warnIfNoClock();
       last_bytes_ = now;
-      decoder_.feed(buffer, result.size, receive_time_.toSec());
+      decoder_.feed(buffer.data(), result.size, receive_time_.toSec());
     }
     else if (seconds(now - last_bytes_) >= epoch_idle_s_)
     {
@@ -287,6 +292,38 @@ int GpsDriverRos::run()
     ros::spinOnce();
   }
   return 0;
+}
+
+void GpsDriverRos::warnIfNoClock()
+{
+  // A receiver read under /use_sim_time with no /clock (a replay.launch earlier on this master
+  // left it true) is stamped 0: every receive stamp (navsat_fix, vel, nmea_sentence, time_reference,
+  // fix.receive_time) would be 0 without a word.
+  if (!warned_no_clock_ && ros::Time::isSimTime() && receive_time_.isZero())
+  {
+    warned_no_clock_ = true;
+    ROS_WARN("gps_driver: /use_sim_time is true and no /clock is published: receive stamps are 0. For a "
+             "receiver or a log read live, set it false (rosparam set /use_sim_time false; a replay.launch "
+             "leaves it true), or publish a clock");
+  }
+}
+
+void GpsDriverRos::reportSourceState()
+{
+  // Logged once per change between open and not open (the retries' back-off changes the state's
+  // text every time; /diagnostics carries it), so that a receiver unplugged or a server gone is in
+  // the log beside the data it explains.
+  const std::string state = source_->state();
+  const bool open = state == "open";
+  if (open == source_open_ || state == "not opened yet" || state == "end of file")
+    return;
+  source_open_ = open;
+  if (open)
+    ROS_INFO("gps_driver: %s open again (reopened %llu time(s))", source_->description().c_str(),
+             static_cast<unsigned long long>(source_->reopenCount()));
+  else
+    ROS_WARN("gps_driver: %s: %s (the driver keeps retrying; no data until it opens)",
+             source_->description().c_str(), state.c_str());
 }
 
 int GpsDriverRos::runTopic()

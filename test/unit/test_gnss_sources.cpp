@@ -91,6 +91,14 @@ TEST(SourceUri, Forms)
   EXPECT_FALSE(acc::parseSourceUri("file://relative.nmea", uri, error));
   EXPECT_FALSE(acc::parseSourceUri("ftp://host:21", uri, error));
   EXPECT_NE(error.find("unknown scheme"), std::string::npos);
+  // Found when the URI is read, not retried for ever when the socket opens.
+  EXPECT_FALSE(acc::parseSourceUri("udp://localhost:10110", uri, error));
+  EXPECT_NE(error.find("must be an IPv4 address"), std::string::npos) << error;
+  // A query key the scheme does not read is a typo, not a default taken without a word.
+  EXPECT_FALSE(acc::parseSourceUri("file:///tmp/x.nmea?Rate=0", uri, error));
+  EXPECT_NE(error.find("file takes only ?rate=..., not 'Rate'"), std::string::npos) << error;
+  EXPECT_FALSE(acc::parseSourceUri("udp://:10110?baud=9600", uri, error));
+  EXPECT_NE(error.find("udp takes no query parameter"), std::string::npos) << error;
   EXPECT_EQ(acc::makeByteSource("serial:///dev/ttyACM0?baud=12345", error), nullptr);
   EXPECT_EQ(acc::makeByteSource("file:///nonexistent.nmea", error), nullptr);
   EXPECT_EQ(acc::makeByteSource("file://" + kFixture + "?rate=fast", error), nullptr);
@@ -335,6 +343,26 @@ TEST(UdpSource, SeveralSentencesInOneDatagram)
   ::sendto(sender, datagram.data(), datagram.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
   ::close(sender);
   EXPECT_EQ(readFor(*source, datagram.size(), 2.0), datagram);
+}
+
+TEST(UdpSource, ASecondSourceOnTheSamePortIsRefusedNotGivenTheData)
+{
+  const int port = freePort(SOCK_DGRAM);
+  std::string error;
+  auto first = acc::makeByteSource("udp://127.0.0.1:" + std::to_string(port), error);
+  auto second = acc::makeByteSource("udp://127.0.0.1:" + std::to_string(port), error);
+  ASSERT_NE(first, nullptr) << error;
+  ASSERT_NE(second, nullptr) << error;
+  readFor(*first, 1, 0.1);  // binds
+  readFor(*second, 1, 0.1);
+  ASSERT_TRUE(first->isOpen()) << first->state();
+  EXPECT_FALSE(second->isOpen());
+  EXPECT_NE(second->state().find("bind udp port"), std::string::npos) << second->state();
+  const int sender = ::socket(AF_INET, SOCK_DGRAM, 0);
+  const sockaddr_in to = loopback(port);
+  ::sendto(sender, kVtg.data(), kVtg.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
+  ::close(sender);
+  EXPECT_EQ(readFor(*first, kVtg.size(), 2.0), kVtg);
 }
 
 TEST(TcpSource, ReconnectsWhenTheServerDropsTheConnection)

@@ -106,6 +106,10 @@ private:
   /// reader.error() on a parameter of the wrong type or out of range.
   bool readParameters(ParameterReader& reader, int& queue_size);
   int runTopic();
+  /// Logs the byte source going from open to not open and back (once per change).
+  void reportSourceState();
+  /// Warns once when bytes are stamped 0: /use_sim_time set and no /clock.
+  void warnIfNoClock();
   std::string sourceDescription() const;
   void publishLine(std::string_view line);
   void publishFix(const GnssFix& fix);
@@ -144,6 +148,8 @@ private:
 
   ros::Time receive_time_;  ///< ROS time of the bytes being decoded
   SteadyClock::time_point last_bytes_, last_fix_, last_diagnostic_;
+  bool warned_no_clock_ = false;
+  bool source_open_ = true;  ///< as last logged by reportSourceState (a failure at start is logged too)
   bool have_fix_ = false;
   std::uint8_t last_fix_quality_ = 0;
   std::uint64_t fixes_at_last_diagnostic_ = 0;
