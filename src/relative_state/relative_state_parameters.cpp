@@ -1,4 +1,5 @@
 #include "acc_identification/relative_state/relative_state_parameters.h"
+#include "acc_identification/model/number_text.h"
 #include "acc_identification/parameters/yaml_parameter_source.h"
 
 #include <algorithm>
@@ -9,6 +10,9 @@ namespace acc
 {
 namespace
 {
+/// The largest ~exact_match_tolerance_s: half the epoch step of a 50 Hz receiver.
+constexpr double kMaxExactMatchToleranceS = 0.01;
+
 /// One offset, NaN when unset; a NaN set on purpose (.nan) is refused, not taken for "unset".
 bool readOffset(ParameterReader& r, const std::string& name, double& offset_m)
 {
@@ -35,6 +39,13 @@ bool readPairing(ParameterReader& r, PairingSettings& q)
   int max_buffered = static_cast<int>(q.max_buffered_fixes);
   const bool ok = r.readAtLeast("max_buffered_fixes", max_buffered, 1) &&
                   r.readAtLeast("exact_match_tolerance_s", q.exact_match_tolerance_s, 0.0) &&
+                  // GNSS epochs carry exact times: a tolerance near a receiver's step (0.02 s at
+                  // 50 Hz) takes neighbouring epochs for one, pairing them one epoch off with a
+                  // skew of 0 and dropping the rest as duplicates (0.1 s at 10 Hz: gaps off by 2 m).
+                  r.require(q.exact_match_tolerance_s <= kMaxExactMatchToleranceS,
+                            "parameter ~exact_match_tolerance_s " + printfText("%g", q.exact_match_tolerance_s) +
+                                " must be at most " + printfText("%g", kMaxExactMatchToleranceS) +
+                                " s: epochs this close are taken for the same epoch (GNSS times are exact)") &&
                   r.readAtLeast("max_interpolation_skew_s", q.max_interpolation_skew_s, 0.0) &&
                   r.readAtLeast("exact_wait_s", q.exact_wait_s, 0.0) && r.readAbove("timeout_s", q.timeout_s, 0.0) &&
                   r.readAbove("dropout_gap_s", q.dropout_gap_s, 0.0) && r.readAbove("time_reset_s", q.time_reset_s, 0.0);

@@ -258,4 +258,9 @@ TEST(NmeaLogsToCsv, AParameterFileIsReadAsTheNodeReadsIt)
   const ParameterFile both("both", "antenna_offset_m: 5.6\nleader_antenna_to_rear_bumper_m: 2.0\n");
   options.params_path = both.path();
   EXPECT_NE(acc::pairingSettingsFrom(options, settings, note).find("not both"), std::string::npos);
+  // A tolerance near a receiver's step pairs neighbouring epochs (0.1 s at 10 Hz: one epoch off).
+  const ParameterFile loose("loose", "antenna_offset_m: 5.6\nexact_match_tolerance_s: 0.1\n");
+  options.params_path = loose.path();
+  const std::string too_loose = acc::pairingSettingsFrom(options, settings, note);
+  EXPECT_NE(too_loose.find("~exact_match_tolerance_s 0.1 must be at most 0.01 s"), std::string::npos) << too_loose;
 }
