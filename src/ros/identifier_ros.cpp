@@ -1,6 +1,7 @@
 #include "acc_identification/ros/identifier_ros.h"
 #include "acc_identification/ros/ros_parameter_source.h"
 #include "acc_identification/io/run_plausibility.h"
+#include "acc_identification/model/number_text.h"
 #include "acc_identification/ros/ros_time.h"
 
 #include <algorithm>
@@ -184,6 +185,7 @@ bool readWindowSettings(ParameterReader& r, IdentifierSettings& s)
   IdentifiabilityCriteria& c = s.criteria;
   int min_samples = static_cast<int>(c.min_samples);
   const bool ok = r.readAbove("window_s", s.window_s, 0.0) && r.readAbove("period_s", s.period_s, 0.0) &&
+                  r.readAbove("stale_after_s", s.stale_after_s, 0.0) &&
                   r.readAbove("max_gap_s", s.max_gap_s, 0.0) && r.readAtLeast("min_segment_samples", s.min_segment_samples, 1) &&
                   r.readAtLeast("queue_size", s.queue_size, 1) && r.readAbove("min_duration_s", c.min_duration_s, 0.0) &&
                   r.readAtLeast("min_samples", min_samples, 1) &&
@@ -323,6 +325,7 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node,
   worker_ = std::thread(&IdentifierRos::workerLoop, this);
   stability_worker_ = std::thread(&IdentifierRos::stabilityLoop, this);
   period_timer_ = node.createTimer(ros::Duration(settings_.period_s), &IdentifierRos::onPeriod, this);
+  clock_timer_ = node.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { checkClockMoves(); });
   updater_.setHardwareID("acc_identifier");
   updater_.add("ACC identification", this, &IdentifierRos::diagnose);
   // Health on the wall clock: update() would wait for the updater's own period on ROS time, which
@@ -377,6 +380,7 @@ WindowSample toWindowSample(const acc_identification::RelativeState& message, st
 void IdentifierRos::onRelativeState(const acc_identification::RelativeState::ConstPtr& message)
 {
   ++received_;
+  last_sample_wall_s_ = ros::WallTime::now().toSec();
   std::string implausible;
   WindowSample sample = toWindowSample(*message, implausible);
   // Each sample not used is counted once, for its first reason: the ACC's state (counted by
@@ -495,6 +499,24 @@ bool IdentifierRos::accDrove(double sample_time_s)
 
 void IdentifierRos::onPeriod(const ros::TimerEvent& event)
 {
+  runPeriod(event.current_real.toSec(), false);
+}
+
+void IdentifierRos::checkClockMoves()
+{
+  // Under /use_sim_time the period timer runs on /clock, which stops with the end of a replay: the
+  // period that would see the data stop never came, so the drive's last seconds were never looked
+  // at (nor a look still running published). Live, ROS time always moves and this does nothing.
+  if (!ros::Time::isSimTime())
+    return;
+  const double now_s = ros::Time::now().toSec();
+  if (now_s > 0.0 && now_s == last_seen_ros_s_)
+    runPeriod(now_s, true);
+  last_seen_ros_s_ = now_s;
+}
+
+void IdentifierRos::runPeriod(double now_s, bool catch_up)
+{
   Job job;
   {
     std::lock_guard<std::mutex> lock(window_mutex_);
@@ -523,9 +545,12 @@ void IdentifierRos::onPeriod(const ros::TimerEvent& event)
     last_stability_request_samples_ = 0;  // the thread was busy: ask again
   }
   const std::uint64_t drive_samples = job.drive_samples_taken;  // the kept count may stay level
-  const double now_s = event.current_real.toSec();
   const bool grown = drive_samples != last_stability_request_samples_;
-  const bool stalled = drive_samples == previous_period_drive_samples_;
+  // A catch-up period comes when /clock has stood still for a second: under sim time no sample
+  // comes without it, so the data have stopped, whatever arrived since the last period.
+  const bool stalled = catch_up || drive_samples == previous_period_drive_samples_;
+  if (catch_up && !(grown && stalled) && stability_tests_ == looks_published_)
+    return;  // nothing new to fit, look at or publish: the last estimate stands
   const bool due = now_s - last_stability_request_s_ >= settings_.stability_period_s || now_s < last_stability_request_s_;
   previous_period_drive_samples_ = drive_samples;
   if (grown && (due || stalled))
@@ -601,10 +626,12 @@ void IdentifierRos::runJob(Job& job)
     ROS_INFO_THROTTLE(10.0, "identifier: window %.1f-%.1f s not identifiable: %s", job.window_start_s,
                       job.window_end_s, update.window.note.c_str());
   }
+  std::uint64_t looks_in_message = 0;
   {
     std::lock_guard<std::mutex> lock(stability_mutex_);
     update.sequential = stability_result_;
     update.euler_step = euler_step_result_;
+    looks_in_message = stability_tests_;
   }
   if (job.test_stability)
   {
@@ -628,6 +655,7 @@ void IdentifierRos::runJob(Job& job)
                      message);
   publisher_.publish(message);
   ++published_;
+  looks_published_ = looks_in_message;
 }
 
 void IdentifierRos::noteFailure(const char* what, const std::string& failure)
@@ -738,7 +766,7 @@ IdentifierCounters IdentifierRos::counters()
 }
 
 IdentifierHealth identifierHealth(const IdentifierCounters& now, const IdentifierCounters& previous,
-                                  const std::string& last_failure)
+                                  const std::string& last_failure, double silent_s, double stale_after_s)
 {
   IdentifierHealth health;
   const auto since = [](std::uint64_t total, std::uint64_t before) { return total > before ? total - before : 0; };
@@ -774,6 +802,12 @@ IdentifierHealth identifierHealth(const IdentifierCounters& now, const Identifie
   {
     health.level = diagnostic_msgs::DiagnosticStatus::WARN;
     health.message = "no relative_state yet";
+  }
+  else if (silent_s > stale_after_s)
+  {
+    health.level = diagnostic_msgs::DiagnosticStatus::WARN;
+    health.message = "no relative_state for " + printfText("%.0f", silent_s) +
+                     " s (wall clock): the estimate and the verdict are those of the data up to the last sample";
   }
   else
   {
@@ -813,7 +847,9 @@ void IdentifierRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status
     std::lock_guard<std::mutex> lock(failure_mutex_);
     last_failure = last_failure_;
   }
-  const IdentifierHealth health = identifierHealth(c, reported_, last_failure);
+  const double last_sample_wall_s = last_sample_wall_s_;
+  const double silent_s = last_sample_wall_s > 0.0 ? ros::WallTime::now().toSec() - last_sample_wall_s : 0.0;
+  const IdentifierHealth health = identifierHealth(c, reported_, last_failure, silent_s, settings_.stale_after_s);
   reported_ = c;
   status.summary(health.level, health.message);
   status.add("samples received", c.received);

@@ -85,6 +85,13 @@ class EndToEnd(unittest.TestCase):
             if cls.last_message_wall is not None and time.time() - cls.last_message_wall > cls.idle_s:
                 break
             time.sleep(0.2)
+        # Before /clock moves again: the identifier's last look at the drive must come by the wall
+        # clock, as it would at the end of any replay (check_verdict holds it to that).
+        wait_until = time.time() + 10.0
+        while time.time() < wait_until and not (cls.params and cls.params[-1].stability_samples > 0 and
+                                                cls.params[-1].stability_samples == cls.params[-1].drive_samples):
+            time.sleep(0.2)
+        cls.params_before_clock = list(cls.params)
         cls.advance_clock(rospy.get_param("~advance_clock_s", 3.0))
         time.sleep(2.5)  # one more diagnostics round after the end
 
@@ -297,6 +304,10 @@ class EndToEnd(unittest.TestCase):
             taken = p.stability_verdict
         last = self.last_params()
         self.assertGreater(last.stability_samples, 0, "the sequential verdict never looked")
+        stopped = self.params_before_clock[-1] if self.params_before_clock else None
+        self.assertTrue(stopped is not None and stopped.stability_samples == stopped.drive_samples,
+                        "when the replay ended (/clock stopped) the last look did not cover the drive: %s of %s "
+                        "samples" % ((stopped.stability_samples, stopped.drive_samples) if stopped else ("no", "any")))
         # The batch comparison below rebuilds the looked-at samples from every valid one: it holds
         # for a drive within the node's bound (~drive_max_samples), which this one must be.
         self.assertEqual(last.drive_samples_let_go, 0, "the drive outgrew ~drive_max_samples")

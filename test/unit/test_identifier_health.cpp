@@ -39,6 +39,19 @@ TEST(IdentifierHealth, OneBadSampleWarnsInTheNextReportOnly)
   EXPECT_EQ(acc::identifierHealth(after, after, "").level, DiagnosticStatus::OK);
 }
 
+/// An input that stopped is said, once it has been silent for stale_after_s of wall time.
+TEST(IdentifierHealth, AnInputThatStoppedWarns)
+{
+  const acc::IdentifierCounters now = running();
+  EXPECT_EQ(acc::identifierHealth(now, now, "", 4.0, 5.0).level, DiagnosticStatus::OK);
+  const acc::IdentifierHealth silent = acc::identifierHealth(now, now, "", 6.0, 5.0);
+  EXPECT_EQ(silent.level, DiagnosticStatus::WARN);
+  EXPECT_NE(silent.message.find("no relative_state for 6 s"), std::string::npos) << silent.message;
+  // Before the first sample the older WARN says so instead.
+  EXPECT_EQ(acc::identifierHealth(acc::IdentifierCounters{}, acc::IdentifierCounters{}, "", 60.0, 5.0).message,
+            "no relative_state yet");
+}
+
 /// A take-over by the driver is said (OK: the driver's choice); samples whose ACC state is unknown
 /// while engagement is required are a fault of the source (WARN).
 TEST(IdentifierHealth, AccOffIsSaidAndAnUnknownAccStateWarns)

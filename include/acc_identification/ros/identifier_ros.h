@@ -4,6 +4,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -34,6 +35,7 @@ struct IdentifierSettings
 {
   double window_s = 120.0;            ///< sliding window length [s]
   double period_s = 1.0;              ///< recalibration period, on the ROS clock (sim time too) [s]
+  double stale_after_s = 5.0;         ///< WARN when no relative_state came for this long (wall clock) [s]
   double max_gap_s = 0.5;             ///< a longer hole in relative_state splits the window [s]
   /// A jump in time (back beyond max_gap_s, ahead beyond max_forward_jump_s) changes the window
   /// only once this many consecutive samples agree on the new time base (at least 2: one stamp
@@ -121,8 +123,11 @@ struct IdentifierHealth
 /// required) or a jump in time was confirmed since then, WARN before the first sample, else OK
 /// ("ACC off: ..." while samples come with the ACC off: the driver's choice, not a fault). One
 /// bad sample an hour ago is no reason to stay WARN: the totals are the key-values.
+/// silent_s: wall seconds since the last relative_state; beyond stale_after_s the input has
+/// stopped (WARN, after the faults above): the estimate and verdict stay those of the data so far.
 IdentifierHealth identifierHealth(const IdentifierCounters& now, const IdentifierCounters& previous,
-                                  const std::string& last_failure);
+                                  const std::string& last_failure, double silent_s = 0.0,
+                                  double stale_after_s = std::numeric_limits<double>::infinity());
 
 /// Runs work and catches whatever it throws: true when it returned; false when it threw, with
 /// failure saying what (a std::exception's what(), or that it was not a std::exception).
@@ -191,6 +196,12 @@ private:
   /// counted and said once per stretch.
   bool accDrove(double sample_time_s);
   void onPeriod(const ros::TimerEvent& event);
+  /// One period at ROS time now_s. A catch-up period (/clock stood still: the end of a replay, a
+  /// pause) only asks for the last look of a drive that stopped, and publishes a look not yet
+  /// published; otherwise it does nothing (the last estimate stands).
+  void runPeriod(double now_s, bool catch_up);
+  /// Every wall second under /use_sim_time: a catch-up period when /clock has not moved since the last.
+  void checkClockMoves();
   void workerLoop();
   void stabilityLoop();
   /// Gives the stability thread the drive, unless it is still busy with an earlier one.
@@ -244,6 +255,10 @@ private:
   ros::Subscriber setting_subscriber_;
   ros::Publisher publisher_;
   ros::Timer period_timer_;
+  ros::WallTimer clock_timer_;   ///< checkClockMoves
+  double last_seen_ros_s_ = -1.0;  ///< ROS time at the last checkClockMoves
+  std::atomic<std::uint64_t> looks_published_{0};  ///< stability_tests_ as of the last published message
+  std::atomic<double> last_sample_wall_s_{0.0};  ///< ros::WallTime of the last relative_state (0: none yet)
   diagnostic_updater::Updater updater_;
   ros::WallTimer diagnostic_timer_;
 
