@@ -46,6 +46,8 @@ if(CATKIN_ENABLE_TESTING)
     test/rostest/gps_driver_file_check.cpp)
   target_link_libraries(test_gps_driver_file ${catkin_LIBRARIES})
   add_dependencies(test_gps_driver_file ${PROJECT_NAME}_generate_messages_cpp gps_driver_node)
+  # A datagram larger than a small read buffer, read whole.
+  add_rostest(test/rostest/gps_driver_udp.test DEPENDENCIES test_gps_driver_file gps_driver_node)
   # 10 Hz at rate 1 (hztest).
   add_rostest(test/rostest/gps_driver_rate.test DEPENDENCIES gps_driver_node)
 endif()

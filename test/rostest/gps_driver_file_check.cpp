@@ -3,7 +3,13 @@
 // counts and values, time_reference against fix, and the final diagnostics' counts.
 #include <gtest/gtest.h>
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -200,6 +206,45 @@ TEST(GpsDriverDiagnostics, RateAndBadSentencesDuringARealTimeReplay)
     ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.05));
   EXPECT_TRUE(ok_at_10_hz);
   EXPECT_TRUE(bad_checksum_counted);
+}
+
+/// One datagram of 20 epochs (120 lines, about 6.9 kB: more than the 4096 bytes the driver once
+/// read a datagram into, which lost the rest without a count) must give 20 fixes.
+TEST(GpsDriverUdp, ALargeDatagramIsReadWhole)
+{
+  ros::NodeHandle private_node("~");
+  std::string log_path;
+  int port = 0;
+  ASSERT_TRUE(private_node.getParam("log", log_path));
+  ASSERT_TRUE(private_node.getParam("port", port));
+  std::ifstream log(log_path);
+  std::string datagram, line;
+  for (int lines = 0; lines < 120 && std::getline(log, line); ++lines)
+    datagram += line + "\r\n";
+  ASSERT_GT(datagram.size(), 4096u);
+
+  ros::NodeHandle node;
+  std::size_t fixes = 0;
+  auto subscriber = node.subscribe<acc_identification::GnssFix>(
+      "fix", 100, [&](const acc_identification::GnssFix::ConstPtr&) { ++fixes; });
+  const ros::WallTime connected_by = ros::WallTime::now() + ros::WallDuration(20.0);
+  while (ros::ok() && subscriber.getNumPublishers() == 0 && ros::WallTime::now() < connected_by)
+    ros::WallDuration(0.05).sleep();
+  ASSERT_GT(subscriber.getNumPublishers(), 0u) << "the driver's fix topic never connected";
+  ros::WallDuration(0.5).sleep();  // the driver has bound its port by now (it reads from the start)
+
+  const int sender = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(static_cast<std::uint16_t>(port));
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::sendto(sender, datagram.data(), datagram.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof to),
+            static_cast<ssize_t>(datagram.size()));
+  ::close(sender);
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(10.0);  // the last epoch ends on idle
+  while (ros::ok() && ros::WallTime::now() < end && fixes < 20)
+    ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.05));
+  EXPECT_EQ(fixes, 20u);
 }
 
 int main(int argc, char** argv)
