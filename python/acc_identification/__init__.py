@@ -71,8 +71,11 @@ def _check(name, value):
 
 def _fingerprint(frame):
     """What tells the rows read_run returned from rows changed after (cut, filtered, edited)."""
+    import pandas
+
     columns = [name for name in ("segment",) + COLUMNS if name in frame.columns]
-    return hashlib.sha1(frame[columns].to_numpy(dtype=float, na_value=math.nan).tobytes()).hexdigest()
+    rows = pandas.util.hash_pandas_object(frame[columns], index=False)  # any dtype, row by row
+    return hashlib.sha1(rows.to_numpy().tobytes()).hexdigest()
 
 
 def pair_nmea_logs(leader_log, follower_log, out_csv, antenna_offset_m=None, leader_antenna_to_rear_bumper_m=None,

@@ -258,6 +258,10 @@ def test_segments_keep_their_names_and_a_row_without_one_is_refused():
     kept = two[two["segment"] == 1]
     assert [r["name"] for r in acc.calibrate(kept, stability_test=False, second_opinion=False)["runs"]] == \
         ["second half"]
+    # Segments labelled by text are segments too, named by their label.
+    texts = two.assign(segment=two["segment"].map({0: "a", 1: "b"}))
+    assert [r["name"] for r in acc.calibrate(texts, stability_test=False, second_opinion=False)["runs"]] == \
+        [texts.attrs["path"] + " #a", texts.attrs["path"] + " #b"]
     unlabelled = two.copy()
     unlabelled["segment"] = unlabelled["segment"].astype(float)
     unlabelled.loc[10:20, "segment"] = math.nan
