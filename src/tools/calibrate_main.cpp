@@ -60,7 +60,7 @@ int main(int argc, char** argv)
   app.add_option("--json", json_path, "write parameters, standard errors, stability, the stability test, per-run RMSEs");
   app.add_option("--grid", settings.grid_nodes,
                  "also search a dense grid of N nodes per axis (k1 0-0.5, k2 0-1.5, tau_e 0-3) and check that the "
-                 "multistart optimum is the global one")
+                 "multistart optimum is the global one (N^3 simulations: at most 2e11 simulated samples in all)")
       ->check(acc::gridNodesPerAxis());
   app.add_option("--alpha", settings.alpha, "level of the string-stability test")
       ->check(acc::testLevel())

@@ -295,6 +295,9 @@ def test_options_are_checked_by_the_tools_rules():
         acc.read_run(CASALE)
     with pytest.raises(ValueError, match="no file or folder given"):
         acc.campaign([])
+    # Within the option's range, but days of work on this run: refused before the fit, as the tool refuses it.
+    with pytest.raises(ValueError, match="--grid 1000 on 1051 training samples would simulate .* give --grid 575 or less"):
+        acc.calibrate(run, grid=1000)
     # A whole number written as a float is the number, as the tools read "5.0".
     assert acc.calibrate(run, seed=7.0, starts=5.0, stability_test=False, second_opinion=False)["fitted"]
 
