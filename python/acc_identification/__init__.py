@@ -60,12 +60,13 @@ def read_run(path, follower=None, all_pairs=False, max_gap_s=0.5, topic="relativ
     return frame
 
 
-def _check(name, value):
-    """A keyword argument checked by the tool's own rule for the same option (None: not given)."""
+def _check(name, value, rule=None):
+    """A keyword argument checked by the tool's own rule for the same option (rule: the rule's name
+    where it is not the argument's; None: not given)."""
     if value is not None:
         if isinstance(value, bool):
-            raise ValueError("%s: a number, not %r" % (name.split()[-1], value))
-        _core.check_option(name, repr(value) if isinstance(value, float) else str(value))
+            raise ValueError("%s: a number, not %r" % (name, value))
+        _core.check_option(name, rule or name, repr(value) if isinstance(value, float) else str(value))
     return value
 
 
@@ -120,10 +121,10 @@ def _as_read(frame):
     return bool(frame.attrs.get("input_account")) and frame.attrs.get("rows_as_read") == _fingerprint(frame)
 
 
-def _account(frame, path):
+def _account(frame, path, as_read):
     """What the JSON's inputs_read says of a frame: read_run's account while the frame keeps the rows
-    it read; otherwise format "dataframe" without counts (they would not be this frame's)."""
-    if _as_read(frame):
+    it read (as_read); otherwise format "dataframe" without counts (they would not be this frame's)."""
+    if as_read:
         return {**frame.attrs["input_account"], "path": path}
     pairs = list(frame.attrs.get("openacc_pairs") or [])
     return {"path": path, "format": "dataframe", "openacc_pairs": pairs, "counts": {}}
@@ -156,7 +157,7 @@ def _segments(frames, first_number=1, max_gap_s=None):
             runs.append({"name": name, "path": path, "input": number, "check": not as_read, "where": where,
                          "max_gap_s": max_gap_s or frame.attrs.get("max_gap_s", 0.5), "rows": part.index.tolist(),
                          **columns})
-        inputs_read.append(_account(frame, path))
+        inputs_read.append(_account(frame, path, as_read))
     return runs, inputs_read
 
 
@@ -183,9 +184,9 @@ def _segment_name(frame, path, label):
     return "%s #%s" % (path, label)
 
 
-def _given(name, value, default):
+def _given(name, value, default, rule=None):
     """A keyword argument checked by the tool's rule, or the tool's default when not given."""
-    return default if _check(name, value) is None else value
+    return default if _check(name, value, rule) is None else value
 
 
 def _log(result):
@@ -239,7 +240,7 @@ def diagnose(runs, train_fraction=None, effects=None, threads=None, seed=None, f
     result = _core.diagnose(segments, inputs_read + held_out_inputs_read, _inputs(frames),
                             _given("train_fraction", train_fraction, defaults["train_fraction"]),
                             list(effects or []), int(_given("threads", threads, defaults["threads"])),
-                            int(_given("diagnose seed", seed, defaults["seed"])), forward_selection,
+                            int(_given("seed", seed, defaults["seed"], rule="seed32")), forward_selection,
                             held_out_segments, _inputs(held_out_frames, len(frames) + 1),
                             int(_given("bootstrap", bootstrap, defaults["bootstrap"])),
                             _given("bootstrap_below_s", bootstrap_below_s, defaults["bootstrap_below_s"]))

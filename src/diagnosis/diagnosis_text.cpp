@@ -162,4 +162,11 @@ void printDiagnosisSummary(const DiagnosisResult& r, std::FILE* out)
   printVerdict(r, out);
 }
 
+void writeUnusedRunNotes(const DiagnosisResult& result, std::ostream& log)
+{
+  for (const std::string& note : result.notes)
+    log << "note: " << note << "\n";
+  log << result.notes.size() << " run(s) or part(s) not used\n";
+}
+
 }  // namespace acc

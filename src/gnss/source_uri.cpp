@@ -78,8 +78,12 @@ bool parseSourceUri(const std::string& text, SourceUri& uri, std::string& error)
     parseQuery(rest.substr(question + 1), uri.query);
     rest = rest.substr(0, question);
   }
-  if ((uri.scheme == "serial" || uri.scheme == "file" || uri.scheme == "udp" || uri.scheme == "tcp") &&
-      !checkQueryKeys(text, uri, error))
+  if (uri.scheme != "serial" && uri.scheme != "file" && uri.scheme != "udp" && uri.scheme != "tcp")
+  {
+    error = "source '" + text + "' has unknown scheme '" + uri.scheme + "' (serial, udp, tcp or file)";
+    return false;
+  }
+  if (!checkQueryKeys(text, uri, error))
     return false;
   if (uri.scheme == "serial" || uri.scheme == "file")
   {
@@ -91,33 +95,29 @@ bool parseSourceUri(const std::string& text, SourceUri& uri, std::string& error)
     }
     return true;
   }
-  if (uri.scheme == "udp" || uri.scheme == "tcp")
+  // udp or tcp: host:port
+  const std::size_t colon = rest.rfind(':');
+  if (colon == std::string::npos || !parsePort(rest.substr(colon + 1), uri.port))
   {
-    const std::size_t colon = rest.rfind(':');
-    if (colon == std::string::npos || !parsePort(rest.substr(colon + 1), uri.port))
-    {
-      error = "source '" + text + "' needs a port from 1 to 65535 (" + uri.scheme + "://host:port)";
-      return false;
-    }
-    uri.host = rest.substr(0, colon);
-    if (uri.scheme == "tcp" && uri.host.empty())
-    {
-      error = "source '" + text + "' needs a host (tcp://host:port)";
-      return false;
-    }
-    in_addr address{};
-    if (uri.scheme == "udp" && !uri.host.empty() && ::inet_pton(AF_INET, uri.host.c_str(), &address) != 1)
-    {
-      // Found here rather than when the socket opens, where it would only be retried for ever.
-      error = "source '" + text + "': the address to listen on must be an IPv4 address (udp://127.0.0.1:" +
-              std::to_string(uri.port) + "), or nothing for every interface (udp://:" + std::to_string(uri.port) +
-              "), not '" + uri.host + "'";
-      return false;
-    }
-    return true;
+    error = "source '" + text + "' needs a port from 1 to 65535 (" + uri.scheme + "://host:port)";
+    return false;
   }
-  error = "source '" + text + "' has unknown scheme '" + uri.scheme + "' (serial, udp, tcp or file)";
-  return false;
+  uri.host = rest.substr(0, colon);
+  if (uri.scheme == "tcp" && uri.host.empty())
+  {
+    error = "source '" + text + "' needs a host (tcp://host:port)";
+    return false;
+  }
+  in_addr address{};
+  if (uri.scheme == "udp" && !uri.host.empty() && ::inet_pton(AF_INET, uri.host.c_str(), &address) != 1)
+  {
+    // Found here rather than when the socket opens, where it would only be retried for ever.
+    error = "source '" + text + "': the address to listen on must be an IPv4 address (udp://127.0.0.1:" +
+            std::to_string(uri.port) + "), or nothing for every interface (udp://:" + std::to_string(uri.port) +
+            "), not '" + uri.host + "'";
+    return false;
+  }
+  return true;
 }
 
 }  // namespace acc

@@ -20,6 +20,7 @@
 #include "acc_identification/diagnosis/calibration_second_opinion.h"
 #include "acc_identification/diagnosis/diagnosis.h"
 #include "acc_identification/diagnosis/diagnosis_output.h"
+#include "acc_identification/diagnosis/diagnosis_text.h"
 #include "acc_identification/io/output_files.h"
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/ros/run_bag_reader.h"
@@ -323,10 +324,7 @@ py::dict diagnose(const py::list& runs, const py::list& inputs_read, const std::
     result = held_out_inputs.empty() ? acc::diagnoseRuns(plain, options)
                                      : acc::diagnoseHeldOutRuns(plain, held_out, options);
   }
-  for (const std::string& note : result.notes)
-    log << "note: " << note << "\n";
-  if (!result.notes.empty())
-    log << result.notes.size() << " run(s) or part(s) not used\n";
+  acc::writeUnusedRunNotes(result, log);
   py::dict out;
   out["json"] = acc::diagnosisToJson(result, inputs, held_out_inputs, toInputAccounts(inputs_read)).dump();
   out["log"] = log.str();
@@ -365,15 +363,16 @@ py::dict campaign(const std::vector<std::string>& paths, std::size_t starts, std
 }
 
 /// Checks a keyword argument of the Python functions by the tools' own rule for the same option
-/// (tools/option_rules.h, tools/number_checks.h): ValueError "name: must be ..., not text".
-void checkOption(const std::string& name, const std::string& value_text)
+/// (tools/option_rules.h, tools/number_checks.h), named by rule (the argument's name, or seed32
+/// for diagnose's seed): ValueError "name: must be ..., not text".
+void checkOption(const std::string& name, const std::string& rule_name, const std::string& value_text)
 {
   static const std::map<std::string, CLI::Validator (*)()> rules{
       {"starts", acc::multistartStarts},
       {"alpha", acc::testLevel},
       {"grid", acc::gridNodesPerAxis},
       {"seed", [] { return acc::nonNegativeWholeNumber(); }},
-      {"diagnose seed", acc::seed32},
+      {"seed32", acc::seed32},
       {"verdict_every_s", acc::verdictEverySeconds},
       {"train_fraction", acc::trainFraction},
       {"threads", [] { return acc::nonNegativeWholeNumber(); }},
@@ -382,13 +381,13 @@ void checkOption(const std::string& name, const std::string& value_text)
       {"max_gap_s", [] { return acc::positiveNumber(); }},
       {"acc_engaged_timeout_s", [] { return acc::nonNegativeNumber(); }},
   };
-  const auto rule = rules.find(name);
+  const auto rule = rules.find(rule_name);
   if (rule == rules.end())
-    throw std::logic_error("check_option: no rule for '" + name + "'");
+    throw std::logic_error("check_option: no rule '" + rule_name + "'");
   std::string text = value_text;
   const std::string why = rule->second()(text);
   if (!why.empty())
-    throw std::invalid_argument(name.substr(name.find(' ') + 1) + ": " + why);
+    throw std::invalid_argument(name + ": " + why);
 }
 }  // namespace
 
@@ -432,7 +431,7 @@ PYBIND11_MODULE(_core, module)
              py::arg("train_fraction"), py::arg("effects"), py::arg("threads"), py::arg("seed"),
              py::arg("forward_selection"), py::arg("held_out_runs"), py::arg("held_out_inputs"),
              py::arg("bootstrap_replicates"), py::arg("bootstrap_below_s"));
-  module.def("check_option", &checkOption, py::arg("name"), py::arg("value_text"));
+  module.def("check_option", &checkOption, py::arg("name"), py::arg("rule_name"), py::arg("value_text"));
   module.def("campaign", &campaign, py::arg("paths"), py::arg("starts"), py::arg("threads"), py::arg("alpha"),
              py::arg("seed"), py::arg("platoon_check"), py::arg("platoon_diagnosis"), py::arg("bootstrap_replicates"),
              py::arg("bootstrap_below_s"));

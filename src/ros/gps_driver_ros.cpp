@@ -313,9 +313,8 @@ void GpsDriverRos::reportSourceState()
   // Logged once per change between open and not open (the retries' back-off changes the state's
   // text every time; /diagnostics carries it), so that a receiver unplugged or a server gone is in
   // the log beside the data it explains.
-  const std::string state = source_->state();
-  const bool open = state == "open";
-  if (open == source_open_ || state == "not opened yet" || state == "end of file")
+  const bool open = source_->isOpen();
+  if (open == source_open_)
     return;
   source_open_ = open;
   if (open)
@@ -323,7 +322,7 @@ void GpsDriverRos::reportSourceState()
              static_cast<unsigned long long>(source_->reopenCount()));
   else
     ROS_WARN("gps_driver: %s: %s (the driver keeps retrying; no data until it opens)",
-             source_->description().c_str(), state.c_str());
+             source_->description().c_str(), source_->state().c_str());
 }
 
 int GpsDriverRos::runTopic()

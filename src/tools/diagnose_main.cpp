@@ -104,9 +104,7 @@ int diagnoseFiles(const DiagnoseRequest& r)
     std::cerr << "error: " << e.what() << "\n";
     return 1;
   }
-  for (const std::string& note : result.notes)
-    std::cerr << "note: " << note << "\n";
-  std::cerr << result.notes.size() << " run(s) or part(s) not used\n";
+  acc::writeUnusedRunNotes(result, std::cerr);
   acc::printDiagnosisSummary(result, stdout);
   if (!r.sumo_vtype_path.empty() &&
       !acc::saveFinalModelVType(result, runs, r.sumo_vtype_path, r.sumo_id.empty() ? runs.front().name : r.sumo_id,
