@@ -18,7 +18,7 @@ if(TARGET acc_calibration_ros AND TARGET acc_campaign AND TARGET acc_conversion)
     # pytest holds every function to its command-line tool's JSON on the bundled data.
     set(_acc_python_results ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
     catkin_run_tests_target("python" "api" "python-api.xml"
-      COMMAND "/usr/bin/env ACC_DATA_CASALE_DIR=${ACC_DATA_CASALE_DIR} ACC_DATA_TOYOTA_DIR=${ACC_DATA_ZALAZONE_TOYOTA_RAV4_S_DIR} /usr/bin/python3 -m pytest -q -p no:cacheprovider --junitxml=${_acc_python_results}/python-api.xml ${PROJECT_SOURCE_DIR}/test/python/api"
+      COMMAND "/usr/bin/env ACC_DATA_CASALE_DIR=${ACC_DATA_CASALE_DIR} ACC_DATA_TOYOTA_DIR=${ACC_DATA_ZALAZONE_TOYOTA_RAV4_S_DIR} ACC_DATA_ZALAZONE_DIR=${ACC_DATA_ZALAZONE_DYNAMIC_DIR} /usr/bin/python3 -m pytest -q -p no:cacheprovider --junitxml=${_acc_python_results}/python-api.xml ${PROJECT_SOURCE_DIR}/test/python/api"
       WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
       DEPENDENCIES acc_identification_python_core calibrate diagnose campaign openacc_to_nmea nmea_to_csv)
   endif()

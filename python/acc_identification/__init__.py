@@ -15,6 +15,7 @@ puts them: acc_identification.msg.
 import hashlib
 import json
 import math
+import numbers
 import os
 import sys
 
@@ -33,7 +34,8 @@ def read_run(path, follower=None, all_pairs=False, max_gap_s=0.5, topic="relativ
     reports say it was off: calibrate's --acc-engaged-topic, --require-acc-engaged and
     --acc-engaged-timeout; and where the ACC's setting changes: acc_setting keeps one setting's
     samples, as --acc-setting). The reader's notes go to stderr, as the tools
-    print them. attrs: path, openacc_pairs (the pair(s) read), segment_names, input_account (the
+    print them. attrs: path, openacc_pairs (the pair(s) read), segment_names, segment_pairs (each
+    segment's OpenACC pair, None for other formats), input_account (the
     reader's format and counts, which calibrate and diagnose put in their JSON's inputs_read), and
     what tells whether the rows are still those read (a frame changed after reading is judged row
     by row again, with this max_gap_s)."""
@@ -55,7 +57,8 @@ def read_run(path, follower=None, all_pairs=False, max_gap_s=0.5, topic="relativ
     frame = pandas.concat(frames, ignore_index=True)
     account = read["account"]
     frame.attrs = {"path": str(path), "openacc_pairs": list(account["openacc_pairs"]),
-                   "segment_names": [run["name"] for run in read["runs"]], "input_account": account,
+                   "segment_names": [run["name"] for run in read["runs"]],
+                   "segment_pairs": [run["pair"] for run in read["runs"]], "input_account": account,
                    "max_gap_s": max_gap_s, "rows_as_read": _fingerprint(frame)}
     return frame
 
@@ -126,8 +129,23 @@ def _account(frame, path, as_read):
     it read (as_read); otherwise format "dataframe" without counts (they would not be this frame's)."""
     if as_read:
         return {**frame.attrs["input_account"], "path": path}
-    pairs = list(frame.attrs.get("openacc_pairs") or [])
-    return {"path": path, "format": "dataframe", "openacc_pairs": pairs, "counts": {}}
+    return {"path": path, "format": "dataframe", "openacc_pairs": _pairs_held(frame), "counts": {}}
+
+
+def _pairs_held(frame):
+    """The OpenACC pairs of the segments a frame still holds, in read_run's order (a frame cut to one
+    car's rows names that car's pair only); every pair read where a segment is not read_run's."""
+    read = list(frame.attrs.get("openacc_pairs") or [])
+    of_segment = frame.attrs.get("segment_pairs") or []
+    if "segment" not in frame.columns or not read:
+        return read
+    held = set()
+    for label in frame["segment"].dropna().unique():
+        index = _read_run_index(label, len(of_segment))
+        if index is None or of_segment[index] is None:
+            return read
+        held.add(of_segment[index])
+    return [pair for pair in read if pair in held]
 
 
 def _column(part, name, where):
@@ -179,9 +197,16 @@ def _segment_name(frame, path, label):
     names = frame.attrs.get("segment_names", [])
     if label is None:
         return names[0] if names else "%s #1" % path
-    if isinstance(label, (int, float)) and float(label).is_integer() and 0 <= int(label) < len(names):
-        return names[int(label)]
-    return "%s #%s" % (path, label)
+    index = _read_run_index(label, len(names))
+    return names[index] if index is not None else "%s #%s" % (path, label)
+
+
+def _read_run_index(label, count):
+    """The segment label as read_run numbers its count segments (0, 1, ...), or None for another label."""
+    if isinstance(label, numbers.Real) and not isinstance(label, bool) and float(label).is_integer() \
+            and 0 <= int(label) < count:
+        return int(label)
+    return None
 
 
 def _given(name, value, default, rule=None):

@@ -170,10 +170,13 @@ py::dict readRun(const std::string& path, const std::string& follower, bool all_
     argument = acc::readRunArgument(path, topics, max_gap_s, log, acc::pairSelectorFromOptions(follower, all_pairs));
   }
   py::list runs;
-  for (const acc::CarFollowingRun& run : argument.runs)
+  for (std::size_t k = 0; k < argument.runs.size(); ++k)
   {
+    const acc::CarFollowingRun& run = argument.runs[k];
     py::dict entry;
     entry["name"] = run.name;
+    entry["pair"] = k < argument.run_pairs.size() ? py::cast(argument.account.openacc_pairs[argument.run_pairs[k]])
+                                                   : py::none();
     entry["time_s"] = toArray(run.time_s);
     entry["space_gap_m"] = toArray(run.space_gap_m);
     entry["follower_speed_mps"] = toArray(run.follower_speed_mps);

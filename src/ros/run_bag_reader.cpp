@@ -437,6 +437,8 @@ RunArgument readRunArgument(const std::string& path, const BagTopics& topics, do
     bounds.max_time_step_s = max_gap_s;
     RunFileContents contents = readRunFile(path, bounds, selector);
     argument.account = accountOfRunFile(path, contents);
+    if (!contents.pairs.empty())
+      argument.run_pairs = contents.run_pairs;
     argument.runs = reportAndTakeRuns(path, contents, log);
     return argument;
   }

@@ -82,6 +82,8 @@ struct RunArgument
   /// Its format, the OpenACC pair(s) the runs are of ("BMW_I3 behind SMART_TARGET, positions
   /// 3/2"; none for a canonical CSV and a bag) and the reader's counts.
   InputAccount account;
+  /// OpenACC: each run's pair, an index into account.openacc_pairs; empty for other formats.
+  std::vector<std::size_t> run_pairs;
 };
 
 /// Reads one RUN argument of the command-line tools (calibrate, diagnose): a bag (path ending in

@@ -1,7 +1,8 @@
 """The Python API (python/acc_identification) against the command-line tools: every function's
 dict must be the tool's --json on the same bundled file, to the last digit (solve times aside),
 and bad input must raise the tools' messages. Run by `make test` (cmake/python.cmake) with the
-workspace sourced; ACC_DATA_CASALE_DIR and ACC_DATA_TOYOTA_DIR name the unpacked bundled data."""
+workspace sourced; ACC_DATA_CASALE_DIR, ACC_DATA_TOYOTA_DIR and ACC_DATA_ZALAZONE_DIR (the dynamic
+runs) name the unpacked bundled data."""
 import json
 import math
 import os
@@ -17,6 +18,7 @@ import acc_identification as acc
 
 CASALE = os.environ.get("ACC_DATA_CASALE_DIR", "")
 TOYOTA = os.environ.get("ACC_DATA_TOYOTA_DIR", "")
+ZALAZONE = os.environ.get("ACC_DATA_ZALAZONE_DIR", "")
 TIMING_KEYS = {"solve_time_s", "wall_time_s", "threads"}
 
 
@@ -60,6 +62,20 @@ def test_a_frame_changed_after_reading_keeps_its_pairs_but_not_the_readers_count
     cut = acc.diagnose(run.iloc[:800].copy(), threads=2)["inputs_read"]
     assert cut == [{"path": path, "format": "dataframe", "openacc_pairs": ["Hyundai behind Rexton, positions 2/1"],
                     "counts": {}}]
+
+
+def test_a_frame_cut_to_some_pairs_names_those_pairs_only():
+    path = os.path.join(ZALAZONE, "dynamic_part26.csv")
+    every = acc.read_run(path, all_pairs=True)
+    pairs = every.attrs["openacc_pairs"]
+    assert len(pairs) > 2 and len(every.attrs["segment_pairs"]) == every["segment"].nunique()
+    second = pairs[1]
+    kept = [label for label, pair in enumerate(every.attrs["segment_pairs"]) if pair == second]
+    one_car = every[every["segment"].isin(kept)].copy()
+    read = acc.calibrate(one_car)["inputs_read"]
+    assert read == [{"path": path, "format": "dataframe", "openacc_pairs": [second], "counts": {}}]
+    relabelled = one_car.assign(segment=one_car["segment"] + 1000)  # labels read_run never gave: every pair read
+    assert acc.calibrate(relabelled)["inputs_read"][0]["openacc_pairs"] == pairs
 
 
 def test_calibrate_equals_the_tool_to_the_last_digit(tmp_path):
