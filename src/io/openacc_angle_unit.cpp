@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <sstream>
 
 namespace acc
@@ -28,15 +29,25 @@ double stepLengthM(double lat0, double lon0, double lat1, double lon1, double to
   return kEarthRadiusM * std::hypot(dlat, dlon);
 }
 
-/// The largest |Lat| and |Lon| over the finite fixes of the cars with Lat/Lon columns.
+/// Whether a fix can be in radians: |Lat| <= pi/2 and |Lon| <= pi (it then fits both units).
+bool fitsRadians(double latitude, double longitude)
+{
+  return std::abs(latitude) <= kPi / 2.0 && std::abs(longitude) <= kPi;
+}
+
+/// The largest |Lat| and |Lon| over the finite fixes of the cars with Lat/Lon columns, and how
+/// many of those fixes cannot be radians.
 struct LatLonRange
 {
   double max_latitude = 0.0, max_longitude = 0.0;
-  std::size_t values = 0, columns = 0;
+  std::size_t values = 0, columns = 0, beyond_radians = 0;
 
   std::string describe() const
   {
-    return "|Lat| up to " + significant(max_latitude, 6) + ", |Lon| up to " + significant(max_longitude, 6);
+    std::string text = "|Lat| up to " + significant(max_latitude, 6) + ", |Lon| up to " + significant(max_longitude, 6);
+    if (beyond_radians > 0 && beyond_radians < values)
+      text += "; " + std::to_string(beyond_radians) + " of " + std::to_string(values) + " fixes beyond radians";
+    return text;
   }
 };
 
@@ -57,6 +68,7 @@ LatLonRange latLonRange(const OpenAccFile& file)
         ++range.values;
         range.max_latitude = std::max(range.max_latitude, std::abs(vehicle.latitude_deg[i]));
         range.max_longitude = std::max(range.max_longitude, std::abs(vehicle.longitude_deg[i]));
+        range.beyond_radians += fitsRadians(vehicle.latitude_deg[i], vehicle.longitude_deg[i]) ? 0 : 1;
       }
     }
   }
@@ -70,7 +82,8 @@ struct ConsecutiveMotion
   std::size_t steps = 0;
 };
 
-/// Whether fixes i-1 and i of the car are consecutive (close in time) with every value finite.
+/// Whether fixes i-1 and i of the car are consecutive (close in time) with every value finite and
+/// both fixes fitting both units (a stray cell beyond radians would outweigh every true step).
 bool isCheckableStep(const OpenAccFile& file, const OpenAccVehicle& vehicle, std::size_t i)
 {
   const double dt = file.time_s[i] - file.time_s[i - 1];
@@ -79,7 +92,9 @@ bool isCheckableStep(const OpenAccFile& file, const OpenAccVehicle& vehicle, std
                                    vehicle.east_m[i - 1],       vehicle.north_m[i - 1],
                                    vehicle.east_m[i],           vehicle.north_m[i]};
   return dt > 0.0 && dt <= kMaxConsecutiveStepS &&
-         std::all_of(std::begin(values_of_step), std::end(values_of_step), [](double v) { return std::isfinite(v); });
+         std::all_of(std::begin(values_of_step), std::end(values_of_step), [](double v) { return std::isfinite(v); }) &&
+         fitsRadians(vehicle.latitude_deg[i - 1], vehicle.longitude_deg[i - 1]) &&
+         fitsRadians(vehicle.latitude_deg[i], vehicle.longitude_deg[i]);
 }
 
 ConsecutiveMotion consecutiveMotion(const OpenAccFile& file)
@@ -156,7 +171,43 @@ void convertRadiansToDegrees(OpenAccFile& file)
   }
 }
 
+/// Sets one impossible angle (in degrees by now) aside as a bad cell: NaN, listed and counted.
+void setAside(OpenAccFile& file, std::size_t row, const std::string& column, double& value_deg)
+{
+  const bool radians = file.angle_unit == OpenAccAngleUnit::kRadians;
+  const double as_written = radians ? value_deg / kRadToDeg : value_deg;
+  const std::string what = column.compare(0, 3, "Lat") == 0 ? "a latitude" : "a longitude";
+  OpenAccBadCell cell{row, file.line[row], column, significant(as_written, 10),
+                      "not " + what + " in " + (radians ? "radians" : "degrees") + ", the file's unit"};
+  const bool row_had_one = std::any_of(file.bad_cells.begin(), file.bad_cells.end(),
+                                       [row](const OpenAccBadCell& other) { return other.row == row; });
+  file.bad_rows += row_had_one ? 0 : 1;
+  ++file.bad_cells_by_column[column];
+  file.problems.push_back(file.path + ":" + std::to_string(cell.line) + ": " + cell.describe() + " (NaN)");
+  const auto place = std::upper_bound(file.bad_cells.begin(), file.bad_cells.end(), row,
+                                      [](std::size_t r, const OpenAccBadCell& other) { return r < other.row; });
+  file.bad_cells.insert(place, cell);
+  value_deg = std::numeric_limits<double>::quiet_NaN();
+}
+
 }  // namespace
+
+void setAsideImpossibleAngles(OpenAccFile& file)
+{
+  for (OpenAccVehicle& vehicle : file.vehicles)
+  {
+    if (!vehicle.has_lat_lon)
+      continue;
+    const std::string n = std::to_string(vehicle.position);
+    for (std::size_t i = 0; i < file.rows(); ++i)
+    {
+      if (std::abs(vehicle.latitude_deg[i]) > 90.0)
+        setAside(file, i, "Lat" + n, vehicle.latitude_deg[i]);
+      if (std::abs(vehicle.longitude_deg[i]) > 180.0)
+        setAside(file, i, "Lon" + n, vehicle.longitude_deg[i]);
+    }
+  }
+}
 
 void detectAngleUnit(OpenAccFile& file)
 {
@@ -168,11 +219,13 @@ void detectAngleUnit(OpenAccFile& file)
                              (range.columns == 0 ? "no Lat/Lon columns" : "no Lat/Lon values") +
                              " (radians assumed, the database's unit; nothing to convert)";
   }
-  else if (range.max_latitude > kPi / 2.0 || range.max_longitude > kPi)
+  else if (2 * range.beyond_radians > range.values)
   {
+    // Most fixes, not the largest value: one corrupt cell must not decide the unit of every fix.
     file.angle_unit = OpenAccAngleUnit::kDegrees;
-    file.angle_unit_reason = "Lat/Lon in degrees: " + range.describe() +
-                             ", beyond radians (|Lat| <= pi/2, |Lon| <= pi), although the database's notes say radians";
+    file.angle_unit_reason = "Lat/Lon in degrees: " + range.describe() + ", " +
+                             (range.beyond_radians == range.values ? "every fix" : "most fixes") +
+                             " beyond radians (|Lat| <= pi/2, |Lon| <= pi), although the database's notes say radians";
   }
   else
   {

@@ -672,7 +672,7 @@ void noteBadCellsAndRows(OpenAccFile& file)
     {
       by_column.push_back(column + " " + std::to_string(count));
     }
-    file.notes.push_back(file.path + ": " + std::to_string(file.bad_cells.size()) + " cells without a number in " +
+    file.notes.push_back(file.path + ": " + std::to_string(file.bad_cells.size()) + " cells without a usable number in " +
                          std::to_string(file.bad_rows) + " of " + std::to_string(rows) + " rows (" +
                          join(by_column, ", ") + "), each listed; their values are NaN");
   }
@@ -721,6 +721,10 @@ std::string OpenAccVehicle::label() const
 
 std::string OpenAccBadCell::describe() const
 {
+  if (!why.empty())
+  {
+    return column + " " + text + ": " + why;
+  }
   if (text.empty())
   {
     return column + " empty";
@@ -841,8 +845,9 @@ OpenAccFile readOpenAccFile(const std::string& path)
   keepCarsWithData(file, layout.cars);
   noteAccLineAgainstDriverColumns(file);
   notePairlessFollowers(file);
-  noteBadCellsAndRows(file);
   detectAngleUnit(file);
+  setAsideImpossibleAngles(file);
+  noteBadCellsAndRows(file);
   // The unit matters to every position read from the file: said with the other notes.
   file.notes.push_back(file.path + ": " + file.angle_unit_reason);
   return file;

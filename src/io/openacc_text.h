@@ -60,6 +60,9 @@ std::string noDataReason(const OpenAccFile& file, int position);
 /// Decides the unit of the Lat/Lon cells and says why (file.angle_unit, angle_unit_reason);
 /// converts them to degrees (openacc_angle_unit.cpp).
 void detectAngleUnit(OpenAccFile& file);
+/// After detectAngleUnit: each Lat beyond +-90 degrees or Lon beyond +-180 set aside as a bad
+/// cell (NaN, listed in problems, counted), not taken as a position.
+void setAsideImpossibleAngles(OpenAccFile& file);
 
 }  // namespace openacc
 }  // namespace acc

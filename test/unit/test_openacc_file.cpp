@@ -125,6 +125,41 @@ TEST_F(OpenAccFileTest, RadiansLayoutIsToldByTheEastNorthMotion)
   EXPECT_NEAR(file.vehicle(1)->latitude_deg[0], 46.89, 1e-9);  // converted to degrees
 }
 
+/// A row of the platoon file with one field replaced.
+std::string withField(std::string row, std::size_t field, const std::string& text)
+{
+  std::size_t begin = 0;
+  for (std::size_t k = 0; k < field; ++k)
+    begin = row.find(',', begin) + 1;
+  const std::size_t end = row.find(',', begin);
+  return row.replace(begin, end - begin, text);
+}
+
+TEST_F(OpenAccFileTest, OneCorruptAngleNeitherDecidesTheUnitNorBecomesAPosition)
+{
+  // A file in radians whose Lat1 is 7 in one row: once read as "beyond radians, so degrees",
+  // which put every fix of the file near the equator.
+  std::string text = kPlatoonMetadata + kPlatoonHeader;
+  for (int i = 0; i < 10; ++i)
+    text += i == 4 ? withField(platoonRow(i, false), 5, "7") : platoonRow(i, false);
+  const acc::OpenAccFile file = acc::readOpenAccFile(write("radians_one_bad.csv", text));
+  ASSERT_EQ(file.error, "");
+  EXPECT_EQ(file.angle_unit, acc::OpenAccAngleUnit::kRadians) << file.angle_unit_reason;
+  EXPECT_TRUE(anyContains(file.notes, {"1 of 40 fixes beyond radians"})) << joined(file.notes);
+  EXPECT_NEAR(file.vehicle(1)->latitude_deg[0], 46.89, 1e-9);
+  EXPECT_TRUE(std::isnan(file.vehicle(1)->latitude_deg[4]));  // set aside, not a position
+  // Listed among the bad cells in row order (after the IVS2 NaN of rows 0-4, before row 5's) and
+  // counted; every row already had a bad cell (IVS2 is NaN throughout), so no row more is bad.
+  ASSERT_EQ(file.bad_cells.size(), 11u);
+  EXPECT_EQ(file.bad_cells[5].describe(), "Lat1 7: not a latitude in radians, the file's unit");
+  EXPECT_EQ(file.bad_cells[5].row, 4u);
+  EXPECT_EQ(file.bad_cells[6].row, 5u);
+  EXPECT_EQ(file.bad_rows, 10u);
+  EXPECT_TRUE(anyContains(file.problems, {"radians_one_bad.csv:", "Lat1 7: not a latitude"})) << joined(file.problems);
+  EXPECT_TRUE(anyContains(file.notes, {"11 cells without a usable number in 10 of 10 rows (IVS2 10, Lat1 1)"}))
+      << joined(file.notes);
+}
+
 TEST_F(OpenAccFileTest, CarsWithAbsentOrEmptyColumnsHaveNoPairAndTheNotesSayWhy)
 {
   // Car 3 (TESLA_MODEL3) absent; car 5 (AUDI_A4) with its columns present but every cell empty.

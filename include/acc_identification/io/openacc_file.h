@@ -75,7 +75,10 @@ struct OpenAccBadCell
   std::size_t line = 0;  ///< 1-based line in the file
   std::string column;    ///< "IVS1"
   std::string text;      ///< as written ("" when empty)
-  /// "IVS1 empty", "Speed5 NaN", "Alt2 not a number: 'n/a'".
+  /// Why a number is unusable ("not a latitude in radians, the file's unit"); "" for a cell
+  /// without a number.
+  std::string why;
+  /// "IVS1 empty", "Speed5 NaN", "Alt2 not a number: 'n/a'", "Lat1 7: not a latitude in ...".
   std::string describe() const;
 };
 
