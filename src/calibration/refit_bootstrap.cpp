@@ -9,6 +9,7 @@
 #include <random>
 
 #include "acc_identification/calibration/fit_statistics.h"
+#include "acc_identification/calibration/margin_constrained_fit.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/json_number.h"
 #include "acc_identification/model/normal_source.h"
@@ -281,8 +282,11 @@ RefitBootstrap bootstrapRefits(const AccParameters& fit, const std::vector<CarFo
   fitted.quantity_names.assign(std::begin(kQuantityNames), std::end(kQuantityNames));
   fitted.parameter_count = 4;  // k1, k2, tau_e, eta; the margin follows from them
   const ParameterBounds& b = options.bounds;
-  fitted.lower_bound = {b.lower.k1_per_s2, b.lower.k2_per_s, b.lower.tau_e_s, b.lower.eta_m};
-  fitted.upper_bound = {b.upper.k1_per_s2, b.upper.k2_per_s, b.upper.tau_e_s, b.upper.eta_m};
+  // The margin k1 tau_e^2 + 2 k2 tau_e - 2 grows with each of k1, k2, tau_e (none negative): its
+  // range is its value at the box's corners, -2 at the least. Without it a margin near -2 got an
+  // interval reaching below -2, where no parameters can put it.
+  fitted.lower_bound = {b.lower.k1_per_s2, b.lower.k2_per_s, b.lower.tau_e_s, b.lower.eta_m, stabilityMargin(b.lower)};
+  fitted.upper_bound = {b.upper.k1_per_s2, b.upper.k2_per_s, b.upper.tau_e_s, b.upper.eta_m, stabilityMargin(b.upper)};
   fitted.at_bound_hint = " (the one-sided interval above does)";  // calibrate's quantity table
   const std::string not_made = simulateFittedDrives(fit, EffectSettings{}, runs, fitted);
   if (!not_made.empty())

@@ -154,6 +154,23 @@ TEST(RefitBootstrap, NoIntervalAtABound)
   EXPECT_TRUE(std::isfinite(refits.find("k2")->interval_95_low));
 }
 
+// The margin k1 tau_e^2 + 2 k2 tau_e - 2 cannot go below -2: near it, as near a parameter's bound,
+// no interval (one reached -8.5 on a real car with tau_e near 0).
+TEST(RefitBootstrap, NoMarginIntervalNearItsLeastValue)
+{
+  const acc::CarFollowingRun run = minuteDrive(2);
+  acc::AccParameters fit = acc::identifyAcc({run}, {}).calibration.parameters;
+  fit.tau_e_s = 0.02;  // near the lower bound: the margin near -2
+  acc::RefitBootstrapOptions options;
+  options.replicates = 40;
+  const acc::RefitBootstrap refits = acc::bootstrapRefits(fit, {run}, options);
+  ASSERT_TRUE(refits.note.empty()) << refits.note;
+  const acc::BootstrapQuantity& margin = *refits.find("stability_margin");
+  EXPECT_LT(margin.value, -1.9);
+  EXPECT_TRUE(std::isnan(margin.interval_95_low)) << margin.interval_95_low;
+  EXPECT_NE(margin.note.find("lower bound -2"), std::string::npos) << margin.note;
+}
+
 // Fewer refits than a 95 % interval needs (one in each 2.5 % tail: 39) give the refits' spread and
 // bias but no interval, and say why: with one refit the "interval" was a point.
 TEST(RefitBootstrap, NoIntervalFromTooFewRefits)
