@@ -29,6 +29,7 @@ struct ProfileFit
   bool fitted = false;
 };
 
+
 /// [margin_low, margin_high] from the allowed profile points (sorted by margin), and its note;
 /// fits with k1 <= k1_near_zero are pointed out (without spacing feedback the margin is moot).
 void spanAllowedMargins(StabilityTestResult& result, double least, double largest, double k1_near_zero,
@@ -79,6 +80,11 @@ void spanAllowedMargins(StabilityTestResult& result, double least, double larges
       note << "; open above (+inf): the largest margin tried (" << points.back().margin << ") is still allowed";
     }
   }
+  result.margin_allowed_pieces = allowedMarginPieces(points, result.margin_low, result.margin_high);
+  if (result.margin_allowed_pieces.size() > 1)
+  {
+    note << "; not one interval: the margins tried between its pieces are rejected";
+  }
   note << "; each true end lies between the end reported and the next margin tried beyond it";
   if (allowed_without_spacing_gain)
   {
@@ -95,7 +101,7 @@ std::string decideVerdict(StabilityTestResult& result)
                                        "m = " + significant(result.best_stable.margin),
                                        result.best_unstable.test_rmse_speed_mps,
                                        "m = " + significant(result.best_unstable.margin));
-  const std::string allowed = "[" + significant(result.margin_low) + ", " + significant(result.margin_high) + "]";
+  const std::string allowed = allowedMarginsText(result);
   switch (decideSides(result, result.margin_high < -kSameMargin, result.margin_low > kSameMargin))
   {
     case SideDecision::Decided:
@@ -115,6 +121,27 @@ std::string decideVerdict(StabilityTestResult& result)
 }
 
 }  // namespace
+
+std::vector<std::array<double, 2>> allowedMarginPieces(const std::vector<MarginProfilePoint>& points, double low,
+                                                       double high)
+{
+  std::vector<std::array<double, 2>> pieces;
+  bool inside = false;
+  for (const MarginProfilePoint& point : points)
+  {
+    if (point.allowed && !inside)
+      pieces.push_back({point.margin, point.margin});
+    if (point.allowed)
+      pieces.back()[1] = point.margin;
+    inside = point.allowed;
+  }
+  if (!pieces.empty())
+  {
+    pieces.front()[0] = low;
+    pieces.back()[1] = high;
+  }
+  return pieces;
+}
 
 std::vector<double> StabilityTestOptions::defaultMarginGrid()
 {

@@ -28,6 +28,14 @@ nlohmann::json sideJson(const SideFit& side)
 }
 }  // namespace
 
+nlohmann::json marginPiecesJson(const StabilityTestResult& result)
+{
+  nlohmann::json pieces = nlohmann::json::array();
+  for (const auto& [low, high] : result.margin_allowed_pieces)
+    pieces.push_back({jsonNumber(low), jsonNumber(high)});
+  return pieces;
+}
+
 nlohmann::json toJson(const StabilityTestResult& result)
 {
   nlohmann::json json;
@@ -43,6 +51,7 @@ nlohmann::json toJson(const StabilityTestResult& result)
   json["best_stable"] = sideJson(result.best_stable);
   json["best_unstable"] = sideJson(result.best_unstable);
   json["margin_interval"] = nlohmann::json::array({jsonNumber(result.margin_low), jsonNumber(result.margin_high)});
+  json["margin_allowed_pieces"] = marginPiecesJson(result);
   json["margin_interval_note"] = result.margin_interval_note;
   nlohmann::json profile = nlohmann::json::array();
   for (const MarginProfilePoint& point : result.margin_profile)

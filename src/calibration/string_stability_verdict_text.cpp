@@ -33,6 +33,22 @@ std::string marginEnd(double value)
   std::snprintf(text, sizeof text, "%+.3f", value);
   return text;
 }
+
+}  // namespace
+
+std::string allowedMarginsText(const StabilityTestResult& result)
+{
+  std::vector<std::array<double, 2>> pieces = result.margin_allowed_pieces;
+  if (pieces.empty())
+    pieces.push_back({result.margin_low, result.margin_high});
+  std::string text;
+  for (const auto& [low, high] : pieces)
+    text += (text.empty() ? "[" : " and [") + marginEnd(low) + ", " + marginEnd(high) + "]";
+  return text;
+}
+
+namespace
+{
 }  // namespace
 
 void printStabilityTest(const StabilityTestResult& result, std::ostream& out)
@@ -53,8 +69,7 @@ void printStabilityTest(const StabilityTestResult& result, std::ostream& out)
   {
     out << sideFitLine("best string-stable model", result.best_stable);
     out << sideFitLine("best string-unstable model", result.best_unstable);
-    out << "  margins k1 tau_e^2 + 2 k2 tau_e - 2 the data allow: [" << marginEnd(result.margin_low) << ", "
-        << marginEnd(result.margin_high) << "]";
+    out << "  margins k1 tau_e^2 + 2 k2 tau_e - 2 the data allow: " << allowedMarginsText(result);
     if (!result.margin_interval_note.empty())
       out << " (" << result.margin_interval_note << ")";
     out << "\n";

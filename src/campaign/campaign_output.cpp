@@ -98,6 +98,7 @@ nlohmann::json stabilityTestJson(const StabilityTestResult& test)
           {"alpha", test.alpha},
           {"tested", test.tested},
           {"margin_interval", {test.margin_low, test.margin_high}},
+          {"margin_allowed_pieces", marginPiecesJson(test)},
           {"training_samples", test.training_samples},
           {"held_out_samples", test.held_out_samples},
           {"reason", test.reason}};

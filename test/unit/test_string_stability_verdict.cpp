@@ -275,6 +275,32 @@ acc::CarFollowingRun firstHalf(const acc::CarFollowingRun& run)
 }
 }  // namespace
 
+// Rejected margins between allowed ones split the allowed set into pieces; the span alone once
+// reported [-2, 4.5] where the test rejected 0.05 to 2 (a Tesla Model 3's second valley, k1 near 0).
+TEST(StabilityTest, AllowedMarginsWithAGapAreTwoPieces)
+{
+  std::vector<acc::MarginProfilePoint> points;
+  for (const auto& [margin, allowed] : std::vector<std::pair<double, bool>>{
+           {-1.5, true}, {-0.5, true}, {0.0, true}, {1.0, false}, {2.0, false}, {3.0, true}, {4.5, true}, {6.0, false}})
+  {
+    acc::MarginProfilePoint point;
+    point.margin = margin;
+    point.allowed = allowed;
+    points.push_back(point);
+  }
+  const auto pieces = acc::allowedMarginPieces(points, -2.0, 4.5);
+  ASSERT_EQ(pieces.size(), 2u);
+  EXPECT_EQ(pieces[0], (std::array<double, 2>{-2.0, 0.0}));  // the low end as the span closed it
+  EXPECT_EQ(pieces[1], (std::array<double, 2>{3.0, 4.5}));
+  acc::StabilityTestResult result;
+  result.margin_low = -2.0;
+  result.margin_high = 4.5;
+  result.margin_allowed_pieces = pieces;
+  EXPECT_EQ(acc::allowedMarginsText(result), "[-2.000, +0.000] and [+3.000, +4.500]");
+  points[3].allowed = points[4].allowed = true;
+  EXPECT_EQ(acc::allowedMarginPieces(points, -2.0, 4.5).size(), 1u);
+}
+
 TEST(StabilityTest, ConstrainedFitIsNoWorseThanADenseGrid)
 {
   struct Case

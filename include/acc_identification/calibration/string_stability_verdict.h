@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -136,6 +137,10 @@ struct StabilityTestResult : HeldOutVerdict
   /// bounds' least margin (-2: tau_e = 0) closes it. Both infinite when the test did not run.
   double margin_low = -std::numeric_limits<double>::infinity();
   double margin_high = std::numeric_limits<double>::infinity();
+  /// The allowed margins as runs of neighbouring allowed profile points, by increasing margin:
+  /// one piece [margin_low, margin_high] unless rejected margins lie between allowed ones (a
+  /// second valley of the fit, often with k1 near 0), which the span alone would count as allowed.
+  std::vector<std::array<double, 2>> margin_allowed_pieces;
   std::string margin_interval_note;
   std::vector<MarginProfilePoint> margin_profile;  ///< by increasing margin
 
@@ -167,14 +172,25 @@ StabilityTestResult testStringStability(const std::vector<CarFollowingRun>& trai
 /// mean_squared_error_difference, best_stable: {parameters: {k1, k2, tau_e, eta}, margin,
 /// train_rmse_speed, test_rmse_speed, unconstrained_optimum, status} (null when no fit was made),
 /// best_unstable: {...}, margin_interval: [low, high] (null for an infinite end),
-/// margin_interval_note, margin_profile: [{margin, fitted, train_rmse_speed, test_rmse_speed,
+/// margin_allowed_pieces, margin_interval_note, margin_profile: [{margin, fitted, train_rmse_speed, test_rmse_speed,
 /// p_value, allowed}], bootstrap: {replicates, block_length_s, seed}, training_samples,
 /// held_out_samples, held_out_segments, reason, solve_time_s[, identifiable_quantities (see
 /// toJson(const IdentifiableQuantities&))]}. RMSEs in m/s. NaN and infinities as null.
 nlohmann::json toJson(const StabilityTestResult& result);
+/// margin_allowed_pieces as [[low, high], ...] (null for an open end); [] when the test did not run.
+nlohmann::json marginPiecesJson(const StabilityTestResult& result);
 
 /// The verdict, its p-values, both side fits, the margins allowed and why, as lines of text.
 void printStabilityTest(const StabilityTestResult& result, std::ostream& out);
+
+/// The runs of neighbouring allowed points of a margin profile (sorted by margin), the outer ends
+/// set to low and high (the span's ends, closed at the bounds or opened): margin_allowed_pieces.
+std::vector<std::array<double, 2>> allowedMarginPieces(const std::vector<MarginProfilePoint>& points, double low,
+                                                       double high);
+
+/// The allowed margins as text: "[-2.000, -0.500]", or "[-2.000, +0.000] and [+3.000, +4.500]"
+/// when rejected margins lie between (StabilityTestResult::margin_allowed_pieces).
+std::string allowedMarginsText(const StabilityTestResult& result);
 
 /// The null hypothesis result.p_value tests: "stable" for an unstable verdict, "unstable" for a
 /// stable one, and for "undecided" the one whose p-value is the smaller (the p-value reported).
