@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
 
 #include "acc_identification/reproduction/parameter_file.h"
@@ -24,7 +25,7 @@ double FigureOptions::number(const std::string& name, double fallback) const
   {
     return fallback;
   }
-  const std::string& text = given_.at(name).back();
+  const std::string& text = single(name);
   char* end = nullptr;
   const double value = std::strtod(text.c_str(), &end);
   if (text.empty() || *end != '\0')
@@ -72,7 +73,7 @@ std::size_t FigureOptions::count(const std::string& name, std::size_t fallback, 
 
 std::string FigureOptions::text(const std::string& name, const std::string& fallback) const
 {
-  return has(name) ? given_.at(name).back() : fallback;
+  return has(name) ? single(name) : fallback;
 }
 
 std::vector<std::string> FigureOptions::texts(const std::string& name) const
@@ -82,7 +83,28 @@ std::vector<std::string> FigureOptions::texts(const std::string& name) const
 
 bool FigureOptions::has(const std::string& name) const
 {
+  read_.insert(name);
   return given_.count(name) > 0 && !given_.at(name).empty();
+}
+
+std::vector<std::string> FigureOptions::namesGiven() const
+{
+  std::vector<std::string> names;
+  for (const auto& [name, values] : given_)
+    if (!values.empty())
+      names.push_back(name);
+  return names;
+}
+
+const std::string& FigureOptions::single(const std::string& name) const
+{
+  const std::vector<std::string>& values = given_.at(name);
+  if (values.size() > 1)
+  {
+    throw FigureUsageError("--" + name + " given " + std::to_string(values.size()) +
+                           " times: which value is meant is not said (it takes one)");
+  }
+  return values.front();
 }
 
 std::vector<double> parseNumberList(const std::string& text, const std::string& option)
@@ -105,6 +127,8 @@ std::vector<double> parseNumberList(const std::string& text, const std::string& 
 
 namespace
 {
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
 /// The custom set of --k1 --k2 --tau-e [--eta], when any of them is given.
 void addCustomSetting(const FigureOptions& options, std::vector<NamedSetting>& settings)
 {
@@ -116,9 +140,10 @@ void addCustomSetting(const FigureOptions& options, std::vector<NamedSetting>& s
   {
     throw FigureUsageError("--k1, --k2 and --tau-e go together (--eta defaults to 0)");
   }
+  // The model's domain: gains and time gap of 0 or more, as stability_report and calibrate hold it.
   settings.push_back({"custom", "command line",
-                      {options.number("k1", 0.0), options.number("k2", 0.0), options.number("tau-e", 0.0),
-                       options.number("eta", 0.0)}});
+                      {options.between("k1", 0.0, 0.0, kInfinity), options.between("k2", 0.0, 0.0, kInfinity),
+                       options.between("tau-e", 0.0, 0.0, kInfinity), options.number("eta", 0.0)}});
 }
 }  // namespace
 

@@ -1,5 +1,6 @@
 #include "acc_identification/reproduction/paper_figures.h"
 
+#include <algorithm>
 #include <functional>
 #include <map>
 
@@ -28,7 +29,8 @@ const char* kFigures = R"(FIGURE: a name or the paper's figure number (fig1 to f
 settings (repeatable, in order; default min and max of Table II):
   --setting min|max|fig2-unstable|fig2-stable   --params CALIBRATE.json
   --k1 K1 --k2 K2 --tau-e TAU [--eta ETA]       (one custom set, named "custom")
-common: --time-step 0.1 (Euler step of every simulation, 0.001 to 1 s)
+step, bode, sinusoid, lead-profile: --time-step 0.1 (their simulations' Euler step, 0.001 to 1 s)
+An option the figure does not read, or a single-valued option given twice, is an error.
 RUN.csv: canonical (time_s,space_gap_m,follower_speed_mps,leader_speed_mps) or OpenACC two-vehicle CSV.
 )";
 
@@ -36,6 +38,26 @@ RUN.csv: canonical (time_s,space_gap_m,follower_speed_mps,leader_speed_mps) or O
 const std::map<std::string, std::string> kFigureNumbers{
     {"fig1", "lambda2-map"}, {"fig2", "step"}, {"fig3", "timeseries"}, {"fig4", "timeseries"},
     {"fig5", "equilibrium"}, {"fig6", "bode"}, {"fig7", "sinusoid"},   {"fig8", "lead-profile"}};
+
+/// The options of the figures that draw parameter sets (resolveSettings).
+const std::vector<std::string> kSettingOptions{"setting", "params", "k1", "k2", "tau-e", "eta"};
+
+/// Each figure's own value options, by its name (the test of the figures holds these to what each
+/// one reads).
+const std::map<std::string, std::vector<std::string>> kFigureOwnOptions{
+    {"lambda2-map", {"map-tau-e", "k1-max", "k2-max", "grid"}},
+    {"step", {"time-step", "vehicles", "speed", "step", "step-down-at", "step-up-at", "duration"}},
+    {"bode", {"time-step", "min-frequency", "max-frequency", "points"}},
+    {"sinusoid", {"time-step", "vehicles", "speed", "amplitude", "frequency", "lead-in", "duration", "fit-periods"}},
+    {"lead-profile", {"time-step", "profile", "vehicles", "short-platoon", "tail", "lead-accel", "lead-decel"}},
+    {"equilibrium", {"run", "max-relative-speed", "max-acceleration"}},
+    {"timeseries", {"run", "train-fraction"}}};
+
+std::string canonicalFigure(const std::string& figure)
+{
+  const auto alias = kFigureNumbers.find(figure);
+  return alias == kFigureNumbers.end() ? figure : alias->second;
+}
 
 /// Each figure by its name.
 const std::map<std::string, std::function<nlohmann::json(const FigureRequest&)>> kFigureMakers{
@@ -59,16 +81,39 @@ std::vector<std::string> acceptedFigures()
   return accepted;
 }
 
+std::vector<std::string> figureOptionNames(const std::string& figure)
+{
+  const auto own = kFigureOwnOptions.find(canonicalFigure(figure));
+  if (own == kFigureOwnOptions.end())
+    return {};
+  std::vector<std::string> names = own->second;
+  if (own->first != "lambda2-map")
+    names.insert(names.end(), kSettingOptions.begin(), kSettingOptions.end());
+  return names;
+}
+
 nlohmann::json runPaperFigure(const std::string& figure, const FigureOptions& options, const std::string& csv_path,
                               const FigureStreams& streams)
 {
-  const FigureRequest request{options, csv_path, options.between("time-step", 0.1, 1e-3, 1.0), streams};
-  const auto alias = kFigureNumbers.find(figure);
-  const auto found = kFigureMakers.find(alias == kFigureNumbers.end() ? figure : alias->second);
+  const auto found = kFigureMakers.find(canonicalFigure(figure));
   if (found == kFigureMakers.end())
   {
     throw FigureUsageError("unknown figure '" + figure + "'");
   }
+  const std::vector<std::string> accepted = figureOptionNames(figure);
+  for (const std::string& name : options.namesGiven())
+  {
+    if (std::find(accepted.begin(), accepted.end(), name) == accepted.end())
+    {
+      std::string list;
+      for (const std::string& option : accepted)
+        list += (list.empty() ? "--" : ", --") + option;
+      throw FigureUsageError("--" + name + " is not an option of " + figure + ", which would not use it (its options: " +
+                             list + ")");
+    }
+  }
+  const bool steps = std::find(accepted.begin(), accepted.end(), "time-step") != accepted.end();
+  const FigureRequest request{options, csv_path, steps ? options.between("time-step", 0.1, 1e-3, 1.0) : 0.1, streams};
   return found->second(request);
 }
 

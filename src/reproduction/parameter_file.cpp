@@ -3,13 +3,17 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 
 namespace acc
 {
 namespace
 {
-double requireNumber(const nlohmann::json& parameters, const char* key, const std::string& path)
+/// A model parameter of the file; gains and time gaps must be 0 or more, the model's domain (a
+/// negative one turns lambda2's sign against |Gamma| and the figures' platoons run away).
+double requireNumber(const nlohmann::json& parameters, const char* key, const std::string& path,
+                     bool non_negative = false)
 {
   if (!parameters.contains(key) || !parameters[key].is_number())
   {
@@ -19,6 +23,11 @@ double requireNumber(const nlohmann::json& parameters, const char* key, const st
   if (!std::isfinite(value))
   {
     throw ParameterFileError(path + ": \"parameters\"." + key + " is not finite");
+  }
+  if (non_negative && value < 0.0)
+  {
+    throw ParameterFileError(path + ": \"parameters\"." + key + " is " + nlohmann::json(value).dump() +
+                             ": the model's gains and time gap are 0 or more");
   }
   return value;
 }
@@ -34,6 +43,10 @@ std::string fileStem(const std::string& path)
 
 NamedSetting readParameterFile(const std::string& path)
 {
+  if (std::filesystem::is_directory(path))
+  {
+    throw ParameterFileError(path + ": is a folder, not a calibrate JSON");
+  }
   std::ifstream in(path);
   if (!in)
   {
@@ -48,13 +61,26 @@ NamedSetting readParameterFile(const std::string& path)
   {
     throw ParameterFileError(path + ": no \"parameters\" object (expected a calibrate JSON)");
   }
+  // A model with effects (synthesize's truth with --effect): the figures simulate the paper's
+  // law alone, so they would be another model's; said, not dropped.
+  if (document.contains("effects") && !document["effects"].empty())
+  {
+    std::string names;
+    if (document["effects"].is_object())
+      for (const auto& effect : document["effects"].items())
+        names += (names.empty() ? "" : ", ") + effect.key();
+    throw ParameterFileError(path + ": the model holds effects beside its parameters (" +
+                             (names.empty() ? document["effects"].dump() : names) +
+                             "), which the figures do not simulate (the paper's law alone): they would not be this "
+                             "model's; to draw its base law, give --k1 --k2 --tau-e [--eta]");
+  }
   const nlohmann::json& parameters = document["parameters"];
   NamedSetting setting;
   setting.name = fileStem(path);
   setting.source = path;
-  setting.parameters.k1_per_s2 = requireNumber(parameters, "k1_per_s2", path);
-  setting.parameters.k2_per_s = requireNumber(parameters, "k2_per_s", path);
-  setting.parameters.tau_e_s = requireNumber(parameters, "tau_e_s", path);
+  setting.parameters.k1_per_s2 = requireNumber(parameters, "k1_per_s2", path, true);
+  setting.parameters.k2_per_s = requireNumber(parameters, "k2_per_s", path, true);
+  setting.parameters.tau_e_s = requireNumber(parameters, "tau_e_s", path, true);
   setting.parameters.eta_m = requireNumber(parameters, "eta_m", path);
   return setting;
 }

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/number_text.h"
 #include "acc_identification/model/platoon_simulation.h"
 #include "acc_identification/reproduction/figure_csv.h"
@@ -38,6 +40,46 @@ void requireSimulable(std::size_t followers, double duration_s, double time_step
                                       "simulates: fewer --vehicles, a shorter --duration or --tail, or a coarser "
                                       "--time-step",
                                       followers + 1, duration_s, time_step_s, samples, kMaxPlatoonSamples));
+  }
+}
+/// Where a simulated platoon runs away (isRunaway: a speed or gap beyond the simulable range, or
+/// not a number): the explicit Euler recursion unstable at this step, or the law itself. Said as
+/// a warning and returned for the summary (null while it stays bounded), since the figure's
+/// numbers past it are not a platoon's: a stable-looking peak of 1e200 m/s was printed as is.
+json runawayJson(const PlatoonTrajectory& platoon, const std::string& setting, const FigureRequest& request)
+{
+  for (std::size_t vehicle = 1; vehicle < platoon.vehicleCount(); ++vehicle)
+  {
+    for (std::size_t k = 0; k < platoon.sampleCount(); ++k)
+    {
+      if (!isRunaway(platoon.speed_mps[vehicle][k], platoon.space_gap_m[vehicle][k]))
+        continue;
+      const double t_s = static_cast<double>(k) * platoon.time_step_s;
+      std::fprintf(request.streams.notes,
+                   "warning: %s: DIVERGED: follower %zu leaves the simulable range (|speed| or |gap| beyond %g) at "
+                   "t = %.1f s: the explicit Euler recursion at --time-step %g s is unstable for these parameters, "
+                   "or the law itself runs away; the numbers printed for this setting are not a platoon's\n",
+                   setting.c_str(), vehicle, kDivergenceBound, t_s, platoon.time_step_s);
+      return {{"vehicle", vehicle}, {"time_s", t_s}};
+    }
+  }
+  return nullptr;
+}
+
+/// The step's times in order within the run, and a lead that keeps driving forwards.
+void requireStepInsideRun(double speed, double step, double down_s, double up_s, double duration_s)
+{
+  if (!(down_s > 0.0 && down_s < up_s && up_s < duration_s))
+  {
+    throw FigureUsageError(printfText("--step-down-at %g and --step-up-at %g s must satisfy 0 < down < up < "
+                                      "--duration (%g s): the lead cruises, steps down, then back up within the run",
+                                      down_s, up_s, duration_s));
+  }
+  if (step >= speed)
+  {
+    throw FigureUsageError(printfText("--step %g m/s must be below --speed %g m/s: the lead would stop or drive "
+                                      "backwards",
+                                      step, speed));
   }
 }
 }  // namespace
@@ -87,10 +129,11 @@ json stepFigure(const FigureRequest& request)
   const auto settings = resolveSettings(options, {"fig2-unstable", "fig2-stable"});
   const std::size_t vehicles = options.count("vehicles", 9, 1);
   const double speed = options.positive("speed", 25.0), step = options.positive("step", 5.0);
-  requireSimulable(vehicles, options.positive("duration", 200.0), h);
-  const auto lead =
-      acc::stepDownUpLeadProfile(speed, step, options.number("step-down-at", 20.0), options.number("step-up-at", 60.0),
-                                 options.positive("duration", 200.0), h);
+  const double duration_s = options.positive("duration", 200.0);
+  const double down_s = options.number("step-down-at", 20.0), up_s = options.number("step-up-at", 60.0);
+  requireStepInsideRun(speed, step, down_s, up_s, duration_s);
+  requireSimulable(vehicles, duration_s, h);
+  const auto lead = acc::stepDownUpLeadProfile(speed, step, down_s, up_s, duration_s, h);
   std::vector<std::pair<std::string, acc::PlatoonTrajectory>> runs;
   json summary = {{"figure", "step"}, {"vehicles", vehicles}, {"cruise_speed_mps", speed}, {"step_mps", step}};
   std::fprintf(request.streams.numbers, "lead step %g -> %g -> %g m/s, %zu followers (paper Fig. 2)\n", speed,
@@ -106,7 +149,8 @@ json stepFigure(const FigureRequest& request)
     summary["settings"].push_back({{"parameters", settingSummaryJson(setting)},
                                    {"response", disturbanceJson(response)},
                                    {"last_undershoot_below_low_speed_mps", undershoot},
-                                   {"last_overshoot_above_cruise_mps", overshoot}});
+                                   {"last_overshoot_above_cruise_mps", overshoot},
+                                   {"runaway", runawayJson(runs.back().second, setting.name, request)}});
     std::fprintf(request.streams.numbers,
                  "  %-14s last follower: minimum %.3f m/s (undershoot %.3f below the lead's low speed), maximum "
                  "%.3f m/s (overshoot %.3f above cruise)\n",
@@ -153,12 +197,17 @@ json sinusoidFigure(const FigureRequest& request)
   const double duration = options.positive("duration", 620.0);
   requireSimulable(vehicles, duration, h);
   const double fit_s = options.positive("fit-periods", 5.0) * 2.0 * M_PI / w;
-  if (fit_s >= duration - options.number("lead-in", 20.0))
+  const double lead_in_s = options.between("lead-in", 20.0, 0.0, duration);
+  if (options.positive("amplitude", 1.0) >= options.positive("speed", 20.0))
+  {
+    throw FigureUsageError("--amplitude must be below --speed: the lead would stop or drive backwards");
+  }
+  if (fit_s >= duration - lead_in_s)
   {
     throw FigureUsageError("--fit-periods covers more than the oscillating part of --duration");
   }
   const auto lead = acc::sinusoidLeadProfile(options.positive("speed", 20.0), options.positive("amplitude", 1.0), w,
-                                             options.number("lead-in", 20.0), duration, h);
+                                             lead_in_s, duration, h);
   const std::size_t fit_from = lead.size() - static_cast<std::size_t>(std::round(fit_s / h));
   std::vector<std::pair<std::string, acc::PlatoonTrajectory>> runs;
   json summary = {{"figure", "sinusoid"}, {"vehicles", vehicles}, {"frequency_rad_s", w},
@@ -178,7 +227,8 @@ json sinusoidFigure(const FigureRequest& request)
                                    {"model_gain_db", 20.0 * std::log10(r.model_gain)},
                                    {"euler_gain", r.euler_gain},
                                    {"model_gain_to_the_n", r.model_gain_over_platoon},
-                                   {"euler_gain_to_the_n", r.euler_gain_over_platoon}});
+                                   {"euler_gain_to_the_n", r.euler_gain_over_platoon},
+                                   {"runaway", runawayJson(runs.back().second, setting.name, request)}});
     std::fprintf(request.streams.numbers,
                  "  %-14s |Gamma| = %.4f (%+.3f dB); follower %zu / lead = %.4f (|Gamma|^%zu = %.4f, Euler %.4f); "
                  "follower %zu / follower 1 = %.4f\n",
@@ -206,8 +256,8 @@ json leadProfileFigure(const FigureRequest& request)
   const std::size_t vehicles = options.count("vehicles", 60, 1);
   const std::size_t short_platoon = std::min(vehicles, options.count("short-platoon", 15, 1));
   const auto profile = acc::sampleLeadProfile(spec, h);
-  const double tail_s = options.number("tail", 600.0);
-  requireSimulable(vehicles, static_cast<double>(profile.size()) * h + std::max(0.0, tail_s), h);
+  const double tail_s = options.between("tail", 600.0, 0.0, std::numeric_limits<double>::infinity());
+  requireSimulable(vehicles, static_cast<double>(profile.size()) * h + tail_s, h);
   const auto lead = acc::withFinalHold(profile, tail_s, h);
   const std::string description = spec.description + "; " + acc::describeLeadRamp(spec.ramp);
   json summary = {{"figure", "lead-profile"}, {"profile", description}, {"vehicles", vehicles},
@@ -226,7 +276,8 @@ json leadProfileFigure(const FigureRequest& request)
     const auto shorter = acc::measureDisturbanceResponse(acc::firstFollowers(runs.back().second, short_platoon));
     summary["settings"].push_back({{"parameters", settingSummaryJson(setting)},
                                    {"long", disturbanceJson(full)},
-                                   {"short", disturbanceJson(shorter)}});
+                                   {"short", disturbanceJson(shorter)},
+                                   {"runaway", runawayJson(runs.back().second, setting.name, request)}});
     const auto& lead_d = full.per_vehicle.front();
     const auto& short_d = shorter.per_vehicle.back();
     const auto& long_d = full.per_vehicle.back();

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -28,7 +29,8 @@ class FigureOptions
 public:
   explicit FigureOptions(std::map<std::string, std::vector<std::string>> given) : given_(std::move(given)) {}
 
-  /// The last value of --name as a finite number, or fallback when it is not given.
+  /// The value of --name as a finite number, or fallback when it is not given; given twice, an
+  /// error (which one is meant is not said). Every accessor records the name as read.
   double number(const std::string& name, double fallback) const;
   double positive(const std::string& name, double fallback) const;
   /// A number from lower to upper: the figures' sizes (a step, a duration) kept to what a machine
@@ -40,9 +42,17 @@ public:
   /// Every value of a repeatable option, in command-line order.
   std::vector<std::string> texts(const std::string& name) const;
   bool has(const std::string& name) const;
+  /// The options given a value, by name.
+  std::vector<std::string> namesGiven() const;
+  /// The options a figure asked for so far, given or not (paper_figures' test of its option lists).
+  const std::set<std::string>& namesRead() const { return read_; }
 
 private:
+  /// The one value of a single-valued option (given: has(name)).
+  const std::string& single(const std::string& name) const;
+
   std::map<std::string, std::vector<std::string>> given_;
+  mutable std::set<std::string> read_;
 };
 
 /// "0.5,1,1.5" -> {0.5, 1, 1.5}; throws FigureUsageError naming --option for an item that is not a

@@ -19,9 +19,15 @@ const char* paperFiguresHelp();
 /// numbers (fig1 to fig8).
 std::vector<std::string> acceptedFigures();
 
-/// Makes one figure, named or numbered: checks --time-step (every figure's, whether it simulates
-/// or not, as the tool always has), then runs it. Throws FigureUsageError for an unknown figure or
-/// a bad option, std::runtime_error when its CSV cannot be written.
+/// The value options a figure (named or numbered) reads: its own, the parameter-set options
+/// where it draws settings, --time-step where it simulates at a step of its own. Empty for an
+/// unknown figure.
+std::vector<std::string> figureOptionNames(const std::string& figure);
+
+/// Makes one figure, named or numbered: refuses an option the figure does not read (a typo, or
+/// one meant for another figure, would otherwise pass unnoticed), checks --time-step, then runs
+/// it. Throws FigureUsageError for an unknown figure or a bad option, std::runtime_error when its
+/// CSV cannot be written.
 nlohmann::json runPaperFigure(const std::string& figure, const FigureOptions& options, const std::string& csv_path,
                               const FigureStreams& streams = FigureStreams{});
 

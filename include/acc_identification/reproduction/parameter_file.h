@@ -15,8 +15,9 @@ public:
 };
 
 /// Reads the parameters of a calibrate JSON: {"parameters": {"k1_per_s2", "k2_per_s",
-/// "tau_e_s", "eta_m"}, ...}; other fields are ignored. Named after the file's stem.
-/// Throws ParameterFileError with the path and the reason.
+/// "tau_e_s", "eta_m"}, ...}; other fields are ignored, but a non-empty "effects" (a model the
+/// paper's law alone does not simulate) is refused. Named after the file's stem. Throws
+/// ParameterFileError with the path and the reason (also for a negative gain or time gap).
 NamedSetting readParameterFile(const std::string& path);
 
 }  // namespace acc
