@@ -206,7 +206,7 @@ bool readRmcDate(std::string_view field, std::optional<std::int64_t>& day)
   const unsigned dd = (field[0] - '0') * 10 + (field[1] - '0');
   const unsigned mm = (field[2] - '0') * 10 + (field[3] - '0');
   const int yy = (field[4] - '0') * 10 + (field[5] - '0');
-  const int year = yy < 80 ? 2000 + yy : 1900 + yy;  // NMEA two-digit years, GPS era
+  const int year = nmeaYear(yy);
   if (!isValidDate(year, mm, dd))
     return false;
   day = daysFromCivil(year, mm, dd);

@@ -131,4 +131,11 @@ bool parseUtcTime(const std::string& text, double* unix_s)
   return true;
 }
 
+bool fitsNmeaYears(double unix_s)
+{
+  const double first_s = static_cast<double>(daysFromCivil(kNmeaFirstYear, 1, 1)) * kSecondsPerDay;
+  const double end_s = static_cast<double>(daysFromCivil(kNmeaFirstYear + 100, 1, 1)) * kSecondsPerDay;
+  return unix_s >= first_s && unix_s < end_s;
+}
+
 }  // namespace acc

@@ -10,8 +10,8 @@
 
 #include "acc_identification/conversion/openacc_to_nmea.h"
 #include "acc_identification/model/follower_simulation.h"
-#include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/gnss/nmea_log.h"
+#include "acc_identification/gnss/utc_date.h"
 #include "acc_identification/model/paper_settings.h"
 #include "acc_identification/reproduction/lead_profiles.h"
 #include "acc_identification/synthesis/road_centreline.h"
@@ -311,6 +311,23 @@ TEST(Synthesis, UtcTimesParse)
   EXPECT_FALSE(parseUtcTime("2026-02-30T10:00:00", &t));
   EXPECT_FALSE(parseUtcTime("2026-05-12 10:00:00", &t));
   EXPECT_FALSE(parseUtcTime("2026-05-12T10:00:00+02", &t));
+}
+
+// A log's two-digit year holds 1980-2079 (the readers' rule, nmeaYear): a start outside would be
+// read back a century off, as 1969 once came back as 2069.
+TEST(Synthesis, StartTimesOutsideTheNmeaYearsAreTold)
+{
+  double t = 0.0;
+  ASSERT_TRUE(parseUtcTime("1969-12-31T23:59:00Z", &t));
+  EXPECT_FALSE(fitsNmeaYears(t));
+  ASSERT_TRUE(parseUtcTime("2080-01-01T00:00:00Z", &t));
+  EXPECT_FALSE(fitsNmeaYears(t));
+  ASSERT_TRUE(parseUtcTime("1980-01-01T00:00:00Z", &t));
+  EXPECT_TRUE(fitsNmeaYears(t));
+  ASSERT_TRUE(parseUtcTime("2079-12-31T23:59:59Z", &t));
+  EXPECT_TRUE(fitsNmeaYears(t));
+  EXPECT_EQ(nmeaYear(79), 2079);
+  EXPECT_EQ(nmeaYear(80), 1980);
 }
 
 }  // namespace

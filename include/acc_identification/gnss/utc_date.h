@@ -7,6 +7,12 @@ namespace acc
 {
 constexpr double kSecondsPerDay = 86400.0;
 
+/// NMEA writes two-digit years; readers take 80-99 as 19xx and 00-79 as 20xx (the GPS era), so
+/// only the years from kNmeaFirstYear to kNmeaFirstYear + 99 survive a log.
+constexpr int kNmeaFirstYear = 1980;
+/// The year of an NMEA two-digit year yy (0-99).
+constexpr int nmeaYear(int yy) { return yy < kNmeaFirstYear % 100 ? 2000 + yy : 1900 + yy; }
+
 /// Days since 1970-01-01 of a proleptic Gregorian date (H. Hinnant's days_from_civil).
 std::int64_t daysFromCivil(int year, unsigned month, unsigned day);
 /// True when day exists in that month of that year.

@@ -58,4 +58,8 @@ SynthesizedDrive synthesizeDrive(const SynthesisOptions& options);
 /// not a valid UTC date and time.
 bool parseUtcTime(const std::string& text, double* unix_s);
 
+/// Whether a Unix time lies in the years an NMEA log's two-digit year can hold (kNmeaFirstYear
+/// to kNmeaFirstYear + 99): outside, its logs would be read back a century off.
+bool fitsNmeaYears(double unix_s);
+
 }  // namespace acc
