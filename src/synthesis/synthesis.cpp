@@ -138,4 +138,16 @@ bool fitsNmeaYears(double unix_s)
   return unix_s >= first_s && unix_s < end_s;
 }
 
+std::string readStartTime(const std::string& text, double* unix_s)
+{
+  if (!parseUtcTime(text, unix_s))
+    return "--start-time '" + text + "' is not YYYY-MM-DDThh:mm:ss[Z] (UTC)";
+  if (!fitsNmeaYears(*unix_s))
+    return "--start-time '" + text + "' is outside " + std::to_string(kNmeaFirstYear) + "-" +
+           std::to_string(kNmeaFirstYear + 99) +
+           ": NMEA writes two-digit years, which readers take as the GPS era's, so the logs and the bag would be " +
+           "stamped a century off";
+  return "";
+}
+
 }  // namespace acc

@@ -15,7 +15,6 @@
 #include "acc_identification/model/paper_settings.h"
 #include "acc_identification/reproduction/lead_profiles.h"
 #include "acc_identification/ros/sentence_bag_writer.h"
-#include "acc_identification/gnss/utc_date.h"
 #include "acc_identification/synthesis/synthesis.h"
 #include "acc_identification/synthesis/synthesis_output.h"
 #include "acc_identification/tools/number_checks.h"
@@ -80,7 +79,6 @@ int main(int argc, char** argv)
   app.add_option("--setting", setting, "named parameter set")->check(CLI::IsMember(setting_names));
   const char* names[4] = {"--k1", "--k2", "--tau-e", "--eta"};
   CLI::Option* override_options[4];
-  // The model's domain: gains and time gap of 0 or more (as stability_report and platoon hold it).
   for (int i = 0; i < 4; ++i)
     override_options[i] = app.add_option(names[i], overrides[i], "overrides one value of --setting (or give all four)")
                               ->check(i < 3 ? acc::nonNegativeNumber() : acc::finiteNumber("NUMBER"));
@@ -138,13 +136,8 @@ int main(int argc, char** argv)
   for (const std::string& effect : effects)
     if (error.empty())
       acc::addEffectOption(effect, &options.effects, &error);
-  if (error.empty() && !start_time.empty() && !acc::parseUtcTime(start_time, &options.start_time_unix_s))
-    error = "--start-time '" + start_time + "' is not YYYY-MM-DDThh:mm:ss[Z] (UTC)";
-  if (error.empty() && !start_time.empty() && !acc::fitsNmeaYears(options.start_time_unix_s))
-    error = "--start-time '" + start_time + "' is outside " + std::to_string(acc::kNmeaFirstYear) + "-" +
-            std::to_string(acc::kNmeaFirstYear + 99) +
-            ": NMEA writes two-digit years, which readers take as the GPS era's, so the logs and the bag would be " +
-            "stamped a century off";
+  if (error.empty() && !start_time.empty())
+    error = acc::readStartTime(start_time, &options.start_time_unix_s);
   if (!error.empty())
   {
     std::cerr << "error: " << error << "\n";

@@ -62,4 +62,8 @@ bool parseUtcTime(const std::string& text, double* unix_s);
 /// to kNmeaFirstYear + 99): outside, its logs would be read back a century off.
 bool fitsNmeaYears(double unix_s);
 
+/// synthesize's --start-time: parseUtcTime within the NMEA years into unix_s; "" when read, else
+/// why not (the tool's message).
+std::string readStartTime(const std::string& text, double* unix_s);
+
 }  // namespace acc
