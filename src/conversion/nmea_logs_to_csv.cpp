@@ -1,5 +1,6 @@
 #include "acc_identification/conversion/nmea_logs_to_csv.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -9,6 +10,8 @@
 
 #include "acc_identification/gnss/nmea_log.h"
 #include "acc_identification/io/csv_fields.h"
+#include "acc_identification/io/output_files.h"
+#include "acc_identification/io/run_plausibility.h"
 #include "acc_identification/model/number_text.h"
 #include "acc_identification/relative_state/gap_doppler_consistency.h"
 
@@ -112,6 +115,13 @@ RelativeStateLogs pairNmeaLogs(const std::string& leader_path, const std::string
                                const RelativeStateSettings& settings)
 {
   RelativeStateLogs logs;
+  if (sameFile(leader_path, follower_path))
+  {
+    // Paired with itself a log gives the antenna offset as a gap (negative), every state valid.
+    logs.error = "LEADER and FOLLOWER are the same log (" + leader_path +
+                 "): give the car ahead's receiver log first and the ACC car's second";
+    return logs;
+  }
   const NmeaLogResult leader = readNmeaLog(leader_path);
   const NmeaLogResult follower = readNmeaLog(follower_path);
   logs.error = !leader.error.empty() ? leader.error : follower.error;
@@ -171,9 +181,39 @@ RelativeStateLogs pairNmeaLogsToCsv(const std::string& leader_path, const std::s
                                     const std::string& out_path, const RelativeStateSettings& settings)
 {
   RelativeStateLogs logs = pairNmeaLogs(leader_path, follower_path, settings);
-  if (logs.error.empty() && !writeRelativeStateCsv(out_path, logs.states, logs.error) && logs.error.empty())
+  // No state, no file: a header alone would read as a run file that holds nothing (noStateReason).
+  if (logs.error.empty() && !logs.states.empty() && !writeRelativeStateCsv(out_path, logs.states, logs.error) &&
+      logs.error.empty())
     logs.error = "cannot write " + out_path;
   return logs;
+}
+
+std::size_t implausibleGapStates(const RelativeStateLogs& logs)
+{
+  const RunPlausibilityBounds bounds;
+  std::size_t count = 0;
+  for (const RelativeState& s : logs.states)
+    count += s.valid && !(s.space_gap_m >= bounds.min_space_gap_m && s.space_gap_m <= bounds.max_space_gap_m) ? 1 : 0;
+  return count;
+}
+
+std::string describeImplausibleGaps(const RelativeStateLogs& logs)
+{
+  const std::size_t count = implausibleGapStates(logs);
+  if (count == 0)
+    return "";
+  const RunPlausibilityBounds bounds;
+  double least = std::numeric_limits<double>::infinity(), largest = -least;
+  for (const RelativeState& s : logs.states)
+    if (s.valid)
+    {
+      least = std::min(least, s.space_gap_m);
+      largest = std::max(largest, s.space_gap_m);
+    }
+  return printfText("%zu of %zu valid states have a gap outside %g to %g m (from %.3g to %.3g m), which the run "
+                    "readers reject as implausible: a bumper-to-bumper gap that negative means the antenna offsets "
+                    "(or the logs) are wrong",
+                    count, logs.states.size(), bounds.min_space_gap_m, bounds.max_space_gap_m, least, largest);
 }
 
 std::string noStateReason(const RelativeStateLogs& logs)
@@ -265,6 +305,7 @@ nlohmann::json relativeStateLogsJson(const RelativeStateLogs& logs)
             {"along_track_fallbacks", e.along_track_fallbacks}}},
           {"states", logs.states.size()},
           {"valid_states", valid},
+          {"implausible_gap_states", implausibleGapStates(logs)},
           {"stream_events", logs.stream_events},
           {"epoch_events", logs.epoch_events}};
 }

@@ -10,10 +10,6 @@
 
 namespace acc
 {
-namespace
-{
-/// Whether two paths name one file: the same file for the file system when both exist, the same
-/// absolute path with links and dots resolved otherwise.
 bool sameFile(const std::string& a, const std::string& b)
 {
   std::error_code error;
@@ -25,7 +21,6 @@ bool sameFile(const std::string& a, const std::string& b)
   const std::filesystem::path resolved_b = std::filesystem::weakly_canonical(std::filesystem::absolute(b), error);
   return !error && resolved_a == resolved_b;
 }
-}  // namespace
 
 bool outputsLeaveInputsAlone(const std::vector<std::string>& inputs, const std::vector<std::string>& outputs,
                              std::ostream& errors)

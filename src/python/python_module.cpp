@@ -262,6 +262,9 @@ py::dict pairNmeaLogs(const std::string& leader_path, const std::string& followe
     throw std::invalid_argument(no_state);
   for (const std::string& event : logs.stream_events)
     notes += "note: " + event + "\n";
+  const std::string implausible = acc::describeImplausibleGaps(logs);
+  if (!implausible.empty())
+    notes += "warning: " + implausible + "\n";
   py::dict result;
   result["json"] = acc::relativeStateLogsJson(logs).dump();
   result["log"] = notes;

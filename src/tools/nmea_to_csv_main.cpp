@@ -24,6 +24,9 @@ bool report(const acc::RelativeStateLogs& logs, const std::string& out_path)
             << "nmea_to_csv: " << acc::fixAccount(logs.pairing) << "; " << e.invalid_states << " of " << e.states << " states invalid ("
             << e.jumps_rejected << " jumps, " << e.held_positions << " held positions, " << e.missing_speed
             << " without a speed: the reason in each row, split points for the readers) -> " << out_path << "\n";
+  const std::string implausible = acc::describeImplausibleGaps(logs);
+  if (!implausible.empty())
+    std::cerr << "warning: " << implausible << "\n";
   const std::string no_state = acc::noStateReason(logs);
   if (!no_state.empty())
     std::cerr << "error: " << no_state << "\n";

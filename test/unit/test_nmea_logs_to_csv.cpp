@@ -35,6 +35,16 @@ private:
   fs::path path_;
 };
 
+/// Casale part 3's two receivers' logs, as they recorded it, into folder's L.nmea and F.nmea.
+void writeCasaleLogs(const TemporaryFolder& folder)
+{
+  const acc::OpenAccPairTrack track = acc::readOpenAccPairTrack(std::string(ACC_OPENACC_DATA_DIR) + "/part3.csv");
+  ASSERT_EQ(track.error, "");
+  std::string error;
+  ASSERT_TRUE(acc::writeNmeaLog(folder.file("L.nmea"), acc::openAccFixes(track, 1), "GN", error)) << error;
+  ASSERT_TRUE(acc::writeNmeaLog(folder.file("F.nmea"), acc::openAccFixes(track, 2), "GN", error)) << error;
+}
+
 acc::RelativeStateSettings casaleSettings()
 {
   acc::RelativeStateSettings settings;
@@ -97,12 +107,9 @@ TEST(NmeaLogsToCsv, ARealDriveRoundTripsThroughTheRunReaderWithItsInvalidStateAs
 // Fails if swapped logs give a run, which would hold the two cars' speeds exchanged.
 TEST(NmeaLogsToCsv, LogsGivenTheWrongWayRoundAreRefusedAndNothingIsWritten)
 {
-  const acc::OpenAccPairTrack track = acc::readOpenAccPairTrack(std::string(ACC_OPENACC_DATA_DIR) + "/part3.csv");
-  ASSERT_EQ(track.error, "");
   TemporaryFolder folder("nmea_logs_swapped");
-  std::string error;
-  ASSERT_TRUE(acc::writeNmeaLog(folder.file("L.nmea"), acc::openAccFixes(track, 1), "GN", error)) << error;
-  ASSERT_TRUE(acc::writeNmeaLog(folder.file("F.nmea"), acc::openAccFixes(track, 2), "GN", error)) << error;
+  writeCasaleLogs(folder);
+  ASSERT_FALSE(HasFatalFailure());
   EXPECT_EQ(acc::pairNmeaLogs(folder.file("L.nmea"), folder.file("F.nmea"), casaleSettings()).error, "");
   const acc::RelativeStateLogs swapped =
       acc::pairNmeaLogsToCsv(folder.file("F.nmea"), folder.file("L.nmea"), folder.file("run.csv"), casaleSettings());
@@ -139,8 +146,9 @@ TEST(NmeaLogsToCsv, AMissingLogIsAnError)
   EXPECT_TRUE(logs.states.empty());
 }
 
-// Logs an hour apart pair nothing: that is said with the fixes each gave, and the CSV written
-// holds its header alone; a CSV that cannot be written is an error.
+// Logs an hour apart pair nothing: that is said with the fixes each gave, and no CSV is written
+// (a header alone would read as a run file that holds nothing); a CSV that cannot be written is an
+// error.
 TEST(NmeaLogsToCsv, LogsThatNeverMeetAreSaidToAndAnUnwritableCsvIsAnError)
 {
   const acc::OpenAccPairTrack track = acc::readOpenAccPairTrack(std::string(ACC_OPENACC_DATA_DIR) + "/part3.csv");
@@ -159,11 +167,35 @@ TEST(NmeaLogsToCsv, LogsThatNeverMeetAreSaidToAndAnUnwritableCsvIsAnError)
   const std::string reason = acc::noStateReason(apart);
   EXPECT_NE(reason.find("no follower epoch could be paired"), std::string::npos) << reason;
   EXPECT_NE(reason.find(std::to_string(track.rows.size()) + " follower"), std::string::npos) << reason;
-  EXPECT_EQ(acc::readRunFile(folder.file("out.csv")).runs.size(), 0u);
+  EXPECT_FALSE(fs::exists(folder.file("out.csv")));
 
+  ASSERT_TRUE(acc::writeNmeaLog(folder.file("L.nmea"), acc::openAccFixes(track, 1), "GN", error)) << error;
   const acc::RelativeStateLogs unwritable = acc::pairNmeaLogsToCsv(
-      folder.file("F.nmea"), folder.file("F.nmea"), "/nonexistent/out.csv", casaleSettings());
+      folder.file("L.nmea"), folder.file("F.nmea"), "/nonexistent/out.csv", casaleSettings());
   EXPECT_NE(unwritable.error.find("/nonexistent/out.csv"), std::string::npos) << unwritable.error;
+}
+
+// One log given as both receivers' once gave the antenna offset as every gap (-5.6 m), each state
+// valid; antenna offsets far too large give gaps below what a run reader accepts, said with a count.
+TEST(NmeaLogsToCsv, OneLogTwiceIsRefusedAndImplausibleGapsAreCounted)
+{
+  TemporaryFolder folder("nmea_logs_implausible");
+  writeCasaleLogs(folder);
+  ASSERT_FALSE(HasFatalFailure());
+  const acc::RelativeStateLogs same =
+      acc::pairNmeaLogsToCsv(folder.file("L.nmea"), folder.file("./L.nmea"), folder.file("run.csv"), casaleSettings());
+  EXPECT_NE(same.error.find("LEADER and FOLLOWER are the same log"), std::string::npos) << same.error;
+  EXPECT_FALSE(fs::exists(folder.file("run.csv")));
+
+  acc::RelativeStateSettings far = casaleSettings();
+  far.geometry.leader_antenna_to_rear_bumper_m = 60.0;  // the gaps come out tens of metres below 0
+  const acc::RelativeStateLogs logs = acc::pairNmeaLogs(folder.file("L.nmea"), folder.file("F.nmea"), far);
+  ASSERT_EQ(logs.error, "");
+  EXPECT_GT(acc::implausibleGapStates(logs), logs.states.size() / 2);
+  EXPECT_NE(acc::describeImplausibleGaps(logs).find("which the run readers reject as implausible"), std::string::npos);
+  EXPECT_EQ(acc::implausibleGapStates(acc::pairNmeaLogs(folder.file("L.nmea"), folder.file("F.nmea"), casaleSettings())),
+            0u);
+  EXPECT_EQ(acc::relativeStateLogsJson(logs)["implausible_gap_states"], acc::implausibleGapStates(logs));
 }
 
 // A receiver without satellites (or in simulation mode, as a Garmin GPSmap 76S logs) writes

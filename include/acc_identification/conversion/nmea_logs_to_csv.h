@@ -37,6 +37,12 @@ struct RelativeStateLogs
 RelativeStateLogs pairNmeaLogs(const std::string& leader_path, const std::string& follower_path,
                                const RelativeStateSettings& settings);
 
+/// The valid states whose gap lies outside the run readers' plausibility bounds (RunPlausibilityBounds:
+/// below -2 m, above 1000 m), which calibrate and diagnose would reject; and a warning that says
+/// how many and what it usually means ("" when none).
+std::size_t implausibleGapStates(const RelativeStateLogs& logs);
+std::string describeImplausibleGaps(const RelativeStateLogs& logs);
+
 /// What a user gives nmea_to_csv (or Python's pair_nmea_logs): relative_state_node's parameter
 /// file, and options that override it; NaN or empty is "not given".
 struct NmeaPairingOptions
@@ -78,7 +84,7 @@ bool writeRelativeStateCsv(const std::string& path, const std::vector<RelativeSt
 
 /// The counts as JSON: {leader_log, follower_log (NmeaStatistics), pairing (PairingCounters),
 /// estimator (RelativeStateCounters: why states are invalid), states, valid_states,
-/// stream_events (the lines), epoch_events}.
+/// implausible_gap_states, stream_events (the lines), epoch_events}.
 nlohmann::json relativeStateLogsJson(const RelativeStateLogs& logs);
 
 }  // namespace acc

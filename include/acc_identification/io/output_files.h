@@ -12,6 +12,10 @@ namespace acc
 /// What every tool does with the files it is asked to write. Each returns false after saying on
 /// `errors` what failed ("error: cannot write PATH"), so a tool can end with status 1.
 
+/// Whether two paths name one file: the same file for the file system when both exist, the same
+/// absolute path with links and dots resolved otherwise.
+bool sameFile(const std::string& a, const std::string& b);
+
 /// Whether the outputs leave the inputs alone: false, after saying which on `errors`, when an
 /// output names the same file as an input ("error: OUT would overwrite the input IN") or as another
 /// output. Tools call it before any work, since one slip in the order of the arguments would
