@@ -22,6 +22,8 @@ def verdict_words(test):
     """The string-stability test's verdict with both p-values named by their hypothesis."""
     if not test or not test.get("verdict"):
         return "not tested"
+    if test.get("tested") is False:  # the JSON's verdict is then "undecided", with its reason
+        return "NOT TESTED (" + (test.get("reason") or "no reason given") + ")"
     return (f"{test['verdict'].upper()} (p (H0: stable) = {fmt(test.get('p_value_stable_rejected'))}, "
             f"p (H0: unstable) = {fmt(test.get('p_value_unstable_rejected'))})")
 

@@ -589,7 +589,8 @@ std::vector<std::string> groupCells(const GroupResult& g)
           valuePlusMinus(g, "tau_e", "%.2f"),
           valuePlusMinus(g, "eta", "%.1f"),
           valuePlusMinus(g, "stability_margin", "%.2f"),
-          toString(g.stability_test.verdict),
+          // As the headline counts it: a test that did not run decided nothing, not "undecided".
+          g.stability_test.tested ? toString(g.stability_test.verdict) : std::string("not tested"),
           // A test that did not run has no p-value (its default 1 would read as "no evidence").
           g.stability_test.tested
               ? cellNumber("%.3f", g.stability_test.p_value) + " (H0 " + pValueHypothesis(g.stability_test) + ")"
@@ -737,7 +738,7 @@ std::vector<std::string> groupNotes(const CampaignResult& result)
       notes.push_back(name + "model adequacy not assessed (no fit of all its runs): its verdict compares two "
                              "models fitted on halves, and nothing checked that they describe these data");
     if (g.stability_test.verdict == StabilityVerdict::Undecided)
-      notes.push_back(name + "undecided: " + g.stability_test.reason);
+      notes.push_back(name + (g.stability_test.tested ? "undecided: " : "not tested: ") + g.stability_test.reason);
     if (g.euler_step_bias && g.euler_step_bias->material)
       notes.push_back(name + eulerStepNote(*g.euler_step_bias));
     if (g.refit_bootstrap)
