@@ -150,10 +150,11 @@ def plot_effects(report_dir, diagnosis):
     effects = diagnosis["effects"]
     names = [e["name"] for e in effects]
     fig, ax = plt.subplots(figsize=(9, 4))
-    means = [e["improvement"]["relative"] * 100 for e in effects]
-    base_mse = diagnosis["baseline"]["test_rmse_speed"] ** 2
-    lows = [(e["improvement"]["lower_bound"] or 0) / base_mse * 100 for e in effects]
-    highs = [(e["improvement"]["upper_bound"] or 0) / base_mse * 100 for e in effects]
+    # The bounds are of the MSE difference itself (resampled), not a share of the full-sample base
+    # MSE: divided by it they reached past 100 %, a reduction larger than the error it reduces.
+    means = [e["improvement"]["mean_mse_reduction"] or 0 for e in effects]
+    lows = [e["improvement"]["lower_bound"] or 0 for e in effects]
+    highs = [e["improvement"]["upper_bound"] or 0 for e in effects]
     colors = ["C2" if e["significant"] else "C7" for e in effects]
     ax.bar(range(len(names)), means, color=colors)
     ax.errorbar(range(len(names)), means, yerr=[[m - lo for m, lo in zip(means, lows)],
@@ -161,7 +162,7 @@ def plot_effects(report_dir, diagnosis):
     ax.axhline(0, color="k", lw=0.8)
     ax.set_xticks(range(len(names)))
     ax.set_xticklabels([n.replace("_", "\n") for n in names], fontsize=8)
-    ax.set_ylabel("held-out speed MSE reduction [%]")
+    ax.set_ylabel("held-out speed MSE reduction [m^2/s^2]")
     ax.set_title("What each effect buys on held-out data (green: significant; bars: bootstrap bounds)")
     ax.grid(alpha=0.3, axis="y")
     fig.tight_layout()
@@ -337,18 +338,17 @@ def write_report(report_dir, d):
                   f"p (H0: unstable) = {fmt(verdict['p_value_unstable_rejected'])}. Why this model: {verdict['why']}."]
     lines += ["", "Selection rule: " + d["selection"]["rule"], "", "## Models", ""]
     lines.append("| model | train speed RMSE [m/s] | held-out speed RMSE [m/s] | held-out gap RMSE [m] | "
-                 "MSE reduction [%] (bounds) | significant | peak gain [dB] | parameters (± std. error) |")
-    lines.append("|---|---|---|---|---|---|---|---|")
-    base_mse = base["test_rmse_speed"] ** 2
+                 "MSE reduction [%] | its bounds [m^2/s^2] | significant | peak gain [dB] | "
+                 "parameters (± std. error) |")
+    lines.append("|---|---|---|---|---|---|---|---|---|")
     lines.append(f"| base | {fmt(base['train_rmse_speed'])} | {fmt(base['test_rmse_speed'])} | "
-                 f"{fmt(base['test_rmse_gap'])} | - | - | {fmt(base['stability']['peak_gain_db'])} | "
+                 f"{fmt(base['test_rmse_gap'])} | - | - | - | {fmt(base['stability']['peak_gain_db'])} | "
                  f"{parameter_text(base)} |")
     for e in d["effects"]:
         imp = e["improvement"]
-        lo = (imp["lower_bound"] or 0) / base_mse * 100 if base_mse > 0 else 0
-        hi = (imp["upper_bound"] or 0) / base_mse * 100 if base_mse > 0 else 0
         lines.append(f"| {e['name']} | {fmt(e['train_rmse_speed'])} | {fmt(e['test_rmse_speed'])} | "
-                     f"{fmt(e['test_rmse_gap'])} | {imp['relative'] * 100:.1f} ({lo:.1f} to {hi:.1f}) | "
+                     f"{fmt(e['test_rmse_gap'])} | {imp['relative'] * 100:.1f} | "
+                     f"{fmt(imp['lower_bound'], 3)} to {fmt(imp['upper_bound'], 3)} | "
                      f"{'yes' if e['significant'] else 'no'} | {fmt(e['stability']['peak_gain_db'])} | "
                      f"{parameter_text(e)} |")
     lines += ["", "![improvements](effect_improvements.png)", ""]
