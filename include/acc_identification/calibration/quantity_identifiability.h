@@ -63,7 +63,9 @@ struct QuantityEstimate
   /// The 95 % interval [low, high]: boundInterval() where held at a bound; elsewhere value +- t
   /// standard errors, t Student's two-sided 95 % quantile with the sandwich's blocks - 1 degrees of
   /// freedom (2.228 for 11 blocks; 1.96 when the blocks are not known): batch means over B blocks
-  /// carry B - 1 of them. NaN without a standard error. On short drives even these run short
+  /// carry B - 1 of them; cut at the quantity's range over the fit's bounds (a time gap never
+  /// below 0, a margin never below -2). NaN without a standard error. On short drives even these
+  /// run short
   /// (docs/RESULTS.md, "What the standard errors cover"); calibrate then adds the refitting
   /// bootstrap's (refit_bootstrap.h).
   double interval_95_low = std::numeric_limits<double>::quiet_NaN();
