@@ -71,9 +71,9 @@ double peakFrequencyRadS(const AccParameters& p)
   {
     return std::sqrt(upper_squared / 2.0);  // the quadratic degenerates to 2 k1^2 x = k1^2 w_c^2
   }
-  // Positive root of k2^2 x^2 + 2 k1^2 x - k1^2 w_c^2 = 0, written to avoid cancellation.
-  const double root_term = k1 * std::sqrt(k1 * k1 + k2 * k2 * upper_squared);
-  const double x = k1 * k1 * upper_squared / (k1 * k1 + root_term);
+  // Positive root of k2^2 x^2 + 2 k1^2 x - k1^2 w_c^2 = 0, written to avoid cancellation, and
+  // divided through by k1 so that a tiny k1 (1e-300, whose square underflows) gives 0, not 0/0.
+  const double x = k1 * upper_squared / (k1 + std::sqrt(k1 * k1 + k2 * k2 * upper_squared));
   return std::sqrt(x);
 }
 

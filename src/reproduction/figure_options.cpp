@@ -2,9 +2,9 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <limits>
 #include <sstream>
 
+#include "acc_identification/model/acc_parameters.h"
 #include "acc_identification/reproduction/parameter_file.h"
 
 namespace acc
@@ -127,8 +127,6 @@ std::vector<double> parseNumberList(const std::string& text, const std::string& 
 
 namespace
 {
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
 /// The custom set of --k1 --k2 --tau-e [--eta], when any of them is given.
 void addCustomSetting(const FigureOptions& options, std::vector<NamedSetting>& settings)
 {
@@ -140,10 +138,11 @@ void addCustomSetting(const FigureOptions& options, std::vector<NamedSetting>& s
   {
     throw FigureUsageError("--k1, --k2 and --tau-e go together (--eta defaults to 0)");
   }
-  // The model's domain: gains and time gap of 0 or more, as stability_report and calibrate hold it.
+  // The model's domain, as stability_report and synthesize hold it.
+  constexpr double kMost = kLargestModelGainOrTimeGap;
   settings.push_back({"custom", "command line",
-                      {options.between("k1", 0.0, 0.0, kInfinity), options.between("k2", 0.0, 0.0, kInfinity),
-                       options.between("tau-e", 0.0, 0.0, kInfinity), options.number("eta", 0.0)}});
+                      {options.between("k1", 0.0, 0.0, kMost), options.between("k2", 0.0, 0.0, kMost),
+                       options.between("tau-e", 0.0, 0.0, kMost), options.number("eta", 0.0)}});
 }
 }  // namespace
 

@@ -1,5 +1,7 @@
 #include "acc_identification/reproduction/parameter_file.h"
 
+#include "acc_identification/model/acc_parameters.h"
+
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -24,10 +26,11 @@ double requireNumber(const nlohmann::json& parameters, const char* key, const st
   {
     throw ParameterFileError(path + ": \"parameters\"." + key + " is not finite");
   }
-  if (non_negative && value < 0.0)
+  if (non_negative && !(value >= 0.0 && value <= kLargestModelGainOrTimeGap))
   {
     throw ParameterFileError(path + ": \"parameters\"." + key + " is " + nlohmann::json(value).dump() +
-                             ": the model's gains and time gap are 0 or more");
+                             ": the model's gains and time gap are 0 to " +
+                             nlohmann::json(kLargestModelGainOrTimeGap).dump());
   }
   return value;
 }

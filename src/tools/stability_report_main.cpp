@@ -35,14 +35,14 @@ int main(int argc, char** argv)
   for (const auto& setting : acc::namedSettings())
     setting_names.push_back(setting.name);
   app.add_option("--setting", names, "a named setting, repeatable")->check(CLI::IsMember(setting_names));
-  // The model's domain: gains and time gap of 0 or more (a negative tau_e turns lambda2's sign
-  // against |Gamma|), every value finite.
-  auto* k1_option = app.add_option("--k1", k1, "custom parameter set: k1 [1/s^2]")->check(acc::nonNegativeNumber());
-  auto* k2_option = app.add_option("--k2", k2, "k2 [1/s]")->check(acc::nonNegativeNumber());
-  auto* tau_option = app.add_option("--tau-e", tau_e, "tau_e [s]")->check(acc::nonNegativeNumber());
-  app.add_option("--eta", eta, "eta [m] (plays no part in string stability)")
+  // The model's domain (kLargestModelGainOrTimeGap), every value finite.
+  auto* k1_option = app.add_option("--k1", k1, "custom parameter set: k1 [1/s^2]")->check(acc::modelGainOrTimeGap());
+  auto* k2_option = app.add_option("--k2", k2, "k2 [1/s]")->check(acc::modelGainOrTimeGap());
+  auto* tau_option = app.add_option("--tau-e", tau_e, "tau_e [s]")->check(acc::modelGainOrTimeGap());
+  app.add_option("--eta", eta, "eta [m] of the custom set (plays no part in string stability)")
       ->check(acc::finiteNumber("METRES"))
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(k1_option);
   k1_option->needs(k2_option)->needs(tau_option);
   k2_option->needs(k1_option);
   tau_option->needs(k1_option);

@@ -81,7 +81,7 @@ int main(int argc, char** argv)
   CLI::Option* override_options[4];
   for (int i = 0; i < 4; ++i)
     override_options[i] = app.add_option(names[i], overrides[i], "overrides one value of --setting (or give all four)")
-                              ->check(i < 3 ? acc::nonNegativeNumber() : acc::finiteNumber("NUMBER"));
+                              ->check(i < 3 ? acc::modelGainOrTimeGap() : acc::finiteNumber("NUMBER"));
   app.add_option("--effect", effects,
                  "unmodelled effect NAME=V[,V] (repeatable): actuation_lag=T_s, reaction_delay=d_s, "
                  "acceleration_limits=a_max,b_max, sensor_time_offset=delta_s, speed_dependent_time_gap=c_s2_per_m, "

@@ -77,7 +77,7 @@ TEST(FigureOptions, AnOptionTheFigureDoesNotReadOrOneGivenTwiceIsRefused)
 TEST(FigureOptions, NegativeGainsAndAStepOutsideItsRunAreRefused)
 {
   EXPECT_EQ(refusalOf("bode", {{"k1", {"-0.1"}}, {"k2", {"0.4"}}, {"tau-e", {"1"}}}),
-            "--k1 must be from 0 to inf, not -0.1");
+            "--k1 must be from 0 to 1e+06, not -0.1");
   EXPECT_NE(refusalOf("step", {{"step-down-at", {"100"}}, {"step-up-at", {"50"}}}).find("0 < down < up"),
             std::string::npos);
   EXPECT_NE(refusalOf("step", {{"step-down-at", {"-10"}}}).find("0 < down < up"), std::string::npos);

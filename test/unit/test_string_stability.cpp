@@ -138,4 +138,8 @@ TEST(StringStability, DegenerateGains)
   const acc::AccParameters no_relative{0.3, 0.0, 0.5, 5.0};
   const auto report = acc::analyzeStringStability(no_relative);
   EXPECT_NEAR(report.peak_frequency_rad_s, gridPeak(no_relative, 3.0, 1e-5).first, 2e-5);
+  // A spacing gain so small that its square underflows: a peak at 0 rad/s and 0 dB, not 0/0.
+  const auto tiny_spacing = acc::analyzeStringStability({1e-300, 0.1, 1.0, 0.0});
+  EXPECT_EQ(tiny_spacing.peak_frequency_rad_s, 0.0);
+  EXPECT_FALSE(std::isnan(tiny_spacing.peak_gain_db));
 }

@@ -13,4 +13,10 @@ struct AccParameters
   double eta_m = 0.0;      ///< jam distance: the space gap at standstill [m]
 };
 
+/// The model's domain for a gain or time gap the tools take from a user: 0 or more (a negative one
+/// turns lambda2's sign against |Gamma|), and at most this much, far beyond any car (calibration
+/// searches k1 <= 2, k2 <= 3, tau_e <= 5) yet small enough that lambda2's powers of the
+/// parameters stay finite (1e300 made them NaN and the verdict with them).
+constexpr double kLargestModelGainOrTimeGap = 1e6;
+
 }  // namespace acc

@@ -7,6 +7,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "acc_identification/model/acc_parameters.h"
+
 namespace acc
 {
 /// Checks of the tools' number options whose error a user can read. CLI11 2.1's PositiveNumber and
@@ -55,6 +57,14 @@ inline CLI::Validator positiveNumber()
 inline CLI::Validator nonNegativeNumber()
 {
   return number_checks::finiteNumber([](double value) { return value >= 0.0; }, "0 or more", "NONNEGATIVE");
+}
+
+/// A gain or time gap of the model: 0 to kLargestModelGainOrTimeGap.
+inline CLI::Validator modelGainOrTimeGap()
+{
+  return number_checks::finiteNumber(
+      [](double value) { return value >= 0.0 && value <= kLargestModelGainOrTimeGap; },
+      "0 to " + number_checks::text(kLargestModelGainOrTimeGap) + " (a gain or time gap of the model)", "NUMBER");
 }
 
 /// A whole number of 0 or more, for counts and seeds held unsigned: CLI11 would wrap -1 to the
