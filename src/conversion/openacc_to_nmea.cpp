@@ -3,11 +3,14 @@
 
 #include <acc_identification/gnss/nmea_writer.h>
 #include <acc_identification/gnss/utc_date.h>
+#include <acc_identification/io/run_plausibility.h>
+#include <acc_identification/model/number_text.h>
 
 #include <GeographicLib/Geodesic.hpp>
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 namespace acc
 {
@@ -55,6 +58,36 @@ std::string pairRowProblem(const OpenAccFile& file, const OpenAccPair& pair, std
       columns.push_back(quantity + std::to_string(k));
   return file.rowProblem(i, columns);
 }
+/// Why a row whose cells are numbers still cannot be written as the receivers' fixes: a speed an
+/// RMC cannot carry (below 0: speed over ground has no sign) or no car drives (above the run
+/// readers' bound), or a time that does not follow the last row written (a log runs forward).
+std::string rowValueProblem(const OpenAccFile& file, const OpenAccVehicle* const cars[2], std::size_t i,
+                            const std::vector<OpenAccRow>& written)
+{
+  const RunPlausibilityBounds bounds;
+  for (int v = 0; v < 2; ++v)
+  {
+    const double speed = cars[v]->speed_mps[i];
+    const std::string column = "Speed" + std::to_string(cars[v]->position);
+    if (speed < 0.0)
+      return column + " " + significant(speed, 6) + " below 0: an RMC's speed over ground has no sign";
+    if (speed > bounds.max_speed_mps)
+      return column + " " + significant(speed, 6) + " above " + significant(bounds.max_speed_mps) +
+             " m/s: no car under ACC drives that fast";
+  }
+  const double time_s = file.time_s[i];
+  if (!written.empty() && !(time_s > written.back().time_of_day_s))
+    return "Time " + significant(time_s, 10) + " s not after the last row written (" +
+           significant(written.back().time_of_day_s, 10) + " s, line " + std::to_string(written.back().line) +
+           "): a receiver's log runs forward";
+  // A time too far forward (one corrupt cell) would make every row after it look late: it is the
+  // one left out when the next row's time lies between the last row written and it.
+  const double last_s = written.empty() ? -std::numeric_limits<double>::infinity() : written.back().time_of_day_s;
+  if (i + 1 < file.rows() && file.time_s[i + 1] > last_s && file.time_s[i + 1] < time_s)
+    return "Time " + significant(time_s, 10) + " s after the next row's (" + significant(file.time_s[i + 1], 10) +
+           " s, line " + std::to_string(file.line[i + 1]) + "): a receiver's log runs forward";
+  return "";
+}
 }  // namespace
 
 double OpenAccPairTrack::dayStartUnixS() const
@@ -94,7 +127,9 @@ OpenAccPairTrack openAccPairTrack(const OpenAccFile& file, const OpenAccPair& pa
     }
   for (std::size_t i = 0; i < file.rows(); ++i)
   {
-    const std::string problem = pairRowProblem(file, pair, i);
+    std::string problem = pairRowProblem(file, pair, i);
+    if (problem.empty())
+      problem = rowValueProblem(file, cars, i, track.rows);
     if (!problem.empty())
     {
       track.skipped_rows.push_back(file.path + ":" + std::to_string(file.line[i]) + ": " + problem);

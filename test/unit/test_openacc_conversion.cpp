@@ -60,6 +60,56 @@ TEST(OpenAccReader, ReadsDateColumnsRadiansAndReportsABadRowByLine)
   EXPECT_DOUBLE_EQ(file.dayStartUnixS(), 1603756800.0);
 }
 
+/// A row of the small file with field k replaced.
+std::string withField(const std::string& row, std::size_t k, const std::string& text)
+{
+  std::vector<std::string> fields;
+  std::size_t begin = 0;
+  for (std::size_t end; (end = row.find(',', begin)) != std::string::npos; begin = end + 1)
+    fields.push_back(row.substr(begin, end - begin));
+  fields.push_back(row.substr(begin));
+  fields[k] = text;
+  std::string joined;
+  for (const std::string& field : fields)
+    joined += (joined.empty() ? "" : ",") + field;
+  return joined;
+}
+
+// Numbers an RMC cannot carry or no car drives, and times that run back, are rows skipped and
+// listed, not fixes written (a negative speed came out as negative knots, and a time 76 s back
+// as a log that jumps back). One time too far forward is the row left out, not every row after it.
+TEST(OpenAccReader, ImpossibleValuesAndTimesAreRowsSkipped)
+{
+  const std::vector<std::string> lines = linesOf(kSmall);  // 6 lines before the data, rows on 7-11
+  std::vector<std::string> out(lines.begin(), lines.begin() + 6);
+  out.push_back(lines[6]);                                   // line 7: kept
+  out.push_back(withField(lines[7], 1, "-3"));               // line 8: Speed1 below 0
+  out.push_back(withField(lines[9], 0, "99999"));            // line 9: a time far forward
+  out.push_back(withField(lines[10], 6, "1e9"));             // line 10: Speed2 no car drives
+  out.push_back(lines[10]);                                  // line 11: kept
+  out.push_back(withField(lines[6], 0, "55000"));            // line 12: a time back
+  const fs::path dir = freshDirectory("openacc_impossible");
+  const std::string path = (dir / "impossible.csv").string();
+  {
+    std::ofstream file(path);
+    for (const std::string& line : out)
+      file << line << "\n";
+  }
+  const acc::OpenAccPairTrack track = acc::readOpenAccPairTrack(path);
+  ASSERT_EQ(track.error, "");
+  ASSERT_EQ(track.rows.size(), 2u);
+  EXPECT_EQ(track.rows[0].line, 7u);
+  EXPECT_EQ(track.rows[1].line, 11u);
+  ASSERT_EQ(track.skipped_rows.size(), 4u);
+  EXPECT_NE(track.skipped_rows[0].find(":8: Speed1 -3 below 0"), std::string::npos) << track.skipped_rows[0];
+  EXPECT_NE(track.skipped_rows[1].find(":9: Time 99999 s after the next row's"), std::string::npos)
+      << track.skipped_rows[1];
+  EXPECT_NE(track.skipped_rows[2].find(":10: Speed2 1e+09 above 100 m/s"), std::string::npos) << track.skipped_rows[2];
+  EXPECT_NE(track.skipped_rows[3].find(":12: Time 55000 s not after the last row written"), std::string::npos)
+      << track.skipped_rows[3];
+  fs::remove_all(dir);
+}
+
 TEST(OpenAccReader, RefusesAFileWithoutDateOrColumns)
 {
   fs::path dir = freshDirectory("openacc_reader");
