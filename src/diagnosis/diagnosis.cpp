@@ -403,7 +403,7 @@ void requireEnoughToFit(const std::vector<CarFollowingRun>& train, const std::st
 DiagnosisResult diagnoseRuns(const std::vector<CarFollowingRun>& runs, const DiagnosisOptions& options)
 {
   DiagnosisResult result;
-  splitRuns(runs, options, &result);
+  splitRuns(inNaturalNameOrder(runs), options, &result);
   if (result.train.empty())
   {
     throw std::invalid_argument("no run is long enough to fit on one part and score on the other");
@@ -417,8 +417,8 @@ DiagnosisResult diagnoseHeldOutRuns(const std::vector<CarFollowingRun>& fitted,
 {
   DiagnosisResult result;
   result.held_out_whole_runs = true;
-  addWholeRuns(fitted, options, "[train]", &result.train, &result.notes);
-  addWholeRuns(held_out, options, "[held out]", &result.test, &result.notes);
+  addWholeRuns(inNaturalNameOrder(fitted), options, "[train]", &result.train, &result.notes);
+  addWholeRuns(inNaturalNameOrder(held_out), options, "[held out]", &result.test, &result.notes);
   if (result.train.empty() || result.test.empty())
     throw std::invalid_argument(std::string("no usable ") + (result.train.empty() ? "run to fit" : "held-out run") +
                                 " (each needs " + std::to_string(options.min_samples_per_half) + " samples)");

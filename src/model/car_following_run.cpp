@@ -1,6 +1,8 @@
 #include "acc_identification/model/car_following_run.h"
+#include "acc_identification/model/plain_text.h"
 #include "acc_identification/model/sample_statistics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -133,6 +135,13 @@ double totalDurationS(const std::vector<CarFollowingRun>& runs)
   for (const CarFollowingRun& run : runs)
     duration_s += run.durationS();
   return duration_s;
+}
+
+std::vector<CarFollowingRun> inNaturalNameOrder(std::vector<CarFollowingRun> runs)
+{
+  std::stable_sort(runs.begin(), runs.end(),
+                   [](const CarFollowingRun& a, const CarFollowingRun& b) { return naturalLess(a.name, b.name); });
+  return runs;
 }
 
 }  // namespace acc

@@ -134,6 +134,27 @@ TEST(CampaignGrouping, GroupsByVehicleAndSettingAndRecoversEachTruth)
   }
 }
 
+// Files named in any order are read in natural order (the resampling draws over runs in this
+// order: the same files named in reverse once moved three cars' p-values).
+TEST(CampaignGrouping, FilesNamedInAnyOrderAreReadInNaturalOrder)
+{
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "campaign_file_order";
+  std::filesystem::create_directories(folder);
+  std::vector<std::string> paths;
+  for (const char* name : {"dynamic_part12.csv", "dynamic_part5.csv", "dynamic_part6.csv"})
+  {
+    paths.push_back((folder / name).string());
+    std::ofstream(paths.back()) << "Date,8,10,2019\n";
+  }
+  const acc::CampaignFileList list = acc::listCampaignFiles(paths);
+  ASSERT_EQ(list.files.size(), 3u);
+  EXPECT_EQ(list.files[0], paths[1]);
+  EXPECT_EQ(list.files[1], paths[2]);
+  EXPECT_EQ(list.files[2], paths[0]);
+  EXPECT_EQ(acc::listCampaignFiles({paths.rbegin(), paths.rend()}).files, list.files);
+  std::filesystem::remove_all(folder);
+}
+
 TEST(CampaignGrouping, ARunOfTheSameCarAndSettingJoinsItsGroup)
 {
   TempFolder folder("acc_campaign_join");

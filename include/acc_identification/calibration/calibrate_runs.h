@@ -81,8 +81,10 @@ struct CalibrateOutcome
 /// identifyAcc), the grid check, the fixed-sample string-stability test, the model's adequacy,
 /// the dips' evidence, each run's scores, the report on out, the sequential verdict's replay, and
 /// the JSON. Progress goes to log. With split_half a run too short to halve is left out, said on
-/// log and in the JSON (no fit when none is left). Throws std::invalid_argument for a grid the
-/// objective refuses.
+/// log and in the JSON (no fit when none is left). The runs are taken in the natural order of
+/// their names (naturalLess), whatever order they are given in, so that one set of runs gives
+/// one answer (the resampling draws blocks over the runs in order). Throws std::invalid_argument
+/// for a grid the objective refuses.
 CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& inputs, const std::vector<InputAccount>& inputs_read,
                                const CalibrateSettings& settings, std::ostream& out, std::ostream& log);
 

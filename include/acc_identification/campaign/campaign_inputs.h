@@ -88,8 +88,9 @@ struct CampaignFileList
   std::vector<std::string> listings;  ///< the database's mixed-setting tables (looksLikeMixedSettingListing)
 };
 
-/// The files to read: each FILE as given, each folder's *.csv files that look like OpenACC files
-/// (looksLikeOpenAccFile), in natural name order (part5 before part12); a folder's other *.csv
+/// The files to read: each FILE given and each folder's *.csv files that look like OpenACC files
+/// (looksLikeOpenAccFile), all in the natural order of their paths (part5 before part12), whatever
+/// order they are named in, so that a set of files gives one answer; a folder's other *.csv
 /// files are listed as skipped. Throws std::invalid_argument for a path that is neither a file nor
 /// a folder, or a folder without any OpenACC file. A mixed-setting listing, given or in a folder,
 /// goes to `listings`.

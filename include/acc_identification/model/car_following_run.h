@@ -56,6 +56,11 @@ double gapSampleNoiseM(const CarFollowingRun& run);
 /// without a step.
 double medianStepS(const std::vector<CarFollowingRun>& runs);
 
+/// The runs by name in natural order (naturalLess; equal names keep their order): the order the
+/// tools fit and resample runs in, so that a set of runs gives one answer whatever order it is
+/// named in.
+std::vector<CarFollowingRun> inNaturalNameOrder(std::vector<CarFollowingRun> runs);
+
 /// Checks the run's invariants (equal column lengths, at least two samples, strictly increasing
 /// time, finite values). Returns an empty string when the run is usable, else why it is not.
 std::string describeRunProblem(const CarFollowingRun& run);
