@@ -1,5 +1,6 @@
 #include "acc_identification/parameters/yaml_parameter_source.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -173,8 +174,24 @@ YamlParameterSource YamlParameterSource::fromText(const std::string& text, const
     return source;
   }
   for (const auto& entry : root)
-    source.values_[entry.first.Scalar()] = fromNode(entry.second);
+  {
+    const std::string key = entry.first.Scalar();
+    if (source.values_.count(key) > 0 &&
+        std::find(source.repeated_.begin(), source.repeated_.end(), key) == source.repeated_.end())
+      source.repeated_.push_back(key);
+    source.values_[key] = fromNode(entry.second);
+  }
   return source;
+}
+
+std::string YamlParameterSource::repeatedKeysNote() const
+{
+  if (repeated_.empty())
+    return "";
+  std::string keys;
+  for (const std::string& key : repeated_)
+    keys += (keys.empty() ? "" : ", ") + key;
+  return "key(s) given more than once: " + keys + " (the last value of each is used, as rosparam loads it)";
 }
 
 std::optional<ParameterValue> YamlParameterSource::get(const std::string& name) const

@@ -104,6 +104,9 @@ std::string loadRelativeStateParameterFile(const std::string& path, RelativeStat
       !loadRelativeStateNodeSettings(reader, node_only))
     return path + ": " + reader.error();
   unread_note = reader.unreadNote();
+  const std::string repeated = source.repeatedKeysNote();
+  if (!repeated.empty())
+    unread_note += (unread_note.empty() ? "" : "; ") + repeated;
   return "";
 }
 

@@ -114,7 +114,16 @@ nlohmann::json runPaperFigure(const std::string& figure, const FigureOptions& op
   }
   const bool steps = std::find(accepted.begin(), accepted.end(), "time-step") != accepted.end();
   const FigureRequest request{options, csv_path, steps ? options.between("time-step", 0.1, 1e-3, 1.0) : 0.1, streams};
-  return found->second(request);
+  try
+  {
+    return found->second(request);
+  }
+  catch (const std::invalid_argument& error)
+  {
+    // The libraries' refusal of a value (a frequency range upside down, a negative time gap in
+    // --map-tau-e) is the user's option, as the figures' own checks are: usage, exit 2.
+    throw FigureUsageError(error.what());
+  }
 }
 
 }  // namespace acc

@@ -89,6 +89,19 @@ TEST(YamlParameters, RangesAreCheckedAndKeysNeverReadAreNamed)
   EXPECT_EQ(reader.unreadNote(), "parameter ~window_s is set but never read (misspelt?): ignored");
 }
 
+// A key given twice takes its last value, as rosparam loads the file for the node, and is said:
+// nmea_to_csv --params once used the last antenna offset without a word.
+TEST(YamlParameters, AKeyGivenTwiceIsSaid)
+{
+  const acc::YamlParameterSource source =
+      acc::YamlParameterSource::fromText("antenna_offset_m: 5.6\nqueue_size: 2\nantenna_offset_m: 6.1\n", "f");
+  ASSERT_TRUE(source.ok()) << source.error();
+  EXPECT_DOUBLE_EQ(source.get("antenna_offset_m")->number, 6.1);
+  EXPECT_EQ(source.repeatedKeysNote(),
+            "key(s) given more than once: antenna_offset_m (the last value of each is used, as rosparam loads it)");
+  EXPECT_EQ(acc::YamlParameterSource::fromText("queue_size: 2\n", "f").repeatedKeysNote(), "");
+}
+
 // PyYAML's resolver, which rosparam uses: what each plain scalar becomes.
 TEST(YamlParameters, PlainScalarsResolveAsYaml11)
 {

@@ -27,9 +27,13 @@ public:
 
   bool ok() const { return error_.empty(); }
   const std::string& error() const { return error_; }
+  /// "key(s) given more than once: a, b (the last value of each is used, as rosparam loads it)",
+  /// or "" when every key is given once.
+  std::string repeatedKeysNote() const;
 
 private:
   std::map<std::string, ParameterValue> values_;
+  std::vector<std::string> repeated_;  ///< keys given more than once, each named once
   std::string error_;
 };
 
