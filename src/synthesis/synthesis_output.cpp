@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -246,17 +247,28 @@ bool writeSynthesisFiles(const SynthesizedDrive& drive, const SynthesisOptions& 
   for (const std::string& warning : implausibilityWarnings(drive.truth.run))
     log << "warning: " << warning << "\n";
   std::string error;
-  bool ok = writeNmeaLog(files.leader_log, drive.leader_fixes, "GN", error) &&
-            writeNmeaLog(files.follower_log, drive.follower_fixes, "GN", error);
+  std::vector<std::string> written;  // removed again if a later one fails: a drive is whole or absent
+  const auto wrote = [&written](bool ok, const std::string& path) {
+    if (ok)
+      written.push_back(path);
+    return ok;
+  };
+  bool ok = wrote(writeNmeaLog(files.leader_log, drive.leader_fixes, "GN", error), files.leader_log) &&
+            wrote(writeNmeaLog(files.follower_log, drive.follower_fixes, "GN", error), files.follower_log);
   if (ok && !files.truth_csv.empty())
-    ok = writeTruthCsv(files.truth_csv, drive.truth.run, &error);
+    ok = wrote(writeTruthCsv(files.truth_csv, drive.truth.run, &error), files.truth_csv);
+  if (ok && !files.parameters_json.empty())
+    ok = writeTextFile(synthesisJson(options, setting_name), files.parameters_json, log);
+  else if (!ok)
+    log << "error: " << error << "\n";
   if (!ok)
   {
-    log << "error: " << error << "\n";
-    return false;
+    for (const std::string& path : written)
+      std::remove(path.c_str());
+    if (!written.empty())
+      log << "note: the files written before it were removed: a drive is written whole or not at all\n";
   }
-  return files.parameters_json.empty() ||
-         writeTextFile(synthesisJson(options, setting_name), files.parameters_json, log);
+  return ok;
 }
 
 }  // namespace acc

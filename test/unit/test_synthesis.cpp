@@ -301,6 +301,26 @@ TEST(SynthesisEffects, EffectOptionsAreCheckedAndCombine)
   EXPECT_NE(json.find("\"k1_per_s2\""), std::string::npos);
 }
 
+// A file that cannot be written takes the ones written before it along: the logs of a drive whose
+// truth never reached its CSV were left behind, looking like a whole synthesis.
+TEST(Synthesis, ADriveIsWrittenWholeOrNotAtAll)
+{
+  const SynthesisOptions options = shortDrive(3);
+  const SynthesizedDrive drive = synthesizeDrive(options);
+  SynthesisFiles files{tempPath("whole_L.nmea"), tempPath("whole_F.nmea"), "/nonexistent/truth.csv", ""};
+  std::ostringstream log;
+  EXPECT_FALSE(writeSynthesisFiles(drive, options, "min", files, log));
+  EXPECT_NE(log.str().find("/nonexistent/truth.csv"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("were removed"), std::string::npos) << log.str();
+  EXPECT_FALSE(std::ifstream(files.leader_log).good());
+  EXPECT_FALSE(std::ifstream(files.follower_log).good());
+  files.truth_csv = tempPath("whole_truth.csv");
+  EXPECT_TRUE(writeSynthesisFiles(drive, options, "min", files, log)) << log.str();
+  EXPECT_TRUE(std::ifstream(files.leader_log).good());
+  for (const std::string& path : {files.leader_log, files.follower_log, files.truth_csv})
+    std::remove(path.c_str());
+}
+
 TEST(Synthesis, UtcTimesParse)
 {
   double t = 0.0;
