@@ -672,9 +672,10 @@ void noteBadCellsAndRows(OpenAccFile& file)
     {
       by_column.push_back(column + " " + std::to_string(count));
     }
-    file.notes.push_back(file.path + ": " + std::to_string(file.bad_cells.size()) + " cells without a usable number in " +
-                         std::to_string(file.bad_rows) + " of " + std::to_string(rows) + " rows (" +
-                         join(by_column, ", ") + "), each listed; their values are NaN");
+    file.notes.push_back(file.path + ": " + std::to_string(file.bad_cells.size()) +
+                         " cells without a usable number in " + std::to_string(file.bad_rows) + " of " +
+                         std::to_string(rows) + " rows (" + join(by_column, ", ") +
+                         "), each listed; their values are NaN");
   }
   else if (file.bad_rows > 0)
   {

@@ -108,8 +108,8 @@ nlohmann::json runPaperFigure(const std::string& figure, const FigureOptions& op
       std::string list;
       for (const std::string& option : accepted)
         list += (list.empty() ? "--" : ", --") + option;
-      throw FigureUsageError("--" + name + " is not an option of " + figure + ", which would not use it (its options: " +
-                             list + ")");
+      throw FigureUsageError("--" + name + " is not an option of " + figure +
+                             ", which would not use it (its options: " + list + ")");
     }
   }
   const bool steps = std::find(accepted.begin(), accepted.end(), "time-step") != accepted.end();
