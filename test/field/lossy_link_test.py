@@ -459,7 +459,8 @@ def run_one(setup, level, namespaces, logs, work, env, processes):
     follower_log_path = os.path.join(directory, "follower_launch.log")
     follower = processes.start(in_follower(
         ["roslaunch", "acc_identification", "drive.launch", "follower_source:=udp://:%d" % FOLLOWER_PORT,
-         "bag_prefix:=" + os.path.join(directory, "drive"), "window_s:=300", "period_s:=5"] + leader_args),
+         "bag_prefix:=" + os.path.join(directory, "drive"), "window_s:=300", "period_s:=5",
+         "antenna_offset_m:=5.60"] + leader_args),
         follower_log_path, follower_env)
     launches = [follower]
     lead_log_path = os.path.join(directory, "lead_launch.log")

@@ -142,7 +142,7 @@ class UserCommands(unittest.TestCase):
         leader, follower = self.make_logs()
         ended, output = self.roslaunch(["drive.launch", "leader_source:=file://%s/%s?rate=4" % (self.directory, leader),
                                         "follower_source:=file://%s/%s?rate=4" % (self.directory, follower),
-                                        "bag_prefix:=%s/drive" % USER_FOLDER])
+                                        "bag_prefix:=%s/drive" % USER_FOLDER, "antenna_offset_m:=5.60"])
         self.assertTrue(ended, "drive.launch did not end after its logs:\n" + output[-3000:])
         self.assertNotIn("cannot record", output, output[-3000:])
         bags = sorted((self.directory / USER_FOLDER).glob("drive_*.bag*"))
@@ -156,10 +156,19 @@ class UserCommands(unittest.TestCase):
         # Receivers that never end (nothing sends to these ports): only the recorder can end it.
         ended, output = self.roslaunch(["drive.launch", "leader_source:=udp://:%d" % free_port(),
                                         "follower_source:=udp://:%d" % free_port(),
-                                        "bag_prefix:=%s/missing/drive" % USER_FOLDER])
+                                        "bag_prefix:=%s/missing/drive" % USER_FOLDER, "antenna_offset_m:=5.60"])
         self.assertTrue(ended, "drive.launch went on unrecorded:\n" + output[-3000:])
         self.assertIn("drive.launch: cannot record in %s/%s/missing" % (self.directory, USER_FOLDER), output,
                       output[-3000:])
+
+    def test_drive_needs_the_antenna_offset(self):
+        # A drive of one's own cars never takes the replays' default (5.60 m, the Casale cars).
+        ended, output = self.roslaunch(["drive.launch", "leader_source:=udp://:%d" % free_port(),
+                                        "follower_source:=udp://:%d" % free_port(),
+                                        "bag_prefix:=%s/drive" % USER_FOLDER])
+        self.assertTrue(ended, "drive.launch started without the antenna offset:\n" + output[-3000:])
+        self.assertIn("antenna_offset_m", output, output[-3000:])
+        self.assertEqual(sorted((self.directory / USER_FOLDER).glob("drive_*.bag*")), [], output[-3000:])
 
     def test_platoon_takes_the_papers_figure_numbers(self):
         for figure in ("fig6", "fig7"):
