@@ -235,6 +235,19 @@ std::string describeBagTopics(const rosbag::Bag& bag)
   return listed.empty() ? "none (empty bag)" : listed;
 }
 
+/// How to get samples from a bag without them on the topic asked: another topic of the type, or,
+/// for a drive's raw sentences or fixes only (drive.launch records those), the chain to make them.
+std::string whatToDoWithoutRelativeState(const rosbag::Bag& bag)
+{
+  rosbag::View everything(bag);
+  for (const rosbag::ConnectionInfo* connection : everything.getConnections())
+    if (connection->datatype == "acc_identification/RelativeState")
+      return " (choose the one of type acc_identification/RelativeState with --topic)";
+  return ". It holds no acc_identification/RelativeState at all: replay it through the chain and record "
+         "the samples (roslaunch acc_identification replay.launch bag:=BAG antenna_offset_m:=M, with "
+         "rosbag record /relative_state), or pair the receivers' logs with nmea_to_csv";
+}
+
 /// The topic's names as a bag may hold them: as given and with a leading '/' (or without it).
 std::vector<std::string> topicSpellings(const std::string& topic)
 {
@@ -328,7 +341,7 @@ BagRuns readRunsFromBag(const std::string& path, const BagTopics& topics, const 
   if (rosbag::View(bag, rosbag::TopicQuery(samples_topic)).size() == 0)
   {
     throw std::runtime_error("bag '" + path + "' has no messages on topic '" + topics.relative_state +
-                             "'; its topics: " + describeBagTopics(bag) + " (choose one with --topic)");
+                             "'; its topics: " + describeBagTopics(bag) + whatToDoWithoutRelativeState(bag));
   }
   BagRuns result;
   BagSegmenter segmenter(path, bounds, topics, result);

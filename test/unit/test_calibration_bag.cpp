@@ -92,7 +92,8 @@ TEST(RunBagReader, SplitsAtInvalidSamplesGapsAndTimeResets)
     const std::string what = error.what();
     EXPECT_NE(what.find("has no messages on topic 'missing_topic'; its topics: /other_topic "
                         "(acc_identification/RelativeState, 1 message), /relative_state "
-                        "(acc_identification/RelativeState, 57 messages) (choose one with --topic)"),
+                        "(acc_identification/RelativeState, 57 messages) (choose the one of type "
+                        "acc_identification/RelativeState with --topic)"),
               std::string::npos)
         << what;
   }
@@ -125,6 +126,33 @@ std::string writeDriveWithATakeOver(const std::string& name)
     bag.write("/relative_state", ros::Time(t + 0.15), stateAt(t));
   }
   return path;
+}
+
+// A drive's bag of raw sentences (drive.launch records those) holds no samples yet: the error says
+// how to make them, where it once suggested --topic, which every topic listed then refused.
+TEST(RunBagReader, ABagOfRawSentencesSaysHowToMakeSamples)
+{
+  const std::string path = testing::TempDir() + "/raw_sentences.bag";
+  {
+    rosbag::Bag bag(path, rosbag::bagmode::Write);
+    std_msgs::String line;
+    line.data = "$GNGGA,...";
+    bag.write("/leader/nmea_sentence", ros::Time(100.0), line);
+  }
+  try
+  {
+    acc::readRunsFromBag(path);
+    ADD_FAILURE() << "no error for a bag without samples";
+  }
+  catch (const std::runtime_error& error)
+  {
+    const std::string what = error.what();
+    EXPECT_NE(what.find("holds no acc_identification/RelativeState at all: replay it through the chain"),
+              std::string::npos)
+        << what;
+    EXPECT_NE(what.find("nmea_to_csv"), std::string::npos) << what;
+  }
+  std::remove(path.c_str());
 }
 
 TEST(RunBagReader, SamplesRecordedWhileTheAccWasOffSplitTheRunAndAreCounted)
