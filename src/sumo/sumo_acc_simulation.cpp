@@ -34,7 +34,12 @@ std::size_t sumoActionEvery(const SumoAccVType& vtype, double step_s)
 {
   if (!(vtype.action_step_length_s > step_s))
     return 1;
-  return static_cast<std::size_t>(std::lround(vtype.action_step_length_s / step_s));
+  // As SUMO: times in whole milliseconds, an action step not a multiple of the step rounded DOWN
+  // to one (0.9 s at 0.2 s steps acts every 0.8 s; rounding to the nearest once made the replica
+  // act every 1.0 s and blame the difference on SUMO's safe speed).
+  const long long action_ms = std::llround(vtype.action_step_length_s * 1000.0);
+  const long long step_ms = std::llround(step_s * 1000.0);
+  return static_cast<std::size_t>(std::max(1LL, action_ms / std::max(1LL, step_ms)));
 }
 
 SumoAccStep heldStep(double speed_mps, double held_acceleration_mps2, SumoAccMode mode, double step_s)

@@ -11,6 +11,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "acc_identification/model/number_text.h"
+
 namespace acc
 {
 const char* const kSumoOpenAccProvenance =
@@ -438,6 +440,24 @@ void readSourceModel(const tinyxml2::XMLElement* element, const std::string& pat
   vtype.has_source_model = true;
 }
 
+/// What this reader cannot take as SUMO would, said rather than guessed: a vClass whose defaults
+/// are not a passenger car's (a truck's length, accel, decel) with those attributes left to it,
+/// and emergency braking weaker than the normal (SUMO stops on an assertion).
+void refuseWhatSumoReadsOtherwise(const tinyxml2::XMLElement* element, const SumoAccVType& v, const std::string& path)
+{
+  const std::string where = path + ": vType '" + v.id + "'";
+  const char* vclass = element->Attribute("vClass");
+  if (vclass != nullptr && std::string(vclass) != "passenger")
+    for (const char* attribute : {"length", "accel", "decel", "emergencyDecel"})
+      if (element->Attribute(attribute) == nullptr)
+        throw std::runtime_error(where + ": vClass \"" + vclass + "\" leaves " + attribute +
+                                 " to its class default, which this reader does not know (it knows a passenger "
+                                 "car's): give length, accel, decel and emergencyDecel in the vType");
+  if (v.emergency_decel_mps2 < v.decel_mps2)
+    throw std::runtime_error(where + ": emergencyDecel " + significant(v.emergency_decel_mps2) + " below decel " +
+                             significant(v.decel_mps2) + ": SUMO refuses to simulate it (an assertion)");
+}
+
 SumoAccVType readVType(const tinyxml2::XMLElement* element, const std::string& path)
 {
   SumoAccVType v;
@@ -464,7 +484,22 @@ SumoAccVType readVType(const tinyxml2::XMLElement* element, const std::string& p
   g.collision_avoidance_override_mps =
       number(element, "collisionAvoidanceOverride", g.collision_avoidance_override_mps, path);
   readSourceModel(element, path, v);
+  refuseWhatSumoReadsOtherwise(element, v, path);
   return v;
+}
+
+/// A nested <carFollowing-X> element, SUMO's older form, sets the model in place of the attribute:
+/// refused, since this reader takes the attributes (it would read an ACC that SUMO runs as X).
+void refuseNestedCarFollowing(const tinyxml2::XMLElement* vtype, const std::string& path)
+{
+  for (const auto* child = vtype->FirstChildElement(); child != nullptr; child = child->NextSiblingElement())
+  {
+    const std::string name = child->Name();
+    if (name.rfind("carFollowing-", 0) == 0)
+      throw std::runtime_error(path + ": vType '" + vtypeId(vtype) + "' holds a nested <" + name +
+                               "> element, which SUMO takes as its model and parameters: write the model as the "
+                               "vType's carFollowModel attribute and its parameters as attributes");
+  }
 }
 
 void collectVTypes(const tinyxml2::XMLElement* parent, const std::string& path, std::vector<SumoAccVType>& out)
@@ -472,6 +507,8 @@ void collectVTypes(const tinyxml2::XMLElement* parent, const std::string& path, 
   for (const auto* child = parent->FirstChildElement(); child != nullptr; child = child->NextSiblingElement())
   {
     const char* model = child->Attribute("carFollowModel");
+    if (std::string(child->Name()) == "vType")
+      refuseNestedCarFollowing(child, path);
     if (std::string(child->Name()) == "vType" && model != nullptr && std::string(model) == "ACC")
       out.push_back(readVType(child, path));
     else

@@ -222,10 +222,53 @@ TEST(SumoVTypeFile, BadFilesAreRefusedWithTheReason)
     EXPECT_NE(std::string(error.what()).find("vType '': minGap=\"near\" is not a number"), std::string::npos)
         << error.what();
   }
+  // What SUMO would read otherwise: a truck's class defaults, a nested model element, an emergency
+  // braking weaker than the normal one (SUMO stops on an assertion).
+  const auto refusal = [&path](const std::string& xml) {
+    std::ofstream(path) << xml;
+    try
+    {
+      readSumoAccVTypes(path);
+    }
+    catch (const std::runtime_error& error)
+    {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(refusal("<additional><vType id=\"T\" vClass=\"truck\" carFollowModel=\"ACC\" tau=\"1.2\"/>"
+                    "</additional>\n")
+                .find("vClass \"truck\" leaves length to its class default"),
+            std::string::npos);
+  EXPECT_NE(refusal("<additional><vType id=\"K\" carFollowModel=\"ACC\"><carFollowing-Krauss/></vType>"
+                    "</additional>\n")
+                .find("holds a nested <carFollowing-Krauss> element"),
+            std::string::npos);
+  EXPECT_NE(refusal("<additional><vType id=\"E\" carFollowModel=\"ACC\" decel=\"4.5\" emergencyDecel=\"0.5\"/>"
+                    "</additional>\n")
+                .find("emergencyDecel 0.5 below decel 4.5"),
+            std::string::npos);
+  EXPECT_EQ(refusal("<additional><vType id=\"P\" vClass=\"passenger\" carFollowModel=\"ACC\"/></additional>\n"), "");
   std::ofstream(path) << "<additional><vType id=\"a\"";
   EXPECT_THROW(readSumoAccVTypes(path), std::runtime_error);
   std::remove(path.c_str());
   EXPECT_THROW(readSumoAccVTypes(path), std::runtime_error);
+}
+
+// SUMO rounds an action step that is not a multiple of the step DOWN, in whole milliseconds: 0.9 s
+// at 0.2 s steps acts every 0.8 s (rounded to the nearest, the replica acted every 1.0 s and
+// blamed the difference on SUMO's safe speed); 0.8 s at 0.1 s steps is 8 steps, not 7.
+TEST(SumoAccSimulation, AnActionStepIsRoundedDownAsSumoRoundsIt)
+{
+  SumoAccVType vtype;
+  vtype.action_step_length_s = 0.9;
+  EXPECT_EQ(sumoActionEvery(vtype, 0.2), 4u);
+  vtype.action_step_length_s = 0.25;
+  EXPECT_EQ(sumoActionEvery(vtype, 0.1), 2u);
+  vtype.action_step_length_s = 0.8;
+  EXPECT_EQ(sumoActionEvery(vtype, 0.1), 8u);
+  vtype.action_step_length_s = 0.05;
+  EXPECT_EQ(sumoActionEvery(vtype, 0.1), 1u);
 }
 
 /// Where the laws coincide (above 15 m/s, within the bounds), the package's replica of SUMO's step

@@ -38,7 +38,8 @@ SumoAccStep sumoAccStep(const SumoAccVType& vtype, double gap_m, double speed_mp
                         SumoAccMode previous_mode, double step_s, double lane_speed_limit_mps);
 
 /// How many simulation steps of step_s one action step of the vType spans (1 without an
-/// actionStepLength): SUMO decides at the first step and every that many after.
+/// actionStepLength): SUMO decides at the first step and every that many after. Like SUMO, in
+/// whole milliseconds and rounded down where the action step is not a multiple of the step.
 std::size_t sumoActionEvery(const SumoAccVType& vtype, double step_s);
 
 /// A step between two action steps: SUMO keeps the acceleration it decided (speed not below 0).
