@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #include "acc_identification/campaign/platoon_check.h"
 #include "acc_identification/io/mixed_setting_listing.h"
+#include "acc_identification/model/number_text.h"
 
 namespace acc
 {
@@ -109,6 +111,19 @@ FilePlatoonForSumo filePlatoonForSumo(const CampaignFile& file, const std::vecto
   out.input.name = file.name;
   if (chain.empty() || start + 1 >= end)
     return out;
+  if (start > 0 || end < contents.rows())
+  {
+    // Rows not replayed are said: a car whose data start late, or a hole in the first car's
+    // speeds, once cut the front of the run for every car without a word.
+    std::ostringstream note;
+    note << "replayed lines " << contents.line[start] << "-" << contents.line[end - 1] << " (t = "
+         << significant(contents.time_s[start], 8) << "-" << significant(contents.time_s[end - 1], 8) << " s, "
+         << end - start << " of " << contents.rows() << " rows): the first car's longest stretch without a hole"
+         << (start > first ? ", from its first row where every car of the chain has speed and gap (line " +
+                                 std::to_string(contents.line[first]) + " on lacks one)"
+                           : std::string());
+    out.notes.push_back(note.str());
+  }
   out.input.time_s = rows(contents.time_s, start, end);
   out.input.leader_speed_mps = rows(contents.vehicle(1)->speed_mps, start, end);
   for (const ChainCar& car : chain)

@@ -161,20 +161,28 @@ SumoRun runSumo(const std::vector<double>& leader_speed_mps, double step_s, cons
   return result;
 }
 
-double uniformStepS(const CarFollowingRun& run)
+std::string nonUniformStepReason(const CarFollowingRun& run)
 {
   if (run.size() < 2)
-    throw std::runtime_error("run '" + run.name + "' has fewer than two samples");
+    return "run '" + run.name + "' has fewer than two samples";
   const double step_s = (run.time_s.back() - run.time_s.front()) / static_cast<double>(run.size() - 1);
   for (std::size_t k = 1; k < run.size(); ++k)
   {
     const double h = run.time_s[k] - run.time_s[k - 1];
     if (std::abs(h - step_s) > 0.01 * step_s)
-      throw std::runtime_error("run '" + run.name + "' is not sampled uniformly (a step of " + std::to_string(h) +
-                               " s at " + std::to_string(run.time_s[k - 1]) + " s against " +
-                               std::to_string(step_s) + " s): SUMO steps uniformly, resample it first");
+      return "run '" + run.name + "' is not sampled uniformly (a step of " + std::to_string(h) + " s at " +
+             std::to_string(run.time_s[k - 1]) + " s against " + std::to_string(step_s) +
+             " s): SUMO steps uniformly; a --max-gap below that step splits the run there, or resample it";
   }
-  return step_s;
+  return "";
+}
+
+double uniformStepS(const CarFollowingRun& run)
+{
+  const std::string reason = nonUniformStepReason(run);
+  if (!reason.empty())
+    throw std::runtime_error(reason);
+  return (run.time_s.back() - run.time_s.front()) / static_cast<double>(run.size() - 1);
 }
 
 namespace

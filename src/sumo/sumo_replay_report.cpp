@@ -71,15 +71,11 @@ nlohmann::json pairsJson(const std::vector<SumoPairReplay>& replays)
     json["segments"].push_back(toJson(r));
   return json;
 }
-}  // namespace
 
-nlohmann::json replayRunInSumo(const std::vector<CarFollowingRun>& runs, const std::string& vtype_file,
-                               const std::vector<std::string>& ids, const SumoReplayOptions& options,
-                               std::ostream& out)
+/// The replayable runs in SUMO: one vType, each run as a pair; several, each run as a platoon.
+nlohmann::json replayRunsInSumo(const std::vector<CarFollowingRun>& runs, const std::vector<SumoAccVType>& vtypes,
+                                const std::string& vtype_file, const SumoReplayOptions& options, std::ostream& out)
 {
-  if (runs.empty())
-    throw std::runtime_error("no run to replay");
-  const std::vector<SumoAccVType> vtypes = chosenVTypes(vtype_file, ids, out);
   nlohmann::json json;
   if (vtypes.size() == 1)
   {
@@ -89,18 +85,45 @@ nlohmann::json replayRunInSumo(const std::vector<CarFollowingRun>& runs, const s
       replays.push_back(replayPairInSumo(run, vtypes.front(), vtype_file, options));
       printReplay(replays.back(), out);
     }
-    json = pairsJson(replays);
+    return pairsJson(replays);
   }
-  else
+  json = {{"mode", "platoon"}, {"segments", nlohmann::json::array()}};
+  for (const CarFollowingRun& run : runs)
   {
-    json = {{"mode", "platoon"}, {"segments", nlohmann::json::array()}};
-    for (const CarFollowingRun& run : runs)
+    const SumoPlatoonReplay replay = replayPlatoonInSumo(equilibriumPlatoon(run, vtypes), vtype_file, options);
+    printReplay(replay, out);
+    json["segments"].push_back(toJson(replay));
+  }
+  return json;
+}
+}  // namespace
+
+nlohmann::json replayRunInSumo(const std::vector<CarFollowingRun>& runs, const std::string& vtype_file,
+                               const std::vector<std::string>& ids, const SumoReplayOptions& options,
+                               std::ostream& out)
+{
+  if (runs.empty())
+    throw std::runtime_error("no run to replay");
+  const std::vector<SumoAccVType> vtypes = chosenVTypes(vtype_file, ids, out);
+  // A segment SUMO cannot step through (one dropped row below --max-gap) is skipped and said, not
+  // the end of the segments already replayed.
+  std::vector<CarFollowingRun> replayable;
+  nlohmann::json skipped = nlohmann::json::array();
+  for (const CarFollowingRun& run : runs)
+  {
+    const std::string reason = nonUniformStepReason(run);
+    if (reason.empty())
+      replayable.push_back(run);
+    else
     {
-      const SumoPlatoonReplay replay = replayPlatoonInSumo(equilibriumPlatoon(run, vtypes), vtype_file, options);
-      printReplay(replay, out);
-      json["segments"].push_back(toJson(replay));
+      out << "skipped: " << reason << "\n";
+      skipped.push_back({{"run", run.name}, {"reason", reason}});
     }
   }
+  if (replayable.empty())
+    throw std::runtime_error("no segment SUMO can replay: " + skipped.front()["reason"].get<std::string>());
+  nlohmann::json json = replayRunsInSumo(replayable, vtypes, vtype_file, options, out);
+  json["skipped_segments"] = skipped;
   json["vtype_file"] = vtype_file;
   json["sumo_law"] = "SUMO 1.15 MSCFModel_ACC (docs/SUMO.md)";
   return json;

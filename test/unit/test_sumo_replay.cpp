@@ -187,6 +187,8 @@ TEST(SumoReplay, UnknownIdsAndNonUniformRunsAreRefused)
   CarFollowingRun uneven = run.slice(0, 50);
   uneven.time_s[10] += 0.05;
   EXPECT_THROW(uniformStepS(uneven), std::runtime_error);
+  EXPECT_NE(nonUniformStepReason(uneven).find("a --max-gap below that step splits the run there"), std::string::npos);
+  EXPECT_EQ(nonUniformStepReason(run.slice(0, 50)), "");
 }
 
 }  // namespace
