@@ -60,8 +60,11 @@ def write_network(work_dir, length_m, sumo_binary):
                   % LANE_SPEED_LIMIT_MPS)
     netconvert = os.path.join(os.path.dirname(sumo_binary), "netconvert") if os.path.dirname(sumo_binary) \
         else "netconvert"
-    result = subprocess.run([netconvert, "--node-files", nodes, "--edge-files", edges, "-o", net,
-                             "--no-warnings", "true"], capture_output=True, text=True)
+    try:
+        result = subprocess.run([netconvert, "--node-files", nodes, "--edge-files", edges, "-o", net,
+                                 "--no-warnings", "true"], capture_output=True, text=True)
+    except OSError as error:  # not installed, or not where the sumo binary is: the one-line reason
+        fail("no SUMO: cannot run %s (%s); Debian's package sumo has it beside sumo" % (netconvert, error.strerror))
     if result.returncode != 0:
         fail("netconvert failed: " + result.stderr.strip().splitlines()[-1] if result.stderr else "netconvert failed")
     return net
