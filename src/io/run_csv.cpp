@@ -671,16 +671,26 @@ std::vector<CarFollowingRun> readRuns(const std::string& path, const RunPlausibi
   return reportAndTakeRuns(path, contents, std::cerr);
 }
 
+/// The problem lines listed of a file recorded more coarsely than a run may step (the rest counted).
+constexpr std::size_t kCoarseProblemLinesShown = 10;
+
 std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileContents& contents, std::ostream& log)
 {
   for (const std::string& note : contents.notes)
   {
     log << "note: " << note << "\n";
   }
-  for (const std::string& problem : condenseProblemLines(contents.problems))
-  {
-    log << "warning: " << problem << "\n";
-  }
+  const std::vector<std::string> problems = condenseProblemLines(contents.problems);
+  // Recorded more coarsely than a run may step (a 1 Hz log at the default 0.5 s), every row is a
+  // hole and a one-sample piece: the first lines show it, the count and the fix follow below,
+  // where 843 lines once buried them.
+  const bool coarse = !describeCoarseSteps(contents).empty();
+  const std::size_t shown = coarse ? std::min(problems.size(), kCoarseProblemLinesShown) : problems.size();
+  for (std::size_t i = 0; i < shown; ++i)
+    log << "warning: " << problems[i] << "\n";
+  if (shown < problems.size())
+    log << "warning: " << path << ": " << problems.size() - shown
+        << " more such lines not listed (each row a hole and a piece too short; counted below)\n";
   const std::string counts = describeRowCounts(path, contents);
   if (!counts.empty())
   {

@@ -169,7 +169,8 @@ void EpochPairer::noteDropout(const char* name, double from_s, double to_s, std:
     event(std::string(name) + ": " + std::to_string(kInARowForCoarse) + " dropouts in a row, the last " +
               seconds(to_s - from_s) + " s: the stream is recorded more coarsely than dropout_gap_s (" +
               seconds(settings_.dropout_gap_s) + " s), a receiver at 1 Hz? Raise dropout_gap_s above its step "
-              "(the launch files' max_gap_s, e.g. 2.5 at 1 Hz, raises the identifier's too)",
+              "(nmea_to_csv --dropout-gap-s 2.5 at 1 Hz, and calibrate then --max-gap 2.5; live, the launch "
+              "files' max_gap_s:=2.5 raises both)",
           false);
   }
   event(what, true);
