@@ -247,7 +247,12 @@ py::dict pairNmeaLogs(const std::string& leader_path, const std::string& followe
   std::string notes;
   const std::string refused = acc::pairingSettingsFrom(options, settings, notes);
   if (!refused.empty())
-    throw std::invalid_argument(refused);
+    throw std::invalid_argument(refused + (refused.find("antenna") == std::string::npos
+                                               ? ""
+                                               : "; the arguments: antenna_offset_m=M, or "
+                                                 "leader_antenna_to_rear_bumper_m=A with "
+                                                 "follower_antenna_to_front_bumper_m=B, or params= a file that "
+                                                 "places them"));
   if (!notes.empty())
     notes = "warning: " + params_path + ": " + notes + "\n";
   acc::RelativeStateLogs logs;

@@ -28,20 +28,24 @@ int main(int argc, char** argv)
                                         "--sumo-vtype)")
       ->required()
       ->check(CLI::ExistingFile);
-  app.add_option("--id", ids, "the vType to replay (default: the file's first ACC vType); several: a platoon in "
-                              "this order behind the run's leader");
+  auto* id_option = app.add_option("--id", ids, "the vType to replay (default: the file's first ACC vType); "
+                                                "several: a platoon in this order behind the run's leader");
   app.add_option("--json", json_path, "write the comparison as JSON");
-  app.add_flag("--platoon", platoon,
+  auto* platoon_flag = app.add_flag("--platoon", platoon,
                "RUN is an OpenACC platoon file: replay its first car with every following car's vType "
                "(<VEHICLE>_<setting>, as campaign --sumo-vtype names them) behind it, from the measured starts; "
                "dips by position in SUMO, the package's chain and the real cars");
+  // Options of one mode only are refused in the other, where they were silently ignored.
   app.add_flag("--diagnosed", diagnosed,
                "with --platoon: each car's <VEHICLE>_<setting>_diagnosed vType (the platoon diagnosis's model) "
-               "where the file has one");
+               "where the file has one")
+      ->needs(platoon_flag);
   app.add_option("--listing", listings,
                  "with --platoon: the database's listing of mixed-setting runs (header 'filename,Long timegap "
                  "setting'), so that each car of a listed mixed run gets its own setting's vType")
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingFile)
+      ->needs(platoon_flag);
+  platoon_flag->excludes(id_option);
   app.add_option("--follower", follower, "OpenACC files: the follower of the pair to read (its leader is replayed)");
   app.add_option("--topic", topic, "RelativeState topic in bags")->capture_default_str();
   app.add_option("--max-gap", max_gap_s, "split runs at holes longer than this [s]")->capture_default_str();

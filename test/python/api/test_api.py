@@ -169,7 +169,7 @@ def test_pair_nmea_logs_writes_and_reads_what_the_tool_writes(tmp_path):
 def test_pair_nmea_logs_refuses_to_guess_and_says_when_nothing_pairs(tmp_path):
     leader, follower = nmea_logs(tmp_path, "part5")
     out = tmp_path / "pairs.csv"
-    with pytest.raises(ValueError, match="say where the antennas are"):
+    with pytest.raises(ValueError, match="say where the antennas are.*the arguments: antenna_offset_m=M"):
         acc.pair_nmea_logs(leader, follower, out)
     with pytest.raises(ValueError, match="not both"):
         acc.pair_nmea_logs(leader, follower, out, antenna_offset_m=5.6, leader_antenna_to_rear_bumper_m=2.0)
