@@ -201,17 +201,6 @@ void bootstrapShortData(const std::vector<CarFollowingRun>& training, const Cali
   report.refit_bootstrap = bootstrapRefits(report.calibration.parameters, training, options);
 }
 
-/// The inputs by their runs' names in natural order: a set of runs gives one answer whatever
-/// order it is named in, since the resampling draws blocks over the runs in this order (part6
-/// before part3 moved the stability test's p from 0.063 to 0.054-0.066).
-std::vector<CalibrationInput> inNaturalRunOrder(std::vector<CalibrationInput> inputs)
-{
-  std::stable_sort(inputs.begin(), inputs.end(), [](const CalibrationInput& a, const CalibrationInput& b) {
-    return naturalLess(a.run.name, b.run.name);
-  });
-  return inputs;
-}
-
 void scoreRuns(const std::vector<CalibrationInput>& inputs, const std::vector<CarFollowingRun>& training,
                const std::vector<CarFollowingRun>& testing, CalibrationReport& report)
 {
@@ -273,7 +262,10 @@ CalibrateOutcome calibrateRuns(const std::vector<CalibrationInput>& given_inputs
                                const std::vector<InputAccount>& inputs_read, const CalibrateSettings& settings,
                                std::ostream& out, std::ostream& log)
 {
-  const std::vector<CalibrationInput> all_inputs = inNaturalRunOrder(given_inputs);
+  // Part6 before part3 moved the stability test's p from 0.063 to 0.054-0.066 until the runs were
+  // put in one order.
+  const std::vector<CalibrationInput> all_inputs =
+      inNaturalOrder(given_inputs, [](const CalibrationInput& input) -> const std::string& { return input.run.name; });
   FittedRuns fitted = fittedRuns(all_inputs, settings.split_half);
   for (const std::string& why : fitted.left_out)
     log << "note: " << why << ": left out of the fit and its scores\n";

@@ -139,9 +139,7 @@ double totalDurationS(const std::vector<CarFollowingRun>& runs)
 
 std::vector<CarFollowingRun> inNaturalNameOrder(std::vector<CarFollowingRun> runs)
 {
-  std::stable_sort(runs.begin(), runs.end(),
-                   [](const CarFollowingRun& a, const CarFollowingRun& b) { return naturalLess(a.name, b.name); });
-  return runs;
+  return inNaturalOrder(std::move(runs), [](const CarFollowingRun& run) -> const std::string& { return run.name; });
 }
 
 }  // namespace acc

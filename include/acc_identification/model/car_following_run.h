@@ -56,9 +56,7 @@ double gapSampleNoiseM(const CarFollowingRun& run);
 /// without a step.
 double medianStepS(const std::vector<CarFollowingRun>& runs);
 
-/// The runs by name in natural order (naturalLess; equal names keep their order): the order the
-/// tools fit and resample runs in, so that a set of runs gives one answer whatever order it is
-/// named in.
+/// The runs by name in natural order (inNaturalOrder in plain_text.h).
 std::vector<CarFollowingRun> inNaturalNameOrder(std::vector<CarFollowingRun> runs);
 
 /// Checks the run's invariants (equal column lengths, at least two samples, strictly increasing
