@@ -7,7 +7,9 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <cstdlib>
 #include <sstream>
+#include <tuple>
 
 namespace acc
 {
@@ -171,42 +173,86 @@ void convertRadiansToDegrees(OpenAccFile& file)
   }
 }
 
-/// Sets one impossible angle (in degrees by now) aside as a bad cell: NaN, listed and counted.
-void setAside(OpenAccFile& file, std::size_t row, const std::string& column, double& value_deg)
+/// One impossible angle (in degrees by now) as a bad cell, described in the file's unit.
+OpenAccBadCell impossibleAngle(const OpenAccFile& file, std::size_t row, const std::string& column, double value_deg)
 {
   const bool radians = file.angle_unit == OpenAccAngleUnit::kRadians;
   const double as_written = radians ? value_deg / kRadToDeg : value_deg;
   const std::string what = column.compare(0, 3, "Lat") == 0 ? "a latitude" : "a longitude";
-  OpenAccBadCell cell{row, file.line[row], column, significant(as_written, 10),
-                      "not " + what + " in " + (radians ? "radians" : "degrees") + ", the file's unit"};
-  const bool row_had_one = std::any_of(file.bad_cells.begin(), file.bad_cells.end(),
-                                       [row](const OpenAccBadCell& other) { return other.row == row; });
-  file.bad_rows += row_had_one ? 0 : 1;
-  ++file.bad_cells_by_column[column];
-  file.problems.push_back(file.path + ":" + std::to_string(cell.line) + ": " + cell.describe() + " (NaN)");
-  const auto place = std::upper_bound(file.bad_cells.begin(), file.bad_cells.end(), row,
-                                      [](std::size_t r, const OpenAccBadCell& other) { return r < other.row; });
-  file.bad_cells.insert(place, cell);
-  value_deg = std::numeric_limits<double>::quiet_NaN();
+  return {row, file.line[row], column, significant(as_written, 10),
+          "not " + what + " in " + (radians ? "radians" : "degrees") + ", the file's unit"};
+}
+
+/// The line number a problem entry ("path:line: why") names; problems are in line order.
+std::size_t problemLine(const OpenAccFile& file, const std::string& problem)
+{
+  return std::strtoul(problem.c_str() + file.path.size() + 1, nullptr, 10);
+}
+
+/// Lists new bad cells (in row order) where the reader lists its own: each row's cells in its one
+/// problem line (a row that already had one gets them appended), bad_cells kept in row order. One
+/// pass over each list, so a file of many bad angles costs no more than its reading.
+void listBadCells(OpenAccFile& file, const std::vector<OpenAccBadCell>& found)
+{
+  std::vector<OpenAccBadCell> cells;
+  cells.reserve(file.bad_cells.size() + found.size());
+  std::merge(file.bad_cells.begin(), file.bad_cells.end(), found.begin(), found.end(), std::back_inserter(cells),
+             [](const OpenAccBadCell& a, const OpenAccBadCell& b) { return a.row < b.row; });
+  std::vector<std::string> problems;
+  problems.reserve(file.problems.size() + found.size());
+  auto listed = file.problems.begin();
+  for (auto cell = found.begin(); cell != found.end();)
+  {
+    const auto row_end = std::find_if(cell, found.end(), [&](const OpenAccBadCell& c) { return c.row != cell->row; });
+    std::vector<std::string> described;
+    for (auto c = cell; c != row_end; ++c)
+    {
+      described.push_back(c->describe() + " (NaN)");
+      ++file.bad_cells_by_column[c->column];
+    }
+    for (; listed != file.problems.end() && problemLine(file, *listed) < cell->line; ++listed)
+      problems.push_back(*listed);
+    const bool row_listed = listed != file.problems.end() && problemLine(file, *listed) == cell->line;
+    file.bad_rows += row_listed ? 0 : 1;  // a listed row is already counted
+    if (row_listed)
+      problems.push_back(*listed++ + "; " + join(described, "; "));
+    else
+      problems.push_back(file.path + ":" + std::to_string(cell->line) + ": " + join(described, "; "));
+    cell = row_end;
+  }
+  problems.insert(problems.end(), listed, file.problems.end());
+  file.problems = std::move(problems);
+  file.bad_cells = std::move(cells);
 }
 
 }  // namespace
 
 void setAsideImpossibleAngles(OpenAccFile& file)
 {
+  std::vector<OpenAccBadCell> found;
   for (OpenAccVehicle& vehicle : file.vehicles)
   {
     if (!vehicle.has_lat_lon)
       continue;
     const std::string n = std::to_string(vehicle.position);
+    const std::string lat = "Lat" + n;
+    const std::string lon = "Lon" + n;
     for (std::size_t i = 0; i < file.rows(); ++i)
     {
-      if (std::abs(vehicle.latitude_deg[i]) > 90.0)
-        setAside(file, i, "Lat" + n, vehicle.latitude_deg[i]);
-      if (std::abs(vehicle.longitude_deg[i]) > 180.0)
-        setAside(file, i, "Lon" + n, vehicle.longitude_deg[i]);
+      for (auto [column, value, limit_deg] : {std::make_tuple(&lat, &vehicle.latitude_deg[i], 90.0),
+                                              std::make_tuple(&lon, &vehicle.longitude_deg[i], 180.0)})
+      {
+        if (std::abs(*value) > limit_deg)
+        {
+          found.push_back(impossibleAngle(file, i, *column, *value));
+          *value = std::numeric_limits<double>::quiet_NaN();
+        }
+      }
     }
   }
+  std::stable_sort(found.begin(), found.end(),
+                   [](const OpenAccBadCell& a, const OpenAccBadCell& b) { return a.row < b.row; });
+  listBadCells(file, found);
 }
 
 void detectAngleUnit(OpenAccFile& file)

@@ -160,6 +160,43 @@ TEST_F(OpenAccFileTest, OneCorruptAngleNeitherDecidesTheUnitNorBecomesAPosition)
       << joined(file.notes);
 }
 
+TEST_F(OpenAccFileTest, ImpossibleAnglesAreListedInRowOrderOneLinePerRow)
+{
+  // Row 2 has IVS2 NaN and a Lon2 of 9 (radians); row 7 has no other bad cell (IVS2 a number)
+  // and a Lat1 of 7; row 8 has both of car 2's angles impossible.
+  std::string text = kPlatoonMetadata + kPlatoonHeader;
+  for (int i = 0; i < 10; ++i)
+  {
+    std::string row = platoonRow(i, false);
+    if (i == 2)
+      row = withField(row, 10, "9");
+    if (i == 7)
+      row = withField(withField(row, 26, "10.0"), 5, "7");
+    if (i == 8)
+      row = withField(withField(row, 10, "-9"), 11, "2");
+    text += row;
+  }
+  const acc::OpenAccFile file = acc::readOpenAccFile(write("radians_bad_rows.csv", text));
+  ASSERT_EQ(file.error, "");
+  EXPECT_EQ(file.angle_unit, acc::OpenAccAngleUnit::kRadians) << file.angle_unit_reason;
+  ASSERT_EQ(file.problems.size(), 10u) << joined(file.problems);  // one line per row, rows 0-9
+  for (std::size_t i = 0; i < 10; ++i)
+    EXPECT_TRUE(anyContains({file.problems[i]}, {"radians_bad_rows.csv:" + std::to_string(file.line[i]) + ": "}))
+        << i << ": " << joined(file.problems);
+  EXPECT_TRUE(anyContains({file.problems[2]}, {"IVS2 NaN; Lon2 9: not a longitude in radians"})) << file.problems[2];
+  EXPECT_TRUE(anyContains({file.problems[7]}, {": Lat1 7: not a latitude in radians, the file's unit (NaN)"}))
+      << file.problems[7];
+  EXPECT_TRUE(anyContains({file.problems[8]}, {"Lon2 -9: not a longitude", "; Lat2 2: not a latitude"}))
+      << file.problems[8];
+  EXPECT_EQ(file.bad_rows, 10u);  // row 7's only bad cell is its angle
+  ASSERT_EQ(file.bad_cells.size(), 9u + 4u);
+  for (std::size_t k = 1; k < file.bad_cells.size(); ++k)
+    EXPECT_LE(file.bad_cells[k - 1].row, file.bad_cells[k].row) << k;
+  EXPECT_EQ(file.bad_cells_by_column.at("Lon2"), 2u);
+  EXPECT_EQ(file.bad_cells_by_column.at("Lat2"), 1u);
+  EXPECT_EQ(file.bad_cells_by_column.at("Lat1"), 1u);
+}
+
 TEST_F(OpenAccFileTest, CarsWithAbsentOrEmptyColumnsHaveNoPairAndTheNotesSayWhy)
 {
   // Car 3 (TESLA_MODEL3) absent; car 5 (AUDI_A4) with its columns present but every cell empty.
