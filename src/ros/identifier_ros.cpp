@@ -317,7 +317,9 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node,
   verdict_options.look_period_s = settings_.stability_period_s;
   sequential_.emplace(verdict_options);
   engagement_ = AccEngagement(settings_.engagement);
-  publisher_ = node.advertise<acc_identification::AccParameters>("acc_parameters", 10);
+  // Latched: a subscriber that comes late (a `rostopic echo` after a replay has ended) gets the
+  // last estimate and verdict rather than nothing.
+  publisher_ = node.advertise<acc_identification::AccParameters>("acc_parameters", 10, /*latch=*/true);
   subscriber_ = node.subscribe("relative_state", static_cast<std::uint32_t>(settings_.queue_size),
                                &IdentifierRos::onRelativeState, this);
   engagement_subscriber_ = node.subscribe("acc_engaged", 10, &IdentifierRos::onAccEngaged, this);

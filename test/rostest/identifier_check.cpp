@@ -67,7 +67,7 @@ TEST(Identifier, SyntheticRelativeStateGivesTheTrueParameters)
     clock.publish(now);
     ros::WallDuration(0.05).sleep();
   }
-  std::lock_guard<std::mutex> lock(log.mutex);
+  std::unique_lock<std::mutex> lock(log.mutex);
   const std::vector<acc_identification::AccParameters>& received = log.messages;
   ASSERT_FALSE(received.empty()) << "no acc_parameters published";
   // Early windows (under 30 s of data) are reported, not fitted.
@@ -114,6 +114,22 @@ TEST(Identifier, SyntheticRelativeStateGivesTheTrueParameters)
   }
   // The solve is timed and published; its speed is a benchmark's business (bench_online_identifier).
   EXPECT_GE(last.solve_time_s, 0.0);
+
+  // Latched: a subscriber that comes once the data have ended (the clock stands still, so nothing
+  // new is published) still gets the last estimate.
+  const acc_identification::AccParameters last_received = last;
+  lock.unlock();
+  acc_test::MessageLog<acc_identification::AccParameters> late;
+  auto late_subscriber =
+      node.subscribe("acc_parameters", 1, &acc_test::MessageLog<acc_identification::AccParameters>::on, &late);
+  EXPECT_TRUE(acc_test::waitForConnections([&] {
+    std::lock_guard<std::mutex> late_lock(late.mutex);
+    return !late.messages.empty();
+  }, 10.0)) << "a late subscriber got no acc_parameters: the topic is not latched";
+  std::lock_guard<std::mutex> late_lock(late.mutex);
+  ASSERT_EQ(late.messages.size(), 1u);
+  EXPECT_EQ(late.messages.front().window_end, last_received.window_end);
+  EXPECT_EQ(late.messages.front().stability_verdict, last_received.stability_verdict);
 }
 }  // namespace
 
