@@ -294,6 +294,17 @@ nlohmann::json effectSizesJson(const LinkEvidence& e)
   return sizes;
 }
 
+/// Whether ten cars with the diagnosed model amplify the real perturbations: a ratio above 1, or a
+/// chain that ran away, collided or drove backwards (it amplifies whatever its ratio says); null
+/// when nothing tells.
+nlohmann::json longPlatoonAmplifies(const LinkEvidence& e)
+{
+  if (e.long_platoon_ran_away_at_car > 0 || e.long_platoon_breaks_down_at_car > 0)
+    return true;
+  return std::isfinite(e.long_platoon_dip_ratio) ? nlohmann::json(e.long_platoon_dip_ratio > 1.0)
+                                                 : nlohmann::json(nullptr);
+}
+
 nlohmann::json linkJson(const LinkEvidence& e)
 {
   const EmpiricalResponse& r = e.response;
@@ -341,10 +352,14 @@ nlohmann::json linkJson(const LinkEvidence& e)
              {{"cars", kLongPlatoonCars},
               {"perturbations", e.long_platoon_perturbations},
               {"median_last_to_first_dip_ratio", e.long_platoon_dip_ratio},
-              {"amplifies", std::isfinite(e.long_platoon_dip_ratio) ? nlohmann::json(e.long_platoon_dip_ratio > 1.0)
-                                                                     : nlohmann::json(nullptr)},
+              {"amplifies", longPlatoonAmplifies(e)},
+              {"unfinished_perturbations", e.long_platoon_unfinished},
               {"ran_away_at_car", e.long_platoon_ran_away_at_car > 0 ? nlohmann::json(e.long_platoon_ran_away_at_car)
-                                                                      : nlohmann::json(nullptr)}}}}},
+                                                                      : nlohmann::json(nullptr)},
+              {"breaks_down_at_car", e.long_platoon_breaks_down_at_car > 0
+                                         ? nlohmann::json(e.long_platoon_breaks_down_at_car)
+                                         : nlohmann::json(nullptr)},
+              {"breakdown", e.long_platoon_breakdown}}}}},
           {"note", e.note}};
   if (e.diagnosed_bootstrap)
     j["diagnosed_model"]["refit_bootstrap"] = toJson(*e.diagnosed_bootstrap);
@@ -374,18 +389,39 @@ std::string departsCell(const LinkEvidence& e, bool model_available,
   return model_available ? rangesText(departs_rad_s) : "no model";
 }
 
-/// The ten-car ratio, and where a simulation ran away, at which car (a NaN alone would hide it).
+/// The ten-car ratio, and where a simulation ran away or broke down, at which car (a NaN alone
+/// would hide a runaway, a ratio alone a collision).
 std::string longPlatoonText(const LinkEvidence& e)
 {
   if (!e.diagnosed_available)
     return "no model";  // the note says why
-  if (e.long_platoon_perturbations == 0 && e.long_platoon_ran_away_at_car == 0)
+  if (e.long_platoon_perturbations == 0 && e.long_platoon_ran_away_at_car == 0 &&
+      e.long_platoon_breaks_down_at_car == 0 && e.long_platoon_unfinished == 0)
     return "no dip";  // no run's first car at this setting braked
+  std::vector<std::string> said;
+  if (e.long_platoon_ran_away_at_car > 0)
+    said.push_back("ran away at car " + std::to_string(e.long_platoon_ran_away_at_car) + " in a run");
+  if (e.long_platoon_breaks_down_at_car > 0 && e.long_platoon_breaks_down_at_car != e.long_platoon_ran_away_at_car)
+    said.push_back("car " + std::to_string(e.long_platoon_breaks_down_at_car) +
+                   (e.long_platoon_breakdown.find("collision") != std::string::npos ? " collides" : " drives backwards"));
+  if (e.long_platoon_unfinished > 0)
+    said.push_back(std::to_string(e.long_platoon_unfinished) + " cut short");
+  if (!std::isfinite(e.long_platoon_dip_ratio))
+    return said.empty() ? "-" : join(said, ", ");
   const std::string ratio = cellNumber("%.2f", e.long_platoon_dip_ratio);
-  if (e.long_platoon_ran_away_at_car == 0)
-    return ratio;
-  const std::string ran_away = "ran away at car " + std::to_string(e.long_platoon_ran_away_at_car);
-  return std::isfinite(e.long_platoon_dip_ratio) ? ratio + " (" + ran_away + " in a run)" : ran_away;
+  return said.empty() ? ratio : ratio + " (" + join(said, ", ") + ")";
+}
+
+/// Where each car's ten-car chain broke down, one line each ("" when none did).
+std::string longPlatoonBreakdownLines(const CampaignResult& result)
+{
+  std::string lines;
+  for (const LinkEvidence& e : result.links)
+  {
+    if (e.long_platoon_breaks_down_at_car > 0)
+      lines += "- Ten " + e.vehicle + " at " + e.setting + ": " + e.long_platoon_breakdown + ".\n";
+  }
+  return lines.empty() ? "" : "\nWhere a ten-car chain broke down:\n\n" + lines;
 }
 
 /// The link's dip ratio with its interval where there is one; "no dip" without a perturbation
@@ -1283,8 +1319,11 @@ std::string campaignReportMarkdown(const CampaignInputs& inputs, const CampaignR
           "depth seldom do), and each dip's own ratio, the smallest to the largest. Where the base and the "
           "diagnosed model's |Gamma(jw)| leave the band of the empirical one (Welch, coherence >= 0.5). The "
           "diagnosed model's small-signal peak (an asymmetric law: its braking branch) and the tenth car's dip over "
-          "the first in a simulated platoon of ten identical cars behind the runs' real first cars.\n\n";
+          "the first in a simulated platoon of ten identical cars behind the runs' real first cars (the tenth "
+          "car's dip taken up to the next perturbation; \"collides\" where a car's gap reached 0, \"drives "
+          "backwards\" where its speed went below 0: such a chain amplifies, whatever its ratio).\n\n";
     printMarkdownTable(kLinkHeader, linkRows(result), md);
+    md << longPlatoonBreakdownLines(result);
     md << "\n### The diagnosed models and what the runs pin\n\nEach car's diagnosed model fitted on all of its "
           "group's runs (the model the link table, the ten-car platoon and the SUMO export use), every effect "
           "parameter with its standard error, and for each effect how far its size stands from none in standard "

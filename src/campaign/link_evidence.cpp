@@ -9,6 +9,7 @@
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/final_model_bootstrap.h"
 #include "acc_identification/model/follower_simulation.h"
+#include "acc_identification/model/number_text.h"
 #include "acc_identification/model/parallel_tasks.h"
 
 namespace acc
@@ -211,11 +212,77 @@ AugmentedFit fitOnAllRuns(const PlatoonCandidate& candidate, const CampaignGroup
   return fitCandidate(candidate, group.segments(), warm);
 }
 
+namespace
+{
+/// The first car's speed over the rows [first, end) of the file, then kLongPlatoonTailS at its last
+/// speed, at the data's median step.
+CarFollowingRun leadWithTail(const OpenAccFile& file, std::size_t first, std::size_t end)
+{
+  CarFollowingRun run;
+  run.time_s = sliceRows(file.time_s, first, end);
+  run.leader_speed_mps = sliceRows(file.vehicle(1)->speed_mps, first, end);
+  std::vector<double> steps_s;
+  for (std::size_t i = 1; i < run.time_s.size(); ++i)
+    steps_s.push_back(run.time_s[i] - run.time_s[i - 1]);
+  const double step_s = finiteMedian(steps_s);
+  double last_mps = kNaN;
+  for (auto v = run.leader_speed_mps.rbegin(); v != run.leader_speed_mps.rend() && !std::isfinite(last_mps); ++v)
+    last_mps = *v;
+  if (!(step_s > 0.0) || !std::isfinite(last_mps))
+    return run;
+  const double last_s = run.time_s.back();
+  const auto tail = static_cast<std::size_t>(std::ceil(kLongPlatoonTailS / step_s));
+  for (std::size_t i = 1; i <= tail; ++i)
+  {
+    run.time_s.push_back(last_s + static_cast<double>(i) * step_s);
+    run.leader_speed_mps.push_back(last_mps);
+  }
+  return run;
+}
+
+/// Where a simulated car first collides with the car ahead (gap at or below 0) or drives backwards
+/// (speed below 0); "" when it does neither.
+std::string breakdownOf(const SimulatedFollower& sim, const std::vector<double>& time_s)
+{
+  const std::size_t end = sim.diverged ? sim.diverged_at_index : sim.speed_mps.size();
+  for (std::size_t i = 0; i < end; ++i)
+  {
+    const std::string at = " at t = " + cellNumber("%.1f", time_s[i]) + " s";
+    if (sim.space_gap_m[i] <= 0.0)
+      return "its gap reaches " + cellNumber("%.1f", sim.space_gap_m[i]) + " m (a collision)" + at;
+    if (sim.speed_mps[i] < 0.0)
+      return "its speed reaches " + cellNumber("%.2f", sim.speed_mps[i]) + " m/s (driving backwards)" + at;
+  }
+  return "";
+}
+
+/// The perturbation with its window running on to the next one's onset (or the record's end):
+/// where the tenth car of a long platoon dips, long after the first car's window.
+Perturbation untilNextOnset(const std::vector<Perturbation>& perturbations, std::size_t k, std::size_t samples)
+{
+  Perturbation whole = perturbations[k];
+  whole.window_end = k + 1 < perturbations.size() ? perturbations[k + 1].onset : samples;
+  return whole;
+}
+
+/// Whether the car is still slowing at the window's last sample (its minimum there): its dip is
+/// cut short.
+bool stillSlowingAtWindowEnd(const std::vector<double>& speed_mps, const Perturbation& window)
+{
+  const auto begin = speed_mps.begin() + static_cast<std::ptrdiff_t>(window.onset);
+  const auto end = speed_mps.begin() + static_cast<std::ptrdiff_t>(std::min(window.window_end, speed_mps.size()));
+  return end - begin > 1 && std::min_element(begin, end) == end - 1;
+}
+}  // namespace
+
 void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& setting,
                          const PlatoonCheckOptions& platoon_options, LinkEvidence* evidence)
 {
   std::vector<double> ratios;
   evidence->long_platoon_ran_away_at_car = 0;
+  evidence->long_platoon_breaks_down_at_car = 0;
+  evidence->long_platoon_breakdown.clear();
+  evidence->long_platoon_unfinished = 0;
   for (const CampaignFile& file : inputs.files)
   {
     if (file.setting != setting || file.contents.vehicle(1) == nullptr)
@@ -224,9 +291,7 @@ void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& settin
     const std::vector<Perturbation> perturbations = leadPerturbations(file.contents, platoon_options, &first, &end);
     if (perturbations.empty())
       continue;
-    CarFollowingRun run;
-    run.time_s = sliceRows(file.contents.time_s, first, end);
-    run.leader_speed_mps = sliceRows(file.contents.vehicle(1)->speed_mps, first, end);
+    CarFollowingRun run = leadWithTail(file.contents, first, end);
     const std::vector<double> lead_speed = run.leader_speed_mps;
     const double v0 = run.leader_speed_mps.front();
     const AccParameters& p = evidence->diagnosed_fit.base;
@@ -239,14 +304,29 @@ void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& settin
       diverged = sim.diverged;
       if (diverged && evidence->long_platoon_ran_away_at_car == 0)
         evidence->long_platoon_ran_away_at_car = static_cast<std::size_t>(car) + 1;
+      const std::string breakdown = breakdownOf(sim, run.time_s);
+      const auto car_number = static_cast<std::size_t>(car) + 1;
+      if (!breakdown.empty() &&
+          (evidence->long_platoon_breaks_down_at_car == 0 || car_number < evidence->long_platoon_breaks_down_at_car))
+      {
+        evidence->long_platoon_breaks_down_at_car = car_number;
+        evidence->long_platoon_breakdown = "car " + std::to_string(car_number) + " in " + file.name + ": " + breakdown;
+      }
       run.leader_speed_mps = sim.speed_mps;
     }
-    for (const Perturbation& perturbation : perturbations)
+    for (std::size_t k = 0; k < perturbations.size() && !diverged; ++k)
     {
-      const double lead_dip = dipDepthMps(run.time_s, lead_speed, perturbation, platoon_options.perturbation);
-      const double last_dip =
-          diverged ? kNaN : dipDepthMps(run.time_s, run.leader_speed_mps, perturbation, platoon_options.perturbation);
-      if (lead_dip > 0.3 && std::isfinite(last_dip))
+      const double lead_dip = dipDepthMps(run.time_s, lead_speed, perturbations[k], platoon_options.perturbation);
+      const Perturbation whole = untilNextOnset(perturbations, k, run.size());
+      if (!(lead_dip > 0.3))
+        continue;
+      if (stillSlowingAtWindowEnd(run.leader_speed_mps, whole))
+      {
+        ++evidence->long_platoon_unfinished;
+        continue;
+      }
+      const double last_dip = dipDepthMps(run.time_s, run.leader_speed_mps, whole, platoon_options.perturbation);
+      if (std::isfinite(last_dip))
         ratios.push_back(last_dip / lead_dip);
     }
   }

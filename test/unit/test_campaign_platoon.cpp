@@ -400,13 +400,20 @@ TEST(CampaignPlatoon, OnCarsWithoutAnUnmodelledEffectTheDiagnosisNamesNothing)
   EXPECT_EQ(diagnosed.median_abs_dip_error, base.median_abs_dip_error);
 }
 
+/// One synthetic run at S of two cars with an unstable law, behind whose first car the tests of the
+/// ten-car platoon simulate theirs.
+acc::CampaignInputs longPlatoonRuns()
+{
+  const std::vector<acc_test::SyntheticCar> cars{{"CAR_A", kUnstable}, {"CAR_B", kUnstable}};
+  return rotatedPlatoons("long", cars, 1, 61);
+}
+
 // Ten identical cars behind the real first cars: an unstable law amplifies the synthetic runs'
 // dips (ratio above 1), a stable one damps them, and a law whose chain leaves the simulator's
 // bounds says at which car instead of leaving a bare NaN.
 TEST(CampaignPlatoon, TheLongPlatoonSaysWhetherItAmplifiesAndWhereItRanAway)
 {
-  const std::vector<acc_test::SyntheticCar> cars{{"CAR_A", kUnstable}, {"CAR_B", kUnstable}};
-  const acc::CampaignInputs inputs = rotatedPlatoons("long", cars, 1, 61);
+  const acc::CampaignInputs inputs = longPlatoonRuns();
   acc::LinkEvidence evidence;
   evidence.diagnosed_fit.base = kUnstable;
   acc::simulateLongPlatoon(inputs, "S", acc::PlatoonCheckOptions{}, &evidence);
@@ -429,6 +436,52 @@ TEST(CampaignPlatoon, TheLongPlatoonSaysWhetherItAmplifiesAndWhereItRanAway)
   EXPECT_LE(evidence.long_platoon_ran_away_at_car, static_cast<std::size_t>(acc::kLongPlatoonCars));
   EXPECT_EQ(evidence.long_platoon_perturbations, 0u);
   EXPECT_TRUE(std::isnan(evidence.long_platoon_dip_ratio));
+}
+
+// The wave reaches the tenth car long after the first car's dip window: its dip is taken up to the
+// next perturbation, so the ratio does not depend on how long that window runs on. Fails when the
+// tenth car's dip is cut at the first car's window (5 s on gave a smaller ratio than 30 s).
+TEST(CampaignPlatoon, TheLongPlatoonsTenthCarDipIsNotCutAtTheFirstCarsWindow)
+{
+  const acc::CampaignInputs inputs = longPlatoonRuns();
+  acc::LinkEvidence evidence;
+  evidence.diagnosed_fit.base = acc::AccParameters{0.10, 0.30, 1.6, 4.0};
+  evidence.diagnosed_fit.settings.reaction_delay_s = 0.8;
+  acc::PlatoonCheckOptions long_window;
+  acc::simulateLongPlatoon(inputs, "S", long_window, &evidence);
+  const double ratio = evidence.long_platoon_dip_ratio;
+  ASSERT_GT(evidence.long_platoon_perturbations, 0u);
+  EXPECT_EQ(evidence.long_platoon_unfinished, 0u);
+  acc::PlatoonCheckOptions short_window;
+  short_window.perturbation.extension_s = 5.0;
+  acc::simulateLongPlatoon(inputs, "S", short_window, &evidence);
+  EXPECT_NEAR(evidence.long_platoon_dip_ratio, ratio, 1e-9);
+  std::cout << "ten-car ratio " << ratio << "\n";
+}
+
+// A law whose chain closes its gaps to nothing says where, and counts as amplifying, though it
+// never leaves the simulator's bounds.
+TEST(CampaignPlatoon, TheLongPlatoonSaysWhereItsCarsCollide)
+{
+  const acc::CampaignInputs inputs = longPlatoonRuns();
+  acc::LinkEvidence evidence;
+  evidence.diagnosed_fit.base = acc::AccParameters{0.05, 0.20, 0.6, 1.0};
+  evidence.diagnosed_fit.settings.reaction_delay_s = 1.2;
+  acc::simulateLongPlatoon(inputs, "S", acc::PlatoonCheckOptions{}, &evidence);
+  std::cout << evidence.long_platoon_breakdown << "; ratio " << evidence.long_platoon_dip_ratio << "\n";
+  EXPECT_EQ(evidence.long_platoon_ran_away_at_car, 0u);
+  ASSERT_GT(evidence.long_platoon_breaks_down_at_car, 0u);
+  EXPECT_NE(evidence.long_platoon_breakdown.find("car " + std::to_string(evidence.long_platoon_breaks_down_at_car) +
+                                                " in "),
+            std::string::npos)
+      << evidence.long_platoon_breakdown;
+
+  // The stable law of the test above never closes a gap.
+  evidence.diagnosed_fit = acc::AugmentedFit{};
+  evidence.diagnosed_fit.base = acc::AccParameters{0.10, 0.60, 1.5, 4.0};
+  acc::simulateLongPlatoon(inputs, "S", acc::PlatoonCheckOptions{}, &evidence);
+  EXPECT_EQ(evidence.long_platoon_breaks_down_at_car, 0u) << evidence.long_platoon_breakdown;
+  EXPECT_EQ(evidence.long_platoon_breakdown, "");
 }
 
 TEST(DipPredictionSummary, TheNoModelReferencePassesTheFirstCarsDipOnWhereTheChainPredicts)

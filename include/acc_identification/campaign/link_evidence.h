@@ -65,6 +65,14 @@ struct LinkEvidence
   /// a dip grown past standstill into the absurd) behind some run's first car; 0 when none did.
   /// That run's perturbations then give no ratio, and the text says so instead of a silent NaN.
   std::size_t long_platoon_ran_away_at_car = 0;
+  /// The first of the ten cars (1-based) whose gap to the car ahead reached 0 (a collision) or whose
+  /// speed went below 0 (the law has no floor: it drives backwards) behind some run's first car; 0
+  /// when none did. The ratio is still the model's, but such a chain amplifies whatever it says.
+  std::size_t long_platoon_breaks_down_at_car = 0;
+  std::string long_platoon_breakdown;  ///< where and how ("car 7 in dynamic_part16: its gap reaches -25.9 m ...")
+  /// Perturbations whose tenth car was still slowing when the next perturbation began: no ratio
+  /// (it would be cut short), counted here.
+  std::size_t long_platoon_unfinished = 0;
   std::string note;  ///< what could not be computed, and why
 };
 
@@ -101,6 +109,11 @@ inline bool responseRead(const LinkEvidence& evidence)
 /// Number of identical cars in the simulated long platoon.
 constexpr int kLongPlatoonCars = 10;
 
+/// After its data, the long platoon's first car keeps its last speed this long [s], so that a
+/// perturbation near the end can reach the tenth car and pass (each car passes it on a time gap
+/// and a delay later: some 20-40 s down ten cars).
+constexpr double kLongPlatoonTailS = 120.0;
+
 /// How the campaign refits a bootstrap replicate of a car's diagnosed model: as it fitted the car.
 /// The base model as calibrate's bootstrap refits it (refitBaseModel from base_fit, the group's
 /// base fit, with options' starts), then the candidate by fitCandidate from that base and from
@@ -114,9 +127,11 @@ AugmentedRefit refitAsCampaignFitted(const PlatoonCandidate& candidate, const Ac
 AugmentedFit fitOnAllRuns(const PlatoonCandidate& candidate, const CampaignGroup& group, const GroupResult& result);
 
 /// Ten identical cars with evidence's diagnosed model behind the real first car of each platoon
-/// run at setting, from equilibrium at its first speed: sets the tenth car's dip over the first
-/// car's (median over the perturbations), how many perturbations gave one, and the first car whose
-/// simulation ran away.
+/// run at setting (its data, then kLongPlatoonTailS at its last speed), from equilibrium at its
+/// first speed: sets the tenth car's dip over the first car's (median over the perturbations; the
+/// tenth car's dip taken from the onset to the next perturbation's onset, since the wave reaches
+/// it long after the first car's dip window), how many perturbations gave one, those cut short,
+/// and the first car whose simulation ran away or broke down (collided, drove backwards).
 void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& setting,
                          const PlatoonCheckOptions& platoon_options, LinkEvidence* evidence);
 
