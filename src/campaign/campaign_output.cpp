@@ -1318,7 +1318,7 @@ std::string campaignReportMarkdown(const CampaignInputs& inputs, const CampaignR
           "inverted; an end is inf where they do not bound it, as two perturbations never do and three of unequal "
           "depth seldom do), and each dip's own ratio, the smallest to the largest. Where the base and the "
           "diagnosed model's |Gamma(jw)| leave the band of the empirical one (Welch, coherence >= 0.5). The "
-          "diagnosed model's small-signal peak (an asymmetric law: its braking branch) and the tenth car's dip over "
+          "diagnosed model's small-signal peak (a law with branches: the largest of its branches') and the tenth car's dip over "
           "the first in a simulated platoon of ten identical cars behind the runs' real first cars (the tenth "
           "car's dip taken up to the next perturbation; \"collides\" where a car's gap reached 0, \"drives "
           "backwards\" where its speed went below 0: such a chain amplifies, whatever its ratio).\n\n";

@@ -1,8 +1,11 @@
 #include "acc_identification/diagnosis/augmented_stability.h"
 
+#include <array>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <utility>
+#include <vector>
 
 #include "acc_identification/model/angles.h"
 #include "acc_identification/model/number_text.h"
@@ -17,10 +20,9 @@ double linearisedTimeGap(const AccParameters& p, const EffectSettings& e, double
   return p.tau_e_s + 2.0 * e.time_gap_speed_slope_s2_per_m * operating_speed_mps;
 }
 
-/// The gains of the small-signal law: scheduled at the operating speed (the schedule's own
-/// derivative multiplies a spacing error and relative speed that are 0 at equilibrium), and on the
-/// braking branch of an asymmetric law (gap shorter than desired and closing in: what a follower
-/// does when its leader brakes, the disturbance string stability is about).
+/// The gains of one branch's small-signal law (the branch's own r_s and r_c: branchesOf), scheduled
+/// at the operating speed (the schedule's own derivative multiplies a spacing error and relative
+/// speed that are 0 at equilibrium).
 AccParameters linearisedGains(const AccParameters& p, const EffectSettings& e, double operating_speed_mps)
 {
   AccParameters out = p;
@@ -30,6 +32,40 @@ AccParameters linearisedGains(const AccParameters& p, const EffectSettings& e, d
   out.k1_per_s2 = p.k1_per_s2 * schedule * e.short_gap_gain_ratio;
   out.k2_per_s = p.k2_per_s * schedule * e.closing_gain_ratio;
   out.tau_e_s = linearisedTimeGap(p, e, operating_speed_mps);
+  return out;
+}
+
+/// The linear laws a law with branches switches between at equilibrium, where its gap error and
+/// relative speed change sign: an asymmetric law's four, (k1 or k1 r_s) x (k2 or k2 r_c), and the
+/// anticipation of the leader's braking with and without its k_b. A small disturbance meets every
+/// one of them (a braking leader the short-gap and closing branch first, then the others on the
+/// way back), so the law is held to all of them: string stable only where every branch is. A law
+/// without branches has one, itself. At most eight, in a fixed array: the side search evaluates
+/// this thousands of times per fit.
+struct Branches
+{
+  std::array<EffectSettings, 8> laws;
+  std::size_t count = 0;
+};
+
+Branches branchesOf(const EffectSettings& e)
+{
+  Branches out;
+  out.laws[out.count++] = e;
+  const auto split = [&out](auto to_other_branch) {
+    const std::size_t n = out.count;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      out.laws[out.count] = out.laws[i];
+      to_other_branch(out.laws[out.count++]);
+    }
+  };
+  if (e.short_gap_gain_ratio != 1.0)
+    split([](EffectSettings& b) { b.short_gap_gain_ratio = 1.0; });
+  if (e.closing_gain_ratio != 1.0)
+    split([](EffectSettings& b) { b.closing_gain_ratio = 1.0; });
+  if (e.leader_braking_gain != 0.0)
+    split([](EffectSettings& b) { b.leader_braking_gain = 0.0; });
   return out;
 }
 
@@ -56,13 +92,15 @@ std::string smallSignalNote(EffectKind effect)
     case EffectKind::speed_dependent_time_gap: return "time gap linearised at the operating speed: tau_e + 2 c v0";
     case EffectKind::leader_acceleration_feedforward: return "feedforward adds k_a s (1 - exp(-s W)) / W to the numerator (W its window)";
     case EffectKind::asymmetric_response:
-      return "no single transfer function: the braking branch (k1 r_s, k2 r_c), active when the leader brakes";
+      return "no single transfer function: held to each of its four branches ((k1 or k1 r_s) x (k2 or k2 r_c)), "
+             "the largest |Gamma| at each frequency";
     case EffectKind::speed_dependent_gains:
       return printfText("gains scheduled at the operating speed: k exp(g (v0 - %g m/s))", kGainReferenceSpeedMps);
     case EffectKind::quadratic_closing_response:
       return "a quadratic term has no slope at equilibrium: small-signal Gamma equals the base one";
     case EffectKind::leader_braking_anticipation:
-      return "no single transfer function: the braking branch, where the feedforward adds k_b s (1 - exp(-s W)) / W to the numerator";
+      return "no single transfer function: held to both branches, the leader braking (the feedforward adds "
+             "k_b s (1 - exp(-s W)) / W to the numerator) and not, the larger |Gamma| at each frequency";
     case EffectKind::set_speed_cruise:
       return "cruise mode is inactive while following below the set speed: small-signal Gamma equals the base one";
   }
@@ -110,24 +148,31 @@ bool locallyStableAt(const AccParameters& p, const EffectSettings& e, const std:
   // atan2(b w_c, k1) has the sign of atan2(b, k1), with no crossover to search.
   const bool depends_on_speed = e.gain_speed_slope_s_per_m != 0.0 || e.time_gap_speed_slope_s2_per_m != 0.0;
   const bool timed = e.actuation_lag_s != 0.0 || e.reaction_delay_s != 0.0;
+  const Branches branches = branchesOf(e);
   for (const double speed : operating_speeds_mps)
   {
-    const AccParameters g = linearisedGains(p, e, speed);
-    AugmentedStability loop;
-    if (timed)
-      localLoopStability(g, e.actuation_lag_s, e.reaction_delay_s, &loop);
-    else
-      loop.locally_stable = std::atan2(g.k2_per_s + g.k1_per_s2 * g.tau_e_s, g.k1_per_s2) > 0.0;
-    if (!loop.locally_stable)
-      return false;
+    for (std::size_t b = 0; b < branches.count; ++b)
+    {
+      const AccParameters g = linearisedGains(p, branches.laws[b], speed);
+      AugmentedStability loop;
+      if (timed)
+        localLoopStability(g, e.actuation_lag_s, e.reaction_delay_s, &loop);
+      else
+        loop.locally_stable = std::atan2(g.k2_per_s + g.k1_per_s2 * g.tau_e_s, g.k1_per_s2) > 0.0;
+      if (!loop.locally_stable)
+        return false;
+    }
     if (!depends_on_speed)
       break;
   }
   return true;
 }
 
-double augmentedTransferGainSquared(const AccParameters& p, const EffectSettings& e, double operating_speed_mps,
-                                    double frequency_rad_s)
+namespace
+{
+/// |Gamma(j w)|^2 of one branch's linear law.
+double branchGainSquared(const AccParameters& p, const EffectSettings& e, double operating_speed_mps,
+                         double frequency_rad_s)
 {
   const std::complex<double> s(0.0, frequency_rad_s);
   const AccParameters g = linearisedGains(p, e, operating_speed_mps);
@@ -153,6 +198,17 @@ double augmentedTransferGainSquared(const AccParameters& p, const EffectSettings
   }
   return std::norm(numerator) / denominator_squared;
 }
+}  // namespace
+
+double augmentedTransferGainSquared(const AccParameters& p, const EffectSettings& e, double operating_speed_mps,
+                                    double frequency_rad_s)
+{
+  const Branches branches = branchesOf(e);
+  double largest = 0.0;
+  for (std::size_t b = 0; b < branches.count; ++b)
+    largest = std::max(largest, branchGainSquared(p, branches.laws[b], operating_speed_mps, frequency_rad_s));
+  return largest;
+}
 
 double augmentedTransferGain(const AccParameters& p, const EffectSettings& e, double operating_speed_mps,
                              double frequency_rad_s)
@@ -169,18 +225,36 @@ AugmentedStability analyzeSmallSignal(const AccParameters& p, std::string note, 
 {
   AugmentedStability out;
   out.note = std::move(note);
-  const AccParameters linear = linearisedGains(p, e, operating_speed_mps);
-  out.lambda2 = lambda2(linear);
-  // The grid, plus the closed-form peak of the delay- and lag-free law.
-  double best_gain = augmentedTransferGain(p, e, operating_speed_mps, 0.0);
-  double best_w = 0.0;
+  // The grid, plus the closed-form peak of each branch's delay- and lag-free law.
+  const Branches branches = branchesOf(e);
+  std::vector<double> frequencies_rad_s;
   const int points = 4000;
   const double w_lo = 1e-4;
   const double w_hi = 20.0;
-  for (int i = 0; i <= points + 1; ++i)
+  for (int i = 0; i <= points; ++i)
+    frequencies_rad_s.push_back(w_lo * std::pow(w_hi / w_lo, static_cast<double>(i) / points));
+  out.lambda2 = -std::numeric_limits<double>::infinity();
+  for (std::size_t b = 0; b < branches.count; ++b)
   {
-    const double w = i <= points ? w_lo * std::pow(w_hi / w_lo, static_cast<double>(i) / points)
-                                 : peakFrequencyRadS(linear);
+    const AccParameters linear = linearisedGains(p, branches.laws[b], operating_speed_mps);
+    frequencies_rad_s.push_back(peakFrequencyRadS(linear));
+    out.lambda2 = std::max(out.lambda2, lambda2(linear));  // the least stable branch's
+    AugmentedStability loop;
+    localLoopStability(linear, e.actuation_lag_s, e.reaction_delay_s, &loop);
+    // The least stable branch's loop: the first unstable one, else the least margin.
+    const bool less_stable =
+        b == 0 || (out.locally_stable && (!loop.locally_stable || loop.phase_margin_deg < out.phase_margin_deg));
+    if (less_stable)
+    {
+      out.locally_stable = loop.locally_stable;
+      out.phase_margin_deg = loop.phase_margin_deg;
+      out.crossover_rad_s = loop.crossover_rad_s;
+    }
+  }
+  double best_gain = augmentedTransferGain(p, e, operating_speed_mps, 0.0);
+  double best_w = 0.0;
+  for (const double w : frequencies_rad_s)
+  {
     const double gain = augmentedTransferGain(p, e, operating_speed_mps, w);
     if (gain > best_gain)
     {
@@ -190,7 +264,6 @@ AugmentedStability analyzeSmallSignal(const AccParameters& p, std::string note, 
   }
   out.peak_gain_db = 20.0 * std::log10(best_gain);
   out.peak_frequency_rad_s = best_w;
-  localLoopStability(linear, e.actuation_lag_s, e.reaction_delay_s, &out);
   out.string_stable = out.locally_stable && best_gain <= 1.0 + 1e-12;
   if (!out.locally_stable)
     out.note += "; " + localInstabilityNote(out);

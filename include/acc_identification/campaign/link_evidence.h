@@ -46,7 +46,7 @@ struct LinkEvidence
   std::vector<std::pair<double, double>> diagnosed_departs_rad_s;
   /// The diagnosed model: its candidate, its fit on all the group's runs (base parameters, effect
   /// values, settings and standard errors), and its small-signal stability (for an asymmetric law,
-  /// of its braking branch: augmented_stability.h).
+  /// held to every branch: augmented_stability.h).
   PlatoonCandidate diagnosed;
   bool base_available = false;  ///< the group has a base fit (its |Gamma| is then known)
   bool diagnosed_available = false;

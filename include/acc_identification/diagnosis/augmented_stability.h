@@ -13,12 +13,16 @@ namespace acc
 /// function evaluated numerically:
 ///   Gamma(s) = e^{-s d} (k_a A(s) + k2 s + k1) / ((T s + 1) s^2 + e^{-s d} ((k2 + k1 tau_lin) s + k1))
 /// T the actuation lag, d the reaction delay, k_a the leader-acceleration feedforward (the braking
-/// anticipation's k_b on its braking branch), A(s) = s (1 - e^{-s W}) / W the leader's
+/// anticipation's k_b on the branch where the leader brakes), A(s) = s (1 - e^{-s W}) / W the leader's
 /// acceleration read over W = kLeaderAccelerationWindowS (s^2 as W -> 0), and tau_lin = tau_e + 2 c v0 the time gap of the
 /// speed-dependent spacing policy linearised at the operating speed v0 (d(c v^2)/dv = 2 c v0).
-/// Gains scheduled on speed enter at v0: k exp(g (v0 - 15 m/s)). An asymmetric law has no single
-/// transfer function (its gains switch at equilibrium): Gamma is that of its braking branch,
-/// k1 r_s and k2 r_c, the law a follower obeys while its leader brakes (gap short, closing in).
+/// Gains scheduled on speed enter at v0: k exp(g (v0 - 15 m/s)). A law with branches has no single
+/// transfer function (its gains switch at equilibrium): an asymmetric law's four, (k1 or k1 r_s) x
+/// (k2 or k2 r_c), the braking anticipation's two (with and without k_b). A braking meets each of
+/// them (the short, closing gap first, the others on the way back), so the law is held to all:
+/// |Gamma| is the largest of its branches' at each frequency, its loop stable only where each
+/// branch's is, lambda2 the least stable branch's. (Judged on the braking branch alone, a "stable"
+/// law could amplify on its recovery branch.)
 /// With T = d = c = 0 this is the paper's eq. 9. Acceleration limits and the set-speed cruise
 /// do not act on small disturbances around an unsaturated following equilibrium, and a clock
 /// offset between receivers changes the record, not the vehicle: for those Gamma is the base one.
@@ -58,8 +62,8 @@ void localLoopStability(const AccParameters& linear_gains, double actuation_lag_
 bool locallyStableAt(const AccParameters& p, const EffectSettings& effects,
                      const std::vector<double>& operating_speeds_mps);
 
-/// |Gamma(j w)| of the augmented model as a ratio; a law with two branches on its braking one
-/// (asymmetric gains, the anticipation of the leader's braking), what a braking leader meets.
+/// |Gamma(j w)| of the augmented model as a ratio; of a law with branches (asymmetric gains, the
+/// anticipation of the leader's braking) the largest of its branches'.
 double augmentedTransferGain(const AccParameters& p, const EffectSettings& effects, double operating_speed_mps,
                              double frequency_rad_s);
 
