@@ -85,6 +85,13 @@ StringStabilityReport analyzeStringStability(const AccParameters& p)
   report.string_stable = report.amplified_band_upper_rad_s == 0.0;
   report.peak_frequency_rad_s = peakFrequencyRadS(p);
   report.peak_gain_db = transferGainDb(p, report.peak_frequency_rad_s);
+  if (p.k1_per_s2 > 0.0 && p.k2_per_s + p.k1_per_s2 * p.tau_e_s == 0.0)
+  {
+    // Undamped (k2 = tau_e = 0): |Gamma| = k1 / |k1 - w^2| is infinite at sqrt(k1), where the
+    // rounded square of the root left a finite 313 dB.
+    report.peak_frequency_rad_s = std::sqrt(p.k1_per_s2);
+    report.peak_gain_db = std::numeric_limits<double>::infinity();
+  }
   return report;
 }
 

@@ -41,6 +41,30 @@ double eulerTransferGain(const AccParameters& p, double frequency_rad_s, double 
   return std::abs(numerator / denominator);
 }
 
+bool eulerRecursionStable(const AccParameters& p, double time_step_s)
+{
+  const double b = p.k2_per_s + p.k1_per_s2 * p.tau_e_s;
+  const std::complex<double> root_of_discriminant = std::sqrt(std::complex<double>(b * b - 4.0 * p.k1_per_s2, 0.0));
+  for (const std::complex<double> r : {0.5 * (-b + root_of_discriminant), 0.5 * (-b - root_of_discriminant)})
+  {
+    if (std::abs(1.0 + time_step_s * r) >= 1.0)
+      return false;
+  }
+  return true;
+}
+
+EulerPeak eulerPeak(const AccParameters& p, double time_step_s)
+{
+  EulerPeak peak{-std::numeric_limits<double>::infinity(), 0.0};
+  for (const double w : logSpacedFrequencies(1e-4, M_PI / time_step_s, 4000))
+  {
+    const double gain_db = 20.0 * std::log10(eulerTransferGain(p, w, time_step_s));
+    if (gain_db > peak.gain_db)
+      peak = {gain_db, w};
+  }
+  return peak;
+}
+
 std::vector<BodeSample> bodeMagnitude(const AccParameters& p, const std::vector<double>& frequencies_rad_s,
                                       double time_step_s)
 {

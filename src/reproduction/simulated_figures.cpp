@@ -11,6 +11,7 @@
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/number_text.h"
 #include "acc_identification/model/platoon_simulation.h"
+#include "acc_identification/model/string_stability.h"
 #include "acc_identification/reproduction/figure_csv.h"
 #include "acc_identification/reproduction/figure_summary.h"
 #include "acc_identification/reproduction/frequency_response.h"
@@ -42,11 +43,24 @@ void requireSimulable(std::size_t followers, double duration_s, double time_step
                                       followers + 1, duration_s, time_step_s, samples, kMaxPlatoonSamples));
   }
 }
+/// Why a simulated platoon of the law p at step h ran away: one car's Euler recursion unstable, the
+/// law itself amplifying from car to car, or the Euler map amplifying where the law does not.
+std::string runawayCause(const acc::AccParameters& p, double h)
+{
+  if (!acc::eulerRecursionStable(p, h))
+    return printfText("one car's explicit Euler recursion at --time-step %g s is unstable for these parameters "
+                      "(a finer --time-step)", h);
+  if (!acc::analyzeStringStability(p).string_stable)
+    return "the law amplifies from car to car (string unstable) until the platoon leaves it";
+  return printfText("the Euler recursion at --time-step %g s amplifies from car to car (peak %.3f dB) where the law "
+                    "does not (a finer --time-step)", h, acc::eulerPeak(p, h).gain_db);
+}
+
 /// Where a simulated platoon runs away (isRunaway: a speed or gap beyond the simulable range, or
-/// not a number): the explicit Euler recursion unstable at this step, or the law itself. Said as
-/// a warning and returned for the summary (null while it stays bounded), since the figure's
-/// numbers past it are not a platoon's: a stable-looking peak of 1e200 m/s was printed as is.
-json runawayJson(const PlatoonTrajectory& platoon, const std::string& setting, const FigureRequest& request)
+/// not a number), and why (runawayCause). Said as a warning and returned for the summary (null
+/// while it stays bounded), since the figure's numbers past it are not a platoon's: a
+/// stable-looking peak of 1e200 m/s was printed as is.
+json runawayJson(const PlatoonTrajectory& platoon, const NamedSetting& setting, const FigureRequest& request)
 {
   for (std::size_t vehicle = 1; vehicle < platoon.vehicleCount(); ++vehicle)
   {
@@ -55,12 +69,12 @@ json runawayJson(const PlatoonTrajectory& platoon, const std::string& setting, c
       if (!isRunaway(platoon.speed_mps[vehicle][k], platoon.space_gap_m[vehicle][k]))
         continue;
       const double t_s = static_cast<double>(k) * platoon.time_step_s;
+      const std::string cause = runawayCause(setting.parameters, platoon.time_step_s);
       std::fprintf(request.streams.notes,
                    "warning: %s: DIVERGED: follower %zu leaves the simulable range (|speed| or |gap| beyond %g) at "
-                   "t = %.1f s: the explicit Euler recursion at --time-step %g s is unstable for these parameters, "
-                   "or the law itself runs away; the numbers printed for this setting are not a platoon's\n",
-                   setting.c_str(), vehicle, kDivergenceBound, t_s, platoon.time_step_s);
-      return {{"vehicle", vehicle}, {"time_s", t_s}};
+                   "t = %.1f s: %s; the numbers printed for this setting are not a platoon's\n",
+                   setting.name.c_str(), vehicle, kDivergenceBound, t_s, cause.c_str());
+      return {{"vehicle", vehicle}, {"time_s", t_s}, {"cause", cause}};
     }
   }
   return nullptr;
@@ -150,7 +164,7 @@ json stepFigure(const FigureRequest& request)
                                    {"response", disturbanceJson(response)},
                                    {"last_undershoot_below_low_speed_mps", undershoot},
                                    {"last_overshoot_above_cruise_mps", overshoot},
-                                   {"runaway", runawayJson(runs.back().second, setting.name, request)}});
+                                   {"runaway", runawayJson(runs.back().second, setting, request)}});
     std::fprintf(request.streams.numbers,
                  "  %-14s last follower: minimum %.3f m/s (undershoot %.3f below the lead's low speed), maximum "
                  "%.3f m/s (overshoot %.3f above cruise)\n",
@@ -178,10 +192,21 @@ json bodeFigure(const FigureRequest& request)
       csv.row() << setting.name << ',' << s.frequency_rad_s << ',' << s.gain_db << ',' << s.euler_gain_db << '\n';
     }
     const json p = settingSummaryJson(setting);
-    summary["settings"].push_back({{"parameters", p}});
+    // The CSV's Euler column is what a platoon simulated at this step passes on: its peak beside
+    // the law's, since at a coarse step it amplifies where the law does not.
+    const acc::EulerPeak euler = acc::eulerPeak(setting.parameters, h);
+    summary["settings"].push_back({{"parameters", p},
+                                   {"euler_peak_gain_db", euler.gain_db},
+                                   {"euler_peak_frequency_rad_s", euler.frequency_rad_s},
+                                   {"euler_recursion_stable", acc::eulerRecursionStable(setting.parameters, h)}});
     std::fprintf(request.streams.numbers, "  %-14s amplified below %.4f rad/s, peak %.3f dB at %.4f rad/s\n",
                  setting.name.c_str(), p["amplified_band_upper_rad_s"].get<double>(), p["peak_gain_db"].get<double>(),
                  p["peak_frequency_rad_s"].get<double>());
+    std::fprintf(request.streams.numbers, "  %-14s its Euler recursion at %g s: peak %.3f dB at %.4f rad/s%s\n", "", h,
+                 euler.gain_db, euler.frequency_rad_s,
+                 euler.gain_db > 1e-9 && p["peak_gain_db"].get<double>() <= 1e-9
+                     ? " (amplifies where the law does not: a simulation at this step is not the law's)"
+                     : "");
   }
   csv.close();
   return summary;
@@ -228,7 +253,7 @@ json sinusoidFigure(const FigureRequest& request)
                                    {"euler_gain", r.euler_gain},
                                    {"model_gain_to_the_n", r.model_gain_over_platoon},
                                    {"euler_gain_to_the_n", r.euler_gain_over_platoon},
-                                   {"runaway", runawayJson(runs.back().second, setting.name, request)}});
+                                   {"runaway", runawayJson(runs.back().second, setting, request)}});
     std::fprintf(request.streams.numbers,
                  "  %-14s |Gamma| = %.4f (%+.3f dB); follower %zu / lead = %.4f (|Gamma|^%zu = %.4f, Euler %.4f); "
                  "follower %zu / follower 1 = %.4f\n",
@@ -277,7 +302,7 @@ json leadProfileFigure(const FigureRequest& request)
     summary["settings"].push_back({{"parameters", settingSummaryJson(setting)},
                                    {"long", disturbanceJson(full)},
                                    {"short", disturbanceJson(shorter)},
-                                   {"runaway", runawayJson(runs.back().second, setting.name, request)}});
+                                   {"runaway", runawayJson(runs.back().second, setting, request)}});
     const auto& lead_d = full.per_vehicle.front();
     const auto& short_d = shorter.per_vehicle.back();
     const auto& long_d = full.per_vehicle.back();

@@ -57,7 +57,8 @@ int main(int argc, char** argv)
   {
     settings = {*acc::findNamedSetting("min"), *acc::findNamedSetting("max")};
   }
-  std::printf("String stability (Gunter et al., Sec. II-B): stable when lambda2 < 0, i.e. |Gamma(jw)| <= 1 for all w\n");
+  std::printf("String stability (Gunter et al., Sec. II-B): stable when |Gamma(jw)| <= 1 for all w, i.e. lambda2 < 0, "
+              "or lambda2 = 0 on the boundary or with k1 = 0 (no gap feedback: |Gamma| = k2 / |jw + k2|)\n");
   std::printf("%-14s %7s %7s %7s %7s %10s  %-9s %13s %10s %12s\n", "setting", "k1", "k2", "tau_e", "eta",
               "lambda2", "verdict", "band<[rad/s]", "peak[dB]", "at[rad/s]");
   for (const auto& setting : settings)

@@ -72,3 +72,21 @@ TEST(FrequencyResponse, EulerGainTendsToTheModelGainAsTheStepShrinks)
   }
   EXPECT_NEAR(acc::eulerTransferGain(p, 0.0, 0.1), 1.0, 1e-12);
 }
+
+// At a coarse step the Euler map the simulations run can amplify where the law does not: Fig. 2's
+// stable setting at 1 s peaks at +4.4 dB at Nyquist (pi rad/s), though one car's recursion is
+// stable (roots 0.726 and -0.826), so a long platoon simulated at that step grows car by car. At
+// 0.01 s the map is the law's (no amplification). A step past the recursion's own limit is unstable.
+TEST(FrequencyResponse, TheEulerMapAtACoarseStepAmplifiesWhereTheLawDoesNot)
+{
+  const acc::AccParameters stable = acc::paperFigure2Setting(3.2);
+  ASSERT_TRUE(acc::analyzeStringStability(stable).string_stable);
+  EXPECT_TRUE(acc::eulerRecursionStable(stable, 1.0));
+  const acc::EulerPeak coarse = acc::eulerPeak(stable, 1.0);
+  EXPECT_NEAR(coarse.gain_db, 4.437, 1e-3);
+  EXPECT_NEAR(coarse.frequency_rad_s, M_PI, 1e-9);
+  EXPECT_LE(acc::eulerPeak(stable, 0.01).gain_db, 1e-9);
+  // b = k2 + k1 tau_e = 2.1, k1 = 0.5: roots r = -0.274 and -1.826; |1 + h r| < 1 needs h < 2 / 1.826.
+  EXPECT_TRUE(acc::eulerRecursionStable(stable, 1.09));
+  EXPECT_FALSE(acc::eulerRecursionStable(stable, 1.10));
+}

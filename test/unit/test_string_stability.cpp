@@ -143,3 +143,13 @@ TEST(StringStability, DegenerateGains)
   EXPECT_EQ(tiny_spacing.peak_frequency_rad_s, 0.0);
   EXPECT_FALSE(std::isnan(tiny_spacing.peak_gain_db));
 }
+
+// Without damping (k2 = tau_e = 0) the law resonates at sqrt(k1): the peak is infinite, not the
+// finite 313 dB a rounded square of the root once gave.
+TEST(StringStability, AnUndampedLawHasAnInfinitePeakAtItsResonance)
+{
+  const acc::StringStabilityReport report = acc::analyzeStringStability(acc::AccParameters{0.25, 0.0, 0.0, 5.0});
+  EXPECT_FALSE(report.string_stable);
+  EXPECT_TRUE(std::isinf(report.peak_gain_db) && report.peak_gain_db > 0.0) << report.peak_gain_db;
+  EXPECT_DOUBLE_EQ(report.peak_frequency_rad_s, 0.5);
+}

@@ -25,6 +25,21 @@ std::vector<double> logSpacedFrequencies(double min_rad_s, double max_rad_s, std
 /// which tends to Gamma(j w) as h -> 0. A simulated platoon in steady oscillation follows it.
 double eulerTransferGain(const AccParameters& p, double frequency_rad_s, double time_step_s);
 
+/// Whether one car's explicit-Euler recursion at step h is stable behind a steady leader: both
+/// roots z = 1 + h r of its characteristic polynomial (r the roots of r^2 + (k2 + k1 tau_e) r + k1)
+/// lie inside the unit circle. A stable recursion can still pass oscillations on amplified
+/// (eulerPeak) where the continuous law does not.
+bool eulerRecursionStable(const AccParameters& p, double time_step_s);
+
+/// The peak of |Gamma_h| over its frequencies up to Nyquist, pi / h: the most a platoon simulated
+/// at step h passes on from car to car.
+struct EulerPeak
+{
+  double gain_db = 0.0;
+  double frequency_rad_s = 0.0;
+};
+EulerPeak eulerPeak(const AccParameters& p, double time_step_s);
+
 /// Bode magnitude of both the model and its Euler recursion at the given frequencies.
 std::vector<BodeSample> bodeMagnitude(const AccParameters& p, const std::vector<double>& frequencies_rad_s,
                                       double time_step_s);
