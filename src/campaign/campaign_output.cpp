@@ -320,7 +320,7 @@ nlohmann::json linkJson(const LinkEvidence& e)
           {"dip_ratio", toJson(e.dip_ratio)},
           {"frequency_response",
            {{"segments_used", r.segments_used},
-            {"segments_skipped", r.segments_skipped},
+            {"samples_unused", r.samples_unused},
             {"frequency_rad_s", r.frequency_rad_s},
             {"gain", r.gain},
             {"gain_lower", r.gain_lower},

@@ -128,12 +128,6 @@ std::size_t segmentShift(const WelchOptions& options)
   return std::max<std::size_t>(1, static_cast<std::size_t>(shift));
 }
 
-bool allFinite(const std::vector<double>& x, std::size_t start, std::size_t length)
-{
-  return std::all_of(x.begin() + static_cast<long>(start), x.begin() + static_cast<long>(start + length),
-                     [](double value) { return std::isfinite(value); });
-}
-
 /// The segment detrended by its mean and windowed, then its DFT.
 std::vector<std::complex<double>> windowedSpectrum(const std::vector<double>& x, std::size_t start,
                                                    const std::vector<double>& window, Eigen::FFT<double>& fft)
@@ -156,8 +150,25 @@ struct SpectralSums
 {
   std::vector<double> uu, vv;
   std::vector<std::complex<double>> uv;
-  std::size_t used = 0, skipped = 0;
+  std::size_t used = 0;
+  std::size_t samples_unused = 0;  ///< finite samples no segment covers
 };
+
+/// Adds the segment starting at `start` to the sums.
+void addSegment(const std::vector<double>& u, const std::vector<double>& v, std::size_t start,
+                const std::vector<double>& window, Eigen::FFT<double>& fft, SpectralSums* sums)
+{
+  const auto U = windowedSpectrum(u, start, window, fft);
+  const auto V = windowedSpectrum(v, start, window, fft);
+  for (std::size_t b = 0; b < sums->uu.size(); ++b)
+  {
+    const std::size_t k = b + 1;
+    sums->uu[b] += std::norm(U[k]);
+    sums->vv[b] += std::norm(V[k]);
+    sums->uv[b] += std::conj(U[k]) * V[k];
+  }
+  ++sums->used;
+}
 
 SpectralSums accumulateSegments(const std::vector<double>& u, const std::vector<double>& v,
                                 const std::vector<double>& window, std::size_t shift)
@@ -167,23 +178,21 @@ SpectralSums accumulateSegments(const std::vector<double>& u, const std::vector<
   SpectralSums sums{std::vector<double>(bins, 0.0), std::vector<double>(bins, 0.0),
                     std::vector<std::complex<double>>(bins, 0.0), 0, 0};
   Eigen::FFT<double> fft;
-  for (std::size_t start = 0; start + length <= u.size(); start += shift)
+  // Segments are laid from the start of each stretch of finite samples: one grid over the whole
+  // series lost every segment a hole fell into (5 of a car's 8 possible, on runs joined by NaN).
+  std::size_t stretch_start = 0;
+  for (std::size_t i = 0; i <= u.size(); ++i)
   {
-    if (!allFinite(u, start, length) || !allFinite(v, start, length))
-    {
-      ++sums.skipped;
+    if (i < u.size() && std::isfinite(u[i]) && std::isfinite(v[i]))
       continue;
-    }
-    const auto U = windowedSpectrum(u, start, window, fft);
-    const auto V = windowedSpectrum(v, start, window, fft);
-    for (std::size_t b = 0; b < bins; ++b)
+    std::size_t covered_end = stretch_start;
+    for (std::size_t start = stretch_start; start + length <= i; start += shift)
     {
-      const std::size_t k = b + 1;
-      sums.uu[b] += std::norm(U[k]);
-      sums.vv[b] += std::norm(V[k]);
-      sums.uv[b] += std::conj(U[k]) * V[k];
+      addSegment(u, v, start, window, fft, &sums);
+      covered_end = start + length;
     }
-    ++sums.used;
+    sums.samples_unused += i - covered_end;
+    stretch_start = i + 1;
   }
   return sums;
 }
@@ -331,7 +340,7 @@ EmpiricalResponse empiricalResponse(const std::vector<double>& leader_speed_mps,
   out.z = twoSidedNormalQuantile(1.0 - options.confidence);
   const SpectralSums sums = accumulateSegments(leader_speed_mps, follower_speed_mps, window, shift);
   out.segments_used = sums.used;
-  out.segments_skipped = sums.skipped;
+  out.samples_unused = sums.samples_unused;
   out.effective_segments = effectiveSegments(sums.used, window, shift);
   if (sums.used == 0)
     return out;

@@ -111,7 +111,7 @@ TEST(EmpiricalResponse, GainOfAKnownSecondOrderSystemWithinTenPercentAndCoherenc
   const Link link = simulatedLink(kUnstableAcc, 18000, 11);  // 30 minutes at 10 Hz
   const acc::EmpiricalResponse r = acc::empiricalResponse(link.leader_mps, link.follower_mps, kSamplePeriodS);
   ASSERT_EQ(r.segments_used, 34u);  // (18000 - 1024) / 512 + 1
-  EXPECT_EQ(r.segments_skipped, 0u);
+  EXPECT_EQ(r.samples_unused, 18000u - 33u * 512u - 1024u);
   // Hann at 50 % overlap: rho_1 = 1/6, n_d = 34 / (1 + 2 (33/34) / 36) = 32.26.
   EXPECT_NEAR(r.effective_segments, 34.0 / (1.0 + 2.0 * (33.0 / 34.0) / 36.0), 0.01);
   EXPECT_NEAR(r.z, 1.959964, 1e-5);
@@ -227,15 +227,20 @@ TEST(EmpiricalResponse, WhiteNoiseDensityIsItsVarianceSpreadOverTheBand)
   EXPECT_NEAR(r.coherence[5], 1.0, 1e-12);
 }
 
-TEST(EmpiricalResponse, SegmentsWithNaNAreSkippedAndCounted)
+// Holes split the series into stretches, and segments are laid within each from its start: a
+// grid over the whole series lost the three segments the two holes fell into (19 of 22 used).
+TEST(EmpiricalResponse, SegmentsAreLaidWithinEachStretchBetweenNaNs)
 {
   Link link = simulatedLink(kUnstableAcc, 12000, 51);
   const acc::EmpiricalResponse full = acc::empiricalResponse(link.leader_mps, link.follower_mps, kSamplePeriodS);
-  link.follower_mps[3000] = kNaN;  // lies in the segments starting at 2048 and 2560
-  link.leader_mps[10] = kNaN;      // lies in the first segment only
+  ASSERT_EQ(full.segments_used, 22u);  // (12000 - 1024) / 512 + 1
+  link.follower_mps[3000] = kNaN;
+  link.leader_mps[10] = kNaN;
   const acc::EmpiricalResponse gappy = acc::empiricalResponse(link.leader_mps, link.follower_mps, kSamplePeriodS);
-  EXPECT_EQ(gappy.segments_skipped, 3u);
-  EXPECT_EQ(gappy.segments_used + 3u, full.segments_used);
+  // [0, 10): none, 10 unused; [11, 3000): 4 segments to 2571, 429 unused; [3001, 12000): 16
+  // segments to 11705, 295 unused.
+  EXPECT_EQ(gappy.segments_used, 20u);
+  EXPECT_EQ(gappy.samples_unused, 10u + 429u + 295u);
   for (std::size_t b : binsBelow(gappy, 3.0))
   {
     ASSERT_TRUE(std::isfinite(gappy.gain[b]));

@@ -100,9 +100,11 @@ struct WelchOptions
 ///
 /// Method: segments of segment_samples, shifted by segment_samples * (1 - overlap_fraction)
 /// (rounded, at least 1); each detrended by its mean and weighted by a periodic Hann window;
-/// auto- and cross-spectra averaged over segments, Puv = mean(conj(U) V). Only segments whose
-/// samples of u and v are all finite are used (the others are counted in segments_skipped):
-/// interpolating over gaps would invent coherence.
+/// auto- and cross-spectra averaged over segments, Puv = mean(conj(U) V). Segments are laid
+/// within each stretch of samples where u and v are both finite, from its start (runs joined by
+/// NaN, or a hole, start a new stretch): interpolating over gaps would invent coherence. Finite
+/// samples no segment covers (a stretch shorter than a segment, a stretch's tail) are counted in
+/// samples_unused.
 ///   gain      = |H1| = |Puv| / Puu        (H1: unbiased by noise on v, biased low by noise on u)
 ///   phase_rad = arg(Puv)                  (a delay d gives -w d)
 ///   coherence = |Puv|^2 / (Puu Pvv)
@@ -133,7 +135,7 @@ struct EmpiricalResponse
   std::vector<double> leader_psd;
   std::vector<double> follower_psd;
   std::size_t segments_used = 0;
-  std::size_t segments_skipped = 0;  ///< segments with a non-finite sample of u or v
+  std::size_t samples_unused = 0;  ///< finite samples of u and v that no segment covers
   /// The number of independent averages the overlapping segments are worth (Welch 1967, with the
   /// Hann window's overlap correlation; all used segments taken as consecutive, which errs towards
   /// fewer): n_d of the band. 0 when no segment was used.
