@@ -130,6 +130,7 @@ public:
         return;
       }
       ++contents_.time_steps;
+      contents_.shortest_step_s = std::min(contents_.shortest_step_s, values[0] - current_.time_s.back());
       const std::string hole = describeTimeHole(current_.time_s.back(), values[0], bounds_);
       if (!hole.empty())
       {
@@ -537,6 +538,8 @@ void append(RunFileContents& all, RunFileContents&& one)
   all.marked_invalid_rows += one.marked_invalid_rows;
   all.duplicate_rows += one.duplicate_rows;
   all.time_holes += one.time_holes;
+  all.time_steps += one.time_steps;
+  all.shortest_step_s = std::min(all.shortest_step_s, one.shortest_step_s);
   all.acc_off_rows += one.acc_off_rows;
   all.single_sample_rows += one.single_sample_rows;
   all.sawtooth_rows += one.sawtooth_rows;
@@ -646,13 +649,19 @@ std::string describeRowCounts(const std::string& path, const RunFileContents& co
 
 std::string describeCoarseSteps(const RunFileContents& contents)
 {
-  return describeCoarseSteps(contents.time_holes, contents.time_steps);
+  return describeCoarseSteps(contents.time_holes, contents.time_steps, contents.shortest_step_s);
 }
 
-std::string describeCoarseSteps(std::size_t time_holes, std::size_t time_steps)
+std::string describeCoarseSteps(std::size_t time_holes, std::size_t time_steps, double shortest_step_s)
 {
   if (time_steps == 0 || 2 * time_holes <= time_steps)
     return "";
+  if (shortest_step_s >= kImplausibleShortestStepS && std::isfinite(shortest_step_s))
+    return "; " + std::to_string(time_holes) + " of its " + std::to_string(time_steps) +
+           " steps are such holes, and even the shortest step is " + significant(shortest_step_s, 6) +
+           ": no car-following log steps that coarsely, so the time is not in seconds (milliseconds step by "
+           "100 at 10 Hz); convert it to seconds (the canonical time_s, OpenACC's Time) rather than raising "
+           "the largest step a run may hold";
   return "; " + std::to_string(time_holes) + " of its " + std::to_string(time_steps) +
          " steps are such holes: the data are recorded more coarsely than the largest step a run may hold "
          "(a receiver at 1 Hz against the default 0.5 s); set it above their step (the tools' --max-gap, "

@@ -498,6 +498,41 @@ TEST(RunCsv, ARowTheValidColumnMarksZeroSplitsTheRunWithItsReason)
 }
 }  // namespace
 
+// A 10 Hz file whose time is in milliseconds: every step is 100 "s". That is no coarse receiver, and
+// the advice to raise the largest step would fit nonsense: the text says the time is not in
+// seconds. Fails when it gives the 1 Hz advice.
+TEST(RunCsvPlausibility, AFileWhoseTimeIsInMillisecondsIsToldSo)
+{
+  std::string text = "time_s,space_gap_m,follower_speed_mps,leader_speed_mps\n";
+  for (int k = 0; k < 40; ++k)
+    text += std::to_string(1600000 + 100 * k) + ",20.0,10.0,10.0\n";
+  const std::string path = writeTemporary("run_csv_ms.csv", text);
+  const auto contents = acc::readRunFile(path);
+  EXPECT_EQ(contents.shortest_step_s, 100.0);
+  const std::string said = acc::describeCoarseSteps(contents);
+  EXPECT_TRUE(contains(said, "even the shortest step is 100: no car-following log steps that coarsely, so the time is "
+                             "not in seconds")) << said;
+  EXPECT_FALSE(contains(said, "set it above their step")) << said;
+  std::remove(path.c_str());
+}
+
+// Every pair of a 1 Hz OpenACC platoon read at once: the steps are counted over the pairs too, so
+// the file's counts say it is coarse (they once summed the holes but not the steps, and said nothing).
+TEST(RunCsvPlausibility, EveryPairOfACoarseOpenAccFileIsSaidToBeCoarse)
+{
+  std::string text = "Date,8,10,2019\nVehicle_order,A,B,C\nNumber_of_vehicles,3\nACC,1\nDistance_setting,S\n"
+                     "Time,Speed1,Speed2,Speed3,IVS1,IVS2\n";
+  for (int k = 0; k < 30; ++k)
+    text += std::to_string(100 + k) + ",10.0,10.0,10.0,20.0,20.0\n";
+  const std::string path = writeTemporary("openacc_1hz.csv", text);
+  const auto contents = acc::readRunFile(path, acc::RunPlausibilityBounds{}, acc::OpenAccPairSelector::all());
+  EXPECT_EQ(contents.time_steps, 58u);  // 29 per pair
+  EXPECT_EQ(contents.time_holes, 58u);
+  EXPECT_TRUE(contains(acc::describeCoarseSteps(contents), "; 58 of its 58 steps are such holes"))
+      << acc::describeCoarseSteps(contents);
+  std::remove(path.c_str());
+}
+
 // A 1 Hz file against the default 0.5 s max gap: every step is a hole, every row alone. The counts
 // and the error say that the data are coarser than a run may step, and what to set.
 TEST(RunCsvPlausibility, AFileCoarserThanTheMaxGapIsSaidToBeSo)

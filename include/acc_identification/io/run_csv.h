@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <iosfwd>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -37,6 +38,9 @@ struct RunFileContents
   /// Steps between consecutive rows that were looked at for a hole (time_holes of them were one):
   /// when most are, the data are recorded more coarsely than a run may step (describeCoarseSteps).
   std::size_t time_steps = 0;
+  /// The shortest of those steps [s] (infinity without one): when even it is longer than any
+  /// car-following log steps (kImplausibleShortestStepS), time is not in seconds.
+  double shortest_step_s = std::numeric_limits<double>::infinity();
   std::size_t acc_off_rows = 0;       ///< OpenACC rows where the follower was not on ACC (split points)
   /// Rows alone between split points (a piece of one sample cannot be simulated): not used, each
   /// listed in problems. So data_rows = rejected_rows + acc_off_rows + single_sample_rows + the
@@ -119,12 +123,18 @@ AllPairRuns readAllPairRuns(const std::string& path, const RunPlausibilityBounds
 /// rebuilt and no hole splits.
 std::string describeRowCounts(const std::string& path, const RunFileContents& contents);
 
+/// No car-following log steps this coarsely: a file whose every step is at least this long [s]
+/// holds its time in another unit (milliseconds: 100 per 10 Hz step), not a coarse receiver.
+constexpr double kImplausibleShortestStepS = 5.0;
+
 /// "" unless most of the steps are holes (a 1 Hz receiver against a max gap of 0.5 s: every row
 /// alone, nothing to simulate); then what that means and what to set, for the row counts and for
-/// the error that no run is usable.
+/// the error that no run is usable. Where even the shortest step is kImplausibleShortestStepS or
+/// more, it says the time is not in seconds instead (a larger max gap would only fit nonsense).
 std::string describeCoarseSteps(const RunFileContents& contents);
-/// The same from the counts (a bag's holes against its steps between messages).
-std::string describeCoarseSteps(std::size_t time_holes, std::size_t time_steps);
+/// The same from the counts (a bag's holes against its steps between messages, its shortest step).
+std::string describeCoarseSteps(std::size_t time_holes, std::size_t time_steps,
+                                double shortest_step_s = std::numeric_limits<double>::infinity());
 
 /// readRunFile() for tools: returns the runs, and writes every note and problem (and the counts of
 /// rejected rows and holes) to stderr, so nothing is dropped silently. Throws as readRunFile, and
