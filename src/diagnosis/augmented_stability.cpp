@@ -267,6 +267,12 @@ AugmentedStability analyzeSmallSignal(const AccParameters& p, std::string note, 
   out.string_stable = out.locally_stable && best_gain <= 1.0 + 1e-12;
   if (!out.locally_stable)
     out.note += "; " + localInstabilityNote(out);
+  const double time_gap_s = linearisedTimeGap(p, e, operating_speed_mps);
+  if (time_gap_s < 0.0)
+    out.note += printfText("; the linearised time gap tau_e + 2 c v0 is %.2f s at %.1f m/s, below 0: a spacing "
+                           "policy that wants a shorter gap the faster it goes, outside the paper's conditions on "
+                           "the law's derivatives, so read its |Gamma| with that",
+                           time_gap_s, operating_speed_mps);
   return out;
 }
 }  // namespace

@@ -435,3 +435,18 @@ TEST(AugmentedSimulation, SensitivitiesAreExactDerivativesOfTheSameSimulation)
     }
   }
 }
+
+// A speed-dependent time gap whose slope makes the linearised time gap negative at the operating
+// speed (the Casale fit: tau_e + 2 c v0 = -0.34 s) breaks the paper's conditions on the law's
+// derivatives: the small-signal note says so rather than report its peak without comment.
+TEST(AugmentedSimulation, ANegativeLinearisedTimeGapIsSaid)
+{
+  const acc::EffectSettings falling = acc::makeEffectSettings(acc::EffectKind::speed_dependent_time_gap, {-0.05});
+  const acc::AugmentedStability at_20 =
+      acc::analyzeAugmentedStability(kParameters, acc::EffectKind::speed_dependent_time_gap, falling, 20.0);
+  EXPECT_NE(at_20.note.find("linearised time gap tau_e + 2 c v0 is -0.80 s at 20.0 m/s, below 0"), std::string::npos)
+      << at_20.note;
+  const acc::AugmentedStability at_5 =
+      acc::analyzeAugmentedStability(kParameters, acc::EffectKind::speed_dependent_time_gap, falling, 5.0);
+  EXPECT_EQ(at_5.note.find("below 0"), std::string::npos) << at_5.note;  // 1.2 - 0.5 = 0.7 s
+}
