@@ -44,7 +44,8 @@ bool parseGapMode(const std::string& name, GapMode& mode)
 RelativeStateEstimator::RelativeStateEstimator(RelativeStateSettings settings)
   : settings_(settings)
   , pairer_(settings.pairing)
-  , track_(settings.track_min_spacing_m, settings.track_max_length_m, settings.track_max_lateral_offset_m)
+  , track_(settings.track_min_spacing_m, settings.track_max_length_m, settings.track_max_lateral_offset_m,
+           settings.pairing.dropout_gap_s)
   , consistency_(settings.consistency_window_s, settings.pairing.dropout_gap_s)
 {
 }

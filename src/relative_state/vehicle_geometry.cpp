@@ -76,8 +76,12 @@ double gapSigma(const GnssFix& leader, const GnssFix& follower)
   return std::sqrt(projected(leader) + projected(follower));  // NaN propagates when a sigma is missing
 }
 
-LeaderTrack::LeaderTrack(double min_spacing_m, double max_length_m, double max_lateral_offset_m)
-  : min_spacing_m_(min_spacing_m), max_length_m_(max_length_m), max_lateral_offset_m_(max_lateral_offset_m)
+LeaderTrack::LeaderTrack(double min_spacing_m, double max_length_m, double max_lateral_offset_m,
+                         double max_fix_gap_s)
+  : min_spacing_m_(min_spacing_m)
+  , max_length_m_(max_length_m)
+  , max_lateral_offset_m_(max_lateral_offset_m)
+  , max_fix_gap_s_(max_fix_gap_s)
 {
 }
 
@@ -85,10 +89,15 @@ void LeaderTrack::clear()
 {
   points_.clear();
   length_m_ = 0.0;
+  newest_fix_s_ = std::numeric_limits<double>::quiet_NaN();
 }
 
 void LeaderTrack::add(const GnssFix& leader)
 {
+  if (leader.gnss_time_s - newest_fix_s_ > max_fix_gap_s_)
+    clear();  // a hole in the leader's fixes (false while there is no fix yet: NaN compares false)
+  if (!(leader.gnss_time_s <= newest_fix_s_))
+    newest_fix_s_ = leader.gnss_time_s;
   Point point{leader.gnss_time_s, leader.latitude_deg, leader.longitude_deg};
   if (points_.empty())
   {

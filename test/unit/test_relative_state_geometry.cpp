@@ -85,6 +85,40 @@ TEST(Geometry, AlongTrackGapFollowsACurveWhereTheChordIsShort)
   EXPECT_GT(arc_gap_m - chord_m, 0.45);  // the effect the option exists for: 0.49 m here
 }
 
+// A hole in the leader's fixes on a curve: the path across it is unknown, and a straight segment
+// from the last fix before to the first after would shorten the road. With the hole longer than
+// max_fix_gap_s the path starts anew, so the gap is refused (the straight line is used instead)
+// until the path reaches back to the follower. Fails when the chord across the hole is walked.
+TEST(Geometry, AlongTrackStartsAnewAfterAHoleInTheLeadersFixes)
+{
+  const double radius_m = 60.0, speed_mps = 15.0, arc_gap_m = 35.0;
+  acc::LeaderTrack track(2.0, 500.0, 5.0, 0.5);
+  acc::LeaderTrack without_limit;
+  for (double t = 0.0; t <= 20.0 + 1e-9; t += 0.1)
+  {
+    if (t > 12.0 && t < 15.0)
+      continue;  // 3 s without a fix, the leader driving 45 m of the curve unseen
+    track.add(onCircle(t, radius_m, speed_mps * t));
+    without_limit.add(onCircle(t, radius_m, speed_mps * t));
+    if (t < 15.0 || t > 16.0)
+      continue;
+    // Just after the hole the follower (35 m behind) is still on the stretch driven unseen.
+    const auto leader = onCircle(t, radius_m, speed_mps * t);
+    const auto follower = onCircle(t, radius_m, speed_mps * t - arc_gap_m);
+    std::string why;
+    EXPECT_FALSE(track.alongTrackDistance(leader, follower, &why).has_value()) << t;
+    const auto across = without_limit.alongTrackDistance(leader, follower);
+    ASSERT_TRUE(across.has_value());
+    EXPECT_LT(*across, arc_gap_m - 0.5) << t;  // the chord across the hole: the road shortened
+  }
+  // Once the path after the hole reaches back to the follower, the gap is the arc again.
+  const double t = 20.0;
+  const auto along = track.alongTrackDistance(onCircle(t, radius_m, speed_mps * t),
+                                              onCircle(t, radius_m, speed_mps * t - arc_gap_m));
+  ASSERT_TRUE(along.has_value());
+  EXPECT_NEAR(*along, arc_gap_m, 0.05);
+}
+
 TEST(Geometry, AlongTrackEqualsStraightLineOnAStraightRoadDespiteNoiseAtStandstill)
 {
   acc::LeaderTrack track;
