@@ -5,4 +5,5 @@ set(ACC_RELATIVE_STATE_SOURCES
   src/relative_state/epoch_pairing.cpp
   src/relative_state/vehicle_geometry.cpp
   src/relative_state/gap_doppler_consistency.cpp
+  src/relative_state/gap_step_check.cpp
   src/relative_state/relative_state_estimator.cpp)

@@ -47,6 +47,7 @@ RelativeStateEstimator::RelativeStateEstimator(RelativeStateSettings settings)
   , track_(settings.track_min_spacing_m, settings.track_max_length_m, settings.track_max_lateral_offset_m,
            settings.pairing.dropout_gap_s)
   , consistency_(settings.consistency_window_s, settings.pairing.dropout_gap_s)
+  , step_check_(settings.max_unexplained_gap_step_m, settings.pairing.dropout_gap_s)
 {
 }
 
@@ -160,7 +161,10 @@ void RelativeStateEstimator::process(const PairedEpoch& pair)
   if (state.follower_speed_mps >= settings_.min_speed_for_time_gap_mps)
     state.time_gap_s = state.space_gap_m / state.follower_speed_mps;
   if (pair.continuity_break)
+  {
     consistency_.reset();
+    step_check_.reset();
+  }
 
   const std::string held = heldPositionReason(pair);
   if (!std::isfinite(state.leader_speed_mps) || !std::isfinite(state.follower_speed_mps))
@@ -181,11 +185,17 @@ void RelativeStateEstimator::process(const PairedEpoch& pair)
   }
   else
     state.invalid_reason = jumpReason(state);
+  // Every sample carries the relative speed's integral from the last valid one on; a step the
+  // jump check no longer sees (it outlasted jump_reference_max_age_s) is caught here.
+  const std::string unexplained = step_check_.check(state.time_s, state.space_gap_m, state.relative_speed_mps);
+  if (state.invalid_reason.empty())
+    state.invalid_reason = unexplained;
 
   state.valid = state.invalid_reason.empty();
   if (state.valid)
   {
     consistency_.add(state.time_s, state.space_gap_m, state.relative_speed_mps);
+    step_check_.anchor(state.time_s, state.space_gap_m, state.relative_speed_mps);
     reference_ = state;
     has_reference_ = true;
   }

@@ -63,6 +63,7 @@ bool readChecks(ParameterReader& r, RelativeStateSettings& s)
          r.readAbove("max_gap_rate_mps", s.max_gap_rate_mps, 0.0) &&
          r.readAbove("max_acceleration_mps2", s.max_acceleration_mps2, 0.0) &&
          r.readAtLeast("jump_reference_max_age_s", s.jump_reference_max_age_s, 0.0) &&
+         r.readAbove("max_unexplained_gap_step_m", s.max_unexplained_gap_step_m, 0.0) &&
          r.readAbove("consistency_window_s", s.consistency_window_s, 0.0) &&
          r.readAbove("min_held_position_move_m", s.min_held_position_move_m, 0.0);
 }

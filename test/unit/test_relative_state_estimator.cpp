@@ -151,6 +151,44 @@ TEST(RelativeStateEstimator, ImpossibleJumpIsRejectedAndSaidSo)
   EXPECT_EQ(estimator.counters().invalid_states, 1u);
 }
 
+// One receiver's time labels a second off from 2 s on (a leap second applied by the leader's only):
+// each of its fixes is where the leader was a second later, 25 m further. The jump check sees the
+// step for jump_reference_max_age_s (1 s) and then took the shifted gaps as valid; the gap against
+// the Doppler speeds since the last valid sample holds them invalid for the rest of the drive.
+// A position error of 8 m for 3 s is held for those 3 s and no longer, and a lasting 2 m step (a
+// receiver's position correcting: under both bounds) costs nothing.
+TEST(RelativeStateEstimator, AStepTheDopplerSpeedsDoNotExplainStaysInvalid)
+{
+  const Drive drive = straightDrive();
+  acc::RelativeStateEstimator shifted(settingsWithOffset());
+  auto states = run(shifted, drive, 30.0, [&drive](double t, acc::GnssFix& leader, acc::GnssFix&) {
+    if (t >= 2.0 - 1e-9)
+      leader = fixOf(drive, leader.gnss_time_s, drive.leader_s_m(t + 1.0), drive.leader_v_mps(t + 1.0));
+  });
+  ASSERT_EQ(states.size(), 301u);
+  EXPECT_TRUE(states[19].valid);
+  for (std::size_t i = 20; i < states.size(); ++i)
+    ASSERT_FALSE(states[i].valid) << i << ": gap " << states[i].space_gap_m;
+  EXPECT_NE(states.back().invalid_reason.find("that the Doppler speeds do not explain"), std::string::npos)
+      << states.back().invalid_reason;
+  EXPECT_EQ(shifted.counters().jumps_rejected, 281u);
+
+  for (const double error_m : {8.0, 2.0})
+  {
+    acc::RelativeStateEstimator moved(settingsWithOffset());
+    const bool lasting = error_m < 5.0;
+    auto moved_states = run(moved, drive, 10.0, [error_m, lasting](double t, acc::GnssFix& leader, acc::GnssFix&) {
+      if (t >= 2.0 - 1e-9 && (lasting || t < 5.0 - 1e-9))
+        leader.latitude_deg += error_m / 111195.0;  // the leader placed error_m further north
+    });
+    std::size_t invalid = 0;
+    for (const acc::RelativeState& state : moved_states)
+      invalid += state.valid ? 0 : 1;
+    EXPECT_EQ(invalid, lasting ? 0u : 30u) << error_m;
+    EXPECT_TRUE(moved_states.back().valid) << error_m << ": " << moved_states.back().invalid_reason;
+  }
+}
+
 // OpenACC ZalaZone run 26: the follower's receiver updated its position every third or fourth
 // epoch and repeated it in between, so the gap grew by its speed each epoch and jumped back (2.5 m
 // in 0.1 s, under the jump bound). Fails when the repeated positions pass as measured gaps.

@@ -3,6 +3,7 @@
 #include <acc_identification/gnss/gnss_fix.h>
 #include <acc_identification/relative_state/epoch_pairing.h>
 #include <acc_identification/relative_state/gap_doppler_consistency.h>
+#include <acc_identification/relative_state/gap_step_check.h>
 #include <acc_identification/relative_state/relative_state.h>
 #include <acc_identification/relative_state/vehicle_geometry.h>
 
@@ -38,6 +39,9 @@ struct RelativeStateSettings
   double max_gap_rate_mps = 30.0;
   double max_acceleration_mps2 = 15.0;
   double jump_reference_max_age_s = 1.0;
+  /// A gap further than this from where the Doppler speeds carry the last valid one, across the
+  /// samples held since, is held invalid (GapStepCheck): a step that outlasts the jump check.
+  double max_unexplained_gap_step_m = 5.0;
   /// Gap-versus-Doppler consistency window (see GapDopplerConsistency).
   double consistency_window_s = 10.0;
   /// A receiver whose position is the same as in its previous paired epoch while its speed says
@@ -96,6 +100,7 @@ private:
   EpochPairer pairer_;
   LeaderTrack track_;
   GapDopplerConsistency consistency_;
+  GapStepCheck step_check_;
   RelativeStateCounters counters_;
   std::vector<RelativeState> states_;
   std::vector<PairingEvent> events_;
