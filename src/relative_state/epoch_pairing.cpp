@@ -297,8 +297,15 @@ void EpochPairer::giveUp(double time_s, Resolution resolution)
   std::string why = resolution == Resolution::kUnpairable ? "the leader's stream is past it (at " + seconds(newest_leader_s_) + " s)"
                     : finishing_                          ? "and the streams ended"
                                                           : "after waiting " + seconds(settings_.timeout_s) + " s";
+  // A leader whose epochs are further apart than the skew leaves some follower epochs between two
+  // of them unpaired every time: say what to set, not only that they are lost.
+  const bool leader_coarser = leader_period_s_ > settings_.max_interpolation_skew_s + settings_.exact_match_tolerance_s;
   event("follower epoch " + seconds(time_s) + " s unpaired: no leader epoch within " +
-        seconds(settings_.max_interpolation_skew_s) + " s, " + why);
+        seconds(settings_.max_interpolation_skew_s) + " s, " + why +
+        (leader_coarser ? "; the leader's epochs are " + seconds(leader_period_s_) +
+                              " s apart, more than max_interpolation_skew_s: set it to that period to pair "
+                              "every follower epoch between two of them"
+                        : ""));
 }
 
 // The leader's fixes arrive in GNSS-time order but for reordering within exact_wait_s: once its
@@ -326,7 +333,9 @@ EpochPairer::Resolution EpochPairer::tryPair(const GnssFix& follower, PairedEpoc
   // Interpolation needs a leader fix on each side within the skew. A missing one may still come
   // (the leader's stream has not reached it, or out of order) until the leader is past it: an
   // exact fix or one before t (so at t + tolerance at the latest), or one after (t + skew).
-  double skew = settings_.max_interpolation_skew_s;
+  // Within the exact tolerance of the skew too: a 5 Hz leader 50 ms off a 10 Hz follower puts
+  // every other epoch at exactly 0.15 s, where the rounding of the times decided.
+  double skew = settings_.max_interpolation_skew_s + tolerance;
   bool has_before = after != leader_.begin() && t - std::prev(after)->gnss_time_s <= skew;
   bool has_after = after != leader_.end() && after->gnss_time_s - t <= skew;
   if (!has_before || !has_after)

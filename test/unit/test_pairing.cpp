@@ -92,6 +92,44 @@ TEST(Pairing, InterpolatesALeaderWithAPhaseOffsetAndReportsTheSkew)
   expectIncreasingAndFresh(pairs, 0.03 + 1e-9);
 }
 
+// A 5 Hz leader 50 ms off a 10 Hz follower: every other follower epoch lies exactly 0.15 s (the
+// skew) before the next leader epoch, where the rounding of the times decided and most were lost.
+// Within the exact tolerance of the skew they all pair. A 4 Hz leader (0.25 s apart) leaves some
+// between two of its epochs unpaired every time, and the event says what to set.
+TEST(Pairing, ALeaderAtHalfTheRateWithAPhaseOffsetPairsEveryEpochBetweenItsOwn)
+{
+  for (const double phase_s : {0.05, 0.049, 0.051})
+  {
+    acc::EpochPairer pairer;
+    const std::vector<double> leader = epochs(0.0, 60.2, 0.2, phase_s);
+    std::size_t next_leader = 0;
+    std::size_t paired = 0;
+    for (double t : epochs(1.0, 59.0))
+    {
+      for (; next_leader < leader.size() && leader[next_leader] <= t + 0.3; ++next_leader)
+        pairer.addLeader(fixAt(leader[next_leader]));
+      pairer.addFollower(fixAt(t, -0.001));
+      paired += pairer.takePairs().size();
+    }
+    pairer.finish();
+    paired += pairer.takePairs().size();
+    EXPECT_EQ(paired, 581u) << phase_s;
+    EXPECT_EQ(pairer.counters().follower_unpaired, 0u) << phase_s;
+  }
+  acc::EpochPairer pairer;
+  for (double t : epochs(0.0, 10.0, 0.25, 0.05))
+    pairer.addLeader(fixAt(t));
+  for (double t : epochs(1.0, 9.0))
+    pairer.addFollower(fixAt(t, -0.001));
+  pairer.finish();
+  EXPECT_GT(pairer.counters().follower_unpaired, 0u);
+  bool said = false;
+  for (const acc::PairingEvent& event : pairer.takeEvents())
+    said = said || event.text.find("the leader's epochs are 0.25 s apart, more than max_interpolation_skew_s: set "
+                                   "it to that period") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
 TEST(Pairing, LateBurstyOutOfOrderLeaderIsStillPairedInOrder)
 {
   acc::EpochPairer pairer;
