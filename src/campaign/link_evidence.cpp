@@ -221,10 +221,7 @@ CarFollowingRun leadWithTail(const OpenAccFile& file, std::size_t first, std::si
   CarFollowingRun run;
   run.time_s = sliceRows(file.time_s, first, end);
   run.leader_speed_mps = sliceRows(file.vehicle(1)->speed_mps, first, end);
-  std::vector<double> steps_s;
-  for (std::size_t i = 1; i < run.time_s.size(); ++i)
-    steps_s.push_back(run.time_s[i] - run.time_s[i - 1]);
-  const double step_s = finiteMedian(steps_s);
+  const double step_s = medianStepS({run});
   double last_mps = kNaN;
   for (auto v = run.leader_speed_mps.rbegin(); v != run.leader_speed_mps.rend() && !std::isfinite(last_mps); ++v)
     last_mps = *v;
@@ -247,11 +244,10 @@ std::string breakdownOf(const SimulatedFollower& sim, const std::vector<double>&
   const std::size_t end = sim.diverged ? sim.diverged_at_index : sim.speed_mps.size();
   for (std::size_t i = 0; i < end; ++i)
   {
-    const std::string at = " at t = " + cellNumber("%.1f", time_s[i]) + " s";
     if (sim.space_gap_m[i] <= 0.0)
-      return "its gap reaches " + cellNumber("%.1f", sim.space_gap_m[i]) + " m (a collision)" + at;
+      return printfText("its gap reaches %.1f m (a collision) at t = %.1f s", sim.space_gap_m[i], time_s[i]);
     if (sim.speed_mps[i] < 0.0)
-      return "its speed reaches " + cellNumber("%.2f", sim.speed_mps[i]) + " m/s (driving backwards)" + at;
+      return printfText("its speed reaches %.2f m/s (driving backwards) at t = %.1f s", sim.speed_mps[i], time_s[i]);
   }
   return "";
 }

@@ -1,7 +1,8 @@
 #include "acc_identification/relative_state/gap_step_check.h"
 
 #include <cmath>
-#include <cstdio>
+
+#include "acc_identification/model/number_text.h"
 
 namespace acc
 {
@@ -10,13 +11,6 @@ namespace
 /// How far the integral of two receivers' Doppler speed difference wanders from the gap's change
 /// in 10 s [m]: 0.15-0.28 m RMS on the Casale runs (u-blox, 10 Hz); it grows as a random walk.
 constexpr double kDopplerDriftPerTenSecondsM = 0.3;
-
-std::string formatted(const char* pattern, double a, double b, double c, double d)
-{
-  char text[512];
-  std::snprintf(text, sizeof text, pattern, a, b, c, d);
-  return text;
-}
 }  // namespace
 
 GapStepCheck::GapStepCheck(double max_step_m, double max_bridged_hole_s)
@@ -57,7 +51,7 @@ std::string GapStepCheck::check(double time_s, double gap_m, double relative_spe
   const double unexplained_m = gap_m - expected_m;
   if (std::abs(unexplained_m) <= allowed_m)
     return "";
-  return formatted("gap jump of %+.2f m since the last valid sample %.2f s before that the Doppler speeds do not "
+  return printfText("gap jump of %+.2f m since the last valid sample %.2f s before that the Doppler speeds do not "
                    "explain (they carry its %.2f m to %.2f m): one receiver's time labels off (a leap second "
                    "applied by one only), or a position error; held until the gap agrees again",
                    unexplained_m, since_s, anchor_gap_m_, expected_m);
