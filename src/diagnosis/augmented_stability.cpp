@@ -48,6 +48,12 @@ struct Branches
   std::size_t count = 0;
 };
 
+/// Whether the law switches gains at equilibrium (branchesOf gives more than the law itself).
+bool hasBranches(const EffectSettings& e)
+{
+  return e.short_gap_gain_ratio != 1.0 || e.closing_gain_ratio != 1.0 || e.leader_braking_gain != 0.0;
+}
+
 Branches branchesOf(const EffectSettings& e)
 {
   Branches out;
@@ -203,6 +209,10 @@ double branchGainSquared(const AccParameters& p, const EffectSettings& e, double
 double augmentedTransferGainSquared(const AccParameters& p, const EffectSettings& e, double operating_speed_mps,
                                     double frequency_rad_s)
 {
+  // The side search's index calls this for 2,001 frequencies at every point it tries: a law
+  // without branches skips building them.
+  if (!hasBranches(e))
+    return branchGainSquared(p, e, operating_speed_mps, frequency_rad_s);
   const Branches branches = branchesOf(e);
   double largest = 0.0;
   for (std::size_t b = 0; b < branches.count; ++b)
