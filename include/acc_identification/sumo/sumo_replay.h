@@ -50,11 +50,12 @@ struct SumoRun
 SumoRun runSumo(const std::vector<double>& leader_speed_mps, double step_s, const std::vector<SumoCarStart>& cars,
                 const std::string& vtype_file, const SumoReplayOptions& options);
 
-/// The run's uniform step [s]; throws std::runtime_error when the steps differ by more than 1 %
-/// (SUMO steps uniformly: such a run must be resampled first).
 /// Why SUMO cannot replay the run as it is (fewer than two samples, or steps that differ by more
 /// than 1 %), or "" when it can.
 std::string nonUniformStepReason(const CarFollowingRun& run);
+
+/// The run's uniform step [s]; throws std::runtime_error with nonUniformStepReason when there is
+/// none (SUMO steps uniformly: such a run must be split or resampled first).
 double uniformStepS(const CarFollowingRun& run);
 
 /// Where SUMO's law and the identified model agree, and what the steps were.
