@@ -403,7 +403,7 @@ std::string longPlatoonText(const LinkEvidence& e)
     said.push_back("ran away at car " + std::to_string(e.long_platoon_ran_away_at_car) + " in a run");
   if (e.long_platoon_breaks_down_at_car > 0 && e.long_platoon_breaks_down_at_car != e.long_platoon_ran_away_at_car)
     said.push_back("car " + std::to_string(e.long_platoon_breaks_down_at_car) +
-                   (e.long_platoon_breakdown.find("collision") != std::string::npos ? " collides" : " drives backwards"));
+                   (e.long_platoon_collides ? " collides" : " drives backwards"));
   if (e.long_platoon_unfinished > 0)
     said.push_back(std::to_string(e.long_platoon_unfinished) + " cut short");
   if (!std::isfinite(e.long_platoon_dip_ratio))

@@ -238,13 +238,14 @@ CarFollowingRun leadWithTail(const OpenAccFile& file, std::size_t first, std::si
 }
 
 /// Where a simulated car first collides with the car ahead (gap at or below 0) or drives backwards
-/// (speed below 0); "" when it does neither.
-std::string breakdownOf(const SimulatedFollower& sim, const std::vector<double>& time_s)
+/// (speed below 0); "" when it does neither. *collision: which of the two it was.
+std::string breakdownOf(const SimulatedFollower& sim, const std::vector<double>& time_s, bool* collision)
 {
   const std::size_t end = sim.diverged ? sim.diverged_at_index : sim.speed_mps.size();
   for (std::size_t i = 0; i < end; ++i)
   {
-    if (sim.space_gap_m[i] <= 0.0)
+    *collision = sim.space_gap_m[i] <= 0.0;
+    if (*collision)
       return printfText("its gap reaches %.1f m (a collision) at t = %.1f s", sim.space_gap_m[i], time_s[i]);
     if (sim.speed_mps[i] < 0.0)
       return printfText("its speed reaches %.2f m/s (driving backwards) at t = %.1f s", sim.speed_mps[i], time_s[i]);
@@ -278,6 +279,7 @@ void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& settin
   evidence->long_platoon_ran_away_at_car = 0;
   evidence->long_platoon_breaks_down_at_car = 0;
   evidence->long_platoon_breakdown.clear();
+  evidence->long_platoon_collides = false;
   evidence->long_platoon_unfinished = 0;
   for (const CampaignFile& file : inputs.files)
   {
@@ -300,12 +302,14 @@ void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& settin
       diverged = sim.diverged;
       if (diverged && evidence->long_platoon_ran_away_at_car == 0)
         evidence->long_platoon_ran_away_at_car = static_cast<std::size_t>(car) + 1;
-      const std::string breakdown = breakdownOf(sim, run.time_s);
+      bool collision = false;
+      const std::string breakdown = breakdownOf(sim, run.time_s, &collision);
       const auto car_number = static_cast<std::size_t>(car) + 1;
       if (!breakdown.empty() &&
           (evidence->long_platoon_breaks_down_at_car == 0 || car_number < evidence->long_platoon_breaks_down_at_car))
       {
         evidence->long_platoon_breaks_down_at_car = car_number;
+        evidence->long_platoon_collides = collision;
         evidence->long_platoon_breakdown = "car " + std::to_string(car_number) + " in " + file.name + ": " + breakdown;
       }
       run.leader_speed_mps = sim.speed_mps;

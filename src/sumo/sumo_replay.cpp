@@ -161,11 +161,20 @@ SumoRun runSumo(const std::vector<double>& leader_speed_mps, double step_s, cons
   return result;
 }
 
+namespace
+{
+/// The run's mean step [s] (its span over its steps): the one step a uniform run has.
+double meanStepS(const CarFollowingRun& run)
+{
+  return (run.time_s.back() - run.time_s.front()) / static_cast<double>(run.size() - 1);
+}
+}  // namespace
+
 std::string nonUniformStepReason(const CarFollowingRun& run)
 {
   if (run.size() < 2)
     return "run '" + run.name + "' has fewer than two samples";
-  const double step_s = (run.time_s.back() - run.time_s.front()) / static_cast<double>(run.size() - 1);
+  const double step_s = meanStepS(run);
   for (std::size_t k = 1; k < run.size(); ++k)
   {
     const double h = run.time_s[k] - run.time_s[k - 1];
@@ -182,7 +191,7 @@ double uniformStepS(const CarFollowingRun& run)
   const std::string reason = nonUniformStepReason(run);
   if (!reason.empty())
     throw std::runtime_error(reason);
-  return (run.time_s.back() - run.time_s.front()) / static_cast<double>(run.size() - 1);
+  return meanStepS(run);
 }
 
 namespace

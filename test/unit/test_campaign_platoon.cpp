@@ -475,6 +475,8 @@ TEST(CampaignPlatoon, TheLongPlatoonSaysWhereItsCarsCollide)
                                                 " in "),
             std::string::npos)
       << evidence.long_platoon_breakdown;
+  // The kind is stored beside the text, which the report does not parse.
+  EXPECT_EQ(evidence.long_platoon_collides, evidence.long_platoon_breakdown.find("collision") != std::string::npos);
 
   // The stable law of the test above never closes a gap.
   evidence.diagnosed_fit = acc::AugmentedFit{};
@@ -482,6 +484,7 @@ TEST(CampaignPlatoon, TheLongPlatoonSaysWhereItsCarsCollide)
   acc::simulateLongPlatoon(inputs, "S", acc::PlatoonCheckOptions{}, &evidence);
   EXPECT_EQ(evidence.long_platoon_breaks_down_at_car, 0u) << evidence.long_platoon_breakdown;
   EXPECT_EQ(evidence.long_platoon_breakdown, "");
+  EXPECT_FALSE(evidence.long_platoon_collides);
 }
 
 TEST(DipPredictionSummary, TheNoModelReferencePassesTheFirstCarsDipOnWhereTheChainPredicts)

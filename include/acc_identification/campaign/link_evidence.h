@@ -70,6 +70,7 @@ struct LinkEvidence
   /// when none did. The ratio is still the model's, but such a chain amplifies whatever it says.
   std::size_t long_platoon_breaks_down_at_car = 0;
   std::string long_platoon_breakdown;  ///< where and how ("car 7 in dynamic_part16: its gap reaches -25.9 m ...")
+  bool long_platoon_collides = false;  ///< that breakdown is a collision (else driving backwards)
   /// Perturbations whose tenth car was still slowing when the next perturbation began: no ratio
   /// (it would be cut short), counted here.
   std::size_t long_platoon_unfinished = 0;
