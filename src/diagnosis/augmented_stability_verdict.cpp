@@ -335,6 +335,12 @@ AugmentedStabilityTestResult testAugmentedStringStability(const AugmentedFit& ch
     r.reason = shortage;
     return r;
   }
+  if (const std::string steady = describeInsufficientExcitation(train, options.excitation); !steady.empty())
+  {
+    r.reason = "the parts fitted on: " + steady +
+               ": they do not decide string stability (calibrate gives no verdict on such data either)";
+    return r;
+  }
 
   if (!chosen.locally_stable)
   {

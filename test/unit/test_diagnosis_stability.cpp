@@ -328,3 +328,52 @@ TEST(LocallyStableFit, TheStabilityTestsUnstableSideIsALocallyStableCar)
       << "index " << t.best_unstable.stability_index << ", k2 " << t.best_unstable.base.k2_per_s << ", delay "
       << t.best_unstable.settings.reaction_delay_s;
 }
+
+namespace
+{
+/// Ten minutes behind a leader that only wavers (0.25 m/s, a 20 s period, where Table II's
+/// minimum setting amplifies), the follower that setting: its speed spreads less than calibrate
+/// fits on (0.5 m/s).
+acc::CarFollowingRun waveringDrive()
+{
+  const acc::AccParameters table2_min{0.0782, 0.4445, 0.5162, 8.3};
+  acc::CarFollowingRun run;
+  run.name = "wavering leader";
+  const double v0 = 25.0;
+  for (int k = 0; 0.1 * k <= 600.0; ++k)
+  {
+    run.time_s.push_back(0.1 * k);
+    run.leader_speed_mps.push_back(v0 + 0.25 * std::sin(2.0 * M_PI * 0.1 * k / 20.0));
+  }
+  run.follower_speed_mps.assign(run.size(), v0);
+  run.space_gap_m.assign(run.size(), table2_min.eta_m + table2_min.tau_e_s * v0);
+  const acc::SimulatedFollower sim = acc::simulateFollower(table2_min, run);
+  run.follower_speed_mps = sim.speed_mps;
+  run.space_gap_m = sim.space_gap_m;
+  return run;
+}
+}  // namespace
+
+// A drive too steady for calibrate to fit gets no verdict from the diagnosis's test either, and
+// says why in calibrate's words. The same drive, with the excitation rule switched off, is one on
+// which the test does decide: it fails when the rule is not applied.
+TEST(AugmentedStabilityTest, ADriveTooSteadyForCalibrateIsUndecidedWithCalibratesReason)
+{
+  const acc::CarFollowingRun run = waveringDrive();
+  const std::vector<acc::CarFollowingRun> train{run.slice(0, run.size() / 2, " (train)")};
+  const std::vector<acc::CarFollowingRun> test{run.slice(run.size() / 2, run.size(), " (test)")};
+  ASSERT_NE(acc::describeInsufficientExcitation(train, acc::IdentifiabilityCriteria{}).find("steady speed"),
+            std::string::npos);
+  const acc::AugmentedFit chosen =
+      acc::calibrateAugmentedSet({acc::EffectKind::actuation_lag}, train, acc::AugmentedCalibrationOptions{}, nullptr);
+  acc::AugmentedStabilityTestOptions relaxed;
+  relaxed.excitation.min_speed_std_mps = 0.0;
+  const acc::AugmentedStabilityTestResult decided =
+      acc::testAugmentedStringStability(chosen, train, test, 25.0, acc::AugmentedCalibrationOptions{}, relaxed);
+  EXPECT_NE(decided.verdict, acc::StabilityVerdict::Undecided) << decided.reason;
+  const acc::AugmentedStabilityTestResult t =
+      acc::testAugmentedStringStability(chosen, train, test, 25.0, acc::AugmentedCalibrationOptions{});
+  EXPECT_EQ(t.verdict, acc::StabilityVerdict::Undecided);
+  EXPECT_NE(t.reason.find("steady speed"), std::string::npos) << t.reason;
+  EXPECT_NE(t.reason.find("calibrate gives no verdict"), std::string::npos) << t.reason;
+}

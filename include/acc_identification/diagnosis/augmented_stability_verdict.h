@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "acc_identification/calibration/held_out_side_comparison.h"
+#include "acc_identification/calibration/identification.h"
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/model/follower_effects.h"
 #include "acc_identification/model/acc_parameters.h"
@@ -51,7 +52,8 @@ double augmentedStabilityIndex(const AccParameters& p, const EffectSettings& eff
 ///     mirror.
 ///  3. "unstable" when p_value_stable_rejected <= alpha and the better model is strictly unstable
 ///     (index < 0); "stable" in the mirror case; otherwise "undecided" with the reason (also
-///     when the held-out data are too short, or no fit exists on one side).
+///     when the held-out data are too short, the parts fitted on too steady (`excitation`), or no
+///     fit exists on one side).
 /// Steps 2 and 3 are the engine shared with the base model's test (held_out_side_comparison.h); this
 /// test plugs in its side search (step 1). Unlike the base model's test there is no interval of
 /// allowed margins: the augmented index is a sign, not a calibrated scale.
@@ -68,6 +70,11 @@ struct AugmentedStabilityTestOptions : HeldOutComparisonOptions
   double relative_mse_tolerance = 1e-10;
   /// Threads for the side search's starts (0: every core); the result does not depend on it.
   std::size_t threads = 1;
+  /// The parts fitted on must have what calibrate fits on (its speed spread, samples and seconds):
+  /// on a steady drive both sides' best models are the same ridge of eta + tau_e v, and the side
+  /// that predicts a steady held-out part better says nothing of what the car does to a braking.
+  /// calibrate gives no verdict on such data; neither does this test.
+  IdentifiabilityCriteria excitation;
 };
 
 /// One side's best model.
