@@ -281,6 +281,23 @@ void addSawtoothCars(const std::vector<PairSawtooth>& pairs, const std::string& 
     }
 }
 
+/// The file's unit error: the first pair's words when some pair's ratio is a unit error and no
+/// pair's judged ratio is right (speeds or gaps in other units throughout, not one car's column;
+/// pairs in steady following judge nothing), else "".
+std::string unitErrorOfFile(const AllPairRuns& all)
+{
+  std::string first;
+  for (const PairRunContents& pair : all.pairs)
+  {
+    const GapKinematics kinematics = checkGapKinematics(pair.contents.runs);
+    if (kinematics.ratio_judged && kinematics.unit_error.empty())
+      return "";
+    if (first.empty() && !kinematics.unit_error.empty())
+      first = pair.pair.label() + ": " + kinematics.unit_error;
+  }
+  return first;
+}
+
 /// Adds the pairs of one file to the groups being built (keyed by vehicle and setting).
 void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile& file,
               std::map<std::pair<std::string, std::string>, CampaignGroup>& groups, std::vector<std::string>& notes,
@@ -298,11 +315,19 @@ void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile
       ++skipped_pairs;
       continue;
     }
+    const GapKinematics kinematics = checkGapKinematics(pair.contents.runs);
+    if (!kinematics.unit_error.empty())
+    {
+      notes.push_back(file.path + ": " + pair.pair.label() + ": " + kinematics.unit_error + kUnitErrorRefusal +
+                      ", skipped");
+      ++skipped_pairs;
+      continue;
+    }
     if (pair.contents.rejected_rows + pair.contents.time_holes > 0)
       rejected.push_back(describePairLosses(pair));
     if (pair.contents.acc_off_rows > 0)
       acc_off.push_back(pair.pair.follower_name + " " + std::to_string(pair.contents.acc_off_rows));
-    for (const std::string& disagreement : checkGapKinematics(pair.contents.runs).warnings)
+    for (const std::string& disagreement : kinematics.warnings)
       notes.push_back(file.path + ": " + pair.pair.label() + ": " + disagreement);
     for (const GapSawtoothSpan& span : pair.contents.sawtooth_spans)
       notes.push_back(file.path + ": " + pair.pair.label() + ": " + describeSawtoothSpan(span) + "; " +
@@ -506,6 +531,14 @@ void addFile(const std::string& path, const RunPlausibilityBounds& bounds, const
   catch (const RunReadError& error)
   {
     inputs.notes.push_back(std::string(error.what()) + ", skipped");
+    ++inputs.skipped_files;
+    return;
+  }
+  if (const std::string unit_error = unitErrorOfFile(all); !unit_error.empty())
+  {
+    // Not one car's column but the file's units: its platoon would be judged in them too.
+    inputs.notes.push_back(path + ": no pair's gap and speeds agree, and " + unit_error + kUnitErrorRefusal +
+                           ": the file is skipped");
     ++inputs.skipped_files;
     return;
   }

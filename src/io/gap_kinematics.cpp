@@ -34,15 +34,15 @@ void addWindows(const CarFollowingRun& run, double window_s, std::vector<Window>
   }
 }
 
-void describeScale(const GapKinematics& k, const GapKinematicsOptions& options, std::vector<std::string>* warnings)
+/// The ratio's disagreement in words ("" when it is within bounds, or not judged).
+std::string describeScale(const GapKinematics& k, const GapKinematicsOptions& options)
 {
-  if (!(k.relative_motion_m >= options.min_relative_motion_m) ||
-      (k.scale >= options.min_scale && k.scale <= options.max_scale))
-    return;
-  warnings->push_back("the gap and the speeds disagree: over " + std::to_string(k.windows) + " windows of " +
-                      printfText("%g s the gap changes at %.2g", options.window_s, k.scale) +
-                      " of the rate the speed difference says (1 when the gap is in metres and the speeds in m/s; "
-                      "speeds in km/h give 0.28, a gap in feet 3.3): check the units");
+  if (!k.ratio_judged || (k.scale >= options.min_scale && k.scale <= options.max_scale))
+    return "";
+  return "the gap and the speeds disagree: over " + std::to_string(k.windows) + " windows of " +
+         printfText("%g s the gap changes at %.2g", options.window_s, k.scale) +
+         " of the rate the speed difference says (1 when the gap is in metres and the speeds in m/s; "
+         "speeds in km/h give 0.28, a gap in feet 3.3): check the units";
 }
 
 void describeJumps(const GapKinematics& k, const GapKinematicsOptions& options, std::vector<std::string>* warnings)
@@ -82,7 +82,10 @@ void summarizeWindows(const std::vector<Window>& windows, const GapKinematicsOpt
   k->worst_end_s = worst->run->time_s[worst->last];
   k->worst_gap_change_m = worst->gap_change_m;
   k->worst_speed_change_m = worst->speed_change_m;
-  describeScale(*k, options, &k->warnings);
+  k->ratio_judged = k->relative_motion_m >= options.min_relative_motion_m;
+  k->unit_error = describeScale(*k, options);
+  if (!k->unit_error.empty())
+    k->warnings.push_back(k->unit_error);
   describeJumps(*k, options, &k->warnings);
 }
 }  // namespace

@@ -705,7 +705,10 @@ std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileC
   {
     log << "warning: " << counts << "\n";
   }
-  for (const std::string& disagreement : checkGapKinematics(contents.runs).warnings)
+  const GapKinematics kinematics = checkGapKinematics(contents.runs);
+  if (!kinematics.unit_error.empty())
+    throw RunReadError(path + ": " + kinematics.unit_error + kUnitErrorRefusal);
+  for (const std::string& disagreement : kinematics.warnings)
   {
     log << "warning: " << path << ": " << disagreement << "\n";
   }

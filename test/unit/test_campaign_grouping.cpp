@@ -321,6 +321,68 @@ TEST(CampaignInputs, EverySkippedFileIsNamedWithItsReasonAndCounted)
   EXPECT_EQ(inputs.describeSkipped(), "skipped 2 file(s) and 0 pair(s) (each in a note above)");
 }
 
+namespace
+{
+/// Copies a synthetic platoon file with the speed columns `columns` (1-based among Time's
+/// followers: 1 is Speed1) multiplied by 3.6: speeds in km/h, as an export could give them.
+void copyWithSpeedsInKmh(const std::string& from, const std::string& to, const std::vector<std::size_t>& columns)
+{
+  std::ifstream in(from);
+  std::ofstream out(to);
+  out.precision(10);
+  std::string line;
+  for (int k = 0; std::getline(in, line); ++k)
+  {
+    if (k < 6)
+    {
+      out << line << "\n";
+      continue;
+    }
+    std::vector<std::string> cells;
+    std::stringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');)
+      cells.push_back(cell);
+    for (std::size_t c : columns)
+      cells[c] = std::to_string(3.6 * std::stod(cells[c]));
+    for (std::size_t c = 0; c < cells.size(); ++c)
+      out << (c == 0 ? "" : ",") << cells[c];
+    out << "\n";
+  }
+}
+}  // namespace
+
+// Speeds in km/h against a gap in metres pass every per-sample bound, and a fit to them gives wrong
+// numbers: a file in such units throughout is skipped (its platoon would be judged in them too),
+// and a pair whose follower's column alone is in them is skipped, its file kept. Fails when the
+// gap's kinematics only warn.
+TEST(CampaignInputs, AFileOrAPairWhoseGapAndSpeedsAreInOtherUnitsIsSkippedAndSaid)
+{
+  TempFolder folder("acc_campaign_units");
+  acc_test::writeSyntheticPlatoon(folder.file("run1.csv"), "S", {kAS, kBS}, 51, 300.0);
+  acc_test::writeSyntheticPlatoon(folder.file("metres.csv"), "S", {kBS, kAS}, 52, 300.0);
+  acc_test::writeSyntheticPlatoon(folder.file("one_column.csv"), "S", {kAS, kBS}, 53, 300.0);
+  copyWithSpeedsInKmh(folder.file("metres.csv"), folder.file("run2.csv"), {1, 2, 3});
+  copyWithSpeedsInKmh(folder.file("one_column.csv"), folder.file("run3.csv"), {3});
+  fs::remove(folder.file("metres.csv"));
+  fs::remove(folder.file("one_column.csv"));
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.path()});
+  ASSERT_EQ(inputs.files.size(), 2u);
+  EXPECT_EQ(inputs.skipped_files, 1u);
+  EXPECT_EQ(inputs.skipped_pairs, 1u);
+  const std::string notes = [&] {
+    std::string all;
+    for (const std::string& note : inputs.notes)
+      all += note + "\n";
+    return all;
+  }();
+  EXPECT_NE(notes.find("run2.csv: no pair's gap and speeds agree"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("the file is skipped"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("run3.csv: CAR_B behind CAR_A"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("check the units: not used"), std::string::npos) << notes;
+  for (const acc::CampaignGroup& group : inputs.groups)
+    EXPECT_EQ(group.runs.size(), group.vehicle == "CAR_A" ? 2u : 1u) << group.label();
+}
+
 // A copy of a run, and an excerpt cut from it, are the same recording: skipped and counted, so that
 // no run is predicted by a model fitted on itself (leave-one-run-out). Noise-free platoons that
 // share their lead car's profile are different drives: both kept. Fails if the campaign reads a

@@ -2,9 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "acc_identification/io/gap_kinematics.h"
+#include "acc_identification/io/run_csv.h"
 #include "oscillating_run.h"
 
 namespace
@@ -45,6 +47,36 @@ TEST(GapKinematics, SpeedsInKilometresPerHourAreAUnitError)
   EXPECT_NE(k.warnings[0].find("the gap changes at 0.28 of the rate the speed difference says"), std::string::npos)
       << k.warnings[0];
   EXPECT_NE(k.warnings[0].find("check the units"), std::string::npos) << k.warnings[0];
+  EXPECT_TRUE(k.ratio_judged);
+  EXPECT_EQ(k.unit_error, k.warnings[0]);
+}
+
+// The readers refuse such a run rather than fit it, and say why (a fit to a gap in metres and
+// speeds in km/h reads each speed change 3.6 times too large).
+TEST(GapKinematics, TheReadersRefuseARunWhoseUnitsDisagree)
+{
+  acc::CarFollowingRun run = consistentRun();
+  std::ostringstream log;
+  acc::RunFileContents contents;
+  contents.runs = {run};
+  EXPECT_NO_THROW(acc::reportAndTakeRuns("metres.csv", contents, log));
+  for (std::size_t k = 0; k < run.size(); ++k)
+  {
+    run.leader_speed_mps[k] *= 3.6;
+    run.follower_speed_mps[k] *= 3.6;
+  }
+  contents.runs = {run};
+  try
+  {
+    acc::reportAndTakeRuns("kmh.csv", contents, log);
+    ADD_FAILURE() << "a run whose gap and speeds disagree by a unit was taken";
+  }
+  catch (const acc::RunReadError& error)
+  {
+    const std::string what = error.what();
+    EXPECT_NE(what.find("kmh.csv: the gap and the speeds disagree"), std::string::npos) << what;
+    EXPECT_NE(what.find("check the units: not used"), std::string::npos) << what;
+  }
 }
 
 TEST(GapKinematics, AGapThatJumpsIsNamedWithItsWindow)
@@ -73,6 +105,8 @@ TEST(GapKinematics, SteadyFollowingDoesNotJudgeTheRatio)
   }
   const acc::GapKinematics k = acc::checkGapKinematics({run});
   EXPECT_LT(k.relative_motion_m, 3.0);
+  EXPECT_FALSE(k.ratio_judged);
+  EXPECT_TRUE(k.unit_error.empty());
   EXPECT_TRUE(k.warnings.empty());
 }
 

@@ -41,11 +41,22 @@ struct GapKinematics
   /// The window most off: its run, start and end, the gap change and what the speeds say.
   std::string worst_run;
   double worst_start_s = kNaN, worst_end_s = kNaN, worst_gap_change_m = kNaN, worst_speed_change_m = kNaN;
+  /// Whether the relative motion was enough to judge the ratio (min_relative_motion_m).
+  bool ratio_judged = false;
+  /// The ratio judged (enough relative motion) and outside [min_scale, max_scale], in words: a
+  /// unit error, which every reader refuses (a model fitted to a gap and speeds in different
+  /// units gives wrong numbers, not an estimate); "" otherwise. Also the first of `warnings`.
+  std::string unit_error;
   /// Each disagreement in words, for a warning; empty when the gap and the speeds agree (or too
   /// little relative motion decides the ratio: said in none). What these windows average away,
   /// a gap that saw-tooths sample by sample, the run reader finds and rebuilds (gap_sawtooth.h).
   std::vector<std::string> warnings;
 };
+
+/// What a reader that refuses data for their unit_error says after it.
+inline constexpr const char* kUnitErrorRefusal =
+    ": not used: a model fitted to a gap and speeds in different units gives wrong numbers, not an estimate "
+    "(convert the gap to metres and the speeds to m/s)";
 
 /// The check above over every run (windows never cross runs).
 GapKinematics checkGapKinematics(const std::vector<CarFollowingRun>& runs, const GapKinematicsOptions& options = {});

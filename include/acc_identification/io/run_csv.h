@@ -147,9 +147,9 @@ std::vector<CarFollowingRun> readRuns(const std::string& path, const RunPlausibi
                                       const OpenAccPairSelector& selector);
 
 /// What readRuns() does with what readRunFile() read: writes every note ("note: ") and problem
-/// ("warning: ") and the counts to log, and where the gap and the speeds disagree about the motion
-/// (checkGapKinematics: a unit error, a jump of the gap) a warning; takes the runs; throws
-/// RunReadError when none is usable.
+/// ("warning: ") and the counts to log, and where the gap jumps against the speeds
+/// (checkGapKinematics) a warning; takes the runs; throws RunReadError when none is usable, and
+/// when the gap and the speeds disagree by a unit error (GapKinematics::unit_error).
 std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileContents& contents, std::ostream& log);
 
 /// Writes one run as a canonical CSV (full double precision). Throws RunReadError on I/O failure.
