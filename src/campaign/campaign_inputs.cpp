@@ -234,11 +234,18 @@ void noteCarsWithoutPair(const OpenAccFile& file, std::vector<std::string>& note
     notes.push_back(file.path + ": no data for " + join(without_data, ", ") + ": not in the campaign");
 }
 
+/// The rows a pair rejects for a cell of its own: not the file's exact repeats, which every pair
+/// counts and the file's own note lists.
+std::size_t ownRejectedRows(const PairRunContents& pair)
+{
+  return pair.contents.rejected_rows - pair.contents.duplicate_rows;
+}
+
 /// "TESLA_MODEL3 59", "BMW_I3 3 and 1 hole in time" or "Hyundai none, 1 hole in time": what one
 /// pair loses.
 std::string describePairLosses(const PairRunContents& pair)
 {
-  const std::size_t rows = pair.contents.rejected_rows, holes = pair.contents.time_holes;
+  const std::size_t rows = ownRejectedRows(pair), holes = pair.contents.time_holes;
   const std::string hole_text = std::to_string(holes) + (holes == 1 ? " hole" : " holes") + " in time";
   if (rows == 0)
     return pair.pair.follower_name + " none, " + hole_text;
@@ -323,7 +330,7 @@ void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile
       ++skipped_pairs;
       continue;
     }
-    if (pair.contents.rejected_rows + pair.contents.time_holes > 0)
+    if (ownRejectedRows(pair) + pair.contents.time_holes > 0)
       rejected.push_back(describePairLosses(pair));
     if (pair.contents.acc_off_rows > 0)
       acc_off.push_back(pair.pair.follower_name + " " + std::to_string(pair.contents.acc_off_rows));

@@ -493,6 +493,11 @@ RunFileContents readPairRuns(const OpenAccFile& file, const OpenAccPair& pair, c
     }
   }
   assembler.split();
+  // The file's exact repeats (dropped as it was read, listed in its notes) are this pair's rows
+  // too: counted as a canonical CSV counts them, so the JSON's counts add up to the file's rows.
+  contents.data_rows += file.duplicate_lines.size();
+  contents.rejected_rows += file.duplicate_lines.size();
+  contents.duplicate_rows += file.duplicate_lines.size();
   if (contents.acc_off_rows > 0)
     contents.notes.push_back(acc_off.note(contents.acc_off_rows, file.path, about));
   contents.run_pairs.assign(contents.runs.size(), 0);

@@ -536,13 +536,14 @@ TEST(CampaignInputs, WhatIsLeftOutOfAFileIsSaid)
       << all;
   EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"b.csv: no data for CAR_B (3): not in the campaign"})) << all;
   EXPECT_EQ(inputs.skipped_pairs, 0u);
-  // The same counts for the JSON (inputs.files[].pairs_read): the NaN row rejected, the rest used.
+  // The same counts for the JSON (inputs.files[].pairs_read): the NaN row rejected, the two
+  // duplicates counted (every row of the file accounted for), the rest used.
   ASSERT_EQ(inputs.files[1].pairs_read.size(), 1u);
   const acc::InputAccount& pair = inputs.files[1].pairs_read[0];
   EXPECT_EQ(pair.openacc_pairs, std::vector<std::string>{"CAR_A behind LEAD, positions 2/1"});
   using Counts = std::vector<std::pair<std::string, std::size_t>>;
-  EXPECT_EQ(pair.counts, (Counts{{"data_rows", 601}, {"samples_used", 600}, {"runs", 2}, {"rejected_rows", 1},
-                                 {"implausible_rows", 0}, {"marked_invalid_rows", 0}, {"duplicate_rows", 0},
+  EXPECT_EQ(pair.counts, (Counts{{"data_rows", 603}, {"samples_used", 600}, {"runs", 2}, {"rejected_rows", 3},
+                                 {"implausible_rows", 0}, {"marked_invalid_rows", 0}, {"duplicate_rows", 2},
                                  {"acc_off_rows", 0},
                                  {"single_sample_rows", 0}, {"time_holes", 0}, {"gap_rebuilt_rows", 0}}));
 }

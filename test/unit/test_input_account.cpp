@@ -80,6 +80,29 @@ TEST(InputAccount, ADuplicateAndARowAloneAreCountedApart)
       << acc::describeRowCounts(path, contents);
 }
 
+// An OpenACC file's exact repeats are dropped as the file is read; each pair read from it counts
+// them as a canonical CSV does, so its counts still add up to the file's rows. Fails when the
+// account leaves them out (2302 rows of a doubled file read as 1151 data rows, 0 duplicates).
+TEST(InputAccount, AnOpenAccFilesDuplicateRowsAreCountedInThePairsAccount)
+{
+  const std::string path = testing::TempDir() + "/input_account_openacc_duplicates.csv";
+  {
+    std::ifstream excerpt(kDataDir + "/openacc_excerpt.csv");
+    std::ofstream doubled(path);
+    std::string line;
+    for (int k = 0; std::getline(excerpt, line); ++k)
+      doubled << line << "\n" << (k >= 6 && k < 9 ? line + "\n" : "");  // data lines 1-3 twice
+  }
+  const acc::RunFileContents once = acc::readRunFile(kDataDir + "/openacc_excerpt.csv");
+  const acc::RunFileContents contents = acc::readRunFile(path);
+  EXPECT_EQ(contents.duplicate_rows, 3u);
+  EXPECT_EQ(contents.data_rows, once.data_rows + 3u);
+  EXPECT_EQ(contents.rejected_rows, once.rejected_rows + 3u);
+  EXPECT_EQ(acc::sampleCount(contents.runs), acc::sampleCount(once.runs));
+  expectEveryRowAccountedFor(contents);
+  EXPECT_EQ(countOf(acc::accountOfRunFile(path, contents), "duplicate_rows"), 3u);
+}
+
 TEST(InputAccount, JsonKeepsTheCountsAndNamesPairsOnlyForOpenAcc)
 {
   acc::InputAccount csv{"a.csv", "csv", {}, {{"data_rows", 5}, {"samples_used", 4}}};
