@@ -897,6 +897,10 @@ nlohmann::json shapesJson(const ShapeTransferSummary& s)
 
 std::string comparisonLine(const EffectSetComparison& c)
 {
+  if (c.perturbations == 0)  // every loss NaN: say so, not "loss NaN vs NaN"
+    return c.candidate.name() + " against " + c.against.name() +
+           ": not compared, no car-perturbation both predict with a measured dip above " +
+           printfText("%g m/s", kScoredMinDipMps);
   return c.candidate.name() + " against " + c.against.name() + ": loss " + cellNumber("%.3f", c.mean_loss) + " vs " +
          cellNumber("%.3f", c.against_loss) + " (" + cellNumber("%+.0f %%", -100.0 * c.relative_improvement) +
          "; pair window MSE " + cellNumber("%.3f", c.mean_window_mse) + " vs " +

@@ -56,9 +56,10 @@ double lossOf(const PairPerturbationScore& s, std::size_t m, SelectionCriterion 
 {
   if (criterion == SelectionCriterion::pair_windows)
     return m < s.window_mse.size() ? s.window_mse[m] : kNaN;
-  if (m >= s.chain_dip_mps.size() || !(s.measured_dip_mps > kScoredMinDipMps) || !(s.chain_dip_mps[m] > 0.0))
+  if (m >= s.chain_dip_mps.size() || !(s.measured_dip_mps > kScoredMinDipMps) || !std::isfinite(s.chain_dip_mps[m]))
     return kNaN;
-  const double log_ratio = std::log(s.chain_dip_mps[m] / s.measured_dip_mps);
+  const double predicted_mps = std::max(s.chain_dip_mps[m], kLossMinPredictedDipShare * s.measured_dip_mps);
+  const double log_ratio = std::log(predicted_mps / s.measured_dip_mps);
   return log_ratio * log_ratio;
 }
 
@@ -637,7 +638,8 @@ std::string effectSetSelectionRule(const EffectSetSelectionOptions& options)
   const std::string loss =
       options.criterion == SelectionCriterion::platoon_dips
           ? "per car and perturbation of the platoon predicted from its real first car, the squared log ratio of "
-            "predicted to measured dip (measured dips above 0.3 m/s)"
+            "predicted to measured dip (measured dips above 0.3 m/s; a predicted dip below a tenth of the measured, "
+            "or none, scored as a tenth)"
           : "per car and perturbation, the car predicted from its real leader, the mean squared speed error from the "
             "pre-window before the onset to the end of the dip window";
   const std::string floor =

@@ -808,6 +808,32 @@ TEST(PlatoonEffectSelection, AddsWhatEachStageNamesUntilAStageNamesNothing)
   EXPECT_FALSE(two.comparisons.back().significant);
 }
 
+// A candidate whose chain predicts no dip, or the car speeding up, for some car-perturbations is
+// scored there (as a tenth of the measured dip), not spared them: the delay below predicts every
+// dip 10 % too shallow but the first car of each perturbation not at all, and loses to the base
+// model's 30 % everywhere. Fails when such cars leave the candidate's loss (the delay was named,
+// its loss over the other two cars a third of the base model's).
+TEST(PlatoonEffectSelection, ACandidatePredictingNoDipIsScoredThereNotSpared)
+{
+  using E = acc::EffectKind;
+  using O = acc::FitObjective;
+  const acc::PlatoonCandidate delay{{E::reaction_delay}, O::speed};
+  std::vector<double> depth(acc::platoonCandidates().size() + 1, 0.5);
+  depth[0] = 0.7;
+  depth[scoreIndexOf(delay)] = 0.9;
+  std::vector<acc::PairPerturbationScore> scores = scoresWithChainDips(depth);
+  for (acc::PairPerturbationScore& s : scores)
+    if (s.position == 2)
+      s.chain_dip_mps[scoreIndexOf(delay)] = -0.2;
+  const acc::EffectSetSelection selection = acc::selectEffectSet(scores, 99, "", {});
+  EXPECT_FALSE(selection.model == delay) << selection.model.name();
+  const auto compared = std::find_if(selection.comparisons.begin(), selection.comparisons.end(),
+                                     [&](const acc::EffectSetComparison& c) { return c.candidate == delay; });
+  ASSERT_NE(compared, selection.comparisons.end());
+  EXPECT_EQ(compared->car_perturbations, scores.size());
+  EXPECT_GT(compared->mean_loss, compared->against_loss);
+}
+
 // A stage's choice is compared with every other candidate named at the stage: a lag exactly as
 // good as the delay is a near tie the data do not decide, a closing response far worse is not.
 // Fails when the rivals are not compared, or all are called ties.

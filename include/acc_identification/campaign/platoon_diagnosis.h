@@ -118,7 +118,8 @@ void addChainDips(const PlatoonCheck& check, std::size_t file_index, std::size_t
 enum class SelectionCriterion
 {
   /// The platoon's dips, predicted from the real first car: the squared log ratio of predicted to
-  /// measured dip per car-perturbation (measured dips above 0.3 m/s). What the platoon question is.
+  /// measured dip per car-perturbation (measured dips above 0.3 m/s; a prediction below a tenth
+  /// of the measured dip scored as a tenth: kLossMinPredictedDipShare). What the platoon question is.
   platoon_dips,
   /// The pair level's mean squared speed error in the perturbation windows.
   pair_windows,
@@ -264,6 +265,11 @@ enum class DipPrediction
 
 /// The car-perturbations scored: a measured dip above this [m/s] (what platoon_score.py scores).
 constexpr double kScoredMinDipMps = 0.3;
+/// The platoon-dip loss scores a predicted dip below this share of the measured one (no dip at
+/// all, or the car speeding up) as this share: the loss of a prediction ten times too small. The
+/// log ratio has no value there, and a car left out of a candidate's loss for it would spare the
+/// candidate its worst predictions.
+constexpr double kLossMinPredictedDipShare = 0.1;
 /// The links scored: measured dips of the car and the one ahead more than this apart [m/s].
 constexpr double kScoredMinLinkChangeMps = 0.2;
 
