@@ -3,9 +3,11 @@
 #include "acc_identification/io/gap_kinematics.h"
 #include "acc_identification/io/problem_lines.h"
 #include "acc_identification/model/number_text.h"
+#include "acc_identification/model/plain_text.h"
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -31,16 +33,50 @@ struct ColumnMap
   std::optional<std::size_t> invalid_reason;  ///< and why a row is not
 };
 
+/// Whether a header cell names `name` in any case ("Time_s" is time_s: the unit is in the name,
+/// and a spreadsheet may capitalise it; OpenACC's columns are read in any case too).
+bool namesColumn(const std::string& cell, const std::string& name)
+{
+  return std::equal(cell.begin(), cell.end(), name.begin(), name.end(), [](char a, char b) {
+    return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+  });
+}
+
 std::optional<std::size_t> findColumn(const std::vector<std::string>& header, const std::string& name)
 {
   for (std::size_t i = 0; i < header.size(); ++i)
   {
-    if (header[i] == name)
+    if (namesColumn(header[i], name))
     {
       return i;
     }
   }
   return std::nullopt;
+}
+
+/// The header cells of the canonical columns spelt in another case, as a note ("" when none is).
+std::string describeColumnSpellings(const std::string& path, const std::vector<std::string>& header,
+                                    const ColumnMap& map)
+{
+  static const std::array<const char*, 4> kNames{"time_s", "space_gap_m", "follower_speed_mps", "leader_speed_mps"};
+  std::vector<std::string> read_as;
+  for (std::size_t q = 0; q < 4; ++q)
+    if (header[map.index[q]] != kNames[q])
+      read_as.push_back("'" + header[map.index[q]] + "' as " + kNames[q]);
+  return read_as.empty() ? "" : path + ": columns read in another case: " + join(read_as, ", ");
+}
+
+/// For the reader's error: what the file's first line holds, so a header that names the columns
+/// almost right is seen ("" for an empty file).
+std::string firstLineHint(const std::string& path)
+{
+  const std::vector<std::string> fields = firstLineFields(path);
+  if (fields.empty())
+    return "";
+  std::string line = join(fields, ",");
+  if (line.size() > 120)
+    line = line.substr(0, 117) + "...";
+  return " (its first line reads '" + line + "')";
 }
 
 /// The header names of the canonical format (time, gap, follower, leader); OpenACC files are
@@ -64,12 +100,13 @@ std::optional<ColumnMap> mapColumns(const std::vector<std::string>& header)
   return map;
 }
 
-/// The first name the header gives two columns: such a column would be read from its first place
-/// alone, the other silently not.
+/// The first name the header gives two columns (in any case): such a column would be read from its
+/// first place alone, the other silently not.
 std::optional<std::string> columnNamedTwice(const std::vector<std::string>& header)
 {
   for (auto name = header.begin(); name != header.end(); ++name)
-    if (!name->empty() && std::find(header.begin(), name, *name) != name)
+    if (!name->empty() &&
+        std::find_if(header.begin(), name, [&](const std::string& before) { return namesColumn(before, *name); }) != name)
       return *name;
   return std::nullopt;
 }
@@ -331,8 +368,10 @@ RunFileContents readCanonicalFile(const std::string& path, const RunPlausibility
   {
     throw RunReadError(path + ": no header with time_s,space_gap_m,follower_speed_mps,leader_speed_mps in the "
                               "first 20 lines, and no OpenACC Date line or Time,Speed1,... header first" +
-                       separatorHint(path));
+                       separatorHint(path) + firstLineHint(path));
   }
+  if (const std::string spellings = describeColumnSpellings(path, header, *map); !spellings.empty())
+    contents.notes.push_back(spellings);
   if (const std::optional<std::string> twice = columnNamedTwice(header))
   {
     throw RunReadError(path + ":" + std::to_string(line_number) + ": the header names column '" + *twice +

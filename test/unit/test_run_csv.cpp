@@ -399,7 +399,40 @@ TEST(RunCsv, AColumnNamedTwiceAHexadecimalCellAndTabsAreSaid)
                                           "time_s\tspace_gap_m\tfollower_speed_mps\tleader_speed_mps\n0.0\t20\t10\t10\n");
   const std::string tabs_said = refusalOf(tabs);
   EXPECT_TRUE(contains(tabs_said, "its fields are separated by tabs")) << tabs_said;
-  for (const std::string& path : {twice, hexadecimal, tabs})
+  // A header that names the columns almost right is shown in the refusal.
+  const std::string near = writeTemporary("run_csv_near.csv", "Time,Gap,FollowerSpeed,LeaderSpeed\n0.0,20,10,10\n");
+  const std::string near_said = refusalOf(near);
+  EXPECT_TRUE(contains(near_said, "(its first line reads 'Time,Gap,FollowerSpeed,LeaderSpeed')")) << near_said;
+  // The same name in two cases is one column named twice.
+  const std::string cases = writeTemporary("run_csv_cases.csv",
+                                           "time_s,space_gap_m,follower_speed_mps,leader_speed_mps,Space_Gap_M\n"
+                                           "0.0,20.0,10.0,10.5,25.0\n");
+  const std::string cases_said = refusalOf(cases);
+  EXPECT_TRUE(contains(cases_said, "the header names column 'Space_Gap_M' twice")) << cases_said;
+  for (const std::string& path : {twice, hexadecimal, tabs, near, cases})
+    std::remove(path.c_str());
+}
+
+// The canonical columns are read in any case (the unit is in the name), and a note says which.
+TEST(RunCsv, TheCanonicalColumnsAreReadInAnyCaseAndSaid)
+{
+  const std::string plain = writeTemporary("run_csv_lower.csv",
+                                           "time_s,space_gap_m,follower_speed_mps,leader_speed_mps\n"
+                                           "0.0,20.0,10.0,10.5\n0.1,20.05,10.01,10.5\n");
+  const std::string capitals = writeTemporary("run_csv_capitals.csv",
+                                              "Time_s,SPACE_GAP_M,follower_speed_mps,Leader_Speed_mps\n"
+                                              "0.0,20.0,10.0,10.5\n0.1,20.05,10.01,10.5\n");
+  const acc::RunFileContents expected = acc::readRunFile(plain);
+  const acc::RunFileContents contents = acc::readRunFile(capitals);
+  ASSERT_EQ(contents.runs.size(), 1u);
+  EXPECT_EQ(contents.runs[0].space_gap_m, expected.runs[0].space_gap_m);
+  EXPECT_EQ(contents.runs[0].leader_speed_mps, expected.runs[0].leader_speed_mps);
+  EXPECT_TRUE(expected.notes.empty());
+  ASSERT_EQ(contents.notes.size(), 1u);
+  EXPECT_TRUE(contains(contents.notes[0], "columns read in another case: 'Time_s' as time_s, 'SPACE_GAP_M' as "
+                                          "space_gap_m, 'Leader_Speed_mps' as leader_speed_mps"))
+      << contents.notes[0];
+  for (const std::string& path : {plain, capitals})
     std::remove(path.c_str());
 }
 
