@@ -108,9 +108,14 @@ def pair_nmea_logs(leader_log, follower_log, out_csv, antenna_offset_m=None, lea
 
 
 def _as_frames(runs):
-    """A DataFrame, a path, or a list of either: a list of DataFrames."""
+    """A DataFrame, a path, or a list of either: a list of DataFrames. Anything else (an array, a
+    dict) is a TypeError naming what was given, not a file name made of its values."""
     if not isinstance(runs, (list, tuple)):
         runs = [runs]
+    for run in runs:
+        if not hasattr(run, "columns") and not isinstance(run, (str, os.PathLike)):
+            raise TypeError("a run is a pandas DataFrame (as read_run returns) or a path to a run file, not %s: "
+                            "make a DataFrame with the columns %s" % (type(run).__name__, ", ".join(COLUMNS)))
     return [run if hasattr(run, "columns") else read_run(run) for run in runs]
 
 
@@ -150,6 +155,14 @@ def _pairs_held(frame):
 
 def _column(part, name, where):
     """One column as floats; a missing value (NaN, pandas' NA) stays NaN for the readers' rules."""
+    import pandas
+    dtype = part[name].dtype
+    if pandas.api.types.is_datetime64_any_dtype(dtype) or pandas.api.types.is_timedelta64_dtype(dtype):
+        # Read as numbers they are nanoseconds, which the readers would call a time not in seconds.
+        raise ValueError("%s: column %s holds %s: give it in seconds, e.g. (frame.%s - frame.%s.iloc[0])"
+                         ".dt.total_seconds()" % (where, name, "dates and times" if
+                                                  pandas.api.types.is_datetime64_any_dtype(dtype) else "durations",
+                                                  name, name))
     try:
         return part[name].to_numpy(dtype=float, na_value=math.nan)
     except (TypeError, ValueError) as error:

@@ -200,6 +200,16 @@ def test_bad_input_raises_the_tools_messages():
         acc.diagnose(run, held_out=[])
     with pytest.raises(ValueError, match="split"):
         acc.calibrate(run, split="thirds")
+    # What is not a frame or a path is a TypeError naming it, not a file name made of its values.
+    for given in (run.to_numpy(), run.to_dict()):
+        with pytest.raises(TypeError, match="a run is a pandas DataFrame .* not (ndarray|dict)"):
+            acc.calibrate(given)
+    # Times as dates, or as durations, would be read as nanoseconds: said, with the conversion.
+    dated = run.assign(time_s=pandas.to_datetime(run.time_s, unit="s"))
+    with pytest.raises(ValueError, match="column time_s holds dates and times: give it in seconds"):
+        acc.calibrate(dated)
+    with pytest.raises(ValueError, match="column time_s holds durations"):
+        acc.calibrate(run.assign(time_s=pandas.to_timedelta(run.time_s, unit="s")))
 
 
 def test_the_same_recording_given_twice_is_refused_as_the_tools_refuse_it():
