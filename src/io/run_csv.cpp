@@ -148,6 +148,7 @@ public:
     if (!implausible.empty())
     {
       ++contents_.implausible_rows;
+      contents_.too_fast_rows += values[2] > bounds_.max_speed_mps || values[3] > bounds_.max_speed_mps ? 1 : 0;
       reject(line_number, implausible);
       return;
     }
@@ -586,6 +587,7 @@ void append(RunFileContents& all, RunFileContents&& one)
   all.shortest_step_s = std::min(all.shortest_step_s, one.shortest_step_s);
   all.acc_off_rows += one.acc_off_rows;
   all.single_sample_rows += one.single_sample_rows;
+  all.too_fast_rows += one.too_fast_rows;
   all.sawtooth_rows += one.sawtooth_rows;
   all.sawtooth_spans.insert(all.sawtooth_spans.end(), one.sawtooth_spans.begin(), one.sawtooth_spans.end());
   all.problems.insert(all.problems.end(), one.problems.begin(), one.problems.end());
@@ -687,8 +689,17 @@ std::string describeRowCounts(const std::string& path, const RunFileContents& co
     counts << ", " << contents.single_sample_rows << " rows alone between split points not used";
   if (contents.sawtooth_rows > 0)
     counts << ", the gap of " << contents.sawtooth_rows << " rows rebuilt where it saw-tooths";
-  counts << describeCoarseSteps(contents);
+  counts << describeCoarseSteps(contents) << describeSpeedUnit(contents);
   return counts.str();
+}
+
+std::string describeSpeedUnit(const RunFileContents& contents)
+{
+  if (2 * contents.too_fast_rows <= contents.data_rows)
+    return "";
+  return "; " + std::to_string(contents.too_fast_rows) + " of its " + std::to_string(contents.data_rows) +
+         " rows have a speed above the plausible bound (faster than any car under ACC): the speeds are likely in "
+         "km/h; convert them to m/s (divide by 3.6: the canonical follower_speed_mps, leader_speed_mps)";
 }
 
 std::string describeCoarseSteps(const RunFileContents& contents)
@@ -724,7 +735,8 @@ std::vector<CarFollowingRun> readRuns(const std::string& path, const RunPlausibi
   return reportAndTakeRuns(path, contents, std::cerr);
 }
 
-/// The problem lines listed of a file recorded more coarsely than a run may step (the rest counted).
+/// The problem lines listed of a file recorded more coarsely than a run may step, or with most of its
+/// speeds too fast (the rest counted).
 constexpr std::size_t kCoarseProblemLinesShown = 10;
 
 std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileContents& contents, std::ostream& log)
@@ -735,15 +747,17 @@ std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileC
   }
   const std::vector<std::string> problems = condenseProblemLines(contents.problems);
   // Recorded more coarsely than a run may step (a 1 Hz log at the default 0.5 s), every row is a
-  // hole and a one-sample piece: the first lines show it, the count and the fix follow below,
-  // where 843 lines once buried them.
+  // hole and a one-sample piece; with speeds in km/h, most rows are too fast: the first lines show
+  // it, the count and the fix follow below, where 843 (and 1,140) lines once buried them.
   const bool coarse = !describeCoarseSteps(contents).empty();
-  const std::size_t shown = coarse ? std::min(problems.size(), kCoarseProblemLinesShown) : problems.size();
+  const bool too_fast = !describeSpeedUnit(contents).empty();
+  const std::size_t shown =
+      coarse || too_fast ? std::min(problems.size(), kCoarseProblemLinesShown) : problems.size();
   for (std::size_t i = 0; i < shown; ++i)
     log << "warning: " << problems[i] << "\n";
   if (shown < problems.size())
-    log << "warning: " << path << ": " << problems.size() - shown
-        << " more such lines not listed (each row a hole and a piece too short; counted below)\n";
+    log << "warning: " << path << ": " << problems.size() - shown << " more such lines not listed ("
+        << (coarse ? "each row a hole and a piece too short" : "most rows too fast") << "; counted below)\n";
   const std::string counts = describeRowCounts(path, contents);
   if (!counts.empty())
   {
@@ -762,7 +776,8 @@ std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileC
                        std::to_string(contents.rejected_rows) + " rejected of which " +
                        std::to_string(contents.implausible_rows) + " implausible, " +
                        std::to_string(contents.time_holes) + " holes in time, " +
-                       std::to_string(contents.acc_off_rows) + " with ACC off)" + describeCoarseSteps(contents));
+                       std::to_string(contents.acc_off_rows) + " with ACC off)" + describeCoarseSteps(contents) +
+                       describeSpeedUnit(contents));
   }
   return std::move(contents.runs);
 }

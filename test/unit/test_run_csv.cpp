@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cstdio>
 #include <sstream>
 #include <fstream>
@@ -411,6 +413,33 @@ TEST(RunCsv, AColumnNamedTwiceAHexadecimalCellAndTabsAreSaid)
   EXPECT_TRUE(contains(cases_said, "the header names column 'Space_Gap_M' twice")) << cases_said;
   for (const std::string& path : {twice, hexadecimal, tabs, near, cases})
     std::remove(path.c_str());
+}
+
+// Speeds in km/h above the plausible bound reject every row: the refusal says km/h, and the log
+// lists the first rows and counts the rest instead of a line per row (1,140 on a Casale run).
+TEST(RunCsv, SpeedsTooFastInMostRowsAreSaidToBeKilometresPerHour)
+{
+  std::string text = "time_s,space_gap_m,follower_speed_mps,leader_speed_mps\n";
+  for (int k = 0; k < 200; ++k)
+    text += std::to_string(0.1 * k) + ",40.0," + std::to_string(3.6 * (30.0 + 0.01 * k)) + "," +
+            std::to_string(3.6 * 31.0) + "\n";  // each row's own value: one line each
+  const std::string path = writeTemporary("run_csv_kmh.csv", text);
+  acc::RunFileContents contents = acc::readRunFile(path);
+  EXPECT_EQ(contents.too_fast_rows, 200u);
+  std::ostringstream log;
+  try
+  {
+    acc::reportAndTakeRuns(path, contents, log);
+    ADD_FAILURE() << "no run should be usable";
+  }
+  catch (const acc::RunReadError& error)
+  {
+    EXPECT_TRUE(contains(error.what(), "the speeds are likely in km/h; convert them to m/s")) << error.what();
+  }
+  const std::string said = log.str();
+  EXPECT_TRUE(contains(said, "190 more such lines not listed (most rows too fast; counted below)")) << said;
+  EXPECT_LT(std::count(said.begin(), said.end(), '\n'), 15) << said;
+  std::remove(path.c_str());
 }
 
 // The canonical columns are read in any case (the unit is in the name), and a note says which.

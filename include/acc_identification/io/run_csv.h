@@ -46,6 +46,9 @@ struct RunFileContents
   /// listed in problems. So data_rows = rejected_rows + acc_off_rows + single_sample_rows + the
   /// runs' samples: every row is used or counted.
   std::size_t single_sample_rows = 0;
+  /// Of implausible_rows: a speed above the upper bound (RunPlausibilityBounds::max_speed_mps).
+  /// Most of a file's rows so: its speeds are in km/h (describeSpeedUnit).
+  std::size_t too_fast_rows = 0;
   /// Rows whose gap saw-tooths (a position held between its updates, gap_sawtooth.h) and was
   /// rebuilt from the fixes and the speeds (rebuildSawtoothGap); used, not in rejected_rows; each
   /// stretch listed in problems and in sawtooth_spans (each names its run, and its samples index
@@ -135,6 +138,11 @@ std::string describeCoarseSteps(const RunFileContents& contents);
 /// The same from the counts (a bag's holes against its steps between messages, its shortest step).
 std::string describeCoarseSteps(std::size_t time_holes, std::size_t time_steps,
                                 double shortest_step_s = std::numeric_limits<double>::infinity());
+
+/// "" unless most rows have a speed above the upper bound; then that the speeds are likely in km/h
+/// and to convert them, for the row counts and the error that no run is usable (the rows' own
+/// lines say only that each value is out of bounds).
+std::string describeSpeedUnit(const RunFileContents& contents);
 
 /// readRunFile() for tools: returns the runs, and writes every note and problem (and the counts of
 /// rejected rows and holes) to stderr, so nothing is dropped silently. Throws as readRunFile, and
