@@ -19,15 +19,16 @@ bool report(const acc::RelativeStateLogs& logs, const std::string& out_path)
   for (const std::string& event : logs.stream_events)
     std::cerr << "note: " << event << "\n";
   const acc::RelativeStateCounters& e = logs.estimator;
+  const std::string no_state = acc::noStateReason(logs);  // then no file was written
   std::cout << "nmea_to_csv: leader log: " << logs.leader_log.summary() << "\n"
             << "nmea_to_csv: follower log: " << logs.follower_log.summary() << "\n"
             << "nmea_to_csv: " << acc::fixAccount(logs.pairing) << "; " << e.invalid_states << " of " << e.states << " states invalid ("
             << e.jumps_rejected << " jumps, " << e.held_positions << " held positions, " << e.missing_speed
-            << " without a speed: the reason in each row, split points for the readers) -> " << out_path << "\n";
+            << " without a speed: the reason in each row, split points for the readers)"
+            << (no_state.empty() ? " -> " + out_path : ": nothing written") << "\n";
   const std::string implausible = acc::describeImplausibleGaps(logs);
   if (!implausible.empty())
     std::cerr << "warning: " << implausible << "\n";
-  const std::string no_state = acc::noStateReason(logs);
   if (!no_state.empty())
     std::cerr << "error: " << no_state << "\n";
   return no_state.empty();

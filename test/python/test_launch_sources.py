@@ -225,6 +225,9 @@ class UserCommands(unittest.TestCase):
         apart = self.run_command(tool + ["--antenna-offset-m", "4.5", leader, "F_late.nmea", "apart.csv"])
         self.assertEqual(apart.returncode, 2, apart.stdout + apart.stderr)
         self.assertIn("no follower epoch could be paired", apart.stderr)
+        self.assertIn(": nothing written", apart.stdout)  # not "-> apart.csv": no file is made
+        self.assertNotIn("-> apart.csv", apart.stdout)
+        self.assertFalse((self.directory / "apart.csv").exists())
 
     def test_calibrate_report_has_the_headline_traces_and_a_figure_per_run(self):
         result = self.run_command(["rosrun", "acc_identification", "calibrate", "--quiet", "--split", "half",
