@@ -42,7 +42,9 @@ std::string describeScale(const GapKinematics& k, const GapKinematicsOptions& op
   return "the gap and the speeds disagree: over " + std::to_string(k.windows) + " windows of " +
          printfText("%g s the gap changes at %.2g", options.window_s, k.scale) +
          " of the rate the speed difference says (1 when the gap is in metres and the speeds in m/s; "
-         "speeds in km/h give 0.28, a gap in feet 3.3): check the units";
+         "speeds in km/h give 0.28, a gap in feet 3.3): check the units" +
+         (k.scale > 0.0 ? std::string()
+                        : " (a ratio at or below 0 is no unit: the gap's sign, or a gap and speeds of different cars)");
 }
 
 void describeJumps(const GapKinematics& k, const GapKinematicsOptions& options, std::vector<std::string>* warnings)

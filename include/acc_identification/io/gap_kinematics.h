@@ -55,8 +55,8 @@ struct GapKinematics
 
 /// What a reader that refuses data for their unit_error says after it.
 inline constexpr const char* kUnitErrorRefusal =
-    ": not used: a model fitted to a gap and speeds in different units gives wrong numbers, not an estimate "
-    "(convert the gap to metres and the speeds to m/s)";
+    ": not used: a model fitted to a gap and speeds that disagree gives wrong numbers, not an estimate (the gap "
+    "in metres and the speeds in m/s, of the same two cars)";
 
 /// The check above over every run (windows never cross runs).
 GapKinematics checkGapKinematics(const std::vector<CarFollowingRun>& runs, const GapKinematicsOptions& options = {});
