@@ -29,22 +29,66 @@ std::string cell(double value, int decimals)
   return out.str();
 }
 
-/// Feeds both logs' fixes in GNSS-time order, the leader's first at equal times.
-void feedInTimeOrder(const std::vector<GnssFix>& leader, const std::vector<GnssFix>& follower,
-                     RelativeStateEstimator& estimator, RelativeStateLogs& logs)
+/// Where each stretch of a log on one clock ends: after a fix whose successor's time goes back more
+/// than time_reset_s (a log looped, a receiver's clock reset), as the pairing tells a reset. A few
+/// fixes stamped far back (at most kStrayStampFixes), after which the log is on its clock again,
+/// are stray stamps, not a new clock: they stay in their stretch (the pairing counts them).
+std::vector<std::size_t> clockStretchEnds(const std::vector<GnssFix>& fixes, double time_reset_s)
 {
-  std::size_t l = 0, f = 0;
-  while (l < leader.size() || f < follower.size())
+  constexpr std::size_t kStrayStampFixes = 10;  // a second at 10 Hz
+  std::vector<std::size_t> ends;
+  double newest = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t i = 0; i < fixes.size(); ++i)
   {
-    // A fix without a finite time goes in where it stands in its log: the pairing counts it.
-    const bool take_leader = f == follower.size() ||
-                             (l < leader.size() && !(follower[f].gnss_time_s < leader[l].gnss_time_s));
-    if (take_leader)
-      estimator.addLeader(leader[l++]);
-    else
-      estimator.addFollower(follower[f++]);
-    for (RelativeState& state : estimator.takeStates())
-      logs.states.push_back(std::move(state));
+    const double t = fixes[i].gnss_time_s;
+    const bool back = std::isfinite(newest) && t < newest - time_reset_s;
+    std::size_t back_on_clock = i + 1;
+    while (back && back_on_clock < std::min(fixes.size(), i + kStrayStampFixes + 1) &&
+           !(fixes[back_on_clock].gnss_time_s >= newest - time_reset_s))
+      ++back_on_clock;
+    if (back && back_on_clock < fixes.size() && fixes[back_on_clock].gnss_time_s >= newest - time_reset_s)
+    {
+      i = back_on_clock - 1;  // stray stamps up to there
+      continue;
+    }
+    if (back)
+    {
+      ends.push_back(i);
+      newest = t;
+    }
+    else if (std::isfinite(t))
+      newest = std::isfinite(newest) ? std::max(newest, t) : t;
+  }
+  ends.push_back(fixes.size());
+  return ends;
+}
+
+/// Feeds both logs' fixes in GNSS-time order, the leader's first at equal times, stretch by
+/// stretch of one clock: the k-th stretch of each log together (a log played twice is two drives,
+/// not one whose times interleave), a log's stretches beyond the other's after all of it (a clock
+/// that went back on one receiver only: the pairing then pairs nothing across the two clocks).
+void feedInTimeOrder(const std::vector<GnssFix>& leader, const std::vector<GnssFix>& follower,
+                     RelativeStateEstimator& estimator, RelativeStateLogs& logs, double time_reset_s)
+{
+  const std::vector<std::size_t> leader_ends = clockStretchEnds(leader, time_reset_s);
+  const std::vector<std::size_t> follower_ends = clockStretchEnds(follower, time_reset_s);
+  std::size_t l = 0, f = 0;
+  for (std::size_t k = 0; k < std::max(leader_ends.size(), follower_ends.size()); ++k)
+  {
+    const std::size_t l_end = leader_ends[std::min(k, leader_ends.size() - 1)];
+    const std::size_t f_end = follower_ends[std::min(k, follower_ends.size() - 1)];
+    while (l < l_end || f < f_end)
+    {
+      // A fix without a finite time goes in where it stands in its log: the pairing counts it.
+      const bool take_leader =
+          f == f_end || (l < l_end && !(follower[f].gnss_time_s < leader[l].gnss_time_s));
+      if (take_leader)
+        estimator.addLeader(leader[l++]);
+      else
+        estimator.addFollower(follower[f++]);
+      for (RelativeState& state : estimator.takeStates())
+        logs.states.push_back(std::move(state));
+    }
   }
 }
 
@@ -130,7 +174,7 @@ RelativeStateLogs pairNmeaLogs(const std::string& leader_path, const std::string
   logs.leader_log = leader.statistics;
   logs.follower_log = follower.statistics;
   RelativeStateEstimator estimator(settings);
-  feedInTimeOrder(leader.fixes, follower.fixes, estimator, logs);
+  feedInTimeOrder(leader.fixes, follower.fixes, estimator, logs, settings.pairing.time_reset_s);
   estimator.finish();
   for (RelativeState& state : estimator.takeStates())
     logs.states.push_back(std::move(state));

@@ -130,9 +130,12 @@ bool EpochPairer::acceptStream(const GnssFix& fix, bool leader)
       last_output_s_ = GnssFix::kNaN;
       break_before_next_ = true;
     }
+    // The leader still on the clock the follower left (not reset before it, as a looping log's
+    // leader may be): the follower's new epochs are on another clock than the leader's.
+    const bool leader_on_old_clock = !leader && newest_leader_s_ >= newest - settings_.time_reset_s;
     newest = t;
     arrived_out_of_order_ = false;
-    noteTimeBases(!leader);
+    noteTimeBases(leader_on_old_clock);
     return true;
   }
   const bool dropout = std::isfinite(newest) && t > newest + settings_.dropout_gap_s;
@@ -178,13 +181,15 @@ void EpochPairer::noteDropout(const char* name, double from_s, double to_s, std:
 
 // After a time reset of the follower (a looping bag, a receiver reset) the leader, still on the
 // old time base far ahead, is about to follow it: until it does, how far its stream is past the
-// follower's new epochs says nothing of what can still come for them. Over once the two streams'
-// newest epochs are within time_reset_s again (the leader has reset too, or the follower's time
-// came back). A follower merely arriving late, without a reset, is not this.
-void EpochPairer::noteTimeBases(bool follower_reset)
+// follower's new epochs says nothing of what can still come for them, and its fixes are on another
+// clock than theirs (tryPair pairs none). Over once the two streams' newest epochs are within
+// time_reset_s again (the leader has reset too, or the follower's time came back). A follower
+// merely arriving late, without a reset, is not this; nor is a follower resetting onto a clock the
+// leader reset to before it (a looping log whose leader loops first).
+void EpochPairer::noteTimeBases(bool follower_left_leaders_clock)
 {
   bool leader_far_ahead = newest_leader_s_ > newest_follower_s_ + settings_.time_reset_s;
-  leader_reset_awaited_ = leader_far_ahead && (leader_reset_awaited_ || follower_reset);
+  leader_reset_awaited_ = leader_far_ahead && (leader_reset_awaited_ || follower_left_leaders_clock);
 }
 
 void EpochPairer::insertLeader(const GnssFix& fix)
@@ -263,7 +268,7 @@ void EpochPairer::resolvePending()
     PairedEpoch pair;
     Resolution resolution = tryPair(follower, pair);
     bool timed_out = finishing_ || newest_follower_s_ - t > settings_.timeout_s;
-    if (resolution == Resolution::kWaiting && !timed_out)
+    if ((resolution == Resolution::kWaiting || resolution == Resolution::kOtherClock) && !timed_out)
       break;
     if (resolution == Resolution::kInterpolable && !leaderIsPast(t) && !timed_out)
       break;
@@ -295,8 +300,13 @@ void EpochPairer::giveUp(double time_s, Resolution resolution)
   ++counters_.follower_unpaired;
   break_before_next_ = true;
   std::string why = resolution == Resolution::kUnpairable ? "the leader's stream is past it (at " + seconds(newest_leader_s_) + " s)"
-                    : finishing_                          ? "and the streams ended"
-                                                          : "after waiting " + seconds(settings_.timeout_s) + " s";
+                    : resolution == Resolution::kOtherClock
+                        ? "the follower's time went back and the leader's did not (its newest " +
+                              seconds(newest_leader_s_) + " s): the two clocks now disagree, and the leader's fixes "
+                              "would pair positions from another moment; pairing resumes when the leader's time goes "
+                              "back too (a looping log) or the follower's comes back"
+                    : finishing_ ? "and the streams ended"
+                                 : "after waiting " + seconds(settings_.timeout_s) + " s";
   // A leader whose epochs are further apart than the skew leaves some follower epochs between two
   // of them unpaired every time: say what to set, not only that they are lost.
   const bool leader_coarser = leader_period_s_ > settings_.max_interpolation_skew_s + settings_.exact_match_tolerance_s;
@@ -318,6 +328,11 @@ bool EpochPairer::leaderIsPast(double time_s) const
 EpochPairer::Resolution EpochPairer::tryPair(const GnssFix& follower, PairedEpoch& pair) const
 {
   double t = follower.gnss_time_s;
+  // A loop's leader clears its old fixes when it resets too; a leader that never does runs on the
+  // clock the follower left: a follower clock jumped back 20 s would pair its positions with the
+  // leader's of 20 s before, a gap hundreds of metres off that every check after the break takes.
+  if (leader_reset_awaited_)
+    return Resolution::kOtherClock;
   double tolerance = settings_.exact_match_tolerance_s;
   auto after = std::lower_bound(leader_.begin(), leader_.end(), t - tolerance, earlier);
   pair.time_s = t;

@@ -138,6 +138,55 @@ TEST(NmeaLogsToCsv, FollowerEpochsAfterTheLeadersLogEndsAreCountedUnpaired)
   EXPECT_GE(logs.epoch_events, 20u);
 }
 
+namespace
+{
+/// Casale part 3's two receivers' fixes, changed by `change` (leader, follower), paired from logs.
+template <typename Change>
+acc::RelativeStateLogs pairChangedLogs(const std::string& name, Change change)
+{
+  const acc::OpenAccPairTrack track = acc::readOpenAccPairTrack(std::string(ACC_OPENACC_DATA_DIR) + "/part3.csv");
+  std::vector<acc::GnssFix> leader = acc::openAccFixes(track, 1), follower = acc::openAccFixes(track, 2);
+  change(leader, follower);
+  TemporaryFolder folder(name);
+  std::string error;
+  EXPECT_TRUE(acc::writeNmeaLog(folder.file("L.nmea"), leader, "GN", error)) << error;
+  EXPECT_TRUE(acc::writeNmeaLog(folder.file("F.nmea"), follower, "GN", error)) << error;
+  return acc::pairNmeaLogs(folder.file("L.nmea"), folder.file("F.nmea"), casaleSettings());
+}
+}  // namespace
+
+// The clocks of the two logs, as the batch feeds them: a log played twice pairs twice, loop by loop
+// (the two loops' times no longer interleave: half the epochs were lost); a follower whose clock
+// goes back alone pairs nothing after it (its positions would meet the leader's of another moment:
+// gaps hundreds of metres off, all valid); a few fixes stamped far back are no new clock.
+TEST(NmeaLogsToCsv, EachLogsClocksArePairedAsTheyRan)
+{
+  const acc::RelativeStateLogs loop = pairChangedLogs("nmea_logs_loop", [](auto& leader, auto& follower) {
+    const std::size_t n = leader.size();
+    leader.insert(leader.end(), leader.begin(), leader.begin() + static_cast<std::ptrdiff_t>(n));
+    follower.insert(follower.end(), follower.begin(), follower.begin() + static_cast<std::ptrdiff_t>(n));
+  });
+  EXPECT_EQ(loop.pairing.follower_unpaired, 0u);
+  EXPECT_EQ(loop.pairing.follower_time_resets, 1u);
+  const std::size_t half = loop.states.size() / 2;
+  const acc::RelativeStateLogs jumped = pairChangedLogs("nmea_logs_jump", [&](auto&, auto& follower) {
+    for (std::size_t i = follower.size() / 2; i < follower.size(); ++i)
+      follower[i].gnss_time_s -= 20.0;
+  });
+  EXPECT_EQ(jumped.error, "");
+  EXPECT_EQ(jumped.pairing.follower_time_resets, 1u);
+  EXPECT_EQ(jumped.states.size() + jumped.pairing.follower_unpaired, half);
+  EXPECT_LE(jumped.states.size(), half / 2 + 1);
+  for (const acc::RelativeState& state : jumped.states)
+    EXPECT_LT(state.space_gap_m, 100.0) << "at " << state.time_s;
+  const acc::RelativeStateLogs stray = pairChangedLogs("nmea_logs_stray", [](auto&, auto& follower) {
+    for (std::size_t i = 1000; i < 1003; ++i)
+      follower[i].gnss_time_s -= 3600.0;
+  });
+  EXPECT_EQ(stray.pairing.follower_unpaired, 3u);
+  EXPECT_EQ(stray.states.size(), half - 3);
+}
+
 // A log that cannot be read is an error, and nothing is paired.
 TEST(NmeaLogsToCsv, AMissingLogIsAnError)
 {

@@ -573,6 +573,56 @@ TEST(Pairing, AFollowerTimeGlitchDoesNotLeaveTheEpochsBehindItWaiting)
   EXPECT_EQ(pairer.takePairs().size(), 401u - 1u);
 }
 
+// A follower receiver whose clock jumps back 20 s and stays there while the leader's runs on: its
+// new labels would match leader fixes of 20 s before, and a pair of them is a gap hundreds of
+// metres off that every check after the break would take. None is made; each epoch is counted
+// unpaired, with the reason. Fails when the follower's epochs pair with the leader's buffered ones
+// (every one did once its labels caught up with the leader's).
+TEST(Pairing, AFollowerClockThatJumpsBackAloneIsPairedWithNothingFromTheOtherClock)
+{
+  acc::EpochPairer pairer;
+  std::size_t before = 0;
+  for (double t : epochs(0.0, 60.0))  // arrival order is real time: the leader runs on
+  {
+    pairer.addLeader(fixAt(t));
+    pairer.addFollower(fixAt(t < 30.0 ? t : t - 20.0, -0.001));
+    if (t < 30.0)
+      before = pairer.counters().exact_pairs + pairer.counters().interpolated_pairs;
+  }
+  pairer.finish();
+  EXPECT_EQ(pairer.counters().follower_time_resets, 1u);
+  EXPECT_EQ(pairer.counters().leader_time_resets, 0u);
+  EXPECT_EQ(pairer.counters().exact_pairs + pairer.counters().interpolated_pairs, before);
+  EXPECT_EQ(pairer.counters().follower_unpaired, 601u - before);
+  bool said = false;
+  for (const acc::PairingEvent& event : pairer.takeEvents())
+    said = said || event.text.find("the two clocks now disagree") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
+// A looping replay whose leader comes round 10 s before the follower: when the follower loops, the
+// leader is already on the new clock, ahead of it. Its epochs pair with the leader's buffered ones,
+// as they should: the leader is not awaited to reset again.
+TEST(Pairing, AFollowerThatLoopsAfterTheLeaderPairsOnTheLeadersNewClock)
+{
+  acc::PairingSettings settings;
+  settings.max_buffered_fixes = 5000;
+  acc::EpochPairer pairer(settings);
+  const auto drive = epochs(0.0, 60.0);
+  for (std::size_t i = 0; i < 2 * drive.size(); ++i)
+  {
+    pairer.addLeader(fixAt(drive[(i + 100) % drive.size()]));  // loops 100 epochs (10 s) earlier
+    pairer.addFollower(fixAt(drive[i % drive.size()], -0.001));
+  }
+  pairer.finish();
+  EXPECT_EQ(pairer.counters().follower_time_resets, 1u);
+  EXPECT_EQ(pairer.counters().leader_time_resets, 2u);  // its second loop's end comes round too
+  // Each loop pairs up to 50 s, where the leader's next reset clears what the follower's last
+  // 10 s needed: the first from 10 s (the leader's first fix), 401 epochs; the second from 0 s,
+  // 501. Awaiting the leader's reset at the follower's loop would leave the second unpaired (401).
+  EXPECT_EQ(pairer.counters().exact_pairs, 401u + 501u);
+}
+
 // The ROS node sizes its publisher's queue by mostPairsAtOnce(): no call may complete more, even
 // when a reorder window as long as the timeout lets an early epoch hold back the buffer behind it.
 TEST(Pairing, NoCallCompletesMorePairsThanMostPairsAtOnce)

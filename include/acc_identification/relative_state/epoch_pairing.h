@@ -116,10 +116,13 @@ public:
 private:
   // kInterpolable: an interpolation is ready, but the leader's own epoch is expected.
   // kWaiting: a leader fix it needs can still arrive. kUnpairable: none can any more.
-  enum class Resolution { kPaired, kInterpolable, kWaiting, kUnpairable };
+  /// kOtherClock: the follower's time went back and the leader's has not (leader_reset_awaited_):
+  /// the leader's fixes are on another clock than the follower's new epochs, pairing them would
+  /// pair positions that many seconds apart; it waits as kWaiting does, and is given up as such.
+  enum class Resolution { kPaired, kInterpolable, kWaiting, kUnpairable, kOtherClock };
 
   bool acceptStream(const GnssFix& fix, bool leader);
-  void noteTimeBases(bool follower_reset);
+  void noteTimeBases(bool follower_left_leaders_clock);
   void noteDropout(const char* name, double from_s, double to_s, std::size_t& in_a_row);
   void insertLeader(const GnssFix& fix);
   void insertFollower(const GnssFix& fix);
