@@ -551,21 +551,28 @@ void IdentifierRos::runPeriod(double now_s, bool catch_up)
   // A catch-up period comes when /clock has stood still for a second: under sim time no sample
   // comes without it, so the data have stopped, whatever arrived since the last period.
   const bool stalled = catch_up || drive_samples == previous_period_drive_samples_;
-  if (catch_up && !(grown && stalled) && stability_tests_ == looks_published_)
+  // The last samples came in a period whose look was due: that look was made as if more would come
+  // (the last, partial block not looked at). The data stopped since: the look at every sample is
+  // still owed, though the count has not grown.
+  const bool final_look_owed = stalled && !grown && !last_request_data_stopped_ && last_stability_request_samples_ > 0;
+  if (catch_up && !(grown && stalled) && !final_look_owed && stability_tests_ == looks_published_)
     return;  // nothing new to fit, look at or publish: the last estimate stands
   const bool due = now_s - last_stability_request_s_ >= settings_.stability_period_s || now_s < last_stability_request_s_;
   previous_period_drive_samples_ = drive_samples;
-  if (grown && (due || stalled))
+  if ((grown && (due || stalled)) || final_look_owed)
   {
     job.test_stability = true;
     job.data_stopped = stalled;
     last_stability_request_s_ = now_s;
     last_stability_request_samples_ = drive_samples;
+    last_request_data_stopped_ = stalled;
   }
   {
     std::lock_guard<std::mutex> lock(job_mutex_);
     if (busy_)
     {
+      if (job.test_stability)
+        last_stability_request_samples_ = 0;  // the look asked for goes with the period: ask again
       ++skipped_periods_;
       ROS_WARN_THROTTLE(5.0, "identifier: the previous solve overran the %.2f s period: this period is skipped "
                         "(%llu skipped so far)", settings_.period_s, static_cast<unsigned long long>(skipped_periods_.load()));

@@ -224,6 +224,9 @@ private:
   double last_stability_request_s_ = -1.0e300;  ///< ROS time, timer thread only
   std::uint64_t last_stability_request_samples_ = 0;  ///< drive samples taken then, timer thread only
   std::uint64_t previous_period_drive_samples_ = 0;   ///< timer thread only
+  /// Whether the last look asked for was the one made as the data stopped (timer thread only): a
+  /// look made while they still came, at the same count, leaves the last block to that one.
+  bool last_request_data_stopped_ = false;
 
   std::mutex job_mutex_;
   std::condition_variable job_ready_;
