@@ -27,7 +27,7 @@ DEV := $(WS)/devel/setup.bash
 APT_PACKAGES := build-essential cmake clang libclang-rt-14-dev \
   catkin python3-catkin-pkg ros-core-dev ros-message-generation ros-message-runtime \
   libroscpp-dev librosbag-dev python3-rosbag libstd-msgs-dev python3-std-msgs \
-  libsensor-msgs-dev libgeometry-msgs-dev libdiagnostic-msgs-dev python3-diagnostic-msgs \
+  libsensor-msgs-dev python3-sensor-msgs libgeometry-msgs-dev python3-geometry-msgs libdiagnostic-msgs-dev python3-diagnostic-msgs \
   libdiagnostic-updater-dev libros-rosgraph-msgs-dev python3-rosgraph-msgs \
   python3-rospy python3-rosgraph python3-rostest librostest-dev python3-rosunit \
   python3-roslaunch python3-rostopic python3-rosnode python3-rosparam python3-rosmaster \
