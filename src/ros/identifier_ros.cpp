@@ -297,6 +297,10 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node,
   }
   if (const std::string unread = reader.unreadNote(); !unread.empty())
     ROS_WARN("identifier: %s", unread.c_str());
+  if (settings_.window_s < settings_.criteria.min_duration_s)
+    ROS_WARN("identifier: ~window_s (%g s) is shorter than ~min_duration_s (%g s): no window can hold enough data to "
+             "fit, so every window estimate will say so; only the drive so far is fitted. Lengthen the window or "
+             "lower min_duration_s", settings_.window_s, settings_.criteria.min_duration_s);
   const auto min_segment = static_cast<std::size_t>(settings_.min_segment_samples);
   const auto confirm = static_cast<std::size_t>(settings_.jump_confirm_samples);
   window_ = SlidingWindow(settings_.window_s, settings_.max_gap_s, min_segment, settings_.max_forward_jump_s, confirm);
