@@ -156,13 +156,11 @@ def _pairs_held(frame):
 def _column(part, name, where):
     """One column as floats; a missing value (NaN, pandas' NA) stays NaN for the readers' rules."""
     import pandas
-    dtype = part[name].dtype
-    if pandas.api.types.is_datetime64_any_dtype(dtype) or pandas.api.types.is_timedelta64_dtype(dtype):
+    dates = pandas.api.types.is_datetime64_any_dtype(part[name].dtype)
+    if dates or pandas.api.types.is_timedelta64_dtype(part[name].dtype):
         # Read as numbers they are nanoseconds, which the readers would call a time not in seconds.
         raise ValueError("%s: column %s holds %s: give it in seconds, e.g. (frame.%s - frame.%s.iloc[0])"
-                         ".dt.total_seconds()" % (where, name, "dates and times" if
-                                                  pandas.api.types.is_datetime64_any_dtype(dtype) else "durations",
-                                                  name, name))
+                         ".dt.total_seconds()" % (where, name, "dates and times" if dates else "durations", name, name))
     try:
         return part[name].to_numpy(dtype=float, na_value=math.nan)
     except (TypeError, ValueError) as error:

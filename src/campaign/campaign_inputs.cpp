@@ -290,31 +290,42 @@ void addSawtoothCars(const std::vector<PairSawtooth>& pairs, const std::string& 
 
 /// The file's unit error: the first pair's words when some pair's ratio is a unit error and no
 /// pair's judged ratio is right (speeds or gaps in other units throughout, not one car's column;
-/// pairs in steady following judge nothing), else "".
-std::string unitErrorOfFile(const AllPairRuns& all)
+/// pairs in steady following judge nothing), else "". `kinematics`: kinematicsOfPairs(all).
+std::string unitErrorOfFile(const AllPairRuns& all, const std::vector<GapKinematics>& kinematics)
 {
   std::string first;
-  for (const PairRunContents& pair : all.pairs)
+  for (std::size_t i = 0; i < all.pairs.size(); ++i)
   {
-    const GapKinematics kinematics = checkGapKinematics(pair.contents.runs);
-    if (kinematics.ratio_judged && kinematics.unit_error.empty())
+    if (kinematics[i].ratio_judged && kinematics[i].unit_error.empty())
       return "";
-    if (first.empty() && !kinematics.unit_error.empty())
-      first = pair.pair.label() + ": " + kinematics.unit_error;
+    if (first.empty() && !kinematics[i].unit_error.empty())
+      first = all.pairs[i].pair.label() + ": " + kinematics[i].unit_error;
   }
   return first;
 }
 
-/// Adds the pairs of one file to the groups being built (keyed by vehicle and setting).
-void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile& file,
-              std::map<std::pair<std::string, std::string>, CampaignGroup>& groups, std::vector<std::string>& notes,
-              std::size_t& skipped_pairs)
+/// Each pair's gap against its speeds (checkGapKinematics), in all.pairs' order: judged once for
+/// the file's unit error and for each pair's own.
+std::vector<GapKinematics> kinematicsOfPairs(const AllPairRuns& all)
+{
+  std::vector<GapKinematics> kinematics;
+  for (const PairRunContents& pair : all.pairs)
+    kinematics.push_back(checkGapKinematics(pair.contents.runs));
+  return kinematics;
+}
+
+/// Adds the pairs of one file to the groups being built (keyed by vehicle and setting);
+/// `kinematics` is kinematicsOfPairs(all).
+void addPairs(const AllPairRuns& all, const std::vector<GapKinematics>& kinematics, std::size_t file_index,
+              const CampaignFile& file, std::map<std::pair<std::string, std::string>, CampaignGroup>& groups,
+              std::vector<std::string>& notes, std::size_t& skipped_pairs)
 {
   std::vector<std::string> rejected;  // "TESLA_MODEL3 59": the pairs that lose rows, in one note
   std::vector<std::string> acc_off;   // "BMW_I3 120": the pairs whose follower was driven by hand
   std::vector<PairSawtooth> sawtooths;
-  for (const PairRunContents& pair : all.pairs)
+  for (std::size_t i = 0; i < all.pairs.size(); ++i)
   {
+    const PairRunContents& pair = all.pairs[i];
     if (pair.contents.runs.empty())
     {
       notes.push_back(file.path + ": " + pair.pair.label() + ": no usable run (" + whyNoUsableRun(pair.contents) +
@@ -322,10 +333,9 @@ void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile
       ++skipped_pairs;
       continue;
     }
-    const GapKinematics kinematics = checkGapKinematics(pair.contents.runs);
-    if (!kinematics.unit_error.empty())
+    if (!kinematics[i].unit_error.empty())
     {
-      notes.push_back(file.path + ": " + pair.pair.label() + ": " + kinematics.unit_error + kUnitErrorRefusal +
+      notes.push_back(file.path + ": " + pair.pair.label() + ": " + kinematics[i].unit_error + kUnitErrorRefusal +
                       ", skipped");
       ++skipped_pairs;
       continue;
@@ -334,7 +344,7 @@ void addPairs(const AllPairRuns& all, std::size_t file_index, const CampaignFile
       rejected.push_back(describePairLosses(pair));
     if (pair.contents.acc_off_rows > 0)
       acc_off.push_back(pair.pair.follower_name + " " + std::to_string(pair.contents.acc_off_rows));
-    for (const std::string& disagreement : kinematics.warnings)
+    for (const std::string& disagreement : kinematics[i].warnings)
       notes.push_back(file.path + ": " + pair.pair.label() + ": " + disagreement);
     for (const GapSawtoothSpan& span : pair.contents.sawtooth_spans)
       notes.push_back(file.path + ": " + pair.pair.label() + ": " + describeSawtoothSpan(span) + "; " +
@@ -541,7 +551,8 @@ void addFile(const std::string& path, const RunPlausibilityBounds& bounds, const
     ++inputs.skipped_files;
     return;
   }
-  if (const std::string unit_error = unitErrorOfFile(all); !unit_error.empty())
+  const std::vector<GapKinematics> kinematics = kinematicsOfPairs(all);
+  if (const std::string unit_error = unitErrorOfFile(all, kinematics); !unit_error.empty())
   {
     // Not one car's column but the file's units: its platoon would be judged in them too.
     inputs.notes.push_back(path + ": no pair's gap and speeds agree, and " + unit_error + kUnitErrorRefusal +
@@ -558,7 +569,7 @@ void addFile(const std::string& path, const RunPlausibilityBounds& bounds, const
     file.pairs_read.push_back(accountOfRunFile(path, pair.contents));
   read.add(speedsOf(file.contents), inputs.files.size());
   inputs.files.push_back(std::move(file));
-  addPairs(all, inputs.files.size() - 1, inputs.files.back(), groups, inputs.notes, inputs.skipped_pairs);
+  addPairs(all, kinematics, inputs.files.size() - 1, inputs.files.back(), groups, inputs.notes, inputs.skipped_pairs);
 }
 }  // namespace
 

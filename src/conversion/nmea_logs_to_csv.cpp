@@ -41,23 +41,24 @@ std::vector<std::size_t> clockStretchEnds(const std::vector<GnssFix>& fixes, dou
   for (std::size_t i = 0; i < fixes.size(); ++i)
   {
     const double t = fixes[i].gnss_time_s;
-    const bool back = std::isfinite(newest) && t < newest - time_reset_s;
+    // (A fix without a finite time is neither back nor on the clock: it stays where it stands.)
+    const auto on_clock = [&](std::size_t j) { return fixes[j].gnss_time_s >= newest - time_reset_s; };
+    if (!(std::isfinite(newest) && t < newest - time_reset_s))
+    {
+      if (std::isfinite(t))
+        newest = std::isfinite(newest) ? std::max(newest, t) : t;
+      continue;
+    }
     std::size_t back_on_clock = i + 1;
-    while (back && back_on_clock < std::min(fixes.size(), i + kStrayStampFixes + 1) &&
-           !(fixes[back_on_clock].gnss_time_s >= newest - time_reset_s))
+    while (back_on_clock < std::min(fixes.size(), i + kStrayStampFixes + 1) && !on_clock(back_on_clock))
       ++back_on_clock;
-    if (back && back_on_clock < fixes.size() && fixes[back_on_clock].gnss_time_s >= newest - time_reset_s)
+    if (back_on_clock < fixes.size() && on_clock(back_on_clock))
     {
       i = back_on_clock - 1;  // stray stamps up to there
       continue;
     }
-    if (back)
-    {
-      ends.push_back(i);
-      newest = t;
-    }
-    else if (std::isfinite(t))
-      newest = std::isfinite(newest) ? std::max(newest, t) : t;
+    ends.push_back(i);
+    newest = t;
   }
   ends.push_back(fixes.size());
   return ends;

@@ -33,13 +33,14 @@ struct ColumnMap
   std::optional<std::size_t> invalid_reason;  ///< and why a row is not
 };
 
+/// The canonical columns, in ColumnMap::index's order (time, gap, follower, leader).
+const std::array<const char*, 4> kCanonicalColumns{"time_s", "space_gap_m", "follower_speed_mps", "leader_speed_mps"};
+
 /// Whether a header cell names `name` in any case ("Time_s" is time_s: the unit is in the name,
 /// and a spreadsheet may capitalise it; OpenACC's columns are read in any case too).
 bool namesColumn(const std::string& cell, const std::string& name)
 {
-  return std::equal(cell.begin(), cell.end(), name.begin(), name.end(), [](char a, char b) {
-    return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
-  });
+  return upperCase(cell) == upperCase(name);
 }
 
 std::optional<std::size_t> findColumn(const std::vector<std::string>& header, const std::string& name)
@@ -58,11 +59,10 @@ std::optional<std::size_t> findColumn(const std::vector<std::string>& header, co
 std::string describeColumnSpellings(const std::string& path, const std::vector<std::string>& header,
                                     const ColumnMap& map)
 {
-  static const std::array<const char*, 4> kNames{"time_s", "space_gap_m", "follower_speed_mps", "leader_speed_mps"};
   std::vector<std::string> read_as;
-  for (std::size_t q = 0; q < 4; ++q)
-    if (header[map.index[q]] != kNames[q])
-      read_as.push_back("'" + header[map.index[q]] + "' as " + kNames[q]);
+  for (std::size_t q = 0; q < kCanonicalColumns.size(); ++q)
+    if (header[map.index[q]] != kCanonicalColumns[q])
+      read_as.push_back("'" + header[map.index[q]] + "' as " + kCanonicalColumns[q]);
   return read_as.empty() ? "" : path + ": columns read in another case: " + join(read_as, ", ");
 }
 
@@ -83,11 +83,10 @@ std::string firstLineHint(const std::string& path)
 /// told by their Date line and read by readOpenAccFile.
 std::optional<ColumnMap> mapColumns(const std::vector<std::string>& header)
 {
-  static const std::array<const char*, 4> kNames{"time_s", "space_gap_m", "follower_speed_mps", "leader_speed_mps"};
   ColumnMap map;
-  for (std::size_t q = 0; q < 4; ++q)
+  for (std::size_t q = 0; q < kCanonicalColumns.size(); ++q)
   {
-    const auto found = findColumn(header, kNames[q]);
+    const auto found = findColumn(header, kCanonicalColumns[q]);
     if (!found)
     {
       return std::nullopt;
