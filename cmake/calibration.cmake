@@ -59,7 +59,7 @@ install(PROGRAMS scripts/plot_calibration.py scripts/report_headline.py
 acc_add_tool(verdict_study LINK acc_calibration acc_synthetic_runs)
 
 # identifier_node: the sliding-window identifier (ROS wrapper and its ten-line main).
-acc_add_ros_library(acc_identifier_ros SOURCES src/ros/identifier_ros.cpp LINK acc_calibration acc_run_io
+acc_add_ros_library(acc_identifier_ros SOURCES src/ros/identifier_ros.cpp src/ros/stability_look_schedule.cpp LINK acc_calibration acc_run_io
   acc_ros_parameters)
 acc_add_node(identifier_node WRAPPER acc_identifier_ros)
 
@@ -103,6 +103,7 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_calibration_bag.cpp
     test/unit/test_identifier_message.cpp
     test/unit/test_identifier_health.cpp
+    test/unit/test_stability_look_schedule.cpp
     test/unit/test_number_checks.cpp)
   target_link_libraries(test_calibration_ros acc_calibration_ros acc_identifier_ros acc_synthetic_runs)
 

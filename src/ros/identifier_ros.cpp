@@ -278,7 +278,8 @@ acc_identification::AccParameters toMessage(const Identification& identification
 }
 
 IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node, SolveFunction solve)
-  : solve_(std::move(solve)), window_(settings_.window_s, settings_.max_gap_s, 2), drive_(settings_.max_gap_s, 2)
+  : solve_(std::move(solve)), window_(settings_.window_s, settings_.max_gap_s, 2), drive_(settings_.max_gap_s, 2),
+    look_schedule_(settings_.stability_period_s)
 {
   if (!solve_)
   {
@@ -320,6 +321,7 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node,
   verdict_options.alpha = settings_.alpha;
   verdict_options.look_period_s = settings_.stability_period_s;
   sequential_.emplace(verdict_options);
+  look_schedule_ = StabilityLookSchedule(settings_.stability_period_s);
   engagement_ = AccEngagement(settings_.engagement);
   // Latched: a subscriber that comes late (a `rostopic echo` after a replay has ended) gets the
   // last estimate and verdict rather than nothing.
@@ -524,6 +526,7 @@ void IdentifierRos::checkClockMoves()
 void IdentifierRos::runPeriod(double now_s, bool catch_up)
 {
   Job job;
+  bool unusable_window = false;
   {
     std::lock_guard<std::mutex> lock(window_mutex_);
     if (window_.empty())
@@ -533,6 +536,11 @@ void IdentifierRos::runPeriod(double now_s, bool catch_up)
     std::size_t short_pieces = 0;
     job.segments = window_.segments(&short_pieces);
     job.short_pieces_note = window_.describeShortPieces(short_pieces);
+    // One short piece is a drive that has just begun; several and none long enough is data that
+    // arrive and cannot be used (a 1 Hz receiver against max_gap_s 0.5 s): the diagnostics warn.
+    unusable_window = job.segments.empty() && short_pieces >= 2;
+    if (unusable_window)
+      unusable_window_note_ = job.short_pieces_note;
     job.drive_segments = drive_.segments();
     job.window_start_s = window_.startTimeS();
     job.window_end_s = window_.endTimeS();
@@ -544,39 +552,24 @@ void IdentifierRos::runPeriod(double now_s, bool catch_up)
     drive_reset_pending_ = false;
   }
   // Test the drive when it has grown since the last test, at most once per stability_period_s,
-  // and once more as soon as the data stop (end of a replay, a pause): then the last verdict is
-  // the test of every sample the node has seen, as a batch calibrate of them would give.
+  // and once more as soon as the data stop (StabilityLookSchedule).
   if (stability_request_dropped_.exchange(false))
-  {
-    last_stability_request_samples_ = 0;  // the thread was busy: ask again
-  }
-  const std::uint64_t drive_samples = job.drive_samples_taken;  // the kept count may stay level
-  const bool grown = drive_samples != last_stability_request_samples_;
-  // A catch-up period comes when /clock has stood still for a second: under sim time no sample
-  // comes without it, so the data have stopped, whatever arrived since the last period.
-  const bool stalled = catch_up || drive_samples == previous_period_drive_samples_;
-  // The last samples came in a period whose look was due: that look was made as if more would come
-  // (the last, partial block not looked at). The data stopped since: the look at every sample is
-  // still owed, though the count has not grown.
-  const bool final_look_owed = stalled && !grown && !last_request_data_stopped_ && last_stability_request_samples_ > 0;
-  if (catch_up && !(grown && stalled) && !final_look_owed && stability_tests_ == looks_published_)
-    return;  // nothing new to fit, look at or publish: the last estimate stands
-  const bool due = now_s - last_stability_request_s_ >= settings_.stability_period_s || now_s < last_stability_request_s_;
-  previous_period_drive_samples_ = drive_samples;
-  if ((grown && (due || stalled)) || final_look_owed)
-  {
-    job.test_stability = true;
-    job.data_stopped = stalled;
-    last_stability_request_s_ = now_s;
-    last_stability_request_samples_ = drive_samples;
-    last_request_data_stopped_ = stalled;
-  }
+    look_schedule_.lookLost();  // the thread was busy: ask again
+  // A catch-up period comes when /clock has stood still for a second: the data have stopped.
+  const StabilityLookSchedule::Decision decision =
+      look_schedule_.decide(now_s, job.drive_samples_taken, catch_up, stability_tests_ == looks_published_);
+  if (!decision.run_period)
+    return;
+  if (unusable_window)
+    ++unusable_windows_;  // counted per period that runs, not per catch-up second after a replay
+  job.test_stability = decision.look;
+  job.data_stopped = decision.data_stopped;
   {
     std::lock_guard<std::mutex> lock(job_mutex_);
     if (busy_)
     {
       if (job.test_stability)
-        last_stability_request_samples_ = 0;  // the look asked for goes with the period: ask again
+        look_schedule_.lookLost();  // the look asked for goes with the period: ask again
       ++skipped_periods_;
       ROS_WARN_THROTTLE(5.0, "identifier: the previous solve overran the %.2f s period: this period is skipped "
                         "(%llu skipped so far)", settings_.period_s, static_cast<unsigned long long>(skipped_periods_.load()));
@@ -762,6 +755,7 @@ IdentifierCounters IdentifierRos::counters()
   c.solves = solves_;
   c.skipped_periods = skipped_periods_;
   c.not_identifiable = not_identifiable_;
+  c.unusable_windows = unusable_windows_;
   c.published = published_;
   c.failures = failures_;
   c.stability_tests = stability_tests_;
@@ -779,7 +773,8 @@ IdentifierCounters IdentifierRos::counters()
 }
 
 IdentifierHealth identifierHealth(const IdentifierCounters& now, const IdentifierCounters& previous,
-                                  const std::string& last_failure, double silent_s, double stale_after_s)
+                                  const std::string& last_failure, double silent_s, double stale_after_s,
+                                  const std::string& unusable_window_note)
 {
   IdentifierHealth health;
   const auto since = [](std::uint64_t total, std::uint64_t before) { return total > before ? total - before : 0; };
@@ -795,6 +790,7 @@ IdentifierHealth identifierHealth(const IdentifierCounters& now, const Identifie
       {since(now.acc_state_unknown, previous.acc_state_unknown), "with the ACC's state unknown (not used)"},
   });
   const std::uint64_t acc_off = since(now.acc_off, previous.acc_off);
+  const std::uint64_t unusable = since(now.unusable_windows, previous.unusable_windows);
   if (failures > 0)
   {
     health.level = diagnostic_msgs::DiagnosticStatus::ERROR;
@@ -810,6 +806,12 @@ IdentifierHealth identifierHealth(const IdentifierCounters& now, const Identifie
   {
     health.level = diagnostic_msgs::DiagnosticStatus::WARN;
     health.message = "since last report: relative_state samples " + samples;
+  }
+  else if (unusable > 0)
+  {
+    health.level = diagnostic_msgs::DiagnosticStatus::WARN;
+    health.message = "since last report: " + std::to_string(unusable) +
+                     " period(s) whose window had no piece long enough to simulate: " + unusable_window_note;
   }
   else if (now.received == 0)
   {
@@ -860,9 +862,15 @@ void IdentifierRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status
     std::lock_guard<std::mutex> lock(failure_mutex_);
     last_failure = last_failure_;
   }
+  std::string unusable_window_note;
+  {
+    std::lock_guard<std::mutex> lock(window_mutex_);
+    unusable_window_note = unusable_window_note_;
+  }
   const double last_sample_wall_s = last_sample_wall_s_;
   const double silent_s = last_sample_wall_s > 0.0 ? ros::WallTime::now().toSec() - last_sample_wall_s : 0.0;
-  const IdentifierHealth health = identifierHealth(c, reported_, last_failure, silent_s, settings_.stale_after_s);
+  const IdentifierHealth health = identifierHealth(c, reported_, last_failure, silent_s, settings_.stale_after_s,
+                                                   unusable_window_note);
   reported_ = c;
   status.summary(health.level, health.message);
   status.add("samples received", c.received);
@@ -893,6 +901,7 @@ void IdentifierRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status
   status.add("solves", c.solves);
   status.add("skipped periods (solve overran)", c.skipped_periods);
   status.add("windows not identifiable", c.not_identifiable);
+  status.add("windows with no piece long enough to simulate", c.unusable_windows);
   status.add("messages published", c.published);
   status.add("failed solves or tests", c.failures);
   status.add("last failure", last_failure.empty() ? std::string("none") : last_failure);

@@ -399,6 +399,23 @@ TEST(IdentifierFaults, AThrowingSolveIsAnErrorWithWhatItThrewAndTheNodeGoesOn)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   EXPECT_GT(parameters_received.load(), published) << "nothing published after the failures";
 }
+
+/// A receiver slower than ~max_gap_s allows (1 Hz against 0.5 s): samples arrive and none can be
+/// simulated. The diagnostics used to stay OK ("identifying"); they warn, and say the samples' rate.
+TEST(IdentifierFaults, SamplesThatArriveButCannotBeSimulatedWarn)
+{
+  const std::size_t before = reportCount();
+  for (int k = 0; k < 32; ++k)  // 507 - 538 s at 1 Hz: the 30 s window ends up holding only these
+    feed->publish(507.0 + k);
+  ASSERT_TRUE(windowHolds(0)) << "the solve was given " << window_samples << " samples to simulate";
+  Report report;
+  ASSERT_TRUE(waitForReport(before, [](const Report& r) { return r.level == DiagnosticStatus::WARN &&
+                                                               r.message.find("no piece long enough") != std::string::npos; },
+                            report))
+      << lastReport();
+  EXPECT_NE(report.message.find("a receiver at 1 Hz"), std::string::npos) << describe(report);
+  EXPECT_GE(report.count("windows with no piece long enough to simulate"), 1u) << describe(report);
+}
 }  // namespace
 
 int main(int argc, char** argv)

@@ -91,6 +91,23 @@ TEST(IdentifierHealth, EveryKindOfBadSampleAndJumpIsReportedSinceTheLastReport)
             DiagnosticStatus::WARN);  // no relative_state yet
 }
 
+/// Samples that arrive and cannot be used (a 1 Hz receiver against max_gap_s 0.5 s) warn with the
+/// window's own explanation, for the reports in which it happened.
+TEST(IdentifierHealth, AWindowWithNothingToSimulateWarnsWithItsReason)
+{
+  const acc::IdentifierCounters before = running();
+  acc::IdentifierCounters after = before;
+  after.received += 10;
+  after.unusable_windows = 1;
+  const std::string why = "10 pieces of fewer than 20 samples ...: a receiver at 1 Hz";
+  const acc::IdentifierHealth warn = acc::identifierHealth(after, before, "", 0.0, 5.0, why);
+  EXPECT_EQ(warn.level, DiagnosticStatus::WARN);
+  EXPECT_NE(warn.message.find("1 period(s) whose window had no piece long enough to simulate: " + why),
+            std::string::npos)
+      << warn.message;
+  EXPECT_EQ(acc::identifierHealth(after, after, "", 0.0, 5.0, why).level, DiagnosticStatus::OK);
+}
+
 /// A failed solve is an ERROR that says what was thrown, for one report; the total stays counted.
 TEST(IdentifierHealth, AFailureIsAnErrorWithWhatWasThrownThenOkAgain)
 {

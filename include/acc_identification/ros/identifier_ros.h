@@ -22,6 +22,7 @@
 #include "acc_identification/calibration/sliding_window.h"
 #include "acc_identification/io/acc_engagement.h"
 #include "acc_identification/parameters/parameter_reader.h"
+#include "acc_identification/ros/stability_look_schedule.h"
 
 #include <acc_identification/AccParameters.h>
 #include <acc_identification/RelativeState.h>
@@ -103,6 +104,7 @@ struct IdentifierCounters
   std::uint64_t solves = 0;
   std::uint64_t skipped_periods = 0;   ///< a solve overran the period
   std::uint64_t not_identifiable = 0;
+  std::uint64_t unusable_windows = 0;  ///< periods whose window held only pieces too short to simulate, split by holes
   std::uint64_t published = 0;
   std::uint64_t failures = 0;          ///< solves and string-stability tests that threw
   std::uint64_t stability_tests = 0;
@@ -125,9 +127,13 @@ struct IdentifierHealth
 /// bad sample an hour ago is no reason to stay WARN: the totals are the key-values.
 /// silent_s: wall seconds since the last relative_state; beyond stale_after_s the input has
 /// stopped (WARN, after the faults above): the estimate and verdict stay those of the data so far.
+/// A period whose window held samples but only pieces too short to simulate (a receiver slower
+/// than max_gap_s allows, or holes everywhere) is WARN too, with unusable_window_note
+/// (SlidingWindow::describeShortPieces): samples arrive, and nothing of them can be used.
 IdentifierHealth identifierHealth(const IdentifierCounters& now, const IdentifierCounters& previous,
                                   const std::string& last_failure, double silent_s = 0.0,
-                                  double stale_after_s = std::numeric_limits<double>::infinity());
+                                  double stale_after_s = std::numeric_limits<double>::infinity(),
+                                  const std::string& unusable_window_note = "");
 
 /// Runs work and catches whatever it throws: true when it returned; false when it threw, with
 /// failure saying what (a std::exception's what(), or that it was not a std::exception).
@@ -221,12 +227,8 @@ private:
   DriveRecord drive_;
   bool drive_reset_pending_ = false;     ///< under window_mutex_
   std::string acc_setting_;              ///< the latest reported setting, under window_mutex_
-  double last_stability_request_s_ = -1.0e300;  ///< ROS time, timer thread only
-  std::uint64_t last_stability_request_samples_ = 0;  ///< drive samples taken then, timer thread only
-  std::uint64_t previous_period_drive_samples_ = 0;   ///< timer thread only
-  /// Whether the last look asked for was the one made as the data stopped (timer thread only): a
-  /// look made while they still came, at the same count, leaves the last block to that one.
-  bool last_request_data_stopped_ = false;
+  std::string unusable_window_note_;     ///< why the last unusable window was, under window_mutex_
+  StabilityLookSchedule look_schedule_;  ///< timer thread only
 
   std::mutex job_mutex_;
   std::condition_variable job_ready_;
@@ -268,7 +270,7 @@ private:
   // Counters (atomic: read by the diagnostics, written by the callbacks and the worker). What the
   // window rejected, dropped or confirmed is in window_.counts(), under window_mutex_.
   std::atomic<std::uint64_t> received_{0}, invalid_{0}, non_finite_values_{0}, implausible_{0};
-  std::atomic<std::uint64_t> solves_{0}, skipped_periods_{0}, not_identifiable_{0}, published_{0};
+  std::atomic<std::uint64_t> solves_{0}, skipped_periods_{0}, not_identifiable_{0}, unusable_windows_{0}, published_{0};
   std::atomic<std::uint64_t> stability_tests_{0}, drive_resets_{0}, failures_{0}, setting_changes_{0};
   std::mutex failure_mutex_;
   std::string last_failure_;  ///< what the last failed solve or test threw, under failure_mutex_
