@@ -277,6 +277,16 @@ acc_identification::AccParameters toMessage(const Identification& identification
   return toMessage(update, window_start_s, window_end_s, 0.0);
 }
 
+std::string identifierSettingsNote(const IdentifierSettings& settings)
+{
+  if (settings.window_s >= settings.criteria.min_duration_s)
+    return "";
+  return "~window_s (" + printfText("%g", settings.window_s) + " s) is shorter than ~min_duration_s (" +
+         printfText("%g", settings.criteria.min_duration_s) +
+         " s): no window can hold enough data to fit, so every window estimate will say so; only the drive so far "
+         "is fitted. Lengthen the window or lower min_duration_s";
+}
+
 IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node, SolveFunction solve)
   : solve_(std::move(solve)), window_(settings_.window_s, settings_.max_gap_s, 2), drive_(settings_.max_gap_s, 2),
     look_schedule_(settings_.stability_period_s)
@@ -298,10 +308,8 @@ IdentifierRos::IdentifierRos(ros::NodeHandle node, ros::NodeHandle private_node,
   }
   if (const std::string unread = reader.unreadNote(); !unread.empty())
     ROS_WARN("identifier: %s", unread.c_str());
-  if (settings_.window_s < settings_.criteria.min_duration_s)
-    ROS_WARN("identifier: ~window_s (%g s) is shorter than ~min_duration_s (%g s): no window can hold enough data to "
-             "fit, so every window estimate will say so; only the drive so far is fitted. Lengthen the window or "
-             "lower min_duration_s", settings_.window_s, settings_.criteria.min_duration_s);
+  if (const std::string note = identifierSettingsNote(settings_); !note.empty())
+    ROS_WARN("identifier: %s", note.c_str());
   const auto min_segment = static_cast<std::size_t>(settings_.min_segment_samples);
   const auto confirm = static_cast<std::size_t>(settings_.jump_confirm_samples);
   window_ = SlidingWindow(settings_.window_s, settings_.max_gap_s, min_segment, settings_.max_forward_jump_s, confirm);

@@ -185,6 +185,10 @@ TEST(NodeParameters, TheShippedConfigsReadWholeAndWithoutError)
   EXPECT_TRUE(acc::loadIdentifierSettings(identifier_reader, identifier)) << identifier_reader.error();
   EXPECT_GT(identifier.window_s, 0.0);
   EXPECT_EQ(identifier_reader.unreadNote(), "");
+  EXPECT_EQ(acc::identifierSettingsNote(identifier), "");  // the shipped window can be fitted
+  identifier.window_s = 0.5 * identifier.criteria.min_duration_s;
+  EXPECT_TRUE(contains(acc::identifierSettingsNote(identifier), "is shorter than ~min_duration_s"))
+      << acc::identifierSettingsNote(identifier);
 
   NodeParameters relative_reader_parameters("~relative_state_config");
   acc::ParameterReader& relative_reader = relative_reader_parameters.reader;

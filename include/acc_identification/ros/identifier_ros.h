@@ -67,6 +67,10 @@ struct IdentifierSettings
 /// Reads the private parameters; false and reader.error() on a bad value (type or range).
 bool loadIdentifierSettings(ParameterReader& reader, IdentifierSettings& settings);
 
+/// What the node warns of at start in settings that are valid one by one and useless together
+/// (a window shorter than the data a fit needs: every window estimate would say so); "" if none.
+std::string identifierSettingsNote(const IdentifierSettings& settings);
+
 /// The message for one update: the window's solve (times from its first and last sample, GNSS
 /// time), each quantity NaN only where the window does not determine it; the drive so far; the
 /// latest string-stability test of the drive (none yet: verdict "undecided", NaN p-value).
