@@ -46,7 +46,7 @@ void addDiagnosisOptions(CLI::App& app, DiagnoseRequest& r)
   app.add_option("--block-length-s", r.options.selection.block_length_s, "bootstrap block length [s]")
       ->check(acc::positiveNumber())->capture_default_str();
   app.add_option("--resamples", r.options.selection.resamples, "bootstrap resamples")
-      ->check(CLI::Range(std::size_t{100}, std::size_t{1000000}))->capture_default_str();
+      ->check(acc::wholeNumberFrom(100.0, 1000000.0, "RESAMPLES"))->capture_default_str();
   app.add_option("--alpha", r.options.selection.alpha, "level of the selection rule")
       ->check(acc::openInterval(0.0, 0.5))->capture_default_str();
   app.add_option("--min-relative-improvement", r.options.selection.min_relative_improvement,
@@ -57,7 +57,7 @@ void addDiagnosisOptions(CLI::App& app, DiagnoseRequest& r)
   app.add_flag("--no-forward-selection", r.no_forward_selection,
                "name the dominant effect only; do not try effects in combination");
   app.add_option("--max-chain-length", r.options.max_chain_length, "most effects the forward selection adds")
-      ->check(CLI::Range(1, 8))->capture_default_str();
+      ->check(acc::wholeNumberFrom(1.0, 8.0, "EFFECTS"))->capture_default_str();
   // What calibrate makes; the library's default is none (its suites and second opinion do without).
   r.options.bootstrap_replicates = acc::RefitBootstrapOptions{}.replicates;
   acc::addRefitBootstrapOptions(app, r.options.bootstrap_replicates, r.options.bootstrap_below_s, "the final model");

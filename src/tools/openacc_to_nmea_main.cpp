@@ -8,6 +8,7 @@
 
 #include "acc_identification/conversion/openacc_to_nmea.h"
 #include "acc_identification/io/output_files.h"
+#include "acc_identification/tools/number_checks.h"
 
 namespace
 {
@@ -96,7 +97,7 @@ int main(int argc, char** argv)
                  "seconds added to every time of the file, e.g. to lay several runs of one day end to end as one "
                  "session (a change to the data: say so when you share the result)")
       ->capture_default_str()
-      ->check(CLI::Range(-86400.0, 86400.0));
+      ->check(acc::closedInterval(-86400.0, 86400.0, "SECONDS"));
   app.add_option("INPUT", input_path, "OpenACC CSV")->required()->check(CLI::ExistingFile);
   auto* leader_option = app.add_option("LEADER", leader_path, "leader's NMEA log to write")->excludes(all_pairs_option);
   auto* follower_log_option =

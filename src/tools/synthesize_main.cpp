@@ -90,7 +90,7 @@ int main(int argc, char** argv)
   double rate_hz = 1.0 / options.epoch_step_s;
   auto* rate_option = app.add_option("--rate-hz", rate_hz, "the receivers' output rate, GGA + RMC epochs per second (1: "
                                      "many receivers' default; the truth is simulated ten times finer; calibrate such "
-                                     "data with --max-gap above the step)")->check(CLI::Range(0.2, 50.0))->capture_default_str();
+                                     "data with --max-gap above the step)")->check(acc::closedInterval(0.2, 50.0, "HZ"))->capture_default_str();
   app.add_option("--duration", options.duration_s, "keep the first S seconds of the profile (0: all of it)")
       ->check(acc::nonNegativeNumber());
   app.add_option("--leader-log", out.files.leader_log, "leader's NMEA log to write")->required();
@@ -102,8 +102,8 @@ int main(int argc, char** argv)
       ->check(CLI::IsMember({"lz4", "bz2", "none"}))->capture_default_str();
   app.add_option("--start-time", start_time, "GNSS time of the first epoch, YYYY-MM-DDThh:mm:ss[Z] (UTC)");
   app.add_option("--start-lat", options.start_latitude_deg, "where the road starts [deg]")
-      ->check(CLI::Range(-89.0, 89.0))->capture_default_str();
-  app.add_option("--start-lon", options.start_longitude_deg, "[deg]")->check(CLI::Range(-180.0, 180.0))->capture_default_str();
+      ->check(acc::closedInterval(-89.0, 89.0, "DEGREES"))->capture_default_str();
+  app.add_option("--start-lon", options.start_longitude_deg, "[deg]")->check(acc::closedInterval(-180.0, 180.0, "DEGREES"))->capture_default_str();
   app.add_option("--start-alt", options.start_altitude_m, "[m]")
       ->check(acc::finiteNumber("METRES"))->capture_default_str();
   auto* heading_option = app.add_option("--start-heading-deg", heading_deg, "[deg]")

@@ -11,6 +11,7 @@
 #include "acc_identification/io/output_files.h"
 #include "acc_identification/synthesis/verdict_study.h"
 #include "acc_identification/tools/number_checks.h"
+#include "acc_identification/tools/option_rules.h"
 
 int main(int argc, char** argv)
 {
@@ -28,10 +29,15 @@ int main(int argc, char** argv)
       ->check(acc::positiveNumber())
       ->capture_default_str();
   app.add_option("--alpha", options.alpha, "level")->check(acc::openInterval(0.0, 1.0))->capture_default_str();
-  app.add_option("--margins", options.margins, "true margins, one class each")->capture_default_str();
-  app.add_option("--checkpoints", options.checkpoints_s, "drive lengths at which power is read [s]")
+  app.add_option("--margins", options.margins, "true margins, one class each")
+      ->check(acc::finiteNumber("MARGIN"))
       ->capture_default_str();
-  app.add_option("--first-seed", options.first_seed, "seed of the first drive of each class")->capture_default_str();
+  app.add_option("--checkpoints", options.checkpoints_s, "drive lengths at which power is read [s]")
+      ->check(acc::positiveNumber())
+      ->capture_default_str();
+  app.add_option("--first-seed", options.first_seed, "seed of the first drive of each class")
+      ->check(acc::seed32())
+      ->capture_default_str();
   app.add_option("--json", json_path, "write the table as JSON");
   CLI11_PARSE(app, argc, argv);
 

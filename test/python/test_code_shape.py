@@ -4,7 +4,8 @@
 - no tool main (src/tools/*_main.cpp) longer than MAX_MAIN_LINES lines (thin mains: the work is
   the libraries');
 - include/acc_identification/<component>/ mirrors src/<component>/: a header's component has sources;
-- no production file is named like a test (*_test.cpp, test_*.cpp) under src/.
+- no production file is named like a test (*_test.cpp, test_*.cpp) under src/;
+- no tool option is checked with CLI11's Range, which lets "nan" through (tools/number_checks.h).
 
 Functions are found by their braces: a `{` at namespace level (not a namespace, class, struct,
 enum or extern block) opens a function body, whose end is the matching `}`; comments, strings
@@ -106,6 +107,18 @@ class CodeShape(unittest.TestCase):
         named = [relative(path) for path in sources(os.path.join(PACKAGE, "src"))
                  if re.search(r"(^test_|_test\.(cpp|h)$)", os.path.basename(path))]
         self.assertEqual(named, [], "production code named like a test")
+
+    def test_no_option_checked_by_cli11_range(self):
+        # Every comparison with NaN is false: CLI::Range(-86400, 86400) passed --time-shift-s nan,
+        # and openacc_to_nmea wrote NMEA without times, exit status 0.
+        ranged = []
+        for folder in ("src", "include"):
+            for path in sources(os.path.join(PACKAGE, folder)):
+                with open(path, encoding="utf-8", errors="replace") as source:
+                    code = blank_comments_and_literals(source.read())
+                ranged += [f"{relative(path)}:{code[:match.start()].count(chr(10)) + 1}"
+                           for match in re.finditer(r"\bCLI::(Range|PositiveNumber|NonNegativeNumber|Number)\b", code)]
+        self.assertEqual(ranged, [], "CLI11 number checks that let nan through: use tools/number_checks.h")
 
     def test_the_scanner_finds_functions_and_their_lengths(self):
         # Guards the checks above: a scanner that found nothing would pass them all.

@@ -22,6 +22,8 @@ std::string parseError(const std::string& arguments)
   app.add_option("--positive", positive)->check(acc::positiveNumber());
   app.add_option("--non-negative", non_negative)->check(acc::nonNegativeNumber());
   app.add_option("--alpha", alpha)->check(acc::openInterval(0.0, 1.0));
+  double shift_s = 0.0;
+  app.add_option("--shift", shift_s)->check(acc::closedInterval(-10.0, 10.0, "SECONDS"));
   try
   {
     app.parse(arguments, false);
@@ -47,6 +49,11 @@ TEST(NumberChecks, SayWhatTheyAskInWords)
   EXPECT_NE(parseError("--alpha 0").find("must be above 0 and below 1, not 0"), std::string::npos)
       << parseError("--alpha 0");
   EXPECT_NE(parseError("--alpha 1").find("must be above 0 and below 1, not 1"), std::string::npos);
+  // CLI11's Range passed nan (every comparison with NaN is false).
+  EXPECT_EQ(parseError("--shift -10"), "");
+  EXPECT_EQ(parseError("--shift 10"), "");
+  EXPECT_NE(parseError("--shift nan").find("not a finite number: nan"), std::string::npos) << parseError("--shift nan");
+  EXPECT_NE(parseError("--shift 10.5").find("must be from -10 to 10, not 10.5"), std::string::npos);
   // A count or seed held unsigned: -1 would wrap to the largest one.
   EXPECT_EQ(parseError("--threads 0"), "");
   EXPECT_EQ(parseError("--threads 2"), "");

@@ -82,6 +82,14 @@ inline CLI::Validator atLeast(double lower, const std::string& name)
                                      number_checks::text(lower) + " or more", name);
 }
 
+/// A number from lower to upper, both included. CLI11's Range lets "nan" through (every comparison
+/// with NaN is false): openacc_to_nmea --time-shift-s nan wrote NMEA without times, exit status 0.
+inline CLI::Validator closedInterval(double lower, double upper, const std::string& name)
+{
+  return number_checks::finiteNumber([lower, upper](double value) { return value >= lower && value <= upper; },
+                                     "from " + number_checks::text(lower) + " to " + number_checks::text(upper), name);
+}
+
 /// A number strictly between lower and upper (a level alpha: between 0 and 1).
 inline CLI::Validator openInterval(double lower, double upper)
 {
