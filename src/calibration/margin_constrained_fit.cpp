@@ -193,11 +193,6 @@ struct Start
 };
 }  // namespace
 
-double stabilityMargin(const AccParameters& p)
-{
-  return p.k1_per_s2 * p.tau_e_s * p.tau_e_s + 2.0 * p.k2_per_s * p.tau_e_s - 2.0;
-}
-
 std::array<double, 3> stabilityMarginGradient(const AccParameters& p)
 {
   return {p.tau_e_s * p.tau_e_s, 2.0 * p.tau_e_s, 2.0 * p.k1_per_s2 * p.tau_e_s + 2.0 * p.k2_per_s};

@@ -41,14 +41,23 @@ double transferGainDb(const AccParameters& p, double frequency_rad_s)
   return 20.0 * std::log10(transferGain(p, frequency_rad_s));
 }
 
+double stabilityMargin(const AccParameters& p)
+{
+  return p.k1_per_s2 * p.tau_e_s * p.tau_e_s + 2.0 * p.k2_per_s * p.tau_e_s - 2.0;
+}
+
 namespace
 {
-/// w_c^2 = k1 (2 - 2 k2 tau_e - k1 tau_e^2); may be negative (no amplified band).
+/// w_c^2 = -k1 m; 0 (no amplified band) when m >= 0 or m is within the rounding of its terms:
+/// parameters on the boundary (k1 tau_e^2 + 2 k2 tau_e = 2 in decimal) land on either side of 0
+/// by a few ulps, and the verdict must not depend on which.
 double amplifiedBandUpperSquared(const AccParameters& p)
 {
-  const double k1 = p.k1_per_s2;
-  const double tau = p.tau_e_s;
-  return k1 * (2.0 - 2.0 * p.k2_per_s * tau - k1 * tau * tau);
+  const double margin = stabilityMargin(p);
+  const double terms = std::abs(p.k1_per_s2 * p.tau_e_s * p.tau_e_s) + std::abs(2.0 * p.k2_per_s * p.tau_e_s) + 2.0;
+  if (margin >= -8.0 * std::numeric_limits<double>::epsilon() * terms)
+    return 0.0;
+  return -p.k1_per_s2 * margin;
 }
 }  // namespace
 

@@ -112,6 +112,29 @@ TEST(StringStability, Lambda2AndTransferFunctionVerdictsAgreeOnAGrid)
   EXPECT_GT(checked, 1000);
 }
 
+// On the boundary k1 tau_e^2 + 2 k2 tau_e = 2 the model is string stable (|Gamma| <= 1): written in
+// decimal, such parameters round to either side of m = 0 by a few ulps, and 21 of 71 were called
+// unstable (band 3e-9 rad/s, peak -1e-15 dB) by that rounding alone.
+TEST(StringStability, TheBoundaryIsStableWhateverTheRounding)
+{
+  int on_boundary = 0;
+  for (double tau = 0.2; tau < 3.0; tau += 0.2)
+    for (double k2 = 0.05; 2.0 * k2 * tau < 2.0; k2 += 0.15)
+    {
+      const double k1 = (2.0 - 2.0 * k2 * tau) / (tau * tau);  // m = 0 up to rounding
+      const auto report = acc::analyzeStringStability({k1, k2, tau, 5.0});
+      EXPECT_TRUE(report.string_stable) << k1 << " " << k2 << " " << tau << ": band "
+                                        << report.amplified_band_upper_rad_s;
+      EXPECT_EQ(report.peak_gain_db, 0.0);
+      ++on_boundary;
+    }
+  EXPECT_GT(on_boundary, 50);
+  EXPECT_TRUE(acc::analyzeStringStability({0.1, 0.95, 1.0, 5.0}).string_stable);
+  EXPECT_TRUE(acc::analyzeStringStability({0.2, 2.46, 0.4, 5.0}).string_stable);
+  // Just off it, by far more than rounding, the band opens.
+  EXPECT_FALSE(acc::analyzeStringStability({0.1, 0.95 - 1e-9, 1.0, 5.0}).string_stable);
+}
+
 TEST(StringStability, EtaPlaysNoPart)
 {
   auto p = acc::paperMinimumSetting();

@@ -7,14 +7,10 @@
 
 #include "acc_identification/calibration/calibration_objective.h"
 #include "acc_identification/model/acc_parameters.h"
+#include "acc_identification/model/string_stability.h"
 
 namespace acc
 {
-/// The string-stability margin of the model, m = k1 tau_e^2 + 2 k2 tau_e - 2: a platoon of
-/// identical followers is string stable iff m >= 0 (|Gamma(j w)| <= 1 for every w, lambda2 < 0
-/// off the boundary). eta plays no part.
-double stabilityMargin(const AccParameters& p);
-
 /// d m / d (k1, k2, tau_e) = (tau_e^2, 2 tau_e, 2 k1 tau_e + 2 k2).
 std::array<double, 3> stabilityMarginGradient(const AccParameters& p);
 

@@ -23,6 +23,11 @@ struct StringStabilityReport
   double peak_frequency_rad_s = 0.0;
 };
 
+/// The string-stability margin of the model, m = k1 tau_e^2 + 2 k2 tau_e - 2: a platoon of
+/// identical followers is string stable iff m >= 0 (|Gamma(j w)| <= 1 for every w, lambda2 < 0
+/// off the boundary). eta plays no part.
+double stabilityMargin(const AccParameters& p);
+
 /// lambda2 of Wilson & Ward (paper eq. 11).
 double lambda2(const AccParameters& p);
 
@@ -32,8 +37,9 @@ double transferGain(const AccParameters& p, double frequency_rad_s);
 /// 20 log10 |Gamma(j w)| [dB].
 double transferGainDb(const AccParameters& p, double frequency_rad_s);
 
-/// Upper end w_c of the amplified band: w_c^2 = 2 k1 - 2 k1 k2 tau_e - k1^2 tau_e^2 when that is
-/// positive, else 0 (closed form: |Gamma|^2 > 1 exactly below it).
+/// Upper end w_c of the amplified band: w_c^2 = -k1 m (m = stabilityMargin) when m < 0, else 0
+/// (closed form: |Gamma|^2 > 1 exactly below it). A margin within the rounding of its own terms
+/// is the boundary m = 0, string stable: (0.1, 0.95, 1 s) was called unstable by 8e-18.
 double amplifiedBandUpperRadS(const AccParameters& p);
 
 /// Frequency of the largest |Gamma| in closed form: setting d|Gamma|^2/d(w^2) = 0 gives
