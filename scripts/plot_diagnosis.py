@@ -66,6 +66,8 @@ def significant(value, digits=2):
 
 
 def fmt(value, digits=3):
+    if isinstance(value, str):  # "inf": an infinite gain or lambda2, which JSON cannot hold as a number
+        return value
     if value is None or (isinstance(value, float) and not math.isfinite(value)):
         return "n/a"
     return f"{value:.{digits}g}" if abs(value) < 1e-3 and value != 0 else f"{value:.{digits}f}"

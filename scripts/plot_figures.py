@@ -222,9 +222,9 @@ def fig6(data_dir, out_dir):
         w = floats([c["frequency_rad_s"][i] for i in rows])
         line, = ax.semilogx(w, floats([c["gain_db"][i] for i in rows]), lw=1.5,
                             label="%s: > 0 dB below %.4f rad/s, peak %.3f dB at %.4f rad/s" % (
-                                name, p["amplified_band_upper_rad_s"], p["peak_gain_db"], p["peak_frequency_rad_s"]))
+                                name, p["amplified_band_upper_rad_s"], float(p["peak_gain_db"]), p["peak_frequency_rad_s"]))
         ax.semilogx(w, floats([c["euler_gain_db"][i] for i in rows]), ls=":", color=line.get_color(), lw=1)
-        ax.plot(p["peak_frequency_rad_s"], p["peak_gain_db"], "o", color=line.get_color())
+        ax.plot(p["peak_frequency_rad_s"], float(p["peak_gain_db"]), "o", color=line.get_color())  # "inf": not drawn
         if name in PAPER:
             ax.plot(PAPER[name]["peak_w"], PAPER[name]["peak_db"], "x", color=line.get_color(), ms=8, mew=2,
                     label="%s, paper: peak %.3g dB at %.3g rad/s, band %.3g rad/s" % (

@@ -180,11 +180,11 @@ nlohmann::json reportToJson(const CalibrationReport& report)
   json["identifiability_note"] = report.identifiability_note;
   json["fitted"] = true;
   const std::optional<bool> stable = knownStringStability(report.stability);
-  json["stability"] = {{"lambda2", jsonNumber(report.stability.lambda2)},
+  json["stability"] = {{"lambda2", jsonNumberOrInfinity(report.stability.lambda2)},
                        {"lambda2_of", "the point estimate (parameters above); the verdict is stability_test's"},
                        {"string_stable", stable ? nlohmann::json(*stable) : nlohmann::json()},
                        {"amplified_band_upper_rad_s", jsonNumber(report.stability.amplified_band_upper_rad_s)},
-                       {"peak_gain_db", jsonNumber(report.stability.peak_gain_db)},
+                       {"peak_gain_db", jsonNumberOrInfinity(report.stability.peak_gain_db)},
                        {"peak_frequency_rad_s", jsonNumber(report.stability.peak_frequency_rad_s)}};
   json["objective"] = {{"status", c.status},
                        {"rmse_speed_mps", jsonNumber(c.rmse_speed_mps)},

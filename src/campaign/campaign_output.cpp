@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "acc_identification/calibration/calibration_report.h"
+#include "acc_identification/model/json_number.h"
 #include "acc_identification/calibration/quantity_identifiability.h"
 #include "acc_identification/diagnosis/augmented_calibration.h"
 #include "acc_identification/diagnosis/augmented_fit_json.h"
@@ -127,10 +128,10 @@ nlohmann::json vehicleJson(const CampaignInputs& inputs, std::size_t index, cons
           {"margin", {{"value", margin.first}, {"standard_error", margin.second}}},
           {"quantities", id.quantities ? toJson(*id.quantities) : nlohmann::json()},
           {"stability",
-           {{"lambda2", dynamics ? id.stability.lambda2 : kNaN},
+           {{"lambda2", jsonNumberOrInfinity(dynamics ? id.stability.lambda2 : kNaN)},
             {"string_stable", dynamics ? nlohmann::json(id.stability.string_stable) : nlohmann::json()},
             {"band_upper_rad_s", dynamics ? id.stability.amplified_band_upper_rad_s : kNaN},
-            {"peak_gain_db", dynamics ? id.stability.peak_gain_db : kNaN}}},
+            {"peak_gain_db", jsonNumberOrInfinity(dynamics ? id.stability.peak_gain_db : kNaN)}}},
           {"stability_test", stabilityTestJson(group.stability_test)},
           {"model_adequacy", toJson(group.model_adequacy)},
           {"euler_step_bias", group.euler_step_bias ? toJson(*group.euler_step_bias) : nlohmann::json()},

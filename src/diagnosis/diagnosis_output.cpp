@@ -37,11 +37,11 @@ nlohmann::json standardErrorsJson(const AugmentedFit& fit)
 
 nlohmann::json stabilityJson(const AugmentedStability& s)
 {
-  return {{"peak_gain_db", jsonNumber(s.peak_gain_db)},
+  return {{"peak_gain_db", jsonNumberOrInfinity(s.peak_gain_db)},
           {"peak_frequency_rad_s", jsonNumber(s.peak_frequency_rad_s)},
           // Meaningless without a gain (parameters not finite): null rather than a "false" that reads unstable.
           {"string_stable", std::isfinite(s.peak_gain_db) ? nlohmann::json(s.string_stable) : nlohmann::json()},
-          {"lambda2", jsonNumber(s.lambda2)},
+          {"lambda2", jsonNumberOrInfinity(s.lambda2)},
           {"locally_stable", s.locally_stable},
           {"phase_margin_deg", jsonNumber(s.phase_margin_deg)},
           {"crossover_rad_s", jsonNumber(s.crossover_rad_s)},

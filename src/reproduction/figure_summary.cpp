@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "acc_identification/model/string_stability.h"
+#include "acc_identification/model/json_number.h"
 
 namespace acc
 {
@@ -37,10 +38,10 @@ json settingSummaryJson(const NamedSetting& setting)
           {"k2_per_s", p.k2_per_s},
           {"tau_e_s", p.tau_e_s},
           {"eta_m", p.eta_m},
-          {"lambda2", std::isfinite(report.lambda2) ? json(report.lambda2) : json("inf")},
+          {"lambda2", jsonNumberOrInfinity(report.lambda2)},
           {"string_stable", report.string_stable},
           {"amplified_band_upper_rad_s", report.amplified_band_upper_rad_s},
-          {"peak_gain_db", report.peak_gain_db},
+          {"peak_gain_db", jsonNumberOrInfinity(report.peak_gain_db)},
           {"peak_frequency_rad_s", report.peak_frequency_rad_s}};
 }
 

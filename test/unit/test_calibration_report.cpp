@@ -135,6 +135,19 @@ TEST(CalibrationReport, StabilityTestAndQuantitiesAreInTheJsonAndTheTable)
   EXPECT_NE(table.str().find("stability_margin"), std::string::npos);
 }
 
+// tau_e = 0 (a fit at its bound): lambda2 is +infinity, every low frequency grows. It was written
+// null, which the JSON's readers take for "not determined", beside string_stable false.
+TEST(CalibrationReport, AnInfiniteLambda2IsWrittenInfNotNull)
+{
+  acc::CalibrationReport report;
+  report.calibration.parameters = {0.05, 0.3, 0.0, 5.0};
+  report.stability = acc::analyzeStringStability(report.calibration.parameters);
+  const auto json = acc::reportToJson(report);
+  EXPECT_EQ(json["stability"]["lambda2"], "inf");
+  EXPECT_EQ(json["stability"]["string_stable"], false);
+  EXPECT_TRUE(json["stability"]["peak_gain_db"].is_number());
+}
+
 // lambda2 NaN (parameters not determined): string_stable is null, not a "false" that reads as
 // unstable, and the text says "not determined".
 TEST(CalibrationReport, StringStableIsNullWhereLambda2IsNaN)
