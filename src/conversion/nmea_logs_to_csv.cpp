@@ -29,13 +29,14 @@ std::string cell(double value, int decimals)
   return out.str();
 }
 
-/// Where each stretch of a log on one clock ends: after a fix whose successor's time goes back more
-/// than time_reset_s (a log looped, a receiver's clock reset), as the pairing tells a reset. A few
-/// fixes stamped far back (at most kStrayStampFixes), after which the log is on its clock again,
-/// are stray stamps, not a new clock: they stay in their stretch (the pairing counts them).
-std::vector<std::size_t> clockStretchEnds(const std::vector<GnssFix>& fixes, double time_reset_s)
+/// Where each stretch of a log on one clock ends: before a fix whose time goes back more than
+/// time_reset_s (a log looped, a receiver's clock reset), as the pairing tells a reset. Fewer than
+/// time_reset_confirm_fixes fixes stamped far back, after which the log is on its clock again, are
+/// stray stamps, not a new clock: they stay in their stretch, where the pairing counts them.
+std::vector<std::size_t> clockStretchEnds(const std::vector<GnssFix>& fixes, const PairingSettings& pairing)
 {
-  constexpr std::size_t kStrayStampFixes = 10;  // a second at 10 Hz
+  const double time_reset_s = pairing.time_reset_s;
+  const std::size_t confirm = std::max<std::size_t>(1, pairing.time_reset_confirm_fixes);
   std::vector<std::size_t> ends;
   double newest = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t i = 0; i < fixes.size(); ++i)
@@ -50,11 +51,11 @@ std::vector<std::size_t> clockStretchEnds(const std::vector<GnssFix>& fixes, dou
       continue;
     }
     std::size_t back_on_clock = i + 1;
-    while (back_on_clock < std::min(fixes.size(), i + kStrayStampFixes + 1) && !on_clock(back_on_clock))
+    while (back_on_clock < std::min(fixes.size(), i + confirm) && !on_clock(back_on_clock))
       ++back_on_clock;
-    if (back_on_clock < fixes.size() && on_clock(back_on_clock))
+    if (back_on_clock < std::min(fixes.size(), i + confirm) && on_clock(back_on_clock))
     {
-      i = back_on_clock - 1;  // stray stamps up to there
+      i = back_on_clock - 1;  // stray stamps up to there (fewer than confirm)
       continue;
     }
     ends.push_back(i);
@@ -69,10 +70,10 @@ std::vector<std::size_t> clockStretchEnds(const std::vector<GnssFix>& fixes, dou
 /// not one whose times interleave), a log's stretches beyond the other's after all of it (a clock
 /// that went back on one receiver only: the pairing then pairs nothing across the two clocks).
 void feedInTimeOrder(const std::vector<GnssFix>& leader, const std::vector<GnssFix>& follower,
-                     RelativeStateEstimator& estimator, RelativeStateLogs& logs, double time_reset_s)
+                     RelativeStateEstimator& estimator, RelativeStateLogs& logs, const PairingSettings& pairing)
 {
-  const std::vector<std::size_t> leader_ends = clockStretchEnds(leader, time_reset_s);
-  const std::vector<std::size_t> follower_ends = clockStretchEnds(follower, time_reset_s);
+  const std::vector<std::size_t> leader_ends = clockStretchEnds(leader, pairing);
+  const std::vector<std::size_t> follower_ends = clockStretchEnds(follower, pairing);
   std::size_t l = 0, f = 0;
   for (std::size_t k = 0; k < std::max(leader_ends.size(), follower_ends.size()); ++k)
   {
@@ -131,6 +132,8 @@ nlohmann::json pairingJson(const PairingCounters& c)
           {"follower_dropouts", c.follower_dropouts},
           {"leader_time_resets", c.leader_time_resets},
           {"follower_time_resets", c.follower_time_resets},
+          {"leader_stray_stamps", c.leader_stray_stamps},
+          {"follower_stray_stamps", c.follower_stray_stamps},
           {"buffer_overflows", c.buffer_overflows}};
 }
 
@@ -175,7 +178,7 @@ RelativeStateLogs pairNmeaLogs(const std::string& leader_path, const std::string
   logs.leader_log = leader.statistics;
   logs.follower_log = follower.statistics;
   RelativeStateEstimator estimator(settings);
-  feedInTimeOrder(leader.fixes, follower.fixes, estimator, logs, settings.pairing.time_reset_s);
+  feedInTimeOrder(leader.fixes, follower.fixes, estimator, logs, settings.pairing);
   estimator.finish();
   for (RelativeState& state : estimator.takeStates())
     logs.states.push_back(std::move(state));

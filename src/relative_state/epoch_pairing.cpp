@@ -71,17 +71,60 @@ EpochPairer::EpochPairer(PairingSettings settings) : settings_(settings) {}
 void EpochPairer::addLeader(const GnssFix& fix)
 {
   ++counters_.leader_fixes;
-  if (acceptStream(fix, true))
-    insertLeader(fix);
+  addToStream(fix, true);
   resolvePending();
 }
 
 void EpochPairer::addFollower(const GnssFix& fix)
 {
   ++counters_.follower_fixes;
-  if (acceptStream(fix, false))
-    insertFollower(fix);
+  addToStream(fix, false);
   resolvePending();
+}
+
+void EpochPairer::addToStream(const GnssFix& fix, bool leader)
+{
+  if (hasUsablePosition(fix) && holdsJumpBack(fix, leader))
+    return;
+  if (acceptStream(fix, leader))
+    leader ? insertLeader(fix) : insertFollower(fix);
+}
+
+bool EpochPairer::holdsJumpBack(const GnssFix& fix, bool leader)
+{
+  std::vector<GnssFix>& held = leader ? held_leader_ : held_follower_;
+  const double newest = leader ? newest_leader_s_ : newest_follower_s_;
+  const double t = fix.gnss_time_s;
+  if (!(std::isfinite(newest) && t < newest - settings_.time_reset_s))
+  {
+    if (!held.empty())
+      dropStrayStamps(leader);  // back on its clock: what was held was no new clock
+    return false;
+  }
+  if (!held.empty() && std::abs(t - held.back().gnss_time_s) > settings_.time_reset_s)
+    dropStrayStamps(leader);  // not one clock with the fixes held before it either
+  held.push_back(fix);
+  if (held.size() < std::max<std::size_t>(1, settings_.time_reset_confirm_fixes))
+    return true;
+  std::vector<GnssFix> confirmed;
+  confirmed.swap(held);
+  for (const GnssFix& f : confirmed)  // the first is the reset (acceptStream), the rest follow it
+    if (acceptStream(f, leader))
+      leader ? insertLeader(f) : insertFollower(f);
+  return true;
+}
+
+void EpochPairer::dropStrayStamps(bool leader)
+{
+  std::vector<GnssFix>& held = leader ? held_leader_ : held_follower_;
+  const char* name = leader ? "leader" : "follower";
+  (leader ? counters_.leader_stray_stamps : counters_.follower_stray_stamps) += held.size();
+  event(std::to_string(held.size()) + " " + name + " fix(es) stamped " + seconds(held.front().gnss_time_s) +
+            " s, far behind the stream's " + seconds(leader ? newest_leader_s_ : newest_follower_s_) +
+            " s, and fewer than " + std::to_string(settings_.time_reset_confirm_fixes) +
+            " in a row: stray time stamps, not used (no reset)",
+        false);
+  held.clear();
 }
 
 std::vector<PairedEpoch> EpochPairer::takePairs()
@@ -290,6 +333,10 @@ void EpochPairer::resolvePending()
 
 void EpochPairer::finish()
 {
+  // Fewer fixes on a new clock than confirm a reset, at the end of the streams: counted as stray.
+  for (const bool leader : {true, false})
+    if (!(leader ? held_leader_ : held_follower_).empty())
+      dropStrayStamps(leader);
   finishing_ = true;
   resolvePending();
   finishing_ = false;

@@ -37,7 +37,9 @@ bool placeAntennas(ParameterReader& r, const AntennaOffsets& offsets, VehicleGeo
 bool readPairing(ParameterReader& r, PairingSettings& q)
 {
   int max_buffered = static_cast<int>(q.max_buffered_fixes);
+  int reset_confirm = static_cast<int>(q.time_reset_confirm_fixes);
   const bool ok = r.readAtLeast("max_buffered_fixes", max_buffered, 1) &&
+                  r.readAtLeast("time_reset_confirm_fixes", reset_confirm, 1) &&
                   r.readAtLeast("exact_match_tolerance_s", q.exact_match_tolerance_s, 0.0) &&
                   // GNSS epochs carry exact times: a tolerance near a receiver's step (0.02 s at
                   // 50 Hz) takes neighbouring epochs for one, pairing them one epoch off with a
@@ -50,6 +52,7 @@ bool readPairing(ParameterReader& r, PairingSettings& q)
                   r.readAtLeast("exact_wait_s", q.exact_wait_s, 0.0) && r.readAbove("timeout_s", q.timeout_s, 0.0) &&
                   r.readAbove("dropout_gap_s", q.dropout_gap_s, 0.0) && r.readAbove("time_reset_s", q.time_reset_s, 0.0);
   q.max_buffered_fixes = static_cast<std::size_t>(std::max(1, max_buffered));
+  q.time_reset_confirm_fixes = static_cast<std::size_t>(std::max(1, reset_confirm));
   return ok;
 }
 

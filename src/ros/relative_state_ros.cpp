@@ -130,6 +130,8 @@ void RelativeStateRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& sta
   std::uint64_t new_dropouts = since(c.leader_dropouts, b.leader_dropouts) + since(c.follower_dropouts, b.follower_dropouts);
   std::uint64_t new_resets =
       since(c.leader_time_resets, b.leader_time_resets) + since(c.follower_time_resets, b.follower_time_resets);
+  std::uint64_t new_strays =
+      since(c.leader_stray_stamps, b.leader_stray_stamps) + since(c.follower_stray_stamps, b.follower_stray_stamps);
   std::uint64_t new_invalid = since(r.invalid_states, rb.invalid_states) +
                              since(unrepresentable_times_, unrepresentable_times_at_last_diagnostic_);
   if (leader_age_s > node_settings_.stale_after_s || follower_age_s > node_settings_.stale_after_s)
@@ -137,11 +139,13 @@ void RelativeStateRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& sta
                     leader_age_s > follower_age_s ? "leader" : "follower", std::max(leader_age_s, follower_age_s));
   else if (valid_age_s > node_settings_.stale_after_s)
     status.summaryf(diagnostic_msgs::DiagnosticStatus::ERROR, "fixes arrive but no valid pair for %.1f s", valid_age_s);
-  else if (new_unpaired + new_dropouts + new_resets + new_invalid > 0)
+  else if (new_unpaired + new_dropouts + new_resets + new_strays + new_invalid > 0)
     status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN,
-                    "since last report: %lu unpaired epochs, %lu dropouts, %lu time resets, %lu invalid samples",
+                    "since last report: %lu unpaired epochs, %lu dropouts, %lu time resets, %lu stray time stamps, "
+                    "%lu invalid samples",
                     static_cast<unsigned long>(new_unpaired), static_cast<unsigned long>(new_dropouts),
-                    static_cast<unsigned long>(new_resets), static_cast<unsigned long>(new_invalid));
+                    static_cast<unsigned long>(new_resets), static_cast<unsigned long>(new_strays),
+                    static_cast<unsigned long>(new_invalid));
   else if (const GapDopplerConsistency& check = estimator_.consistency();
            receiversLookSwapped(check.recentGapPerDopplerSlope(), check.recentDopplerIntegralRms(),
                                 check.recentWindows()))
@@ -171,6 +175,8 @@ void RelativeStateRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& sta
   status.add("follower_dropouts", c.follower_dropouts);
   status.add("leader_time_resets", c.leader_time_resets);
   status.add("follower_time_resets", c.follower_time_resets);
+  status.add("leader_stray_stamps", c.leader_stray_stamps);
+  status.add("follower_stray_stamps", c.follower_stray_stamps);
   status.add("leader_out_of_order", c.leader_out_of_order);
   status.add("follower_out_of_order", c.follower_out_of_order);
   status.add("leader_too_late", c.leader_too_late);

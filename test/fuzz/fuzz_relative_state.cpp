@@ -38,6 +38,7 @@ acc::RelativeStateSettings settingsFrom(FuzzedDataProvider& input)
   s.pairing.timeout_s = input.ConsumeFloatingPointInRange<double>(0.01, 5.0);
   s.pairing.dropout_gap_s = input.ConsumeFloatingPointInRange<double>(0.01, 3.0);
   s.pairing.time_reset_s = input.ConsumeFloatingPointInRange<double>(0.01, 10.0);
+  s.pairing.time_reset_confirm_fixes = input.ConsumeIntegralInRange<std::size_t>(1, 8);
   s.pairing.max_buffered_fixes = input.ConsumeIntegralInRange<std::size_t>(1, 64);
   s.track_min_spacing_m = input.ConsumeFloatingPointInRange<double>(0.01, 5.0);
   s.jump_reference_max_age_s = input.ConsumeFloatingPointInRange<double>(0.0, 2.0);
@@ -118,11 +119,12 @@ void checkEveryFixCounted(const acc::RelativeStateEstimator& estimator, std::uin
   check(states == c.exact_pairs + c.interpolated_pairs, "one state per pair");
   check(estimator.counters().states == states, "the estimator counts every state it gave");
   const std::uint64_t follower_accounted = c.exact_pairs + c.interpolated_pairs + c.follower_invalid_fixes +
-                                           c.follower_duplicates + c.follower_too_late + c.follower_unpaired;
+                                           c.follower_duplicates + c.follower_too_late + c.follower_unpaired +
+                                           c.follower_stray_stamps;
   // Overflows are counted for both streams together: a follower fix discarded there is one of them.
   check(follower_accounted <= c.follower_fixes && c.follower_fixes <= follower_accounted + c.buffer_overflows,
         "every follower fix is paired or counted once the streams end");
-  check(c.leader_invalid_fixes + c.leader_duplicates + c.leader_too_late <= c.leader_fixes,
+  check(c.leader_invalid_fixes + c.leader_duplicates + c.leader_too_late + c.leader_stray_stamps <= c.leader_fixes,
         "no leader fix is counted twice");
 }
 }  // namespace

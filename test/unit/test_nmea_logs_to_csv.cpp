@@ -183,7 +183,9 @@ TEST(NmeaLogsToCsv, EachLogsClocksArePairedAsTheyRan)
     for (std::size_t i = 1000; i < 1003; ++i)
       follower[i].gnss_time_s -= 3600.0;
   });
-  EXPECT_EQ(stray.pairing.follower_unpaired, 3u);
+  EXPECT_EQ(stray.pairing.follower_stray_stamps, 3u);
+  EXPECT_EQ(stray.pairing.follower_unpaired, 0u);
+  EXPECT_EQ(stray.pairing.follower_time_resets, 0u);
   EXPECT_EQ(stray.states.size(), half - 3);
 }
 

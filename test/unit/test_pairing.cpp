@@ -555,9 +555,9 @@ TEST(Pairing, AFollowerThatLoopsFirstWaitsForTheLeadersLoop)
   EXPECT_EQ(pairer.takePairs().size(), 2u * 201u);
 }
 
-// A follower receiver whose time jumps back once and returns: the leader, far ahead of that one
-// epoch, is not awaited to reset as well once the follower is back on its time.
-TEST(Pairing, AFollowerTimeGlitchDoesNotLeaveTheEpochsBehindItWaiting)
+// A follower receiver whose time jumps back once and returns: one stray time stamp, counted and not
+// used; nothing is reset or cleared (it was taken for a reset: the epochs waiting then were lost).
+TEST(Pairing, AFollowerTimeGlitchIsAStrayStampThatClearsNothing)
 {
   acc::PairingSettings settings;
   settings.timeout_s = 1e6;
@@ -567,10 +567,44 @@ TEST(Pairing, AFollowerTimeGlitchDoesNotLeaveTheEpochsBehindItWaiting)
     pairer.addLeader(fixAt(t));
     pairer.addFollower(fixAt(std::abs(t - 20.0) < 1e-6 ? 10.0 : t, -0.001));
   }
-  EXPECT_EQ(pairer.counters().follower_time_resets, 1u);
-  EXPECT_EQ(pairer.counters().follower_unpaired, 1u);  // the epoch stamped 10.0
+  EXPECT_EQ(pairer.counters().follower_time_resets, 0u);
+  EXPECT_EQ(pairer.counters().follower_stray_stamps, 1u);  // the epoch stamped 10.0
+  EXPECT_EQ(pairer.counters().follower_unpaired, 0u);
   EXPECT_EQ(pairer.counters().buffer_overflows, 0u);
   EXPECT_EQ(pairer.takePairs().size(), 401u - 1u);
+  bool said = false;
+  for (const acc::PairingEvent& event : pairer.takeEvents())
+    said = said || event.text.find("stray time stamps, not used (no reset)") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
+// A few fixes on another clock are stray until time_reset_confirm_fixes in a row confirm a reset;
+// the fixes that confirm it are paired, not lost. Live, arrival order is real time and the follower
+// epochs waiting for the leader's data were cleared by the stray stamp taken for a reset.
+TEST(Pairing, AResetIsTakenOnceConfirmedAndItsFixesArePaired)
+{
+  for (const std::size_t strays : {1u, 4u, 5u})
+  {
+    acc::PairingSettings settings;
+    acc::EpochPairer pairer(settings);
+    const auto drive = epochs(0.0, 30.0);
+    std::size_t fed = 0;
+    for (std::size_t i = 0; i < drive.size(); ++i)
+    {
+      const bool stray = i >= 200 && i < 200 + strays;
+      pairer.addLeader(fixAt(drive[i]));
+      pairer.addFollower(fixAt(stray ? drive[i] - 100.0 : drive[i], -0.001));
+      ++fed;
+    }
+    pairer.finish();
+    const acc::PairingCounters& c = pairer.counters();
+    const bool reset = strays >= settings.time_reset_confirm_fixes;
+    EXPECT_EQ(c.follower_time_resets, reset ? 1u : 0u) << strays;
+    EXPECT_EQ(c.follower_stray_stamps, reset ? 0u : strays) << strays;
+    EXPECT_EQ(c.exact_pairs + c.interpolated_pairs, fed - strays) << strays;
+    // A confirmed reset to a clock 100 s back meets no leader fix there: those epochs are unpaired.
+    EXPECT_EQ(c.follower_unpaired, reset ? strays : 0u) << strays;
+  }
 }
 
 // A follower receiver whose clock jumps back 20 s and stays there while the leader's runs on: its
@@ -620,7 +654,9 @@ TEST(Pairing, AFollowerThatLoopsAfterTheLeaderPairsOnTheLeadersNewClock)
   // Each loop pairs up to 50 s, where the leader's next reset clears what the follower's last
   // 10 s needed: the first from 10 s (the leader's first fix), 401 epochs; the second from 0 s,
   // 501. Awaiting the leader's reset at the follower's loop would leave the second unpaired (401).
-  EXPECT_EQ(pairer.counters().exact_pairs, 401u + 501u);
+  // The leader's reset is taken time_reset_confirm_fixes of its fixes in: the follower's epochs
+  // pair for that many less one longer each loop.
+  EXPECT_EQ(pairer.counters().exact_pairs, 401u + 501u + 2u * (settings.time_reset_confirm_fixes - 1u));
 }
 
 // The ROS node sizes its publisher's queue by mostPairsAtOnce(): no call may complete more, even

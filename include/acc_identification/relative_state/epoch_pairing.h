@@ -36,6 +36,10 @@ struct PairingSettings
   /// A stream going back in time by more than this is a time reset (a looping bag, a receiver
   /// reset): its state is cleared. A smaller step back is an out-of-order arrival.
   double time_reset_s = 5.0;
+  /// A time reset is taken once this many fixes in a row run on the new clock (they are then
+  /// paired as usual, a few epochs late); fewer, after which the stream is back on its clock, are
+  /// stray time stamps (a glitched or corrupted time): counted, not used, and nothing is cleared.
+  std::size_t time_reset_confirm_fixes = 5;
   /// Bound on the fixes held per stream, against a stream that never pairs.
   std::size_t max_buffered_fixes = 2000;
 };
@@ -60,8 +64,10 @@ struct PairingCounters
                                              ///< stream passed it, or it timed out
   std::uint64_t leader_dropouts = 0;         ///< gaps longer than dropout_gap_s in the stream
   std::uint64_t follower_dropouts = 0;
-  std::uint64_t leader_time_resets = 0;      ///< time went back more than time_reset_s
+  std::uint64_t leader_time_resets = 0;      ///< time went back more than time_reset_s (confirmed)
   std::uint64_t follower_time_resets = 0;
+  std::uint64_t leader_stray_stamps = 0;     ///< fixes stamped far back, the stream then back on its clock: not used
+  std::uint64_t follower_stray_stamps = 0;
   std::uint64_t buffer_overflows = 0;        ///< oldest fixes discarded at max_buffered_fixes
 };
 
@@ -121,6 +127,15 @@ private:
   /// pair positions that many seconds apart; it waits as kWaiting does, and is given up as such.
   enum class Resolution { kPaired, kInterpolable, kWaiting, kUnpairable, kOtherClock };
 
+  /// Routes a fix of one stream: held while a jump back in time awaits confirmation, else checked
+  /// (acceptStream) and buffered.
+  void addToStream(const GnssFix& fix, bool leader);
+  /// Whether fix, stamped more than time_reset_s back, is held awaiting time_reset_confirm_fixes on
+  /// its clock (true; at the last of them every held fix goes on as a reset); false when the fix is
+  /// on the stream's clock, the fixes held before it then counted as stray stamps.
+  bool holdsJumpBack(const GnssFix& fix, bool leader);
+  /// The held fixes were stray stamps: counted, said, let go of.
+  void dropStrayStamps(bool leader);
   bool acceptStream(const GnssFix& fix, bool leader);
   void noteTimeBases(bool follower_left_leaders_clock);
   void noteDropout(const char* name, double from_s, double to_s, std::size_t& in_a_row);
@@ -137,6 +152,8 @@ private:
   PairingCounters counters_;
   std::deque<GnssFix> leader_;            // sorted by gnss_time_s
   std::deque<GnssFix> pending_follower_;  // sorted by gnss_time_s
+  std::vector<GnssFix> held_leader_;      // stamped far back, awaiting confirmation of a reset
+  std::vector<GnssFix> held_follower_;
   std::vector<PairedEpoch> ready_;
   std::vector<PairingEvent> events_;
   double newest_leader_s_ = GnssFix::kNaN;
