@@ -572,6 +572,7 @@ nlohmann::json platoonJson(const PlatoonCheck& check, const EffectSetSelection* 
                              {"end_s", p.perturbation.end_s},
                              {"window_end_s", p.perturbation.window_end_s},
                              {"lead_median_mps", p.perturbation.lead_median_mps},
+                             {"incomplete", p.perturbation.incomplete},
                              {"positions", positionsJson(p.positions, check.alternative_models)},
                              {"data_show_growth", p.data_show_growth},
                              {"driven_by_hand", p.driven_by_hand},

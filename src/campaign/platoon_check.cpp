@@ -342,6 +342,8 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
       row.chain_diagnosed = DipMeasures{};
     if (throughHand(row.position - 1, row.position))
       row.pair = row.pair_diagnosed = DipMeasures{};
+    if (row.position >= perturbation.first_cut_order)  // the data's end may cut its dip off
+      row.measured = row.chain = row.chain_diagnosed = row.pair = row.pair_diagnosed = DipMeasures{};
     const DipComparison& ahead = result.positions.back();
     // Behind the real car driving a chain, the car ahead's dip is its measured one (as the first car's).
     auto chainDipAhead = [&ahead](const DipMeasures& chain, int driven_by) {
@@ -450,8 +452,20 @@ std::vector<Perturbation> leadPerturbations(const OpenAccFile& file, const Plato
   std::tie(*first_row, *end_row) = longestLeadStretch(file, options.max_time_step_s);
   if (*end_row < *first_row + 2)
     return {};
-  return findPerturbations(sliceRows(file.time_s, *first_row, *end_row),
-                           sliceRows(file.vehicle(1)->speed_mps, *first_row, *end_row), options.perturbation);
+  const std::vector<double> time_s = sliceRows(file.time_s, *first_row, *end_row);
+  std::vector<Perturbation> found =
+      findPerturbations(time_s, sliceRows(file.vehicle(1)->speed_mps, *first_row, *end_row), options.perturbation);
+  // A window the data's end cuts is whole when every car behind is back above half its dip.
+  std::vector<std::vector<double>> speeds;
+  std::vector<MeasuredSpeed> cars;
+  for (int position = 2; position <= file.lastPosition(); ++position)
+    if (const OpenAccVehicle* car = file.vehicle(position))
+      speeds.push_back(sliceRows(car->speed_mps, *first_row, *end_row));
+  for (int position = 2, k = 0; position <= file.lastPosition(); ++position)
+    if (file.vehicle(position) != nullptr)
+      cars.push_back({file.vehicleName(position) + " (" + std::to_string(position) + ")", &speeds[k++], position});
+  judgeCutWindows(found, time_s, cars, options.perturbation);
+  return found;
 }
 
 namespace
@@ -565,7 +579,7 @@ PlatoonCheck checkPlatoonByPerturbation(const CampaignFile& file, const std::vec
                           "own_chain_models)");
   const std::vector<double> time_s = sliceRows(data.time_s, check.first_row, check.end_row);
   if (found.empty())
-    check.notes.push_back("no perturbation: the first car's speed never drops more than " +
+    check.notes.push_back("no perturbation: in the stretch checked, the first car's speed never drops more than " +
                           printfText("%.1f m/s", options.perturbation.drop_below_median_mps) + " below its median");
   for (std::size_t i = 0; i < found.size(); ++i)
   {
@@ -573,6 +587,12 @@ PlatoonCheck checkPlatoonByPerturbation(const CampaignFile& file, const std::vec
     check.perturbations.push_back(comparePerturbation(chain, data, time_s, found[i], i, options));
     if (chains.size() > 1)
       check.perturbations.back().own_chain_models = modelsThatDiffer(predicted.front(), chain);
+    if (!found[i].incomplete.empty())
+      check.notes.push_back(perturbationLabel(check.perturbations.back(), i) + found[i].incomplete +
+                            "; no car's dip there is measured or scored");
+    else if (!found[i].cut_note.empty())
+      check.notes.push_back(perturbationLabel(check.perturbations.back(), i) + found[i].cut_note +
+                            "; those dips are not measured or scored");
     noteDrivenByHand(data, check.perturbations.back(), i, check.notes);
     markModelsFittedOnIt(chain.cars, data, time_s, i, options, check.perturbations.back(), check.notes);
   }

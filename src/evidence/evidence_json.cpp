@@ -45,6 +45,7 @@ nlohmann::json toJson(const PairDipEvidence& evidence)
   {
     dips.push_back({{"run", dip.run},
                     {"onset_s", dip.onset_s},
+                    {"incomplete", dip.perturbation.incomplete},
                     {"leader_dip_mps", jsonNumber(dip.leader_dip_mps)},
                     {"follower_dip_mps", jsonNumber(dip.follower_dip_mps)},
                     {"leader_peak_braking_mps2", jsonNumber(dip.leader_shape.braking_mps2)},

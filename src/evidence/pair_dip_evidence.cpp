@@ -11,7 +11,9 @@ PairDipEvidence pairDipEvidence(const std::vector<CarFollowingRun>& runs, const 
   for (std::size_t r = 0; r < runs.size(); ++r)
   {
     const CarFollowingRun& run = runs[r];
-    for (const Perturbation& perturbation : findPerturbations(run.time_s, run.leader_speed_mps, criteria))
+    std::vector<Perturbation> perturbations = findPerturbations(run.time_s, run.leader_speed_mps, criteria);
+    judgeCutWindows(perturbations, run.time_s, {{"the follower", &run.follower_speed_mps, 2}}, criteria);
+    for (const Perturbation& perturbation : perturbations)
     {
       PairDip dip;
       dip.run = run.name;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "acc_identification/model/number_text.h"
+
 namespace acc
 {
 namespace
@@ -58,6 +60,20 @@ std::vector<std::pair<std::size_t, std::size_t>> mergeRanges(const std::vector<s
   return kept;
 }
 
+/// Why the data do not hold the perturbation whole at its ends ("" when they do; a cut window is
+/// judged by judgeCutWindows).
+std::string describeIncomplete(bool onset_near_median, bool recovered, const std::vector<double>& time_s)
+{
+  const auto at = [](double t) { return printfText("%.1f s", t); };
+  if (!onset_near_median)
+    return "the first car's speed is already below its median where the data begin (" + at(time_s.front()) +
+           "): no onset, the dip is cut off";
+  if (!recovered)
+    return "the first car's speed is still below its median when the data end (" + at(time_s.back()) +
+           "): the dip is cut off";
+  return "";
+}
+
 /// Index one past the last sample with time < limit_s, from `from` on.
 std::size_t indexBefore(const std::vector<double>& time_s, std::size_t from, double limit_s)
 {
@@ -90,16 +106,19 @@ std::vector<Perturbation> findPerturbations(const std::vector<double>& time_s, c
     return found;
   const auto drops =
       mergeRanges(belowThreshold(time_s, lead_speed_mps, median - criteria.drop_below_median_mps), time_s, criteria);
+  const auto near_median = [&](std::size_t i) {
+    return finiteAt(time_s, lead_speed_mps, i) && lead_speed_mps[i] >= median - criteria.onset_below_median_mps;
+  };
   for (const auto& drop : drops)
   {
     Perturbation p;
     p.lead_median_mps = median;
     // The onset: walk back to where the first car was still near its median (braking starts there).
     p.onset = drop.first;
-    while (p.onset > 0 && !(finiteAt(time_s, lead_speed_mps, p.onset) &&
-                            lead_speed_mps[p.onset] >= median - criteria.onset_below_median_mps))
+    while (p.onset > 0 && !near_median(p.onset))
       --p.onset;
     p.end = std::min(drop.second, time_s.size() - 1);
+    const bool recovered = drop.second < time_s.size();
     // A speed that never came back near the median since the last drop: one perturbation, not a
     // second one with the same onset (its dip would be counted twice).
     if (!found.empty() && p.onset <= found.back().end)
@@ -111,8 +130,11 @@ std::vector<Perturbation> findPerturbations(const std::vector<double>& time_s, c
     p.end_s = time_s[p.end];
     p.window_end = indexBefore(time_s, p.end, p.end_s + criteria.extension_s);
     p.window_end_s = time_s[p.window_end - 1];
+    p.window_cut = p.window_end >= time_s.size();
+    p.incomplete = describeIncomplete(near_median(p.onset), recovered, time_s);
     found.push_back(p);
   }
+  judgeCutWindows(found, time_s, {{"the first car", &lead_speed_mps, 1}}, criteria);
   return found;
 }
 
@@ -139,9 +161,76 @@ double preWindowMeanMps(const std::vector<double>& time_s, const std::vector<dou
 }
 }  // namespace
 
+bool windowCovered(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
+                   const Perturbation& perturbation, const PerturbationCriteria& criteria)
+{
+  const std::size_t end = std::min(perturbation.window_end, speed_mps.size());
+  if (!perturbation.incomplete.empty() || end <= perturbation.onset + 1 ||
+      !finiteAt(time_s, speed_mps, perturbation.onset) || !finiteAt(time_s, speed_mps, end - 1))
+    return false;
+  std::size_t previous = perturbation.onset;
+  for (std::size_t i = perturbation.onset + 1; i < end; ++i)
+  {
+    if (!finiteAt(time_s, speed_mps, i))
+      continue;
+    if (time_s[i] - time_s[previous] > criteria.max_bridged_hole_s)
+      return false;
+    previous = i;
+  }
+  return true;
+}
+
+namespace
+{
+/// Whether the speed rose again by kCutDipRecoveredShare of its dip after its lowest sample in
+/// [onset, end): true too where the car has no finite sample in the window or before it (nothing of
+/// its is measured).
+bool recoveringFromItsDip(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
+                         const Perturbation& perturbation, const PerturbationCriteria& criteria)
+{
+  const double pre_mps = preWindowMeanMps(time_s, speed_mps, perturbation, criteria);
+  const std::size_t end = std::min(perturbation.window_end, speed_mps.size());
+  std::size_t lowest = end;
+  for (std::size_t i = perturbation.onset; i < end; ++i)
+    if (finiteAt(time_s, speed_mps, i) && (lowest == end || speed_mps[i] < speed_mps[lowest]))
+      lowest = i;
+  if (!std::isfinite(pre_mps) || lowest == end)
+    return true;
+  const double risen_mps = speed_mps[lowest] + kCutDipRecoveredShare * std::max(0.0, pre_mps - speed_mps[lowest]);
+  for (std::size_t i = lowest + 1; i < end; ++i)
+    if (finiteAt(time_s, speed_mps, i) && speed_mps[i] > risen_mps)
+      return true;
+  return false;
+}
+}  // namespace
+
+void judgeCutWindows(std::vector<Perturbation>& perturbations, const std::vector<double>& time_s,
+                     const std::vector<MeasuredSpeed>& cars, const PerturbationCriteria& criteria)
+{
+  for (Perturbation& p : perturbations)
+  {
+    if (!p.window_cut || !p.incomplete.empty())
+      continue;
+    for (const MeasuredSpeed& car : cars)
+    {
+      if (car.speed_mps == nullptr || recoveringFromItsDip(time_s, *car.speed_mps, p, criteria))
+        continue;
+      p.first_cut_order = car.order;
+      p.cut_note = "the data end at " + printfText("%.1f s", time_s.back()) + ", before the dip window does (" +
+                   printfText("%.1f s", p.end_s + criteria.extension_s) + "), with " + car.name +
+                   "'s speed not yet rising again from its lowest: its dip and those behind it may be cut off";
+      if (&car == &cars.front())
+        p.incomplete = p.cut_note;
+      break;
+    }
+  }
+}
+
 double dipDepthMps(const std::vector<double>& time_s, const std::vector<double>& speed_mps,
                    const Perturbation& perturbation, const PerturbationCriteria& criteria)
 {
+  if (!windowCovered(time_s, speed_mps, perturbation, criteria))
+    return kNaN;
   const double pre_mps = preWindowMeanMps(time_s, speed_mps, perturbation, criteria);
   double minimum = std::numeric_limits<double>::infinity();
   for (std::size_t i = perturbation.onset; i < perturbation.window_end && i < speed_mps.size(); ++i)
@@ -158,11 +247,10 @@ double distanceLostM(const std::vector<double>& time_s, const std::vector<double
                      const Perturbation& perturbation, const PerturbationCriteria& criteria)
 {
   const double pre_mps = preWindowMeanMps(time_s, speed_mps, perturbation, criteria);
-  const std::size_t end = std::min(perturbation.window_end, speed_mps.size());
-  // A window whose ends are missing is not covered: the loss there is unknown, not zero.
-  if (!std::isfinite(pre_mps) || end <= perturbation.onset + 1 || !finiteAt(time_s, speed_mps, perturbation.onset) ||
-      !finiteAt(time_s, speed_mps, end - 1))
+  // A window not covered: the loss there is unknown, not zero.
+  if (!std::isfinite(pre_mps) || !windowCovered(time_s, speed_mps, perturbation, criteria))
     return kNaN;
+  const std::size_t end = std::min(perturbation.window_end, speed_mps.size());
   double lost_m = 0.0;
   std::size_t previous = perturbation.onset;
   for (std::size_t i = perturbation.onset + 1; i < end; ++i)
@@ -170,8 +258,6 @@ double distanceLostM(const std::vector<double>& time_s, const std::vector<double
     if (!finiteAt(time_s, speed_mps, i))
       continue;
     const double step_s = time_s[i] - time_s[previous];
-    if (step_s > criteria.max_bridged_hole_s)
-      return kNaN;
     lost_m += 0.5 * step_s * (std::max(0.0, pre_mps - speed_mps[previous]) + std::max(0.0, pre_mps - speed_mps[i]));
     previous = i;
   }
@@ -292,11 +378,10 @@ DipShape dipShape(const std::vector<double>& time_s, const std::vector<double>& 
                   const Perturbation& perturbation, const PerturbationCriteria& criteria)
 {
   DipShape shape;
-  const std::size_t end = std::min(perturbation.window_end, speed_mps.size());
-  // As for the distance lost: a window whose ends are missing may hide the dip, so it is unknown.
-  if (end <= perturbation.onset + 1 || !finiteAt(time_s, speed_mps, perturbation.onset) ||
-      !finiteAt(time_s, speed_mps, end - 1))
+  // As for the distance lost: a window not covered may hide the dip, so it is unknown.
+  if (!windowCovered(time_s, speed_mps, perturbation, criteria))
     return shape;
+  const std::size_t end = std::min(perturbation.window_end, speed_mps.size());
   std::size_t lowest = perturbation.onset;
   for (std::size_t i = perturbation.onset; i < end; ++i)
   {

@@ -233,6 +233,62 @@ TEST(CampaignPerturbation, DropsWithoutARecoveryNearTheMedianBetweenThemAreOnePe
   EXPECT_NEAR(acc::dipDepthMps(time_s, speed_mps, found[0]), 4.0, 1e-9);
 }
 
+// A dip the data do not hold whole is not measured (a number there is a cut-off dip, wrong
+// without a word): data that begin inside a drop (no onset near the median: Casale part3 starts
+// from rest) or end before the first car is back; a window the data's end cuts, at the first car
+// behind that is not yet rising again from its lowest (those further back dip later still); a
+// car with a hole longer than max_bridged_hole_s in its window.
+TEST(CampaignPerturbation, DipsTheDataDoNotHoldWholeAreNotMeasured)
+{
+  const auto drop = [](double t) { return t >= 20.0 - 1e-9 && t < 24.0 - 1e-9 ? 7.0 : 10.0; };
+  std::vector<double> time_s, speed_mps;
+  sampleSpeed([&](double t) { return drop(t + 21.0); }, 0.05, &time_s, &speed_mps);  // begins inside it
+  auto found = acc::findPerturbations(time_s, speed_mps);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_NE(found[0].incomplete.find("already below its median where the data begin"), std::string::npos)
+      << found[0].incomplete;
+  EXPECT_TRUE(std::isnan(acc::dipDepthMps(time_s, speed_mps, found[0])));
+  time_s.clear();
+  speed_mps.clear();
+  sampleSpeed([&](double t) { return drop(t - 18.0); }, 0.05, &time_s, &speed_mps);  // ends inside it (40 s)
+  found = acc::findPerturbations(time_s, speed_mps);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_NE(found[0].incomplete.find("still below its median when the data end"), std::string::npos);
+  EXPECT_TRUE(std::isnan(acc::dipDepthMps(time_s, speed_mps, found[0])));
+
+  // Back at 24 s; the data end at 40 s, inside the window (to 54 s). A follower whose lowest is
+  // at 30 s and back up by 39 s is whole; one still braking at the end is not, nor is any after it.
+  time_s.clear();
+  speed_mps.clear();
+  sampleSpeed(drop, 0.05, &time_s, &speed_mps);
+  std::vector<double> whole, braking;
+  for (double t : time_s)
+  {
+    whole.push_back(t < 26.0 ? 10.0 : t < 30.0 ? 10.0 - (t - 26.0) : std::min(10.0, 6.0 + 0.5 * (t - 30.0)));
+    braking.push_back(t < 30.0 ? 10.0 : 10.0 - 0.3 * (t - 30.0));
+  }
+  found = acc::findPerturbations(time_s, speed_mps);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_TRUE(found[0].window_cut);
+  EXPECT_EQ(found[0].incomplete, "");
+  acc::judgeCutWindows(found, time_s, {{"car 2", &whole, 2}, {"car 3", &braking, 3}, {"car 4", &whole, 4}});
+  EXPECT_EQ(found[0].first_cut_order, 3);
+  EXPECT_NE(found[0].cut_note.find("car 3's speed not yet rising again"), std::string::npos) << found[0].cut_note;
+  EXPECT_EQ(found[0].incomplete, "");
+  EXPECT_NEAR(acc::dipDepthMps(time_s, whole, found[0]), 4.0, 1e-9);
+  auto only_braking = acc::findPerturbations(time_s, speed_mps);
+  acc::judgeCutWindows(only_braking, time_s, {{"the follower", &braking, 2}});
+  EXPECT_NE(only_braking[0].incomplete, "");  // the first car judged: the whole perturbation
+  EXPECT_TRUE(std::isnan(acc::dipDepthMps(time_s, whole, only_braking[0])));
+
+  std::vector<double> holed = whole;
+  for (std::size_t i = 580; i < 610; ++i)  // 1.5 s missing around its lowest (29-30.5 s)
+    holed[i] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(acc::windowCovered(time_s, holed, found[0]));
+  EXPECT_TRUE(std::isnan(acc::dipDepthMps(time_s, holed, found[0])));
+  EXPECT_TRUE(std::isnan(acc::dipShape(time_s, holed, found[0]).braking_mps2));
+}
+
 // A dip of known area: 10 m/s, 2 m/s less for 4 s from t = 20 s: the car loses 2 * 4 = 8 m
 // against its pre-perturbation speed (the trapezoids across the two steps add half a sample each),
 // and the same with a short hole bridged; a long hole or a missing end leaves it unknown (NaN),
