@@ -157,7 +157,7 @@ def run(job):
         traci.simulationStep()  # inserts every vehicle at its depart position and speed
         missing = [v for v in vehicles if v not in traci.vehicle.getIDList()]
         if missing:
-            fail("SUMO did not insert " + ", ".join(missing) + "; see " + os.path.join(work_dir, "sumo.log"))
+            fail("SUMO did not insert " + ", ".join(missing) + ": " + first_error(os.path.join(work_dir, "sumo.log")))
         traci.vehicle.setSpeedMode("leader", 0)
         traci.vehicle.setLaneChangeMode("leader", 0)
         rows.append(record(traci, vehicles, lengths_by_vehicle))
@@ -166,24 +166,33 @@ def run(job):
             traci.simulationStep()
             present = traci.vehicle.getIDList()
             if any(v not in present for v in vehicles):
-                fail("a vehicle left the simulation at %.1f s; see %s" % (traci.simulation.getTime(),
-                                                                          os.path.join(work_dir, "sumo.log")))
+                fail("a vehicle left the simulation at %.1f s: %s" % (traci.simulation.getTime(),
+                                                                      first_error(os.path.join(work_dir, "sumo.log"))))
             rows.append(record(traci, vehicles, lengths_by_vehicle))
+    except (traci.exceptions.TraCIException, traci.exceptions.FatalTraCIError) as error:  # SUMO ended the run
+        fail("SUMO stopped (%s): %s" % (error, first_error(os.path.join(work_dir, "sumo.log"))))
     finally:
-        traci.close()
+        try:
+            traci.close()
+        except Exception:  # already closed by SUMO
+            pass
     write_trace(job["output"], job["step_length_s"], len(job["followers"]), rows)
 
 
 def first_error(log_path):
-    """SUMO's first error line, or where to look."""
+    """SUMO's first error line, else its first warning: said here, since the log goes with the
+    temporary folder unless sumo_replay --keep DIR keeps it."""
+    warning = None
     try:
         with open(log_path) as log:
             for line in log:
                 if line.startswith("Error:"):
                     return line.strip()
+                if warning is None and line.startswith("Warning:"):
+                    warning = line.strip()
     except OSError:
         pass
-    return "see " + log_path
+    return warning or "SUMO's log says no more (sumo_replay --keep DIR keeps it)"
 
 
 def write_trace(path, step_s, followers, rows):

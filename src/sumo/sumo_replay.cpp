@@ -15,6 +15,7 @@
 #include "acc_identification/io/run_program.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/json_number.h"
+#include "acc_identification/model/number_text.h"
 
 namespace acc
 {
@@ -265,6 +266,10 @@ std::vector<std::string> explain(const SumoPairReplay& r, bool same_gains)
 {
   std::vector<std::string> lines;
   const SumoStepCounts& c = r.counts;
+  if (std::isfinite(r.model_diverged_at_s))
+    lines.push_back("the package's model runs away at " + significant(r.model_diverged_at_s) +
+                    " s (its speed or gap beyond any road vehicle's): every error against it is over the samples "
+                    "before, and no comparison after");
   if (c.law_coincides == c.steps)
     lines.push_back("SUMO's law and the model coincide at every step: what differs is the position update (SUMO "
                     "moves by the new speed, the package's Euler step by the old one)");
@@ -305,8 +310,11 @@ SumoPairReplay replayPairInSumo(const CarFollowingRun& run, const SumoAccVType& 
   r.model_from_vtype_params = vtype.has_source_model;
   const SumoRun sumo = runSumo(run.leader_speed_mps, r.step_s,
                                {{vtype.id, run.space_gap_m.front(), run.follower_speed_mps.front()}}, vtype_file, options);
-  // A model that diverges is scored up to its divergence only (rmse skips NaN).
-  const SimulatedFollower model = scorable(simulateFollower(r.model.parameters, r.model.settings(), run));
+  // A model that diverges is scored up to its divergence only (rmse skips NaN), and says so.
+  const SimulatedFollower simulated = simulateFollower(r.model.parameters, r.model.settings(), run);
+  if (simulated.diverged)
+    r.model_diverged_at_s = run.time_s[std::min(simulated.diverged_at_index, run.size() - 1)];
+  const SimulatedFollower model = scorable(simulated);
   const SumoAccTrace replica = simulateSumoAcc(vtype, run.leader_speed_mps, r.step_s, run.space_gap_m.front(),
                                                run.follower_speed_mps.front(), options.lane_speed_limit_mps);
   r.rmse_speed_sumo_vs_model_mps = rmse(sumo.speed_mps[1], model.speed_mps);
@@ -401,16 +409,31 @@ SumoPlatoonReplay replayPlatoonInSumo(const SumoPlatoonInput& input, const std::
     r.steps.push_back(countSteps(input.vtypes[i], gainsAreTheModels(input.vtypes[i], models[i]), sumo.speed_mps[i],
                                  sumo.speed_mps[i + 1], sumo.gap_m[i + 1], r.step_s, options));
   }
-  for (const Perturbation& perturbation : findPerturbations(input.time_s, input.leader_speed_mps))
+  std::vector<Perturbation> perturbations = findPerturbations(input.time_s, input.leader_speed_mps);
+  std::vector<MeasuredSpeed> measured;
+  for (std::size_t i = 0; i < input.measured_speed_mps.size(); ++i)
+    if (!input.measured_speed_mps[i].empty())
+      measured.push_back({input.vtypes.size() > i ? input.vtypes[i].id : "car " + std::to_string(i + 2),
+                          &input.measured_speed_mps[i], static_cast<int>(i) + 2});
+  judgeCutWindows(perturbations, input.time_s, measured);
+  for (const Perturbation& perturbation : perturbations)
   {
     SumoPlatoonPerturbation entry;
     entry.onset_s = perturbation.onset_s;
     entry.leader_dip_mps = dipDepthMps(input.time_s, input.leader_speed_mps, perturbation);
+    entry.not_measured = perturbation.incomplete.empty() ? perturbation.cut_note : perturbation.incomplete;
     for (std::size_t i = 0; i < input.vtypes.size(); ++i)
+    {
+      if (static_cast<int>(i) + 2 >= perturbation.first_cut_order)  // the data's end may cut its dip off
+      {
+        entry.positions.push_back({input.vtypes[i].id, std::nan(""), std::nan(""), std::nan(""), std::nan("")});
+        continue;
+      }
       entry.positions.push_back({input.vtypes[i].id, dipDepthMps(input.time_s, sumo.speed_mps[i + 1], perturbation),
                                  dipDepthMps(input.time_s, chain[i], perturbation),
                                  dipDepthMps(input.time_s, replica[i], perturbation),
                                  measuredDip(input, i, perturbation)});
+    }
     r.perturbations.push_back(entry);
   }
   return r;
@@ -463,6 +486,7 @@ nlohmann::json toJson(const SumoPairReplay& r)
                                                            static_cast<double>(r.counts.steps)
                                                      : 0.0},
           {"model", modelJson(r.model, r.model_from_vtype_params)},
+          {"model_diverged_at_s", jsonNumber(r.model_diverged_at_s)},
           {"explanation", r.explanation}};
 }
 
@@ -480,7 +504,8 @@ nlohmann::json toJson(const SumoPlatoonReplay& r)
                            {"sumo_law_replica_dip_mps", jsonNumber(p.positions[i].replica_dip_mps)},
                            {"measured_dip_mps", jsonNumber(p.positions[i].measured_dip_mps)}});
     perturbations.push_back(
-        {{"onset_s", p.onset_s}, {"leader_dip_mps", jsonNumber(p.leader_dip_mps)}, {"positions", positions}});
+        {{"onset_s", p.onset_s}, {"leader_dip_mps", jsonNumber(p.leader_dip_mps)}, {"not_measured", p.not_measured},
+         {"positions", positions}});
   }
   nlohmann::json rmse = nlohmann::json::array(), rmse_replica = nlohmann::json::array(),
                  steps = nlohmann::json::array();
@@ -546,6 +571,8 @@ void printReplay(const SumoPlatoonReplay& r, std::ostream& out)
         out << " / " << d.measured_dip_mps;
     }
     out << "\n";
+    if (!p.not_measured.empty())
+      out << "    (" << p.not_measured << ")\n";
   }
   if (r.perturbations.empty())
     out << "  the leader has no perturbation (a drop of more than 1 m/s below its median)\n";

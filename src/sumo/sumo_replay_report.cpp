@@ -1,5 +1,7 @@
 #include "acc_identification/sumo/sumo_replay_report.h"
 
+#include <filesystem>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -76,21 +78,28 @@ nlohmann::json pairsJson(const std::vector<SumoPairReplay>& replays)
 nlohmann::json replayRunsInSumo(const std::vector<CarFollowingRun>& runs, const std::vector<SumoAccVType>& vtypes,
                                 const std::string& vtype_file, const SumoReplayOptions& options, std::ostream& out)
 {
+  // --keep DIR with several segments: each its own DIR/segment_k (one folder held only the last).
+  const auto optionsOf = [&](std::size_t k) {
+    SumoReplayOptions segment = options;
+    if (!options.work_dir.empty() && runs.size() > 1)
+      segment.work_dir = (std::filesystem::path(options.work_dir) / ("segment_" + std::to_string(k + 1))).string();
+    return segment;
+  };
   nlohmann::json json;
   if (vtypes.size() == 1)
   {
     std::vector<SumoPairReplay> replays;
-    for (const CarFollowingRun& run : runs)
+    for (std::size_t k = 0; k < runs.size(); ++k)
     {
-      replays.push_back(replayPairInSumo(run, vtypes.front(), vtype_file, options));
+      replays.push_back(replayPairInSumo(runs[k], vtypes.front(), vtype_file, optionsOf(k)));
       printReplay(replays.back(), out);
     }
     return pairsJson(replays);
   }
   json = {{"mode", "platoon"}, {"segments", nlohmann::json::array()}};
-  for (const CarFollowingRun& run : runs)
+  for (std::size_t k = 0; k < runs.size(); ++k)
   {
-    const SumoPlatoonReplay replay = replayPlatoonInSumo(equilibriumPlatoon(run, vtypes), vtype_file, options);
+    const SumoPlatoonReplay replay = replayPlatoonInSumo(equilibriumPlatoon(runs[k], vtypes), vtype_file, optionsOf(k));
     printReplay(replay, out);
     json["segments"].push_back(toJson(replay));
   }

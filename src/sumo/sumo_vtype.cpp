@@ -395,8 +395,10 @@ std::vector<double> numbers(const std::string& text, const std::string& where)
   {
     char* end = nullptr;
     values.push_back(std::strtod(field.c_str(), &end));
-    if (*end != '\0')
-      throw std::runtime_error(where + ": '" + field + "' is not a number");
+    // nan or inf: the model's trace would be non-finite from its first step, and every error
+    // scored over what is left (its start) would read 0.
+    if (*end != '\0' || !std::isfinite(values.back()))
+      throw std::runtime_error(where + ": '" + field + "' is not a finite number");
   }
   return values;
 }
@@ -441,18 +443,19 @@ void readSourceModel(const tinyxml2::XMLElement* element, const std::string& pat
 }
 
 /// What this reader cannot take as SUMO would, said rather than guessed: a vClass whose defaults
-/// are not a passenger car's (a truck's length, accel, decel) with those attributes left to it,
-/// and emergency braking weaker than the normal (SUMO stops on an assertion).
+/// are not a passenger car's (a truck's length, accel, decel, and its maxSpeed: a truck capped at
+/// 36.11 m/s was replayed behind a leader at 40) with those attributes left to it, and emergency
+/// braking weaker than the normal (SUMO stops on an assertion).
 void refuseWhatSumoReadsOtherwise(const tinyxml2::XMLElement* element, const SumoAccVType& v, const std::string& path)
 {
   const std::string where = path + ": vType '" + v.id + "'";
   const char* vclass = element->Attribute("vClass");
   if (vclass != nullptr && std::string(vclass) != "passenger")
-    for (const char* attribute : {"length", "accel", "decel", "emergencyDecel"})
+    for (const char* attribute : {"length", "accel", "decel", "emergencyDecel", "maxSpeed"})
       if (element->Attribute(attribute) == nullptr)
         throw std::runtime_error(where + ": vClass \"" + vclass + "\" leaves " + attribute +
                                  " to its class default, which this reader does not know (it knows a passenger "
-                                 "car's): give length, accel, decel and emergencyDecel in the vType");
+                                 "car's): give length, accel, decel, emergencyDecel and maxSpeed in the vType");
   if (v.emergency_decel_mps2 < v.decel_mps2)
     throw std::runtime_error(where + ": emergencyDecel " + significant(v.emergency_decel_mps2) + " below decel " +
                              significant(v.decel_mps2) + ": SUMO refuses to simulate it (an assertion)");

@@ -248,6 +248,17 @@ TEST(SumoVTypeFile, BadFilesAreRefusedWithTheReason)
                     "</additional>\n")
                 .find("emergencyDecel 0.5 below decel 4.5"),
             std::string::npos);
+  // A truck's maxSpeed (36.11 m/s) capped it behind a faster leader, blamed on SUMO's safe speed.
+  EXPECT_NE(refusal("<additional><vType id=\"T\" vClass=\"truck\" carFollowModel=\"ACC\" length=\"5\" accel=\"2\" "
+                    "decel=\"4\" emergencyDecel=\"9\"/></additional>\n")
+                .find("leaves maxSpeed to its class default"),
+            std::string::npos);
+  // A model parameter that is not finite: the model's trace was NaN from its first step, and the
+  // replay scored 0 m/s over its start alone, exit 0.
+  EXPECT_NE(refusal("<additional><vType id=\"N\" carFollowModel=\"ACC\"><param key=\"acc_identification.k1_per_s2\" "
+                    "value=\"nan\"/></vType></additional>\n")
+                .find("'nan' is not a finite number"),
+            std::string::npos);
   EXPECT_EQ(refusal("<additional><vType id=\"P\" vClass=\"passenger\" carFollowModel=\"ACC\"/></additional>\n"), "");
   std::ofstream(path) << "<additional><vType id=\"a\"";
   EXPECT_THROW(readSumoAccVTypes(path), std::runtime_error);

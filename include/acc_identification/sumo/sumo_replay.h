@@ -89,6 +89,8 @@ struct SumoPairReplay
   SumoStepCounts counts;
   PackageModel model;
   bool model_from_vtype_params = false;  ///< the vType carried its source model
+  /// Where the package's model ran away (its errors are over the samples before it); NaN if never.
+  double model_diverged_at_s = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::string> explanation;  ///< why SUMO and the model differ, largest cause first
 };
 
@@ -126,6 +128,8 @@ struct SumoPlatoonPerturbation
 {
   double onset_s = 0.0;
   double leader_dip_mps = 0.0;
+  /// Why some or all dips are not measured (Perturbation::incomplete or cut_note), "" otherwise.
+  std::string not_measured;
   std::vector<SumoPlatoonDip> positions;
 };
 struct SumoPlatoonReplay
