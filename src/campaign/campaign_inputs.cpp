@@ -75,6 +75,15 @@ std::string whyNoUsableRun(const RunFileContents& contents)
   return why + describeCoarseSteps(contents);
 }
 
+/// A ZalaZone setting that names two or three of S, M and L ("SL": the database's mixed runs, the
+/// platoon at the first but for a few cars at the second, listed outside the file).
+bool isMixedSetting(const std::string& setting)
+{
+  const std::string upper = upperCase(setting);
+  return upper.size() >= 2 && upper.size() <= 3 && upper.find_first_not_of("SML") == std::string::npos &&
+         std::set<char>(upper.begin(), upper.end()).size() == upper.size();
+}
+
 /// The file's Distance_setting as the campaign spells it: "?" when unknown. A setting met before
 /// under another spelling takes the first spelling, said in a note, so that one car's runs at one
 /// setting are one group: another case ("Min" after "min"), or another word for the same setting
@@ -86,6 +95,10 @@ std::string settingSpelling(const std::string& written, std::map<std::string, st
     return "?";
   const std::string letter = distanceSettingLetter(written);
   const auto [known, first] = spellings.emplace(letter.empty() ? upperCase(written) : letter, written);
+  if (first && letter.empty() && !isMixedSetting(written))
+    notes.push_back(path + ": Distance_setting '" + written + "' is no word for the shortest, a middle or the longest "
+                    "setting this reader knows (S, M, L, min, max, ...): its cars form groups of their own, '" +
+                    written + "'");
   if (first || known->second == written)
     return known->second;
   const bool same_word = upperCase(known->second) == upperCase(written);
@@ -93,15 +106,6 @@ std::string settingSpelling(const std::string& written, std::map<std::string, st
                   "', as an earlier file writes it" +
                   (same_word ? "" : " (both name " + describeDistanceSetting(letter) + ")"));
   return known->second;
-}
-
-/// A ZalaZone setting that names two or three of S, M and L ("SL": the database's mixed runs, the
-/// platoon at the first but for a few cars at the second, listed outside the file).
-bool isMixedSetting(const std::string& setting)
-{
-  const std::string upper = upperCase(setting);
-  return upper.size() >= 2 && upper.size() <= 3 && upper.find_first_not_of("SML") == std::string::npos &&
-         std::set<char>(upper.begin(), upper.end()).size() == upper.size();
 }
 
 /// One run of a mixed-setting listing: the cars at the listed setting, and the listing's path.

@@ -203,6 +203,26 @@ std::string noHeaderError(const OpenAccFile& file, std::size_t line_number)
          " (not an OpenACC file?)" + separatorHint(file.path);
 }
 
+/// A name Vehicle_order gives twice: two cars of one run cannot be one car (their data would be
+/// fitted as one car's two runs), so the later one is named apart, NAME_k after its position k,
+/// and a metadata problem says so.
+void nameRepeatedCarsApart(OpenAccFile& file)
+{
+  std::vector<std::string>& order = file.metadata.vehicle_order;
+  for (std::size_t k = 1; k < order.size(); ++k)
+  {
+    const auto first = std::find(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(k), order[k]);
+    if (first == order.begin() + static_cast<std::ptrdiff_t>(k))
+      continue;
+    const std::string apart = order[k] + "_" + std::to_string(k + 1);
+    noteMetadataProblem(file, file.path + ": Vehicle_order names " + order[k] + " at positions " +
+                                  std::to_string(first - order.begin() + 1) + " and " + std::to_string(k + 1) +
+                                  ": the one at " + std::to_string(k + 1) + " is read as " + apart +
+                                  ", a car of its own (check the line)");
+    order[k] = apart;
+  }
+}
+
 /// Without Date and Vehicle_order the file is not read; the other lines missing are a note.
 bool checkMetadataLines(const MetadataSeen& seen, std::size_t header_line, OpenAccFile& file)
 {
@@ -239,6 +259,7 @@ bool checkMetadataLines(const MetadataSeen& seen, std::size_t header_line, OpenA
   {
     noteMetadataProblem(file, file.path + ": no " + join(absent, ", ") + " line (left unknown)");
   }
+  nameRepeatedCarsApart(file);
   const int order_size = static_cast<int>(file.metadata.vehicle_order.size());
   if (file.metadata.number_of_vehicles >= 0 && file.metadata.number_of_vehicles != order_size)
   {

@@ -726,7 +726,7 @@ TEST(CampaignInputs, AListedMixedRunsSettingsTakeTheOtherFilesSpelling)
 
 // Another word for one setting ("S" and "Short" after "min", "L" after "max": the ZalaZone and
 // Casale campaigns' spellings) is one group under the first spelling, said in a note; a setting no
-// word names ("2") stays a group of its own. Fails when the spellings are keyed by case alone.
+// word names ("2") stays a group of its own, said. Fails when the spellings are keyed by case alone.
 TEST(CampaignInputs, AnotherWordForOneSettingIsOneGroup)
 {
   TempFolder folder("acc_campaign_setting_words");
@@ -747,7 +747,8 @@ TEST(CampaignInputs, AnotherWordForOneSettingIsOneGroup)
   EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"e_long.csv: Distance_setting 'L' taken as 'max'",
                                                    "(both name the longest setting)"}))
       << all;
-  EXPECT_FALSE(acc_test::anyContains(inputs.notes, {"f_two.csv: Distance_setting"})) << all;
+  EXPECT_FALSE(acc_test::anyContains(inputs.notes, {"f_two.csv: Distance_setting '2' taken as"})) << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"f_two.csv: Distance_setting '2' is no word for"})) << all;
 }
 
 // A car with no other run at its setting is fitted on the first half of the predicted run, and
@@ -846,6 +847,25 @@ TEST(CampaignInputs, MetadataThatContradictTheColumnsAreSaid)
   ASSERT_EQ(inputs.groups.size(), 1u) << all;
   EXPECT_EQ(inputs.groups[0].label(), "CAR_A/S");
   EXPECT_EQ(inputs.skipped_pairs, 1u) << all;
+}
+
+// One run's two cars named alike were merged into one car's two runs (another car's data in its
+// model, the rule's choice changed), and a setting word that names no setting made its own group
+// without a word. Now the later car is named apart and both are said.
+TEST(CampaignInputs, ACarNamedTwiceIsTwoCarsAndAnUnknownSettingWordIsSaid)
+{
+  TempFolder folder("acc_campaign_named_twice");
+  acc_test::writeSyntheticPlatoon(folder.file("a.csv"), "XL", {kAS, kBS}, 63, 60.0);
+  rewriteLines(folder.file("a.csv"), [](std::size_t i, const std::string& line) -> std::vector<std::string> {
+    return {i == 1 ? std::string("Vehicle_order,LEAD,CAR_A,CAR_A,") : line};
+  });
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.file("a.csv")});
+  const std::string all = allNotes(inputs);
+  EXPECT_EQ(groupLabels(inputs), (std::vector<std::string>{"CAR_A/XL 1", "CAR_A_3/XL 1"})) << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"a.csv: Vehicle_order names CAR_A at positions 2 and 3: the one "
+                                                   "at 3 is read as CAR_A_3"}))
+      << all;
+  EXPECT_TRUE(acc_test::anyContains(inputs.notes, {"a.csv: Distance_setting 'XL' is no word for the shortest"})) << all;
 }
 
 TEST(CampaignInputs, ThePlatoonCheckSaysWhichRowsItLeavesOut)
