@@ -237,22 +237,6 @@ CarFollowingRun leadWithTail(const OpenAccFile& file, std::size_t first, std::si
   return run;
 }
 
-/// Where a simulated car first collides with the car ahead (gap at or below 0) or drives backwards
-/// (speed below 0); "" when it does neither. *collision: which of the two it was.
-std::string breakdownOf(const SimulatedFollower& sim, const std::vector<double>& time_s, bool* collision)
-{
-  const std::size_t end = sim.diverged ? sim.diverged_at_index : sim.speed_mps.size();
-  for (std::size_t i = 0; i < end; ++i)
-  {
-    *collision = sim.space_gap_m[i] <= 0.0;
-    if (*collision)
-      return printfText("its gap reaches %.1f m (a collision) at t = %.1f s", sim.space_gap_m[i], time_s[i]);
-    if (sim.speed_mps[i] < 0.0)
-      return printfText("its speed reaches %.2f m/s (driving backwards) at t = %.1f s", sim.speed_mps[i], time_s[i]);
-  }
-  return "";
-}
-
 /// The perturbation with its window running on to the next one's onset (or the record's end):
 /// where the tenth car of a long platoon dips, long after the first car's window.
 Perturbation untilNextOnset(const std::vector<Perturbation>& perturbations, std::size_t k, std::size_t samples)
@@ -303,7 +287,7 @@ void simulateLongPlatoon(const CampaignInputs& inputs, const std::string& settin
       if (diverged && evidence->long_platoon_ran_away_at_car == 0)
         evidence->long_platoon_ran_away_at_car = static_cast<std::size_t>(car) + 1;
       bool collision = false;
-      const std::string breakdown = breakdownOf(sim, run.time_s, &collision);
+      const std::string breakdown = describeBreakdown(sim, run.time_s, &collision);
       const auto car_number = static_cast<std::size_t>(car) + 1;
       if (!breakdown.empty() &&
           (evidence->long_platoon_breaks_down_at_car == 0 || car_number < evidence->long_platoon_breaks_down_at_car))

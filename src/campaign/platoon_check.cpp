@@ -113,6 +113,8 @@ void predictCar(const OpenAccFile& file, const std::vector<double>& input_mps, i
   car.rmse_speed_mps = sim.diverged ? kNaN : rmseAgainstMeasured(car.predicted_speed_mps, file.vehicle(car.position)->speed_mps);
   if (sim.diverged)
     car.note = "simulation diverged at t = " + printfText("%.1f s", run.time_s[valid]) + whyDiverged(car.model, run);
+  bool collision = false;
+  car.breakdown = describeBreakdown(sim, run.time_s, &collision);
 }
 
 
@@ -168,6 +170,9 @@ std::vector<PlatoonCarPrediction> predictChain(const CampaignFile& file, const s
       check.notes.push_back("chain restarted at position " + std::to_string(k) + ": driven by the measured speed of " +
                             data.vehicleName(driven_by) + " (" + std::to_string(driven_by) + ")");
     predictCar(data, input, driven_by, start, check.end_row, car);
+    if (!car.breakdown.empty())  // the real car neither collides nor reverses: its dips there are the model's
+      check.notes.push_back(car.name + " (" + std::to_string(k) + ")'s chain prediction: " + car.breakdown +
+                            ", which the real car does not do");
     running = car.note.empty();
     if (!running)
     {

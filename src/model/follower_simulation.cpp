@@ -8,6 +8,7 @@
 
 #include "acc_identification/model/acc_model.h"
 #include "acc_identification/model/forward_dual.h"
+#include "acc_identification/model/number_text.h"
 
 namespace acc
 {
@@ -443,6 +444,22 @@ FollowerSpeedSensitivities simulateFollowerSensitivities(const std::vector<Effec
     return sensitivitiesWithCapacity<16>(effects, x, run);
   }
   throw std::invalid_argument("simulateFollowerSensitivities: more than 16 parameters");
+}
+
+std::string describeBreakdown(const SimulatedFollower& simulated, const std::vector<double>& time_s, bool* collision)
+{
+  const std::size_t end = simulated.diverged ? simulated.diverged_at_index : simulated.speed_mps.size();
+  for (std::size_t i = 0; i < end && i < time_s.size(); ++i)
+  {
+    *collision = simulated.space_gap_m[i] <= 0.0;
+    if (*collision)
+      return printfText("its gap reaches %.1f m (a collision) at t = %.1f s", simulated.space_gap_m[i], time_s[i]);
+    if (simulated.speed_mps[i] < 0.0)
+      return printfText("its speed reaches %.2f m/s (driving backwards) at t = %.1f s", simulated.speed_mps[i],
+                        time_s[i]);
+  }
+  *collision = false;
+  return "";
 }
 
 }  // namespace acc

@@ -104,3 +104,24 @@ TEST(FollowerSimulation, ScorableBlanksWhatADivergedSimulationMustNotScore)
   EXPECT_EQ(same.speed_mps, calm.speed_mps);
   EXPECT_EQ(same.space_gap_m, calm.space_gap_m);
 }
+
+// A simulated car that collides or reverses is said, with where; one that diverges is judged up to
+// its divergence only (the campaign's chain predictions and its long platoon both ask this).
+TEST(FollowerSimulation, ABreakdownIsTheFirstCollisionOrReversalBeforeAnyDivergence)
+{
+  acc::SimulatedFollower sim;
+  sim.speed_mps = {5.0, 2.0, -0.3, -1.0};
+  sim.space_gap_m = {10.0, 6.0, 3.0, -1.0};
+  const std::vector<double> time_s = {0.0, 0.1, 0.2, 0.3};
+  bool collision = true;
+  EXPECT_EQ(acc::describeBreakdown(sim, time_s, &collision),
+            "its speed reaches -0.30 m/s (driving backwards) at t = 0.2 s");
+  EXPECT_FALSE(collision);
+  sim.space_gap_m[1] = 0.0;
+  EXPECT_EQ(acc::describeBreakdown(sim, time_s, &collision), "its gap reaches 0.0 m (a collision) at t = 0.1 s");
+  EXPECT_TRUE(collision);
+  sim.diverged = true;
+  sim.diverged_at_index = 1;
+  EXPECT_EQ(acc::describeBreakdown(sim, time_s, &collision), "");
+  EXPECT_FALSE(collision);
+}

@@ -139,6 +139,9 @@ struct PlatoonCarPrediction
   std::size_t stopped_at_row = 0;
   double rmse_speed_mps = 0.0;              ///< predicted against measured speed where both exist; NaN if never
   std::string note;                         ///< why not predicted
+  /// Where the prediction collides with the car ahead or drives backwards (describeBreakdown): a
+  /// model's unphysical state, said in the run's notes; "" when it does neither.
+  std::string breakdown;
 };
 
 /// The whole platoon of one run predicted from its real first car.

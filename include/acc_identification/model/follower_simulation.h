@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "acc_identification/model/acc_parameters.h"
@@ -77,6 +78,10 @@ FollowerSpeedSensitivities simulateFollowerSensitivities(const std::vector<Effec
 /// The simulation with NaN from where it diverged on (speed and gap): what may be scored, for
 /// scores that skip NaN samples.
 SimulatedFollower scorable(SimulatedFollower simulated);
+
+/// Where a simulated car first collides with the car ahead (gap at or below 0) or drives backwards
+/// (speed below 0), before any divergence; "" when it does neither. *collision: which of the two.
+std::string describeBreakdown(const SimulatedFollower& simulated, const std::vector<double>& time_s, bool* collision);
 
 /// The paper's model: every effect off.
 inline SimulatedFollower simulateFollower(const AccParameters& p, const CarFollowingRun& run)
