@@ -347,7 +347,7 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
       row.chain_diagnosed = DipMeasures{};
     if (throughHand(row.position - 1, row.position))
       row.pair = row.pair_diagnosed = DipMeasures{};
-    if (row.position >= perturbation.first_cut_order)  // the data's end may cut its dip off
+    if (perturbation.cutOffAt(row.position))
       row.measured = row.chain = row.chain_diagnosed = row.pair = row.pair_diagnosed = DipMeasures{};
     const DipComparison& ahead = result.positions.back();
     // Behind the real car driving a chain, the car ahead's dip is its measured one (as the first car's).
@@ -460,15 +460,16 @@ std::vector<Perturbation> leadPerturbations(const OpenAccFile& file, const Plato
   const std::vector<double> time_s = sliceRows(file.time_s, *first_row, *end_row);
   std::vector<Perturbation> found =
       findPerturbations(time_s, sliceRows(file.vehicle(1)->speed_mps, *first_row, *end_row), options.perturbation);
-  // A window the data's end cuts is whole when every car behind is back above half its dip.
+  // A window the data's end cuts is judged on the cars behind, in platoon order (judgeCutWindows).
   std::vector<std::vector<double>> speeds;
+  speeds.reserve(static_cast<std::size_t>(std::max(0, file.lastPosition())));  // cars point into it
   std::vector<MeasuredSpeed> cars;
   for (int position = 2; position <= file.lastPosition(); ++position)
     if (const OpenAccVehicle* car = file.vehicle(position))
+    {
       speeds.push_back(sliceRows(car->speed_mps, *first_row, *end_row));
-  for (int position = 2, k = 0; position <= file.lastPosition(); ++position)
-    if (file.vehicle(position) != nullptr)
-      cars.push_back({file.vehicleName(position) + " (" + std::to_string(position) + ")", &speeds[k++], position});
+      cars.push_back({file.vehicleName(position) + " (" + std::to_string(position) + ")", &speeds.back(), position});
+    }
   judgeCutWindows(found, time_s, cars, options.perturbation);
   return found;
 }

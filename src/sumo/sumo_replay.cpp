@@ -424,7 +424,7 @@ SumoPlatoonReplay replayPlatoonInSumo(const SumoPlatoonInput& input, const std::
     entry.not_measured = perturbation.incomplete.empty() ? perturbation.cut_note : perturbation.incomplete;
     for (std::size_t i = 0; i < input.vtypes.size(); ++i)
     {
-      if (static_cast<int>(i) + 2 >= perturbation.first_cut_order)  // the data's end may cut its dip off
+      if (perturbation.cutOffAt(static_cast<int>(i) + 2))
       {
         entry.positions.push_back({input.vtypes[i].id, std::nan(""), std::nan(""), std::nan(""), std::nan("")});
         continue;

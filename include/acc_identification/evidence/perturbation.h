@@ -55,6 +55,8 @@ struct Perturbation
   /// (cut_note says why). INT_MAX when every car's is whole.
   int first_cut_order = INT_MAX;
   std::string cut_note;
+  /// Whether the data's end may cut off the dip of the car of this order (measured or predicted).
+  bool cutOffAt(int order) const { return order >= first_cut_order; }
 };
 
 /// The perturbations of the first car's speed (NaN samples are skipped), those the data do not hold
