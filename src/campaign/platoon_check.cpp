@@ -32,7 +32,10 @@ bool hasSpeed(const OpenAccVehicle* vehicle)
 std::string whyNotSimulated(const OpenAccFile& file, int position, const PlatoonCarModel& model)
 {
   const std::string label = file.vehicleName(position) + " (" + std::to_string(position) + ")";
-  if (!hasSpeed(file.vehicle(position)))
+  const OpenAccVehicle* car = file.vehicle(position);
+  if (car != nullptr && !car->copied_column.empty())
+    return label + " has no speed data of its own (a copied column)";
+  if (!hasSpeed(car))
     return label + " has no speed data";
   const OpenAccVehicle* ahead = file.vehicle(position - 1);
   if (ahead == nullptr || !ahead->has_gap_to_follower || ahead->gap_values == 0)

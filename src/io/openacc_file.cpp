@@ -10,6 +10,7 @@
 
 #include "openacc_text.h"
 #include "acc_identification/io/csv_fields.h"
+#include "acc_identification/io/repeated_recording.h"
 
 namespace acc
 {
@@ -520,7 +521,7 @@ void addRowCells(OpenAccFile& file, const std::vector<ColumnTarget>& targets, co
     }
     if (bad)
     {
-      file.bad_cells.push_back({row, line_number, target.name, text});
+      file.bad_cells.push_back({row, line_number, target.name, text, ""});
       ++file.bad_cells_by_column[target.name];
       bad_here.push_back(file.bad_cells.back().describe());
     }
@@ -664,6 +665,35 @@ void noteAccLineAgainstDriverColumns(OpenAccFile& file)
   if (file.metadata.acc == 1 && !columns.empty() && with_acc.empty())
     noteMetadataProblem(file, file.path + ": the ACC line says 1 (ACC on) but no cell of " + join(columns, ", ") +
                                   " says ACC; each follower's Driver column is followed row by row: no row is on ACC");
+}
+
+/// Marks each car whose speeds repeat an earlier car's of the file sample for sample (a column
+/// copied by an export or an edit: two cars' measured speeds never share a long varying stretch to
+/// the last bit, repeated_recording.h). Which of the two is the copy the file cannot tell; the later
+/// one is set aside, and the note says so.
+void markCopiedColumns(OpenAccFile& file)
+{
+  RepeatedRecordingIndex earlier_cars;
+  for (std::size_t k = 0; k < file.vehicles.size(); ++k)
+  {
+    OpenAccVehicle& car = file.vehicles[k];
+    if (const std::optional<RepeatedRecording> repeat = earlier_cars.find({car.speed_mps}))
+    {
+      const OpenAccVehicle& original = file.vehicles[repeat->id];
+      car.copied_column = "its speeds from " + describeSampleTime(file.time_s[repeat->later_row]) + " repeat " +
+                          original.label() + "'s from " + describeSampleTime(file.time_s[repeat->earlier_row]) +
+                          " sample for sample (" + std::to_string(kRepeatedRecordingMinSamples) +
+                          " samples or more, to the last digit): one of the two columns is a copy, not a car's "
+                          "own measurement; the later one is not read";
+      // Set aside as a car without speeds, so that no reader (pairs, platoon check, SUMO chain)
+      // takes it for a measurement.
+      car.speed_mps.assign(car.speed_mps.size(), std::numeric_limits<double>::quiet_NaN());
+      car.has_speed = false;
+      car.speed_values = 0;
+      continue;  // not indexed: a third copy repeats the original too
+    }
+    earlier_cars.add({car.speed_mps}, k);
+  }
 }
 
 /// Why each car with data is not the follower of a pair.
@@ -866,6 +896,7 @@ OpenAccFile readOpenAccFile(const std::string& path)
   }
   keepCarsWithData(file, layout.cars);
   noteAccLineAgainstDriverColumns(file);
+  markCopiedColumns(file);
   notePairlessFollowers(file);
   detectAngleUnit(file);
   setAsideImpossibleAngles(file);

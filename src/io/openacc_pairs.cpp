@@ -33,6 +33,10 @@ std::string describePairlessFollower(const OpenAccFile& file, int follower_posit
   {
     return follower + " has no data in this file (" + noDataReason(file, k) + ")";
   }
+  if (!behind->copied_column.empty())
+  {
+    return follower + " has no pair: " + behind->copied_column;
+  }
   if (behind->speed_values == 0)
   {
     return follower + " has no pair: it has no Speed" + std::to_string(k) + " data";
@@ -43,6 +47,11 @@ std::string describePairlessFollower(const OpenAccFile& file, int follower_posit
   {
     return follower + " has no pair: the car directly ahead of it, " + ahead + ", has no data in this file (" +
            noDataReason(file, k - 1) + "); a car further ahead is never taken as its leader";
+  }
+  if (!leader->copied_column.empty())
+  {
+    return follower + " has no pair: the car directly ahead of it, " + ahead +
+           ", is a copied column (its speeds repeat another car's), so its leader's speed is not measured";
   }
   if (leader->speed_values == 0)
   {

@@ -7,8 +7,10 @@
 #include <sstream>
 #include <stdexcept>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -181,6 +183,58 @@ TEST(CampaignPlatoon, TheChainRestartsBehindACarWithoutData)
     {
       EXPECT_DOUBLE_EQ(behind.chain_amplification, behind.chain.dip_mps / driving.measured.dip_mps);
     }
+  }
+}
+
+// A column copied from another car (an export or an edit gone wrong: Speed5 repeats Speed4 at
+// a 0 m gap) is no car: the reader sets it aside, and the platoon check neither measures its dip
+// nor scores its link (it scored a measured ratio of exactly 1 before). Fails if the copy counts.
+TEST(CampaignPlatoon, ACopiedColumnIsNoCarOfThePlatoon)
+{
+  const fs::path path = fs::temp_directory_path() / ("acc_campaign_copy_" + std::to_string(::getpid()) + ".csv");
+  acc_test::writeSyntheticPlatoon(path.string(), "S", {{"CAR_A", kUnstable}, {"CAR_B", kUnstable}, {"CAR_C", kUnstable}},
+                                  52, 150.0);
+  std::stringstream original;
+  original << std::ifstream(path).rdbuf();
+  std::string line, copied;
+  for (int k = 0; std::getline(original, line); ++k)
+  {
+    std::vector<std::string> cells;
+    std::stringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');)
+      cells.push_back(cell);
+    if (k == 1)
+      line += "COPY,";  // Vehicle_order
+    else if (k == 2)
+      line = "Number_of_vehicles,5";
+    else if (k == 5)
+      line += ",Speed5,IVS4";  // Time,Speed1..4,IVS1..3
+    else if (k > 5)
+      line += "," + cells[4] + ",0";  // CAR_C's speed, at a 0 m gap
+    copied += line + "\n";
+  }
+  std::ofstream(path) << copied;
+  acc::CampaignFile file;
+  file.contents = acc::readOpenAccFile(path.string());
+  fs::remove(path);
+  file.name = file.contents.name;
+  ASSERT_EQ(file.contents.error, "");
+  ASSERT_NE(file.contents.vehicle(5), nullptr);
+  EXPECT_NE(file.contents.vehicle(5)->copied_column.find("repeat CAR_C (4)'s"), std::string::npos)
+      << file.contents.vehicle(5)->copied_column;
+  const acc::PlatoonCheck check =
+      acc::checkPlatoon(file, std::vector<acc::PlatoonCarModel>(6, acc::PlatoonCarModel{true, kUnstable, "truth"}));
+  ASSERT_EQ(check.cars.size(), 4u);
+  EXPECT_TRUE(check.cars[2].predicted);
+  EXPECT_FALSE(check.cars[3].predicted);
+  EXPECT_NE(check.cars[3].note.find("a copied column"), std::string::npos) << check.cars[3].note;
+  ASSERT_FALSE(check.perturbations.empty());
+  for (const acc::PerturbationCheck& perturbation : check.perturbations)
+  {
+    ASSERT_EQ(perturbation.positions.size(), 5u);  // by position - 1
+    EXPECT_TRUE(std::isfinite(perturbation.positions[3].measured.dip_mps));
+    EXPECT_TRUE(std::isnan(perturbation.positions[4].measured.dip_mps));
+    EXPECT_TRUE(std::isnan(perturbation.positions[4].measured_amplification));
   }
 }
 

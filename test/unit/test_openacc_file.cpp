@@ -135,6 +135,17 @@ std::string withField(std::string row, std::size_t field, const std::string& tex
   return row.replace(begin, end - begin, text);
 }
 
+/// A speed as a cell, to the last digit of a double.
+std::string printed(double speed_mps)
+{
+  char text[64];
+  std::snprintf(text, sizeof text, "%.17g", speed_mps);
+  return text;
+}
+
+/// A varying speed with a little deterministic noise, as a Doppler speed varies (m/s).
+double varyingSpeed(int i) { return 10.0 + 2.0 * std::sin(0.05 * i) + 0.01 * std::sin(1.7 * i * i); }
+
 TEST_F(OpenAccFileTest, OneCorruptAngleNeitherDecidesTheUnitNorBecomesAPosition)
 {
   // A file in radians whose Lat1 is 7 in one row: once read as "beyond radians, so degrees",
@@ -195,6 +206,53 @@ TEST_F(OpenAccFileTest, ImpossibleAnglesAreListedInRowOrderOneLinePerRow)
   EXPECT_EQ(file.bad_cells_by_column.at("Lon2"), 2u);
   EXPECT_EQ(file.bad_cells_by_column.at("Lat2"), 1u);
   EXPECT_EQ(file.bad_cells_by_column.at("Lat1"), 1u);
+}
+
+/// The platoon file over 200 rows with varying speeds: TESLA_MODELX (2) drives 10 + 2 sin(0.05 i)
+/// m/s with a little noise; AUDI_A4 (5) drives `speed5(i)`.
+template <typename Speed5>
+std::string varyingPlatoonFile(Speed5 speed5)
+{
+  std::string text = kPlatoonMetadata + kPlatoonHeader;
+  for (int i = 0; i < 200; ++i)
+  {
+    std::string row = platoonRow(i, true, "", "10.0", printed(varyingSpeed(i)));
+    text += withField(row, 19, printed(speed5(i)));
+  }
+  return text;
+}
+
+TEST_F(OpenAccFileTest, ACarWhoseSpeedsRepeatAnotherCarsIsACopiedColumnAndNoPairsCar)
+{
+  // AUDI_A4's column is TESLA_MODELX's three rows later: a copy, not a car of its own.
+  const acc::OpenAccFile file = acc::readOpenAccFile(
+      write("copied.csv", varyingPlatoonFile([](int i) { return varyingSpeed(std::max(0, i - 3)); })));
+  ASSERT_EQ(file.error, "");
+  ASSERT_NE(file.vehicle(5), nullptr);
+  EXPECT_TRUE(file.vehicle(2)->copied_column.empty());
+  EXPECT_NE(file.vehicle(5)->copied_column.find("repeat TESLA_MODELX (2)'s"), std::string::npos)
+      << file.vehicle(5)->copied_column;
+  EXPECT_FALSE(file.vehicle(5)->has_speed);  // set aside: no reader takes it for a measurement
+  EXPECT_EQ(file.vehicle(5)->speed_values, 0u);
+  EXPECT_TRUE(std::isnan(file.vehicle(5)->speed_mps[100]));
+  EXPECT_TRUE(anyContains(file.notes, {"AUDI_A4 (5) has no pair", "repeat TESLA_MODELX (2)'s", "sample for sample",
+                                       "the later one is not read"}))
+      << joined(file.notes);
+  const std::vector<acc::OpenAccPair> pairs = acc::availablePairs(file);
+  ASSERT_EQ(pairs.size(), 1u) << acc::describeAvailablePairs(file);
+  EXPECT_EQ(pairs[0].follower_position, 2);
+}
+
+TEST_F(OpenAccFileTest, SpeedsThatDifferInTheLastDigitsAreTwoCars)
+{
+  // The same profile, but every 50th value differs in its last printed digit: no 100 samples
+  // repeat to the last digit, so these are two measurements (a car that follows closely).
+  const acc::OpenAccFile file = acc::readOpenAccFile(write("close.csv", varyingPlatoonFile([](int i) {
+    return varyingSpeed(std::max(0, i - 3)) + (i % 50 == 0 ? 1e-9 : 0.0);
+  })));
+  ASSERT_EQ(file.error, "");
+  EXPECT_TRUE(file.vehicle(5)->copied_column.empty()) << file.vehicle(5)->copied_column;
+  EXPECT_EQ(acc::availablePairs(file).size(), 2u) << acc::describeAvailablePairs(file);
 }
 
 TEST_F(OpenAccFileTest, CarsWithAbsentOrEmptyColumnsHaveNoPairAndTheNotesSayWhy)
