@@ -516,6 +516,18 @@ std::string whyRepeatsEarlierFile(const OpenAccFile& file, const RepeatedRecordi
          "): give each recording once";
 }
 
+/// Why the file holds one drive twice (a piece of a pair repeats an earlier piece of the file
+/// sample for sample: the drive appended after itself, its time reset between), or "".
+std::string whyHoldsADriveTwice(const std::string& path, const AllPairRuns& all)
+{
+  std::vector<CarFollowingRun> runs;
+  for (const PairRunContents& pair : all.pairs)
+    runs.insert(runs.end(), pair.contents.runs.begin(), pair.contents.runs.end());
+  const std::string repeat = describeRepeatedRun(runs, std::vector<std::size_t>(runs.size(), 0),
+                                                 std::vector<std::string>(runs.size(), path));
+  return repeat.empty() ? "" : repeat + ": the file is skipped, so that no drive counts twice; give each drive once";
+}
+
 /// One file into the inputs: its pairs into the groups, or a note saying why it is skipped.
 void addFile(const std::string& path, const RunPlausibilityBounds& bounds, const ListedRuns& listed_runs,
              CampaignInputs& inputs, std::map<std::pair<std::string, std::string>, CampaignGroup>& groups,
@@ -552,6 +564,12 @@ void addFile(const std::string& path, const RunPlausibilityBounds& bounds, const
   catch (const RunReadError& error)
   {
     inputs.notes.push_back(std::string(error.what()) + ", skipped");
+    ++inputs.skipped_files;
+    return;
+  }
+  if (const std::string twice = whyHoldsADriveTwice(path, all); !twice.empty())
+  {
+    inputs.notes.push_back(twice);
     ++inputs.skipped_files;
     return;
   }

@@ -177,18 +177,15 @@ std::optional<RepeatedRecording> RepeatedRecordingIndex::find(const Recording& r
   return found;
 }
 
-std::optional<RepeatedRun> findRepeatedRun(const std::vector<CarFollowingRun>& runs,
-                                           const std::vector<std::size_t>& input_of)
+std::optional<RepeatedRun> findRepeatedRun(const std::vector<CarFollowingRun>& runs)
 {
   RepeatedRecordingIndex index;
-  std::size_t indexed = 0;  // runs [0, indexed) are in the index: those of the inputs before this run's
   for (std::size_t k = 0; k < runs.size(); ++k)
   {
-    for (; indexed < k && input_of[indexed] < input_of[k]; ++indexed)
-      index.add({runs[indexed].follower_speed_mps, runs[indexed].leader_speed_mps}, indexed);
     if (const std::optional<RepeatedRecording> repeat =
             index.find({runs[k].follower_speed_mps, runs[k].leader_speed_mps}))
       return RepeatedRun{k, repeat->id, *repeat};
+    index.add({runs[k].follower_speed_mps, runs[k].leader_speed_mps}, k);
   }
   return std::nullopt;
 }
@@ -196,7 +193,7 @@ std::optional<RepeatedRun> findRepeatedRun(const std::vector<CarFollowingRun>& r
 std::string describeRepeatedRun(const std::vector<CarFollowingRun>& runs, const std::vector<std::size_t>& input_of,
                                 const std::vector<std::string>& path_of_run)
 {
-  const std::optional<RepeatedRun> repeat = findRepeatedRun(runs, input_of);
+  const std::optional<RepeatedRun> repeat = findRepeatedRun(runs);
   if (!repeat)
     return "";
   const CarFollowingRun& later = runs[repeat->later];
@@ -206,8 +203,10 @@ std::string describeRepeatedRun(const std::vector<CarFollowingRun>& runs, const 
          "'s run " + earlier.name + " (from " + describeSampleTime(earlier.time_s[repeat->where.earlier_row]) +
          ") sample for sample: the follower's and the leader's speeds over " +
          std::to_string(kRepeatedRecordingMinSamples) +
-         " samples or more, to the last digit, are the same recording (a copy, an excerpt or an export of the "
-         "same drive)";
+         " samples or more, to the last digit, are the same recording (" +
+         (input_of[repeat->later] == input_of[repeat->earlier] ? "one drive given twice in this input"
+                                                                : "a copy, an excerpt or an export of the same drive") +
+         ")";
 }
 
 std::string describeSampleTime(double time_s) { return printfText("t = %.1f s", time_s); }

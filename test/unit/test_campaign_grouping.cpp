@@ -485,6 +485,34 @@ TEST(CampaignInputs, ACopyOrAnExcerptOfARunIsTheSameRecordingAndSkipped)
   EXPECT_EQ(simulated.skipped_files, 0u);
 }
 
+// One drive appended after itself in one file (its time reset between) is the same drive twice:
+// the file is skipped with a note naming the two pieces, so that no drive counts twice. Fails if
+// the campaign reads the second piece as a run of its own.
+TEST(CampaignInputs, AFileHoldingOneDriveTwiceIsSkipped)
+{
+  TempFolder folder("acc_campaign_appended");
+  acc_test::writeSyntheticPlatoon(folder.file("run1.csv"), "S", {kAS, kBS}, 47, 120.0);
+  acc_test::writeSyntheticPlatoon(folder.file("run2.csv"), "S", {kBS, kAS}, 48, 120.0);
+  {
+    std::ifstream whole(folder.file("run1.csv"));
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(whole, line);)
+      lines.push_back(line);
+    std::ofstream twice(folder.file("run1.csv"));
+    for (const std::string& line : lines)
+      twice << line << "\n";
+    for (std::size_t k = 6; k < lines.size(); ++k)  // the rows again, after the header's six lines
+      twice << lines[k] << "\n";
+  }
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.path()});
+  ASSERT_EQ(inputs.files.size(), 1u);
+  EXPECT_EQ(inputs.skipped_files, 1u);
+  ASSERT_EQ(inputs.notes.size(), 1u);
+  EXPECT_NE(inputs.notes[0].find("run1.csv: its run run1 CAR_A#2 (from t = "), std::string::npos) << inputs.notes[0];
+  EXPECT_NE(inputs.notes[0].find("one drive given twice in this input): the file is skipped"), std::string::npos)
+      << inputs.notes[0];
+}
+
 // A folder with no OpenACC file says why of each CSV in it: an OpenACC file a spreadsheet saved
 // with ';' between fields is named with that reason, not only counted. Fails if the error drops
 // the files' reasons or the separator hint.

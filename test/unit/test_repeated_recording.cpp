@@ -167,18 +167,28 @@ TEST(RepeatedRecording, APartialOverlapIsFoundFromEitherSide)
   EXPECT_EQ(repeat->later_row, 500u);
 }
 
-TEST(RepeatedRecording, RunsAreComparedAcrossInputsOnly)
+TEST(RepeatedRecording, RunsAreComparedWithinAndAcrossInputs)
 {
   const acc::CarFollowingRun drive = measuredRun(2000, 13);
-  // Two runs of one input that happen to be equal are not compared (one file's pairs and segments).
-  EXPECT_FALSE(acc::findRepeatedRun({drive, drive}, {0, 0}));
-  const auto repeat = acc::findRepeatedRun({measuredRun(2000, 14), drive, rowsOf(drive, 300, 900)}, {0, 0, 1});
+  // One drive given twice in one input (appended after itself) is a repeat too.
+  const auto twice = acc::findRepeatedRun({drive, drive});
+  ASSERT_TRUE(twice);
+  EXPECT_EQ(twice->later, 1u);
+  EXPECT_EQ(twice->earlier, 0u);
+  const auto repeat = acc::findRepeatedRun({measuredRun(2000, 14), drive, rowsOf(drive, 300, 900)});
   ASSERT_TRUE(repeat);
   EXPECT_EQ(repeat->later, 2u);
   EXPECT_EQ(repeat->earlier, 1u);
   EXPECT_EQ(repeat->where.earlier_row, 300u);
-  // A run with the follower of one drive behind the leader of another is not a repeat.
+  // A run with the follower of one drive behind the leader of another is not a repeat, nor are
+  // different drives of one input.
   acc::CarFollowingRun mixed = measuredRun(2000, 15);
   mixed.follower_speed_mps = drive.follower_speed_mps;
-  EXPECT_FALSE(acc::findRepeatedRun({drive, mixed}, {0, 1}));
+  EXPECT_FALSE(acc::findRepeatedRun({drive, mixed}));
+  EXPECT_FALSE(acc::findRepeatedRun({drive, measuredRun(2000, 16), measuredRun(2000, 17)}));
+  // Said as one input's, or as another's.
+  const std::vector<acc::CarFollowingRun> runs{drive, rowsOf(drive, 300, 900)};
+  EXPECT_NE(acc::describeRepeatedRun(runs, {0, 0}, {"a.csv", "a.csv"}).find("one drive given twice in this input"),
+            std::string::npos);
+  EXPECT_NE(acc::describeRepeatedRun(runs, {0, 1}, {"a.csv", "b.csv"}).find("a copy, an excerpt"), std::string::npos);
 }

@@ -84,15 +84,16 @@ struct RepeatedRun
   RepeatedRecording where;  ///< its id is `earlier`; series 0 the follower's speeds, 1 the leader's
 };
 
-/// The first run whose follower and leader speeds repeat an earlier run's, or none. Runs are
-/// compared across inputs only: `input_of[k]` numbers the input run k came from, in order (a file
-/// gives several runs, its pairs and segments, which are different cars or times).
-std::optional<RepeatedRun> findRepeatedRun(const std::vector<CarFollowingRun>& runs,
-                                           const std::vector<std::size_t>& input_of);
+/// The first run whose follower and leader speeds repeat an earlier run's, or none. Runs of one
+/// input are compared too: a file's pairs are different cars and its pieces different times, so
+/// that two of them repeating each other is one drive given twice in the file (appended after
+/// itself, the time reset between).
+std::optional<RepeatedRun> findRepeatedRun(const std::vector<CarFollowingRun>& runs);
 
 /// findRepeatedRun said: "LATER_PATH: its run NAME (from t = ...) repeats EARLIER_PATH's run NAME
-/// (from t = ...) sample for sample: ...", `path_of_run[k]` the file run k came from; "" when no run
-/// repeats one of an earlier input.
+/// (from t = ...) sample for sample: ...", `path_of_run[k]` the file run k came from and
+/// `input_of[k]` the input (one drive given twice within one input is said so); "" when no run
+/// repeats an earlier one.
 std::string describeRepeatedRun(const std::vector<CarFollowingRun>& runs, const std::vector<std::size_t>& input_of,
                                 const std::vector<std::string>& path_of_run);
 
