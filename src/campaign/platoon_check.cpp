@@ -182,6 +182,8 @@ std::vector<PlatoonCarPrediction> predictChain(const CampaignFile& file, const s
       check.notes.push_back("chain stopped after position " + std::to_string(k) + ": " + car.note);
       driven_by = k;
     }
+    if (!car.model.step_mismatch.empty())
+      check.notes.push_back(car.name + " (" + std::to_string(k) + "): " + car.model.step_mismatch);
     if (car.model.source.find("first half") != std::string::npos)
       check.notes.push_back(car.name + " (" + std::to_string(k) + "): " + car.model.source);
     input = running ? car.predicted_speed_mps : measuredInput(data, k, check.first_row, check.end_row);
@@ -368,6 +370,17 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
   return result;
 }
 }  // namespace
+
+std::string describeStepMismatch(double fitted_step_s, double run_step_s)
+{
+  if (!(fitted_step_s > 0.0) || !(run_step_s > 0.0) ||
+      std::abs(run_step_s / fitted_step_s - 1.0) <= kStepMismatchShare)
+    return "";
+  return printfText("fitted on runs at %.3g s steps, this run is at %.3g s: the fit's parameters are those of the "
+                    "model's Euler map at its data's step (the paper's calibration), so this prediction, stepped at "
+                    "the run's, carries the difference (calibrate's euler_step_bias says how far the step moves a fit)",
+                    fitted_step_s, run_step_s);
+}
 
 bool onAccThroughout(const OpenAccFile& file, int position, std::size_t from_row, std::size_t to_row)
 {

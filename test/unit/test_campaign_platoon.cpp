@@ -1133,6 +1133,52 @@ TEST(CampaignPlatoon, ACarWithNoOtherRunIsJudgedOutOfSampleInEveryPerturbation)
   EXPECT_TRUE(json["platoons"][0]["perturbations"][0]["own_chain_models"].empty());
 }
 
+TEST(StepMismatch, SaidBeyondATenthOfTheStepOnly)
+{
+  EXPECT_EQ(acc::describeStepMismatch(0.1, 0.105), "");  // a logger's jitter
+  EXPECT_EQ(acc::describeStepMismatch(0.1, std::nan("")), "");
+  EXPECT_NE(acc::describeStepMismatch(0.1, 0.2).find("fitted on runs at 0.1 s steps, this run is at 0.2 s"),
+            std::string::npos);
+  EXPECT_NE(acc::describeStepMismatch(0.2, 0.1).find("at 0.2 s steps, this run is at 0.1 s"), std::string::npos);
+}
+
+// A run at 5 Hz predicted with a model fitted on a 10 Hz run (and the other way round) says so:
+// the fitted parameters are the Euler map's at the training data's step. Fails without the note.
+TEST(CampaignPlatoon, ARunAtAnotherStepThanItsModelsTrainingRunsIsSaid)
+{
+  const fs::path folder = fs::temp_directory_path() / ("acc_campaign_steps_" + std::to_string(::getpid()));
+  fs::create_directories(folder);
+  const std::vector<acc_test::SyntheticCar> cars{{"CAR_A", kUnstable}, {"CAR_B", kUnstable}};
+  acc_test::writeSyntheticPlatoon((folder / "a.csv").string(), "S", cars, 81, 150.0);
+  acc_test::writeSyntheticPlatoon((folder / "b.csv").string(), "S", cars, 82, 150.0);
+  {
+    std::ifstream whole(folder / "b.csv");
+    std::string text, line;
+    for (int k = 0; std::getline(whole, line); ++k)
+      if (k < 6 || k % 2 == 0)  // every other row: 0.2 s
+        text += line + "\n";
+    std::ofstream(folder / "b.csv") << text;
+  }
+  const acc::CampaignInputs inputs = acc::loadCampaign({folder.string()});
+  fs::remove_all(folder);
+  acc::CampaignOptions options;
+  options.platoon_diagnosis = false;
+  const acc::CampaignResult result = runQuickCampaign(inputs, options);
+  ASSERT_EQ(result.platoons.size(), 2u);
+  const auto notes = [](const acc::PlatoonCheck& check) {
+    std::string all;
+    for (const std::string& note : check.notes)
+      all += note + "\n";
+    return all;
+  };
+  EXPECT_NE(notes(result.platoons[0]).find("CAR_A (2): fitted on runs at 0.2 s steps, this run is at 0.1 s"),
+            std::string::npos)
+      << notes(result.platoons[0]);
+  EXPECT_NE(notes(result.platoons[1]).find("CAR_B (3): fitted on runs at 0.1 s steps, this run is at 0.2 s"),
+            std::string::npos)
+      << notes(result.platoons[1]);
+}
+
 namespace
 {
 /// A perturbation of cars LEAD, CAR_A, CAR_B, CAR_C with these measured dips, every car predicted

@@ -39,7 +39,22 @@ struct PlatoonCarModel
   std::vector<double> effect_values;
   EffectSettings settings;
   std::vector<double> standard_errors;
+  /// Non-empty when the model was fitted on runs sampled at another step than the run it predicts
+  /// (by more than kStepMismatchShare): the fitted parameters are those of the Euler map at the
+  /// training data's step (calibration/euler_step_bias.h), and the prediction steps at this run's.
+  /// "fitted on runs at 0.1 s steps, this run is at 0.2 s: ...".
+  std::string step_mismatch;
 };
+
+/// How far the predicted run's median step may lie from its model's training runs' (relative)
+/// before the prediction says so: jitter of a 10 Hz logger stays well inside it, 10 Hz against
+/// 5 Hz does not.
+constexpr double kStepMismatchShare = 0.1;
+
+/// PlatoonCarModel::step_mismatch for a model fitted on runs of median step `fitted_step_s` that
+/// predicts a run of median step `run_step_s`; "" when they agree within kStepMismatchShare (or
+/// either is unknown).
+std::string describeStepMismatch(double fitted_step_s, double run_step_s);
 
 /// What one speed series did in one perturbation: its dip, the distance it lost against its
 /// pre-perturbation speed (distanceLostM), and how hard it braked and recovered and how long it
