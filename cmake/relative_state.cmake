@@ -14,6 +14,7 @@ target_include_directories(acc_relative_state PUBLIC ${GeographicLib_INCLUDE_DIR
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(test_relative_state
     test/unit/gtest_main.cpp
+    test/unit/test_clock_reset_rule.cpp
     test/unit/test_pairing.cpp
     test/unit/test_relative_state_geometry.cpp
     test/unit/test_relative_state_parameters.cpp

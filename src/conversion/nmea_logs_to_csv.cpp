@@ -29,37 +29,35 @@ std::string cell(double value, int decimals)
   return out.str();
 }
 
-/// Where each stretch of a log on one clock ends: before a fix whose time goes back more than
-/// time_reset_s (a log looped, a receiver's clock reset), as the pairing tells a reset. Fewer than
-/// time_reset_confirm_fixes fixes stamped far back, after which the log is on its clock again, are
-/// stray stamps, not a new clock: they stay in their stretch, where the pairing counts them.
+/// Where each stretch of a log on one clock ends: before the first fix of a new clock, where the
+/// pairing's own rule (ClockResetRule, on the fixes it would use) confirms a reset, so that the
+/// pairing, fed stretch by stretch, sees each reset where the stretches end. Stray stamps stay in
+/// their stretch, where the pairing counts them.
 std::vector<std::size_t> clockStretchEnds(const std::vector<GnssFix>& fixes, const PairingSettings& pairing)
 {
-  const double time_reset_s = pairing.time_reset_s;
-  const std::size_t confirm = std::max<std::size_t>(1, pairing.time_reset_confirm_fixes);
-  std::vector<std::size_t> ends;
-  double newest = std::numeric_limits<double>::quiet_NaN();
+  ClockResetRule clock(pairing.time_reset_s, pairing.time_reset_confirm_fixes);
+  std::vector<std::size_t> ends, held;  // held: the fixes the rule holds, by index
+  double newest = std::numeric_limits<double>::quiet_NaN();  // the stream's newest time, as the pairing keeps it
   for (std::size_t i = 0; i < fixes.size(); ++i)
   {
+    if (!hasUsablePosition(fixes[i]))
+      continue;  // the pairing counts it wherever it stands
     const double t = fixes[i].gnss_time_s;
-    // (A fix without a finite time is neither back nor on the clock: it stays where it stands.)
-    const auto on_clock = [&](std::size_t j) { return fixes[j].gnss_time_s >= newest - time_reset_s; };
-    if (!(std::isfinite(newest) && t < newest - time_reset_s))
+    const ClockResetRule::Step step = clock.next(t, newest);
+    if (step.stray > 0)
+      held.clear();
+    if (step.held)
+      held.push_back(i);
+    if (step.new_clock)
     {
-      if (std::isfinite(t))
-        newest = std::isfinite(newest) ? std::max(newest, t) : t;
-      continue;
+      ends.push_back(held.empty() ? i : held.front());
+      newest = t;
+      for (const std::size_t j : held)
+        newest = std::max(newest, fixes[j].gnss_time_s);
+      held.clear();
     }
-    std::size_t back_on_clock = i + 1;
-    while (back_on_clock < std::min(fixes.size(), i + confirm) && !on_clock(back_on_clock))
-      ++back_on_clock;
-    if (back_on_clock < std::min(fixes.size(), i + confirm) && on_clock(back_on_clock))
-    {
-      i = back_on_clock - 1;  // stray stamps up to there (fewer than confirm)
-      continue;
-    }
-    ends.push_back(i);
-    newest = t;
+    else if (!step.held)
+      newest = std::isfinite(newest) ? std::max(newest, t) : t;
   }
   ends.push_back(fixes.size());
   return ends;

@@ -66,7 +66,12 @@ GnssFix interpolateFix(const GnssFix& a, const GnssFix& b, double time_s)
   return fix;
 }
 
-EpochPairer::EpochPairer(PairingSettings settings) : settings_(settings) {}
+EpochPairer::EpochPairer(PairingSettings settings)
+  : settings_(settings),
+    leader_clock_(settings.time_reset_s, settings.time_reset_confirm_fixes),
+    follower_clock_(settings.time_reset_s, settings.time_reset_confirm_fixes)
+{
+}
 
 void EpochPairer::addLeader(const GnssFix& fix)
 {
@@ -93,21 +98,17 @@ void EpochPairer::addToStream(const GnssFix& fix, bool leader)
 bool EpochPairer::holdsJumpBack(const GnssFix& fix, bool leader)
 {
   std::vector<GnssFix>& held = leader ? held_leader_ : held_follower_;
-  const double newest = leader ? newest_leader_s_ : newest_follower_s_;
-  const double t = fix.gnss_time_s;
-  if (!(std::isfinite(newest) && t < newest - settings_.time_reset_s))
-  {
-    if (!held.empty())
-      dropStrayStamps(leader);  // back on its clock: what was held was no new clock
-    return false;
-  }
-  if (!held.empty() && std::abs(t - held.back().gnss_time_s) > settings_.time_reset_s)
-    dropStrayStamps(leader);  // not one clock with the fixes held before it either
-  held.push_back(fix);
-  if (held.size() < std::max<std::size_t>(1, settings_.time_reset_confirm_fixes))
-    return true;
+  const ClockResetRule::Step step =
+      (leader ? leader_clock_ : follower_clock_).next(fix.gnss_time_s, leader ? newest_leader_s_ : newest_follower_s_);
+  if (step.stray > 0)
+    dropStrayStamps(leader);
+  if (step.held)
+    held.push_back(fix);
+  if (!step.new_clock)
+    return step.held;
   std::vector<GnssFix> confirmed;
   confirmed.swap(held);
+  confirmed.push_back(fix);
   for (const GnssFix& f : confirmed)  // the first is the reset (acceptStream), the rest follow it
     if (acceptStream(f, leader))
       leader ? insertLeader(f) : insertFollower(f);
@@ -335,7 +336,7 @@ void EpochPairer::finish()
 {
   // Fewer fixes on a new clock than confirm a reset, at the end of the streams: counted as stray.
   for (const bool leader : {true, false})
-    if (!(leader ? held_leader_ : held_follower_).empty())
+    if ((leader ? leader_clock_ : follower_clock_).endOfStream() > 0)
       dropStrayStamps(leader);
   finishing_ = true;
   resolvePending();

@@ -142,7 +142,8 @@ namespace
 {
 /// Casale part 3's two receivers' fixes, changed by `change` (leader, follower), paired from logs.
 template <typename Change>
-acc::RelativeStateLogs pairChangedLogs(const std::string& name, Change change)
+acc::RelativeStateLogs pairChangedLogs(const std::string& name, Change change,
+                                       const acc::RelativeStateSettings& settings = casaleSettings())
 {
   const acc::OpenAccPairTrack track = acc::readOpenAccPairTrack(std::string(ACC_OPENACC_DATA_DIR) + "/part3.csv");
   std::vector<acc::GnssFix> leader = acc::openAccFixes(track, 1), follower = acc::openAccFixes(track, 2);
@@ -151,7 +152,7 @@ acc::RelativeStateLogs pairChangedLogs(const std::string& name, Change change)
   std::string error;
   EXPECT_TRUE(acc::writeNmeaLog(folder.file("L.nmea"), leader, "GN", error)) << error;
   EXPECT_TRUE(acc::writeNmeaLog(folder.file("F.nmea"), follower, "GN", error)) << error;
-  return acc::pairNmeaLogs(folder.file("L.nmea"), folder.file("F.nmea"), casaleSettings());
+  return acc::pairNmeaLogs(folder.file("L.nmea"), folder.file("F.nmea"), settings);
 }
 }  // namespace
 
@@ -187,6 +188,21 @@ TEST(NmeaLogsToCsv, EachLogsClocksArePairedAsTheyRan)
   EXPECT_EQ(stray.pairing.follower_unpaired, 0u);
   EXPECT_EQ(stray.pairing.follower_time_resets, 0u);
   EXPECT_EQ(stray.states.size(), half - 3);
+  // Six in a row, but on no one clock (an hour back, two hours back, in turn): stray stamps for the
+  // batch's split as for the pairing (one rule, ClockResetRule). The split once took them for a
+  // new clock while the pairing did not, and fed the rest of the follower's log after all of the
+  // leader's: every later epoch unpaired once the leader's fixes had outrun the pairing's buffer
+  // (200 fixes here, against this short log's 1200).
+  acc::RelativeStateSettings small_buffer = casaleSettings();
+  small_buffer.pairing.max_buffered_fixes = 200;
+  const acc::RelativeStateLogs two_clocks = pairChangedLogs("nmea_logs_two_clocks", [](auto&, auto& follower) {
+    for (std::size_t i = 1000; i < 1006; ++i)
+      follower[i].gnss_time_s -= i % 2 == 0 ? 3600.0 : 7200.0;
+  }, small_buffer);
+  EXPECT_EQ(two_clocks.pairing.follower_stray_stamps, 6u);
+  EXPECT_EQ(two_clocks.pairing.follower_time_resets, 0u);
+  EXPECT_EQ(two_clocks.pairing.follower_unpaired, 0u);
+  EXPECT_EQ(two_clocks.states.size(), half - 6);
 }
 
 // A log that cannot be read is an error, and nothing is paired.

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <acc_identification/gnss/gnss_fix.h>
+#include <acc_identification/relative_state/clock_reset_rule.h>
 
 #include <cstddef>
 #include <cstdint>
@@ -132,7 +133,7 @@ private:
   void addToStream(const GnssFix& fix, bool leader);
   /// Whether fix, stamped more than time_reset_s back, is held awaiting time_reset_confirm_fixes on
   /// its clock (true; at the last of them every held fix goes on as a reset); false when the fix is
-  /// on the stream's clock, the fixes held before it then counted as stray stamps.
+  /// on the stream's clock, the fixes held before it then counted as stray stamps (ClockResetRule).
   bool holdsJumpBack(const GnssFix& fix, bool leader);
   /// The held fixes were stray stamps: counted, said, let go of.
   void dropStrayStamps(bool leader);
@@ -154,6 +155,7 @@ private:
   std::deque<GnssFix> pending_follower_;  // sorted by gnss_time_s
   std::vector<GnssFix> held_leader_;      // stamped far back, awaiting confirmation of a reset
   std::vector<GnssFix> held_follower_;
+  ClockResetRule leader_clock_, follower_clock_;  // what holds them, and when they are a reset
   std::vector<PairedEpoch> ready_;
   std::vector<PairingEvent> events_;
   double newest_leader_s_ = GnssFix::kNaN;

@@ -1,0 +1,88 @@
+// The one rule that tells a receiver's clock reset from stray time stamps (ClockResetRule), which
+// the live pairing and nmea_to_csv's split into stretches both follow.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "acc_identification/relative_state/clock_reset_rule.h"
+
+namespace
+{
+constexpr double kResetS = 5.0;
+constexpr double kNaN = std::nan("");
+
+/// Steps of the rule over these times, the stream's newest time as the pairing keeps it (the
+/// newest on-clock fix; a confirmed clock's newest time).
+std::vector<acc::ClockResetRule::Step> stepsOver(const std::vector<double>& times_s, std::size_t confirm)
+{
+  acc::ClockResetRule rule(kResetS, confirm);
+  std::vector<acc::ClockResetRule::Step> steps;
+  double newest = kNaN;
+  for (double t : times_s)
+  {
+    steps.push_back(rule.next(t, newest));
+    if (!steps.back().held)
+      newest = steps.back().new_clock || !std::isfinite(newest) ? t : std::max(newest, t);
+  }
+  return steps;
+}
+}  // namespace
+
+TEST(ClockResetRule, FixesOnTheClockAreNeitherHeldNorStray)
+{
+  for (const acc::ClockResetRule::Step& step : stepsOver({100.0, 100.1, 99.0, 100.2, 96.0}, 5))
+  {
+    EXPECT_FALSE(step.held);
+    EXPECT_FALSE(step.new_clock);
+    EXPECT_EQ(step.stray, 0u);
+  }
+}
+
+TEST(ClockResetRule, ConfirmFixesInARowOnANewClockAreAReset)
+{
+  const auto steps = stepsOver({100.0, 100.1, 10.0, 10.1, 10.2, 10.3, 10.4, 10.5}, 5);
+  for (std::size_t k = 2; k < 6; ++k)
+    EXPECT_TRUE(steps[k].held) << k;
+  EXPECT_TRUE(steps[6].new_clock);
+  EXPECT_FALSE(steps[6].held);
+  EXPECT_FALSE(steps[7].held);  // on the new clock now
+  EXPECT_FALSE(steps[7].new_clock);
+  // One fix is enough when the setting says so.
+  EXPECT_TRUE(stepsOver({100.0, 10.0}, 1)[1].new_clock);
+}
+
+TEST(ClockResetRule, FewerThenBackOnTheClockAreStrayStamps)
+{
+  const auto steps = stepsOver({100.0, 100.1, 10.0, 10.1, 10.2, 100.2}, 5);
+  EXPECT_TRUE(steps[4].held);
+  EXPECT_EQ(steps[5].stray, 3u);
+  EXPECT_FALSE(steps[5].held);
+  EXPECT_FALSE(steps[5].new_clock);
+}
+
+TEST(ClockResetRule, AJumpedFixThatDoesNotContinueTheHeldOnesStartsAnotherHold)
+{
+  // 10 s, then 50 s: both far behind 100 s, on no one clock.
+  const auto steps = stepsOver({100.0, 10.0, 10.1, 50.0}, 5);
+  EXPECT_EQ(steps[3].stray, 2u);
+  EXPECT_TRUE(steps[3].held);
+  // Held times that drift back step by step (96 within 5 s of 100, 92 not): the held fixes would
+  // make two resets among themselves, so the older are stray.
+  const auto drifting = stepsOver({200.0, 100.0, 96.0, 92.0}, 5);
+  EXPECT_EQ(drifting[2].stray, 0u);
+  EXPECT_EQ(drifting[3].stray, 2u);
+  EXPECT_TRUE(drifting[3].held);
+}
+
+TEST(ClockResetRule, WhatIsHeldAtTheStreamsEndIsStray)
+{
+  acc::ClockResetRule rule(kResetS, 5);
+  rule.next(100.0, kNaN);
+  EXPECT_TRUE(rule.next(10.0, 100.0).held);
+  EXPECT_TRUE(rule.next(10.1, 100.0).held);
+  EXPECT_EQ(rule.held(), 2u);
+  EXPECT_EQ(rule.endOfStream(), 2u);
+  EXPECT_EQ(rule.held(), 0u);
+  EXPECT_EQ(rule.endOfStream(), 0u);
+}
