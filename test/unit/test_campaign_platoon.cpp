@@ -238,6 +238,57 @@ TEST(CampaignPlatoon, ACopiedColumnIsNoCarOfThePlatoon)
   }
 }
 
+// A run whose data end inside a dip window, the last car still at its lowest: that car's dip (and
+// any behind it) is neither measured nor predicted, and the note says which car; the cars ahead,
+// already rising again, keep the dips they have in the whole run. Fails if the cut-off car is
+// scored, or if the rule silences the cars ahead of it.
+TEST(CampaignPlatoon, ARunThatEndsInsideTheLastCarsDipDoesNotScoreIt)
+{
+  const std::vector<acc_test::SyntheticCar> cars{{"CAR_A", kUnstable}, {"CAR_B", kUnstable}, {"CAR_C", kUnstable},
+                                                 {"CAR_D", kUnstable}, {"CAR_E", kUnstable}, {"CAR_F", kUnstable},
+                                                 {"CAR_G", kUnstable}};
+  const fs::path path = fs::temp_directory_path() / ("acc_campaign_cut_" + std::to_string(::getpid()) + ".csv");
+  acc_test::writeSyntheticPlatoon(path.string(), "S", cars, 53, 200.0);
+  const std::vector<acc::PlatoonCarModel> truth(9, acc::PlatoonCarModel{true, kUnstable, "truth"});
+  const auto checkUpTo = [&](double end_s) {
+    std::ifstream whole(path);
+    std::string text, line;
+    for (int k = 0; std::getline(whole, line); ++k)
+      if (k < 6 || std::stod(line.substr(0, line.find(','))) <= end_s)
+        text += line + "\n";
+    const fs::path cut = path.string() + ".cut.csv";
+    std::ofstream(cut) << text;
+    acc::CampaignFile file;
+    file.contents = acc::readOpenAccFile(cut.string());
+    file.name = file.contents.name;
+    fs::remove(cut);
+    return acc::checkPlatoon(file, truth);
+  };
+  const acc::PlatoonCheck whole = checkUpTo(200.0), cut = checkUpTo(90.0);  // the lead is back at 90 s
+  fs::remove(path);
+  ASSERT_EQ(whole.perturbations.size(), 1u);
+  ASSERT_EQ(cut.perturbations.size(), 1u);
+  const acc::PerturbationCheck& p = cut.perturbations[0];
+  EXPECT_EQ(p.perturbation.incomplete, "");
+  EXPECT_EQ(p.perturbation.first_cut_order, 8);
+  EXPECT_NE(p.perturbation.cut_note.find("with CAR_G (8)'s speed not yet rising again from its lowest"),
+            std::string::npos)
+      << p.perturbation.cut_note;
+  EXPECT_TRUE(std::any_of(cut.notes.begin(), cut.notes.end(),
+                          [](const std::string& note) { return note.find("CAR_G (8)") != std::string::npos; }));
+  for (std::size_t k = 1; k < 7; ++k)  // positions 2 to 7: rising again, measured as in the whole run
+  {
+    EXPECT_NEAR(p.positions[k].measured.dip_mps, whole.perturbations[0].positions[k].measured.dip_mps, 0.05) << k;
+    EXPECT_TRUE(std::isfinite(p.positions[k].chain.dip_mps)) << k;
+  }
+  const acc::DipComparison& last = p.positions[7];
+  EXPECT_TRUE(std::isfinite(whole.perturbations[0].positions[7].measured.dip_mps));
+  EXPECT_TRUE(std::isnan(last.measured.dip_mps));
+  EXPECT_TRUE(std::isnan(last.chain.dip_mps));
+  EXPECT_TRUE(std::isnan(last.pair.dip_mps));
+  EXPECT_TRUE(std::isnan(last.measured_amplification));
+}
+
 // A prediction the simulation could not carry through a dip window (here its input has a hole in
 // the middle of it; a runaway stops it the same way) has no dip there: the part before the cut
 // would give half a window's minimum. Fails if the cut window is measured.
