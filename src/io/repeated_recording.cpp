@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <set>
 #include <utility>
 
@@ -127,7 +128,7 @@ void RepeatedRecordingIndex::add(Recording recording, std::size_t id)
 }
 
 bool RepeatedRecordingIndex::repeatsAtShift(const Recording& later, std::size_t earlier, long long shift,
-                                            std::size_t matched_row) const
+                                            std::size_t matched_row, bool every_series) const
 {
   std::size_t rows = 0;  // the earlier recording's (a car without speeds has an empty series)
   for (const std::vector<double>& series : recordings_[earlier])
@@ -137,6 +138,8 @@ bool RepeatedRecordingIndex::repeatsAtShift(const Recording& later, std::size_t 
     // Compared where the match was found, else where it varies within the overlap.
     const std::optional<std::size_t> row =
         varyingAt(series, matched_row) ? matched_row : firstVaryingStretchWithin(series, shift, rows);
+    if (!row && every_series)
+      return false;
     if (!row)
       continue;  // nothing in it, where the two overlap, can tell one drive from another
     bool repeated = false;
@@ -148,7 +151,7 @@ bool RepeatedRecordingIndex::repeatsAtShift(const Recording& later, std::size_t 
   return true;
 }
 
-std::optional<RepeatedRecording> RepeatedRecordingIndex::find(const Recording& recording) const
+std::optional<RepeatedRecording> RepeatedRecordingIndex::find(const Recording& recording, bool every_series) const
 {
   std::optional<RepeatedRecording> found;
   std::set<std::pair<std::size_t, long long>> refuted;  // (earlier recording, shift) already checked
@@ -165,7 +168,7 @@ std::optional<RepeatedRecording> RepeatedRecordingIndex::find(const Recording& r
                          recording[s], row) ||
             !refuted.insert({entry.recording, shift}).second)
           continue;
-        if (repeatsAtShift(recording, entry.recording, shift, row))
+        if (repeatsAtShift(recording, entry.recording, shift, row, every_series))
         {
           found = RepeatedRecording{ids_[entry.recording], s, entry.series, entry.row, row};
           return true;
@@ -177,15 +180,24 @@ std::optional<RepeatedRecording> RepeatedRecordingIndex::find(const Recording& r
   return found;
 }
 
-std::optional<RepeatedRun> findRepeatedRun(const std::vector<CarFollowingRun>& runs)
+std::optional<RepeatedRun> findRepeatedRun(const std::vector<CarFollowingRun>& runs,
+                                           const std::vector<std::size_t>& input_of)
 {
-  RepeatedRecordingIndex index;
+  RepeatedRecordingIndex earlier_inputs;
+  std::map<std::size_t, RepeatedRecordingIndex> own_input;  // by input: its runs so far
+  std::size_t indexed = 0;  // runs [0, indexed) are in earlier_inputs: those of the inputs before this run's
   for (std::size_t k = 0; k < runs.size(); ++k)
   {
-    if (const std::optional<RepeatedRecording> repeat =
-            index.find({runs[k].follower_speed_mps, runs[k].leader_speed_mps}))
+    for (; indexed < k && input_of[indexed] < input_of[k]; ++indexed)
+      earlier_inputs.add({runs[indexed].follower_speed_mps, runs[indexed].leader_speed_mps}, indexed);
+    const Recording speeds{runs[k].follower_speed_mps, runs[k].leader_speed_mps};
+    if (const std::optional<RepeatedRecording> repeat = earlier_inputs.find(speeds))
       return RepeatedRun{k, repeat->id, *repeat};
-    index.add({runs[k].follower_speed_mps, runs[k].leader_speed_mps}, k);
+    RepeatedRecordingIndex& same_input = own_input[input_of[k]];
+    const std::optional<RepeatedRecording> repeat = same_input.find(speeds, true);
+    if (repeat && runs[k].time_s[repeat->later_row] == runs[repeat->id].time_s[repeat->earlier_row])
+      return RepeatedRun{k, repeat->id, *repeat};
+    same_input.add(speeds, k);
   }
   return std::nullopt;
 }
@@ -193,7 +205,7 @@ std::optional<RepeatedRun> findRepeatedRun(const std::vector<CarFollowingRun>& r
 std::string describeRepeatedRun(const std::vector<CarFollowingRun>& runs, const std::vector<std::size_t>& input_of,
                                 const std::vector<std::string>& path_of_run)
 {
-  const std::optional<RepeatedRun> repeat = findRepeatedRun(runs);
+  const std::optional<RepeatedRun> repeat = findRepeatedRun(runs, input_of);
   if (!repeat)
     return "";
   const CarFollowingRun& later = runs[repeat->later];

@@ -171,11 +171,11 @@ TEST(RepeatedRecording, RunsAreComparedWithinAndAcrossInputs)
 {
   const acc::CarFollowingRun drive = measuredRun(2000, 13);
   // One drive given twice in one input (appended after itself) is a repeat too.
-  const auto twice = acc::findRepeatedRun({drive, drive});
+  const auto twice = acc::findRepeatedRun({drive, drive}, {0, 0});
   ASSERT_TRUE(twice);
   EXPECT_EQ(twice->later, 1u);
   EXPECT_EQ(twice->earlier, 0u);
-  const auto repeat = acc::findRepeatedRun({measuredRun(2000, 14), drive, rowsOf(drive, 300, 900)});
+  const auto repeat = acc::findRepeatedRun({measuredRun(2000, 14), drive, rowsOf(drive, 300, 900)}, {0, 0, 1});
   ASSERT_TRUE(repeat);
   EXPECT_EQ(repeat->later, 2u);
   EXPECT_EQ(repeat->earlier, 1u);
@@ -184,11 +184,39 @@ TEST(RepeatedRecording, RunsAreComparedWithinAndAcrossInputs)
   // different drives of one input.
   acc::CarFollowingRun mixed = measuredRun(2000, 15);
   mixed.follower_speed_mps = drive.follower_speed_mps;
-  EXPECT_FALSE(acc::findRepeatedRun({drive, mixed}));
-  EXPECT_FALSE(acc::findRepeatedRun({drive, measuredRun(2000, 16), measuredRun(2000, 17)}));
+  EXPECT_FALSE(acc::findRepeatedRun({drive, mixed}, {0, 1}));
+  EXPECT_FALSE(acc::findRepeatedRun({drive, measuredRun(2000, 16), measuredRun(2000, 17)}, {0, 0, 0}));
   // Said as one input's, or as another's.
   const std::vector<acc::CarFollowingRun> runs{drive, rowsOf(drive, 300, 900)};
   EXPECT_NE(acc::describeRepeatedRun(runs, {0, 0}, {"a.csv", "a.csv"}).find("one drive given twice in this input"),
             std::string::npos);
   EXPECT_NE(acc::describeRepeatedRun(runs, {0, 1}, {"a.csv", "b.csv"}).find("a copy, an excerpt"), std::string::npos);
+}
+
+// A file's neighbouring pairs share a car: the follower of the first leads the second. When the
+// second's follower hardly changes its speed (whole km/h, held values), the shared car's speeds
+// alone repeat: within one input that is no repeat (both series must vary and repeat); across
+// inputs a steady series decides nothing, as before.
+TEST(RepeatedRecording, NeighbouringPairsOfOneFileAreNoRepeatWhereOneCarIsSteady)
+{
+  const acc::CarFollowingRun first = measuredRun(2000, 18);  // car 2 behind car 1
+  acc::CarFollowingRun second = first;                        // car 3 behind car 2
+  second.leader_speed_mps = first.follower_speed_mps;
+  for (std::size_t k = 0; k < second.size(); ++k)  // held at 1 Hz: 10 changes in 100 samples
+    second.follower_speed_mps[k] = first.follower_speed_mps[k - k % 10] - 0.5;
+  EXPECT_FALSE(acc::findRepeatedRun({first, second}, {0, 0}));
+  EXPECT_TRUE(acc::findRepeatedRun({first, second}, {0, 1}));
+}
+
+// Within one input, a repeat at other time stamps is no drive given twice: a noise-free Newell
+// platoon's second pair is its first, 12 samples later; so is a periodic noise-free drive's
+// second piece. Across inputs the same runs are a repeat.
+TEST(RepeatedRecording, WithinOneInputARepeatAtOtherTimesIsNot)
+{
+  const acc::CarFollowingRun drive = measuredRun(2000, 19);
+  acc::CarFollowingRun later = rowsOf(drive, 12, 2000);
+  for (double& t : later.time_s)
+    t += 1.2;  // the same values 12 samples later
+  EXPECT_FALSE(acc::findRepeatedRun({drive, later}, {0, 0}));
+  EXPECT_TRUE(acc::findRepeatedRun({drive, later}, {0, 1}));
 }

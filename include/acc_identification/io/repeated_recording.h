@@ -55,8 +55,9 @@ public:
   void add(Recording recording, std::size_t id);
 
   /// Where `recording` repeats one added before (every varying series of it, at one shift of
-  /// rows), or none.
-  std::optional<RepeatedRecording> find(const Recording& recording) const;
+  /// rows), or none. With `every_series`, each of its series must vary where compared and repeat:
+  /// a series that does not vary then refutes the repeat instead of deciding nothing.
+  std::optional<RepeatedRecording> find(const Recording& recording, bool every_series = false) const;
 
 private:
   struct Entry
@@ -67,7 +68,8 @@ private:
   };
   /// Whether every series of `later` that varies repeats one of recording `earlier`'s at rows
   /// shifted by `shift`: at matched_row where it varies there, else where it first varies.
-  bool repeatsAtShift(const Recording& later, std::size_t earlier, long long shift, std::size_t matched_row) const;
+  bool repeatsAtShift(const Recording& later, std::size_t earlier, long long shift, std::size_t matched_row,
+                      bool every_series) const;
 
   std::vector<Recording> recordings_;
   std::vector<std::size_t> ids_;
@@ -84,11 +86,16 @@ struct RepeatedRun
   RepeatedRecording where;  ///< its id is `earlier`; series 0 the follower's speeds, 1 the leader's
 };
 
-/// The first run whose follower and leader speeds repeat an earlier run's, or none. Runs of one
-/// input are compared too: a file's pairs are different cars and its pieces different times, so
-/// that two of them repeating each other is one drive given twice in the file (appended after
-/// itself, the time reset between).
-std::optional<RepeatedRun> findRepeatedRun(const std::vector<CarFollowingRun>& runs);
+/// The first run whose follower and leader speeds repeat an earlier run's, or none; `input_of[k]`
+/// numbers the input run k came from. Across inputs every varying series of the later run must
+/// repeat. Runs of one input are compared too, but only where both the follower's and the
+/// leader's speeds vary and repeat at the same time stamps: one drive appended after itself, its
+/// clock restarted. A file's neighbouring pairs share a car (the follower of one leads the next),
+/// so that car's speeds alone repeat whenever the other car's hardly change; and a noise-free
+/// simulated platoon (Newell's time-shifted copies) or periodic drive repeats at other times. A
+/// drive appended with its time running on, or re-based, is not recognised.
+std::optional<RepeatedRun> findRepeatedRun(const std::vector<CarFollowingRun>& runs,
+                                           const std::vector<std::size_t>& input_of);
 
 /// findRepeatedRun said: "LATER_PATH: its run NAME (from t = ...) repeats EARLIER_PATH's run NAME
 /// (from t = ...) sample for sample: ...", `path_of_run[k]` the file run k came from and
