@@ -667,32 +667,51 @@ void noteAccLineAgainstDriverColumns(OpenAccFile& file)
                                   " says ACC; each follower's Driver column is followed row by row: no row is on ACC");
 }
 
-/// Marks each car whose speeds repeat an earlier car's of the file sample for sample (a column
-/// copied by an export or an edit: two cars' measured speeds never share a long varying stretch to
-/// the last bit, repeated_recording.h). Which of the two is the copy the file cannot tell; the later
-/// one is set aside, and the note says so.
+/// Whether two cars' speeds are one column written twice: equal, to the last bit, on every row where
+/// both hold a number, and varying there (kRepeatedRecordingMinSamples rows or more, with
+/// kRepeatedRecordingMinChanges changes or more: a standstill or a held value decides nothing). Equal on
+/// part of the rows, or shifted by some rows (Newell's copy of the car ahead, a radar-derived
+/// leader speed whose relative speed is zero for a while) is two series.
+bool sameColumn(const std::vector<double>& a, const std::vector<double>& b)
+{
+  std::size_t common = 0, changes = 0;
+  double previous = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t row = 0; row < std::min(a.size(), b.size()); ++row)
+  {
+    if (!std::isfinite(a[row]) || !std::isfinite(b[row]))
+      continue;
+    if (a[row] != b[row])
+      return false;
+    changes += common > 0 && a[row] != previous ? 1 : 0;
+    previous = a[row];
+    ++common;
+  }
+  return common >= kRepeatedRecordingMinSamples && changes >= kRepeatedRecordingMinChanges;
+}
+
+/// Marks each car whose speeds are an earlier car's column written again (sameColumn: an export or
+/// an edit that copied a column; two cars' measured speeds never agree to the last bit on every
+/// row while they vary). Which of the two is the copy the file cannot tell; the later one is set
+/// aside, and the note says so.
 void markCopiedColumns(OpenAccFile& file)
 {
-  RepeatedRecordingIndex earlier_cars;
-  for (std::size_t k = 0; k < file.vehicles.size(); ++k)
+  for (std::size_t k = 1; k < file.vehicles.size(); ++k)
   {
     OpenAccVehicle& car = file.vehicles[k];
-    if (const std::optional<RepeatedRecording> repeat = earlier_cars.find({car.speed_mps}))
+    for (std::size_t j = 0; j < k && car.copied_column.empty(); ++j)
     {
-      const OpenAccVehicle& original = file.vehicles[repeat->id];
-      car.copied_column = "its speeds from " + describeSampleTime(file.time_s[repeat->later_row]) + " repeat " +
-                          original.label() + "'s from " + describeSampleTime(file.time_s[repeat->earlier_row]) +
-                          " sample for sample (" + std::to_string(kRepeatedRecordingMinSamples) +
-                          " samples or more, to the last digit): one of the two columns is a copy, not a car's "
-                          "own measurement; the later one is not read";
+      const OpenAccVehicle& original = file.vehicles[j];
+      if (!original.copied_column.empty() || !sameColumn(car.speed_mps, original.speed_mps))
+        continue;
+      car.copied_column = "its speeds equal " + original.label() +
+                          "'s on every row where both hold one, to the last digit, while they vary: one of the "
+                          "two columns is a copy, not a car's own measurement; the later one is not read";
       // Set aside as a car without speeds, so that no reader (pairs, platoon check, SUMO chain)
       // takes it for a measurement.
       car.speed_mps.assign(car.speed_mps.size(), std::numeric_limits<double>::quiet_NaN());
       car.has_speed = false;
       car.speed_values = 0;
-      continue;  // not indexed: a third copy repeats the original too
     }
-    earlier_cars.add({car.speed_mps}, k);
   }
 }
 

@@ -220,7 +220,7 @@ TEST(CampaignPlatoon, ACopiedColumnIsNoCarOfThePlatoon)
   file.name = file.contents.name;
   ASSERT_EQ(file.contents.error, "");
   ASSERT_NE(file.contents.vehicle(5), nullptr);
-  EXPECT_NE(file.contents.vehicle(5)->copied_column.find("repeat CAR_C (4)'s"), std::string::npos)
+  EXPECT_NE(file.contents.vehicle(5)->copied_column.find("equal CAR_C (4)'s on every row"), std::string::npos)
       << file.contents.vehicle(5)->copied_column;
   const acc::PlatoonCheck check =
       acc::checkPlatoon(file, std::vector<acc::PlatoonCarModel>(6, acc::PlatoonCarModel{true, kUnstable, "truth"}));

@@ -222,20 +222,20 @@ std::string varyingPlatoonFile(Speed5 speed5)
   return text;
 }
 
-TEST_F(OpenAccFileTest, ACarWhoseSpeedsRepeatAnotherCarsIsACopiedColumnAndNoPairsCar)
+TEST_F(OpenAccFileTest, ACarWhoseSpeedsAreAnotherCarsColumnIsACopiedColumnAndNoPairsCar)
 {
-  // AUDI_A4's column is TESLA_MODELX's three rows later: a copy, not a car of its own.
-  const acc::OpenAccFile file = acc::readOpenAccFile(
-      write("copied.csv", varyingPlatoonFile([](int i) { return varyingSpeed(std::max(0, i - 3)); })));
+  // AUDI_A4's column is TESLA_MODELX's, row for row: a copy, not a car of its own.
+  const acc::OpenAccFile file =
+      acc::readOpenAccFile(write("copied.csv", varyingPlatoonFile([](int i) { return varyingSpeed(i); })));
   ASSERT_EQ(file.error, "");
   ASSERT_NE(file.vehicle(5), nullptr);
   EXPECT_TRUE(file.vehicle(2)->copied_column.empty());
-  EXPECT_NE(file.vehicle(5)->copied_column.find("repeat TESLA_MODELX (2)'s"), std::string::npos)
+  EXPECT_NE(file.vehicle(5)->copied_column.find("equal TESLA_MODELX (2)'s on every row"), std::string::npos)
       << file.vehicle(5)->copied_column;
   EXPECT_FALSE(file.vehicle(5)->has_speed);  // set aside: no reader takes it for a measurement
   EXPECT_EQ(file.vehicle(5)->speed_values, 0u);
   EXPECT_TRUE(std::isnan(file.vehicle(5)->speed_mps[100]));
-  EXPECT_TRUE(anyContains(file.notes, {"AUDI_A4 (5) has no pair", "repeat TESLA_MODELX (2)'s", "sample for sample",
+  EXPECT_TRUE(anyContains(file.notes, {"AUDI_A4 (5) has no pair", "equal TESLA_MODELX (2)'s on every row",
                                        "the later one is not read"}))
       << joined(file.notes);
   const std::vector<acc::OpenAccPair> pairs = acc::availablePairs(file);
@@ -243,16 +243,21 @@ TEST_F(OpenAccFileTest, ACarWhoseSpeedsRepeatAnotherCarsIsACopiedColumnAndNoPair
   EXPECT_EQ(pairs[0].follower_position, 2);
 }
 
-TEST_F(OpenAccFileTest, SpeedsThatDifferInTheLastDigitsAreTwoCars)
+TEST_F(OpenAccFileTest, SpeedsThatDifferSomewhereOrAreShiftedAreTwoCars)
 {
-  // The same profile, but every 50th value differs in its last printed digit: no 100 samples
-  // repeat to the last digit, so these are two measurements (a car that follows closely).
-  const acc::OpenAccFile file = acc::readOpenAccFile(write("close.csv", varyingPlatoonFile([](int i) {
-    return varyingSpeed(std::max(0, i - 3)) + (i % 50 == 0 ? 1e-9 : 0.0);
-  })));
-  ASSERT_EQ(file.error, "");
-  EXPECT_TRUE(file.vehicle(5)->copied_column.empty()) << file.vehicle(5)->copied_column;
-  EXPECT_EQ(acc::availablePairs(file).size(), 2u) << acc::describeAvailablePairs(file);
+  // The same profile, but one value in the last digit off: two measurements.
+  const acc::OpenAccFile close = acc::readOpenAccFile(
+      write("close.csv", varyingPlatoonFile([](int i) { return varyingSpeed(i) + (i == 150 ? 1e-9 : 0.0); })));
+  ASSERT_EQ(close.error, "");
+  EXPECT_TRUE(close.vehicle(5)->copied_column.empty()) << close.vehicle(5)->copied_column;
+  EXPECT_EQ(acc::availablePairs(close).size(), 2u) << acc::describeAvailablePairs(close);
+  // Three rows later (Newell's copy of a car ahead, simulated without noise): two series too.
+  const acc::OpenAccFile shifted = acc::readOpenAccFile(
+      write("shifted.csv", varyingPlatoonFile([](int i) { return varyingSpeed(std::max(0, i - 3)); })));
+  EXPECT_TRUE(shifted.vehicle(5)->copied_column.empty()) << shifted.vehicle(5)->copied_column;
+  // Equal while one of them is steady (a standstill, a held value) decides nothing.
+  const acc::OpenAccFile steady = acc::readOpenAccFile(write("steady.csv", varyingPlatoonFile([](int) { return 10.0; })));
+  EXPECT_TRUE(steady.vehicle(5)->copied_column.empty());
 }
 
 TEST_F(OpenAccFileTest, CarsWithAbsentOrEmptyColumnsHaveNoPairAndTheNotesSayWhy)

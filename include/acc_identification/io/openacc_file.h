@@ -63,11 +63,11 @@ struct OpenAccVehicle
        has_driver = false, has_gap_to_follower = false;
   std::size_t speed_values = 0;  ///< finite Speedk cells
   std::size_t gap_values = 0;    ///< finite IVSk cells
-  /// Non-empty when its speeds repeat an earlier car's of the file sample for sample (at any shift
-  /// of rows, io/repeated_recording.h): a copied column, not a measurement of a car of its own. It
-  /// is then neither follower nor leader of a pair, and holds no speeds (NaN, has_speed false,
-  /// speed_values 0), so that no reader takes it for a measurement. Says what repeats what: "its speeds from
-  /// t = 601.2 s repeat MAZDA_3 (10)'s from t = 601.2 s ...".
+  /// Non-empty when its speeds are an earlier car's column written again (equal to the last bit on
+  /// every row where both hold one, while they vary): a copied column, not a measurement of a car
+  /// of its own. It is then neither follower nor leader of a pair, and holds no speeds (NaN,
+  /// has_speed false, speed_values 0), so that no reader takes it for a measurement. Says whose:
+  /// "its speeds equal MAZDA_3 (10)'s on every row ...".
   std::string copied_column;
 
   /// "BMW_I3 (3)".
