@@ -243,7 +243,7 @@ PlatoonCarModel fitPlatoonModelOn(const CampaignInputs& inputs, std::size_t file
     if (model.available)
     {
       *training = others;
-      model.step_mismatch = describeStepMismatch(medianStepS(others), medianStepS(own->segments));
+      model.step_mismatch = describeStepMismatch(others, medianStepS(own->segments));
       return model;
     }
     fallback = "first half of this run (" + model.source + ")";

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <tuple>
 
@@ -371,15 +372,27 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
 }
 }  // namespace
 
-std::string describeStepMismatch(double fitted_step_s, double run_step_s)
+std::string describeStepMismatch(const std::vector<CarFollowingRun>& training, double run_step_s)
 {
-  if (!(fitted_step_s > 0.0) || !(run_step_s > 0.0) ||
-      std::abs(run_step_s / fitted_step_s - 1.0) <= kStepMismatchShare)
+  std::set<std::string> steps;  // the training segments' median steps, as printed
+  bool mismatch = false;
+  for (const CarFollowingRun& segment : training)
+  {
+    const double step_s = medianStepS({segment});
+    if (!(step_s > 0.0) || !(run_step_s > 0.0))
+      continue;
+    steps.insert(printfText("%.3g", step_s));
+    mismatch = mismatch || std::abs(run_step_s / step_s - 1.0) > kStepMismatchShare;
+  }
+  if (!mismatch)
     return "";
-  return printfText("fitted on runs at %.3g s steps, this run is at %.3g s: the fit's parameters are those of the "
+  std::string listed;
+  for (const std::string& step : steps)
+    listed += (listed.empty() ? "" : std::next(steps.find(step)) == steps.end() ? " and " : ", ") + step;
+  return printfText("fitted on runs at %s s steps, this run is at %.3g s: the fit's parameters are those of the "
                     "model's Euler map at its data's step (the paper's calibration), so this prediction, stepped at "
                     "the run's, carries the difference (calibrate's euler_step_bias says how far the step moves a fit)",
-                    fitted_step_s, run_step_s);
+                    listed.c_str(), run_step_s);
 }
 
 bool onAccThroughout(const OpenAccFile& file, int position, std::size_t from_row, std::size_t to_row)

@@ -1184,13 +1184,24 @@ TEST(CampaignPlatoon, ACarWithNoOtherRunIsJudgedOutOfSampleInEveryPerturbation)
   EXPECT_TRUE(json["platoons"][0]["perturbations"][0]["own_chain_models"].empty());
 }
 
-TEST(StepMismatch, SaidBeyondATenthOfTheStepOnly)
+TEST(StepMismatch, SaidBeyondATenthOfTheStepOfAnyTrainingRun)
 {
-  EXPECT_EQ(acc::describeStepMismatch(0.1, 0.105), "");  // a logger's jitter
-  EXPECT_EQ(acc::describeStepMismatch(0.1, std::nan("")), "");
-  EXPECT_NE(acc::describeStepMismatch(0.1, 0.2).find("fitted on runs at 0.1 s steps, this run is at 0.2 s"),
+  const auto runAt = [](double step_s, std::size_t samples) {
+    acc::CarFollowingRun run;
+    for (std::size_t k = 0; k < samples; ++k)
+      run.time_s.push_back(step_s * static_cast<double>(k));
+    return run;
+  };
+  EXPECT_EQ(acc::describeStepMismatch({runAt(0.1, 100)}, 0.105), "");  // a logger's jitter
+  EXPECT_EQ(acc::describeStepMismatch({runAt(0.1, 100)}, std::nan("")), "");
+  EXPECT_NE(acc::describeStepMismatch({runAt(0.1, 100)}, 0.2).find("fitted on runs at 0.1 s steps, this run is at 0.2 s"),
             std::string::npos);
-  EXPECT_NE(acc::describeStepMismatch(0.2, 0.1).find("at 0.2 s steps, this run is at 0.1 s"), std::string::npos);
+  EXPECT_NE(acc::describeStepMismatch({runAt(0.2, 100)}, 0.1).find("at 0.2 s steps, this run is at 0.1 s"),
+            std::string::npos);
+  // A long run at the predicted run's step does not hide a short one at another.
+  EXPECT_NE(acc::describeStepMismatch({runAt(0.1, 3000), runAt(0.2, 300)}, 0.1)
+                .find("fitted on runs at 0.1 and 0.2 s steps, this run is at 0.1 s"),
+            std::string::npos);
 }
 
 // A run at 5 Hz predicted with a model fitted on a 10 Hz run (and the other way round) says so:

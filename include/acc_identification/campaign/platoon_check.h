@@ -51,10 +51,11 @@ struct PlatoonCarModel
 /// 5 Hz does not.
 constexpr double kStepMismatchShare = 0.1;
 
-/// PlatoonCarModel::step_mismatch for a model fitted on runs of median step `fitted_step_s` that
-/// predicts a run of median step `run_step_s`; "" when they agree within kStepMismatchShare (or
-/// either is unknown).
-std::string describeStepMismatch(double fitted_step_s, double run_step_s);
+/// PlatoonCarModel::step_mismatch for a model fitted on `training` (each segment's median step
+/// judged on its own: a long run at one step does not hide a short one at another) that predicts a
+/// run of median step `run_step_s`; "" when every segment's agrees with it within
+/// kStepMismatchShare (or a step is unknown).
+std::string describeStepMismatch(const std::vector<CarFollowingRun>& training, double run_step_s);
 
 /// What one speed series did in one perturbation: its dip, the distance it lost against its
 /// pre-perturbation speed (distanceLostM), and how hard it braked and recovered and how long it
