@@ -219,6 +219,8 @@ std::string pairingSettingsFrom(const NmeaPairingOptions& options, RelativeState
     if (!(options.dropout_gap_s > 0.0 && std::isfinite(options.dropout_gap_s)))
       return "the dropout gap must be a positive number of seconds";
     settings.pairing.dropout_gap_s = options.dropout_gap_s;
+    if (const std::string problem = describePairingSettingsProblem(settings.pairing); !problem.empty())
+      return "--dropout-gap-s " + printfText("%g", options.dropout_gap_s) + ": " + problem;
   }
   return "";
 }

@@ -37,6 +37,17 @@ std::string seconds(double value)
 bool earlier(const GnssFix& fix, double time_s) { return fix.gnss_time_s < time_s; }
 }  // namespace
 
+std::string describePairingSettingsProblem(const PairingSettings& settings)
+{
+  if (settings.time_reset_s > settings.dropout_gap_s)
+    return "";
+  std::ostringstream why;
+  why << "~time_reset_s " << settings.time_reset_s << " must exceed ~dropout_gap_s " << settings.dropout_gap_s
+      << ": a new clock's fixes must follow one another within time_reset_s to be taken for one (raise "
+         "time_reset_s above the receiver's step and dropout_gap_s)";
+  return why.str();
+}
+
 bool hasUsablePosition(const GnssFix& fix)
 {
   return fix.fix_quality > 0 && fix.has(GnssFix::kValidPosition) && std::abs(fix.latitude_deg) <= 90.0 &&

@@ -50,7 +50,8 @@ bool readPairing(ParameterReader& r, PairingSettings& q)
                                 " s: epochs this close are taken for the same epoch (GNSS times are exact)") &&
                   r.readAtLeast("max_interpolation_skew_s", q.max_interpolation_skew_s, 0.0) &&
                   r.readAtLeast("exact_wait_s", q.exact_wait_s, 0.0) && r.readAbove("timeout_s", q.timeout_s, 0.0) &&
-                  r.readAbove("dropout_gap_s", q.dropout_gap_s, 0.0) && r.readAbove("time_reset_s", q.time_reset_s, 0.0);
+                  r.readAbove("dropout_gap_s", q.dropout_gap_s, 0.0) && r.readAbove("time_reset_s", q.time_reset_s, 0.0) &&
+                  r.require(describePairingSettingsProblem(q).empty(), "parameter " + describePairingSettingsProblem(q));
   q.max_buffered_fixes = static_cast<std::size_t>(std::max(1, max_buffered));
   q.time_reset_confirm_fixes = static_cast<std::size_t>(std::max(1, reset_confirm));
   return ok;

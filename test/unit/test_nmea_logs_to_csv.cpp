@@ -362,4 +362,18 @@ TEST(NmeaLogsToCsv, AParameterFileIsReadAsTheNodeReadsIt)
   options.params_path = loose.path();
   const std::string too_loose = acc::pairingSettingsFrom(options, settings, note);
   EXPECT_NE(too_loose.find("~exact_match_tolerance_s 0.1 must be at most 0.01 s"), std::string::npos) << too_loose;
+  // A time_reset_s below the receiver's step takes every new clock for stray stamps: refused, in
+  // the file and against an option that raises the dropout gap past it.
+  const ParameterFile short_reset("short_reset", "antenna_offset_m: 5.6\ntime_reset_s: 0.8\ndropout_gap_s: 2.5\n");
+  options.params_path = short_reset.path();
+  settings = acc::RelativeStateSettings{};
+  const std::string too_short = acc::pairingSettingsFrom(options, settings, note);
+  EXPECT_NE(too_short.find("~time_reset_s 0.8 must exceed ~dropout_gap_s 2.5"), std::string::npos) << too_short;
+  options.params_path.clear();
+  options.antennas.combined_m = 5.6;
+  options.dropout_gap_s = 6.0;
+  settings = acc::RelativeStateSettings{};
+  const std::string option_past = acc::pairingSettingsFrom(options, settings, note);
+  EXPECT_NE(option_past.find("--dropout-gap-s 6: ~time_reset_s 5 must exceed ~dropout_gap_s 6"), std::string::npos)
+      << option_past;
 }

@@ -45,6 +45,12 @@ struct PairingSettings
   std::size_t max_buffered_fixes = 2000;
 };
 
+/// Why these settings cannot pair a stream, or "" when they can: time_reset_s must exceed
+/// dropout_gap_s. The fixes of a new clock are held until time_reset_confirm_fixes follow one
+/// another within time_reset_s (ClockResetRule): a time_reset_s below the stream's step, which a
+/// working dropout_gap_s exceeds, would take every new clock for stray stamps.
+std::string describePairingSettingsProblem(const PairingSettings& settings);
+
 /// Why fixes were not paired, and how the pairs were made. Every fix is counted once in
 /// *_fixes and at most once in one of the rejection counters: nothing is dropped silently.
 struct PairingCounters
