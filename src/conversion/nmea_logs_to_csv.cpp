@@ -29,19 +29,30 @@ std::string cell(double value, int decimals)
   return out.str();
 }
 
-/// Where each stretch of a log on one clock ends: before the first fix of a new clock, where the
-/// pairing's own rule (ClockResetRule, on the fixes it would use) confirms a reset, so that the
-/// pairing, fed stretch by stretch, sees each reset where the stretches end. Stray stamps stay in
-/// their stretch, where the pairing counts them.
-std::vector<std::size_t> clockStretchEnds(const std::vector<GnssFix>& fixes, const PairingSettings& pairing)
+/// A log as the batch feeds it to the pairing.
+struct ClockStretches
+{
+  /// Where each stretch on one clock ends: before the first fix of a new clock, where the pairing's
+  /// own rule (ClockResetRule, on the fixes it would use) confirms a reset, so that the pairing,
+  /// fed stretch by stretch, sees each reset where the stretches end.
+  std::vector<std::size_t> ends;
+  /// The time each fix is fed at: its own on the stream's clock; for a stray stamp, or a fix
+  /// without a usable position, the time of the fix before it in its log, so that it goes in where
+  /// it stands (the pairing counts it) and a stamp an hour ahead does not hold the other log back.
+  std::vector<double> feed_time_s;
+};
+
+ClockStretches clockStretches(const std::vector<GnssFix>& fixes, const PairingSettings& pairing)
 {
   ClockResetRule clock(pairing.time_reset_s, pairing.time_reset_confirm_fixes);
-  std::vector<std::size_t> ends, held;  // held: the fixes the rule holds, by index
+  ClockStretches out;
+  out.feed_time_s.assign(fixes.size(), std::numeric_limits<double>::quiet_NaN());
+  std::vector<std::size_t> held;  // the fixes the rule holds, by index
   double newest = std::numeric_limits<double>::quiet_NaN();  // the stream's newest time, as the pairing keeps it
   for (std::size_t i = 0; i < fixes.size(); ++i)
   {
     if (!hasUsablePosition(fixes[i]))
-      continue;  // the pairing counts it wherever it stands
+      continue;
     const double t = fixes[i].gnss_time_s;
     const ClockResetRule::Step step = clock.next(t, newest);
     if (step.stray > 0)
@@ -50,38 +61,50 @@ std::vector<std::size_t> clockStretchEnds(const std::vector<GnssFix>& fixes, con
       held.push_back(i);
     if (step.new_clock)
     {
-      ends.push_back(held.empty() ? i : held.front());
+      out.ends.push_back(held.empty() ? i : held.front());
       newest = t;
+    }
+    if (step.released)  // the held fixes and this one go on, on their clock
+    {
+      held.push_back(i);
       for (const std::size_t j : held)
+      {
+        out.feed_time_s[j] = fixes[j].gnss_time_s;
         newest = std::max(newest, fixes[j].gnss_time_s);
+      }
       held.clear();
     }
     else if (!step.held)
+    {
+      out.feed_time_s[i] = t;
       newest = std::isfinite(newest) ? std::max(newest, t) : t;
+    }
   }
-  ends.push_back(fixes.size());
-  return ends;
+  out.ends.push_back(fixes.size());
+  double before = -std::numeric_limits<double>::infinity();
+  for (double& time_s : out.feed_time_s)
+    before = std::isnan(time_s) ? (time_s = before) : time_s;
+  return out;
 }
 
-/// Feeds both logs' fixes in GNSS-time order, the leader's first at equal times, stretch by
-/// stretch of one clock: the k-th stretch of each log together (a log played twice is two drives,
-/// not one whose times interleave), a log's stretches beyond the other's after all of it (a clock
-/// that went back on one receiver only: the pairing then pairs nothing across the two clocks).
+/// Feeds both logs' fixes in GNSS-time order (their feed times), the leader's first at equal
+/// times, stretch by stretch of one clock: the k-th stretch of each log together (a log played
+/// twice is two drives, not one whose times interleave), a log's stretches beyond the other's after
+/// all of it (a clock that went back on one receiver only: the pairing then pairs nothing across
+/// the two clocks).
 void feedInTimeOrder(const std::vector<GnssFix>& leader, const std::vector<GnssFix>& follower,
                      RelativeStateEstimator& estimator, RelativeStateLogs& logs, const PairingSettings& pairing)
 {
-  const std::vector<std::size_t> leader_ends = clockStretchEnds(leader, pairing);
-  const std::vector<std::size_t> follower_ends = clockStretchEnds(follower, pairing);
+  const ClockStretches leader_log = clockStretches(leader, pairing), follower_log = clockStretches(follower, pairing);
   std::size_t l = 0, f = 0;
-  for (std::size_t k = 0; k < std::max(leader_ends.size(), follower_ends.size()); ++k)
+  for (std::size_t k = 0; k < std::max(leader_log.ends.size(), follower_log.ends.size()); ++k)
   {
-    const std::size_t l_end = leader_ends[std::min(k, leader_ends.size() - 1)];
-    const std::size_t f_end = follower_ends[std::min(k, follower_ends.size() - 1)];
+    const std::size_t l_end = leader_log.ends[std::min(k, leader_log.ends.size() - 1)];
+    const std::size_t f_end = follower_log.ends[std::min(k, follower_log.ends.size() - 1)];
     while (l < l_end || f < f_end)
     {
-      // A fix without a finite time goes in where it stands in its log: the pairing counts it.
       const bool take_leader =
-          f == f_end || (l < l_end && !(follower[f].gnss_time_s < leader[l].gnss_time_s));
+          f == f_end || (l < l_end && !(follower_log.feed_time_s[f] < leader_log.feed_time_s[l]));
       if (take_leader)
         estimator.addLeader(leader[l++]);
       else

@@ -14,15 +14,16 @@ ClockResetRule::Step ClockResetRule::next(double time_s, double newest_s)
 {
   Step step;
   const bool jumped_back = std::isfinite(newest_s) && time_s < newest_s - time_reset_s_;
+  const bool jumped = jumped_back || (std::isfinite(newest_s) && time_s > newest_s + time_reset_s_);
   // Back on the stream's clock, or a held run this fix does not continue: what was held was no clock.
   // (Within time_reset_s of the newest held, so that the held fixes, let go in order once
   // confirmed, make one reset and not a second among themselves.)
-  if (held_ > 0 && (!jumped_back || std::abs(time_s - held_newest_s_) > time_reset_s_))
+  if (held_ > 0 && (!jumped || std::abs(time_s - held_newest_s_) > time_reset_s_))
   {
     step.stray = held_;
     held_ = 0;
   }
-  if (!jumped_back)
+  if (!jumped)
     return step;
   held_newest_s_ = held_ == 0 ? time_s : std::max(held_newest_s_, time_s);
   ++held_;
@@ -31,7 +32,8 @@ ClockResetRule::Step ClockResetRule::next(double time_s, double newest_s)
     step.held = true;
     return step;
   }
-  step.new_clock = true;
+  step.released = true;
+  step.new_clock = jumped_back;
   held_ = 0;
   return step;
 }

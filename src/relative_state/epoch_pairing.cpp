@@ -115,12 +115,12 @@ bool EpochPairer::holdsJumpBack(const GnssFix& fix, bool leader)
     dropStrayStamps(leader);
   if (step.held)
     held.push_back(fix);
-  if (!step.new_clock)
+  if (!step.released)
     return step.held;
   std::vector<GnssFix> confirmed;
   confirmed.swap(held);
   confirmed.push_back(fix);
-  for (const GnssFix& f : confirmed)  // the first is the reset (acceptStream), the rest follow it
+  for (const GnssFix& f : confirmed)  // the first is the reset or the dropout (acceptStream), the rest follow it
     if (acceptStream(f, leader))
       leader ? insertLeader(f) : insertFollower(f);
   return true;
@@ -132,7 +132,7 @@ void EpochPairer::dropStrayStamps(bool leader)
   const char* name = leader ? "leader" : "follower";
   (leader ? counters_.leader_stray_stamps : counters_.follower_stray_stamps) += held.size();
   event(std::to_string(held.size()) + " " + name + " fix(es) stamped " + seconds(held.front().gnss_time_s) +
-            " s, far behind the stream's " + seconds(leader ? newest_leader_s_ : newest_follower_s_) +
+            " s, far from the stream's " + seconds(leader ? newest_leader_s_ : newest_follower_s_) +
             " s, and fewer than " + std::to_string(settings_.time_reset_confirm_fixes) +
             " in a row: stray time stamps, not used (no reset)",
         false);

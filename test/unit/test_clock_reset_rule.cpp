@@ -23,7 +23,7 @@ std::vector<acc::ClockResetRule::Step> stepsOver(const std::vector<double>& time
   {
     steps.push_back(rule.next(t, newest));
     if (!steps.back().held)
-      newest = steps.back().new_clock || !std::isfinite(newest) ? t : std::max(newest, t);
+      newest = steps.back().new_clock || !std::isfinite(newest) ? t : std::max(newest, t);  // as the pairing keeps it
   }
   return steps;
 }
@@ -45,6 +45,7 @@ TEST(ClockResetRule, ConfirmFixesInARowOnANewClockAreAReset)
   for (std::size_t k = 2; k < 6; ++k)
     EXPECT_TRUE(steps[k].held) << k;
   EXPECT_TRUE(steps[6].new_clock);
+  EXPECT_TRUE(steps[6].released);
   EXPECT_FALSE(steps[6].held);
   EXPECT_FALSE(steps[7].held);  // on the new clock now
   EXPECT_FALSE(steps[7].new_clock);
@@ -85,4 +86,22 @@ TEST(ClockResetRule, WhatIsHeldAtTheStreamsEndIsStray)
   EXPECT_EQ(rule.endOfStream(), 2u);
   EXPECT_EQ(rule.held(), 0u);
   EXPECT_EQ(rule.endOfStream(), 0u);
+}
+
+TEST(ClockResetRule, AStampFarAheadIsHeldTooAndStrayWhenTheStreamGoesOn)
+{
+  // One fix an hour ahead, then the stream on its clock: a stray stamp, not a clock to fall back from.
+  const auto glitch = stepsOver({100.0, 100.1, 3700.2, 100.3, 100.4}, 5);
+  EXPECT_TRUE(glitch[2].held);
+  EXPECT_EQ(glitch[3].stray, 1u);
+  EXPECT_FALSE(glitch[3].held);
+  EXPECT_FALSE(glitch[4].released);
+  // A dropout longer than time_reset_s: the fixes after it are the stream's own, let go once
+  // confirmed, and no reset.
+  const auto dropout = stepsOver({100.0, 100.1, 110.0, 110.1, 110.2, 110.3, 110.4, 110.5}, 5);
+  for (std::size_t k = 2; k < 6; ++k)
+    EXPECT_TRUE(dropout[k].held) << k;
+  EXPECT_TRUE(dropout[6].released);
+  EXPECT_FALSE(dropout[6].new_clock);
+  EXPECT_FALSE(dropout[7].held);
 }

@@ -203,6 +203,18 @@ TEST(NmeaLogsToCsv, EachLogsClocksArePairedAsTheyRan)
   EXPECT_EQ(two_clocks.pairing.follower_time_resets, 0u);
   EXPECT_EQ(two_clocks.pairing.follower_unpaired, 0u);
   EXPECT_EQ(two_clocks.states.size(), half - 6);
+  // One follower fix stamped 10 s, one leader fix an hour, ahead: stray stamps. Such a stamp was
+  // taken for the stream's time, which the next fixes then seemed to fall back from: a reset, and
+  // more than half the epochs unpaired (audit).
+  const acc::RelativeStateLogs ahead = pairChangedLogs("nmea_logs_ahead", [](auto& leader, auto& follower) {
+    follower[1000].gnss_time_s += 10.0;
+    leader[500].gnss_time_s += 3600.0;
+  });
+  EXPECT_EQ(ahead.pairing.follower_stray_stamps, 1u);
+  EXPECT_EQ(ahead.pairing.leader_stray_stamps, 1u);
+  EXPECT_EQ(ahead.pairing.follower_time_resets + ahead.pairing.leader_time_resets, 0u);
+  EXPECT_LE(ahead.pairing.follower_unpaired, 1u);  // the follower epoch at the leader's stray, if any
+  EXPECT_GE(ahead.states.size(), half - 2);
 }
 
 // A log that cannot be read is an error, and nothing is paired.

@@ -40,6 +40,9 @@ struct PairingSettings
   /// A time reset is taken once this many fixes in a row run on the new clock (they are then
   /// paired as usual, a few epochs late); fewer, after which the stream is back on its clock, are
   /// stray time stamps (a glitched or corrupted time): counted, not used, and nothing is cleared.
+  /// A fix more than time_reset_s AHEAD of the stream waits for as many too (after a dropout that
+  /// long, the first few epochs are paired a little late), so that one stamp an hour ahead is a
+  /// stray stamp and not a clock the stream then seems to fall back from (ClockResetRule).
   std::size_t time_reset_confirm_fixes = 5;
   /// Bound on the fixes held per stream, against a stream that never pairs.
   std::size_t max_buffered_fixes = 2000;
@@ -73,7 +76,7 @@ struct PairingCounters
   std::uint64_t follower_dropouts = 0;
   std::uint64_t leader_time_resets = 0;      ///< time went back more than time_reset_s (confirmed)
   std::uint64_t follower_time_resets = 0;
-  std::uint64_t leader_stray_stamps = 0;     ///< fixes stamped far back, the stream then back on its clock: not used
+  std::uint64_t leader_stray_stamps = 0;     ///< fixes stamped far back or ahead, the stream then back on its clock: not used
   std::uint64_t follower_stray_stamps = 0;
   std::uint64_t buffer_overflows = 0;        ///< oldest fixes discarded at max_buffered_fixes
 };
