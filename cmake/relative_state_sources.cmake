@@ -2,7 +2,6 @@
 # acc_relative_state and, with clang's libFuzzer and sanitizers, into the relative-state fuzzer
 # (scripts/test_hooks/fuzz_relative_state.sh configures test/fuzz/CMakeLists.txt, which includes this file).
 set(ACC_RELATIVE_STATE_SOURCES
-  src/relative_state/clock_reset_rule.cpp
   src/relative_state/epoch_pairing.cpp
   src/relative_state/vehicle_geometry.cpp
   src/relative_state/gap_doppler_consistency.cpp

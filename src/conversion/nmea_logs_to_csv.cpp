@@ -44,37 +44,27 @@ struct ClockStretches
 
 ClockStretches clockStretches(const std::vector<GnssFix>& fixes, const PairingSettings& pairing)
 {
-  ClockResetRule clock(pairing.time_reset_s, pairing.time_reset_confirm_fixes);
+  ClockResetRule<std::size_t> clock(pairing.time_reset_s, pairing.time_reset_confirm_fixes);  // holds indices
   ClockStretches out;
   out.feed_time_s.assign(fixes.size(), std::numeric_limits<double>::quiet_NaN());
-  std::vector<std::size_t> held;  // the fixes the rule holds, by index
   double newest = std::numeric_limits<double>::quiet_NaN();  // the stream's newest time, as the pairing keeps it
   for (std::size_t i = 0; i < fixes.size(); ++i)
   {
     if (!hasUsablePosition(fixes[i]))
       continue;
     const double t = fixes[i].gnss_time_s;
-    const ClockResetRule::Step step = clock.next(t, newest);
-    if (step.stray > 0)
-      held.clear();
-    if (step.held)
-      held.push_back(i);
+    const ClockResetRule<std::size_t>::Step step = clock.next(i, t, newest);
     if (step.new_clock)
     {
-      out.ends.push_back(held.empty() ? i : held.front());
+      out.ends.push_back(step.released.front());
       newest = t;
     }
-    if (step.released)  // the held fixes and this one go on, on their clock
+    for (const std::size_t j : step.released)  // they go on, on their clock
     {
-      held.push_back(i);
-      for (const std::size_t j : held)
-      {
-        out.feed_time_s[j] = fixes[j].gnss_time_s;
-        newest = std::max(newest, fixes[j].gnss_time_s);
-      }
-      held.clear();
+      out.feed_time_s[j] = fixes[j].gnss_time_s;
+      newest = std::max(newest, fixes[j].gnss_time_s);
     }
-    else if (!step.held)
+    if (step.released.empty() && !step.held)
     {
       out.feed_time_s[i] = t;
       newest = std::isfinite(newest) ? std::max(newest, t) : t;

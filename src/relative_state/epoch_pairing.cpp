@@ -100,43 +100,33 @@ void EpochPairer::addFollower(const GnssFix& fix)
 
 void EpochPairer::addToStream(const GnssFix& fix, bool leader)
 {
-  if (hasUsablePosition(fix) && holdsJumpBack(fix, leader))
+  if (hasUsablePosition(fix) && holdsFarOffStamp(fix, leader))
     return;
   if (acceptStream(fix, leader))
     leader ? insertLeader(fix) : insertFollower(fix);
 }
 
-bool EpochPairer::holdsJumpBack(const GnssFix& fix, bool leader)
+bool EpochPairer::holdsFarOffStamp(const GnssFix& fix, bool leader)
 {
-  std::vector<GnssFix>& held = leader ? held_leader_ : held_follower_;
-  const ClockResetRule::Step step =
-      (leader ? leader_clock_ : follower_clock_).next(fix.gnss_time_s, leader ? newest_leader_s_ : newest_follower_s_);
-  if (step.stray > 0)
-    dropStrayStamps(leader);
-  if (step.held)
-    held.push_back(fix);
-  if (!step.released)
-    return step.held;
-  std::vector<GnssFix> confirmed;
-  confirmed.swap(held);
-  confirmed.push_back(fix);
-  for (const GnssFix& f : confirmed)  // the first is the reset or the dropout (acceptStream), the rest follow it
+  const ClockResetRule<GnssFix>::Step step = (leader ? leader_clock_ : follower_clock_)
+                                                 .next(fix, fix.gnss_time_s, leader ? newest_leader_s_ : newest_follower_s_);
+  if (!step.stray.empty())
+    dropStrayStamps(step.stray, leader);
+  for (const GnssFix& f : step.released)  // the first is the reset or the dropout (acceptStream), the rest follow it
     if (acceptStream(f, leader))
       leader ? insertLeader(f) : insertFollower(f);
-  return true;
+  return step.held || !step.released.empty();
 }
 
-void EpochPairer::dropStrayStamps(bool leader)
+void EpochPairer::dropStrayStamps(const std::vector<GnssFix>& stray, bool leader)
 {
-  std::vector<GnssFix>& held = leader ? held_leader_ : held_follower_;
   const char* name = leader ? "leader" : "follower";
-  (leader ? counters_.leader_stray_stamps : counters_.follower_stray_stamps) += held.size();
-  event(std::to_string(held.size()) + " " + name + " fix(es) stamped " + seconds(held.front().gnss_time_s) +
+  (leader ? counters_.leader_stray_stamps : counters_.follower_stray_stamps) += stray.size();
+  event(std::to_string(stray.size()) + " " + name + " fix(es) stamped " + seconds(stray.front().gnss_time_s) +
             " s, far from the stream's " + seconds(leader ? newest_leader_s_ : newest_follower_s_) +
             " s, and fewer than " + std::to_string(settings_.time_reset_confirm_fixes) +
             " in a row: stray time stamps, not used (no reset)",
         false);
-  held.clear();
 }
 
 std::vector<PairedEpoch> EpochPairer::takePairs()
@@ -347,8 +337,8 @@ void EpochPairer::finish()
 {
   // Fewer fixes on a new clock than confirm a reset, at the end of the streams: counted as stray.
   for (const bool leader : {true, false})
-    if ((leader ? leader_clock_ : follower_clock_).endOfStream() > 0)
-      dropStrayStamps(leader);
+    if (const std::vector<GnssFix> stray = (leader ? leader_clock_ : follower_clock_).endOfStream(); !stray.empty())
+      dropStrayStamps(stray, leader);
   finishing_ = true;
   resolvePending();
   finishing_ = false;

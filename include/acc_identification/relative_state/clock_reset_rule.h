@@ -1,7 +1,11 @@
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <limits>
+#include <utility>
+#include <vector>
 
 namespace acc
 {
@@ -18,39 +22,73 @@ namespace acc
 /// does not continue. Judges only the fixes the stream would use (a usable position,
 /// hasUsablePosition); a fix without a finite time is on no clock and ends a hold like a fix on the
 /// stream's. time_reset_s must exceed the stream's step (describePairingSettingsProblem).
+///
+/// It holds what its user gives with each fix (the fix itself live, its index in the log in batch)
+/// and hands it back when the hold ends, stray or released.
+template <typename Held>
 class ClockResetRule
 {
 public:
-  ClockResetRule(double time_reset_s, std::size_t confirm_fixes);
+  ClockResetRule(double time_reset_s, std::size_t confirm_fixes)
+    : time_reset_s_(time_reset_s), confirm_fixes_(std::max<std::size_t>(1, confirm_fixes))
+  {
+  }
 
   /// What one fix does.
   struct Step
   {
-    /// Fixes held before this one that are stray stamps: every fix held so far (let go, counted).
-    std::size_t stray = 0;
+    /// What was held before this fix, now known to be stray stamps: let go, counted.
+    std::vector<Held> stray;
     /// The fix is held, awaiting its clock's confirmation.
     bool held = false;
-    /// The fix confirms the held ones' clock: they, this one the last, go on in order. A new clock
-    /// (a reset) when they lie behind the stream's newest time (`new_clock`), the stream's own after
-    /// a long dropout when ahead.
-    bool released = false;
+    /// The fix confirmed the held ones' clock: they, this one the last, go on in order. A new clock
+    /// (a reset, `new_clock`) when they lie behind the stream's newest time; the stream's own after
+    /// a long dropout when ahead. Empty otherwise.
+    std::vector<Held> released;
     bool new_clock = false;
   };
 
   /// The next usable fix of the stream, stamped time_s, the stream's newest time being newest_s
-  /// (NaN before any).
-  Step next(double time_s, double newest_s);
+  /// (NaN before any); `item` is what is held for it.
+  Step next(Held item, double time_s, double newest_s)
+  {
+    Step step;
+    const bool behind = std::isfinite(newest_s) && time_s < newest_s - time_reset_s_;
+    const bool far_off = behind || (std::isfinite(newest_s) && time_s > newest_s + time_reset_s_);
+    // Back on the stream's clock, or a held run this fix does not continue: what was held was no
+    // clock. (Within time_reset_s of the newest held, so that the held fixes, let go in order once
+    // confirmed, make one reset and not a second among themselves.)
+    if (!held_.empty() && (!far_off || std::abs(time_s - held_newest_s_) > time_reset_s_))
+      step.stray.swap(held_);
+    if (!far_off)
+      return step;
+    held_newest_s_ = held_.empty() ? time_s : std::max(held_newest_s_, time_s);
+    held_.push_back(std::move(item));
+    if (held_.size() < confirm_fixes_)
+    {
+      step.held = true;
+      return step;
+    }
+    step.released.swap(held_);
+    step.new_clock = behind;
+    return step;
+  }
 
-  /// The stream ends: the fixes still held (returned) are stray stamps, fewer than confirm a clock.
-  std::size_t endOfStream();
+  /// The stream ends: what is still held (returned) are stray stamps, fewer than confirm a clock.
+  std::vector<Held> endOfStream()
+  {
+    std::vector<Held> stray;
+    stray.swap(held_);
+    return stray;
+  }
 
   /// Fixes held now, awaiting confirmation.
-  std::size_t held() const { return held_; }
+  std::size_t held() const { return held_.size(); }
 
 private:
   double time_reset_s_;
   std::size_t confirm_fixes_;
-  std::size_t held_ = 0;
+  std::vector<Held> held_;
   double held_newest_s_ = std::numeric_limits<double>::quiet_NaN();  ///< the newest of the held fixes' times
 };
 

@@ -140,12 +140,13 @@ private:
   /// Routes a fix of one stream: held while a jump back in time awaits confirmation, else checked
   /// (acceptStream) and buffered.
   void addToStream(const GnssFix& fix, bool leader);
-  /// Whether fix, stamped more than time_reset_s back, is held awaiting time_reset_confirm_fixes on
-  /// its clock (true; at the last of them every held fix goes on as a reset); false when the fix is
-  /// on the stream's clock, the fixes held before it then counted as stray stamps (ClockResetRule).
-  bool holdsJumpBack(const GnssFix& fix, bool leader);
-  /// The held fixes were stray stamps: counted, said, let go of.
-  void dropStrayStamps(bool leader);
+  /// Whether the stream's ClockResetRule takes the fix (stamped more than time_reset_s back or
+  /// ahead): held awaiting time_reset_confirm_fixes on its clock, or, at the last of them, every
+  /// held fix gone on in order (a reset, or the stream's clock after a long dropout). False when the
+  /// fix is on the stream's clock: the fixes held before it are then counted as stray stamps.
+  bool holdsFarOffStamp(const GnssFix& fix, bool leader);
+  /// These held fixes were stray stamps: counted, said, let go of.
+  void dropStrayStamps(const std::vector<GnssFix>& stray, bool leader);
   bool acceptStream(const GnssFix& fix, bool leader);
   void noteTimeBases(bool follower_left_leaders_clock);
   void noteDropout(const char* name, double from_s, double to_s, std::size_t& in_a_row);
@@ -162,9 +163,8 @@ private:
   PairingCounters counters_;
   std::deque<GnssFix> leader_;            // sorted by gnss_time_s
   std::deque<GnssFix> pending_follower_;  // sorted by gnss_time_s
-  std::vector<GnssFix> held_leader_;      // stamped far back, awaiting confirmation of a reset
-  std::vector<GnssFix> held_follower_;
-  ClockResetRule leader_clock_, follower_clock_;  // what holds them, and when they are a reset
+  /// Each stream's fixes stamped far back or ahead, held until their clock is confirmed.
+  ClockResetRule<GnssFix> leader_clock_, follower_clock_;
   std::vector<PairedEpoch> ready_;
   std::vector<PairingEvent> events_;
   double newest_leader_s_ = GnssFix::kNaN;
