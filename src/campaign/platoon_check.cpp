@@ -117,8 +117,7 @@ void predictCar(const OpenAccFile& file, const std::vector<double>& input_mps, i
   car.rmse_speed_mps = sim.diverged ? kNaN : rmseAgainstMeasured(car.predicted_speed_mps, file.vehicle(car.position)->speed_mps);
   if (sim.diverged)
     car.note = "simulation diverged at t = " + printfText("%.1f s", run.time_s[valid]) + whyDiverged(car.model, run);
-  bool collision = false;
-  car.breakdown = describeBreakdown(sim, run.time_s, &collision);
+  car.breakdown = describeBreakdown(sim, run.time_s);
 }
 
 

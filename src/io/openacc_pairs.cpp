@@ -51,7 +51,7 @@ std::string describePairlessFollower(const OpenAccFile& file, int follower_posit
   if (!leader->copied_column.empty())
   {
     return follower + " has no pair: the car directly ahead of it, " + ahead +
-           ", is a copied column (its speeds repeat another car's), so its leader's speed is not measured";
+           ", is a copied column (its speeds equal another car's on every row), so its leader's speed is not measured";
   }
   if (leader->speed_values == 0)
   {

@@ -448,18 +448,21 @@ FollowerSpeedSensitivities simulateFollowerSensitivities(const std::vector<Effec
 
 std::string describeBreakdown(const SimulatedFollower& simulated, const std::vector<double>& time_s, bool* collision)
 {
+  bool collided = false;
+  std::string breakdown;
   const std::size_t end = simulated.diverged ? simulated.diverged_at_index : simulated.speed_mps.size();
-  for (std::size_t i = 0; i < end && i < time_s.size(); ++i)
+  for (std::size_t i = 0; i < end && i < time_s.size() && breakdown.empty(); ++i)
   {
-    *collision = simulated.space_gap_m[i] <= 0.0;
-    if (*collision)
-      return printfText("its gap reaches %.1f m (a collision) at t = %.1f s", simulated.space_gap_m[i], time_s[i]);
-    if (simulated.speed_mps[i] < 0.0)
-      return printfText("its speed reaches %.2f m/s (driving backwards) at t = %.1f s", simulated.speed_mps[i],
-                        time_s[i]);
+    collided = simulated.space_gap_m[i] <= 0.0;
+    if (collided)
+      breakdown = printfText("its gap reaches %.1f m (a collision) at t = %.1f s", simulated.space_gap_m[i], time_s[i]);
+    else if (simulated.speed_mps[i] < 0.0)
+      breakdown = printfText("its speed reaches %.2f m/s (driving backwards) at t = %.1f s", simulated.speed_mps[i],
+                             time_s[i]);
   }
-  *collision = false;
-  return "";
+  if (collision != nullptr)
+    *collision = collided;
+  return breakdown;
 }
 
 }  // namespace acc

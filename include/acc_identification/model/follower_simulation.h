@@ -80,8 +80,10 @@ FollowerSpeedSensitivities simulateFollowerSensitivities(const std::vector<Effec
 SimulatedFollower scorable(SimulatedFollower simulated);
 
 /// Where a simulated car first collides with the car ahead (gap at or below 0) or drives backwards
-/// (speed below 0), before any divergence; "" when it does neither. *collision: which of the two.
-std::string describeBreakdown(const SimulatedFollower& simulated, const std::vector<double>& time_s, bool* collision);
+/// (speed below 0), before any divergence; "" when it does neither. *collision, when given: which
+/// of the two.
+std::string describeBreakdown(const SimulatedFollower& simulated, const std::vector<double>& time_s,
+                              bool* collision = nullptr);
 
 /// The paper's model: every effect off.
 inline SimulatedFollower simulateFollower(const AccParameters& p, const CarFollowingRun& run)
