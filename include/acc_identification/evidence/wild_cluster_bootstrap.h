@@ -44,7 +44,9 @@ std::size_t enumerableWeightPatterns(std::size_t family_clusters);
 ///
 /// With G family clusters there are 6^G patterns. Up to kMaxEnumeratedWeightPatterns (G <= 7,
 /// which is where the bootstrap matters most) every pattern is visited: p_value is the exact share
-/// of patterns whose t reaches the member's (the all-ones pattern among them), and family_p_value
+/// of patterns whose t reaches the member's (the all-ones pattern among them, and every t within a
+/// relative 1e-9 of it: the patterns of equal positive weights give the member's own t, up to
+/// rounding, so two clusters give at least 3 of 36 and name nothing at 0.05), and family_p_value
 /// the share whose largest t over the members reaches it; neither depends on the seed, so a
 /// decision near the level is never one of Monte-Carlo noise. With more clusters, `replicates`
 /// patterns are drawn by uniformBelow from std::mt19937_64(seed) (bit for bit the same with every
