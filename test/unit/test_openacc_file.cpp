@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -208,18 +210,28 @@ TEST_F(OpenAccFileTest, ImpossibleAnglesAreListedInRowOrderOneLinePerRow)
   EXPECT_EQ(file.bad_cells_by_column.at("Lat1"), 1u);
 }
 
-/// The platoon file over 200 rows with varying speeds: TESLA_MODELX (2) drives 10 + 2 sin(0.05 i)
-/// m/s with a little noise; AUDI_A4 (5) drives `speed5(i)`.
-template <typename Speed5>
-std::string varyingPlatoonFile(Speed5 speed5)
+/// A speed cell: NaN as the database writes an empty measurement.
+std::string speedCell(double speed_mps) { return std::isnan(speed_mps) ? "NaN" : printed(speed_mps); }
+
+/// The platoon file over 200 rows with the speeds of SMART_TARGET (1), TESLA_MODELX (2) and
+/// AUDI_A4 (5) given per row.
+std::string platoonFileWithSpeeds(const std::function<double(int)>& speed1, const std::function<double(int)>& speed2,
+                                  const std::function<double(int)>& speed5)
 {
   std::string text = kPlatoonMetadata + kPlatoonHeader;
   for (int i = 0; i < 200; ++i)
   {
-    std::string row = platoonRow(i, true, "", "10.0", printed(varyingSpeed(i)));
-    text += withField(row, 19, printed(speed5(i)));
+    const std::string row = platoonRow(i, true, "", "10.0", speedCell(speed2(i)));
+    text += withField(withField(row, 19, speedCell(speed5(i))), 1, speedCell(speed1(i)));
   }
   return text;
+}
+
+/// The platoon file over 200 rows with varying speeds: SMART_TARGET (1) at 10 m/s, TESLA_MODELX (2)
+/// at 10 + 2 sin(0.05 i) m/s with a little noise; AUDI_A4 (5) drives `speed5(i)`.
+std::string varyingPlatoonFile(const std::function<double(int)>& speed5)
+{
+  return platoonFileWithSpeeds([](int) { return 10.0; }, varyingSpeed, speed5);
 }
 
 TEST_F(OpenAccFileTest, ACarWhoseSpeedsAreAnotherCarsColumnIsACopiedColumnAndNoPairsCar)
@@ -258,6 +270,49 @@ TEST_F(OpenAccFileTest, SpeedsThatDifferSomewhereOrAreShiftedAreTwoCars)
   // Equal while one of them is steady (a standstill, a held value) decides nothing.
   const acc::OpenAccFile steady = acc::readOpenAccFile(write("steady.csv", varyingPlatoonFile([](int) { return 10.0; })));
   EXPECT_TRUE(steady.vehicle(5)->copied_column.empty());
+  // Equal everywhere but in the last row: two measurements.
+  const acc::OpenAccFile last = acc::readOpenAccFile(
+      write("last.csv", varyingPlatoonFile([](int i) { return varyingSpeed(i) + (i == 199 ? 0.5 : 0.0); })));
+  EXPECT_TRUE(last.vehicle(5)->copied_column.empty()) << last.vehicle(5)->copied_column;
+}
+
+TEST_F(OpenAccFileTest, EqualColumnsDecideNothingOnTooFewRowsOrChanges)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // Equal on 60 rows (AUDI_A4 has no measurement on the others): too few to call a copy.
+  const acc::OpenAccFile short_overlap = acc::readOpenAccFile(
+      write("short.csv", varyingPlatoonFile([nan](int i) { return i < 60 ? varyingSpeed(i) : nan; })));
+  ASSERT_EQ(short_overlap.error, "");
+  EXPECT_TRUE(short_overlap.vehicle(5)->copied_column.empty()) << short_overlap.vehicle(5)->copied_column;
+  // Equal on every row, stepping 0.5 m/s every 20 rows: 9 changes, a held value more than a drive.
+  const auto steps = [](int i) { return 10.0 + 0.5 * (i / 20); };
+  const acc::OpenAccFile stepped =
+      acc::readOpenAccFile(write("stepped.csv", platoonFileWithSpeeds([](int) { return 10.0; }, steps, steps)));
+  ASSERT_EQ(stepped.error, "");
+  EXPECT_TRUE(stepped.vehicle(5)->copied_column.empty()) << stepped.vehicle(5)->copied_column;
+}
+
+TEST_F(OpenAccFileTest, ACopyIsFoundThroughEmptyCellsAndBehindTheFirstCar)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // The copy and the original each miss a few cells (the database's NaN cells): the rows where both
+  // hold a number decide.
+  const acc::OpenAccFile holes = acc::readOpenAccFile(write(
+      "holes.csv", platoonFileWithSpeeds([](int) { return 10.0; },
+                                         [nan](int i) { return i == 150 ? nan : varyingSpeed(i); },
+                                         [nan](int i) { return i == 10 || i == 77 ? nan : varyingSpeed(i); })));
+  ASSERT_EQ(holes.error, "");
+  EXPECT_NE(holes.vehicle(5)->copied_column.find("equal TESLA_MODELX (2)'s"), std::string::npos)
+      << holes.vehicle(5)->copied_column;
+  // The first car's column written again as the second's.
+  const acc::OpenAccFile first =
+      acc::readOpenAccFile(write("first.csv", platoonFileWithSpeeds(varyingSpeed, varyingSpeed, [](int i) {
+                                   return 8.0 + std::cos(0.07 * i);
+                                 })));
+  ASSERT_EQ(first.error, "");
+  EXPECT_NE(first.vehicle(2)->copied_column.find("equal SMART_TARGET (1)'s"), std::string::npos)
+      << first.vehicle(2)->copied_column;
+  EXPECT_TRUE(first.vehicle(5)->copied_column.empty());
 }
 
 TEST_F(OpenAccFileTest, CarsWithAbsentOrEmptyColumnsHaveNoPairAndTheNotesSayWhy)
