@@ -233,6 +233,33 @@ TEST(CampaignPerturbation, DropsWithoutARecoveryNearTheMedianBetweenThemAreOnePe
   EXPECT_NEAR(acc::dipDepthMps(time_s, speed_mps, found[0]), 4.0, 1e-9);
 }
 
+// Drops of the first car that the speed comes back to its median between are two perturbations
+// once they are more than merge_within_s (5 s) apart, and one (a drop with a blip of noise) within.
+TEST(CampaignPerturbation, DropsAreMergedWithinFiveSecondsAndTwoBeyond)
+{
+  const auto two_drops = [](double gap_s) {
+    return [gap_s](double t) {
+      if (t >= 20.0 && t < 23.0)
+        return 7.0;
+      if (t >= 23.0 + gap_s && t < 26.0 + gap_s)
+        return 6.0;
+      return 10.0;
+    };
+  };
+  std::vector<double> time_s, speed_mps;
+  sampleSpeed(two_drops(8.0), 0.1, &time_s, &speed_mps);
+  const auto apart = acc::findPerturbations(time_s, speed_mps);
+  ASSERT_EQ(apart.size(), 2u);
+  EXPECT_NEAR(apart[1].onset_s, 30.9, 1e-6);
+  time_s.clear();
+  speed_mps.clear();
+  sampleSpeed(two_drops(3.0), 0.1, &time_s, &speed_mps);
+  const auto merged = acc::findPerturbations(time_s, speed_mps);
+  ASSERT_EQ(merged.size(), 1u);
+  EXPECT_NEAR(merged[0].end_s, 29.0, 1e-6);
+  EXPECT_NEAR(acc::dipDepthMps(time_s, speed_mps, merged[0]), 4.0, 1e-9);
+}
+
 // A dip the data do not hold whole is not measured (a number there is a cut-off dip, wrong
 // without a word): data that begin inside a drop (no onset near the median: Casale part3 starts
 // from rest) or end before the first car is back; a window the data's end cuts, at the first car
