@@ -1302,3 +1302,42 @@ TEST(LinkRatioChain, EachCarPassesOnWhatItDidInItsOtherRuns)
       acc::summarizeDipPredictions(platoons, acc::DipPrediction::link_ratio_chain);
   EXPECT_EQ(summary.car_perturbations, 9u);  // every car with a ratio, of the four perturbations
 }
+
+// Where the chain gets the direction of a link wrong, or a dip more than max_relative_dip_error
+// (30 %) off, the perturbation says so (`disagreements`), and only there: cars that amplify,
+// predicted with a law that damps.
+TEST(CampaignPlatoon, ADisagreementIsSaidWhereTheChainMissesTheDirectionOrTheDip)
+{
+  const acc::CampaignFile file =
+      syntheticPlatoonFile("wrong", {{"CAR_A", kUnstable}, {"CAR_B", kUnstable}, {"CAR_C", kUnstable}}, 67, 150.0);
+  // m = 0.1 * 1.5^2 + 2 * 0.8 * 1.5 - 2 = +0.63: string stable, dips shrink along the chain.
+  const acc::AccParameters damping{0.10, 0.80, 1.5, 4.0};
+  ASSERT_TRUE(acc::analyzeStringStability(damping).string_stable);
+  const std::vector<acc::PlatoonCarModel> models(5, acc::PlatoonCarModel{true, damping, "a damping law"});
+  const acc::PlatoonCheck check = acc::checkPlatoon(file, models);
+  ASSERT_FALSE(check.perturbations.empty());
+  std::size_t directions = 0, dips = 0;
+  for (const acc::PerturbationCheck& perturbation : check.perturbations)
+  {
+    const auto said = [&](int position, const std::string& what) {
+      return std::any_of(perturbation.disagreements.begin(), perturbation.disagreements.end(),
+                         [&](const auto& d) { return d.position == position && d.what.find(what) != std::string::npos; });
+    };
+    for (const acc::DipComparison& row : perturbation.positions)
+    {
+      if (row.position < 2)
+        continue;
+      const bool wrong_direction = (row.chain_amplification > 1.0) != (row.measured_amplification > 1.0);
+      const double error = (row.chain.dip_mps - row.measured.dip_mps) / row.measured.dip_mps;
+      EXPECT_EQ(said(row.position, "predicted attenuation"), wrong_direction) << row.position;
+      EXPECT_EQ(said(row.position, "dip error"), std::abs(error) > 0.3) << row.position << ": " << error;
+      directions += wrong_direction;
+      dips += std::abs(error) > 0.3;
+    }
+  }
+  // The chain damps every link the cars amplify; the last car's dip, -37 % off, is beyond 30 %,
+  // the second's and third's (-18 %, -29 %) are not.
+  EXPECT_EQ(directions, 3u * check.perturbations.size());
+  EXPECT_GE(dips, 1u);
+  EXPECT_LT(dips, 3u * check.perturbations.size());
+}
