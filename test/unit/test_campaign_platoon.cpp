@@ -1193,6 +1193,8 @@ TEST(StepMismatch, SaidBeyondATenthOfTheStepOfAnyTrainingRun)
     return run;
   };
   EXPECT_EQ(acc::describeStepMismatch({runAt(0.1, 100)}, 0.105), "");  // a logger's jitter
+  EXPECT_NE(acc::describeStepMismatch({runAt(0.1, 100)}, 0.115), "");  // 15 %: beyond a tenth
+  EXPECT_NE(acc::describeStepMismatch({runAt(0.1, 100)}, 0.088), "");
   EXPECT_EQ(acc::describeStepMismatch({runAt(0.1, 100)}, std::nan("")), "");
   EXPECT_NE(acc::describeStepMismatch({runAt(0.1, 100)}, 0.2).find("fitted on runs at 0.1 s steps, this run is at 0.2 s"),
             std::string::npos);
