@@ -328,6 +328,12 @@ TEST(CampaignPerturbation, TheDistanceLostIsTheAreaOfTheDipAndUnknownWhereTheWin
   ASSERT_EQ(found.size(), 1u);
   EXPECT_NEAR(acc::dipDepthMps(time_s, speed_mps, found[0]), 2.0, 1e-9);
   EXPECT_NEAR(acc::distanceLostM(time_s, speed_mps, found[0]), 8.0, 1e-9);
+  // A car that overshoots its old speed after the dip gains no distance back there: only what it
+  // fell below counts (the integral where positive).
+  std::vector<double> overshoot = speed_mps;
+  for (std::size_t i = 0; i < time_s.size(); ++i)
+    overshoot[i] += time_s[i] >= 24.0 - 1e-9 && time_s[i] < 28.0 - 1e-9 ? 1.0 : 0.0;
+  EXPECT_NEAR(acc::distanceLostM(time_s, overshoot, found[0]), 8.0, 1e-9);
 
   std::vector<double> holed = speed_mps;
   for (std::size_t i = 450; i < 460; ++i)  // 0.5 s missing inside the held dip: bridged exactly
