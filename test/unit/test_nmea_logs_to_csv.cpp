@@ -170,6 +170,10 @@ TEST(NmeaLogsToCsv, EachLogsClocksArePairedAsTheyRan)
   EXPECT_EQ(loop.pairing.follower_unpaired, 0u);
   EXPECT_EQ(loop.pairing.follower_time_resets, 1u);
   const std::size_t half = loop.states.size() / 2;
+  // Each drive pairs as it does alone: no epoch of the second clock fed with the first's stretch.
+  const acc::RelativeStateLogs once = pairChangedLogs("nmea_logs_once", [](auto&, auto&) {});
+  EXPECT_EQ(loop.states.size(), 2 * once.states.size());
+  EXPECT_EQ(loop.pairing.follower_stray_stamps + loop.pairing.leader_stray_stamps, 0u);
   const acc::RelativeStateLogs jumped = pairChangedLogs("nmea_logs_jump", [&](auto&, auto& follower) {
     for (std::size_t i = follower.size() / 2; i < follower.size(); ++i)
       follower[i].gnss_time_s -= 20.0;
