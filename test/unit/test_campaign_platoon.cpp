@@ -937,6 +937,12 @@ TEST(PlatoonEffectSelection, ACandidatePredictingNoDipIsScoredThereNotSpared)
   ASSERT_NE(compared, selection.comparisons.end());
   EXPECT_EQ(compared->car_perturbations, scores.size());
   EXPECT_GT(compared->mean_loss, compared->against_loss);
+  // Scored as a dip of a tenth of the measured one: the loss of a prediction ten times too small.
+  double expected = 0.0;
+  for (const acc::PairPerturbationScore& s : scores)
+    expected += std::pow(std::log(std::max(s.chain_dip_mps[scoreIndexOf(delay)], 0.1 * s.measured_dip_mps) /
+                                  s.measured_dip_mps), 2);
+  EXPECT_NEAR(compared->mean_loss, expected / static_cast<double>(scores.size()), 1e-9);
 }
 
 // A stage's choice is compared with every other candidate named at the stage: a lag exactly as

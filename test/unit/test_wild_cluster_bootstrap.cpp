@@ -195,6 +195,16 @@ TEST(WildClusterBootstrap, PatternsOfEqualWeightsTieWithTheObservedOne)
   EXPECT_GT(3.0 / 36.0, 0.05) << "so two perturbations cannot name an effect at 0.05";
 }
 
+// Beyond seven clusters the patterns are drawn, and the observed statistic is one more of them:
+// p = (1 + count) / (replicates + 1), never 0, however clear the improvement.
+TEST(WildClusterBootstrap, ADrawnPCountsTheObservedStatistic)
+{
+  const std::vector<double> sums = {1.0, 1.1, 0.9, 1.05, 0.95, 1.02, 0.98, 1.01, 0.99};
+  const std::vector<std::size_t> sizes(sums.size(), 1);
+  ASSERT_EQ(enumerableWeightPatterns(sums.size()), 0u);
+  EXPECT_DOUBLE_EQ(wildClusterTest(sums, sizes, 99, 3).p_value, 1.0 / 100.0);
+}
+
 TEST(WildClusterBootstrap, SaysOneWhereThereIsNothingToTestAndRepeatsWithTheSeed)
 {
   EXPECT_EQ(wildClusterTest({0.3}, {2}, 999, 1).p_value, 1.0);               // one cluster
