@@ -7,8 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <optional>
-#include <set>
 #include <stdexcept>
 #include <tuple>
 
@@ -373,21 +373,24 @@ PerturbationCheck comparePerturbation(const PlatoonCheck& check, const OpenAccFi
 
 std::string describeStepMismatch(const std::vector<CarFollowingRun>& training, double run_step_s)
 {
-  std::set<std::string> steps;  // the training segments' median steps, as printed
+  // The training segments' median steps as printed, in numeric order (as strings, 10 came before 2).
+  std::map<double, std::string> steps;
   bool mismatch = false;
   for (const CarFollowingRun& segment : training)
   {
     const double step_s = medianStepS({segment});
     if (!(step_s > 0.0) || !(run_step_s > 0.0))
       continue;
-    steps.insert(printfText("%.3g", step_s));
+    const std::string printed = printfText("%.3g", step_s);
+    steps.emplace(std::stod(printed), printed);
     mismatch = mismatch || std::abs(run_step_s / step_s - 1.0) > kStepMismatchShare;
   }
   if (!mismatch)
     return "";
   std::string listed;
-  for (const std::string& step : steps)
-    listed += (listed.empty() ? "" : std::next(steps.find(step)) == steps.end() ? " and " : ", ") + step;
+  std::size_t written = 0;
+  for (const auto& [value_s, printed] : steps)
+    listed += (written++ == 0 ? "" : written == steps.size() ? " and " : ", ") + printed;
   return printfText("fitted on runs at %s s steps, this run is at %.3g s: the fit's parameters are those of the "
                     "model's Euler map at its data's step (the paper's calibration), so this prediction, stepped at "
                     "the run's, carries the difference (calibrate's euler_step_bias says how far the step moves a fit)",

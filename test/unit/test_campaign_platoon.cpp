@@ -918,6 +918,39 @@ TEST(PlatoonEffectSelection, AddsWhatEachStageNamesUntilAStageNamesNothing)
 // dip 10 % too shallow but the first car of each perturbation not at all, and loses to the base
 // model's 30 % everywhere. Fails when such cars leave the candidate's loss (the delay was named,
 // its loss over the other two cars a third of the base model's).
+// A step is named only where it closes enough of the gap: a loss 5 % lower, however consistent,
+// is under the rule's 10 %; and dips of 0.3 m/s or less, which noise can make, are not scored.
+TEST(PlatoonEffectSelection, TooSmallAGainOrTooSmallADipNamesNothing)
+{
+  using E = acc::EffectKind;
+  using O = acc::FitObjective;
+  const acc::PlatoonCandidate delay{{E::reaction_delay}, O::speed};
+  std::vector<double> depth(acc::platoonCandidates().size() + 1, 0.5);
+  depth[scoreIndexOf(delay)] = 0.509;  // (log 0.509)^2 is 5 % below (log 0.5)^2, in every perturbation
+  const acc::EffectSetSelection small_gain = acc::selectEffectSet(scoresWithChainDips(depth), 99, "", {});
+  EXPECT_TRUE(small_gain.model.effects.empty()) << small_gain.model.name();
+  const auto compared = std::find_if(small_gain.comparisons.begin(), small_gain.comparisons.end(),
+                                     [&](const acc::EffectSetComparison& c) { return c.candidate == delay; });
+  ASSERT_NE(compared, small_gain.comparisons.end());
+  EXPECT_NEAR(compared->relative_improvement, 0.05, 0.01);
+  EXPECT_FALSE(compared->significant);
+
+  // The delay predicts small dips exactly and the scored ones no better than the base model.
+  depth[scoreIndexOf(delay)] = 0.5;
+  std::vector<acc::PairPerturbationScore> scores = scoresWithChainDips(depth);
+  for (std::size_t p = 0; p < 8; ++p)
+  {
+    acc::PairPerturbationScore small = scores[3 * p];
+    small.measured_dip_mps = 0.25;
+    for (double& dip : small.chain_dip_mps)
+      dip = 0.1;
+    small.chain_dip_mps[scoreIndexOf(delay)] = 0.25;
+    scores.push_back(small);
+  }
+  const acc::EffectSetSelection small_dips = acc::selectEffectSet(scores, 99, "", {});
+  EXPECT_TRUE(small_dips.model.effects.empty()) << small_dips.model.name();
+}
+
 TEST(PlatoonEffectSelection, ACandidatePredictingNoDipIsScoredThereNotSpared)
 {
   using E = acc::EffectKind;
@@ -1210,6 +1243,11 @@ TEST(StepMismatch, SaidBeyondATenthOfTheStepOfAnyTrainingRun)
   EXPECT_NE(acc::describeStepMismatch({runAt(0.1, 3000), runAt(0.2, 300)}, 0.1)
                 .find("fitted on runs at 0.1 and 0.2 s steps, this run is at 0.1 s"),
             std::string::npos);
+  // Listed in numeric order, not as strings sort.
+  EXPECT_NE(acc::describeStepMismatch({runAt(0.2, 100), runAt(0.05, 100), runAt(10.0, 30)}, 1.0)
+                .find("fitted on runs at 0.05, 0.2 and 10 s steps"),
+            std::string::npos)
+      << acc::describeStepMismatch({runAt(0.2, 100), runAt(0.05, 100), runAt(10.0, 30)}, 1.0);
 }
 
 // A run at 5 Hz predicted with a model fitted on a 10 Hz run (and the other way round) says so:
