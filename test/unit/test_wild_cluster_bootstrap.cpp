@@ -193,6 +193,25 @@ TEST(WildClusterBootstrap, PatternsOfEqualWeightsTieWithTheObservedOne)
     EXPECT_DOUBLE_EQ(smallest, 3.0 / patterns) << clusters << " clusters";
   }
   EXPECT_GT(3.0 / 36.0, 0.05) << "so two perturbations cannot name an effect at 0.05";
+  // Within a family the largest t of a pattern is at least the member's own, so the family's p is
+  // never below the member's: the observed pattern and its ties count there too.
+  std::mt19937_64 draws(12);
+  std::normal_distribution<double> noise(0.3, 1.0);
+  for (int family_draw = 0; family_draw < 200; ++family_draw)
+  {
+    std::vector<ClusteredDifferences> family(2);
+    for (ClusteredDifferences& member : family)
+      for (std::size_t g = 0; g < 4; ++g)
+      {
+        member.clusters.push_back(g);
+        member.sums.push_back(noise(draws));
+        member.sizes.push_back(1);
+      }
+    for (const WildClusterTest& test : wildClusterMaxT(family, 4, 99, 1))
+      EXPECT_GE(test.family_p_value, test.p_value) << family_draw;
+  }
+  ClusteredDifferences agreeing{{0, 1}, {0.4, 0.4}, {1, 1}};
+  EXPECT_DOUBLE_EQ(wildClusterMaxT({agreeing}, 2, 99, 1).front().family_p_value, 3.0 / 36.0);
 }
 
 // Beyond seven clusters the patterns are drawn, and the observed statistic is one more of them:
