@@ -190,6 +190,30 @@ TEST(Pairing, ALostLeaderEpochIsInterpolatedOnceTheLeaderIsPastItByTheExactWait)
   EXPECT_EQ(pairer.counters().follower_unpaired, 0u);
 }
 
+// A hole in the follower's own fixes longer than dropout_gap_s (0.5 s) breaks the continuity of
+// the pairs, though every fix that is there pairs; a shorter one does not.
+TEST(Pairing, AFollowerHoleBeyondTheDropoutGapBreaksContinuity)
+{
+  for (const double hole_s : {0.7, 0.3})
+  {
+    acc::EpochPairer pairer;
+    for (double t : epochs(0.0, 4.0))
+    {
+      pairer.addLeader(fixAt(t));
+      if (!(t > 1.05 && t < 1.05 + hole_s - 0.1))
+        pairer.addFollower(fixAt(t, -0.001));
+    }
+    const auto pairs = pairer.takePairs();
+    EXPECT_EQ(pairer.counters().follower_unpaired, 0u);
+    const auto resumed = std::find_if(pairs.begin(), pairs.end(), [](const auto& p) { return p.time_s > 1.05; });
+    ASSERT_NE(resumed, pairs.end());
+    EXPECT_NEAR(resumed->time_s - std::prev(resumed)->time_s, hole_s, 1e-6);
+    EXPECT_EQ(resumed->continuity_break, hole_s > 0.5) << hole_s;
+    EXPECT_EQ(std::count_if(pairs.begin() + 1, pairs.end(), [](const auto& p) { return p.continuity_break; }),
+              hole_s > 0.5 ? 1 : 0);
+  }
+}
+
 TEST(Pairing, LeaderDropoutGivesNoSamplesACountAndABreak)
 {
   acc::EpochPairer pairer;
