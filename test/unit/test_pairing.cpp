@@ -602,6 +602,31 @@ TEST(Pairing, AFollowerTimeGlitchIsAStrayStampThatClearsNothing)
   EXPECT_TRUE(said);
 }
 
+// "More than time_reset_s" back is a clock of its own; exactly time_reset_s back is a late fix of
+// this clock (counted too late), not a stray stamp. Steps of 0.125 s keep every stamp exact.
+TEST(Pairing, AStampExactlyTimeResetBackIsLateAndOneStepFurtherIsStray)
+{
+  for (const double back_s : {5.0, 5.125})
+  {
+    acc::PairingSettings settings;
+    ASSERT_EQ(settings.time_reset_s, 5.0);
+    acc::EpochPairer pairer(settings);
+    for (double t : epochs(0.0, 30.0, 0.125))
+    {
+      pairer.addLeader(fixAt(t));
+      pairer.addFollower(fixAt(t, -0.001));
+      if (t == 20.0)
+        pairer.addFollower(fixAt(t - back_s, -0.001));
+    }
+    pairer.finish();
+    const acc::PairingCounters& c = pairer.counters();
+    const bool beyond = back_s > settings.time_reset_s;
+    EXPECT_EQ(c.follower_stray_stamps, beyond ? 1u : 0u) << back_s;
+    EXPECT_EQ(c.follower_too_late, beyond ? 0u : 1u) << back_s;
+    EXPECT_EQ(c.follower_time_resets, 0u) << back_s;
+    EXPECT_EQ(c.exact_pairs, 241u) << back_s;
+  }
+}
 // A few fixes on another clock are stray until time_reset_confirm_fixes in a row confirm a reset;
 // the fixes that confirm it are paired, not lost. Live, arrival order is real time and the follower
 // epochs waiting for the leader's data were cleared by the stray stamp taken for a reset.
