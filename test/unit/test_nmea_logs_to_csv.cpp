@@ -174,6 +174,25 @@ TEST(NmeaLogsToCsv, EachLogsClocksArePairedAsTheyRan)
   const acc::RelativeStateLogs once = pairChangedLogs("nmea_logs_once", [](auto&, auto&) {});
   EXPECT_EQ(loop.states.size(), 2 * once.states.size());
   EXPECT_EQ(loop.pairing.follower_stray_stamps + loop.pairing.leader_stray_stamps, 0u);
+  // The same with the follower's receiver started 2 s after the leader's and stopped 3 s before it:
+  // each log's clock goes back at another fix, and each loop still pairs as the shortened drive alone.
+  const auto shortened = [](auto&, auto& follower) {
+    follower.erase(follower.end() - 30, follower.end());
+    follower.erase(follower.begin(), follower.begin() + 20);
+  };
+  const acc::RelativeStateLogs shortened_once = pairChangedLogs("nmea_logs_short_once", shortened);
+  const acc::RelativeStateLogs shortened_loop = pairChangedLogs("nmea_logs_short_loop", [&](auto& leader, auto& follower) {
+    shortened(leader, follower);
+    const auto l = static_cast<std::ptrdiff_t>(leader.size()), f = static_cast<std::ptrdiff_t>(follower.size());
+    leader.insert(leader.end(), leader.begin(), leader.begin() + l);
+    follower.insert(follower.end(), follower.begin(), follower.begin() + f);
+  });
+  EXPECT_EQ(shortened_once.states.size(), once.states.size() - 50);
+  EXPECT_EQ(shortened_loop.states.size(), 2 * shortened_once.states.size());
+  EXPECT_EQ(shortened_loop.pairing.follower_unpaired, 0u);
+  EXPECT_EQ(shortened_loop.pairing.leader_time_resets, 1u);
+  EXPECT_EQ(shortened_loop.pairing.follower_time_resets, 1u);
+  EXPECT_EQ(shortened_loop.pairing.follower_stray_stamps + shortened_loop.pairing.leader_stray_stamps, 0u);
   const acc::RelativeStateLogs jumped = pairChangedLogs("nmea_logs_jump", [&](auto&, auto& follower) {
     for (std::size_t i = follower.size() / 2; i < follower.size(); ++i)
       follower[i].gnss_time_s -= 20.0;
