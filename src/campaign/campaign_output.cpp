@@ -765,17 +765,20 @@ std::vector<std::string> groupNotes(const CampaignResult& result)
   for (const GroupResult& g : result.groups)
   {
     const std::string name = g.vehicle + "/" + g.setting + ": ";
-    const std::string why = g.fitted() ? g.identification.note : g.reason;
-    if (!why.empty())
-      notes.push_back(name + why);
+    if (!g.fitted())
+      notes.push_back(name + g.reason + ": no parameters and no verdict (a verdict needs the data a fit needs)");
+    else if (!g.identification.note.empty())
+      notes.push_back(name + g.identification.note);
     if (g.model_adequacy.assessed && !g.model_adequacy.adequate)
       notes.push_back(name + "model " + describeAdequacy(g.model_adequacy) +
                       ": its verdict compares two versions of a model that misses these data");
     else if (!g.model_adequacy.assessed && g.stability_test.tested &&
              g.stability_test.verdict != StabilityVerdict::Undecided)
-      notes.push_back(name + "model adequacy not assessed (no fit of all its runs): its verdict compares two "
-                             "models fitted on halves, and nothing checked that they describe these data");
-    if (g.stability_test.verdict == StabilityVerdict::Undecided)
+      notes.push_back(name + "model adequacy " +
+                      (g.model_adequacy.reasons.empty() ? std::string("not assessed") : g.model_adequacy.reasons.front()) +
+                      ": its verdict compares two models fitted on halves, and nothing checked that they describe "
+                      "these data");
+    if (g.fitted() && g.stability_test.verdict == StabilityVerdict::Undecided)
       notes.push_back(name + (g.stability_test.tested ? "undecided: " : "not tested: ") + g.stability_test.reason);
     if (g.euler_step_bias && g.euler_step_bias->material)
       notes.push_back(name + eulerStepNote(*g.euler_step_bias));
