@@ -110,8 +110,9 @@ double RelativeStateEstimator::gap(const PairedEpoch& pair)
   return straightLineGap(pair.leader, pair.follower, settings_.geometry);
 }
 
-std::string RelativeStateEstimator::jumpReason(const RelativeState& state) const
+std::string RelativeStateEstimator::jumpReason(const RelativeState& state, bool* speed_jumped) const
 {
+  *speed_jumped = false;
   if (!has_reference_)
     return "";
   double dt = state.time_s - reference_.time_s;
@@ -119,13 +120,16 @@ std::string RelativeStateEstimator::jumpReason(const RelativeState& state) const
   // above its step) is checked against its previous epoch too.
   if (dt <= 0.0 || dt > std::max(settings_.jump_reference_max_age_s, settings_.pairing.dropout_gap_s))
     return "";
+  // The speeds are judged whatever the gap did: a sample whose position and speed both glitch must
+  // keep its speed out of the Doppler integral too.
+  double leader_accel = std::abs(state.leader_speed_mps - reference_.leader_speed_mps) / dt;
+  double follower_accel = std::abs(state.follower_speed_mps - reference_.follower_speed_mps) / dt;
+  *speed_jumped = std::max(leader_accel, follower_accel) > settings_.max_acceleration_mps2;
   double gap_rate = std::abs(state.space_gap_m - reference_.space_gap_m) / dt;
   if (gap_rate > settings_.max_gap_rate_mps)
     return "gap jump of " + number(state.space_gap_m - reference_.space_gap_m) + " m in " + number(dt) +
            " s exceeds max_gap_rate " + number(settings_.max_gap_rate_mps, 1) + " m/s";
-  double leader_accel = std::abs(state.leader_speed_mps - reference_.leader_speed_mps) / dt;
-  double follower_accel = std::abs(state.follower_speed_mps - reference_.follower_speed_mps) / dt;
-  if (std::max(leader_accel, follower_accel) > settings_.max_acceleration_mps2)
+  if (*speed_jumped)
     return std::string(leader_accel > follower_accel ? "leader" : "follower") + " speed jump of " +
            number(std::max(leader_accel, follower_accel) * dt) + " m/s in " + number(dt) +
            " s exceeds max_acceleration " + number(settings_.max_acceleration_mps2, 1) + " m/s^2";
@@ -183,11 +187,15 @@ void RelativeStateEstimator::process(const PairedEpoch& pair)
     ++counters_.held_positions;
     state.invalid_reason = held;
   }
-  else
-    state.invalid_reason = jumpReason(state);
-  // Every sample carries the relative speed's integral from the last valid one on; a step the
-  // jump check no longer sees (it outlasted jump_reference_max_age_s) is caught here.
-  const std::string unexplained = step_check_.check(state.time_s, state.space_gap_m, state.relative_speed_mps);
+  bool speed_jumped = false;
+  if (state.invalid_reason.empty())
+    state.invalid_reason = jumpReason(state, &speed_jumped);
+  // Every sample whose speeds are the cars' carries the relative speed's integral from the last
+  // valid one on; a step the jump check no longer sees (it outlasted jump_reference_max_age_s) is
+  // caught here. A rejected speed stays out of it: one Doppler spike of 80 m/s carried the gap 8 m
+  // off, and every later sample was rejected as a gap jump the speeds did not explain.
+  const std::string unexplained =
+      speed_jumped ? "" : step_check_.check(state.time_s, state.space_gap_m, state.relative_speed_mps);
   if (state.invalid_reason.empty())
     state.invalid_reason = unexplained;
 

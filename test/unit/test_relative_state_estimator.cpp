@@ -243,6 +243,30 @@ TEST(RelativeStateEstimator, SpeedJumpIsRejectedToo)
   EXPECT_NE(states[10].invalid_reason.find("follower speed jump"), std::string::npos);
 }
 
+// One Doppler spike (a corrupt RMC speed field, 80 m/s for one epoch) is one invalid sample. Its
+// speed once entered the relative speed's integral that the gap is checked against, carried the
+// gap 8 m off, and every later sample of the drive was rejected as a gap jump the speeds did not
+// explain. The same when the epoch's position glitches too (a gap jump and a speed jump at once).
+TEST(RelativeStateEstimator, ADopplerSpikeCostsItsOwnSampleAndNoOther)
+{
+  for (const bool position_too : {false, true})
+  {
+    acc::RelativeStateEstimator estimator(settingsWithOffset());
+    auto states = run(estimator, straightDrive(), 30.0, [&](double t, acc::GnssFix& leader, acc::GnssFix& follower) {
+      if (std::abs(t - 10.0) < 1e-6)
+      {
+        follower.speed_over_ground_mps += 80.0;
+        if (position_too)
+          leader.latitude_deg += 1e-4;  // 11 m north
+      }
+    });
+    ASSERT_EQ(states.size(), 301u);
+    for (std::size_t i = 0; i < states.size(); ++i)
+      EXPECT_EQ(states[i].valid, i != 100) << position_too << " at " << i << ": " << states[i].invalid_reason;
+    EXPECT_EQ(estimator.counters().invalid_states, 1u) << position_too;
+  }
+}
+
 TEST(RelativeStateEstimator, MissingSpeedAndStandstillAreInvalidOrNaNNotInvented)
 {
   acc::RelativeStateEstimator estimator(settingsWithOffset());

@@ -24,8 +24,10 @@ public:
 
   /// Starts again from a valid sample.
   void anchor(double time_s, double gap_m, double relative_speed_mps);
-  /// Integrates the relative speed up to this sample (every sample, valid or not); then "" when its
-  /// gap agrees with the anchor's carried by the speeds, or when nothing can be said; else why not.
+  /// Integrates the relative speed up to this sample (every sample whose speeds are the cars', valid
+  /// or not); then "" when its gap agrees with the anchor's carried by the speeds, or when nothing can
+  /// be said; else why not. A sample whose speed was rejected (a jump no car makes) is not checked:
+  /// its speed would carry the anchor's gap off for good, and the next sample's step bridges it.
   std::string check(double time_s, double gap_m, double relative_speed_mps);
   /// No anchor: nothing is said until the next one (a break in the data).
   void reset();

@@ -92,7 +92,9 @@ public:
 private:
   void process(const PairedEpoch& pair);
   double gap(const PairedEpoch& pair);
-  std::string jumpReason(const RelativeState& state) const;
+  /// Why the sample's gap or a speed jumped from the last valid sample's beyond what a car does
+  /// ("" when neither did); speed_jumped says whether a speed did, whatever the gap did.
+  std::string jumpReason(const RelativeState& state, bool* speed_jumped) const;
   /// Why the pair's positions cannot be used ("" when they can), and the fixes remembered.
   std::string heldPositionReason(const PairedEpoch& pair);
 
