@@ -738,6 +738,28 @@ std::vector<CarFollowingRun> readRuns(const std::string& path, const RunPlausibi
 /// speeds too fast (the rest counted).
 constexpr std::size_t kCoarseProblemLinesShown = 10;
 
+namespace
+{
+/// With several OpenACC pairs read (--all-pairs), each pair's gap against its own speeds: one pair in
+/// other units (a gap in feet) is diluted in the file's pooled check and would enter the fit.
+void refusePairInOtherUnits(const std::string& path, const RunFileContents& contents)
+{
+  if (contents.pairs.size() < 2)
+    return;
+  for (std::size_t pair = 0; pair < contents.pairs.size(); ++pair)
+  {
+    std::vector<CarFollowingRun> runs;
+    for (std::size_t i = 0; i < contents.runs.size() && i < contents.run_pairs.size(); ++i)
+      if (contents.run_pairs[i] == pair)
+        runs.push_back(contents.runs[i]);
+    const GapKinematics kinematics = checkGapKinematics(runs);
+    if (!kinematics.unit_error.empty())
+      throw RunReadError(path + ": " + contents.pairs[pair].label() + ": " + kinematics.unit_error +
+                         kUnitErrorRefusal);
+  }
+}
+}  // namespace
+
 std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileContents& contents, std::ostream& log)
 {
   for (const std::string& note : contents.notes)
@@ -765,6 +787,7 @@ std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileC
   const GapKinematics kinematics = checkGapKinematics(contents.runs);
   if (!kinematics.unit_error.empty())
     throw RunReadError(path + ": " + kinematics.unit_error + kUnitErrorRefusal);
+  refusePairInOtherUnits(path, contents);
   for (const std::string& disagreement : kinematics.warnings)
   {
     log << "warning: " << path << ": " << disagreement << "\n";

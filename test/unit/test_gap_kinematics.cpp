@@ -79,6 +79,42 @@ TEST(GapKinematics, TheReadersRefuseARunWhoseUnitsDisagree)
   }
 }
 
+// An OpenACC file read pair by pair (--all-pairs): one pair whose gap is in feet among four in
+// metres passed the file's pooled check (ratio 1.5, within its bounds) and entered the fit.
+// Refused naming the pair, as that pair alone (--follower) is.
+TEST(GapKinematics, APairInOtherUnitsAmongSeveralIsRefused)
+{
+  acc::RunFileContents contents;
+  for (int pair = 0; pair < 5; ++pair)
+  {
+    acc::CarFollowingRun run = consistentRun();
+    if (pair == 3)
+      for (double& gap_m : run.space_gap_m)
+        gap_m *= 3.28084;
+    contents.runs.push_back(run);
+    contents.run_pairs.push_back(static_cast<std::size_t>(pair));
+    contents.pairs.push_back({pair + 1, pair + 2, "CAR_" + std::to_string(pair + 1), "CAR_" + std::to_string(pair + 2)});
+  }
+  const acc::GapKinematics pooled = acc::checkGapKinematics(contents.runs);
+  EXPECT_TRUE(pooled.unit_error.empty()) << "the pooled check alone sees no unit error: " << pooled.scale;
+  std::ostringstream log;
+  try
+  {
+    acc::reportAndTakeRuns("platoon.csv", contents, log);
+    ADD_FAILURE() << "a pair whose gap is in feet was taken";
+  }
+  catch (const acc::RunReadError& error)
+  {
+    const std::string what = error.what();
+    EXPECT_NE(what.find("platoon.csv: CAR_5 behind CAR_4, positions 5/4: the gap and the speeds disagree"),
+              std::string::npos)
+        << what;
+    EXPECT_NE(what.find("check the units: not used"), std::string::npos) << what;
+  }
+  contents.runs[3] = consistentRun();
+  EXPECT_EQ(acc::reportAndTakeRuns("platoon.csv", contents, log).size(), 5u);
+}
+
 TEST(GapKinematics, AGapThatJumpsIsNamedWithItsWindow)
 {
   acc::CarFollowingRun run = consistentRun();
