@@ -3,12 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
 #include "acc_identification/calibration/margin_constrained_fit.h"
 #include "acc_identification/model/follower_simulation.h"
 #include "acc_identification/model/normal_source.h"
+#include "acc_identification/model/string_stability.h"
 
 namespace acc
 {
@@ -89,15 +91,40 @@ CarFollowingRun synthesizeRun(const AccParameters& truth, double duration_s, dou
   return run;
 }
 
+namespace
+{
+/// The truths' gains and eta; tau_e sets the margin.
+constexpr AccParameters kTruthBase{0.1, 0.5, 1.5, 6.0};
+}  // namespace
+
 AccParameters truthWithMargin(double margin)
 {
-  const std::vector<AccParameters> on_margin = projectOntoMargin({0.1, 0.5, 1.5, 6.0}, margin, ParameterBounds{});
+  const std::vector<AccParameters> on_margin = projectOntoMargin(kTruthBase, margin, ParameterBounds{});
   if (on_margin.empty())
   {
+    const std::array<double, 2> range = truthMarginRange();
     throw std::invalid_argument("truthWithMargin: no k1 = 0.1, k2 = 0.5 model within the bounds has margin " +
-                                std::to_string(margin));
+                                std::to_string(margin) + " (they reach " + std::to_string(range[0]) + " to " +
+                                std::to_string(range[1]) + ")");
   }
   return on_margin.front();
+}
+
+std::array<double, 2> truthMarginRange()
+{
+  // projectOntoMargin changes one parameter of the base truth within the bounds: tau_e, k2 or k1.
+  // The margin grows with each, so each reaches its largest at its upper bound.
+  const ParameterBounds bounds;
+  AccParameters least = kTruthBase;
+  least.tau_e_s = bounds.lower.tau_e_s;
+  double largest = -std::numeric_limits<double>::infinity();
+  for (double AccParameters::*changed : {&AccParameters::tau_e_s, &AccParameters::k2_per_s, &AccParameters::k1_per_s2})
+  {
+    AccParameters at_bound = kTruthBase;
+    at_bound.*changed = bounds.upper.*changed;
+    largest = std::max(largest, stabilityMargin(at_bound));
+  }
+  return {stabilityMargin(least), largest};
 }
 
 std::vector<CarFollowingRun> paperScaleRuns(const AccParameters& truth)

@@ -1,5 +1,6 @@
 #include "acc_identification/synthesis/verdict_study.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "acc_identification/calibration/sequential_verdict.h"
@@ -43,6 +44,23 @@ void tallyDrive(const std::vector<SequentialLook>& looks, double drive_start_s, 
   }
 }
 }  // namespace
+
+std::string fitCheckpointsToDuration(VerdictStudyOptions* options, bool checkpoints_given)
+{
+  std::vector<double>& lengths_s = options->checkpoints_s;
+  if (!checkpoints_given)
+  {
+    lengths_s.erase(std::remove_if(lengths_s.begin(), lengths_s.end(),
+                                   [&](double s) { return s >= options->duration_s; }),
+                    lengths_s.end());
+    lengths_s.push_back(options->duration_s);
+  }
+  for (const double length_s : lengths_s)
+    if (length_s > options->duration_s)
+      return "--checkpoints " + significant(length_s) + " s is longer than each drive (--duration " +
+             significant(options->duration_s) + " s)";
+  return "";
+}
 
 std::vector<VerdictStudyClass> runVerdictStudy(const VerdictStudyOptions& options, std::FILE* progress)
 {

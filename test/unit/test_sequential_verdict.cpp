@@ -7,6 +7,8 @@
 // the same sequence as calibrate --verdict-every (replaySequentialVerdict).
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -254,6 +256,37 @@ TEST(SequentialVerdict, BadInputIsUndecidedWithAReason)
   const auto short_look = acc::replaySequentialVerdict({short_run}, {});
   ASSERT_FALSE(short_look.empty());
   EXPECT_NE(short_look.back().reason.find("too few samples"), std::string::npos) << short_look.back().reason;
+}
+
+// The truths a study can have: their range is what verdict_study's --margins accepts, and every
+// margin in it is reached exactly. --margins 10 once aborted the tool on truthWithMargin's throw.
+TEST(VerdictStudy, TheTruthsMarginRangeIsReachedAndNothingBeyond)
+{
+  const std::array<double, 2> range = acc::truthMarginRange();
+  EXPECT_DOUBLE_EQ(range[0], -2.0);
+  EXPECT_DOUBLE_EQ(range[1], 7.225);
+  for (const double margin : {range[0], -1.0, 0.0, 3.0, 5.5, 6.0, range[1]})
+    EXPECT_NEAR(acc::stabilityMargin(acc::truthWithMargin(margin)), margin, 1e-9) << margin;
+  EXPECT_THROW(acc::truthWithMargin(range[1] + 0.01), std::invalid_argument);
+  EXPECT_THROW(acc::truthWithMargin(range[0] - 0.01), std::invalid_argument);
+}
+
+// Power is read only at drive lengths the study simulates: the default checkpoints are cut to a
+// shorter drive and its end added; a given one beyond it is refused (it was printed as right@600s
+// for drives of 60 s, the end's reading carried on).
+TEST(VerdictStudy, CheckpointsLieWithinTheDrives)
+{
+  acc::VerdictStudyOptions short_drives;
+  short_drives.duration_s = 700.0;
+  EXPECT_EQ(acc::fitCheckpointsToDuration(&short_drives, false), "");
+  EXPECT_EQ(short_drives.checkpoints_s, (std::vector<double>{300.0, 600.0, 700.0}));
+  acc::VerdictStudyOptions whole;
+  EXPECT_EQ(acc::fitCheckpointsToDuration(&whole, false), "");
+  EXPECT_EQ(whole.checkpoints_s, (std::vector<double>{300.0, 600.0, 900.0, 1200.0}));
+  acc::VerdictStudyOptions given;
+  given.duration_s = 60.0;
+  given.checkpoints_s = {30.0, 600.0};
+  EXPECT_EQ(acc::fitCheckpointsToDuration(&given, true), "--checkpoints 600 s is longer than each drive (--duration 60 s)");
 }
 
 // verdict_study's study (synthesis/verdict_study.h): its tallies follow the looks, and its table

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -35,8 +36,13 @@ CarFollowingRun synthesizeRun(const AccParameters& truth, double duration_s, dou
                               double cruise_speed_mps, std::uint32_t seed, const MeasurementNoise& noise = {});
 
 /// A truth with string-stability margin m for studies and tests: k1 = 0.1 /s^2, k2 = 0.5 /s,
-/// eta = 6 m and the tau_e that gives m (projectOntoMargin); for m in [-2, 78).
+/// eta = 6 m and the tau_e that gives m (projectOntoMargin), for m from -2 to 5.5 (tau_e from 0 to
+/// its bound 5 s); beyond, tau_e = 1.5 s and the k2 that gives m, up to 7.225 (k2 at its bound
+/// 3 /s). Throws std::invalid_argument outside truthMarginRange().
 AccParameters truthWithMargin(double margin);
+
+/// The margins truthWithMargin reaches: -2 to 7.225 with the calibration's bounds.
+std::array<double, 2> truthMarginRange();
 
 /// The benchmarks' reference data (docs/PERFORMANCE.md): nine synthesizeRun drives of 480 s at
 /// 10 Hz (4,320 s, 43,209 samples, the scale of the paper's calibration data), seeds 1 to 9,

@@ -46,6 +46,11 @@ struct VerdictStudyClass
   }
 };
 
+/// The checkpoints fitted to the drives' length: given ones (checkpoints_given) must lie within it,
+/// else why not (read there, the power would be the drive's end's carried on: a length never
+/// simulated); the default ones are cut to it and the drive's end added. "" when they fit.
+std::string fitCheckpointsToDuration(VerdictStudyOptions* options, bool checkpoints_given);
+
 /// Every class's drives replayed (a line per drive on progress, may be null).
 std::vector<VerdictStudyClass> runVerdictStudy(const VerdictStudyOptions& options, std::FILE* progress);
 
