@@ -47,11 +47,12 @@ int main(int argc, char** argv)
       ->check(CLI::ExistingFile)
       ->needs(platoon_flag);
   platoon_flag->excludes(id_option);
-  app.add_option("--follower", follower, "OpenACC files: the follower of the pair to read (its leader is replayed)");
-  app.add_option("--topic", topic, "RelativeState topic in bags")->capture_default_str();
-  app.add_option("--max-gap", max_gap_s, "split runs at holes longer than this [s]")
-      ->check(acc::positiveNumber())
-      ->capture_default_str();
+  platoon_flag->excludes(app.add_option("--follower", follower,
+                                        "OpenACC files: the follower of the pair to read (its leader is replayed)"));
+  platoon_flag->excludes(app.add_option("--topic", topic, "RelativeState topic in bags")->capture_default_str());
+  platoon_flag->excludes(app.add_option("--max-gap", max_gap_s, "split runs at holes longer than this [s]")
+                             ->check(acc::positiveNumber())
+                             ->capture_default_str());
   app.add_option("--keep", options.work_dir, "keep SUMO's scenario, trace and log in this folder");
   app.add_option("--sumo", options.sumo, "the SUMO binary")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
