@@ -314,6 +314,9 @@ def write_report(report_dir, d):
     lines.append("Inputs: " + ", ".join(f"`{p}`" for p in d.get("inputs", [])) + ". Each run is fitted on its "
                  "first part and scored on the rest (held-out).")
     lines += ["", "## Verdict", ""]
+    if d.get("steady_training"):
+        lines += [f"**The parts fitted on are too steady to fit** ({d['steady_training']}): the fits below leave "
+                  "open what these data do not pin, and their peak gains are no model's stability.", ""]
     if dominant == "none":
         lines.append("**No candidate effect improves the held-out fit significantly.** The residual below is "
                      "not explained by any single effect of the catalogue.")

@@ -323,6 +323,7 @@ DiagnosisResult diagnoseParts(DiagnosisResult result, const DiagnosisOptions& op
   }
   result.operating_speed_mps = median(speeds);
   result.sample_period_s = medianStepS(result.train);
+  result.steady_training = describeInsufficientExcitation(result.train, IdentifiabilityCriteria{});
 
   SquaredErrorsByRun base_errors;
   const AugmentedFit base_fit = calibrateAugmented(EffectKind::none, result.train, options.calibration);

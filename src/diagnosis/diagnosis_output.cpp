@@ -344,6 +344,7 @@ nlohmann::json diagnosisToJson(const DiagnosisResult& r)
   j["sample_period_s"] = jsonNumber(r.sample_period_s);
   j["runs"] = runsJson(r);
   j["notes"] = r.notes;
+  j["steady_training"] = r.steady_training.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.steady_training);
   return j;
 }
 

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "acc_identification/diagnosis/determined_effects.h"
+#include "acc_identification/model/number_text.h"
 
 namespace acc
 {
@@ -111,13 +112,19 @@ void printDiagnosisSummary(const DiagnosisResult& r, std::FILE* out)
 {
   if (r.held_out_whole_runs)
     std::fprintf(out, "fitted on %zu run(s) whole, scored on %zu run(s) kept aside\n", r.train.size(), r.test.size());
+  if (!r.steady_training.empty())
+    std::fprintf(out, "the parts fitted on: %s: the fits below leave open what these data do not pin, and no model's "
+                      "stability is stated\n", r.steady_training.c_str());
   std::fprintf(out, "%-26s %10s %10s %10s %9s %11s  %s\n", "model", "train_v", "test_v", "test_gap", "improve", "significant",
               "point estimate's stability (not a verdict)");
-  auto row = [out](const ModelDiagnosis& m, bool is_base) {
-    std::fprintf(out, "%-26s %10.4f %10.4f %10.3f %8.1f%% %11s  %s (peak %.3f dB)\n", effectName(m.fit.effect).c_str(),
+  const bool steady = !r.steady_training.empty();
+  auto row = [out, steady](const ModelDiagnosis& m, bool is_base) {
+    const std::string stability =
+        steady ? "- (steady data)"
+               : printfText("%s (peak %.3f dB)", m.stability.string_stable ? "stable" : "UNSTABLE", m.stability.peak_gain_db);
+    std::fprintf(out, "%-26s %10.4f %10.4f %10.3f %8.1f%% %11s  %s\n", effectName(m.fit.effect).c_str(),
                 m.train_rmse_speed_mps, m.test_rmse_speed_mps, m.test_rmse_gap_m, 100.0 * m.improvement.relative,
-                is_base ? "-" : (m.significant ? "yes" : "no"), m.stability.string_stable ? "stable" : "UNSTABLE",
-                m.stability.peak_gain_db);
+                is_base ? "-" : (m.significant ? "yes" : "no"), stability.c_str());
   };
   row(r.baseline, true);
   for (const ModelDiagnosis& m : r.effects)
@@ -166,7 +173,8 @@ void writeUnusedRunNotes(const DiagnosisResult& result, std::ostream& log)
 {
   for (const std::string& note : result.notes)
     log << "note: " << note << "\n";
-  log << result.notes.size() << " run(s) or part(s) not used\n";
+  if (!result.notes.empty())  // said only when there is something to say
+    log << result.notes.size() << " run(s) or part(s) not used\n";
 }
 
 }  // namespace acc

@@ -1,11 +1,13 @@
 // The diagnose tool's JSON and tables: every field the issue asks for, written and readable.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
 
 #include "acc_identification/diagnosis/diagnosis_output.h"
+#include "acc_identification/diagnosis/diagnosis_text.h"
 #include "acc_identification/validation/withheld_effect_suite.h"
 
 
@@ -134,4 +136,42 @@ TEST(DiagnosisOutput, FittingPartsShorterThanCalibrateFitsOnAreRefused)
   }
   // Kept aside whole: the runs to fit must hold as much.
   EXPECT_THROW(acc::diagnoseHeldOutRuns({run.slice(0, 200, "20 s")}, {run}, options), std::invalid_argument);
+}
+
+// A drive too steady for calibrate to fit (follower speed spread under 0.5 m/s) is diagnosed for
+// what its fits leave open, but no model's stability is stated: every row once read "UNSTABLE
+// (peak 0.048 dB)" on a constant-speed drive, for point estimates nothing pinned.
+TEST(DiagnosisOutput, ASteadyDrivesModelsStateNoStability)
+{
+  acc::CarFollowingRun run;
+  run.name = "steady";
+  for (int k = 0; k < 3000; ++k)
+  {
+    const double wobble = 0.1 * std::sin(0.05 * k);  // 0.07 m/s spread: steady following
+    run.time_s.push_back(0.1 * k);
+    run.leader_speed_mps.push_back(20.0 + wobble);
+    run.follower_speed_mps.push_back(20.0 + wobble);
+    run.space_gap_m.push_back(30.0);
+  }
+  acc::DiagnosisOptions options;
+  options.selection.resamples = 200;
+  options.max_chain_length = 1;
+  const acc::DiagnosisResult r = acc::diagnoseRuns({run}, options);
+  EXPECT_NE(r.steady_training.find("steady speed (follower speed std"), std::string::npos) << r.steady_training;
+  ASSERT_TRUE(r.stability_test.has_value());
+  EXPECT_EQ(r.stability_test->verdict, acc::StabilityVerdict::Undecided);
+  EXPECT_NE(r.stability_test->reason.find("steady speed"), std::string::npos) << r.stability_test->reason;
+  std::FILE* text = std::tmpfile();
+  ASSERT_NE(text, nullptr);
+  acc::printDiagnosisSummary(r, text);
+  std::rewind(text);
+  std::string printed;
+  for (int c = std::fgetc(text); c != EOF; c = std::fgetc(text))
+    printed.push_back(static_cast<char>(c));
+  std::fclose(text);
+  EXPECT_NE(printed.find("the parts fitted on: steady speed"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("- (steady data)"), std::string::npos) << printed;
+  EXPECT_EQ(printed.find("UNSTABLE (peak"), std::string::npos) << printed;
+  EXPECT_EQ(printed.find("stable (peak"), std::string::npos) << printed;
+  EXPECT_EQ(acc::diagnosisToJson(r)["steady_training"], r.steady_training);
 }

@@ -100,6 +100,10 @@ struct DiagnosisResult
   /// the runs fitted.
   bool held_out_whole_runs = false;
   std::vector<std::string> notes;      ///< runs or halves that were not used, and why
+  /// Why the parts fitted on are too steady for calibrate to fit ("" when they are not): the fits
+  /// below then say what they leave open, and no model's stability is stated (nor a verdict: the
+  /// stability test refuses such data too).
+  std::string steady_training;
   double operating_speed_mps = 0.0;    ///< median follower speed of the training data (for linearisation)
   double sample_period_s = 0.0;        ///< median step of the data
   ModelDiagnosis baseline;
