@@ -121,7 +121,8 @@ nlohmann::json statisticsJson(const NmeaStatistics& s)
           {"epochs_without_time", s.epochs_without_time},
           {"date_lag_corrections", s.date_lag_corrections},
           {"late_sentences_merged", s.late_sentences_merged},
-          {"late_sentences_after_fix", s.late_sentences_after_fix}};
+          {"late_sentences_after_fix", s.late_sentences_after_fix},
+          {"repeated_sentences", s.repeated_sentences}};
 }
 
 nlohmann::json pairingJson(const PairingCounters& c)

@@ -54,6 +54,13 @@ bool takes(int rank, int& current)
   return true;
 }
 
+/// A sentence's type and talker in one number: two sentences of one epoch with the same are a repeat.
+std::uint32_t sourceOf(const NmeaSentence& s)
+{
+  return (static_cast<std::uint32_t>(s.type) << 16) | (static_cast<std::uint32_t>(static_cast<unsigned char>(s.talker[0])) << 8) |
+         static_cast<unsigned char>(s.talker[1]);
+}
+
 /// The field groups whose absence makes an epoch wait for late sentences (with a reorder wait),
 /// learned from this many of the last epochs.
 constexpr std::uint32_t kGroups = GnssFix::kValidPosition | GnssFix::kValidSpeed;
@@ -104,6 +111,13 @@ std::vector<GnssFix> GnssEpochAssembler::add(const NmeaSentence& sentence, doubl
 
 void GnssEpochAssembler::addTo(Epoch& epoch, const NmeaSentence& sentence, double receive_time_s)
 {
+  const std::uint32_t source = sourceOf(sentence);
+  if (std::find(epoch.sources.begin(), epoch.sources.end(), source) != epoch.sources.end())
+  {
+    ++repeated_;  // the first of the two is kept, as the ranks keep the first of equal sources
+    return;
+  }
+  epoch.sources.push_back(source);
   if (!std::isnan(sentence.time_of_day_s) && std::isnan(epoch.time_of_day_s))
     epoch.time_of_day_s = sentence.time_of_day_s;
   if (sentence.day)

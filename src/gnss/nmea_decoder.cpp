@@ -64,6 +64,7 @@ NmeaStatistics NmeaDecoder::statistics() const
   statistics.date_lag_corrections = epochs_.dateLagCorrections();
   statistics.late_sentences_merged = epochs_.lateSentencesMerged();
   statistics.late_sentences_after_fix = epochs_.lateSentencesAfterFix();
+  statistics.repeated_sentences = epochs_.repeatedSentences();
   return statistics;
 }
 

@@ -32,6 +32,9 @@ std::string NmeaStatistics::summary() const
     out << "; " << late_sentences_merged << " late sentences merged, " << late_sentences_after_fix
         << " after their epoch's fix";
   }
+  if (repeated_sentences > 0)
+    out << "; " << repeated_sentences << " repeated sentences (a second of one type and talker in an epoch: the first "
+                                         "kept)";
   return out.str();
 }
 

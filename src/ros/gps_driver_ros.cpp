@@ -533,6 +533,7 @@ void GpsDriverRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("date lag corrections", s.date_lag_corrections);
   status.add("late sentences merged (reorder wait)", s.late_sentences_merged);
   status.add("late sentences after their epoch's fix", s.late_sentences_after_fix);
+  status.add("repeated sentences (a second of one type and talker in an epoch)", s.repeated_sentences);
   status.add("fixes", s.fixes);
   status.add("fixes with a GNSS time outside ros::Time (not published on fix)", fixes_outside_ros_time_);
   status.add("fixes without a date (no time_reference)", time_references_without_date_);

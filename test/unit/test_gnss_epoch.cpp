@@ -77,6 +77,27 @@ TEST(GnssEpoch, OneFixPerEpochCombiningSentences)
   EXPECT_DOUBLE_EQ(fix.receive_time_s, 100.01);
 }
 
+// A second sentence of one type and talker in one epoch is counted, not silently dropped: a log
+// with every line twice, or a second GGA whose position differs (the first is kept, as the ranks
+// keep the first of equal sources). Another talker's GGA is no repeat.
+TEST(GnssEpoch, ARepeatedSentenceInAnEpochIsCountedAndTheFirstKept)
+{
+  const std::string gga = "$GPGGA,083559.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*52";
+  const std::string moved = "$GPGGA,083559.00,4717.12399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*51";
+  const std::string rmc = "$GPRMC,083559.00,A,4717.11437,N,00833.91522,E,0.004,77.52,091202,,,A*57";
+  const auto twice = decode({joinLines({rmc, rmc, gga, gga})});
+  ASSERT_EQ(twice.fixes.size(), 1u);
+  EXPECT_EQ(twice.statistics.repeated_sentences, 2u);
+  EXPECT_NE(twice.statistics.summary().find("2 repeated sentences"), std::string::npos) << twice.statistics.summary();
+  const auto conflicting = decode({joinLines({rmc, gga, moved})});
+  ASSERT_EQ(conflicting.fixes.size(), 1u);
+  EXPECT_EQ(conflicting.statistics.repeated_sentences, 1u);
+  EXPECT_NEAR(conflicting.fixes[0].latitude_deg, 47 + 17.11399 / 60, 1e-12);
+  const auto clean = decode({joinLines({rmc, gga})});
+  EXPECT_EQ(clean.statistics.repeated_sentences, 0u);
+  EXPECT_EQ(clean.statistics.summary().find("repeated"), std::string::npos);
+}
+
 TEST(GnssEpoch, TwoSentencesInOneReadAndOneSplitAcrossReads)
 {
   const std::string a = "$GPGGA,092725.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*5B\r\n";

@@ -53,6 +53,9 @@ public:
   std::uint64_t lateSentencesMerged() const { return late_merged_; }
   /// Sentences whose epoch had already been completed: not in any fix (their raw line is).
   std::uint64_t lateSentencesAfterFix() const { return late_after_fix_; }
+  /// A second sentence of one type and talker in one epoch (a log with every line twice, a
+  /// receiver repeating itself): not used, the first kept (their raw lines are).
+  std::uint64_t repeatedSentences() const { return repeated_; }
 
 private:
   /// One epoch being assembled.
@@ -63,6 +66,7 @@ private:
     double time_of_day_s = GnssFix::kNaN;
     std::optional<std::int64_t> sentence_day;
     int position_rank = 0, altitude_rank = 0, velocity_rank = 0, sigma_rank = 0, quality_rank = 0;
+    std::vector<std::uint32_t> sources;  ///< the type and talker of each sentence merged (sourceOf)
     double first_receive_time_s = GnssFix::kNaN;
     double last_receive_time_s = GnssFix::kNaN;
   };
@@ -85,6 +89,7 @@ private:
   std::uint64_t epochs_without_time_ = 0;
   std::uint64_t late_merged_ = 0;
   std::uint64_t late_after_fix_ = 0;
+  std::uint64_t repeated_ = 0;
   UtcDateTracker dates_;
 };
 

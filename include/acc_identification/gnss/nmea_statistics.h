@@ -25,6 +25,7 @@ struct NmeaStatistics
   std::uint64_t date_lag_corrections = 0; ///< see UtcDateTracker
   std::uint64_t late_sentences_merged = 0;     ///< reached their epoch while it waited (reorder wait)
   std::uint64_t late_sentences_after_fix = 0;  ///< came after their epoch's fix: in no fix (raw line kept)
+  std::uint64_t repeated_sentences = 0;  ///< a second of one type and talker in an epoch: the first kept
 
   void count(NmeaParseOutcome outcome);
   std::uint64_t rejected() const { return bad_checksum + malformed + unsupported; }
