@@ -3,11 +3,13 @@
 
 #include <acc_identification/gnss/nmea_writer.h>
 #include <acc_identification/gnss/utc_date.h>
+#include <acc_identification/io/run_csv.h>
 #include <acc_identification/io/run_plausibility.h>
 #include <acc_identification/model/number_text.h>
 
 #include <GeographicLib/Geodesic.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -88,6 +90,34 @@ std::string rowValueProblem(const OpenAccFile& file, const OpenAccVehicle* const
            " s, line " + std::to_string(file.line[i + 1]) + "): a receiver's log runs forward";
   return "";
 }
+
+/// Why the rows kept cannot be a receiver's log ("" when they can): fewer than two (every row
+/// skipped: speeds in km/h, say), or steps no receiver takes (a Time column in milliseconds steps by
+/// 100 at 10 Hz: the logs would span days, their sentences dated wrongly).
+std::string describeUnwritableTrack(const OpenAccPairTrack& track, std::size_t file_rows)
+{
+  if (track.rows.size() < 2)
+  {
+    std::size_t too_fast = 0;
+    for (const std::string& skipped : track.skipped_rows)
+      too_fast += skipped.find("no car under ACC drives that fast") != std::string::npos ? 1 : 0;
+    return track.pairName() + ": " + std::to_string(track.rows.size()) + " of " + std::to_string(file_rows) +
+           " rows usable (each skipped one is listed above): nothing a receiver's log holds" +
+           (2 * too_fast > track.skipped_rows.size() ? "; most rows are too fast: are the speeds in km/h? OpenACC's "
+                                                       "are in m/s"
+                                                     : "");
+  }
+  // A handful of rows far apart is an excerpt; the unit shows in a log's many steps.
+  constexpr std::size_t kStepsToJudgeTheUnit = 10;
+  double shortest_step_s = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 1; i < track.rows.size(); ++i)
+    shortest_step_s = std::min(shortest_step_s, track.rows[i].time_of_day_s - track.rows[i - 1].time_of_day_s);
+  if (track.rows.size() > kStepsToJudgeTheUnit && shortest_step_s >= kImplausibleShortestStepS)
+    return track.pairName() + ": even the shortest step of Time is " + significant(shortest_step_s, 6) +
+           " s: no receiver logs that coarsely, so Time is not in seconds (milliseconds step by 100 at 10 Hz); "
+           "convert it to seconds";
+  return "";
+}
 }  // namespace
 
 double OpenAccPairTrack::dayStartUnixS() const
@@ -150,6 +180,7 @@ OpenAccPairTrack openAccPairTrack(const OpenAccFile& file, const OpenAccPair& pa
     row.ivs_m = cars[0]->gap_to_follower_m[i];
     track.rows.push_back(row);
   }
+  track.error = describeUnwritableTrack(track, file.rows());
   return track;
 }
 

@@ -1,5 +1,6 @@
 // openacc_to_nmea: a leader-follower pair of an OpenACC CSV (JRC, CC BY 4.0) to the NMEA logs the
 // two cars' u-blox receivers would have written, so that the data goes through the drivers like a drive.
+#include <cctype>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -12,12 +13,21 @@
 
 namespace
 {
+/// The rows of the pair not written, one warning each, then why none can be when so: true when the
+/// pair can be written.
+bool reportTrack(const acc::OpenAccPairTrack& track)
+{
+  for (const std::string& skipped : track.skipped_rows)
+    std::cerr << "warning: " << skipped << " (row skipped)\n";
+  if (!track.error.empty())
+    std::cerr << "error: " << track.error << "\n";
+  return track.error.empty();
+}
+
 /// Writes one pair's two logs and says what was written; false (and a message) when it cannot.
 bool writePair(acc::OpenAccPairTrack track, const std::string& leader_path, const std::string& follower_path,
                const std::string& talker, double time_shift_s)
 {
-  for (const std::string& skipped : track.skipped_rows)
-    std::cerr << "warning: " << skipped << " (row skipped)\n";
   for (acc::OpenAccRow& row : track.rows)
     row.time_of_day_s += time_shift_s;
   for (const auto& [vehicle, path] : {std::pair<int, std::string>{1, leader_path}, {2, follower_path}})
@@ -60,11 +70,8 @@ int writeAllPairs(const std::string& input_path, const std::string& dir, const s
   for (const acc::OpenAccPair& pair : pairs)
   {
     const acc::OpenAccPairTrack track = acc::openAccPairTrack(file, pair);
-    if (!track.error.empty())
-    {
-      std::cerr << "error: " << track.error << "\n";
+    if (!reportTrack(track))
       return 1;
-    }
     const std::string stem =
         dir + "/" + file.name + "_" + std::to_string(pair.follower_position) + "_" + pair.follower_name;
     if (!writePair(track, stem + "_leader.nmea", stem + "_follower.nmea", talker, time_shift_s))
@@ -83,7 +90,15 @@ int main(int argc, char** argv)
                "conversion of it when you share them."};
   std::string input_path, leader_path, follower_path, talker = "GN", follower, all_pairs_dir;
   double time_shift_s = 0.0;
-  app.add_option("--talker", talker, "NMEA talker of the sentences")->capture_default_str();
+  // Two capital letters, as every receiver's talker: '' wrote $GGA, 'X*,' a sentence no parser reads.
+  const CLI::Validator two_capitals(
+      [](std::string& written) {
+        const bool ok = written.size() == 2 && std::isupper(static_cast<unsigned char>(written[0])) &&
+                        std::isupper(static_cast<unsigned char>(written[1]));
+        return ok ? std::string() : "must be two capital letters (GN, GP, GL, ...), not '" + written + "'";
+      },
+      "TALKER");
+  app.add_option("--talker", talker, "NMEA talker of the sentences")->check(two_capitals)->capture_default_str();
   auto* follower_option = app.add_option(
       "--follower", follower,
       "the follower by its Vehicle_order name (e.g. BMW_I3) or position (e.g. 3); its leader is the car directly "
@@ -120,14 +135,9 @@ int main(int argc, char** argv)
   {
     const acc::OpenAccPairTrack track = acc::readOpenAccPairTrack(
         input_path, follower.empty() ? acc::OpenAccPairSelector::first() : acc::OpenAccPairSelector::byFollower(follower));
-    if (!track.error.empty())
-    {
-      std::cerr << "error: " << track.error << "\n";
-      return 1;
-    }
     for (const std::string& note : track.notes)
       std::cerr << "note: " << note << "\n";
-    status = writePair(track, leader_path, follower_path, talker, time_shift_s) ? 0 : 1;
+    status = reportTrack(track) && writePair(track, leader_path, follower_path, talker, time_shift_s) ? 0 : 1;
   }
   if (status == 0)
     std::cout << "source: JRC OpenACC database (c) European Union, CC BY 4.0; converted to NMEA\n";

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "acc_identification/conversion/openacc_to_nmea.h"
+#include "acc_identification/model/number_text.h"
 #include "acc_identification/gnss/nmea_log.h"
 #include "acc_identification/gnss/nmea_writer.h"
 #include "acc_identification/relative_state/relative_state_estimator.h"
@@ -107,6 +108,46 @@ TEST(OpenAccReader, ImpossibleValuesAndTimesAreRowsSkipped)
   EXPECT_NE(track.skipped_rows[2].find(":10: Speed2 1e+09 above 100 m/s"), std::string::npos) << track.skipped_rows[2];
   EXPECT_NE(track.skipped_rows[3].find(":12: Time 55000 s not after the last row written"), std::string::npos)
       << track.skipped_rows[3];
+  fs::remove_all(dir);
+}
+
+// A pair with no two rows to write, or a Time column in milliseconds, is an error, not an empty or
+// misdated log: openacc_to_nmea wrote two empty files for speeds in km/h, and logs spanning days
+// for milliseconds, each with exit status 0.
+TEST(OpenAccReader, APairWithNothingToWriteOrTimesInMillisecondsIsRefused)
+{
+  const std::vector<std::string> lines = linesOf(kSmall);  // 6 lines before the data, rows on 7-11
+  const fs::path dir = freshDirectory("openacc_unwritable");
+  const auto write = [&](const std::string& name, auto change) {
+    const std::string path = (dir / name).string();
+    std::ofstream file(path);
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      file << (i < 6 ? lines[i] : change(lines[i])) << "\n";
+    return path;
+  };
+  const acc::OpenAccPairTrack kmh = acc::readOpenAccPairTrack(
+      write("kmh.csv", [](const std::string& line) { return withField(line, 1, "150"); }));
+  EXPECT_TRUE(kmh.rows.empty());
+  EXPECT_EQ(kmh.skipped_rows.size(), 5u);
+  EXPECT_NE(kmh.error.find("0 of 5 rows usable"), std::string::npos) << kmh.error;
+  EXPECT_NE(kmh.error.find("are the speeds in km/h?"), std::string::npos) << kmh.error;
+  // Casale part 3 with its Time in milliseconds; a few rows far apart (this excerpt, 0.1 s and
+  // 252.6 s steps; two rows kept of it above) are no evidence of the unit.
+  const std::vector<std::string> casale = linesOf(std::string(ACC_OPENACC_DATA_DIR) + "/part3.csv");
+  const std::string ms_path = (dir / "ms.csv").string();
+  {
+    std::ofstream file(ms_path);
+    for (std::size_t i = 0; i < casale.size(); ++i)
+      file << (i < 6 || casale[i].empty()
+                   ? casale[i]
+                   : withField(casale[i], 0, acc::significant(1000.0 * std::stod(casale[i]), 12)))
+           << "\n";
+  }
+  const acc::OpenAccPairTrack ms = acc::readOpenAccPairTrack(ms_path);
+  EXPECT_GT(ms.rows.size(), 1000u);
+  EXPECT_NE(ms.error.find("even the shortest step of Time is 100 s"), std::string::npos) << ms.error;
+  EXPECT_NE(ms.error.find("Time is not in seconds"), std::string::npos) << ms.error;
+  EXPECT_EQ(acc::readOpenAccPairTrack(kSmall).error, "");
   fs::remove_all(dir);
 }
 

@@ -43,7 +43,9 @@ struct OpenAccPairTrack
   std::string pairName() const;
 };
 
-/// The rows of this pair (one of availablePairs(file)); error set when a car has no Lat/Lon columns.
+/// The rows of this pair (one of availablePairs(file)); error set when a car has no Lat/Lon columns,
+/// when fewer than two rows are usable (skipped_rows say why each is not), or when Time steps as no
+/// receiver does (milliseconds), so that no empty or misdated log is written.
 OpenAccPairTrack openAccPairTrack(const OpenAccFile& file, const OpenAccPair& pair);
 
 /// readOpenAccFile + selectOpenAccPairs (one pair: the first by default, or a follower) +
