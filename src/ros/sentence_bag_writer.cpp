@@ -1,6 +1,7 @@
 #include "acc_identification/ros/sentence_bag_writer.h"
 
 #include <rosbag/bag.h>
+#include <ros/names.h>
 #include <ros/time.h>
 
 #include <algorithm>
@@ -82,6 +83,22 @@ SentenceBagSummary writeSentenceBag(const std::string& path, const std::vector<S
     summary.end_time_s = entries.back().stamp_s;
   }
   return summary;
+}
+
+std::string describeStreamTopicProblem(const std::vector<SentenceStream>& streams)
+{
+  for (std::size_t i = 0; i < streams.size(); ++i)
+  {
+    std::string why;
+    if (streams[i].topic.empty())
+      return "a receiver's topic is empty: rosbag would write a topic no driver can subscribe to";
+    if (!ros::names::validate(streams[i].topic, why))
+      return "topic '" + streams[i].topic + "': " + why;
+    for (std::size_t j = 0; j < i; ++j)
+      if (ros::names::resolve("/", streams[j].topic, false) == ros::names::resolve("/", streams[i].topic, false))
+        return "topic '" + streams[i].topic + "' given for two receivers: their sentences would be one stream";
+  }
+  return "";
 }
 
 std::vector<SentenceStream> leaderFollowerStreams()

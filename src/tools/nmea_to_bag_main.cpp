@@ -38,6 +38,11 @@ int main(int argc, char** argv)
   CLI11_PARSE(app, argc, argv);
   if (!acc::outputsLeaveInputsAlone({leader_path, follower_path}, {bag_path}, std::cerr))
     return 2;
+  if (const std::string problem = acc::describeStreamTopicProblem(streams); !problem.empty())
+  {
+    std::cerr << "error: " << problem << "\n";
+    return 2;
+  }
 
   const std::string error = acc::loadSentenceStreams({leader_path, follower_path}, timing, streams, std::cerr);
   if (!error.empty())

@@ -97,6 +97,21 @@ TEST(SentenceBag, BothReceiversInterleavedInTimeOrder)
 }
 
 /// Every bundled bag: both topics, 10 Hz GGA + RMC that all parse, stamps in order.
+// Topics a driver can subscribe to, one per receiver: nmea_to_bag wrote a topic with an empty
+// name, one with a space, and both receivers on one topic, each with exit status 0.
+TEST(SentenceBag, TopicsNoDriverCanTellApartAreRefused)
+{
+  std::vector<SentenceStream> streams = leaderFollowerStreams();
+  EXPECT_EQ(describeStreamTopicProblem(streams), "");
+  streams[1].topic = "follower/nmea";  // relative: fine
+  EXPECT_EQ(describeStreamTopicProblem(streams), "");
+  for (const char* bad : {"", "bad topic!", "/leader/nmea_sentence", "leader/nmea_sentence"})
+  {
+    streams[1].topic = bad;
+    EXPECT_NE(describeStreamTopicProblem(streams), "") << "'" << bad << "'";
+  }
+}
+
 TEST(BundledBags, HoldBothReceiversAtTenHertzWithValidSentences)
 {
   for (const char* name : {"casale_part3_sentences.bag", "casale_part4_sentences.bag", "casale_part5_sentences.bag",

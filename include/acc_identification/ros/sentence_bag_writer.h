@@ -29,6 +29,11 @@ struct SentenceBagSummary
 /// leader_gnss) and /follower/nmea_sentence (follower_gnss), without lines yet.
 std::vector<SentenceStream> leaderFollowerStreams();
 
+/// Why the streams' topics cannot be subscribed to apart ("" when they can): a name ROS does not
+/// take (empty, a space: rosbag wrote it, and no driver could subscribe) or one topic for two
+/// receivers.
+std::string describeStreamTopicProblem(const std::vector<SentenceStream>& streams);
+
 /// Each log (readTimedNmeaLog with timing) into the lines of its stream, logs[i] into streams[i];
 /// lines without a readable time are counted in a warning on log. "" when all were read, else the
 /// first error.
