@@ -745,7 +745,8 @@ void noteBadCellsAndRows(OpenAccFile& file)
     file.notes.push_back(file.path + ": " + std::to_string(file.bad_cells.size()) +
                          " cells without a usable number in " + std::to_string(file.bad_rows) + " of " +
                          std::to_string(rows) + " rows (" + join(by_column, ", ") +
-                         "), each listed; their values are NaN");
+                         "); their values are NaN: a pair with one in its own columns rejects that row, listed "
+                         "where the pair is read, and other cars' cells do not matter to it");
   }
   else if (file.bad_rows > 0)
   {
