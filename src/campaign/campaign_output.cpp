@@ -614,6 +614,20 @@ std::string adequacyCell(const ModelAdequacy& adequacy)
   return adequacy.adequate ? "yes" : "NO";
 }
 
+/// The verdict as the headline counts it (a test that did not run decided nothing: "not tested"),
+/// and for an undecided one whose paired test rejected a side, why its small p decides nothing:
+/// the held-out data still allow m = 0 (a user read "undecided 0.001 (H0 unstable)" as a
+/// contradiction; the note under the table gives the allowed margins).
+std::string verdictCell(const StabilityTestResult& test)
+{
+  if (!test.tested)
+    return "not tested";
+  const bool side_rejected = std::min(test.p_value_stable_rejected, test.p_value_unstable_rejected) <= test.alpha;
+  if (test.verdict == StabilityVerdict::Undecided && side_rejected)
+    return "undecided (m = 0 allowed)";
+  return toString(test.verdict);
+}
+
 /// One table row per group, in the columns of printCampaignTables.
 std::vector<std::string> groupCells(const GroupResult& g)
 {
@@ -627,8 +641,7 @@ std::vector<std::string> groupCells(const GroupResult& g)
           valuePlusMinus(g, "tau_e", "%.2f"),
           valuePlusMinus(g, "eta", "%.1f"),
           valuePlusMinus(g, "stability_margin", "%.2f"),
-          // As the headline counts it: a test that did not run decided nothing, not "undecided".
-          g.stability_test.tested ? toString(g.stability_test.verdict) : std::string("not tested"),
+          verdictCell(g.stability_test),
           // A test that did not run has no p-value (its default 1 would read as "no evidence").
           g.stability_test.tested
               ? cellNumber("%.3f", g.stability_test.p_value) + " (H0 " + pValueHypothesis(g.stability_test) + ")"

@@ -296,7 +296,7 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesATimingEffectAndNotTheBrakingTerm
   EXPECT_EQ(printed.find("**"), std::string::npos);
   // A quantity the data do not determine shows its fit in parentheses, a group without a fit "-"
   // (the Mercedes GLE450 at M and the Tesla Model X at S and M drive at a steady speed); no NaN.
-  std::size_t undetermined = 0, unfitted = 0, held = 0, material = 0;
+  std::size_t undetermined = 0, unfitted = 0, held = 0, material = 0, open_at_boundary = 0;
   for (const acc::GroupResult& g : result.groups)
   {
     const std::size_t at = report.find("| " + g.vehicle + " | " + g.setting + " | ");
@@ -305,6 +305,13 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesATimingEffectAndNotTheBrakingTerm
     EXPECT_EQ(row.find("NaN"), std::string::npos) << row;
     // A test that did not run is "not tested" in its row, as in the headline's count, not "undecided".
     EXPECT_EQ(row.find("| not tested | - (not run) |") != std::string::npos, !g.stability_test.tested) << row;
+    // An undecided verdict beside a small p says why the p decides nothing: m = 0 is still allowed.
+    const acc::StabilityTestResult& test = g.stability_test;
+    const bool side_rejected_yet_open =
+        test.tested && test.verdict == acc::StabilityVerdict::Undecided &&
+        std::min(test.p_value_stable_rejected, test.p_value_unstable_rejected) <= test.alpha;
+    open_at_boundary += side_rejected_yet_open;
+    EXPECT_EQ(row.find("| undecided (m = 0 allowed) |") != std::string::npos, side_rejected_yet_open) << row;
     if (!g.fitted() || !g.identification.quantities)
     {
       ++unfitted;
@@ -336,6 +343,8 @@ TEST(CampaignZalaZone, ThePlatoonDiagnosisNamesATimingEffectAndNotTheBrakingTerm
   EXPECT_GE(held, 5u);
   EXPECT_GE(material, 1u);  // MAZDA_3 at L: its margin moves by one standard error at 10 Hz
   EXPECT_EQ(unfitted, 3u);
+  // The Jaguar I-Pace and Mercedes GLE450 at L, the Tesla Model 3 at S and L, Model S at M, RAV4 at L.
+  EXPECT_EQ(open_at_boundary, 6u);
   // Data too steady to fit get no verdict either, as from calibrate: the campaign once called the
   // Tesla Model X at S and M unstable (p = 0.001 and 0.025) from two models on the ridge of
   // eta + tau_e v that the held-out halves cannot tell apart but by their steady stretches.
