@@ -1292,7 +1292,9 @@ std::string campaignReportMarkdown(const CampaignInputs& inputs, const CampaignR
         "parentheses where they do not, with the reason in the notes; \"low to high\" where a quantity is held "
         "at a bound of the fit, e.g. tau_e at 0 and the margin there at -2, its least: the one-sided 95 % "
         "interval, as +- would reach beyond the bound); margin m = k1 tau_e^2 + 2 k2 tau_e - 2; verdict of the string-stability test on "
-        "held-out halves and its p-value with the null hypothesis it tests (H0 stable: small p says unstable); "
+        "held-out halves and its p-value with the null hypothesis it tests (H0 stable: small p says unstable; "
+        "\"undecided (m = 0 allowed)\" beside a small p: a side is rejected, but the held-out data still allow "
+        "the boundary); "
         "whether the fit describes the car's runs (model_adequacy: gap and speed RMSE against their spread, "
         "parameters at a bound, residual correlation, pair-level dips; reasons in the notes); amplified band and "
         "peak gain of the fit (- unless the data determine k1, k2 and tau_e). The notes say why a verdict is undecided.\n\n";
