@@ -1,10 +1,12 @@
 #include "acc_identification/reproduction/paper_figures.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <functional>
 #include <map>
 
 #include "acc_identification/reproduction/measured_figures.h"
+#include "acc_identification/reproduction/parameter_file.h"
 #include "acc_identification/reproduction/simulated_figures.h"
 
 namespace acc
@@ -112,6 +114,9 @@ nlohmann::json runPaperFigure(const std::string& figure, const FigureOptions& op
                              ", which would not use it (its options: " + list + ")");
     }
   }
+  for (const std::string& path : options.texts("params"))
+    if (const std::string why = describeUndeterminedParameterFile(path); !why.empty() && streams.notes != nullptr)
+      std::fprintf(streams.notes, "warning: %s\n", why.c_str());
   const bool steps = std::find(accepted.begin(), accepted.end(), "time-step") != accepted.end();
   const FigureRequest request{options, csv_path, steps ? options.between("time-step", 0.1, 1e-3, 1.0) : 0.1, streams};
   try

@@ -88,4 +88,26 @@ NamedSetting readParameterFile(const std::string& path)
   return setting;
 }
 
+std::string describeUndeterminedParameterFile(const std::string& path)
+{
+  std::ifstream in(path);
+  const nlohmann::json document = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (document.is_discarded() || !document.is_object())
+    return "";
+  // The figures' dynamics are k1's, k2's and tau_e's: eta alone undetermined moves none of them.
+  const nlohmann::json quantities =
+      document.value("identifiable_quantities", nlohmann::json::object()).value("quantities", nlohmann::json());
+  std::string reasons;
+  for (const char* name : {"k1", "k2", "tau_e"})
+  {
+    const nlohmann::json q = quantities.is_object() ? quantities.value(name, nlohmann::json()) : nlohmann::json();
+    if (q.is_object() && !q.value("determined", true))
+      reasons += (reasons.empty() ? "" : "; ") + q.value("reason", std::string(name) + " not determined");
+  }
+  if (reasons.empty())
+    return "";
+  return path + ": the data it was fitted on do not determine its dynamics (" + reasons +
+         "): the figure draws a point estimate they do not pin";
+}
+
 }  // namespace acc

@@ -93,3 +93,24 @@ TEST(ReproductionRuns, ParameterFileReadsCalibrateJsonAndExplainsProblems)
                acc::ParameterFileError);
   EXPECT_THROW(acc::readParameterFile(testing::TempDir() + "missing.json"), acc::ParameterFileError);
 }
+
+// A calibration whose data do not pin k1, k2 or tau_e draws dynamics they do not determine: said
+// (platoon fig7 on the Casale part5 fit printed a 11.6-fold amplification without a word); eta
+// alone undetermined moves no figure's dynamics and is not.
+TEST(ReproductionRuns, AParameterFileWhoseDynamicsItsDataDoNotPinIsSaid)
+{
+  const auto file = [](const std::string& name, bool k2_determined, bool eta_determined) {
+    return writeTemp(name, std::string(R"({"parameters": {"k1_per_s2": 0.08, "k2_per_s": 0.4, "tau_e_s": 0.9, "eta_m": 5.5},
+        "identifiable": false, "identifiable_quantities": {"quantities": {
+        "k1": {"determined": true, "reason": "k1 fine"},
+        "k2": {"determined": )") + (k2_determined ? "true" : "false") + R"(, "reason": "k2 = 0.08 +- 0.08 1/s"},
+        "tau_e": {"determined": true, "reason": "tau_e fine"},
+        "eta": {"determined": )" + (eta_determined ? "true" : "false") + R"(, "reason": "eta at its bound"}}}})");
+  };
+  const std::string loose = acc::describeUndeterminedParameterFile(file("loose.json", false, false));
+  EXPECT_NE(loose.find("loose.json: the data it was fitted on do not determine its dynamics (k2 = 0.08 +- 0.08 1/s)"),
+            std::string::npos)
+      << loose;
+  EXPECT_EQ(acc::describeUndeterminedParameterFile(file("eta_only.json", true, false)), "");
+  EXPECT_EQ(acc::describeUndeterminedParameterFile(writeTemp("plain.json", R"({"parameters": {}})")), "");
+}

@@ -20,4 +20,9 @@ public:
 /// ParameterFileError with the path and the reason (also for a negative gain or time gap).
 NamedSetting readParameterFile(const std::string& path);
 
+/// Why the calibrate JSON's k1, k2 or tau_e are not determined by its data ("" when they are, or
+/// when the file does not say): their reasons from identifiable_quantities. A figure drawn from them
+/// shows dynamics the data do not pin, which the figure's user must be told (eta moves none).
+std::string describeUndeterminedParameterFile(const std::string& path);
+
 }  // namespace acc
