@@ -153,6 +153,14 @@ std::string describeComparison(const HeldOutVerdict& result, double stable_test_
   return why.str();
 }
 
+std::string verdictText(const HeldOutVerdict& result, const std::string& separator)
+{
+  if (!std::isfinite(result.p_value_stable_rejected) || !std::isfinite(result.p_value_unstable_rejected))
+    return "NOT TESTED (no p-values)";
+  return (result.verdict == StabilityVerdict::Undecided ? "" : "string ") + verdictInCapitals(result.verdict) + separator +
+         pValuesText(result);
+}
+
 std::string pValuesText(const HeldOutVerdict& result)
 {
   if (!std::isfinite(result.p_value_stable_rejected) || !std::isfinite(result.p_value_unstable_rejected))

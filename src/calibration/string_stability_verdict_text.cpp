@@ -60,11 +60,9 @@ void printStabilityTest(const StabilityTestResult& result, std::ostream& out)
                 "alpha %.3g):\n",
                 result.alpha);
   out << line;
-  const std::string verdict = verdictInCapitals(result.verdict);
   // THE verdict, each p-value named by the hypothesis it tests: nothing above (a point estimate's
   // lambda2) competes with it.
-  out << "  verdict: " << (result.verdict == StabilityVerdict::Undecided ? "" : "string ") << verdict << "  "
-      << pValuesText(result) << "\n";
+  out << "  verdict: " << verdictText(result, "  ") << "\n";
   if (result.tested)
   {
     out << sideFitLine("best string-stable model", result.best_stable);

@@ -13,8 +13,7 @@ namespace acc
 /// hypothesis they test.
 std::string testVerdictText(const AugmentedStabilityTestResult& test)
 {
-  return (test.verdict == StabilityVerdict::Undecided ? "" : "string ") + verdictInCapitals(test.verdict) + " " +
-         pValuesText(test);
+  return verdictText(test);
 }
 
 namespace

@@ -550,7 +550,7 @@ TEST(StabilityTest, FlatDataIsUndecidedWithAReason)
     EXPECT_TRUE(json["p_value_hypothesis"].is_null());
     std::ostringstream text;
     printStabilityTest(r, text);
-    EXPECT_NE(text.str().find("(not tested, no p-values)"), std::string::npos) << text.str();
+    EXPECT_NE(text.str().find("verdict: NOT TESTED (no p-values)"), std::string::npos) << text.str();
     EXPECT_EQ(text.str().find("nan"), std::string::npos) << text.str();
   }
 }

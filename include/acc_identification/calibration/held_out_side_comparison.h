@@ -149,7 +149,12 @@ std::string describeComparison(const HeldOutVerdict& result, double stable_test_
                                double unstable_test_rmse_mps, const std::string& unstable_label);
 
 /// "(p (H0: stable) = 0.002; p (H0: unstable) = 0.97)": the p-values named by the hypothesis
-/// each tests; "(not tested, no p-values)" when the comparison did not run.
+/// each tests; "(not tested, no p-values)" when the comparison did not run (verdictText says NOT TESTED).
 std::string pValuesText(const HeldOutVerdict& result);
+
+/// The verdict and its p-values in words: "string UNSTABLE (p (H0: stable) = ...)", "UNDECIDED (...)",
+/// or "NOT TESTED" for a test that did not run (as the reports and the campaign's headline count it:
+/// a test that did not run decided nothing, and its default verdict, undecided, would say it did).
+std::string verdictText(const HeldOutVerdict& result, const std::string& separator = " ");
 
 }  // namespace acc
