@@ -38,13 +38,27 @@ std::string joinNotes(const std::vector<std::string>& notes)
 CampaignFileList openAccFilesIn(const std::string& folder)
 {
   std::vector<std::string> csv;
+  // Not read, and said so: a subfolder of runs (the parent of the run folders given), a table
+  // named .CSV. The database's notes (.txt) beside its runs are expected and not listed.
+  std::size_t subfolders = 0, other_case = 0;
   for (const auto& entry : fs::directory_iterator(folder))
   {
-    if (entry.is_regular_file() && entry.path().extension() == ".csv")
+    const std::string extension = entry.path().extension().string();
+    if (entry.is_regular_file() && extension == ".csv")
       csv.push_back(entry.path().string());
+    else if (entry.is_directory())
+      ++subfolders;
+    else if (entry.is_regular_file() && extension.size() == 4 &&
+             std::equal(extension.begin(), extension.end(), ".csv",
+                        [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; }))
+      ++other_case;
   }
   std::sort(csv.begin(), csv.end(), naturalLess);
   CampaignFileList list;
+  if (subfolders + other_case > 0)
+    list.unread.push_back(folder + ": " + std::to_string(subfolders) + " subfolder(s) not searched and " +
+                          std::to_string(other_case) + " file(s) named .CSV in another case not read (give a folder "
+                          "of runs as its own argument; name a table .csv)");
   for (const std::string& path : csv)
   {
     if (looksLikeOpenAccFile(path))
@@ -466,6 +480,7 @@ CampaignFileList listCampaignFiles(const std::vector<std::string>& files_or_fold
       list.files.insert(list.files.end(), found.files.begin(), found.files.end());
       list.skipped.insert(list.skipped.end(), found.skipped.begin(), found.skipped.end());
       list.listings.insert(list.listings.end(), found.listings.begin(), found.listings.end());
+      list.unread.insert(list.unread.end(), found.unread.begin(), found.unread.end());
     }
     else if (fs::is_regular_file(path))
     {
@@ -599,7 +614,8 @@ CampaignInputs loadCampaign(const std::vector<std::string>& paths, const RunPlau
 {
   CampaignInputs inputs;
   const CampaignFileList list = listCampaignFiles(paths);
-  inputs.notes = list.skipped;
+  inputs.notes = list.unread;
+  inputs.notes.insert(inputs.notes.end(), list.skipped.begin(), list.skipped.end());
   inputs.skipped_files = list.skipped.size();
   std::map<std::pair<std::string, std::string>, CampaignGroup> groups;
   std::map<std::string, std::string> setting_spellings;  // by the setting in upper case

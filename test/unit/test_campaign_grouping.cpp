@@ -408,6 +408,18 @@ TEST(CampaignInputs, EverySkippedFileIsNamedWithItsReasonAndCounted)
   EXPECT_NE(inputs.notes[1].find("lonely.csv: no leader-follower pair"), std::string::npos) << inputs.notes[1];
   EXPECT_NE(inputs.notes[1].find("skipped"), std::string::npos) << inputs.notes[1];
   EXPECT_EQ(inputs.describeSkipped(), "skipped 2 file(s) and 0 pair(s) (each in a note above)");
+  // A subfolder of runs and a table named .CSV are not read, and that is said (once, not counted as
+  // a skipped file): a campaign given the parent of its run folders read none of them. Other files
+  // (the database's notes, this .txt) are expected beside the runs and not listed.
+  std::filesystem::create_directories(folder.file("more_runs"));
+  std::ofstream(folder.file("run2.CSV")) << "not read\n";
+  std::ofstream(folder.file("notes.txt")) << "the campaign's notes\n";
+  const acc::CampaignInputs with_others = acc::loadCampaign({folder.path()});
+  EXPECT_EQ(with_others.skipped_files, 2u);
+  ASSERT_EQ(with_others.notes.size(), 3u);
+  EXPECT_NE(with_others.notes[0].find(": 1 subfolder(s) not searched and 1 file(s) named .CSV in another case not read"),
+            std::string::npos)
+      << with_others.notes[0];
 }
 
 namespace

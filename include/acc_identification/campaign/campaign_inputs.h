@@ -86,6 +86,8 @@ struct CampaignFileList
   std::vector<std::string> files;
   std::vector<std::string> skipped;  ///< "path: not an OpenACC file (...), skipped"
   std::vector<std::string> listings;  ///< the database's mixed-setting tables (looksLikeMixedSettingListing)
+  /// "folder: N subfolder(s) and M other file(s) not named *.csv, not read": not searched, said
+  std::vector<std::string> unread;
 };
 
 /// The files to read: each FILE given and each folder's *.csv files that look like OpenACC files
