@@ -72,7 +72,9 @@ CampaignFileList openAccFilesIn(const std::string& folder)
   }
   if (list.files.empty())
     throw std::invalid_argument(folder + ": no OpenACC *.csv file in this folder" +
-                                (csv.empty() ? std::string("") : ":" + joinNotes(list.skipped)));
+                                (csv.empty() && list.unread.empty()
+                                     ? std::string("")
+                                     : ":" + joinNotes(list.unread) + joinNotes(list.skipped)));
   return list;
 }
 
