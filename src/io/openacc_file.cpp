@@ -142,11 +142,21 @@ bool readMetadataLine(const std::string& line, const std::vector<std::string>& f
   else if (key == "ACC")
   {
     file.metadata.acc = readNumberLine(fields, line, "the ACC line", where, file);
+    if (file.metadata.acc > 2)  // the database's: 0 manual, 1 ACC throughout, 2 mixed
+    {
+      noteMetadataProblem(file, where + "the ACC line says " + std::to_string(file.metadata.acc) +
+                                    ", none of 0 (manual), 1 (ACC) and 2 (mixed): read as absent: '" + trim(line) +
+                                    "'");
+      file.metadata.acc = -1;
+    }
     seen.acc = true;
   }
   else if (key == "DISTANCE_SETTING")
   {
-    file.metadata.distance_setting = fields.size() > 1 ? fields[1] : "";
+    file.metadata.distance_setting = fields.size() > 1 ? trim(fields[1]) : "";
+    if (file.metadata.distance_setting.empty())
+      noteMetadataProblem(file, where + "the Distance_setting line names no setting: its cars' setting is unknown "
+                                        "('?')");
     seen.setting = true;
   }
   else

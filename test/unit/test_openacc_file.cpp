@@ -641,6 +641,24 @@ TEST_F(OpenAccFileTest, AnAccLineThatContradictsTheDriverColumnIsSaidAndTheColum
   EXPECT_TRUE(acc::readOpenAccFile(write("plain_acc.csv", kTwoVehicleFile)).metadata_problems.empty());
 }
 
+// An ACC line the database never writes (7), and a Distance_setting line that names no setting,
+// are metadata problems said, not passed silently (the campaign grouped such cars as '?').
+TEST_F(OpenAccFileTest, AnAccLineOfNoMeaningAndAnEmptySettingAreSaid)
+{
+  std::string text = kTwoVehicleFile;
+  text.replace(text.find("ACC,1"), 5, "ACC,7");
+  text.replace(text.find("Distance_setting,min"), 20, "Distance_setting,");
+  const acc::OpenAccFile file = acc::readOpenAccFile(write("acc_seven.csv", text));
+  EXPECT_EQ(file.metadata.acc, -1);
+  EXPECT_TRUE(anyContains(file.metadata_problems, {"the ACC line says 7, none of 0 (manual), 1 (ACC) and 2 (mixed)"}))
+      << joined(file.metadata_problems);
+  EXPECT_TRUE(anyContains(file.metadata_problems, {"the Distance_setting line names no setting"}))
+      << joined(file.metadata_problems);
+  std::string mixed = kTwoVehicleFile;
+  mixed.replace(mixed.find("ACC,1"), 5, "ACC,2");
+  EXPECT_TRUE(acc::readOpenAccFile(write("acc_two.csv", mixed)).metadata_problems.empty());
+}
+
 TEST_F(OpenAccFileTest, SemicolonSeparatedFieldsAreNamedInTheError)
 {
   std::string text = kTwoVehicleFile;
