@@ -195,7 +195,9 @@ def parameter_text(effect):
     parts = []
     for name, value in effect["parameters"].items():
         se = effect["standard_errors"].get(name)
-        parts.append(f"{name} = {fmt(value, 4)}" + (f" ± {significant(se)}" if se is not None else " (± n/a)"))
+        # No standard error: the fit's speeds do not move with it (a limit that never binds), or it diverged.
+        parts.append(f"{name} = {fmt(value, 4)}" + (f" ± {significant(se)}" if se is not None
+                                                    else " (± n/a: the fitted speeds do not move with it)"))
     return "; ".join(parts)
 
 

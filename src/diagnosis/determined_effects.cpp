@@ -1,5 +1,6 @@
 #include "acc_identification/diagnosis/determined_effects.h"
 #include "acc_identification/calibration/model_adequacy.h"
+#include "acc_identification/model/number_text.h"
 #include "acc_identification/model/sample_statistics.h"
 
 #include <algorithm>
@@ -164,6 +165,10 @@ std::vector<UnmeasuredEffect> unmeasuredEffects(const AugmentedFit& base_fit, co
 
 std::string describeUnmeasuredEffect(const UnmeasuredEffect& e)
 {
+  if (!std::isfinite(e.standard_error))  // a steady drive: the speeds do not move with it at all
+    return effectName(e.effect) + ": its fit sits at none, where it carries no information; held at " +
+           significant(e.held_value, 3) + " these data carry none either (no standard error): an effect that size "
+           "would not be seen";
   char text[320];
   std::snprintf(text, sizeof text,
                 "%s: its fit sits at none, where it carries no information; held at %.3g these data pin it to +- "

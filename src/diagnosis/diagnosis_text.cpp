@@ -70,15 +70,19 @@ void printChain(const DiagnosisResult& r, std::FILE* out)
     {
       std::fprintf(out, ", test: %s", testVerdictText(*step.stability_test).c_str());
     }
-    // A diverged fit has no standard errors: print nan rather than fail.
-    auto se = [&m](std::size_t i) { return i < m.fit.standard_errors.size() ? m.fit.standard_errors[i] : NAN; };
-    std::fprintf(out, "\n     k1 %.4g +- %.2g, k2 %.4g +- %.2g, tau_e %.4g +- %.2g, eta %.4g +- %.2g", m.fit.base.k1_per_s2, se(0),
-                m.fit.base.k2_per_s, se(1), m.fit.base.tau_e_s, se(2), m.fit.base.eta_m, se(3));
+    // No standard error (a diverged fit, or speeds that do not move with a parameter at the fit,
+    // as a limit that never binds): "n/a", never "nan".
+    auto se = [&m](std::size_t i) {
+      const double error = i < m.fit.standard_errors.size() ? m.fit.standard_errors[i] : NAN;
+      return std::isfinite(error) ? printfText("+- %.2g", error) : std::string("+- n/a");
+    };
+    std::fprintf(out, "\n     k1 %.4g %s, k2 %.4g %s, tau_e %.4g %s, eta %.4g %s", m.fit.base.k1_per_s2, se(0).c_str(),
+                m.fit.base.k2_per_s, se(1).c_str(), m.fit.base.tau_e_s, se(2).c_str(), m.fit.base.eta_m, se(3).c_str());
     const std::vector<std::string> names = effectParameterNames(effectsOf(m.fit));
     for (std::size_t j = 0; j < names.size() && j < m.fit.effect_values.size(); ++j)
     {
-      std::fprintf(out, ", %s %.4g +- %.2g", names[j].c_str(), m.fit.effect_values[j],
-                  se(AugmentedParameterBox::kBaseDimension + j));
+      std::fprintf(out, ", %s %.4g %s", names[j].c_str(), m.fit.effect_values[j],
+                  se(AugmentedParameterBox::kBaseDimension + j).c_str());
     }
     std::fprintf(out, "\n     %s\n", describeAddedSize(step).c_str());
   }
@@ -90,9 +94,12 @@ void printChain(const DiagnosisResult& r, std::FILE* out)
 /// The perturbation-window criterion, beside the whole-run ranking above it.
 void printPerturbationWindows(const PerturbationWindowCriterion& c, std::FILE* out)
 {
+  const std::string base_rmse = std::isfinite(c.base_window_rmse_speed_mps)
+                                    ? printfText("%.4f m/s", c.base_window_rmse_speed_mps)
+                                    : std::string("none (no window)");
   std::fprintf(out, "inside the leaders' perturbations of the held-out parts (%zu; the pair-level criterion beside the "
-                    "whole-run one): base window speed RMSE %.4f m/s\n",
-               c.perturbations, c.base_window_rmse_speed_mps);
+                    "whole-run one): base window speed RMSE %s\n",
+               c.perturbations, base_rmse.c_str());
   if (!c.reason.empty())
   {
     std::fprintf(out, "  not judged: %s\n", c.reason.c_str());
