@@ -88,7 +88,7 @@ std::string whyNoUsableRun(const RunFileContents& contents)
                     " not on ACC: no stretch of two samples or more";
   if (!contents.problems.empty())
     why += " (first problem: " + contents.problems.front() + ")";
-  return why + describeCoarseSteps(contents);
+  return why + describeTimeOrder(contents) + describeCoarseSteps(contents);
 }
 
 /// A ZalaZone setting that names two or three of S, M and L ("SL": the database's mixed runs, the

@@ -163,6 +163,7 @@ public:
       const std::string not_increasing = describeTimeNotIncreasing(values[0]);
       if (!not_increasing.empty())
       {
+        ++contents_.time_back_rows;
         reject(line_number, not_increasing);
         return;
       }
@@ -581,6 +582,7 @@ void append(RunFileContents& all, RunFileContents&& one)
   all.implausible_rows += one.implausible_rows;
   all.marked_invalid_rows += one.marked_invalid_rows;
   all.duplicate_rows += one.duplicate_rows;
+  all.time_back_rows += one.time_back_rows;
   all.time_holes += one.time_holes;
   all.time_steps += one.time_steps;
   all.shortest_step_s = std::min(all.shortest_step_s, one.shortest_step_s);
@@ -688,7 +690,7 @@ std::string describeRowCounts(const std::string& path, const RunFileContents& co
     counts << ", " << contents.single_sample_rows << " rows alone between split points not used";
   if (contents.sawtooth_rows > 0)
     counts << ", the gap of " << contents.sawtooth_rows << " rows rebuilt where it saw-tooths";
-  counts << describeCoarseSteps(contents) << describeSpeedUnit(contents);
+  counts << describeTimeOrder(contents) << describeCoarseSteps(contents) << describeSpeedUnit(contents);
   return counts.str();
 }
 
@@ -701,8 +703,18 @@ std::string describeSpeedUnit(const RunFileContents& contents)
          "km/h; convert them to m/s (divide by 3.6: the canonical follower_speed_mps, leader_speed_mps)";
 }
 
+std::string describeTimeOrder(const RunFileContents& contents)
+{
+  if (10 * contents.time_back_rows <= contents.data_rows)
+    return "";
+  return "; " + std::to_string(contents.time_back_rows) + " of its " + std::to_string(contents.data_rows) +
+         " rows go back in time from the row before: the rows are not in time order; sort them by time";
+}
+
 std::string describeCoarseSteps(const RunFileContents& contents)
 {
+  if (!describeTimeOrder(contents).empty())
+    return "";  // the holes between shuffled rows are the shuffle's
   return describeCoarseSteps(contents.time_holes, contents.time_steps, contents.shortest_step_s);
 }
 
@@ -798,7 +810,8 @@ std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileC
                        std::to_string(contents.rejected_rows) + " rejected of which " +
                        std::to_string(contents.implausible_rows) + " implausible, " +
                        std::to_string(contents.time_holes) + " holes in time, " +
-                       std::to_string(contents.acc_off_rows) + " with ACC off)" + describeCoarseSteps(contents) +
+                       std::to_string(contents.acc_off_rows) + " with ACC off)" + describeTimeOrder(contents) +
+                       describeCoarseSteps(contents) +
                        describeSpeedUnit(contents));
   }
   return std::move(contents.runs);

@@ -578,6 +578,28 @@ TEST(RunCsvPlausibility, AFileWhoseTimeIsInMillisecondsIsToldSo)
   std::remove(path.c_str());
 }
 
+// A 10 Hz run whose rows are shuffled: half go back in time and are rejected, and the forward
+// steps between the rest are holes. The counts said the data were recorded coarsely and advised a
+// larger --max-gap; they now say the rows are not in time order, and nothing of the rate.
+TEST(RunCsvPlausibility, AFileWhoseRowsAreShuffledIsToldToSortThem)
+{
+  std::vector<int> order(300);
+  for (int k = 0; k < 300; ++k)
+    order[static_cast<std::size_t>(k)] = (k * 7919) % 300;  // a fixed permutation (7919 is prime)
+  std::string text = "time_s,space_gap_m,follower_speed_mps,leader_speed_mps\n";
+  for (const int k : order)
+    text += std::to_string(0.1 * k) + ",20.0,10.0,10.0\n";
+  const std::string path = writeTemporary("run_csv_shuffled.csv", text);
+  const auto contents = acc::readRunFile(path);
+  EXPECT_GT(10 * contents.time_back_rows, contents.data_rows);
+  const std::string order_said = acc::describeTimeOrder(contents);
+  EXPECT_TRUE(contains(order_said, " rows go back in time from the row before: the rows are not in time order; sort "
+                                   "them by time")) << order_said;
+  EXPECT_EQ(acc::describeCoarseSteps(contents), "");
+  EXPECT_EQ(acc::describeTimeOrder(acc::readRunFile(kDataDir + "/canonical_time_hole.csv")), "");
+  std::remove(path.c_str());
+}
+
 // Every pair of a 1 Hz OpenACC platoon read at once: the steps are counted over the pairs too, so
 // the file's counts say it is coarse (they once summed the holes but not the steps, and said nothing).
 TEST(RunCsvPlausibility, EveryPairOfACoarseOpenAccFileIsSaidToBeCoarse)

@@ -34,6 +34,9 @@ struct RunFileContents
   /// Of rejected_rows: exact repeats of the row before (the same time and values), which carry no
   /// sample of their own and so do not split the run.
   std::size_t duplicate_rows = 0;
+  /// Of rejected_rows: a time not after the row before's. Many of a file's rows so: its rows are
+  /// not in time order (describeTimeOrder), and the holes between the rest say nothing of its rate.
+  std::size_t time_back_rows = 0;
   std::size_t time_holes = 0;         ///< steps longer than max_time_step_s (split points, no row lost)
   /// Steps between consecutive rows that were looked at for a hole (time_holes of them were one):
   /// when most are, the data are recorded more coarsely than a run may step (describeCoarseSteps).
@@ -135,6 +138,11 @@ constexpr double kImplausibleShortestStepS = 5.0;
 /// the error that no run is usable. Where even the shortest step is kImplausibleShortestStepS or
 /// more, it says the time is not in seconds instead (a larger max gap would only fit nonsense).
 std::string describeCoarseSteps(const RunFileContents& contents);
+
+/// "; N of its M rows go back in time ...: sort them by time" when more than a tenth of the rows
+/// do (a file whose rows are shuffled), else "". describeCoarseSteps(contents) then says nothing:
+/// the holes between the rest are the shuffle's, not the recording's rate.
+std::string describeTimeOrder(const RunFileContents& contents);
 /// The same from the counts (a bag's holes against its steps between messages, its shortest step).
 std::string describeCoarseSteps(std::size_t time_holes, std::size_t time_steps,
                                 double shortest_step_s = std::numeric_limits<double>::infinity());
