@@ -148,6 +148,10 @@ public:
     {
       ++contents_.implausible_rows;
       contents_.too_fast_rows += values[2] > bounds_.max_speed_mps || values[3] > bounds_.max_speed_mps ? 1 : 0;
+      contents_.negative_rows += values[1] < bounds_.min_space_gap_m || values[2] < bounds_.min_speed_mps ||
+                                         values[3] < bounds_.min_speed_mps
+                                     ? 1
+                                     : 0;
       reject(line_number, implausible);
       return;
     }
@@ -589,6 +593,7 @@ void append(RunFileContents& all, RunFileContents&& one)
   all.acc_off_rows += one.acc_off_rows;
   all.single_sample_rows += one.single_sample_rows;
   all.too_fast_rows += one.too_fast_rows;
+  all.negative_rows += one.negative_rows;
   all.sawtooth_rows += one.sawtooth_rows;
   all.sawtooth_spans.insert(all.sawtooth_spans.end(), one.sawtooth_spans.begin(), one.sawtooth_spans.end());
   all.problems.insert(all.problems.end(), one.problems.begin(), one.problems.end());
@@ -690,8 +695,18 @@ std::string describeRowCounts(const std::string& path, const RunFileContents& co
     counts << ", " << contents.single_sample_rows << " rows alone between split points not used";
   if (contents.sawtooth_rows > 0)
     counts << ", the gap of " << contents.sawtooth_rows << " rows rebuilt where it saw-tooths";
-  counts << describeTimeOrder(contents) << describeCoarseSteps(contents) << describeSpeedUnit(contents);
+  counts << describeTimeOrder(contents) << describeCoarseSteps(contents) << describeSpeedUnit(contents)
+         << describeSign(contents);
   return counts.str();
+}
+
+std::string describeSign(const RunFileContents& contents)
+{
+  if (2 * contents.negative_rows <= contents.data_rows)
+    return "";
+  return "; " + std::to_string(contents.negative_rows) + " of its " + std::to_string(contents.data_rows) +
+         " rows have a speed or a gap below its bound: a sign error? (speeds are magnitudes, and the gap, from the "
+         "leader's rear bumper to the follower's front, is positive)";
 }
 
 std::string describeSpeedUnit(const RunFileContents& contents)
@@ -746,8 +761,8 @@ std::vector<CarFollowingRun> readRuns(const std::string& path, const RunPlausibi
   return reportAndTakeRuns(path, contents, std::cerr);
 }
 
-/// The problem lines listed of a file recorded more coarsely than a run may step, or with most of its
-/// speeds too fast (the rest counted).
+/// The problem lines listed of a file recorded more coarsely than a run may step, with most of its
+/// speeds too fast or below a bound, or its rows out of time order (the rest counted, the cause said).
 constexpr std::size_t kCoarseProblemLinesShown = 10;
 
 namespace
@@ -782,15 +797,23 @@ std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileC
   // Recorded more coarsely than a run may step (a 1 Hz log at the default 0.5 s), every row is a
   // hole and a one-sample piece; with speeds in km/h, most rows are too fast: the first lines show
   // it, the count and the fix follow below, where 843 (and 1,140) lines once buried them.
+  // The same for rows negated throughout (a sign error) or shuffled: the cause is said below.
   const bool coarse = !describeCoarseSteps(contents).empty();
   const bool too_fast = !describeSpeedUnit(contents).empty();
-  const std::size_t shown =
-      coarse || too_fast ? std::min(problems.size(), kCoarseProblemLinesShown) : problems.size();
+  const bool negative = !describeSign(contents).empty();
+  const bool shuffled = !describeTimeOrder(contents).empty();
+  const std::size_t shown = coarse || too_fast || negative || shuffled
+                                ? std::min(problems.size(), kCoarseProblemLinesShown)
+                                : problems.size();
   for (std::size_t i = 0; i < shown; ++i)
     log << "warning: " << problems[i] << "\n";
   if (shown < problems.size())
     log << "warning: " << path << ": " << problems.size() - shown << " more such lines not listed ("
-        << (coarse ? "each row a hole and a piece too short" : "most rows too fast") << "; counted below)\n";
+        << (coarse      ? "each row a hole and a piece too short"
+            : too_fast  ? "most rows too fast"
+            : negative  ? "most rows below a bound"
+                        : "rows out of time order")
+        << "; counted below)\n";
   const std::string counts = describeRowCounts(path, contents);
   if (!counts.empty())
   {
@@ -811,7 +834,7 @@ std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileC
                        std::to_string(contents.implausible_rows) + " implausible, " +
                        std::to_string(contents.time_holes) + " holes in time, " +
                        std::to_string(contents.acc_off_rows) + " with ACC off)" + describeTimeOrder(contents) +
-                       describeCoarseSteps(contents) +
+                       describeSign(contents) + describeCoarseSteps(contents) +
                        describeSpeedUnit(contents));
   }
   return std::move(contents.runs);

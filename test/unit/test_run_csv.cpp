@@ -600,6 +600,26 @@ TEST(RunCsvPlausibility, AFileWhoseRowsAreShuffledIsToldToSortThem)
   std::remove(path.c_str());
 }
 
+// Speeds negated throughout (a sign error) fail the lower bound on every row: said once as what
+// it likely is, the row lines capped as for speeds in km/h (2,523 lines once, and no hint).
+TEST(RunCsvPlausibility, AFileWhoseSpeedsAreNegatedIsAskedAboutTheSign)
+{
+  std::string text = "time_s,space_gap_m,follower_speed_mps,leader_speed_mps\n";
+  for (int k = 0; k < 200; ++k)
+    text += std::to_string(0.1 * k) + ",20.0," + std::to_string(-10.0 - 0.01 * k) + ",-10.5\n";  // lines differ
+  const std::string path = writeTemporary("run_csv_negated.csv", text);
+  auto contents = acc::readRunFile(path);
+  EXPECT_EQ(contents.negative_rows, 200u);
+  EXPECT_TRUE(contains(acc::describeSign(contents), "200 of its 200 rows have a speed or a gap below its bound: a "
+                                                    "sign error?")) << acc::describeSign(contents);
+  std::ostringstream log;
+  EXPECT_THROW(acc::reportAndTakeRuns(path, contents, log), acc::RunReadError);
+  EXPECT_TRUE(contains(log.str(), "190 more such lines not listed (most rows below a bound; counted below)"))
+      << log.str();
+  EXPECT_EQ(acc::describeSign(acc::readRunFile(kDataDir + "/canonical_time_hole.csv")), "");
+  std::remove(path.c_str());
+}
+
 // Every pair of a 1 Hz OpenACC platoon read at once: the steps are counted over the pairs too, so
 // the file's counts say it is coarse (they once summed the holes but not the steps, and said nothing).
 TEST(RunCsvPlausibility, EveryPairOfACoarseOpenAccFileIsSaidToBeCoarse)

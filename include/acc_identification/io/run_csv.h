@@ -52,6 +52,9 @@ struct RunFileContents
   /// Of implausible_rows: a speed above the upper bound (RunPlausibilityBounds::max_speed_mps).
   /// Most of a file's rows so: its speeds are in km/h (describeSpeedUnit).
   std::size_t too_fast_rows = 0;
+  /// Of implausible_rows: a speed or gap below its lower bound. Most of a file's rows so: a sign
+  /// error (describeSign).
+  std::size_t negative_rows = 0;
   /// Rows whose gap saw-tooths (a position held between its updates, gap_sawtooth.h) and was
   /// rebuilt from the fixes and the speeds (rebuildSawtoothGap); used, not in rejected_rows; each
   /// stretch listed in problems and in sawtooth_spans (each names its run, and its samples index
@@ -151,6 +154,10 @@ std::string describeCoarseSteps(std::size_t time_holes, std::size_t time_steps,
 /// and to convert them, for the row counts and the error that no run is usable (the rows' own
 /// lines say only that each value is out of bounds).
 std::string describeSpeedUnit(const RunFileContents& contents);
+
+/// "; N of its M rows have a speed or gap below its bound: a sign error? ..." when most rows do
+/// (speeds or a gap negated throughout), else "".
+std::string describeSign(const RunFileContents& contents);
 
 /// readRunFile() for tools: returns the runs, and writes every note and problem (and the counts of
 /// rejected rows and holes) to stderr, so nothing is dropped silently. Throws as readRunFile, and
