@@ -700,30 +700,37 @@ std::string describeRowCounts(const std::string& path, const RunFileContents& co
   return counts.str();
 }
 
+namespace
+{
+/// "; ROWS of its DATA_ROWS rows WHAT" when more than `share` of the rows are so (the likely cause
+/// of a file's rejected rows), else "".
+std::string describeRowsSo(std::size_t rows, std::size_t data_rows, double share, const std::string& what)
+{
+  if (static_cast<double>(rows) <= share * static_cast<double>(data_rows))
+    return "";
+  return "; " + std::to_string(rows) + " of its " + std::to_string(data_rows) + " rows " + what;
+}
+}  // namespace
+
 std::string describeSign(const RunFileContents& contents)
 {
-  if (2 * contents.negative_rows <= contents.data_rows)
-    return "";
-  return "; " + std::to_string(contents.negative_rows) + " of its " + std::to_string(contents.data_rows) +
-         " rows have a speed or a gap below its bound: a sign error? (speeds are magnitudes, and the gap, from the "
-         "leader's rear bumper to the follower's front, is positive)";
+  return describeRowsSo(contents.negative_rows, contents.data_rows, 0.5,
+                        "have a speed or a gap below its bound: a sign error? (speeds are magnitudes, and the gap, "
+                        "from the leader's rear bumper to the follower's front, is positive)");
 }
 
 std::string describeSpeedUnit(const RunFileContents& contents)
 {
-  if (2 * contents.too_fast_rows <= contents.data_rows)
-    return "";
-  return "; " + std::to_string(contents.too_fast_rows) + " of its " + std::to_string(contents.data_rows) +
-         " rows have a speed above the plausible bound (faster than any car under ACC): the speeds are likely in "
-         "km/h; convert them to m/s (divide by 3.6: the canonical follower_speed_mps, leader_speed_mps)";
+  return describeRowsSo(contents.too_fast_rows, contents.data_rows, 0.5,
+                        "have a speed above the plausible bound (faster than any car under ACC): the speeds are likely "
+                        "in km/h; convert them to m/s (divide by 3.6: the canonical follower_speed_mps, "
+                        "leader_speed_mps)");
 }
 
 std::string describeTimeOrder(const RunFileContents& contents)
 {
-  if (10 * contents.time_back_rows <= contents.data_rows)
-    return "";
-  return "; " + std::to_string(contents.time_back_rows) + " of its " + std::to_string(contents.data_rows) +
-         " rows go back in time from the row before: the rows are not in time order; sort them by time";
+  return describeRowsSo(contents.time_back_rows, contents.data_rows, 0.1,
+                        "go back in time from the row before: the rows are not in time order; sort them by time");
 }
 
 std::string describeCoarseSteps(const RunFileContents& contents)
