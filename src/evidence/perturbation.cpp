@@ -120,8 +120,9 @@ std::vector<Perturbation> findPerturbations(const std::vector<double>& time_s, c
     p.end = std::min(drop.second, time_s.size() - 1);
     const bool recovered = drop.second < time_s.size();
     // A speed that never came back near the median since the last drop: one perturbation, not a
-    // second one with the same onset (its dip would be counted twice).
-    if (!found.empty() && p.onset <= found.back().end)
+    // second one with the same onset (its dip would be counted twice). An onset at the last drop's
+    // end is a speed back near the median there (at 1 Hz, for one sample): a perturbation of its own.
+    if (!found.empty() && p.onset < found.back().end)
     {
       p.onset = found.back().onset;
       found.pop_back();

@@ -233,6 +233,29 @@ TEST(CampaignPerturbation, DropsWithoutARecoveryNearTheMedianBetweenThemAreOnePe
   EXPECT_NEAR(acc::dipDepthMps(time_s, speed_mps, found[0]), 4.0, 1e-9);
 }
 
+// At 1 Hz the speed can be back near its median for one sample, the first after the drop, and sag
+// again: it came back, so the next drop is a perturbation of its own, its onset that sample. (The
+// rule once took an onset at the first's end for "never came back" and merged the two.)
+TEST(CampaignPerturbation, ASpeedBackNearTheMedianForOneSampleEndsThePerturbation)
+{
+  auto speed = [](double t) {
+    if (t >= 20.0 && t < 23.0)
+      return 7.0;  // the first drop, 20-22 s
+    if (t > 23.5 && t < 33.0)
+      return 9.5;  // 24-32 s: below the median, not near it; 23 s: at the median
+    if (t >= 33.0 && t < 36.0)
+      return 6.0;  // the second drop, 33-35 s
+    return 10.0;
+  };
+  std::vector<double> time_s, speed_mps;
+  sampleSpeed(speed, 1.0, &time_s, &speed_mps);
+  const auto found = acc::findPerturbations(time_s, speed_mps);
+  ASSERT_EQ(found.size(), 2u);
+  EXPECT_NEAR(found[0].end_s, 23.0, 1e-9);
+  EXPECT_NEAR(found[1].onset_s, 23.0, 1e-9);
+  EXPECT_NEAR(found[1].end_s, 36.0, 1e-9);
+}
+
 // Drops of the first car that the speed comes back to its median between are two perturbations
 // once they are more than merge_within_s (5 s) apart, and one (a drop with a blip of noise) within.
 TEST(CampaignPerturbation, DropsAreMergedWithinFiveSecondsAndTwoBeyond)
