@@ -680,6 +680,17 @@ AllPairRuns readAllPairRuns(const std::string& path, const RunPlausibilityBounds
   return all;
 }
 
+namespace
+{
+/// What most of a file's rejected rows likely come from, each "; ..." that applies: rows out of time
+/// order, a coarse step or a time not in seconds, speeds in km/h, a sign error.
+std::string describeLikelyCauses(const RunFileContents& contents)
+{
+  return describeTimeOrder(contents) + describeCoarseSteps(contents) + describeSpeedUnit(contents) +
+         describeSign(contents);
+}
+}  // namespace
+
 std::string describeRowCounts(const std::string& path, const RunFileContents& contents)
 {
   if (contents.rejected_rows == 0 && contents.time_holes == 0 && contents.sawtooth_rows == 0 &&
@@ -695,8 +706,7 @@ std::string describeRowCounts(const std::string& path, const RunFileContents& co
     counts << ", " << contents.single_sample_rows << " rows alone between split points not used";
   if (contents.sawtooth_rows > 0)
     counts << ", the gap of " << contents.sawtooth_rows << " rows rebuilt where it saw-tooths";
-  counts << describeTimeOrder(contents) << describeCoarseSteps(contents) << describeSpeedUnit(contents)
-         << describeSign(contents);
+  counts << describeLikelyCauses(contents);
   return counts.str();
 }
 
@@ -808,10 +818,9 @@ std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileC
   const bool coarse = !describeCoarseSteps(contents).empty();
   const bool too_fast = !describeSpeedUnit(contents).empty();
   const bool negative = !describeSign(contents).empty();
-  const bool shuffled = !describeTimeOrder(contents).empty();
-  const std::size_t shown = coarse || too_fast || negative || shuffled
-                                ? std::min(problems.size(), kCoarseProblemLinesShown)
-                                : problems.size();
+  const std::size_t shown = describeLikelyCauses(contents).empty()
+                                ? problems.size()
+                                : std::min(problems.size(), kCoarseProblemLinesShown);
   for (std::size_t i = 0; i < shown; ++i)
     log << "warning: " << problems[i] << "\n";
   if (shown < problems.size())
@@ -840,9 +849,7 @@ std::vector<CarFollowingRun> reportAndTakeRuns(const std::string& path, RunFileC
                        std::to_string(contents.rejected_rows) + " rejected of which " +
                        std::to_string(contents.implausible_rows) + " implausible, " +
                        std::to_string(contents.time_holes) + " holes in time, " +
-                       std::to_string(contents.acc_off_rows) + " with ACC off)" + describeTimeOrder(contents) +
-                       describeSign(contents) + describeCoarseSteps(contents) +
-                       describeSpeedUnit(contents));
+                       std::to_string(contents.acc_off_rows) + " with ACC off)" + describeLikelyCauses(contents));
   }
   return std::move(contents.runs);
 }
