@@ -22,7 +22,7 @@ SecondOpinion opinionOf(const DiagnosisResult& result)
   text << "\nThe model is not adequate, so calibrate asked the diagnosis (each run fitted on its first half, judged "
           "on the second; `diagnose` gives the whole of it):\n"
        << "  model: " << verdict.model << "; adequacy: " << describeAdequacy(result.final_adequacy) << "\n"
-       << "  verdict of that model: " << (verdict.test ? testVerdictText(*verdict.test) : std::string("not tested"))
+       << "  verdict of that model: " << (verdict.test ? verdictText(*verdict.test) : std::string("not tested"))
        << "\n  why this model: " << verdict.why << "\n";
   opinion.text = text.str();
   return opinion;

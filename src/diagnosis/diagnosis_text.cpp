@@ -9,13 +9,6 @@
 
 namespace acc
 {
-/// "string UNSTABLE (p (H0: stable) = 0.002; p (H0: unstable) = 0.97)": p-values named by the
-/// hypothesis they test.
-std::string testVerdictText(const AugmentedStabilityTestResult& test)
-{
-  return verdictText(test);
-}
-
 namespace
 {
 /// Each model's adequacy, then THE verdict: the final model's test where the diagnosis found a
@@ -27,7 +20,7 @@ void printVerdict(const DiagnosisResult& r, std::FILE* out)
   if (!r.selected_effects.empty())
     std::fprintf(out, "model adequacy, %s: %s\n", verdict.model.c_str(), describeAdequacy(r.final_adequacy).c_str());
   std::fprintf(out, "verdict (string-stability test of the %s): %s\n  why this model: %s\n", verdict.model.c_str(),
-              verdict.test ? testVerdictText(*verdict.test).c_str() : "not tested", verdict.why.c_str());
+              verdict.test ? verdictText(*verdict.test).c_str() : "not tested", verdict.why.c_str());
 }
 
 /// Whether the training data pin the size of the effect a step adds: the held-out rule can name
@@ -68,7 +61,7 @@ void printChain(const DiagnosisResult& r, std::FILE* out)
                 m.stability.string_stable ? "point estimate stable" : "point estimate unstable");
     if (step.stability_test)
     {
-      std::fprintf(out, ", test: %s", testVerdictText(*step.stability_test).c_str());
+      std::fprintf(out, ", test: %s", verdictText(*step.stability_test).c_str());
     }
     // No standard error (a diverged fit, or speeds that do not move with a parameter at the fit,
     // as a limit that never binds): "n/a", never "nan".
@@ -162,7 +155,7 @@ void printDiagnosisSummary(const DiagnosisResult& r, std::FILE* out)
   {
     const AugmentedStabilityTestResult& t = *r.stability_test;
     std::fprintf(out, "string-stability test of the %s model on the held-out parts: %s\n  why: %s\n",
-                effectName(t.effect).c_str(), testVerdictText(t).c_str(), t.reason.c_str());
+                effectName(t.effect).c_str(), verdictText(t).c_str(), t.reason.c_str());
   }
   printChain(r, out);
   if (r.final_bootstrap)

@@ -9,10 +9,6 @@
 
 namespace acc
 {
-/// "string UNSTABLE (p (H0: stable) = 0.002; p (H0: unstable) = 0.97)": p-values named by the
-/// hypothesis they test.
-std::string testVerdictText(const AugmentedStabilityTestResult& test);
-
 /// What `diagnose` prints: every model's errors and the point estimate's stability, the dominant
 /// and plausible effects, what the training data determine, the test of the dominant model, the
 /// forward selection's chain, and THE verdict with the model it belongs to.
