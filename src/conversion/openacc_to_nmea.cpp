@@ -60,6 +60,10 @@ std::string pairRowProblem(const OpenAccFile& file, const OpenAccPair& pair, std
       columns.push_back(quantity + std::to_string(k));
   return file.rowProblem(i, columns);
 }
+/// The end of a row's problem for a speed above the plausible bound, which the count of such rows
+/// looks for (describeUnwritableTrack: most rows so, speeds in km/h?).
+constexpr const char* kTooFastForACar = "no car under ACC drives that fast";
+
 /// Why a row whose cells are numbers still cannot be written as the receivers' fixes: a speed an
 /// RMC cannot carry (below 0: speed over ground has no sign) or no car drives (above the run
 /// readers' bound), or a time that does not follow the last row written (a log runs forward).
@@ -74,8 +78,8 @@ std::string rowValueProblem(const OpenAccFile& file, const OpenAccVehicle* const
     if (speed < 0.0)
       return column + " " + significant(speed, 6) + " below 0: an RMC's speed over ground has no sign";
     if (speed > bounds.max_speed_mps)
-      return column + " " + significant(speed, 6) + " above " + significant(bounds.max_speed_mps) +
-             " m/s: no car under ACC drives that fast";
+      return column + " " + significant(speed, 6) + " above " + significant(bounds.max_speed_mps) + " m/s: " +
+             kTooFastForACar;
   }
   const double time_s = file.time_s[i];
   if (!written.empty() && !(time_s > written.back().time_of_day_s))
@@ -100,7 +104,7 @@ std::string describeUnwritableTrack(const OpenAccPairTrack& track, std::size_t f
   {
     std::size_t too_fast = 0;
     for (const std::string& skipped : track.skipped_rows)
-      too_fast += skipped.find("no car under ACC drives that fast") != std::string::npos ? 1 : 0;
+      too_fast += skipped.find(kTooFastForACar) != std::string::npos ? 1 : 0;
     return track.pairName() + ": " + std::to_string(track.rows.size()) + " of " + std::to_string(file_rows) +
            " rows usable (each skipped one is listed above): nothing a receiver's log holds" +
            (2 * too_fast > track.skipped_rows.size() ? "; most rows are too fast: are the speeds in km/h? OpenACC's "

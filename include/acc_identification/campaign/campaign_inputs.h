@@ -86,7 +86,8 @@ struct CampaignFileList
   std::vector<std::string> files;
   std::vector<std::string> skipped;  ///< "path: not an OpenACC file (...), skipped"
   std::vector<std::string> listings;  ///< the database's mixed-setting tables (looksLikeMixedSettingListing)
-  /// "folder: N subfolder(s) and M other file(s) not named *.csv, not read": not searched, said
+  /// "folder: N subfolder(s) not searched and M file(s) named .CSV in another case not read": said
+  /// once per folder, not counted as skipped files
   std::vector<std::string> unread;
 };
 
