@@ -68,7 +68,7 @@ CampaignFileList openAccFilesIn(const std::string& folder)
     else
       list.skipped.push_back(path + ": not an OpenACC file (its first line is neither a Date line nor a header with "
                                     "Time and a car's Speedk)" +
-                             separatorHint(path) + ", skipped");
+                             textLayoutHint(path) + ", skipped");
   }
   if (list.files.empty())
     throw std::invalid_argument(folder + ": no OpenACC *.csv file in this folder" +

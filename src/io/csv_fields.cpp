@@ -1,6 +1,10 @@
 #include "acc_identification/io/csv_fields.h"
 
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
+#include <limits>
 
 namespace acc
 {
@@ -84,11 +88,32 @@ std::string withoutByteOrderMark(const std::string& line)
   static const std::string kUtf8Mark = "\xEF\xBB\xBF";
   return line.compare(0, kUtf8Mark.size(), kUtf8Mark) == 0 ? line.substr(kUtf8Mark.size()) : line;
 }
-std::string separatorHint(const std::string& path)
+namespace
 {
-  std::ifstream file(path);
-  std::string first_line;
-  std::getline(file, first_line);
+/// Why the start of a file is not text a CSV reader can split ("" when it is).
+std::string binaryHint(const std::string& start)
+{
+  if (start.compare(0, 7, "#ROSBAG") == 0)
+    return " (it is a ROS bag: calibrate and diagnose read a bag of RelativeState when its name ends in .bag)";
+  const bool utf16_mark = start.compare(0, 2, "\xFF\xFE") == 0 || start.compare(0, 2, "\xFE\xFF") == 0;
+  if (utf16_mark || (start.size() > 1 && (start[0] == '\0' || start[1] == '\0')))
+    return " (it is UTF-16 text, as a spreadsheet's \"Unicode text\" export writes it: save it as UTF-8 CSV)";
+  if (start.find('\0') != std::string::npos)
+    return " (it holds NUL bytes: a binary file, not CSV text)";
+  return "";
+}
+
+/// " (its lines end in a carriage return alone ...)" when the start has a CR and no LF.
+std::string lineEndHint(const std::string& start)
+{
+  if (start.find('\r') == std::string::npos || start.find('\n') != std::string::npos)
+    return "";
+  return " (its lines end in a carriage return alone, as Excel's \"CSV (Macintosh)\" writes them: save it with LF "
+         "or CR LF line ends)";
+}
+
+std::string separatorHint(const std::string& first_line)
+{
   if (first_line.find(',') != std::string::npos)
     return "";
   if (first_line.find(';') != std::string::npos)
@@ -97,6 +122,20 @@ std::string separatorHint(const std::string& path)
   if (first_line.find('\t') != std::string::npos)
     return " (its fields are separated by tabs: save it with ',' between fields)";
   return "";
+}
+}  // namespace
+
+std::string textLayoutHint(const std::string& path)
+{
+  std::ifstream file(path, std::ios::binary);
+  std::string start(4096, '\0');
+  file.read(&start[0], static_cast<std::streamsize>(start.size()));
+  start.resize(static_cast<std::size_t>(file.gcount()));
+  if (std::string hint = binaryHint(start); !hint.empty())
+    return hint;
+  if (std::string hint = lineEndHint(start); !hint.empty())
+    return hint;
+  return separatorHint(start.substr(0, start.find('\n')));
 }
 
 std::string csvQuoted(const std::string& text)
@@ -108,5 +147,31 @@ std::string csvQuoted(const std::string& text)
 }
 
 bool writtenInHexadecimal(const std::string& cell) { return cell.find_first_of("xX") != std::string::npos; }
+
+CellKind parseCell(const std::string& text, double& value)
+{
+  value = std::numeric_limits<double>::quiet_NaN();
+  if (text.empty())
+  {
+    return CellKind::kEmpty;
+  }
+  char* end = nullptr;
+  errno = 0;
+  const double parsed = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size() || writtenInHexadecimal(text))
+  {
+    return CellKind::kNotANumber;
+  }
+  if (!std::isfinite(parsed))
+  {
+    return CellKind::kNotFinite;
+  }
+  if (errno == ERANGE && std::abs(parsed) > 1.0)
+  {
+    return CellKind::kNotFinite;  // overflow (strtod returned HUGE_VAL)
+  }
+  value = parsed;
+  return CellKind::kNumber;
+}
 
 }  // namespace acc

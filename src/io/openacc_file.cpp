@@ -211,7 +211,7 @@ std::string noHeaderError(const OpenAccFile& file, std::size_t line_number)
   return file.path + ": no header line with a Time column" +
          (line_number >= kMaxLinesBeforeHeader ? " in the first " + std::to_string(kMaxLinesBeforeHeader) + " lines"
                                                : "") +
-         " (not an OpenACC file?)" + separatorHint(file.path);
+         " (not an OpenACC file?)" + textLayoutHint(file.path);
 }
 
 /// A name Vehicle_order gives twice: two cars of one run cannot be one car (their data would be

@@ -3,20 +3,12 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cmath>
-#include <cstdio>
 #include <cstdlib>
-#include <limits>
 
 namespace acc
 {
 namespace openacc
 {
-namespace
-{
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-}  // namespace
-
 std::string trim(const std::string& text)
 {
   const auto first = text.find_first_not_of(" \t\r\n");
@@ -44,32 +36,6 @@ std::optional<long> parseInteger(const std::string& text)
   return value;
 }
 
-
-CellKind parseCell(const std::string& text, double& value)
-{
-  value = kNaN;
-  if (text.empty())
-  {
-    return CellKind::kEmpty;
-  }
-  char* end = nullptr;
-  errno = 0;
-  const double parsed = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size() || writtenInHexadecimal(text))
-  {
-    return CellKind::kNotANumber;
-  }
-  if (!std::isfinite(parsed))
-  {
-    return CellKind::kNotFinite;
-  }
-  if (errno == ERANGE && std::abs(parsed) > 1.0)
-  {
-    return CellKind::kNotFinite;  // overflow (strtod returned HUGE_VAL)
-  }
-  value = parsed;
-  return CellKind::kNumber;
-}
 
 namespace
 {

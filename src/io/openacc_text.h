@@ -21,17 +21,6 @@ std::string trim(const std::string& text);
 /// A whole decimal number, the whole text; nullopt otherwise.
 std::optional<long> parseInteger(const std::string& text);
 
-/// How a cell reads: a finite number, or why not.
-enum class CellKind
-{
-  kNumber,
-  kEmpty,
-  kNotFinite,
-  kNotANumber
-};
-/// Reads a cell into value (NaN unless it is a finite number).
-CellKind parseCell(const std::string& text, double& value);
-
 /// The quantity of a per-vehicle or per-pair column ("Speed3" -> Speed, 3).
 enum class Quantity
 {

@@ -8,9 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -79,6 +77,13 @@ std::string firstLineHint(const std::string& path)
   return " (its first line reads '" + line + "')";
 }
 
+/// Why the file is not comma-separated text when its bytes say, else what its first line holds.
+std::string layoutOrFirstLineHint(const std::string& path)
+{
+  const std::string layout = textLayoutHint(path);
+  return layout.empty() ? firstLineHint(path) : layout;
+}
+
 /// The header names of the canonical format (time, gap, follower, leader); OpenACC files are
 /// told by their Date line and read by readOpenAccFile.
 std::optional<ColumnMap> mapColumns(const std::vector<std::string>& header)
@@ -112,14 +117,8 @@ std::optional<std::string> columnNamedTwice(const std::vector<std::string>& head
 
 std::optional<double> parseNumber(const std::string& text)
 {
-  if (text.empty() || writtenInHexadecimal(text))
-  {
-    return std::nullopt;
-  }
-  char* end = nullptr;
-  errno = 0;
-  const double value = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size() || errno == ERANGE)
+  double value = 0.0;
+  if (parseCell(text, value) != CellKind::kNumber)
   {
     return std::nullopt;
   }
@@ -265,8 +264,7 @@ private:
   std::size_t pieces_ = 0;
 };
 
-/// Parses one data row into the four canonical values, or returns why not.
-/// The valid column's text in lower case ("" without the column or with a wrong field count).
+/// The valid column's flag: "0" or "1" for a number equal to either, otherwise its text in lower case ("" without the column or with a wrong field count).
 std::string validFlag(const std::vector<std::string>& fields, const ColumnMap& map)
 {
   if (!map.valid || fields.size() != map.field_count)
@@ -274,6 +272,11 @@ std::string validFlag(const std::vector<std::string>& fields, const ColumnMap& m
     return "";
   }
   std::string flag = fields[*map.valid];
+  double number = 0.0;
+  if (parseCell(flag, number) == CellKind::kNumber && (number == 0.0 || number == 1.0))
+  {
+    return number == 1.0 ? "1" : "0";  // "1.0", as pandas writes a flag column that has a gap
+  }
   std::transform(flag.begin(), flag.end(), flag.begin(), [](unsigned char c) { return std::tolower(c); });
   return flag;
 }
@@ -308,6 +311,7 @@ std::string describeNotFinite(const std::array<double, 4>& values)
   return "";
 }
 
+/// Parses one data row into the four canonical values, or returns why not.
 std::string parseRow(const std::vector<std::string>& fields, const ColumnMap& map,
                      std::array<double, 4>& values)
 {
@@ -329,7 +333,7 @@ std::string parseRow(const std::vector<std::string>& fields, const ColumnMap& ma
   const std::string flag = validFlag(fields, map);
   if (map.valid && flag != "1" && flag != "true")
   {
-    return "valid is neither 0 nor 1: '" + fields[*map.valid] + "'";
+    return "valid is neither 0 nor 1 (nor false or true): '" + fields[*map.valid] + "'";
   }
   return "";
 }
@@ -373,7 +377,7 @@ RunFileContents readCanonicalFile(const std::string& path, const RunPlausibility
   {
     throw RunReadError(path + ": no header with time_s,space_gap_m,follower_speed_mps,leader_speed_mps in the "
                               "first 20 lines, and no OpenACC Date line or Time,Speed1,... header first" +
-                       separatorHint(path) + firstLineHint(path));
+                       layoutOrFirstLineHint(path));
   }
   if (const std::string spellings = describeColumnSpellings(path, header, *map); !spellings.empty())
     contents.notes.push_back(spellings);

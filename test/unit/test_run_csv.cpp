@@ -337,7 +337,7 @@ std::string writeTemporary(const std::string& name, const std::string& text)
 {
   const std::string path = testing::TempDir() + "/" + name;
   FILE* file = std::fopen(path.c_str(), "w");
-  std::fputs(text.c_str(), file);
+  std::fwrite(text.data(), 1, text.size(), file);  // whole, NUL bytes too
   std::fclose(file);
   return path;
 }
@@ -401,6 +401,21 @@ TEST(RunCsv, AColumnNamedTwiceAHexadecimalCellAndTabsAreSaid)
                                           "time_s\tspace_gap_m\tfollower_speed_mps\tleader_speed_mps\n0.0\t20\t10\t10\n");
   const std::string tabs_said = refusalOf(tabs);
   EXPECT_TRUE(contains(tabs_said, "its fields are separated by tabs")) << tabs_said;
+  // Files that are not comma-separated text are said to be what their first bytes show, not quoted.
+  const std::string mac = writeTemporary("run_csv_mac.csv", "time_s,space_gap_m,follower_speed_mps,leader_speed_mps\r"
+                                                            "0.0,20,10,10\r0.1,20,10,10\r");
+  const std::string mac_said = refusalOf(mac);
+  EXPECT_TRUE(contains(mac_said, "its lines end in a carriage return alone")) << mac_said;
+  EXPECT_FALSE(contains(mac_said, "its first line reads")) << mac_said;
+  const std::string utf16_text("\xFF\xFEt\0i\0m\0e\0", 10);
+  const std::string utf16 = writeTemporary("run_csv_utf16.csv", utf16_text);
+  const std::string utf16_said = refusalOf(utf16);
+  EXPECT_TRUE(contains(utf16_said, "it is UTF-16 text")) << utf16_said;
+  const std::string bag = writeTemporary("run_csv_bag.csv", std::string("#ROSBAG V2.0\nE\0\0\0\x20", 18));
+  const std::string bag_said = refusalOf(bag);
+  EXPECT_TRUE(contains(bag_said, "it is a ROS bag")) << bag_said;
+  for (const std::string& path : {mac, utf16, bag})
+    std::remove(path.c_str());
   // A header that names the columns almost right is shown in the refusal.
   const std::string near = writeTemporary("run_csv_near.csv", "Time,Gap,FollowerSpeed,LeaderSpeed\n0.0,20,10,10\n");
   const std::string near_said = refusalOf(near);
@@ -413,6 +428,27 @@ TEST(RunCsv, AColumnNamedTwiceAHexadecimalCellAndTabsAreSaid)
   EXPECT_TRUE(contains(cases_said, "the header names column 'Space_Gap_M' twice")) << cases_said;
   for (const std::string& path : {twice, hexadecimal, tabs, near, cases})
     std::remove(path.c_str());
+}
+
+// A number too small for a double is the nearest one (strtod flags it out of range, yet it is what
+// the text says: a speed of 1e-320 m/s is a standing car); one too large is not finite.
+TEST(RunCsv, NumbersBeyondADoublesRangeAreReadAsTheirNearestOrNotFinite)
+{
+  const std::string path = writeTemporary("run_csv_range.csv",
+                                          "time_s,space_gap_m,follower_speed_mps,leader_speed_mps\n"
+                                          "0.0,20.0,1e-320,0.0\n0.1,20.0,0.0,-1e-400\n0.2,20.0,0.0,0.0\n"
+                                          "0.3,1e400,0.0,0.0\n");
+  const auto contents = acc::readRunFile(path);
+  std::remove(path.c_str());
+  EXPECT_EQ(contents.rejected_rows, 1u);
+  ASSERT_EQ(contents.problems.size(), 1u);
+  EXPECT_TRUE(contains(contents.problems[0], "run_csv_range.csv:5: space gap is not a finite number: '1e400'"))
+      << contents.problems[0];
+  ASSERT_EQ(contents.runs.size(), 1u);
+  ASSERT_EQ(contents.runs[0].size(), 3u);
+  EXPECT_GT(contents.runs[0].follower_speed_mps[0], 0.0);
+  EXPECT_LT(contents.runs[0].follower_speed_mps[0], 1e-300);
+  EXPECT_EQ(contents.runs[0].leader_speed_mps[1], 0.0);
 }
 
 // Speeds in km/h above the plausible bound reject every row: the refusal says km/h, and the log
@@ -526,8 +562,8 @@ TEST(ProblemLines, AStretchOfBadRowsIsOneWarningOnTheLog)
 }
 
 // The optional valid column (nmea_to_csv writes the pairing's verdict in it): a row marked 0 is a
-// split point whatever its values, counted with the reason beside it; a flag that is neither 0
-// nor 1 is a malformed row. Fails when the column is ignored (the NaN row would be rejected as
+// split point whatever its values, counted with the reason beside it; 0.0, 1.0 (as pandas writes a
+// flag column with a gap) and TRUE are flags too; a flag that is neither is a malformed row. Fails when the column is ignored (the NaN row would be rejected as
 // not a number, the 50 m row used).
 TEST(RunCsv, ARowTheValidColumnMarksZeroSplitsTheRunWithItsReason)
 {
@@ -539,7 +575,7 @@ TEST(RunCsv, ARowTheValidColumnMarksZeroSplitsTheRunWithItsReason)
     {
       const bool jump = i == 4, unknown = i == 5, bad_flag = i == 9;
       file << 0.1 * i << "," << (jump ? "50" : unknown ? "" : "20") << ",10,10,"
-           << (jump || unknown ? "0" : bad_flag ? "maybe" : i == 2 ? "TRUE" : "1") << ","
+           << (jump ? "0" : unknown ? "0.0" : bad_flag ? "maybe" : i == 2 ? "TRUE" : i == 3 ? "1.0" : "1") << ","
            << (jump ? "\"gap jump of 30 m, too fast\"" : "\"\"") << "\n";
     }
   }
@@ -552,7 +588,7 @@ TEST(RunCsv, ARowTheValidColumnMarksZeroSplitsTheRunWithItsReason)
   EXPECT_TRUE(contains(contents.problems[0], ":6: marked invalid: gap jump of 30 m, too fast; row rejected"))
       << contents.problems[0];
   EXPECT_TRUE(contains(contents.problems[1], ":7: marked invalid; row rejected")) << contents.problems[1];
-  EXPECT_TRUE(contains(contents.problems[2], ":11: valid is neither 0 nor 1: 'maybe'")) << contents.problems[2];
+  EXPECT_TRUE(contains(contents.problems[2], ":11: valid is neither 0 nor 1 (nor false or true): 'maybe'")) << contents.problems[2];
   ASSERT_EQ(contents.runs.size(), 3u);  // 0.0-0.3, 0.6-0.8, 1.0-1.1
   EXPECT_EQ(contents.runs[0].size(), 4u);
   EXPECT_EQ(contents.runs[1].size(), 3u);

@@ -17,6 +17,19 @@ std::vector<std::string> splitCsvFields(const std::string& line);
 /// it, so the readers take it for what it is, not a number.
 bool writtenInHexadecimal(const std::string& cell);
 
+/// How a cell reads: a finite number, or why not.
+enum class CellKind
+{
+  kNumber,
+  kEmpty,
+  kNotFinite,
+  kNotANumber
+};
+/// Reads a whole cell into value (NaN unless it is a finite number). A number too small for a
+/// double ("1e-320") is the nearest one, subnormal or zero: strtod flags it as out of range, yet it
+/// is what the text says; one too large is not finite; hexadecimal is not a number.
+CellKind parseCell(const std::string& text, double& value);
+
 /// A text field as a CSV writer writes it, for splitCsvFields and Python's csv to read back whole:
 /// quoted, its quotes doubled. Run names come from file names and Vehicle_order, which may hold
 /// commas and quotes.
@@ -32,8 +45,10 @@ std::vector<std::string> firstLineFields(const std::string& path);
 /// The line without the UTF-8 byte-order mark a spreadsheet export may put at a file's start.
 std::string withoutByteOrderMark(const std::string& line);
 
-/// For a reader's error: " (its fields are separated by ';' ...)" when the file's first line has
-/// semicolons and no comma, as a spreadsheet set to a decimal comma writes it, the same for tabs
-/// (a tab-separated export); "" otherwise.
-std::string separatorHint(const std::string& path);
+/// For a reader's error, why the file does not read as comma-separated text, when its first bytes
+/// say: " (it is a ROS bag ...)", " (it is UTF-16 text ...)" or another binary file; " (its lines end
+/// in a carriage return alone ...)", as Excel's "CSV (Macintosh)" writes them; " (its fields are
+/// separated by ';' ...)" when the first line has semicolons and no comma, as a spreadsheet set to a
+/// decimal comma writes it, the same for tabs; "" otherwise.
+std::string textLayoutHint(const std::string& path);
 }  // namespace acc

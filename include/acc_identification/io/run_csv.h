@@ -73,7 +73,7 @@ struct RunFileContents
 };
 
 /// Reads a canonical run CSV (header time_s,space_gap_m,follower_speed_mps,leader_speed_mps, in
-/// any column order; an optional valid column, 0 or 1, with invalid_reason beside it, as
+/// any column order; an optional valid column, 0 or 1 (0.0, 1.0, false, true alike), with invalid_reason beside it, as
 /// nmea_to_csv writes them: a row marked 0 is a split point, rejected with its reason) or an OpenACC file of any layout (two vehicles or a platoon; read by
 /// readOpenAccFile, openacc_file.h) as the runs of one leader-follower pair: by default the first
 /// pair the file holds, said in notes. A bad row (wrong field count, not a number, not finite, a
