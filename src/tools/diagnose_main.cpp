@@ -145,7 +145,9 @@ int main(int argc, char** argv)
   }
   if (request.input.paths.empty())
   {
-    std::cerr << "error: no run given (see --help)\n";
+    std::cerr << "error: no run given (see --help)"  // a list option takes every word up to the next option
+              << (request.held_out.size() > 1 ? ": --held-out took every file after it; give the RUNs before it" : "")
+              << "\n";
     return 2;
   }
   for (const std::vector<std::string>* inputs : {&request.input.paths, &request.held_out})
