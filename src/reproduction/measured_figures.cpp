@@ -1,6 +1,7 @@
 #include "acc_identification/reproduction/measured_figures.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -10,6 +11,7 @@
 #include "acc_identification/io/csv_fields.h"
 #include "acc_identification/io/run_csv.h"
 #include "acc_identification/model/follower_simulation.h"
+#include "acc_identification/model/number_text.h"
 #include "acc_identification/reproduction/equilibrium_regression.h"
 #include "acc_identification/reproduction/figure_csv.h"
 #include "acc_identification/reproduction/figure_summary.h"
@@ -87,6 +89,9 @@ json pooledEquilibrium(const std::vector<acc::CarFollowingRun>& runs, const std:
   }
   return entry;
 }
+
+/// An RMSE as the timeseries figure prints it: "none" for a part without a sample (NaN).
+std::string rmseText(double rmse) { return std::isnan(rmse) ? "none" : printfText("%.3f", rmse); }
 
 }  // namespace
 
@@ -190,16 +195,20 @@ json timeseriesFigure(const FigureRequest& request)
     }
     summary["settings"].push_back({{"parameters", settingSummaryJson(setting)},
                                    {"split_time_s", e.split_time_s},
+                                   {"train_samples", e.train_samples},
+                                   {"test_samples", e.test_samples},
                                    {"train_speed_rmse_mps", e.train_speed_rmse_mps},
                                    {"test_speed_rmse_mps", e.test_speed_rmse_mps},
                                    {"train_gap_rmse_m", e.train_gap_rmse_m},
                                    {"test_gap_rmse_m", e.test_gap_rmse_m},
                                    {"diverged", e.diverged}});
-    std::fprintf(
-        request.streams.numbers,
-        "  %-14s speed RMSE train %.3f / test %.3f m/s, gap RMSE train %.3f / test %.3f m (split at %.1f s)%s\n",
-        setting.name.c_str(), e.train_speed_rmse_mps, e.test_speed_rmse_mps, e.train_gap_rmse_m, e.test_gap_rmse_m,
-        e.split_time_s, e.diverged ? "  DIVERGED" : "");
+    std::fprintf(request.streams.numbers,
+                 "  %-14s speed RMSE train %s / test %s m/s, gap RMSE train %s / test %s m (split at %.1f s; %zu / "
+                 "%zu samples)%s\n",
+                 setting.name.c_str(), rmseText(e.train_speed_rmse_mps).c_str(),
+                 rmseText(e.test_speed_rmse_mps).c_str(), rmseText(e.train_gap_rmse_m).c_str(),
+                 rmseText(e.test_gap_rmse_m).c_str(), e.split_time_s, e.train_samples, e.test_samples,
+                 e.diverged ? "  DIVERGED" : "");
   }
   csv.close();
   return summary;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 
@@ -9,12 +10,12 @@ namespace acc
 {
 namespace
 {
-/// RMS of (a - b) over [from, to); 0 for an empty range.
+/// RMS of (a - b) over [from, to); NaN for an empty range.
 double rms(const std::vector<double>& a, const std::vector<double>& b, std::size_t from, std::size_t to)
 {
   if (to <= from)
   {
-    return 0.0;
+    return std::numeric_limits<double>::quiet_NaN();
   }
   double sum = 0.0;
   for (std::size_t k = from; k < to; ++k)
@@ -43,6 +44,8 @@ TrainTestErrors trainTestErrors(const CarFollowingRun& run, const SimulatedFollo
   // After a divergence the samples hold a frozen state: score only what came before.
   const std::size_t valid_end = sim.diverged ? sim.diverged_at_index : n;
   const std::size_t split = std::min(errors.split_index, valid_end);
+  errors.train_samples = split;
+  errors.test_samples = valid_end - split;
   errors.train_speed_rmse_mps = rms(run.follower_speed_mps, sim.speed_mps, 0, split);
   errors.test_speed_rmse_mps = rms(run.follower_speed_mps, sim.speed_mps, split, valid_end);
   errors.train_gap_rmse_m = rms(run.space_gap_m, sim.space_gap_m, 0, split);

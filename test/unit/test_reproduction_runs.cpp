@@ -57,6 +57,24 @@ TEST(ReproductionRuns, TrainTestErrorsAreZeroForTheTrueModelAndNotForAnother)
   EXPECT_GT(other.train_speed_rmse_mps, 0.05);
   EXPECT_GT(other.test_gap_rmse_m, 1.0);
   EXPECT_THROW(acc::trainTestErrors(run, acc::simulateFollower(truth, run), 1.0), std::invalid_argument);
+  EXPECT_EQ(exact.train_samples + exact.test_samples, run.size());
+}
+
+// A simulation that blew up before the split scores its train part up to the blow-up and leaves
+// the test part without a sample: NaN, never the 0 that reads as a perfect fit.
+TEST(ReproductionRuns, APartWithoutASampleHasNoErrorRatherThanZero)
+{
+  const acc::AccParameters truth = acc::paperMinimumSetting();
+  const auto run = syntheticRun(truth);
+  acc::SimulatedFollower sim = acc::simulateFollower(acc::paperMaximumSetting(), run);
+  sim.diverged = true;
+  sim.diverged_at_index = 3;
+  const auto cut = acc::trainTestErrors(run, sim, 0.5);
+  EXPECT_EQ(cut.train_samples, 3u);
+  EXPECT_EQ(cut.test_samples, 0u);
+  EXPECT_TRUE(std::isnan(cut.test_speed_rmse_mps));
+  EXPECT_TRUE(std::isnan(cut.test_gap_rmse_m));
+  EXPECT_TRUE(std::isfinite(cut.train_speed_rmse_mps));
 }
 
 // Fig. 5: steady samples of a run of the model sit on its line eta + tau_e v.
