@@ -84,7 +84,7 @@ bool readDateLine(const std::vector<std::string>& fields, const std::string& lin
   const auto day = integerField(fields, 1), month = integerField(fields, 2), year = integerField(fields, 3);
   if (!day || !month || !year || !isRealDay(*year, *month, *day))
   {
-    file.error = where + "the Date line is not Date,DD,MM,YYYY of a real day: '" + trim(line) + "'";
+    file.error = where + "the Date line is not Date,DD,MM,YYYY of a real day: '" + shortened(trim(line)) + "'";
     return false;
   }
   file.metadata.day = static_cast<int>(*day);
@@ -211,7 +211,7 @@ std::string noHeaderError(const OpenAccFile& file, std::size_t line_number)
   return file.path + ": no header line with a Time column" +
          (line_number >= kMaxLinesBeforeHeader ? " in the first " + std::to_string(kMaxLinesBeforeHeader) + " lines"
                                                : "") +
-         " (not an OpenACC file?)" + textLayoutHint(file.path);
+         " (not an OpenACC file?)";
 }
 
 /// A name Vehicle_order gives twice: two cars of one run cannot be one car (their data would be
@@ -908,6 +908,7 @@ OpenAccFile readOpenAccFile(const std::string& path)
   std::map<std::string, std::size_t> index;  // columns by name, any order; each named once
   if (!readMetadataAndHeader(in, file, line_number) || !indexColumns(file, line_number, index))
   {
+    file.error += textLayoutHint(path);  // a CR-only or UTF-16 export fails here: said what it is
     return file;
   }
   HeaderLayout layout = classifyHeader(file);

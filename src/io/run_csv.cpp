@@ -71,10 +71,7 @@ std::string firstLineHint(const std::string& path)
   const std::vector<std::string> fields = firstLineFields(path);
   if (fields.empty())
     return "";
-  std::string line = join(fields, ",");
-  if (line.size() > 120)
-    line = line.substr(0, 117) + "...";
-  return " (its first line reads '" + line + "')";
+  return " (its first line reads '" + shortened(join(fields, ",")) + "')";
 }
 
 /// Why the file is not comma-separated text when its bytes say, else what its first line holds.

@@ -19,6 +19,13 @@ std::string upperCase(std::string text)
   return text;
 }
 
+std::string shortened(const std::string& text, std::size_t most)
+{
+  if (text.size() <= most)
+    return text;
+  return text.substr(0, most < 3 ? 0 : most - 3) + "...";
+}
+
 bool naturalLess(const std::string& a, const std::string& b)
 {
   std::size_t i = 0, j = 0;

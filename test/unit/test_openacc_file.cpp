@@ -3,6 +3,7 @@
 // absent or empty columns, NaN cells inside and outside the pair read.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -736,6 +737,17 @@ TEST_F(OpenAccFileTest, AHeaderFirstNeedsTimeAndACarsSpeedToBeOpenAcc)
   // Metadata lines before the header but no Date or Vehicle_order: still refused, as before.
   const acc::OpenAccFile partial = acc::readOpenAccFile(write("partial.csv", "ACC,1\n" + astaZeroFile(3)));
   EXPECT_NE(partial.error.find("metadata missing before the header"), std::string::npos) << partial.error;
+}
+
+// An export with a carriage return alone between lines (Excel's "CSV (Macintosh)") is one line
+// to the reader: the error says so, and quotes the start of that line, not the whole file.
+TEST_F(OpenAccFileTest, AFileWithCarriageReturnsAloneIsSaidToBeSoAndNotQuotedWhole)
+{
+  std::string text = kPlatoonMetadata + astaZeroFile(3);
+  std::replace(text.begin(), text.end(), '\n', '\r');
+  const acc::OpenAccFile file = acc::readOpenAccFile(write("mac.csv", text));
+  EXPECT_NE(file.error.find("its lines end in a carriage return alone"), std::string::npos) << file.error;
+  EXPECT_LT(file.error.size(), 500u) << file.error;
 }
 
 // The database's table of mixed-setting runs is known by its header, whatever its name; the

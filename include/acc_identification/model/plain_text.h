@@ -14,6 +14,10 @@ std::string join(const std::vector<std::string>& parts, const std::string& separ
 /// The text in capitals (ASCII letters; "min" -> "MIN"), for names matched in any case.
 std::string upperCase(std::string text);
 
+/// The text cut to `most` characters, its end "..." when it was longer: a line of a file quoted in
+/// a message (a file without line ends would otherwise be quoted whole).
+std::string shortened(const std::string& text, std::size_t most = 120);
+
 /// Natural order: digit runs compare as numbers, so dynamic_part5 comes before dynamic_part12 (and
 /// "part5 Hyundai#2" before "part5 Hyundai#10"). The order the tools put files and runs in.
 bool naturalLess(const std::string& a, const std::string& b);
