@@ -13,6 +13,14 @@ FileSource::FileSource(const std::string& path, double rate)
   state_ = in_.is_open() ? "open" : "cannot open " + path;
 }
 
+std::string FileSource::state() const
+{
+  if (pacer_.clockJumps() == 0)
+    return state_;
+  return state_ + "; " + std::to_string(pacer_.clockJumps()) +
+         " clock jump(s) in the log, paced as the receiver sent them (last " + pacer_.lastClockJump() + ")";
+}
+
 std::string FileSource::description() const { return "file://" + path_ + "?rate=" + std::to_string(rate_); }
 
 bool FileSource::loadLine()

@@ -20,6 +20,7 @@
 #include "acc_identification/gnss/byte_source.h"
 #include "acc_identification/gnss/log_pacer.h"
 #include "acc_identification/gnss/nmea_decoder.h"
+#include "acc_identification/gnss/nmea_writer.h"
 
 
 namespace
@@ -195,6 +196,49 @@ TEST(LogPacer, UntimedLinesFollowTheLineBeforeAndMidnightUnwraps)
   EXPECT_FALSE(pacer.dueOffsetS(kVtg));  // no time: due with the line before it
   EXPECT_NEAR(*pacer.dueOffsetS("$GNGGA,000000.00,4507.80020,N,00827.00020,E,1,12,0.8,120.0,M,,M,,*67\r\n"),
               0.2 / 2.0, 1e-9);  // across midnight: 0.2 s of log at 2x
+}
+
+namespace
+{
+/// A GGA of this time of day (hhmmss.ss), its checksum right.
+std::string ggaAt(const std::string& hhmmss)
+{
+  const std::string body = "GNGGA," + hhmmss + ",4507.80020,N,00827.00020,E,1,12,0.8,120.0,M,,M,,";
+  return "$" + body + "*" + acc::nmeaChecksum(body) + "\r\n";
+}
+}  // namespace
+
+// A receiver's clock reset in a log is not replayed as a burst (the lines behind the latest all
+// due at once, putting the reset stream back beside the other receiver's: 30 s of data paired 30 s
+// apart, gaps of 600 m published as valid), and a line that does not parse does not pace: one
+// stamped an hour ahead with a bad checksum stalled the replay for that hour.
+TEST(LogPacer, AClockJumpIsPacedOnAndALineThatDoesNotParseDoesNotPace)
+{
+  acc::LogPacer pacer(2.0);
+  EXPECT_NEAR(*pacer.dueOffsetS(ggaAt("101500.00")), 0.0, 1e-12);
+  EXPECT_NEAR(*pacer.dueOffsetS(ggaAt("101501.00")), 0.5, 1e-12);
+  std::string corrupt = ggaAt("111501.00");
+  corrupt[corrupt.size() - 3] = corrupt[corrupt.size() - 3] == '0' ? '1' : '0';  // its checksum wrong
+  EXPECT_FALSE(pacer.dueOffsetS(corrupt));  // due with the line before, not in an hour
+  EXPECT_FALSE(pacer.dueOffsetS("$GNGGA,111501.00,4507.8\r\n"));  // cut short: malformed
+  EXPECT_NEAR(*pacer.dueOffsetS(ggaAt("101502.00")), 1.0, 1e-12);
+  EXPECT_EQ(pacer.clockJumps(), 0u);
+  // The clock goes back 30 s: the stream goes on at its pace from there.
+  EXPECT_NEAR(*pacer.dueOffsetS(ggaAt("101432.00")), 1.0, 1e-12);
+  EXPECT_NEAR(*pacer.dueOffsetS(ggaAt("101433.00")), 1.5, 1e-12);
+  EXPECT_EQ(pacer.clockJumps(), 1u);
+  EXPECT_EQ(pacer.lastClockJump(), "10:15:02.00 -> 10:14:32.00");
+  // A time a little behind the latest (a log's own reordering) is due at once, no jump.
+  EXPECT_NEAR(*pacer.dueOffsetS(ggaAt("101432.50")), 1.5, 1e-12);
+  EXPECT_EQ(pacer.clockJumps(), 1u);
+  // A valid line an hour ahead is a jump too, not an hour's wait; and so is the way back.
+  EXPECT_NEAR(*pacer.dueOffsetS(ggaAt("111434.00")), 1.5, 1e-12);
+  EXPECT_NEAR(*pacer.dueOffsetS(ggaAt("101434.00")), 1.5, 1e-12);
+  EXPECT_NEAR(*pacer.dueOffsetS(ggaAt("101435.00")), 2.0, 1e-12);
+  EXPECT_EQ(pacer.clockJumps(), 3u);
+  // A silence within kLongestWaitS is waited for: a receiver that stopped sending for 5 minutes.
+  EXPECT_NEAR(*pacer.dueOffsetS(ggaAt("101935.00")), 2.0 + 150.0, 1e-9);
+  EXPECT_EQ(pacer.clockJumps(), 3u);
 }
 
 TEST(FileSource, PacesLogsWithCarriageReturnLineEndings)

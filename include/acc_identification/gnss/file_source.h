@@ -13,7 +13,8 @@ namespace acc
 /// Replays a log of NMEA lines paced by the sentences' own UTC times: a line is released
 /// (time - first time) / rate after the first timed line, on the host's steady clock (not the
 /// ROS clock, so it also works under /use_sim_time). Lines without time (VTG, GSV, ...) follow
-/// the line before them. rate = 0: as fast as possible. Midnight in the log is unwrapped.
+/// the line before them. rate = 0: as fast as possible. Midnight in the log is unwrapped; a clock
+/// jump (LogPacer) is neither caught up in a burst nor waited for, and state() says how many.
 /// At end of file read() returns kEnd.
 class FileSource : public ByteSource
 {
@@ -22,7 +23,7 @@ public:
 
   ReadResult read(char* buffer, std::size_t capacity, double timeout_s) override;
   std::string description() const override;
-  std::string state() const override { return state_; }
+  std::string state() const override;
   bool isOpen() const override { return in_.is_open(); }
   std::uint64_t reopenCount() const override { return 0; }
 
