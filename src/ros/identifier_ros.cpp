@@ -526,6 +526,8 @@ void IdentifierRos::checkClockMoves()
   if (!ros::Time::isSimTime())
     return;
   const double now_s = ros::Time::now().toSec();
+  if (now_s != last_seen_ros_s_)
+    clock_moved_wall_s_ = ros::WallTime::now().toSec();  // the diagnostics tell a clock that never moves
   if (now_s > 0.0 && now_s == last_seen_ros_s_)
     runPeriod(now_s, true);
   last_seen_ros_s_ = now_s;
@@ -782,7 +784,7 @@ IdentifierCounters IdentifierRos::counters()
 
 IdentifierHealth identifierHealth(const IdentifierCounters& now, const IdentifierCounters& previous,
                                   const std::string& last_failure, double silent_s, double stale_after_s,
-                                  const std::string& unusable_window_note)
+                                  const std::string& unusable_window_note, double ros_time_still_s)
 {
   IdentifierHealth health;
   const auto since = [](std::uint64_t total, std::uint64_t before) { return total > before ? total - before : 0; };
@@ -804,6 +806,14 @@ IdentifierHealth identifierHealth(const IdentifierCounters& now, const Identifie
     health.level = diagnostic_msgs::DiagnosticStatus::ERROR;
     health.message = "since last report: " + std::to_string(failures) + " failed solve(s) or test(s); last: " +
                      last_failure;
+  }
+  else if (now.received > 0 && silent_s <= stale_after_s && ros_time_still_s > stale_after_s)
+  {
+    health.level = diagnostic_msgs::DiagnosticStatus::ERROR;
+    health.message = "relative_state arrives but ROS time has stood still for " +
+                     printfText("%.0f", ros_time_still_s) +
+                     " s (wall clock): /use_sim_time is true and nothing publishes /clock? No period runs: nothing "
+                     "is estimated or published";
   }
   else if (skipped > 0)
   {
@@ -877,8 +887,12 @@ void IdentifierRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status
   }
   const double last_sample_wall_s = last_sample_wall_s_;
   const double silent_s = last_sample_wall_s > 0.0 ? ros::WallTime::now().toSec() - last_sample_wall_s : 0.0;
+  const double clock_moved_wall_s = clock_moved_wall_s_;
+  const double ros_time_still_s = ros::Time::isSimTime() && clock_moved_wall_s > 0.0
+                                      ? ros::WallTime::now().toSec() - clock_moved_wall_s
+                                      : 0.0;
   const IdentifierHealth health = identifierHealth(c, reported_, last_failure, silent_s, settings_.stale_after_s,
-                                                   unusable_window_note);
+                                                   unusable_window_note, ros_time_still_s);
   reported_ = c;
   status.summary(health.level, health.message);
   status.add("samples received", c.received);

@@ -52,6 +52,20 @@ TEST(IdentifierHealth, AnInputThatStoppedWarns)
             "no relative_state yet");
 }
 
+/// Samples that arrive while ROS time stands still (/use_sim_time left true by a replay, no
+/// /clock): no period runs, and the node published nothing under an OK "identifying".
+TEST(IdentifierHealth, SamplesWhileRosTimeStandsStillAreAnError)
+{
+  const acc::IdentifierCounters now = running();
+  EXPECT_EQ(acc::identifierHealth(now, now, "", 0.1, 5.0, "", 4.0).level, DiagnosticStatus::OK);
+  const acc::IdentifierHealth stalled = acc::identifierHealth(now, now, "", 0.1, 5.0, "", 30.0);
+  EXPECT_EQ(stalled.level, DiagnosticStatus::ERROR);
+  EXPECT_NE(stalled.message.find("relative_state arrives but ROS time has stood still for 30 s"), std::string::npos)
+      << stalled.message;
+  // Once the input stopped too (the end of a replay, /clock with it), that is what is said.
+  EXPECT_EQ(acc::identifierHealth(now, now, "", 6.0, 5.0, "", 30.0).level, DiagnosticStatus::WARN);
+}
+
 /// A take-over by the driver is said (OK: the driver's choice); samples whose ACC state is unknown
 /// while engagement is required are a fault of the source (WARN).
 TEST(IdentifierHealth, AccOffIsSaidAndAnUnknownAccStateWarns)

@@ -134,10 +134,13 @@ struct IdentifierHealth
 /// A period whose window held samples but only pieces too short to simulate (a receiver slower
 /// than max_gap_s allows, or holes everywhere) is WARN too, with unusable_window_note
 /// (SlidingWindow::describeShortPieces): samples arrive, and nothing of them can be used.
+/// ros_time_still_s: wall seconds ROS time has stood still (under /use_sim_time); beyond
+/// stale_after_s while samples come, no period runs (a replay left /use_sim_time true and nothing
+/// publishes /clock): ERROR, nothing is estimated or published.
 IdentifierHealth identifierHealth(const IdentifierCounters& now, const IdentifierCounters& previous,
                                   const std::string& last_failure, double silent_s = 0.0,
                                   double stale_after_s = std::numeric_limits<double>::infinity(),
-                                  const std::string& unusable_window_note = "");
+                                  const std::string& unusable_window_note = "", double ros_time_still_s = 0.0);
 
 /// Runs work and catches whatever it throws: true when it returned; false when it threw, with
 /// failure saying what (a std::exception's what(), or that it was not a std::exception).
@@ -268,6 +271,7 @@ private:
   double last_seen_ros_s_ = -1.0;  ///< ROS time at the last checkClockMoves
   std::atomic<std::uint64_t> looks_published_{0};  ///< stability_tests_ as of the last published message
   std::atomic<double> last_sample_wall_s_{0.0};  ///< ros::WallTime of the last relative_state (0: none yet)
+  std::atomic<double> clock_moved_wall_s_{0.0};  ///< ros::WallTime ROS time last moved (sim time; 0: not seen)
   diagnostic_updater::Updater updater_;
   ros::WallTimer diagnostic_timer_;
 
