@@ -100,6 +100,7 @@ void EpochPairer::addFollower(const GnssFix& fix)
 
 void EpochPairer::addToStream(const GnssFix& fix, bool leader)
 {
+  (leader ? leader_dated_ : follower_dated_) = fix.has_date;
   if (hasUsablePosition(fix) && holdsFarOffStamp(fix, leader))
     return;
   if (acceptStream(fix, leader))
@@ -359,6 +360,10 @@ void EpochPairer::giveUp(double time_s, Resolution resolution)
   // A leader whose epochs are further apart than the skew leaves some follower epochs between two
   // of them unpaired every time: say what to set, not only that they are lost.
   const bool leader_coarser = leader_period_s_ > settings_.max_interpolation_skew_s + settings_.exact_match_tolerance_s;
+  if (leader_dated_ && follower_dated_ && *leader_dated_ != *follower_dated_)
+    why += std::string("; the ") + (*leader_dated_ ? "follower" : "leader") +
+           "'s fixes carry no date (its receiver sends neither RMC nor ZDA): its times count from midnight, the "
+           "other's from 1970, and none pair; enable RMC or ZDA on that receiver";
   event("follower epoch " + seconds(time_s) + " s unpaired: no leader epoch within " +
         seconds(settings_.max_interpolation_skew_s) + " s, " + why +
         (leader_coarser ? "; the leader's epochs are " + seconds(leader_period_s_) +

@@ -281,6 +281,28 @@ TEST(Pairing, AStreamWhoseEveryStepIsADropoutIsSaidOnceAndThrottled)
   EXPECT_EQ(coarse.takePairs().size(), 11u);
 }
 
+// A follower whose receiver sends neither RMC nor ZDA is timed from midnight, the leader from
+// 1970: nothing pairs, and the report said only that the leader was past each epoch.
+TEST(Pairing, AStreamWithoutADateIsNamedWhenNothingPairs)
+{
+  acc::EpochPairer pairer(acc::PairingSettings{});
+  const double day_s = 1778544000.0;  // a UTC midnight
+  for (double t : epochs(36000.0, 36003.0))
+  {
+    pairer.addLeader(fixAt(day_s + t, -kDegPerSecond * day_s));  // a latitude on the Earth
+    acc::GnssFix undated = fixAt(t, -0.001);
+    undated.has_date = false;
+    pairer.addFollower(undated);
+  }
+  EXPECT_TRUE(pairer.takePairs().empty());
+  EXPECT_GT(pairer.counters().follower_unpaired, 0u);
+  bool named = false;
+  for (const acc::PairingEvent& event : pairer.takeEvents())
+    named = named || event.text.find("the follower's fixes carry no date (its receiver sends neither RMC nor ZDA)") !=
+                         std::string::npos;
+  EXPECT_TRUE(named);
+}
+
 TEST(Pairing, FollowerWaitsForTheLeaderOnlyUntilTheTimeout)
 {
   acc::PairingSettings settings;

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -175,6 +176,9 @@ private:
   bool arrived_out_of_order_ = false;  // of the fix being added, counted once it is kept
   bool leader_reset_awaited_ = false;  // the follower's time went back, the leader's not yet
   bool finishing_ = false;             // inside finish(): no fix can still arrive
+  /// Whether each stream's latest fix carried a date: a stream without one (a receiver sending
+  /// neither RMC nor ZDA) is timed from midnight, the other from 1970, and nothing pairs.
+  std::optional<bool> leader_dated_, follower_dated_;
   std::size_t leader_dropouts_in_a_row_ = 0;  // consecutive steps of the stream that were dropouts
   std::size_t follower_dropouts_in_a_row_ = 0;
 };
