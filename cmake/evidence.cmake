@@ -25,6 +25,7 @@ if(CATKIN_ENABLE_TESTING)
     test/unit/test_clustered_median.cpp
     test/unit/test_empirical_response.cpp
     test/unit/test_pair_dip_evidence.cpp
+    test/unit/test_perturbation_boundaries.cpp
     test/unit/test_perturbation_windows.cpp
     test/unit/test_wild_cluster_bootstrap.cpp
     test/unit/test_wild_cluster_interval.cpp)

@@ -1386,4 +1386,38 @@ TEST(CampaignPlatoon, ADisagreementIsSaidWhereTheChainMissesTheDirectionOrTheDip
   EXPECT_EQ(directions, 3u * check.perturbations.size());
   EXPECT_GE(dips, 1u);
   EXPECT_LT(dips, 3u * check.perturbations.size());
+  // A link's amplification is the car's dip over the dip of the car directly ahead, not the first
+  // car's (which read 1.35 where the link passed on 1.14), measured and chained alike.
+  std::size_t links = 0;
+  for (const acc::PerturbationCheck& perturbation : check.perturbations)
+  {
+    const auto& rows = perturbation.positions;
+    for (std::size_t k = 2; k < rows.size(); ++k)
+    {
+      if (!std::isfinite(rows[k].measured.dip_mps) || !(rows[k - 1].measured.dip_mps >= 0.1) ||
+          !std::isfinite(rows[k].chain.dip_mps) || !(rows[k - 1].chain.dip_mps >= 0.1))
+        continue;
+      EXPECT_DOUBLE_EQ(rows[k].measured_amplification, rows[k].measured.dip_mps / rows[k - 1].measured.dip_mps) << k;
+      EXPECT_DOUBLE_EQ(rows[k].chain_amplification, rows[k].chain.dip_mps / rows[k - 1].chain.dip_mps) << k;
+      ++links;
+    }
+  }
+  EXPECT_GE(links, 2u);
+}
+
+// A car is scored with a measured dip above min_dip_mps and a link with a change above
+// min_link_change_mps, both strictly; a prediction that stays the same is no growth, so it is
+// right where the data show decay.
+TEST(DipPredictionSummary, TheScoredDipAndLinkAreStrictlyAboveTheirFloorsAndAnUnchangedPredictionIsNoGrowth)
+{
+  acc::PlatoonCheck check;
+  // Car 2's dip is the floor (0.3): not scored; car 4 changes by exactly 0.25 on car 3: no link.
+  check.perturbations.push_back(perturbationWithDips({3.0, 0.3, 2.5, 2.25}, {3.0, 0.5, 2.0, 2.0}));
+  // Car 3 decays (2.0 -> 1.5) where its prediction stays (2.0 -> 2.0): the direction is right.
+  check.perturbations.push_back(perturbationWithDips({3.0, 2.0, 1.5}, {3.0, 2.0, 2.0}));
+  const acc::DipPredictionSummary s = acc::summarizeDipPredictions({check}, acc::DipPrediction::chain_base, 0.3, 0.25,
+                                                                   {}, acc::ScoreIntervals::skipped);
+  EXPECT_EQ(s.car_perturbations, 4u);  // cars 3 and 4, cars 2 and 3
+  EXPECT_EQ(s.links, 3u);              // 0.3 -> 2.5, 3.0 -> 2.0, 2.0 -> 1.5
+  EXPECT_DOUBLE_EQ(s.share_links_growth_right, 1.0);
 }
