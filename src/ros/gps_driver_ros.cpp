@@ -492,10 +492,16 @@ void GpsDriverRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   const std::uint64_t errors =
       s.bad_checksum + s.malformed + fixes_outside_ros_time_ + time_references_outside_ros_time_;
   const std::uint64_t new_errors = errors - errors_at_last_diagnostic_;
+  const std::uint64_t new_fixes = s.fixes - fixes_at_last_diagnostic_;
+  // A receiver that sends no date at all (GGA and VTG only): its fixes never pair with a dated one's.
+  const bool all_undated = new_fixes > 5 && time_references_without_date_ - undated_at_last_diagnostic_ >= new_fixes;
+  const std::uint64_t new_repeated = s.repeated_sentences - repeated_at_last_diagnostic_;
   const double since_fix_s = seconds(now - last_fix_);
   last_diagnostic_ = now;
   fixes_at_last_diagnostic_ = s.fixes;
   errors_at_last_diagnostic_ = errors;
+  undated_at_last_diagnostic_ = time_references_without_date_;
+  repeated_at_last_diagnostic_ = s.repeated_sentences;
 
   if (source_ && !source_->isOpen())
     status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "source closed: " + source_->state());
@@ -507,6 +513,13 @@ void GpsDriverRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "fix rate below expected");
   else if (new_errors > 0)
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "bad sentences or times received");
+  else if (all_undated)
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
+                   "fixes without a date (the receiver sends neither RMC nor ZDA): they pair only with another "
+                   "undated receiver's");
+  else if (new_repeated > 0)
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
+                   "sentences repeated within an epoch (every line twice? two writers on one link?): the first kept");
   else
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "receiving fixes");
 

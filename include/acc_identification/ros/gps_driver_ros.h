@@ -156,8 +156,10 @@ private:
   std::uint64_t errors_at_last_diagnostic_ = 0;  ///< bad sentences, fixes and time references outside ros::Time
   std::uint64_t fixes_outside_ros_time_ = 0;     ///< GNSS time ros::Time cannot hold: fix not published
   /// Fixes without a date (time of day only, e.g. before the first RMC/ZDA): no time_reference.
-  /// Expected at start-up, so counted but not a warning.
+  /// Expected at start-up, so a warning only when every fix of a report has none.
   std::uint64_t time_references_without_date_ = 0;
+  std::uint64_t undated_at_last_diagnostic_ = 0;
+  std::uint64_t repeated_at_last_diagnostic_ = 0;  ///< NmeaStatistics::repeated_sentences
   /// Dated fixes whose GNSS or receive time ros::Time cannot hold: no time_reference (an error).
   std::uint64_t time_references_outside_ros_time_ = 0;
 };
