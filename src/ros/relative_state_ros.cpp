@@ -3,6 +3,7 @@
 #include "acc_identification/ros/ros_time.h"
 
 #include <cmath>
+#include <iostream>
 #include <sstream>
 
 namespace acc
@@ -67,6 +68,15 @@ RelativeStateRos::RelativeStateRos(ros::NodeHandle node, ros::NodeHandle private
            gapModeName(settings_.gap_mode), settings_.geometry.leader_antenna_to_rear_bumper_m,
            settings_.geometry.follower_antenna_to_front_bumper_m, settings_.pairing.max_interpolation_skew_s,
            settings_.pairing.timeout_s);
+}
+
+RelativeStateRos::~RelativeStateRos()
+{
+  // On stderr: the node is past ros::shutdown here, where rosconsole prints nothing more.
+  if (const std::size_t waiting = estimator_.followerEpochsWaiting(); waiting > 0)
+    std::cerr << "[ WARN] relative_state: stopped with " << waiting
+              << " follower epoch(s) still waiting for a leader epoch: neither paired nor counted in "
+                 "follower_unpaired\n";
 }
 
 void RelativeStateRos::onLeader(const acc_identification::GnssFix::ConstPtr& message)
@@ -171,6 +181,7 @@ void RelativeStateRos::diagnose(diagnostic_updater::DiagnosticStatusWrapper& sta
   status.add("exact_pairs", c.exact_pairs);
   status.add("interpolated_pairs", c.interpolated_pairs);
   status.add("follower_unpaired", c.follower_unpaired);
+  status.add("follower_waiting (for a leader epoch, now)", estimator_.followerEpochsWaiting());
   status.add("leader_dropouts", c.leader_dropouts);
   status.add("follower_dropouts", c.follower_dropouts);
   status.add("leader_time_resets", c.leader_time_resets);

@@ -311,8 +311,9 @@ TEST(Pairing, FollowerWaitsForTheLeaderOnlyUntilTheTimeout)
   for (double t : epochs(0.0, 3.0))
     pairer.addFollower(fixAt(t, -0.001));
   EXPECT_TRUE(pairer.takePairs().empty());
-  // Epochs 0.0 .. 1.9 are older than 1.05 s on the follower's clock: given up.
+  // Epochs 0.0 .. 1.9 are older than 1.05 s on the follower's clock: given up; 2.0 .. 3.0 wait.
   EXPECT_EQ(pairer.counters().follower_unpaired, 20u);
+  EXPECT_EQ(pairer.followerEpochsWaiting(), 11u);
   // A leader fix for a given-up epoch is late; one for a waiting epoch pairs it.
   pairer.addLeader(fixAt(0.5));
   pairer.addLeader(fixAt(2.5));

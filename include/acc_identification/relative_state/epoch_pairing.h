@@ -126,6 +126,9 @@ public:
   std::vector<PairingEvent> takeEvents();
 
   const PairingCounters& counters() const { return counters_; }
+  /// Follower epochs waiting for a leader epoch, neither paired nor given up yet: with the
+  /// counters, every follower fix is accounted for at any moment (a node stopped now loses these).
+  std::size_t followerEpochsWaiting() const { return pending_follower_.size(); }
   const PairingSettings& settings() const { return settings_; }
   /// The most pairs one addLeader or addFollower can complete: every follower epoch buffered.
   std::size_t mostPairsAtOnce() const { return settings_.max_buffered_fixes; }

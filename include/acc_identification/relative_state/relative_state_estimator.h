@@ -82,6 +82,7 @@ public:
   std::vector<PairingEvent> takeEvents();
 
   const PairingCounters& pairingCounters() const { return pairer_.counters(); }
+  std::size_t followerEpochsWaiting() const { return pairer_.followerEpochsWaiting(); }
   /// The most states one addLeader or addFollower can complete (one per pair).
   std::size_t mostStatesAtOnce() const { return pairer_.mostPairsAtOnce(); }
   const RelativeStateCounters& counters() const { return counters_; }

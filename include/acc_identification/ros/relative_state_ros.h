@@ -30,6 +30,8 @@ class RelativeStateRos
 {
 public:
   RelativeStateRos(ros::NodeHandle node, ros::NodeHandle private_node);
+  /// Says how many follower epochs were still waiting for a leader epoch: lost with the node.
+  ~RelativeStateRos();
   bool ok() const { return ok_; }
   /// ParameterReader::unreadNote() of the node's parameters (warned at start): empty when all were read.
   const std::string& unreadParameters() const { return unread_parameters_; }
