@@ -22,12 +22,11 @@ std::string clockText(double log_time_s)
 
 std::optional<double> LogPacer::dueOffsetS(const std::string& line)
 {
-  double time_of_day_s = 0.0;
-  NmeaSentence sentence;
-  if (rate_ <= 0.0 || !nmeaLineTimeOfDay(line, time_of_day_s) ||
-      parseNmeaSentence(line, sentence) != NmeaParseOutcome::kOk)
+  NmeaSentence sentence;  // parsed whole: a line whose checksum fails does not pace
+  if (rate_ <= 0.0 || parseNmeaSentence(line, sentence) != NmeaParseOutcome::kOk ||
+      std::isnan(sentence.time_of_day_s))
     return std::nullopt;
-  double log_time_s = time_of_day_s + day_offset_s_;
+  double log_time_s = sentence.time_of_day_s + day_offset_s_;
   if (started_ && log_time_s < last_time_s_ - kSecondsPerDay / 2.0)  // midnight in the log
   {
     day_offset_s_ += kSecondsPerDay;

@@ -261,7 +261,8 @@ private:
   std::size_t pieces_ = 0;
 };
 
-/// The valid column's flag: "0" or "1" for a number equal to either, otherwise its text in lower case ("" without the column or with a wrong field count).
+/// The valid column's flag: "0" or "1" for a number equal to either, otherwise its text in lower
+/// case ("" without the column or with a wrong field count).
 std::string validFlag(const std::vector<std::string>& fields, const ColumnMap& map)
 {
   if (!map.valid || fields.size() != map.field_count)
